@@ -1,1 +1,14 @@
-//! placeholder
+//! canstar-controller: the CAN 2.0A/B protocol controller core.
+//!
+//! - [`fsm`]: the bit-stream processor, i.e. the complete frame state machine
+//!   with destuffing, CRC, arbitration, error detection and fault confinement
+//!   ([`fsm::CanFsm`]). Its FIELD encoding and event word are documented there.
+//! - [`frame`]: plain-Rust frames and the bit-level frame builder.
+//!
+//! The normative description is `can-protocol.md`.
+
+pub mod frame;
+pub mod fsm;
+
+pub use frame::{BuildOptions, BusBit, Frame};
+pub use fsm::{CanFsm, Field};
