@@ -11,10 +11,13 @@
 //! | `clock` | in  | system clock |
 //! | `reset` | in  | synchronous, active high: CRC register becomes 0 |
 //! | `clear` | in  | synchronous clear, same effect as `reset` (used at SOF); wins over `en` |
-//! | `en`    | in  | strobe: shift `bit` into the CRC at this clock |
-//! | `bit`   | in  | the (destuffed) bit to shift in |
+//! | `en`    | in  | strobe: shift `din` into the CRC at this clock |
+//! | `din`   | in  | the (destuffed) bit to shift in |
 //! | `crc`   | out | the registered CRC value (15 bits) |
-//! | `crc_next` | out | combinational: the value `crc` would take if `bit` were shifted in now (extra output) |
+//! | `crc_next` | out | combinational: the value `crc` would take if `din` were shifted in now (extra output) |
+//!
+//! The data input is called `din`, not `bit`: `bit` is a SystemVerilog
+//! keyword, which Verilator and Icarus (`-g2012`) reject as a port name.
 //!
 //! # Software
 //!
@@ -33,10 +36,10 @@ pub struct Crc15 {
     pub reset: Signal<In, Bit>,
     pub clear: Signal<In, Bit>,
     pub en: Signal<In, Bit>,
-    pub bit: Signal<In, Bit>,
+    pub din: Signal<In, Bit>,
     /// Registered CRC value.
     pub crc: Signal<Out, Bits<15>>,
-    /// The CRC after shifting in `bit` (combinational, independent of `en`).
+    /// The CRC after shifting in `din` (combinational, independent of `en`).
     pub crc_next: Signal<Out, Bits<15>>,
     poly: Constant<Bits<15>>,
     state: DFF<Bits<15>>,
@@ -52,7 +55,7 @@ impl Default for Crc15 {
             reset: Default::default(),
             clear: Default::default(),
             en: Default::default(),
-            bit: Default::default(),
+            din: Default::default(),
             crc: Default::default(),
             crc_next: Default::default(),
             poly: Constant::new((CRC15_POLY as u64).into()),
@@ -68,7 +71,7 @@ impl Logic for Crc15 {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(self, clock, state);
-        self.fb.next = self.bit.val() ^ self.state.q.val().get_bit(14);
+        self.fb.next = self.din.val() ^ self.state.q.val().get_bit(14);
         // Doubling is a shift left by one, truncated to 15 bits (cheaper in
         // the Rust model than `<<`, which goes through a big integer).
         self.shifted.next = self.state.q.val() + self.state.q.val();

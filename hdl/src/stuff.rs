@@ -16,7 +16,7 @@
 //! | `clock` | in  | system clock |
 //! | `reset` | in  | synchronous, active high: run cleared |
 //! | `en`    | in  | strobe: one bit was sampled this clock |
-//! | `bit`   | in  | its level |
+//! | `din`   | in  | its level (not `bit`: a SystemVerilog keyword) |
 //! | `active`| in  | this bit is in the stuffed area (low: clear the run at `en`) |
 //! | `stuff_bit`  | out | combinational, `en & active` qualified: this bit follows 5 equal bits and has the opposite level: drop it |
 //! | `stuff_error`| out | combinational, `en & active` qualified: this bit is the 6th equal bit |
@@ -56,7 +56,7 @@ pub struct BitDestuffer {
     pub clock: Signal<In, Clock>,
     pub reset: Signal<In, Bit>,
     pub en: Signal<In, Bit>,
-    pub bit: Signal<In, Bit>,
+    pub din: Signal<In, Bit>,
     pub active: Signal<In, Bit>,
     /// This bit is a stuff bit (drop it). Valid on the `en` clock.
     pub stuff_bit: Signal<Out, Bit>,
@@ -80,7 +80,7 @@ impl Logic for BitDestuffer {
     fn update(&mut self) {
         dff_setup!(self, clock, cnt, lvl);
         self.at5.next = self.cnt.q.val() == 5;
-        self.same.next = (self.cnt.q.val() != 0) & (self.bit.val() == self.lvl.q.val());
+        self.same.next = (self.cnt.q.val() != 0) & (self.din.val() == self.lvl.q.val());
         self.take.next = self.en.val() & self.active.val();
         self.next_is_stuff.next = self.at5.val();
         self.stuff_level.next = !self.lvl.q.val();
@@ -94,7 +94,7 @@ impl Logic for BitDestuffer {
                     }
                 } else {
                     self.cnt.d.next = 1.into();
-                    self.lvl.d.next = self.bit.val();
+                    self.lvl.d.next = self.din.val();
                 }
             } else {
                 self.cnt.d.next = 0.into();

@@ -189,20 +189,20 @@ fn crc15_check_value_software() {
 fn run_crc_block(u: &mut Crc15, bits: &[bool], rng: &mut ChaCha8Rng) -> u16 {
     u.clear.next = true;
     u.en.next = rng.gen();
-    u.bit.next = rng.gen();
+    u.din.next = rng.gen();
     drive::cycle(u);
     u.clear.next = false;
     assert_eq!(u.crc.val().index() as u16, 0, "clear");
     for (i, &b) in bits.iter().enumerate() {
         while rng.gen_bool(0.4) {
             u.en.next = false;
-            u.bit.next = rng.gen();
+            u.din.next = rng.gen();
             let before = u.crc.val();
             drive::cycle(u);
             assert_eq!(u.crc.val(), before, "no change without en");
         }
         u.en.next = true;
-        u.bit.next = b;
+        u.din.next = b;
         drive::settle(u);
         let expect = crc15_bits(&bits[..=i]) as u64;
         assert_eq!(u.crc_next.val().index() as u64, expect, "crc_next at bit {i}");
@@ -243,7 +243,7 @@ fn crc15_reset_and_clear_win_over_en() {
     run_crc_block(&mut u, &bytes_to_bits(b"ab"), &mut rng);
     assert_ne!(u.crc.val().index(), 0);
     u.en.next = true;
-    u.bit.next = true;
+    u.din.next = true;
     u.reset.next = true;
     drive::cycle(&mut u);
     assert_eq!(u.crc.val().index(), 0, "reset");
@@ -384,7 +384,7 @@ fn run_destuffer(u: &mut BitDestuffer, seq: &[(bool, bool, bool)], rng: &mut Cha
     for &(bit, active, reset) in seq {
         while rng.gen_bool(0.3) {
             u.en.next = false;
-            u.bit.next = rng.gen();
+            u.din.next = rng.gen();
             u.active.next = rng.gen();
             u.reset.next = false;
             drive::settle(u);
@@ -394,7 +394,7 @@ fn run_destuffer(u: &mut BitDestuffer, seq: &[(bool, bool, bool)], rng: &mut Cha
             assert_eq!((u.next_is_stuff.val(), u.stuff_level.val()), before, "state held without en");
         }
         u.en.next = true;
-        u.bit.next = bit;
+        u.din.next = bit;
         u.active.next = active;
         u.reset.next = reset;
         drive::settle(u);
@@ -646,7 +646,7 @@ fn crc15_verilog_flow() {
     let mut u = Crc15::default();
     let (synth, cs) = flow::full_check(&mut u, "crc15", FLOW_CYCLES, 104, |u, rng, _| {
         u.en.next = rng.gen_bool(0.3);
-        u.bit.next = rng.gen();
+        u.din.next = rng.gen();
         u.clear.next = rng.gen_bool(0.005);
         u.reset.next = rng.gen_bool(0.0005);
     })
@@ -666,7 +666,7 @@ fn bit_destuffer_verilog_flow() {
         let (mut e, mut s) = (0, 0);
         for &(en, bit, active, reset) in &stim {
             d.en.next = en;
-            d.bit.next = bit;
+            d.din.next = bit;
             d.active.next = active;
             d.reset.next = reset;
             drive::settle(&mut d);
@@ -681,7 +681,7 @@ fn bit_destuffer_verilog_flow() {
     let (synth, cs) = flow::full_check(&mut u, "bit_destuffer", FLOW_CYCLES, 105, |u, _, i| {
         let (en, bit, active, reset) = stim[i];
         u.en.next = en;
-        u.bit.next = bit;
+        u.din.next = bit;
         u.active.next = active;
         u.reset.next = reset;
     })
