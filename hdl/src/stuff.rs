@@ -27,6 +27,10 @@
 //! a stuff error again, an opposite bit is taken as a stuff bit); the
 //! controller aborts the frame anyway.
 //!
+//! The controller keeps `active` high for the bit after the last CRC bit
+//! when `next_is_stuff` is set: that bit is the final stuff bit, part of the
+//! stuffed area.
+//!
 //! # [`BitStuffer`]
 //!
 //! | port    | dir | meaning |

@@ -295,7 +295,7 @@ proptest! {
         // Mix uniform bits with long runs so stuffing is exercised.
         let mut data = bits;
         let mut level = false;
-        for l in long { data.extend(std::iter::repeat(level).take(l)); level = !level; }
+        for l in long { data.extend(std::iter::repeat_n(level, l)); level = !level; }
         let s = stuff_bits(&data);
         prop_assert!(max_run(&s) <= 5);
         prop_assert!(s.len() >= data.len() && s.len() <= data.len() + data.len() / 4 + 1);
