@@ -10,10 +10,21 @@
 //! clock on. Everything is normative per `can-protocol.md`; the section numbers
 //! below refer to it.
 //!
-//! Bit stuffing and the CRC-15 are computed inside this block on the sampled
-//! levels (§5: the stuff run counter runs on sampled levels for every role, so
-//! one destuffer serves the transmitter and the receivers; a transmitter's
-//! next stuff bit is the complement of the level it has just sampled).
+//! Bit stuffing and the CRC-15 use the shared blocks
+//! [`canstar_hdl::stuff::BitDestuffer`] and [`canstar_hdl::crc15::Crc15`], both
+//! fed with the sampled levels. §5: the stuff run counter runs on sampled
+//! levels for every role, so one destuffer serves the transmitter and the
+//! receivers; a transmitter's stuff bit is the destuffer's `stuff_level` (the
+//! complement of the run it has just sampled), chosen combinationally for
+//! `drive` while the destuffer says the next bit is a stuff bit. The CRC engine
+//! also runs over the CRC sequence: a transmitter feeding back its own CRC bit
+//! just shifts the register (so the next bit to send is always `crc[14]`), and a
+//! receiver's register is zero after the last CRC bit exactly when the received
+//! sequence matches.
+//!
+//! Field and position advance at every non-stuff bit; while the bit in
+//! progress is a stuff bit the debug outputs show the FIELD/POSITION of the bit
+//! before it (registers `pfld`/`ppos`).
 //!
 //! ## FIELD encoding (`field` output, `err_field` payload)
 //!
@@ -47,6 +58,8 @@
 //! together with `tec`/`rec`/`state`, which show the values after processing).
 //! See the `EV_*` constants for the bit positions.
 
+use canstar_hdl::crc15::Crc15;
+use canstar_hdl::stuff::BitDestuffer;
 use rust_hdl::prelude::*;
 
 /// A SOF was sampled (own or received, including a dominant Intermission bit 3).
@@ -276,12 +289,12 @@ pub struct CanFsm {
     // ---- state ----
     fld: DFF<Field>,
     fpos: DFF<Bits<8>>,
-    stf: DFF<Bit>,
+    pfld: DFF<Field>,
+    ppos: DFF<Bits<8>>,
     rtx: DFF<Bit>,
     dom: DFF<Bit>,
-    scnt: DFF<Bits<3>>,
-    slast: DFF<Bit>,
-    crc: DFF<Bits<15>>,
+    dstf: BitDestuffer,
+    crcb: Crc15,
     crcerr: DFF<Bit>,
     tid: DFF<Bits<29>>,
     tdat: DFF<Bits<64>>,
@@ -324,7 +337,10 @@ pub struct CanFsm {
     l_nf: Signal<Local, Field>,
     l_npos: Signal<Local, Bits<8>>,
     l_posinc: Signal<Local, Bits<8>>,
-    l_nstf: Signal<Local, Bit>,
+    l_curstf: Signal<Local, Bit>,
+    l_dfld: Signal<Local, Field>,
+    l_dpos: Signal<Local, Bits<8>>,
+    l_crcen: Signal<Local, Bit>,
     l_ndom: Signal<Local, Bit>,
     l_usetx: Signal<Local, Bit>,
     l_txv: Signal<Local, Bit>,
@@ -346,9 +362,6 @@ pub struct CanFsm {
     l_rok: Signal<Local, Bit>,
     l_clear: Signal<Local, Bit>,
     l_deliver: Signal<Local, Bit>,
-    l_scnt: Signal<Local, Bits<3>>,
-    l_slast: Signal<Local, Bit>,
-    l_crc: Signal<Local, Bits<15>>,
     l_crcerr: Signal<Local, Bit>,
     l_tid: Signal<Local, Bits<29>>,
     l_tdat: Signal<Local, Bits<64>>,
@@ -388,7 +401,7 @@ impl Logic for CanFsm {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
-            self, clock, fld, fpos, stf, rtx, dom, scnt, slast, crc, crcerr, tid, tdat, tdlc, tide, trtr, rid, rdat,
+            self, clock, fld, fpos, pfld, ppos, rtx, dom, crcerr, tid, tdat, tdlc, tide, trtr, rid, rdat,
             rdlc, rrtr, rext, fdone, eqcnt, eqlast, dafc, dafany, exc1, tecr, recr, runr, rarmed, req, blocked, evr,
             arbpos_r, errf_r, errp_r, errtx_r, rxide_r, rxrtr_r, rxid_r, rxdlc_r, rxdat_r
         );
@@ -404,7 +417,6 @@ impl Logic for CanFsm {
         if self.fpos.q.val() == 255 {
             self.l_posinc.next = self.fpos.q.val();
         }
-        self.l_nstf.next = false;
         self.l_ndom.next = false;
         self.l_usetx.next = false;
         self.l_txv.next = true;
@@ -426,9 +438,7 @@ impl Logic for CanFsm {
         self.l_rok.next = false;
         self.l_clear.next = false;
         self.l_deliver.next = false;
-        self.l_scnt.next = self.scnt.q.val();
-        self.l_slast.next = self.slast.q.val();
-        self.l_crc.next = self.crc.q.val();
+        self.l_crcen.next = false;
         self.l_crcerr.next = self.crcerr.q.val();
         self.l_tid.next = self.tid.q.val();
         self.l_tdat.next = self.tdat.q.val();
@@ -459,12 +469,10 @@ impl Logic for CanFsm {
         // Register defaults (hold), event strobes clear.
         self.fld.d.next = self.fld.q.val();
         self.fpos.d.next = self.fpos.q.val();
-        self.stf.d.next = self.stf.q.val();
+        self.pfld.d.next = self.pfld.q.val();
+        self.ppos.d.next = self.ppos.q.val();
         self.rtx.d.next = self.rtx.q.val();
         self.dom.d.next = self.dom.q.val();
-        self.scnt.d.next = self.scnt.q.val();
-        self.slast.d.next = self.slast.q.val();
-        self.crc.d.next = self.crc.q.val();
         self.crcerr.d.next = self.crcerr.q.val();
         self.tid.d.next = self.tid.q.val();
         self.tdat.d.next = self.tdat.q.val();
@@ -511,11 +519,65 @@ impl Logic for CanFsm {
             self.l_nbytes.next = 8.into();
         }
 
-        // FIELD code and hard-sync enable of the bit in progress.
+        // Is the bit in progress inside the stuffed area, and a stuff bit?
+        match self.fld.q.val() {
+            Field::Sof => {
+                self.l_instf.next = true;
+            }
+            Field::Ident => {
+                self.l_instf.next = true;
+            }
+            Field::Srr => {
+                self.l_instf.next = true;
+            }
+            Field::Ide => {
+                self.l_instf.next = true;
+            }
+            Field::Rtr => {
+                self.l_instf.next = true;
+            }
+            Field::ExIdent => {
+                self.l_instf.next = true;
+            }
+            Field::Resv => {
+                self.l_instf.next = true;
+            }
+            Field::Dlc => {
+                self.l_instf.next = true;
+            }
+            Field::Data => {
+                self.l_instf.next = true;
+            }
+            Field::Crc => {
+                self.l_instf.next = true;
+            }
+            _ => {}
+        }
+        // The final stuff bit after CRC bit 15 comes while the field already
+        // says CRC_Delimiter.
+        self.l_curstf.next = self.dstf.next_is_stuff.val()
+            & (self.l_instf.val() | (self.fld.q.val() == Field::CrcDel));
+        self.l_instf.next = self.l_instf.val() | self.l_curstf.val();
+        self.l_dfld.next = self.fld.q.val();
+        self.l_dpos.next = self.fpos.q.val();
+        if self.l_curstf.val() {
+            self.l_dfld.next = self.pfld.q.val();
+            self.l_dpos.next = self.ppos.q.val();
+        }
+        // TX level: a transmitter's stuff bit, else the registered decision.
         self.drive.next = !self.dom.q.val();
+        if self.l_curstf.val() {
+            self.drive.next = !self.rtx.q.val() | self.dstf.stuff_level.val();
+        }
+        if self.listen_only.val() {
+            self.drive.next = true;
+        }
+        self.l_sent.next = self.drive.val();
+
+        // FIELD code and hard-sync enable of the bit in progress.
         self.hs_en.next = false;
         self.field.next = 0.into();
-        match self.fld.q.val() {
+        match self.l_dfld.val() {
             Field::Reset => {
                 self.field.next = 0.into();
                 self.hs_en.next = true;
@@ -601,31 +663,24 @@ impl Logic for CanFsm {
             _ => {}
         }
         // ------------------------------------------------------------------
-        // Field classification.
-        match self.fld.q.val() {
-            Field::Sof => {
-                self.l_instf.next = true;
-            }
+        // Field classification (for a stuff bit: of the bit before it).
+        match self.l_dfld.val() {
             Field::Ident => {
-                self.l_instf.next = true;
                 self.l_arbf.next = true;
                 self.l_arbstuff.next = true;
-                self.l_arbpos.next = bit_cast::<6, 8>(self.fpos.q.val());
+                self.l_arbpos.next = bit_cast::<6, 8>(self.l_dpos.val());
             }
             Field::Srr => {
-                self.l_instf.next = true;
                 self.l_arbf.next = true;
                 self.l_arbstuff.next = true;
                 self.l_arbpos.next = 12.into();
             }
             Field::Ide => {
-                self.l_instf.next = true;
                 self.l_arbf.next = true;
                 self.l_arbstuff.next = self.rext.q.val();
                 self.l_arbpos.next = 13.into();
             }
             Field::Rtr => {
-                self.l_instf.next = true;
                 self.l_arbf.next = true;
                 self.l_arbstuff.next = !self.rext.q.val();
                 self.l_arbpos.next = 12.into();
@@ -634,22 +689,9 @@ impl Logic for CanFsm {
                 }
             }
             Field::ExIdent => {
-                self.l_instf.next = true;
                 self.l_arbf.next = true;
                 self.l_arbstuff.next = true;
-                self.l_arbpos.next = bit_cast::<6, 8>(self.fpos.q.val()) + 13;
-            }
-            Field::Resv => {
-                self.l_instf.next = true;
-            }
-            Field::Dlc => {
-                self.l_instf.next = true;
-            }
-            Field::Data => {
-                self.l_instf.next = true;
-            }
-            Field::Crc => {
-                self.l_instf.next = true;
+                self.l_arbpos.next = bit_cast::<6, 8>(self.l_dpos.val()) + 13;
             }
             _ => {}
         }
@@ -659,8 +701,10 @@ impl Logic for CanFsm {
             self.l_ev.next = self.l_ev.val().replace_bit(EV_BIT, true);
             if self.l_instf.val() {
                 // ---------------- stuffed area (SOF .. CRC sequence) ----------------
-                if self.stf.q.val() {
-                    if self.l_bit.val() == self.slast.q.val() {
+                if self.l_curstf.val() {
+                    // A good stuff bit changes nothing but the destuffer.
+                    self.l_ndom.next = self.dom.q.val();
+                    if self.dstf.stuff_error.val() {
                         // Sixth equal bit: stuff error, or a bit error for a
                         // transmitter that sent a dominant stuff bit.
                         self.l_err.next = true;
@@ -680,10 +724,6 @@ impl Logic for CanFsm {
                             self.l_errk.next = self.l_errk.val().replace_bit(ERRK_STUFF, true);
                             self.l_rinc1.next = true;
                         }
-                    } else {
-                        self.l_scnt.next = 1.into();
-                        self.l_slast.next = self.l_bit.val();
-                        self.l_adv.next = true;
                     }
                 } else {
                     if self.rtx.q.val() & (self.l_bit.val() != self.l_sent.val()) {
@@ -700,23 +740,11 @@ impl Logic for CanFsm {
                         }
                     }
                     if !self.l_err.val() {
-                        // Stuff run counting on sampled levels.
-                        if self.l_bit.val() == self.slast.q.val() {
-                            self.l_scnt.next = self.scnt.q.val() + 1;
-                        } else {
-                            self.l_scnt.next = 1.into();
-                            self.l_slast.next = self.l_bit.val();
-                        }
-                        // CRC over SOF .. data.
-                        self.l_crc.next = self.crc.q.val() << 1;
-                        if self.l_bit.val() != self.crc.q.val().get_bit(14) {
-                            self.l_crc.next = self.l_crc.val() ^ 0x4599;
-                        }
+                        // CRC over SOF .. CRC sequence (see the module docs).
+                        self.l_crcen.next = true;
                         match self.fld.q.val() {
                             Field::Sof => {
                                 self.l_sofinit.next = true;
-                                self.l_scnt.next = 1.into();
-                                self.l_slast.next = false;
                             }
                             Field::Ident => {
                                 self.l_rid.next = self.rid.q.val() << 1;
@@ -756,20 +784,13 @@ impl Logic for CanFsm {
                                 self.l_tdat.next = self.tdat.q.val() << 1;
                             }
                             Field::Crc => {
-                                // Compare, then shift the sequence out.
-                                if self.l_bit.val() != self.crc.q.val().get_bit(14) {
+                                if (self.fpos.q.val() == 15) & self.crcb.crc_next.val().any() {
                                     self.l_crcerr.next = true;
                                 }
-                                self.l_crc.next = self.crc.q.val() << 1;
                             }
                             _ => {}
                         }
-                        if self.l_scnt.val() == 5 {
-                            self.l_nstf.next = true;
-                            self.l_usetx.next = true;
-                        } else {
-                            self.l_adv.next = true;
-                        }
+                        self.l_adv.next = true;
                     }
                 }
             } else {
@@ -1157,9 +1178,6 @@ impl Logic for CanFsm {
             // ---------------- start of a frame (SOF sampled) ----------------
             if self.l_sofinit.val() {
                 self.l_ev.next = self.l_ev.val().replace_bit(EV_SOF, true);
-                self.l_scnt.next = 1.into();
-                self.l_slast.next = false;
-                self.l_crc.next = 0.into();
                 self.l_crcerr.next = false;
                 self.l_rid.next = 0.into();
                 self.l_rdat.next = 0.into();
@@ -1230,22 +1248,17 @@ impl Logic for CanFsm {
                         self.l_txv.next = self.l_tdat.val().get_bit(63);
                     }
                     Field::Crc => {
-                        self.l_txv.next = self.l_crc.val().get_bit(14);
+                        self.l_txv.next = self.crcb.crc_next.val().get_bit(14);
                     }
                     _ => {
                         self.l_txv.next = true;
                     }
-                }
-                if self.l_nstf.val() {
-                    // Stuff bit: the complement of the level just sampled.
-                    self.l_txv.next = !self.l_bit.val();
                 }
                 self.l_ndom.next = self.l_role.val() & !self.l_txv.val();
             }
 
             // ---------------- error and overload frames ----------------
             if self.l_err.val() {
-                self.l_nstf.next = false;
                 self.l_npos.next = 1.into();
                 self.l_fdone.next = false;
                 self.l_crcerr.next = false;
@@ -1268,7 +1281,6 @@ impl Logic for CanFsm {
                 self.errp_r.d.next = self.fpos.q.val();
                 self.errtx_r.d.next = self.rtx.q.val();
             } else if self.l_ovl.val() {
-                self.l_nstf.next = false;
                 self.l_nf.next = Field::OvlFlag;
                 self.l_npos.next = 1.into();
                 self.l_ndom.next = true;
@@ -1305,7 +1317,6 @@ impl Logic for CanFsm {
             if self.l_tec.val().get_bit(8) & (self.fld.q.val() != Field::BusOff) {
                 self.l_nf.next = Field::BusOff;
                 self.l_npos.next = 1.into();
-                self.l_nstf.next = false;
                 self.l_ndom.next = false;
                 self.l_runs.next = 0.into();
                 self.l_rarmed.next = false;
@@ -1331,14 +1342,14 @@ impl Logic for CanFsm {
             }
 
             // ---------------- commit ----------------
+            if !self.l_curstf.val() {
+                self.pfld.d.next = self.fld.q.val();
+                self.ppos.d.next = self.fpos.q.val();
+            }
             self.fld.d.next = self.l_nf.val();
             self.fpos.d.next = self.l_npos.val();
-            self.stf.d.next = self.l_nstf.val();
             self.rtx.d.next = self.l_role.val();
             self.dom.d.next = self.l_ndom.val();
-            self.scnt.d.next = self.l_scnt.val();
-            self.slast.d.next = self.l_slast.val();
-            self.crc.d.next = self.l_crc.val();
             self.crcerr.d.next = self.l_crcerr.val();
             self.tid.d.next = self.l_tid.val();
             self.tdat.d.next = self.l_tdat.val();
@@ -1364,16 +1375,25 @@ impl Logic for CanFsm {
         }
 
         // ------------------------------------------------------------------
+        // Shared destuffer and CRC engine, both on the sampled levels.
+        self.dstf.clock.next = self.clock.val();
+        self.dstf.reset.next = self.reset.val();
+        self.dstf.en.next = self.sample.val();
+        self.dstf.din.next = self.busmon.val();
+        self.dstf.active.next = self.l_instf.val() | self.l_sofinit.val();
+        self.crcb.clock.next = self.clock.val();
+        self.crcb.reset.next = self.reset.val();
+        self.crcb.din.next = self.busmon.val();
+        self.crcb.en.next = self.sample.val() & self.l_crcen.val();
+        self.crcb.clear.next = self.sample.val() & self.l_sofinit.val();
+
+        // ------------------------------------------------------------------
         // Synchronous reset.
         if self.reset.val() {
             self.fld.d.next = Field::WaitIdle;
             self.fpos.d.next = 1.into();
-            self.stf.d.next = false;
             self.rtx.d.next = false;
             self.dom.d.next = false;
-            self.scnt.d.next = 0.into();
-            self.slast.d.next = true;
-            self.crc.d.next = 0.into();
             self.crcerr.d.next = false;
             self.fdone.d.next = false;
             self.eqcnt.d.next = 0.into();
@@ -1394,8 +1414,8 @@ impl Logic for CanFsm {
 
         // ------------------------------------------------------------------
         // Outputs.
-        self.pos.next = self.fpos.q.val();
-        self.stuff.next = self.stf.q.val();
+        self.pos.next = self.l_dpos.val();
+        self.stuff.next = self.l_curstf.val();
         self.role.next = self.rtx.q.val();
         self.events.next = self.evr.q.val();
         self.tx_done.next = self.evr.q.val().get_bit(EV_TX_OK);
