@@ -224,11 +224,11 @@ impl Field {
 /// (no retransmission after an error or a lost arbitration),
 /// `host_recovery` (bus-off recovery waits for a `recover` strobe); the
 /// transmit request `tx_req` (level; `tx_ide`, `tx_rtr`, `tx_id`, `tx_dlc`,
-/// `tx_data` are latched when a frame starts) and `abort`.
+/// `tx_data` are latched when a frame starts) and `tx_abort`.
 ///
 /// Request handshake: while `tx_req` is high the controller (re)tries until
 /// success; after `tx_done` (or, in single-shot mode, after the first failed
-/// attempt, or after `abort`) it starts no further attempt until `tx_req` has
+/// attempt, or after `tx_abort`) it starts no further attempt until `tx_req` has
 /// been low for at least one clock.
 #[derive(LogicBlock, Default)]
 pub struct CanFsm {
@@ -247,7 +247,7 @@ pub struct CanFsm {
     pub tx_id: Signal<In, Bits<29>>,
     pub tx_dlc: Signal<In, Bits<4>>,
     pub tx_data: Signal<In, Bits<64>>,
-    pub abort: Signal<In, Bit>,
+    pub tx_abort: Signal<In, Bit>,
 
     /// Level wanted on TX from the next transmit point (1 = recessive).
     pub drive: Signal<Out, Bit>,
@@ -507,13 +507,13 @@ impl Logic for CanFsm {
 
         // Request handshake (every clock).
         self.blocked.d.next = self.blocked.q.val();
-        if self.abort.val() {
+        if self.tx_abort.val() {
             self.blocked.d.next = true;
         }
         if !self.tx_req.val() {
             self.blocked.d.next = false;
         }
-        self.req.d.next = self.tx_req.val() & !self.blocked.q.val() & !self.abort.val();
+        self.req.d.next = self.tx_req.val() & !self.blocked.q.val() & !self.tx_abort.val();
 
         if self.l_rdlc.val().get_bit(3) {
             self.l_nbytes.next = 8.into();
@@ -698,7 +698,7 @@ impl Logic for CanFsm {
 
         // ------------------------------------------------------------------
         if self.sample.val() {
-            self.l_ev.next = self.l_ev.val().replace_bit(EV_BIT, true);
+            self.l_ev.next = self.l_ev.val().replace_bit(19 /* EV_BIT */, true);
             if self.l_instf.val() {
                 // ---------------- stuffed area (SOF .. CRC sequence) ----------------
                 if self.l_curstf.val() {
@@ -710,18 +710,18 @@ impl Logic for CanFsm {
                         self.l_err.next = true;
                         if self.rtx.q.val() {
                             if self.l_bit.val() & !self.l_sent.val() {
-                                self.l_errk.next = self.l_errk.val().replace_bit(ERRK_BIT, true);
+                                self.l_errk.next = self.l_errk.val().replace_bit(0 /* ERRK_BIT */, true);
                                 self.l_tinc.next = true;
                             } else {
-                                self.l_errk.next = self.l_errk.val().replace_bit(ERRK_STUFF, true);
+                                self.l_errk.next = self.l_errk.val().replace_bit(1 /* ERRK_STUFF */, true);
                                 if self.l_arbstuff.val() {
-                                    self.l_ev.next = self.l_ev.val().replace_bit(EV_EXC2, true);
+                                    self.l_ev.next = self.l_ev.val().replace_bit(15 /* EV_EXC2 */, true);
                                 } else {
                                     self.l_tinc.next = true;
                                 }
                             }
                         } else {
-                            self.l_errk.next = self.l_errk.val().replace_bit(ERRK_STUFF, true);
+                            self.l_errk.next = self.l_errk.val().replace_bit(1 /* ERRK_STUFF */, true);
                             self.l_rinc1.next = true;
                         }
                     }
@@ -729,13 +729,13 @@ impl Logic for CanFsm {
                     if self.rtx.q.val() & (self.l_bit.val() != self.l_sent.val()) {
                         if self.l_arbf.val() & self.l_sent.val() {
                             self.l_role.next = false;
-                            self.l_ev.next = self.l_ev.val().replace_bit(EV_ARB_LOST, true);
+                            self.l_ev.next = self.l_ev.val().replace_bit(1 /* EV_ARB_LOST */, true);
                             if self.single_shot.val() {
                                 self.blocked.d.next = true;
                             }
                         } else {
                             self.l_err.next = true;
-                            self.l_errk.next = self.l_errk.val().replace_bit(ERRK_BIT, true);
+                            self.l_errk.next = self.l_errk.val().replace_bit(0 /* ERRK_BIT */, true);
                             self.l_tinc.next = true;
                         }
                     }
@@ -804,7 +804,7 @@ impl Logic for CanFsm {
                         if !self.l_bit.val() {
                             self.l_npos.next = 1.into();
                         } else if self.fpos.q.val() == 11 {
-                            self.l_ev.next = self.l_ev.val().replace_bit(EV_INTEGRATED, true);
+                            self.l_ev.next = self.l_ev.val().replace_bit(18 /* EV_INTEGRATED */, true);
                             self.l_start.next = true;
                         } else {
                             self.l_npos.next = self.l_posinc.val();
@@ -824,11 +824,11 @@ impl Logic for CanFsm {
                         } else if !self.l_bit.val() {
                             self.l_npos.next = 1.into();
                         } else if self.fpos.q.val() == 11 {
-                            self.l_ev.next = self.l_ev.val().replace_bit(EV_RUN, true);
+                            self.l_ev.next = self.l_ev.val().replace_bit(16 /* EV_RUN */, true);
                             self.l_npos.next = 1.into();
                             self.l_runs.next = self.runr.q.val() + 1;
                             if self.runr.q.val() == 127 {
-                                self.l_ev.next = self.l_ev.val().replace_bit(EV_RECOVERED, true);
+                                self.l_ev.next = self.l_ev.val().replace_bit(17 /* EV_RECOVERED */, true);
                                 self.l_clear.next = true;
                                 self.l_runs.next = 0.into();
                                 self.l_rarmed.next = false;
@@ -841,7 +841,7 @@ impl Logic for CanFsm {
                     Field::CrcDel => {
                         if !self.l_bit.val() {
                             self.l_err.next = true;
-                            self.l_errk.next = self.l_errk.val().replace_bit(ERRK_FORM, true);
+                            self.l_errk.next = self.l_errk.val().replace_bit(3 /* ERRK_FORM */, true);
                             self.l_tinc.next = self.rtx.q.val();
                             self.l_rinc1.next = !self.rtx.q.val();
                         } else {
@@ -858,7 +858,7 @@ impl Logic for CanFsm {
                             if self.rtx.q.val() {
                                 if !self.self_test.val() {
                                     self.l_err.next = true;
-                                    self.l_errk.next = self.l_errk.val().replace_bit(ERRK_ACK, true);
+                                    self.l_errk.next = self.l_errk.val().replace_bit(4 /* ERRK_ACK */, true);
                                     if self.l_active.val() {
                                         self.l_tinc.next = true;
                                     } else {
@@ -867,7 +867,7 @@ impl Logic for CanFsm {
                                 }
                             } else if self.dom.q.val() {
                                 self.l_err.next = true;
-                                self.l_errk.next = self.l_errk.val().replace_bit(ERRK_BIT, true);
+                                self.l_errk.next = self.l_errk.val().replace_bit(0 /* ERRK_BIT */, true);
                                 self.l_rinc1.next = true;
                             }
                         }
@@ -875,13 +875,13 @@ impl Logic for CanFsm {
                     Field::AckDel => {
                         if !self.l_bit.val() {
                             self.l_err.next = true;
-                            self.l_errk.next = self.l_errk.val().replace_bit(ERRK_FORM, true);
+                            self.l_errk.next = self.l_errk.val().replace_bit(3 /* ERRK_FORM */, true);
                             self.l_tinc.next = self.rtx.q.val();
                             self.l_rinc1.next = !self.rtx.q.val();
                         }
                         if !self.rtx.q.val() & self.crcerr.q.val() {
                             self.l_err.next = true;
-                            self.l_errk.next = self.l_errk.val().replace_bit(ERRK_CRC, true);
+                            self.l_errk.next = self.l_errk.val().replace_bit(2 /* ERRK_CRC */, true);
                             self.l_rinc1.next = true;
                         }
                         self.l_nf.next = Field::Eof;
@@ -895,16 +895,16 @@ impl Logic for CanFsm {
                             if self.rtx.q.val() {
                                 if !self.l_bit.val() {
                                     self.l_err.next = true;
-                                    self.l_errk.next = self.l_errk.val().replace_bit(ERRK_FORM, true);
+                                    self.l_errk.next = self.l_errk.val().replace_bit(3 /* ERRK_FORM */, true);
                                     self.l_tinc.next = true;
                                 } else {
                                     self.l_tdec.next = true;
-                                    self.l_ev.next = self.l_ev.val().replace_bit(EV_TX_OK, true);
+                                    self.l_ev.next = self.l_ev.val().replace_bit(12 /* EV_TX_OK */, true);
                                     self.blocked.d.next = true;
                                 }
                             } else {
                                 self.l_deliver.next = true;
-                                self.l_ev.next = self.l_ev.val().replace_bit(EV_RX_OK, true);
+                                self.l_ev.next = self.l_ev.val().replace_bit(13 /* EV_RX_OK */, true);
                                 if !self.l_bit.val() {
                                     self.l_ovl.next = true;
                                 } else {
@@ -913,7 +913,7 @@ impl Logic for CanFsm {
                             }
                         } else if !self.l_bit.val() {
                             self.l_err.next = true;
-                            self.l_errk.next = self.l_errk.val().replace_bit(ERRK_FORM, true);
+                            self.l_errk.next = self.l_errk.val().replace_bit(3 /* ERRK_FORM */, true);
                             self.l_tinc.next = self.rtx.q.val();
                             self.l_rinc1.next = !self.rtx.q.val();
                         }
@@ -922,7 +922,7 @@ impl Logic for CanFsm {
                         if !self.fdone.q.val() {
                             if self.l_bit.val() {
                                 self.l_err.next = true;
-                                self.l_errk.next = self.l_errk.val().replace_bit(ERRK_BIT, true);
+                                self.l_errk.next = self.l_errk.val().replace_bit(0 /* ERRK_BIT */, true);
                                 self.l_tinc.next = self.rtx.q.val();
                                 self.l_rinc8.next = !self.rtx.q.val();
                             } else {
@@ -940,7 +940,7 @@ impl Logic for CanFsm {
                             self.l_npos.next = 2.into();
                         } else {
                             self.l_npos.next = self.l_posinc.val();
-                            self.l_ev.next = self.l_ev.val().replace_bit(EV_DAF, true);
+                            self.l_ev.next = self.l_ev.val().replace_bit(11 /* EV_DAF */, true);
                             self.l_dafany.next = true;
                             self.l_dafc.next = self.dafc.q.val() + 1;
                             if !self.dafany.q.val() & !self.rtx.q.val() {
@@ -956,7 +956,7 @@ impl Logic for CanFsm {
                         if !self.fdone.q.val() {
                             if self.l_bit.val() {
                                 self.l_err.next = true;
-                                self.l_errk.next = self.l_errk.val().replace_bit(ERRK_BIT, true);
+                                self.l_errk.next = self.l_errk.val().replace_bit(0 /* ERRK_BIT */, true);
                                 self.l_tinc.next = self.rtx.q.val();
                                 self.l_rinc8.next = !self.rtx.q.val();
                             } else {
@@ -974,7 +974,7 @@ impl Logic for CanFsm {
                             self.l_npos.next = 2.into();
                         } else {
                             self.l_npos.next = self.l_posinc.val();
-                            self.l_ev.next = self.l_ev.val().replace_bit(EV_DAF, true);
+                            self.l_ev.next = self.l_ev.val().replace_bit(11 /* EV_DAF */, true);
                             self.l_dafany.next = true;
                             self.l_dafc.next = self.dafc.q.val() + 1;
                             if self.dafc.q.val() == 7 {
@@ -1005,7 +1005,7 @@ impl Logic for CanFsm {
                                 self.l_dafc.next = 0.into();
                                 self.l_dafany.next = false;
                                 if self.l_exc1.val() {
-                                    self.l_ev.next = self.l_ev.val().replace_bit(EV_EXC1, true);
+                                    self.l_ev.next = self.l_ev.val().replace_bit(14 /* EV_EXC1 */, true);
                                 }
                                 self.l_exc1.next = false;
                             }
@@ -1014,7 +1014,7 @@ impl Logic for CanFsm {
                             self.l_npos.next = 2.into();
                         } else {
                             self.l_npos.next = self.l_posinc.val();
-                            self.l_ev.next = self.l_ev.val().replace_bit(EV_DAF, true);
+                            self.l_ev.next = self.l_ev.val().replace_bit(11 /* EV_DAF */, true);
                             self.l_dafany.next = true;
                             self.l_dafc.next = self.dafc.q.val() + 1;
                             if !self.dafany.q.val() & !self.rtx.q.val() {
@@ -1036,7 +1036,7 @@ impl Logic for CanFsm {
                             }
                         } else if !self.l_bit.val() {
                             self.l_err.next = true;
-                            self.l_errk.next = self.l_errk.val().replace_bit(ERRK_FORM, true);
+                            self.l_errk.next = self.l_errk.val().replace_bit(3 /* ERRK_FORM */, true);
                             self.l_tinc.next = self.rtx.q.val();
                             self.l_rinc1.next = !self.rtx.q.val();
                         }
@@ -1051,7 +1051,7 @@ impl Logic for CanFsm {
                             }
                         } else if !self.l_bit.val() {
                             self.l_err.next = true;
-                            self.l_errk.next = self.l_errk.val().replace_bit(ERRK_FORM, true);
+                            self.l_errk.next = self.l_errk.val().replace_bit(3 /* ERRK_FORM */, true);
                             self.l_tinc.next = self.rtx.q.val();
                             self.l_rinc1.next = !self.rtx.q.val();
                         }
@@ -1177,7 +1177,7 @@ impl Logic for CanFsm {
 
             // ---------------- start of a frame (SOF sampled) ----------------
             if self.l_sofinit.val() {
-                self.l_ev.next = self.l_ev.val().replace_bit(EV_SOF, true);
+                self.l_ev.next = self.l_ev.val().replace_bit(0 /* EV_SOF */, true);
                 self.l_crcerr.next = false;
                 self.l_rid.next = 0.into();
                 self.l_rdat.next = 0.into();
@@ -1268,11 +1268,11 @@ impl Logic for CanFsm {
                 if self.l_active.val() {
                     self.l_nf.next = Field::ActFlag;
                     self.l_ndom.next = true;
-                    self.l_ev.next = self.l_ev.val().replace_bit(EV_AEF, true);
+                    self.l_ev.next = self.l_ev.val().replace_bit(7 /* EV_AEF */, true);
                 } else {
                     self.l_nf.next = Field::PasFlag;
                     self.l_ndom.next = false;
-                    self.l_ev.next = self.l_ev.val().replace_bit(EV_PEF, true);
+                    self.l_ev.next = self.l_ev.val().replace_bit(8 /* EV_PEF */, true);
                 }
                 if self.rtx.q.val() & self.single_shot.val() {
                     self.blocked.d.next = true;
@@ -1287,8 +1287,8 @@ impl Logic for CanFsm {
                 self.l_fdone.next = false;
                 self.l_dafc.next = 0.into();
                 self.l_dafany.next = false;
-                self.l_ev.next = self.l_ev.val().replace_bit(EV_OVL, true);
-                self.l_ev.next = self.l_ev.val().replace_bit(EV_OLF, true);
+                self.l_ev.next = self.l_ev.val().replace_bit(10 /* EV_OVL */, true);
+                self.l_ev.next = self.l_ev.val().replace_bit(9 /* EV_OLF */, true);
             }
 
             // ---------------- fault confinement (§13) ----------------
@@ -1337,7 +1337,7 @@ impl Logic for CanFsm {
                     self.rxdat_r.d.next = self.rdat.q.val() << self.l_shamt.val();
                 }
             }
-            if self.l_ev.val().get_bit(EV_ARB_LOST) {
+            if self.l_ev.val().get_bit(1 /* EV_ARB_LOST */) {
                 self.arbpos_r.d.next = self.l_arbpos.val();
             }
 
@@ -1418,15 +1418,15 @@ impl Logic for CanFsm {
         self.stuff.next = self.l_curstf.val();
         self.role.next = self.rtx.q.val();
         self.events.next = self.evr.q.val();
-        self.tx_done.next = self.evr.q.val().get_bit(EV_TX_OK);
-        self.arb_lost.next = self.evr.q.val().get_bit(EV_ARB_LOST);
+        self.tx_done.next = self.evr.q.val().get_bit(12 /* EV_TX_OK */);
+        self.arb_lost.next = self.evr.q.val().get_bit(1 /* EV_ARB_LOST */);
         self.arb_lost_pos.next = self.arbpos_r.q.val();
         self.error.next = (self.evr.q.val().get_bits::<5>(2)).any();
         self.err_kind.next = self.evr.q.val().get_bits::<5>(2);
         self.err_field.next = self.errf_r.q.val();
         self.err_pos.next = self.errp_r.q.val();
         self.err_tx.next = self.errtx_r.q.val();
-        self.rx_valid.next = self.evr.q.val().get_bit(EV_RX_OK);
+        self.rx_valid.next = self.evr.q.val().get_bit(13 /* EV_RX_OK */);
         self.rx_ide.next = self.rxide_r.q.val();
         self.rx_rtr.next = self.rxrtr_r.q.val();
         self.rx_id.next = self.rxid_r.q.val();

@@ -3,6 +3,8 @@
 //! overrides as in can-protocol.md §1.
 #![allow(dead_code)]
 
+pub mod stim;
+
 use canstar_controller::frame::Frame;
 use canstar_controller::fsm::*;
 use canstar_hdl::drive;
