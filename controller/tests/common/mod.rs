@@ -227,3 +227,27 @@ impl Bus {
         }
     }
 }
+
+impl Bus {
+    /// Run until node `i` is about to process the stuff bit that follows (field, pos).
+    pub fn run_to_stuff(&mut self, i: usize, f: Field, pos: u8, max: usize) {
+        for _ in 0..max {
+            if self.field(i) == f && self.nodes[i].pos.val().index() as u8 == pos && self.nodes[i].stuff.val() {
+                return;
+            }
+            self.step();
+        }
+        panic!("node {i} did not reach the stuff bit after {:?} {pos} within {max} bits", f);
+    }
+    /// Force node `i` for `n` bits starting at its bit (field, pos).
+    pub fn force_at(&mut self, i: usize, f: Field, pos: u8, o: Ovr, n: usize) {
+        self.run_to(i, f, pos, 2000);
+        self.ovr[i] = o;
+        self.run(n);
+        self.ovr[i] = Ovr::None;
+    }
+    /// The last record of node `i`.
+    pub fn last(&self, i: usize) -> &Rec {
+        self.log[i].last().unwrap()
+    }
+}
