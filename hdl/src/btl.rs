@@ -355,6 +355,7 @@ pub struct BtlCycleModel {
     sample_r: bool,
     hard_r: bool,
     resync_r: bool,
+    last: Option<BtlEvents>,
 }
 
 impl Default for BtlCycleModel {
@@ -366,7 +367,13 @@ impl Default for BtlCycleModel {
 impl BtlCycleModel {
     /// The power-up state (inert until the first reset).
     pub fn new() -> Self {
-        Self { active: None, bad: false, pre: 0, sample_r: false, hard_r: false, resync_r: false }
+        Self { active: None, bad: false, pre: 0, sample_r: false, hard_r: false, resync_r: false, last: None }
+    }
+
+    /// The events of the TQ step taken on the last [`step`](Self::step), if
+    /// that clock was a tick.
+    pub fn last_events(&self) -> Option<BtlEvents> {
+        self.last
     }
 
     /// The counter model, when a valid configuration is latched.
@@ -387,6 +394,7 @@ impl BtlCycleModel {
             resync: self.resync_r,
             cfg_err: self.bad,
         };
+        self.last = None;
         if i.reset {
             let cfg = BtlConfig::from_fields(i.brp, i.prop, i.ph1, i.sjw, i.triple);
             self.bad = !cfg.is_valid();
@@ -409,6 +417,7 @@ impl BtlCycleModel {
             let ev = m.tq_tick(i.rx, i.drive, i.hs_en);
             pins.tq = true;
             pins.bit_start = ev.bit_start;
+            self.last = Some(ev);
             self.sample_r = ev.sample;
             self.hard_r = ev.hard_sync;
             self.resync_r = ev.resync;

@@ -63,17 +63,11 @@ impl Rig {
         self.step(&i);
     }
 
-    /// Registered outputs of the current clock, before its inputs are set.
+    /// Registered `sample` and `tx` of the current clock, before its inputs
+    /// are set (what a bit-stream logic sees). Needs the RTL.
     fn registered(&self) -> (bool, bool) {
-        match &self.rtl {
-            Some(u) => (u.sample.val(), u.tx.val()),
-            None => {
-                let l = self.trace.last().copied().unwrap_or_default();
-                // Only used with the RTL present; the model alone has no
-                // look-ahead of registered outputs.
-                (false, l.tx)
-            }
-        }
+        let u = self.rtl.as_ref().expect("registered() needs the RTL");
+        (u.sample.val(), u.tx.val())
     }
 }
 
@@ -118,6 +112,15 @@ fn table(t: u32, case: char, j: u32) -> (Outcome, TxNote) {
     use TxNote::*;
     let sp = timing(t).sp();
     let drive_r = matches!(case, 'b' | 'e');
+    if j + 1 == sp {
+        // Excluded by the program; P§2.3 fixes the order for canstar: the
+        // synchronisation comes before the sample point on that tick.
+        return match case {
+            'a' => (Restart, Rule),
+            'f' | 'c' | 'd' => (Nothing, Rule),
+            _ => (Ph1Plus(j.min(timing(t).sjw)), Rule),
+        };
+    }
     match case {
         'a' => (Restart, Rule),
         'f' => {
@@ -329,6 +332,20 @@ btl_brp_tests! {
     btl_brp_3a = 3, 'a'; btl_brp_3b = 3, 'b'; btl_brp_3d = 3, 'd'; btl_brp_3f = 3, 'f';
 }
 
+/// j = SP − 1, which the Bosch program leaves out: P§2.3 puts the
+/// synchronisation before the sample point on the same tick.
+#[test]
+fn btl_sp_minus_1_ordering() {
+    let mut rng = ChaCha8Rng::seed_from_u64(9);
+    for t in 1..=3 {
+        for case in ['a', 'b', 'd', 'f'] {
+            for brp in [1, 3] {
+                check_case(t, case, sp_minus_1(t), brp, true, &mut rng);
+            }
+        }
+    }
+}
+
 /// The reference model alone reproduces every table row, for all six cases
 /// of the program (b/e and c/d differ only above the BTL).
 #[test]
@@ -499,6 +516,67 @@ impl Stim {
     }
 }
 
+/// Which situations of §2–3 a random run reached.
+#[derive(Default, Debug)]
+struct Coverage {
+    restart_hard: usize,
+    hard_no_restart: usize,
+    lengthen: usize,
+    shorten: usize,
+    shorten_ends_bit: usize,
+    restart_resync: usize,
+    postponed: usize,
+    e_zero: usize,
+    triple_samples: usize,
+}
+
+impl Coverage {
+    fn add(&mut self, cm: &BtlCycleModel) {
+        let (Some(ev), Some(m)) = (cm.last_events(), cm.model()) else { return };
+        if ev.sample && m.config().triple {
+            self.triple_samples += 1;
+        }
+        if ev.postponed {
+            self.postponed += 1;
+        }
+        let Some(e) = ev.phase_error else { return };
+        if ev.hard_sync {
+            if ev.restart {
+                self.restart_hard += 1;
+            } else {
+                self.hard_no_restart += 1;
+            }
+        } else if ev.restart {
+            self.restart_resync += 1;
+        } else if e == 0 {
+            self.e_zero += 1;
+        } else if e > 0 && m.sp != m.config().sp() {
+            self.lengthen += 1;
+        } else if e < 0 {
+            self.shorten += 1;
+            if ev.bit_end {
+                self.shorten_ends_bit += 1;
+            }
+        }
+    }
+
+    fn assert_reached(&self, seed: u64) {
+        let c = self;
+        for (name, n) in [
+            ("hard restart", c.restart_hard),
+            ("PH2 shortened to the current tick", c.shorten_ends_bit),
+            ("hard sync without restart", c.hard_no_restart),
+            ("PH1 lengthened", c.lengthen),
+            ("PH2 shortened", c.shorten),
+            ("resync restart", c.restart_resync),
+            ("postponed transmit point", c.postponed),
+            ("edge in SYNC_SEG", c.e_zero),
+        ] {
+            assert!(n > 0, "seed {seed}: random stimulus never reached: {name} ({c:?})");
+        }
+    }
+}
+
 fn run_random(rig: &mut Rig, stim: &mut Stim, rng: &mut ChaCha8Rng, cycles: usize) {
     for _ in 0..cycles {
         let (sample, tx) = rig.registered();
@@ -520,7 +598,30 @@ fn btl_rtl_matches_model_random() {
         let mut rng = ChaCha8Rng::seed_from_u64(seed);
         let mut rig = Rig::new(true);
         let mut stim = Stim::new(cfg, 1.0 / 8000.0);
-        run_random(&mut rig, &mut stim, &mut rng, 60_000);
+        let mut cov = Coverage::default();
+        let mut last_sample: Option<usize> = None;
+        for c in 0..200_000 {
+            let (sample, tx) = rig.registered();
+            let i = stim.next(&mut rng, sample, tx);
+            let p = rig.step(&i);
+            cov.add(&rig.model);
+            // IPT contract: drive presented on the clock after `sample` is in
+            // place at the transmit point, which is >= 2 TQ after the sample point.
+            if i.reset {
+                last_sample = None;
+            }
+            if p.bit_start {
+                let brp = rig.model.model().unwrap().config().brp as usize;
+                if let Some(s) = last_sample {
+                    assert!(c + 1 >= s + 2 * brp, "seed {seed} cycle {c}: transmit point {} clocks after the sample strobe", c - s);
+                }
+            }
+            if p.sample {
+                last_sample = Some(c);
+            }
+        }
+        eprintln!("seed {seed}: {cov:?}");
+        cov.assert_reached(seed);
         let syncs = rig.trace.iter().filter(|p| p.hard_sync || p.resync).count();
         let samples = rig.trace.iter().filter(|p| p.sample).count();
         assert!(syncs > 100 && samples > 1000, "seed {seed}: stimulus too quiet ({syncs} syncs, {samples} samples)");
