@@ -73,6 +73,19 @@
 //! presenting the new `drive` on the next clock, the earliest transmit
 //! point after a sample point (tick clock ts) is the tick clock ts + 2·BRP,
 //! on which the new `drive` has been present for 2·BRP − 1 ≥ 1 clocks.
+//! With BRP = 1, a sample point on tick clock k and the earliest transmit
+//! point after it (§2.5 postponement, e.g. T10/8/1 with an edge in TQ 8):
+//!
+//! ```text
+//! clock       k        k+1        k+2        k+3
+//! tq          1        1          1          1
+//! rx          sampled
+//! sample      0        1          0          0
+//! busmon      old      new        new        new
+//! drive       old      old        new        new     (bit-stream logic latches at the end of k+1)
+//! bit_start   0        0 (postp.) 1          0
+//! tx          old      old        old        new
+//! ```
 
 use crate::impl_clocked;
 use rust_hdl::prelude::*;

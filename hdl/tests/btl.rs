@@ -859,3 +859,15 @@ fn btl_verilog_flow() {
         assert!(synth.cells > 50, "{}", synth.stat);
     }
 }
+
+/// Size of the synthesised block (printed; asserts only that it synthesises for iCE40).
+#[test]
+#[ignore = "needs iverilog, verilator and yosys: run scripts/test-all.sh"]
+fn btl_synth_ice40() {
+    let mut uut = BitTiming::default();
+    drive::init(&mut uut);
+    let v = flow::emit(&uut);
+    let r = flow::synth_check(&v, "top", flow::SynthTarget::Ice40).expect("synth_ice40");
+    eprintln!("{}", r.stat);
+    assert!(r.cells > 0);
+}
