@@ -14,9 +14,19 @@
 //!
 //! A delay line with delay `d` shifts every transition by exactly `d` ps.
 //! With separate delays towards dominant (`dD`) and towards recessive
-//! (`dR`) it computes `out(t) = src(t-dD) & src(t-dR)` if `dR >= dD` and
-//! `out(t) = src(t-dD) | src(t-dR)` if `dD > dR`: a pulse can be
-//! stretched or swallowed exactly as a real asymmetric driver would.
+//! (`dR`) it behaves as a driver whose falling edges take `dD` and rising
+//! edges `dR`, with short pulses swallowed or stretched as physics does:
+//!
+//! - `dR >= dD`: `out(t)` is recessive only if `src` was recessive throughout
+//!   `[t-dR, t-dD]`. A dominant pulse of width `w` becomes `w + dR - dD`
+//!   wide; a recessive pulse of `w <= dR - dD` is swallowed.
+//! - `dD > dR`: `out(t)` is dominant only if `src` was dominant throughout
+//!   `[t-dD, t-dR]` (the mirror image).
+//!
+//! Whenever at most one transition falls in such a window this equals
+//! `out(t) = src(t-dD) & src(t-dR)` (resp. `|`); for shorter pulses the
+//! two-sample formula would split a dominant pulse in two, the window form
+//! stretches it.
 
 use std::collections::{BTreeMap, VecDeque};
 
@@ -177,15 +187,19 @@ impl Nets {
                 }
             }
             &Node::Delay { src, d_dom, d_rec } => {
-                let a = self.before(src, t.saturating_sub(d_dom));
                 if d_dom == d_rec {
-                    return a;
+                    return self.before(src, t.saturating_sub(d_dom));
                 }
+                // value at instant x = t-1 depends on src over the window
+                // [x - max(dD,dR), x - min(dD,dR)]
+                let x = t as i64 - 1;
+                let (lo, hi) = (x - d_dom.max(d_rec) as i64, x - d_dom.min(d_rec) as i64);
                 if d_rec > d_dom {
-                    // dominant wins: dominant if either sample is dominant
-                    a && self.before(src, t.saturating_sub(d_rec))
+                    // recessive only if recessive throughout the window
+                    self.all_eq(src, lo, hi, true)
                 } else {
-                    a || self.before(src, t.saturating_sub(d_rec))
+                    // dominant only if dominant throughout the window
+                    !self.all_eq(src, lo, hi, false)
                 }
             }
             Node::And(v) => v.iter().all(|&s| self.before(s, t)),
@@ -206,6 +220,34 @@ impl Nets {
                 }
             }
         }
+    }
+
+    /// Level at instant `x`, negative instants meaning "before time 0".
+    #[inline]
+    fn at_i(&self, id: NetId, x: i64) -> bool {
+        if x < 0 {
+            self.before(id, 0)
+        } else {
+            self.before(id, x as u64 + 1)
+        }
+    }
+
+    /// Is `id` at level `v` at every instant of `[lo, hi]`?
+    fn all_eq(&self, id: NetId, lo: i64, hi: i64, v: bool) -> bool {
+        if self.at_i(id, lo) != v || self.at_i(id, hi) != v {
+            return false;
+        }
+        let mut e = lo;
+        while let Some(n) = self.next_event(id, e) {
+            if n as i64 >= hi {
+                break;
+            }
+            if self.at_i(id, n as i64) != v {
+                return false;
+            }
+            e = n as i64;
+        }
+        true
     }
 
     /// Level at instant `x` (transitions at times `<= x` included).
