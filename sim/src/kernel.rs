@@ -246,6 +246,8 @@ pub struct Sim {
     started: bool,
     rng: ChaCha8Rng,
     horizon: Option<u64>,
+    keep: u64,
+    valid_from: u64,
     next_prune: u64,
     ticked: Vec<usize>,
     pub(crate) vcd: Option<VcdState>,
@@ -262,6 +264,8 @@ impl Sim {
             started: false,
             rng: ChaCha8Rng::seed_from_u64(seed),
             horizon: None,
+            keep: 0,
+            valid_from: 0,
             next_prune: 0,
             ticked: Vec::new(),
             vcd: None,
@@ -326,10 +330,27 @@ impl Sim {
         self.nets.at(id, self.now)
     }
     /// Level of a net at instant `t` (transitions at `t` included). `t` may
-    /// lie in the future for derived nets (the result assumes no further
-    /// writes) but not further back than the pruning horizon.
+    /// lie in the future (the result assumes no further writes). History is
+    /// pruned: by default only the last [`Sim::horizon`] ps (plus up to 1 us)
+    /// are kept; panics if `t` lies before [`Sim::history_start`]. Use
+    /// [`Sim::keep_history`] to look further back.
     pub fn value_at(&self, id: NetId, t: u64) -> bool {
+        assert!(
+            t >= self.valid_from,
+            "value_at({t}) lies before the kept history (from {}): use Sim::keep_history",
+            self.valid_from
+        );
         self.nets.at(id, t)
+    }
+    /// Keep `ps` more picoseconds of history than needed by the net graph
+    /// (so [`Sim::value_at`] can look back that far). `u64::MAX` disables
+    /// pruning. Default 0.
+    pub fn keep_history(&mut self, ps: u64) {
+        self.keep = ps;
+    }
+    /// Earliest instant [`Sim::value_at`] can still answer.
+    pub fn history_start(&self) -> u64 {
+        self.valid_from
     }
     /// Drive a driven net without a component driver to `v` at the current time.
     pub fn drive(&mut self, id: NetId, v: bool) {
@@ -488,9 +509,12 @@ impl Sim {
         if self.now < self.next_prune {
             return;
         }
-        let h = self.horizon() + 2;
-        let cutoff = self.now.saturating_sub(h);
-        self.nets.prune(cutoff);
+        let h = self.horizon().saturating_add(2);
+        let cutoff = self.now.saturating_sub(h).saturating_sub(self.keep);
+        if cutoff > 0 {
+            self.nets.prune(cutoff);
+            self.valid_from = cutoff + h;
+        }
         // prune again once the horizon (at least 1 us) has passed
         self.next_prune = self.now + h.max(1_000_000);
     }
