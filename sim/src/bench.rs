@@ -186,7 +186,7 @@ fn run_bus<C: Component>(
         let inner = factory(i, clk);
         sim.add(PatternNode::new(inner, cfg.cycles_per_bit, 0x1234_5678 ^ (i as u32 * 0x9e37_79b9)), &[node.rx], &[node.tx]);
     }
-    let end = cfg.period_ps * cycles_per_node;
+    let end = (cfg.period_ps * cycles_per_node).saturating_sub(1);
     let t0 = Instant::now();
     sim.run_until(end);
     (sim, t0.elapsed().as_secs_f64())
