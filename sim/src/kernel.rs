@@ -21,6 +21,11 @@ use crate::vcd::VcdState;
 /// `phase_ps + floor(n * period_ps * (1e9 + ppb) / 1e9)`, computed in
 /// integers, so edge times are exact and never accumulate rounding error.
 /// The offset is stored in parts per billion (ppm are rounded to 0.001 ppm).
+///
+/// Optional jitter: in a [`Sim`], every edge is delayed by a random
+/// `0..=jitter_ps` ps drawn from a per-component generator derived from the
+/// simulation seed and the component index (non-accumulating: the nominal
+/// edge times above stay the reference).
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
 pub struct ClockSpec {
     pub period_ps: u64,
@@ -28,13 +33,15 @@ pub struct ClockSpec {
     pub ppb: i64,
     /// Time of edge 0.
     pub phase_ps: u64,
+    /// Maximum random delay of each edge (0 = none).
+    pub jitter_ps: u64,
 }
 
 impl ClockSpec {
     /// A clock with the given nominal period, no offset, edge 0 at time 0.
     pub fn new(period_ps: u64) -> Self {
         assert!(period_ps > 0, "clock period must be positive");
-        ClockSpec { period_ps, ppb: 0, phase_ps: 0 }
+        ClockSpec { period_ps, ppb: 0, phase_ps: 0, jitter_ps: 0 }
     }
     /// A clock of `mhz` MHz (period rounded to the picosecond).
     pub fn mhz(mhz: f64) -> Self {
@@ -52,7 +59,13 @@ impl ClockSpec {
         self.phase_ps = phase_ps;
         self
     }
-    /// Time of rising edge `n`.
+    /// Random delay of up to `jitter_ps` on every edge (less than half a period).
+    pub fn with_jitter(mut self, jitter_ps: u64) -> Self {
+        assert!(jitter_ps * 2 < self.period_ps, "jitter must stay below half a period");
+        self.jitter_ps = jitter_ps;
+        self
+    }
+    /// Nominal time of rising edge `n` (without jitter).
     #[inline]
     pub fn edge_time(&self, n: u64) -> u64 {
         let scaled = n as u128 * self.period_ps as u128 * (1_000_000_000i64 + self.ppb) as u128;
@@ -234,7 +247,19 @@ pub(crate) struct Slot {
     pub(crate) outputs: Vec<NetId>,
     clock: ClockSpec,
     next_n: u64,
+    jitter: Option<ChaCha8Rng>,
     pub(crate) cycles: u64,
+}
+
+impl Slot {
+    #[inline]
+    fn edge(&mut self, n: u64) -> u64 {
+        let t = self.clock.edge_time(n);
+        match &mut self.jitter {
+            Some(r) => t + r.gen_range(0..=self.clock.jitter_ps),
+            None => t,
+        }
+    }
 }
 
 /// The simulation: nets, components, time.
@@ -244,6 +269,7 @@ pub struct Sim {
     heap: BinaryHeap<Reverse<(u64, usize)>>,
     now: u64,
     started: bool,
+    seed: u64,
     rng: ChaCha8Rng,
     horizon: Option<u64>,
     keep: u64,
@@ -262,6 +288,7 @@ impl Sim {
             heap: BinaryHeap::new(),
             now: 0,
             started: false,
+            seed,
             rng: ChaCha8Rng::seed_from_u64(seed),
             horizon: None,
             keep: 0,
@@ -420,8 +447,12 @@ impl Sim {
         }
         let clock = comp.clock();
         let next_n = if self.started { clock.first_edge_after(self.now) } else { 0 };
-        self.heap.push(Reverse((clock.edge_time(next_n), idx)));
-        self.slots.push(Slot { comp, inputs: inputs.to_vec(), outputs: outputs.to_vec(), clock, next_n, cycles: 0 });
+        let jitter = (clock.jitter_ps > 0)
+            .then(|| ChaCha8Rng::seed_from_u64(self.seed ^ (idx as u64 + 1).wrapping_mul(0x9e37_79b9_7f4a_7c15)));
+        let mut slot = Slot { comp, inputs: inputs.to_vec(), outputs: outputs.to_vec(), clock, next_n, jitter, cycles: 0 };
+        let t0 = slot.edge(next_n).max(self.now);
+        self.heap.push(Reverse((t0, idx)));
+        self.slots.push(slot);
         CompId(idx)
     }
 
@@ -495,7 +526,7 @@ impl Sim {
             slot.comp.tick(&mut io);
             slot.cycles += 1;
             slot.next_n += 1;
-            let nt = slot.clock.edge_time(slot.next_n);
+            let nt = slot.edge(slot.next_n);
             self.heap.push(Reverse((nt, idx)));
         }
         if self.vcd.is_some() {

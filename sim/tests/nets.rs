@@ -87,6 +87,32 @@ fn components_tick_on_their_own_drifting_edges() {
 }
 
 #[test]
+fn clock_jitter_is_bounded_and_seeded() {
+    let run = |seed: u64| {
+        let mut sim = Sim::new(seed);
+        let c = ClockSpec::new(10_000).with_ppm(25.0).with_jitter(300);
+        let h = sim.add(Scripted::new("j", c, &[]), &[], &[]);
+        let plain = sim.add(Scripted::new("p", ClockSpec::new(10_000), &[]), &[], &[]);
+        sim.run_until(10_000_000);
+        for (n, s) in sim.get(plain).samples.iter().enumerate() {
+            assert_eq!(s.0, 10_000 * n as u64);
+        }
+        let t: Vec<u64> = sim.get(h).samples.iter().map(|s| s.0).collect();
+        for (n, &x) in t.iter().enumerate() {
+            let nominal = c.edge_time(n as u64);
+            assert!(x >= nominal && x <= nominal + 300, "edge {n}: {x} vs {nominal}");
+        }
+        t
+    };
+    let a = run(1);
+    assert_eq!(a, run(1));
+    assert_ne!(a, run(2));
+    let distinct: std::collections::BTreeSet<u64> =
+        a.iter().enumerate().map(|(n, &x)| x - ClockSpec::new(10_000).with_ppm(25.0).edge_time(n as u64)).collect();
+    assert!(distinct.len() > 100, "jitter varies from edge to edge");
+}
+
+#[test]
 fn delay_line_symmetric_shifts_exactly() {
     let mut sim = Sim::new(0);
     let src = sim.driven("src", true);
