@@ -158,9 +158,18 @@ pub type OutputMap<B> = Box<dyn FnMut(&B, &mut [bool])>;
 /// `drive::cycle` settles the block, applies the rising edge (and the falling
 /// edge), then `get_outputs` maps the block's outputs to the output nets.
 ///
-/// ```ignore
-/// let node = HdlComponent::new("node0", clk, MyCtrl::default(), 1, 1,
-///     |b, i| b.rx.next = i[0], |b, o| o[0] = b.tx.val());
+/// ```
+/// use canstar_sim::{bench::EdgeCounter, bus::{Bus, NodeDelays}, ClockSpec, HdlComponent, Sim};
+/// let mut sim = Sim::new(1);
+/// let bus = Bus::uniform(&mut sim, "bus", 1, NodeDelays::symmetric(0, 0));
+/// // one input (RX), no outputs; a controller would map `o[0] = b.tx.val()`
+/// let node = HdlComponent::new("node0", ClockSpec::mhz(40.0), EdgeCounter::default(), 1, 0,
+///     |b, i| b.rx.next = i[0], |_b, _o| {});
+/// let h = sim.add(node, &[bus.nodes[0].rx], &[]);
+/// sim.drive(bus.nodes[0].tx, false);
+/// sim.run_until(1_000_000);
+/// // the synchroniser powers up at 0 (one edge to recessive), then sees the dominant edge
+/// assert_eq!(sim.get(h).block.edges.val().index(), 2);
 /// ```
 pub struct HdlComponent<B: Clocked> {
     name: String,

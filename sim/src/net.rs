@@ -275,15 +275,10 @@ impl Nets {
                 let mut m = self.next_event(*src, after);
                 let i = sched.partition_point(|e| (e.0 as i64) <= after);
                 m = min_opt(m, sched.get(i).map(|e| e.0));
-                for &(s, e) in windows {
-                    if s as i64 > after {
-                        m = min_opt(m, Some(s));
-                        break;
-                    }
-                    if e as i64 > after {
-                        m = min_opt(m, Some(e));
-                        break;
-                    }
+                // windows are disjoint and sorted: their ends are sorted too
+                let w = windows.partition_point(|w| (w.1 as i64) <= after);
+                if let Some(&(s, e)) = windows.get(w) {
+                    m = min_opt(m, Some(if s as i64 > after { s } else { e }));
                 }
                 m
             }
