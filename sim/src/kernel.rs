@@ -229,6 +229,32 @@ impl<B: Clocked + 'static> Component for HdlComponent<B> {
     }
 }
 
+/// A plain-Rust component from a closure called on every edge (stimulus
+/// generators, testers, stand-ins). State lives in the closure's captures.
+pub struct FnComponent<F: FnMut(&mut Io<'_>) + 'static> {
+    name: String,
+    clock: ClockSpec,
+    f: F,
+}
+
+impl<F: FnMut(&mut Io<'_>) + 'static> FnComponent<F> {
+    pub fn new(name: &str, clock: ClockSpec, f: F) -> Self {
+        FnComponent { name: name.to_string(), clock, f }
+    }
+}
+
+impl<F: FnMut(&mut Io<'_>) + 'static> Component for FnComponent<F> {
+    fn name(&self) -> &str {
+        &self.name
+    }
+    fn clock(&self) -> ClockSpec {
+        self.clock
+    }
+    fn tick(&mut self, io: &mut Io<'_>) {
+        (self.f)(io)
+    }
+}
+
 /// Index of a component in its simulation.
 #[derive(Copy, Clone, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub struct CompId(pub usize);
@@ -578,8 +604,9 @@ impl Sim {
         self.run_until(self.now + dt);
     }
 
-    /// Step until `cond(self)` holds (checked after every step) or the next
-    /// edge lies beyond `deadline_ps`. Returns whether the condition held.
+    /// Step until `cond(self)` holds (checked first, then after every step)
+    /// or the next edge lies beyond `deadline_ps` (time then stays at the last
+    /// processed edge). Returns whether the condition held.
     pub fn run_until_cond(&mut self, deadline_ps: u64, mut cond: impl FnMut(&Sim) -> bool) -> bool {
         loop {
             if cond(self) {

@@ -14,6 +14,12 @@
 //! dominant. History older than the largest total delay is pruned, so long
 //! runs use bounded memory.
 //!
+//! Time is in integer picoseconds. A transition written at `t` is visible
+//! at every instant `>= t` ([`Sim::value_at`]); a component ticking at `t`
+//! samples its inputs just before `t`, so components with simultaneous edges
+//! never see each other's new outputs at that same instant, and the result
+//! never depends on processing order.
+//!
 //! Builders: [`bus::Bus`] (wired-AND bus with per-node delays and
 //! [`Interference`]), [`star::HubPorts`] / [`star::TwoHubs`] (star and
 //! two-hub networks of [`star::Link`]s with [`LinkFault`]s).
@@ -37,5 +43,5 @@ pub mod net;
 pub mod star;
 pub mod vcd;
 
-pub use kernel::{ClockSpec, CompId, Component, Handle, HdlComponent, InputMap, Io, OutputMap, Sim};
+pub use kernel::{ClockSpec, CompId, Component, FnComponent, Handle, HdlComponent, InputMap, Io, OutputMap, Sim};
 pub use net::{FaultMode, Interference, LinkFault, NetId};

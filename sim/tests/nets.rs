@@ -308,3 +308,28 @@ fn link_fault_schedule_and_flip_windows() {
     assert_eq!(dominant_intervals(&sim, l.output, 0, 100), vec![(0, 50), (60, 100)]);
     assert_eq!(trace(&sim, l.output, 49, 51), vec![false, true]);
 }
+
+#[test]
+fn fn_component_toggles_and_reads() {
+    let mut sim = Sim::new(0);
+    let a = sim.driven("a", true);
+    let b = sim.delay("b", a, 250, 250);
+    let mut level = true;
+    let seen_ptr = std::rc::Rc::new(std::cell::RefCell::new(Vec::new()));
+    let sp = seen_ptr.clone();
+    sim.add(
+        canstar_sim::FnComponent::new("toggler", ClockSpec::new(1_000), move |io| {
+            sp.borrow_mut().push((io.now(), io.input(0)));
+            level = !level;
+            io.set_output(0, level);
+        }),
+        &[b],
+        &[a],
+    );
+    sim.run_until(5_000);
+    let seen = seen_ptr.borrow().clone();
+    // a toggles at every edge (dominant at 0, 2000, 4000), b follows 250 ps later:
+    // the edge at 1000 sees the dominant written at 0
+    assert_eq!(seen, vec![(0, true), (1_000, false), (2_000, true), (3_000, false), (4_000, true), (5_000, false)]);
+    assert_eq!(dominant_intervals(&sim, b, 0, 5_000), vec![(250, 1_250), (2_250, 3_250), (4_250, 5_000)]);
+}
