@@ -1,6 +1,6 @@
 //! Throughput benchmark of the kernel: simulated clock cycles per second.
 //!
-//! [`bench`] measures (a) one node alone and (b) `bus_nodes` nodes sharing a
+//! [`bench()`] measures (a) one node alone and (b) `bus_nodes` nodes sharing a
 //! bus. A node is whatever the factory builds (a [`Component`] reading its
 //! input 0 = RX, no outputs used), wrapped in a [`PatternNode`] that drives
 //! the node's TX with a pseudo-random bit pattern changing at bit boundaries.
@@ -213,7 +213,7 @@ pub fn bench<C: Component>(cfg: &BenchConfig, mut factory: impl FnMut(usize, Clo
     }
 }
 
-/// [`bench`] with the default [`EdgeCounter`] node.
+/// [`bench()`] with the default [`EdgeCounter`] node.
 pub fn bench_default(cfg: &BenchConfig) -> BenchReport {
     bench(cfg, edge_counter_node)
 }
