@@ -3,6 +3,7 @@
 //! overrides as in can-protocol.md §1.
 #![allow(dead_code)]
 
+pub mod core_bus;
 pub mod stim;
 
 use canstar_controller::frame::Frame;
