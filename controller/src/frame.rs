@@ -75,17 +75,10 @@ pub fn data_len(dlc: u8) -> usize {
     (dlc as usize & 15).min(8)
 }
 
-/// CRC-15 of a bit sequence (polynomial 0x4599, initial 0, §6).
+/// CRC-15 of a bit sequence (polynomial 0x4599, initial 0, §6): the shared
+/// software model [`canstar_hdl::crc15::crc15_bits`].
 pub fn crc15(bits: &[bool]) -> u16 {
-    let mut crc: u16 = 0;
-    for &b in bits {
-        let fb = b ^ ((crc >> 14) & 1 == 1);
-        crc = (crc << 1) & 0x7FFF;
-        if fb {
-            crc ^= 0x4599;
-        }
-    }
-    crc
+    canstar_hdl::crc15::crc15_bits(bits)
 }
 
 /// Insert stuff bits: after 5 equal bits, one of the opposite level (§5).
@@ -230,6 +223,19 @@ mod tests {
     fn crc_check_value() {
         let bits: Vec<bool> = b"123456789".iter().flat_map(|c| (0..8).map(move |i| (c >> (7 - i)) & 1 == 1)).collect();
         assert_eq!(crc15(&bits), 0x059E);
+    }
+
+    #[test]
+    fn stuffing_agrees_with_the_shared_model() {
+        let mut x: u64 = 0x9E37_79B9_7F4A_7C15;
+        for _ in 0..200 {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            let bits: Vec<bool> = (0..64).map(|i| (x >> i) & 3 != 0).collect();
+            let mine: Vec<bool> = stuff(&bits).iter().map(|b| b.0).collect();
+            assert_eq!(mine, canstar_hdl::stuff::stuff_bits(&bits));
+        }
     }
 
     #[test]

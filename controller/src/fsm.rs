@@ -219,7 +219,8 @@ impl Field {
 /// The frame state machine (see the module documentation).
 ///
 /// Inputs: `sample` strobe and `busmon` level from the bit timing logic; the
-/// mode bits `listen_only` (never drive dominant, never start a frame),
+/// mode bits `listen_only` (never drive dominant, never start a frame,
+/// no ACK, only passive flags, error counters frozen),
 /// `self_test` (a transmitter accepts a recessive ACK slot), `single_shot`
 /// (no retransmission after an error or a lost arbitration),
 /// `host_recovery` (bus-off recovery waits for a `recover` strobe); the
@@ -409,7 +410,10 @@ impl Logic for CanFsm {
         // Defaults: working copies start from the registers.
         self.l_bit.next = self.busmon.val();
         self.l_sent.next = !self.dom.q.val();
-        self.l_active.next = (self.tecr.q.val() < 128) & (self.recr.q.val() < 128);
+        // Error-active (flags are typed from this); a listen-only node only
+        // ever sends passive flags.
+        self.l_active.next =
+            (self.tecr.q.val() < 128) & (self.recr.q.val() < 128) & !self.listen_only.val();
         self.l_cantx.next = self.req.q.val() & !self.listen_only.val();
         self.l_nf.next = self.fld.q.val();
         self.l_npos.next = self.fpos.q.val();
@@ -1292,7 +1296,11 @@ impl Logic for CanFsm {
             }
 
             // ---------------- fault confinement (§13) ----------------
-            if self.l_clear.val() {
+            // (frozen in listen-only mode, as in the SJA1000)
+            if self.listen_only.val() {
+                self.l_tec.next = self.tecr.q.val();
+                self.l_rec.next = self.recr.q.val();
+            } else if self.l_clear.val() {
                 self.l_tec.next = 0.into();
                 self.l_rec.next = 0.into();
             } else {

@@ -610,3 +610,28 @@ fn bus_off_mid_flag_stops_driving() {
     assert!(b.last(0).drv);
     assert_eq!(b.state(0), 2);
 }
+
+#[test]
+fn listen_only_node_receives_silently() {
+    let mut b = Bus::integrated(3);
+    b.nodes[2].listen_only.next = true;
+    let f = Frame::ext(0x1555AAA, &[1, 2, 3, 4]);
+    good_exchange(&mut b, 0, &f);
+    assert_eq!(b.rx[2], vec![f.clone()]);
+    assert!(b.log[2].iter().all(|r| r.drv), "a listen-only node never drives dominant");
+    // an error seen only by the listen-only node: passive flag, counters frozen
+    b.request(0, &f);
+    b.force_at(2, Field::CrcDel, 1, Ovr::StuckD, 1);
+    assert!(b.last(2).has(EV_FORM_ERR) && b.last(2).has(EV_PEF));
+    b.run_until(400, |b| b.nodes[0].tx_done.val());
+    b.withdraw(0);
+    b.run_idle(60);
+    assert_eq!((b.rec(2), b.tec(2)), (0, 0));
+    assert!(b.log[2].iter().all(|r| r.drv));
+    assert_eq!(b.rx[1].len(), 2);
+    // no transmission while listening only
+    b.request(2, &Frame::std(0x001, &[]));
+    b.run(300);
+    assert!(b.log[2].iter().all(|r| r.drv));
+    assert!(b.rx[0].is_empty());
+}
