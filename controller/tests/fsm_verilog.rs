@@ -27,14 +27,13 @@ use rand::Rng;
 fn fsm_cosim() {
     let mut u = CanFsm::new();
     let mut script = BusScript::new(0.004);
-    let mut level = true;
     let mut wait = 0u32;
     let mut req_timer = 0u32;
     flow::cosim(&mut u, "canfsm", 150_000, 11, move |u, rng, cycle| {
         u.reset.next = cycle < 2 || rng.gen_bool(0.00003);
         u.sample.next = false;
         if wait == 0 {
-            level = script.next_bit(rng);
+            let level = script.next_bit(rng);
             wait = rng.gen_range(2..5);
             u.sample.next = true;
             u.busmon.next = level & u.drive.val();

@@ -12,6 +12,9 @@ use std::collections::VecDeque;
 /// Timing fields (value - 1): T10/6/4 = PROP 1, PH1 4, SJW 4, BRP 1.
 pub const T10_6_4: (u64, u64, u64, u64) = (0, 0, 3, 3);
 
+/// (cycle after the sample, event word, field, pos, stuff, tec, rec) of one bit.
+pub type BitRec = (usize, u64, Field, u8, bool, u64, u64);
+
 pub struct CoreBus {
     pub nodes: Vec<Box<CanCore>>,
     pub ovr: Vec<Ovr>,
@@ -19,7 +22,7 @@ pub struct CoreBus {
     pub delay: Vec<VecDeque<bool>>,
     pub rx: Vec<Vec<Frame>>,
     /// Per node: (cycle, events word) of every processed bit.
-    pub bits: Vec<Vec<(usize, u64, Field, u8, bool, u64, u64)>>,
+    pub bits: Vec<Vec<BitRec>>,
     /// Per node: sampled levels at its sample strobes.
     pub samples: Vec<Vec<bool>>,
     pub cycle: usize,
@@ -165,7 +168,7 @@ impl CoreBus {
     }
 
     /// Events of node `i` having bit `ev`.
-    pub fn events(&self, i: usize, ev: usize) -> Vec<(usize, u64, Field, u8, bool, u64, u64)> {
+    pub fn events(&self, i: usize, ev: usize) -> Vec<BitRec> {
         self.bits[i].iter().filter(|r| (r.1 >> ev) & 1 == 1).cloned().collect()
     }
 }

@@ -42,14 +42,14 @@ impl BusScript {
     /// random ones.
     pub fn push_frames(&mut self, frames: &[Frame]) {
         for f in frames {
-            self.q.extend(std::iter::repeat(true).take(4));
+            self.q.extend(std::iter::repeat_n(true, 4));
             self.q.extend(frame::bus_levels(f, true));
-            self.q.extend(std::iter::repeat(true).take(3));
+            self.q.extend(std::iter::repeat_n(true, 3));
         }
     }
     /// Queue `n` recessive bits.
     pub fn push_idle(&mut self, n: usize) {
-        self.q.extend(std::iter::repeat(true).take(n));
+        self.q.extend(std::iter::repeat_n(true, n));
     }
     /// Bits still queued.
     pub fn queued(&self) -> usize {
