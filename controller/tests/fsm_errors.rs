@@ -635,3 +635,61 @@ fn listen_only_node_receives_silently() {
     assert!(b.log[2].iter().all(|r| r.drv));
     assert!(b.rx[0].is_empty());
 }
+
+#[test]
+fn arbitration_lost_in_extension_and_at_extended_rtr() {
+    let mut b = Bus::integrated(2);
+    // same base, extension differs first at Ex_Identifier 5 (bit 13)
+    let e0 = (0x155 << 18) | 0x3_0000 | (1 << 13);
+    let e1 = (0x155 << 18) | 0x3_0000;
+    b.request(0, &Frame::ext(e0, &[]));
+    b.request(1, &Frame::ext(e1, &[]));
+    b.run_until(400, |b| b.nodes[1].tx_done.val());
+    b.withdraw(1);
+    let l = b.events(0, EV_ARB_LOST, 0);
+    assert!(l[0].is(Field::ExIdent, 5), "{:?}", l[0]);
+    assert_eq!(b.nodes[0].arb_lost_pos.val().index(), 13 + 5);
+    b.run_until(400, |b| b.nodes[0].tx_done.val());
+    b.withdraw(0);
+    b.run_idle(50);
+    // extended remote vs extended data, same id: loss at the extended RTR
+    b.request(0, &Frame::remote(true, e1, 2));
+    b.request(1, &Frame::ext(e1, &[1, 2]));
+    b.run_until(400, |b| b.nodes[1].tx_done.val());
+    b.withdraw(1);
+    let l = b.events(0, EV_ARB_LOST, 0);
+    assert!(l[1].is(Field::Rtr, 1), "{:?}", l[1]);
+    assert_eq!(b.nodes[0].arb_lost_pos.val().index(), 32);
+    b.run_until(400, |b| b.nodes[0].tx_done.val());
+    assert_eq!(b.rx[1], vec![Frame::ext(e0, &[]), Frame::remote(true, e1, 2)]);
+    assert_eq!((b.tec(0), b.rec(0), b.tec(1), b.rec(1)), (0, 0, 0, 0));
+}
+
+#[test]
+fn dominant_srr_and_recessive_reserved_bits_are_accepted() {
+    use canstar_controller::frame::{bus_bits, BuildOptions};
+    // a scripted transmitter: node 0 reads the script through its override
+    let cases = [
+        (Frame::ext(0x0A40A5A5, &[0x12]), BuildOptions { srr: false, r1: false, r0: false }),
+        (Frame::ext(0x0A42A5A5, &[]), BuildOptions { srr: false, r1: true, r0: true }),
+        (Frame::ext(0x1234567, &[1, 2, 3]), BuildOptions { srr: true, r1: true, r0: false }),
+        (Frame::std(0x28F, &[5]), BuildOptions { srr: true, r1: false, r0: true }),
+        (Frame::remote(false, 0x290, 3), BuildOptions { srr: true, r1: false, r0: true }),
+    ];
+    let mut b = Bus::integrated(1);
+    for (f, o) in cases {
+        let bits = bus_bits(&f, o, true);
+        for bb in &bits {
+            b.ovr[0] = if bb.level { Ovr::StuckR } else { Ovr::StuckD };
+            b.step();
+            if bb.field == Field::AckSlot {
+                assert!(!b.last(0).drv, "node 0 acknowledges {f:?}");
+            }
+        }
+        b.ovr[0] = Ovr::None;
+        b.run(4);
+        assert_eq!(b.rx[0].last(), Some(&f));
+        assert_eq!(b.rec(0), 0);
+        assert!(b.log[0].iter().all(|r| !r.has(EV_AEF) && !r.has(EV_PEF)));
+    }
+}
