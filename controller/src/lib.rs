@@ -6,6 +6,7 @@
 //! - [`core`]: [`CanCore`], the top block: synchroniser, bit timing and the
 //!   frame state machine, with the native host interface and debug bundle.
 //! - [`frame`]: plain-Rust frames and the bit-level frame builder.
+//! - [`trace`]: per-bit trace lines (§18) from the debug bundle.
 //!
 //! The normative description is `can-protocol.md`.
 
@@ -16,3 +17,4 @@ pub use frame::{BuildOptions, BusBit, Frame};
 pub use fsm::{CanFsm, Field};
 pub mod core;
 pub use crate::core::CanCore;
+pub mod trace;

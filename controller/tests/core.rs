@@ -175,3 +175,32 @@ fn core_stuff_error_receiver_plus_9() {
     assert_eq!(b.rx[0], vec![f]);
     assert_eq!(b.rec(0), 8, "+1 +8, then -1 for the good retry");
 }
+
+#[test]
+fn core_trace_lines() {
+    use canstar_controller::trace::BitTracer;
+    let mut b = CoreBus::integrated(2, &[]);
+    let mut tr = [BitTracer::new("D1"), BitTracer::new("D2")];
+    let mut lines: [Vec<String>; 2] = [vec![], vec![]];
+    let f = Frame::std(0x003, &[0xAB]);
+    b.request(0, &f);
+    let start = b.samples[0].len();
+    for _ in 0..2000 {
+        b.step();
+        for i in 0..2 {
+            lines[i].extend(tr[i].clock(b.cycle as u64 * 100, &b.nodes[i]));
+        }
+        if b.nodes[0].tx_done.val() {
+            b.withdraw(0);
+        }
+    }
+    let bitlines = |i: usize| lines[i].iter().filter(|l| !l.contains("MSG")).count();
+    // one bit line per sample strobe (after the first)
+    assert!((bitlines(0) as i64 - (b.samples[0].len() - start) as i64).abs() <= 1);
+    let l0 = lines[0].join("\n");
+    let l1 = lines[1].join("\n");
+    assert!(l0.contains("Tx_Start_Of_Frame") && l0.contains("TX_OK"), "{l0}");
+    assert!(l1.contains("Rx_Identifier") && l1.contains("RX_OK"), "{l1}");
+    assert!(l1.contains("MSG std data id=0x3 dlc=1 data=ab"), "{l1}");
+    assert!(l0.lines().any(|l| l.contains("Tx_Identifier") && l.contains(" S ")), "stuff marker:\n{l0}");
+}
