@@ -3,6 +3,7 @@
 //! that some node requested are delivered, counters stay in range and agree
 //! with the error state, and once the disturbances stop every request is
 //! completed and the bus returns to idle.
+#![allow(clippy::needless_range_loop)]
 mod common;
 use canstar_controller::frame::Frame;
 use canstar_controller::fsm::*;
@@ -26,7 +27,7 @@ fn random_traffic_with_disturbances() {
                 if want[i].is_none() && !b.nodes[i].tx_done.val() && bit < 35_000 && rng.gen_bool(0.01) {
                     // unique identifiers per node avoid two nodes sending the same id
                     let mut f = random_frame(&mut rng);
-                    f.id = if f.ide { (f.id & !3) | i as u32 } else { (f.id & !3) | i as u32 };
+                    f.id = (f.id & !3) | i as u32;
                     sent.insert(f.clone());
                     b.request(i, &f);
                     want[i] = Some(f);
