@@ -6,9 +6,32 @@
 //! clock the block processes the bit completely (destuffing, CRC, arbitration,
 //! error detection, fault confinement, frame delivery) and latches its
 //! decision: `drive` (the level wanted on TX for the next bit) and `hs_en`
-//! (hard synchronisation enable) are registered outputs, valid from the next
-//! clock on. Everything is normative per `can-protocol.md`; the section numbers
-//! below refer to it.
+//! (hard synchronisation enable) are functions of registers only (and of the
+//! `listen_only` mode bit), valid from the next clock on, so with IPT = 2 TQ
+//! they are ready at the earliest transmit point. Counter changes are visible
+//! on the same clock (§13.4). Everything is normative per `can-protocol.md`;
+//! the section numbers below refer to it.
+//!
+//! Summary of the behaviour (details in can-protocol.md):
+//! - integration after reset (11 recessive bits), Bus_Idle, SOF on a pending
+//!   request after Bus_Idle bits, a recessive third intermission bit or the
+//!   last Suspend_Transmission bit; a dominant third intermission bit is a SOF
+//!   (a node with a pending request continues as transmitter at Identifier 1,
+//!   except an error-passive former transmitter, C15);
+//! - standard and extended frames, SRR/r1/r0 accepted at either level, DLC
+//!   9..15 carrying 8 bytes, remote frames without data;
+//! - arbitration over identifier, SRR, IDE, extension and RTR (not at stuff
+//!   bits), after a loss the node continues as a receiver;
+//! - bit, stuff, CRC (signalled after ACK_Delimiter), form and ACK errors at
+//!   the positions of §9; active and passive error flags, the 6-equal-bits
+//!   rule of passive flags, dominant bits after a flag, error and overload
+//!   delimiters, overload frames (intermission 1/2, delimiter bit 8, a
+//!   receiver's End_Of_Frame bit 7, which still delivers the frame);
+//! - fault confinement of §13 with both exceptions, REC saturation (C12) and
+//!   the 127 restore (C11), error warning, error-passive with suspend
+//!   transmission, bus-off at TEC > 255 and recovery after 128 runs of 11
+//!   recessive bits (automatic, or started by `recover` with
+//!   `host_recovery`).
 //!
 //! Bit stuffing and the CRC-15 use the shared blocks
 //! [`canstar_hdl::stuff::BitDestuffer`] and [`canstar_hdl::crc15::Crc15`], both
