@@ -102,3 +102,17 @@ fn core_verilog_flow() {
     eprintln!("cosim: {rxv} frames received, {txd} sent, {err} errors, {arb} arbitration losses; {} cells", synth.cells);
     assert!(rxv >= 150 && txd >= 5 && err >= 20, "stimulus too weak: {rxv} {txd} {err} {arb}");
 }
+
+/// Size of the core on an iCE40 (printed; the assertion only checks that
+/// synthesis succeeds and the design is not optimised away).
+#[test]
+#[ignore = "needs iverilog, verilator and yosys: run scripts/test-all.sh"]
+fn core_ice40_size() {
+    let mut u = CanCore::new();
+    canstar_hdl::drive::init(&mut u);
+    let v = flow::emit(&u);
+    let r = flow::synth_check(&v, "top", flow::SynthTarget::Ice40).expect("synth_ice40");
+    let lines: Vec<&str> = r.stat.lines().filter(|l| l.contains("SB_LUT4") || l.contains("SB_DFF") || l.contains("cells")).collect();
+    eprintln!("CanCore on iCE40:\n{}", lines.join("\n"));
+    assert!(r.cells > 500, "{}", r.stat);
+}
