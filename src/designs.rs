@@ -19,6 +19,16 @@ pub fn blocks(config: &Config) -> Result<Vec<Artifact>> {
     ])
 }
 
+/// The designs `canstar report` measures: (name, Verilog, top module).
+pub fn report_designs(config: &Config) -> Result<Vec<(String, String, String)>> {
+    let mut v = vec![];
+    for a in blocks(config)? {
+        let top = a.path.file_stem().unwrap().to_string_lossy().into_owned();
+        v.push((top.clone(), a.contents, top));
+    }
+    Ok(v)
+}
+
 /// `canstar bench`.
 pub fn bench(_cycles: u64, _nodes: &[usize]) -> Result<()> {
     anyhow::bail!("bench not available yet")
