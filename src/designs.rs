@@ -2,7 +2,9 @@
 use crate::config::Config;
 use crate::generate::{block, Artifact};
 use anyhow::Result;
-use canstar_hdl::{crc15, stuff, sync};
+use canstar_hdl::{btl, crc15, stuff, sync};
+use canstar_sim::bench::{bench as run_bench, BenchConfig};
+use canstar_sim::HdlComponent;
 
 /// The shared RTL blocks as standalone modules (`verilog-out/blocks/`).
 pub fn blocks(config: &Config) -> Result<Vec<Artifact>> {
@@ -16,10 +18,73 @@ pub fn blocks(config: &Config) -> Result<Vec<Artifact>> {
         block(crc15::Crc15::default(), "canstar_crc15", "CAN CRC-15, polynomial 0x4599"),
         block(stuff::BitStuffer::default(), "canstar_bit_stuffer", "CAN bit stuffer"),
         block(stuff::BitDestuffer::default(), "canstar_bit_destuffer", "CAN bit destuffer"),
+        block(
+            btl::BitTiming::default(),
+            "canstar_bit_timing",
+            "CAN bit timing logic (prescaler, segments, hard sync and resync, IPT = 2 TQ)",
+        ),
     ])
 }
 
-/// `canstar bench`.
-pub fn bench(_cycles: u64, _nodes: &[usize]) -> Result<()> {
-    anyhow::bail!("bench not available yet")
+/// The designs `canstar report` measures: (name, Verilog, top module).
+pub fn report_designs(config: &Config) -> Result<Vec<(String, String, String)>> {
+    let mut v = vec![];
+    for a in blocks(config)? {
+        let top = a.path.file_stem().unwrap().to_string_lossy().into_owned();
+        v.push((top.clone(), a.contents, top));
+    }
+    Ok(v)
+}
+
+/// A bit-timing instance as a simulation component: 40 MHz clock, BRP 4,
+/// T10/6/4 (1 Mbit/s), held in reset for its first two cycles. Its RX is the
+/// bus; the benchmark's pattern driver puts pseudo-random bits on the bus.
+fn btl_node(i: usize, clock: canstar_sim::ClockSpec) -> HdlComponent<btl::BitTiming> {
+    let cfg = btl::BtlConfig::from_fields(4, 1, 4, 4, false);
+    let mut b = btl::BitTiming::default();
+    b.set_config(&cfg);
+    let mut n = 0u32;
+    HdlComponent::new(
+        &format!("btl{i}"),
+        clock,
+        b,
+        1,
+        0,
+        move |b, v| {
+            b.reset.next = n < 2;
+            n = n.saturating_add(1);
+            b.rx.next = v[0];
+        },
+        |_, _| {},
+    )
+}
+
+/// `canstar bench`: simulated clock cycles per second of bit-timing
+/// instances, alone and sharing a bus (nodes spread over +-100 ppm).
+pub fn bench(cycles: u64, nodes: &[usize]) -> Result<()> {
+    anyhow::ensure!(cycles > 0, "--cycles must be positive");
+    anyhow::ensure!(nodes.iter().all(|&n| n >= 1), "node counts must be at least 1");
+    println!("canstar bench: bit timing logic (canstar_hdl::btl::BitTiming), 40 MHz clocks, 1 Mbit/s, direct-drive kernel");
+    let mut first = true;
+    for &n in nodes {
+        let cfg = BenchConfig {
+            single_cycles: if first { cycles } else { 1 },
+            bus_nodes: n,
+            bus_cycles_per_node: (cycles / n as u64).max(1),
+            ..BenchConfig::default()
+        };
+        let r = run_bench(&cfg, btl_node);
+        if first {
+            println!(
+                "1 instance alone:    {:>12.0} cycles/s ({} cycles in {:.2} s)",
+                r.single_cycles_per_sec, r.single_cycles, r.single_secs
+            );
+            first = false;
+        }
+        println!(
+            "{n:>2} instances on a bus: {:>12.0} cycles/s in total, {:>12.0} cycles/s per instance ({} cycles in {:.2} s)",
+            r.bus_cycles_per_sec, r.bus_node_cycles_per_sec, r.bus_cycles, r.bus_secs
+        );
+    }
+    Ok(())
 }

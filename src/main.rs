@@ -34,6 +34,16 @@ enum Cmd {
         #[arg(long)]
         check: bool,
     },
+    /// Synthesise the generated designs and print a resource table (iCE40 cells, flip-flops,
+    /// block RAMs and fmax with Yosys + nextpnr-ice40; Spartan-3 LUTs and flip-flops with Yosys).
+    Report {
+        /// TOML configuration file.
+        #[arg(long)]
+        config: Option<PathBuf>,
+        /// Clock frequency nextpnr is asked to meet, in MHz.
+        #[arg(long, default_value_t = 50.0)]
+        freq: f64,
+    },
     /// Measure simulation throughput (simulated clock cycles per second).
     Bench {
         /// Simulated clock cycles per measurement.
@@ -68,6 +78,20 @@ fn run(cli: Cli) -> Result<()> {
                     println!("wrote {}", w.display());
                 }
             }
+            Ok(())
+        }
+        Cmd::Report { config, freq } => {
+            let cfg = match &config {
+                Some(p) => Config::load(p)?,
+                None => Config::default(),
+            };
+            let mut rows = vec![];
+            for (name, verilog, top) in canstar::designs::report_designs(&cfg)? {
+                eprintln!("synthesising {name} ...");
+                rows.push(canstar::report::measure(&name, &verilog, &top, freq)?);
+            }
+            println!("{}", canstar::report::table(&rows));
+            println!("\ntools: {}", canstar::report::tool_versions());
             Ok(())
         }
         Cmd::Bench { cycles, nodes } => canstar::designs::bench(cycles, &nodes),
