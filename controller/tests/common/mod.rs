@@ -169,6 +169,7 @@ impl Bus {
     }
 
     /// Run until `pred` holds after a bit (checked after every bit); panics after `max` bits.
+    #[track_caller]
     pub fn run_until(&mut self, max: usize, mut pred: impl FnMut(&Bus) -> bool) {
         for _ in 0..max {
             self.step();
