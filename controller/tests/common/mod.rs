@@ -50,6 +50,8 @@ pub struct Bus {
     pub rx: Vec<Vec<Frame>>,
     pub bit: usize,
     pub bus_log: Vec<bool>,
+    /// A scripted transmitter: levels wired-AND into the bus, one per bit.
+    pub script: std::collections::VecDeque<bool>,
 }
 
 pub fn set_frame(n: &mut CanFsm, f: &Frame) {
@@ -74,7 +76,15 @@ impl Bus {
             u.sample.next = true;
             nodes.push(u);
         }
-        Bus { ovr: vec![Ovr::None; n], log: vec![vec![]; n], rx: vec![vec![]; n], nodes, bit: 0, bus_log: vec![] }
+        Bus {
+            ovr: vec![Ovr::None; n],
+            log: vec![vec![]; n],
+            rx: vec![vec![]; n],
+            nodes,
+            bit: 0,
+            bus_log: vec![],
+            script: Default::default(),
+        }
     }
 
     /// A bus whose nodes have integrated (11 recessive bits).
@@ -110,7 +120,7 @@ impl Bus {
 
     /// One bit.
     pub fn step(&mut self) {
-        let bus = self.nodes.iter().all(|n| n.drive.val());
+        let bus = self.nodes.iter().all(|n| n.drive.val()) & self.script.pop_front().unwrap_or(true);
         self.bus_log.push(bus);
         let mut pre = Vec::new();
         for (i, n) in self.nodes.iter_mut().enumerate() {
