@@ -3,7 +3,9 @@ use crate::config::Config;
 use crate::generate::{block, Artifact};
 use anyhow::Result;
 use canstar_hdl::{btl, crc15, stuff, sync};
-use canstar_sim::bench::{bench as run_bench, BenchConfig};
+use canstar_sim::bench::{bench as run_bench, BenchConfig, PatternNode};
+use canstar_sim::bus::Bus;
+use std::path::Path;
 use canstar_sim::HdlComponent;
 
 /// The shared RTL blocks as standalone modules (`verilog-out/blocks/`).
@@ -86,5 +88,25 @@ pub fn bench(cycles: u64, nodes: &[usize]) -> Result<()> {
             r.bus_cycles_per_sec, r.bus_node_cycles_per_sec, r.bus_cycles, r.bus_secs
         );
     }
+    Ok(())
+}
+
+/// Simulate `nodes` bit-timing instances on a bus for `cycles` clock cycles
+/// per node and write a VCD of every instance's signals and every bus wire
+/// (or only the signals matching `signals`, see `canstar_sim::vcd`).
+pub fn bench_vcd(path: &Path, nodes: usize, cycles: u64, signals: Option<&[String]>, seed: u64) -> Result<()> {
+    anyhow::ensure!(nodes >= 1, "node count must be at least 1");
+    let cfg = BenchConfig { seed, ..BenchConfig::default() };
+    let mut sim = canstar_sim::Sim::new(cfg.seed);
+    let bus = Bus::uniform(&mut sim, "bus", nodes, cfg.delays);
+    for (i, node) in bus.nodes.iter().enumerate() {
+        let ppm = if nodes > 1 { -cfg.ppm_spread + 2.0 * cfg.ppm_spread * i as f64 / (nodes - 1) as f64 } else { 0.0 };
+        let clk = sim.random_phase_clock(cfg.period_ps, ppm);
+        sim.add(PatternNode::new(btl_node(i, clk), cfg.cycles_per_bit, 0x1234_5678 ^ (i as u32 * 0x9e37_79b9)), &[node.rx], &[node.tx]);
+    }
+    let filter: Option<Vec<&str>> = signals.map(|v| v.iter().map(|s| s.as_str()).collect());
+    sim.start_vcd_file(path, filter.as_deref())?;
+    sim.run_until(cfg.period_ps * cycles);
+    sim.finish_vcd()?;
     Ok(())
 }

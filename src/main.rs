@@ -52,6 +52,15 @@ enum Cmd {
         /// Node counts for the shared-bus measurement.
         #[arg(long, value_delimiter = ',', default_value = "2,5,10")]
         nodes: Vec<usize>,
+        /// Instead of measuring, write a VCD of the first node count's bus (all signals of every instance and every bus wire).
+        #[arg(long)]
+        vcd: Option<PathBuf>,
+        /// With --vcd: dump only these signals (hierarchical names or prefixes, `name*` globs), comma separated.
+        #[arg(long, value_delimiter = ',')]
+        signals: Option<Vec<String>>,
+        /// Seed (clock phases) for the --vcd run.
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
     },
 }
 
@@ -94,7 +103,14 @@ fn run(cli: Cli) -> Result<()> {
             println!("\ntools: {}", canstar::report::tool_versions());
             Ok(())
         }
-        Cmd::Bench { cycles, nodes } => canstar::designs::bench(cycles, &nodes),
+        Cmd::Bench { cycles, nodes, vcd: Some(path), signals, seed } => {
+            let n = nodes.first().copied().unwrap_or(2);
+            let c = cycles.min(200_000);
+            canstar::designs::bench_vcd(&path, n, c, signals.as_deref(), seed)?;
+            println!("wrote {} ({n} bit-timing instances on a bus, {c} cycles each)", path.display());
+            Ok(())
+        }
+        Cmd::Bench { cycles, nodes, vcd: None, .. } => canstar::designs::bench(cycles, &nodes),
     }
 }
 

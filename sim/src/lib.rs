@@ -40,6 +40,7 @@ pub mod bench;
 pub mod bus;
 mod kernel;
 pub mod net;
+pub mod scenario;
 pub mod star;
 pub mod vcd;
 
