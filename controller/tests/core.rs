@@ -204,3 +204,33 @@ fn core_trace_lines() {
     assert!(l1.contains("MSG std data id=0x3 dlc=1 data=ab"), "{l1}");
     assert!(l0.lines().any(|l| l.contains("Tx_Identifier") && l.contains(" S ")), "stuff marker:\n{l0}");
 }
+
+/// baudrate_4 / 4b: a dominant spike seen by one idle node. Up to PROP + PH1
+/// TQ long it is not sampled but hard-synchronises the node (its sample
+/// points move to SP TQ after the spike's edge); one TQ longer it is a SOF.
+#[test]
+fn core_idle_spike_hard_sync_and_sof() {
+    for len in 1..=7usize {
+        let mut b = CoreBus::integrated(1, &[]);
+        b.run(37); // an arbitrary phase
+        let before = b.samples[0].len();
+        let edge = b.cycle;
+        b.ovr[0] = Ovr::StuckD;
+        b.run(len);
+        b.ovr[0] = Ovr::None;
+        b.run(200);
+        let sof = !b.events(0, EV_SOF).is_empty();
+        assert_eq!(sof, len > 5, "spike of {len} TQ");
+        if !sof {
+            assert!(b.events(0, EV_AEF).is_empty());
+            assert_eq!(b.field(0), Field::Idle);
+            // the first sample after the edge is SP = 6 TQ after it (plus the
+            // fixed RX latency): find the first bit record after the edge
+            let first = b.bits[0].iter().find(|r| r.0 > edge).unwrap().0;
+            assert_eq!(first - edge, 6 + CanCore::l_rx(canstar_controller::core::SYNC_DEPTH), "spike {len}");
+        } else {
+            assert_eq!(b.rec(0), 1, "a stuff error follows the SOF on a silent bus");
+        }
+        assert!(b.samples[0].len() > before);
+    }
+}
