@@ -1307,7 +1307,7 @@ impl Logic for CanFsm {
                     self.blocked.d.next = true;
                 }
                 self.errf_r.d.next = self.field.val();
-                self.errp_r.d.next = self.fpos.q.val();
+                self.errp_r.d.next = self.l_dpos.val();
                 self.errtx_r.d.next = self.rtx.q.val();
             } else if self.l_ovl.val() {
                 self.l_nf.next = Field::OvlFlag;

@@ -267,3 +267,20 @@ fn core_other_timings_and_triple_sampling() {
         }
     }
 }
+
+/// The error payload names the bit: a stuff error at the stuff bit after
+/// Identifier 4 reports FIELD Identifier, POSITION 4, receiver.
+#[test]
+fn core_error_payload_of_a_stuff_bit() {
+    let mut b = CoreBus::integrated(2, &[]);
+    b.request(1, &Frame::std(0x012, &[0x55]));
+    b.run_until(3000, |b| b.field(0) == Field::Ident && b.nodes[0].dbg_stuff.val());
+    b.ovr[0] = Ovr::StuckD;
+    b.run_until(30, |b| b.nodes[0].error.val());
+    b.ovr[0] = Ovr::None;
+    let n = &b.nodes[0];
+    assert_eq!(n.err_kind.val().index(), 1 << ERRK_STUFF);
+    assert_eq!(n.err_field.val().index() as u64, Field::Ident.code());
+    assert_eq!(n.err_pos.val().index(), 4);
+    assert!(!n.err_tx.val());
+}
