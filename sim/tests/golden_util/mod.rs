@@ -62,3 +62,51 @@ pub fn force_at(
 pub fn std1(id: u32) -> Frame {
     Frame::std_data(id, 1, &[0xA5])
 }
+
+use canstar_sim::golden::frame::frame_bits;
+use canstar_sim::golden::{BitInfo, FrameVariant};
+
+/// The first frame of `cands` whose wire bits satisfy `pred`.
+pub fn find_frame(cands: impl IntoIterator<Item = Frame>, pred: impl Fn(&[BitInfo]) -> bool) -> Frame {
+    cands
+        .into_iter()
+        .find(|f| pred(&frame_bits(f, FrameVariant::default())))
+        .expect("no frame meets the condition")
+}
+
+/// Like [`find_frame`], `None` if no candidate fits.
+pub fn try_find_frame(cands: impl IntoIterator<Item = Frame>, pred: impl Fn(&[BitInfo]) -> bool) -> Option<Frame> {
+    cands.into_iter().find(|f| pred(&frame_bits(f, FrameVariant::default())))
+}
+
+/// Has a stuff bit of level `level` right after non-stuff bit (field, pos)?
+pub fn stuff_after(bits: &[BitInfo], field: Field, pos: u16, level: bool) -> bool {
+    bits.iter().any(|b| b.stuff && b.field == field && b.pos == pos && b.bit == level)
+}
+
+/// Level of non-stuff bit (field, pos).
+pub fn bit_at(bits: &[BitInfo], field: Field, pos: u16) -> bool {
+    bits.iter().find(|b| !b.stuff && b.field == field && b.pos == pos).expect("bit").bit
+}
+
+pub fn std_frames() -> impl Iterator<Item = Frame> {
+    (0..0x800u32).map(|id| Frame::std_data(id, 1, &[0x55]))
+}
+pub fn std_remotes() -> impl Iterator<Item = Frame> {
+    (0..0x800u32).map(|id| Frame::std_remote(id, 1))
+}
+pub fn ext_frames() -> impl Iterator<Item = Frame> {
+    (0..0x40000u32).map(|k| Frame::ext_data(k.wrapping_mul(0x9E37) & 0x1FFF_FFFF, 1, &[0x55]))
+}
+
+/// Force several nodes at once for `bits` bits.
+pub fn force_many(b: &mut GoldenBus, nodes: &[usize], o: RxOverride, bits: u64) -> Vec<Vec<StepOut>> {
+    for &n in nodes {
+        b.overrides[n] = o;
+    }
+    let r = (0..bits).map(|_| b.step()).collect();
+    for &n in nodes {
+        b.overrides[n] = RxOverride::None;
+    }
+    r
+}
