@@ -1,5 +1,7 @@
 //! Arbitration between golden nodes (can-protocol.md §7, conformance extd_id_arb, baudrate).
 
+#![allow(clippy::needless_range_loop)]
+
 mod golden_util;
 use canstar_sim::golden::{Event, Field, Frame, FrameVariant, GoldenBus};
 use golden_util::*;

@@ -1,16 +1,10 @@
 //! Error detection and signalling (can-protocol.md §5, §9, §10, §13) on the golden bus.
 
 mod golden_util;
-use canstar_sim::golden::{Field, FaultState, Frame, GoldenBus, Role, RxOverride};
+use canstar_sim::golden::{Field, FaultState, Frame, Role, RxOverride};
 use golden_util::*;
 
 use RxOverride::{StuckDominant as Dom, StuckRecessive as Rec};
-
-fn one_node() -> GoldenBus {
-    let mut b = GoldenBus::new(1);
-    assert!(b.run_to_idle(20));
-    b
-}
 
 /// formerr_rx_1: `D!` at the receiver's CRC_Delimiter: FORM_ERR, AEF from the ACK slot; the
 /// transmitter flags one bit later, so the first bit after the receiver's flag is `D`: +9.

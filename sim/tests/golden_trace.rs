@@ -15,7 +15,7 @@ fn out(role: Role, field: Field, pos: u32, stuff: bool, smp: bool, drv: bool, te
         rec: 0,
         state: FaultState::ErrorActive,
         events: ev,
-        req: None,
+        req: vec![],
     }
 }
 

@@ -35,8 +35,9 @@ pub struct StepOut {
     pub rec: u8,
     pub state: FaultState,
     pub events: Vec<Event>,
-    /// New request status, if it changed since the last step (trace `REQ` record).
-    pub req: Option<ReqStatus>,
+    /// Request status changes since the previous step, in order (host commands and this
+    /// bit; trace `REQ` records).
+    pub req: Vec<ReqStatus>,
 }
 
 impl StepOut {
@@ -72,6 +73,8 @@ struct FlagState {
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Mode {
+    /// Held in reset by the host.
+    Reset { pos: u32 },
     Integrate { cnt: u32 },
     Idle { pos: u32 },
     /// SOF .. CRC sequence (+ a final stuff bit): the decoder is active.
@@ -215,7 +218,7 @@ pub struct GoldenNode {
     crc_err: bool,
     recovery_started: bool,
     req_status: ReqStatus,
-    req_reported: ReqStatus,
+    req_log: Vec<ReqStatus>,
     ev: Vec<Event>,
 }
 
@@ -245,7 +248,7 @@ impl GoldenNode {
             crc_err: false,
             recovery_started: false,
             req_status: ReqStatus::None,
-            req_reported: ReqStatus::None,
+            req_log: Vec::new(),
             ev: Vec::new(),
         }
     }
@@ -253,9 +256,14 @@ impl GoldenNode {
     /// Hardware reset: TEC = REC = 0, TX `R`, Wait_For_Bus_Idle; a pending request is dropped.
     pub fn reset(&mut self) {
         let cfg = self.cfg;
-        let st = self.req_reported;
+        let log = std::mem::take(&mut self.req_log);
+        let dropped = matches!(self.req_status, ReqStatus::Pending | ReqStatus::Transmitting);
         *self = GoldenNode::new(cfg);
-        self.req_reported = st;
+        self.req_log = log;
+        if dropped {
+            // the request is lost: reported as `error`, then no request
+            self.req_log.push(ReqStatus::Error);
+        }
     }
 
     pub fn config(&self) -> Config {
@@ -276,13 +284,23 @@ impl GoldenNode {
         self.next_req_id += 1;
         self.pending = Some((frame, v, self.next_req_id));
         if self.req_status != ReqStatus::Transmitting {
-            self.req_status = ReqStatus::Pending;
+            self.set_req(ReqStatus::Pending);
         }
     }
     /// Withdraw the request: a running attempt finishes, no further retries.
     pub fn withdraw(&mut self) {
         if self.pending.take().is_some() && self.req_status == ReqStatus::Pending {
-            self.req_status = ReqStatus::Error;
+            self.set_req(ReqStatus::Error);
+        }
+    }
+    /// Hold the node in reset (`true`: counters cleared, TX `R`, FIELD `Reset`) or release it
+    /// (`false`: integration starts, Wait_For_Bus_Idle).
+    pub fn hold_reset(&mut self, on: bool) {
+        if on {
+            self.reset();
+            self.mode = Mode::Reset { pos: 1 };
+        } else if matches!(self.mode, Mode::Reset { .. }) {
+            self.mode = Mode::Integrate { cnt: 0 };
         }
     }
     /// Start bus-off recovery (only needed with [`Config::host_recovery`]).
@@ -345,6 +363,7 @@ impl GoldenNode {
     pub fn label(&self) -> BitLabel {
         let role = self.role;
         let (field, pos, stuff) = match self.mode {
+            Mode::Reset { pos } => (Field::Reset, pos, false),
             Mode::Integrate { cnt } => (Field::WaitForBusIdle, cnt + 1, false),
             Mode::Idle { pos } => (Field::BusIdle, pos, false),
             Mode::BusOff { pos, .. } => (Field::BusOff, pos + 1, false),
@@ -437,7 +456,7 @@ impl GoldenNode {
         self.att = None;
         self.recovery_started = false;
         if self.req_status == ReqStatus::Transmitting {
-            self.req_status = if self.pending.is_some() { ReqStatus::Pending } else { ReqStatus::Error };
+            self.set_req(if self.pending.is_some() { ReqStatus::Pending } else { ReqStatus::Error });
         }
     }
 
@@ -474,7 +493,7 @@ impl GoldenNode {
 
     fn attempt_failed(&mut self) {
         if self.att.take().is_some() || self.req_status == ReqStatus::Transmitting {
-            self.req_status = if self.pending.is_some() { ReqStatus::Pending } else { ReqStatus::Error };
+            self.set_req(if self.pending.is_some() { ReqStatus::Pending } else { ReqStatus::Error });
         }
     }
 
@@ -515,6 +534,13 @@ impl GoldenNode {
 
     // ---- frame start ---------------------------------------------------------------------
 
+    fn set_req(&mut self, st: ReqStatus) {
+        if st != self.req_status {
+            self.req_status = st;
+            self.req_log.push(st);
+        }
+    }
+
     fn may_transmit(&self) -> bool {
         self.pending.is_some() && !self.cfg.listen_only
     }
@@ -525,7 +551,7 @@ impl GoldenNode {
         if self.cfg.single_shot {
             self.pending = None;
         }
-        self.req_status = ReqStatus::Transmitting;
+        self.set_req(ReqStatus::Transmitting);
         self.role = Role::Tx;
         self.dec.clear();
         self.crc_err = false;
@@ -568,6 +594,7 @@ impl GoldenNode {
         let drove = self.drv;
         self.ev.clear();
         match self.mode {
+            Mode::Reset { pos } => self.mode = Mode::Reset { pos: pos + 1 },
             Mode::Integrate { cnt } => {
                 if s == D {
                     self.mode = Mode::Integrate { cnt: 0 };
@@ -652,12 +679,7 @@ impl GoldenNode {
         }
         let next_drive = self.compute_drive();
         self.drv = next_drive;
-        let req = if self.req_status != self.req_reported {
-            self.req_reported = self.req_status;
-            Some(self.req_status)
-        } else {
-            None
-        };
+        let req = std::mem::take(&mut self.req_log);
         StepOut {
             label,
             sampled: s,
@@ -690,8 +712,8 @@ impl GoldenNode {
                 if drove == D {
                     self.error(ErrorKind::Bit, 8, 1);
                 } else if self.stuff_in_arbitration(self.dec.bits.len() - 1) {
-                    self.ev.push(Event::Exc2);
                     self.error(ErrorKind::Stuff, 0, 1);
+                    self.ev.push(Event::Exc2);
                 } else {
                     self.error(ErrorKind::Stuff, 8, 1);
                 }
@@ -785,7 +807,7 @@ impl GoldenNode {
                         if self.pending.as_ref().map(|p| p.2) == id {
                             self.pending = None;
                         }
-                        self.req_status = ReqStatus::Done;
+                        self.set_req(ReqStatus::Done);
                         if !self.cfg.listen_only && self.tec > 0 {
                             self.tec -= 1;
                             self.update_state();
@@ -868,7 +890,7 @@ impl GoldenNode {
             if self.role != Role::Tx && fl.kind != FlagKind::Overload && fl.daf == 1 {
                 self.add_rec(8);
             }
-            if fl.daf % 8 == 0 {
+            if fl.daf.is_multiple_of(8) {
                 self.inc(8, 8);
             }
         }

@@ -73,7 +73,7 @@ pub fn step_lines(t_ns: u64, node: &str, out: &StepOut) -> Vec<String> {
     if let Some(f) = out.delivered() {
         v.push(msg_line(t_ns, node, f));
     }
-    if let Some(r) = out.req {
+    for &r in &out.req {
         v.push(req_line(t_ns, node, r));
     }
     v

@@ -44,6 +44,7 @@ pub fn run_to_tx_ok(b: &mut GoldenBus, tx: usize, max: u64) -> u64 {
 
 /// Step until node `n`'s current bit matches, then force it for `bits` bits; returns the
 /// results of the forced bits.
+#[allow(clippy::too_many_arguments)]
 pub fn force_at(
     b: &mut GoldenBus,
     n: usize,
