@@ -268,3 +268,60 @@ fn warning_set_at_96_and_cleared_below() {
     assert!(b.history[0][bit as usize].has("WARN_CLR"));
     assert!(!b.nodes[0].warning());
 }
+
+/// emlcount_tx_23-like: a passive transmitter, `D!` at End_Of_Frame 1 and 6 more bits: FORM_ERR
+/// +8, PEF completed by the 6 `D` bits, no other effect.
+#[test]
+fn emlcount_tx_23_passive_eof1_and_6_dominant_only_plus_8() {
+    let mut b = idle_bus(2);
+    b.overrides[1] = Rec;
+    b.nodes[0].request(std1(0x0F0));
+    for _ in 0..16 {
+        b.run_until(300, |o| o[0].has("ACK_ERR")).unwrap();
+    }
+    b.overrides[1] = RxOverride::None;
+    assert_eq!(b.nodes[0].tec(), 128);
+    let r = force_at(&mut b, 0, Role::Tx, Field::EndOfFrame, 1, false, Dom, 7);
+    assert!(r[0][0].has("FORM_ERR") && r[0][0].has("PEF"));
+    assert!(r.iter().all(|o| o[0].tec == 136));
+    assert!(!r.iter().any(|o| o[0].events.iter().any(|e| e.token().starts_with("DAF"))));
+    let o = b.step();
+    assert_eq!(o[0].label.field, Field::PassiveErrorFlag);
+    assert_eq!(o[0].label.pos, 7, "first R after the flag: delimiter position 1, counted under the flag");
+    assert_eq!(b.nodes[0].label().field, Field::ErrorDelimiter);
+    assert_eq!(b.nodes[0].label().pos, 2);
+}
+
+/// emlcount_tx_35-like: N1 error-passive through TEC (REC low) and a receiver with a pending
+/// retry. `D!` at Error_Delimiter 3 held for the 6 PEF bits and one more: FORM_ERR +1, the
+/// PEF completes on 6 equal `D`, the next `D` is the first after the flag: +8. N1 was a
+/// receiver, so it starts its pending retry after Intermission without a suspend.
+#[test]
+fn emlcount_tx_35_passive_receiver_form_error_plus_1_first_dominant_plus_8_no_suspend() {
+    let mut b = idle_bus(2);
+    b.overrides[1] = Rec;
+    b.nodes[0].request(std1(0x700));
+    for _ in 0..16 {
+        b.run_until(300, |o| o[0].has("ACK_ERR")).unwrap();
+    }
+    assert_eq!((b.nodes[0].tec(), b.nodes[0].state()), (128, FaultState::ErrorPassive));
+    assert!(b.run_to(0, Role::Tx, Field::SuspendTransmission, 2, false, 100));
+    b.overrides[1] = RxOverride::None;
+    b.nodes[1].request(std1(0x001));
+    b.run_until(5, |o| o[0].has("SOF")).unwrap();
+    assert_eq!(b.nodes[0].label().role, Role::Rx);
+    let r = force_at(&mut b, 0, Role::Rx, Field::AckSlot, 1, false, Rec, 1);
+    assert!(r[0][0].has("BIT_ERR") && r[0][0].has("PEF"));
+    assert_eq!(r[0][0].rec, 1);
+    let r = force_at(&mut b, 0, Role::Rx, Field::ErrorDelimiter, 3, false, Dom, 8);
+    assert!(r[0][0].has("FORM_ERR") && r[0][0].has("PEF"));
+    assert_eq!(r[0][0].rec, 2);
+    assert!(r[1..7].iter().all(|o| o[0].rec == 2 && o[0].events.is_empty()));
+    assert!(r[7][0].has("DAF=1"));
+    assert_eq!(r[7][0].rec, 10);
+    // then delimiter, intermission and the retry, no suspend
+    let s = b.bit;
+    b.run_until(40, |o| o[0].has("SOF")).unwrap();
+    assert!(!b.since(0, s).iter().any(|o| o.label.field == Field::SuspendTransmission));
+    assert_eq!(b.nodes[0].label().role, Role::Tx);
+}

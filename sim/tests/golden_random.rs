@@ -2,6 +2,8 @@
 //! disturbances on 3 nodes. Checks the §13 invariants at every bit, and that the bus
 //! returns to error-free operation once the disturbances stop.
 
+#![allow(clippy::needless_range_loop)]
+
 mod golden_util;
 use canstar_sim::golden::{FaultState, Frame, RxOverride};
 use std::collections::HashMap;

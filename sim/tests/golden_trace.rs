@@ -5,6 +5,7 @@ use canstar_sim::golden::trace::{msg_line, req_line, trace_line, HEADER};
 use canstar_sim::golden::{BitLabel, Event, FaultState, Field, Frame, ReqStatus, Role, StepOut};
 use golden_util::*;
 
+#[allow(clippy::too_many_arguments)]
 fn out(role: Role, field: Field, pos: u32, stuff: bool, smp: bool, drv: bool, tec: u16, ev: Vec<Event>) -> StepOut {
     StepOut {
         label: BitLabel { role, field, pos, stuff },

@@ -303,6 +303,14 @@ impl GoldenNode {
             self.mode = Mode::Integrate { cnt: 0 };
         }
     }
+    /// Lock-step rule §19.6: after REC dropped from above 127 on a successful reception, the
+    /// checker may make the golden model adopt the DUT's value (119..=127).
+    pub fn adopt_rec(&mut self, rec: u8) {
+        assert!((119..=127).contains(&rec), "adopted REC must be 119..127");
+        self.rec = rec;
+        self.update_state();
+        self.ev.clear();
+    }
     /// Start bus-off recovery (only needed with [`Config::host_recovery`]).
     pub fn start_recovery(&mut self) {
         self.recovery_started = true;
