@@ -18,6 +18,22 @@
 //! sample point. Counter and state changes caused by the bit are visible right after `step`
 //! (§13.4). Host commands ([`GoldenNode::request`], [`GoldenNode::withdraw`],
 //! [`GoldenNode::start_recovery`]) take effect at the next `step`.
+//!
+//! Readings of points the specification leaves open (all consistent with §16/§17):
+//!
+//! * A CRC error with a dominant ACK_Delimiter is reported once, as `CRC_ERR` (+1).
+//! * Exception 1 (§13.3) is decided in passive-flag positions 1..6: the +8 is applied at the
+//!   first `D` there; otherwise `EXC1` is reported at position 6.
+//! * A flag restarted by a bit error in an *overload* flag is typed like one restarted inside
+//!   an active error flag: from the state before the +8 (C14).
+//! * At a receiver's dominant End_Of_Frame 7 the step reports `RX_OK` (frame delivered, no
+//!   REC change, C13) together with `OVL`, `OLF`.
+//! * Membership of a stuff bit in the arbitration field (TEC exception 2) is decided by the
+//!   transmitter's own frame format (§7); a test-only recessive r0/r1 read `D` is a bit error.
+//! * Listen-only nodes never drive `D` and never change counters; they still follow the
+//!   error/overload frame structure so that they stay in step with the bus.
+//! * Reset drops a pending request; bus-off keeps it. Outside frames (Bus_Idle, Bus_Off,
+//!   integration) the role is `None`. `Bus_Off` POSITION is 1-based inside the current run.
 
 pub mod frame;
 mod bus;
