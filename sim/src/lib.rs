@@ -37,6 +37,7 @@
 //! ```
 
 pub mod bench;
+pub mod golden;
 pub mod bus;
 mod kernel;
 pub mod net;
