@@ -314,9 +314,10 @@ impl Scenario {
 }
 
 /// One line of a candump log file: `(seconds.micro) canN ID#DATA`, with
-/// `ID#R` for remote frames (`ID#R<len>` when the DLC is not 0) and the raw
-/// DLC 9..15 appended as `_X` (can-utils' syntax for classic CAN DLC > 8).
-/// Standard identifiers have 3 hex digits, extended ones 8.
+/// `ID#R` for remote frames (`ID#R<len>` when the DLC is not 0). Standard
+/// identifiers have 3 hex digits, extended ones 8. A data frame with a raw
+/// DLC of 9..15 is written with its 8 data bytes and no DLC suffix: newer
+/// can-utils accept `_X` for the raw DLC, but python-can (4.6) rejects it.
 pub fn candump_line(t_ps: u64, iface: &str, ext: bool, id: u32, rtr: bool, dlc: u8, data: &[u8]) -> String {
     let mut s = String::new();
     let us = t_ps / 1_000_000;
@@ -335,9 +336,6 @@ pub fn candump_line(t_ps: u64, iface: &str, ext: bool, id: u32, rtr: bool, dlc: 
         for b in data {
             write!(s, "{b:02X}").unwrap();
         }
-    }
-    if dlc > 8 {
-        write!(s, "_{dlc:X}").unwrap();
     }
     s
 }
@@ -397,7 +395,7 @@ bits = 1
         assert_eq!(candump_line(2_000_001_000_000, "can1", true, 0x1ABCDE, false, 0, &[]), "(2.000001) can1 001ABCDE#");
         assert_eq!(candump_line(0, "can0", false, 0x7FF, true, 0, &[]), "(0.000000) can0 7FF#R");
         assert_eq!(candump_line(0, "can0", false, 0x10, true, 3, &[]), "(0.000000) can0 010#R3");
-        assert_eq!(candump_line(0, "can0", false, 0x10, false, 12, &[0; 8]), "(0.000000) can0 010#0000000000000000_C");
+        assert_eq!(candump_line(0, "can0", false, 0x10, false, 12, &[0; 8]), "(0.000000) can0 010#0000000000000000");
     }
 }
 

@@ -45,3 +45,20 @@ fn bad_scenarios_are_rejected_before_running() {
     s.frames[0].node = "nobody".into();
     assert!(run(&s, &RunOptions::default()).unwrap_err().contains("unknown node `nobody`"));
 }
+
+#[test]
+#[ignore = "needs python3 with python-can: run scripts/test-all.sh"]
+fn python_can_reads_the_candump_log() {
+    let r = run(&load("arbitration.toml"), &RunOptions::default()).unwrap();
+    let d = tempfile::tempdir().unwrap();
+    let log = d.path().join("arb.log");
+    std::fs::write(&log, r.candump.join("\n") + "\n").unwrap();
+    let script = "import can, sys\nfor m in can.LogReader(sys.argv[1]):\n    print(m.channel, '%X' % m.arbitration_id, int(m.is_extended_id), int(m.is_remote_frame), m.dlc, m.data.hex().upper())\n";
+    let out = std::process::Command::new("python3").arg("-c").arg(script).arg(&log).output().expect("python3");
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let lines: Vec<String> = String::from_utf8_lossy(&out.stdout).lines().map(|s| s.to_string()).collect();
+    assert_eq!(lines.len(), r.candump.len());
+    assert!(lines.contains(&"can1 100 0 0 8 0102030405060708".to_string()), "{lines:?}");
+    assert!(lines.contains(&"can1 4000000 1 0 1 55".to_string()), "{lines:?}");
+    assert!(lines.contains(&"can1 2A0 0 1 4 ".to_string()), "{lines:?}");
+}
