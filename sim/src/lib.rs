@@ -37,9 +37,11 @@
 //! ```
 
 pub mod bench;
+pub mod golden;
 pub mod bus;
 mod kernel;
 pub mod net;
+pub mod node;
 pub mod scenario;
 pub mod star;
 pub mod vcd;
