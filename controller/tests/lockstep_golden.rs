@@ -3,8 +3,8 @@
 //! can-protocol.md): 2..4 RTL nodes on a wired-AND bus, each with a golden
 //! twin fed the same sampled levels; random traffic and random receive-path
 //! disturbances (up to error-passive and bus-off). Compared at every bit: the
-//! TX level, TEC, REC (exact up to 127, then only "> 127", §19) and the
-//! delivered frames. The golden request follows the RTL's `tx_rqst` (§19.2).
+//! TX level, the bit's label (role, FIELD, POSITION, stuff marker), TEC, REC
+//! (exact up to 127, then only "> 127", §19) and the delivered frames. The golden request follows the RTL's `tx_rqst` (§19.2).
 //!
 //! canstar-sim depends on this crate, so the golden model's source is
 //! included by path instead of a (cyclic) dev-dependency; the natural home of
@@ -65,6 +65,17 @@ fn run(seed: u64, n: usize, rate: f64, bits: usize) {
         }
         for i in 0..n {
             let o = glog[i].last().unwrap();
+            // the bit's label (role, FIELD, POSITION, stuff marker); the RTL's
+            // POSITION saturates at 255
+            let r = b.log[i].last().unwrap();
+            let gl = o.label;
+            let same = gl.field.name() == r.field.name()
+                && (gl.pos as u8 == r.pos || (r.pos == 255 && gl.pos >= 255))
+                && gl.stuff == r.stuff
+                && (gl.field.is_bare() || (gl.role == golden::Role::Tx) == r.role_tx);
+            if !same {
+                report(&b, &glog, i, bit, "bit label");
+            }
             let (t, r) = (b.tec(i), b.rec(i));
             let rec_ok = if o.rec > 127 { r > 127 } else { r == o.rec as u64 };
             if t != o.tec as u64 || !rec_ok {
