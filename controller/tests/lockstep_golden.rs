@@ -24,14 +24,41 @@ fn gframe(f: &Frame) -> golden::Frame {
 }
 
 fn run(seed: u64, n: usize, rate: f64, bits: usize) {
+    run_modes(seed, n, rate, bits, false)
+}
+
+fn run_modes(seed: u64, n: usize, rate: f64, bits: usize, modes: bool) {
     let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
     let mut b = Bus::new(n);
     let mut g: Vec<golden::GoldenNode> = (0..n).map(|_| golden::GoldenNode::default()).collect();
+    let mut seen_rqst = vec![false; n];
+    if modes {
+        for i in 0..n {
+            let cfg = golden::Config {
+                listen_only: i > 0 && rng.gen_bool(0.3),
+                self_test: rng.gen_bool(0.3),
+                single_shot: rng.gen_bool(0.4),
+                host_recovery: rng.gen_bool(0.5),
+            };
+            g[i] = golden::GoldenNode::new(cfg);
+            b.nodes[i].listen_only.next = cfg.listen_only;
+            b.nodes[i].self_test.next = cfg.self_test;
+            b.nodes[i].single_shot.next = cfg.single_shot;
+            b.nodes[i].host_recovery.next = cfg.host_recovery;
+        }
+    }
     let mut glog: Vec<Vec<golden::StepOut>> = vec![vec![]; n];
     let mut want: Vec<Option<Frame>> = vec![None; n];
     let mut gdel: Vec<Vec<golden::Frame>> = vec![vec![]; n];
     for bit in 0..bits {
         for i in 0..n {
+            // host-started bus-off recovery, at the same bit in both models
+            if b.state(i) == 2 && rng.gen_bool(0.002) {
+                b.nodes[i].recover.next = true;
+                g[i].start_recovery();
+            } else {
+                b.nodes[i].recover.next = false;
+            }
             if want[i].is_none() && !b.nodes[i].tx_done.val() && bit > 20 && bit < bits - 3000 && rng.gen_bool(0.01) {
                 let mut f = random_frame(&mut rng);
                 f.id = (f.id & !3) | i as u32;
@@ -85,16 +112,24 @@ fn run(seed: u64, n: usize, rate: f64, bits: usize) {
                 report(&b, &glog, i, bit, &format!("deliveries fsm {} golden {}", b.rx[i].len(), gdel[i].len()));
             }
             // request mirror: the golden request follows the FSM's tx_rqst
-            if b.nodes[i].tx_rqst.val() && !g[i].pending() {
+            // (once per request: a single-shot golden node clears its request
+            // when the attempt starts)
+            if b.nodes[i].tx_rqst.val() && !seen_rqst[i] {
                 if let Some(f) = &want[i] {
-                    if !b.nodes[i].tx_done.val() {
-                        g[i].request(gframe(f));
-                    }
+                    g[i].request(gframe(f));
                 }
             }
+            // end of a request: success, or (single-shot) a failed attempt
+            seen_rqst[i] |= b.nodes[i].tx_rqst.val();
             if b.nodes[i].tx_done.val() {
                 b.withdraw(i);
                 want[i] = None;
+                seen_rqst[i] = false;
+            } else if seen_rqst[i] && want[i].is_some() && !b.nodes[i].tx_rqst.val() {
+                b.withdraw(i);
+                g[i].withdraw();
+                want[i] = None;
+                seen_rqst[i] = false;
             }
         }
     }
@@ -122,6 +157,13 @@ fn report(b: &Bus, glog: &[Vec<golden::StepOut>], i: usize, bit: usize, what: &s
         }
     }
     panic!("lock-step mismatch: node {i} bit {bit}: {what}");
+}
+
+#[test]
+fn lockstep_modes() {
+    for seed in 50..58u64 {
+        run_modes(seed, 3, 0.004 * (seed % 3) as f64, 30_000, true);
+    }
 }
 
 #[test]
