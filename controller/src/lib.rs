@@ -20,9 +20,14 @@
 //! transmitter) and a clock-level bus of [`CanCore`] blocks (wired-AND, RX
 //! overrides and delays). The bit-level tests include the counter sequences
 //! of the conformance programs txarb, stufferr, crc, emlcount, formerr,
-//! biterror, idle, overload and extd_id (`tests/fsm_<program>.rs`). The
-//! Verilog flow (lint, Yosys, co-simulation) runs in the ignored tests of
-//! `tests/fsm_verilog.rs` and `tests/core_verilog.rs`.
+//! biterror, idle, overload, extd_id and stuffbit (`tests/fsm_<program>.rs`).
+//! `tests/lockstep_golden.rs` runs the frame state machine bit by bit in
+//! lock-step with canstar-sim's golden model, and
+//! `tests/lockstep_core_golden.rs` runs [`CanCore`] clock by clock against the
+//! golden model behind the bit timing's clock-exact model (§19), both with
+//! random traffic and disturbances. The Verilog flow (lint, Yosys,
+//! co-simulation) runs in the ignored tests of `tests/fsm_verilog.rs` and
+//! `tests/core_verilog.rs`.
 
 pub mod core;
 pub mod frame;
