@@ -3,7 +3,7 @@
 //! (`canstar_hdl::btl::BtlCycleModel`) and the golden behavioural model of
 //! canstar-sim, whose RX is the DUT's RX delayed by the synchroniser depth.
 //! Three RTL cores share a wired-AND bus with random traffic and random
-//! receive-path disturbances; node 0 is checked: TX and the sampled level on
+//! receive-path disturbances; every node is checked: TX and the sampled level on
 //! every clock (with BRP 1 both edges must fall in the same cycle), the
 //! sample strobe, TEC and REC at every sample point (REC exact up to 127),
 //! and the delivered frames.
@@ -35,24 +35,26 @@ fn run(seed: u64, t: (u64, u64, u64, u64), delays: &[usize], rate: f64, cycles: 
     let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
     let n = 3;
     let mut b = CoreBus::with_timing(n, delays, t, false);
-    // the reference of node 0: released from reset on the same clock as the DUT
+    // one reference per node, released from reset on the same clock as the DUT
     let cfg = BtlConfig::from_fields(t.0 as u32, t.1 as u32, t.2 as u32, t.3 as u32, false);
-    let mut btl = BtlCycleModel::new();
+    let mut btl: Vec<BtlCycleModel> = (0..n).map(|_| BtlCycleModel::new()).collect();
     let mut inp = BtlInputs::with_config(&cfg);
     inp.reset = true;
-    btl.step(&inp);
-    btl.step(&inp);
+    for m in btl.iter_mut() {
+        m.step(&inp);
+        m.step(&inp);
+    }
     inp.reset = false;
-    let mut gold = golden::GoldenNode::default();
-    let mut rxq: VecDeque<bool> = VecDeque::from(vec![true; SYNC_DEPTH]);
+    let mut gold: Vec<golden::GoldenNode> = (0..n).map(|_| golden::GoldenNode::default()).collect();
+    let mut rxq: Vec<VecDeque<bool>> = (0..n).map(|_| VecDeque::from(vec![true; SYNC_DEPTH])).collect();
     let bitc = (t.0 as usize + 1) * cfg.ntq() as usize;
     let mut want: Vec<Option<Frame>> = vec![None; n];
     let mut seen_rqst = vec![false; n];
-    let mut gdel: Vec<Frame> = vec![];
+    let mut gdel: Vec<Vec<Frame>> = vec![vec![]; n];
     let mut ovr_left = vec![0usize; n];
     let mut samples = 0;
     for cycle in 0..cycles {
-        // stimulus: requests and disturbances (whole bit times)
+        // stimulus: requests and disturbances (up to two bit times)
         for i in 0..n {
             if want[i].is_none() && !b.nodes[i].tx_done.val() && cycle > 20 * bitc && cycle + 400 * bitc < cycles && rng.gen_bool(0.002) {
                 let mut f = random_frame(&mut rng);
@@ -70,53 +72,46 @@ fn run(seed: u64, t: (u64, u64, u64, u64), delays: &[usize], rate: f64, cycles: 
                 ovr_left[i] = rng.gen_range(1..2 * bitc);
             }
         }
-        // the level node 0 reads this clock (the harness applies the same)
-        let bus = b.bus();
-        let rx0 = match b.ovr[0] {
-            Ovr::None => bus,
-            Ovr::Invert => !bus,
-            Ovr::StuckR => true,
-            Ovr::StuckD => false,
-        };
-        // reference outputs on this clock
-        rxq.push_back(rx0);
-        inp.rx = rxq.pop_front().unwrap();
-        inp.drive = gold.drive();
-        inp.hs_en = gold.hs_en();
-        let pins = btl.step(&inp);
-        let d = &b.nodes[0];
-        let (dtx, dsmp, dbm) = (d.tx.val(), d.dbg_sample.val(), d.dbg_busmon.val());
-        if dtx != pins.tx || dsmp != pins.sample || dbm != pins.busmon {
-            panic!(
-                "seed {seed} cycle {cycle}: DUT tx/sample/busmon {}/{}/{} reference {}/{}/{}",
-                dtx as u8, dsmp as u8, dbm as u8, pins.tx as u8, pins.sample as u8, pins.busmon as u8
-            );
-        }
+        // DUT outputs on this clock, then the clock edge
+        let pre: Vec<(bool, bool, bool)> =
+            b.nodes.iter().map(|d| (d.tx.val(), d.dbg_sample.val(), d.dbg_busmon.val())).collect();
         b.step();
-        if pins.sample {
-            samples += 1;
-            let o = gold.step(pins.busmon);
-            if let Some(f) = o.delivered() {
-                gdel.push(cframe(f));
-            }
-            let (t0, r0) = (b.tec(0), b.rec(0));
-            let rec_ok = if o.rec > 127 { r0 > 127 } else { r0 == o.rec as u64 };
-            assert!(
-                t0 == o.tec as u64 && rec_ok,
-                "seed {seed} cycle {cycle}: DUT tec/rec {t0}/{r0} golden {}/{} at {:?}",
-                o.tec,
-                o.rec,
-                o.label
-            );
-            assert_eq!(b.rx[0].len(), gdel.len(), "seed {seed} cycle {cycle}: deliveries");
-            if let (Some(x), Some(y)) = (b.rx[0].last(), gdel.last()) {
-                assert_eq!(x, y, "seed {seed}");
-            }
-        }
         for i in 0..n {
-            if i == 0 && b.nodes[0].dbg_tx_rqst.val() && !seen_rqst[0] {
-                if let Some(f) = &want[0] {
-                    gold.request(gframe(f));
+            // the reference sees the RX this core saw on this clock, delayed by
+            // the synchroniser
+            rxq[i].push_back(b.nodes[i].rx.val());
+            inp.rx = rxq[i].pop_front().unwrap();
+            inp.drive = gold[i].drive();
+            inp.hs_en = gold[i].hs_en();
+            let pins = btl[i].step(&inp);
+            let (dtx, dsmp, dbm) = pre[i];
+            if dtx != pins.tx || dsmp != pins.sample || dbm != pins.busmon {
+                panic!(
+                    "seed {seed} node {i} cycle {cycle}: DUT tx/sample/busmon {}/{}/{} reference {}/{}/{}",
+                    dtx as u8, dsmp as u8, dbm as u8, pins.tx as u8, pins.sample as u8, pins.busmon as u8
+                );
+            }
+            if pins.sample {
+                samples += 1;
+                let o = gold[i].step(pins.busmon);
+                if let Some(f) = o.delivered() {
+                    gdel[i].push(cframe(f));
+                }
+                let (t0, r0) = (b.tec(i), b.rec(i));
+                let rec_ok = if o.rec > 127 { r0 > 127 } else { r0 == o.rec as u64 };
+                assert!(
+                    t0 == o.tec as u64 && rec_ok,
+                    "seed {seed} node {i} cycle {cycle}: DUT tec/rec {t0}/{r0} golden {}/{} at {:?}",
+                    o.tec,
+                    o.rec,
+                    o.label
+                );
+                assert_eq!(b.rx[i], gdel[i], "seed {seed} node {i} cycle {cycle}: deliveries");
+            }
+            // the golden request follows the DUT's tx_rqst (§19.2)
+            if b.nodes[i].dbg_tx_rqst.val() && !seen_rqst[i] {
+                if let Some(f) = &want[i] {
+                    gold[i].request(gframe(f));
                 }
             }
             seen_rqst[i] |= b.nodes[i].dbg_tx_rqst.val();
@@ -128,12 +123,12 @@ fn run(seed: u64, t: (u64, u64, u64, u64), delays: &[usize], rate: f64, cycles: 
         }
     }
     eprintln!(
-        "seed {seed}: {samples} bits compared, node 0 delivered {}, tec {} rec {}",
-        gdel.len(),
-        b.tec(0),
-        b.rec(0)
+        "seed {seed}: {samples} bits compared, deliveries {:?}, tec {:?} rec {:?}",
+        gdel.iter().map(|v| v.len()).collect::<Vec<_>>(),
+        (0..n).map(|i| b.tec(i)).collect::<Vec<_>>(),
+        (0..n).map(|i| b.rec(i)).collect::<Vec<_>>()
     );
-    assert!(samples > cycles / bitc / 2);
+    assert!(samples > n * cycles / bitc / 2);
 }
 
 #[test]
