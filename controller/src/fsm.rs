@@ -908,7 +908,10 @@ impl Logic for CanFsm {
                             self.l_rinc1.next = !self.rtx.q.val();
                         }
                         if !self.rtx.q.val() & self.crcerr.q.val() {
+                            // the pending CRC error; a form error here is the
+                            // same error (one flag, one count, reported as CRC)
                             self.l_err.next = true;
+                            self.l_errk.next = 0.into();
                             self.l_errk.next = self.l_errk.val().replace_bit(2 /* ERRK_CRC */, true);
                             self.l_rinc1.next = true;
                         }
@@ -1351,6 +1354,10 @@ impl Logic for CanFsm {
             }
             // Bus-off as soon as TEC exceeds 255.
             if self.l_tec.val().get_bit(8) & (self.fld.q.val() != Field::BusOff) {
+                // no flag is started after all
+                self.l_ev.next = self.l_ev.val().replace_bit(7 /* EV_AEF */, false);
+                self.l_ev.next = self.l_ev.val().replace_bit(8 /* EV_PEF */, false);
+                self.l_ev.next = self.l_ev.val().replace_bit(9 /* EV_OLF */, false);
                 self.l_nf.next = Field::BusOff;
                 self.l_npos.next = 1.into();
                 self.l_ndom.next = false;

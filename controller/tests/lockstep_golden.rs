@@ -3,8 +3,9 @@
 //! can-protocol.md): 2..4 RTL nodes on a wired-AND bus, each with a golden
 //! twin fed the same sampled levels; random traffic and random receive-path
 //! disturbances (up to error-passive and bus-off). Compared at every bit: the
-//! TX level, the bit's label (role, FIELD, POSITION, stuff marker), TEC, REC
-//! (exact up to 127, then only "> 127", §19) and the delivered frames. The golden request follows the RTL's `tx_rqst` (§19.2).
+//! TX level, the bit's label (role, FIELD, POSITION, stuff marker), the §18
+//! event tokens, TEC, REC (exact up to 127, then only "> 127", §19) and the
+//! delivered frames. The golden request follows the RTL's `tx_rqst` (§19.2).
 //!
 //! canstar-sim depends on this crate, so the golden model's source is
 //! included by path instead of a (cyclic) dev-dependency; the natural home of
@@ -103,6 +104,16 @@ fn run_modes(seed: u64, n: usize, rate: f64, bits: usize, modes: bool) {
             if !same {
                 report(&b, &glog, i, bit, "bit label");
             }
+            // the bit's events (state-change and warning tokens are derived
+            // from the counters, which are compared below)
+            {
+                let names = [(EV_SOF,"SOF"),(EV_ARB_LOST,"ARB_LOST"),(EV_BIT_ERR,"BIT_ERR"),(EV_STUFF_ERR,"STUFF_ERR"),(EV_CRC_ERR,"CRC_ERR"),(EV_FORM_ERR,"FORM_ERR"),(EV_ACK_ERR,"ACK_ERR"),(EV_AEF,"AEF"),(EV_PEF,"PEF"),(EV_OLF,"OLF"),(EV_OVL,"OVL"),(EV_DAF,"DAF"),(EV_TX_OK,"TX_OK"),(EV_RX_OK,"RX_OK"),(EV_EXC1,"EXC1"),(EV_EXC2,"EXC2"),(EV_RUN,"RUN"),(EV_RECOVERED,"RECOVERED")];
+                let mine: std::collections::BTreeSet<String> = names.iter().filter(|(k,_)| r.has(*k)).map(|(_,n)| n.to_string()).filter(|n| n != "RUN" || !r.has(EV_RECOVERED)).collect();
+                let theirs: std::collections::BTreeSet<String> = o.events.iter().map(|e| { let t = e.token(); t.split('=').next().unwrap().to_string() }).filter(|t| !["TO_EP","TO_EA","TO_BO","WARN","WARN_CLR"].contains(&t.as_str())).filter(|t| t != "RUN" || !o.has("RECOVERED")).collect();
+                if mine != theirs {
+                    report(&b, &glog, i, bit, &format!("events fsm {mine:?} golden {theirs:?}"));
+                }
+            }
             let (t, r) = (b.tec(i), b.rec(i));
             let rec_ok = if o.rec > 127 { r > 127 } else { r == o.rec as u64 };
             if t != o.tec as u64 || !rec_ok {
@@ -187,3 +198,4 @@ fn lockstep_heavy() {
         run(seed, n, 0.005 * (1 + seed % 5) as f64, 40_000);
     }
 }
+
