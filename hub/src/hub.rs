@@ -366,6 +366,19 @@ impl HubCore {
     pub fn config(&self) -> &HubConfig {
         &self._cfg
     }
+    /// Simulation probe: some judge unit blames its port or sublink in this clock
+    /// (combinational, meaningful after the inputs have settled).
+    pub fn blame_any(&self) -> bool {
+        self.any_blame.val()
+    }
+    /// Simulation probe: the port judge unit of port `i`.
+    pub fn port_judge(&self, i: usize) -> &JudgeUnit {
+        &self.pj[i]
+    }
+    /// Simulation probe: the sublink judge unit of sublink `j`.
+    pub fn sublink_judge(&self, j: usize) -> &JudgeUnit {
+        &self.sj[j]
+    }
 }
 
 impl Logic for HubCore {

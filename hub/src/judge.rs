@@ -42,7 +42,10 @@
 //!
 //! **§5.2 unjustified dominant.** Outside the error phase, a dominant contribution is
 //! unjustified when: it comes from a non-contender in the transmission region; or it
-//! falls in the CRC delimiter, ACK delimiter, EOF bits 1-6 or intermission bits 1-2 (a
+//! falls in the CRC delimiter, the ACK delimiter (**[changed]**: not when BT was
+//! recessive in the ACK slot: then the transmitter legitimately starts its ACK-error
+//! flag in the ACK delimiter, e.g. after a CRC error or when no receiver is alive), EOF
+//! bits 1-6 or intermission bits 1-2 (a
 //! dominant bit there after a dominant last EOF / delimiter bit is inside the monitor's
 //! overload phase, hence error phase, hence not blamed); or it comes from a contender in
 //! the ACK slot (port units only: a sublink carries the peer's acknowledging receivers
@@ -152,6 +155,7 @@ pub struct JudgeUnit {
     ok_r: DFF<Bits<8>>,
     acked: DFF<Bit>,
     bad: DFF<Bit>,
+    ack_missing: DFF<Bit>,
     dom: Signal<Local, Bit>,
     unj: Signal<Local, Bit>,
     enabled: Signal<Local, Bit>,
@@ -213,6 +217,7 @@ impl JudgeUnit {
             ok_r: Default::default(),
             acked: Default::default(),
             bad: Default::default(),
+            ack_missing: Default::default(),
             dom: Default::default(),
             unj: Default::default(),
             enabled: Default::default(),
@@ -231,19 +236,23 @@ impl JudgeUnit {
 impl Logic for JudgeUnit {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, dis_r, bic_r, dbc_r, nack_r, cont_r, rep_r, rep_seen, rep_first_dom, ok_r, acked, bad);
+        dff_setup!(self, clock, dis_r, bic_r, dbc_r, nack_r, cont_r, rep_r, rep_seen, rep_first_dom, ok_r, acked, bad, ack_missing);
         self.dom.next = !self.c.val();
         self.enabled.next = !self.dis_r.q.val();
         self.unj.next = self.dom.val()
             & !self.err_phase.val()
             & ((self.tx_region.val() & !self.cont_r.q.val())
                 | self.crc_delim.val()
-                | self.ack_delim.val()
+                | (self.ack_delim.val() & !self.ack_missing.q.val())
                 | self.eof_1_6.val()
                 | self.im_1_2.val()
                 | (self.ack_slot.val() & self.cont_r.q.val() & self.ack_rule.val()));
         self.blame.next = self.sample.val() & self.unj.val() & self.enabled.val();
         if self.sample.val() {
+            // ACK error: BT recessive in the ACK slot
+            if self.ack_slot.val() {
+                self.ack_missing.d.next = self.bt.val();
+            }
             // §5.1 roles
             if self.sof.val() {
                 self.cont_r.d.next = true;
@@ -354,6 +363,7 @@ impl Logic for JudgeUnit {
             self.ok_r.d.next = 0.into();
             self.acked.d.next = false;
             self.bad.d.next = false;
+            self.ack_missing.d.next = false;
         }
         self.dis.next = self.dis_r.q.val();
         self.bic.next = self.bic_r.q.val();
