@@ -243,6 +243,9 @@ impl Tracker {
                     }
                     self.last = bit;
                     self.run = 1;
+                    if self.frame_len() == Some(self.bits.len()) {
+                        self.ph = Ph::CrcDelim; // stuff bit after the last CRC bit
+                    }
                     return ev;
                 }
                 if bit == self.last {
@@ -258,7 +261,9 @@ impl Tracker {
                         let got = self.bits[len - 15..].iter().fold(0u16, |a, &x| a * 2 + x as u16);
                         self.crc_ok = crc == got;
                         self.crc_err = !self.crc_ok;
-                        self.ph = Ph::CrcDelim;
+                        if self.run < 5 {
+                            self.ph = Ph::CrcDelim;
+                        }
                     }
                 }
             }
@@ -435,6 +440,16 @@ impl Node {
             } else {
                 let sent = bits[*k];
                 let in_ack = field == Field::AckSlot;
+                if in_ack && view {
+                    // ACK error: the error flag starts at the ACK delimiter
+                    if let Some(f) = self.queue.front_mut() {
+                        f.corrupt_crc = false;
+                    }
+                    self.tx = None;
+                    self.tec += 8;
+                    self.flag_left = 6;
+                    return;
+                }
                 if sent != view && !in_ack {
                     if sent && !view && matches!(field, Field::Id | Field::Rtr) {
                         self.tx = None; // lost arbitration
@@ -522,7 +537,6 @@ impl Stim {
             for i in 0..self.nodes.len() {
                 self.nodes[i].after(self.views[i], r.field, r.ev, &self.tracker);
             }
-            self.log.push(r);
             self.bit += 1;
         }
     }
@@ -572,7 +586,9 @@ impl Stim {
             hub.mon_frame_ok.next = ev.frame_ok;
             drive::settle(hub);
             let blame = hub.efg_trigger_probe();
-            self.pending = Some(BitLog { bit: b, field, pos, bt, pins: self.pins.clone(), ev, efg: hub.efg_active.val(), blame });
+            let r = BitLog { bit: b, field, pos, bt, pins: self.pins.clone(), ev, efg: hub.efg_active.val(), blame };
+            self.log.push(r.clone());
+            self.pending = Some(r);
         }
     }
 }
