@@ -59,6 +59,9 @@ impl Field {
 /// Combinational decoder from (field, position) to the judges' conditions.
 #[derive(LogicBlock, Default)]
 pub struct FrameDecode {
+    /// Unused (the decoder is combinational); present so that the block can be
+    /// driven and co-simulated like every other block.
+    pub clock: Signal<In, Clock>,
     pub field: Signal<In, Bits<4>>,
     pub pos: Signal<In, Bits<4>>,
     pub sof: Signal<Out, Bit>,
@@ -86,3 +89,5 @@ impl Logic for FrameDecode {
         self.err_phase.next = self.field.val() >= 13;
     }
 }
+
+canstar_hdl::impl_clocked!(FrameDecode);

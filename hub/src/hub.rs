@@ -386,6 +386,7 @@ impl Logic for HubCore {
     fn update(&mut self) {
         self.reset.next = !self.rst_n.val();
         // frame state
+        self.decode.clock.next = self.clock.val();
         self.decode.field.next = self.mon_field.val();
         self.decode.pos.next = self.mon_pos.val();
         self.frame_state.next = self.mon_field.val();
