@@ -1,0 +1,316 @@
+//! Boards as data: one TOML file per board under `boards/` (compiled into the
+//! tool), and the writers of their pin files (Xilinx UCF, iCE40 PCF).
+//!
+//! A board maps *roles* to pins. A role is one bit of a design's top-level
+//! port, written `name` for a 1-bit port and `name[i]` for bit i of a vector.
+//! Designs list the roles they need (functional) and the debug outputs they
+//! would like placed; the writer fails if a functional role has no pin,
+//! places debug bits on the board's debug pins in order and reports the rest.
+
+use anyhow::{anyhow, bail, Context, Result};
+use serde::Deserialize;
+use std::collections::{BTreeMap, BTreeSet};
+use std::fmt::Write as _;
+use std::path::Path;
+
+/// Pin-file format of a board.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Format {
+    /// Xilinx ISE user constraints file.
+    Ucf,
+    /// iCE40 physical constraints file (nextpnr-ice40).
+    Pcf,
+}
+
+#[derive(Debug, Clone, PartialEq, Eq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ClockPin {
+    /// Top-level clock port name.
+    pub port: String,
+    pub pin: String,
+    /// Oscillator frequency.
+    pub hz: u64,
+}
+
+#[derive(Debug, Clone, PartialEq, Eq, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DebugPins {
+    pub pins: Vec<String>,
+}
+
+/// A board description.
+#[derive(Debug, Clone, PartialEq, Eq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Board {
+    pub name: String,
+    pub description: String,
+    /// FPGA family (`spartan3`, `ice40`).
+    pub family: String,
+    pub part: String,
+    #[serde(default)]
+    pub package: Option<String>,
+    pub format: Format,
+    #[serde(default)]
+    pub iostandard: Option<String>,
+    pub clock: ClockPin,
+    pub pins: BTreeMap<String, String>,
+    #[serde(default)]
+    pub debug: DebugPins,
+}
+
+/// The boards shipped with canstar.
+pub const BUILTIN: &[(&str, &str)] = &[
+    ("xsa-3s1000", include_str!("../boards/xsa-3s1000.toml")),
+    ("ice40-hx8k", include_str!("../boards/ice40-hx8k.toml")),
+];
+
+impl Board {
+    /// Parse and check a board description.
+    pub fn from_toml(text: &str) -> Result<Self> {
+        let b: Board = toml::from_str(text).map_err(|e| anyhow!("malformed board file: {e}"))?;
+        b.validate()?;
+        Ok(b)
+    }
+
+    /// A built-in board by name, or a board file given by path.
+    pub fn lookup(name_or_path: &str) -> Result<Self> {
+        if let Some((_, text)) = BUILTIN.iter().find(|(n, _)| *n == name_or_path) {
+            return Self::from_toml(text).with_context(|| format!("built-in board {name_or_path}"));
+        }
+        if name_or_path.ends_with(".toml") && Path::new(name_or_path).exists() {
+            let text = std::fs::read_to_string(name_or_path)?;
+            return Self::from_toml(&text).with_context(|| format!("in board file {name_or_path}"));
+        }
+        let known: Vec<&str> = BUILTIN.iter().map(|(n, _)| *n).collect();
+        bail!("unknown board `{name_or_path}` (known boards: {}; or give a path to a board .toml file)", known.join(", "))
+    }
+
+    /// No pin may serve two roles (functional, clock or debug).
+    pub fn validate(&self) -> Result<()> {
+        if self.clock.hz == 0 {
+            bail!("board {}: clock frequency must be positive", self.name);
+        }
+        let mut used: BTreeMap<&str, String> = BTreeMap::new();
+        claim_pin(&mut used, &self.clock.pin, format!("clock port {}", self.clock.port))?;
+        for (role, pin) in &self.pins {
+            claim_pin(&mut used, pin, format!("role {role}"))?;
+        }
+        for pin in &self.debug.pins {
+            claim_pin(&mut used, pin, "a debug pin".into())?;
+        }
+        Ok(())
+    }
+
+    /// The clock period in nanoseconds.
+    pub fn clock_period_ns(&self) -> f64 {
+        1e9 / self.clock.hz as f64
+    }
+}
+
+fn claim_pin<'a>(used: &mut BTreeMap<&'a str, String>, pin: &'a str, role: String) -> Result<()> {
+    if let Some(prev) = used.get(pin) {
+        bail!("pin conflict: pin {pin} is assigned to {prev} and to {role}");
+    }
+    used.insert(pin, role);
+    Ok(())
+}
+
+/// The pins a design needs.
+#[derive(Debug, Clone, Default)]
+pub struct DesignPins {
+    /// Functional roles (every one must have a pin), e.g. `rst_n`, `rx[0]`.
+    pub functional: Vec<String>,
+    /// Debug output bits, in the order they should be placed.
+    pub debug: Vec<String>,
+}
+
+impl DesignPins {
+    /// Roles of a port: `name` for 1 bit, `name[0]`.. for vectors.
+    pub fn port_roles(name: &str, bits: usize) -> Vec<String> {
+        if bits == 1 {
+            vec![name.to_string()]
+        } else {
+            (0..bits).map(|i| format!("{name}[{i}]")).collect()
+        }
+    }
+}
+
+/// A rendered pin file.
+#[derive(Debug, Clone)]
+pub struct PinFile {
+    pub text: String,
+    /// Debug bits that found a pin.
+    pub placed_debug: Vec<(String, String)>,
+    /// Debug bits for which the board has no pin left.
+    pub left_out: Vec<String>,
+}
+
+/// `rx[0]` as a UCF net name (`rx<0>`).
+fn ucf_net(role: &str) -> String {
+    role.replace('[', "<").replace(']', ">")
+}
+
+/// Render the pin file of `design` on `board`.
+pub fn pin_file(board: &Board, design_name: &str, design: &DesignPins) -> Result<PinFile> {
+    let mut lines: Vec<(String, String)> = vec![];
+    let mut seen = BTreeSet::new();
+    for role in &design.functional {
+        if !seen.insert(role.clone()) {
+            bail!("design {design_name} lists the port bit {role} twice");
+        }
+        let pin = board
+            .pins
+            .get(role)
+            .ok_or_else(|| anyhow!("board {} has no pin for port bit `{role}` of design {design_name}", board.name))?;
+        lines.push((role.clone(), pin.clone()));
+    }
+    let mut placed_debug = vec![];
+    let mut left_out = vec![];
+    let mut free = board.debug.pins.iter();
+    for role in &design.debug {
+        match free.next() {
+            Some(pin) => placed_debug.push((role.clone(), pin.clone())),
+            None => left_out.push(role.clone()),
+        }
+    }
+    let mut t = String::new();
+    let period = board.clock_period_ns();
+    match board.format {
+        Format::Ucf => {
+            let io = |t: &mut String, net: &str, pin: &str| {
+                let std = board.iostandard.as_ref().map(|s| format!(" | IOSTANDARD = {s}")).unwrap_or_default();
+                writeln!(t, "NET \"{net}\" LOC = \"{pin}\"{std};").unwrap();
+            };
+            writeln!(t, "# {design_name} on {} ({}), generated by canstar {}", board.description, board.part, env!("CARGO_PKG_VERSION")).unwrap();
+            writeln!(t, "# Do not edit: regenerate with `canstar generate`.").unwrap();
+            io(&mut t, &board.clock.port, &board.clock.pin);
+            writeln!(t, "NET \"{}\" TNM_NET = \"{}\";", board.clock.port, board.clock.port).unwrap();
+            writeln!(
+                t,
+                "TIMESPEC \"TS_{}\" = PERIOD \"{}\" {:.2} ns HIGH 50%;",
+                board.clock.port, board.clock.port, period
+            )
+            .unwrap();
+            for (role, pin) in &lines {
+                io(&mut t, &ucf_net(role), pin);
+            }
+            if !placed_debug.is_empty() {
+                writeln!(t, "# debug outputs").unwrap();
+            }
+            for (role, pin) in &placed_debug {
+                io(&mut t, &ucf_net(role), pin);
+            }
+            if !left_out.is_empty() {
+                writeln!(t, "# debug outputs without a free pin on this board: {}", left_out.join(", ")).unwrap();
+            }
+        }
+        Format::Pcf => {
+            writeln!(t, "# {design_name} on {} ({} {}), generated by canstar {}", board.description, board.part, board.package.as_deref().unwrap_or(""), env!("CARGO_PKG_VERSION")).unwrap();
+            writeln!(t, "# Do not edit: regenerate with `canstar generate`. Clock {} Hz ({period:.2} ns).", board.clock.hz).unwrap();
+            writeln!(t, "set_io {} {}", board.clock.port, board.clock.pin).unwrap();
+            for (role, pin) in lines.iter().chain(placed_debug.iter()) {
+                writeln!(t, "set_io {role} {pin}").unwrap();
+            }
+            if !left_out.is_empty() {
+                writeln!(t, "# debug outputs without a free pin on this board: {}", left_out.join(", ")).unwrap();
+            }
+        }
+    }
+    Ok(PinFile { text: t, placed_debug, left_out })
+}
+
+/// Check that every non-comment UCF line ends with `;` (rust-hdl's own
+/// writer leaves the last one without).
+pub fn ucf_well_formed(text: &str) -> bool {
+    text.lines().filter(|l| !l.trim().is_empty() && !l.trim_start().starts_with('#')).all(|l| l.trim_end().ends_with(';'))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn builtin_boards_parse() {
+        for (n, _) in BUILTIN {
+            let b = Board::lookup(n).unwrap();
+            assert_eq!(&b.name, n);
+        }
+    }
+
+    #[test]
+    fn unknown_board_is_a_clear_error() {
+        let e = Board::lookup("no-such-board").unwrap_err().to_string();
+        assert!(e.contains("unknown board `no-such-board`") && e.contains("xsa-3s1000"), "{e}");
+    }
+
+    #[test]
+    fn pin_conflict_is_rejected() {
+        let text = BUILTIN[0].1.replace("\"rx[1]\" = \"H14\"", "\"rx[1]\" = \"H15\"");
+        let e = Board::from_toml(&text).unwrap_err().to_string();
+        assert!(e.contains("pin conflict: pin H15"), "{e}");
+    }
+
+    #[test]
+    fn unknown_key_in_board_is_rejected() {
+        let text = format!("{}\nbogus = 1\n", BUILTIN[0].1.split("[clock]").next().unwrap());
+        assert!(Board::from_toml(&text).is_err());
+    }
+
+    fn hub_pins() -> DesignPins {
+        let mut f = vec!["rst_n".to_string(), "inject_fault".to_string()];
+        f.extend(DesignPins::port_roles("rx", 3));
+        f.extend(DesignPins::port_roles("reh_rx", 2));
+        f.extend(DesignPins::port_roles("tx", 3));
+        f.extend(DesignPins::port_roles("hub_tx", 2));
+        DesignPins { functional: f, debug: DesignPins::port_roles("dbg", 60) }
+    }
+
+    #[test]
+    fn xsa_ucf_matches_the_published_pin_map() {
+        let b = Board::lookup("xsa-3s1000").unwrap();
+        let f = pin_file(&b, "hub", &hub_pins()).unwrap();
+        assert!(ucf_well_formed(&f.text), "{}", f.text);
+        for (net, pin) in [
+            ("nRST", "E11"), ("clkOscl", "H16"), ("injectFault", "A13"), ("rx_0", "H15"), ("rx_1", "H14"),
+            ("rx_2", "G12"), ("rehRx_0", "G16"), ("rehRx_1", "H13"), ("tx_0", "G15"), ("tx_1", "G14"),
+            ("tx_2", "F14"), ("hubTx_0", "F15"), ("hubTx_1", "G13"),
+        ] {
+            // Published net name -> canstar port bit.
+            let ours = match net {
+                "nRST" => "rst_n".to_string(),
+                "clkOscl" => "clock".to_string(),
+                "injectFault" => "inject_fault".to_string(),
+                n => {
+                    let (base, idx) = n.rsplit_once('_').unwrap();
+                    let base = match base { "rehRx" => "reh_rx", "hubTx" => "hub_tx", b => b };
+                    format!("{base}<{idx}>")
+                }
+            };
+            let line = format!("NET \"{ours}\" LOC = \"{pin}\" | IOSTANDARD = LVCMOS33;");
+            assert!(f.text.contains(&line), "missing `{line}` in\n{}", f.text);
+        }
+        assert!(f.text.contains("PERIOD \"clock\" 67.84 ns"), "{}", f.text);
+        // 54 debug pins on the header: 6 of the 60 requested bits are reported.
+        assert_eq!(f.placed_debug.len(), 54);
+        assert_eq!(f.left_out.len(), 6);
+        assert!(f.text.contains("without a free pin"));
+    }
+
+    #[test]
+    fn missing_functional_pin_is_an_error() {
+        let b = Board::lookup("xsa-3s1000").unwrap();
+        let mut d = hub_pins();
+        d.functional.extend(DesignPins::port_roles("rx", 4).into_iter().skip(3));
+        let e = pin_file(&b, "hub", &d).unwrap_err().to_string();
+        assert!(e.contains("no pin for port bit `rx[3]`"), "{e}");
+    }
+
+    #[test]
+    fn ice40_pcf() {
+        let b = Board::lookup("ice40-hx8k").unwrap();
+        let f = pin_file(&b, "hub", &hub_pins()).unwrap();
+        assert!(f.text.contains("set_io clock J3"));
+        assert!(f.text.contains("set_io rx[0] B1"));
+    }
+}

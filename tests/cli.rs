@@ -1,0 +1,77 @@
+//! End-to-end tests of the `canstar` command line.
+use std::path::Path;
+use std::process::Command;
+
+fn canstar(args: &[&str], cwd: &Path) -> (bool, String, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_canstar")).args(args).current_dir(cwd).output().unwrap();
+    (
+        out.status.success(),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+fn files_under(p: &Path) -> Vec<String> {
+    let mut v = vec![];
+    if p.exists() {
+        for e in walk(p) {
+            v.push(e);
+        }
+    }
+    v.sort();
+    v
+}
+
+fn walk(p: &Path) -> Vec<String> {
+    let mut v = vec![];
+    for e in std::fs::read_dir(p).unwrap() {
+        let e = e.unwrap().path();
+        if e.is_dir() {
+            v.extend(walk(&e));
+        } else {
+            v.push(e.display().to_string());
+        }
+    }
+    v
+}
+
+#[test]
+fn generate_then_check_round_trip() {
+    let d = tempfile::tempdir().unwrap();
+    let (ok, out, err) = canstar(&["generate", "--out", "v", "--constraints", "c"], d.path());
+    assert!(ok, "{out}{err}");
+    assert!(!files_under(&d.path().join("v")).is_empty());
+    let (ok, out, err) = canstar(&["generate", "--out", "v", "--constraints", "c", "--check"], d.path());
+    assert!(ok && out.contains("up to date"), "{out}{err}");
+    // Tamper with one file: --check must fail and name it.
+    let f = files_under(&d.path().join("v")).remove(0);
+    std::fs::write(&f, "tampered").unwrap();
+    let (ok, _, err) = canstar(&["generate", "--out", "v", "--constraints", "c", "--check"], d.path());
+    assert!(!ok && err.contains("out of date"), "{err}");
+}
+
+#[test]
+fn bad_config_fails_cleanly_and_writes_nothing() {
+    let d = tempfile::tempdir().unwrap();
+    for (name, text, expect) in [
+        ("unknown_key.toml", "[bit_timing]\nbrp = 1\nwibble = 3\n", "unknown field"),
+        ("bad_timing.toml", "[bit_timing]\nprop = 1\nph1 = 2\nsjw = 1\n", "must be 8..=25"),
+        ("bad_sjw.toml", "[bit_timing]\nph1 = 2\nsjw = 4\n", "exceeds ph1"),
+        ("malformed.toml", "[bit_timing\n", "malformed"),
+        ("bad_depth.toml", "[rtl]\nsync_depth = 3\n", "sync_depth"),
+    ] {
+        std::fs::write(d.path().join(name), text).unwrap();
+        let (ok, out, err) = canstar(&["generate", "--config", name, "--out", "v", "--constraints", "c"], d.path());
+        assert!(!ok, "{name} accepted: {out}");
+        assert!(err.contains(expect), "{name}: {err}");
+        assert!(files_under(&d.path().join("v")).is_empty() && files_under(&d.path().join("c")).is_empty(), "{name} wrote files");
+    }
+}
+
+#[test]
+fn committed_generated_files_are_current() {
+    // The same check CI runs: verilog-out/ and constraints/ equal the generator's output.
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let (ok, out, err) = canstar(&["generate", "--check"], root);
+    assert!(ok, "{out}{err}");
+}
