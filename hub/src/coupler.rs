@@ -1,5 +1,8 @@
 //! Input stage, port coupler (ANDC), replica coupler (ANDT) and output registers.
 //!
+//! The input stage is one `canstar_hdl::sync::Synchroniser` (1 or 2 flip-flops, reset
+//! and power-up level recessive) per uplink and per incoming sublink.
+//!
 //! ```text
 //!  rx[i] ─► sync(depth) ─► fault(up_fault[i]) ─► u[i] ──► OR dis[i] ──┐
 //!                                                                    ├─ AND ─ andc ─► fault(hub_fault[j]) ─► reg ─► hub_tx[j]
@@ -30,6 +33,7 @@
 //! one output register). The same holds from `reh_rx[j]` to `tx[k]` and from `rx[i]` to
 //! `hub_tx[j]`.
 
+use canstar_hdl::sync::Synchroniser;
 use rust_hdl::prelude::*;
 
 /// Fault-injection code: no fault.
@@ -45,53 +49,6 @@ pub const FAULT_BIT_FLIP: u64 = 3;
 /// synchroniser's depth plus one output register.
 pub const fn coupling_latency(sync_depth: usize) -> usize {
     sync_depth + 1
-}
-
-/// Input synchroniser stage: `depth` (1 or 2) flip-flops, reset value 1 (recessive).
-/// Stand-in with the port contract of `canstar_hdl::sync::Synchroniser` (clock, reset,
-/// d, q) until that block is available in the shared crate.
-#[derive(LogicBlock)]
-pub struct SyncStage {
-    pub clock: Signal<In, Clock>,
-    pub reset: Signal<In, Bit>,
-    pub d: Signal<In, Bit>,
-    pub q: Signal<Out, Bit>,
-    // Stored inverted so that power-up (DFF = 0) reads recessive.
-    r1n: DFF<Bit>,
-    r2n: DFF<Bit>,
-    two: Constant<Bit>,
-}
-
-impl SyncStage {
-    pub fn new(depth: usize) -> Self {
-        assert!(depth == 1 || depth == 2, "synchroniser depth must be 1 or 2");
-        Self {
-            clock: Default::default(),
-            reset: Default::default(),
-            d: Default::default(),
-            q: Default::default(),
-            r1n: Default::default(),
-            r2n: Default::default(),
-            two: Constant::new(depth == 2),
-        }
-    }
-}
-
-impl Logic for SyncStage {
-    #[hdl_gen]
-    fn update(&mut self) {
-        dff_setup!(self, clock, r1n, r2n);
-        self.r1n.d.next = !self.d.val();
-        self.r2n.d.next = self.r1n.q.val();
-        if self.reset.val() {
-            self.r1n.d.next = false;
-            self.r2n.d.next = false;
-        }
-        self.q.next = !self.r1n.q.val();
-        if self.two.val() {
-            self.q.next = !self.r2n.q.val();
-        }
-    }
 }
 
 /// The coupler: input stage, ANDC, ANDT, fault hooks and output registers.
@@ -113,8 +70,8 @@ pub struct Coupler {
     pub s: Vec<Signal<Out, Bit>>,
     pub andc: Signal<Out, Bit>,
     pub bt: Signal<Out, Bit>,
-    up_sync: Vec<SyncStage>,
-    reh_sync: Vec<SyncStage>,
+    up_sync: Vec<Synchroniser>,
+    reh_sync: Vec<Synchroniser>,
     tx_n: Vec<DFF<Bit>>,
     hub_tx_n: Vec<DFF<Bit>>,
     dl: Vec<Signal<Local, Bit>>,
@@ -149,8 +106,8 @@ impl Coupler {
             s: sigs(m),
             andc: Default::default(),
             bt: Default::default(),
-            up_sync: (0..n).map(|_| SyncStage::new(sync_depth)).collect(),
-            reh_sync: (0..m).map(|_| SyncStage::new(sync_depth)).collect(),
+            up_sync: (0..n).map(|_| Synchroniser::new(sync_depth)).collect(),
+            reh_sync: (0..m).map(|_| Synchroniser::new(sync_depth)).collect(),
             tx_n: (0..n).map(|_| Default::default()).collect(),
             hub_tx_n: (0..m).map(|_| Default::default()).collect(),
             dl: sigs(n),
@@ -233,4 +190,3 @@ impl Logic for Coupler {
 }
 
 canstar_hdl::impl_clocked!(Coupler);
-canstar_hdl::impl_clocked!(SyncStage);

@@ -1,6 +1,7 @@
 //! Coupler: input stage, ANDC / ANDT, fault hooks, output registers, latency (H2, H3).
 use canstar_hdl::{drive, flow};
-use canstar_hub::coupler::{self, Coupler, SyncStage};
+use canstar_hdl::sync::Synchroniser;
+use canstar_hub::coupler::{self, Coupler};
 use rand::Rng;
 use rust_hdl::prelude::*;
 
@@ -147,7 +148,7 @@ fn fault_hooks() {
 #[test]
 fn sync_stage_depth() {
     for depth in [1usize, 2] {
-        let mut s = SyncStage::new(depth);
+        let mut s = Synchroniser::new(depth);
         drive::init(&mut s);
         assert!(s.q.val(), "recessive at power-up");
         s.d.next = false;
