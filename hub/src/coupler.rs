@@ -76,6 +76,9 @@ pub struct Coupler {
     hub_tx_n: Vec<DFF<Bit>>,
     dl: Vec<Signal<Local, Bit>>,
     hl: Vec<Signal<Local, Bit>>,
+    ul: Vec<Signal<Local, Bit>>,
+    andc_acc: Signal<Local, Bit>,
+    bt_acc: Signal<Local, Bit>,
     _n: usize,
     _m: usize,
 }
@@ -112,6 +115,9 @@ impl Coupler {
             hub_tx_n: (0..m).map(|_| Default::default()).collect(),
             dl: sigs(n),
             hl: sigs(m),
+            ul: sigs(n),
+            andc_acc: Default::default(),
+            bt_acc: Default::default(),
             _n: n,
             _m: m,
         }
@@ -127,39 +133,40 @@ impl Coupler {
 impl Logic for Coupler {
     #[hdl_gen]
     fn update(&mut self) {
-        self.andc.next = self.efg.val();
+        // Outputs are assigned exactly once per evaluation (see the hub module docs).
+        self.andc_acc.next = self.efg.val();
         for i in 0..self._n {
             self.up_sync[i].clock.next = self.clock.val();
             self.up_sync[i].reset.next = self.reset.val();
             self.up_sync[i].d.next = self.rx[i].val();
-            self.u[i].next = self.up_sync[i].q.val();
             if self.up_fault[i].val() == 1 {
-                self.u[i].next = true;
+                self.ul[i].next = true;
+            } else if self.up_fault[i].val() == 2 {
+                self.ul[i].next = false;
+            } else if self.up_fault[i].val() == 3 {
+                self.ul[i].next = !self.up_sync[i].q.val();
+            } else {
+                self.ul[i].next = self.up_sync[i].q.val();
             }
-            if self.up_fault[i].val() == 2 {
-                self.u[i].next = false;
-            }
-            if self.up_fault[i].val() == 3 {
-                self.u[i].next = !self.up_sync[i].q.val();
-            }
-            self.andc.next = self.andc.val() & (self.u[i].val() | self.dis[i].val());
+            self.u[i].next = self.ul[i].val();
+            self.andc_acc.next = self.andc_acc.val() & (self.ul[i].val() | self.dis[i].val());
         }
-        self.bt.next = self.andc.val();
+        self.andc.next = self.andc_acc.val();
+        self.bt_acc.next = self.andc_acc.val();
         for j in 0..self._m {
             self.reh_sync[j].clock.next = self.clock.val();
             self.reh_sync[j].reset.next = self.reset.val();
             self.reh_sync[j].d.next = self.reh_rx[j].val();
             self.s[j].next = self.reh_sync[j].q.val();
-            self.bt.next = self.bt.val() & (self.s[j].val() | self.hdis[j].val());
-            self.hl[j].next = self.andc.val();
+            self.bt_acc.next = self.bt_acc.val() & (self.reh_sync[j].q.val() | self.hdis[j].val());
             if self.hub_fault[j].val() == 1 {
                 self.hl[j].next = true;
-            }
-            if self.hub_fault[j].val() == 2 {
+            } else if self.hub_fault[j].val() == 2 {
                 self.hl[j].next = false;
-            }
-            if self.hub_fault[j].val() == 3 {
-                self.hl[j].next = !self.andc.val();
+            } else if self.hub_fault[j].val() == 3 {
+                self.hl[j].next = !self.andc_acc.val();
+            } else {
+                self.hl[j].next = self.andc_acc.val();
             }
             self.hub_tx_n[j].clock.next = self.clock.val();
             self.hub_tx_n[j].d.next = !self.hl[j].val();
@@ -168,16 +175,16 @@ impl Logic for Coupler {
             }
             self.hub_tx[j].next = !self.hub_tx_n[j].q.val();
         }
+        self.bt.next = self.bt_acc.val();
         for i in 0..self._n {
-            self.dl[i].next = self.bt.val();
             if self.down_fault[i].val() == 1 {
                 self.dl[i].next = true;
-            }
-            if self.down_fault[i].val() == 2 {
+            } else if self.down_fault[i].val() == 2 {
                 self.dl[i].next = false;
-            }
-            if self.down_fault[i].val() == 3 {
-                self.dl[i].next = !self.bt.val();
+            } else if self.down_fault[i].val() == 3 {
+                self.dl[i].next = !self.bt_acc.val();
+            } else {
+                self.dl[i].next = self.bt_acc.val();
             }
             self.tx_n[i].clock.next = self.clock.val();
             self.tx_n[i].d.next = !self.dl[i].val();

@@ -35,6 +35,11 @@
 //! Coupling latency (H2): [`HubConfig::coupling_latency`] = sync depth + 1 clocks from
 //! `rx` to `tx` (and from `reh_rx` to `tx`, from `rx` to `hub_tx`).
 //!
+//! Verilog note: every signal that crosses a module boundary inside a combinational
+//! path is assigned exactly once per evaluation (if/else, never "default, then
+//! override"). Otherwise the zero-delay glitches of two `always @(*)` blocks that feed
+//! each other retrigger one another forever in an event-driven simulator.
+//!
 //! The hub's error phase for the judges is the monitor's error/overload phase OR the
 //! error-flag generator's `busy`; the error flag is triggered at a sample with
 //! `mon_error` or with a blame from any judge unit (H6).
@@ -275,7 +280,8 @@ pub struct HubCore {
     pub sub_dbc: Vec<Signal<Out, Bits<5>>>,
     pub sub_rep: Vec<Signal<Out, Bits<3>>>,
     coupler: Coupler,
-    efg: ErrorFlagGen,
+    efgen: ErrorFlagGen,
+    err_start_r: DFF<Bit>,
     decode: FrameDecode,
     injector: Injector,
     pj: Vec<JudgeUnit>,
@@ -341,7 +347,8 @@ impl HubCore {
             sub_dbc: sigs(dm),
             sub_rep: sigs(dm),
             coupler: Coupler::new(n, m, cfg.sync_depth),
-            efg: Default::default(),
+            efgen: Default::default(),
+            err_start_r: Default::default(),
             decode: Default::default(),
             injector: Injector::new(start),
             pj: (0..n).map(|_| JudgeUnit::port(cfg.port_params())).collect(),
@@ -390,7 +397,7 @@ impl Logic for HubCore {
         self.decode.field.next = self.mon_field.val();
         self.decode.pos.next = self.mon_pos.val();
         self.frame_state.next = self.mon_field.val();
-        self.err_phase.next = self.decode.err_phase.val() | self.efg.busy.val();
+        self.err_phase.next = self.decode.err_phase.val() | self.efgen.busy.val();
         // fault injection controller
         self.injector.clock.next = self.clock.val();
         self.injector.reset.next = self.reset.val();
@@ -402,7 +409,7 @@ impl Logic for HubCore {
         // coupler
         self.coupler.clock.next = self.clock.val();
         self.coupler.reset.next = self.reset.val();
-        self.coupler.efg.next = self.efg.efg.val();
+        self.coupler.efg.next = self.efgen.efg.val();
         self.bt.next = self.coupler.bt.val();
         // replica summary for the sublink judges
         self.rep_rec.next = false;
@@ -412,9 +419,10 @@ impl Logic for HubCore {
             self.hub_tx[j].next = self.coupler.hub_tx[j].val();
             self.coupler.hdis[j].next = self.sj[j].dis.val();
             self.sub_isolated[j].next = self.sj[j].dis.val();
-            self.coupler.hub_fault[j].next = 0.into();
             if self.injector.active.val() {
                 self.coupler.hub_fault[j].next = self.hub_code[j].val();
+            } else {
+                self.coupler.hub_fault[j].next = 0.into();
             }
             if !self.sj[j].dis.val() {
                 self.rep_rec.next = self.rep_rec.val() | self.coupler.s[j].val();
@@ -429,11 +437,12 @@ impl Logic for HubCore {
             self.coupler.dis[i].next = self.pj[i].dis.val();
             self.isolated[i].next = self.pj[i].dis.val();
             self.silent[i].next = self.pj[i].silent.val();
-            self.coupler.up_fault[i].next = 0.into();
-            self.coupler.down_fault[i].next = 0.into();
             if self.injector.active.val() {
                 self.coupler.up_fault[i].next = self.up_code[i].val();
                 self.coupler.down_fault[i].next = self.down_code[i].val();
+            } else {
+                self.coupler.up_fault[i].next = 0.into();
+                self.coupler.down_fault[i].next = 0.into();
             }
             self.pj[i].clock.next = self.clock.val();
             self.pj[i].reset.next = self.reset.val();
@@ -477,14 +486,18 @@ impl Logic for HubCore {
         }
         // error flag (H6)
         self.trigger.next = self.mon_sample.val() & (self.mon_error.val() | self.any_blame.val());
+        // start of an error episode, registered (one clock after the sample point) so
+        // that the replica evaluation does not depend combinationally on the blames
+        self.err_start_r.clock.next = self.clock.val();
+        self.err_start_r.d.next = self.trigger.val() & !self.efgen.busy.val();
         for j in 0..self._m {
-            self.sj[j].err_start.next = self.trigger.val() & !self.efg.busy.val();
+            self.sj[j].err_start.next = self.err_start_r.q.val();
         }
-        self.efg.clock.next = self.clock.val();
-        self.efg.reset.next = self.reset.val();
-        self.efg.trigger.next = self.trigger.val();
-        self.efg.bit_start.next = self.mon_bit_start.val();
-        self.efg_active.next = self.efg.active.val();
+        self.efgen.clock.next = self.clock.val();
+        self.efgen.reset.next = self.reset.val();
+        self.efgen.trigger.next = self.trigger.val();
+        self.efgen.bit_start.next = self.mon_bit_start.val();
+        self.efg_active.next = self.efgen.active.val();
         // debug counters
         for i in 0..self._dn {
             self.bic[i].next = self.pj[i].bic.val();
