@@ -310,7 +310,7 @@ mod tests {
     fn ice40_pcf() {
         let b = Board::lookup("ice40-hx8k").unwrap();
         let f = pin_file(&b, "hub", &hub_pins()).unwrap();
-        assert!(f.text.contains("set_io clock J3"));
-        assert!(f.text.contains("set_io rx[0] B1"));
+        assert!(f.text.contains("set_io clock P7"));
+        assert!(f.text.contains("set_io rx[0] A1"));
     }
 }

@@ -2,7 +2,11 @@
 use crate::config::Config;
 use crate::generate::{block, Artifact};
 use anyhow::Result;
-use canstar_hdl::{crc15, stuff, sync};
+use canstar_hdl::{btl, crc15, stuff, sync};
+use canstar_sim::bench::{bench as run_bench, BenchConfig, PatternNode};
+use canstar_sim::bus::Bus;
+use std::path::Path;
+use canstar_sim::HdlComponent;
 
 /// The shared RTL blocks as standalone modules (`verilog-out/blocks/`).
 pub fn blocks(config: &Config) -> Result<Vec<Artifact>> {
@@ -16,10 +20,93 @@ pub fn blocks(config: &Config) -> Result<Vec<Artifact>> {
         block(crc15::Crc15::default(), "canstar_crc15", "CAN CRC-15, polynomial 0x4599"),
         block(stuff::BitStuffer::default(), "canstar_bit_stuffer", "CAN bit stuffer"),
         block(stuff::BitDestuffer::default(), "canstar_bit_destuffer", "CAN bit destuffer"),
+        block(
+            btl::BitTiming::default(),
+            "canstar_bit_timing",
+            "CAN bit timing logic (prescaler, segments, hard sync and resync, IPT = 2 TQ)",
+        ),
     ])
 }
 
-/// `canstar bench`.
-pub fn bench(_cycles: u64, _nodes: &[usize]) -> Result<()> {
-    anyhow::bail!("bench not available yet")
+/// The designs `canstar report` measures: (name, Verilog, top module).
+pub fn report_designs(config: &Config) -> Result<Vec<(String, String, String)>> {
+    let mut v = vec![];
+    for a in blocks(config)? {
+        let top = a.path.file_stem().unwrap().to_string_lossy().into_owned();
+        v.push((top.clone(), a.contents, top));
+    }
+    Ok(v)
+}
+
+/// A bit-timing instance as a simulation component: 40 MHz clock, BRP 4,
+/// T10/6/4 (1 Mbit/s), held in reset for its first two cycles. Its RX is the
+/// bus; the benchmark's pattern driver puts pseudo-random bits on the bus.
+fn btl_node(i: usize, clock: canstar_sim::ClockSpec) -> HdlComponent<btl::BitTiming> {
+    let cfg = btl::BtlConfig::from_fields(4, 1, 4, 4, false);
+    let mut b = btl::BitTiming::default();
+    b.set_config(&cfg);
+    let mut n = 0u32;
+    HdlComponent::new(
+        &format!("btl{i}"),
+        clock,
+        b,
+        1,
+        0,
+        move |b, v| {
+            b.reset.next = n < 2;
+            n = n.saturating_add(1);
+            b.rx.next = v[0];
+        },
+        |_, _| {},
+    )
+}
+
+/// `canstar bench`: simulated clock cycles per second of bit-timing
+/// instances, alone and sharing a bus (nodes spread over +-100 ppm).
+pub fn bench(cycles: u64, nodes: &[usize]) -> Result<()> {
+    anyhow::ensure!(cycles > 0, "--cycles must be positive");
+    anyhow::ensure!(nodes.iter().all(|&n| n >= 1), "node counts must be at least 1");
+    println!("canstar bench: bit timing logic (canstar_hdl::btl::BitTiming), 40 MHz clocks, 1 Mbit/s, direct-drive kernel");
+    let mut first = true;
+    for &n in nodes {
+        let cfg = BenchConfig {
+            single_cycles: if first { cycles } else { 1 },
+            bus_nodes: n,
+            bus_cycles_per_node: (cycles / n as u64).max(1),
+            ..BenchConfig::default()
+        };
+        let r = run_bench(&cfg, btl_node);
+        if first {
+            println!(
+                "1 instance alone:    {:>12.0} cycles/s ({} cycles in {:.2} s)",
+                r.single_cycles_per_sec, r.single_cycles, r.single_secs
+            );
+            first = false;
+        }
+        println!(
+            "{n:>2} instances on a bus: {:>12.0} cycles/s in total, {:>12.0} cycles/s per instance ({} cycles in {:.2} s)",
+            r.bus_cycles_per_sec, r.bus_node_cycles_per_sec, r.bus_cycles, r.bus_secs
+        );
+    }
+    Ok(())
+}
+
+/// Simulate `nodes` bit-timing instances on a bus for `cycles` clock cycles
+/// per node and write a VCD of every instance's signals and every bus wire
+/// (or only the signals matching `signals`, see `canstar_sim::vcd`).
+pub fn bench_vcd(path: &Path, nodes: usize, cycles: u64, signals: Option<&[String]>, seed: u64) -> Result<()> {
+    anyhow::ensure!(nodes >= 1, "node count must be at least 1");
+    let cfg = BenchConfig { seed, ..BenchConfig::default() };
+    let mut sim = canstar_sim::Sim::new(cfg.seed);
+    let bus = Bus::uniform(&mut sim, "bus", nodes, cfg.delays);
+    for (i, node) in bus.nodes.iter().enumerate() {
+        let ppm = if nodes > 1 { -cfg.ppm_spread + 2.0 * cfg.ppm_spread * i as f64 / (nodes - 1) as f64 } else { 0.0 };
+        let clk = sim.random_phase_clock(cfg.period_ps, ppm);
+        sim.add(PatternNode::new(btl_node(i, clk), cfg.cycles_per_bit, 0x1234_5678 ^ (i as u32 * 0x9e37_79b9)), &[node.rx], &[node.tx]);
+    }
+    let filter: Option<Vec<&str>> = signals.map(|v| v.iter().map(|s| s.as_str()).collect());
+    sim.start_vcd_file(path, filter.as_deref())?;
+    sim.run_until(cfg.period_ps * cycles);
+    sim.finish_vcd()?;
+    Ok(())
 }

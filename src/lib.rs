@@ -6,3 +6,4 @@ pub mod boards;
 pub mod config;
 pub mod designs;
 pub mod generate;
+pub mod report;

@@ -34,6 +34,16 @@ enum Cmd {
         #[arg(long)]
         check: bool,
     },
+    /// Synthesise the generated designs and print a resource table (iCE40 cells, flip-flops,
+    /// block RAMs and fmax with Yosys + nextpnr-ice40; Spartan-3 LUTs and flip-flops with Yosys).
+    Report {
+        /// TOML configuration file.
+        #[arg(long)]
+        config: Option<PathBuf>,
+        /// Clock frequency nextpnr is asked to meet, in MHz.
+        #[arg(long, default_value_t = 50.0)]
+        freq: f64,
+    },
     /// Measure simulation throughput (simulated clock cycles per second).
     Bench {
         /// Simulated clock cycles per measurement.
@@ -42,6 +52,15 @@ enum Cmd {
         /// Node counts for the shared-bus measurement.
         #[arg(long, value_delimiter = ',', default_value = "2,5,10")]
         nodes: Vec<usize>,
+        /// Instead of measuring, write a VCD of the first node count's bus (all signals of every instance and every bus wire).
+        #[arg(long)]
+        vcd: Option<PathBuf>,
+        /// With --vcd: dump only these signals (hierarchical names or prefixes, `name*` globs), comma separated.
+        #[arg(long, value_delimiter = ',')]
+        signals: Option<Vec<String>>,
+        /// Seed (clock phases) for the --vcd run.
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
     },
 }
 
@@ -70,7 +89,28 @@ fn run(cli: Cli) -> Result<()> {
             }
             Ok(())
         }
-        Cmd::Bench { cycles, nodes } => canstar::designs::bench(cycles, &nodes),
+        Cmd::Report { config, freq } => {
+            let cfg = match &config {
+                Some(p) => Config::load(p)?,
+                None => Config::default(),
+            };
+            let mut rows = vec![];
+            for (name, verilog, top) in canstar::designs::report_designs(&cfg)? {
+                eprintln!("synthesising {name} ...");
+                rows.push(canstar::report::measure(&name, &verilog, &top, freq)?);
+            }
+            println!("{}", canstar::report::table(&rows));
+            println!("\ntools: {}", canstar::report::tool_versions());
+            Ok(())
+        }
+        Cmd::Bench { cycles, nodes, vcd: Some(path), signals, seed } => {
+            let n = nodes.first().copied().unwrap_or(2);
+            let c = cycles.min(200_000);
+            canstar::designs::bench_vcd(&path, n, c, signals.as_deref(), seed)?;
+            println!("wrote {} ({n} bit-timing instances on a bus, {c} cycles each)", path.display());
+            Ok(())
+        }
+        Cmd::Bench { cycles, nodes, vcd: None, .. } => canstar::designs::bench(cycles, &nodes),
     }
 }
 

@@ -1,0 +1,715 @@
+//! Bit timing logic (BTL): prescaler, bit segments, sampling, hard and
+//! re-synchronisation, transmit points.
+//!
+//! [`BitTiming`] is the RTL; [`BtlModel`] is a pure-Rust transcription of the
+//! normative counter model of can-protocol.md §2.3 (one call per time
+//! quantum); [`BtlCycleModel`] wraps it with the prescaler, the configuration
+//! latch and the register timing of the RTL so that it predicts every output
+//! of [`BitTiming`] on every clock. The tests compare the RTL against it.
+//!
+//! # Port contract of [`BitTiming`]
+//!
+//! Inputs:
+//! - `clock`; `reset`: synchronous, active high. On every clock with `reset`
+//!   high the configuration inputs are latched, the bit counter is put at the
+//!   start of a bit (`cnt` = 0, so the first TQ after reset is SYNC_SEG), the
+//!   prescaler is cleared, `busmon` and `tx` become recessive and
+//!   synchronisation is enabled. SP, NTQ and the validity of the
+//!   configuration are computed from the latched fields, so they are fixed
+//!   from the release of reset on.
+//! - `brp` (BRP − 1, 5 bits), `prop` (PROP − 1), `ph1` (PH1 − 1), `sjw`
+//!   (SJW − 1), `triple` (triple sampling): the host fields of §2.2.
+//!   PH2 = max(PH1, IPT = 2), SP = 1 + PROP + PH1, NTQ = SP + PH2.
+//! - `rx`: the synchronised RX level (1 = recessive), looked at only on TQ
+//!   ticks.
+//! - `drive`: the level the bit-stream logic wants on TX from the next
+//!   transmit point. Also selects between §3.4 and §3.5, and between the two
+//!   rules of §3.3.
+//! - `hs_en`: hard synchronisation enabled.
+//!
+//! `rx`, `drive` and `hs_en` are used combinationally on the tick clock (see
+//! below): `drive` and `hs_en` must not depend combinationally on `tq` or
+//! `bit_start`.
+//!
+//! Outputs:
+//! - `cfg_err`: the latched configuration is invalid (NTQ < 8 or SJW > PH1).
+//!   The block is then inert: `tx` recessive, no strobe, until a reset with
+//!   a valid configuration. The block is also inert after power-up until its
+//!   first reset (with `cfg_err` = 0).
+//! - `tq`: high on the *tick clock*, one clock in every BRP (the clock on
+//!   which the prescaler wraps, the BRP-th clock after the release of reset).
+//!   On this clock the counter model takes one step with the `rx`, `drive`
+//!   and `hs_en` present on this clock.
+//! - `bit_start`: high on the tick clock of every transmit point (§2.5,
+//!   including restarts and postponed transmit points). `tx` takes `drive`
+//!   at the end of this clock and shows it from the next clock on. Because a
+//!   restart depends on `rx`, `bit_start` is a combinational function of
+//!   `rx`, `drive` and `hs_en` on the tick clock. A restart right after a
+//!   normal bit end (edge in SYNC_SEG with hard sync) gives two transmit
+//!   points one TQ apart; count bits with `sample`, not with `bit_start`.
+//! - `tx`: registered pin; changes only on the clock after `bit_start`.
+//! - `sample`: registered, high on the clock after the tick clock of a
+//!   sample point. `busmon`: the last sampled level, registered, already the
+//!   new value on the clock on which `sample` is high. With triple sampling
+//!   the sampled level is the majority of `rx` on the last three tick clocks.
+//! - `hard_sync`, `resync`: registered, high on the clock after a tick clock
+//!   on which a synchronisation condition (§3.1) held with `hs_en` high or
+//!   low respectively, whether or not it moved the bit (e.g. e = 0, or hard
+//!   synchronisation while driving `D` before the sample point).
+//!
+//! # Latency
+//!
+//! If the tick clock is clock k, then `rx` of clock k is what the model step
+//! sees; `sample`, `busmon`, `hard_sync`, `resync` and `tx` show the result
+//! on clock k + 1; `bit_start` and `tq` are on clock k. So an `rx` edge that
+//! arrives on a tick clock gives `hard_sync`/`resync` one clock later, and an
+//! edge arriving between ticks waits for the next tick (up to BRP − 1 clocks
+//! more). Busmon and TX both change [`L_RX`] = 1 clock after the tick whose
+//! model step caused the change, so a golden model that applies each TQ step
+//! at once sees the same instants when its RX is delayed by [`L_RX`] clocks
+//! more than this block's `rx` input.
+//!
+//! With IPT = 2 TQ and the bit-stream logic latching on `sample` and
+//! presenting the new `drive` on the next clock, the earliest transmit
+//! point after a sample point (tick clock ts) is the tick clock ts + 2·BRP,
+//! on which the new `drive` has been present for 2·BRP − 1 ≥ 1 clocks.
+//! With BRP = 1, a sample point on tick clock k and the earliest transmit
+//! point after it (§2.5 postponement, e.g. T10/8/1 with an edge in TQ 8):
+//!
+//! ```text
+//! clock       k        k+1        k+2        k+3
+//! tq          1        1          1          1
+//! rx          sampled
+//! sample      0        1          0          0
+//! busmon      old      new        new        new
+//! drive       old      old        new        new     (bit-stream logic latches at the end of k+1)
+//! bit_start   0        0 (postp.) 1          0
+//! tx          old      old        old        new
+//! ```
+
+use crate::impl_clocked;
+use rust_hdl::prelude::*;
+
+/// Information processing time in TQ (§2.2, C1).
+pub const IPT: u32 = 2;
+
+/// Clocks from the tick clock on which `rx` is looked at to the clock on
+/// which `busmon` and `tx` show the result of that TQ step.
+pub const L_RX: usize = 1;
+
+/// Bit timing configuration in real values (not value − 1).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct BtlConfig {
+    /// Prescaler 1..32.
+    pub brp: u32,
+    /// PROP_SEG 1..8.
+    pub prop: u32,
+    /// PHASE_SEG1 1..8.
+    pub ph1: u32,
+    /// SJW 1..4.
+    pub sjw: u32,
+    /// Triple sampling.
+    pub triple: bool,
+}
+
+impl BtlConfig {
+    /// Build from real values.
+    pub const fn new(brp: u32, prop: u32, ph1: u32, sjw: u32) -> Self {
+        Self { brp, prop, ph1, sjw, triple: false }
+    }
+    /// From the host fields (value − 1 encoding); out-of-range bits ignored.
+    pub fn from_fields(brp: u32, prop: u32, ph1: u32, sjw: u32, triple: bool) -> Self {
+        Self { brp: (brp & 31) + 1, prop: (prop & 7) + 1, ph1: (ph1 & 7) + 1, sjw: (sjw & 3) + 1, triple }
+    }
+    /// The host fields (value − 1): (brp, prop, ph1, sjw).
+    pub fn fields(&self) -> (u32, u32, u32, u32) {
+        (self.brp - 1, self.prop - 1, self.ph1 - 1, self.sjw - 1)
+    }
+    /// PH2 = max(PH1, IPT).
+    pub fn ph2(&self) -> u32 {
+        self.ph1.max(IPT)
+    }
+    /// Sample point, TQ from the start of the bit.
+    pub fn sp(&self) -> u32 {
+        1 + self.prop + self.ph1
+    }
+    /// Bit time in TQ.
+    pub fn ntq(&self) -> u32 {
+        self.sp() + self.ph2()
+    }
+    /// Is the configuration accepted (§2.2)?
+    pub fn is_valid(&self) -> bool {
+        (1..=32).contains(&self.brp)
+            && (1..=8).contains(&self.prop)
+            && (1..=8).contains(&self.ph1)
+            && (1..=4).contains(&self.sjw)
+            && (8..=25).contains(&self.ntq())
+            && self.sjw <= self.ph1
+    }
+    /// T10/6/4 (default timing, PROP 1, PH1 4, SJW 4).
+    pub const T10_6_4: Self = Self::new(1, 1, 4, 4);
+    /// T25/17/1 (PROP 8, PH1 8, SJW 1).
+    pub const T25_17_1: Self = Self::new(1, 8, 8, 1);
+    /// T10/8/1 (PROP 5, PH1 2, SJW 1).
+    pub const T10_8_1: Self = Self::new(1, 5, 2, 1);
+    /// T10/6/2 (PROP 1, PH1 4, SJW 2).
+    pub const T10_6_2: Self = Self::new(1, 1, 4, 2);
+    /// Same timing with another prescaler.
+    pub const fn with_brp(self, brp: u32) -> Self {
+        Self { brp, ..self }
+    }
+}
+
+/// What happened on one TQ tick of [`BtlModel`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct BtlEvents {
+    /// A sample point (step 5); `busmon` holds the sampled level.
+    pub sample: bool,
+    /// A transmit point took effect: `tx` took `drive` on this tick.
+    pub bit_start: bool,
+    /// A synchronisation condition held with `hs_en` set.
+    pub hard_sync: bool,
+    /// A synchronisation condition held with `hs_en` clear.
+    pub resync: bool,
+    /// The synchronisation restarted the bit (`cnt := 1`).
+    pub restart: bool,
+    /// Phase error of the synchronising edge, if any.
+    pub phase_error: Option<i32>,
+    /// The bit ended (step 4) on this tick.
+    pub bit_end: bool,
+    /// A transmit point was postponed on this tick (§2.5).
+    pub postponed: bool,
+    /// Level of `busmon` after the tick.
+    pub busmon: bool,
+    /// Level of `tx` after the tick.
+    pub tx: bool,
+}
+
+/// The normative counter model of can-protocol.md §2.3, one call per TQ.
+///
+/// Levels are `true` = recessive. A new model is in the state right after
+/// reset: at the start of a bit, `busmon` and `tx` recessive,
+/// synchronisation enabled, no sample point within the last IPT.
+#[derive(Debug, Clone)]
+pub struct BtlModel {
+    cfg: BtlConfig,
+    /// TQ counter inside the bit.
+    pub cnt: u32,
+    /// Working sample index.
+    pub sp: u32,
+    /// Working bit length.
+    pub nb: u32,
+    /// Last sampled level.
+    pub busmon: bool,
+    /// Synchronisation enabled.
+    pub sync_en: bool,
+    /// The TX pin.
+    pub tx: bool,
+    /// TQ ticks since the latest sample point (saturating).
+    since_sample: u32,
+    /// A transmit point waits for sample point + IPT.
+    pending_tx: bool,
+    /// `rx` on the previous two ticks (most recent first), for triple sampling.
+    hist: [bool; 2],
+}
+
+impl BtlModel {
+    /// Model in its reset state. The configuration should be valid.
+    pub fn new(cfg: BtlConfig) -> Self {
+        Self {
+            cfg,
+            cnt: 0,
+            sp: cfg.sp(),
+            nb: cfg.ntq(),
+            busmon: true,
+            sync_en: true,
+            tx: true,
+            since_sample: IPT,
+            pending_tx: false,
+            hist: [true, true],
+        }
+    }
+
+    pub fn config(&self) -> &BtlConfig {
+        &self.cfg
+    }
+
+    fn reload(&mut self) {
+        self.sp = self.cfg.sp();
+        self.nb = self.cfg.ntq();
+    }
+
+    /// One TQ tick with `rx` = the synchronised RX level at this tick.
+    pub fn tq_tick(&mut self, rx: bool, drive: bool, hs_en: bool) -> BtlEvents {
+        let mut ev = BtlEvents::default();
+        let sjw = self.cfg.sjw;
+        self.since_sample = (self.since_sample + 1).min(IPT);
+        let mut transmit_point = false;
+
+        // Step 1: the edge, if any, lies in TQ j of the bit.
+        self.cnt += 1;
+        let j = self.cnt as i32 - 1;
+        // Step 2: phase error.
+        let e = if self.cnt <= self.sp { j } else { j - self.nb as i32 };
+        // Step 3: synchronisation.
+        if !rx && self.busmon && self.sync_en {
+            self.sync_en = false;
+            ev.phase_error = Some(e);
+            let mut restart = false;
+            if hs_en {
+                // §3.3
+                ev.hard_sync = true;
+                restart = drive || self.cnt > self.sp;
+            } else {
+                // §3.4 (drive R) and §3.5 (drive D)
+                ev.resync = true;
+                if e > 0 {
+                    if drive {
+                        let d = (e as u32).min(sjw);
+                        self.sp += d;
+                        self.nb += d;
+                    }
+                } else if e < 0 {
+                    if e.unsigned_abs() <= sjw {
+                        restart = true;
+                    } else {
+                        self.nb -= sjw;
+                    }
+                }
+            }
+            if restart {
+                self.cnt = 1;
+                self.reload();
+                ev.restart = true;
+                transmit_point = true;
+            }
+        }
+        // Step 4: end of bit.
+        if self.cnt == self.nb {
+            self.cnt = 0;
+            self.reload();
+            ev.bit_end = true;
+            transmit_point = true;
+        }
+        // Step 5: sample point.
+        if self.cnt == self.sp {
+            self.busmon = if self.cfg.triple {
+                let n = rx as u32 + self.hist[0] as u32 + self.hist[1] as u32;
+                n >= 2
+            } else {
+                rx
+            };
+            self.sync_en = true;
+            self.since_sample = 0;
+            ev.sample = true;
+        }
+        // §2.5: transmit points, postponed to sample point + IPT.
+        if transmit_point || self.pending_tx {
+            if self.since_sample >= IPT {
+                self.tx = drive;
+                self.pending_tx = false;
+                ev.bit_start = true;
+            } else {
+                ev.postponed = transmit_point;
+                self.pending_tx = true;
+            }
+        }
+        self.hist = [rx, self.hist[0]];
+        ev.busmon = self.busmon;
+        ev.tx = self.tx;
+        ev
+    }
+}
+
+/// Inputs of [`BitTiming`] for one clock, as plain values (fields in the
+/// value − 1 encoding of the ports).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct BtlInputs {
+    pub reset: bool,
+    pub brp: u32,
+    pub prop: u32,
+    pub ph1: u32,
+    pub sjw: u32,
+    pub triple: bool,
+    pub rx: bool,
+    pub drive: bool,
+    pub hs_en: bool,
+}
+
+impl BtlInputs {
+    /// Inputs holding `cfg` (recessive rx and drive, no reset, no hard sync).
+    pub fn with_config(cfg: &BtlConfig) -> Self {
+        let (brp, prop, ph1, sjw) = cfg.fields();
+        Self { reset: false, brp, prop, ph1, sjw, triple: cfg.triple, rx: true, drive: true, hs_en: false }
+    }
+}
+
+/// Outputs of [`BitTiming`] on one clock.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct BtlPins {
+    pub tq: bool,
+    pub sample: bool,
+    pub busmon: bool,
+    pub bit_start: bool,
+    pub tx: bool,
+    pub hard_sync: bool,
+    pub resync: bool,
+    pub cfg_err: bool,
+}
+
+/// Clock-exact model of [`BitTiming`]: [`BtlModel`] plus the prescaler, the
+/// configuration latch and the output registers.
+#[derive(Debug, Clone)]
+pub struct BtlCycleModel {
+    /// Latched configuration when valid (None: inert).
+    active: Option<BtlModel>,
+    bad: bool,
+    pre: u32,
+    sample_r: bool,
+    hard_r: bool,
+    resync_r: bool,
+    last: Option<BtlEvents>,
+}
+
+impl Default for BtlCycleModel {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl BtlCycleModel {
+    /// The power-up state (inert until the first reset).
+    pub fn new() -> Self {
+        Self { active: None, bad: false, pre: 0, sample_r: false, hard_r: false, resync_r: false, last: None }
+    }
+
+    /// The events of the TQ step taken on the last [`step`](Self::step), if
+    /// that clock was a tick.
+    pub fn last_events(&self) -> Option<BtlEvents> {
+        self.last
+    }
+
+    /// The counter model, when a valid configuration is latched.
+    pub fn model(&self) -> Option<&BtlModel> {
+        self.active.as_ref()
+    }
+
+    /// The outputs on a clock with inputs `i`, then the rising edge.
+    pub fn step(&mut self, i: &BtlInputs) -> BtlPins {
+        let (busmon, tx) = self.active.as_ref().map(|m| (m.busmon, m.tx)).unwrap_or((true, true));
+        let mut pins = BtlPins {
+            tq: false,
+            sample: self.sample_r,
+            busmon,
+            bit_start: false,
+            tx,
+            hard_sync: self.hard_r,
+            resync: self.resync_r,
+            cfg_err: self.bad,
+        };
+        self.last = None;
+        if i.reset {
+            let cfg = BtlConfig::from_fields(i.brp, i.prop, i.ph1, i.sjw, i.triple);
+            self.bad = !cfg.is_valid();
+            self.active = if self.bad { None } else { Some(BtlModel::new(cfg)) };
+            self.pre = 0;
+            self.sample_r = false;
+            self.hard_r = false;
+            self.resync_r = false;
+            return pins;
+        }
+        let Some(m) = self.active.as_mut() else {
+            self.sample_r = false;
+            self.hard_r = false;
+            self.resync_r = false;
+            return pins;
+        };
+        let tick = self.pre + 1 == m.config().brp;
+        self.pre = if tick { 0 } else { self.pre + 1 };
+        if tick {
+            let ev = m.tq_tick(i.rx, i.drive, i.hs_en);
+            pins.tq = true;
+            pins.bit_start = ev.bit_start;
+            self.last = Some(ev);
+            self.sample_r = ev.sample;
+            self.hard_r = ev.hard_sync;
+            self.resync_r = ev.resync;
+        } else {
+            self.sample_r = false;
+            self.hard_r = false;
+            self.resync_r = false;
+        }
+        pins
+    }
+}
+
+/// The bit timing logic RTL. See the module documentation for the port
+/// contract and the timing.
+#[derive(LogicBlock, Default)]
+pub struct BitTiming {
+    pub clock: Signal<In, Clock>,
+    pub reset: Signal<In, Bit>,
+    pub brp: Signal<In, Bits<5>>,
+    pub prop: Signal<In, Bits<3>>,
+    pub ph1: Signal<In, Bits<3>>,
+    pub sjw: Signal<In, Bits<2>>,
+    pub triple: Signal<In, Bit>,
+    pub rx: Signal<In, Bit>,
+    pub drive: Signal<In, Bit>,
+    pub hs_en: Signal<In, Bit>,
+    pub tq: Signal<Out, Bit>,
+    pub sample: Signal<Out, Bit>,
+    pub busmon: Signal<Out, Bit>,
+    pub bit_start: Signal<Out, Bit>,
+    pub tx: Signal<Out, Bit>,
+    pub hard_sync: Signal<Out, Bit>,
+    pub resync: Signal<Out, Bit>,
+    pub cfg_err: Signal<Out, Bit>,
+    // Configuration latched under reset.
+    c_brp: DFF<Bits<5>>,
+    c_sp: DFF<Bits<5>>,
+    c_ntq: DFF<Bits<5>>,
+    c_sjw: DFF<Bits<5>>,
+    c_triple: DFF<Bit>,
+    c_valid: DFF<Bit>,
+    c_bad: DFF<Bit>,
+    // Prescaler and counter model state. Levels that must be recessive at
+    // power-up are stored inverted (DFFs power up at 0).
+    pre: DFF<Bits<5>>,
+    cnt: DFF<Bits<5>>,
+    spw: DFF<Bits<5>>,
+    nbw: DFF<Bits<5>>,
+    busmon_n: DFF<Bit>,
+    sync_dis: DFF<Bit>,
+    since: DFF<Bits<2>>,
+    pending: DFF<Bit>,
+    tx_n: DFF<Bit>,
+    h1_n: DFF<Bit>,
+    h2_n: DFF<Bit>,
+    sample_r: DFF<Bit>,
+    hard_r: DFF<Bit>,
+    resync_r: DFF<Bit>,
+    // Combinational temporaries.
+    in_sp: Signal<Local, Bits<5>>,
+    in_ph2: Signal<Local, Bits<5>>,
+    in_ntq: Signal<Local, Bits<5>>,
+    in_sjw: Signal<Local, Bits<5>>,
+    in_bad: Signal<Local, Bit>,
+    tick: Signal<Local, Bit>,
+    c1: Signal<Local, Bits<5>>,
+    late: Signal<Local, Bit>,
+    neg_mag: Signal<Local, Bits<5>>,
+    sync_cond: Signal<Local, Bit>,
+    do_hard: Signal<Local, Bit>,
+    do_resync: Signal<Local, Bit>,
+    restart: Signal<Local, Bit>,
+    lengthen: Signal<Local, Bits<5>>,
+    sp_a: Signal<Local, Bits<5>>,
+    nb_a: Signal<Local, Bits<5>>,
+    cnt_a: Signal<Local, Bits<5>>,
+    eob: Signal<Local, Bit>,
+    cnt_n: Signal<Local, Bits<5>>,
+    sp_n: Signal<Local, Bits<5>>,
+    nb_n: Signal<Local, Bits<5>>,
+    smp: Signal<Local, Bit>,
+    since_inc: Signal<Local, Bits<2>>,
+    fire: Signal<Local, Bit>,
+    sampled: Signal<Local, Bit>,
+}
+
+impl_clocked!(BitTiming);
+
+impl Logic for BitTiming {
+    #[hdl_gen]
+    fn update(&mut self) {
+        dff_setup!(
+            self, clock, c_brp, c_sp, c_ntq, c_sjw, c_triple, c_valid, c_bad, pre, cnt, spw, nbw, busmon_n, sync_dis,
+            since, pending, tx_n, h1_n, h2_n, sample_r, hard_r, resync_r
+        );
+
+        // Configuration from the input fields (value - 1 encoding).
+        self.in_sp.next = (bit_cast::<5, 3>(self.prop.val()) + bit_cast::<5, 3>(self.ph1.val())) + 3;
+        self.in_ph2.next = bit_cast::<5, 3>(self.ph1.val()) + 1;
+        if self.ph1.val() == 0 {
+            self.in_ph2.next = 2.into();
+        }
+        self.in_ntq.next = self.in_sp.val() + self.in_ph2.val();
+        self.in_sjw.next = bit_cast::<5, 2>(self.sjw.val()) + 1;
+        self.in_bad.next = (self.in_ntq.val() < 8) | (bit_cast::<3, 2>(self.sjw.val()) > self.ph1.val());
+
+        // Prescaler tick.
+        self.tick.next = (self.c_valid.q.val() & !self.reset.val()) & (self.pre.q.val() == self.c_brp.q.val());
+
+        // Step 1 and 2: cnt + 1, which side of the sample point.
+        self.c1.next = self.cnt.q.val() + 1;
+        self.late.next = self.c1.val() > self.spw.q.val();
+        self.neg_mag.next = self.nbw.q.val() - self.cnt.q.val();
+        if self.cnt.q.val() < self.c_sjw.q.val() {
+            self.lengthen.next = self.cnt.q.val();
+        } else {
+            self.lengthen.next = self.c_sjw.q.val();
+        }
+
+        // Step 3: synchronisation (rx dominant, busmon recessive, sync_en).
+        self.sync_cond.next = (!self.rx.val() & !self.busmon_n.q.val()) & !self.sync_dis.q.val();
+        self.do_hard.next = self.sync_cond.val() & self.hs_en.val();
+        self.do_resync.next = self.sync_cond.val() & !self.hs_en.val();
+        self.restart.next = false;
+        self.sp_a.next = self.spw.q.val();
+        self.nb_a.next = self.nbw.q.val();
+        if self.do_hard.val() {
+            self.restart.next = self.drive.val() | self.late.val();
+        }
+        if self.do_resync.val() {
+            if self.late.val() {
+                if self.neg_mag.val() <= self.c_sjw.q.val() {
+                    self.restart.next = true;
+                } else {
+                    self.nb_a.next = self.nbw.q.val() - self.c_sjw.q.val();
+                }
+            } else if self.drive.val() & self.cnt.q.val().any() {
+                self.sp_a.next = self.spw.q.val() + self.lengthen.val();
+                self.nb_a.next = self.nbw.q.val() + self.lengthen.val();
+            }
+        }
+        self.cnt_a.next = self.c1.val();
+        if self.restart.val() {
+            self.cnt_a.next = 1.into();
+            self.sp_a.next = self.c_sp.q.val();
+            self.nb_a.next = self.c_ntq.q.val();
+        }
+
+        // Step 4: end of bit.
+        self.eob.next = self.cnt_a.val() == self.nb_a.val();
+        self.cnt_n.next = self.cnt_a.val();
+        self.sp_n.next = self.sp_a.val();
+        self.nb_n.next = self.nb_a.val();
+        if self.eob.val() {
+            self.cnt_n.next = 0.into();
+            self.sp_n.next = self.c_sp.q.val();
+            self.nb_n.next = self.c_ntq.q.val();
+        }
+
+        // Step 5: sample point.
+        self.smp.next = self.cnt_n.val() == self.sp_n.val();
+        self.sampled.next = !self.rx.val();
+        if self.c_triple.q.val() {
+            // Majority, computed on the inverted (dominant = 1) levels.
+            self.sampled.next = ((!self.rx.val() & self.h1_n.q.val()) | (!self.rx.val() & self.h2_n.q.val()))
+                | (self.h1_n.q.val() & self.h2_n.q.val());
+        }
+
+        // §2.5: transmit point, postponed to sample point + IPT.
+        self.since_inc.next = self.since.q.val() + 1;
+        if self.since.q.val() == 2 {
+            self.since_inc.next = 2.into();
+        }
+        self.fire.next = (self.restart.val() | self.eob.val() | self.pending.q.val()) & (self.since_inc.val() == 2);
+
+        // Registers.
+        if self.reset.val() {
+            self.c_brp.d.next = self.brp.val();
+            self.c_sp.d.next = self.in_sp.val();
+            self.c_ntq.d.next = self.in_ntq.val();
+            self.c_sjw.d.next = self.in_sjw.val();
+            self.c_triple.d.next = self.triple.val();
+            self.c_bad.d.next = self.in_bad.val();
+            self.c_valid.d.next = !self.in_bad.val();
+            self.pre.d.next = 0.into();
+            self.cnt.d.next = 0.into();
+            self.spw.d.next = self.in_sp.val();
+            self.nbw.d.next = self.in_ntq.val();
+            self.busmon_n.d.next = false;
+            self.sync_dis.d.next = false;
+            self.since.d.next = 2.into();
+            self.pending.d.next = false;
+            self.tx_n.d.next = false;
+            self.h1_n.d.next = false;
+            self.h2_n.d.next = false;
+            self.sample_r.d.next = false;
+            self.hard_r.d.next = false;
+            self.resync_r.d.next = false;
+        } else {
+            self.sample_r.d.next = self.tick.val() & self.smp.val();
+            self.hard_r.d.next = self.tick.val() & self.do_hard.val();
+            self.resync_r.d.next = self.tick.val() & self.do_resync.val();
+            if self.c_valid.q.val() {
+                if self.tick.val() {
+                    self.pre.d.next = 0.into();
+                } else {
+                    self.pre.d.next = self.pre.q.val() + 1;
+                }
+            }
+            if self.tick.val() {
+                self.cnt.d.next = self.cnt_n.val();
+                self.spw.d.next = self.sp_n.val();
+                self.nbw.d.next = self.nb_n.val();
+                if self.smp.val() {
+                    self.busmon_n.d.next = self.sampled.val();
+                    self.sync_dis.d.next = false;
+                    self.since.d.next = 0.into();
+                } else {
+                    self.since.d.next = self.since_inc.val();
+                    if self.sync_cond.val() {
+                        self.sync_dis.d.next = true;
+                    }
+                }
+                self.pending.d.next = (self.restart.val() | self.eob.val() | self.pending.q.val()) & !self.fire.val();
+                if self.fire.val() {
+                    self.tx_n.d.next = !self.drive.val();
+                }
+                self.h1_n.d.next = !self.rx.val();
+                self.h2_n.d.next = self.h1_n.q.val();
+            }
+        }
+
+        // Outputs.
+        self.tq.next = self.tick.val();
+        self.sample.next = self.sample_r.q.val();
+        self.busmon.next = !self.busmon_n.q.val();
+        self.bit_start.next = self.tick.val() & self.fire.val();
+        self.tx.next = !self.tx_n.q.val();
+        self.hard_sync.next = self.hard_r.q.val();
+        self.resync.next = self.resync_r.q.val();
+        self.cfg_err.next = self.c_bad.q.val();
+    }
+}
+
+impl BitTiming {
+    /// Set the configuration inputs from `cfg` (takes effect under reset).
+    pub fn set_config(&mut self, cfg: &BtlConfig) {
+        let (brp, prop, ph1, sjw) = cfg.fields();
+        self.brp.next = (brp as u64).into();
+        self.prop.next = (prop as u64).into();
+        self.ph1.next = (ph1 as u64).into();
+        self.sjw.next = (sjw as u64).into();
+        self.triple.next = cfg.triple;
+    }
+
+    /// Set every input from `i`.
+    pub fn set_inputs(&mut self, i: &BtlInputs) {
+        self.reset.next = i.reset;
+        self.brp.next = (i.brp as u64 & 31).into();
+        self.prop.next = (i.prop as u64 & 7).into();
+        self.ph1.next = (i.ph1 as u64 & 7).into();
+        self.sjw.next = (i.sjw as u64 & 3).into();
+        self.triple.next = i.triple;
+        self.rx.next = i.rx;
+        self.drive.next = i.drive;
+        self.hs_en.next = i.hs_en;
+    }
+
+    /// The current output values.
+    pub fn pins(&self) -> BtlPins {
+        BtlPins {
+            tq: self.tq.val(),
+            sample: self.sample.val(),
+            busmon: self.busmon.val(),
+            bit_start: self.bit_start.val(),
+            tx: self.tx.val(),
+            hard_sync: self.hard_sync.val(),
+            resync: self.resync.val(),
+            cfg_err: self.cfg_err.val(),
+        }
+    }
+}

@@ -1,0 +1,280 @@
+//! [`CanCore`]: the complete CAN 2.0A/B protocol controller of one node.
+//!
+//! Wiring (all on one clock, synchronous reset):
+//!
+//! ```text
+//!  rx ──► Synchroniser ──► BitTiming ──sample, busmon──► CanFsm ──► events, status
+//!                              ▲   │                        │
+//!                              │   └──► tx                  │
+//!                              └──────── drive, hs_en ◄─────┘
+//! ```
+//!
+//! - [`canstar_hdl::sync::Synchroniser`] brings RX into the clock domain
+//!   (`sync_depth` flip-flops, 2 by default).
+//! - [`canstar_hdl::btl::BitTiming`] does prescaling, segments, hard and
+//!   re-synchronisation, sampling and the transmit points (§2, §3).
+//! - [`crate::fsm::CanFsm`] is the bit-stream processor (§4–§14), which uses
+//!   the shared destuffer and CRC-15 blocks.
+//!
+//! The RX latency `L_rx` of §1.5 is `sync_depth + canstar_hdl::btl::L_RX`
+//! clocks ([`CanCore::l_rx`]).
+//!
+//! # Ports
+//!
+//! Inputs: `clock`; `reset` (synchronous; the timing fields are latched
+//! while it is high); `rx`; timing `brp`, `prop`, `ph1`, `sjw` (value − 1)
+//! and `triple`; mode bits `listen_only`, `self_test`, `single_shot`,
+//! `host_recovery` and the `recover` strobe; the transmit request `tx_req`
+//! with `tx_ide`, `tx_rtr`, `tx_id` (29 bits, standard ids in bits 10..0),
+//! `tx_dlc`, `tx_data` (byte 0 in bits 63..56) and `tx_abort`. See
+//! [`crate::fsm::CanFsm`] for the request handshake.
+//!
+//! Outputs: `tx`; 1-clock event strobes `tx_done`, `arb_lost`
+//! (+`arb_lost_pos`), `error` (+`err_kind` mask of `ERRK_*`, `err_field`,
+//! `err_pos`, `err_tx`), `rx_valid` (+`rx_ide`, `rx_rtr`, `rx_id`, `rx_dlc`,
+//! `rx_data`, held until the next delivery); status `tec`, `rec`, `state`
+//! (0 error-active, 1 error-passive, 2 bus-off), `err_warn`, `cfg_err`.
+//!
+//! Debug bundle (§15; no influence on behaviour): `dbg_busmon`, `dbg_sample`
+//! (the bit timing's sample strobe), `dbg_tx_rqst`, `dbg_field` (FIELD code,
+//! see [`crate::fsm`]; 0 = Reset while held in reset or on a configuration
+//! error), `dbg_pos`, `dbg_stuff`, `dbg_role` (1 = transmitter), `dbg_events`
+//! (event word, `EV_*` bits of [`crate::fsm`]), `dbg_runs` (completed
+//! bus-off recovery runs), `dbg_hard_sync`, `dbg_resync`.
+//!
+//! # Per-bit trace (§18)
+//!
+//! On the clock where `dbg_sample` is high, `dbg_field`/`dbg_pos`/
+//! `dbg_stuff`/`dbg_role` describe the bit being sampled, `dbg_busmon` is
+//! its sampled level and `tx` the level the node drove. On the next clock
+//! `dbg_events` (bit `EV_BIT` set) holds the bit's events and `tec`, `rec`,
+//! `state` the values after processing it.
+
+use crate::fsm::CanFsm;
+use canstar_hdl::btl::BitTiming;
+use canstar_hdl::sync::Synchroniser;
+use rust_hdl::prelude::*;
+
+/// Default depth of the RX synchroniser.
+pub const SYNC_DEPTH: usize = 2;
+
+/// The controller core (see the module documentation).
+#[derive(LogicBlock)]
+pub struct CanCore {
+    pub clock: Signal<In, Clock>,
+    pub reset: Signal<In, Bit>,
+    pub rx: Signal<In, Bit>,
+    pub brp: Signal<In, Bits<5>>,
+    pub prop: Signal<In, Bits<3>>,
+    pub ph1: Signal<In, Bits<3>>,
+    pub sjw: Signal<In, Bits<2>>,
+    pub triple: Signal<In, Bit>,
+    pub listen_only: Signal<In, Bit>,
+    pub self_test: Signal<In, Bit>,
+    pub single_shot: Signal<In, Bit>,
+    pub host_recovery: Signal<In, Bit>,
+    pub recover: Signal<In, Bit>,
+    pub tx_req: Signal<In, Bit>,
+    pub tx_ide: Signal<In, Bit>,
+    pub tx_rtr: Signal<In, Bit>,
+    pub tx_id: Signal<In, Bits<29>>,
+    pub tx_dlc: Signal<In, Bits<4>>,
+    pub tx_data: Signal<In, Bits<64>>,
+    pub tx_abort: Signal<In, Bit>,
+
+    pub tx: Signal<Out, Bit>,
+    pub tx_done: Signal<Out, Bit>,
+    pub arb_lost: Signal<Out, Bit>,
+    pub arb_lost_pos: Signal<Out, Bits<6>>,
+    pub error: Signal<Out, Bit>,
+    pub err_kind: Signal<Out, Bits<5>>,
+    pub err_field: Signal<Out, Bits<5>>,
+    pub err_pos: Signal<Out, Bits<8>>,
+    pub err_tx: Signal<Out, Bit>,
+    pub rx_valid: Signal<Out, Bit>,
+    pub rx_ide: Signal<Out, Bit>,
+    pub rx_rtr: Signal<Out, Bit>,
+    pub rx_id: Signal<Out, Bits<29>>,
+    pub rx_dlc: Signal<Out, Bits<4>>,
+    pub rx_data: Signal<Out, Bits<64>>,
+    pub tec: Signal<Out, Bits<9>>,
+    pub rec: Signal<Out, Bits<8>>,
+    pub state: Signal<Out, Bits<2>>,
+    pub err_warn: Signal<Out, Bit>,
+    pub cfg_err: Signal<Out, Bit>,
+
+    pub dbg_busmon: Signal<Out, Bit>,
+    pub dbg_sample: Signal<Out, Bit>,
+    pub dbg_tx_rqst: Signal<Out, Bit>,
+    pub dbg_field: Signal<Out, Bits<5>>,
+    pub dbg_pos: Signal<Out, Bits<8>>,
+    pub dbg_stuff: Signal<Out, Bit>,
+    pub dbg_role: Signal<Out, Bit>,
+    pub dbg_events: Signal<Out, Bits<{ crate::fsm::EV_BITS }>>,
+    pub dbg_runs: Signal<Out, Bits<8>>,
+    pub dbg_hard_sync: Signal<Out, Bit>,
+    pub dbg_resync: Signal<Out, Bit>,
+
+    sync: Synchroniser,
+    btl: BitTiming,
+    fsm: CanFsm,
+    l_hold: Signal<Local, Bit>,
+}
+
+impl CanCore {
+    /// A core with the default synchroniser depth ([`SYNC_DEPTH`]).
+    pub fn new() -> Self {
+        Self::with_sync_depth(SYNC_DEPTH)
+    }
+
+    /// A core with an RX synchroniser of `depth` (1 or 2) flip-flops.
+    pub fn with_sync_depth(depth: usize) -> Self {
+        CanCore {
+            clock: Default::default(),
+            reset: Default::default(),
+            rx: Default::default(),
+            brp: Default::default(),
+            prop: Default::default(),
+            ph1: Default::default(),
+            sjw: Default::default(),
+            triple: Default::default(),
+            listen_only: Default::default(),
+            self_test: Default::default(),
+            single_shot: Default::default(),
+            host_recovery: Default::default(),
+            recover: Default::default(),
+            tx_req: Default::default(),
+            tx_ide: Default::default(),
+            tx_rtr: Default::default(),
+            tx_id: Default::default(),
+            tx_dlc: Default::default(),
+            tx_data: Default::default(),
+            tx_abort: Default::default(),
+            tx: Default::default(),
+            tx_done: Default::default(),
+            arb_lost: Default::default(),
+            arb_lost_pos: Default::default(),
+            error: Default::default(),
+            err_kind: Default::default(),
+            err_field: Default::default(),
+            err_pos: Default::default(),
+            err_tx: Default::default(),
+            rx_valid: Default::default(),
+            rx_ide: Default::default(),
+            rx_rtr: Default::default(),
+            rx_id: Default::default(),
+            rx_dlc: Default::default(),
+            rx_data: Default::default(),
+            tec: Default::default(),
+            rec: Default::default(),
+            state: Default::default(),
+            err_warn: Default::default(),
+            cfg_err: Default::default(),
+            dbg_busmon: Default::default(),
+            dbg_sample: Default::default(),
+            dbg_tx_rqst: Default::default(),
+            dbg_field: Default::default(),
+            dbg_pos: Default::default(),
+            dbg_stuff: Default::default(),
+            dbg_role: Default::default(),
+            dbg_events: Default::default(),
+            dbg_runs: Default::default(),
+            dbg_hard_sync: Default::default(),
+            dbg_resync: Default::default(),
+            sync: Synchroniser::new(depth),
+            btl: Default::default(),
+            fsm: CanFsm::new(),
+            l_hold: Default::default(),
+        }
+    }
+
+    /// RX latency in clocks (§1.5) of a core with synchroniser depth `depth`:
+    /// from a change of `rx` to the clock on which `busmon` can show it.
+    pub fn l_rx(depth: usize) -> usize {
+        depth + canstar_hdl::btl::L_RX
+    }
+}
+
+impl Default for CanCore {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl Logic for CanCore {
+    #[hdl_gen]
+    fn update(&mut self) {
+        // The protocol logic is held in reset while the timing is rejected.
+        self.l_hold.next = self.reset.val() | self.btl.cfg_err.val();
+
+        self.sync.clock.next = self.clock.val();
+        self.sync.reset.next = self.reset.val();
+        self.sync.d.next = self.rx.val();
+
+        self.btl.clock.next = self.clock.val();
+        self.btl.reset.next = self.reset.val();
+        self.btl.brp.next = self.brp.val();
+        self.btl.prop.next = self.prop.val();
+        self.btl.ph1.next = self.ph1.val();
+        self.btl.sjw.next = self.sjw.val();
+        self.btl.triple.next = self.triple.val();
+        self.btl.rx.next = self.sync.q.val();
+        self.btl.drive.next = self.fsm.drive.val();
+        self.btl.hs_en.next = self.fsm.hs_en.val();
+
+        self.fsm.clock.next = self.clock.val();
+        self.fsm.reset.next = self.l_hold.val();
+        self.fsm.sample.next = self.btl.sample.val();
+        self.fsm.busmon.next = self.btl.busmon.val();
+        self.fsm.listen_only.next = self.listen_only.val();
+        self.fsm.self_test.next = self.self_test.val();
+        self.fsm.single_shot.next = self.single_shot.val();
+        self.fsm.host_recovery.next = self.host_recovery.val();
+        self.fsm.recover.next = self.recover.val();
+        self.fsm.tx_req.next = self.tx_req.val();
+        self.fsm.tx_ide.next = self.tx_ide.val();
+        self.fsm.tx_rtr.next = self.tx_rtr.val();
+        self.fsm.tx_id.next = self.tx_id.val();
+        self.fsm.tx_dlc.next = self.tx_dlc.val();
+        self.fsm.tx_data.next = self.tx_data.val();
+        self.fsm.tx_abort.next = self.tx_abort.val();
+
+        self.tx.next = self.btl.tx.val();
+        self.tx_done.next = self.fsm.tx_done.val();
+        self.arb_lost.next = self.fsm.arb_lost.val();
+        self.arb_lost_pos.next = self.fsm.arb_lost_pos.val();
+        self.error.next = self.fsm.error.val();
+        self.err_kind.next = self.fsm.err_kind.val();
+        self.err_field.next = self.fsm.err_field.val();
+        self.err_pos.next = self.fsm.err_pos.val();
+        self.err_tx.next = self.fsm.err_tx.val();
+        self.rx_valid.next = self.fsm.rx_valid.val();
+        self.rx_ide.next = self.fsm.rx_ide.val();
+        self.rx_rtr.next = self.fsm.rx_rtr.val();
+        self.rx_id.next = self.fsm.rx_id.val();
+        self.rx_dlc.next = self.fsm.rx_dlc.val();
+        self.rx_data.next = self.fsm.rx_data.val();
+        self.tec.next = self.fsm.tec.val();
+        self.rec.next = self.fsm.rec.val();
+        self.state.next = self.fsm.state.val();
+        self.err_warn.next = self.fsm.err_warn.val();
+        self.cfg_err.next = self.btl.cfg_err.val();
+
+        self.dbg_busmon.next = self.btl.busmon.val();
+        self.dbg_sample.next = self.btl.sample.val();
+        self.dbg_tx_rqst.next = self.fsm.tx_rqst.val();
+        self.dbg_field.next = self.fsm.field.val();
+        if self.l_hold.val() {
+            self.dbg_field.next = 0.into();
+        }
+        self.dbg_pos.next = self.fsm.pos.val();
+        self.dbg_stuff.next = self.fsm.stuff.val();
+        self.dbg_role.next = self.fsm.role.val();
+        self.dbg_events.next = self.fsm.events.val();
+        self.dbg_runs.next = self.fsm.runs.val();
+        self.dbg_hard_sync.next = self.btl.hard_sync.val();
+        self.dbg_resync.next = self.btl.resync.val();
+    }
+}
+
+canstar_hdl::impl_clocked!(CanCore);

@@ -1,0 +1,695 @@
+//! Arbitration, error detection, error signalling and fault confinement on
+//! the bit-level harness (CanFsm only). Expected values from can-protocol.md
+//! §7–§14 and conformance-tests.md.
+mod common;
+use canstar_controller::frame::Frame;
+use canstar_controller::fsm::*;
+use common::*;
+
+fn good_exchange(b: &mut Bus, tx: usize, f: &Frame) {
+    b.request(tx, f);
+    b.run_until(400, |b| b.nodes[tx].tx_done.val());
+    b.withdraw(tx);
+    b.run_idle(60);
+}
+
+#[test]
+fn arbitration_three_nodes_ext_vs_std_same_base() {
+    let mut b = Bus::integrated(3);
+    let base = 0x2A5;
+    let f_std_data = Frame::std(base, &[1]);
+    let f_ext = Frame::ext((base << 18) | 0x1234, &[2]);
+    let f_std_remote = Frame::remote(false, base, 1);
+    b.request(0, &f_ext);
+    b.request(1, &f_std_remote);
+    b.request(2, &f_std_data);
+    let start = b.bit;
+    // all three start in the same bit; the standard data frame wins at RTR/SRR
+    b.run_until(2000, |b| b.rx[1].len() + b.rx[0].len() + b.rx[2].len() >= 6);
+    for i in 0..3 {
+        b.withdraw(i);
+    }
+    b.run_idle(100);
+    // delivery order at node 0: std data (node 2), std remote (node 1)
+    assert_eq!(b.rx[0], vec![f_std_data.clone(), f_std_remote.clone()]);
+    assert_eq!(b.rx[1], vec![f_std_data.clone(), f_ext.clone()]);
+    assert_eq!(b.rx[2], vec![f_std_remote.clone(), f_ext.clone()]);
+    // node 0 (ext) loses at SRR (bit 12) against the dominant RTR of node 2
+    let l0 = b.events(0, EV_ARB_LOST, start);
+    assert_eq!(l0[0].field, Field::Srr);
+    // node 1 (std remote) loses at RTR against the data frame
+    let l1 = b.events(1, EV_ARB_LOST, start);
+    assert_eq!(l1[0].field, Field::Rtr);
+    // second round: node 0 (ext) loses at IDE against node 1 (std remote)
+    assert_eq!(l0[1].field, Field::Ide);
+    for i in 0..3 {
+        assert_eq!((b.tec(i), b.rec(i)), (0, 0));
+        assert!(b.events(i, EV_BIT_ERR, start).is_empty() && b.events(i, EV_STUFF_ERR, start).is_empty());
+    }
+}
+
+#[test]
+fn arbitration_on_identifier_bits() {
+    let mut b = Bus::integrated(3);
+    // 0x100 vs 0x0C0 vs 0x080: node 2 (0x080) wins; node 0 loses at ID 3 (bit 8),
+    // node 1 at ID 5 (bit 6)
+    b.request(0, &Frame::std(0x100, &[]));
+    b.request(1, &Frame::std(0x0C0, &[]));
+    b.request(2, &Frame::std(0x080, &[]));
+    let start = b.bit;
+    b.run_until(1000, |b| b.rx[2].len() == 2);
+    let l0 = b.events(0, EV_ARB_LOST, start);
+    assert!(l0[0].is(Field::Ident, 3), "{:?}", l0[0]);
+    let l1 = b.events(1, EV_ARB_LOST, start);
+    assert!(l1[0].is(Field::Ident, 5), "{:?}", l1[0]);
+    // the loser drives recessive from the next bit on (its read-back matches the winner)
+    let k = l0[0].bit + 1;
+    assert!(b.log[0][k].drv);
+    assert_eq!(b.nodes[1].arb_lost_pos.val().index(), 5);
+    assert_eq!(b.rx[0].first().unwrap().id, 0x080);
+    assert_eq!(b.rx[2], vec![Frame::std(0x0C0, &[]), Frame::std(0x100, &[])]);
+}
+
+#[test]
+fn ack_error_alone_on_the_bus_then_passive_exception_1() {
+    let mut b = Bus::integrated(1);
+    b.request(0, &Frame::std(0x123, &[0xAA]));
+    let mut tecs = vec![];
+    for _ in 0..18 {
+        let s = b.bit;
+        b.run_until(400, |b| b.nodes[0].error.val());
+        let r = b.last(0).clone();
+        assert!(r.has(EV_ACK_ERR) && r.is(Field::AckSlot, 1), "{r:?}");
+        tecs.push(r.tec);
+        if r.tec < 128 || tecs.len() < 17 {
+            assert!(r.has(if tecs.len() <= 16 { EV_AEF } else { EV_PEF }), "{r:?}");
+        }
+        let _ = s;
+    }
+    let expect: Vec<u64> = (1..=16).map(|k| 8 * k).chain([128, 128]).collect();
+    assert_eq!(tecs, expect);
+    // the passive flag without dominant bits applies exception 1, and a suspend
+    // precedes the retry
+    let s = b.bit;
+    b.run_until(400, |b| b.nodes[0].error.val());
+    assert!(!b.events(0, EV_EXC1, s).is_empty());
+    assert!(b.log[0][s..].iter().any(|r| r.field == Field::Suspend && r.pos == 8));
+    assert_eq!(b.tec(0), 128);
+    assert_eq!(b.state(0), 1);
+}
+
+#[test]
+fn self_test_mode_needs_no_ack() {
+    let mut b = Bus::integrated(1);
+    b.nodes[0].self_test.next = true;
+    b.request(0, &Frame::ext(0x1ABCDEF, &[1, 2, 3]));
+    b.run_until(400, |b| b.nodes[0].tx_done.val());
+    assert_eq!(b.tec(0), 0);
+}
+
+#[test]
+fn bit_error_on_tx_at_various_fields() {
+    // (field, pos, forced level, frame) with the transmitted level opposite to the force
+    let f = Frame::std(0x0F5, &[0x81, 0x7E]);
+    let cases: Vec<(Field, u8, Ovr)> = vec![
+        (Field::Sof, 1, Ovr::StuckR),
+        (Field::Ident, 1, Ovr::StuckR),     // ID bit 10 of 0x0F5 is 0
+        (Field::Rtr, 1, Ovr::StuckR),       // data frame: RTR dominant
+        (Field::Ide, 1, Ovr::StuckR),
+        (Field::Resv, 1, Ovr::StuckR),
+        (Field::Dlc, 3, Ovr::StuckD),       // DLC 2 = 0010: bit 3 recessive
+        (Field::Data, 1, Ovr::StuckD),      // 0x81 MSB recessive
+        (Field::Data, 2, Ovr::StuckR),
+        (Field::Crc, 15, Ovr::Invert),
+    ];
+    for (field, pos, o) in cases {
+        let mut b = Bus::integrated(2);
+        b.request(0, &f);
+        b.force_at(0, field, pos, o, 1);
+        let r = b.last(0).clone();
+        assert!(r.has(EV_BIT_ERR) && r.has(EV_AEF), "{field:?} {pos}: {r:?}");
+        assert!(r.is(field, pos), "{r:?}");
+        assert_eq!(r.tec, 8, "{field:?}");
+        // the active flag follows
+        b.step();
+        assert_eq!(b.last(0).field, Field::ActFlag);
+        assert!(!b.last(0).drv);
+        b.withdraw(0);
+        b.run_idle(100);
+        // the receiver saw an error in the flag (stuff or form): REC 1
+        assert_eq!(b.rec(1), 1, "{field:?}");
+    }
+}
+
+#[test]
+fn stuff_error_at_receiver_gives_plus_9() {
+    let mut b = Bus::integrated(2);
+    // SOF and ID 1..4 dominant: an R stuff bit follows ID 4
+    let f = Frame::std(0x012, &[0x55]);
+    b.request(1, &f);
+    b.run_to_stuff(0, Field::Ident, 4, 100);
+    let s = b.bit;
+    b.force_bit(0, Ovr::StuckD);
+    let r = b.last(0).clone();
+    assert!(r.has(EV_STUFF_ERR) && r.stuff && r.has(EV_AEF), "{r:?}");
+    assert_eq!(r.rec, 1);
+    b.run_until(50, |b| b.field(0) == Field::ErrDel);
+    assert_eq!(b.rec(0), 9);
+    // the transmitter reads the flag as a dominant bit where it sends a
+    // recessive identifier bit (ID 7 of 0x012): it loses arbitration, then
+    // sees a stuff error as a receiver
+    assert!(!b.events(1, EV_ARB_LOST, s).is_empty());
+    assert_eq!((b.tec(1), b.rec(1)), (0, 1));
+    // after the successful retry REC decrements
+    b.run_until(400, |b| b.nodes[1].tx_done.val());
+    b.withdraw(1);
+    b.run_idle(50);
+    assert_eq!((b.tec(1), b.rec(0), b.rec(1)), (0, 8, 1));
+    assert_eq!(b.rx[0], vec![f]);
+}
+
+#[test]
+fn stuff_error_in_arbitration_exception_2_and_outside() {
+    // stufferr_2: R stuff bit after ID 4 (SOF, ID 1..4 dominant), forced D at both nodes
+    let mut b = Bus::integrated(2);
+    b.request(0, &Frame::std(0x01F, &[]));
+    b.run_to_stuff(0, Field::Ident, 4, 100);
+    b.ovr = vec![Ovr::StuckD, Ovr::StuckD];
+    b.step();
+    b.ovr = vec![Ovr::None, Ovr::None];
+    let r = b.last(0).clone();
+    assert!(r.has(EV_STUFF_ERR) && r.has(EV_EXC2), "{r:?}");
+    assert_eq!(r.tec, 0);
+    assert_eq!(b.last(1).rec, 1);
+    b.withdraw(0);
+    b.run_idle(100);
+    assert_eq!((b.tec(0), b.rec(1)), (0, 1));
+    // stufferr_3: R stuff bit after the RTR of an extended frame: +8
+    let mut b = Bus::integrated(2);
+    // extension ending in 1111 + RTR 0 ... choose ext id with last 4 bits 0 and data RTR 0 -> 5 D bits end at RTR
+    let f = Frame::ext(0x0AAAAAB0, &[]);
+    b.request(0, &f);
+    b.run_to_stuff(0, Field::Rtr, 1, 200);
+    b.ovr = vec![Ovr::StuckD, Ovr::StuckD];
+    b.step();
+    b.ovr = vec![Ovr::None, Ovr::None];
+    let r = b.last(0).clone();
+    assert!(r.has(EV_STUFF_ERR) && !r.has(EV_EXC2), "{r:?}");
+    assert_eq!(r.tec, 8);
+}
+
+#[test]
+fn error_passive_flags_and_suspend() {
+    let mut b = Bus::integrated(2);
+    let f = Frame::std(0x555, &[0x11]);
+    b.request(0, &f);
+    // 16 bit errors at SOF: TEC 128, error-passive
+    for k in 1..=16 {
+        b.force_at(0, Field::Sof, 1, Ovr::StuckR, 1);
+        let r = b.last(0).clone();
+        assert_eq!(r.tec, 8 * k);
+        assert!(r.has(EV_AEF), "the error that makes the node passive is still signalled actively");
+    }
+    assert_eq!(b.state(0), 1);
+    b.force_at(0, Field::Sof, 1, Ovr::StuckR, 1);
+    let s = b.bit;
+    let r = b.last(0).clone();
+    assert!(r.has(EV_PEF) && r.tec == 136, "{r:?}");
+    // passive flag: node drives recessive; the other node sees nothing wrong
+    b.step();
+    assert_eq!(b.last(0).field, Field::PasFlag);
+    assert!(b.last(0).drv);
+    // before the retry: intermission then 8 bits of suspend transmission
+    b.run_until(100, |b| b.field(0) == Field::Sof);
+    let susp: Vec<u8> = b.log[0][s..].iter().filter(|r| r.field == Field::Suspend).map(|r| r.pos).collect();
+    assert_eq!(susp, (1..=8).collect::<Vec<u8>>());
+    // the retry succeeds: TEC 135, still passive, suspend again after it
+    b.run_until(400, |b| b.nodes[0].tx_done.val());
+    assert_eq!(b.tec(0), 135);
+    b.withdraw(0);
+    b.run_idle(50);
+    assert!(b.log[0].iter().rev().take(20).any(|r| r.field == Field::Suspend));
+    // the receiver got the frame (it also took the passive node's SOF errors: the
+    // bus showed the SOF dominant, then the node's flag)
+    assert_eq!(b.rx[1].last(), Some(&f));
+}
+
+#[test]
+fn error_warning_at_96() {
+    let mut b = Bus::integrated(2);
+    b.request(0, &Frame::std(0x555, &[]));
+    for k in 1..=12 {
+        b.force_at(0, Field::Sof, 1, Ovr::StuckR, 1);
+        assert_eq!(b.nodes[0].err_warn.val(), k >= 12, "tec {}", b.tec(0));
+    }
+}
+
+#[test]
+fn bus_off_and_automatic_recovery() {
+    let mut b = Bus::integrated(1);
+    b.request(0, &Frame::std(0x321, &[]));
+    b.ovr[0] = Ovr::StuckR;
+    b.run_until(20_000, |b| b.state(0) == 2);
+    assert!(b.tec(0) > 255);
+    assert_eq!(b.field(0), Field::BusOff);
+    let entry = b.bit;
+    b.withdraw(0);
+    b.ovr[0] = Ovr::None;
+    // a dominant bit at run bit 9 restarts the run
+    b.run(8);
+    b.force_bit(0, Ovr::StuckD);
+    assert_eq!(b.nodes[0].runs.val().index(), 0);
+    b.run_until(128 * 11 + 20, |b| b.state(0) == 0);
+    let r = b.last(0).clone();
+    assert!(r.has(EV_RECOVERED));
+    assert_eq!(r.bit - entry + 1, 128 * 11 + 9, "128 runs of 11 after the 9 bits of the broken run");
+    assert_eq!((b.tec(0), b.rec(0)), (0, 0));
+    b.step();
+    assert_eq!(b.field(0), Field::Idle);
+    // TX recessive throughout bus-off
+    assert!(b.log[0][entry..].iter().all(|r| r.drv));
+}
+
+#[test]
+fn bus_off_host_started_recovery() {
+    let mut b = Bus::integrated(1);
+    b.nodes[0].host_recovery.next = true;
+    b.request(0, &Frame::std(0x321, &[]));
+    b.ovr[0] = Ovr::StuckR;
+    b.run_until(20_000, |b| b.state(0) == 2);
+    b.ovr[0] = Ovr::None;
+    b.withdraw(0);
+    b.run(3000);
+    assert_eq!(b.state(0), 2, "no recovery without the host");
+    b.nodes[0].recover.next = true;
+    b.step();
+    b.nodes[0].recover.next = false;
+    b.run_until(128 * 11 + 30, |b| b.state(0) == 0);
+}
+
+#[test]
+fn overload_on_dominant_intermission_bits() {
+    for pos in [1u8, 2] {
+        let mut b = Bus::integrated(2);
+        good_exchange(&mut b, 1, &Frame::std(0x100, &[1]));
+        b.request(1, &Frame::std(0x101, &[2]));
+        b.run_until(400, |b| b.nodes[1].tx_done.val());
+        b.withdraw(1);
+        let s = b.bit;
+        b.force_at(0, Field::Inter, pos, Ovr::StuckD, 1);
+        let r = b.last(0).clone();
+
+        assert!(r.has(EV_OVL) && r.has(EV_OLF), "{r:?}");
+        b.step();
+        assert_eq!(b.last(0).field, Field::OvlFlag);
+        b.run_idle(60);
+        if pos == 1 {
+            // node 1 answers with its own overload flag; no counter changes
+            assert!(b.log[1][s..].iter().any(|r| r.has(EV_OLF)));
+            assert_eq!((b.tec(1), b.rec(0), b.tec(0), b.rec(1)), (0, 0, 0, 0));
+        } else {
+            // node 0's flag starts in node 1's third intermission bit: a SOF
+            // for node 1, which then sees a stuff error; node 0 tolerates
+            // the dominant bits after its overload flag
+            assert!(b.log[1][s..].iter().any(|r| r.has(EV_SOF) && r.field == Field::Inter));
+            assert_eq!((b.rec(1), b.rec(0), b.tec(0)), (1, 0, 0));
+        }
+    }
+}
+
+#[test]
+fn receiver_last_eof_bit_rule_and_transmitter_eof7() {
+    // receiver: D at EOF 7 -> frame delivered, REC unchanged, overload
+    let mut b = Bus::integrated(2);
+    good_exchange(&mut b, 1, &Frame::std(0x100, &[1]));
+    assert_eq!(b.rx[0].len(), 1);
+    let f = Frame::std(0x200, &[9, 8]);
+    b.request(1, &Frame::std(0x7F0, &[]));
+    b.run_until(400, |b| b.nodes[1].tx_done.val());
+    b.withdraw(1);
+    b.run_idle(60);
+    b.request(1, &f);
+    b.force_at(0, Field::Eof, 7, Ovr::StuckD, 1);
+    let r = b.last(0).clone();
+    assert!(r.has(EV_RX_OK) && r.has(EV_OVL) && r.has(EV_OLF), "{r:?}");
+    assert_eq!(b.rx[0].last(), Some(&f));
+    b.withdraw(1);
+    b.run_idle(60);
+    assert_eq!((b.rec(0), b.tec(1)), (0, 0));
+    // transmitter: D at EOF 7 is a form error, +8, retransmission; the receiver
+    // delivers the frame twice
+    let mut b = Bus::integrated(2);
+    let f = Frame::std(0x300, &[7]);
+    b.request(0, &f);
+    b.force_at(0, Field::Eof, 7, Ovr::StuckD, 1);
+    let r = b.last(0).clone();
+    assert!(r.has(EV_FORM_ERR) && r.has(EV_AEF) && r.tec == 8, "{r:?}");
+    b.run_until(400, |b| b.nodes[0].tx_done.val());
+    b.withdraw(0);
+    b.run_idle(60);
+    assert_eq!(b.rx[1], vec![f.clone(), f]);
+    assert_eq!(b.tec(0), 7);
+}
+
+#[test]
+fn ack_slot_bit_error_at_receiver_gives_plus_9() {
+    let mut b = Bus::integrated(2);
+    b.request(1, &Frame::std(0x155, &[0xC3]));
+    b.force_at(0, Field::AckSlot, 1, Ovr::StuckR, 1);
+    let r = b.last(0).clone();
+    assert!(r.has(EV_BIT_ERR) && r.rec == 1, "{r:?}");
+    b.run_until(40, |b| b.field(0) == Field::ErrDel);
+    assert_eq!(b.rec(0), 9);
+    // the transmitter saw a form error at ACK_Delimiter
+    assert!(b.log[1].iter().any(|r| r.has(EV_FORM_ERR) && r.is(Field::AckDel, 1)));
+    assert_eq!(b.tec(1), 8);
+}
+
+#[test]
+fn crc_error_signalled_after_ack_delimiter() {
+    let mut b = Bus::integrated(3);
+    // a frame with a recessive CRC bit whose flip does not touch stuffing
+    let (f, bits, k) = (0..64u8)
+        .find_map(|d| {
+            let f = Frame::std(0x3C5, &[0x12, d]);
+            let bits = canstar_controller::frame::bus_bits(&f, Default::default(), true);
+            let k = (1..bits.len() - 1).find(|&k| {
+            let left = bits[..k].iter().rev().take_while(|b| !b.level).count();
+            let right = bits[k + 1..].iter().take_while(|b| !b.level && b.field == Field::Crc).count();
+            bits[k].field == Field::Crc
+                && !bits[k].stuff
+                && bits[k].level
+                && !bits[k - 1].level
+                && !bits[k + 1].level
+                && left + right < 4
+            })?;
+            Some((f, bits, k))
+        })
+        .expect("suitable CRC bit");
+    b.request(1, &f);
+    b.force_at(0, Field::Crc, bits[k].pos, Ovr::StuckD, 1);
+    b.run_until(20, |b| b.nodes[0].error.val());
+    let r = b.last(0).clone();
+    assert!(r.has(EV_CRC_ERR) && r.is(Field::AckDel, 1), "{r:?}");
+    // node 0 sent no ACK
+    assert!(b.log[0].iter().rev().find(|r| r.field == Field::AckSlot).unwrap().drv);
+    b.run_until(40, |b| b.field(0) == Field::ErrDel);
+    // the other nodes see node 0's flag at End_Of_Frame 1 (form error) and
+    // flag one bit later: +1 and +8 for node 0
+    assert_eq!(b.rec(0), 9);
+    for i in 1..3 {
+        assert!(b.log[i].iter().any(|r| r.has(EV_FORM_ERR) && r.is(Field::Eof, 1)));
+    }
+    b.run_until(400, |b| b.nodes[1].tx_done.val());
+    b.withdraw(1);
+    b.run_idle(50);
+    assert_eq!(b.rx[0], vec![f.clone()]);
+    assert_eq!(b.rx[2], vec![f]);
+}
+
+#[test]
+fn form_error_at_crc_delimiter_and_dominant_bits_after_flag() {
+    let mut b = Bus::integrated(2);
+    b.request(1, &Frame::std(0x0AA, &[]));
+    b.force_at(0, Field::CrcDel, 1, Ovr::StuckD, 1);
+    assert!(b.last(0).has(EV_FORM_ERR));
+    b.run_until(40, |b| b.field(0) == Field::ErrDel);
+    assert_eq!(b.rec(0), 9);
+    b.withdraw(1);
+    b.run_idle(60);
+    // 16 dominant bits after an active error flag of a receiver: +8 (first), +8 (8th), +8 (16th)
+    b.request(1, &Frame::std(0x0AA, &[]));
+    b.force_at(0, Field::CrcDel, 1, Ovr::StuckD, 1);
+    let r0 = b.rec(0);
+    assert_eq!(r0, 10);
+    b.run_until(20, |b| b.field(0) == Field::ActFlag && b.nodes[0].pos.val().index() == 7);
+    b.ovr[0] = Ovr::StuckD;
+    b.run(16);
+    b.ovr[0] = Ovr::None;
+    assert_eq!(b.rec(0), r0 + 24);
+    let dafs = b.log[0].iter().rev().take(20).filter(|r| r.has(EV_DAF)).count();
+    assert_eq!(dafs, 16);
+}
+
+#[test]
+fn dominant_third_intermission_bit_is_sof_for_pending_transmitter() {
+    let mut b = Bus::integrated(2);
+    good_exchange(&mut b, 1, &Frame::std(0x100, &[1]));
+    b.request(1, &Frame::std(0x101, &[2]));
+    b.run_until(400, |b| b.nodes[1].tx_done.val());
+    b.withdraw(1);
+    let f = Frame::std(0x555, &[0x5A]);
+    b.request(0, &f);
+    b.run_to(0, Field::Inter, 3, 20);
+    b.ovr = vec![Ovr::StuckD, Ovr::StuckD];
+    b.step();
+    b.ovr = vec![Ovr::None, Ovr::None];
+    assert!(b.last(0).has(EV_SOF) && b.last(1).has(EV_SOF));
+    b.step();
+    // node 0 continues with Identifier 1 as transmitter, without its own SOF
+    assert!(b.last(0).is(Field::Ident, 1) && b.last(0).role_tx);
+    b.run_until(300, |b| b.nodes[0].tx_done.val());
+    b.withdraw(0);
+    b.run_idle(50);
+    assert_eq!(b.rx[1].last(), Some(&f));
+}
+
+#[test]
+fn integration_needs_11_recessive_bits() {
+    let mut b = Bus::new(1);
+    b.run(9);
+    b.force_bit(0, Ovr::StuckD); // D at Wait_For_Bus_Idle 9 (after the reset bit)
+    b.run(10);
+    assert_eq!(b.field(0), Field::WaitIdle);
+    b.step();
+    assert_eq!(b.field(0), Field::Idle);
+    assert!(b.last(0).has(EV_INTEGRATED));
+}
+
+#[test]
+fn single_shot_does_not_retry() {
+    let mut b = Bus::integrated(1);
+    b.nodes[0].single_shot.next = true;
+    b.request(0, &Frame::std(0x123, &[]));
+    b.run(300);
+    let sofs = b.log[0].iter().filter(|r| r.has(EV_SOF)).count();
+    assert_eq!(sofs, 1);
+    assert_eq!(b.tec(0), 8);
+}
+
+#[test]
+fn bit_errors_in_active_flag_restart_it_plus_8_each() {
+    // biterror_tx_2 / rx_1: bit error, then R at flag bit 1: +8 +8
+    let mut b = Bus::integrated(2);
+    b.request(0, &Frame::std(0x0F5, &[0x81]));
+    b.force_at(0, Field::Resv, 1, Ovr::StuckR, 1);
+    assert_eq!(b.tec(0), 8);
+    b.force_at(0, Field::ActFlag, 1, Ovr::StuckR, 1);
+    let r = b.last(0).clone();
+    assert!(r.has(EV_BIT_ERR) && r.has(EV_AEF) && r.is(Field::ActFlag, 1), "{r:?}");
+    assert_eq!(r.tec, 16);
+    b.force_at(0, Field::ActFlag, 6, Ovr::StuckR, 1);
+    assert_eq!(b.tec(0), 24);
+    b.step();
+    assert!(b.last(0).is(Field::ActFlag, 1));
+    // receiver: ACK bit error then a bit error at flag bit 1: +1 +8
+    let mut b = Bus::integrated(2);
+    b.request(1, &Frame::std(0x0F5, &[0x81]));
+    b.force_at(0, Field::AckSlot, 1, Ovr::StuckR, 1);
+    b.force_at(0, Field::ActFlag, 1, Ovr::StuckR, 1);
+    assert_eq!(b.rec(0), 9);
+}
+
+#[test]
+fn flag_restart_after_becoming_passive_is_passive() {
+    // biterror_tx_12: R for 3 bits inside an active flag with TEC 104..111;
+    // the last error makes the node passive, the flag it starts is still active
+    let mut b = Bus::integrated(2);
+    b.request(0, &Frame::std(0x0F5, &[]));
+    for _ in 0..13 {
+        b.force_at(0, Field::Sof, 1, Ovr::StuckR, 1);
+    }
+    assert_eq!(b.tec(0), 104);
+    b.run_to(0, Field::ActFlag, 2, 10);
+    b.ovr[0] = Ovr::StuckR;
+    b.run(3);
+    b.ovr[0] = Ovr::None;
+    let r = b.last(0).clone();
+    assert_eq!(r.tec, 128);
+    assert!(r.has(EV_AEF), "rule 9: typed from the state before the increment");
+    b.step();
+    assert_eq!(b.last(0).field, Field::ActFlag);
+    // a further bit error in that flag restarts it as a passive flag (C14)
+    b.force_bit(0, Ovr::StuckR);
+    let r = b.last(0).clone();
+    assert!(r.has(EV_PEF) && r.tec == 136, "{r:?}");
+}
+
+#[test]
+fn passive_flag_dominant_bits_restart_the_count() {
+    // alone on the bus: ACK errors make the node passive, then a bit error at SOF
+    let mut b = Bus::integrated(1);
+    b.request(0, &Frame::std(0x0F5, &[]));
+    b.run_until(10_000, |b| b.state(0) == 1);
+    b.force_at(0, Field::Sof, 1, Ovr::StuckR, 1);
+    assert!(b.last(0).has(EV_PEF));
+    let t = b.tec(0);
+    // D at PEF bit 3: equal-bit count restarts, no counter change
+    b.force_at(0, Field::PasFlag, 3, Ovr::StuckD, 1);
+    b.run_until(20, |b| b.field(0) != Field::PasFlag);
+    // flag bits: 1,2 R; 3 D; 4..9 R (6 equal); position 10 is the first R
+    // after the flag (Error_Delimiter position 1, still counted under the flag)
+    let flag: Vec<u8> = b.log[0].iter().rev().take(14).filter(|r| r.field == Field::PasFlag).map(|r| r.pos).collect();
+    assert_eq!(flag.len(), 10, "{flag:?}");
+    assert_eq!(b.field(0), Field::ErrDel);
+    assert_eq!(b.nodes[0].pos.val().index(), 2);
+    assert_eq!(b.tec(0), t);
+}
+
+#[test]
+fn exception_1_not_met_adds_8_once() {
+    // crc_tx_7: passive ACK error, D at PEF bit 2 -> +8 at that bit
+    let mut b = Bus::integrated(1);
+    b.request(0, &Frame::std(0x0F5, &[]));
+    b.run_until(10_000, |b| b.state(0) == 1);
+    assert_eq!(b.tec(0), 128);
+    b.run_until(400, |b| b.nodes[0].error.val());
+    assert!(b.last(0).has(EV_ACK_ERR) && b.last(0).has(EV_PEF));
+    assert_eq!(b.tec(0), 128);
+    b.step();
+    b.force_bit(0, Ovr::StuckD); // PEF bit 2
+    assert_eq!(b.tec(0), 136);
+    b.force_bit(0, Ovr::StuckD); // no second +8
+    assert_eq!(b.tec(0), 136);
+    // transmitter: 8th consecutive dominant bit after its flag +8, no first-bit rule
+    b.run_until(30, |b| b.field(0) == Field::PasFlag && b.nodes[0].pos.val().index() > 8 && b.log[0].last().unwrap().smp);
+    b.run_until(30, |b| b.field(0) != Field::PasFlag);
+    assert_eq!(b.tec(0), 136);
+}
+
+#[test]
+fn receiver_passive_rec_saturates_and_returns_to_127() {
+    let mut b = Bus::integrated(2);
+    // CRC-delimiter form errors: +9 each -> 15 of them give 135 -> passive
+    b.request(1, &Frame::std(0x0AA, &[]));
+    for k in 1..=15 {
+        b.force_at(0, Field::CrcDel, 1, Ovr::StuckD, 1);
+        b.run_until(40, |b| b.field(0) == Field::ErrDel);
+        assert_eq!(b.rec(0), 9 * k);
+    }
+    b.withdraw(1);
+    b.run_idle(60);
+    let r = b.rec(0);
+    assert_eq!(r, 135);
+    assert_eq!(b.state(0), 1);
+    // more errors: no further growth beyond saturation
+    b.request(1, &Frame::std(0x0AA, &[]));
+    b.force_at(0, Field::CrcDel, 1, Ovr::StuckD, 1);
+    b.run_until(40, |b| b.field(0) == Field::ErrDel);
+    assert_eq!(b.rec(0), r);
+    // the retry is received: REC 127, error-active again
+    b.run_until(300, |b| b.nodes[1].tx_done.val());
+    b.withdraw(1);
+    b.run_idle(60);
+    assert_eq!(b.rec(0), 127);
+    assert_eq!(b.state(0), 0);
+}
+
+#[test]
+fn bus_off_mid_flag_stops_driving() {
+    let mut b = Bus::integrated(2);
+    b.request(0, &Frame::std(0x0F5, &[]));
+    for _ in 0..31 {
+        b.force_at(0, Field::Sof, 1, Ovr::StuckR, 1);
+    }
+    assert_eq!(b.tec(0), 248);
+    b.force_at(0, Field::Sof, 1, Ovr::StuckR, 1);
+    assert_eq!(b.tec(0), 256);
+    b.step();
+    assert_eq!(b.last(0).field, Field::BusOff);
+    assert!(b.last(0).drv);
+    assert_eq!(b.state(0), 2);
+}
+
+#[test]
+fn listen_only_node_receives_silently() {
+    let mut b = Bus::integrated(3);
+    b.nodes[2].listen_only.next = true;
+    let f = Frame::ext(0x1555AAA, &[1, 2, 3, 4]);
+    good_exchange(&mut b, 0, &f);
+    assert_eq!(b.rx[2], vec![f.clone()]);
+    assert!(b.log[2].iter().all(|r| r.drv), "a listen-only node never drives dominant");
+    // an error seen only by the listen-only node: passive flag, counters frozen
+    b.request(0, &f);
+    b.force_at(2, Field::CrcDel, 1, Ovr::StuckD, 1);
+    assert!(b.last(2).has(EV_FORM_ERR) && b.last(2).has(EV_PEF));
+    b.run_until(400, |b| b.nodes[0].tx_done.val());
+    b.withdraw(0);
+    b.run_idle(60);
+    assert_eq!((b.rec(2), b.tec(2)), (0, 0));
+    assert!(b.log[2].iter().all(|r| r.drv));
+    assert_eq!(b.rx[1].len(), 2);
+    // no transmission while listening only
+    b.request(2, &Frame::std(0x001, &[]));
+    b.run(300);
+    assert!(b.log[2].iter().all(|r| r.drv));
+    assert!(b.rx[0].is_empty());
+}
+
+#[test]
+fn arbitration_lost_in_extension_and_at_extended_rtr() {
+    let mut b = Bus::integrated(2);
+    // same base, extension differs first at Ex_Identifier 5 (bit 13)
+    let e0 = (0x155 << 18) | 0x3_0000 | (1 << 13);
+    let e1 = (0x155 << 18) | 0x3_0000;
+    b.request(0, &Frame::ext(e0, &[]));
+    b.request(1, &Frame::ext(e1, &[]));
+    b.run_until(400, |b| b.nodes[1].tx_done.val());
+    b.withdraw(1);
+    let l = b.events(0, EV_ARB_LOST, 0);
+    assert!(l[0].is(Field::ExIdent, 5), "{:?}", l[0]);
+    assert_eq!(b.nodes[0].arb_lost_pos.val().index(), 13 + 5);
+    b.run_until(400, |b| b.nodes[0].tx_done.val());
+    b.withdraw(0);
+    b.run_idle(50);
+    // extended remote vs extended data, same id: loss at the extended RTR
+    b.request(0, &Frame::remote(true, e1, 2));
+    b.request(1, &Frame::ext(e1, &[1, 2]));
+    b.run_until(400, |b| b.nodes[1].tx_done.val());
+    b.withdraw(1);
+    let l = b.events(0, EV_ARB_LOST, 0);
+    assert!(l[1].is(Field::Rtr, 1), "{:?}", l[1]);
+    assert_eq!(b.nodes[0].arb_lost_pos.val().index(), 32);
+    b.run_until(400, |b| b.nodes[0].tx_done.val());
+    assert_eq!(b.rx[1], vec![Frame::ext(e0, &[]), Frame::remote(true, e1, 2)]);
+    assert_eq!((b.tec(0), b.rec(0), b.tec(1), b.rec(1)), (0, 0, 0, 0));
+}
+
+#[test]
+fn dominant_srr_and_recessive_reserved_bits_are_accepted() {
+    use canstar_controller::frame::{bus_bits, BuildOptions};
+    // a scripted transmitter: node 0 reads the script through its override
+    let cases = [
+        (Frame::ext(0x0A40A5A5, &[0x12]), BuildOptions { srr: false, r1: false, r0: false }),
+        (Frame::ext(0x0A42A5A5, &[]), BuildOptions { srr: false, r1: true, r0: true }),
+        (Frame::ext(0x1234567, &[1, 2, 3]), BuildOptions { srr: true, r1: true, r0: false }),
+        (Frame::std(0x28F, &[5]), BuildOptions { srr: true, r1: false, r0: true }),
+        (Frame::remote(false, 0x290, 3), BuildOptions { srr: true, r1: false, r0: true }),
+    ];
+    let mut b = Bus::integrated(1);
+    for (f, o) in cases {
+        let bits = bus_bits(&f, o, true);
+        for bb in &bits {
+            b.ovr[0] = if bb.level { Ovr::StuckR } else { Ovr::StuckD };
+            b.step();
+            if bb.field == Field::AckSlot {
+                assert!(!b.last(0).drv, "node 0 acknowledges {f:?}");
+            }
+        }
+        b.ovr[0] = Ovr::None;
+        b.run(4);
+        assert_eq!(b.rx[0].last(), Some(&f));
+        assert_eq!(b.rec(0), 0);
+        assert!(b.log[0].iter().all(|r| !r.has(EV_AEF) && !r.has(EV_PEF)));
+    }
+}

@@ -1,0 +1,873 @@
+//! Tests of the bit timing logic (`canstar_hdl::btl`).
+//!
+//! - `btl_<timing><case>_j<j>`: the btl program of conformance-tests.md §3
+//!   with BRP 1. Timing 1 = T10/6/4, 2 = T25/17/1, 3 = T10/8/1. Cases:
+//!   `a` hard sync with drive `R`, `b` resync with drive `R` (receiver; the
+//!   program's case `e` is the same at the BTL ports), `d` resync with drive
+//!   `D` (transmitter; case `c` is the same at the BTL ports), `f` hard sync
+//!   with drive `D`. The expected sample points, transmit points and TX edges
+//!   come from the tables of conformance-tests.md §3 and can-protocol.md
+//!   §3.3–3.6 and §2.5, not from `BtlModel`.
+//! - `btl_brp_<timing><case>`: the same with BRP > 1, the edge at a random
+//!   clock inside TQ j.
+//! - Properties (one synchronisation per sample interval, none after a `D`
+//!   sample), triple sampling, reset and configuration errors.
+//! - Randomised cycle-by-cycle comparison of the RTL with `BtlCycleModel`.
+//! - `btl_verilog_flow`: lint, synthesis and co-simulation of the Verilog.
+
+use canstar_hdl::btl::{BitTiming, BtlConfig, BtlCycleModel, BtlInputs, BtlModel, BtlPins};
+use canstar_hdl::{drive, flow};
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+
+const R: bool = true;
+const D: bool = false;
+
+/// The RTL and the clock-exact model side by side; every step compares all
+/// outputs. `rtl = None` runs the model alone.
+struct Rig {
+    rtl: Option<BitTiming>,
+    model: BtlCycleModel,
+    trace: Vec<BtlPins>,
+}
+
+impl Rig {
+    fn new(with_rtl: bool) -> Self {
+        let rtl = with_rtl.then(|| {
+            let mut u = BitTiming::default();
+            drive::init(&mut u);
+            u
+        });
+        Self { rtl, model: BtlCycleModel::new(), trace: Vec::new() }
+    }
+
+    /// One clock; returns the outputs seen on it (before the rising edge).
+    fn step(&mut self, i: &BtlInputs) -> BtlPins {
+        let m = self.model.step(i);
+        if let Some(u) = self.rtl.as_mut() {
+            u.set_inputs(i);
+            drive::settle(u);
+            let p = u.pins();
+            assert_eq!(p, m, "cycle {}: RTL (left) differs from BtlCycleModel (right), inputs {:?}", self.trace.len(), i);
+            drive::rising_edge(u);
+            drive::falling_edge(u);
+        }
+        self.trace.push(m);
+        m
+    }
+
+    fn reset(&mut self, cfg: &BtlConfig) {
+        let mut i = BtlInputs::with_config(cfg);
+        i.reset = true;
+        self.step(&i);
+        self.step(&i);
+    }
+
+    /// Registered `sample` and `tx` of the current clock, before its inputs
+    /// are set (what a bit-stream logic sees). Needs the RTL.
+    fn registered(&self) -> (bool, bool) {
+        let u = self.rtl.as_ref().expect("registered() needs the RTL");
+        (u.sample.val(), u.tx.val())
+    }
+}
+
+fn timing(t: u32) -> BtlConfig {
+    match t {
+        1 => BtlConfig::T10_6_4,
+        2 => BtlConfig::T25_17_1,
+        3 => BtlConfig::T10_8_1,
+        _ => panic!("no timing {t}"),
+    }
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Outcome {
+    /// No change of the bit.
+    Nothing,
+    /// The edge's TQ becomes SYNC_SEG.
+    Restart,
+    /// PH1 lengthened by this many TQ.
+    Ph1Plus(u32),
+    /// PH2 shortened by this many TQ.
+    Ph2Minus(u32),
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum TxNote {
+    /// The table says nothing; §2.5 decides.
+    Rule,
+    /// "TX@edge": the transmit point is the tick that detects the edge.
+    AtEdge,
+    /// "TX+1": one TQ later.
+    PlusOne,
+    /// "TX postponed to SP + 2".
+    SpPlus2,
+}
+
+/// The rows of conformance-tests.md §3 (cases a–e) and its case f rules;
+/// case f positions the plan leaves to lock-step follow §3.3 (restart only
+/// after the sample point).
+fn table(t: u32, case: char, j: u32) -> (Outcome, TxNote) {
+    use Outcome::*;
+    use TxNote::*;
+    let sp = timing(t).sp();
+    let drive_r = matches!(case, 'b' | 'e');
+    if j + 1 == sp {
+        // Excluded by the program; P§2.3 fixes the order for canstar: the
+        // synchronisation comes before the sample point on that tick.
+        return match case {
+            'a' => (Restart, Rule),
+            'f' | 'c' | 'd' => (Nothing, Rule),
+            _ => (Ph1Plus(j.min(timing(t).sjw)), Rule),
+        };
+    }
+    match case {
+        'a' => (Restart, Rule),
+        'f' => {
+            if j + 2 <= sp {
+                (Nothing, Rule)
+            } else if j >= sp + 2 {
+                (Restart, AtEdge)
+            } else {
+                (Restart, Rule)
+            }
+        }
+        _ => match (t, j) {
+            (_, 0) => (Nothing, Rule),
+            (1, 1..=4) => (if drive_r { Ph1Plus(j) } else { Nothing }, Rule),
+            (1, 6) => (Restart, PlusOne),
+            (1, 7..=9) => (Restart, AtEdge),
+            (2, 1..=15) => (if drive_r { Ph1Plus(1) } else { Nothing }, Rule),
+            (2, 17..=23) => (Ph2Minus(1), Rule),
+            (2, 24) => (Restart, AtEdge),
+            (3, 1..=6) => (if drive_r { Ph1Plus(1) } else { Nothing }, Rule),
+            (3, 8) => (Ph2Minus(1), SpPlus2),
+            (3, 9) => (Restart, AtEdge),
+            _ => panic!("j = {j} is not in the table of timing {t}"),
+        },
+    }
+}
+
+/// Expected ticks, counted from the bit start (transmit point) of the bit
+/// that holds the edge.
+#[derive(Debug)]
+struct Expect {
+    samples: Vec<u32>,
+    bit_starts: Vec<u32>,
+    /// Tick of the transmit point that takes the new drive level.
+    tx_tick: u32,
+    horizon: u32,
+}
+
+fn expect(cfg: &BtlConfig, outcome: Outcome, j: u32) -> Expect {
+    let (sp, ntq) = (cfg.sp(), cfg.ntq());
+    // (samples inside the edge bit, first transmit point, origin (cnt = 0) of the next bit)
+    let (mut samples, tx_tick, origin) = match outcome {
+        Outcome::Nothing => (vec![], ntq, ntq),
+        Outcome::Ph1Plus(d) => (vec![sp + d], ntq + d, ntq + d),
+        Outcome::Ph2Minus(s) => (vec![sp], (ntq - s).max(sp + 2), ntq - s),
+        Outcome::Restart => {
+            // The restart makes the edge's TQ (index j) SYNC_SEG: cnt = 0 at tick j.
+            // §2.5: the transmit point is not earlier than the latest sample + IPT.
+            if j >= sp {
+                (vec![sp], (j + 1).max(sp + 2), j)
+            } else {
+                (vec![], j + 1, j)
+            }
+        }
+    };
+    if outcome == Outcome::Nothing {
+        samples.push(sp);
+    }
+    let horizon = origin + 2 * ntq;
+    let mut bit_starts = vec![0, tx_tick];
+    let mut k = 0;
+    while origin + k * ntq <= horizon {
+        if k > 0 {
+            bit_starts.push(origin + k * ntq);
+        }
+        if origin + k * ntq + sp <= horizon {
+            samples.push(origin + k * ntq + sp);
+        }
+        k += 1;
+    }
+    samples.sort();
+    samples.dedup();
+    Expect { samples, bit_starts, tx_tick, horizon }
+}
+
+/// Run one btl case and check it against the tables.
+fn check_case(t: u32, case: char, j: u32, brp: u32, with_rtl: bool, rng: &mut ChaCha8Rng) {
+    let cfg = timing(t).with_brp(brp);
+    let (sp, ntq) = (cfg.sp(), cfg.ntq());
+    let (outcome, note) = table(t, case, j);
+    let exp = expect(&cfg, outcome, j);
+    let tag = format!("btl_{t}{case}_j{j} (BRP {brp}, {outcome:?})");
+    match note {
+        TxNote::Rule => {}
+        TxNote::AtEdge => assert_eq!(exp.tx_tick, j + 1, "{tag}: table says TX@edge"),
+        TxNote::PlusOne => assert_eq!(exp.tx_tick, j + 2, "{tag}: table says TX+1"),
+        TxNote::SpPlus2 => assert_eq!(exp.tx_tick, sp + 2, "{tag}: table says TX at SP + 2"),
+    }
+    let (hs_en, level) = match case {
+        'a' => (true, R),
+        'b' | 'e' => (false, R),
+        'c' | 'd' => (false, D),
+        'f' => (true, D),
+        _ => panic!("case {case}"),
+    };
+    let b = brp as usize;
+    let mut rig = Rig::new(with_rtl);
+    rig.reset(&cfg);
+    // Two bits with a recessive bus: the last sample is R, sync enabled.
+    // TX carries the opposite of `level` in the edge bit, so that the
+    // transmit point that takes `level` is visible on TX.
+    let mut i = BtlInputs::with_config(&cfg);
+    i.hs_en = hs_en;
+    i.drive = !level;
+    let mut starts = 0;
+    let c0 = loop {
+        let p = rig.step(&i);
+        if p.bit_start {
+            starts += 1;
+            if starts == 2 {
+                break rig.trace.len() - 1;
+            }
+        }
+        assert!(rig.trace.len() < 3 * ntq as usize * b + 10, "{tag}: no bit start");
+    };
+    let c_edge = c0 + j as usize * b + rng.gen_range(1..=b);
+    let end = c0 + exp.horizon as usize * b + 2;
+    i.drive = level;
+    while rig.trace.len() < end {
+        i.rx = rig.trace.len() < c_edge;
+        rig.step(&i);
+    }
+    let tr = &rig.trace;
+    let tick_of = |c: usize, what: &str| -> u32 {
+        assert_eq!((c - c0) % b, 0, "{tag}: {what} at cycle {c} is not on the TQ grid (bit start at {c0})");
+        ((c - c0) / b) as u32
+    };
+    let mut samples = vec![];
+    let mut starts = vec![];
+    let mut syncs = vec![];
+    for (c, p) in tr.iter().enumerate().skip(c0) {
+        if p.bit_start {
+            starts.push(tick_of(c, "bit_start"));
+            assert!(p.tq, "{tag}: bit_start without tq at cycle {c}");
+        }
+        if c > c0 && p.sample {
+            let k = tick_of(c - 1, "sample");
+            samples.push(k);
+            let want = if k > j { D } else { R };
+            assert_eq!(p.busmon, want, "{tag}: sampled level at tick {k}");
+        }
+        if c > c0 && (p.hard_sync || p.resync) {
+            syncs.push((tick_of(c - 1, "sync"), p.hard_sync, p.resync));
+        }
+    }
+    samples.retain(|&k| k <= exp.horizon);
+    starts.retain(|&k| k <= exp.horizon);
+    assert_eq!(samples, exp.samples, "{tag}: sample points (ticks from the bit start)");
+    assert_eq!(starts, exp.bit_starts, "{tag}: transmit points (ticks from the bit start)");
+    assert_eq!(syncs, vec![(j + 1, hs_en, !hs_en)], "{tag}: synchronisation strobes (tick, hard, resync)");
+    // TX: the old level up to the transmit point, the new one from the next clock.
+    let tx_change = c0 + exp.tx_tick as usize * b + 1;
+    for (c, p) in tr.iter().enumerate().skip(c0 + 1) {
+        let want = if c >= tx_change { level } else { !level };
+        assert_eq!(p.tx, want, "{tag}: TX at cycle {c} (tick {}); expected change at tick {}", (c - c0) / b, exp.tx_tick);
+    }
+}
+
+macro_rules! btl_case_tests {
+    ($t:expr, $case:expr; $($name:ident = $j:expr),* $(,)?) => {
+        $(
+            #[test]
+            fn $name() {
+                let mut rng = ChaCha8Rng::seed_from_u64($j);
+                check_case($t, $case, $j, 1, true, &mut rng);
+            }
+        )*
+    };
+}
+
+btl_case_tests!(1, 'a'; btl_1a_j0 = 0, btl_1a_j1 = 1, btl_1a_j2 = 2, btl_1a_j3 = 3, btl_1a_j4 = 4, btl_1a_j6 = 6, btl_1a_j7 = 7, btl_1a_j8 = 8, btl_1a_j9 = 9,);
+btl_case_tests!(1, 'b'; btl_1b_j0 = 0, btl_1b_j1 = 1, btl_1b_j2 = 2, btl_1b_j3 = 3, btl_1b_j4 = 4, btl_1b_j6 = 6, btl_1b_j7 = 7, btl_1b_j8 = 8, btl_1b_j9 = 9,);
+btl_case_tests!(1, 'd'; btl_1d_j0 = 0, btl_1d_j1 = 1, btl_1d_j2 = 2, btl_1d_j3 = 3, btl_1d_j4 = 4, btl_1d_j6 = 6, btl_1d_j7 = 7, btl_1d_j8 = 8, btl_1d_j9 = 9,);
+btl_case_tests!(1, 'f'; btl_1f_j0 = 0, btl_1f_j1 = 1, btl_1f_j2 = 2, btl_1f_j3 = 3, btl_1f_j4 = 4, btl_1f_j6 = 6, btl_1f_j7 = 7, btl_1f_j8 = 8, btl_1f_j9 = 9,);
+btl_case_tests!(2, 'a'; btl_2a_j0 = 0, btl_2a_j1 = 1, btl_2a_j2 = 2, btl_2a_j3 = 3, btl_2a_j4 = 4, btl_2a_j5 = 5, btl_2a_j6 = 6, btl_2a_j7 = 7, btl_2a_j8 = 8, btl_2a_j9 = 9, btl_2a_j10 = 10, btl_2a_j11 = 11, btl_2a_j12 = 12, btl_2a_j13 = 13, btl_2a_j14 = 14, btl_2a_j15 = 15, btl_2a_j17 = 17, btl_2a_j18 = 18, btl_2a_j19 = 19, btl_2a_j20 = 20, btl_2a_j21 = 21, btl_2a_j22 = 22, btl_2a_j23 = 23, btl_2a_j24 = 24,);
+btl_case_tests!(2, 'b'; btl_2b_j0 = 0, btl_2b_j1 = 1, btl_2b_j2 = 2, btl_2b_j3 = 3, btl_2b_j4 = 4, btl_2b_j5 = 5, btl_2b_j6 = 6, btl_2b_j7 = 7, btl_2b_j8 = 8, btl_2b_j9 = 9, btl_2b_j10 = 10, btl_2b_j11 = 11, btl_2b_j12 = 12, btl_2b_j13 = 13, btl_2b_j14 = 14, btl_2b_j15 = 15, btl_2b_j17 = 17, btl_2b_j18 = 18, btl_2b_j19 = 19, btl_2b_j20 = 20, btl_2b_j21 = 21, btl_2b_j22 = 22, btl_2b_j23 = 23, btl_2b_j24 = 24,);
+btl_case_tests!(2, 'd'; btl_2d_j0 = 0, btl_2d_j1 = 1, btl_2d_j2 = 2, btl_2d_j3 = 3, btl_2d_j4 = 4, btl_2d_j5 = 5, btl_2d_j6 = 6, btl_2d_j7 = 7, btl_2d_j8 = 8, btl_2d_j9 = 9, btl_2d_j10 = 10, btl_2d_j11 = 11, btl_2d_j12 = 12, btl_2d_j13 = 13, btl_2d_j14 = 14, btl_2d_j15 = 15, btl_2d_j17 = 17, btl_2d_j18 = 18, btl_2d_j19 = 19, btl_2d_j20 = 20, btl_2d_j21 = 21, btl_2d_j22 = 22, btl_2d_j23 = 23, btl_2d_j24 = 24,);
+btl_case_tests!(2, 'f'; btl_2f_j0 = 0, btl_2f_j1 = 1, btl_2f_j2 = 2, btl_2f_j3 = 3, btl_2f_j4 = 4, btl_2f_j5 = 5, btl_2f_j6 = 6, btl_2f_j7 = 7, btl_2f_j8 = 8, btl_2f_j9 = 9, btl_2f_j10 = 10, btl_2f_j11 = 11, btl_2f_j12 = 12, btl_2f_j13 = 13, btl_2f_j14 = 14, btl_2f_j15 = 15, btl_2f_j17 = 17, btl_2f_j18 = 18, btl_2f_j19 = 19, btl_2f_j20 = 20, btl_2f_j21 = 21, btl_2f_j22 = 22, btl_2f_j23 = 23, btl_2f_j24 = 24,);
+btl_case_tests!(3, 'a'; btl_3a_j0 = 0, btl_3a_j1 = 1, btl_3a_j2 = 2, btl_3a_j3 = 3, btl_3a_j4 = 4, btl_3a_j5 = 5, btl_3a_j6 = 6, btl_3a_j8 = 8, btl_3a_j9 = 9,);
+btl_case_tests!(3, 'b'; btl_3b_j0 = 0, btl_3b_j1 = 1, btl_3b_j2 = 2, btl_3b_j3 = 3, btl_3b_j4 = 4, btl_3b_j5 = 5, btl_3b_j6 = 6, btl_3b_j8 = 8, btl_3b_j9 = 9,);
+btl_case_tests!(3, 'd'; btl_3d_j0 = 0, btl_3d_j1 = 1, btl_3d_j2 = 2, btl_3d_j3 = 3, btl_3d_j4 = 4, btl_3d_j5 = 5, btl_3d_j6 = 6, btl_3d_j8 = 8, btl_3d_j9 = 9,);
+btl_case_tests!(3, 'f'; btl_3f_j0 = 0, btl_3f_j1 = 1, btl_3f_j2 = 2, btl_3f_j3 = 3, btl_3f_j4 = 4, btl_3f_j5 = 5, btl_3f_j6 = 6, btl_3f_j8 = 8, btl_3f_j9 = 9,);
+
+fn sp_minus_1(t: u32) -> u32 {
+    timing(t).sp() - 1
+}
+
+macro_rules! btl_brp_tests {
+    ($($name:ident = $t:expr, $case:expr;)*) => {
+        $(
+            #[test]
+            fn $name() {
+                let mut rng = ChaCha8Rng::seed_from_u64(0xb7 + $t);
+                for brp in [2, 3, 5, 32] {
+                    for j in 0..timing($t).ntq() {
+                        if j != sp_minus_1($t) {
+                            check_case($t, $case, j, brp, true, &mut rng);
+                        }
+                    }
+                }
+            }
+        )*
+    };
+}
+
+btl_brp_tests! {
+    btl_brp_1a = 1, 'a'; btl_brp_1b = 1, 'b'; btl_brp_1d = 1, 'd'; btl_brp_1f = 1, 'f';
+    btl_brp_2a = 2, 'a'; btl_brp_2b = 2, 'b'; btl_brp_2d = 2, 'd'; btl_brp_2f = 2, 'f';
+    btl_brp_3a = 3, 'a'; btl_brp_3b = 3, 'b'; btl_brp_3d = 3, 'd'; btl_brp_3f = 3, 'f';
+}
+
+/// j = SP − 1, which the Bosch program leaves out: P§2.3 puts the
+/// synchronisation before the sample point on the same tick.
+#[test]
+fn btl_sp_minus_1_ordering() {
+    let mut rng = ChaCha8Rng::seed_from_u64(9);
+    for t in 1..=3 {
+        for case in ['a', 'b', 'd', 'f'] {
+            for brp in [1, 3] {
+                check_case(t, case, sp_minus_1(t), brp, true, &mut rng);
+            }
+        }
+    }
+}
+
+/// The reference model alone reproduces every table row, for all six cases
+/// of the program (b/e and c/d differ only above the BTL).
+#[test]
+fn model_follows_btl_tables() {
+    let mut rng = ChaCha8Rng::seed_from_u64(5);
+    for t in 1..=3 {
+        for case in ['a', 'b', 'c', 'd', 'e', 'f'] {
+            for brp in [1, 4] {
+                for j in 0..timing(t).ntq() {
+                    if j != sp_minus_1(t) {
+                        check_case(t, case, j, brp, false, &mut rng);
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// §3.6: the worked example, straight on the TQ-level model.
+#[test]
+fn model_worked_example_3_6() {
+    for j in 1..10u32 {
+        if j == 5 {
+            continue;
+        }
+        for drive in [R, D] {
+            let mut m = BtlModel::new(BtlConfig::T10_6_4);
+            // One full bit with a recessive bus, ending in a bit start.
+            for _ in 0..10 {
+                m.tq_tick(R, drive, false);
+            }
+            assert_eq!(m.cnt, 0);
+            for _ in 0..j {
+                m.tq_tick(R, drive, false);
+            }
+            let ev = m.tq_tick(D, drive, false);
+            let e = ev.phase_error.expect("synchronisation");
+            let want_e = if j < 6 { j as i32 } else { j as i32 - 10 };
+            assert_eq!(e, want_e, "j {j}");
+            match (j, drive) {
+                (1..=4, R) => assert_eq!((m.sp, m.nb), (6 + j, 10 + j), "j {j}: PH1 + e"),
+                (1..=4, D) => assert_eq!((m.sp, m.nb), (6, 10), "j {j}: none while driving D"),
+                (6, _) => assert!(ev.restart && ev.postponed && !ev.bit_start, "j 6: restart, TX postponed"),
+                _ => assert!(ev.restart && ev.bit_start, "j {j}: restart, TX at the edge"),
+            }
+        }
+    }
+}
+
+/// Drives the BTL the way the bit-stream logic and a bus would: another
+/// node's bit stream with random edge jitter and short spikes, the own TX
+/// looped back (wired-AND), `drive` changed on the clock after `sample`,
+/// `hs_en` switched at sample points, and random configuration changes under
+/// reset (including invalid ones).
+struct Stim {
+    cfg: BtlConfig,
+    reset_left: u32,
+    reset_rate: f64,
+    bus: bool,
+    bus_left: i64,
+    other_silent: bool,
+    spike_left: u32,
+    drive: bool,
+    new_drive: Option<bool>,
+    hs_en: bool,
+    transmitter: bool,
+}
+
+impl Stim {
+    fn new(cfg: BtlConfig, reset_rate: f64) -> Self {
+        Self {
+            cfg,
+            reset_left: 3,
+            reset_rate,
+            bus: R,
+            bus_left: 0,
+            other_silent: false,
+            spike_left: 0,
+            drive: R,
+            new_drive: None,
+            hs_en: true,
+            transmitter: false,
+        }
+    }
+
+    fn random_config(rng: &mut ChaCha8Rng) -> BtlConfig {
+        let brp = [1, 1, 1, 1, 2, 2, 3, 4, 5, 8, 32][rng.gen_range(0..11)];
+        let mut cfg = match rng.gen_range(0..10) {
+            0 => BtlConfig::T10_6_4,
+            1 => BtlConfig::T25_17_1,
+            2 => BtlConfig::T10_8_1,
+            3 => BtlConfig::T10_6_2,
+            // Anything, valid or not.
+            4 => BtlConfig::from_fields(0, rng.gen_range(0..8), rng.gen_range(0..8), rng.gen_range(0..4), false),
+            _ => loop {
+                let c = BtlConfig::from_fields(0, rng.gen_range(0..8), rng.gen_range(0..8), rng.gen_range(0..4), false);
+                if c.is_valid() {
+                    break c;
+                }
+            },
+        }
+        .with_brp(brp);
+        cfg.triple = rng.gen_bool(0.2);
+        cfg
+    }
+
+    /// Inputs for the next clock, given the registered `sample` and `tx` of this clock.
+    fn next(&mut self, rng: &mut ChaCha8Rng, sample: bool, tx: bool) -> BtlInputs {
+        let mut i = BtlInputs::with_config(&self.cfg);
+        if self.reset_left == 0 && rng.gen_bool(self.reset_rate) {
+            self.reset_left = rng.gen_range(1..5);
+            self.cfg = Self::random_config(rng);
+        }
+        if self.reset_left > 0 {
+            self.reset_left -= 1;
+            i = BtlInputs::with_config(&self.cfg);
+            if self.reset_left > 0 {
+                // Fields may wander while reset is held; the last value counts.
+                i.brp = rng.gen_range(0..32);
+                i.prop = rng.gen_range(0..8);
+                i.ph1 = rng.gen_range(0..8);
+                i.sjw = rng.gen_range(0..4);
+            }
+            i.reset = true;
+            self.drive = R;
+            self.new_drive = None;
+            i.rx = rng.gen_bool(0.8);
+            return i;
+        }
+        // The other node: bits of nominal length with jitter.
+        let bit = (self.cfg.ntq() * self.cfg.brp) as i64;
+        self.bus_left -= 1;
+        if self.bus_left <= 0 {
+            if rng.gen_bool(0.02) {
+                self.other_silent = !self.other_silent;
+            }
+            self.bus = if self.other_silent { R } else if rng.gen_bool(0.5) { self.bus } else { !self.bus };
+            let jitter = match rng.gen_range(0..10) {
+                0..=5 => 0,
+                6..=7 => rng.gen_range(-2..=2) * self.cfg.brp as i64,
+                _ => rng.gen_range(-bit / 3..=bit / 3),
+            };
+            self.bus_left = (bit + jitter).max(1);
+        }
+        if self.spike_left > 0 {
+            self.spike_left -= 1;
+        } else if rng.gen_bool(0.002) {
+            self.spike_left = rng.gen_range(1..=2 * self.cfg.brp);
+        }
+        i.rx = self.bus & tx & (self.spike_left == 0);
+        // The bit-stream logic: latch on `sample`, new drive on the next clock.
+        if let Some(d) = self.new_drive.take() {
+            self.drive = d;
+        }
+        if sample {
+            if rng.gen_bool(0.05) {
+                self.transmitter = !self.transmitter;
+            }
+            if rng.gen_bool(0.08) {
+                self.hs_en = !self.hs_en;
+            }
+            let d = if self.transmitter { rng.gen_bool(0.5) } else { !rng.gen_bool(0.1) };
+            self.new_drive = Some(d);
+        }
+        i.drive = self.drive;
+        i.hs_en = self.hs_en;
+        i
+    }
+}
+
+/// Which situations of §2–3 a random run reached.
+#[derive(Default, Debug)]
+struct Coverage {
+    restart_hard: usize,
+    hard_no_restart: usize,
+    lengthen: usize,
+    shorten: usize,
+    shorten_ends_bit: usize,
+    restart_resync: usize,
+    postponed: usize,
+    e_zero: usize,
+    triple_samples: usize,
+}
+
+impl Coverage {
+    fn add(&mut self, cm: &BtlCycleModel) {
+        let (Some(ev), Some(m)) = (cm.last_events(), cm.model()) else { return };
+        if ev.sample && m.config().triple {
+            self.triple_samples += 1;
+        }
+        if ev.postponed {
+            self.postponed += 1;
+        }
+        let Some(e) = ev.phase_error else { return };
+        if ev.hard_sync {
+            if ev.restart {
+                self.restart_hard += 1;
+            } else {
+                self.hard_no_restart += 1;
+            }
+        } else if ev.restart {
+            self.restart_resync += 1;
+        } else if e == 0 {
+            self.e_zero += 1;
+        } else if e > 0 && m.sp != m.config().sp() {
+            self.lengthen += 1;
+        } else if e < 0 {
+            self.shorten += 1;
+            if ev.bit_end {
+                self.shorten_ends_bit += 1;
+            }
+        }
+    }
+
+    fn assert_reached(&self, seed: u64) {
+        let c = self;
+        for (name, n) in [
+            ("hard restart", c.restart_hard),
+            ("PH2 shortened to the current tick", c.shorten_ends_bit),
+            ("hard sync without restart", c.hard_no_restart),
+            ("PH1 lengthened", c.lengthen),
+            ("PH2 shortened", c.shorten),
+            ("resync restart", c.restart_resync),
+            ("postponed transmit point", c.postponed),
+            ("edge in SYNC_SEG", c.e_zero),
+        ] {
+            assert!(n > 0, "seed {seed}: random stimulus never reached: {name} ({c:?})");
+        }
+    }
+}
+
+fn run_random(rig: &mut Rig, stim: &mut Stim, rng: &mut ChaCha8Rng, cycles: usize) {
+    for _ in 0..cycles {
+        let (sample, tx) = rig.registered();
+        let i = stim.next(rng, sample, tx);
+        rig.step(&i);
+    }
+}
+
+/// The RTL equals the clock-exact model on every output of every clock.
+#[test]
+fn btl_rtl_matches_model_random() {
+    for (seed, cfg) in [
+        (1, BtlConfig::T10_6_4),
+        (2, BtlConfig::T25_17_1),
+        (3, BtlConfig::T10_8_1),
+        (4, BtlConfig::T10_6_2.with_brp(3)),
+        (5, BtlConfig { triple: true, ..BtlConfig::T10_6_4.with_brp(2) }),
+    ] {
+        let mut rng = ChaCha8Rng::seed_from_u64(seed);
+        let mut rig = Rig::new(true);
+        let mut stim = Stim::new(cfg, 1.0 / 8000.0);
+        let mut cov = Coverage::default();
+        let mut last_sample: Option<usize> = None;
+        for c in 0..200_000 {
+            let (sample, tx) = rig.registered();
+            let i = stim.next(&mut rng, sample, tx);
+            let p = rig.step(&i);
+            cov.add(&rig.model);
+            // IPT contract: drive presented on the clock after `sample` is in
+            // place at the transmit point, which is >= 2 TQ after the sample point.
+            if i.reset {
+                last_sample = None;
+            }
+            if p.bit_start {
+                let brp = rig.model.model().unwrap().config().brp as usize;
+                if let Some(s) = last_sample {
+                    assert!(c + 1 >= s + 2 * brp, "seed {seed} cycle {c}: transmit point {} clocks after the sample strobe", c - s);
+                }
+            }
+            if p.sample {
+                last_sample = Some(c);
+            }
+        }
+        eprintln!("seed {seed}: {cov:?}");
+        cov.assert_reached(seed);
+        let syncs = rig.trace.iter().filter(|p| p.hard_sync || p.resync).count();
+        let samples = rig.trace.iter().filter(|p| p.sample).count();
+        assert!(syncs > 100 && samples > 1000, "seed {seed}: stimulus too quiet ({syncs} syncs, {samples} samples)");
+    }
+}
+
+/// The clock-exact model against the TQ-level model with BRP 1 and pure
+/// noise: the wrapper adds exactly one clock of latency to busmon and TX.
+#[test]
+fn cycle_model_wraps_tq_model() {
+    let mut rng = ChaCha8Rng::seed_from_u64(11);
+    for cfg in [BtlConfig::T10_6_4, BtlConfig::T25_17_1, BtlConfig::T10_8_1] {
+        let mut cm = BtlCycleModel::new();
+        let mut i = BtlInputs::with_config(&cfg);
+        i.reset = true;
+        cm.step(&i);
+        i.reset = false;
+        let mut m = BtlModel::new(cfg);
+        let mut prev = (true, true, false);
+        for _ in 0..20_000 {
+            i.rx = rng.gen_bool(0.7);
+            i.drive = rng.gen_bool(0.5);
+            i.hs_en = rng.gen_bool(0.2);
+            let p = cm.step(&i);
+            assert!(p.tq);
+            assert_eq!((p.busmon, p.tx, p.sample), prev);
+            let ev = m.tq_tick(i.rx, i.drive, i.hs_en);
+            assert_eq!(p.bit_start, ev.bit_start);
+            prev = (ev.busmon, ev.tx, ev.sample);
+        }
+    }
+}
+
+/// §3.1: at most one synchronisation between two sample points, none while
+/// the last sampled level is D.
+#[test]
+fn btl_sync_rules_random() {
+    let mut rng = ChaCha8Rng::seed_from_u64(21);
+    let mut rig = Rig::new(true);
+    let mut stim = Stim::new(BtlConfig::T10_6_4, 1.0 / 5000.0);
+    run_random(&mut rig, &mut stim, &mut rng, 80_000);
+    let mut since_sample = 0;
+    let mut checked = 0;
+    for c in 1..rig.trace.len() {
+        let p = rig.trace[c];
+        if p.hard_sync || p.resync {
+            // busmon on the tick clock (c - 1) is the level before the tick.
+            assert_eq!(rig.trace[c - 1].busmon, R, "cycle {c}: synchronisation after a D sample");
+            since_sample += 1;
+            assert!(since_sample <= 1, "cycle {c}: second synchronisation without a sample point in between");
+            checked += 1;
+        }
+        if p.sample || rig.trace[c - 1].cfg_err {
+            since_sample = 0;
+        }
+        if p.sample || p.hard_sync || p.resync {
+            assert!(rig.trace[c - 1].tq, "cycle {c}: strobe not after a tick");
+        }
+    }
+    assert!(checked > 200, "only {checked} synchronisations");
+}
+
+/// Deterministic: a second edge before the sample point does not
+/// synchronise, and an edge after a D sample does not either.
+#[test]
+fn btl_one_sync_per_sample_and_none_after_d() {
+    let cfg = BtlConfig::T10_6_4;
+    let mut rig = Rig::new(true);
+    rig.reset(&cfg);
+    let mut i = BtlInputs::with_config(&cfg);
+    // Bit 0 (from reset): recessive, ends at tick 10.
+    let mut ticks = 0;
+    let mut run = |rig: &mut Rig, i: &BtlInputs, n: u32| {
+        for _ in 0..n {
+            rig.step(i);
+            ticks += 1;
+        }
+    };
+    run(&mut rig, &i, 10);
+    // Bit 1: edge in TQ 1 (resync, PH1 + 1), back to R, edge in TQ 3.
+    run(&mut rig, &i, 1);
+    i.rx = D;
+    run(&mut rig, &i, 1);
+    i.rx = R;
+    run(&mut rig, &i, 1);
+    i.rx = D;
+    run(&mut rig, &i, 2);
+    i.rx = R;
+    run(&mut rig, &i, 30);
+    let n = rig.trace.len();
+    let syncs: Vec<usize> = (0..n).filter(|&c| rig.trace[c].resync).collect();
+    // Reset took 2 clocks; the tick that sees TQ 1's edge is clock 2 + 11.
+    assert_eq!(syncs, vec![2 + 11 + 1], "only the first edge synchronises");
+    // PH1 + 1: the sample of bit 1 is at tick 10 + 7.
+    let samples: Vec<usize> = (0..n).filter(|&c| rig.trace[c].sample).map(|c| c - 2).collect();
+    // Tick t is on clock t + 1 (reset took clocks 0 and 1); strobes one clock later.
+    assert_eq!(&samples[..2], &[6, 17]);
+    // Now sample D: hold D through a sample point, then R, then an edge.
+    let mut rig = Rig::new(true);
+    rig.reset(&cfg);
+    let mut i = BtlInputs::with_config(&cfg);
+    i.rx = R;
+    for _ in 0..12 {
+        rig.step(&i);
+    }
+    i.rx = D; // tick 13: edge in TQ 2 of bit 1 → PH1 + 2; the sample at tick 18 is D
+    for _ in 0..8 {
+        rig.step(&i);
+    }
+    i.rx = R;
+    for _ in 0..3 {
+        rig.step(&i);
+    }
+    i.rx = D; // an R→D edge while busmon = D
+    for _ in 0..20 {
+        rig.step(&i);
+    }
+    let syncs = rig.trace.iter().filter(|p| p.resync || p.hard_sync).count();
+    assert_eq!(syncs, 1, "no synchronisation while the last sample is D");
+    assert!(rig.trace.iter().any(|p| p.sample && !p.busmon));
+}
+
+/// Triple sampling: a one-TQ spike at the sample point is voted out, two
+/// dominant TQ out of three are not.
+#[test]
+fn btl_triple_sampling() {
+    for (triple, spike_tq, want) in [(false, 1, D), (true, 1, R), (true, 2, D), (false, 2, D)] {
+        let cfg = BtlConfig { triple, ..BtlConfig::T10_6_4 };
+        let mut rig = Rig::new(true);
+        rig.reset(&cfg);
+        let mut i = BtlInputs::with_config(&cfg);
+        i.drive = D; // driving D: a late edge (e > 0) does not move the sample point
+        for _ in 0..10 {
+            rig.step(&i);
+        }
+        // Bit 1 starts at tick 10; its sample point is tick 16.
+        for t in 11..=22u32 {
+            i.rx = !(t > 16 - spike_tq && t <= 16);
+            rig.step(&i);
+        }
+        let s: Vec<bool> = rig.trace.iter().filter(|p| p.sample).map(|p| p.busmon).collect();
+        assert_eq!(s, vec![R, want], "triple {triple}, spike {spike_tq} TQ");
+    }
+}
+
+/// Reset: TX recessive on the clock after reset, no strobes under reset,
+/// the first tick on the BRP-th clock after the release, bit start at NTQ.
+#[test]
+fn btl_reset_and_prescaler() {
+    for brp in [1u32, 2, 7, 32] {
+        let cfg = BtlConfig::T10_6_4.with_brp(brp);
+        let mut rig = Rig::new(true);
+        rig.reset(&cfg);
+        let mut i = BtlInputs::with_config(&cfg);
+        i.drive = D;
+        for _ in 0..(25 * brp) {
+            rig.step(&i);
+        }
+        let ticks: Vec<usize> = (0..rig.trace.len()).filter(|&c| rig.trace[c].tq).collect();
+        assert_eq!(ticks[0], 2 + brp as usize - 1, "BRP {brp}: first tick");
+        assert!(ticks.windows(2).all(|w| w[1] - w[0] == brp as usize), "BRP {brp}: tick spacing");
+        let starts: Vec<usize> = (0..rig.trace.len()).filter(|&c| rig.trace[c].bit_start).collect();
+        assert_eq!(starts[0], ticks[9], "BRP {brp}: first bit start after NTQ ticks");
+        assert!(rig.trace[starts[0]].tx && !rig.trace[starts[0] + 1].tx, "BRP {brp}: TX after bit_start");
+        // Reset in the middle: TX back to R on the next clock, no strobes.
+        let mut r = i;
+        r.reset = true;
+        for _ in 0..(3 * brp) {
+            rig.step(&r);
+        }
+        let n = rig.trace.len();
+        let under = &rig.trace[n - 3 * brp as usize + 1..];
+        assert!(under.iter().all(|p| p.tx && !p.tq && !p.bit_start && !p.sample && !p.cfg_err), "BRP {brp}: under reset");
+    }
+}
+
+/// Invalid configurations raise cfg_err and keep the block inert; a valid
+/// one clears it.
+#[test]
+fn btl_cfg_err() {
+    let mut rng = ChaCha8Rng::seed_from_u64(3);
+    for (cfg, bad) in [
+        (BtlConfig::new(1, 1, 1, 1), true),  // NTQ 5
+        (BtlConfig::new(1, 2, 1, 1), true),  // NTQ 6
+        (BtlConfig::new(1, 3, 1, 1), true),  // NTQ 7
+        (BtlConfig::new(1, 4, 1, 1), false), // NTQ 8
+        (BtlConfig::new(1, 8, 2, 3), true),  // SJW > PH1
+        (BtlConfig::new(1, 8, 3, 3), false),
+        (BtlConfig::new(4, 8, 8, 4), false), // NTQ 25
+    ] {
+        assert_eq!(cfg.is_valid(), !bad);
+        let mut rig = Rig::new(true);
+        rig.reset(&cfg);
+        let start = rig.trace.len();
+        let mut i = BtlInputs::with_config(&cfg);
+        for _ in 0..400 {
+            i.rx = rng.gen_bool(0.5);
+            i.drive = rng.gen_bool(0.5);
+            i.hs_en = rng.gen_bool(0.5);
+            rig.step(&i);
+        }
+        let t = &rig.trace[start..];
+        assert!(t.iter().all(|p| p.cfg_err == bad), "{cfg:?}: cfg_err");
+        let active = t.iter().any(|p| p.tq || p.sample || p.bit_start || !p.tx || p.hard_sync || p.resync);
+        assert_eq!(active, !bad, "{cfg:?}: activity");
+        if bad {
+            rig.reset(&BtlConfig::T10_6_4);
+            let p = rig.step(&BtlInputs::with_config(&BtlConfig::T10_6_4));
+            assert!(!p.cfg_err && p.tq);
+        }
+    }
+    // Inert from power-up until the first reset, without cfg_err.
+    let mut rig = Rig::new(true);
+    for _ in 0..50 {
+        let p = rig.step(&BtlInputs { rx: D, drive: D, ..BtlInputs::with_config(&BtlConfig::T10_6_4) });
+        assert!(p.tx && !p.tq && !p.cfg_err);
+    }
+}
+
+/// Lint, synthesis and co-simulation of the emitted Verilog with realistic
+/// stimulus, starting from two different configurations.
+#[test]
+#[ignore = "needs iverilog, verilator and yosys: run scripts/test-all.sh"]
+fn btl_verilog_flow() {
+    for (seed, cfg) in [(101, BtlConfig::T10_6_4), (202, BtlConfig::T25_17_1.with_brp(2)), (303, BtlConfig::T10_8_1)] {
+        let mut uut = BitTiming::default();
+        let mut stim = Stim::new(cfg, 1.0 / 12_000.0);
+        let (synth, cs) = flow::full_check(&mut uut, "btl", 100_000, seed, move |u: &mut BitTiming, rng, _| {
+            let i = stim.next(rng, u.sample.val(), u.tx.val());
+            u.set_inputs(&i);
+        })
+        .unwrap_or_else(|e| panic!("flow for {cfg:?}: {e}"));
+        assert_eq!(cs.cycles, 100_000);
+        assert_eq!(cs.outputs_compared, 8);
+        assert!(synth.cells > 50, "{}", synth.stat);
+    }
+}
+
+/// Size of the synthesised block (printed; asserts only that it synthesises for iCE40).
+#[test]
+#[ignore = "needs iverilog, verilator and yosys: run scripts/test-all.sh"]
+fn btl_synth_ice40() {
+    let mut uut = BitTiming::default();
+    drive::init(&mut uut);
+    let v = flow::emit(&uut);
+    let r = flow::synth_check(&v, "top", flow::SynthTarget::Ice40).expect("synth_ice40");
+    eprintln!("{}", r.stat);
+    assert!(r.cells > 0);
+}

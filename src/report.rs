@@ -1,0 +1,176 @@
+//! `canstar report`: logic size and fmax of the generated designs.
+//!
+//! - iCE40-HX8K (CB132, the Alchitry Cu's package): Yosys `synth_ice40`, then `nextpnr-ice40` for the
+//!   placed logic-cell count and the maximum clock frequency;
+//! - Xilinx Spartan-3 (the XSA-3S1000's family; Yosys `synth_xilinx -family
+//!   xc3s`, marked experimental by Yosys): LUT and flip-flop counts, no place
+//!   and route (there is no open Spartan-3 flow).
+
+use anyhow::{bail, Context, Result};
+use std::process::Command;
+
+/// One row of the report.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Row {
+    pub design: String,
+    /// iCE40: SB_LUT4 cells after synthesis.
+    pub ice40_lut4: usize,
+    /// iCE40: flip-flops (SB_DFF*) after synthesis.
+    pub ice40_dff: usize,
+    /// iCE40: block RAMs (SB_RAM40_4K).
+    pub ice40_bram: usize,
+    /// iCE40: placed logic cells (ICESTORM_LC) reported by nextpnr, if it ran.
+    pub ice40_lc: Option<usize>,
+    /// iCE40: maximum frequency reported by nextpnr, if it ran.
+    pub ice40_fmax_mhz: Option<f64>,
+    /// Why nextpnr did not give figures, if it did not.
+    pub pnr_note: Option<String>,
+    /// Spartan-3: LUTs (LUT1..LUT4).
+    pub xc3s_lut: usize,
+    /// Spartan-3: flip-flops (FD*).
+    pub xc3s_ff: usize,
+}
+
+fn have(tool: &str) -> bool {
+    canstar_hdl::flow::have_tool(tool)
+}
+
+fn count_cells(stat: &str, pred: impl Fn(&str) -> bool) -> usize {
+    // Lines of Yosys `stat` look like "     SB_LUT4                       123". An
+    // unflattened design lists every module and then the totals of the hierarchy.
+    let stat = stat.split("=== design hierarchy ===").last().unwrap_or(stat);
+    stat.lines()
+        .filter_map(|l| {
+            let mut it = l.split_whitespace();
+            let name = it.next()?;
+            let n: usize = it.next()?.parse().ok()?;
+            if it.next().is_none() && pred(name) { Some(n) } else { None }
+        })
+        .sum()
+}
+
+fn yosys(script: &str) -> Result<String> {
+    let out = Command::new("yosys").arg("-q").arg("-p").arg(script).output().context("running yosys")?;
+    if !out.status.success() {
+        bail!("yosys failed:\n{}{}", String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
+    }
+    Ok(String::from_utf8_lossy(&out.stdout).into_owned())
+}
+
+/// Synthesise (and place and route, if nextpnr-ice40 is present) one design.
+/// `clock_mhz` is the frequency nextpnr is asked to meet.
+pub fn measure(design: &str, verilog: &str, top: &str, clock_mhz: f64) -> Result<Row> {
+    if !have("yosys") {
+        bail!("yosys not found on PATH (scripts/test-all.sh installs it)");
+    }
+    let wd = canstar_hdl::flow::WorkDir::new("report")?;
+    let v = wd.path().join(format!("{top}.v"));
+    std::fs::write(&v, verilog)?;
+    let json = wd.path().join("ice40.json");
+    let ice_stat = wd.path().join("ice40.stat");
+    yosys(&format!(
+        "read_verilog {v}; synth_ice40 -top {top} -json {json}; tee -q -o {s} stat",
+        v = v.display(),
+        json = json.display(),
+        s = ice_stat.display()
+    ))?;
+    let ice = std::fs::read_to_string(&ice_stat)?;
+    let xil_stat = wd.path().join("xc3s.stat");
+    yosys(&format!(
+        "read_verilog {v}; synth_xilinx -family xc3s -top {top}; tee -q -o {s} stat",
+        v = v.display(),
+        s = xil_stat.display()
+    ))?;
+    let xil = std::fs::read_to_string(&xil_stat)?;
+    let mut row = Row {
+        design: design.to_string(),
+        ice40_lut4: count_cells(&ice, |n| n == "SB_LUT4"),
+        ice40_dff: count_cells(&ice, |n| n.starts_with("SB_DFF")),
+        ice40_bram: count_cells(&ice, |n| n.starts_with("SB_RAM40")),
+        xc3s_lut: count_cells(&xil, |n| n.starts_with("LUT") && n.len() == 4),
+        xc3s_ff: count_cells(&xil, |n| n.starts_with("FD")),
+        ..Default::default()
+    };
+    if have("nextpnr-ice40") {
+        // A time limit, so that an unroutable design cannot hang the report.
+        let out = Command::new("timeout")
+            .args(["900", "nextpnr-ice40", "--hx8k", "--package", "cb132", "--seed", "1", "--freq"])
+            .arg(format!("{clock_mhz}"))
+            .arg("--json")
+            .arg(&json)
+            .arg("--pcf-allow-unconstrained")
+            .output()
+            .context("running nextpnr-ice40")?;
+        let log = String::from_utf8_lossy(&out.stderr).into_owned() + &String::from_utf8_lossy(&out.stdout);
+        if out.status.success() {
+            row.ice40_lc = log
+                .lines()
+                .filter_map(|l| l.split("ICESTORM_LC:").nth(1))
+                .filter_map(|r| r.split('/').next()?.trim().parse().ok())
+                .last();
+            row.ice40_fmax_mhz = log
+                .lines()
+                .filter(|l| l.contains("Max frequency for clock"))
+                .filter_map(|l| l.split(':').nth(2)?.split("MHz").next()?.trim().parse().ok())
+                .last();
+        } else {
+            let reason = log.lines().find(|l| l.contains("ERROR")).unwrap_or("nextpnr failed").to_string();
+            row.pnr_note = Some(reason);
+        }
+    } else {
+        row.pnr_note = Some("nextpnr-ice40 not installed".into());
+    }
+    Ok(row)
+}
+
+/// Render rows as a Markdown table.
+pub fn table(rows: &[Row]) -> String {
+    let mut s = String::from(
+        "| design | iCE40 LUT4 | iCE40 DFF | iCE40 BRAM | iCE40 LCs (placed) | iCE40 fmax | Spartan-3 LUT | Spartan-3 FF |\n|---|---:|---:|---:|---:|---:|---:|---:|\n",
+    );
+    for r in rows {
+        let lc = r.ice40_lc.map(|x| x.to_string()).unwrap_or_else(|| "-".into());
+        let f = r.ice40_fmax_mhz.map(|x| format!("{x:.1} MHz")).unwrap_or_else(|| "-".into());
+        s.push_str(&format!(
+            "| {} | {} | {} | {} | {} | {} | {} | {} |\n",
+            r.design, r.ice40_lut4, r.ice40_dff, r.ice40_bram, lc, f, r.xc3s_lut, r.xc3s_ff
+        ));
+    }
+    for r in rows {
+        if let Some(n) = &r.pnr_note {
+            s.push_str(&format!("\n{}: no place-and-route figures ({n})", r.design));
+        }
+    }
+    s
+}
+
+/// Versions of the tools used, for the README.
+pub fn tool_versions() -> String {
+    let v = |cmd: &str, arg: &str| {
+        Command::new(cmd)
+            .arg(arg)
+            .output()
+            .ok()
+            .map(|o| {
+                let s = String::from_utf8_lossy(&o.stdout).into_owned() + &String::from_utf8_lossy(&o.stderr);
+                s.lines().next().unwrap_or("").trim().to_string()
+            })
+            .unwrap_or_else(|| format!("{cmd}: not found"))
+    };
+    format!("{}; {}", v("yosys", "-V"), v("nextpnr-ice40", "--version"))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn counts_use_the_hierarchy_totals() {
+        let stat = "=== a ===\n     LUT3   29\n=== a$b ===\n     FDRE  15\n=== design hierarchy ===\n     FDRE  15\n     LUT1  6\n     LUT3  29\n";
+        assert_eq!(count_cells(stat, |n| n.starts_with("FD")), 15);
+        assert_eq!(count_cells(stat, |n| n.starts_with("LUT") && n.len() == 4), 35);
+        let flat = "=== a ===\n   Number of cells: 52\n     SB_LUT4   23\n     SB_DFFESR  15\n";
+        assert_eq!(count_cells(flat, |n| n == "SB_LUT4"), 23);
+        assert_eq!(count_cells(flat, |n| n.starts_with("SB_DFF")), 15);
+    }
+}
