@@ -10,7 +10,8 @@
 //!   the synchronised incoming sublink); 0 = dominant. `bt`: the coupled bit.
 //! - Frame state C, decoded by [`crate::frame_state::FrameDecode`] for the bit being
 //!   sampled: `sof`, `tx_region` (first identifier bit to last CRC bit), `crc_delim`,
-//!   `ack_slot`, `ack_delim`, `eof_1_6`, `im_1_2`, `crc_ok` (valid in the ACK slot),
+//!   `ack_slot`, `ack_delim`, `eof_1_6`, `im_1_2`, `crc_ok` (read in the ACK
+//!   delimiter, where a CAN receiver signals a CRC error: 1 = the CRC was correct),
 //!   `frame_ok` (strobe with the sample of the last EOF bit of a frame completed without
 //!   error), `err_phase` (the monitor's error/overload phase OR the hub's own error flag
 //!   pending/being sent).
@@ -61,14 +62,16 @@
 //! (saturating at 31) and clears on a recessive sample; isolation when `dbc >=
 //! dbc_threshold` (ports 13 by default, sublinks 28).
 //!
-//! **§5.5 NACK (ports only).** In the ACK slot of a frame whose CRC the monitor found
-//! correct, a non-contender that is recessive increments `nack` (saturating at 7), a
-//! dominant one clears it; `silent = nack >= nack_threshold`. Never isolates.
+//! **§5.5 NACK (ports only).** In a frame whose CRC the monitor found correct, a
+//! non-contender that was recessive in the ACK slot increments `nack` (saturating at
+//! 7), a dominant one clears it; `silent = nack >= nack_threshold`. Never isolates.
+//! The ACK-slot level is remembered and counted at the ACK delimiter, because a CAN
+//! receiver (the controller serving as frame monitor) signals a CRC error there.
 //!
 //! **§5.6 reintegration (optional, window W).** While isolated the unit keeps observing
 //! its contribution (without effect on the coupler): a frame counts as good when it
-//! completes (`frame_ok`), the contribution was dominant in its ACK slot with a correct
-//! CRC, and since the previous completed frame there was no unjustified dominant bit and
+//! completes (`frame_ok`), the contribution was dominant in its ACK slot of a frame with a
+//! correct CRC, and since the previous completed frame there was no unjustified dominant bit and
 //! no dominant run at or above the DBC threshold. W consecutive good frames re-enable
 //! the unit and clear all its counters. The frame in which the unit was isolated never
 //! counts.
@@ -156,6 +159,8 @@ pub struct JudgeUnit {
     acked: DFF<Bit>,
     bad: DFF<Bit>,
     ack_missing: DFF<Bit>,
+    ack_c: DFF<Bit>,
+    ack_rx: DFF<Bit>,
     dom: Signal<Local, Bit>,
     unj: Signal<Local, Bit>,
     enabled: Signal<Local, Bit>,
@@ -218,6 +223,8 @@ impl JudgeUnit {
             acked: Default::default(),
             bad: Default::default(),
             ack_missing: Default::default(),
+            ack_c: Default::default(),
+            ack_rx: Default::default(),
             dom: Default::default(),
             unj: Default::default(),
             enabled: Default::default(),
@@ -236,7 +243,7 @@ impl JudgeUnit {
 impl Logic for JudgeUnit {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, dis_r, bic_r, dbc_r, nack_r, cont_r, rep_r, rep_seen, rep_first_dom, ok_r, acked, bad, ack_missing);
+        dff_setup!(self, clock, dis_r, bic_r, dbc_r, nack_r, cont_r, rep_r, rep_seen, rep_first_dom, ok_r, acked, bad, ack_missing, ack_c, ack_rx);
         self.dom.next = !self.c.val();
         self.enabled.next = !self.dis_r.q.val();
         self.unj.next = self.dom.val()
@@ -278,9 +285,14 @@ impl Logic for JudgeUnit {
                     self.bic_r.d.next = self.bic_r.q.val() + 8;
                 }
             }
-            // §5.5 NACK
-            if self.nack_on.val() & self.ack_slot.val() & self.crc_ok.val() & !self.cont_r.q.val() & self.enabled.val() {
-                if self.c.val() {
+            // §5.5 NACK (the ACK slot level is judged at the ACK delimiter, where the
+            // monitor has signalled a CRC error or not)
+            if self.ack_slot.val() {
+                self.ack_c.d.next = self.c.val();
+                self.ack_rx.d.next = !self.cont_r.q.val();
+            }
+            if self.nack_on.val() & self.ack_delim.val() & self.crc_ok.val() & self.ack_rx.q.val() & self.enabled.val() {
+                if self.ack_c.q.val() {
                     if self.nack_r.q.val() != 7 {
                         self.nack_r.d.next = self.nack_r.q.val() + 1;
                     }
@@ -298,7 +310,7 @@ impl Logic for JudgeUnit {
                 self.rep_first_dom.d.next = self.dom.val();
             }
             // §5.6 observation while isolated
-            if self.ack_slot.val() & self.crc_ok.val() & self.dom.val() {
+            if self.ack_delim.val() & self.crc_ok.val() & !self.ack_c.q.val() {
                 self.acked.d.next = true;
             }
             if self.unj.val() {
@@ -364,6 +376,8 @@ impl Logic for JudgeUnit {
             self.acked.d.next = false;
             self.bad.d.next = false;
             self.ack_missing.d.next = false;
+            self.ack_c.d.next = false;
+            self.ack_rx.d.next = false;
         }
         self.dis.next = self.dis_r.q.val();
         self.bic.next = self.bic_r.q.val();

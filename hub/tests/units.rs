@@ -160,7 +160,8 @@ fn nack_counts_only_correct_frames_and_never_isolates() {
     let frame = |j: &mut JudgeUnit, ack: bool, crc_ok: bool| {
         sample(j, Bit { c: true, bt: false, sof: true, ..Default::default() });
         sample(j, Bit { c: true, bt: false, tx: true, ..Default::default() });
-        sample(j, Bit { c: !ack, bt: false, ack_slot: true, crc_ok, ..Default::default() });
+        sample(j, Bit { c: !ack, bt: false, ack_slot: true, ..Default::default() });
+        sample(j, Bit { c: true, bt: true, ack_delim: true, crc_ok, ..Default::default() });
     };
     for _ in 0..5 {
         frame(&mut j, false, false);
