@@ -46,43 +46,54 @@
 
 use crate::coupler::{self, Coupler};
 use crate::efg::ErrorFlagGen;
-use crate::frame_state::{Field, FrameDecode};
+use crate::frame_state::{Field, FrameDecode, MonitorAdapter};
+use canstar_controller::CanCore;
 use crate::inject::Injector;
 use crate::judge::{JudgeParams, JudgeUnit};
 use rust_hdl::prelude::*;
 use serde::{Deserialize, Serialize};
 
-/// Bit timing of the hub's frame monitor, in the controller's value-minus-one encoding.
+/// Bit timing of the hub's frame monitor, in the controller's encoding (every field is
+/// the value minus one; see `canstar_hdl::btl`): TQ = brp + 1 clocks, PROP = prop + 1,
+/// PH1 = ph1 + 1, PH2 = max(PH1, 2) TQ, SJW = sjw + 1, sample point after
+/// 1 + PROP + PH1 TQ. The default is the reference hub: TQ = 2 clocks of 14.74 MHz
+/// (the reference's "brp 0" of an SJA1000-style prescaler, which doubles), 8 TQ per
+/// bit, sample point at 6 TQ (75 %), SJW 1.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(default)]
 pub struct HubBitTiming {
-    /// Prescaler: one time quantum is (brp + 1) * 2 clocks... see the controller; the
-    /// reference uses brp 0 = 2 clocks per TQ.
     pub brp: u32,
-    /// Propagation segment minus one (reference: 3 TQ -> 2).
     pub prop: u32,
-    /// Phase segment 1 minus one (reference: 2 TQ -> 1).
     pub ph1: u32,
-    /// Phase segment 2 minus one (reference: 2 TQ -> 1).
-    pub ph2: u32,
-    /// Synchronisation jump width minus one (reference: 1 TQ -> 0).
     pub sjw: u32,
 }
 
 impl Default for HubBitTiming {
     fn default() -> Self {
-        Self { brp: 0, prop: 2, ph1: 1, ph2: 1, sjw: 0 }
+        Self { brp: 1, prop: 2, ph1: 1, sjw: 0 }
     }
 }
 
 impl HubBitTiming {
+    /// Clocks per time quantum.
+    pub fn tq_clocks(&self) -> u32 {
+        self.brp + 1
+    }
+    /// Phase segment 2 in TQ.
+    pub fn ph2_tq(&self) -> u32 {
+        (self.ph1 + 1).max(2)
+    }
     /// Time quanta per bit (sync segment included).
     pub fn tq_per_bit(&self) -> u32 {
-        1 + (self.prop + 1) + (self.ph1 + 1) + (self.ph2 + 1)
+        self.sample_tq() + self.ph2_tq()
     }
     /// Time quanta from the start of the bit to the sample point.
     pub fn sample_tq(&self) -> u32 {
         1 + (self.prop + 1) + (self.ph1 + 1)
+    }
+    /// Clocks per bit.
+    pub fn bit_clocks(&self) -> u32 {
+        self.tq_per_bit() * self.tq_clocks()
     }
 }
 
@@ -211,6 +222,10 @@ impl HubConfig {
         }
         if !(1..=2).contains(&self.sync_depth) {
             return Err("sync_depth must be 1 or 2".into());
+        }
+        let t = &self.timing;
+        if t.brp > 31 || t.prop > 7 || t.ph1 > 7 || t.sjw > 3 || t.tq_per_bit() < 8 || t.sjw > t.ph1 {
+            return Err("bit timing out of range (brp <= 31, prop, ph1 <= 7, sjw <= min(3, ph1), >= 8 TQ per bit)".into());
         }
         for (n, v, hi) in [
             ("bic_threshold", self.bic_threshold, 31),
@@ -513,3 +528,166 @@ impl Logic for HubCore {
 }
 
 canstar_hdl::impl_clocked!(HubCore);
+
+/// The complete hub: [`HubCore`] plus its frame monitor, the CAN controller
+/// (`canstar_controller::CanCore`, listen-only, following BT with the hub's bit timing)
+/// and the [`MonitorAdapter`] that maps the controller's debug bundle onto the frame
+/// state C. Ports: those of [`HubCore`] without the `mon_*` inputs and without `bt`.
+#[derive(LogicBlock)]
+pub struct Hub {
+    pub clock: Signal<In, Clock>,
+    pub rst_n: Signal<In, Bit>,
+    pub inject_fault: Signal<In, Bit>,
+    pub rx: Vec<Signal<In, Bit>>,
+    pub reh_rx: Vec<Signal<In, Bit>>,
+    pub tx: Vec<Signal<Out, Bit>>,
+    pub hub_tx: Vec<Signal<Out, Bit>>,
+    pub isolated: Vec<Signal<Out, Bit>>,
+    pub silent: Vec<Signal<Out, Bit>>,
+    pub sub_isolated: Vec<Signal<Out, Bit>>,
+    pub frame_state: Signal<Out, Bits<4>>,
+    pub efg_active: Signal<Out, Bit>,
+    pub inject_active: Signal<Out, Bit>,
+    pub bic: Vec<Signal<Out, Bits<8>>>,
+    pub dbc: Vec<Signal<Out, Bits<5>>>,
+    pub nack: Vec<Signal<Out, Bits<3>>>,
+    pub sub_bic: Vec<Signal<Out, Bits<8>>>,
+    pub sub_dbc: Vec<Signal<Out, Bits<5>>>,
+    pub sub_rep: Vec<Signal<Out, Bits<3>>>,
+    core: HubCore,
+    monitor: CanCore,
+    adapter: MonitorAdapter,
+    brp: Constant<Bits<5>>,
+    prop: Constant<Bits<3>>,
+    ph1: Constant<Bits<3>>,
+    sjw: Constant<Bits<2>>,
+    _n: usize,
+    _m: usize,
+    _dn: usize,
+    _dm: usize,
+}
+
+/// Synchroniser depth of the monitor's RX input: BT is already synchronous.
+pub const MONITOR_SYNC_DEPTH: usize = 1;
+
+impl Hub {
+    /// Build a hub with its frame monitor. Panics if the configuration is invalid.
+    pub fn new(cfg: &HubConfig) -> Self {
+        let core = HubCore::new(cfg);
+        let (n, m) = (cfg.ports, cfg.sublinks);
+        let (dn, dm) = if cfg.debug { (n, m) } else { (0, 0) };
+        let t = cfg.timing;
+        let bs_delay = (t.ph2_tq() * t.tq_clocks()).saturating_sub(2) as u64;
+        Self {
+            clock: Default::default(),
+            rst_n: Default::default(),
+            inject_fault: Default::default(),
+            rx: sigs(n),
+            reh_rx: sigs(m),
+            tx: sigs(n),
+            hub_tx: sigs(m),
+            isolated: sigs(n),
+            silent: sigs(n),
+            sub_isolated: sigs(m),
+            frame_state: Default::default(),
+            efg_active: Default::default(),
+            inject_active: Default::default(),
+            bic: sigs(dn),
+            dbc: sigs(dn),
+            nack: sigs(dn),
+            sub_bic: sigs(dm),
+            sub_dbc: sigs(dm),
+            sub_rep: sigs(dm),
+            core,
+            monitor: CanCore::with_sync_depth(MONITOR_SYNC_DEPTH),
+            adapter: MonitorAdapter::new(bs_delay),
+            brp: Constant::new((t.brp as u64).into()),
+            prop: Constant::new((t.prop as u64).into()),
+            ph1: Constant::new((t.ph1 as u64).into()),
+            sjw: Constant::new((t.sjw as u64).into()),
+            _n: n,
+            _m: m,
+            _dn: dn,
+            _dm: dm,
+        }
+    }
+    /// The hub without its monitor (simulation probes: `blame_any`, judge units, `bt`).
+    pub fn core(&self) -> &HubCore {
+        &self.core
+    }
+    /// The frame monitor (simulation probe).
+    pub fn monitor(&self) -> &CanCore {
+        &self.monitor
+    }
+}
+
+impl Logic for Hub {
+    #[hdl_gen]
+    fn update(&mut self) {
+        // frame monitor: the CAN controller, listen-only, on BT
+        self.monitor.clock.next = self.clock.val();
+        self.monitor.reset.next = !self.rst_n.val();
+        self.monitor.rx.next = self.core.bt.val();
+        self.monitor.brp.next = self.brp.val();
+        self.monitor.prop.next = self.prop.val();
+        self.monitor.ph1.next = self.ph1.val();
+        self.monitor.sjw.next = self.sjw.val();
+        self.monitor.triple.next = false;
+        self.monitor.listen_only.next = true;
+        self.monitor.self_test.next = false;
+        self.monitor.single_shot.next = false;
+        self.monitor.host_recovery.next = false;
+        self.monitor.recover.next = false;
+        self.monitor.tx_req.next = false;
+        self.monitor.tx_ide.next = false;
+        self.monitor.tx_rtr.next = false;
+        self.monitor.tx_id.next = 0.into();
+        self.monitor.tx_dlc.next = 0.into();
+        self.monitor.tx_data.next = 0.into();
+        self.monitor.tx_abort.next = false;
+        // frame state adapter
+        self.adapter.clock.next = self.clock.val();
+        self.adapter.reset.next = !self.rst_n.val();
+        self.adapter.sample.next = self.monitor.dbg_sample.val();
+        self.adapter.field.next = self.monitor.dbg_field.val();
+        self.adapter.pos.next = self.monitor.dbg_pos.val();
+        self.adapter.events.next = self.monitor.dbg_events.val();
+        // hub core
+        self.core.clock.next = self.clock.val();
+        self.core.rst_n.next = self.rst_n.val();
+        self.core.inject_fault.next = self.inject_fault.val();
+        self.core.mon_sample.next = self.adapter.mon_sample.val();
+        self.core.mon_bit_start.next = self.adapter.bit_start.val();
+        self.core.mon_field.next = self.adapter.mon_field.val();
+        self.core.mon_pos.next = self.adapter.mon_pos.val();
+        self.core.mon_crc_ok.next = self.adapter.mon_crc_ok.val();
+        self.core.mon_frame_ok.next = self.adapter.mon_frame_ok.val();
+        self.core.mon_error.next = self.adapter.mon_error.val();
+        self.frame_state.next = self.core.frame_state.val();
+        self.efg_active.next = self.core.efg_active.val();
+        self.inject_active.next = self.core.inject_active.val();
+        for i in 0..self._n {
+            self.core.rx[i].next = self.rx[i].val();
+            self.tx[i].next = self.core.tx[i].val();
+            self.isolated[i].next = self.core.isolated[i].val();
+            self.silent[i].next = self.core.silent[i].val();
+        }
+        for j in 0..self._m {
+            self.core.reh_rx[j].next = self.reh_rx[j].val();
+            self.hub_tx[j].next = self.core.hub_tx[j].val();
+            self.sub_isolated[j].next = self.core.sub_isolated[j].val();
+        }
+        for i in 0..self._dn {
+            self.bic[i].next = self.core.bic[i].val();
+            self.dbc[i].next = self.core.dbc[i].val();
+            self.nack[i].next = self.core.nack[i].val();
+        }
+        for j in 0..self._dm {
+            self.sub_bic[j].next = self.core.sub_bic[j].val();
+            self.sub_dbc[j].next = self.core.sub_dbc[j].val();
+            self.sub_rep[j].next = self.core.sub_rep[j].val();
+        }
+    }
+}
+
+canstar_hdl::impl_clocked!(Hub);

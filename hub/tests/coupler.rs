@@ -3,7 +3,6 @@ use canstar_hdl::{drive, flow};
 use canstar_hdl::sync::Synchroniser;
 use canstar_hub::coupler::{self, Coupler};
 use rand::Rng;
-use rust_hdl::prelude::*;
 
 fn settle_cycles(c: &mut Coupler, k: usize) {
     for _ in 0..k {

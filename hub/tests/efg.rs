@@ -2,7 +2,6 @@
 use canstar_hdl::{drive, flow};
 use canstar_hub::efg::ErrorFlagGen;
 use rand::Rng;
-use rust_hdl::prelude::*;
 
 const BIT: usize = 16; // clocks per bit
 const SAMPLE: usize = 12; // clock index of the sample point in the bit

@@ -6,7 +6,6 @@ use canstar_hub::frame_state::Field;
 use canstar_hub::hub::{FaultInjection, FaultKind, FaultPoint, HubConfig, HubCore};
 use common::*;
 use rand::{Rng, SeedableRng};
-use rust_hdl::prelude::*;
 
 fn idle_inputs(h: &mut HubCore) {
     for r in h.rx.iter_mut().chain(h.reh_rx.iter_mut()) {
@@ -21,6 +20,9 @@ fn idle_inputs(h: &mut HubCore) {
 
 fn fresh(cfg: &HubConfig) -> HubCore {
     let mut h = HubCore::new(cfg);
+    for r in h.rx.iter_mut().chain(h.reh_rx.iter_mut()) {
+        r.next = true;
+    }
     reset_hub(&mut h);
     idle_inputs(&mut h);
     for _ in 0..4 {
@@ -121,7 +123,7 @@ fn fault_injection_hook_downlink() {
     for k in 0..6 {
         n[0].queue.push_back(Frame::std(0x100 + k, &[0, 0]));
     }
-    let mut net = Net::new(&cfg, n);
+    let mut net = CoreNet::new(&cfg, n);
     net.run(5);
     net.hub.inject_fault.next = true;
     net.run(3);
@@ -157,7 +159,7 @@ fn fault_injection_hook_uplink_isolated_by_judge() {
         fault_injection: Some(FaultInjection { point: FaultPoint::Uplink(2), kind: FaultKind::StuckDominant, start_field: Field::Idle.code() as u8 }),
         ..Default::default()
     };
-    let mut net = Net::new(&cfg, (0..3).map(|_| Node::default()).collect());
+    let mut net = CoreNet::new(&cfg, (0..3).map(|_| Node::default()).collect());
     net.hub.inject_fault.next = true;
     net.run(2);
     net.hub.inject_fault.next = false;
@@ -202,8 +204,8 @@ fn cancentrate_and_single_port_configurations() {
 fn config_defaults_serde_and_validation() {
     let d = HubConfig::default();
     assert_eq!((d.ports, d.sublinks, d.clock_hz, d.sync_depth), (3, 2, 14_740_000, 2));
-    assert_eq!((d.timing.brp, d.timing.prop, d.timing.ph1, d.timing.ph2, d.timing.sjw), (0, 2, 1, 1, 0));
-    assert_eq!((d.timing.tq_per_bit(), d.timing.sample_tq()), (8, 6));
+    assert_eq!((d.timing.brp, d.timing.prop, d.timing.ph1, d.timing.sjw), (1, 2, 1, 0));
+    assert_eq!((d.timing.tq_per_bit(), d.timing.sample_tq(), d.timing.ph2_tq(), d.timing.bit_clocks()), (8, 6, 2, 16));
     assert_eq!((d.bic_threshold, d.nack_threshold, d.dbc_threshold), (8, 7, 13));
     assert_eq!((d.sub_bic_threshold, d.sub_dbc_threshold, d.replica_limit), (16, 28, 3));
     assert_eq!(d.reintegration, None);

@@ -46,7 +46,7 @@ fn assert_no_blame(net: &Net) {
 fn single_frame_completes() {
     let mut n = nodes(3);
     n[0].queue.push_back(Frame::std(0x123, &[1, 2, 3]));
-    let mut net = Net::new(&cancentrate(), n);
+    let mut net = CoreNet::new(&cancentrate(), n);
     net.run_until_idle(400);
     assert_eq!(net.frames_ok(), 1);
     assert_eq!(net.errors(), 0);
@@ -72,7 +72,7 @@ fn fault_free_arbitration_never_blames() {
                 total += 1;
             }
         }
-        let mut net = Net::new(&cfg, n);
+        let mut net = CoreNet::new(&cfg, n);
         net.run_until_idle(60_000);
         assert_eq!(net.errors(), 0, "{}", net.trace(0));
         let sent: usize = net.stim.nodes.iter().map(|n| n.sent).sum();
@@ -96,7 +96,7 @@ fn late_joiner_is_not_blamed() {
         n[1].queue.push_back(Frame::std(0x101, &[3]));
         n[2].queue.push_back(Frame::std(late_id, &[4]));
         n[2].queue.push_back(Frame::ext(late_id << 18, &[5, 6]));
-        let mut net = Net::new(&cancentrate(), n);
+        let mut net = CoreNet::new(&cancentrate(), n);
         net.run_until_idle(3000);
         // the late joiner really was recessive at an SOF and dominant later in that frame
         let log = &net.stim.log;
@@ -118,7 +118,7 @@ fn overload_from_dominant_last_eof_bit_is_not_blamed() {
         n[0].queue.push_back(Frame::std(0x100 + k, &[k as u8]));
     }
     n[2].cfg.dominant_eof7_once = true;
-    let mut net = Net::new(&cancentrate(), n);
+    let mut net = CoreNet::new(&cancentrate(), n);
     net.run_until_idle(2000);
     assert!(net.stim.log.iter().any(|l| l.ev.overload), "no overload frame happened");
     assert!(net.stim.log.iter().any(|l| l.field == Field::Overload && !l.bt));
@@ -135,7 +135,7 @@ fn error_frames_are_not_blamed() {
     f.corrupt_crc = true;
     n[0].queue.push_back(f);
     n[1].queue.push_back(Frame::ext(0x1234567, &[1]));
-    let mut net = Net::new(&cancentrate(), n);
+    let mut net = CoreNet::new(&cancentrate(), n);
     net.run_until_idle(2000);
     assert!(net.errors() >= 1, "{}", net.trace(0));
     // the transmitter's ACK-error flag starts in the ACK delimiter (exempted rule)
@@ -153,7 +153,7 @@ fn stuck_dominant_uplink_isolated_within_dbc_plus_two_bits() {
         for k in 0..6 {
             n[k % 2].queue.push_back(Frame::std(0x100 + k as u32, &[k as u8; 3]));
         }
-        let mut net = Net::new(&cfg, n);
+        let mut net = CoreNet::new(&cfg, n);
         let start = 150;
         net.stim.up_faults[2] = Some(Box::new(move |b, v, _| if b >= start { false } else { v }));
         net.run(start);
@@ -183,7 +183,7 @@ fn node_with_dead_downlink_is_isolated() {
         n[0].queue.push_back(Frame::std(0x200 + k, &[1, 2]));
     }
     n[2].queue.push_back(Frame::std(0x050, &[7]));
-    let mut net = Net::new(&cancentrate(), n);
+    let mut net = CoreNet::new(&cancentrate(), n);
     net.stim.down_faults[2] = Some(Box::new(|_, _, _| true));
     for _ in 0..3000 {
         net.step();
@@ -209,7 +209,7 @@ fn bit_flip_uplink_blamed_per_episode_and_isolated() {
     for k in 0..30 {
         n[0].queue.push_back(Frame::std(0x300 + k, &[0xff, 0xff, 0xff, 0xff]));
     }
-    let mut net = Net::new(&cancentrate(), n);
+    let mut net = CoreNet::new(&cancentrate(), n);
     let mut last_flip = usize::MAX;
     net.stim.up_faults[1] = Some(Box::new(move |b, v, t| {
         let (f, pos) = t.classify(true);
@@ -248,7 +248,7 @@ fn blame_decays_one_per_good_frame() {
     for k in 0..12 {
         n[0].queue.push_back(Frame::std(0x300 + k, &[0xff]));
     }
-    let mut net = Net::new(&cancentrate(), n);
+    let mut net = CoreNet::new(&cancentrate(), n);
     let mut done = false;
     net.stim.up_faults[2] = Some(Box::new(move |_, v, t| {
         let (f, pos) = t.classify(true);
@@ -274,7 +274,7 @@ fn never_acknowledging_receiver_reported_silent_not_isolated() {
         n[0].queue.push_back(Frame::std(0x400 + k, &[k as u8]));
     }
     n[2].cfg.no_ack = true;
-    let mut net = Net::new(&cancentrate(), n);
+    let mut net = CoreNet::new(&cancentrate(), n);
     let mut silent_after = None;
     let mut frames = 0;
     for _ in 0..5000 {
@@ -307,7 +307,7 @@ fn reintegration_after_transient_fault() {
         for k in 0..12 {
             n[0].queue.push_back(Frame::std(0x500 + k, &[k as u8]));
         }
-        let mut net = Net::new(&cfg, n);
+        let mut net = CoreNet::new(&cfg, n);
         net.stim.up_faults[1] = Some(Box::new(|b, v, _| if (100..140).contains(&b) { false } else { v }));
         net.run(140);
         assert!(net.isolated()[1]);
@@ -346,7 +346,7 @@ fn no_reintegration_while_still_faulty() {
     for k in 0..10 {
         n[0].queue.push_back(Frame::std(0x500 + k, &[k as u8]));
     }
-    let mut net = Net::new(&cfg, n);
+    let mut net = CoreNet::new(&cfg, n);
     net.stim.up_faults[1] = Some(Box::new(|b, v, t| {
         let (f, _) = t.classify(true);
         if b >= 100 && f == Field::CrcDelim {

@@ -3,7 +3,6 @@ use canstar_hdl::{drive, flow};
 use canstar_hub::frame_state::Field;
 use canstar_hub::inject::Injector;
 use rand::Rng;
-use rust_hdl::prelude::*;
 
 fn step(j: &mut Injector, field: Field, eof_last: bool, button: bool) {
     j.button.next = button;

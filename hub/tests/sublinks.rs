@@ -18,7 +18,7 @@ fn recancentrate() -> HubConfig {
 
 /// Runs the scenario, checks traffic completes and returns the net.
 fn run(sub: SublinkFn, frames: usize) -> Net {
-    let mut net = Net::new(&recancentrate(), traffic(frames));
+    let mut net = CoreNet::new(&recancentrate(), traffic(frames));
     net.stim.sublink = sub;
     net.run_until_idle(60_000);
     let sent: usize = net.stim.nodes.iter().map(|n| n.sent).sum();
@@ -53,7 +53,7 @@ fn stuck_recessive_sublink_isolated_not_its_replica() {
 #[test]
 fn stuck_dominant_sublink_isolated_alone() {
     let start = 200;
-    let mut net = Net::new(&recancentrate(), traffic(12));
+    let mut net = CoreNet::new(&recancentrate(), traffic(12));
     net.stim.sublink = Box::new(move |b, j, pins, _| if j == 1 && b >= start { false } else { pins.iter().all(|&p| p) });
     net.run(start);
     let mut at = None;
@@ -77,7 +77,7 @@ fn stuck_dominant_sublink_isolated_alone() {
 #[test]
 fn dominant_run_isolates_single_sublink() {
     let cfg = HubConfig { sublinks: 1, ..Default::default() };
-    let mut net = Net::new(&cfg, traffic(6));
+    let mut net = CoreNet::new(&cfg, traffic(6));
     net.stim.sublink = Box::new(|b, _, pins, _| if (100..200).contains(&b) { false } else { pins.iter().all(|&p| p) });
     net.run(100);
     let mut at = None;
@@ -117,7 +117,7 @@ fn inverted_sublink_isolated_alone() {
 /// threshold (16 episodes = 128), both replicas; ports never blamed.
 #[test]
 fn unjustified_dominant_on_interlink_isolates_both_at_double_threshold() {
-    let mut net = Net::new(&recancentrate(), traffic(40));
+    let mut net = CoreNet::new(&recancentrate(), traffic(40));
     net.stim.sublink = Box::new(|_, _, pins, t| {
         let (f, _) = t.classify(true);
         if f == Field::CrcDelim {

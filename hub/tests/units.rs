@@ -4,7 +4,6 @@ use canstar_hdl::{drive, flow};
 use canstar_hub::frame_state::{Field, FrameDecode};
 use canstar_hub::judge::{JudgeParams, JudgeUnit};
 use rand::Rng;
-use rust_hdl::prelude::*;
 
 fn params() -> JudgeParams {
     JudgeParams { bic_limit: 64, dbc_threshold: 13, nack_threshold: 7, replica_limit: 3, reintegration: None }

@@ -4,8 +4,134 @@
 #![allow(dead_code)]
 
 use canstar_hdl::drive;
+use canstar_hdl::drive::Clocked;
 use canstar_hub::frame_state::Field;
-use canstar_hub::hub::{HubConfig, HubCore};
+use canstar_hub::hub::{Hub, HubConfig, HubCore};
+
+/// What the harness needs from a hub: [`HubCore`] (frame state from the reference
+/// tracker) or [`Hub`] (frame state from its own monitor, the CAN controller).
+pub trait Dut: Clocked {
+    fn build(cfg: &HubConfig) -> Self;
+    fn set_rx(&mut self, i: usize, v: bool);
+    fn set_reh_rx(&mut self, j: usize, v: bool);
+    fn n_reh(&self) -> usize;
+    fn tx_val(&self, i: usize) -> bool;
+    fn bt_val(&self) -> bool;
+    fn blame(&self) -> bool;
+    fn set_rst_n(&mut self, v: bool);
+    fn set_inject(&mut self, v: bool);
+    /// Sets the monitor inputs (HubCore) or ignores them (Hub).
+    fn set_monitor(&mut self, sample: bool, bit_start: bool, field: Field, pos: usize, crc_ok: bool, error: bool, frame_ok: bool);
+    fn isolated(&self) -> Vec<bool>;
+    fn silent(&self) -> Vec<bool>;
+    fn sub_isolated(&self) -> Vec<bool>;
+    fn bic(&self) -> Vec<u64>;
+    fn sub_bic(&self) -> Vec<u64>;
+    fn dbc(&self) -> Vec<u64>;
+    fn nack(&self) -> Vec<u64>;
+    fn sub_dbc(&self) -> Vec<u64>;
+    fn sub_rep(&self) -> Vec<u64>;
+    fn efg_active(&self) -> bool;
+    fn inject_active(&self) -> bool;
+    fn frame_state(&self) -> u64;
+}
+
+macro_rules! common_dut {
+    () => {
+        fn set_rx(&mut self, i: usize, v: bool) {
+            self.rx[i].next = v;
+        }
+        fn set_reh_rx(&mut self, j: usize, v: bool) {
+            self.reh_rx[j].next = v;
+        }
+        fn n_reh(&self) -> usize {
+            self.reh_rx.len()
+        }
+        fn tx_val(&self, i: usize) -> bool {
+            self.tx[i].val()
+        }
+        fn set_rst_n(&mut self, v: bool) {
+            self.rst_n.next = v;
+        }
+        fn set_inject(&mut self, v: bool) {
+            self.inject_fault.next = v;
+        }
+        fn isolated(&self) -> Vec<bool> {
+            self.isolated.iter().map(|s| s.val()).collect()
+        }
+        fn silent(&self) -> Vec<bool> {
+            self.silent.iter().map(|s| s.val()).collect()
+        }
+        fn sub_isolated(&self) -> Vec<bool> {
+            self.sub_isolated.iter().map(|s| s.val()).collect()
+        }
+        fn bic(&self) -> Vec<u64> {
+            self.bic.iter().map(|s| s.val().index() as u64).collect()
+        }
+        fn sub_bic(&self) -> Vec<u64> {
+            self.sub_bic.iter().map(|s| s.val().index() as u64).collect()
+        }
+        fn dbc(&self) -> Vec<u64> {
+            self.dbc.iter().map(|s| s.val().index() as u64).collect()
+        }
+        fn nack(&self) -> Vec<u64> {
+            self.nack.iter().map(|s| s.val().index() as u64).collect()
+        }
+        fn sub_dbc(&self) -> Vec<u64> {
+            self.sub_dbc.iter().map(|s| s.val().index() as u64).collect()
+        }
+        fn sub_rep(&self) -> Vec<u64> {
+            self.sub_rep.iter().map(|s| s.val().index() as u64).collect()
+        }
+        fn efg_active(&self) -> bool {
+            self.efg_active.val()
+        }
+        fn inject_active(&self) -> bool {
+            self.inject_active.val()
+        }
+        fn frame_state(&self) -> u64 {
+            self.frame_state.val().index() as u64
+        }
+    };
+}
+
+impl Dut for HubCore {
+    fn build(cfg: &HubConfig) -> Self {
+        HubCore::new(cfg)
+    }
+    common_dut!();
+    fn bt_val(&self) -> bool {
+        self.bt.val()
+    }
+    fn blame(&self) -> bool {
+        self.blame_any()
+    }
+    fn set_monitor(&mut self, sample: bool, bit_start: bool, field: Field, pos: usize, crc_ok: bool, error: bool, frame_ok: bool) {
+        self.mon_sample.next = sample;
+        self.mon_bit_start.next = bit_start;
+        if sample {
+            self.mon_field.next = field.code().into();
+            self.mon_pos.next = (pos.min(15) as u64).into();
+            self.mon_crc_ok.next = crc_ok;
+        }
+        self.mon_error.next = error;
+        self.mon_frame_ok.next = frame_ok;
+    }
+}
+
+impl Dut for Hub {
+    fn build(cfg: &HubConfig) -> Self {
+        Hub::new(cfg)
+    }
+    common_dut!();
+    fn bt_val(&self) -> bool {
+        self.core().bt.val()
+    }
+    fn blame(&self) -> bool {
+        self.core().blame_any()
+    }
+    fn set_monitor(&mut self, _: bool, _: bool, _: Field, _: usize, _: bool, _: bool, _: bool) {}
+}
 
 pub const CLOCKS_PER_BIT: usize = 16;
 pub const SAMPLE_CLOCK: usize = 12;
@@ -543,7 +669,7 @@ impl Stim {
 
     /// Set the hub inputs for clock `k` (0..16) of the current bit. Settles the hub
     /// at the sample clock to read BT.
-    pub fn at_clock(&mut self, hub: &mut HubCore, k: usize) {
+    pub fn at_clock<T: Dut>(&mut self, hub: &mut T, k: usize) {
         if k == 0 {
             self.finish_bit();
             let b = self.bit;
@@ -554,22 +680,20 @@ impl Stim {
                     Some(f) => f(b, c, &self.tracker),
                     None => c,
                 };
-                hub.rx[i].next = self.pins[i];
+                hub.set_rx(i, self.pins[i]);
             }
-            for j in 0..hub.reh_rx.len() {
-                hub.reh_rx[j].next = (self.sublink)(b, j, &self.pins, &self.tracker);
+            for j in 0..hub.n_reh() {
+                let v = (self.sublink)(b, j, &self.pins, &self.tracker);
+                hub.set_reh_rx(j, v);
             }
         }
-        hub.mon_bit_start.next = k == 0;
-        hub.mon_sample.next = false;
-        hub.mon_error.next = false;
-        hub.mon_frame_ok.next = false;
+        hub.set_monitor(false, k == 0, Field::Idle, 0, false, false, false);
         if k == SAMPLE_CLOCK {
             drive::settle(hub);
-            let bt = hub.bt.val();
+            let bt = hub.bt_val();
             let b = self.bit;
             for i in 0..self.nodes.len() {
-                let v = hub.tx[i].val();
+                let v = hub.tx_val(i);
                 self.views[i] = match &mut self.down_faults[i] {
                     Some(f) => f(b, v, &self.tracker),
                     None => v,
@@ -578,56 +702,56 @@ impl Stim {
             let (field, pos) = self.tracker.classify(bt);
             let crc_ok = self.tracker.crc_ok;
             let ev = self.tracker.push(bt);
-            hub.mon_sample.next = true;
-            hub.mon_field.next = field.code().into();
-            hub.mon_pos.next = (pos.min(15) as u64).into();
-            hub.mon_crc_ok.next = crc_ok;
-            hub.mon_error.next = ev.error;
-            hub.mon_frame_ok.next = ev.frame_ok;
+            hub.set_monitor(true, false, field, pos, crc_ok, ev.error, ev.frame_ok);
             drive::settle(hub);
-            let blame = hub.efg_trigger_probe();
-            let r = BitLog { bit: b, field, pos, bt, pins: self.pins.clone(), ev, efg: hub.efg_active.val(), blame };
+            let r = BitLog { bit: b, field, pos, bt, pins: self.pins.clone(), ev, efg: hub.efg_active(), blame: false };
             self.log.push(r.clone());
             self.pending = Some(r);
+        }
+        // blames are seen when the (possibly delayed) monitor sample reaches the judges
+        drive::settle(hub);
+        if hub.blame() {
+            if let Some(l) = self.log.last_mut() {
+                l.blame = true;
+            }
         }
     }
 }
 
-/// Read-only probes used by the tests.
-pub trait HubProbe {
-    fn efg_trigger_probe(&self) -> bool;
-}
-impl HubProbe for HubCore {
-    fn efg_trigger_probe(&self) -> bool {
-        self.blame_any()
-    }
-}
+/// A [`HubCore`] driven by a [`Stim`] and the reference tracker.
+pub type CoreNet = Net<HubCore>;
+/// A complete [`Hub`] (its own frame monitor) driven by a [`Stim`].
+pub type HubNet = Net<Hub>;
 
 /// A hub driven by a [`Stim`].
-pub struct Net {
-    pub hub: HubCore,
+pub struct Net<T: Dut = HubCore> {
+    pub hub: T,
     pub stim: Stim,
     pub max_bic: Vec<u64>,
     pub max_sub_bic: Vec<u64>,
     pub efg_bits: usize,
 }
 
-pub fn reset_hub(hub: &mut HubCore) {
+pub fn reset_hub<T: Dut>(hub: &mut T) {
     drive::init(hub);
-    hub.rst_n.next = false;
-    for r in hub.rx.iter_mut().chain(hub.reh_rx.iter_mut()) {
-        r.next = true;
-    }
+    hub.set_rst_n(false);
+    hub.set_monitor(false, false, Field::Idle, 0, false, false, false);
     for _ in 0..4 {
         drive::cycle(hub);
     }
-    hub.rst_n.next = true;
+    hub.set_rst_n(true);
 }
 
-impl Net {
-    pub fn new(cfg: &HubConfig, nodes: Vec<Node>) -> Net {
+impl<T: Dut> Net<T> {
+    pub fn new(cfg: &HubConfig, nodes: Vec<Node>) -> Net<T> {
         assert_eq!(nodes.len(), cfg.ports);
-        let mut hub = HubCore::new(cfg);
+        let mut hub = T::build(cfg);
+        for i in 0..cfg.ports {
+            hub.set_rx(i, true);
+        }
+        for j in 0..cfg.sublinks {
+            hub.set_reh_rx(j, true);
+        }
         reset_hub(&mut hub);
         Net { hub, stim: Stim::new(nodes), max_bic: vec![0; cfg.ports], max_sub_bic: vec![0; cfg.sublinks], efg_bits: 0 }
     }
@@ -638,13 +762,13 @@ impl Net {
             self.stim.at_clock(&mut self.hub, k);
             drive::cycle(&mut self.hub);
             if k == SAMPLE_CLOCK + 1 {
-                for (m, b) in self.max_bic.iter_mut().zip(self.hub.bic.iter()) {
-                    *m = (*m).max(b.val().index() as u64);
+                for (m, b) in self.max_bic.iter_mut().zip(self.hub.bic()) {
+                    *m = (*m).max(b);
                 }
-                for (m, b) in self.max_sub_bic.iter_mut().zip(self.hub.sub_bic.iter()) {
-                    *m = (*m).max(b.val().index() as u64);
+                for (m, b) in self.max_sub_bic.iter_mut().zip(self.hub.sub_bic()) {
+                    *m = (*m).max(b);
                 }
-                if self.hub.efg_active.val() {
+                if self.hub.efg_active() {
                     self.efg_bits += 1;
                 }
             }
@@ -675,16 +799,16 @@ impl Net {
     }
 
     pub fn isolated(&self) -> Vec<bool> {
-        self.hub.isolated.iter().map(|s| s.val()).collect()
+        self.hub.isolated()
     }
     pub fn silent(&self) -> Vec<bool> {
-        self.hub.silent.iter().map(|s| s.val()).collect()
+        self.hub.silent()
     }
     pub fn sub_isolated(&self) -> Vec<bool> {
-        self.hub.sub_isolated.iter().map(|s| s.val()).collect()
+        self.hub.sub_isolated()
     }
     pub fn bic(&self) -> Vec<u64> {
-        self.hub.bic.iter().map(|s| s.val().index() as u64).collect()
+        self.hub.bic()
     }
     pub fn errors(&self) -> usize {
         self.stim.log.iter().filter(|l| l.ev.error).count()
