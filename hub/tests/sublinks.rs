@@ -2,6 +2,7 @@
 mod common;
 use canstar_hub::frame_state::Field;
 use canstar_hub::hub::HubConfig;
+use canstar_hub::hub::{Hub, HubCore};
 use common::*;
 
 fn traffic(frames: usize) -> Vec<Node> {
@@ -17,8 +18,8 @@ fn recancentrate() -> HubConfig {
 }
 
 /// Runs the scenario, checks traffic completes and returns the net.
-fn run(sub: SublinkFn, frames: usize) -> Net {
-    let mut net = CoreNet::new(&recancentrate(), traffic(frames));
+fn run<T: Dut>(sub: SublinkFn, frames: usize) -> Net<T> {
+    let mut net = Net::<T>::new(&recancentrate(), traffic(frames));
     net.stim.sublink = sub;
     net.run_until_idle(60_000);
     let sent: usize = net.stim.nodes.iter().map(|n| n.sent).sum();
@@ -27,9 +28,8 @@ fn run(sub: SublinkFn, frames: usize) -> Net {
     net
 }
 
-#[test]
-fn healthy_peer_never_blamed() {
-    let net = run(mirror_peer(), 30);
+fn healthy_peer_never_blamed<T: Dut>() {
+    let net = run::<T>(mirror_peer(), 30);
     assert_eq!(net.sub_isolated(), vec![false, false]);
     assert_eq!(net.errors(), 0);
     assert!(net.max_sub_bic.iter().all(|&b| b == 0));
@@ -37,23 +37,21 @@ fn healthy_peer_never_blamed() {
 
 /// Replica rule: a stuck-at-recessive sublink is the one isolated (the baseline rule
 /// would isolate its healthy, dominant replica).
-#[test]
-fn stuck_recessive_sublink_isolated_not_its_replica() {
+fn stuck_recessive_sublink_isolated_not_its_replica<T: Dut>() {
     for bad in [0usize, 1] {
-        let net = run(Box::new(move |b, j, pins, _| if j == bad && b > 50 { true } else { pins.iter().all(|&p| p) }), 12);
+        let net = run::<T>(Box::new(move |b, j, pins, _| if j == bad && b > 50 { true } else { pins.iter().all(|&p| p) }), 12);
         let mut expect = vec![false, false];
         expect[bad] = true;
         assert_eq!(net.sub_isolated(), expect);
         assert_eq!(net.errors(), 0, "a stuck-recessive replica does not disturb BT");
-        assert!(net.hub.sub_rep[bad].val().index() >= 3);
+        assert!(net.hub.sub_rep()[bad] as usize >= 3);
     }
 }
 
 /// Stuck-at-dominant sublink: isolated (replica rule or dominant run), only that one.
-#[test]
-fn stuck_dominant_sublink_isolated_alone() {
+fn stuck_dominant_sublink_isolated_alone<T: Dut>() {
     let start = 200;
-    let mut net = CoreNet::new(&recancentrate(), traffic(12));
+    let mut net = Net::<T>::new(&recancentrate(), traffic(12));
     net.stim.sublink = Box::new(move |b, j, pins, _| if j == 1 && b >= start { false } else { pins.iter().all(|&p| p) });
     net.run(start);
     let mut at = None;
@@ -74,10 +72,9 @@ fn stuck_dominant_sublink_isolated_alone() {
 }
 
 /// Dominant-run rule alone (one sublink, so no replica to compare with).
-#[test]
-fn dominant_run_isolates_single_sublink() {
+fn dominant_run_isolates_single_sublink<T: Dut>() {
     let cfg = HubConfig { sublinks: 1, ..Default::default() };
-    let mut net = CoreNet::new(&cfg, traffic(6));
+    let mut net = Net::<T>::new(&cfg, traffic(6));
     net.stim.sublink = Box::new(|b, _, pins, _| if (100..200).contains(&b) { false } else { pins.iter().all(|&p| p) });
     net.run(100);
     let mut at = None;
@@ -91,17 +88,16 @@ fn dominant_run_isolates_single_sublink() {
     let at = at.expect("not isolated");
     // the run may have started up to 5 bits before the fault (dominant frame bits)
     assert!((22..=30).contains(&(at - 100)), "isolated after {} bits", at - 100);
-    assert!(net.hub.sub_dbc[0].val().index() >= 28, "isolated by the dominant-run rule");
-    assert_eq!(net.hub.sub_bic[0].val().index(), 0);
-    assert_eq!(net.hub.sub_rep[0].val().index(), 0, "no replica rule with one sublink");
+    assert!(net.hub.sub_dbc()[0] as usize >= 28, "isolated by the dominant-run rule");
+    assert_eq!(net.hub.sub_bic()[0] as usize, 0);
+    assert_eq!(net.hub.sub_rep()[0] as usize, 0, "no replica rule with one sublink");
     net.run_until_idle(60_000);
     assert_eq!(net.isolated(), vec![false; 3]);
 }
 
 /// Bit flip (inversion) on one sublink: only that sublink is isolated.
-#[test]
-fn inverted_sublink_isolated_alone() {
-    let net = run(Box::new(|b, j, pins, _| {
+fn inverted_sublink_isolated_alone<T: Dut>() {
+    let net = run::<T>(Box::new(|b, j, pins, _| {
         let v = pins.iter().all(|&p| p);
         if j == 0 && b >= 150 {
             !v
@@ -115,9 +111,8 @@ fn inverted_sublink_isolated_alone() {
 /// Unjustified dominant bits from the whole interlink (both replicas dominant in the
 /// CRC delimiter of every frame): blamed +8 per episode, isolated at twice the port
 /// threshold (16 episodes = 128), both replicas; ports never blamed.
-#[test]
-fn unjustified_dominant_on_interlink_isolates_both_at_double_threshold() {
-    let mut net = CoreNet::new(&recancentrate(), traffic(40));
+fn unjustified_dominant_on_interlink_isolates_both_at_double_threshold<T: Dut>() {
+    let mut net = Net::<T>::new(&recancentrate(), traffic(40));
     net.stim.sublink = Box::new(|_, _, pins, t| {
         let (f, _) = t.classify(true);
         if f == Field::CrcDelim {
@@ -141,3 +136,16 @@ fn unjustified_dominant_on_interlink_isolates_both_at_double_threshold() {
     assert_eq!(net.isolated(), vec![false; 3]);
     assert_eq!(net.stim.nodes.iter().map(|n| n.sent).sum::<usize>(), 40);
 }
+
+macro_rules! both {
+    ($($name:ident),*) => {
+        mod core_with_reference_tracker {
+            $( #[test] fn $name() { super::$name::<super::HubCore>() } )*
+        }
+        mod hub_with_controller_monitor {
+            $( #[test] fn $name() { super::$name::<super::Hub>() } )*
+        }
+    };
+}
+
+both!(healthy_peer_never_blamed, stuck_recessive_sublink_isolated_not_its_replica, stuck_dominant_sublink_isolated_alone, dominant_run_isolates_single_sublink, inverted_sublink_isolated_alone, unjustified_dominant_on_interlink_isolates_both_at_double_threshold);

@@ -753,7 +753,14 @@ impl<T: Dut> Net<T> {
             hub.set_reh_rx(j, true);
         }
         reset_hub(&mut hub);
-        Net { hub, stim: Stim::new(nodes), max_bic: vec![0; cfg.ports], max_sub_bic: vec![0; cfg.sublinks], efg_bits: 0 }
+        let mut net = Net { hub, stim: Stim::new(nodes), max_bic: vec![0; cfg.ports], max_sub_bic: vec![0; cfg.sublinks], efg_bits: 0 };
+        // 12 idle bits first: a frame monitor integrates after 11 recessive bits
+        let queues: Vec<_> = net.stim.nodes.iter_mut().map(|n| std::mem::take(&mut n.queue)).collect();
+        net.run(12);
+        for (n, q) in net.stim.nodes.iter_mut().zip(queues) {
+            n.queue = q;
+        }
+        net
     }
 
     /// Simulate one bit (16 clocks, sample at clock 12).
