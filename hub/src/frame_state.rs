@@ -127,7 +127,8 @@ pub mod ctrl_field {
 /// sample strobe). Everything is registered on the sample strobe and presented one
 /// clock later, together with the events of that bit:
 /// - `mon_sample`: the delayed strobe.
-/// - `mon_field`: the hub's 4-bit [`Field`] code of the sampled bit. A bit sampled in
+/// - `mon_field`: the hub's 4-bit [`Field`] code of the sampled bit (held until the
+///   next sample). A bit sampled in
 ///   Bus_Idle or Intermission that the controller took as SOF (event `EV_SOF`) is
 ///   reported as `Sof`; SRR, IDE and the extended identifier as `Id`; both error-flag
 ///   kinds as `ErrorFlag`; overload flag and delimiter as `Overload`; Reset,
@@ -164,6 +165,7 @@ pub struct MonitorAdapter {
     p_r: DFF<Bits<8>>,
     bs_pending: DFF<Bit>,
     bs_cnt: DFF<Bits<6>>,
+    f_map: DFF<Bits<4>>,
     fl: Signal<Local, Bits<4>>,
 }
 
@@ -198,6 +200,7 @@ impl MonitorAdapter {
             p_r: Default::default(),
             bs_pending: Default::default(),
             bs_cnt: Default::default(),
+            f_map: Default::default(),
             fl: Default::default(),
         }
     }
@@ -206,7 +209,7 @@ impl MonitorAdapter {
 impl Logic for MonitorAdapter {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, s_r, f_r, p_r, bs_pending, bs_cnt);
+        dff_setup!(self, clock, s_r, f_r, p_r, bs_pending, bs_cnt, f_map);
         self.s_r.d.next = self.sample.val();
         if self.sample.val() {
             self.f_r.d.next = self.field.val();
@@ -249,7 +252,12 @@ impl Logic for MonitorAdapter {
         } else {
             self.fl.next = 0.into();
         }
-        self.mon_field.next = self.fl.val();
+        if self.s_r.q.val() {
+            self.f_map.d.next = self.fl.val();
+            self.mon_field.next = self.fl.val();
+        } else {
+            self.mon_field.next = self.f_map.q.val();
+        }
         if self.p_r.q.val() > 15 {
             self.mon_pos.next = 15.into();
         } else if self.p_r.q.val() == 0 {
@@ -278,6 +286,7 @@ impl Logic for MonitorAdapter {
             self.f_r.d.next = 0.into();
             self.p_r.d.next = 0.into();
             self.bs_pending.d.next = false;
+            self.f_map.d.next = 0.into();
         }
         self.bit_start.next = self.bs_pending.q.val() & (self.bs_cnt.q.val() == 0) & !self.s_r.q.val();
     }

@@ -283,3 +283,84 @@ fn hub_flow() {
         assert!(hub.isolated.iter().all(|s| !s.val()));
     }
 }
+
+/// The adapter maps the controller's debug bundle onto the frame state C exactly as
+/// the reference tracker classifies BT, bit by bit, on fault-free traffic with
+/// standard, extended and remote frames, and on error and overload frames.
+#[test]
+fn monitor_frame_state_matches_reference_tracker() {
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(5);
+    let mut nodes: Vec<Node> = (0..3).map(|_| Node::default()).collect();
+    for k in 0..30 {
+        let id = rng.gen_range(0..0x7ff);
+        let data: Vec<u8> = (0..rng.gen_range(0..=8)).map(|_| rng.gen()).collect();
+        let mut f = match k % 5 {
+            0 => Frame::ext((id << 18) | rng.gen_range(0..1 << 18), &data),
+            1 => Frame::remote(id, k % 2 == 0, 3),
+            _ => Frame::std(id, &data),
+        };
+        f.corrupt_crc = k == 7;
+        nodes[k % 3].queue.push_back(f);
+    }
+    nodes[1].cfg.dominant_eof7_once = true;
+    let mut net = HubNet::new(&HubConfig::default(), nodes);
+    let mut compared = 0;
+    let mut mismatches = vec![];
+    for _ in 0..6000 {
+        net.step();
+        let l = net.stim.log.last().unwrap().clone();
+        let got = Field::from_code(net.hub.frame_state());
+        // the tracker labels bit 12 of a standard frame `Id` (it cannot know yet), the
+        // controller `RTR`; both are arbitration bits for the judges
+        let same = got == l.field || (l.field == Field::Id && got == Field::Rtr);
+        if !same {
+            mismatches.push((l.bit, l.field, l.pos, got));
+        }
+        compared += 1;
+        if net.stim.nodes.iter().all(|n| n.queue.is_empty()) && l.field == Field::Idle {
+            break;
+        }
+    }
+    assert!(net.stim.log.iter().any(|l| l.ev.error), "no error frame in the run");
+    assert!(net.stim.log.iter().any(|l| l.ev.overload), "no overload frame in the run");
+    assert!(compared > 2000);
+    assert!(mismatches.is_empty(), "{} of {compared} bits differ, first: {:?}", mismatches.len(), &mismatches[..mismatches.len().min(12)]);
+}
+
+#[test]
+fn adapter_constants_match_the_controller() {
+    use canstar_controller::fsm;
+    use canstar_hub::frame_state::{ctrl_field, EV_CRC_ERR, EV_FORM_ERR, EV_RX_OK, EV_SOF, EV_STUFF_ERR};
+    assert_eq!(
+        (EV_SOF, EV_STUFF_ERR, EV_CRC_ERR, EV_FORM_ERR, EV_RX_OK),
+        (fsm::EV_SOF, fsm::EV_STUFF_ERR, fsm::EV_CRC_ERR, fsm::EV_FORM_ERR, fsm::EV_RX_OK)
+    );
+    assert_eq!(fsm::EV_BITS, 20);
+    let code = |f: fsm::Field| fsm::Field::ALL.iter().position(|&x| x == f).unwrap() as u64;
+    use fsm::Field as F;
+    for (f, c) in [
+        (F::Idle, ctrl_field::BUS_IDLE),
+        (F::Sof, ctrl_field::START_OF_FRAME),
+        (F::Ident, ctrl_field::IDENTIFIER),
+        (F::Srr, ctrl_field::SRR),
+        (F::Ide, ctrl_field::IDE),
+        (F::Rtr, ctrl_field::RTR),
+        (F::ExIdent, ctrl_field::EX_IDENTIFIER),
+        (F::Resv, ctrl_field::RESERVED),
+        (F::Dlc, ctrl_field::DLC),
+        (F::Data, ctrl_field::DATA),
+        (F::Crc, ctrl_field::CRC),
+        (F::CrcDel, ctrl_field::CRC_DELIMITER),
+        (F::AckSlot, ctrl_field::ACK_SLOT),
+        (F::AckDel, ctrl_field::ACK_DELIMITER),
+        (F::Eof, ctrl_field::END_OF_FRAME),
+        (F::ActFlag, ctrl_field::ACTIVE_ERROR_FLAG),
+        (F::PasFlag, ctrl_field::PASSIVE_ERROR_FLAG),
+        (F::OvlFlag, ctrl_field::OVERLOAD_FLAG),
+        (F::ErrDel, ctrl_field::ERROR_DELIMITER),
+        (F::OvlDel, ctrl_field::OVERLOAD_DELIMITER),
+        (F::Inter, ctrl_field::INTERMISSION),
+    ] {
+        assert_eq!(code(f), c, "{f:?}");
+    }
+}

@@ -262,11 +262,12 @@ pub struct Tracker {
     run: u8,
     crc_err: bool,
     pub crc_ok: bool,
+    prev_label: (Field, usize),
 }
 
 impl Default for Tracker {
     fn default() -> Self {
-        Tracker { ph: Ph::Idle, bits: vec![], last: true, run: 0, crc_err: false, crc_ok: false }
+        Tracker { ph: Ph::Idle, bits: vec![], last: true, run: 0, crc_err: false, crc_ok: false, prev_label: (Field::Sof, 0) }
     }
 }
 
@@ -321,6 +322,8 @@ impl Tracker {
                     (Field::Sof, 0)
                 }
             }
+            // a stuff bit carries the FIELD and POSITION of the bit before it (§4.5)
+            Ph::Frame if self.run == 5 => self.prev_label,
             Ph::Frame => self.in_frame_field(),
             Ph::CrcDelim => (Field::CrcDelim, 0),
             Ph::AckSlot => (Field::AckSlot, 0),
@@ -339,6 +342,7 @@ impl Tracker {
         }
     }
     fn start_frame(&mut self) {
+        self.prev_label = (Field::Sof, 0);
         self.ph = Ph::Frame;
         self.bits = vec![false];
         self.last = false;
@@ -374,6 +378,7 @@ impl Tracker {
                     }
                     return ev;
                 }
+                self.prev_label = self.in_frame_field();
                 if bit == self.last {
                     self.run += 1;
                 } else {
