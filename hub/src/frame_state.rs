@@ -10,6 +10,7 @@
 //! |---|---|
 //! | `sof` | field `Sof` |
 //! | `tx_region` | fields `Id`, `Rtr`, `Res`, `Dlc`, `Data`, `Crc` (first identifier bit to last CRC bit, stuff bits included; SRR, IDE and the extended identifier are reported as `Id`) |
+//! | `arb` | fields `Sof`, `Id`, `Rtr` (the arbitration field) |
 //! | `crc_delim`, `ack_slot`, `ack_delim` | those fields |
 //! | `eof_1_6` | field `Eof`, position 0..5 |
 //! | `eof_last` | field `Eof`, position 6 (the last EOF bit) |
@@ -66,6 +67,7 @@ pub struct FrameDecode {
     pub pos: Signal<In, Bits<4>>,
     pub sof: Signal<Out, Bit>,
     pub tx_region: Signal<Out, Bit>,
+    pub arb: Signal<Out, Bit>,
     pub crc_delim: Signal<Out, Bit>,
     pub ack_slot: Signal<Out, Bit>,
     pub ack_delim: Signal<Out, Bit>,
@@ -80,6 +82,7 @@ impl Logic for FrameDecode {
     fn update(&mut self) {
         self.sof.next = self.field.val() == 1;
         self.tx_region.next = (self.field.val() >= 2) & (self.field.val() <= 7);
+        self.arb.next = (self.field.val() >= 1) & (self.field.val() <= 3);
         self.crc_delim.next = self.field.val() == 8;
         self.ack_slot.next = self.field.val() == 9;
         self.ack_delim.next = self.field.val() == 10;

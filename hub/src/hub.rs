@@ -42,7 +42,8 @@
 //!
 //! The hub's error phase for the judges is the monitor's error/overload phase OR the
 //! error-flag generator's `busy`; the error flag is triggered at a sample with
-//! `mon_error` or with a blame from any judge unit (H6).
+//! `mon_error`, with a blame from any judge unit, or with a transmitter bit error seen
+//! by a judge unit (H6; see [`crate::judge`]).
 
 use crate::coupler::{self, Coupler};
 use crate::efg::ErrorFlagGen;
@@ -307,6 +308,7 @@ pub struct HubCore {
     reset: Signal<Local, Bit>,
     err_phase: Signal<Local, Bit>,
     any_blame: Signal<Local, Bit>,
+    any_tx_error: Signal<Local, Bit>,
     trigger: Signal<Local, Bit>,
     rep_rec: Signal<Local, Bit>,
     rep_dom: Signal<Local, Bit>,
@@ -374,6 +376,7 @@ impl HubCore {
             reset: Default::default(),
             err_phase: Default::default(),
             any_blame: Default::default(),
+            any_tx_error: Default::default(),
             trigger: Default::default(),
             rep_rec: Default::default(),
             rep_dom: Default::default(),
@@ -446,6 +449,7 @@ impl Logic for HubCore {
         }
         // port judges
         self.any_blame.next = false;
+        self.any_tx_error.next = false;
         for i in 0..self._n {
             self.coupler.rx[i].next = self.rx[i].val();
             self.tx[i].next = self.coupler.tx[i].val();
@@ -466,6 +470,7 @@ impl Logic for HubCore {
             self.pj[i].bt.next = self.coupler.bt.val();
             self.pj[i].sof.next = self.decode.sof.val();
             self.pj[i].tx_region.next = self.decode.tx_region.val();
+            self.pj[i].arb.next = self.decode.arb.val();
             self.pj[i].crc_delim.next = self.decode.crc_delim.val();
             self.pj[i].ack_slot.next = self.decode.ack_slot.val();
             self.pj[i].ack_delim.next = self.decode.ack_delim.val();
@@ -478,6 +483,7 @@ impl Logic for HubCore {
             self.pj[i].rep_rec.next = false;
             self.pj[i].rep_dom.next = false;
             self.any_blame.next = self.any_blame.val() | self.pj[i].blame.val();
+            self.any_tx_error.next = self.any_tx_error.val() | self.pj[i].tx_error.val();
         }
         for j in 0..self._m {
             self.sj[j].clock.next = self.clock.val();
@@ -487,6 +493,7 @@ impl Logic for HubCore {
             self.sj[j].bt.next = self.coupler.bt.val();
             self.sj[j].sof.next = self.decode.sof.val();
             self.sj[j].tx_region.next = self.decode.tx_region.val();
+            self.sj[j].arb.next = self.decode.arb.val();
             self.sj[j].crc_delim.next = self.decode.crc_delim.val();
             self.sj[j].ack_slot.next = self.decode.ack_slot.val();
             self.sj[j].ack_delim.next = self.decode.ack_delim.val();
@@ -498,9 +505,10 @@ impl Logic for HubCore {
             self.sj[j].rep_rec.next = self.rep_rec.val();
             self.sj[j].rep_dom.next = self.rep_dom.val();
             self.any_blame.next = self.any_blame.val() | self.sj[j].blame.val();
+            self.any_tx_error.next = self.any_tx_error.val() | self.sj[j].tx_error.val();
         }
         // error flag (H6)
-        self.trigger.next = self.mon_sample.val() & (self.mon_error.val() | self.any_blame.val());
+        self.trigger.next = self.mon_sample.val() & (self.mon_error.val() | self.any_blame.val() | self.any_tx_error.val());
         // start of an error episode, registered (one clock after the sample point) so
         // that the replica evaluation does not depend combinationally on the blames
         self.err_start_r.clock.next = self.clock.val();

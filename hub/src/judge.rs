@@ -21,7 +21,9 @@
 //!
 //! # Outputs
 //! `dis` (isolated, latched), `blame` (combinational strobe: unjustified dominant bit
-//! blamed now; the hub triggers its error flag with it), `bic`, `dbc`, `nack`, `rep_cnt`
+//! blamed now; the hub triggers its error flag with it), `tx_error` (combinational
+//! strobe: this unit's transmitter has just seen a bit error, see §5.1 below; the hub
+//! also triggers its error flag with it, without blaming anyone), `bic`, `dbc`, `nack`, `rep_cnt`
 //! counters, `silent` (NACK threshold reached), `contender` (role, debug).
 //!
 //! # Rules
@@ -40,6 +42,18 @@
 //! a receiver's dominant bit before the frame's first dominant bit after SOF is taken for
 //! arbitration, not blamed (the frame is then corrupted and the monitor's own error
 //! detection takes over).
+//!
+//! **§5.1 transmitter bit errors [added].** A contender that is recessive while BT is
+//! dominant *after* the arbitration field (`tx_region` and not `arb`: reserved bits,
+//! DLC, data, CRC) cannot have lost arbitration: it is a transmitter that has just
+//! detected a bit error and sends its error flag from the next bit. If the dominant
+//! bit came from a source no judge blames at that bit (a sublink that is a contender
+//! itself, a fault the monitor sees only later), the baseline would blame the
+//! transmitter's legitimate error flag as an unjustified receiver bit. So `tx_error`
+//! starts an error episode in the hub (error flag, error phase) at that bit, and the
+//! flag is judged by DBC only. Port units only: a sublink that drops out that way is
+//! more likely stuck recessive (the replica rule handles it), and a peer transmitter's
+//! bit error is globalised by the peer hub.
 //!
 //! **§5.2 unjustified dominant.** Outside the error phase, a dominant contribution is
 //! unjustified when: it comes from a non-contender in the transmission region; or it
@@ -119,6 +133,7 @@ pub struct JudgeUnit {
     pub bt: Signal<In, Bit>,
     pub sof: Signal<In, Bit>,
     pub tx_region: Signal<In, Bit>,
+    pub arb: Signal<In, Bit>,
     pub crc_delim: Signal<In, Bit>,
     pub ack_slot: Signal<In, Bit>,
     pub ack_delim: Signal<In, Bit>,
@@ -132,6 +147,7 @@ pub struct JudgeUnit {
     pub rep_dom: Signal<In, Bit>,
     pub dis: Signal<Out, Bit>,
     pub blame: Signal<Out, Bit>,
+    pub tx_error: Signal<Out, Bit>,
     pub bic: Signal<Out, Bits<8>>,
     pub dbc: Signal<Out, Bits<5>>,
     pub nack: Signal<Out, Bits<3>>,
@@ -183,6 +199,7 @@ impl JudgeUnit {
             bt: Default::default(),
             sof: Default::default(),
             tx_region: Default::default(),
+            arb: Default::default(),
             crc_delim: Default::default(),
             ack_slot: Default::default(),
             ack_delim: Default::default(),
@@ -196,6 +213,7 @@ impl JudgeUnit {
             rep_dom: Default::default(),
             dis: Default::default(),
             blame: Default::default(),
+            tx_error: Default::default(),
             bic: Default::default(),
             dbc: Default::default(),
             nack: Default::default(),
@@ -255,6 +273,16 @@ impl Logic for JudgeUnit {
                 | self.im_1_2.val()
                 | (self.ack_slot.val() & self.cont_r.q.val() & self.ack_rule.val()));
         self.blame.next = self.sample.val() & self.unj.val() & self.enabled.val();
+        // (port units only: `nack_on` is the port-unit constant)
+        self.tx_error.next = self.sample.val()
+            & self.nack_on.val()
+            & self.enabled.val()
+            & self.cont_r.q.val()
+            & self.tx_region.val()
+            & !self.arb.val()
+            & self.c.val()
+            & !self.bt.val()
+            & !self.err_phase.val();
         if self.sample.val() {
             // ACK error: BT recessive in the ACK slot
             if self.ack_slot.val() {

@@ -137,6 +137,30 @@ fn unjustified_dominant_on_interlink_isolates_both_at_double_threshold<T: Dut>()
     assert_eq!(net.stim.nodes.iter().map(|n| n.sent).sum::<usize>(), 40);
 }
 
+/// The peer turns one recessive data bit dominant in some frames (both replicas, as a
+/// contender: the peer carries the transmitter's bits too). The transmitter sees a bit
+/// error and flags: the hub starts its error episode there and does not blame the
+/// transmitter's flag; no port is blamed.
+fn transmitter_bit_error_from_peer_not_blamed_on_port<T: Dut>() {
+    let mut flips = 0;
+    let net = run::<T>(
+        Box::new(move |_, j, pins, t| {
+            let (f, pos) = t.classify(true);
+            let v = pins.iter().all(|&p| p);
+            if f == Field::Data && pos == 6 && v && flips < 6 {
+                if j == 1 {
+                    flips += 1;
+                }
+                return false;
+            }
+            v
+        }),
+        12,
+    );
+    assert!(net.errors() >= 1);
+    assert_eq!(net.max_bic, vec![0, 0, 0], "no port blamed");
+}
+
 macro_rules! both {
     ($($name:ident),*) => {
         mod core_with_reference_tracker {
@@ -148,4 +172,4 @@ macro_rules! both {
     };
 }
 
-both!(healthy_peer_never_blamed, stuck_recessive_sublink_isolated_not_its_replica, stuck_dominant_sublink_isolated_alone, dominant_run_isolates_single_sublink, inverted_sublink_isolated_alone, unjustified_dominant_on_interlink_isolates_both_at_double_threshold);
+both!(transmitter_bit_error_from_peer_not_blamed_on_port, healthy_peer_never_blamed, stuck_recessive_sublink_isolated_not_its_replica, stuck_dominant_sublink_isolated_alone, dominant_run_isolates_single_sublink, inverted_sublink_isolated_alone, unjustified_dominant_on_interlink_isolates_both_at_double_threshold);

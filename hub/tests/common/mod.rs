@@ -611,7 +611,8 @@ impl Node {
 /// A fault between a node and its hub pin (uplink) or between the hub pin and the node
 /// (downlink): gets (bit index, value, tracker before the bit) and returns the new value.
 pub type LinkFault = Box<dyn FnMut(usize, bool, &Tracker) -> bool>;
-/// The value of incoming sublink j at bit b, given the node pins of that bit.
+/// The value of incoming sublink j at bit b, given the nodes' own contributions of that
+/// bit (before the faults on this hub's uplinks).
 pub type SublinkFn = Box<dyn FnMut(usize, usize, &[bool], &Tracker) -> bool>;
 
 /// The stimulus side of a hub test: nodes, faults, sublinks, reference tracker.
@@ -679,16 +680,19 @@ impl Stim {
             self.finish_bit();
             let b = self.bit;
             let n = self.nodes.len();
+            let mut own = vec![true; n];
             for i in 0..n {
                 let c = self.nodes[i].contribution(&self.tracker);
+                own[i] = c;
                 self.pins[i] = match &mut self.up_faults[i] {
                     Some(f) => f(b, c, &self.tracker),
                     None => c,
                 };
                 hub.set_rx(i, self.pins[i]);
             }
+            // the peer sees the nodes' own contributions (its links, not our faulty ones)
             for j in 0..hub.n_reh() {
-                let v = (self.sublink)(b, j, &self.pins, &self.tracker);
+                let v = (self.sublink)(b, j, &own, &self.tracker);
                 hub.set_reh_rx(j, v);
             }
         }
