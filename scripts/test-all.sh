@@ -19,6 +19,10 @@ if [ "${#missing[@]}" -gt 0 ]; then
   $SUDO apt-get update -qq
   $SUDO apt-get install -y -qq yosys iverilog verilator >/dev/null
 fi
+if ! python3 -c "import can" >/dev/null 2>&1; then
+  echo "== installing python-can (reads the candump logs in a test)"
+  python3 -m pip install -q python-can
+fi
 echo "== tools: $(yosys -V | head -1); $(iverilog -V 2>&1 | head -1); $(verilator --version)"
 
 echo "== cargo test (all tests, Verilog flow included)"

@@ -28,10 +28,21 @@ pub fn blocks(config: &Config) -> Result<Vec<Artifact>> {
     ])
 }
 
+/// The CAN controller core (native interface) as `verilog-out/controller/canstar_can_core.v`.
+pub fn controller(config: &Config) -> Result<Vec<Artifact>> {
+    let mut a = block(
+        canstar_controller::core::CanCore::with_sync_depth(config.rtl.sync_depth),
+        "canstar_can_core",
+        "CAN 2.0A/B protocol controller core, native interface (see controller/src/core.rs)",
+    );
+    a.path = std::path::PathBuf::from("controller/canstar_can_core.v");
+    Ok(vec![a])
+}
+
 /// The designs `canstar report` measures: (name, Verilog, top module).
 pub fn report_designs(config: &Config) -> Result<Vec<(String, String, String)>> {
     let mut v = vec![];
-    for a in blocks(config)? {
+    for a in blocks(config)?.into_iter().chain(controller(config)?) {
         let top = a.path.file_stem().unwrap().to_string_lossy().into_owned();
         v.push((top.clone(), a.contents, top));
     }

@@ -13,6 +13,8 @@ use crate::config::Config;
 pub enum Target {
     /// The shared RTL blocks (CRC-15, stuffer, destuffer, bit timing, synchroniser), each as a standalone module.
     Blocks,
+    /// The CAN controller core with its native interface.
+    Controller,
     /// Everything that exists.
     All,
 }
@@ -51,6 +53,9 @@ pub fn render(target: Target, config: &Config) -> Result<Vec<Artifact>> {
     let mut out = vec![];
     if matches!(target, Target::Blocks | Target::All) {
         out.extend(crate::designs::blocks(config)?);
+    }
+    if matches!(target, Target::Controller | Target::All) {
+        out.extend(crate::designs::controller(config)?);
     }
     // Refuse two artifacts with the same path (a programming error, but cheap to check).
     let mut seen = BTreeMap::new();

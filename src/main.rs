@@ -44,6 +44,20 @@ enum Cmd {
         #[arg(long, default_value_t = 50.0)]
         freq: f64,
     },
+    /// Simulate a bus scenario (TOML: nodes, bit timing, clock offsets, frames, interference).
+    Sim {
+        /// Scenario file.
+        scenario: PathBuf,
+        /// Write a VCD of every signal and bus wire.
+        #[arg(long)]
+        vcd: Option<PathBuf>,
+        /// Write the per-bit trace of every node (can-protocol.md §18).
+        #[arg(long)]
+        trace: Option<PathBuf>,
+        /// Write the frames each node saw as a candump log (node i is can<i>).
+        #[arg(long)]
+        log: Option<PathBuf>,
+    },
     /// Measure simulation throughput (simulated clock cycles per second).
     Bench {
         /// Simulated clock cycles per measurement.
@@ -101,6 +115,32 @@ fn run(cli: Cli) -> Result<()> {
             }
             println!("{}", canstar::report::table(&rows));
             println!("\ntools: {}", canstar::report::tool_versions());
+            Ok(())
+        }
+        Cmd::Sim { scenario, vcd, trace, log } => {
+            let text = std::fs::read_to_string(&scenario).with_context(|| format!("reading {}", scenario.display()))?;
+            let sc = canstar_sim::scenario::Scenario::from_toml(&text).map_err(|e| anyhow::anyhow!("{}: {e}", scenario.display()))?;
+            let opts = canstar_sim::scenario::RunOptions { vcd: vcd.clone(), trace: trace.is_some() };
+            let r = canstar_sim::scenario::run(&sc, &opts).map_err(|e| anyhow::anyhow!(e))?;
+            if let Some(p) = &trace {
+                std::fs::write(p, r.trace.join("\n") + "\n").with_context(|| format!("writing {}", p.display()))?;
+            }
+            if let Some(p) = &log {
+                std::fs::write(p, r.candump.join("\n") + "\n").with_context(|| format!("writing {}", p.display()))?;
+            }
+            println!("{:<12} {:>5} {:>5} {:>6} {:>4} {:>4} {:>6}", "node", "sent", "recv", "errors", "TEC", "REC", "state");
+            for n in &r.nodes {
+                let st = ["active", "passive", "bus-off"].get(n.state as usize).copied().unwrap_or("?");
+                println!(
+                    "{:<12} {:>5} {:>5} {:>6} {:>4} {:>4} {:>6}{}",
+                    n.name, n.sent, n.received, n.errors, n.tec, n.rec, st, if n.pending { "  (frames still pending)" } else { "" }
+                );
+            }
+            for (what, p) in [("VCD", &vcd), ("trace", &trace), ("candump log", &log)] {
+                if let Some(p) = p {
+                    println!("wrote {what} {}", p.display());
+                }
+            }
             Ok(())
         }
         Cmd::Bench { cycles, nodes, vcd: Some(path), signals, seed } => {

@@ -19,7 +19,8 @@ pub struct Row {
     pub ice40_dff: usize,
     /// iCE40: block RAMs (SB_RAM40_4K).
     pub ice40_bram: usize,
-    /// iCE40: placed logic cells (ICESTORM_LC) reported by nextpnr, if it ran.
+    /// iCE40: placed logic cells (ICESTORM_LC) reported by nextpnr, if it ran,
+    /// including the measurement wrapper's flip-flops (see [`pnr_wrapper`]).
     pub ice40_lc: Option<usize>,
     /// iCE40: maximum frequency reported by nextpnr, if it ran.
     pub ice40_fmax_mhz: Option<f64>,
@@ -55,6 +56,67 @@ fn yosys(script: &str) -> Result<String> {
         bail!("yosys failed:\n{}{}", String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
     }
     Ok(String::from_utf8_lossy(&out.stdout).into_owned())
+}
+
+/// Top-level ports of a rust-hdl module: (name, bits, is_output), parsed
+/// from its declarations (`input wire [7:0] x;`, `output reg y;`).
+pub fn parse_ports(verilog: &str, top: &str) -> Vec<(String, usize, bool)> {
+    let start = verilog.find(&format!("module {top}(")).unwrap_or(0);
+    let body = &verilog[start..];
+    let body = &body[..body.find("endmodule").unwrap_or(body.len())];
+    let mut ports = vec![];
+    for l in body.lines() {
+        let t = l.trim();
+        let out = t.starts_with("output ");
+        if !(out || t.starts_with("input ")) || !t.ends_with(';') {
+            continue;
+        }
+        let decl = t.trim_end_matches(';');
+        let name = decl.split_whitespace().last().unwrap_or("").to_string();
+        let bits = match (decl.find('['), decl.find(':')) {
+            (Some(a), Some(b)) if b > a => decl[a + 1..b].trim().parse::<usize>().map(|h| h + 1).unwrap_or(1),
+            _ => 1,
+        };
+        ports.push((name, bits, out));
+    }
+    ports
+}
+
+/// A measurement wrapper for designs with more ports than the package has
+/// pins: every input of `top` (but `clock`) comes from one long shift
+/// register fed by pin `sin`, every output is registered and XOR-reduced to
+/// pin `sout`, so nothing is optimised away and nextpnr can place the design
+/// with three I/Os. The wrapper's own flip-flops (one per port bit) are
+/// included in the placed figures.
+pub fn pnr_wrapper(verilog: &str, top: &str) -> (String, String) {
+    let ports = parse_ports(verilog, top);
+    let inb: usize = ports.iter().filter(|p| !p.2 && p.0 != "clock").map(|p| p.1).sum();
+    let outb: usize = ports.iter().filter(|p| p.2).map(|p| p.1).sum();
+    let name = format!("{top}_pnr");
+    let mut w = String::new();
+    w += &format!("module {name}(input wire clock, input wire sin, output reg sout);\n");
+    w += &format!("  reg [{}:0] chain = 0;\n", inb.max(1) - 1);
+    w += &format!("  wire [{}:0] outs;\n", outb.max(1) - 1);
+    w += &format!("  reg [{}:0] outs_r = 0;\n", outb.max(1) - 1);
+    w += "  always @(posedge clock) begin\n";
+    if inb > 1 {
+        w += &format!("    chain <= {{chain[{}:0], sin}};\n", inb - 2);
+    } else {
+        w += "    chain <= sin;\n";
+    }
+    w += "    outs_r <= outs;\n    sout <= ^outs_r;\n  end\n";
+    let mut conns = vec![".clock(clock)".to_string()];
+    let (mut ib, mut ob) = (0usize, 0usize);
+    for (n, b, out) in &ports {
+        if n == "clock" {
+            continue;
+        }
+        let (base, acc) = if *out { ("outs", &mut ob) } else { ("chain", &mut ib) };
+        conns.push(format!(".{n}({base}[{}:{}])", *acc + b - 1, *acc));
+        *acc += b;
+    }
+    w += &format!("  {top} dut({});\nendmodule\n", conns.join(", "));
+    (format!("{verilog}\n{w}"), name)
 }
 
 /// Synthesise (and place and route, if nextpnr-ice40 is present) one design.
@@ -93,6 +155,14 @@ pub fn measure(design: &str, verilog: &str, top: &str, clock_mhz: f64) -> Result
     };
     if have("nextpnr-ice40") {
         // A time limit, so that an unroutable design cannot hang the report.
+        // Place the measurement wrapper, so that designs with wide native
+        // interfaces fit the package too.
+        let (wrapped, wtop) = pnr_wrapper(verilog, top);
+        let wv = wd.path().join("wrapped.v");
+        std::fs::write(&wv, wrapped)?;
+        let wjson = wd.path().join("wrapped.json");
+        yosys(&format!("read_verilog {}; synth_ice40 -top {wtop} -json {}", wv.display(), wjson.display()))?;
+        let json = wjson;
         let out = Command::new("timeout")
             .args(["900", "nextpnr-ice40", "--hx8k", "--package", "cb132", "--seed", "1", "--freq"])
             .arg(format!("{clock_mhz}"))
@@ -172,5 +242,19 @@ mod tests {
         let flat = "=== a ===\n   Number of cells: 52\n     SB_LUT4   23\n     SB_DFFESR  15\n";
         assert_eq!(count_cells(flat, |n| n == "SB_LUT4"), 23);
         assert_eq!(count_cells(flat, |n| n.starts_with("SB_DFF")), 15);
+    }
+}
+
+#[cfg(test)]
+mod wrapper_tests {
+    use super::*;
+
+    #[test]
+    fn wrapper_connects_every_port_bit() {
+        let v = "module top(clock,a,b,y);\n    input wire  clock;\n    input wire  [3:0] a;\n    input wire  b;\n    output reg  [1:0] y;\nendmodule // top\n";
+        assert_eq!(parse_ports(v, "top"), vec![("clock".into(), 1, false), ("a".into(), 4, false), ("b".into(), 1, false), ("y".into(), 2, true)]);
+        let (w, name) = pnr_wrapper(v, "top");
+        assert_eq!(name, "top_pnr");
+        assert!(w.contains("reg [4:0] chain") && w.contains(".a(chain[3:0])") && w.contains(".b(chain[4:4])") && w.contains(".y(outs[1:0])"), "{w}");
     }
 }

@@ -96,3 +96,18 @@ fn bench_vcd_dumps_all_or_a_selection_deterministically() {
     assert!(sel.contains(" sample ") && sel.contains(" level "));
     assert!(!sel.contains(" busmon ") && sel.len() < all.len() / 2);
 }
+
+#[test]
+fn sim_runs_an_example_and_rejects_a_malformed_scenario() {
+    let d = tempfile::tempdir().unwrap();
+    let ex = Path::new(env!("CARGO_MANIFEST_DIR")).join("sim/examples/arbitration.toml");
+    let (ok, out, err) = canstar(&["sim", ex.to_str().unwrap(), "--log", "a.log", "--trace", "a.trace", "--vcd", "a.vcd"], d.path());
+    assert!(ok, "{out}{err}");
+    let log = std::fs::read_to_string(d.path().join("a.log")).unwrap();
+    assert!(log.lines().all(|l| l.starts_with('(') && l.contains(") can") && l.contains('#')), "{log}");
+    assert!(std::fs::read_to_string(d.path().join("a.vcd")).unwrap().contains("$scope module ecu_a"));
+    std::fs::write(d.path().join("bad.toml"), "duration_us = 10\n[[node]]\nname = \"a\"\n[[frame]]\nnode = \"a\"\nat_us = 1\nid = 0x800\n").unwrap();
+    let (ok, _, err) = canstar(&["sim", "bad.toml", "--log", "b.log"], d.path());
+    assert!(!ok && err.contains("does not fit a 11-bit frame"), "{err}");
+    assert!(!d.path().join("b.log").exists());
+}

@@ -41,6 +41,7 @@ pub mod golden;
 pub mod bus;
 mod kernel;
 pub mod net;
+pub mod node;
 pub mod scenario;
 pub mod star;
 pub mod vcd;
