@@ -220,9 +220,7 @@ impl Logic for MonitorAdapter {
         }
         // field mapping (single assignment of the outputs, see the hub module docs);
         // event bits: 0 EV_SOF, 3 EV_STUFF_ERR, 4 EV_CRC_ERR, 5 EV_FORM_ERR, 13 EV_RX_OK
-        if self.events.val().get_bit(0) {
-            self.fl.next = 1.into();
-        } else if self.f_r.q.val() == 4 {
+        if self.events.val().get_bit(0) | (self.f_r.q.val() == 4) {
             self.fl.next = 1.into();
         } else if (self.f_r.q.val() == 5) | (self.f_r.q.val() == 6) | (self.f_r.q.val() == 7) | (self.f_r.q.val() == 9) {
             self.fl.next = 2.into();

@@ -338,9 +338,8 @@ fn no_reintegration_while_still_faulty<T: Dut>() {
     let mut net = Net::<T>::new(&cfg, n);
     net.stim.up_faults[1] = Some(Box::new(|b, v, t| {
         let (f, _) = t.classify(true);
-        if b >= 100 && f == Field::CrcDelim {
-            false
-        } else if (100..130).contains(&b) {
+        // stuck dominant for 30 bits, then dominant in every CRC delimiter
+        if (b >= 100 && f == Field::CrcDelim) || (100..130).contains(&b) {
             false
         } else {
             v

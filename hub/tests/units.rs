@@ -302,7 +302,7 @@ fn adapter_maps_fields_events_and_estimates_bit_start() {
     use canstar_hub::frame_state::{ctrl_field, MonitorAdapter};
     let mut a = MonitorAdapter::new(2);
     drive::init(&mut a);
-    let mut strobe = |a: &mut MonitorAdapter, field: u64, pos: u64, ev: u64| -> (u64, u64, bool, bool, bool) {
+    let strobe = |a: &mut MonitorAdapter, field: u64, pos: u64, ev: u64| -> (u64, u64, bool, bool, bool) {
         a.sample.next = true;
         a.field.next = field.into();
         a.pos.next = pos.into();
