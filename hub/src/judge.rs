@@ -27,7 +27,7 @@
 //! counters, `silent` (NACK threshold reached), `contender` (role, debug).
 //!
 //! # Rules
-//! **§5.1 roles [changed].** The baseline makes a port a contender if it is dominant at
+//! **§5.1 roles (changed).** The baseline makes a port a contender if it is dominant at
 //! SOF, or recessive at SOF and dominant at the first identifier bit. That misses a late
 //! joiner whose first identifier bit is 1 (recessive): CAN lets a node with a pending
 //! frame that sees a dominant third intermission bit start directly with its first
@@ -43,7 +43,7 @@
 //! arbitration, not blamed (the frame is then corrupted and the monitor's own error
 //! detection takes over).
 //!
-//! **§5.1 transmitter bit errors [added].** A contender that is recessive while BT is
+//! **§5.1 transmitter bit errors (added).** A contender that is recessive while BT is
 //! dominant *after* the arbitration field (`tx_region` and not `arb`: reserved bits,
 //! DLC, data, CRC) cannot have lost arbitration: it is a transmitter that has just
 //! detected a bit error and sends its error flag from the next bit. If the dominant
@@ -57,14 +57,14 @@
 //!
 //! **§5.2 unjustified dominant.** Outside the error phase, a dominant contribution is
 //! unjustified when: it comes from a non-contender in the transmission region; or it
-//! falls in the CRC delimiter, the ACK delimiter (**[changed]**: not when BT was
+//! falls in the CRC delimiter, the ACK delimiter (**(changed)**: not when BT was
 //! recessive in the ACK slot: then the transmitter legitimately starts its ACK-error
 //! flag in the ACK delimiter, e.g. after a CRC error or when no receiver is alive), EOF
 //! bits 1-6 or intermission bits 1-2 (a
 //! dominant bit there after a dominant last EOF / delimiter bit is inside the monitor's
 //! overload phase, hence error phase, hence not blamed); or it comes from a contender in
 //! the ACK slot (port units only: a sublink carries the peer's acknowledging receivers
-//! too, so the ACK slot rule is off for sublinks **[changed]**). The port is blamed once
+//! too, so the ACK slot rule is off for sublinks **(changed)**). The port is blamed once
 //! per episode: `bic += 8` (saturating) and `blame` triggers the hub's error flag, whose
 //! `busy` time is error phase, so the same episode cannot blame the port again.
 //!
@@ -90,7 +90,7 @@
 //! the unit and clear all its counters. The frame in which the unit was isolated never
 //! counts.
 //!
-//! **§5.7 sublinks, replica rule [changed].** The baseline isolates a sublink that is
+//! **§5.7 sublinks, replica rule (changed).** The baseline isolates a sublink that is
 //! dominant while a replica is recessive for 3 consecutive samples. With two replicas
 //! that blames the *healthy* sublink when its replica is stuck recessive (the healthy
 //! one is then the dominant one whenever the peer sends a dominant bit). Our rule looks
