@@ -412,3 +412,32 @@ fn complete_hub_flow() {
         assert_eq!(sub, vec![true, false], "stuck-recessive sublink 0 isolated");
     }
 }
+
+/// H2/H3 on the complete hub: the frame monitor is not in the coupling path.
+#[test]
+fn complete_hub_latency_and_reset() {
+    for depth in [1usize, 2] {
+        let cfg = HubConfig { sync_depth: depth, ..Default::default() };
+        let mut h = Hub::new(&cfg);
+        for r in h.rx.iter_mut().chain(h.reh_rx.iter_mut()) {
+            r.next = true;
+        }
+        reset_hub(&mut h);
+        for _ in 0..40 {
+            drive::cycle(&mut h);
+        }
+        h.rx[1].next = false;
+        let mut edges = 0;
+        while h.tx[0].val() {
+            drive::cycle(&mut h);
+            edges += 1;
+            assert!(edges < 10);
+        }
+        assert_eq!(edges, cfg.coupling_latency());
+        assert!(h.hub_tx.iter().all(|t| !t.val()));
+        h.rst_n.next = false;
+        drive::cycle(&mut h);
+        drive::cycle(&mut h);
+        assert!(h.tx.iter().chain(h.hub_tx.iter()).all(|t| t.val()), "recessive in reset");
+    }
+}
