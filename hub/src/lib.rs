@@ -1,1 +1,62 @@
-//! placeholder
+//! canstar-hub: the CAN star hub RTL (CANcentrate with M = 0 sublinks, ReCANcentrate
+//! with M >= 1), after `/work/shared/spec/hub.md` (requirements H1-H9, judging rules §5).
+//!
+//! # Blocks
+//! - [`coupler`]: input synchronisers (`canstar_hdl::sync::Synchroniser`), ANDC, ANDT,
+//!   fault hooks, output registers. Coupling latency [`coupler::coupling_latency`].
+//! - [`efg`]: the hub's error-flag generator (6 dominant bits from the next bit).
+//! - [`judge`]: every judging rule, in one block instantiated per uplink (port judge
+//!   unit) and per incoming sublink (sublink judge unit). Its module docs list the
+//!   rules and each change to the baseline of hub.md §5.
+//! - [`inject`]: the fault-injection controller (H8).
+//! - [`frame_state`]: the frame state C: field codes, the decoder for the judges and
+//!   the adapter from the CAN controller's debug bundle.
+//! - [`hub`]: [`hub::HubCore`] (everything but the frame monitor, frame state on `mon_*`
+//!   inputs), [`hub::Hub`] (the complete hub: `HubCore` + the CAN controller
+//!   `canstar_controller::CanCore` in listen-only mode as frame monitor + adapter),
+//!   and [`hub::HubConfig`] (serde, defaults = the reference hub).
+//!
+//! # Design notes
+//! - **One frame tracker.** The hub has no frame tracking of its own: the frame
+//!   monitor is the controller's receive path (bit timing, destuffing, CRC, form and
+//!   stuff checks, error and overload phases), fed with BT. The
+//!   [`frame_state::MonitorAdapter`] only renames its FIELD/POSITION/event outputs and
+//!   delays them by one clock (the controller's events are registered). The tests also
+//!   drive `HubCore` from a plain-Rust reference tracker (test code only) and check,
+//!   bit by bit, that the controller-based frame state equals it.
+//! - **N and M** are construction-time parameters: ports are rust-hdl `Vec`s of
+//!   signals and sub-blocks, unrolled by `for i in 0..n` loops. In Verilog they appear
+//!   as `rx$0`, `rx$1`, ... (legal identifiers). M = 0 gives empty vectors.
+//! - **Coupling latency (H2)**: sync depth + 1 clocks from an uplink pin to every
+//!   downlink pin (depth 2: 3 clocks = 203.5 ns at 14.74 MHz); the same from an incoming
+//!   sublink pin to the downlinks and from an uplink pin to the outgoing sublinks.
+//! - **Reset (H3)**: `rst_n` low is a synchronous reset; every output register and
+//!   synchroniser stores the inverted level, so outputs are recessive from power-up
+//!   on, before any reset. (`rst_n` itself is not synchronised: a board design with an
+//!   asynchronous button should add a reset synchroniser in front of the hub.)
+//! - **Error phase** of the judges = the monitor's error/overload phase OR the hub's
+//!   own error flag pending or being sent, so the nodes' answers to the hub's flag are
+//!   never blamed even before the monitor has seen an error.
+//! - **Error-flag timing**: the controller does not export its transmit points, so
+//!   the adapter estimates the next bit start PH2 time quanta after the sample point
+//!   (see [`frame_state::MonitorAdapter`]).
+//! - **Verilog rule**: a signal crossing a module boundary on a combinational path is
+//!   assigned exactly once per evaluation (if/else, never "default then override"):
+//!   the glitches of two `always @(*)` blocks feeding each other otherwise retrigger
+//!   each other forever in an event-driven simulator (seen in Icarus with the fault
+//!   hooks).
+//! - **Changes to the baseline rules of hub.md §5** (details in [`judge`]): every port
+//!   is a contender at SOF (late joiners whose first identifier bit is recessive);
+//!   a transmitter's bit error after the arbitration field starts the hub's error
+//!   episode; the ACK delimiter is not blamed after a recessive ACK slot (ACK-error
+//!   flag); NACK is counted at the ACK delimiter (where the monitor signals CRC
+//!   errors); the ACK-slot rule is off for sublinks; the replica rule charges the
+//!   replica whose value the consequence shows wrong (error episode: the dominant one,
+//!   correct frame: the recessive one) instead of always the dominant one.
+
+pub mod coupler;
+pub mod efg;
+pub mod frame_state;
+pub mod hub;
+pub mod inject;
+pub mod judge;

@@ -1,0 +1,701 @@
+//! The hub top level ([`HubCore`]) and its generation-time configuration ([`HubConfig`]).
+//!
+//! [`HubCore`] wires the coupler, the error-flag generator, one port judge unit per
+//! uplink, one sublink judge unit per incoming sublink, the frame-state decoder and the
+//! fault-injection controller. The frame monitor (bit timing + receive path of the CAN
+//! controller in listen-only mode) is *outside* `HubCore`: `HubCore` exports the coupled
+//! bit `bt` and takes the monitor's frame state on its `mon_*` inputs, so that frame
+//! tracking has exactly one implementation in the code base (the controller's).
+//!
+//! # Ports (1 = recessive on every CAN line)
+//! | port | dir | meaning |
+//! |---|---|---|
+//! | `rst_n` | in | reset, active low, synchronous (H3) |
+//! | `inject_fault` | in | fault-injection button (H8), unused without hooks |
+//! | `rx$i` (N) | in | uplinks |
+//! | `reh_rx$j` (M) | in | incoming sublinks |
+//! | `mon_sample` | in | strobe: the monitor samples BT now |
+//! | `mon_bit_start` | in | strobe: a new bit starts (the error flag starts here) |
+//! | `mon_field` (4) | in | field of the bit being sampled, [`crate::frame_state::Field`] code |
+//! | `mon_pos` (4) | in | position of that bit in its field (0-based, saturating) |
+//! | `mon_crc_ok` | in | the received CRC was correct (valid in the ACK slot) |
+//! | `mon_frame_ok` | in | with `mon_sample` at the last EOF bit: the frame completed without error |
+//! | `mon_error` | in | with `mon_sample`: stuff, CRC or form error detected at this bit |
+//! | `tx$i` (N) | out | downlinks, `BT` through one output register |
+//! | `hub_tx$j` (M) | out | outgoing sublinks, `ANDC` through one output register |
+//! | `bt` | out | the coupled bit, combinational, for the frame monitor |
+//! | `isolated$i`, `silent$i` (N) | out | port isolated (judge `dis`), port reported silent (NACK) |
+//! | `sub_isolated$j` (M) | out | sublink isolated |
+//! | `frame_state` (4) | out | `mon_field` (H9) |
+//! | `efg_active` | out | the hub's error flag is being driven |
+//! | `inject_active` | out | an injected fault is active |
+//! | `bic$i` (8), `dbc$i` (5), `nack$i` (3) | out | port counters, only with `debug` |
+//! | `sub_bic$j` (8), `sub_dbc$j` (5), `sub_rep$j` (3) | out | sublink counters, only with `debug` |
+//!
+//! Coupling latency (H2): [`HubConfig::coupling_latency`] = sync depth + 1 clocks from
+//! `rx` to `tx` (and from `reh_rx` to `tx`, from `rx` to `hub_tx`).
+//!
+//! Verilog note: every signal that crosses a module boundary inside a combinational
+//! path is assigned exactly once per evaluation (if/else, never "default, then
+//! override"). Otherwise the zero-delay glitches of two `always @(*)` blocks that feed
+//! each other retrigger one another forever in an event-driven simulator.
+//!
+//! The hub's error phase for the judges is the monitor's error/overload phase OR the
+//! error-flag generator's `busy`; the error flag is triggered at a sample with
+//! `mon_error`, with a blame from any judge unit, or with a transmitter bit error seen
+//! by a judge unit (H6; see [`crate::judge`]).
+
+use crate::coupler::{self, Coupler};
+use crate::efg::ErrorFlagGen;
+use crate::frame_state::{Field, FrameDecode, MonitorAdapter};
+use canstar_controller::CanCore;
+use crate::inject::Injector;
+use crate::judge::{JudgeParams, JudgeUnit};
+use rust_hdl::prelude::*;
+use serde::{Deserialize, Serialize};
+
+/// Bit timing of the hub's frame monitor, in the controller's encoding (every field is
+/// the value minus one; see `canstar_hdl::btl`): TQ = brp + 1 clocks, PROP = prop + 1,
+/// PH1 = ph1 + 1, PH2 = max(PH1, 2) TQ, SJW = sjw + 1, sample point after
+/// 1 + PROP + PH1 TQ. The default is the reference hub: TQ = 2 clocks of 14.74 MHz
+/// (the reference's "brp 0" of an SJA1000-style prescaler, which doubles), 8 TQ per
+/// bit, sample point at 6 TQ (75 %), SJW 1.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(default)]
+pub struct HubBitTiming {
+    pub brp: u32,
+    pub prop: u32,
+    pub ph1: u32,
+    pub sjw: u32,
+}
+
+impl Default for HubBitTiming {
+    fn default() -> Self {
+        Self { brp: 1, prop: 2, ph1: 1, sjw: 0 }
+    }
+}
+
+impl HubBitTiming {
+    /// Clocks per time quantum.
+    pub fn tq_clocks(&self) -> u32 {
+        self.brp + 1
+    }
+    /// Phase segment 2 in TQ.
+    pub fn ph2_tq(&self) -> u32 {
+        (self.ph1 + 1).max(2)
+    }
+    /// Time quanta per bit (sync segment included).
+    pub fn tq_per_bit(&self) -> u32 {
+        self.sample_tq() + self.ph2_tq()
+    }
+    /// Time quanta from the start of the bit to the sample point.
+    pub fn sample_tq(&self) -> u32 {
+        1 + (self.prop + 1) + (self.ph1 + 1)
+    }
+    /// Clocks per bit.
+    pub fn bit_clocks(&self) -> u32 {
+        self.tq_per_bit() * self.tq_clocks()
+    }
+}
+
+/// Where a fault is injected.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub enum FaultPoint {
+    /// Uplink of port i, after the input stage (coupler and judge see it).
+    Uplink(usize),
+    /// Downlink of port i, after ANDT.
+    Downlink(usize),
+    /// Outgoing sublink j.
+    Sublink(usize),
+}
+
+/// Which fault.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub enum FaultKind {
+    StuckRecessive,
+    StuckDominant,
+    /// Inversion of the signal while active (every bit flipped once).
+    BitFlip,
+}
+
+impl FaultKind {
+    pub fn code(self) -> u64 {
+        match self {
+            FaultKind::StuckRecessive => coupler::FAULT_STUCK_RECESSIVE,
+            FaultKind::StuckDominant => coupler::FAULT_STUCK_DOMINANT,
+            FaultKind::BitFlip => coupler::FAULT_BIT_FLIP,
+        }
+    }
+}
+
+/// A fault-injection hook (H8).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct FaultInjection {
+    pub point: FaultPoint,
+    pub kind: FaultKind,
+    /// Field code at which an armed injection starts ([`Field`] code, e.g. 6 = data).
+    pub start_field: u8,
+}
+
+/// Generation-time parameters of a hub (H1). Defaults = the reference hub.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default)]
+pub struct HubConfig {
+    /// Node ports N (>= 1).
+    pub ports: usize,
+    /// Interlink sublink pairs M (>= 0; 0 = CANcentrate).
+    pub sublinks: usize,
+    /// Hub clock in Hz (documentation and pin constraints; the RTL counts clocks).
+    pub clock_hz: u64,
+    pub timing: HubBitTiming,
+    /// Input synchroniser depth, 1 or 2.
+    pub sync_depth: usize,
+    /// BIC threshold (isolation at bic >= 8 * threshold), 1..=31.
+    pub bic_threshold: u64,
+    /// NACK threshold, 1..=7.
+    pub nack_threshold: u64,
+    /// DBC threshold for ports, 1..=31 (reference value 24 is available).
+    pub dbc_threshold: u64,
+    /// BIC threshold for sublinks (default twice the port threshold), 1..=31.
+    pub sub_bic_threshold: u64,
+    /// Dominant-run threshold for sublinks, 1..=31.
+    pub sub_dbc_threshold: u64,
+    /// Replica disagreement limit, 1..=7.
+    pub replica_limit: u64,
+    /// Reintegration window W in frames (None = isolation latched until reset).
+    pub reintegration: Option<u64>,
+    /// Fault-injection hook (None = no hooks).
+    pub fault_injection: Option<FaultInjection>,
+    /// Debug outputs (counters).
+    pub debug: bool,
+}
+
+impl Default for HubConfig {
+    fn default() -> Self {
+        Self {
+            ports: 3,
+            sublinks: 2,
+            clock_hz: 14_740_000,
+            timing: HubBitTiming::default(),
+            sync_depth: 2,
+            bic_threshold: 8,
+            nack_threshold: 7,
+            dbc_threshold: 13,
+            sub_bic_threshold: 16,
+            sub_dbc_threshold: 28,
+            replica_limit: 3,
+            reintegration: None,
+            fault_injection: None,
+            debug: true,
+        }
+    }
+}
+
+impl HubConfig {
+    /// Clock edges from an uplink pin to the downlink pins.
+    pub fn coupling_latency(&self) -> usize {
+        coupler::coupling_latency(self.sync_depth)
+    }
+    /// Parameters of the port judge units.
+    pub fn port_params(&self) -> JudgeParams {
+        JudgeParams {
+            bic_limit: 8 * self.bic_threshold,
+            dbc_threshold: self.dbc_threshold,
+            nack_threshold: self.nack_threshold,
+            replica_limit: self.replica_limit,
+            reintegration: self.reintegration,
+        }
+    }
+    /// Parameters of the sublink judge units.
+    pub fn sublink_params(&self) -> JudgeParams {
+        JudgeParams {
+            bic_limit: 8 * self.sub_bic_threshold,
+            dbc_threshold: self.sub_dbc_threshold,
+            nack_threshold: self.nack_threshold,
+            replica_limit: self.replica_limit,
+            reintegration: self.reintegration,
+        }
+    }
+    /// Check the ranges; returns a description of the first problem.
+    pub fn validate(&self) -> Result<(), String> {
+        if self.ports == 0 {
+            return Err("ports must be >= 1".into());
+        }
+        if !(1..=2).contains(&self.sync_depth) {
+            return Err("sync_depth must be 1 or 2".into());
+        }
+        let t = &self.timing;
+        if t.brp > 31 || t.prop > 7 || t.ph1 > 7 || t.sjw > 3 || t.tq_per_bit() < 8 || t.sjw > t.ph1 {
+            return Err("bit timing out of range (brp <= 31, prop, ph1 <= 7, sjw <= min(3, ph1), >= 8 TQ per bit)".into());
+        }
+        for (n, v, hi) in [
+            ("bic_threshold", self.bic_threshold, 31),
+            ("sub_bic_threshold", self.sub_bic_threshold, 31),
+            ("dbc_threshold", self.dbc_threshold, 31),
+            ("sub_dbc_threshold", self.sub_dbc_threshold, 31),
+            ("nack_threshold", self.nack_threshold, 7),
+            ("replica_limit", self.replica_limit, 7),
+        ] {
+            if v == 0 || v > hi {
+                return Err(format!("{n} must be in 1..={hi}"));
+            }
+        }
+        if let Some(w) = self.reintegration {
+            if w == 0 || w > 255 {
+                return Err("reintegration window must be in 1..=255".into());
+            }
+        }
+        if let Some(f) = self.fault_injection {
+            let ok = match f.point {
+                FaultPoint::Uplink(i) | FaultPoint::Downlink(i) => i < self.ports,
+                FaultPoint::Sublink(j) => j < self.sublinks,
+            };
+            if !ok {
+                return Err("fault-injection point out of range".into());
+            }
+            if f.start_field > 15 {
+                return Err("start_field must be a 4-bit field code".into());
+            }
+        }
+        Ok(())
+    }
+}
+
+fn sigs<D: Direction, T: Synth>(k: usize) -> Vec<Signal<D, T>> {
+    (0..k).map(|_| Default::default()).collect()
+}
+
+/// The hub without its frame monitor (see the module docs for the ports).
+#[derive(LogicBlock)]
+pub struct HubCore {
+    pub clock: Signal<In, Clock>,
+    pub rst_n: Signal<In, Bit>,
+    pub inject_fault: Signal<In, Bit>,
+    pub rx: Vec<Signal<In, Bit>>,
+    pub reh_rx: Vec<Signal<In, Bit>>,
+    pub mon_sample: Signal<In, Bit>,
+    pub mon_bit_start: Signal<In, Bit>,
+    pub mon_field: Signal<In, Bits<4>>,
+    pub mon_pos: Signal<In, Bits<4>>,
+    pub mon_crc_ok: Signal<In, Bit>,
+    pub mon_frame_ok: Signal<In, Bit>,
+    pub mon_error: Signal<In, Bit>,
+    pub tx: Vec<Signal<Out, Bit>>,
+    pub hub_tx: Vec<Signal<Out, Bit>>,
+    pub bt: Signal<Out, Bit>,
+    pub isolated: Vec<Signal<Out, Bit>>,
+    pub silent: Vec<Signal<Out, Bit>>,
+    pub sub_isolated: Vec<Signal<Out, Bit>>,
+    pub frame_state: Signal<Out, Bits<4>>,
+    pub efg_active: Signal<Out, Bit>,
+    pub inject_active: Signal<Out, Bit>,
+    pub bic: Vec<Signal<Out, Bits<8>>>,
+    pub dbc: Vec<Signal<Out, Bits<5>>>,
+    pub nack: Vec<Signal<Out, Bits<3>>>,
+    pub sub_bic: Vec<Signal<Out, Bits<8>>>,
+    pub sub_dbc: Vec<Signal<Out, Bits<5>>>,
+    pub sub_rep: Vec<Signal<Out, Bits<3>>>,
+    coupler: Coupler,
+    efgen: ErrorFlagGen,
+    err_start_r: DFF<Bit>,
+    decode: FrameDecode,
+    injector: Injector,
+    pj: Vec<JudgeUnit>,
+    sj: Vec<JudgeUnit>,
+    up_code: Vec<Constant<Bits<2>>>,
+    down_code: Vec<Constant<Bits<2>>>,
+    hub_code: Vec<Constant<Bits<2>>>,
+    reset: Signal<Local, Bit>,
+    err_phase: Signal<Local, Bit>,
+    any_blame: Signal<Local, Bit>,
+    any_tx_error: Signal<Local, Bit>,
+    trigger: Signal<Local, Bit>,
+    rep_rec: Signal<Local, Bit>,
+    rep_dom: Signal<Local, Bit>,
+    _n: usize,
+    _m: usize,
+    _dn: usize,
+    _dm: usize,
+    _cfg: HubConfig,
+}
+
+impl HubCore {
+    /// Build a hub. Panics if the configuration is invalid ([`HubConfig::validate`]).
+    pub fn new(cfg: &HubConfig) -> Self {
+        if let Err(e) = cfg.validate() {
+            panic!("invalid hub configuration: {e}");
+        }
+        let (n, m) = (cfg.ports, cfg.sublinks);
+        let (dn, dm) = if cfg.debug { (n, m) } else { (0, 0) };
+        let code = |pt: FaultPoint| -> Constant<Bits<2>> {
+            let c = match cfg.fault_injection {
+                Some(f) if f.point == pt => f.kind.code(),
+                _ => coupler::FAULT_NONE,
+            };
+            Constant::new(c.into())
+        };
+        let start = cfg.fault_injection.map(|f| f.start_field as u64).unwrap_or(Field::Eof.code());
+        Self {
+            clock: Default::default(),
+            rst_n: Default::default(),
+            inject_fault: Default::default(),
+            rx: sigs(n),
+            reh_rx: sigs(m),
+            mon_sample: Default::default(),
+            mon_bit_start: Default::default(),
+            mon_field: Default::default(),
+            mon_pos: Default::default(),
+            mon_crc_ok: Default::default(),
+            mon_frame_ok: Default::default(),
+            mon_error: Default::default(),
+            tx: sigs(n),
+            hub_tx: sigs(m),
+            bt: Default::default(),
+            isolated: sigs(n),
+            silent: sigs(n),
+            sub_isolated: sigs(m),
+            frame_state: Default::default(),
+            efg_active: Default::default(),
+            inject_active: Default::default(),
+            bic: sigs(dn),
+            dbc: sigs(dn),
+            nack: sigs(dn),
+            sub_bic: sigs(dm),
+            sub_dbc: sigs(dm),
+            sub_rep: sigs(dm),
+            coupler: Coupler::new(n, m, cfg.sync_depth),
+            efgen: Default::default(),
+            err_start_r: Default::default(),
+            decode: Default::default(),
+            injector: Injector::new(start),
+            pj: (0..n).map(|_| JudgeUnit::port(cfg.port_params())).collect(),
+            sj: (0..m).map(|_| JudgeUnit::sublink(cfg.sublink_params())).collect(),
+            up_code: (0..n).map(|i| code(FaultPoint::Uplink(i))).collect(),
+            down_code: (0..n).map(|i| code(FaultPoint::Downlink(i))).collect(),
+            hub_code: (0..m).map(|j| code(FaultPoint::Sublink(j))).collect(),
+            reset: Default::default(),
+            err_phase: Default::default(),
+            any_blame: Default::default(),
+            any_tx_error: Default::default(),
+            trigger: Default::default(),
+            rep_rec: Default::default(),
+            rep_dom: Default::default(),
+            _n: n,
+            _m: m,
+            _dn: dn,
+            _dm: dm,
+            _cfg: cfg.clone(),
+        }
+    }
+    /// The configuration this hub was built from.
+    pub fn config(&self) -> &HubConfig {
+        &self._cfg
+    }
+    /// Simulation probe: some judge unit blames its port or sublink in this clock
+    /// (combinational, meaningful after the inputs have settled).
+    pub fn blame_any(&self) -> bool {
+        self.any_blame.val()
+    }
+    /// Simulation probe: the port judge unit of port `i`.
+    pub fn port_judge(&self, i: usize) -> &JudgeUnit {
+        &self.pj[i]
+    }
+    /// Simulation probe: the sublink judge unit of sublink `j`.
+    pub fn sublink_judge(&self, j: usize) -> &JudgeUnit {
+        &self.sj[j]
+    }
+}
+
+impl Logic for HubCore {
+    #[hdl_gen]
+    fn update(&mut self) {
+        self.reset.next = !self.rst_n.val();
+        // frame state
+        self.decode.clock.next = self.clock.val();
+        self.decode.field.next = self.mon_field.val();
+        self.decode.pos.next = self.mon_pos.val();
+        self.frame_state.next = self.mon_field.val();
+        self.err_phase.next = self.decode.err_phase.val() | self.efgen.busy.val();
+        // fault injection controller
+        self.injector.clock.next = self.clock.val();
+        self.injector.reset.next = self.reset.val();
+        self.injector.button.next = self.inject_fault.val();
+        self.injector.sample.next = self.mon_sample.val();
+        self.injector.field.next = self.mon_field.val();
+        self.injector.eof_last.next = self.decode.eof_last.val();
+        self.inject_active.next = self.injector.active.val();
+        // coupler
+        self.coupler.clock.next = self.clock.val();
+        self.coupler.reset.next = self.reset.val();
+        self.coupler.efg.next = self.efgen.efg.val();
+        self.bt.next = self.coupler.bt.val();
+        // replica summary for the sublink judges
+        self.rep_rec.next = false;
+        self.rep_dom.next = false;
+        for j in 0..self._m {
+            self.coupler.reh_rx[j].next = self.reh_rx[j].val();
+            self.hub_tx[j].next = self.coupler.hub_tx[j].val();
+            self.coupler.hdis[j].next = self.sj[j].dis.val();
+            self.sub_isolated[j].next = self.sj[j].dis.val();
+            if self.injector.active.val() {
+                self.coupler.hub_fault[j].next = self.hub_code[j].val();
+            } else {
+                self.coupler.hub_fault[j].next = 0.into();
+            }
+            if !self.sj[j].dis.val() {
+                self.rep_rec.next = self.rep_rec.val() | self.coupler.s[j].val();
+                self.rep_dom.next = self.rep_dom.val() | !self.coupler.s[j].val();
+            }
+        }
+        // port judges
+        self.any_blame.next = false;
+        self.any_tx_error.next = false;
+        for i in 0..self._n {
+            self.coupler.rx[i].next = self.rx[i].val();
+            self.tx[i].next = self.coupler.tx[i].val();
+            self.coupler.dis[i].next = self.pj[i].dis.val();
+            self.isolated[i].next = self.pj[i].dis.val();
+            self.silent[i].next = self.pj[i].silent.val();
+            if self.injector.active.val() {
+                self.coupler.up_fault[i].next = self.up_code[i].val();
+                self.coupler.down_fault[i].next = self.down_code[i].val();
+            } else {
+                self.coupler.up_fault[i].next = 0.into();
+                self.coupler.down_fault[i].next = 0.into();
+            }
+            self.pj[i].clock.next = self.clock.val();
+            self.pj[i].reset.next = self.reset.val();
+            self.pj[i].sample.next = self.mon_sample.val();
+            self.pj[i].c.next = self.coupler.u[i].val();
+            self.pj[i].bt.next = self.coupler.bt.val();
+            self.pj[i].sof.next = self.decode.sof.val();
+            self.pj[i].tx_region.next = self.decode.tx_region.val();
+            self.pj[i].arb.next = self.decode.arb.val();
+            self.pj[i].crc_delim.next = self.decode.crc_delim.val();
+            self.pj[i].ack_slot.next = self.decode.ack_slot.val();
+            self.pj[i].ack_delim.next = self.decode.ack_delim.val();
+            self.pj[i].eof_1_6.next = self.decode.eof_1_6.val();
+            self.pj[i].im_1_2.next = self.decode.im_1_2.val();
+            self.pj[i].err_phase.next = self.err_phase.val();
+            self.pj[i].crc_ok.next = self.mon_crc_ok.val();
+            self.pj[i].frame_ok.next = self.mon_frame_ok.val();
+            self.pj[i].err_start.next = false;
+            self.pj[i].rep_rec.next = false;
+            self.pj[i].rep_dom.next = false;
+            self.any_blame.next = self.any_blame.val() | self.pj[i].blame.val();
+            self.any_tx_error.next = self.any_tx_error.val() | self.pj[i].tx_error.val();
+        }
+        for j in 0..self._m {
+            self.sj[j].clock.next = self.clock.val();
+            self.sj[j].reset.next = self.reset.val();
+            self.sj[j].sample.next = self.mon_sample.val();
+            self.sj[j].c.next = self.coupler.s[j].val();
+            self.sj[j].bt.next = self.coupler.bt.val();
+            self.sj[j].sof.next = self.decode.sof.val();
+            self.sj[j].tx_region.next = self.decode.tx_region.val();
+            self.sj[j].arb.next = self.decode.arb.val();
+            self.sj[j].crc_delim.next = self.decode.crc_delim.val();
+            self.sj[j].ack_slot.next = self.decode.ack_slot.val();
+            self.sj[j].ack_delim.next = self.decode.ack_delim.val();
+            self.sj[j].eof_1_6.next = self.decode.eof_1_6.val();
+            self.sj[j].im_1_2.next = self.decode.im_1_2.val();
+            self.sj[j].err_phase.next = self.err_phase.val();
+            self.sj[j].crc_ok.next = self.mon_crc_ok.val();
+            self.sj[j].frame_ok.next = self.mon_frame_ok.val();
+            self.sj[j].rep_rec.next = self.rep_rec.val();
+            self.sj[j].rep_dom.next = self.rep_dom.val();
+            self.any_blame.next = self.any_blame.val() | self.sj[j].blame.val();
+            self.any_tx_error.next = self.any_tx_error.val() | self.sj[j].tx_error.val();
+        }
+        // error flag (H6)
+        self.trigger.next = self.mon_sample.val() & (self.mon_error.val() | self.any_blame.val() | self.any_tx_error.val());
+        // start of an error episode, registered (one clock after the sample point) so
+        // that the replica evaluation does not depend combinationally on the blames
+        self.err_start_r.clock.next = self.clock.val();
+        self.err_start_r.d.next = self.trigger.val() & !self.efgen.busy.val();
+        for j in 0..self._m {
+            self.sj[j].err_start.next = self.err_start_r.q.val();
+        }
+        self.efgen.clock.next = self.clock.val();
+        self.efgen.reset.next = self.reset.val();
+        self.efgen.trigger.next = self.trigger.val();
+        self.efgen.bit_start.next = self.mon_bit_start.val();
+        self.efg_active.next = self.efgen.active.val();
+        // debug counters
+        for i in 0..self._dn {
+            self.bic[i].next = self.pj[i].bic.val();
+            self.dbc[i].next = self.pj[i].dbc.val();
+            self.nack[i].next = self.pj[i].nack.val();
+        }
+        for j in 0..self._dm {
+            self.sub_bic[j].next = self.sj[j].bic.val();
+            self.sub_dbc[j].next = self.sj[j].dbc.val();
+            self.sub_rep[j].next = self.sj[j].rep_cnt.val();
+        }
+    }
+}
+
+canstar_hdl::impl_clocked!(HubCore);
+
+/// The complete hub: [`HubCore`] plus its frame monitor, the CAN controller
+/// (`canstar_controller::CanCore`, listen-only, following BT with the hub's bit timing)
+/// and the [`MonitorAdapter`] that maps the controller's debug bundle onto the frame
+/// state C. Ports: those of [`HubCore`] without the `mon_*` inputs and without `bt`.
+#[derive(LogicBlock)]
+pub struct Hub {
+    pub clock: Signal<In, Clock>,
+    pub rst_n: Signal<In, Bit>,
+    pub inject_fault: Signal<In, Bit>,
+    pub rx: Vec<Signal<In, Bit>>,
+    pub reh_rx: Vec<Signal<In, Bit>>,
+    pub tx: Vec<Signal<Out, Bit>>,
+    pub hub_tx: Vec<Signal<Out, Bit>>,
+    pub isolated: Vec<Signal<Out, Bit>>,
+    pub silent: Vec<Signal<Out, Bit>>,
+    pub sub_isolated: Vec<Signal<Out, Bit>>,
+    pub frame_state: Signal<Out, Bits<4>>,
+    pub efg_active: Signal<Out, Bit>,
+    pub inject_active: Signal<Out, Bit>,
+    pub bic: Vec<Signal<Out, Bits<8>>>,
+    pub dbc: Vec<Signal<Out, Bits<5>>>,
+    pub nack: Vec<Signal<Out, Bits<3>>>,
+    pub sub_bic: Vec<Signal<Out, Bits<8>>>,
+    pub sub_dbc: Vec<Signal<Out, Bits<5>>>,
+    pub sub_rep: Vec<Signal<Out, Bits<3>>>,
+    core: HubCore,
+    monitor: CanCore,
+    adapter: MonitorAdapter,
+    brp: Constant<Bits<5>>,
+    prop: Constant<Bits<3>>,
+    ph1: Constant<Bits<3>>,
+    sjw: Constant<Bits<2>>,
+    _n: usize,
+    _m: usize,
+    _dn: usize,
+    _dm: usize,
+}
+
+/// Synchroniser depth of the monitor's RX input: BT is already synchronous.
+pub const MONITOR_SYNC_DEPTH: usize = 1;
+
+impl Hub {
+    /// Build a hub with its frame monitor. Panics if the configuration is invalid.
+    pub fn new(cfg: &HubConfig) -> Self {
+        let core = HubCore::new(cfg);
+        let (n, m) = (cfg.ports, cfg.sublinks);
+        let (dn, dm) = if cfg.debug { (n, m) } else { (0, 0) };
+        let t = cfg.timing;
+        let bs_delay = (t.ph2_tq() * t.tq_clocks()).saturating_sub(2) as u64;
+        Self {
+            clock: Default::default(),
+            rst_n: Default::default(),
+            inject_fault: Default::default(),
+            rx: sigs(n),
+            reh_rx: sigs(m),
+            tx: sigs(n),
+            hub_tx: sigs(m),
+            isolated: sigs(n),
+            silent: sigs(n),
+            sub_isolated: sigs(m),
+            frame_state: Default::default(),
+            efg_active: Default::default(),
+            inject_active: Default::default(),
+            bic: sigs(dn),
+            dbc: sigs(dn),
+            nack: sigs(dn),
+            sub_bic: sigs(dm),
+            sub_dbc: sigs(dm),
+            sub_rep: sigs(dm),
+            core,
+            monitor: CanCore::with_sync_depth(MONITOR_SYNC_DEPTH),
+            adapter: MonitorAdapter::new(bs_delay),
+            brp: Constant::new((t.brp as u64).into()),
+            prop: Constant::new((t.prop as u64).into()),
+            ph1: Constant::new((t.ph1 as u64).into()),
+            sjw: Constant::new((t.sjw as u64).into()),
+            _n: n,
+            _m: m,
+            _dn: dn,
+            _dm: dm,
+        }
+    }
+    /// The hub without its monitor (simulation probes: `blame_any`, judge units, `bt`).
+    pub fn core(&self) -> &HubCore {
+        &self.core
+    }
+    /// The frame monitor (simulation probe).
+    pub fn monitor(&self) -> &CanCore {
+        &self.monitor
+    }
+}
+
+impl Logic for Hub {
+    #[hdl_gen]
+    fn update(&mut self) {
+        // frame monitor: the CAN controller, listen-only, on BT
+        self.monitor.clock.next = self.clock.val();
+        self.monitor.reset.next = !self.rst_n.val();
+        self.monitor.rx.next = self.core.bt.val();
+        self.monitor.brp.next = self.brp.val();
+        self.monitor.prop.next = self.prop.val();
+        self.monitor.ph1.next = self.ph1.val();
+        self.monitor.sjw.next = self.sjw.val();
+        self.monitor.triple.next = false;
+        self.monitor.listen_only.next = true;
+        self.monitor.self_test.next = false;
+        self.monitor.single_shot.next = false;
+        self.monitor.host_recovery.next = false;
+        self.monitor.recover.next = false;
+        self.monitor.tx_req.next = false;
+        self.monitor.tx_ide.next = false;
+        self.monitor.tx_rtr.next = false;
+        self.monitor.tx_id.next = 0.into();
+        self.monitor.tx_dlc.next = 0.into();
+        self.monitor.tx_data.next = 0.into();
+        self.monitor.tx_abort.next = false;
+        // frame state adapter
+        self.adapter.clock.next = self.clock.val();
+        self.adapter.reset.next = !self.rst_n.val();
+        self.adapter.sample.next = self.monitor.dbg_sample.val();
+        self.adapter.field.next = self.monitor.dbg_field.val();
+        self.adapter.pos.next = self.monitor.dbg_pos.val();
+        self.adapter.events.next = self.monitor.dbg_events.val();
+        // hub core
+        self.core.clock.next = self.clock.val();
+        self.core.rst_n.next = self.rst_n.val();
+        self.core.inject_fault.next = self.inject_fault.val();
+        self.core.mon_sample.next = self.adapter.mon_sample.val();
+        self.core.mon_bit_start.next = self.adapter.bit_start.val();
+        self.core.mon_field.next = self.adapter.mon_field.val();
+        self.core.mon_pos.next = self.adapter.mon_pos.val();
+        self.core.mon_crc_ok.next = self.adapter.mon_crc_ok.val();
+        self.core.mon_frame_ok.next = self.adapter.mon_frame_ok.val();
+        self.core.mon_error.next = self.adapter.mon_error.val();
+        self.frame_state.next = self.core.frame_state.val();
+        self.efg_active.next = self.core.efg_active.val();
+        self.inject_active.next = self.core.inject_active.val();
+        for i in 0..self._n {
+            self.core.rx[i].next = self.rx[i].val();
+            self.tx[i].next = self.core.tx[i].val();
+            self.isolated[i].next = self.core.isolated[i].val();
+            self.silent[i].next = self.core.silent[i].val();
+        }
+        for j in 0..self._m {
+            self.core.reh_rx[j].next = self.reh_rx[j].val();
+            self.hub_tx[j].next = self.core.hub_tx[j].val();
+            self.sub_isolated[j].next = self.core.sub_isolated[j].val();
+        }
+        for i in 0..self._dn {
+            self.bic[i].next = self.core.bic[i].val();
+            self.dbc[i].next = self.core.dbc[i].val();
+            self.nack[i].next = self.core.nack[i].val();
+        }
+        for j in 0..self._dm {
+            self.sub_bic[j].next = self.core.sub_bic[j].val();
+            self.sub_dbc[j].next = self.core.sub_dbc[j].val();
+            self.sub_rep[j].next = self.core.sub_rep[j].val();
+        }
+    }
+}
+
+canstar_hdl::impl_clocked!(Hub);

@@ -1,0 +1,420 @@
+//! The judging rules of the hub (hub.md §5), in one place.
+//!
+//! One block, [`JudgeUnit`], implements every rule; the hub instantiates it once per
+//! uplink ("port judge unit", built with [`JudgeUnit::port`]) and once per incoming
+//! sublink ("sublink judge unit", [`JudgeUnit::sublink`]). The two differ only in
+//! generation-time constants (thresholds, which rules are on), so the rules exist once.
+//!
+//! # Inputs (all sampled at `sample`, the hub's sample point, one clock strobe)
+//! - `c`: the judged contribution (the port's registered uplink after the fault hook, or
+//!   the synchronised incoming sublink); 0 = dominant. `bt`: the coupled bit.
+//! - Frame state C, decoded by [`crate::frame_state::FrameDecode`] for the bit being
+//!   sampled: `sof`, `tx_region` (first identifier bit to last CRC bit), `crc_delim`,
+//!   `ack_slot`, `ack_delim`, `eof_1_6`, `im_1_2`, `crc_ok` (read in the ACK
+//!   delimiter, where a CAN receiver signals a CRC error: 1 = the CRC was correct),
+//!   `frame_ok` (strobe with the sample of the last EOF bit of a frame completed without
+//!   error), `err_phase` (the monitor's error/overload phase OR the hub's own error flag
+//!   pending/being sent).
+//! - `err_start`: strobe when the hub starts an error episode (monitor error or any
+//!   blame), used by the replica rule. `rep_rec` / `rep_dom`: some *other* enabled
+//!   replica sublink is recessive / dominant at this sample (0 for ports).
+//!
+//! # Outputs
+//! `dis` (isolated, latched), `blame` (combinational strobe: unjustified dominant bit
+//! blamed now; the hub triggers its error flag with it), `tx_error` (combinational
+//! strobe: this unit's transmitter has just seen a bit error, see §5.1 below; the hub
+//! also triggers its error flag with it, without blaming anyone), `bic`, `dbc`, `nack`, `rep_cnt`
+//! counters, `silent` (NACK threshold reached), `contender` (role, debug).
+//!
+//! # Rules
+//! **§5.1 roles (changed).** The baseline makes a port a contender if it is dominant at
+//! SOF, or recessive at SOF and dominant at the first identifier bit. That misses a late
+//! joiner whose first identifier bit is 1 (recessive): CAN lets a node with a pending
+//! frame that sees a dominant third intermission bit start directly with its first
+//! identifier bit, and such a node is recessive at SOF *and* at the first identifier bit,
+//! then sends dominant identifier bits: the baseline would blame it in fault-free
+//! traffic. Our rule: at SOF every port becomes a contender; in every bit of the
+//! transmission region (first identifier bit to last CRC bit, stuff bits included) a
+//! contender that is recessive while BT is dominant stops being one. A port that sends
+//! nothing therefore stops being a contender at the first dominant bit of the frame
+//! after SOF (at the latest the sixth bit after SOF, by the stuff rule), and a late
+//! joiner stays a contender exactly as long as it has not lost arbitration. The cost:
+//! a receiver's dominant bit before the frame's first dominant bit after SOF is taken for
+//! arbitration, not blamed (the frame is then corrupted and the monitor's own error
+//! detection takes over).
+//!
+//! **§5.1 transmitter bit errors (added).** A contender that is recessive while BT is
+//! dominant *after* the arbitration field (`tx_region` and not `arb`: reserved bits,
+//! DLC, data, CRC) cannot have lost arbitration: it is a transmitter that has just
+//! detected a bit error and sends its error flag from the next bit. If the dominant
+//! bit came from a source no judge blames at that bit (a sublink that is a contender
+//! itself, a fault the monitor sees only later), the baseline would blame the
+//! transmitter's legitimate error flag as an unjustified receiver bit. So `tx_error`
+//! starts an error episode in the hub (error flag, error phase) at that bit, and the
+//! flag is judged by DBC only. Port units only: a sublink that drops out that way is
+//! more likely stuck recessive (the replica rule handles it), and a peer transmitter's
+//! bit error is globalised by the peer hub.
+//!
+//! **§5.2 unjustified dominant.** Outside the error phase, a dominant contribution is
+//! unjustified when: it comes from a non-contender in the transmission region; or it
+//! falls in the CRC delimiter, the ACK delimiter (**(changed)**: not when BT was
+//! recessive in the ACK slot: then the transmitter legitimately starts its ACK-error
+//! flag in the ACK delimiter, e.g. after a CRC error or when no receiver is alive), EOF
+//! bits 1-6 or intermission bits 1-2 (a
+//! dominant bit there after a dominant last EOF / delimiter bit is inside the monitor's
+//! overload phase, hence error phase, hence not blamed); or it comes from a contender in
+//! the ACK slot (port units only: a sublink carries the peer's acknowledging receivers
+//! too, so the ACK slot rule is off for sublinks **(changed)**). The port is blamed once
+//! per episode: `bic += 8` (saturating) and `blame` triggers the hub's error flag, whose
+//! `busy` time is error phase, so the same episode cannot blame the port again.
+//!
+//! **§5.3 decay.** At `frame_ok` every enabled unit's `bic` decreases by 1 (not below 0).
+//! The unit isolates when `bic >= 8 * BIC_threshold` (`bic_limit`, 8 bits: ports default
+//! 64, sublinks twice the port threshold, 128).
+//!
+//! **§5.4 dominant run.** `dbc` counts consecutive dominant samples in any state
+//! (saturating at 31) and clears on a recessive sample; isolation when `dbc >=
+//! dbc_threshold` (ports 13 by default, sublinks 28).
+//!
+//! **§5.5 NACK (ports only).** In a frame whose CRC the monitor found correct, a
+//! non-contender that was recessive in the ACK slot increments `nack` (saturating at
+//! 7), a dominant one clears it; `silent = nack >= nack_threshold`. Never isolates.
+//! The ACK-slot level is remembered and counted at the ACK delimiter, because a CAN
+//! receiver (the controller serving as frame monitor) signals a CRC error there.
+//!
+//! **§5.6 reintegration (optional, window W).** While isolated the unit keeps observing
+//! its contribution (without effect on the coupler): a frame counts as good when it
+//! completes (`frame_ok`), the contribution was dominant in its ACK slot of a frame with a
+//! correct CRC, and since the previous completed frame there was no unjustified dominant bit and
+//! no dominant run at or above the DBC threshold. W consecutive good frames re-enable
+//! the unit and clear all its counters. The frame in which the unit was isolated never
+//! counts.
+//!
+//! **§5.7 sublinks, replica rule (changed).** The baseline isolates a sublink that is
+//! dominant while a replica is recessive for 3 consecutive samples. With two replicas
+//! that blames the *healthy* sublink when its replica is stuck recessive (the healthy
+//! one is then the dominant one whenever the peer sends a dominant bit). Our rule looks
+//! at the consequence: each unit records its role at the first replica disagreement
+//! after the last evaluation (dominant-minority: dominant while another enabled replica
+//! is recessive; recessive-minority: the opposite). A dominant-minority sublink forces
+//! BT dominant, so if it was wrong the frame is corrupted: when the hub next starts an
+//! error episode (`err_start`), every unit whose first disagreement was dominant is
+//! charged. If instead the frame completes correctly (`frame_ok`), the dominant value
+//! was right and every unit whose first disagreement was recessive is charged. A unit
+//! charged `replica_limit` times (default 3) is isolated. Stuck-dominant and inverted
+//! sublinks are charged at errors, stuck-recessive sublinks at the good frames their
+//! replica carries. All incoming sublinks are replicas from the same peer hub.
+//! Dominant run and unjustified dominant apply to sublinks as to ports, with their own
+//! thresholds.
+
+use rust_hdl::prelude::*;
+
+/// Generation-time parameters of one judge unit.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct JudgeParams {
+    /// Isolation limit of `bic` in counter units (8 x the BIC threshold), 1..=255.
+    pub bic_limit: u64,
+    /// DBC threshold, 1..=31.
+    pub dbc_threshold: u64,
+    /// NACK threshold, 1..=7 (ports only).
+    pub nack_threshold: u64,
+    /// Replica disagreement limit, 1..=7 (sublinks only).
+    pub replica_limit: u64,
+    /// Reintegration window W in frames, 1..=255; `None` = isolation latched until reset.
+    pub reintegration: Option<u64>,
+}
+
+#[derive(LogicBlock)]
+pub struct JudgeUnit {
+    pub clock: Signal<In, Clock>,
+    pub reset: Signal<In, Bit>,
+    pub sample: Signal<In, Bit>,
+    pub c: Signal<In, Bit>,
+    pub bt: Signal<In, Bit>,
+    pub sof: Signal<In, Bit>,
+    pub tx_region: Signal<In, Bit>,
+    pub arb: Signal<In, Bit>,
+    pub crc_delim: Signal<In, Bit>,
+    pub ack_slot: Signal<In, Bit>,
+    pub ack_delim: Signal<In, Bit>,
+    pub eof_1_6: Signal<In, Bit>,
+    pub im_1_2: Signal<In, Bit>,
+    pub err_phase: Signal<In, Bit>,
+    pub crc_ok: Signal<In, Bit>,
+    pub frame_ok: Signal<In, Bit>,
+    pub err_start: Signal<In, Bit>,
+    pub rep_rec: Signal<In, Bit>,
+    pub rep_dom: Signal<In, Bit>,
+    pub dis: Signal<Out, Bit>,
+    pub blame: Signal<Out, Bit>,
+    pub tx_error: Signal<Out, Bit>,
+    pub bic: Signal<Out, Bits<8>>,
+    pub dbc: Signal<Out, Bits<5>>,
+    pub nack: Signal<Out, Bits<3>>,
+    pub rep_cnt: Signal<Out, Bits<3>>,
+    pub silent: Signal<Out, Bit>,
+    pub contender: Signal<Out, Bit>,
+    bic_limit: Constant<Bits<8>>,
+    dbc_thr: Constant<Bits<5>>,
+    nack_thr: Constant<Bits<3>>,
+    rep_limit: Constant<Bits<3>>,
+    ack_rule: Constant<Bit>,
+    nack_on: Constant<Bit>,
+    rep_on: Constant<Bit>,
+    reint_on: Constant<Bit>,
+    reint_w: Constant<Bits<8>>,
+    dis_r: DFF<Bit>,
+    bic_r: DFF<Bits<8>>,
+    dbc_r: DFF<Bits<5>>,
+    nack_r: DFF<Bits<3>>,
+    cont_r: DFF<Bit>,
+    rep_r: DFF<Bits<3>>,
+    rep_seen: DFF<Bit>,
+    rep_first_dom: DFF<Bit>,
+    ok_r: DFF<Bits<8>>,
+    acked: DFF<Bit>,
+    bad: DFF<Bit>,
+    ack_missing: DFF<Bit>,
+    ack_c: DFF<Bit>,
+    ack_rx: DFF<Bit>,
+    dom: Signal<Local, Bit>,
+    unj: Signal<Local, Bit>,
+    enabled: Signal<Local, Bit>,
+}
+
+impl JudgeUnit {
+    fn build(p: JudgeParams, port: bool) -> Self {
+        assert!((1..=255).contains(&p.bic_limit), "bic limit out of range");
+        assert!((1..=31).contains(&p.dbc_threshold), "DBC threshold out of range");
+        assert!((1..=7).contains(&p.nack_threshold), "NACK threshold out of range");
+        assert!((1..=7).contains(&p.replica_limit), "replica limit out of range");
+        if let Some(w) = p.reintegration {
+            assert!((1..=255).contains(&w), "reintegration window out of range");
+        }
+        Self {
+            clock: Default::default(),
+            reset: Default::default(),
+            sample: Default::default(),
+            c: Default::default(),
+            bt: Default::default(),
+            sof: Default::default(),
+            tx_region: Default::default(),
+            arb: Default::default(),
+            crc_delim: Default::default(),
+            ack_slot: Default::default(),
+            ack_delim: Default::default(),
+            eof_1_6: Default::default(),
+            im_1_2: Default::default(),
+            err_phase: Default::default(),
+            crc_ok: Default::default(),
+            frame_ok: Default::default(),
+            err_start: Default::default(),
+            rep_rec: Default::default(),
+            rep_dom: Default::default(),
+            dis: Default::default(),
+            blame: Default::default(),
+            tx_error: Default::default(),
+            bic: Default::default(),
+            dbc: Default::default(),
+            nack: Default::default(),
+            rep_cnt: Default::default(),
+            silent: Default::default(),
+            contender: Default::default(),
+            bic_limit: Constant::new(p.bic_limit.into()),
+            dbc_thr: Constant::new(p.dbc_threshold.into()),
+            nack_thr: Constant::new(p.nack_threshold.into()),
+            rep_limit: Constant::new(p.replica_limit.into()),
+            ack_rule: Constant::new(port),
+            nack_on: Constant::new(port),
+            rep_on: Constant::new(!port),
+            reint_on: Constant::new(p.reintegration.is_some()),
+            reint_w: Constant::new(p.reintegration.unwrap_or(1).into()),
+            dis_r: Default::default(),
+            bic_r: Default::default(),
+            dbc_r: Default::default(),
+            nack_r: Default::default(),
+            cont_r: Default::default(),
+            rep_r: Default::default(),
+            rep_seen: Default::default(),
+            rep_first_dom: Default::default(),
+            ok_r: Default::default(),
+            acked: Default::default(),
+            bad: Default::default(),
+            ack_missing: Default::default(),
+            ack_c: Default::default(),
+            ack_rx: Default::default(),
+            dom: Default::default(),
+            unj: Default::default(),
+            enabled: Default::default(),
+        }
+    }
+    /// A port judge unit (ACK-slot rule and NACK on, replica rule off).
+    pub fn port(p: JudgeParams) -> Self {
+        Self::build(p, true)
+    }
+    /// A sublink judge unit (replica rule on, ACK-slot rule and NACK off).
+    pub fn sublink(p: JudgeParams) -> Self {
+        Self::build(p, false)
+    }
+}
+
+impl Logic for JudgeUnit {
+    #[hdl_gen]
+    fn update(&mut self) {
+        dff_setup!(self, clock, dis_r, bic_r, dbc_r, nack_r, cont_r, rep_r, rep_seen, rep_first_dom, ok_r, acked, bad, ack_missing, ack_c, ack_rx);
+        self.dom.next = !self.c.val();
+        self.enabled.next = !self.dis_r.q.val();
+        self.unj.next = self.dom.val()
+            & !self.err_phase.val()
+            & ((self.tx_region.val() & !self.cont_r.q.val())
+                | self.crc_delim.val()
+                | (self.ack_delim.val() & !self.ack_missing.q.val())
+                | self.eof_1_6.val()
+                | self.im_1_2.val()
+                | (self.ack_slot.val() & self.cont_r.q.val() & self.ack_rule.val()));
+        self.blame.next = self.sample.val() & self.unj.val() & self.enabled.val();
+        // (port units only: `nack_on` is the port-unit constant)
+        self.tx_error.next = self.sample.val()
+            & self.nack_on.val()
+            & self.enabled.val()
+            & self.cont_r.q.val()
+            & self.tx_region.val()
+            & !self.arb.val()
+            & self.c.val()
+            & !self.bt.val()
+            & !self.err_phase.val();
+        if self.sample.val() {
+            // ACK error: BT recessive in the ACK slot
+            if self.ack_slot.val() {
+                self.ack_missing.d.next = self.bt.val();
+            }
+            // §5.1 roles
+            if self.sof.val() {
+                self.cont_r.d.next = true;
+            } else if self.tx_region.val() & self.c.val() & !self.bt.val() {
+                self.cont_r.d.next = false;
+            }
+            // §5.4 dominant run
+            if self.dom.val() {
+                if self.dbc_r.q.val() != 31 {
+                    self.dbc_r.d.next = self.dbc_r.q.val() + 1;
+                }
+            } else {
+                self.dbc_r.d.next = 0.into();
+            }
+            // §5.3 decay, §5.2 blame
+            if self.frame_ok.val() & self.enabled.val() & (self.bic_r.q.val() != 0) {
+                self.bic_r.d.next = self.bic_r.q.val() - 1;
+            }
+            if self.blame.val() {
+                if self.bic_r.q.val() > 247 {
+                    self.bic_r.d.next = 255.into();
+                } else {
+                    self.bic_r.d.next = self.bic_r.q.val() + 8;
+                }
+            }
+            // §5.5 NACK (the ACK slot level is judged at the ACK delimiter, where the
+            // monitor has signalled a CRC error or not)
+            if self.ack_slot.val() {
+                self.ack_c.d.next = self.c.val();
+                self.ack_rx.d.next = !self.cont_r.q.val();
+            }
+            if self.nack_on.val() & self.ack_delim.val() & self.crc_ok.val() & self.ack_rx.q.val() & self.enabled.val() {
+                if self.ack_c.q.val() {
+                    if self.nack_r.q.val() != 7 {
+                        self.nack_r.d.next = self.nack_r.q.val() + 1;
+                    }
+                } else {
+                    self.nack_r.d.next = 0.into();
+                }
+            }
+            // §5.7 replica rule: remember the role at the first disagreement
+            if self.rep_on.val()
+                & self.enabled.val()
+                & !self.rep_seen.q.val()
+                & ((self.dom.val() & self.rep_rec.val()) | (self.c.val() & self.rep_dom.val()))
+            {
+                self.rep_seen.d.next = true;
+                self.rep_first_dom.d.next = self.dom.val();
+            }
+            // §5.6 observation while isolated
+            if self.ack_delim.val() & self.crc_ok.val() & !self.ack_c.q.val() {
+                self.acked.d.next = true;
+            }
+            if self.unj.val() {
+                self.bad.d.next = true;
+            }
+        }
+        if self.dbc_r.q.val() >= self.dbc_thr.val() {
+            self.bad.d.next = true;
+        }
+        // §5.7 replica rule: evaluation
+        if self.err_start.val() {
+            self.rep_seen.d.next = false;
+            if self.rep_seen.q.val() & self.rep_first_dom.q.val() & (self.rep_r.q.val() != 7) {
+                self.rep_r.d.next = self.rep_r.q.val() + 1;
+            }
+        } else if self.sample.val() & self.frame_ok.val() {
+            self.rep_seen.d.next = false;
+            if self.rep_seen.q.val() & !self.rep_first_dom.q.val() & (self.rep_r.q.val() != 7) {
+                self.rep_r.d.next = self.rep_r.q.val() + 1;
+            }
+        }
+        // isolation
+        if self.enabled.val()
+            & ((self.bic_r.q.val() >= self.bic_limit.val())
+                | (self.dbc_r.q.val() >= self.dbc_thr.val())
+                | (self.rep_on.val() & (self.rep_r.q.val() >= self.rep_limit.val())))
+        {
+            self.dis_r.d.next = true;
+        }
+        // §5.6 reintegration
+        if self.enabled.val() {
+            self.ok_r.d.next = 0.into();
+            self.acked.d.next = false;
+            self.bad.d.next = true;
+        } else if self.sample.val() & self.frame_ok.val() {
+            self.acked.d.next = false;
+            self.bad.d.next = false;
+            if self.acked.q.val() & !self.bad.q.val() {
+                self.ok_r.d.next = self.ok_r.q.val() + 1;
+                if self.reint_on.val() & ((self.ok_r.q.val() + 1) >= self.reint_w.val()) {
+                    self.dis_r.d.next = false;
+                    self.bic_r.d.next = 0.into();
+                    self.dbc_r.d.next = 0.into();
+                    self.nack_r.d.next = 0.into();
+                    self.rep_r.d.next = 0.into();
+                    self.rep_seen.d.next = false;
+                    self.ok_r.d.next = 0.into();
+                }
+            } else {
+                self.ok_r.d.next = 0.into();
+            }
+        }
+        if self.reset.val() {
+            self.dis_r.d.next = false;
+            self.bic_r.d.next = 0.into();
+            self.dbc_r.d.next = 0.into();
+            self.nack_r.d.next = 0.into();
+            self.cont_r.d.next = false;
+            self.rep_r.d.next = 0.into();
+            self.rep_seen.d.next = false;
+            self.rep_first_dom.d.next = false;
+            self.ok_r.d.next = 0.into();
+            self.acked.d.next = false;
+            self.bad.d.next = false;
+            self.ack_missing.d.next = false;
+            self.ack_c.d.next = false;
+            self.ack_rx.d.next = false;
+        }
+        self.dis.next = self.dis_r.q.val();
+        self.bic.next = self.bic_r.q.val();
+        self.dbc.next = self.dbc_r.q.val();
+        self.nack.next = self.nack_r.q.val();
+        self.rep_cnt.next = self.rep_r.q.val();
+        self.silent.next = self.nack_r.q.val() >= self.nack_thr.val();
+        self.contender.next = self.cont_r.q.val();
+    }
+}
+
+canstar_hdl::impl_clocked!(JudgeUnit);

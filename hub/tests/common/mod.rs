@@ -1,0 +1,858 @@
+//! Test-only CAN stimulus for the hub: a frame encoder, a plain-Rust reference frame
+//! tracker (the frame state C that the real frame monitor will provide) and simple
+//! node models, all driving a `HubCore` bit by bit.
+#![allow(dead_code, clippy::too_many_arguments, clippy::needless_range_loop, clippy::nonminimal_bool, clippy::type_complexity)]
+
+use canstar_hdl::drive;
+use canstar_hdl::drive::Clocked;
+use canstar_hub::frame_state::Field;
+use canstar_hub::hub::{Hub, HubConfig, HubCore};
+
+/// What the harness needs from a hub: [`HubCore`] (frame state from the reference
+/// tracker) or [`Hub`] (frame state from its own monitor, the CAN controller).
+pub trait Dut: Clocked {
+    fn build(cfg: &HubConfig) -> Self;
+    fn set_rx(&mut self, i: usize, v: bool);
+    fn set_reh_rx(&mut self, j: usize, v: bool);
+    fn n_reh(&self) -> usize;
+    fn tx_val(&self, i: usize) -> bool;
+    fn bt_val(&self) -> bool;
+    fn blame(&self) -> bool;
+    fn set_rst_n(&mut self, v: bool);
+    fn set_inject(&mut self, v: bool);
+    /// Sets the monitor inputs (HubCore) or ignores them (Hub).
+    fn set_monitor(&mut self, sample: bool, bit_start: bool, field: Field, pos: usize, crc_ok: bool, error: bool, frame_ok: bool);
+    fn isolated(&self) -> Vec<bool>;
+    fn silent(&self) -> Vec<bool>;
+    fn sub_isolated(&self) -> Vec<bool>;
+    fn bic(&self) -> Vec<u64>;
+    fn sub_bic(&self) -> Vec<u64>;
+    fn dbc(&self) -> Vec<u64>;
+    fn nack(&self) -> Vec<u64>;
+    fn sub_dbc(&self) -> Vec<u64>;
+    fn sub_rep(&self) -> Vec<u64>;
+    fn efg_active(&self) -> bool;
+    fn inject_active(&self) -> bool;
+    fn frame_state(&self) -> u64;
+}
+
+macro_rules! common_dut {
+    () => {
+        fn set_rx(&mut self, i: usize, v: bool) {
+            self.rx[i].next = v;
+        }
+        fn set_reh_rx(&mut self, j: usize, v: bool) {
+            self.reh_rx[j].next = v;
+        }
+        fn n_reh(&self) -> usize {
+            self.reh_rx.len()
+        }
+        fn tx_val(&self, i: usize) -> bool {
+            self.tx[i].val()
+        }
+        fn set_rst_n(&mut self, v: bool) {
+            self.rst_n.next = v;
+        }
+        fn set_inject(&mut self, v: bool) {
+            self.inject_fault.next = v;
+        }
+        fn isolated(&self) -> Vec<bool> {
+            self.isolated.iter().map(|s| s.val()).collect()
+        }
+        fn silent(&self) -> Vec<bool> {
+            self.silent.iter().map(|s| s.val()).collect()
+        }
+        fn sub_isolated(&self) -> Vec<bool> {
+            self.sub_isolated.iter().map(|s| s.val()).collect()
+        }
+        fn bic(&self) -> Vec<u64> {
+            self.bic.iter().map(|s| s.val().index() as u64).collect()
+        }
+        fn sub_bic(&self) -> Vec<u64> {
+            self.sub_bic.iter().map(|s| s.val().index() as u64).collect()
+        }
+        fn dbc(&self) -> Vec<u64> {
+            self.dbc.iter().map(|s| s.val().index() as u64).collect()
+        }
+        fn nack(&self) -> Vec<u64> {
+            self.nack.iter().map(|s| s.val().index() as u64).collect()
+        }
+        fn sub_dbc(&self) -> Vec<u64> {
+            self.sub_dbc.iter().map(|s| s.val().index() as u64).collect()
+        }
+        fn sub_rep(&self) -> Vec<u64> {
+            self.sub_rep.iter().map(|s| s.val().index() as u64).collect()
+        }
+        fn efg_active(&self) -> bool {
+            self.efg_active.val()
+        }
+        fn inject_active(&self) -> bool {
+            self.inject_active.val()
+        }
+        fn frame_state(&self) -> u64 {
+            self.frame_state.val().index() as u64
+        }
+    };
+}
+
+impl Dut for HubCore {
+    fn build(cfg: &HubConfig) -> Self {
+        HubCore::new(cfg)
+    }
+    common_dut!();
+    fn bt_val(&self) -> bool {
+        self.bt.val()
+    }
+    fn blame(&self) -> bool {
+        self.blame_any()
+    }
+    fn set_monitor(&mut self, sample: bool, bit_start: bool, field: Field, pos: usize, crc_ok: bool, error: bool, frame_ok: bool) {
+        self.mon_sample.next = sample;
+        self.mon_bit_start.next = bit_start;
+        if sample {
+            self.mon_field.next = field.code().into();
+            self.mon_pos.next = (pos.min(15) as u64).into();
+            self.mon_crc_ok.next = crc_ok;
+        }
+        self.mon_error.next = error;
+        self.mon_frame_ok.next = frame_ok;
+    }
+}
+
+impl Dut for Hub {
+    fn build(cfg: &HubConfig) -> Self {
+        Hub::new(cfg)
+    }
+    common_dut!();
+    fn bt_val(&self) -> bool {
+        self.core().bt.val()
+    }
+    fn blame(&self) -> bool {
+        self.core().blame_any()
+    }
+    fn set_monitor(&mut self, _: bool, _: bool, _: Field, _: usize, _: bool, _: bool, _: bool) {}
+}
+
+pub const CLOCKS_PER_BIT: usize = 16;
+pub const SAMPLE_CLOCK: usize = 12;
+
+#[derive(Clone, Debug)]
+pub struct Frame {
+    pub id: u32,
+    pub ext: bool,
+    pub rtr: bool,
+    pub dlc: u8,
+    pub data: Vec<u8>,
+    /// Send a wrong CRC (once: a retransmission is correct).
+    pub corrupt_crc: bool,
+}
+
+impl Frame {
+    pub fn std(id: u32, data: &[u8]) -> Frame {
+        Frame { id, ext: false, rtr: false, dlc: data.len() as u8, data: data.to_vec(), corrupt_crc: false }
+    }
+    pub fn ext(id: u32, data: &[u8]) -> Frame {
+        Frame { id, ext: true, rtr: false, dlc: data.len() as u8, data: data.to_vec(), corrupt_crc: false }
+    }
+    pub fn remote(id: u32, ext: bool, dlc: u8) -> Frame {
+        Frame { id, ext, rtr: true, dlc, data: vec![], corrupt_crc: false }
+    }
+    /// Unstuffed bits SOF .. end of data field.
+    pub fn raw_bits(&self) -> Vec<bool> {
+        let mut v = vec![false];
+        let push = |v: &mut Vec<bool>, x: u64, n: usize| {
+            for k in (0..n).rev() {
+                v.push((x >> k) & 1 == 1);
+            }
+        };
+        if self.ext {
+            push(&mut v, (self.id >> 18) as u64, 11);
+            v.push(true); // SRR
+            v.push(true); // IDE
+            push(&mut v, (self.id & 0x3ffff) as u64, 18);
+            v.push(self.rtr);
+            v.push(false);
+            v.push(false);
+        } else {
+            push(&mut v, self.id as u64, 11);
+            v.push(self.rtr);
+            v.push(false); // IDE
+            v.push(false); // r0
+        }
+        push(&mut v, self.dlc as u64, 4);
+        if !self.rtr {
+            let n = (self.dlc.min(8)) as usize;
+            for k in 0..n {
+                push(&mut v, *self.data.get(k).unwrap_or(&0) as u64, 8);
+            }
+        }
+        let crc = crc15(&v) ^ (self.corrupt_crc as u16);
+        push(&mut v, crc as u64, 15);
+        v
+    }
+    /// Stuffed bits SOF .. end of CRC, then CRC delimiter, ACK slot (recessive),
+    /// ACK delimiter, 7 EOF bits.
+    pub fn wire_bits(&self) -> Vec<bool> {
+        let raw = self.raw_bits();
+        let mut out = vec![];
+        let (mut last, mut run) = (true, 0);
+        for b in raw {
+            out.push(b);
+            if b == last {
+                run += 1;
+            } else {
+                last = b;
+                run = 1;
+            }
+            if run == 5 {
+                out.push(!b);
+                last = !b;
+                run = 1;
+            }
+        }
+        out.extend([true; 10]);
+        out
+    }
+}
+
+pub fn crc15(bits: &[bool]) -> u16 {
+    let mut crc: u16 = 0;
+    for &b in bits {
+        let nxt = b ^ ((crc >> 14) & 1 == 1);
+        crc = (crc << 1) & 0x7fff;
+        if nxt {
+            crc ^= 0x4599;
+        }
+    }
+    crc
+}
+
+/// What the tracker found at one sampled bit.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Event {
+    /// Stuff, CRC or form error: an error flag starts at the next bit.
+    pub error: bool,
+    /// Overload condition: an overload flag starts at the next bit.
+    pub overload: bool,
+    /// Last EOF bit of a frame completed without error.
+    pub frame_ok: bool,
+    /// This bit was a stuff bit.
+    pub stuff: bool,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Ph {
+    Idle,
+    Frame,
+    CrcDelim,
+    AckSlot,
+    AckDelim,
+    Eof(u8),
+    Im(u8),
+    Flag(u8, bool),  // position, overload?
+    Wait(bool),      // waiting for recessive after the flag
+    Delim(u8, bool), // delimiter position 0..7
+}
+
+/// Plain-Rust reference frame tracker (test only): the frame state C of hub.md §4.
+pub struct Tracker {
+    ph: Ph,
+    bits: Vec<bool>,
+    last: bool,
+    run: u8,
+    crc_err: bool,
+    pub crc_ok: bool,
+    prev_label: (Field, usize),
+}
+
+impl Default for Tracker {
+    fn default() -> Self {
+        Tracker { ph: Ph::Idle, bits: vec![], last: true, run: 0, crc_err: false, crc_ok: false, prev_label: (Field::Sof, 0) }
+    }
+}
+
+impl Tracker {
+    /// Destuffed length of the frame up to the end of the CRC, once known.
+    fn frame_len(&self) -> Option<usize> {
+        let b = &self.bits;
+        if b.len() < 14 {
+            return None;
+        }
+        let ext = b[13];
+        let dlc_at = if ext { 35 } else { 15 };
+        if b.len() < dlc_at + 4 {
+            return None;
+        }
+        let rtr = if ext { b[32] } else { b[12] };
+        let dlc = b[dlc_at..dlc_at + 4].iter().fold(0usize, |a, &x| a * 2 + x as usize);
+        let n = if rtr { 0 } else { dlc.min(8) };
+        Some(dlc_at + 4 + 8 * n + 15)
+    }
+    fn in_frame_field(&self) -> (Field, usize) {
+        let k = self.bits.len();
+        let b = &self.bits;
+        if k <= 12 || (k <= 31 && b.len() > 13 && b[13]) || k == 13 {
+            return (Field::Id, k - 1);
+        }
+        let ext = b[13];
+        let (rtr_at, dlc_at) = if ext { (32, 35) } else { (12, 15) };
+        if k == rtr_at {
+            return (Field::Rtr, 0);
+        }
+        if k < dlc_at {
+            return (Field::Res, k - rtr_at - 1);
+        }
+        if k < dlc_at + 4 {
+            return (Field::Dlc, k - dlc_at);
+        }
+        let len = self.frame_len().unwrap();
+        if k < len - 15 {
+            (Field::Data, k - dlc_at - 4)
+        } else {
+            (Field::Crc, k - (len - 15))
+        }
+    }
+    /// Field and position of the bit about to be pushed, given its value.
+    pub fn classify(&self, bit: bool) -> (Field, usize) {
+        match self.ph {
+            Ph::Idle => {
+                if bit {
+                    (Field::Idle, 0)
+                } else {
+                    (Field::Sof, 0)
+                }
+            }
+            // a stuff bit carries the FIELD and POSITION of the bit before it (§4.5)
+            Ph::Frame if self.run == 5 => self.prev_label,
+            Ph::Frame => self.in_frame_field(),
+            Ph::CrcDelim => (Field::CrcDelim, 0),
+            Ph::AckSlot => (Field::AckSlot, 0),
+            Ph::AckDelim => (Field::AckDelim, 0),
+            Ph::Eof(p) => (Field::Eof, p as usize),
+            Ph::Im(p) => {
+                if p == 2 && !bit {
+                    (Field::Sof, 0)
+                } else {
+                    (Field::Intermission, p as usize)
+                }
+            }
+            Ph::Flag(p, ov) => (if ov { Field::Overload } else { Field::ErrorFlag }, p as usize),
+            Ph::Wait(ov) => (if ov { Field::Overload } else { Field::ErrorFlag }, 6),
+            Ph::Delim(p, ov) => (if ov { Field::Overload } else { Field::ErrorDelim }, p as usize),
+        }
+    }
+    fn start_frame(&mut self) {
+        self.prev_label = (Field::Sof, 0);
+        self.ph = Ph::Frame;
+        self.bits = vec![false];
+        self.last = false;
+        self.run = 1;
+        self.crc_err = false;
+        self.crc_ok = false;
+    }
+    fn error(&mut self, ev: &mut Event) {
+        ev.error = true;
+        self.ph = Ph::Flag(0, false);
+    }
+    /// Consume one sampled bit.
+    pub fn push(&mut self, bit: bool) -> Event {
+        let mut ev = Event::default();
+        match self.ph {
+            Ph::Idle => {
+                if !bit {
+                    self.start_frame();
+                }
+            }
+            Ph::Frame => {
+                if self.run == 5 {
+                    // stuff bit
+                    ev.stuff = true;
+                    if bit == self.last {
+                        self.error(&mut ev);
+                        return ev;
+                    }
+                    self.last = bit;
+                    self.run = 1;
+                    if self.frame_len() == Some(self.bits.len()) {
+                        self.ph = Ph::CrcDelim; // stuff bit after the last CRC bit
+                    }
+                    return ev;
+                }
+                self.prev_label = self.in_frame_field();
+                if bit == self.last {
+                    self.run += 1;
+                } else {
+                    self.last = bit;
+                    self.run = 1;
+                }
+                self.bits.push(bit);
+                if let Some(len) = self.frame_len() {
+                    if self.bits.len() == len {
+                        let crc = crc15(&self.bits[..len - 15]);
+                        let got = self.bits[len - 15..].iter().fold(0u16, |a, &x| a * 2 + x as u16);
+                        self.crc_ok = crc == got;
+                        self.crc_err = !self.crc_ok;
+                        if self.run < 5 {
+                            self.ph = Ph::CrcDelim;
+                        }
+                    }
+                }
+            }
+            Ph::CrcDelim => {
+                if !bit {
+                    self.error(&mut ev);
+                } else {
+                    self.ph = Ph::AckSlot;
+                }
+            }
+            Ph::AckSlot => self.ph = Ph::AckDelim,
+            Ph::AckDelim => {
+                if !bit || self.crc_err {
+                    self.error(&mut ev);
+                } else {
+                    self.ph = Ph::Eof(0);
+                }
+            }
+            Ph::Eof(p) => {
+                if p < 6 {
+                    if !bit {
+                        self.error(&mut ev);
+                    } else {
+                        self.ph = Ph::Eof(p + 1);
+                    }
+                } else {
+                    ev.frame_ok = true;
+                    if !bit {
+                        ev.overload = true;
+                        self.ph = Ph::Flag(0, true);
+                    } else {
+                        self.ph = Ph::Im(0);
+                    }
+                }
+            }
+            Ph::Im(p) => {
+                if !bit {
+                    if p == 2 {
+                        self.start_frame();
+                    } else {
+                        ev.overload = true;
+                        self.ph = Ph::Flag(0, true);
+                    }
+                } else if p == 2 {
+                    self.ph = Ph::Idle;
+                } else {
+                    self.ph = Ph::Im(p + 1);
+                }
+            }
+            Ph::Flag(p, ov) => {
+                self.ph = if p == 5 { Ph::Wait(ov) } else { Ph::Flag(p + 1, ov) };
+            }
+            Ph::Wait(ov) => {
+                if bit {
+                    self.ph = Ph::Delim(1, ov);
+                }
+            }
+            Ph::Delim(p, ov) => {
+                if !bit {
+                    if p == 7 {
+                        ev.overload = true;
+                        self.ph = Ph::Flag(0, true);
+                    } else {
+                        self.error(&mut ev);
+                    }
+                } else if p == 7 {
+                    self.ph = Ph::Im(0);
+                } else {
+                    self.ph = Ph::Delim(p + 1, ov);
+                }
+            }
+        }
+        ev
+    }
+    pub fn in_arbitration(&self, field: Field) -> bool {
+        matches!(field, Field::Sof | Field::Id | Field::Rtr)
+    }
+}
+
+/// Behaviour of a node model.
+#[derive(Clone, Debug, Default)]
+pub struct NodeCfg {
+    /// Never acknowledges (dead receive path towards the hub, or a deaf node).
+    pub no_ack: bool,
+    /// Starts its SOF in the third intermission bit (a node with a fast clock).
+    pub early_sof: bool,
+    /// Drives its uplink dominant at the last EOF bit of the next frame it sees.
+    pub dominant_eof7_once: bool,
+}
+
+/// A simple CAN node: transmits queued frames, arbitrates, acknowledges, sends error
+/// and overload flags when the common view (tracker) or its own bit check says so.
+#[derive(Clone, Debug, Default)]
+pub struct Node {
+    pub cfg: NodeCfg,
+    pub queue: std::collections::VecDeque<Frame>,
+    tx: Option<(Vec<bool>, usize)>,
+    flag_left: u8,
+    pub sent: usize,
+    pub errors_seen: usize,
+    /// Transmit error counter (only what the flag model needs).
+    pub tec: u32,
+    last_sent: bool,
+}
+
+impl Node {
+    pub fn new(cfg: NodeCfg) -> Node {
+        Node { cfg, ..Default::default() }
+    }
+    /// Contribution for the next bit, given the tracker state before it.
+    pub fn contribution(&mut self, t: &Tracker) -> bool {
+        let v = self.pick(t);
+        self.last_sent = v;
+        v
+    }
+    fn pick(&mut self, t: &Tracker) -> bool {
+        if self.flag_left > 0 {
+            return self.tec >= 128; // passive error flag is recessive
+        }
+        if let Some((bits, k)) = &self.tx {
+            return bits.get(*k).copied().unwrap_or(true);
+        }
+        match t.ph {
+            Ph::Idle => {
+                if let Some(f) = self.queue.front() {
+                    let bits = f.wire_bits();
+                    self.tx = Some((bits, 0));
+                    return false;
+                }
+                true
+            }
+            Ph::Im(2) if self.cfg.early_sof && !self.queue.is_empty() => {
+                let bits = self.queue.front().unwrap().wire_bits();
+                self.tx = Some((bits, 0));
+                false
+            }
+            Ph::AckSlot => !(t.crc_ok && !self.cfg.no_ack),
+            Ph::Eof(6) if self.cfg.dominant_eof7_once => {
+                self.cfg.dominant_eof7_once = false;
+                false
+            }
+            _ => true,
+        }
+    }
+    /// After the bit: `view` is what the node read on its downlink, `field` the
+    /// tracker's field for that bit, `ev` the tracker's event, `t` the tracker after it.
+    pub fn after(&mut self, view: bool, field: Field, ev: Event, t: &Tracker) {
+        if self.flag_left > 0 {
+            self.flag_left -= 1;
+            if self.tec < 128 && view && !self.last_sent {
+                // bit error in its own active error flag: restart it
+                self.tec += 8;
+                self.flag_left = 6;
+            }
+            return;
+        }
+        if ev.error || ev.overload {
+            if self.tx.is_some() {
+                if let Some(f) = self.queue.front_mut() {
+                    f.corrupt_crc = false;
+                }
+            }
+            self.tx = None;
+            self.flag_left = 6;
+            if ev.error {
+                self.errors_seen += 1;
+            }
+            return;
+        }
+        if let Some((bits, k)) = &mut self.tx {
+            // A late joiner that treated a dominant IM3 as SOF skips its own SOF.
+            if *k == 0 && field == Field::Sof {
+                *k = 1;
+            } else {
+                let sent = bits[*k];
+                let in_ack = field == Field::AckSlot;
+                if in_ack && view {
+                    // ACK error: the error flag starts at the ACK delimiter
+                    if let Some(f) = self.queue.front_mut() {
+                        f.corrupt_crc = false;
+                    }
+                    self.tx = None;
+                    self.tec += 8;
+                    self.flag_left = 6;
+                    return;
+                }
+                if sent != view && !in_ack {
+                    if sent && !view && matches!(field, Field::Id | Field::Rtr) {
+                        self.tx = None; // lost arbitration
+                        return;
+                    }
+                    self.tx = None;
+                    self.tec += 8;
+                    self.flag_left = 6;
+                    return;
+                }
+                *k += 1;
+                if ev.frame_ok {
+                    self.queue.pop_front();
+                    self.tx = None;
+                    self.sent += 1;
+                    self.tec = self.tec.saturating_sub(1);
+                }
+            }
+        } else if field == Field::Sof && !self.queue.is_empty() && matches!(t.ph, Ph::Frame) {
+            // Late joiner: pending frame, saw a dominant bit as SOF: start at the first ID bit.
+            let bits = self.queue.front().unwrap().wire_bits();
+            self.tx = Some((bits, 1));
+        }
+    }
+}
+
+
+/// A fault between a node and its hub pin (uplink) or between the hub pin and the node
+/// (downlink): gets (bit index, value, tracker before the bit) and returns the new value.
+pub type LinkFault = Box<dyn FnMut(usize, bool, &Tracker) -> bool>;
+/// The value of incoming sublink j at bit b, given the nodes' own contributions of that
+/// bit (before the faults on this hub's uplinks).
+pub type SublinkFn = Box<dyn FnMut(usize, usize, &[bool], &Tracker) -> bool>;
+
+/// The stimulus side of a hub test: nodes, faults, sublinks, reference tracker.
+/// Works clock by clock on a `HubCore`, so that it can also drive a co-simulation.
+pub struct Stim {
+    pub tracker: Tracker,
+    pub nodes: Vec<Node>,
+    pub up_faults: Vec<Option<LinkFault>>,
+    pub down_faults: Vec<Option<LinkFault>>,
+    pub sublink: SublinkFn,
+    pub bit: usize,
+    pub log: Vec<BitLog>,
+    pins: Vec<bool>,
+    views: Vec<bool>,
+    pending: Option<BitLog>,
+}
+
+#[derive(Clone, Debug)]
+pub struct BitLog {
+    pub bit: usize,
+    pub field: Field,
+    pub pos: usize,
+    pub bt: bool,
+    pub pins: Vec<bool>,
+    pub ev: Event,
+    pub efg: bool,
+    pub blame: bool,
+}
+
+/// The healthy peer: its ANDC is the AND of the same nodes' contributions.
+pub fn mirror_peer() -> SublinkFn {
+    Box::new(|_, _, pins, _| pins.iter().all(|&p| p))
+}
+
+impl Stim {
+    pub fn new(nodes: Vec<Node>) -> Stim {
+        let n = nodes.len();
+        Stim {
+            tracker: Tracker::default(),
+            nodes,
+            up_faults: (0..n).map(|_| None).collect(),
+            down_faults: (0..n).map(|_| None).collect(),
+            sublink: mirror_peer(),
+            bit: 0,
+            log: vec![],
+            pins: vec![true; n],
+            views: vec![true; n],
+            pending: None,
+        }
+    }
+
+    fn finish_bit(&mut self) {
+        if let Some(r) = self.pending.take() {
+            for i in 0..self.nodes.len() {
+                self.nodes[i].after(self.views[i], r.field, r.ev, &self.tracker);
+            }
+            self.bit += 1;
+        }
+    }
+
+    /// Set the hub inputs for clock `k` (0..16) of the current bit. Settles the hub
+    /// at the sample clock to read BT.
+    pub fn at_clock<T: Dut>(&mut self, hub: &mut T, k: usize) {
+        if k == 0 {
+            self.finish_bit();
+            let b = self.bit;
+            let n = self.nodes.len();
+            let mut own = vec![true; n];
+            for i in 0..n {
+                let c = self.nodes[i].contribution(&self.tracker);
+                own[i] = c;
+                self.pins[i] = match &mut self.up_faults[i] {
+                    Some(f) => f(b, c, &self.tracker),
+                    None => c,
+                };
+                hub.set_rx(i, self.pins[i]);
+            }
+            // the peer sees the nodes' own contributions (its links, not our faulty ones)
+            for j in 0..hub.n_reh() {
+                let v = (self.sublink)(b, j, &own, &self.tracker);
+                hub.set_reh_rx(j, v);
+            }
+        }
+        hub.set_monitor(false, k == 0, Field::Idle, 0, false, false, false);
+        if k == SAMPLE_CLOCK {
+            drive::settle(hub);
+            let bt = hub.bt_val();
+            let b = self.bit;
+            for i in 0..self.nodes.len() {
+                let v = hub.tx_val(i);
+                self.views[i] = match &mut self.down_faults[i] {
+                    Some(f) => f(b, v, &self.tracker),
+                    None => v,
+                };
+            }
+            let (field, pos) = self.tracker.classify(bt);
+            let crc_ok = self.tracker.crc_ok;
+            let ev = self.tracker.push(bt);
+            hub.set_monitor(true, false, field, pos, crc_ok, ev.error, ev.frame_ok);
+            drive::settle(hub);
+            let r = BitLog { bit: b, field, pos, bt, pins: self.pins.clone(), ev, efg: hub.efg_active(), blame: false };
+            self.log.push(r.clone());
+            self.pending = Some(r);
+        }
+        // blames are seen when the (possibly delayed) monitor sample reaches the judges
+        drive::settle(hub);
+        if hub.blame() {
+            if let Some(l) = self.log.last_mut() {
+                l.blame = true;
+            }
+        }
+    }
+}
+
+/// A [`HubCore`] driven by a [`Stim`] and the reference tracker.
+pub type CoreNet = Net<HubCore>;
+/// A complete [`Hub`] (its own frame monitor) driven by a [`Stim`].
+pub type HubNet = Net<Hub>;
+
+/// A hub driven by a [`Stim`].
+pub struct Net<T: Dut = HubCore> {
+    pub hub: T,
+    pub stim: Stim,
+    pub max_bic: Vec<u64>,
+    pub max_sub_bic: Vec<u64>,
+    pub efg_bits: usize,
+}
+
+pub fn reset_hub<T: Dut>(hub: &mut T) {
+    drive::init(hub);
+    hub.set_rst_n(false);
+    hub.set_monitor(false, false, Field::Idle, 0, false, false, false);
+    for _ in 0..4 {
+        drive::cycle(hub);
+    }
+    hub.set_rst_n(true);
+}
+
+impl<T: Dut> Net<T> {
+    pub fn new(cfg: &HubConfig, nodes: Vec<Node>) -> Net<T> {
+        assert_eq!(nodes.len(), cfg.ports);
+        let mut hub = T::build(cfg);
+        for i in 0..cfg.ports {
+            hub.set_rx(i, true);
+        }
+        for j in 0..cfg.sublinks {
+            hub.set_reh_rx(j, true);
+        }
+        reset_hub(&mut hub);
+        let mut net = Net { hub, stim: Stim::new(nodes), max_bic: vec![0; cfg.ports], max_sub_bic: vec![0; cfg.sublinks], efg_bits: 0 };
+        // 12 idle bits first: a frame monitor integrates after 11 recessive bits
+        let queues: Vec<_> = net.stim.nodes.iter_mut().map(|n| std::mem::take(&mut n.queue)).collect();
+        net.run(12);
+        for (n, q) in net.stim.nodes.iter_mut().zip(queues) {
+            n.queue = q;
+        }
+        net
+    }
+
+    /// Simulate one bit (16 clocks, sample at clock 12).
+    pub fn step(&mut self) {
+        for k in 0..CLOCKS_PER_BIT {
+            self.stim.at_clock(&mut self.hub, k);
+            drive::cycle(&mut self.hub);
+            if k == SAMPLE_CLOCK + 1 {
+                for (m, b) in self.max_bic.iter_mut().zip(self.hub.bic()) {
+                    *m = (*m).max(b);
+                }
+                for (m, b) in self.max_sub_bic.iter_mut().zip(self.hub.sub_bic()) {
+                    *m = (*m).max(b);
+                }
+                if self.hub.efg_active() {
+                    self.efg_bits += 1;
+                }
+            }
+        }
+    }
+
+    pub fn run(&mut self, bits: usize) {
+        for _ in 0..bits {
+            self.step();
+        }
+    }
+
+    pub fn nodes(&mut self) -> &mut Vec<Node> {
+        &mut self.stim.nodes
+    }
+
+    pub fn run_until_idle(&mut self, max_bits: usize) {
+        for _ in 0..max_bits {
+            self.step();
+            if self.stim.nodes.iter().all(|n| n.queue.is_empty()) && self.stim.tracker.ph == Ph::Idle {
+                for _ in 0..5 {
+                    self.step();
+                }
+                return;
+            }
+        }
+        panic!("network did not drain within {max_bits} bits:\n{}", self.trace(self.stim.log.len().saturating_sub(200)));
+    }
+
+    pub fn isolated(&self) -> Vec<bool> {
+        self.hub.isolated()
+    }
+    pub fn silent(&self) -> Vec<bool> {
+        self.hub.silent()
+    }
+    pub fn sub_isolated(&self) -> Vec<bool> {
+        self.hub.sub_isolated()
+    }
+    pub fn bic(&self) -> Vec<u64> {
+        self.hub.bic()
+    }
+    pub fn errors(&self) -> usize {
+        self.stim.log.iter().filter(|l| l.ev.error).count()
+    }
+    pub fn blames(&self) -> usize {
+        self.stim.log.iter().filter(|l| l.blame).count()
+    }
+    pub fn frames_ok(&self) -> usize {
+        self.stim.log.iter().filter(|l| l.ev.frame_ok).count()
+    }
+    /// The field sequence as a compact string (debug aid).
+    pub fn trace(&self, from: usize) -> String {
+        self.stim.log[from.min(self.stim.log.len())..]
+            .iter()
+            .map(|l| {
+                let pins: String = l.pins.iter().map(|&p| if p { '1' } else { '0' }).collect();
+                format!(
+                    "{}:{:?}{}{}[{}]{}{}{} ",
+                    l.bit,
+                    l.field,
+                    l.pos,
+                    if l.bt { "r" } else { "D" },
+                    pins,
+                    if l.ev.error { "!" } else { "" },
+                    if l.blame { "B" } else { "" },
+                    if l.efg { "E" } else { "" }
+                )
+            })
+            .collect()
+    }
+}
