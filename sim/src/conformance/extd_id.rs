@@ -1,0 +1,3 @@
+//! extd_id
+use super::*;
+pub fn run(ctx: &mut Ctx) { let _ = ctx; }

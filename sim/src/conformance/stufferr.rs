@@ -1,0 +1,3 @@
+//! stufferr
+use super::*;
+pub fn run(ctx: &mut Ctx) { let _ = ctx; }
