@@ -318,10 +318,17 @@ pub fn level_of(f: &Frame, field: Field, pos: u32, stuff: bool) -> Option<bool> 
 /// The first frame of a deterministic family (extended or not, remote or
 /// not) whose bus bits satisfy `pred`.
 pub fn choose(ide: bool, rtr: bool, pred: impl Fn(&Frame) -> bool) -> Frame {
-    for k in 1u32..400_000 {
-        let id = if ide { k.wrapping_mul(2_654_435_761) & 0x1FFF_FFFF } else { (k.wrapping_mul(0x9E5)) & 0x7FF };
-        let dlc = ((k >> 3) % 9) as u8;
-        let data: Vec<u8> = (0..dlc).map(|i| (k.wrapping_mul(0x45D9F3B).rotate_left(i as u32 * 5) >> 3) as u8).collect();
+    let mut x: u64 = 0x9E37_79B9_7F4A_7C15;
+    let pats = [0x00u8, 0xFF, 0x0F, 0xF0, 0x1F, 0xF8, 0x83, 0x7C, 0x3E, 0xC1, 0x07, 0xE0];
+    for _ in 0..400_000 {
+        x ^= x << 13;
+        x ^= x >> 7;
+        x ^= x << 17;
+        let id = if ide { (x >> 20) as u32 & 0x1FFF_FFFF } else { (x >> 20) as u32 & 0x7FF };
+        let dlc = if (x >> 60) == 0 { 9 + ((x >> 56) % 7) as u8 } else { ((x >> 52) % 9) as u8 };
+        let data: Vec<u8> = (0..dlc as usize)
+            .map(|i| if (x >> (i + 8)) & 1 == 0 { pats[((x >> (2 * i)) % 12) as usize] } else { (x >> (5 * i + 3)) as u8 })
+            .collect();
         let f = if rtr { Frame::remote(ide, id, dlc) } else { Frame::data(ide, id, dlc, &data) };
         if pred(&f) {
             return f;
