@@ -39,6 +39,7 @@
 pub mod bench;
 pub mod golden;
 pub mod bus;
+pub mod conformance;
 mod kernel;
 pub mod net;
 pub mod node;
