@@ -39,6 +39,8 @@
 pub mod bench;
 pub mod golden;
 pub mod bus;
+pub mod fuzz;
+pub mod lockstep;
 mod kernel;
 pub mod net;
 pub mod node;
