@@ -274,6 +274,11 @@ impl LockstepNode {
         }
     }
 
+    /// Test hook: give the golden synchroniser `extra` more stages than the DUT's (a wrong
+    /// `L_rx`), which must show up as a sample-instant or sampled-level divergence.
+    pub fn skew_golden_rx(&mut self, extra: usize) {
+        self.sync.extend(std::iter::repeat_n(true, extra));
+    }
     /// Seed reported with a divergence.
     pub fn set_seed(&mut self, seed: u64) {
         self.seed = Some(seed);
@@ -511,6 +516,11 @@ impl LockstepNode {
             }
         }
 
+        // ---- arming (§19.3): the DUT's first sampled dominant bit.
+        if !self.armed && !reset && self.node.core.dbg_sample.val() && !self.node.core.dbg_busmon.val() {
+            self.armed = true;
+        }
+
         // ---- comparisons (§19.4).
         if self.armed && self.divergence.is_none() {
             self.stats.clocks += 1;
@@ -548,10 +558,6 @@ impl LockstepNode {
 
         // ---- golden sample point: step the bit-stream model.
         if p_sample {
-            if !self.armed && self.node.core.dbg_sample.val() && !self.node.core.dbg_busmon.val() {
-                self.armed = true;
-                self.vis = (self.golden.tec(), self.golden.rec(), self.golden.state());
-            }
             let label_dut = self.dut_label();
             let rec_before = self.golden.rec();
             let mut out = self.golden.step(p_busmon);

@@ -78,3 +78,14 @@ fn a_corrupted_golden_counter_is_reported() {
     let text = d.to_string();
     assert!(text.contains("node n1") && text.contains("tec"), "{text}");
 }
+
+#[test]
+fn a_wrong_rx_latency_shows_as_a_timing_divergence() {
+    let (mut sim, _bus, a, b) = two(0.0, 0);
+    sim.get_mut(b).skew_golden_rx(3);
+    sim.get_mut(a).node.request(Frame::std(0x42, &[1]));
+    sim.run_for(300_000_000);
+    assert!(sim.get(a).divergence().is_none());
+    let d = sim.get(b).divergence().expect("divergence expected");
+    assert!(["sample", "busmon", "tx"].contains(&d.signal.as_str()), "{d}");
+}
