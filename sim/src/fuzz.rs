@@ -305,7 +305,7 @@ impl Monitor {
         if !out.drove {
             self.dom_run += 1;
             let in_flag = matches!(out.label.field, Field::ActiveErrorFlag | Field::OverloadFlag);
-            if in_flag && out.events.iter().any(|e| *e == Event::Error(crate::golden::ErrorKind::Bit)) {
+            if in_flag && out.events.contains(&Event::Error(crate::golden::ErrorKind::Bit)) {
                 self.restarts += 1;
             }
             let bound = 11 + 6 * self.restarts;

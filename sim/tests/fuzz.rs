@@ -30,3 +30,19 @@ fn runs_are_reproducible_from_their_seed() {
     assert_eq!((a.sim_ps, a.cycles, a.sent, a.errors, a.bits), (b.sim_ps, b.cycles, b.sent, b.errors, b.bits));
     assert!(a.ok(), "{:?} {:?}", a.violations, a.divergence);
 }
+
+#[test]
+fn the_divergence_window_vcd_has_dut_and_golden_signals() {
+    let opts = RunOptions { frames: 2, disturb: false, vcd_dir: None };
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("w.vcd");
+    canstar_sim::fuzz::write_window_vcd(5, &opts, &path, 300_000_000).unwrap();
+    let text = std::fs::read_to_string(&path).unwrap();
+    for name in ["golden", "n1", "n2", "dbg_sample", "level"] {
+        assert!(text.contains(name), "no {name} in the VCD header");
+    }
+    // a window, not the whole run: starts 60 bits before the instant
+    let first_ts = text.lines().find(|l| l.starts_with('#')).unwrap();
+    let t0: u64 = first_ts[1..].parse().unwrap();
+    assert!((300_000_000 - 60 * 2_500_000..=300_000_000).contains(&t0), "first timestamp {t0}");
+}
