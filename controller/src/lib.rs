@@ -18,3 +18,5 @@ pub use fsm::{CanFsm, Field};
 pub mod core;
 pub use crate::core::CanCore;
 pub mod trace;
+pub mod sja1000;
+pub use crate::sja1000::Sja1000;
