@@ -300,6 +300,8 @@ pub struct Sja1000 {
     l_wr: Signal<Local, Bit>,
     l_rd: Signal<Local, Bit>,
     l_a: Signal<Local, Bits<7>>,
+    l_aoff: Signal<Local, Bits<7>>,
+    l_alcm1: Signal<Local, Bits<6>>,
     l_d: Signal<Local, Bits<8>>,
     l_rm: Signal<Local, Bit>,
     l_win: Signal<Local, Bit>,
@@ -308,6 +310,9 @@ pub struct Sja1000 {
     l_sr: Signal<Local, Bits<8>>,
     l_irv: Signal<Local, Bits<8>>,
     l_ev: Signal<Local, Bits<8>>,
+    l_tbs: Signal<Local, Bit>,
+    l_tcs: Signal<Local, Bit>,
+    l_dirrx: Signal<Local, Bit>,
     l_irn: Signal<Local, Bits<8>>,
     l_tecv: Signal<Local, Bits<8>>,
     l_recv: Signal<Local, Bits<8>>,
@@ -373,7 +378,11 @@ pub struct Sja1000 {
 impl Sja1000 {
     /// A new register block (hold `rst` high for a clock to initialise it).
     pub fn new() -> Self {
-        Self::default()
+        Self {
+            // zero-initialised FIFO RAM (block RAM initial contents)
+            ram: (0..64).map(|_| Bits::<8>::from(0u64)).into(),
+            ..Default::default()
+        }
     }
 }
 
@@ -399,6 +408,7 @@ impl Logic for Sja1000 {
         self.l_d.next = self.wb_dat_w.val();
         self.l_rm.next = !self.opm.q.val();
         self.l_win.next = (self.l_a.val() >= 16) & (self.l_a.val() <= 28);
+        self.l_aoff.next = self.l_a.val() - 32;
 
         // ------------------------------------------------------------------
         // Core status views.
@@ -483,9 +493,12 @@ impl Logic for Sja1000 {
         if self.l_sjw.val() > self.l_ph1.val() {
             self.l_sjw.next = self.l_ph1.val();
         }
-        self.core.prop.next = (self.l_prop.val() - 1).get_bits::<3>(0);
-        self.core.ph1.next = (self.l_ph1.val() - 1).get_bits::<3>(0);
-        self.core.sjw.next = (self.l_sjw.val() - 1).get_bits::<2>(0);
+        self.l_prop.next = self.l_prop.val() - 1;
+        self.l_ph1.next = self.l_ph1.val() - 1;
+        self.l_sjw.next = self.l_sjw.val() - 1;
+        self.core.prop.next = self.l_prop.val().get_bits::<3>(0);
+        self.core.ph1.next = self.l_ph1.val().get_bits::<3>(0);
+        self.core.sjw.next = self.l_sjw.val().get_bits::<2>(0);
         self.core.triple.next = self.btr1.q.val().get_bit(7);
 
         // ------------------------------------------------------------------
@@ -738,8 +751,10 @@ impl Logic for Sja1000 {
         self.l_sr.next = 0.into();
         self.l_sr.next = self.l_sr.val().replace_bit(0, self.rmc.q.val() != 0);
         self.l_sr.next = self.l_sr.val().replace_bit(1, self.dos.q.val());
-        self.l_sr.next = self.l_sr.val().replace_bit(2, !self.tx_pend.q.val());
-        self.l_sr.next = self.l_sr.val().replace_bit(3, !self.tcs_n.q.val());
+        self.l_tbs.next = !self.tx_pend.q.val();
+        self.l_tcs.next = !self.tcs_n.q.val();
+        self.l_sr.next = self.l_sr.val().replace_bit(2, self.l_tbs.val());
+        self.l_sr.next = self.l_sr.val().replace_bit(3, self.l_tcs.val());
         self.l_sr.next = self
             .l_sr
             .val()
@@ -884,7 +899,7 @@ impl Logic for Sja1000 {
             if self.l_win.val() {
                 self.ram.read_address.next = self.rbsa.q.val() + (self.l_a.val().get_bits::<6>(0) - 16);
             } else {
-                self.ram.read_address.next = (self.l_a.val() - 32).get_bits::<6>(0);
+                self.ram.read_address.next = self.l_aoff.val().get_bits::<6>(0);
             }
         }
         self.fetch_a.d.next = self.rbsa.q.val();
@@ -904,7 +919,7 @@ impl Logic for Sja1000 {
 
         // ------------------------------------------------------------------
         // Writes.
-        self.ram.write_address.next = (self.l_a.val() - 32).get_bits::<6>(0);
+        self.ram.write_address.next = self.l_aoff.val().get_bits::<6>(0);
         self.ram.write_data.next = self.l_d.val();
         self.ram.write_enable.next = false;
         if self.l_wr.val() {
@@ -1116,7 +1131,9 @@ impl Logic for Sja1000 {
             } else {
                 if self.l_acc.val() {
                     self.dos.d.next = true;
-                    self.l_ev.next = self.l_ev.val().replace_bit(3, !self.dos.q.val());
+                    if !self.dos.q.val() {
+                        self.l_ev.next = self.l_ev.val().replace_bit(3, true);
+                    }
                 }
                 if self.l_stx.val() {
                     self.l_txrel.next = true;
@@ -1145,10 +1162,11 @@ impl Logic for Sja1000 {
 
         // ------------------------------------------------------------------
         // Capture registers.
+        self.l_alcm1.next = self.core.arb_lost_pos.val() - 1;
         if self.core.arb_lost.val() {
             self.l_ev.next = self.l_ev.val().replace_bit(6, true);
             if !self.alc_lock.q.val() {
-                self.alc.d.next = (self.core.arb_lost_pos.val() - 1).get_bits::<5>(0);
+                self.alc.d.next = self.l_alcm1.val().get_bits::<5>(0);
                 self.alc_lock.d.next = true;
             }
         }
@@ -1223,6 +1241,7 @@ impl Logic for Sja1000 {
         if (self.core.err_field.val() == 21) | (self.core.err_field.val() == 22) {
             self.l_seg.next = 0x17.into();
         }
+        self.l_dirrx.next = !self.core.err_tx.val();
         self.l_ecode.next = 0xC0.into();
         if self.core.err_kind.val().get_bit(3) {
             self.l_ecode.next = 0x40.into();
@@ -1234,7 +1253,7 @@ impl Logic for Sja1000 {
             self.l_ecode.next = 0x00.into();
         }
         self.l_ecode.next = (self.l_ecode.val() | bit_cast::<8, 5>(self.l_seg.val()))
-            .replace_bit(5, !self.core.err_tx.val());
+            .replace_bit(5, self.l_dirrx.val());
         if self.core.error.val() {
             self.l_ev.next = self.l_ev.val().replace_bit(7, true);
             if !self.ecc_lock.q.val() {
