@@ -131,6 +131,44 @@ impl Net {
         n.wb_we.next = false;
         d
     }
+    /// Writes on several nodes in the same clocks.
+    pub fn wr_all(&mut self, ops: &[(usize, u8, u8)]) {
+        for &(i, addr, val) in ops {
+            let n = &mut self.nodes[i];
+            n.wb_cyc.next = true;
+            n.wb_stb.next = true;
+            n.wb_we.next = true;
+            n.wb_adr.next = (addr as u64).into();
+            n.wb_dat_w.next = (val as u64).into();
+        }
+        self.step();
+        self.step();
+        for &(i, _, _) in ops {
+            let n = &mut self.nodes[i];
+            n.wb_cyc.next = false;
+            n.wb_stb.next = false;
+            n.wb_we.next = false;
+        }
+    }
+    /// Load the TX buffer like `start_xmit` without the command.
+    pub fn load(&mut self, i: usize, f: &Frame) {
+        let mut fi = f.dlc & 0x0F;
+        if f.rtr {
+            fi |= FI_RTR;
+        }
+        let id = f.id;
+        let mut bytes = vec![];
+        if f.ide {
+            fi |= FI_FF;
+            bytes.extend([fi, (id >> 21) as u8, (id >> 13) as u8, (id >> 5) as u8, (id << 3) as u8]);
+        } else {
+            bytes.extend([fi, (id >> 3) as u8, (id << 5) as u8]);
+        }
+        bytes.extend(f.data.iter().copied());
+        for (k, b) in bytes.iter().enumerate() {
+            self.wr(i, REG_FI + k as u8, *b);
+        }
+    }
     pub fn wr(&mut self, i: usize, addr: u8, val: u8) {
         self.access(i, true, addr, val);
     }
