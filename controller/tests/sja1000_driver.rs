@@ -84,7 +84,7 @@ fn sja_linux_exchange_std_ext_remote() {
     for (k, f) in fs.iter().enumerate() {
         let tx = k % 2;
         n.xmit(tx, f);
-        n.run_until(200 * BIT, |n| !n.drv[tx].tx_busy && n.drv[1 - tx].rx.len() > k / 2 - (if tx == 1 { 0 } else { 0 }) );
+        n.run_until(200 * BIT, |n| !n.drv[tx].tx_busy && n.drv[1 - tx].rx.len() > k / 2);
         n.run(20 * BIT);
     }
     let mut got: Vec<Frame> = vec![];

@@ -24,7 +24,7 @@ fn sja_fifo_layout_overrun_and_wrap() {
     assert_eq!(n.rd(1, REG_RMC), 1);
     assert_eq!(n.rd(1, REG_RBSA), 0);
     let win: Vec<u8> = (0..11).map(|k| n.rd(1, REG_FI + k)).collect();
-    assert_eq!(win, vec![0x0A, 0x5A3u32 >> 3, (0x5A3 & 7) << 5, 1, 2, 3, 4, 5, 6, 7, 8].iter().map(|x| *x as u8).collect::<Vec<_>>());
+    assert_eq!(win, [0x0A, 0x5A3u32 >> 3, (0x5A3 & 7) << 5, 1, 2, 3, 4, 5, 6, 7, 8].iter().map(|x| *x as u8).collect::<Vec<_>>());
     // the same bytes in the FIFO RAM
     for k in 0..11 {
         assert_eq!(n.rd(1, REG_RXFIFO + k), win[k as usize]);

@@ -29,8 +29,8 @@ fn accept(afm: bool, acr: [u8; 4], amr: [u8; 4], f: &Frame) -> bool {
         } else {
             m(acr[0], amr[0], (id >> 3) as u8, 0xFF)
                 && m(acr[1], amr[1], ((id as u8) << 5) | (rtr << 4), 0xF0)
-                && d0.map_or(true, |d| m(acr[2], amr[2], d, 0xFF))
-                && d1.map_or(true, |d| m(acr[3], amr[3], d, 0xFF))
+                && d0.is_none_or(|d| m(acr[2], amr[2], d, 0xFF))
+                && d1.is_none_or(|d| m(acr[3], amr[3], d, 0xFF))
         }
     } else if f.ide {
         let f1 = m(acr[0], amr[0], (id >> 21) as u8, 0xFF) && m(acr[1], amr[1], (id >> 13) as u8, 0xFF);
@@ -39,7 +39,7 @@ fn accept(afm: bool, acr: [u8; 4], amr: [u8; 4], f: &Frame) -> bool {
     } else {
         let f1 = m(acr[0], amr[0], (id >> 3) as u8, 0xFF)
             && m(acr[1], amr[1], ((id as u8) << 5) | (rtr << 4), 0xF0)
-            && d0.map_or(true, |d| m(acr[1], amr[1], d >> 4, 0x0F) && m(acr[3], amr[3], d & 0x0F, 0x0F));
+            && d0.is_none_or(|d| m(acr[1], amr[1], d >> 4, 0x0F) && m(acr[3], amr[3], d & 0x0F, 0x0F));
         let f2 = m(acr[2], amr[2], (id >> 3) as u8, 0xFF) && m(acr[3], amr[3], ((id as u8) << 5) | (rtr << 4), 0xF0);
         f1 || f2
     }
@@ -69,7 +69,7 @@ fn run_filter(afm: bool, seed: u64) {
         }
         n.wr(1, REG_MOD, if afm { MOD_AFM } else { 0 });
         assert_eq!(n.rd(1, REG_MOD), if afm { MOD_AFM } else { 0 });
-        n.wr(1, REG_IER, 0xFF & !IRQ_BEI);
+        n.wr(1, REG_IER, !IRQ_BEI);
         n.run(13 * BIT);
         let before = n.drv[1].rx.len();
         let mut exp = vec![];

@@ -67,7 +67,7 @@ fn push_tx<R: Rng>(q: &mut VecDeque<(bool, u8, u8)>, rng: &mut R, f: &Frame) {
     q.push_back((true, REG_CMR, cmd));
 }
 
-fn push_init<R: Rng>(q: &mut VecDeque<(bool, u8, u8)>, rng: &mut R, odd_timing: bool) {
+fn push_init<R: Rng>(q: &mut VecDeque<(bool, u8, u8)>, rng: &mut R, odd_timing: bool, first: bool) {
     q.push_back((true, REG_IER, 0));
     q.push_back((true, REG_MOD, MOD_RM));
     q.push_back((false, REG_MOD, 0));
@@ -110,7 +110,7 @@ fn push_init<R: Rng>(q: &mut VecDeque<(bool, u8, u8)>, rng: &mut R, odd_timing: 
         m |= MOD_AFM;
     }
     q.push_back((true, REG_MOD, m));
-    q.push_back((true, REG_IER, if rng.gen_bool(0.8) { 0xFF } else { rng.gen() }));
+    q.push_back((true, REG_IER, if rng.gen_bool(0.8) || first { 0xFF } else { rng.gen() }));
 }
 
 #[test]
@@ -140,7 +140,8 @@ fn sja1000_verilog_flow() {
     let mut peer_off = 0u32;
     let mut deaf = 0u32;
     let mut idle_gap = 0u32;
-    let cycles = 160_000;
+    let cycles = 120_000;
+    let mut last_sr = 0u8;
     let (synth, cs) = flow::full_check(&mut u, "sja1000", cycles, 11, move |u, rng, cycle| {
         let mut s = st.borrow_mut();
         // ---- the bus: block, peer and disturbances
@@ -164,7 +165,16 @@ fn sja1000_verilog_flow() {
             s.peer_tx += peer.tx_done.val() as usize;
         }
         s.peer_rx += peer.rx_valid.val() as usize;
-        if !peer.tx_req.val() && rng.gen_bool(0.0002) {
+        // deterministic phases: 20k..45k the host is deaf while the peer
+        // sends back to back (FIFO full, overrun); 55k..75k the block's
+        // receiver is stuck recessive while it transmits (bus-off);
+        // 85k the host puts the block to sleep, the peer wakes it
+        let deaf_phase = (20_000..45_000).contains(&cycle);
+        let stuck_phase = (55_000..75_000).contains(&cycle);
+        if stuck_phase {
+            u.rx.next = true;
+        }
+        if !peer.tx_req.val() && (rng.gen_bool(0.0004) || (deaf_phase && rng.gen_bool(0.01))) {
             let f = random_frame(rng);
             peer.tx_ide.next = f.ide;
             peer.tx_rtr.next = f.rtr;
@@ -176,11 +186,12 @@ fn sja1000_verilog_flow() {
         drive::cycle(&mut *peer);
 
         // ---- hardware reset
-        let rst = cycle < 3 || rng.gen_bool(0.00001);
+        let rst = cycle < 3 || cycle == 100_000;
         u.rst.next = rst;
-        if cycle < 3 {
+        if cycle < 3 || cycle == 100_000 {
             q.clear();
-            push_init(&mut q, rng, false);
+            stage = 0;
+            push_init(&mut q, rng, false, true);
         }
 
         // ---- Wishbone master
@@ -204,7 +215,10 @@ fn sja1000_verilog_flow() {
                     s.reads += 1;
                     match cur.1 {
                         REG_IR => s.ir |= d,
-                        REG_SR => s.sr |= d,
+                        REG_SR => {
+                            s.sr |= d;
+                            last_sr = d;
+                        }
                         REG_RMC => s.max_rmc = s.max_rmc.max(d),
                         _ => {}
                     }
@@ -227,10 +241,19 @@ fn sja1000_verilog_flow() {
         // ---- the host program
         if q.is_empty() && stage == 0 {
             deaf = deaf.saturating_sub(1);
-            if deaf == 0 && rng.gen_bool(0.0005) {
-                deaf = rng.gen_range(20_000..60_000); // not servicing: FIFO fills, overrun
+            if cycle == 55_000 {
+                let f = random_frame(rng);
+                push_tx(&mut q, rng, &f);
             }
-            if !u.int_n.val() && deaf == 0 {
+            if cycle == 76_000 {
+                push_init(&mut q, rng, false, true);
+            }
+            if cycle == 85_000 {
+                q.push_back((false, REG_IR, 0));
+                q.push_back((true, REG_MOD, MOD_SM));
+                q.push_back((false, REG_MOD, 0));
+            }
+            if !u.int_n.val() && deaf == 0 && !deaf_phase {
                 // interrupt service like the Linux driver
                 q.push_back((false, REG_IR, 0));
                 q.push_back((false, REG_SR, 0));
@@ -243,13 +266,14 @@ fn sja1000_verilog_flow() {
                     q.push_back((false, REG_FI + k, 0));
                 }
                 q.push_back((true, REG_CMR, CMD_RRB | if rng.gen_bool(0.3) { CMD_CDO } else { 0 }));
-                if rng.gen_bool(0.02) {
+                if last_sr & SR_BS != 0 && !stuck_phase {
                     // bus-off restart like the driver: reset mode, counters, normal mode
-                    push_init(&mut q, rng, false);
+                    push_init(&mut q, rng, false, false);
+                    last_sr = 0;
                 }
             } else {
                 let r: f64 = rng.gen();
-                if r < 0.0004 {
+                if r < 0.001 {
                     let f = random_frame(rng);
                     push_tx(&mut q, rng, &f);
                     if rng.gen_bool(0.4) && !peer.tx_req.val() {
@@ -265,16 +289,18 @@ fn sja1000_verilog_flow() {
                     if rng.gen_bool(0.1) {
                         q.push_back((true, REG_CMR, CMD_AT));
                     }
-                } else if r < 0.0006 {
+                } else if (50_000..90_000).contains(&cycle) {
+                    // only transmissions here (see the phases above)
+                } else if r < 0.0015 {
                     q.push_back((false, rng.gen_range(0..128), 0));
-                } else if r < 0.00065 {
+                } else if r < 0.0016 {
                     q.push_back((true, rng.gen_range(0..128), rng.gen()));
-                } else if r < 0.00068 {
+                } else if r < 0.00163 {
                     let odd = rng.gen_bool(0.15);
-                    push_init(&mut q, rng, odd);
-                } else if r < 0.0007 {
+                    push_init(&mut q, rng, odd, false);
+                } else if r < 0.00166 {
                     q.push_back((true, REG_MOD, if rng.gen_bool(0.7) { MOD_SM } else { 0 }));
-                } else if r < 0.0008 {
+                } else if r < 0.002 {
                     q.push_back((false, REG_SR, 0));
                     q.push_back((false, REG_MOD, 0));
                 }
@@ -293,6 +319,7 @@ fn sja1000_verilog_flow() {
         (IRQ_EI, "EI"),
         (IRQ_DOI, "DOI"),
         (IRQ_EPI, "EPI"),
+        (IRQ_WUI, "WUI"),
         (IRQ_ALI, "ALI"),
         (IRQ_BEI, "BEI"),
     ] {

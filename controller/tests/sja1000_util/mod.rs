@@ -232,7 +232,7 @@ impl Net {
         for _ in 0..100 {
             if status & MOD_RM == 0 {
                 self.drv[i].state = Some(CanState::Active);
-                let ier = if m.berr_reporting { 0xFF } else { 0xFF & !IRQ_BEI };
+                let ier = if m.berr_reporting { 0xFF } else { !IRQ_BEI };
                 self.wr(i, REG_IER, ier);
                 return;
             }
