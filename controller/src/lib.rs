@@ -19,4 +19,3 @@ pub mod core;
 pub use crate::core::CanCore;
 pub mod trace;
 pub mod sja1000;
-pub use crate::sja1000::Sja1000;
