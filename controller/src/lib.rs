@@ -38,4 +38,3 @@ pub use crate::core::CanCore;
 pub use frame::{BuildOptions, BusBit, Frame};
 pub use fsm::{CanFsm, Field};
 pub mod sja1000;
-pub use crate::sja1000::Sja1000;

@@ -210,3 +210,32 @@ fn sja_bit_timing_registers() {
         assert!(w.contains(&bit));
     }
 }
+
+#[test]
+fn sja_error_counters_in_reset_mode() {
+    // counters are kept (shadow) when reset mode is entered, writable there,
+    // and ES follows the written values; the core restarts from 0 when reset
+    // mode is left (no counter write port in CanCore: documented gap)
+    let mut n = Net::new(1);
+    n.open(0, CtrlMode::default());
+    n.run(13 * BIT);
+    n.xmit(0, &Frame::std(0x1, &[]));
+    for _ in 0..100 {
+        if n.rd(0, REG_TXERR) >= 24 {
+            break;
+        }
+        n.run(20 * BIT);
+    }
+    let t = n.rd(0, REG_TXERR);
+    n.wr(0, REG_MOD, MOD_RM);
+    assert_eq!(n.rd(0, REG_TXERR), t, "kept on entering reset mode");
+    assert_eq!(n.rd(0, REG_SR) & SR_TBS, SR_TBS, "pending transmission cancelled");
+    n.wr(0, REG_TXERR, 100);
+    n.wr(0, REG_RXERR, 7);
+    assert_eq!((n.rd(0, REG_TXERR), n.rd(0, REG_RXERR)), (100, 7));
+    assert_eq!(n.rd(0, REG_SR) & SR_ES, SR_ES, "ES from the written counter");
+    n.wr(0, REG_TXERR, 5);
+    assert_eq!(n.rd(0, REG_SR) & SR_ES, 0);
+    n.wr(0, REG_MOD, 0);
+    assert_eq!((n.rd(0, REG_TXERR), n.rd(0, REG_RXERR)), (0, 0), "core restarts from 0");
+}
