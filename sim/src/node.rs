@@ -4,9 +4,19 @@
 //!
 //! Bind it with one input (RX) and one output (TX):
 //!
-//! ```ignore
-//! let h = sim.add(CanNode::new(NodeConfig::named("n1"), clock), &[bus.nodes[0].rx], &[bus.nodes[0].tx]);
-//! sim.get_mut(h).request(Frame::std(0x123, &[1, 2]));
+//! ```
+//! use canstar_controller::frame::Frame;
+//! use canstar_sim::bus::{Bus, NodeDelays};
+//! use canstar_sim::node::{CanNode, NodeConfig};
+//! use canstar_sim::{ClockSpec, Sim};
+//! let mut sim = Sim::new(1);
+//! let bus = Bus::uniform(&mut sim, "bus", 2, NodeDelays::symmetric(0, 0));
+//! let clock = ClockSpec::new(100_000); // 10 MHz: 1 Mbit/s with the default T10/6/4
+//! let a = sim.add(CanNode::new(NodeConfig::named("n1"), clock), &[bus.nodes[0].rx], &[bus.nodes[0].tx]);
+//! let b = sim.add(CanNode::new(NodeConfig::named("n2"), clock), &[bus.nodes[1].rx], &[bus.nodes[1].tx]);
+//! sim.get_mut(a).request(Frame::std(0x123, &[1, 2]));
+//! sim.run_for(200_000_000); // 200 us
+//! assert_eq!(sim.get(b).received(), vec![Frame::std(0x123, &[1, 2])]);
 //! ```
 //!
 //! The node holds the controller in reset for its first [`RESET_CYCLES`]
