@@ -2,6 +2,7 @@
 //! node has one controller per hub; only its tx controller transmits, the other one
 //! receives and acknowledges. The two hubs must broadcast the same bit, blame nobody
 //! in fault-free traffic, and isolate only the faulty sublink (A4).
+#![allow(clippy::needless_range_loop)]
 mod common;
 use canstar_hdl::drive;
 use canstar_hub::hub::{Hub, HubConfig};
