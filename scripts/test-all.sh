@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Runs every canstar check on a fresh Debian machine:
-#  - installs the open EDA tools it needs (yosys, iverilog, verilator) when missing,
+#  - installs the open EDA tools it needs (yosys, iverilog, verilator) and sigrok-cli
+#    (independent CAN decoder for the sim's sigrok test) when missing,
 #  - runs all Rust tests, including the Verilog flow tests that plain `cargo test`
 #    skips (Verilator lint, Yosys synthesis, Icarus co-simulation),
 #  - checks that verilog-out/ and constraints/ match what `canstar generate` writes.
@@ -8,16 +9,16 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 missing=()
-for tool in yosys iverilog verilator; do
+for tool in yosys iverilog verilator sigrok-cli; do
   command -v "$tool" >/dev/null 2>&1 || missing+=("$tool")
 done
 if [ "${#missing[@]}" -gt 0 ]; then
-  echo "== installing EDA tools: ${missing[*]}"
+  echo "== installing tools: ${missing[*]}"
   SUDO=""
   [ "$(id -u)" -ne 0 ] && SUDO="sudo"
   export DEBIAN_FRONTEND=noninteractive
   $SUDO apt-get update -qq
-  $SUDO apt-get install -y -qq yosys iverilog verilator >/dev/null
+  $SUDO apt-get install -y -qq "${missing[@]}" >/dev/null
 fi
 if ! python3 -c "import can" >/dev/null 2>&1; then
   echo "== installing python-can (reads the candump logs in a test)"

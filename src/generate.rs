@@ -116,3 +116,67 @@ pub fn check(artifacts: &[Artifact], out: &Path, constraints: &Path) -> Vec<Path
         })
         .collect()
 }
+
+/// Wrap a rust-hdl module whose ports include arrays of signals (rust-hdl
+/// names them `x$0`, `x$1`, ...) in a top module `name` with plain vector
+/// ports (`x[k*w-1:0]`, element i in bits `[i*w+w-1 : i*w]`), so that FPGA
+/// users and pin files see `rx[0]` rather than `rx$0`. `inner` is the rust-hdl
+/// Verilog whose top module is `inner_top`. Returns the wrapper and the list
+/// of (port, total bits, is_output) of the wrapper.
+pub fn vector_wrapper(inner: &str, inner_top: &str, name: &str) -> (String, Vec<(String, usize, bool)>) {
+    let ports = crate::report::parse_ports(inner, inner_top);
+    // Group by base name, keeping first-appearance order.
+    let mut groups: Vec<(String, Vec<(usize, String, usize)>, bool)> = vec![];
+    for (p, bits, out) in &ports {
+        let (base, idx) = match p.rsplit_once('$') {
+            Some((b, i)) if i.chars().all(|c| c.is_ascii_digit()) => (b.to_string(), Some(i.parse::<usize>().unwrap())),
+            _ => (p.clone(), None),
+        };
+        match groups.iter_mut().find(|g| g.0 == base) {
+            Some(g) => g.1.push((idx.unwrap_or(0), p.clone(), *bits)),
+            None => groups.push((base, vec![(idx.unwrap_or(0), p.clone(), *bits)], *out)),
+        }
+    }
+    let mut decl = vec![];
+    let mut conns = vec![];
+    let mut list = vec![];
+    for (base, mut elems, out) in groups {
+        elems.sort();
+        let w = elems[0].2;
+        let total = w * elems.len();
+        let is_array = elems.len() > 1 || elems[0].1.contains('$');
+        let range = if total > 1 { format!("[{}:0] ", total - 1) } else { String::new() };
+        decl.push(format!("    {} wire {range}{base};", if out { "output" } else { "input" }));
+        for (k, (_, pname, bits)) in elems.iter().enumerate() {
+            let sel = if !is_array {
+                base.clone()
+            } else if *bits == 1 {
+                format!("{base}[{k}]")
+            } else {
+                format!("{base}[{}:{}]", k * w + bits - 1, k * w)
+            };
+            conns.push(format!("        .{pname}({sel})"));
+        }
+        list.push((base, total, out));
+    }
+    let names: Vec<&str> = list.iter().map(|p| p.0.as_str()).collect();
+    let mut v = format!("module {name}({});\n", names.join(", "));
+    v += &decl.join("\n");
+    v += &format!("\n    {inner_top} core (\n{}\n    );\nendmodule // {name}\n", conns.join(",\n"));
+    (v, list)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn vector_wrapper_groups_arrays() {
+        let inner = "module top(clock,rx$0,rx$1,bic$0,bic$1,fs);\n    input wire  clock;\n    input wire  rx$0;\n    input wire  rx$1;\n    output reg  [7:0] bic$0;\n    output reg  [7:0] bic$1;\n    output reg  [3:0] fs;\nendmodule // top\n";
+        let (v, ports) = vector_wrapper(inner, "top", "hub");
+        assert_eq!(ports, vec![("clock".into(), 1, false), ("rx".into(), 2, false), ("bic".into(), 16, true), ("fs".into(), 4, true)]);
+        for s in ["module hub(clock, rx, bic, fs);", "input wire [1:0] rx;", "output wire [15:0] bic;", ".rx$1(rx[1])", ".bic$1(bic[15:8])", ".fs(fs)", ".clock(clock)"] {
+            assert!(v.contains(s), "missing `{s}` in\n{v}");
+        }
+    }
+}

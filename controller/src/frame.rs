@@ -215,6 +215,35 @@ pub fn stuff_count(f: &Frame) -> usize {
     bus_bits(f, BuildOptions::default(), true).iter().filter(|b| b.stuff).count()
 }
 
+/// One stuffing situation of the stuffbit program (conformance-tests.md §11):
+/// a stuff bit of level `level` (true = recessive) whose preceding bit is in
+/// `field`, either inside the field or after its last bit (`after_last`),
+/// followed by a bit of level `next`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub struct StuffCase {
+    pub field: u8,
+    pub level: bool,
+    pub after_last: bool,
+    pub next: bool,
+}
+
+/// The stuffing situations a frame's bus bits contain (see [`StuffCase`];
+/// `field` is the FIELD code of [`Field`]).
+pub fn stuff_cases(bits: &[BusBit]) -> std::collections::BTreeSet<StuffCase> {
+    let mut out = std::collections::BTreeSet::new();
+    for k in 1..bits.len().saturating_sub(1) {
+        let b = bits[k];
+        if !b.stuff {
+            continue;
+        }
+        let prev = bits[k - 1];
+        // the bit after the preceding one in transmission order, ignoring stuff bits
+        let after_last = bits[k + 1..].iter().find(|x| !x.stuff).map(|x| x.field != prev.field).unwrap_or(true);
+        out.insert(StuffCase { field: prev.field.code() as u8, level: b.level, after_last, next: bits[k + 1].level });
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

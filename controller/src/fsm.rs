@@ -245,8 +245,8 @@ impl Field {
 /// The frame state machine (see the module documentation).
 ///
 /// Inputs: `sample` strobe and `busmon` level from the bit timing logic; the
-/// mode bits `listen_only` (never drive dominant, never start a frame,
-/// no ACK, only passive flags, error counters frozen),
+/// mode bits `listen_only` (never drive dominant: no frame, no ACK, flags
+/// kept recessive; error counters frozen),
 /// `self_test` (a transmitter accepts a recessive ACK slot), `single_shot`
 /// (no retransmission after an error or a lost arbitration),
 /// `host_recovery` (bus-off recovery waits for a `recover` strobe); the
@@ -436,10 +436,8 @@ impl Logic for CanFsm {
         // Defaults: working copies start from the registers.
         self.l_bit.next = self.busmon.val();
         self.l_sent.next = !self.dom.q.val();
-        // Error-active (flags are typed from this); a listen-only node only
-        // ever sends passive flags.
-        self.l_active.next =
-            (self.tecr.q.val() < 128) & (self.recr.q.val() < 128) & !self.listen_only.val();
+        // Error-active (flags are typed from this).
+        self.l_active.next = (self.tecr.q.val() < 128) & (self.recr.q.val() < 128);
         self.l_cantx.next = self.req.q.val() & !self.listen_only.val();
         self.l_nf.next = self.fld.q.val();
         self.l_npos.next = self.fpos.q.val();
@@ -849,8 +847,9 @@ impl Logic for CanFsm {
                         }
                     }
                     Field::BusOff => {
-                        if (self.host_recovery.val() & !self.rarmed.q.val()) | !self.l_bit.val() {
-                            // waiting for the host, or a dominant bit restarts the run
+                        if (self.host_recovery.val() & !(self.rarmed.q.val() | self.recover.val())) | !self.l_bit.val() {
+                            // waiting for the host (a `recover` strobe on this clock
+                            // counts this bit), or a dominant bit restarts the run
                             self.l_npos.next = 1.into();
                         } else if self.fpos.q.val() == 11 {
                             self.l_ev.next = self.l_ev.val().replace_bit(16 /* EV_RUN */, true);
@@ -909,7 +908,10 @@ impl Logic for CanFsm {
                             self.l_rinc1.next = !self.rtx.q.val();
                         }
                         if !self.rtx.q.val() & self.crcerr.q.val() {
+                            // the pending CRC error; a form error here is the
+                            // same error (one flag, one count, reported as CRC)
                             self.l_err.next = true;
+                            self.l_errk.next = 0.into();
                             self.l_errk.next = self.l_errk.val().replace_bit(2 /* ERRK_CRC */, true);
                             self.l_rinc1.next = true;
                         }
@@ -949,7 +951,9 @@ impl Logic for CanFsm {
                     }
                     Field::ActFlag => {
                         if !self.fdone.q.val() {
-                            if self.l_bit.val() {
+                            // bit error: recessive read while driving dominant (a
+                            // listen-only node drives its flags recessive)
+                            if self.l_bit.val() & !self.l_sent.val() {
                                 self.l_err.next = true;
                                 self.l_errk.next = self.l_errk.val().replace_bit(0 /* ERRK_BIT */, true);
                                 self.l_tinc.next = self.rtx.q.val();
@@ -983,7 +987,9 @@ impl Logic for CanFsm {
                     }
                     Field::OvlFlag => {
                         if !self.fdone.q.val() {
-                            if self.l_bit.val() {
+                            // bit error: recessive read while driving dominant (a
+                            // listen-only node drives its flags recessive)
+                            if self.l_bit.val() & !self.l_sent.val() {
                                 self.l_err.next = true;
                                 self.l_errk.next = self.l_errk.val().replace_bit(0 /* ERRK_BIT */, true);
                                 self.l_tinc.next = self.rtx.q.val();
@@ -1307,7 +1313,7 @@ impl Logic for CanFsm {
                     self.blocked.d.next = true;
                 }
                 self.errf_r.d.next = self.field.val();
-                self.errp_r.d.next = self.fpos.q.val();
+                self.errp_r.d.next = self.l_dpos.val();
                 self.errtx_r.d.next = self.rtx.q.val();
             } else if self.l_ovl.val() {
                 self.l_nf.next = Field::OvlFlag;
@@ -1348,6 +1354,10 @@ impl Logic for CanFsm {
             }
             // Bus-off as soon as TEC exceeds 255.
             if self.l_tec.val().get_bit(8) & (self.fld.q.val() != Field::BusOff) {
+                // no flag is started after all
+                self.l_ev.next = self.l_ev.val().replace_bit(7 /* EV_AEF */, false);
+                self.l_ev.next = self.l_ev.val().replace_bit(8 /* EV_PEF */, false);
+                self.l_ev.next = self.l_ev.val().replace_bit(9 /* EV_OLF */, false);
                 self.l_nf.next = Field::BusOff;
                 self.l_npos.next = 1.into();
                 self.l_ndom.next = false;

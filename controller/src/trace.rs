@@ -87,8 +87,10 @@ impl BitTracer {
                     tok.push(["TO_EA", "TO_EP", "TO_BO", "TO_BO"][st as usize & 3].to_string());
                     self.state = st;
                 }
-                if has(EV_RUN) && !has(EV_RECOVERED) {
-                    tok.push(format!("RUN={}", c.dbg_runs.val().index()));
+                if has(EV_RUN) {
+                    // the run counter is cleared by the recovery itself
+                    let k = if has(EV_RECOVERED) { 128 } else { c.dbg_runs.val().index() };
+                    tok.push(format!("RUN={k}"));
                 }
                 if has(EV_RECOVERED) {
                     tok.push("RECOVERED".to_string());

@@ -234,3 +234,53 @@ fn core_idle_spike_hard_sync_and_sof() {
         assert!(b.samples[0].len() > before);
     }
 }
+
+/// Other prescalers and timings, and triple sampling: frames of every kind
+/// between two nodes with a small propagation delay.
+#[test]
+fn core_other_timings_and_triple_sampling() {
+    // (fields value - 1, triple): T10/6/4 at BRP 4, T25/17/1, T10/8/1 at BRP 2, T10/6/2 triple
+    let configs = [((3u64, 0u64, 3u64, 3u64), false), ((0, 7, 7, 0), false), ((1, 4, 1, 0), false), ((0, 0, 3, 1), true)];
+    for (t, triple) in configs {
+        let brp = t.0 as usize + 1;
+        let ntq = 1 + (t.1 + 1) + (t.2 + 1) + (t.2 + 1).max(2);
+        let bit = brp * ntq as usize;
+        let mut b = CoreBus::with_timing(2, &[0, brp], t, triple);
+        b.run(13 * bit);
+        assert_eq!((b.field(0), b.field(1)), (Field::Idle, Field::Idle), "{t:?}");
+        let frames = [
+            Frame::std(0x000, &[0; 8]),
+            Frame::ext(0x1FFF_FFFF, &[0xFF; 8]),
+            Frame::remote(true, 0x0F0F0F0, 15),
+            Frame::data(false, 0x555, 11, &[0x0F, 0xF0, 0x3C, 0xC3, 1, 2, 3, 4]),
+        ];
+        for (k, f) in frames.iter().enumerate() {
+            let tx = k % 2;
+            b.request(tx, f);
+            b.run_until(200 * bit, |b| b.nodes[tx].tx_done.val());
+            b.withdraw(tx);
+            b.run_until(20 * bit, |b| b.field(0) == Field::Idle && b.field(1) == Field::Idle);
+            assert_eq!(b.rx[1 - tx].last(), Some(f), "{t:?} {triple}");
+        }
+        for i in 0..2 {
+            assert_eq!((b.tec(i), b.rec(i)), (0, 0), "{t:?} {triple}");
+        }
+    }
+}
+
+/// The error payload names the bit: a stuff error at the stuff bit after
+/// Identifier 4 reports FIELD Identifier, POSITION 4, receiver.
+#[test]
+fn core_error_payload_of_a_stuff_bit() {
+    let mut b = CoreBus::integrated(2, &[]);
+    b.request(1, &Frame::std(0x012, &[0x55]));
+    b.run_until(3000, |b| b.field(0) == Field::Ident && b.nodes[0].dbg_stuff.val());
+    b.ovr[0] = Ovr::StuckD;
+    b.run_until(30, |b| b.nodes[0].error.val());
+    b.ovr[0] = Ovr::None;
+    let n = &b.nodes[0];
+    assert_eq!(n.err_kind.val().index(), 1 << ERRK_STUFF);
+    assert_eq!(n.err_field.val().index() as u64, Field::Ident.code());
+    assert_eq!(n.err_pos.val().index(), 4);
+    assert!(!n.err_tx.val());
+}

@@ -23,7 +23,7 @@ fn core_verilog_flow() {
     let prefix = dlc_and_stuffbit_frames();
     let n_prefix = prefix.len();
     script.push_idle(12); // integration
-    script.push_frames(&prefix);
+    script.push_frames_with(&prefix);
     let mut phase2 = false;
     // timings (value - 1): T10/6/4, T10/8/1, T25/17/1, T10/6/2, and an invalid one
     let timings = [(0u64, 0u64, 3u64, 3u64), (0, 4, 1, 0), (0, 7, 7, 0), (1, 0, 3, 1), (0, 0, 0, 0)];

@@ -619,10 +619,13 @@ fn listen_only_node_receives_silently() {
     good_exchange(&mut b, 0, &f);
     assert_eq!(b.rx[2], vec![f.clone()]);
     assert!(b.log[2].iter().all(|r| r.drv), "a listen-only node never drives dominant");
-    // an error seen only by the listen-only node: passive flag, counters frozen
+    // an error seen only by the listen-only node: its flag (typed as usual) is
+    // not driven, so it is no bit error; counters frozen
     b.request(0, &f);
     b.force_at(2, Field::CrcDel, 1, Ovr::StuckD, 1);
-    assert!(b.last(2).has(EV_FORM_ERR) && b.last(2).has(EV_PEF));
+    assert!(b.last(2).has(EV_FORM_ERR) && b.last(2).has(EV_AEF));
+    b.run(8);
+    assert!(b.log[2].iter().rev().take(8).all(|r| !r.has(EV_BIT_ERR)));
     b.run_until(400, |b| b.nodes[0].tx_done.val());
     b.withdraw(0);
     b.run_idle(60);

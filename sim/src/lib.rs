@@ -25,6 +25,12 @@
 //! two-hub networks of [`star::Link`]s with [`LinkFault`]s).
 //!
 //! VCD output ([`vcd`]): [`Sim::start_vcd_file`] / [`Sim::finish_vcd`].
+//!
+//! Verification: [`lockstep::LockstepNode`] runs an RTL node in lock step with
+//! an independent golden model (golden bit timing + [`golden::GoldenNode`],
+//! can-protocol.md §19); [`fuzz`] runs randomised multi-node lock-step
+//! sessions with receive-path disturbances and network properties
+//! (`canstar fuzz`).
 //! Benchmark: [`bench::bench`].
 //!
 //! ```
@@ -39,6 +45,9 @@
 pub mod bench;
 pub mod golden;
 pub mod bus;
+pub mod conformance;
+pub mod fuzz;
+pub mod lockstep;
 mod kernel;
 pub mod net;
 pub mod node;

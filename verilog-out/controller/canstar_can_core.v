@@ -1668,7 +1668,7 @@ module canstar_can_core$fsm(clock,reset,sample,busmon,listen_only,self_test,sing
         rxdat_r$d = rxdat_r$q;
         l_bit = busmon;
         l_sent = ~dom$q;
-        l_active = (tecr$q < 32'h80) & (recr$q < 32'h80) & ~listen_only;
+        l_active = (tecr$q < 32'h80) & (recr$q < 32'h80);
         l_cantx = req$q & ~listen_only;
         l_nf = fld$q;
         l_npos = fpos$q;
@@ -2125,7 +2125,7 @@ module canstar_can_core$fsm(clock,reset,sample,busmon,listen_only,self_test,sing
                         end
                     Field$BusOff:
                         begin
-                            if ((host_recovery & ~rarmed$q) | ~l_bit) begin
+                            if ((host_recovery & ~(rarmed$q | recover)) | ~l_bit) begin
                                 l_npos = 32'h1;
                             end
                             else if (fpos$q == 32'hb) begin
@@ -2192,6 +2192,7 @@ module canstar_can_core$fsm(clock,reset,sample,busmon,listen_only,self_test,sing
                             end
                             if (~rtx$q & crcerr$q) begin
                                 l_err = 1'b1;
+                                l_errk = 32'h0;
                                 l_errk = (l_errk & ~(1 << (32'h2)) | ((1'b1) << (32'h2)));
                                 l_rinc1 = 1'b1;
                             end
@@ -2237,7 +2238,7 @@ module canstar_can_core$fsm(clock,reset,sample,busmon,listen_only,self_test,sing
                     Field$ActFlag:
                         begin
                             if (~fdone$q) begin
-                                if (l_bit) begin
+                                if (l_bit & ~l_sent) begin
                                     l_err = 1'b1;
                                     l_errk = (l_errk & ~(1 << (32'h0)) | ((1'b1) << (32'h0)));
                                     l_tinc = rtx$q;
@@ -2275,7 +2276,7 @@ module canstar_can_core$fsm(clock,reset,sample,busmon,listen_only,self_test,sing
                     Field$OvlFlag:
                         begin
                             if (~fdone$q) begin
-                                if (l_bit) begin
+                                if (l_bit & ~l_sent) begin
                                     l_err = 1'b1;
                                     l_errk = (l_errk & ~(1 << (32'h0)) | ((1'b1) << (32'h0)));
                                     l_tinc = rtx$q;
@@ -2639,7 +2640,7 @@ module canstar_can_core$fsm(clock,reset,sample,busmon,listen_only,self_test,sing
                     blocked$d = 1'b1;
                 end
                 errf_r$d = field;
-                errp_r$d = fpos$q;
+                errp_r$d = l_dpos;
                 errtx_r$d = rtx$q;
             end
             else if (l_ovl) begin
@@ -2683,6 +2684,9 @@ module canstar_can_core$fsm(clock,reset,sample,busmon,listen_only,self_test,sing
                 end
             end
             if (l_tec[32'h8] & (fld$q != Field$BusOff)) begin
+                l_ev = (l_ev & ~(1 << (32'h7)) | ((1'b0) << (32'h7)));
+                l_ev = (l_ev & ~(1 << (32'h8)) | ((1'b0) << (32'h8)));
+                l_ev = (l_ev & ~(1 << (32'h9)) | ((1'b0) << (32'h9)));
                 l_nf = Field$BusOff;
                 l_npos = 32'h1;
                 l_ndom = 1'b0;

@@ -38,11 +38,17 @@ pub fn configure(c: &mut CanCore, t: (u64, u64, u64, u64)) {
 
 impl CoreBus {
     pub fn new(n: usize, delays: &[usize]) -> CoreBus {
+        CoreBus::with_timing(n, delays, T10_6_4, false)
+    }
+
+    /// Nodes with timing fields `t` (value - 1) and optional triple sampling.
+    pub fn with_timing(n: usize, delays: &[usize], t: (u64, u64, u64, u64), triple: bool) -> CoreBus {
         let mut nodes = Vec::new();
         for _ in 0..n {
             let mut c = Box::new(CanCore::new());
             drive::init(&mut *c);
-            configure(&mut c, T10_6_4);
+            configure(&mut c, t);
+            c.triple.next = triple;
             c.rx.next = true;
             c.reset.next = true;
             drive::cycle(&mut *c);

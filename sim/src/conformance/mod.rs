@@ -1,0 +1,651 @@
+//! The Bosch conformance programs of `conformance-tests.md` on the
+//! multi-node cycle simulation.
+//!
+//! Every program is library code: [`run_program`] runs one program on a
+//! fresh [`Bench`] (N [`CanNode`]s, the RTL controller with its bit timing,
+//! on a wired-AND [`Bus`] of the kernel) and returns one [`StepResult`] per
+//! step of the plan, named `<program>_<part>_<step>` as the plan names them.
+//! The cargo tests in `sim/tests/conformance_*.rs` and the
+//! `canstar conformance` subcommand ([`run_cli`]) both use it.
+//!
+//! # The bench
+//!
+//! - Node `i` of the plan (N1 = index 0) is a [`CanNode`], clock 100 ns,
+//!   BRP 1, timing T10/6/4 unless the program says otherwise. An optional
+//!   scripted transmitter ([`Scripted`], the plan's "test-only transmitter")
+//!   is one more bus participant that drives a precomputed stuffed bit
+//!   sequence from the controller's frame builder
+//!   ([`canstar_controller::frame::bus_bits`] with [`BuildOptions`]).
+//! - Start-up (§0): the nodes hold their controllers in reset, then every
+//!   node's RX reads one dominant bit (interference stuck-dominant), then the
+//!   nodes integrate; the bench waits until every node is in Bus_Idle.
+//! - Records: every bit a node processes becomes a [`BitRec`] (field,
+//!   position, stuff flag, role and levels of the bit as sampled, the
+//!   `EV_*` event word and the counters after it), read from the RTL debug
+//!   bundle: on the clock with `dbg_sample` the bundle describes the bit
+//!   being sampled; on the next clock `dbg_events` carries its events.
+//! - Forcing ([`Bench::force_at`]): like the manual's WAIT_FOR, the bench
+//!   runs until the forced node has processed the bit *before* the target
+//!   (its `field()`/`pos()`/`dbg_stuff` then show the target bit), waits for
+//!   the end of that bit's PH2 and sets the receive-path interference of the
+//!   forced node(s) for k nominal bit times, then sets it back to none.
+
+use crate::bus::{Bus, NodeDelays};
+use crate::kernel::{ClockSpec, Component, Handle, Io, Sim};
+use crate::net::Interference;
+use crate::node::{CanNode, NodeConfig, RESET_CYCLES};
+use canstar_controller::frame::{bus_bits, BuildOptions, BusBit, Frame};
+use canstar_controller::fsm::*;
+use std::path::{Path, PathBuf};
+
+pub mod dlc;
+pub mod extd_id;
+pub mod stuffbit;
+pub mod stufferr;
+pub mod txarb;
+
+/// Clock period of the default configuration (100 ns).
+pub const CLOCK_PS: u64 = 100_000;
+
+/// Outcome of one step of a program.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct StepResult {
+    /// `<program>_<part>_<step>`, e.g. `biterror_tx_12`.
+    pub name: String,
+    pub pass: bool,
+    /// Empty on success; what differed otherwise.
+    pub msg: String,
+}
+
+/// One program of the suite.
+pub struct Program {
+    pub name: &'static str,
+    /// Runs the program; `vcd` names a VCD file to write.
+    pub run: fn(&mut Ctx),
+}
+
+/// All programs, in plan order.
+pub fn programs() -> Vec<Program> {
+    vec![
+        Program { name: "dlc", run: dlc::run },
+        Program { name: "extd_id", run: extd_id::run },
+        Program { name: "stuffbit", run: stuffbit::run },
+        Program { name: "stufferr", run: stufferr::run },
+        Program { name: "txarb", run: txarb::run },
+    ]
+}
+
+/// Step collector of one program run.
+pub struct Ctx {
+    pub program: String,
+    pub vcd: Option<PathBuf>,
+    pub results: Vec<StepResult>,
+}
+
+impl Ctx {
+    /// Record the outcome of step `name`.
+    pub fn record(&mut self, name: &str, r: Result<(), String>) {
+        let (pass, msg) = match r {
+            Ok(()) => (true, String::new()),
+            Err(m) => (false, m),
+        };
+        self.results.push(StepResult { name: name.to_string(), pass, msg });
+    }
+
+    /// A bench for this program (writes a VCD if asked for).
+    pub fn bench(&self, cfgs: Vec<NodeConfig>, scripted: bool) -> Bench {
+        let vcd = self.vcd.as_ref().map(|d| d.join(format!("{}.vcd", self.program)));
+        Bench::new(cfgs, scripted, vcd.as_deref())
+    }
+}
+
+/// Run program `name`; `None` if there is no such program.
+pub fn run_program(name: &str, vcd_dir: Option<&Path>) -> Option<Vec<StepResult>> {
+    let p = programs().into_iter().find(|p| p.name == name)?;
+    let mut ctx = Ctx { program: name.to_string(), vcd: vcd_dir.map(|d| d.to_path_buf()), results: vec![] };
+    let run = p.run;
+    let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| run(&mut ctx)));
+    if let Err(e) = r {
+        let m = e.downcast_ref::<String>().cloned().or_else(|| e.downcast_ref::<&str>().map(|s| s.to_string())).unwrap_or_default();
+        ctx.results.push(StepResult { name: format!("{name}_panic"), pass: false, msg: m });
+    }
+    Some(ctx.results)
+}
+
+/// The `canstar conformance` command: runs `program` (or all), prints one
+/// line per program and a final `N passed, M failed` line counting steps,
+/// and returns (passed, failed). Failed steps are listed with their message.
+pub fn run_cli(program: Option<&str>, vcd_dir: Option<&Path>, out: &mut dyn std::io::Write) -> std::io::Result<(usize, usize)> {
+    let names: Vec<&'static str> = programs().iter().map(|p| p.name).collect();
+    let chosen: Vec<&str> = match program {
+        Some(p) => {
+            if !names.contains(&p) {
+                writeln!(out, "unknown program {p}; programs: {}", names.join(", "))?;
+                return Ok((0, 1));
+            }
+            vec![p]
+        }
+        None => names.clone(),
+    };
+    if let Some(d) = vcd_dir {
+        std::fs::create_dir_all(d)?;
+    }
+    let (mut tp, mut tf) = (0, 0);
+    for p in chosen {
+        let t0 = std::time::Instant::now();
+        let res = run_program(p, vcd_dir).unwrap_or_default();
+        let pass = res.iter().filter(|r| r.pass).count();
+        let fail = res.len() - pass;
+        tp += pass;
+        tf += fail;
+        writeln!(out, "{p:<9} {:>3} steps, {pass:>3} passed, {fail:>3} failed ({:.1} s)", res.len(), t0.elapsed().as_secs_f64())?;
+        for r in res.iter().filter(|r| !r.pass) {
+            writeln!(out, "  FAIL {}: {}", r.name, r.msg)?;
+        }
+    }
+    writeln!(out, "{tp} passed, {tf} failed")?;
+    Ok((tp, tf))
+}
+
+/// Assert inside a step: returns `Err(message)` from the enclosing function.
+macro_rules! ensure {
+    ($c:expr, $($m:tt)+) => {
+        if !$c {
+            return Err(format!($($m)+));
+        }
+    };
+}
+pub(crate) use ensure;
+
+/// One bit as processed by a node.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct BitRec {
+    /// Time of the clock that carried the events (ps).
+    pub t: u64,
+    pub field: Field,
+    pub pos: u32,
+    pub stuff: bool,
+    /// Transmitter role.
+    pub tx_role: bool,
+    /// Sampled level (true = recessive).
+    pub level: bool,
+    /// Level the node drove.
+    pub drove: bool,
+    /// `EV_*` event word.
+    pub ev: u32,
+    pub tec: u32,
+    pub rec: u32,
+    pub state: u32,
+}
+
+impl BitRec {
+    pub fn has(&self, ev: usize) -> bool {
+        (self.ev >> ev) & 1 == 1
+    }
+    /// Event names as in the §18 trace.
+    pub fn events(&self) -> String {
+        let names = [
+            (EV_SOF, "SOF"),
+            (EV_ARB_LOST, "ARB_LOST"),
+            (EV_BIT_ERR, "BIT_ERR"),
+            (EV_STUFF_ERR, "STUFF_ERR"),
+            (EV_CRC_ERR, "CRC_ERR"),
+            (EV_FORM_ERR, "FORM_ERR"),
+            (EV_ACK_ERR, "ACK_ERR"),
+            (EV_AEF, "AEF"),
+            (EV_PEF, "PEF"),
+            (EV_OLF, "OLF"),
+            (EV_OVL, "OVL"),
+            (EV_DAF, "DAF"),
+            (EV_TX_OK, "TX_OK"),
+            (EV_RX_OK, "RX_OK"),
+            (EV_EXC1, "EXC1"),
+            (EV_EXC2, "EXC2"),
+            (EV_RUN, "RUN"),
+            (EV_RECOVERED, "RECOVERED"),
+            (EV_INTEGRATED, "INTEGRATED"),
+        ];
+        let v: Vec<&str> = names.iter().filter(|(b, _)| self.has(*b)).map(|(_, n)| *n).collect();
+        v.join(",")
+    }
+}
+
+impl std::fmt::Display for BitRec {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "{}{} {}{} smp {} drv {} tec {} rec {} st {} [{}]",
+            if self.field.has_role() { if self.tx_role { "Tx_" } else { "Rx_" } } else { "" },
+            self.field.name(),
+            self.pos,
+            if self.stuff { "S" } else { "" },
+            self.level as u8,
+            self.drove as u8,
+            self.tec,
+            self.rec,
+            self.state,
+            self.events()
+        )
+    }
+}
+
+/// The plan's test-only transmitter: drives a precomputed bit sequence, one
+/// level per `ntq` clocks, no synchronisation. It reads the bus (input 0)
+/// only to start in step with another node's SOF ([`Scripted::send_with`]).
+pub struct Scripted {
+    name: String,
+    clock: ClockSpec,
+    ntq: u32,
+    bits: Vec<bool>,
+    idx: usize,
+    cnt: u32,
+    active: bool,
+    wait_sof: bool,
+    level: bool,
+}
+
+impl Scripted {
+    pub fn new(name: &str, clock: ClockSpec, ntq: u32) -> Self {
+        Scripted { name: name.to_string(), clock, ntq, bits: vec![], idx: 0, cnt: 0, active: false, wait_sof: false, level: true }
+    }
+    /// Start sending `bits` at the next clock.
+    pub fn send(&mut self, bits: Vec<bool>) {
+        self.bits = bits;
+        self.idx = 0;
+        self.cnt = 0;
+        self.active = true;
+        self.wait_sof = false;
+    }
+    /// Start sending `bits` when the bus goes dominant (another node's SOF).
+    pub fn send_with(&mut self, bits: Vec<bool>) {
+        self.send(bits);
+        self.active = false;
+        self.wait_sof = true;
+    }
+    /// Still sending (or waiting to)?
+    pub fn busy(&self) -> bool {
+        self.active || self.wait_sof
+    }
+}
+
+impl Component for Scripted {
+    fn name(&self) -> &str {
+        &self.name
+    }
+    fn clock(&self) -> ClockSpec {
+        self.clock
+    }
+    fn tick(&mut self, io: &mut Io<'_>) {
+        if self.wait_sof && !io.input(0) {
+            self.wait_sof = false;
+            self.active = true;
+            // The bus went dominant one clock ago: this SOF is one clock short.
+            self.cnt = 1;
+        }
+        if self.active {
+            self.level = self.bits[self.idx];
+            self.cnt += 1;
+            if self.cnt >= self.ntq {
+                self.cnt = 0;
+                self.idx += 1;
+                if self.idx >= self.bits.len() {
+                    self.active = false;
+                }
+            }
+        } else {
+            self.level = true;
+        }
+        io.set_output(0, self.level);
+    }
+}
+
+/// Levels of frame `f` as a scripted transmitter sends it (ACK slot
+/// recessive, up to the last EOF bit), with test-only options.
+pub fn script_bits(f: &Frame, o: BuildOptions) -> Vec<bool> {
+    bus_bits(f, o, false).iter().map(|b| b.level).collect()
+}
+
+/// The bus bit of frame `f` at (field, pos, stuff), if it exists.
+pub fn frame_bit(f: &Frame, o: BuildOptions, field: Field, pos: u32, stuff: bool) -> Option<BusBit> {
+    bus_bits(f, o, false).into_iter().find(|b| b.field == field && b.pos as u32 == pos && b.stuff == stuff)
+}
+
+/// Level of frame `f`'s bit at (field, pos, stuff) (true = recessive).
+pub fn level_of(f: &Frame, field: Field, pos: u32, stuff: bool) -> Option<bool> {
+    frame_bit(f, BuildOptions::default(), field, pos, stuff).map(|b| b.level)
+}
+
+/// The first frame of a deterministic family (extended or not, remote or
+/// not) whose bus bits satisfy `pred`.
+pub fn choose(ide: bool, rtr: bool, pred: impl Fn(&Frame) -> bool) -> Frame {
+    let mut x: u64 = 0x9E37_79B9_7F4A_7C15;
+    let pats = [0x00u8, 0xFF, 0x0F, 0xF0, 0x1F, 0xF8, 0x83, 0x7C, 0x3E, 0xC1, 0x07, 0xE0];
+    for _ in 0..400_000 {
+        x ^= x << 13;
+        x ^= x >> 7;
+        x ^= x << 17;
+        let id = if ide { (x >> 20) as u32 & 0x1FFF_FFFF } else { (x >> 20) as u32 & 0x7FF };
+        let dlc = if (x >> 60) == 0 { 9 + ((x >> 56) % 7) as u8 } else { ((x >> 52) % 9) as u8 };
+        let data: Vec<u8> = (0..dlc as usize)
+            .map(|i| if (x >> (i + 8)) & 1 == 0 { pats[((x >> (2 * i)) % 12) as usize] } else { (x >> (5 * i + 3)) as u8 })
+            .collect();
+        let f = if rtr { Frame::remote(ide, id, dlc) } else { Frame::data(ide, id, dlc, &data) };
+        if pred(&f) {
+            return f;
+        }
+    }
+    panic!("no frame meets the step's condition");
+}
+
+/// The simulation bench of one program (see the module documentation).
+pub struct Bench {
+    pub sim: Sim,
+    pub bus: Bus,
+    pub nodes: Vec<Handle<CanNode>>,
+    pub script: Option<Handle<Scripted>>,
+    recs: Vec<Vec<BitRec>>,
+    pending: Vec<Option<BitRec>>,
+    seen_cycles: Vec<u64>,
+    /// Nominal bit time of N1 in ps.
+    pub bit_ps: u64,
+    vcd: bool,
+}
+
+impl Bench {
+    /// N nodes with the given configurations (100 ns clocks, in phase), an
+    /// optional scripted transmitter, started up as §0 says.
+    pub fn new(cfgs: Vec<NodeConfig>, scripted: bool, vcd: Option<&Path>) -> Bench {
+        let mut sim = Sim::new(1);
+        let n = cfgs.len();
+        let mut names: Vec<String> = (1..=n).map(|i| format!("n{i}")).collect();
+        if scripted {
+            names.push("script".into());
+        }
+        let spec: Vec<(&str, NodeDelays)> = names.iter().map(|s| (s.as_str(), NodeDelays::default())).collect();
+        let bus = Bus::build(&mut sim, "bus", &spec);
+        let clock = ClockSpec::new(CLOCK_PS);
+        let ntq = cfgs[0].ntq();
+        let bit_ps = CLOCK_PS * cfgs[0].brp as u64 * ntq as u64;
+        let mut nodes = vec![];
+        for (i, mut c) in cfgs.into_iter().enumerate() {
+            c.name = names[i].clone();
+            nodes.push(sim.add(CanNode::new(c, clock), &[bus.nodes[i].rx], &[bus.nodes[i].tx]));
+        }
+        let script = if scripted {
+            Some(sim.add(Scripted::new("script", clock, ntq), &[bus.nodes[n].rx], &[bus.nodes[n].tx]))
+        } else {
+            None
+        };
+        let mut vcd_on = false;
+        if let Some(p) = vcd {
+            if sim.start_vcd_file(p, None).is_ok() {
+                vcd_on = true;
+            }
+        }
+        let mut b = Bench { sim, bus, nodes, script, recs: vec![vec![]; n], pending: vec![None; n], seen_cycles: vec![0; n], bit_ps, vcd: vcd_on };
+        // Reset, then one dominant bit on every node's RX, then integration.
+        let t = b.sim.now() + (RESET_CYCLES as u64 + 2) * CLOCK_PS;
+        b.run_until_time(t);
+        for i in 0..n {
+            b.bus.set_interference(&mut b.sim, i, Interference::StuckDominant);
+        }
+        let t = b.sim.now() + b.bit_ps;
+        b.run_until_time(t);
+        for i in 0..n {
+            b.bus.set_interference(&mut b.sim, i, Interference::None);
+        }
+        let ok = b.run_until(40, |b| (0..n).all(|i| b.node(i).field() == Field::Idle));
+        assert!(ok.is_ok(), "start-up: nodes did not integrate");
+        b
+    }
+
+    pub fn n(&self) -> usize {
+        self.nodes.len()
+    }
+    pub fn node(&self, i: usize) -> &CanNode {
+        self.sim.get(self.nodes[i])
+    }
+    pub fn node_mut(&mut self, i: usize) -> &mut CanNode {
+        self.sim.get_mut(self.nodes[i])
+    }
+    pub fn tec(&self, i: usize) -> u32 {
+        self.node(i).tec()
+    }
+    pub fn rec(&self, i: usize) -> u32 {
+        self.node(i).rec()
+    }
+    pub fn state(&self, i: usize) -> u32 {
+        self.node(i).state()
+    }
+    /// All bits node `i` processed so far.
+    pub fn recs(&self, i: usize) -> &[BitRec] {
+        &self.recs[i]
+    }
+    /// Number of records of node `i` (a mark for [`Bench::since`]).
+    pub fn mark(&self, i: usize) -> usize {
+        self.recs[i].len()
+    }
+    /// Records of node `i` from mark `m` on.
+    pub fn since(&self, i: usize, m: usize) -> &[BitRec] {
+        &self.recs[i][m.min(self.recs[i].len())..]
+    }
+    /// Records of node `i` from mark `m` on that carry event `ev`.
+    pub fn events(&self, i: usize, m: usize, ev: usize) -> Vec<BitRec> {
+        self.since(i, m).iter().filter(|r| r.has(ev)).copied().collect()
+    }
+    /// Count of records with event `ev` since `m`.
+    pub fn count(&self, i: usize, m: usize, ev: usize) -> usize {
+        self.events(i, m, ev).len()
+    }
+    /// The records since `m`, one per line (for failure messages).
+    pub fn dump(&self, i: usize, m: usize) -> String {
+        self.since(i, m).iter().map(|r| format!("\n    {r}")).collect()
+    }
+    /// The records since `m` that carry any event other than SOF/bit (short form).
+    pub fn dump_events(&self, i: usize, m: usize) -> String {
+        self.since(i, m)
+            .iter()
+            .filter(|r| r.ev & !((1 << EV_BIT) | (1 << EV_RUN)) != 0)
+            .map(|r| format!("\n    {r}"))
+            .collect()
+    }
+
+    /// Advance the simulation by one clock edge and record processed bits.
+    pub fn step(&mut self) {
+        self.sim.step();
+        for i in 0..self.nodes.len() {
+            let nd = self.sim.get(self.nodes[i]);
+            let cy = nd.cycles();
+            if cy == self.seen_cycles[i] {
+                continue;
+            }
+            self.seen_cycles[i] = cy;
+            let c = &nd.core;
+            let ev = c.dbg_events.val().index() as u32;
+            if (ev >> EV_BIT) & 1 == 1 {
+                if let Some(mut r) = self.pending[i].take() {
+                    r.ev = ev;
+                    r.t = self.sim.now();
+                    r.tec = nd.tec();
+                    r.rec = nd.rec();
+                    r.state = nd.state();
+                    self.recs[i].push(r);
+                }
+            }
+            if c.dbg_sample.val() {
+                self.pending[i] = Some(BitRec {
+                    t: 0,
+                    field: Field::from_code(c.dbg_field.val().index() as u64).unwrap_or(Field::Reset),
+                    pos: c.dbg_pos.val().index() as u32,
+                    stuff: c.dbg_stuff.val(),
+                    tx_role: c.dbg_role.val(),
+                    level: c.dbg_busmon.val(),
+                    drove: c.tx.val(),
+                    ev: 0,
+                    tec: 0,
+                    rec: 0,
+                    state: 0,
+                });
+            }
+        }
+    }
+
+    /// Run until time `t` (ps).
+    pub fn run_until_time(&mut self, t: u64) {
+        while self.sim.next_edge_time().is_some_and(|e| e <= t) {
+            self.step();
+        }
+    }
+
+    /// Run for `n` nominal bit times.
+    pub fn run_bits(&mut self, n: u64) {
+        let t = self.sim.now() + n * self.bit_ps;
+        self.run_until_time(t);
+    }
+
+    /// Run until `pred` holds (checked after every edge), at most `max_bits`
+    /// bit times.
+    pub fn run_until(&mut self, max_bits: u64, mut pred: impl FnMut(&Bench) -> bool) -> Result<(), String> {
+        let end = self.sim.now() + max_bits * self.bit_ps;
+        loop {
+            if pred(self) {
+                return Ok(());
+            }
+            if self.sim.now() >= end {
+                return Err(format!("condition not reached within {max_bits} bits"));
+            }
+            self.step();
+        }
+    }
+
+    /// Run until every node is in Bus_Idle (and the script is done).
+    pub fn run_idle(&mut self, max_bits: u64) -> Result<(), String> {
+        let n = self.n();
+        let sc = self.script;
+        self.run_until(max_bits, |b| (0..n).all(|i| b.node(i).field() == Field::Idle) && sc.is_none_or(|h| !b.sim.get(h).busy()))
+            .map_err(|e| format!("bus idle: {e}"))
+    }
+
+    /// Run until node `i` has processed the bit before (field, pos, stuff):
+    /// its debug bundle then shows the target as the bit in progress.
+    pub fn wait_for(&mut self, i: usize, field: Field, pos: u32, stuff: bool, max_bits: u64) -> Result<(), String> {
+        let m0 = self.mark(i);
+        let mut m = m0;
+        let end = self.sim.now() + max_bits * self.bit_ps;
+        loop {
+            if self.mark(i) != m {
+                m = self.mark(i);
+                let nd = self.node(i);
+                if nd.field() == field && nd.pos() == pos && nd.core.dbg_stuff.val() == stuff {
+                    return Ok(());
+                }
+            }
+            if self.sim.now() >= end {
+                return Err(format!(
+                    "N{} never reached {}{}{} within {max_bits} bits; bits seen:{}",
+                    i + 1,
+                    field.name(),
+                    pos,
+                    if stuff { " (stuff)" } else { "" },
+                    self.dump(i, m0.max(self.mark(i).saturating_sub(40)))
+                ));
+            }
+            self.step();
+        }
+    }
+
+    /// Time from the clock that carries a bit's events to the end of its PH2.
+    fn ph2_rest_ps(&self, i: usize) -> u64 {
+        let c = self.node(i).config();
+        (c.ph2() as u64 * c.brp as u64).saturating_sub(1) * CLOCK_PS
+    }
+
+    /// Set the interference of `nodes` for `k` nominal bit times from now,
+    /// then back to none.
+    pub fn force_now(&mut self, nodes: &[usize], mode: Interference, k: u64) {
+        for &i in nodes {
+            self.bus.set_interference(&mut self.sim, i, mode);
+        }
+        let t = self.sim.now() + k * self.bit_ps;
+        self.run_until_time(t);
+        for &i in nodes {
+            self.bus.set_interference(&mut self.sim, i, Interference::None);
+        }
+    }
+
+    /// WAIT_FOR (field, pos, stuff) at `nodes[0]`, then force `nodes` for `k`
+    /// bits. Returns the mark of `nodes[0]` at the first forced bit (its
+    /// record is `since(nodes[0], mark)[0]`).
+    pub fn force_at(&mut self, nodes: &[usize], field: Field, pos: u32, stuff: bool, mode: Interference, k: u64) -> Result<usize, String> {
+        let i = nodes[0];
+        self.wait_for(i, field, pos, stuff, 3000)?;
+        let t = self.sim.now() + self.ph2_rest_ps(i);
+        self.run_until_time(t);
+        let m = self.mark(i);
+        self.force_now(nodes, mode, k);
+        Ok(m)
+    }
+
+    /// The record of node `i` at mark `m` (the first bit processed after it).
+    pub fn rec_at(&self, i: usize, m: usize) -> Result<BitRec, String> {
+        self.recs[i].get(m).copied().ok_or_else(|| "no bit recorded".to_string())
+    }
+
+    /// Finish the VCD file (if one is being written).
+    pub fn finish(&mut self) {
+        if self.vcd {
+            let _ = self.sim.finish_vcd();
+            self.vcd = false;
+        }
+    }
+}
+
+impl Drop for Bench {
+    fn drop(&mut self) {
+        self.finish();
+    }
+}
+
+/// Standard configuration of node `name` (T10/6/4, BRP 1).
+pub fn cfg() -> NodeConfig {
+    NodeConfig::named("n")
+}
+
+/// Check that the frames delivered at node `i` since count `from` are `want`.
+pub fn check_delivered(b: &Bench, i: usize, from: usize, want: &[Frame]) -> Result<(), String> {
+    let got = b.node(i).received();
+    let got = &got[from.min(got.len())..];
+    ensure!(got == want, "N{} delivered {:?}, expected {:?}", i + 1, got, want);
+    Ok(())
+}
+
+/// Panic unless step `name` ran and passed (used by the cargo tests).
+pub fn assert_step(results: &[StepResult], name: &str) {
+    match results.iter().find(|r| r.name == name) {
+        None => panic!("step {name} did not run; results: {:?}", results.iter().map(|r| (&r.name, r.pass)).collect::<Vec<_>>()),
+        Some(r) => assert!(r.pass, "{name} failed: {}", r.msg),
+    }
+}
+
+/// Generates one `#[test]` per step of a program (the program runs once per
+/// test binary), plus a test that the list covers every step that ran.
+///
+/// ```ignore
+/// canstar_sim::conformance_tests!("txarb"; txarb_1, #[ignore = "RTL bug: ..."] txarb_2);
+/// ```
+#[macro_export]
+macro_rules! conformance_tests {
+    ($prog:literal; $( $(#[$m:meta])* $name:ident ),* $(,)?) => {
+        fn program_results() -> &'static [$crate::conformance::StepResult] {
+            static R: std::sync::OnceLock<Vec<$crate::conformance::StepResult>> = std::sync::OnceLock::new();
+            R.get_or_init(|| $crate::conformance::run_program($prog, None).expect("no such program"))
+        }
+        $( $(#[$m])* #[test] fn $name() { $crate::conformance::assert_step(program_results(), stringify!($name)); } )*
+        #[test]
+        fn every_step_has_a_test() {
+            let listed: Vec<&str> = vec![$( stringify!($name) ),*];
+            let ran: Vec<&str> = program_results().iter().map(|r| r.name.as_str()).collect();
+            assert_eq!(ran, listed, "steps run vs tests listed");
+        }
+    };
+}
