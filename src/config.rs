@@ -86,6 +86,10 @@ impl Default for Rtl {
 pub struct Config {
     pub bit_timing: BitTiming,
     pub rtl: Rtl,
+    /// The star hub (defaults: the reference ReCANcentrate hub, N = 3, M = 2,
+    /// 14.74 MHz, 8 TQ of 2 clocks per bit). Bit-timing fields here use the
+    /// register encoding (value - 1), see `canstar_hub::hub::HubBitTiming`.
+    pub hub: canstar_hub::hub::HubConfig,
 }
 
 impl Config {
@@ -103,6 +107,7 @@ impl Config {
         if !(1..=2).contains(&self.rtl.sync_depth) {
             bail!("invalid rtl.sync_depth = {} (must be 1 or 2)", self.rtl.sync_depth);
         }
+        self.hub.validate().map_err(|e| anyhow::anyhow!("invalid [hub] configuration: {e}"))?;
         Ok(())
     }
 }

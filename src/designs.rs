@@ -1,6 +1,8 @@
 //! The registry of generatable designs and benchmarks.
 use crate::config::Config;
-use crate::generate::{block, Artifact};
+use crate::boards::{pin_file, Board, DesignPins, Format, BUILTIN};
+use crate::generate::{block, Artifact, Root};
+use rust_hdl::prelude::Block;
 use anyhow::Result;
 use canstar_hdl::{btl, crc15, stuff, sync};
 use canstar_sim::bench::{bench as run_bench, BenchConfig, PatternNode};
@@ -39,10 +41,98 @@ pub fn controller(config: &Config) -> Result<Vec<Artifact>> {
     Ok(vec![a])
 }
 
+/// The SJA1000-compatible (PeliCAN) controller: register block on Wishbone,
+/// RX FIFO, acceptance filters, around the CAN core.
+pub fn sja1000(_config: &Config) -> Result<Vec<Artifact>> {
+    let mut a = block(
+        canstar_controller::sja1000::Sja1000::new(),
+        "canstar_sja1000",
+        "SJA1000 (PeliCAN) compatible CAN controller, Wishbone B4 classic slave, 8-bit (see controller/src/sja1000.rs)",
+    );
+    a.path = std::path::PathBuf::from("controller/canstar_sja1000.v");
+    Ok(vec![a])
+}
+
+/// Boards a hub's pin files are generated for: the one asked for, or all built-in ones.
+pub fn hub_boards(board: Option<&str>) -> Result<Vec<Board>> {
+    match board {
+        Some(b) => Ok(vec![Board::lookup(b)?]),
+        None => BUILTIN.iter().map(|(n, _)| Board::lookup(n)).collect(),
+    }
+}
+
+/// Functional port bits of a hub (everything else is a debug/status output).
+fn is_functional(port: &str) -> bool {
+    matches!(port, "rst_n" | "inject_fault" | "rx" | "reh_rx" | "tx" | "hub_tx")
+}
+
+/// The reference ReCANcentrate hub (`[hub]` of the config, M interlinks) and a
+/// CANcentrate hub (the same with M = 0), each as `verilog-out/hub/<name>.v`
+/// (rust-hdl core plus a top with vector ports) and pin files per board.
+pub fn hub(config: &Config, board: Option<&str>) -> Result<Vec<Artifact>> {
+    let boards = hub_boards(board)?;
+    let mut out = vec![];
+    let rec = config.hub.clone();
+    let cc = canstar_hub::hub::HubConfig { sublinks: 0, ..config.hub.clone() };
+    for (name, cfg, what) in [
+        ("canstar_hub", rec, "ReCANcentrate star hub"),
+        ("canstar_cancentrate", cc, "CANcentrate star hub (no interlinks)"),
+    ] {
+        cfg.validate().map_err(|e| anyhow::anyhow!("invalid [hub] configuration: {e}"))?;
+        let mut h = canstar_hub::hub::Hub::new(&cfg);
+        h.connect_all();
+        let core = format!("{name}_core");
+        let inner = canstar_hdl::flow::rename_top(&canstar_hdl::flow::emit(&h), &core);
+        let (wrapper, ports) = crate::generate::vector_wrapper(&inner, &core, name);
+        let desc = format!(
+            "{what}, N = {} ports, M = {} interlinks, {} Hz clock, coupling latency {} clocks",
+            cfg.ports,
+            cfg.sublinks,
+            cfg.clock_hz,
+            cfg.coupling_latency()
+        );
+        out.push(Artifact {
+            root: Root::Verilog,
+            path: format!("hub/{name}.v").into(),
+            contents: crate::generate::header_text(name, &desc) + &inner + "\n" + &wrapper,
+        });
+        let mut pins = DesignPins::default();
+        for (p, bits, _) in &ports {
+            if p == "clock" {
+                continue;
+            }
+            let roles = DesignPins::port_roles(p, *bits);
+            if is_functional(p) {
+                pins.functional.extend(roles);
+            } else {
+                pins.debug.extend(roles);
+            }
+        }
+        for b in &boards {
+            if b.clock.hz != cfg.clock_hz {
+                eprintln!(
+                    "note: board {} clock is {} Hz, the hub is configured for {} Hz (bit timing counts clocks)",
+                    b.name, b.clock.hz, cfg.clock_hz
+                );
+            }
+            let f = pin_file(b, name, &pins)?;
+            let ext = match b.format {
+                Format::Ucf => "ucf",
+                Format::Pcf => "pcf",
+            };
+            out.push(Artifact { root: Root::Constraints, path: format!("{}/{name}.{ext}", b.name).into(), contents: f.text });
+        }
+    }
+    Ok(out)
+}
+
 /// The designs `canstar report` measures: (name, Verilog, top module).
 pub fn report_designs(config: &Config) -> Result<Vec<(String, String, String)>> {
     let mut v = vec![];
-    for a in blocks(config)?.into_iter().chain(controller(config)?) {
+    for a in blocks(config)?.into_iter().chain(controller(config)?).chain(sja1000(config)?).chain(hub(config, None)?) {
+        if a.root != Root::Verilog {
+            continue;
+        }
         let top = a.path.file_stem().unwrap().to_string_lossy().into_owned();
         v.push((top.clone(), a.contents, top));
     }

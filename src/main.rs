@@ -24,6 +24,9 @@ enum Cmd {
         /// TOML configuration file (unknown keys and impossible values are errors).
         #[arg(long)]
         config: Option<PathBuf>,
+        /// Board for the pin files (built-in name, or a board .toml file); default: every built-in board.
+        #[arg(long)]
+        board: Option<String>,
         /// Output directory for Verilog.
         #[arg(long, default_value = "verilog-out")]
         out: PathBuf,
@@ -189,12 +192,12 @@ fn fuzz_cmd(
 
 fn run(cli: Cli) -> Result<()> {
     match cli.cmd {
-        Cmd::Generate { target, config, out, constraints, check } => {
+        Cmd::Generate { target, config, board, out, constraints, check } => {
             let cfg = match &config {
                 Some(p) => Config::load(p)?,
                 None => Config::default(),
             };
-            let arts = generate::render(target, &cfg)?;
+            let arts = generate::render(target, &cfg, board.as_deref())?;
             if check {
                 let bad = generate::check(&arts, &out, &constraints);
                 if !bad.is_empty() {

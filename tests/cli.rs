@@ -111,3 +111,36 @@ fn sim_runs_an_example_and_rejects_a_malformed_scenario() {
     assert!(!ok && err.contains("does not fit a 11-bit frame"), "{err}");
     assert!(!d.path().join("b.log").exists());
 }
+
+#[test]
+fn hub_generation_pins_and_bad_hub_configs() {
+    let d = tempfile::tempdir().unwrap();
+    let (ok, out, err) = canstar(&["generate", "hub", "--board", "xsa-3s1000", "--out", "v", "--constraints", "c"], d.path());
+    assert!(ok, "{out}{err}");
+    let ucf = std::fs::read_to_string(d.path().join("c/xsa-3s1000/canstar_hub.ucf")).unwrap();
+    assert!(canstar::boards::ucf_well_formed(&ucf));
+    assert!(ucf.contains("NET \"rx<2>\" LOC = \"G12\"") && ucf.contains("NET \"hub_tx<1>\" LOC = \"G13\""));
+    assert!(ucf.contains("without a free pin"), "the board has fewer debug pins than the hub has debug bits");
+    let v = std::fs::read_to_string(d.path().join("v/hub/canstar_hub.v")).unwrap();
+    assert!(v.contains("module canstar_hub(") && v.contains("input wire [2:0] rx;") && v.contains("output wire [1:0] hub_tx;"));
+    let cc = std::fs::read_to_string(d.path().join("v/hub/canstar_cancentrate.v")).unwrap();
+    assert!(!cc.contains("hub_tx"), "a CANcentrate hub has no interlinks");
+    for (name, text, expect) in [
+        ("zero_ports.toml", "[hub]\nports = 0\n", "ports must be >= 1"),
+        ("hub_key.toml", "[hub]\nportz = 3\n", "unknown field"),
+        ("hub_timing.toml", "[hub.timing]\nsjw = 3\nph1 = 1\n", "bit timing"),
+    ] {
+        std::fs::write(d.path().join(name), text).unwrap();
+        let (ok, _, err) = canstar(&["generate", "--config", name, "--out", "v2", "--constraints", "c2"], d.path());
+        assert!(!ok && err.contains(expect), "{name}: {err}");
+        assert!(!d.path().join("v2").exists() && !d.path().join("c2").exists(), "{name} wrote files");
+    }
+    let (ok, _, err) = canstar(&["generate", "hub", "--board", "no-such-board", "--out", "v3"], d.path());
+    assert!(!ok && err.contains("unknown board `no-such-board`"), "{err}");
+    assert!(!d.path().join("v3").exists());
+    // More ports than the board has pins for: a clear error, nothing written.
+    std::fs::write(d.path().join("big.toml"), "[hub]\nports = 4\n").unwrap();
+    let (ok, _, err) = canstar(&["generate", "hub", "--config", "big.toml", "--board", "xsa-3s1000", "--out", "v4", "--constraints", "c4"], d.path());
+    assert!(!ok && err.contains("no pin for port bit `rx[3]`"), "{err}");
+    assert!(!d.path().join("v4").exists() && !d.path().join("c4").exists());
+}

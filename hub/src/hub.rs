@@ -61,7 +61,7 @@ use serde::{Deserialize, Serialize};
 /// (the reference's "brp 0" of an SJA1000-style prescaler, which doubles), 8 TQ per
 /// bit, sample point at 6 TQ (75 %), SJW 1.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(default)]
+#[serde(default, deny_unknown_fields)]
 pub struct HubBitTiming {
     pub brp: u32,
     pub prop: u32,
@@ -139,7 +139,7 @@ pub struct FaultInjection {
 
 /// Generation-time parameters of a hub (H1). Defaults = the reference hub.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(default)]
+#[serde(default, deny_unknown_fields)]
 pub struct HubConfig {
     /// Node ports N (>= 1).
     pub ports: usize,
