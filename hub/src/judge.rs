@@ -9,22 +9,24 @@
 //! - `c`: the judged contribution (the port's registered uplink after the fault hook, or
 //!   the synchronised incoming sublink); 0 = dominant. `bt`: the coupled bit.
 //! - Frame state C, decoded by [`crate::frame_state::FrameDecode`] for the bit being
-//!   sampled: `sof`, `tx_region` (first identifier bit to last CRC bit), `crc_delim`,
+//!   sampled: `sof`, `tx_region` (first identifier bit to last CRC bit), `arb`
+//!   (SOF, identifier, SRR, IDE, extended identifier, RTR), `crc_delim`,
 //!   `ack_slot`, `ack_delim`, `eof_1_6`, `im_1_2`, `crc_ok` (read in the ACK
 //!   delimiter, where a CAN receiver signals a CRC error: 1 = the CRC was correct),
 //!   `frame_ok` (strobe with the sample of the last EOF bit of a frame completed without
 //!   error), `err_phase` (the monitor's error/overload phase OR the hub's own error flag
 //!   pending/being sent).
-//! - `err_start`: strobe when the hub starts an error episode (monitor error or any
-//!   blame), used by the replica rule. `rep_rec` / `rep_dom`: some *other* enabled
+//! - `err_start`: strobe when the hub starts an error episode (monitor error, any blame
+//!   or transmitter bit error; the hub registers it, so it comes one clock after the
+//!   sample), used by the replica rule. `rep_rec` / `rep_dom`: some *other* enabled
 //!   replica sublink is recessive / dominant at this sample (0 for ports).
 //!
 //! # Outputs
 //! `dis` (isolated, latched), `blame` (combinational strobe: unjustified dominant bit
 //! blamed now; the hub triggers its error flag with it), `tx_error` (combinational
 //! strobe: this unit's transmitter has just seen a bit error, see §5.1 below; the hub
-//! also triggers its error flag with it, without blaming anyone), `bic`, `dbc`, `nack`, `rep_cnt`
-//! counters, `silent` (NACK threshold reached), `contender` (role, debug).
+//! also triggers its error flag with it, without blaming anyone), `bic`, `dbc`, `nack`,
+//! `rep_cnt` counters, `silent` (NACK threshold reached), `contender` (role, debug).
 //!
 //! # Rules
 //! **§5.1 roles (changed).** The baseline makes a port a contender if it is dominant at

@@ -504,6 +504,10 @@ impl Node {
     pub fn new(cfg: NodeCfg) -> Node {
         Node { cfg, ..Default::default() }
     }
+    /// The node is transmitting (or about to, in its current frame).
+    pub fn transmitting(&self) -> bool {
+        self.tx.is_some()
+    }
     /// Contribution for the next bit, given the tracker state before it.
     pub fn contribution(&mut self, t: &Tracker) -> bool {
         let v = self.pick(t);
