@@ -40,6 +40,7 @@ use std::path::{Path, PathBuf};
 
 pub mod dlc;
 pub mod extd_id;
+pub mod idle;
 pub mod stuffbit;
 pub mod stufferr;
 pub mod txarb;
@@ -69,6 +70,7 @@ pub fn programs() -> Vec<Program> {
     vec![
         Program { name: "dlc", run: dlc::run },
         Program { name: "extd_id", run: extd_id::run },
+        Program { name: "idle", run: idle::run },
         Program { name: "stuffbit", run: stuffbit::run },
         Program { name: "stufferr", run: stufferr::run },
         Program { name: "txarb", run: txarb::run },
@@ -355,6 +357,16 @@ impl Bench {
     /// N nodes with the given configurations (100 ns clocks, in phase), an
     /// optional scripted transmitter, started up as §0 says.
     pub fn new(cfgs: Vec<NodeConfig>, scripted: bool, vcd: Option<&Path>) -> Bench {
+        let mut b = Self::new_unintegrated(cfgs, scripted, vcd);
+        let n = b.n();
+        let ok = b.run_until(40, |b| (0..n).all(|i| b.node(i).field() == Field::Idle));
+        assert!(ok.is_ok(), "start-up: nodes did not integrate");
+        b
+    }
+
+    /// As [`Bench::new`], but returns right after the dominant start-up
+    /// pulse, while the nodes wait for bus idle.
+    pub fn new_unintegrated(cfgs: Vec<NodeConfig>, scripted: bool, vcd: Option<&Path>) -> Bench {
         let mut sim = Sim::new(1);
         let n = cfgs.len();
         let mut names: Vec<String> = (1..=n).map(|i| format!("n{i}")).collect();
@@ -394,8 +406,6 @@ impl Bench {
         for i in 0..n {
             b.bus.set_interference(&mut b.sim, i, Interference::None);
         }
-        let ok = b.run_until(40, |b| (0..n).all(|i| b.node(i).field() == Field::Idle));
-        assert!(ok.is_ok(), "start-up: nodes did not integrate");
         b
     }
 
@@ -416,6 +426,18 @@ impl Bench {
     }
     pub fn state(&self, i: usize) -> u32 {
         self.node(i).state()
+    }
+    /// Completed bus-off recovery runs of node `i`.
+    pub fn runs(&self, i: usize) -> u32 {
+        self.node(i).core.dbg_runs.val().index() as u32
+    }
+    /// (field, pos) of the bit node `i` has in progress.
+    pub fn at(&self, i: usize) -> (Field, u32) {
+        (self.node(i).field(), self.node(i).pos())
+    }
+    /// Set the interference of node `i` now (and leave it).
+    pub fn set(&mut self, i: usize, mode: Interference) {
+        self.bus.set_interference(&mut self.sim, i, mode);
     }
     /// All bits node `i` processed so far.
     pub fn recs(&self, i: usize) -> &[BitRec] {
@@ -527,10 +549,16 @@ impl Bench {
     }
 
     /// Run until node `i` has processed the bit before (field, pos, stuff):
-    /// its debug bundle then shows the target as the bit in progress.
+    /// its debug bundle then shows the target as the bit in progress. If
+    /// called on the clock that carries a bit's events, that bit counts.
     pub fn wait_for(&mut self, i: usize, field: Field, pos: u32, stuff: bool, max_bits: u64) -> Result<(), String> {
         let m0 = self.mark(i);
         let mut m = m0;
+        // Right at the clock that carries a bit's events, the target may
+        // already be the bit in progress.
+        if self.recs[i].last().is_some_and(|r| r.t == self.sim.now()) {
+            m = usize::MAX;
+        }
         let end = self.sim.now() + max_bits * self.bit_ps;
         loop {
             if self.mark(i) != m {
@@ -574,7 +602,7 @@ impl Bench {
     }
 
     /// WAIT_FOR (field, pos, stuff) at `nodes[0]`, then force `nodes` for `k`
-    /// bits. Returns the mark of `nodes[0]` at the first forced bit (its
+    /// bits, and run until `nodes[0]` has processed the k forced bits. Returns the mark of `nodes[0]` at the first forced bit (its
     /// record is `since(nodes[0], mark)[0]`).
     pub fn force_at(&mut self, nodes: &[usize], field: Field, pos: u32, stuff: bool, mode: Interference, k: u64) -> Result<usize, String> {
         let i = nodes[0];
@@ -583,6 +611,8 @@ impl Bench {
         self.run_until_time(t);
         let m = self.mark(i);
         self.force_now(nodes, mode, k);
+        // The last forced bit is sampled after the window closes (RX latency).
+        self.run_until(2, |b| b.mark(i) >= m + k as usize)?;
         Ok(m)
     }
 
@@ -609,6 +639,11 @@ impl Drop for Bench {
 /// Standard configuration of node `name` (T10/6/4, BRP 1).
 pub fn cfg() -> NodeConfig {
     NodeConfig::named("n")
+}
+
+/// Timing T10/8/1 (PROP 5, PH1 2, PH2 2, SJW 1), BRP 1.
+pub fn cfg_t10_8_1() -> NodeConfig {
+    NodeConfig::named("n").timing(1, 5, 2, 1)
 }
 
 /// Check that the frames delivered at node `i` since count `from` are `want`.
