@@ -76,7 +76,7 @@ pub fn run(ctx: &mut Ctx) {
         ensure!(e.has(EV_AEF) && e.tec == 8, "first ACK error: {e} (expected AEF, TEC 8)");
         // R! from the first flag bit while N1 sends active flags, until TEC >= 128.
         b.wait_for(0, Field::ActFlag, 1, false, 3)?;
-        let t = b.sim.now() + (b.node(0).config().ph2() as u64 - 1) * CLOCK_PS;
+        let t = b.sim.now() + b.ph2_rest_ps(0);
         b.run_until_time(t);
         let m2 = b.mark(0);
         b.set(0, R);
@@ -168,7 +168,7 @@ pub fn run(ctx: &mut Ctx) {
         b.run_bits(1);
         b.wait_for(0, Field::BusOff, 1, false, 12)?;
         ensure!(b.runs(0) == 1, "completed runs {} after 11 R bits (expected 1)", b.runs(0));
-        let t = b.sim.now() + (b.node(0).config().ph2() as u64 - 1) * CLOCK_PS;
+        let t = b.sim.now() + b.ph2_rest_ps(0);
         b.run_until_time(t);
         let m = b.mark(0);
         b.force_now(&[0], D, 1);
@@ -189,7 +189,7 @@ pub fn run(ctx: &mut Ctx) {
             b.run_bits(1);
         }
         ensure!(b.runs(0) == 127, "completed runs {} (expected 127)", b.runs(0));
-        let t = b.sim.now() + (b.node(0).config().ph2() as u64 - 1) * CLOCK_PS;
+        let t = b.sim.now() + b.ph2_rest_ps(0);
         b.run_until_time(t);
         let m = b.mark(0);
         b.force_now(&[0], D, 1);

@@ -40,7 +40,9 @@ use std::path::{Path, PathBuf};
 
 pub mod dlc;
 pub mod extd_id;
+pub mod formerr;
 pub mod idle;
+pub mod overload;
 pub mod stuffbit;
 pub mod stufferr;
 pub mod txarb;
@@ -70,7 +72,9 @@ pub fn programs() -> Vec<Program> {
     vec![
         Program { name: "dlc", run: dlc::run },
         Program { name: "extd_id", run: extd_id::run },
+        Program { name: "formerr", run: formerr::run },
         Program { name: "idle", run: idle::run },
+        Program { name: "overload", run: overload::run },
         Program { name: "stuffbit", run: stuffbit::run },
         Program { name: "stufferr", run: stufferr::run },
         Program { name: "txarb", run: txarb::run },
@@ -216,7 +220,8 @@ impl std::fmt::Display for BitRec {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         write!(
             f,
-            "{}{} {}{} smp {} drv {} tec {} rec {} st {} [{}]",
+            "{:>9} ns {}{} {}{} smp {} drv {} tec {} rec {} st {} [{}]",
+            self.t / 1000,
             if self.field.has_role() { if self.tx_role { "Tx_" } else { "Rx_" } } else { "" },
             self.field.name(),
             self.pos,
@@ -582,10 +587,15 @@ impl Bench {
         }
     }
 
-    /// Time from the clock that carries a bit's events to the end of its PH2.
-    fn ph2_rest_ps(&self, i: usize) -> u64 {
+    /// Time from the clock that carries a bit's events to the end of its PH2
+    /// as the node perceives it: the node reads the bus `L_rx` clocks late
+    /// (RX synchroniser and bit timing input stage, §1.5), so an override
+    /// set `L_rx` clocks before its TX edge reaches it at its SYNC_SEG, as
+    /// in the manual's WAIT_FOR. Never earlier than now.
+    pub fn ph2_rest_ps(&self, i: usize) -> u64 {
         let c = self.node(i).config();
-        (c.ph2() as u64 * c.brp as u64).saturating_sub(1) * CLOCK_PS
+        let l_rx = canstar_controller::core::CanCore::l_rx(c.sync_depth) as u64;
+        (c.ph2() as u64 * c.brp as u64).saturating_sub(1 + l_rx) * CLOCK_PS
     }
 
     /// Set the interference of `nodes` for `k` nominal bit times from now,
@@ -683,4 +693,61 @@ macro_rules! conformance_tests {
             assert_eq!(ran, listed, "steps run vs tests listed");
         }
     };
+}
+
+/// Which counter of N1 a step checks.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Ctr {
+    Tec,
+    Rec,
+}
+
+impl Bench {
+    pub fn ctr(&self, i: usize, c: Ctr) -> u32 {
+        match c {
+            Ctr::Tec => self.tec(i),
+            Ctr::Rec => self.rec(i),
+        }
+    }
+
+    /// Run until node `i` has finished its flags (and the dominant bits after
+    /// them): it is at Error/Overload_Delimiter 2 or later, Intermission,
+    /// Suspend_Transmission or Bus_Idle.
+    pub fn settle(&mut self, i: usize) -> Result<(), String> {
+        self.run_until(80, |b| {
+            let (f, p) = b.at(i);
+            matches!(f, Field::Inter | Field::Idle | Field::Suspend) || (matches!(f, Field::ErrDel | Field::OvlDel) && p >= 2)
+        })
+        .map_err(|e| format!("N{} did not reach a delimiter: {e}", i + 1))
+    }
+
+    /// WAIT_FOR the target at `nodes[0]`, force `nodes` for `k` bits and
+    /// check that the first forced bit of `nodes[0]` carries every event of
+    /// `want`. Returns the mark of the first forced bit.
+    pub fn forced_bit(&mut self, nodes: &[usize], field: Field, pos: u32, mode: Interference, k: u64, want: &[usize]) -> Result<usize, String> {
+        let i = nodes[0];
+        let m = self.force_at(nodes, field, pos, false, mode, k)?;
+        let r = self.rec_at(i, m)?;
+        ensure!(r.field == field && r.pos == pos, "forced bit recorded as {r}");
+        let names = ["SOF", "ARB_LOST", "BIT_ERR", "STUFF_ERR", "CRC_ERR", "FORM_ERR", "ACK_ERR", "AEF", "PEF", "OLF", "OVL", "DAF"];
+        for &e in want {
+            ensure!(r.has(e), "forced bit {r}: expected {}", names.get(e).unwrap_or(&"?"));
+        }
+        Ok(m)
+    }
+
+    /// One forcing step: WAIT_FOR the target at `nodes[0]`, force `nodes`
+    /// for `k` bits, check that the first forced bit of `nodes[0]` carries
+    /// every event of `want`, settle, and check the change of `nodes[0]`'s
+    /// counter. Returns the mark of the first forced bit.
+    #[allow(clippy::too_many_arguments)]
+    pub fn forced_step(&mut self, nodes: &[usize], field: Field, pos: u32, mode: Interference, k: u64, want: &[usize], ctr: Ctr, delta: i64) -> Result<usize, String> {
+        let i = nodes[0];
+        let c0 = self.ctr(i, ctr) as i64;
+        let m = self.forced_bit(nodes, field, pos, mode, k, want)?;
+        self.settle(i)?;
+        let c1 = self.ctr(i, ctr) as i64;
+        ensure!(c1 - c0 == delta, "{ctr:?} {c0}→{c1}, expected Δ {delta:+}:{}", self.dump_events(i, m));
+        Ok(m)
+    }
 }
