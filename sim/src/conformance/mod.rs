@@ -38,6 +38,7 @@ use canstar_controller::frame::{bus_bits, BuildOptions, BusBit, Frame};
 use canstar_controller::fsm::*;
 use std::path::{Path, PathBuf};
 
+pub mod crc;
 pub mod dlc;
 pub mod extd_id;
 pub mod formerr;
@@ -70,6 +71,7 @@ pub struct Program {
 /// All programs, in plan order.
 pub fn programs() -> Vec<Program> {
     vec![
+        Program { name: "crc", run: crc::run },
         Program { name: "dlc", run: dlc::run },
         Program { name: "extd_id", run: extd_id::run },
         Program { name: "formerr", run: formerr::run },
