@@ -38,6 +38,7 @@ use canstar_controller::frame::{bus_bits, BuildOptions, BusBit, Frame};
 use canstar_controller::fsm::*;
 use std::path::{Path, PathBuf};
 
+pub mod biterror;
 pub mod crc;
 pub mod dlc;
 pub mod extd_id;
@@ -71,6 +72,7 @@ pub struct Program {
 /// All programs, in plan order.
 pub fn programs() -> Vec<Program> {
     vec![
+        Program { name: "biterror", run: biterror::run },
         Program { name: "crc", run: crc::run },
         Program { name: "dlc", run: dlc::run },
         Program { name: "extd_id", run: extd_id::run },
@@ -557,13 +559,15 @@ impl Bench {
 
     /// Run until node `i` has processed the bit before (field, pos, stuff):
     /// its debug bundle then shows the target as the bit in progress. If
-    /// called on the clock that carries a bit's events, that bit counts.
+    /// called no later than the forcing instant of the last processed bit
+    /// (e.g. right after a forcing window), that bit counts.
     pub fn wait_for(&mut self, i: usize, field: Field, pos: u32, stuff: bool, max_bits: u64) -> Result<(), String> {
         let m0 = self.mark(i);
         let mut m = m0;
         // Right at the clock that carries a bit's events, the target may
         // already be the bit in progress.
-        if self.recs[i].last().is_some_and(|r| r.t == self.sim.now()) {
+        let rest = self.ph2_rest_ps(i);
+        if self.recs[i].last().is_some_and(|r| self.sim.now() <= r.t + rest + CLOCK_PS) {
             m = usize::MAX;
         }
         let end = self.sim.now() + max_bits * self.bit_ps;
@@ -619,7 +623,7 @@ impl Bench {
     pub fn force_at(&mut self, nodes: &[usize], field: Field, pos: u32, stuff: bool, mode: Interference, k: u64) -> Result<usize, String> {
         let i = nodes[0];
         self.wait_for(i, field, pos, stuff, 3000)?;
-        let t = self.sim.now() + self.ph2_rest_ps(i);
+        let t = self.recs[i].last().map_or(0, |r| r.t) + self.ph2_rest_ps(i);
         self.run_until_time(t);
         let m = self.mark(i);
         self.force_now(nodes, mode, k);
