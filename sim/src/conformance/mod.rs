@@ -38,6 +38,7 @@ use canstar_controller::frame::{bus_bits, BuildOptions, BusBit, Frame};
 use canstar_controller::fsm::*;
 use std::path::{Path, PathBuf};
 
+pub mod baudrate;
 pub mod biterror;
 pub mod crc;
 pub mod dlc;
@@ -72,6 +73,7 @@ pub struct Program {
 /// All programs, in plan order.
 pub fn programs() -> Vec<Program> {
     vec![
+        Program { name: "baudrate", run: baudrate::run },
         Program { name: "biterror", run: biterror::run },
         Program { name: "crc", run: crc::run },
         Program { name: "dlc", run: dlc::run },
@@ -376,24 +378,32 @@ impl Bench {
     /// As [`Bench::new`], but returns right after the dominant start-up
     /// pulse, while the nodes wait for bus idle.
     pub fn new_unintegrated(cfgs: Vec<NodeConfig>, scripted: bool, vcd: Option<&Path>) -> Bench {
+        let clocks = vec![ClockSpec::new(CLOCK_PS); cfgs.len()];
+        Self::with_clocks(cfgs, clocks, scripted, vcd)
+    }
+
+    /// Nodes on their own clocks (unintegrated, as [`Bench::new_unintegrated`]);
+    /// the scripted transmitter uses N1's clock and bit length.
+    pub fn with_clocks(cfgs: Vec<NodeConfig>, clocks: Vec<ClockSpec>, scripted: bool, vcd: Option<&Path>) -> Bench {
         let mut sim = Sim::new(1);
         let n = cfgs.len();
+        let cfgs_brp0 = cfgs[0].brp;
         let mut names: Vec<String> = (1..=n).map(|i| format!("n{i}")).collect();
         if scripted {
             names.push("script".into());
         }
         let spec: Vec<(&str, NodeDelays)> = names.iter().map(|s| (s.as_str(), NodeDelays::default())).collect();
         let bus = Bus::build(&mut sim, "bus", &spec);
-        let clock = ClockSpec::new(CLOCK_PS);
+        let clock = clocks[0];
         let ntq = cfgs[0].ntq();
-        let bit_ps = CLOCK_PS * cfgs[0].brp as u64 * ntq as u64;
+        let bit_ps = clock.period_ps * cfgs[0].brp as u64 * ntq as u64;
         let mut nodes = vec![];
         for (i, mut c) in cfgs.into_iter().enumerate() {
             c.name = names[i].clone();
-            nodes.push(sim.add(CanNode::new(c, clock), &[bus.nodes[i].rx], &[bus.nodes[i].tx]));
+            nodes.push(sim.add(CanNode::new(c, clocks[i]), &[bus.nodes[i].rx], &[bus.nodes[i].tx]));
         }
         let script = if scripted {
-            Some(sim.add(Scripted::new("script", clock, ntq), &[bus.nodes[n].rx], &[bus.nodes[n].tx]))
+            Some(sim.add(Scripted::new("script", clock, ntq * cfgs_brp0), &[bus.nodes[n].rx], &[bus.nodes[n].tx]))
         } else {
             None
         };
@@ -405,7 +415,7 @@ impl Bench {
         }
         let mut b = Bench { sim, bus, nodes, script, recs: vec![vec![]; n], pending: vec![None; n], seen_cycles: vec![0; n], bit_ps, vcd: vcd_on };
         // Reset, then one dominant bit on every node's RX, then integration.
-        let t = b.sim.now() + (RESET_CYCLES as u64 + 2) * CLOCK_PS;
+        let t = b.sim.now() + (RESET_CYCLES as u64 + 2) * clocks.iter().map(|c| c.period_ps).max().unwrap_or(CLOCK_PS);
         b.run_until_time(t);
         for i in 0..n {
             b.bus.set_interference(&mut b.sim, i, Interference::StuckDominant);
@@ -567,7 +577,9 @@ impl Bench {
         // Right at the clock that carries a bit's events, the target may
         // already be the bit in progress.
         let rest = self.ph2_rest_ps(i);
-        if self.recs[i].last().is_some_and(|r| self.sim.now() <= r.t + rest + CLOCK_PS) {
+        let nd = self.node(i);
+        let period = nd.bit_time_ps() / (nd.config().ntq() as u64 * nd.config().brp as u64);
+        if self.recs[i].last().is_some_and(|r| self.sim.now() <= r.t + rest + period) {
             m = usize::MAX;
         }
         let end = self.sim.now() + max_bits * self.bit_ps;
@@ -599,9 +611,11 @@ impl Bench {
     /// set `L_rx` clocks before its TX edge reaches it at its SYNC_SEG, as
     /// in the manual's WAIT_FOR. Never earlier than now.
     pub fn ph2_rest_ps(&self, i: usize) -> u64 {
-        let c = self.node(i).config();
+        let nd = self.node(i);
+        let c = nd.config();
+        let period = nd.bit_time_ps() / (c.ntq() as u64 * c.brp as u64);
         let l_rx = canstar_controller::core::CanCore::l_rx(c.sync_depth) as u64;
-        (c.ph2() as u64 * c.brp as u64).saturating_sub(1 + l_rx) * CLOCK_PS
+        (c.ph2() as u64 * c.brp as u64).saturating_sub(1 + l_rx) * period
     }
 
     /// Set the interference of `nodes` for `k` nominal bit times from now,
