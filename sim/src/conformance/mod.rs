@@ -40,6 +40,7 @@ use std::path::{Path, PathBuf};
 
 pub mod baudrate;
 pub mod biterror;
+pub mod btl;
 pub mod crc;
 pub mod dlc;
 pub mod extd_id;
@@ -75,6 +76,7 @@ pub fn programs() -> Vec<Program> {
     vec![
         Program { name: "baudrate", run: baudrate::run },
         Program { name: "biterror", run: biterror::run },
+        Program { name: "btl", run: btl::run },
         Program { name: "crc", run: crc::run },
         Program { name: "dlc", run: dlc::run },
         Program { name: "extd_id", run: extd_id::run },
