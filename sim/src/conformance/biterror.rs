@@ -258,7 +258,7 @@ pub fn run(ctx: &mut Ctx) {
     let mut b = ctx.bench(vec![cfg(), cfg()], false);
     rx_part(ctx, &mut b);
     b.node_mut(0).hard_reset();
-    let _ = b.run_until(60, |b| b.at(0).0 == Field::Idle && b.node(0).pending() == false && b.tec(0) == 0);
+    let _ = b.run_until(60, |b| b.at(0).0 == Field::Idle && !b.node(0).pending() && b.tec(0) == 0);
     b.run_bits(15);
     tx_part(ctx, &mut b);
 }

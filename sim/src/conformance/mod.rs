@@ -30,6 +30,27 @@
 //!   the end of that bit's PH2 and sets the receive-path interference of the
 //!   forced node(s) for k nominal bit times, then sets it back to none.
 
+//!
+//! # Programs and deviations
+//!
+//! Implemented: baudrate, biterror, btl (case a only), crc, dlc, extd_id,
+//! formerr, idle, overload, stuffbit, stufferr, txarb. Not yet: emlcount,
+//! btl cases b–f. Where a step's frame condition cannot be met by a legal
+//! frame the program says so at the step (txarb_12, stufferr_5) and uses the
+//! nearest legal frame. biterror resets N1 between its receiver and
+//! transmitter parts. Frames with a recessive r0/r1 or a dominant SRR come
+//! from the scripted transmitter, a bus participant besides N2.
+//!
+//! # Timing of a stimulus
+//!
+//! The node reads the bus `L_rx` clocks late (`CanCore::l_rx`: synchroniser
+//! and bit-timing input stage). The override is therefore set `L_rx` clocks
+//! before the node's TX edge of the target bit, so that the node sees it
+//! from its SYNC_SEG, as the manual's WAIT_FOR does (never earlier than the
+//! clock that carries the previous bit's events: with T10/8/1 the override
+//! starts 2 clocks late).
+#![allow(clippy::redundant_closure_call)]
+
 use crate::bus::{Bus, NodeDelays};
 use crate::kernel::{ClockSpec, Component, Handle, Io, Sim};
 use crate::net::Interference;

@@ -26,9 +26,9 @@ fn im3_sof(b: &mut Bench, t: usize, f: &Frame) -> Result<(), String> {
     b.run_until(300, |b| b.node(rcv).received().len() > rx0)?;
     b.run_idle(100)?;
     check_delivered(b, rcv, rx0, std::slice::from_ref(f))?;
-    for i in 0..2 {
-        let errs = b.since(i, marks[i]).iter().filter(|r| r.ev & ((1 << EV_AEF) | (1 << EV_PEF)) != 0).count();
-        ensure!(errs == 0, "N{} flagged:{}", i + 1, b.dump_events(i, marks[i]));
+    for (i, &mk) in marks.iter().enumerate() {
+        let errs = b.since(i, mk).iter().filter(|r| r.ev & ((1 << EV_AEF) | (1 << EV_PEF)) != 0).count();
+        ensure!(errs == 0, "N{} flagged:{}", i + 1, b.dump_events(i, mk));
     }
     Ok(())
 }
