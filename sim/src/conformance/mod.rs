@@ -33,9 +33,9 @@
 //!
 //! # Programs and deviations
 //!
-//! Implemented: baudrate, biterror, btl (case a only), crc, dlc, extd_id,
-//! formerr, idle, overload, stuffbit, stufferr, txarb. Not yet: emlcount,
-//! btl cases b–f. Where a step's frame condition cannot be met by a legal
+//! Implemented: baudrate, biterror, btl (case a only), crc, dlc, emlcount
+//! (tx_7..tx_15 only), extd_id, formerr, idle, overload, stuffbit, stufferr,
+//! txarb. Not yet: the rest of emlcount, btl cases b–f. Where a step's frame condition cannot be met by a legal
 //! frame the program says so at the step (txarb_12, stufferr_5) and uses the
 //! nearest legal frame. biterror resets N1 between its receiver and
 //! transmitter parts. Frames with a recessive r0/r1 or a dominant SRR come
@@ -64,6 +64,7 @@ pub mod biterror;
 pub mod btl;
 pub mod crc;
 pub mod dlc;
+pub mod emlcount;
 pub mod extd_id;
 pub mod formerr;
 pub mod idle;
@@ -100,6 +101,7 @@ pub fn programs() -> Vec<Program> {
         Program { name: "btl", run: btl::run },
         Program { name: "crc", run: crc::run },
         Program { name: "dlc", run: dlc::run },
+        Program { name: "emlcount", run: emlcount::run },
         Program { name: "extd_id", run: extd_id::run },
         Program { name: "formerr", run: formerr::run },
         Program { name: "idle", run: idle::run },
