@@ -1,4 +1,4 @@
-//! emlcount program (conformance-tests.md §6), tx_7..tx_15 only; one test per step.
+//! emlcount program (conformance-tests.md §6), tx_7..tx_30 only; one test per step.
 canstar_sim::conformance_tests!("emlcount";
     emlcount_tx_7,
     emlcount_tx_8,
@@ -9,4 +9,19 @@ canstar_sim::conformance_tests!("emlcount";
     emlcount_tx_13,
     emlcount_tx_14,
     emlcount_tx_15,
+    emlcount_tx_16,
+    emlcount_tx_17,
+    emlcount_tx_18,
+    emlcount_tx_19,
+    emlcount_tx_20,
+    emlcount_tx_21,
+    emlcount_tx_22,
+    emlcount_tx_23,
+    emlcount_tx_24,
+    emlcount_tx_25,
+    emlcount_tx_26,
+    emlcount_tx_27,
+    emlcount_tx_28,
+    emlcount_tx_29,
+    emlcount_tx_30,
 );

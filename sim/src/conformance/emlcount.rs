@@ -1,6 +1,6 @@
 //! emlcount (§6 of the plan), **partial**: the transmitter steps after the
-//! hardware reset of N1, `emlcount_tx_7` .. `emlcount_tx_15` (T10/6/2).
-//! The receiver part and tx_1..6, tx_16..37 are not implemented yet.
+//! hardware reset of N1, `emlcount_tx_7` .. `emlcount_tx_30` (T10/6/2).
+//! The receiver part and tx_1..6, tx_31..37 are not implemented yet.
 use super::*;
 
 const D: Interference = Interference::StuckDominant;
@@ -45,4 +45,118 @@ pub fn run(ctx: &mut Ctx) {
         b.run_idle(400)
     })();
     ctx.record("emlcount_tx_15", r);
+
+    tx_16_on(ctx, &mut b, &f);
 }
+
+const BE_A: &[usize] = &[EV_BIT_ERR, EV_AEF];
+const BE_P: &[usize] = &[EV_BIT_ERR, EV_PEF];
+const OL: &[usize] = &[EV_OVL, EV_OLF];
+
+fn good(b: &mut Bench, f: &Frame) -> Result<(), String> {
+    let n = b.node(0).sent().len();
+    b.node_mut(0).request(f.clone());
+    b.run_until(400, |b| b.node(0).sent().len() > n)?;
+    b.run_idle(200)
+}
+
+fn tec_is(b: &Bench, want: u32, state: u32) -> Result<(), String> {
+    ensure!((b.tec(0), b.state(0)) == (want, state), "TEC {} state {} (expected {want}, state {state})", b.tec(0), b.state(0));
+    Ok(())
+}
+
+fn tx_16_on(ctx: &mut Ctx, b: &mut Bench, f: &Frame) {
+    // Precondition of tx_16: TEC 103 after the good frame whose
+    // Intermission 2 is forced, i.e. 104 before it: withdrawn SOF errors
+    // (+8) and good frames (−1).
+    let r = (|| {
+        let mut guard = 0;
+        while b.tec(0) != 104 && guard < 40 {
+            guard += 1;
+            if b.tec(0) < 104 {
+                b.node_mut(0).request(f.clone());
+                let m = b.force_at(&[0], Field::Sof, 1, false, R, 1);
+                b.node_mut(0).withdraw();
+                m?;
+                b.run_idle(200)?;
+            } else {
+                good(b, f)?;
+            }
+        }
+        b.node_mut(0).request(f.clone());
+        b.run_until(300, |b| b.at(0) == (Field::Eof, 7))?;
+        let m = b.forced_bit(&[0], Field::Inter, 2, D, 1, OL)?;
+        ensure!(b.rec_at(0, m)?.tec == 103, "TEC {} at the start (expected 103)", b.rec_at(0, m)?.tec);
+        b.forced_bit(&[0], Field::OvlFlag, 1, R, 1, BE_A)?;
+        let m3 = b.force_at(&[0], Field::ActFlag, 1, false, R, 3)?;
+        b.settle(0)?;
+        let be = b.events(0, m3, EV_BIT_ERR);
+        ensure!(be.len() == 3 && be[2].has(EV_AEF) && be[2].state == 1 && be[1].state == 0, "3 bit errors in the flags, the last active and making N1 passive:{}", b.dump_events(0, m3));
+        tec_is(b, 135, 1)
+    })();
+    ctx.record("emlcount_tx_16", r);
+    let r = (|| {
+        for _ in 0..7 {
+            good(b, f)?;
+        }
+        tec_is(b, 128, 1)
+    })();
+    ctx.record("emlcount_tx_17", r);
+    let g = choose(false, false, |f| level_of(f, Field::Ident, 9, true) == Some(true));
+    let r = (|| {
+        b.node_mut(0).request(g.clone());
+        b.force_at(&[0], Field::Ident, 9, true, D, 1).and_then(|m| {
+            let x = b.rec_at(0, m)?;
+            ensure!(x.has(EV_STUFF_ERR) && x.has(EV_PEF) && x.has(EV_EXC2), "{x}: expected STUFF_ERR, PEF, EXC2");
+            Ok(())
+        })?;
+        b.settle(0)?;
+        tec_is(b, 128, 1)
+    })();
+    ctx.record("emlcount_tx_18", r);
+    let r = b.run_idle(400).and_then(|_| tec_is(b, 127, 0));
+    ctx.record("emlcount_tx_19", r);
+    let r = (|| {
+        b.node_mut(0).request(f.clone());
+        b.forced_step(&[0], Field::Sof, 1, R, 1, BE_A, Ctr::Tec, 8)?;
+        tec_is(b, 135, 1)
+    })();
+    ctx.record("emlcount_tx_20", r);
+    let r = b.forced_step(&[0], Field::Sof, 1, R, 1, BE_P, Ctr::Tec, 8).and_then(|_| tec_is(b, 143, 1));
+    ctx.record("emlcount_tx_21", r);
+    let r = b.forced_step(&[0], Field::AckDel, 1, D, 1, &[EV_PEF], Ctr::Tec, 8).and_then(|_| tec_is(b, 151, 1));
+    ctx.record("emlcount_tx_22", r);
+    let r = b.forced_step(&[0], Field::Eof, 1, D, 7, &[EV_PEF], Ctr::Tec, 8).and_then(|_| tec_is(b, 159, 1));
+    ctx.record("emlcount_tx_23", r);
+    let r = (|| {
+        b.forced_bit(&[0], Field::Eof, 7, D, 1, &[EV_PEF])?;
+        let m = b.forced_step(&[0], Field::PasFlag, 3, D, 1, &[], Ctr::Tec, 0)?;
+        ensure!(b.since(0, m).iter().filter(|r| r.field == Field::PasFlag && r.pos >= 7).count() >= 4, "equal-bit count not restarted:{}", b.dump(0, m));
+        tec_is(b, 167, 1)
+    })();
+    ctx.record("emlcount_tx_24", r);
+    let r = b.forced_step(&[0], Field::ErrDel, 8, D, 14, OL, Ctr::Tec, 0).and_then(|_| tec_is(b, 167, 1));
+    ctx.record("emlcount_tx_25", r);
+    let r = b.forced_step(&[0], Field::OvlDel, 8, D, 15, OL, Ctr::Tec, 8).and_then(|_| tec_is(b, 175, 1));
+    ctx.record("emlcount_tx_26", r);
+    let r = b.forced_step(&[0], Field::OvlDel, 2, D, 1, &[EV_FORM_ERR, EV_PEF], Ctr::Tec, 8).and_then(|_| tec_is(b, 183, 1));
+    ctx.record("emlcount_tx_27", r);
+    let r = (|| {
+        let m = b.forced_bit(&[0], Field::AckSlot, 1, R, 1, &[EV_ACK_ERR, EV_PEF])?;
+        b.settle(0)?;
+        ensure!(b.count(0, m, EV_EXC1) == 1, "no EXC1:{}", b.dump_events(0, m));
+        tec_is(b, 183, 1)
+    })();
+    ctx.record("emlcount_tx_28", r);
+    let r = (|| {
+        b.forced_bit(&[0], Field::ErrDel, 2, D, 1, &[EV_FORM_ERR, EV_PEF])?;
+        ensure!(b.tec(0) == 191, "TEC {} after the form error (expected 191)", b.tec(0));
+        b.force_at(&[0], Field::PasFlag, 7, false, D, 64)?;
+        b.settle(0)?;
+        tec_is(b, 255, 1)
+    })();
+    ctx.record("emlcount_tx_29", r);
+    let r = b.forced_step(&[0], Field::ErrDel, 8, D, 1, OL, Ctr::Tec, 0).and_then(|_| tec_is(b, 255, 1));
+    ctx.record("emlcount_tx_30", r);
+}
+
