@@ -1,4 +1,4 @@
-//! emlcount program (conformance-tests.md §6), tx_7..tx_30 only; one test per step.
+//! emlcount program (conformance-tests.md §6), tx_7..tx_37 only; one test per step.
 canstar_sim::conformance_tests!("emlcount";
     emlcount_tx_7,
     emlcount_tx_8,
@@ -24,4 +24,11 @@ canstar_sim::conformance_tests!("emlcount";
     emlcount_tx_28,
     emlcount_tx_29,
     emlcount_tx_30,
+    emlcount_tx_31,
+    emlcount_tx_32,
+    emlcount_tx_33,
+    emlcount_tx_34,
+    emlcount_tx_35,
+    emlcount_tx_36,
+    emlcount_tx_37,
 );

@@ -1,6 +1,6 @@
 //! emlcount (§6 of the plan), **partial**: the transmitter steps after the
-//! hardware reset of N1, `emlcount_tx_7` .. `emlcount_tx_30` (T10/6/2).
-//! The receiver part and tx_1..6, tx_31..37 are not implemented yet.
+//! hardware reset of N1, `emlcount_tx_7` .. `emlcount_tx_37` (T10/6/2).
+//! The receiver part and tx_1..6 are not implemented yet.
 use super::*;
 
 const D: Interference = Interference::StuckDominant;
@@ -158,5 +158,55 @@ fn tx_16_on(ctx: &mut Ctx, b: &mut Bench, f: &Frame) {
     ctx.record("emlcount_tx_29", r);
     let r = b.forced_step(&[0], Field::ErrDel, 8, D, 1, OL, Ctr::Tec, 0).and_then(|_| tec_is(b, 255, 1));
     ctx.record("emlcount_tx_30", r);
+
+    tx_31_on(ctx, b);
+}
+
+fn rec_is(b: &Bench, want: u32) -> Result<(), String> {
+    ensure!(b.rec(0) == want, "REC {} (expected {want})", b.rec(0));
+    Ok(())
+}
+
+fn tx_31_on(ctx: &mut Ctx, b: &mut Bench) {
+    let r = (|| {
+        let m = b.force_at(&[0], Field::Inter, 3, false, D, 6)?;
+        let x = b.rec_at(0, m)?;
+        ensure!(x.has(EV_SOF), "{x}: expected SOF");
+        let s: Vec<BitRec> = b.since(0, m)[1..6].to_vec();
+        ensure!(s.iter().all(|r| !r.tx_role), "N1 did not become a receiver:{}", b.dump(0, m));
+        let e = b.events(0, m, EV_STUFF_ERR);
+        ensure!(e.len() == 1 && e[0].has(EV_PEF) && b.since(0, m).iter().position(|r| r.has(EV_STUFF_ERR)) == Some(5), "expected STUFF_ERR, PEF at the 6th dominant bit:{}", b.dump_events(0, m));
+        rec_is(b, 1)
+    })();
+    ctx.record("emlcount_tx_31", r);
+    let r = b.forced_step(&[0], Field::PasFlag, 7, D, 1, &[EV_DAF], Ctr::Rec, 8).and_then(|_| rec_is(b, 9));
+    ctx.record("emlcount_tx_32", r);
+    // (no settling: tx_34 forces the first bit after this flag)
+    let r = b.forced_bit(&[0], Field::ErrDel, 4, D, 1, &[EV_FORM_ERR, EV_PEF]).and_then(|m| {
+        ensure!(b.rec_at(0, m)?.rec == 10, "{}: expected REC 10", b.rec_at(0, m)?);
+        Ok(())
+    });
+    ctx.record("emlcount_tx_33", r);
+    let r = b.forced_step(&[0], Field::PasFlag, 7, D, 1, &[EV_DAF], Ctr::Rec, 8).and_then(|_| rec_is(b, 18));
+    ctx.record("emlcount_tx_34", r);
+    let r = (|| {
+        let m = b.forced_step(&[0], Field::ErrDel, 2, D, 8, &[EV_FORM_ERR, EV_PEF], Ctr::Rec, 9)?;
+        rec_is(b, 27)?;
+        let n = b.node(0).sent().len();
+        b.run_until(400, |b| b.node(0).sent().len() > n)?;
+        let s = b.since(0, m);
+        let k = s.iter().rposition(|r| r.has(EV_SOF)).unwrap_or(0);
+        ensure!(s[..k].iter().all(|r| r.field != Field::Suspend), "suspend before the retry:{}", b.dump(0, m));
+        tec_is(b, 254, 1)
+    })();
+    ctx.record("emlcount_tx_35", r);
+    let r = b.forced_bit(&[0], Field::Inter, 1, D, 1, OL).and_then(|_| tec_is(b, 254, 1));
+    ctx.record("emlcount_tx_36", r);
+    let r = (|| {
+        let m = b.forced_bit(&[0], Field::OvlFlag, 2, R, 1, &[EV_BIT_ERR])?;
+        ensure!(b.rec_at(0, m)?.tec == 262 && b.rec_at(0, m)?.state == 2, "{}: expected TEC 262, bus-off", b.rec_at(0, m)?);
+        Ok(())
+    })();
+    ctx.record("emlcount_tx_37", r);
 }
 
