@@ -1,5 +1,19 @@
-//! emlcount program (conformance-tests.md §6), tx_7..tx_37 only; one test per step.
+//! emlcount program (conformance-tests.md §6), rx_1..rx_14 and tx_7..tx_37; one test per step.
 canstar_sim::conformance_tests!("emlcount";
+    emlcount_rx_1,
+    emlcount_rx_2,
+    emlcount_rx_3,
+    emlcount_rx_4,
+    emlcount_rx_5,
+    emlcount_rx_6,
+    emlcount_rx_7,
+    emlcount_rx_8,
+    emlcount_rx_9,
+    emlcount_rx_10,
+    emlcount_rx_11,
+    emlcount_rx_12,
+    emlcount_rx_13,
+    emlcount_rx_14,
     emlcount_tx_7,
     emlcount_tx_8,
     emlcount_tx_9,

@@ -1,14 +1,140 @@
 //! emlcount (§6 of the plan), **partial**: the transmitter steps after the
 //! hardware reset of N1, `emlcount_tx_7` .. `emlcount_tx_37` (T10/6/2).
-//! The receiver part and tx_1..6 are not implemented yet.
+//! Receiver steps rx_1..rx_14 run first; rx_15..rx_20 and tx_1..6 are not
+//! implemented yet (N1 gets the plan's hardware reset before tx_7).
 use super::*;
 
 const D: Interference = Interference::StuckDominant;
 const R: Interference = Interference::StuckRecessive;
 
+/// Move the R→D edge at the start of N1's bit (field, pos) by `d` TQ
+/// (positive: later, by reading `R` for d TQ; negative: earlier, by reading
+/// `D` for the last |d| TQ of the bit before).
+fn move_edge(b: &mut Bench, field: Field, pos: u32, d: i64) -> Result<(), String> {
+    let tq = CLOCK_PS as i64;
+    if d > 0 {
+        b.wait_for(0, field, pos, false, 300)?;
+        let t = b.recs(0).last().unwrap().t + b.ph2_rest_ps(0);
+        b.run_until_time(t);
+        b.set(0, R);
+        b.run_until_time((t as i64 + d * tq) as u64);
+    } else {
+        b.wait_for(0, field, pos - 1, false, 300)?;
+        let t = b.recs(0).last().unwrap().t + b.ph2_rest_ps(0);
+        let ntq = b.node(0).config().ntq() as i64;
+        b.run_until_time((t as i64 + (ntq + d) * tq) as u64);
+        b.set(0, D);
+        b.run_until_time((t as i64 + ntq * tq) as u64);
+    }
+    b.set(0, Interference::None);
+    Ok(())
+}
+
+fn rx_part(ctx: &mut Ctx, b: &mut Bench) {
+    let f1 = choose(false, false, |f| (f.id >> 7) == 0 && level_of(f, Field::Ident, 4, true) == Some(true));
+    let r = (|| {
+        b.node_mut(1).request(f1.clone());
+        let m = b.force_at(&[0], Field::Ident, 4, true, D, 1)?;
+        let x = b.rec_at(0, m)?;
+        ensure!(x.has(EV_STUFF_ERR) && x.has(EV_AEF) && x.stuff, "{x}: expected STUFF_ERR, AEF at the stuff bit");
+        b.settle(0)?;
+        rec_is(b, 9)?;
+        b.run_idle(400)?;
+        rec_is(b, 8)
+    })();
+    ctx.record("emlcount_rx_1", r);
+    // Data 0x55: R→D edges at Data_Field 3, 5, 7, ... (R at even positions).
+    let f2 = Frame::std(0x2A7, &[0x55, 0x55, 0x55, 0x55]);
+    let r = (|| {
+        let m = b.mark(0);
+        b.node_mut(1).request(f2.clone());
+        for (k, d) in [1i64, 2, 3, -1, -2, -3].iter().enumerate() {
+            move_edge(b, Field::Data, 3 + 4 * k as u32, *d)?;
+        }
+        b.forced_bit(&[0], Field::CrcDel, 1, D, 1, &[EV_FORM_ERR, EV_AEF])?;
+        let first = b.since(0, m).iter().position(|r| r.has(EV_AEF)).unwrap();
+        ensure!(b.since(0, m)[..first].iter().all(|r| r.ev & ((1 << EV_BIT_ERR) | (1 << EV_STUFF_ERR) | (1 << EV_FORM_ERR)) == 0), "error before CRC_Delimiter");
+        b.settle(0)?;
+        rec_is(b, 17)
+    })();
+    ctx.record("emlcount_rx_2", r);
+    let r = b.forced_step(&[0], Field::AckSlot, 1, R, 1, &[EV_BIT_ERR, EV_AEF], Ctr::Rec, 9).and_then(|_| rec_is(b, 26));
+    ctx.record("emlcount_rx_3", r);
+    let r = (|| {
+        let rx0 = b.node(0).received().len();
+        b.forced_step(&[0], Field::Eof, 7, D, 14, &[EV_OVL, EV_OLF], Ctr::Rec, 0)?;
+        check_delivered(b, 0, rx0, std::slice::from_ref(&f2))?;
+        rec_is(b, 26)
+    })();
+    ctx.record("emlcount_rx_4", r);
+    // (no settling: rx_6 forces the first bit of this overload flag)
+    let r = b.forced_bit(&[0], Field::OvlDel, 8, D, 1, &[EV_OVL, EV_OLF]).and_then(|_| rec_is(b, 26));
+    ctx.record("emlcount_rx_5", r);
+    let r = (|| {
+        b.forced_bit(&[0], Field::OvlFlag, 1, R, 1, &[EV_BIT_ERR, EV_AEF])?;
+        let m = b.force_at(&[0], Field::ActFlag, 1, false, R, 9)?;
+        b.settle(0)?;
+        ensure!(b.count(0, m, EV_BIT_ERR) == 9, "bit errors:{}", b.dump_events(0, m));
+        rec_is(b, 106)
+    })();
+    ctx.record("emlcount_rx_6", r);
+    let fg = Frame::std(0x3C1, &[0x42]);
+    for (k, want) in [(7, 105), (8, 104), (9, 103)] {
+        let r = (|| {
+            b.run_idle(400)?;
+            b.node_mut(1).request(fg.clone());
+            b.run_bits(5);
+            b.run_idle(400)?;
+            rec_is(b, want)
+        })();
+        ctx.record(&format!("emlcount_rx_{k}"), r);
+    }
+    let r = (|| {
+        let rx0 = b.node(0).received().len();
+        b.node_mut(1).request(fg.clone());
+        let m = b.forced_step(&[0], Field::Eof, 7, D, 39, &[EV_OVL, EV_OLF], Ctr::Rec, 32)?;
+        check_delivered(b, 0, rx0, std::slice::from_ref(&fg))?;
+        let ep = b.since(0, m).iter().position(|r| r.state == 1).ok_or("never error-passive")?;
+        let s = b.since(0, m);
+        ensure!(ep > 0 && s[ep].rec == 135 && s[ep - 1].rec == 127, "TO_EP not at the 4th increment: {} after {}", s[ep], s[ep.max(1) - 1]);
+        rec_is(b, 135)
+    })();
+    ctx.record("emlcount_rx_10", r);
+    let r = (|| {
+        b.forced_bit(&[0], Field::OvlDel, 3, D, 1, &[EV_FORM_ERR, EV_PEF])?;
+        ensure!(b.rec(0) > 127, "REC {}", b.rec(0));
+        b.force_at(&[0], Field::PasFlag, 7, false, D, 16)?;
+        b.settle(0)?;
+        rec_is(b, 135)
+    })();
+    ctx.record("emlcount_rx_11", r);
+    let r = (|| {
+        b.run_idle(400)?;
+        b.node_mut(1).request(fg.clone());
+        b.run_bits(5);
+        b.run_idle(400)?;
+        rec_is(b, 127)
+    })();
+    ctx.record("emlcount_rx_12", r);
+    let r = if b.state(0) == 0 { Ok(()) } else { Err(format!("state {} after the good frame (expected error-active)", b.state(0))) };
+    ctx.record("emlcount_rx_13", r);
+    let r = (|| {
+        b.node_mut(1).request(fg.clone());
+        b.run_bits(5);
+        b.run_idle(400)?;
+        rec_is(b, 126)
+    })();
+    ctx.record("emlcount_rx_14", r);
+}
+
 pub fn run(ctx: &mut Ctx) {
     let c = cfg().timing(1, 1, 4, 2);
     let mut b = ctx.bench(vec![c.clone(), c], false);
+    rx_part(ctx, &mut b);
+    // Hardware reset of N1 (the plan's tx_1..tx_6 are not implemented).
+    b.node_mut(0).hard_reset();
+    let _ = b.run_bits(2);
+    let _ = b.run_until(60, |b| b.node(0).field() == Field::Idle);
     let f = Frame::std(0x2B9, &[0x81, 0x7E]);
     b.node_mut(0).request(f.clone());
     let r = b.forced_step(&[0], Field::Sof, 1, R, 1, &[EV_BIT_ERR, EV_AEF], Ctr::Tec, 8).and_then(|_| {

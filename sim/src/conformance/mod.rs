@@ -34,7 +34,7 @@
 //! # Programs and deviations
 //!
 //! Implemented: baudrate, biterror, btl (case a only), crc, dlc, emlcount
-//! (tx_7..tx_37 only), extd_id, formerr, idle, overload, stuffbit, stufferr,
+//! (rx_1..rx_14 and tx_7..tx_37), extd_id, formerr, idle, overload, stuffbit, stufferr,
 //! txarb. Not yet: the rest of emlcount, btl cases b–f. Where a step's frame condition cannot be met by a legal
 //! frame the program says so at the step (txarb_12, stufferr_5) and uses the
 //! nearest legal frame. biterror resets N1 between its receiver and
