@@ -1,4 +1,4 @@
-//! emlcount program (conformance-tests.md §6), rx_1..rx_14 and tx_7..tx_37; one test per step.
+//! emlcount program (conformance-tests.md §6), rx_1..rx_20 and tx_7..tx_37; one test per step.
 canstar_sim::conformance_tests!("emlcount";
     emlcount_rx_1,
     emlcount_rx_2,
@@ -14,6 +14,12 @@ canstar_sim::conformance_tests!("emlcount";
     emlcount_rx_12,
     emlcount_rx_13,
     emlcount_rx_14,
+    emlcount_rx_15,
+    emlcount_rx_16,
+    emlcount_rx_17,
+    emlcount_rx_18,
+    emlcount_rx_19,
+    emlcount_rx_20,
     emlcount_tx_7,
     emlcount_tx_8,
     emlcount_tx_9,

@@ -8,7 +8,7 @@ const R: Interference = Interference::StuckRecessive;
 
 /// Does inverting the bus bit of `f` at (field, pos, non-stuff) leave every
 /// run shorter than six (so the receiver's destuffing is unchanged)?
-fn flip_keeps_stuffing(f: &Frame, field: Field, pos: u32) -> bool {
+pub(crate) fn flip_keeps_stuffing(f: &Frame, field: Field, pos: u32) -> bool {
     let bits = bus_bits(f, BuildOptions::default(), false);
     let Some(k) = bits.iter().position(|b| b.field == field && b.pos as u32 == pos && !b.stuff) else { return false };
     let end = bits.iter().position(|b| b.field == Field::CrcDel).unwrap();

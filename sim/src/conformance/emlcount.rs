@@ -1,7 +1,7 @@
 //! emlcount (§6 of the plan), **partial**: the transmitter steps after the
 //! hardware reset of N1, `emlcount_tx_7` .. `emlcount_tx_37` (T10/6/2).
-//! Receiver steps rx_1..rx_14 run first; rx_15..rx_20 and tx_1..6 are not
-//! implemented yet (N1 gets the plan's hardware reset before tx_7).
+//! The receiver steps rx_1..rx_20 run first; tx_1..6 are not implemented
+//! yet (N1 gets the plan's hardware reset before tx_7).
 use super::*;
 
 const D: Interference = Interference::StuckDominant;
@@ -121,10 +121,65 @@ fn rx_part(ctx: &mut Ctx, b: &mut Bench) {
     let r = (|| {
         b.node_mut(1).request(fg.clone());
         b.run_bits(5);
-        b.run_idle(400)?;
+        b.run_until(300, |b| b.at(0) == (Field::Inter, 1))?;
         rec_is(b, 126)
     })();
     ctx.record("emlcount_rx_14", r);
+    let r = (|| {
+        b.forced_bit(&[0], Field::Inter, 1, D, 1, &[EV_OVL, EV_OLF])?;
+        let m = b.forced_bit(&[0], Field::OvlFlag, 1, R, 1, &[EV_BIT_ERR, EV_AEF])?;
+        let x = b.rec_at(0, m)?;
+        ensure!(x.rec == 134 && x.state == 1, "{x}: expected REC 134, error-passive, flag active");
+        b.forced_bit(&[0], Field::ActFlag, 1, R, 1, &[EV_BIT_ERR, EV_PEF])?;
+        b.settle(0)?;
+        rec_is(b, 134)
+    })();
+    ctx.record("emlcount_rx_15", r);
+    let r = (|| {
+        b.run_idle(400)?;
+        b.node_mut(1).request(fg.clone());
+        b.run_bits(5);
+        b.run_idle(400)?;
+        rec_is(b, 127)?;
+        ensure!(b.state(0) == 0, "state {}", b.state(0));
+        Ok(())
+    })();
+    ctx.record("emlcount_rx_16", r);
+    let fc = choose(false, false, |f| super::crc::flip_keeps_stuffing(f, Field::Crc, 5));
+    let r = (|| {
+        let m = b.mark(0);
+        b.node_mut(1).request(fc.clone());
+        b.force_at(&[0], Field::Crc, 5, false, Interference::Invert, 1)?;
+        b.wait_for(0, Field::AckSlot, 1, false, 30)?;
+        ensure!(b.since(0, m).iter().all(|r| r.ev & ((1 << EV_AEF) | (1 << EV_PEF)) == 0), "error before the ACK slot:{}", b.dump_events(0, m));
+        Ok(())
+    })();
+    ctx.record("emlcount_rx_17", r);
+    let m2 = b.mark(1);
+    let r = (|| {
+        let rec0 = b.rec(0);
+        let m = b.forced_bit(&[0], Field::AckSlot, 1, D, 1, &[])?;
+        let x = b.rec_at(0, m)?;
+        ensure!(x.drove && x.rec == rec0, "{x}: N1 must not acknowledge, REC unchanged");
+        b.run_bits(2);
+        let a = b.events(1, m2, EV_ACK_ERR);
+        ensure!(a.len() == 1 && a[0].has(EV_AEF), "N2: expected ACK_ERR, AEF:{}", b.dump_events(1, m2));
+        Ok(())
+    })();
+    ctx.record("emlcount_rx_18", r);
+    let r = (|| {
+        let c = b.recs(0).iter().rev().find(|r| r.has(EV_CRC_ERR)).copied().ok_or("no CRC error")?;
+        ensure!(c.field == Field::AckDel && c.has(EV_AEF) && c.rec == 128 && c.state == 1, "{c}: expected CRC_ERR, AEF at ACK_Delimiter, REC 128, TO_EP");
+        Ok(())
+    })();
+    ctx.record("emlcount_rx_19", r);
+    let r = (|| {
+        b.forced_bit(&[0], Field::ActFlag, 3, R, 1, &[EV_BIT_ERR, EV_PEF])?;
+        b.settle(0)?;
+        rec_is(b, 128)?;
+        b.run_idle(400)
+    })();
+    ctx.record("emlcount_rx_20", r);
 }
 
 pub fn run(ctx: &mut Ctx) {

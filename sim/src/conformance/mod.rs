@@ -34,9 +34,10 @@
 //! # Programs and deviations
 //!
 //! Implemented: baudrate, biterror, btl (case a only), crc, dlc, emlcount
-//! (rx_1..rx_14 and tx_7..tx_37), extd_id, formerr, idle, overload, stuffbit, stufferr,
-//! txarb. Not yet: the rest of emlcount, btl cases b–f. Where a step's frame condition cannot be met by a legal
-//! frame the program says so at the step (txarb_12, stufferr_5) and uses the
+//! (all but tx_1..tx_6), extd_id, formerr, idle, overload, stuffbit,
+//! stufferr, txarb. Not yet: emlcount tx_1..tx_6, btl cases b–f. Where a
+//! step's frame condition cannot be met by a legal frame the program says
+//! so at the step (txarb_12, stufferr_5) and uses the
 //! nearest legal frame. biterror resets N1 between its receiver and
 //! transmitter parts. Frames with a recessive r0/r1 or a dominant SRR come
 //! from the scripted transmitter, a bus participant besides N2.
