@@ -29,7 +29,6 @@
 //!   (its `field()`/`pos()`/`dbg_stuff` then show the target bit), waits for
 //!   the end of that bit's PH2 and sets the receive-path interference of the
 //!   forced node(s) for k nominal bit times, then sets it back to none.
-
 //!
 //! # Programs and deviations
 //!
@@ -159,6 +158,7 @@ pub fn run_cli(program: Option<&str>, vcd_dir: Option<&Path>, out: &mut dyn std:
         Some(p) => {
             if !names.contains(&p) {
                 writeln!(out, "unknown program {p}; programs: {}", names.join(", "))?;
+                writeln!(out, "0 passed, 1 failed")?;
                 return Ok((0, 1));
             }
             vec![p]
