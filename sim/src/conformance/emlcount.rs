@@ -188,7 +188,7 @@ pub fn run(ctx: &mut Ctx) {
     rx_part(ctx, &mut b);
     // Hardware reset of N1 (the plan's tx_1..tx_6 are not implemented).
     b.node_mut(0).hard_reset();
-    let _ = b.run_bits(2);
+    b.run_bits(2);
     let _ = b.run_until(60, |b| b.node(0).field() == Field::Idle);
     let f = Frame::std(0x2B9, &[0x81, 0x7E]);
     b.node_mut(0).request(f.clone());
