@@ -107,6 +107,17 @@ enum Cmd {
         #[arg(long, default_value_t = 5)]
         max_failures: usize,
     },
+    /// Run the Bosch conformance suite (conformance-tests.md) in the multi-node simulation:
+    /// one line per program, then `N passed, M failed` counting steps.
+    Conformance {
+        /// Run only this program (baudrate, biterror, btl, crc, dlc, emlcount, extd_id,
+        /// formerr, idle, overload, stuffbit, stufferr, txarb).
+        #[arg(long)]
+        program: Option<String>,
+        /// Write one VCD per program (`<program>.vcd`) into this directory.
+        #[arg(long)]
+        vcd: Option<PathBuf>,
+    },
 }
 
 #[allow(clippy::too_many_arguments)]
@@ -265,6 +276,13 @@ fn run(cli: Cli) -> Result<()> {
         Cmd::Bench { cycles, nodes, vcd: None, .. } => canstar::designs::bench(cycles, &nodes),
         Cmd::Fuzz { frames, seed, per_run, jobs, run_seed, no_disturb, vcd_dir, max_failures } => {
             fuzz_cmd(frames, seed, per_run, jobs, run_seed, !no_disturb, vcd_dir, max_failures)
+        }
+        Cmd::Conformance { program, vcd } => {
+            let (_, failed) = canstar_sim::conformance::run_cli(program.as_deref(), vcd.as_deref(), &mut std::io::stdout())?;
+            if failed > 0 {
+                anyhow::bail!("{failed} conformance step(s) failed");
+            }
+            Ok(())
         }
     }
 }

@@ -17,6 +17,7 @@ fn id17(f: &Frame) -> bool {
     (f.id >> 17) & 1 == 1
 }
 
+#[allow(clippy::type_complexity)]
 struct RxStep {
     name: &'static str,
     frame: Frame,
@@ -24,6 +25,7 @@ struct RxStep {
     cond: Box<dyn Fn(&Frame, BuildOptions) -> bool>,
 }
 
+#[allow(clippy::type_complexity)]
 fn rx_steps() -> Vec<RxStep> {
     let dflt = BuildOptions::default();
     let r0r = BuildOptions { r0: true, ..dflt };

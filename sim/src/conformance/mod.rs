@@ -29,6 +29,27 @@
 //!   (its `field()`/`pos()`/`dbg_stuff` then show the target bit), waits for
 //!   the end of that bit's PH2 and sets the receive-path interference of the
 //!   forced node(s) for k nominal bit times, then sets it back to none.
+//!
+//! # Programs and deviations
+//!
+//! Implemented: baudrate, biterror, btl (case a only), crc, dlc, emlcount
+//! (all but tx_1..tx_6), extd_id, formerr, idle, overload, stuffbit,
+//! stufferr, txarb. Not yet: emlcount tx_1..tx_6, btl cases b–f. Where a
+//! step's frame condition cannot be met by a legal frame the program says
+//! so at the step (txarb_12, stufferr_5) and uses the
+//! nearest legal frame. biterror resets N1 between its receiver and
+//! transmitter parts. Frames with a recessive r0/r1 or a dominant SRR come
+//! from the scripted transmitter, a bus participant besides N2.
+//!
+//! # Timing of a stimulus
+//!
+//! The node reads the bus `L_rx` clocks late (`CanCore::l_rx`: synchroniser
+//! and bit-timing input stage). The override is therefore set `L_rx` clocks
+//! before the node's TX edge of the target bit, so that the node sees it
+//! from its SYNC_SEG, as the manual's WAIT_FOR does (never earlier than the
+//! clock that carries the previous bit's events: with T10/8/1 the override
+//! starts 2 clocks late).
+#![allow(clippy::redundant_closure_call)]
 
 use crate::bus::{Bus, NodeDelays};
 use crate::kernel::{ClockSpec, Component, Handle, Io, Sim};
@@ -38,8 +59,16 @@ use canstar_controller::frame::{bus_bits, BuildOptions, BusBit, Frame};
 use canstar_controller::fsm::*;
 use std::path::{Path, PathBuf};
 
+pub mod baudrate;
+pub mod biterror;
+pub mod btl;
+pub mod crc;
 pub mod dlc;
+pub mod emlcount;
 pub mod extd_id;
+pub mod formerr;
+pub mod idle;
+pub mod overload;
 pub mod stuffbit;
 pub mod stufferr;
 pub mod txarb;
@@ -67,8 +96,16 @@ pub struct Program {
 /// All programs, in plan order.
 pub fn programs() -> Vec<Program> {
     vec![
+        Program { name: "baudrate", run: baudrate::run },
+        Program { name: "biterror", run: biterror::run },
+        Program { name: "btl", run: btl::run },
+        Program { name: "crc", run: crc::run },
         Program { name: "dlc", run: dlc::run },
+        Program { name: "emlcount", run: emlcount::run },
         Program { name: "extd_id", run: extd_id::run },
+        Program { name: "formerr", run: formerr::run },
+        Program { name: "idle", run: idle::run },
+        Program { name: "overload", run: overload::run },
         Program { name: "stuffbit", run: stuffbit::run },
         Program { name: "stufferr", run: stufferr::run },
         Program { name: "txarb", run: txarb::run },
@@ -121,6 +158,7 @@ pub fn run_cli(program: Option<&str>, vcd_dir: Option<&Path>, out: &mut dyn std:
         Some(p) => {
             if !names.contains(&p) {
                 writeln!(out, "unknown program {p}; programs: {}", names.join(", "))?;
+                writeln!(out, "0 passed, 1 failed")?;
                 return Ok((0, 1));
             }
             vec![p]
@@ -214,7 +252,8 @@ impl std::fmt::Display for BitRec {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         write!(
             f,
-            "{}{} {}{} smp {} drv {} tec {} rec {} st {} [{}]",
+            "{:>9} ns {}{} {}{} smp {} drv {} tec {} rec {} st {} [{}]",
+            self.t / 1000,
             if self.field.has_role() { if self.tx_role { "Tx_" } else { "Rx_" } } else { "" },
             self.field.name(),
             self.pos,
@@ -355,24 +394,42 @@ impl Bench {
     /// N nodes with the given configurations (100 ns clocks, in phase), an
     /// optional scripted transmitter, started up as §0 says.
     pub fn new(cfgs: Vec<NodeConfig>, scripted: bool, vcd: Option<&Path>) -> Bench {
+        let mut b = Self::new_unintegrated(cfgs, scripted, vcd);
+        let n = b.n();
+        let ok = b.run_until(40, |b| (0..n).all(|i| b.node(i).field() == Field::Idle));
+        assert!(ok.is_ok(), "start-up: nodes did not integrate");
+        b
+    }
+
+    /// As [`Bench::new`], but returns right after the dominant start-up
+    /// pulse, while the nodes wait for bus idle.
+    pub fn new_unintegrated(cfgs: Vec<NodeConfig>, scripted: bool, vcd: Option<&Path>) -> Bench {
+        let clocks = vec![ClockSpec::new(CLOCK_PS); cfgs.len()];
+        Self::with_clocks(cfgs, clocks, scripted, vcd)
+    }
+
+    /// Nodes on their own clocks (unintegrated, as [`Bench::new_unintegrated`]);
+    /// the scripted transmitter uses N1's clock and bit length.
+    pub fn with_clocks(cfgs: Vec<NodeConfig>, clocks: Vec<ClockSpec>, scripted: bool, vcd: Option<&Path>) -> Bench {
         let mut sim = Sim::new(1);
         let n = cfgs.len();
+        let cfgs_brp0 = cfgs[0].brp;
         let mut names: Vec<String> = (1..=n).map(|i| format!("n{i}")).collect();
         if scripted {
             names.push("script".into());
         }
         let spec: Vec<(&str, NodeDelays)> = names.iter().map(|s| (s.as_str(), NodeDelays::default())).collect();
         let bus = Bus::build(&mut sim, "bus", &spec);
-        let clock = ClockSpec::new(CLOCK_PS);
+        let clock = clocks[0];
         let ntq = cfgs[0].ntq();
-        let bit_ps = CLOCK_PS * cfgs[0].brp as u64 * ntq as u64;
+        let bit_ps = clock.period_ps * cfgs[0].brp as u64 * ntq as u64;
         let mut nodes = vec![];
         for (i, mut c) in cfgs.into_iter().enumerate() {
             c.name = names[i].clone();
-            nodes.push(sim.add(CanNode::new(c, clock), &[bus.nodes[i].rx], &[bus.nodes[i].tx]));
+            nodes.push(sim.add(CanNode::new(c, clocks[i]), &[bus.nodes[i].rx], &[bus.nodes[i].tx]));
         }
         let script = if scripted {
-            Some(sim.add(Scripted::new("script", clock, ntq), &[bus.nodes[n].rx], &[bus.nodes[n].tx]))
+            Some(sim.add(Scripted::new("script", clock, ntq * cfgs_brp0), &[bus.nodes[n].rx], &[bus.nodes[n].tx]))
         } else {
             None
         };
@@ -384,7 +441,7 @@ impl Bench {
         }
         let mut b = Bench { sim, bus, nodes, script, recs: vec![vec![]; n], pending: vec![None; n], seen_cycles: vec![0; n], bit_ps, vcd: vcd_on };
         // Reset, then one dominant bit on every node's RX, then integration.
-        let t = b.sim.now() + (RESET_CYCLES as u64 + 2) * CLOCK_PS;
+        let t = b.sim.now() + (RESET_CYCLES as u64 + 2) * clocks.iter().map(|c| c.period_ps).max().unwrap_or(CLOCK_PS);
         b.run_until_time(t);
         for i in 0..n {
             b.bus.set_interference(&mut b.sim, i, Interference::StuckDominant);
@@ -394,8 +451,6 @@ impl Bench {
         for i in 0..n {
             b.bus.set_interference(&mut b.sim, i, Interference::None);
         }
-        let ok = b.run_until(40, |b| (0..n).all(|i| b.node(i).field() == Field::Idle));
-        assert!(ok.is_ok(), "start-up: nodes did not integrate");
         b
     }
 
@@ -416,6 +471,18 @@ impl Bench {
     }
     pub fn state(&self, i: usize) -> u32 {
         self.node(i).state()
+    }
+    /// Completed bus-off recovery runs of node `i`.
+    pub fn runs(&self, i: usize) -> u32 {
+        self.node(i).core.dbg_runs.val().index() as u32
+    }
+    /// (field, pos) of the bit node `i` has in progress.
+    pub fn at(&self, i: usize) -> (Field, u32) {
+        (self.node(i).field(), self.node(i).pos())
+    }
+    /// Set the interference of node `i` now (and leave it).
+    pub fn set(&mut self, i: usize, mode: Interference) {
+        self.bus.set_interference(&mut self.sim, i, mode);
     }
     /// All bits node `i` processed so far.
     pub fn recs(&self, i: usize) -> &[BitRec] {
@@ -527,10 +594,20 @@ impl Bench {
     }
 
     /// Run until node `i` has processed the bit before (field, pos, stuff):
-    /// its debug bundle then shows the target as the bit in progress.
+    /// its debug bundle then shows the target as the bit in progress. If
+    /// called no later than the forcing instant of the last processed bit
+    /// (e.g. right after a forcing window), that bit counts.
     pub fn wait_for(&mut self, i: usize, field: Field, pos: u32, stuff: bool, max_bits: u64) -> Result<(), String> {
         let m0 = self.mark(i);
         let mut m = m0;
+        // Right at the clock that carries a bit's events, the target may
+        // already be the bit in progress.
+        let rest = self.ph2_rest_ps(i);
+        let nd = self.node(i);
+        let period = nd.bit_time_ps() / (nd.config().ntq() as u64 * nd.config().brp as u64);
+        if self.recs[i].last().is_some_and(|r| self.sim.now() <= r.t + rest + period) {
+            m = usize::MAX;
+        }
         let end = self.sim.now() + max_bits * self.bit_ps;
         loop {
             if self.mark(i) != m {
@@ -554,10 +631,17 @@ impl Bench {
         }
     }
 
-    /// Time from the clock that carries a bit's events to the end of its PH2.
-    fn ph2_rest_ps(&self, i: usize) -> u64 {
-        let c = self.node(i).config();
-        (c.ph2() as u64 * c.brp as u64).saturating_sub(1) * CLOCK_PS
+    /// Time from the clock that carries a bit's events to the end of its PH2
+    /// as the node perceives it: the node reads the bus `L_rx` clocks late
+    /// (RX synchroniser and bit timing input stage, §1.5), so an override
+    /// set `L_rx` clocks before its TX edge reaches it at its SYNC_SEG, as
+    /// in the manual's WAIT_FOR. Never earlier than now.
+    pub fn ph2_rest_ps(&self, i: usize) -> u64 {
+        let nd = self.node(i);
+        let c = nd.config();
+        let period = nd.bit_time_ps() / (c.ntq() as u64 * c.brp as u64);
+        let l_rx = canstar_controller::core::CanCore::l_rx(c.sync_depth) as u64;
+        (c.ph2() as u64 * c.brp as u64).saturating_sub(1 + l_rx) * period
     }
 
     /// Set the interference of `nodes` for `k` nominal bit times from now,
@@ -574,15 +658,17 @@ impl Bench {
     }
 
     /// WAIT_FOR (field, pos, stuff) at `nodes[0]`, then force `nodes` for `k`
-    /// bits. Returns the mark of `nodes[0]` at the first forced bit (its
+    /// bits, and run until `nodes[0]` has processed the k forced bits. Returns the mark of `nodes[0]` at the first forced bit (its
     /// record is `since(nodes[0], mark)[0]`).
     pub fn force_at(&mut self, nodes: &[usize], field: Field, pos: u32, stuff: bool, mode: Interference, k: u64) -> Result<usize, String> {
         let i = nodes[0];
         self.wait_for(i, field, pos, stuff, 3000)?;
-        let t = self.sim.now() + self.ph2_rest_ps(i);
+        let t = self.recs[i].last().map_or(0, |r| r.t) + self.ph2_rest_ps(i);
         self.run_until_time(t);
         let m = self.mark(i);
         self.force_now(nodes, mode, k);
+        // The last forced bit is sampled after the window closes (RX latency).
+        self.run_until(2, |b| b.mark(i) >= m + k as usize)?;
         Ok(m)
     }
 
@@ -609,6 +695,11 @@ impl Drop for Bench {
 /// Standard configuration of node `name` (T10/6/4, BRP 1).
 pub fn cfg() -> NodeConfig {
     NodeConfig::named("n")
+}
+
+/// Timing T10/8/1 (PROP 5, PH1 2, PH2 2, SJW 1), BRP 1.
+pub fn cfg_t10_8_1() -> NodeConfig {
+    NodeConfig::named("n").timing(1, 5, 2, 1)
 }
 
 /// Check that the frames delivered at node `i` since count `from` are `want`.
@@ -648,4 +739,61 @@ macro_rules! conformance_tests {
             assert_eq!(ran, listed, "steps run vs tests listed");
         }
     };
+}
+
+/// Which counter of N1 a step checks.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Ctr {
+    Tec,
+    Rec,
+}
+
+impl Bench {
+    pub fn ctr(&self, i: usize, c: Ctr) -> u32 {
+        match c {
+            Ctr::Tec => self.tec(i),
+            Ctr::Rec => self.rec(i),
+        }
+    }
+
+    /// Run until node `i` has finished its flags (and the dominant bits after
+    /// them): it is at Error/Overload_Delimiter 2 or later, Intermission,
+    /// Suspend_Transmission or Bus_Idle.
+    pub fn settle(&mut self, i: usize) -> Result<(), String> {
+        self.run_until(80, |b| {
+            let (f, p) = b.at(i);
+            matches!(f, Field::Inter | Field::Idle | Field::Suspend) || (matches!(f, Field::ErrDel | Field::OvlDel) && p >= 2)
+        })
+        .map_err(|e| format!("N{} did not reach a delimiter: {e}", i + 1))
+    }
+
+    /// WAIT_FOR the target at `nodes[0]`, force `nodes` for `k` bits and
+    /// check that the first forced bit of `nodes[0]` carries every event of
+    /// `want`. Returns the mark of the first forced bit.
+    pub fn forced_bit(&mut self, nodes: &[usize], field: Field, pos: u32, mode: Interference, k: u64, want: &[usize]) -> Result<usize, String> {
+        let i = nodes[0];
+        let m = self.force_at(nodes, field, pos, false, mode, k)?;
+        let r = self.rec_at(i, m)?;
+        ensure!(r.field == field && r.pos == pos, "forced bit recorded as {r}");
+        let names = ["SOF", "ARB_LOST", "BIT_ERR", "STUFF_ERR", "CRC_ERR", "FORM_ERR", "ACK_ERR", "AEF", "PEF", "OLF", "OVL", "DAF"];
+        for &e in want {
+            ensure!(r.has(e), "forced bit {r}: expected {}", names.get(e).unwrap_or(&"?"));
+        }
+        Ok(m)
+    }
+
+    /// One forcing step: WAIT_FOR the target at `nodes[0]`, force `nodes`
+    /// for `k` bits, check that the first forced bit of `nodes[0]` carries
+    /// every event of `want`, settle, and check the change of `nodes[0]`'s
+    /// counter. Returns the mark of the first forced bit.
+    #[allow(clippy::too_many_arguments)]
+    pub fn forced_step(&mut self, nodes: &[usize], field: Field, pos: u32, mode: Interference, k: u64, want: &[usize], ctr: Ctr, delta: i64) -> Result<usize, String> {
+        let i = nodes[0];
+        let c0 = self.ctr(i, ctr) as i64;
+        let m = self.forced_bit(nodes, field, pos, mode, k, want)?;
+        self.settle(i)?;
+        let c1 = self.ctr(i, ctr) as i64;
+        ensure!(c1 - c0 == delta, "{ctr:?} {c0}→{c1}, expected Δ {delta:+}:{}", self.dump_events(i, m));
+        Ok(m)
+    }
 }

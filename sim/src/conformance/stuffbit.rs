@@ -109,7 +109,7 @@ pub fn frame_set() -> (Vec<(Frame, BuildOptions)>, Vec<Frame>, Vec<String>) {
     }
     let gain = |c: &BTreeSet<u32>, covered: &BTreeSet<u32>| -> u64 { c.difference(covered).map(|i| 1_000_000 / freq[i]).sum() };
     let mut covered = BTreeSet::new();
-    let mut pick = |filter: &dyn Fn(&Frame, BuildOptions) -> bool, covered: &mut BTreeSet<u32>| -> (Frame, BuildOptions) {
+    let pick = |filter: &dyn Fn(&Frame, BuildOptions) -> bool, covered: &mut BTreeSet<u32>| -> (Frame, BuildOptions) {
         let best = cand.iter().filter(|c| filter(&c.0, c.1)).max_by_key(|c| gain(&c.2, covered)).unwrap();
         covered.extend(best.2.iter().copied());
         (best.0.clone(), best.1)
