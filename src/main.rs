@@ -193,6 +193,10 @@ fn fuzz_cmd(
         s.cycles as f64 / dt,
         jobs
     );
+    println!(
+        "longest dominant run driven by one node: {} bits (bound {} for its flag restarts)",
+        s.max_dom_run.0, s.max_dom_run.1
+    );
     println!("divergences: {div}, property violations: {viol}");
     for f in &s.failures {
         println!("  failing run seed {} (rerun: canstar fuzz --run-seed {} --per-run {})", f.seed, f.seed, f.frames);

@@ -232,6 +232,8 @@ impl LockstepNode {
             host_recovery: cfg.host_recovery,
         };
         let depth = cfg.sync_depth;
+        // the golden RX path: `depth` synchroniser stages + the bit timing's own register
+        assert_eq!(depth + canstar_hdl::btl::L_RX, canstar_controller::core::CanCore::l_rx(depth), "L_rx model");
         let name = cfg.name.clone();
         let f = |v: u32| v.saturating_sub(1);
         let btl_cfg = BtlInputs {

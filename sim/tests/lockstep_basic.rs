@@ -89,3 +89,33 @@ fn a_wrong_rx_latency_shows_as_a_timing_divergence() {
     let d = sim.get(b).divergence().expect("divergence expected");
     assert!(["sample", "busmon", "tx"].contains(&d.signal.as_str()), "{d}");
 }
+
+#[test]
+fn bus_off_and_recovery_stay_in_lock_step() {
+    let mut sim = Sim::new(11);
+    let bus = Bus::uniform(&mut sim, "bus", 3, NodeDelays::symmetric(5_000, 5_000));
+    let mut hs = vec![];
+    for i in 0..3 {
+        let mut n = LockstepNode::new(NodeConfig::named(&format!("n{i}")), ClockSpec::new(100_000).with_ppm(300.0 * i as f64).with_phase(13_000 * i as u64));
+        n.record_steps();
+        hs.push(sim.add(n, &[bus.nodes[i].rx], &[bus.nodes[i].tx]));
+    }
+    sim.run_for(30_000_000);
+    // n0 deaf while it transmits: bit errors until bus-off
+    bus.set_interference(&mut sim, 0, Interference::StuckRecessive);
+    sim.get_mut(hs[0]).node.request(Frame::std(0x2aa, &[0xde, 0xad]));
+    sim.get_mut(hs[1]).node.request(Frame::ext(0x1555_5555, &[1, 2, 3]));
+    sim.run_for(900_000_000);
+    bus.set_interference(&mut sim, 0, Interference::None);
+    let ok = sim.run_until_cond(sim.now() + 5_000_000_000, |s| hs.iter().all(|h| !s.get(*h).node.pending()));
+    assert!(ok, "frames not sent after recovery");
+    sim.run_for(30_000_000);
+    for h in &hs {
+        let n = sim.get(*h);
+        assert!(n.divergence().is_none(), "{}", n.divergence().unwrap());
+    }
+    let n0 = sim.get(hs[0]);
+    assert!(n0.steps().iter().any(|(_, o)| o.state == canstar_sim::golden::FaultState::BusOff), "n0 never went bus-off");
+    assert!(n0.steps().iter().any(|(_, o)| o.has("RECOVERED")));
+    assert_eq!(sim.get(hs[2]).node.received().len(), 2);
+}
