@@ -5,8 +5,7 @@ use crate::generate::{block, Artifact, Root};
 use rust_hdl::prelude::Block;
 use anyhow::Result;
 use canstar_hdl::{btl, crc15, stuff, sync};
-use canstar_sim::bench::{bench as run_bench, BenchConfig, PatternNode};
-use canstar_sim::bus::Bus;
+use canstar_sim::bench::{bench as run_bench, build_bus, BenchConfig};
 use std::path::Path;
 use canstar_sim::HdlComponent;
 
@@ -198,13 +197,7 @@ pub fn bench(cycles: u64, nodes: &[usize]) -> Result<()> {
 pub fn bench_vcd(path: &Path, nodes: usize, cycles: u64, signals: Option<&[String]>, seed: u64) -> Result<()> {
     anyhow::ensure!(nodes >= 1, "node count must be at least 1");
     let cfg = BenchConfig { seed, ..BenchConfig::default() };
-    let mut sim = canstar_sim::Sim::new(cfg.seed);
-    let bus = Bus::uniform(&mut sim, "bus", nodes, cfg.delays);
-    for (i, node) in bus.nodes.iter().enumerate() {
-        let ppm = if nodes > 1 { -cfg.ppm_spread + 2.0 * cfg.ppm_spread * i as f64 / (nodes - 1) as f64 } else { 0.0 };
-        let clk = sim.random_phase_clock(cfg.period_ps, ppm);
-        sim.add(PatternNode::new(btl_node(i, clk), cfg.cycles_per_bit, 0x1234_5678 ^ (i as u32 * 0x9e37_79b9)), &[node.rx], &[node.tx]);
-    }
+    let mut sim = build_bus(&cfg, nodes, &mut btl_node);
     let filter: Option<Vec<&str>> = signals.map(|v| v.iter().map(|s| s.as_str()).collect());
     sim.start_vcd_file(path, filter.as_deref())?;
     sim.run_until(cfg.period_ps * cycles);

@@ -172,12 +172,10 @@ impl std::fmt::Display for BenchReport {
     }
 }
 
-fn run_bus<C: Component>(
-    cfg: &BenchConfig,
-    n: usize,
-    cycles_per_node: u64,
-    factory: &mut impl FnMut(usize, ClockSpec) -> C,
-) -> (Sim, f64) {
+/// The benchmark bus: `n` nodes built by `factory(index, clock)`, each
+/// wrapped in a [`PatternNode`], on a bus with `cfg.delays`, clocks spread
+/// over `[-ppm_spread, +ppm_spread]` with random phases. Not yet run.
+pub fn build_bus<C: Component>(cfg: &BenchConfig, n: usize, factory: &mut impl FnMut(usize, ClockSpec) -> C) -> Sim {
     let mut sim = Sim::new(cfg.seed);
     let bus = Bus::uniform(&mut sim, "bus", n, cfg.delays);
     for (i, node) in bus.nodes.iter().enumerate() {
@@ -186,6 +184,16 @@ fn run_bus<C: Component>(
         let inner = factory(i, clk);
         sim.add(PatternNode::new(inner, cfg.cycles_per_bit, 0x1234_5678 ^ (i as u32 * 0x9e37_79b9)), &[node.rx], &[node.tx]);
     }
+    sim
+}
+
+fn run_bus<C: Component>(
+    cfg: &BenchConfig,
+    n: usize,
+    cycles_per_node: u64,
+    factory: &mut impl FnMut(usize, ClockSpec) -> C,
+) -> (Sim, f64) {
+    let mut sim = build_bus(cfg, n, factory);
     let end = (cfg.period_ps * cycles_per_node).saturating_sub(1);
     let t0 = Instant::now();
     sim.run_until(end);
