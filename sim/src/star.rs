@@ -202,3 +202,120 @@ impl Component for AndHub {
         }
     }
 }
+
+/// The generated hub RTL ([`canstar_hub::hub::Hub`], frame monitor included) as a
+/// kernel component. Bind it exactly like [`AndHub`]:
+/// `sim.add(hub, &ports.hub_inputs(), &ports.hub_outputs())` (inputs: uplinks then
+/// incoming sublinks; outputs: downlinks then outgoing sublinks).
+///
+/// `rst_n` is held low for the first [`RtlHub::RESET_CYCLES`] clocks, then high.
+/// The `inject_fault` button is a field ([`RtlHub::inject_button`]): set it from
+/// the test or schedule presses with [`RtlHub::press_inject_at`].
+pub struct RtlHub {
+    name: String,
+    clock: ClockSpec,
+    /// The RTL (read status outputs such as `isolated[i].val()` between steps).
+    pub hub: canstar_hub::hub::Hub,
+    n: usize,
+    m: usize,
+    cycles: u64,
+    /// Level of the `inject_fault` input.
+    pub inject_button: bool,
+    /// Scheduled presses: (start ps, end ps) during which the button is held.
+    presses: Vec<(u64, u64)>,
+}
+
+impl RtlHub {
+    /// Clocks with `rst_n` low after power-up.
+    pub const RESET_CYCLES: u64 = 4;
+
+    /// A hub with the configuration's clock (`clock_hz`, no offset).
+    pub fn new(name: &str, cfg: &canstar_hub::hub::HubConfig) -> Self {
+        let period = (1e12 / cfg.clock_hz as f64).round() as u64;
+        Self::with_clock(name, cfg, ClockSpec::new(period))
+    }
+
+    /// A hub with an explicit clock (ppm offset, phase).
+    pub fn with_clock(name: &str, cfg: &canstar_hub::hub::HubConfig, clock: ClockSpec) -> Self {
+        let mut hub = canstar_hub::hub::Hub::new(cfg);
+        for r in hub.rx.iter_mut().chain(hub.reh_rx.iter_mut()) {
+            r.next = true;
+        }
+        hub.rst_n.next = false;
+        canstar_hdl::drive::init(&mut hub);
+        RtlHub {
+            name: name.to_string(),
+            clock,
+            hub,
+            n: cfg.ports,
+            m: cfg.sublinks,
+            cycles: 0,
+            inject_button: false,
+            presses: Vec::new(),
+        }
+    }
+
+    /// Hold the `inject_fault` button during `[t, t + width)` (ps).
+    pub fn press_inject_at(&mut self, t: u64, width: u64) {
+        self.presses.push((t, t + width));
+    }
+
+    /// Which node ports are isolated.
+    pub fn isolated(&self) -> Vec<bool> {
+        self.hub.isolated.iter().map(|s| s.val()).collect()
+    }
+
+    /// Which node ports are reported silent.
+    pub fn silent(&self) -> Vec<bool> {
+        self.hub.silent.iter().map(|s| s.val()).collect()
+    }
+
+    /// Which incoming sublinks are isolated.
+    pub fn sub_isolated(&self) -> Vec<bool> {
+        self.hub.sub_isolated.iter().map(|s| s.val()).collect()
+    }
+
+    /// The 4-bit frame state output.
+    pub fn frame_state(&self) -> u8 {
+        self.hub.frame_state.val().index() as u8
+    }
+
+    /// Clock cycles simulated.
+    pub fn cycles(&self) -> u64 {
+        self.cycles
+    }
+}
+
+impl Component for RtlHub {
+    fn name(&self) -> &str {
+        &self.name
+    }
+    fn clock(&self) -> ClockSpec {
+        self.clock
+    }
+    fn tick(&mut self, io: &mut Io<'_>) {
+        let now = io.now();
+        let pressed = self.inject_button || self.presses.iter().any(|&(a, b)| now >= a && now < b);
+        let hub = &mut self.hub;
+        hub.rst_n.next = self.cycles >= Self::RESET_CYCLES;
+        hub.inject_fault.next = pressed;
+        for i in 0..self.n {
+            hub.rx[i].next = io.input(i);
+        }
+        for j in 0..self.m {
+            hub.reh_rx[j].next = io.input(self.n + j);
+        }
+        canstar_hdl::drive::cycle(hub);
+        for i in 0..self.n {
+            io.set_output(i, hub.tx[i].val());
+        }
+        for j in 0..self.m {
+            io.set_output(self.n + j, hub.hub_tx[j].val());
+        }
+        self.cycles += 1;
+    }
+    fn probe(&self, probe: &mut dyn rust_hdl::prelude::Probe) {
+        use rust_hdl::prelude::Block;
+        self.hub.accept(&self.name, probe);
+    }
+}
