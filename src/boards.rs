@@ -54,9 +54,31 @@ pub struct Board {
     #[serde(default)]
     pub iostandard: Option<String>,
     pub clock: ClockPin,
+    /// Pins of the hub's port bits (the published hub pin map on the XSA board).
     pub pins: BTreeMap<String, String>,
     #[serde(default)]
     pub debug: DebugPins,
+    /// Pinout of the controller designs on the same board (optional): a
+    /// different bitstream, so its pins may reuse the hub's.
+    #[serde(default)]
+    pub controller: Option<ControllerPins>,
+}
+
+/// The controller's pinout on a board.
+#[derive(Debug, Clone, PartialEq, Eq, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ControllerPins {
+    /// Role (port bit of the controller's board top) -> pin.
+    pub pins: BTreeMap<String, String>,
+}
+
+/// Which of a board's pinouts a design uses.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Pinout {
+    /// `[pins]` and `[debug]`: the hub.
+    Hub,
+    /// `[controller.pins]`; debug outputs go to the debug pins it leaves free.
+    Controller,
 }
 
 /// The boards shipped with canstar.
@@ -99,7 +121,26 @@ impl Board {
         for pin in &self.debug.pins {
             claim_pin(&mut used, pin, "a debug pin".into())?;
         }
+        if let Some(c) = &self.controller {
+            let mut used: BTreeMap<&str, String> = BTreeMap::new();
+            claim_pin(&mut used, &self.clock.pin, format!("clock port {}", self.clock.port))?;
+            for (role, pin) in &c.pins {
+                claim_pin(&mut used, pin, format!("controller role {role}"))?;
+            }
+        }
         Ok(())
+    }
+
+    /// The role -> pin map and the free debug pins of one pinout.
+    fn pinout(&self, which: Pinout) -> Result<(&BTreeMap<String, String>, Vec<&String>)> {
+        match which {
+            Pinout::Hub => Ok((&self.pins, self.debug.pins.iter().collect())),
+            Pinout::Controller => {
+                let c = self.controller.as_ref().ok_or_else(|| anyhow!("board {} has no controller pinout ([controller.pins])", self.name))?;
+                let used: BTreeSet<&String> = c.pins.values().collect();
+                Ok((&c.pins, self.debug.pins.iter().filter(|p| !used.contains(p)).collect()))
+            }
+        }
     }
 
     /// The clock period in nanoseconds.
@@ -151,23 +192,23 @@ fn ucf_net(role: &str) -> String {
     role.replace('[', "<").replace(']', ">")
 }
 
-/// Render the pin file of `design` on `board`.
-pub fn pin_file(board: &Board, design_name: &str, design: &DesignPins) -> Result<PinFile> {
+/// Render the pin file of `design` on `board` with the board's `which` pinout.
+pub fn pin_file(board: &Board, which: Pinout, design_name: &str, design: &DesignPins) -> Result<PinFile> {
+    let (pins, free_debug) = board.pinout(which)?;
     let mut lines: Vec<(String, String)> = vec![];
     let mut seen = BTreeSet::new();
     for role in &design.functional {
         if !seen.insert(role.clone()) {
             bail!("design {design_name} lists the port bit {role} twice");
         }
-        let pin = board
-            .pins
+        let pin = pins
             .get(role)
             .ok_or_else(|| anyhow!("board {} has no pin for port bit `{role}` of design {design_name}", board.name))?;
         lines.push((role.clone(), pin.clone()));
     }
     let mut placed_debug = vec![];
     let mut left_out = vec![];
-    let mut free = board.debug.pins.iter();
+    let mut free = free_debug.into_iter();
     for role in &design.debug {
         match free.next() {
             Some(pin) => placed_debug.push((role.clone(), pin.clone())),
@@ -269,7 +310,7 @@ mod tests {
     #[test]
     fn xsa_ucf_matches_the_published_pin_map() {
         let b = Board::lookup("xsa-3s1000").unwrap();
-        let f = pin_file(&b, "hub", &hub_pins()).unwrap();
+        let f = pin_file(&b, Pinout::Hub, "hub", &hub_pins()).unwrap();
         assert!(ucf_well_formed(&f.text), "{}", f.text);
         for (net, pin) in [
             ("nRST", "E11"), ("clkOscl", "H16"), ("injectFault", "A13"), ("rx_0", "H15"), ("rx_1", "H14"),
@@ -302,14 +343,14 @@ mod tests {
         let b = Board::lookup("xsa-3s1000").unwrap();
         let mut d = hub_pins();
         d.functional.extend(DesignPins::port_roles("rx", 4).into_iter().skip(3));
-        let e = pin_file(&b, "hub", &d).unwrap_err().to_string();
+        let e = pin_file(&b, Pinout::Hub, "hub", &d).unwrap_err().to_string();
         assert!(e.contains("no pin for port bit `rx[3]`"), "{e}");
     }
 
     #[test]
     fn ice40_pcf() {
         let b = Board::lookup("ice40-hx8k").unwrap();
-        let f = pin_file(&b, "hub", &hub_pins()).unwrap();
+        let f = pin_file(&b, Pinout::Hub, "hub", &hub_pins()).unwrap();
         assert!(f.text.contains("set_io clock P7"));
         assert!(f.text.contains("set_io rx[0] A1"));
     }

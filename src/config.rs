@@ -80,12 +80,29 @@ impl Default for Rtl {
     }
 }
 
+/// The CAN controller designs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Controller {
+    /// Also emit the SJA1000-compatible (PeliCAN) register block on Wishbone
+    /// (`canstar_sja1000`, 64-byte RX FIFO, acceptance filters) and its board
+    /// pin files; `false` emits only the core with its native interface.
+    pub host_interface: bool,
+}
+
+impl Default for Controller {
+    fn default() -> Self {
+        Self { host_interface: true }
+    }
+}
+
 /// The whole generator configuration.
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct Config {
     pub bit_timing: BitTiming,
     pub rtl: Rtl,
+    pub controller: Controller,
     /// The star hub (defaults: the reference ReCANcentrate hub, N = 3, M = 2,
     /// 14.74 MHz, 8 TQ of 2 clocks per bit). Bit-timing fields here use the
     /// register encoding (value - 1), see `canstar_hub::hub::HubBitTiming`.

@@ -1,6 +1,6 @@
 //! The registry of generatable designs and benchmarks.
 use crate::config::Config;
-use crate::boards::{pin_file, Board, DesignPins, Format, BUILTIN};
+use crate::boards::{pin_file, Board, DesignPins, Format, Pinout, BUILTIN};
 use crate::generate::{block, Artifact, Root};
 use rust_hdl::prelude::Block;
 use anyhow::Result;
@@ -41,15 +41,45 @@ pub fn controller(config: &Config) -> Result<Vec<Artifact>> {
 }
 
 /// The SJA1000-compatible (PeliCAN) controller: register block on Wishbone,
-/// RX FIFO, acceptance filters, around the CAN core.
-pub fn sja1000(_config: &Config) -> Result<Vec<Artifact>> {
-    let mut a = block(
-        canstar_controller::sja1000::Sja1000::new(),
-        "canstar_sja1000",
-        "SJA1000 (PeliCAN) compatible CAN controller, Wishbone B4 classic slave, 8-bit (see controller/src/sja1000.rs)",
-    );
-    a.path = std::path::PathBuf::from("controller/canstar_sja1000.v");
-    Ok(vec![a])
+/// RX FIFO, acceptance filters, around the CAN core, as
+/// `verilog-out/controller/canstar_sja1000.v` (module `canstar_sja1000`, plus the board
+/// top `canstar_sja1000_board` with an active-low reset), and its pin files on every
+/// board with a controller pinout (or the one asked for).
+pub fn sja1000(_config: &Config, board: Option<&str>) -> Result<Vec<Artifact>> {
+    let mut uut = canstar_controller::sja1000::Sja1000::new();
+    uut.connect_all();
+    let name = "canstar_sja1000";
+    let inner = canstar_hdl::flow::rename_top(&canstar_hdl::flow::emit(&uut), name);
+    let board_name = format!("{name}_board");
+    let (top, ports) = crate::generate::board_top(&inner, name, "rst", &board_name);
+    let desc = "SJA1000 (PeliCAN) compatible CAN controller, Wishbone B4 classic slave, 8-bit (see controller/src/sja1000.rs); board top with active-low reset";
+    let mut out = vec![Artifact {
+        root: Root::Verilog,
+        path: format!("controller/{name}.v").into(),
+        contents: crate::generate::header_text(name, desc) + &inner + "\n" + &top,
+    }];
+    let mut pins = DesignPins::default();
+    for (p, bits, _) in &ports {
+        if p != "clock" {
+            pins.functional.extend(DesignPins::port_roles(p, *bits));
+        }
+    }
+    let boards = match board {
+        Some(b) => vec![Board::lookup(b)?],
+        None => hub_boards(None)?.into_iter().filter(|b| b.controller.is_some()).collect(),
+    };
+    for b in &boards {
+        let f = pin_file(b, Pinout::Controller, &board_name, &pins)?;
+        out.push(Artifact { root: Root::Constraints, path: format!("{}/{board_name}.{}", b.name, ext(b)).into(), contents: f.text });
+    }
+    Ok(out)
+}
+
+fn ext(b: &Board) -> &'static str {
+    match b.format {
+        Format::Ucf => "ucf",
+        Format::Pcf => "pcf",
+    }
 }
 
 /// Boards a hub's pin files are generated for: the one asked for, or all built-in ones.
@@ -114,12 +144,8 @@ pub fn hub(config: &Config, board: Option<&str>) -> Result<Vec<Artifact>> {
                     b.name, b.clock.hz, cfg.clock_hz
                 );
             }
-            let f = pin_file(b, name, &pins)?;
-            let ext = match b.format {
-                Format::Ucf => "ucf",
-                Format::Pcf => "pcf",
-            };
-            out.push(Artifact { root: Root::Constraints, path: format!("{}/{name}.{ext}", b.name).into(), contents: f.text });
+            let f = pin_file(b, Pinout::Hub, name, &pins)?;
+            out.push(Artifact { root: Root::Constraints, path: format!("{}/{name}.{}", b.name, ext(b)).into(), contents: f.text });
         }
     }
     Ok(out)
@@ -128,7 +154,7 @@ pub fn hub(config: &Config, board: Option<&str>) -> Result<Vec<Artifact>> {
 /// The designs `canstar report` measures: (name, Verilog, top module).
 pub fn report_designs(config: &Config) -> Result<Vec<(String, String, String)>> {
     let mut v = vec![];
-    for a in blocks(config)?.into_iter().chain(controller(config)?).chain(sja1000(config)?).chain(hub(config, None)?) {
+    for a in blocks(config)?.into_iter().chain(controller(config)?).chain(sja1000(config, None)?).chain(hub(config, None)?) {
         if a.root != Root::Verilog {
             continue;
         }

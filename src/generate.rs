@@ -63,7 +63,9 @@ pub fn render(target: Target, config: &Config, board: Option<&str>) -> Result<Ve
     }
     if matches!(target, Target::Controller | Target::All) {
         out.extend(crate::designs::controller(config)?);
-        out.extend(crate::designs::sja1000(config)?);
+        if config.controller.host_interface {
+            out.extend(crate::designs::sja1000(config, board)?);
+        }
     }
     if matches!(target, Target::Hub | Target::All) {
         out.extend(crate::designs::hub(config, board)?);
@@ -180,9 +182,47 @@ pub fn vector_wrapper(inner: &str, inner_top: &str, name: &str) -> (String, Vec<
     (v, list)
 }
 
+/// A board top around `inner_top` with the same ports, except that the
+/// active-high reset input `reset` becomes the active-low `rst_n` of a
+/// board's reset switch. Returns the module and its ports (name, bits, output).
+pub fn board_top(inner: &str, inner_top: &str, reset: &str, name: &str) -> (String, Vec<(String, usize, bool)>) {
+    let ports = crate::report::parse_ports(inner, inner_top);
+    let mut list = vec![];
+    let mut decl = vec![];
+    let mut conns = vec![];
+    for (p, bits, out) in &ports {
+        let range = if *bits > 1 { format!("[{}:0] ", bits - 1) } else { String::new() };
+        let dir = if *out { "output" } else { "input" };
+        if p == reset {
+            decl.push(format!("    input wire rst_n;"));
+            conns.push(format!("        .{p}(~rst_n)"));
+            list.push(("rst_n".to_string(), 1, false));
+        } else {
+            decl.push(format!("    {dir} wire {range}{p};"));
+            conns.push(format!("        .{p}({p})"));
+            list.push((p.clone(), *bits, *out));
+        }
+    }
+    let names: Vec<&str> = list.iter().map(|p| p.0.as_str()).collect();
+    let mut v = format!("module {name}({});\n", names.join(", "));
+    v += &decl.join("\n");
+    v += &format!("\n    {inner_top} core (\n{}\n    );\nendmodule // {name}\n", conns.join(",\n"));
+    (v, list)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn board_top_inverts_the_reset() {
+        let inner = "module top(clock,rst,a,y);\n    input wire  clock;\n    input wire  rst;\n    input wire  [7:0] a;\n    output reg  y;\nendmodule // top\n";
+        let (v, ports) = board_top(inner, "top", "rst", "board");
+        assert_eq!(ports, vec![("clock".into(), 1, false), ("rst_n".into(), 1, false), ("a".into(), 8, false), ("y".into(), 1, true)]);
+        for s in ["module board(clock, rst_n, a, y);", ".rst(~rst_n)", "input wire [7:0] a;", "output wire y;"] {
+            assert!(v.contains(s), "missing `{s}` in\n{v}");
+        }
+    }
 
     #[test]
     fn vector_wrapper_groups_arrays() {

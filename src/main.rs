@@ -46,6 +46,12 @@ enum Cmd {
         /// Clock frequency nextpnr is asked to meet, in MHz.
         #[arg(long, default_value_t = 50.0)]
         freq: f64,
+        /// Only these designs (comma-separated top names, e.g. canstar_can_core,canstar_hub).
+        #[arg(long, value_delimiter = ',')]
+        design: Vec<String>,
+        /// Time limit for place and route of one design, in seconds (0: synthesis only).
+        #[arg(long, default_value_t = 900)]
+        pnr_timeout: u64,
     },
     /// Simulate a bus scenario (TOML: nodes, bit timing, clock offsets, frames, interference).
     Sim {
@@ -230,15 +236,23 @@ fn run(cli: Cli) -> Result<()> {
             }
             Ok(())
         }
-        Cmd::Report { config, freq } => {
+        Cmd::Report { config, freq, design, pnr_timeout } => {
             let cfg = match &config {
                 Some(p) => Config::load(p)?,
                 None => Config::default(),
             };
+            let designs = canstar::designs::report_designs(&cfg)?;
+            if let Some(unknown) = design.iter().find(|d| !designs.iter().any(|(n, _, _)| n == *d)) {
+                let known: Vec<&str> = designs.iter().map(|(n, _, _)| n.as_str()).collect();
+                anyhow::bail!("unknown design {unknown:?} (known: {})", known.join(", "));
+            }
             let mut rows = vec![];
-            for (name, verilog, top) in canstar::designs::report_designs(&cfg)? {
+            for (name, verilog, top) in designs {
+                if !design.is_empty() && !design.contains(&name) {
+                    continue;
+                }
                 eprintln!("synthesising {name} ...");
-                rows.push(canstar::report::measure(&name, &verilog, &top, freq)?);
+                rows.push(canstar::report::measure(&name, &verilog, &top, freq, pnr_timeout)?);
             }
             println!("{}", canstar::report::table(&rows));
             println!("\ntools: {}", canstar::report::tool_versions());

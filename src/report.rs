@@ -120,8 +120,9 @@ pub fn pnr_wrapper(verilog: &str, top: &str) -> (String, String) {
 }
 
 /// Synthesise (and place and route, if nextpnr-ice40 is present) one design.
-/// `clock_mhz` is the frequency nextpnr is asked to meet.
-pub fn measure(design: &str, verilog: &str, top: &str, clock_mhz: f64) -> Result<Row> {
+/// `clock_mhz` is the frequency nextpnr is asked to meet; `pnr_timeout_s`
+/// limits place and route (0 skips it).
+pub fn measure(design: &str, verilog: &str, top: &str, clock_mhz: f64, pnr_timeout_s: u64) -> Result<Row> {
     if !have("yosys") {
         bail!("yosys not found on PATH (scripts/test-all.sh installs it)");
     }
@@ -153,7 +154,9 @@ pub fn measure(design: &str, verilog: &str, top: &str, clock_mhz: f64) -> Result
         xc3s_ff: count_cells(&xil, |n| n.starts_with("FD")),
         ..Default::default()
     };
-    if have("nextpnr-ice40") {
+    if pnr_timeout_s == 0 {
+        row.pnr_note = Some("place and route skipped (--pnr-timeout 0)".into());
+    } else if have("nextpnr-ice40") {
         // A time limit, so that an unroutable design cannot hang the report.
         // Place the measurement wrapper, so that designs with wide native
         // interfaces fit the package too.
@@ -164,7 +167,8 @@ pub fn measure(design: &str, verilog: &str, top: &str, clock_mhz: f64) -> Result
         yosys(&format!("read_verilog {}; synth_ice40 -top {wtop} -json {}", wv.display(), wjson.display()))?;
         let json = wjson;
         let out = Command::new("timeout")
-            .args(["900", "nextpnr-ice40", "--hx8k", "--package", "cb132", "--seed", "1", "--freq"])
+            .arg(pnr_timeout_s.to_string())
+            .args(["nextpnr-ice40", "--hx8k", "--package", "cb132", "--seed", "1", "--freq"])
             .arg(format!("{clock_mhz}"))
             .arg("--json")
             .arg(&json)
@@ -183,6 +187,8 @@ pub fn measure(design: &str, verilog: &str, top: &str, clock_mhz: f64) -> Result
                 .filter(|l| l.contains("Max frequency for clock"))
                 .filter_map(|l| l.split(':').nth(2)?.split("MHz").next()?.trim().parse().ok())
                 .last();
+        } else if out.status.code() == Some(124) {
+            row.pnr_note = Some(format!("nextpnr-ice40 did not finish within {pnr_timeout_s} s"));
         } else {
             let reason = log.lines().find(|l| l.contains("ERROR")).unwrap_or("nextpnr failed").to_string();
             row.pnr_note = Some(reason);
