@@ -144,3 +144,43 @@ fn hub_generation_pins_and_bad_hub_configs() {
     assert!(!ok && err.contains("no pin for port bit `rx[3]`"), "{err}");
     assert!(!d.path().join("v4").exists() && !d.path().join("c4").exists());
 }
+
+#[test]
+fn controller_pinout_and_host_interface_switch() {
+    let d = tempfile::tempdir().unwrap();
+    let (ok, out, err) = canstar(&["generate", "controller", "--board", "xsa-3s1000", "--out", "v", "--constraints", "c"], d.path());
+    assert!(ok, "{out}{err}");
+    let ucf = std::fs::read_to_string(d.path().join("c/xsa-3s1000/canstar_sja1000_board.ucf")).unwrap();
+    assert!(canstar::boards::ucf_well_formed(&ucf), "{ucf}");
+    // CAN on node port 0's transceiver pins, reset on the nRST switch, 14.74 MHz clock.
+    for line in [
+        "NET \"rx\" LOC = \"H15\"",
+        "NET \"tx\" LOC = \"G15\"",
+        "NET \"rst_n\" LOC = \"E11\"",
+        "NET \"wb_dat_r<7>\" LOC = \"P1\"",
+        "PERIOD \"clock\" 67.84 ns",
+    ] {
+        assert!(ucf.contains(line), "missing {line} in\n{ucf}");
+    }
+    let v = std::fs::read_to_string(d.path().join("v/controller/canstar_sja1000.v")).unwrap();
+    assert!(v.contains("module canstar_sja1000_board(") && v.contains(".rst(~rst_n)"));
+    // No host interface: only the core, no SJA1000 top and no controller pin files.
+    std::fs::write(d.path().join("native.toml"), "[controller]\nhost_interface = false\n").unwrap();
+    let (ok, out, err) = canstar(&["generate", "controller", "--config", "native.toml", "--out", "v2", "--constraints", "c2"], d.path());
+    assert!(ok, "{out}{err}");
+    let files = files_under(&d.path().join("v2"));
+    assert!(files.iter().any(|f| f.ends_with("canstar_can_core.v")) && !files.iter().any(|f| f.contains("sja1000")), "{files:?}");
+    assert!(files_under(&d.path().join("c2")).is_empty());
+    // A board without a controller pinout: a clear error, nothing written.
+    let text = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("boards/xsa-3s1000.toml")).unwrap();
+    let hub_only = text.split("[controller.pins]").next().unwrap();
+    std::fs::write(d.path().join("hubonly.toml"), hub_only).unwrap();
+    let (ok, _, err) = canstar(&["generate", "controller", "--board", "hubonly.toml", "--out", "v3", "--constraints", "c3"], d.path());
+    assert!(!ok && err.contains("no controller pinout"), "{err}");
+    assert!(!d.path().join("v3").exists() && !d.path().join("c3").exists());
+    // Two controller roles on one pin.
+    let clash = text.replace("\"wb_we\" = \"D16\"", "\"wb_we\" = \"H15\"");
+    std::fs::write(d.path().join("clash.toml"), clash).unwrap();
+    let (ok, _, err) = canstar(&["generate", "controller", "--board", "clash.toml", "--out", "v4"], d.path());
+    assert!(!ok && err.contains("pin conflict: pin H15"), "{err}");
+}
