@@ -443,6 +443,7 @@ impl LockstepNode {
             self.sync[0] = rx_raw;
         }
         // Golden bit-stream model: reset follows the DUT's reset input.
+        let mut released = false;
         if reset {
             if !self.in_reset {
                 self.golden.hold_reset(true);
@@ -450,15 +451,22 @@ impl LockstepNode {
             self.in_reset = true;
             self.pipe = None;
             self.shown = None;
+            // A hardware reset clears the DUT's counters and state on this
+            // clock: so does it the golden model's, visible at once.
+            self.vis = (self.golden.tec(), self.golden.rec(), self.golden.state());
         } else if self.in_reset {
             self.in_reset = false;
             self.golden.hold_reset(false);
+            released = true;
         }
         if let Some((d, h)) = self.pipe.take() {
             self.g_drive = d;
             self.g_hs_en = h;
         }
-        if self.in_reset {
+        // On the release of reset the golden model enters Wait_For_Bus_Idle,
+        // where hard synchronisation is enabled (§3.3): present it at once,
+        // as the DUT does, not only from the first golden sample point.
+        if self.in_reset || released {
             self.g_drive = self.golden.drive();
             self.g_hs_en = self.golden.hs_en();
         }

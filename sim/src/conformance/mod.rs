@@ -53,8 +53,10 @@
 
 use crate::bus::{Bus, NodeDelays};
 use crate::kernel::{ClockSpec, Component, Handle, Io, Sim};
+use crate::lockstep::{Divergence, LockstepNode};
 use crate::net::Interference;
 use crate::node::{CanNode, NodeConfig, RESET_CYCLES};
+use std::cell::{Cell, RefCell};
 use canstar_controller::frame::{bus_bits, BuildOptions, BusBit, Frame};
 use canstar_controller::fsm::*;
 use std::path::{Path, PathBuf};
@@ -136,30 +138,72 @@ impl Ctx {
     }
 }
 
+/// Options of a program run.
+#[derive(Clone, Debug, Default)]
+pub struct RunOptions {
+    /// Write the VCD files of the program into this directory.
+    pub vcd_dir: Option<PathBuf>,
+    /// Run every node of every bench in lock step with its own golden model.
+    pub lockstep: bool,
+}
+
+/// Everything one program run produced.
+#[derive(Clone, Debug)]
+pub struct ProgramRun {
+    pub results: Vec<StepResult>,
+    /// Divergences and simulation effort of the program's benches.
+    pub log: RunLog,
+    /// Wall-clock time of the run.
+    pub wall: std::time::Duration,
+}
+
 /// Run program `name`; `None` if there is no such program.
 pub fn run_program(name: &str, vcd_dir: Option<&Path>) -> Option<Vec<StepResult>> {
+    run_program_with(name, &RunOptions { vcd_dir: vcd_dir.map(|d| d.to_path_buf()), lockstep: false }).map(|r| r.results)
+}
+
+/// Run program `name` with `opts`; `None` if there is no such program.
+/// With `opts.lockstep` every node of the program's benches is a
+/// [`LockstepNode`]; the divergences are in the returned [`RunLog`] (they
+/// do not change the step results).
+pub fn run_program_with(name: &str, opts: &RunOptions) -> Option<ProgramRun> {
     let p = programs().into_iter().find(|p| p.name == name)?;
-    let mut ctx = Ctx { program: name.to_string(), vcd: vcd_dir.map(|d| d.to_path_buf()), results: vec![] };
+    let mut ctx = Ctx { program: name.to_string(), vcd: opts.vcd_dir.clone(), results: vec![] };
     let run = p.run;
+    let was = lockstep_mode();
+    set_lockstep(opts.lockstep);
+    let _ = take_run_log();
+    let t0 = std::time::Instant::now();
     let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| run(&mut ctx)));
+    let wall = t0.elapsed();
+    set_lockstep(was);
     if let Err(e) = r {
         let m = e.downcast_ref::<String>().cloned().or_else(|| e.downcast_ref::<&str>().map(|s| s.to_string())).unwrap_or_default();
         ctx.results.push(StepResult { name: format!("{name}_panic"), pass: false, msg: m });
     }
-    Some(ctx.results)
+    Some(ProgramRun { results: ctx.results, log: take_run_log(), wall })
 }
 
 /// The `canstar conformance` command: runs `program` (or all), prints one
 /// line per program and a final `N passed, M failed` line counting steps,
 /// and returns (passed, failed). Failed steps are listed with their message.
 pub fn run_cli(program: Option<&str>, vcd_dir: Option<&Path>, out: &mut dyn std::io::Write) -> std::io::Result<(usize, usize)> {
+    run_cli_with(program, vcd_dir, false, out).map(|(p, f, _)| (p, f))
+}
+
+/// [`run_cli`] with lock-step mode: with `lockstep` every divergence is
+/// printed after its program's line and the final line reads
+/// `N passed, M failed, K divergences`. Before the final line a summary gives
+/// the simulation effort (clock cycles, simulated bit times, wall time and
+/// the rates). Returns (passed, failed, divergences).
+pub fn run_cli_with(program: Option<&str>, vcd_dir: Option<&Path>, lockstep: bool, out: &mut dyn std::io::Write) -> std::io::Result<(usize, usize, usize)> {
     let names: Vec<&'static str> = programs().iter().map(|p| p.name).collect();
     let chosen: Vec<&str> = match program {
         Some(p) => {
             if !names.contains(&p) {
                 writeln!(out, "unknown program {p}; programs: {}", names.join(", "))?;
                 writeln!(out, "0 passed, 1 failed")?;
-                return Ok((0, 1));
+                return Ok((0, 1, 0));
             }
             vec![p]
         }
@@ -168,21 +212,54 @@ pub fn run_cli(program: Option<&str>, vcd_dir: Option<&Path>, out: &mut dyn std:
     if let Some(d) = vcd_dir {
         std::fs::create_dir_all(d)?;
     }
-    let (mut tp, mut tf) = (0, 0);
+    let opts = RunOptions { vcd_dir: vcd_dir.map(|d| d.to_path_buf()), lockstep };
+    let (mut tp, mut tf, mut td) = (0, 0, 0);
+    let mut total = RunLog::default();
+    let mut wall = std::time::Duration::ZERO;
     for p in chosen {
-        let t0 = std::time::Instant::now();
-        let res = run_program(p, vcd_dir).unwrap_or_default();
+        let run = run_program_with(p, &opts).expect("program exists");
+        let res = &run.results;
         let pass = res.iter().filter(|r| r.pass).count();
         let fail = res.len() - pass;
         tp += pass;
         tf += fail;
-        writeln!(out, "{p:<9} {:>3} steps, {pass:>3} passed, {fail:>3} failed ({:.1} s)", res.len(), t0.elapsed().as_secs_f64())?;
+        let nd = run.log.divergences.len();
+        td += nd;
+        let ls = if lockstep { format!(", {nd} divergences, {} bits checked", run.log.checked_bits) } else { String::new() };
+        writeln!(out, "{p:<9} {:>3} steps, {pass:>3} passed, {fail:>3} failed{ls} ({:.1} s)", res.len(), run.wall.as_secs_f64())?;
         for r in res.iter().filter(|r| !r.pass) {
             writeln!(out, "  FAIL {}: {}", r.name, r.msg)?;
         }
+        for d in &run.log.divergences {
+            for l in format!("{d}").lines() {
+                writeln!(out, "  {l}")?;
+            }
+        }
+        wall += run.wall;
+        total.cycles += run.log.cycles;
+        total.node_cycles += run.log.node_cycles;
+        total.sim_ps += run.log.sim_ps;
+        total.bit_times += run.log.bit_times;
+        total.checked_bits += run.log.checked_bits;
     }
-    writeln!(out, "{tp} passed, {tf} failed")?;
-    Ok((tp, tf))
+    let w = wall.as_secs_f64().max(1e-9);
+    writeln!(
+        out,
+        "simulated {:.3} ms ({} bit times), {} node clock cycles ({} component ticks) in {:.2} s wall: {:.0} node cycles/s, {:.0} bit times/s",
+        total.sim_ps as f64 / 1e9,
+        total.bit_times,
+        total.node_cycles,
+        total.cycles,
+        w,
+        total.node_cycles as f64 / w,
+        total.bit_times as f64 / w
+    )?;
+    if lockstep {
+        writeln!(out, "{tp} passed, {tf} failed, {td} divergences")?;
+    } else {
+        writeln!(out, "{tp} passed, {tf} failed")?;
+    }
+    Ok((tp, tf, td))
 }
 
 /// Assert inside a step: returns `Err(message)` from the enclosing function.
@@ -376,11 +453,73 @@ pub fn choose(ide: bool, rtr: bool, pred: impl Fn(&Frame) -> bool) -> Frame {
     panic!("no frame meets the step's condition");
 }
 
+thread_local! {
+    /// Lock-step mode of the benches built on this thread.
+    static LOCKSTEP: Cell<bool> = const { Cell::new(false) };
+    /// What the benches of the current program run left behind.
+    static RUN_LOG: RefCell<RunLog> = RefCell::new(RunLog::default());
+}
+
+/// Build every node of the benches created on this thread from now on as a
+/// [`LockstepNode`] (`true`) or a plain [`CanNode`] (`false`, the default).
+pub fn set_lockstep(on: bool) {
+    LOCKSTEP.with(|c| c.set(on));
+}
+
+/// Is lock-step mode on for benches built on this thread?
+pub fn lockstep_mode() -> bool {
+    LOCKSTEP.with(|c| c.get())
+}
+
+/// What the benches of one program run did, collected when each bench is
+/// dropped: lock-step divergences and simulation effort.
+#[derive(Clone, Debug, Default)]
+pub struct RunLog {
+    /// The first divergence of every lock-stepped node that had one.
+    pub divergences: Vec<Divergence>,
+    /// Benches built.
+    pub benches: usize,
+    /// Clock cycles (ticks) of every kernel component, summed.
+    pub cycles: u64,
+    /// Clock cycles of the CAN nodes only.
+    pub node_cycles: u64,
+    /// Simulated time, summed over the benches (ps).
+    pub sim_ps: u64,
+    /// Simulated nominal bit times of N1, summed over the benches.
+    pub bit_times: u64,
+    /// Sample points compared by the lock-step checkers.
+    pub checked_bits: u64,
+    /// Frames found identical by the lock-step checkers.
+    pub checked_frames: u64,
+}
+
+fn take_run_log() -> RunLog {
+    RUN_LOG.with(|l| std::mem::take(&mut *l.borrow_mut()))
+}
+
+/// A node of the bench: the RTL alone, or the RTL in lock step with its
+/// golden model.
+#[derive(Clone, Copy, Debug)]
+pub enum NodeHandle {
+    Rtl(Handle<CanNode>),
+    Lockstep(Handle<LockstepNode>),
+}
+
+impl NodeHandle {
+    /// The RTL node behind this handle.
+    pub fn get(self, sim: &Sim) -> &CanNode {
+        match self {
+            NodeHandle::Rtl(h) => sim.get(h),
+            NodeHandle::Lockstep(h) => &sim.get(h).node,
+        }
+    }
+}
+
 /// The simulation bench of one program (see the module documentation).
 pub struct Bench {
     pub sim: Sim,
     pub bus: Bus,
-    pub nodes: Vec<Handle<CanNode>>,
+    pub nodes: Vec<NodeHandle>,
     pub script: Option<Handle<Scripted>>,
     recs: Vec<Vec<BitRec>>,
     pending: Vec<Option<BitRec>>,
@@ -424,9 +563,15 @@ impl Bench {
         let ntq = cfgs[0].ntq();
         let bit_ps = clock.period_ps * cfgs[0].brp as u64 * ntq as u64;
         let mut nodes = vec![];
+        let lockstep = lockstep_mode();
         for (i, mut c) in cfgs.into_iter().enumerate() {
             c.name = names[i].clone();
-            nodes.push(sim.add(CanNode::new(c, clocks[i]), &[bus.nodes[i].rx], &[bus.nodes[i].tx]));
+            let (rx, tx) = (bus.nodes[i].rx, bus.nodes[i].tx);
+            nodes.push(if lockstep {
+                NodeHandle::Lockstep(sim.add(LockstepNode::new(c, clocks[i]), &[rx], &[tx]))
+            } else {
+                NodeHandle::Rtl(sim.add(CanNode::new(c, clocks[i]), &[rx], &[tx]))
+            });
         }
         let script = if scripted {
             Some(sim.add(Scripted::new("script", clock, ntq * cfgs_brp0), &[bus.nodes[n].rx], &[bus.nodes[n].tx]))
@@ -458,10 +603,24 @@ impl Bench {
         self.nodes.len()
     }
     pub fn node(&self, i: usize) -> &CanNode {
-        self.sim.get(self.nodes[i])
+        self.nodes[i].get(&self.sim)
     }
     pub fn node_mut(&mut self, i: usize) -> &mut CanNode {
-        self.sim.get_mut(self.nodes[i])
+        match self.nodes[i] {
+            NodeHandle::Rtl(h) => self.sim.get_mut(h),
+            NodeHandle::Lockstep(h) => &mut self.sim.get_mut(h).node,
+        }
+    }
+    /// Node `i`'s lock-step checker (`None` unless the bench runs in lock step).
+    pub fn lockstep(&self, i: usize) -> Option<&LockstepNode> {
+        match self.nodes[i] {
+            NodeHandle::Rtl(_) => None,
+            NodeHandle::Lockstep(h) => Some(self.sim.get(h)),
+        }
+    }
+    /// The divergences found so far (one at most per node).
+    pub fn divergences(&self) -> Vec<Divergence> {
+        (0..self.n()).filter_map(|i| self.lockstep(i).and_then(|l| l.divergence().cloned())).collect()
     }
     pub fn tec(&self, i: usize) -> u32 {
         self.node(i).tec()
@@ -521,7 +680,7 @@ impl Bench {
     pub fn step(&mut self) {
         self.sim.step();
         for i in 0..self.nodes.len() {
-            let nd = self.sim.get(self.nodes[i]);
+            let nd = self.nodes[i].get(&self.sim);
             let cy = nd.cycles();
             if cy == self.seen_cycles[i] {
                 continue;
@@ -689,6 +848,28 @@ impl Bench {
 impl Drop for Bench {
     fn drop(&mut self) {
         self.finish();
+        let divs = self.divergences();
+        let mut node_cycles = 0;
+        let (mut bits, mut frames) = (0, 0);
+        for i in 0..self.n() {
+            node_cycles += self.node(i).cycles();
+            if let Some(l) = self.lockstep(i) {
+                bits += l.stats().bits;
+                frames += l.stats().frames;
+            }
+        }
+        let (cycles, now, bit_ps) = (self.sim.total_cycles(), self.sim.now(), self.bit_ps);
+        RUN_LOG.with(|l| {
+            let mut l = l.borrow_mut();
+            l.divergences.extend(divs);
+            l.benches += 1;
+            l.cycles += cycles;
+            l.node_cycles += node_cycles;
+            l.sim_ps += now;
+            l.bit_times += now / bit_ps.max(1);
+            l.checked_bits += bits;
+            l.checked_frames += frames;
+        });
     }
 }
 
