@@ -192,16 +192,15 @@ fn fresh(b: &mut Bench) -> Result<(), String> {
 fn ph2_off(b: &Bench) -> i64 {
     let c = b.node(0).config();
     let l_rx = canstar_controller::core::CanCore::l_rx(c.sync_depth) as i64;
-    (c.ph2() as i64 * c.brp as i64 - 1 - l_rx) * CLOCK_PS as i64
+    (c.ph2() as i64 * c.brp as i64 - l_rx) * CLOCK_PS as i64
 }
 
 /// Start of TQ 0 of the bit after the one whose record is at `t_rec`, on
-/// the override's time axis: an override change at `start + j TQ` is first
-/// read by N1 in TQ j of that bit (with BRP 1 it is one TQ after the WAIT_FOR
-/// instant of [`Bench::ph2_rest_ps`], which lies in the last TQ of the bit
-/// before).
+/// the override's time axis (the WAIT_FOR instant of
+/// [`Bench::ph2_rest_ps`], unsaturated): an override change at
+/// `start + j TQ` is first read by N1 in TQ j of that bit.
 fn tq0_after(b: &Bench, t_rec: u64) -> u64 {
-    (t_rec as i64 + ph2_off(b)) as u64 + CLOCK_PS * b.node(0).config().brp as u64
+    (t_rec as i64 + ph2_off(b)) as u64
 }
 
 /// Runs until N1 has processed the bit before `prev` (so `prev` is in

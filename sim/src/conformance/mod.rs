@@ -56,11 +56,17 @@
 //! # Timing of a stimulus
 //!
 //! The node reads the bus `L_rx` clocks late (`CanCore::l_rx`: synchroniser
-//! and bit-timing input stage). The override is therefore set `L_rx` clocks
-//! before the node's TX edge of the target bit, so that the node sees it
-//! from its SYNC_SEG, as the manual's WAIT_FOR does (never earlier than the
-//! clock that carries the previous bit's events: with T10/8/1 the override
-//! starts 2 clocks late).
+//! and bit-timing input stage). Its TX edge of the target bit comes on the
+//! tick that ends the previous bit, and that tick still reads the level of
+//! `L_rx` clocks before, in the previous bit's last TQ. The override is
+//! therefore set `L_rx − 1` clocks before the node's TX edge of the target
+//! bit, so that the node first reads it in the target bit's SYNC_SEG, as
+//! the manual's WAIT_FOR does (never earlier than the clock that carries the
+//! previous bit's events: with T10/8/1 the override starts 1 clock late).
+//! The btl cases b–f check this alignment to the TQ: they place edges at
+//! `WAIT_FOR instant + j TQ` and assert the resulting sample points.
+//! (Until the btl cases existed the override was set one clock earlier,
+//! in the previous bit's last TQ; no step's outcome depended on it.)
 #![allow(clippy::redundant_closure_call)]
 
 use crate::bus::{Bus, NodeDelays};
@@ -805,14 +811,15 @@ impl Bench {
     /// Time from the clock that carries a bit's events to the end of its PH2
     /// as the node perceives it: the node reads the bus `L_rx` clocks late
     /// (RX synchroniser and bit timing input stage, §1.5), so an override
-    /// set `L_rx` clocks before its TX edge reaches it at its SYNC_SEG, as
-    /// in the manual's WAIT_FOR. Never earlier than now.
+    /// set `L_rx − 1` clocks before its TX edge of the next bit is first
+    /// read in that bit's SYNC_SEG, as in the manual's WAIT_FOR (see the
+    /// module documentation). Never earlier than now.
     pub fn ph2_rest_ps(&self, i: usize) -> u64 {
         let nd = self.node(i);
         let c = nd.config();
         let period = nd.bit_time_ps() / (c.ntq() as u64 * c.brp as u64);
         let l_rx = canstar_controller::core::CanCore::l_rx(c.sync_depth) as u64;
-        (c.ph2() as u64 * c.brp as u64).saturating_sub(1 + l_rx) * period
+        (c.ph2() as u64 * c.brp as u64).saturating_sub(l_rx) * period
     }
 
     /// Set the interference of `nodes` for `k` nominal bit times from now,
