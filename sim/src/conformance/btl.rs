@@ -229,7 +229,6 @@ fn frame_bde() -> Result<Frame, String> {
 #[allow(clippy::too_many_arguments)]
 fn check_timing(b: &Bench, tm: &Tm, t0: u64, j: u64, m: usize, x_sample: u64, tx: &[(u64, bool)], tx_want: Option<(u64, bool)>, what: &str) -> Result<BitRec, String> {
     let tq = CLOCK_PS;
-    let te = t0 + j * tq;
     let c = b.node(0).config();
     let l_rx = canstar_controller::core::CanCore::l_rx(c.sync_depth) as u64;
     // N1's tick at the end of TQ k − 1 of the bit (its time k) evaluates
@@ -239,7 +238,6 @@ fn check_timing(b: &Bench, tm: &Tm, t0: u64, j: u64, m: usize, x_sample: u64, tx
     // bus l_rx − 1 clocks after t0 + k TQ.
     // The first sample point at or after the tick that detects the edge
     // (the end of TQ j); earlier records belong to earlier sample points.
-    let _ = te;
     let detect = t0 + (j + 1) * tq + l_rx * CLOCK_PS;
     let r = *b.since(0, m).iter().find(|r| r.t >= detect).ok_or("no sample point after the edge")?;
     let want = t0 + x_sample * tq + l_rx * CLOCK_PS;

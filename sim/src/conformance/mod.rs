@@ -243,7 +243,11 @@ pub fn run_cli_with(program: Option<&str>, vcd_dir: Option<&Path>, lockstep: boo
         tf += fail;
         let nd = run.log.divergences.len();
         td += nd;
-        let ls = if lockstep { format!(", {nd} divergences, {} bits checked", run.log.checked_bits) } else { String::new() };
+        let ls = if lockstep {
+            format!(", {nd} divergences, {} bits and {} frames checked, {} warnings", run.log.checked_bits, run.log.checked_frames, run.log.warnings.len())
+        } else {
+            String::new()
+        };
         writeln!(out, "{p:<9} {:>3} steps, {pass:>3} passed, {fail:>3} failed{ls} ({:.1} s)", res.len(), run.wall.as_secs_f64())?;
         for r in res.iter().filter(|r| !r.pass) {
             writeln!(out, "  FAIL {}: {}", r.name, r.msg)?;
@@ -252,6 +256,9 @@ pub fn run_cli_with(program: Option<&str>, vcd_dir: Option<&Path>, lockstep: boo
             for l in format!("{d}").lines() {
                 writeln!(out, "  {l}")?;
             }
+        }
+        for w in &run.log.warnings {
+            writeln!(out, "  warning {w}")?;
         }
         wall += run.wall;
         total.cycles += run.log.cycles;
@@ -509,6 +516,9 @@ pub struct RunLog {
     pub checked_bits: u64,
     /// Frames found identical by the lock-step checkers.
     pub checked_frames: u64,
+    /// Diagnostic differences (§19.7: labels, event words) the checkers
+    /// noted, prefixed with the node name (at most 8 per node).
+    pub warnings: Vec<String>,
 }
 
 fn take_run_log() -> RunLog {
@@ -870,11 +880,13 @@ impl Drop for Bench {
         let divs = self.divergences();
         let mut node_cycles = 0;
         let (mut bits, mut frames) = (0, 0);
+        let mut warnings = vec![];
         for i in 0..self.n() {
             node_cycles += self.node(i).cycles();
             if let Some(l) = self.lockstep(i) {
                 bits += l.stats().bits;
                 frames += l.stats().frames;
+                warnings.extend(l.warnings().iter().map(|w| format!("N{}: {w}", i + 1)));
             }
         }
         let (cycles, now, bit_ps) = (self.sim.total_cycles(), self.sim.now(), self.bit_ps);
@@ -888,6 +900,7 @@ impl Drop for Bench {
             l.bit_times += now / bit_ps.max(1);
             l.checked_bits += bits;
             l.checked_frames += frames;
+            l.warnings.extend(warnings);
         });
     }
 }
