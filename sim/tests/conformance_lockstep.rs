@@ -73,3 +73,35 @@ fn hardware_reset_with_counters_set_stays_in_lock_step() {
     assert!(b.lockstep(0).is_some_and(|l| l.stats().bits > 50));
     assert!(b.divergences().is_empty(), "{}", b.divergences()[0]);
 }
+
+/// The bench plumbing reports what a checker finds: a golden TEC corrupted
+/// on purpose shows up as a `tec` divergence of that node only.
+#[test]
+fn an_injected_golden_fault_is_reported_by_the_bench() {
+    use canstar_sim::conformance::{cfg, set_lockstep, Bench, NodeHandle};
+    set_lockstep(true);
+    let mut b = Bench::new(vec![cfg(), cfg()], false, None);
+    set_lockstep(false);
+    let NodeHandle::Lockstep(h) = b.nodes[0] else { panic!("not a lock-step bench") };
+    b.sim.get_mut(h).inject_tec_fault = Some(8);
+    b.node_mut(1).request(canstar_controller::frame::Frame::std(0x123, &[1]));
+    b.run_bits(3);
+    b.run_idle(200).unwrap();
+    let d = b.divergences();
+    assert_eq!(d.len(), 1, "{d:?}");
+    assert_eq!((d[0].node.as_str(), d[0].signal.as_str()), ("n1", "tec"));
+}
+
+/// `canstar conformance --lockstep`: the throughput line, then the final
+/// line with the divergence count.
+#[test]
+fn cli_lockstep_final_line_counts_divergences() {
+    let mut out = Vec::new();
+    let (p, f, d) = canstar_sim::conformance::run_cli_with(Some("txarb"), None, true, &mut out).unwrap();
+    let s = String::from_utf8(out).unwrap();
+    assert_eq!((p, f, d), (20, 0, 0), "{s}");
+    let lines: Vec<&str> = s.lines().collect();
+    assert_eq!(*lines.last().unwrap(), "20 passed, 0 failed, 0 divergences");
+    assert!(lines[lines.len() - 2].starts_with("simulated ") && lines[lines.len() - 2].contains("node cycles/s"), "{s}");
+    assert!(lines[0].starts_with("txarb") && lines[0].contains("0 divergences"), "{s}");
+}
