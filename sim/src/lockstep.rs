@@ -19,6 +19,13 @@
 //! - the golden bit-stream model [`GoldenNode`], stepped at every sample
 //!   point of the golden bit timing with the golden sampled level.
 //!
+//! The golden model follows the DUT's `reset` input: on a clock with reset
+//! asserted it is reset too, and its cleared counters and state are the
+//! compared values from that clock on (the DUT clears its own on the same
+//! clock); on the release it enters Wait_For_Bus_Idle, and its `hs_en`
+//! (set there, §3.3) is presented to the golden bit timing at once, as the
+//! DUT's bit-stream logic presents its own.
+//!
 //! So the golden side never looks at the RTL except for the host request
 //! (§19.2 start alignment: the golden request follows the DUT's
 //! `dbg_tx_rqst`; its frame is the one on the DUT's `tx_*` request inputs)
