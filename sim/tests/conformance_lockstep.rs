@@ -1,7 +1,8 @@
 //! The whole conformance suite with every node in lock step with its own
 //! golden model (can-protocol.md §19, issue #4): one test per program, each
 //! asserting that no node diverged, that the checkers actually compared
-//! sample points, and that the program's own steps still pass.
+//! sample points, that labels and event words agree (no §19.7 warning), and
+//! that the program's own steps still pass.
 use canstar_sim::conformance::{run_program_with, RunOptions};
 
 fn lockstep(program: &str) {
@@ -9,6 +10,9 @@ fn lockstep(program: &str) {
     let divs: Vec<String> = run.log.divergences.iter().map(|d| d.to_string()).collect();
     assert!(divs.is_empty(), "{program}: {} lock-step divergence(s):\n{}", divs.len(), divs.join("\n"));
     assert!(run.log.checked_bits > 100, "{program}: only {} sample points compared", run.log.checked_bits);
+    // §19.7 diagnostics: the bit labels (FIELD/POSITION/stuff/role) and the
+    // event words of RTL and golden model agree at every sample point too.
+    assert!(run.log.warnings.is_empty(), "{program}: checker warnings:\n{}", run.log.warnings.join("\n"));
     let failed: Vec<String> = run.results.iter().filter(|r| !r.pass).map(|r| format!("{}: {}", r.name, r.msg)).collect();
     assert!(failed.is_empty(), "{program}: steps failed in lock-step mode:\n{}", failed.join("\n"));
 }
