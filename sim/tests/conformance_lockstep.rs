@@ -94,6 +94,12 @@ fn an_injected_golden_fault_is_reported_by_the_bench() {
     let d = b.divergences();
     assert_eq!(d.len(), 1, "{d:?}");
     assert_eq!((d[0].node.as_str(), d[0].signal.as_str()), ("n1", "tec"));
+    // The step that ran while it was found fails; the next one does not.
+    let mut ctx = canstar_sim::conformance::Ctx { program: "x".into(), vcd: None, results: vec![] };
+    ctx.record("x_1", Ok(()));
+    ctx.record("x_2", Ok(()));
+    assert!(!ctx.results[0].pass && ctx.results[0].msg.contains("lock-step divergence") && ctx.results[0].msg.contains("tec"), "{:?}", ctx.results[0]);
+    assert!(ctx.results[1].pass);
 }
 
 /// `canstar conformance --lockstep`: the throughput line, then the final

@@ -48,9 +48,12 @@
 //! bench) every node of the bench is a [`LockstepNode`]: the RTL plus its
 //! own golden model (P§19), fed with the node's receive stream *after* its
 //! interference, so both see the same disturbed bits. The programs run
-//! unchanged (they see the RTL through [`Bench::node`]); the divergences of
-//! all benches of a run are collected in the [`RunLog`] of
-//! [`run_program_with`] and printed by `canstar conformance --lockstep`.
+//! unchanged (they see the RTL through [`Bench::node`]). A divergence fails
+//! the step during which it was found (the plan's pass criterion: no
+//! lock-step mismatch during the program); the divergences of all benches
+//! of a run, with the checkers' §19.7 warnings, are collected in the
+//! [`RunLog`] of [`run_program_with`] and printed by
+//! `canstar conformance --lockstep`.
 //! Nodes 2..N are checked too, and the scripted transmitter has no model.
 //!
 //! # Timing of a stimulus
@@ -140,12 +143,21 @@ pub struct Ctx {
 }
 
 impl Ctx {
-    /// Record the outcome of step `name`.
+    /// Record the outcome of step `name`. In lock-step mode a divergence
+    /// found while the step ran fails it (P§19.9).
     pub fn record(&mut self, name: &str, r: Result<(), String>) {
-        let (pass, msg) = match r {
+        let divs = NEW_DIVS.with(|d| std::mem::take(&mut *d.borrow_mut()));
+        let (mut pass, mut msg) = match r {
             Ok(()) => (true, String::new()),
             Err(m) => (false, m),
         };
+        if !divs.is_empty() {
+            pass = false;
+            if !msg.is_empty() {
+                msg.push_str("; ");
+            }
+            msg.push_str(&divs.join("; "));
+        }
         self.results.push(StepResult { name: name.to_string(), pass, msg });
     }
 
@@ -182,8 +194,8 @@ pub fn run_program(name: &str, vcd_dir: Option<&Path>) -> Option<Vec<StepResult>
 
 /// Run program `name` with `opts`; `None` if there is no such program.
 /// With `opts.lockstep` every node of the program's benches is a
-/// [`LockstepNode`]; the divergences are in the returned [`RunLog`] (they
-/// do not change the step results).
+/// [`LockstepNode`]; the divergences are in the returned [`RunLog`], and the
+/// step during which one was found fails with it (see [`Ctx::record`]).
 pub fn run_program_with(name: &str, opts: &RunOptions) -> Option<ProgramRun> {
     let p = programs().into_iter().find(|p| p.name == name)?;
     let mut ctx = Ctx { program: name.to_string(), vcd: opts.vcd_dir.clone(), results: vec![] };
@@ -191,6 +203,7 @@ pub fn run_program_with(name: &str, opts: &RunOptions) -> Option<ProgramRun> {
     let was = lockstep_mode();
     set_lockstep(opts.lockstep);
     let _ = take_run_log();
+    NEW_DIVS.with(|d| d.borrow_mut().clear());
     let t0 = std::time::Instant::now();
     let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| run(&mut ctx)));
     let wall = t0.elapsed();
@@ -483,6 +496,8 @@ thread_local! {
     static LOCKSTEP: Cell<bool> = const { Cell::new(false) };
     /// What the benches of the current program run left behind.
     static RUN_LOG: RefCell<RunLog> = RefCell::new(RunLog::default());
+    /// Divergences found since the last recorded step (one line each).
+    static NEW_DIVS: RefCell<Vec<String>> = const { RefCell::new(Vec::new()) };
 }
 
 /// Build every node of the benches created on this thread from now on as a
@@ -551,6 +566,8 @@ pub struct Bench {
     pub script: Option<Handle<Scripted>>,
     recs: Vec<Vec<BitRec>>,
     pending: Vec<Option<BitRec>>,
+    /// Divergence of node i already reported to the current step.
+    div_seen: Vec<bool>,
     seen_cycles: Vec<u64>,
     /// Nominal bit time of N1 in ps.
     pub bit_ps: u64,
@@ -612,7 +629,7 @@ impl Bench {
                 vcd_on = true;
             }
         }
-        let mut b = Bench { sim, bus, nodes, script, recs: vec![vec![]; n], pending: vec![None; n], seen_cycles: vec![0; n], bit_ps, vcd: vcd_on };
+        let mut b = Bench { sim, bus, nodes, script, recs: vec![vec![]; n], pending: vec![None; n], div_seen: vec![false; n], seen_cycles: vec![0; n], bit_ps, vcd: vcd_on };
         // Reset, then one dominant bit on every node's RX, then integration.
         let t = b.sim.now() + (RESET_CYCLES as u64 + 2) * clocks.iter().map(|c| c.period_ps).max().unwrap_or(CLOCK_PS);
         b.run_until_time(t);
@@ -708,6 +725,15 @@ impl Bench {
     pub fn step(&mut self) {
         self.sim.step();
         for i in 0..self.nodes.len() {
+            if let NodeHandle::Lockstep(h) = self.nodes[i] {
+                if !self.div_seen[i] {
+                    if let Some(d) = self.sim.get(h).divergence() {
+                        self.div_seen[i] = true;
+                        let m = format!("lock-step divergence at {} ns, node {}: {} DUT={} golden={} ({})", d.t_ps / 1000, d.node, d.signal, d.dut, d.golden, d.golden_label);
+                        NEW_DIVS.with(|v| v.borrow_mut().push(m));
+                    }
+                }
+            }
             let nd = self.nodes[i].get(&self.sim);
             let cy = nd.cycles();
             if cy == self.seen_cycles[i] {
