@@ -114,7 +114,8 @@ enum Cmd {
         max_failures: usize,
     },
     /// Run the Bosch conformance suite (conformance-tests.md) in the multi-node simulation:
-    /// one line per program, then `N passed, M failed` counting steps.
+    /// one line per program, a line with the simulation effort and throughput (clock cycles,
+    /// bit times, wall time), then `N passed, M failed` counting steps.
     Conformance {
         /// Run only this program (baudrate, biterror, btl, crc, dlc, emlcount, extd_id,
         /// formerr, idle, overload, stuffbit, stufferr, txarb).
@@ -123,6 +124,10 @@ enum Cmd {
         /// Write one VCD per program (`<program>.vcd`) into this directory.
         #[arg(long)]
         vcd: Option<PathBuf>,
+        /// Run every node in lock step with its own golden model (can-protocol.md §19): print
+        /// each divergence, and count them in the final line (`N passed, M failed, K divergences`).
+        #[arg(long)]
+        lockstep: bool,
     },
 }
 
@@ -295,10 +300,11 @@ fn run(cli: Cli) -> Result<()> {
         Cmd::Fuzz { frames, seed, per_run, jobs, run_seed, no_disturb, vcd_dir, max_failures } => {
             fuzz_cmd(frames, seed, per_run, jobs, run_seed, !no_disturb, vcd_dir, max_failures)
         }
-        Cmd::Conformance { program, vcd } => {
-            let (_, failed) = canstar_sim::conformance::run_cli(program.as_deref(), vcd.as_deref(), &mut std::io::stdout())?;
-            if failed > 0 {
-                anyhow::bail!("{failed} conformance step(s) failed");
+        Cmd::Conformance { program, vcd, lockstep } => {
+            let (_, failed, divergences) =
+                canstar_sim::conformance::run_cli_with(program.as_deref(), vcd.as_deref(), lockstep, &mut std::io::stdout())?;
+            if failed > 0 || divergences > 0 {
+                anyhow::bail!("{failed} conformance step(s) failed, {divergences} lock-step divergence(s)");
             }
             Ok(())
         }

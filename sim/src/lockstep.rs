@@ -19,6 +19,13 @@
 //! - the golden bit-stream model [`GoldenNode`], stepped at every sample
 //!   point of the golden bit timing with the golden sampled level.
 //!
+//! The golden model follows the DUT's `reset` input: on a clock with reset
+//! asserted it is reset too, and its cleared counters and state are the
+//! compared values from that clock on (the DUT clears its own on the same
+//! clock); on the release it enters Wait_For_Bus_Idle, and its `hs_en`
+//! (set there, §3.3) is presented to the golden bit timing at once, as the
+//! DUT's bit-stream logic presents its own.
+//!
 //! So the golden side never looks at the RTL except for the host request
 //! (§19.2 start alignment: the golden request follows the DUT's
 //! `dbg_tx_rqst`; its frame is the one on the DUT's `tx_*` request inputs)
@@ -443,6 +450,7 @@ impl LockstepNode {
             self.sync[0] = rx_raw;
         }
         // Golden bit-stream model: reset follows the DUT's reset input.
+        let mut released = false;
         if reset {
             if !self.in_reset {
                 self.golden.hold_reset(true);
@@ -450,15 +458,22 @@ impl LockstepNode {
             self.in_reset = true;
             self.pipe = None;
             self.shown = None;
+            // A hardware reset clears the DUT's counters and state on this
+            // clock: so does it the golden model's, visible at once.
+            self.vis = (self.golden.tec(), self.golden.rec(), self.golden.state());
         } else if self.in_reset {
             self.in_reset = false;
             self.golden.hold_reset(false);
+            released = true;
         }
         if let Some((d, h)) = self.pipe.take() {
             self.g_drive = d;
             self.g_hs_en = h;
         }
-        if self.in_reset {
+        // On the release of reset the golden model enters Wait_For_Bus_Idle,
+        // where hard synchronisation is enabled (§3.3): present it at once,
+        // as the DUT does, not only from the first golden sample point.
+        if self.in_reset || released {
             self.g_drive = self.golden.drive();
             self.g_hs_en = self.golden.hs_en();
         }
@@ -575,9 +590,10 @@ impl LockstepNode {
                     self.fail(now, "drove", (d_tx as u8).to_string(), (out.drove as u8).to_string());
                 }
                 let gl = label_text(&out.label);
+                // (the DUT's 8-bit debug POSITION saturates at 255, e.g. in a long Bus_Idle)
                 let gl_cmp = format!("{}{} {}{}",
                     if out.label.role == golden::Role::Tx { "Tx_" } else { "" },
-                    out.label.field.name(), out.label.pos, if out.label.stuff { " (stuff)" } else { "" });
+                    out.label.field.name(), out.label.pos.min(255), if out.label.stuff { " (stuff)" } else { "" });
                 if gl_cmp != label_dut {
                     self.warn(format!("{t_ns} ns: label DUT {label_dut} golden {gl}"));
                 }

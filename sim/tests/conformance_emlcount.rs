@@ -1,4 +1,4 @@
-//! emlcount program (conformance-tests.md §6), rx_1..rx_20 and tx_7..tx_37; one test per step.
+//! emlcount program (conformance-tests.md §6), rx_1..rx_20 and tx_1..tx_37; one test per step.
 canstar_sim::conformance_tests!("emlcount";
     emlcount_rx_1,
     emlcount_rx_2,
@@ -20,6 +20,12 @@ canstar_sim::conformance_tests!("emlcount";
     emlcount_rx_18,
     emlcount_rx_19,
     emlcount_rx_20,
+    emlcount_tx_1,
+    emlcount_tx_2,
+    emlcount_tx_3,
+    emlcount_tx_4,
+    emlcount_tx_5,
+    emlcount_tx_6,
     emlcount_tx_7,
     emlcount_tx_8,
     emlcount_tx_9,

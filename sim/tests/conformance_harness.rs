@@ -6,8 +6,12 @@ use canstar_controller::fsm::{Field, EV_SOF};
 use canstar_sim::conformance::*;
 use canstar_sim::Interference;
 
+/// The override is set `L_rx − 1` clocks before N1's TX edge of the target
+/// bit: the tick of that TX edge still reads the previous bit's last TQ, so
+/// the override is first read in the target bit's SYNC_SEG (the btl cases
+/// b–f check the TQ alignment through sample points).
 #[test]
-fn forcing_starts_l_rx_clocks_before_the_target_bit_on_tx() {
+fn forcing_starts_l_rx_minus_1_clocks_before_the_target_bit_on_tx() {
     let mut b = Bench::new(vec![cfg()], false, None);
     // Identifier 3 dominant, 4 recessive: N1's TX rises at the start of ID 4.
     let f = Frame::std(0x0F0, &[]);
@@ -26,7 +30,7 @@ fn forcing_starts_l_rx_clocks_before_the_target_bit_on_tx() {
         last = v;
     }
     let l_rx = CanCore::l_rx(canstar_controller::core::SYNC_DEPTH) as u64;
-    assert_eq!(edge.unwrap() - t_force, l_rx * CLOCK_PS);
+    assert_eq!(edge.unwrap() - t_force, (l_rx - 1) * CLOCK_PS);
 }
 
 #[test]

@@ -1,7 +1,15 @@
-//! emlcount (§6 of the plan), **partial**: the transmitter steps after the
-//! hardware reset of N1, `emlcount_tx_7` .. `emlcount_tx_37` (T10/6/2).
-//! The receiver steps rx_1..rx_20 run first; tx_1..6 are not implemented
-//! yet (N1 gets the plan's hardware reset before tx_7).
+//! emlcount (§6 of the plan, T10/6/2): the receiver steps
+//! `emlcount_rx_1` .. `emlcount_rx_20`, then the transmitter steps
+//! `emlcount_tx_1` .. `emlcount_tx_6` on the counters rx_20 left (N1
+//! error-passive through REC 128, TEC 0), the plan's hardware reset of N1,
+//! and `emlcount_tx_7` .. `emlcount_tx_37`.
+//!
+//! tx_1..tx_6 need N2's retry withdrawn at rx_20 (a received retry would
+//! make N1 error-active before tx_1), and N1's retries (and in tx_5 N2's) withdrawn where the
+//! manual's counter values leave no room for a successful retry: after
+//! tx_2 (TEC 120 must meet tx_4's +8 as 128), after tx_4 (TEC 128 until
+//! tx_6's good frame) and N2's after tx_5 (a received retry would take REC
+//! from 135 to 127 before tx_6).
 use super::*;
 
 const D: Interference = Interference::StuckDominant;
@@ -175,9 +183,12 @@ fn rx_part(ctx: &mut Ctx, b: &mut Bench) {
     ctx.record("emlcount_rx_19", r);
     let r = (|| {
         b.forced_bit(&[0], Field::ActFlag, 3, R, 1, &[EV_BIT_ERR, EV_PEF])?;
+        // (N2's retry is withdrawn: tx_1 starts with N1 passive through REC)
+        b.node_mut(1).withdraw();
         b.settle(0)?;
         rec_is(b, 128)?;
-        b.run_idle(400)
+        b.run_idle(400)?;
+        rec_is(b, 128)
     })();
     ctx.record("emlcount_rx_20", r);
 }
@@ -186,7 +197,9 @@ pub fn run(ctx: &mut Ctx) {
     let c = cfg().timing(1, 1, 4, 2);
     let mut b = ctx.bench(vec![c.clone(), c], false);
     rx_part(ctx, &mut b);
-    // Hardware reset of N1 (the plan's tx_1..tx_6 are not implemented).
+    tx_1_to_6(ctx, &mut b);
+    // The plan's hardware reset of N1.
+    b.node_mut(0).withdraw();
     b.node_mut(0).hard_reset();
     b.run_bits(2);
     let _ = b.run_until(60, |b| b.node(0).field() == Field::Idle);
@@ -228,6 +241,129 @@ pub fn run(ctx: &mut Ctx) {
     ctx.record("emlcount_tx_15", r);
 
     tx_16_on(ctx, &mut b, &f);
+}
+
+/// Run until node 0 has completed a passive error flag (6 consecutive equal
+/// levels sampled, counted from the first flag bit; the records since mark
+/// `m` must start at or before the flag), then force it `D` for `k` bits
+/// from the first bit after the flag. Returns the mark of that bit.
+fn force_after_pef(b: &mut Bench, m: usize, k: u64) -> Result<usize, String> {
+    b.run_until(200, |b| {
+        let s = b.since(0, m);
+        let Some(start) = s.iter().position(|r| r.field == Field::PasFlag) else { return false };
+        let flag = &s[start..];
+        let mut run = 0;
+        let mut last = None;
+        for r in flag {
+            run = if Some(r.level) == last { run + 1 } else { 1 };
+            last = Some(r.level);
+            if run >= 6 {
+                return true;
+            }
+        }
+        false
+    })
+    .map_err(|e| format!("passive flag not complete: {e}:{}", b.dump(0, m)))?;
+    let t = b.recs(0).last().unwrap().t + b.ph2_rest_ps(0);
+    b.run_until_time(t);
+    let m2 = b.mark(0);
+    b.force_now(&[0], D, k);
+    b.run_until(2, |b| b.mark(0) >= m2 + k as usize)?;
+    Ok(m2)
+}
+
+/// tx_1..tx_6 (see the module documentation). `f`: ID 0x2B9, Identifier 3 `D`.
+fn tx_1_to_6(ctx: &mut Ctx, b: &mut Bench) {
+    let f = Frame::std(0x2B9, &[0x81, 0x7E]);
+    debug_assert_eq!(level_of(&f, Field::Ident, 3, false), Some(false));
+    let r = (|| {
+        b.run_idle(400)?;
+        ensure!(b.state(0) == 1 && b.rec(0) > 127 && b.tec(0) < 128, "precondition: passive through REC, TEC < 128; TEC {} REC {} state {}", b.tec(0), b.rec(0), b.state(0));
+        let t0 = b.tec(0);
+        b.node_mut(0).request(f.clone());
+        let m = b.forced_step(&[0], Field::Ident, 3, R, 1, BE_P, Ctr::Tec, 8)?;
+        tec_is(b, t0 + 8, 1)?;
+        // The retry: Intermission, 8 bits of Suspend_Transmission, then SOF.
+        b.run_until(60, |b| b.at(0) == (Field::Sof, 1))?;
+        let s = b.since(0, m);
+        let inter: Vec<u32> = s.iter().filter(|r| r.field == Field::Inter).map(|r| r.pos).collect();
+        let susp: Vec<u32> = s.iter().filter(|r| r.field == Field::Suspend).map(|r| r.pos).collect();
+        ensure!(inter == [1, 2, 3] && susp == (1..=8).collect::<Vec<_>>(), "before the retry: Intermission {inter:?}, Suspend {susp:?}:{}", b.dump(0, m));
+        ensure!(s.iter().all(|r| r.field != Field::Idle), "N1 went through Bus_Idle before the retry");
+        Ok(())
+    })();
+    ctx.record("emlcount_tx_1", r);
+    let r = (|| {
+        let m = b.forced_bit(&[0], Field::Ident, 3, R, 1, BE_P)?;
+        // (the host withdraws the retry: tx_4 needs TEC 120 + 8)
+        b.node_mut(0).withdraw();
+        tec_is(b, 16, 1)?;
+        let m2 = force_after_pef(b, m, 104)?;
+        let s: Vec<BitRec> = b.since(0, m2)[..104].to_vec();
+        for (k, r) in s.iter().enumerate() {
+            let want = 16 + 8 * ((k as u32 + 1) / 8);
+            ensure!(!r.level && r.tec == want, "dominant bit {} after the flag: {r} (expected TEC {want})", k + 1);
+        }
+        b.settle(0)?;
+        b.run_idle(400)?;
+        tec_is(b, 120, 1)
+    })();
+    ctx.record("emlcount_tx_2", r);
+    let fg = Frame::std(0x3C1, &[0x42]);
+    let r = (|| {
+        ensure!(b.rec(0) == 128, "REC {} before the good frames (expected 128)", b.rec(0));
+        for k in 0..18 {
+            let n = b.node(0).received().len();
+            b.node_mut(1).request(fg.clone());
+            b.run_until(400, |b| b.node(0).received().len() > n)?;
+            b.run_idle(200)?;
+            let want = 127 - k;
+            ensure!(b.rec(0) == want, "after good frame {}: REC {} (expected {want})", k + 1, b.rec(0));
+            ensure!(b.state(0) == 0, "after good frame {}: state {} (expected error-active)", k + 1, b.state(0));
+        }
+        ensure!(b.tec(0) == 120, "TEC {}", b.tec(0));
+        Ok(())
+    })();
+    ctx.record("emlcount_tx_3", r);
+    let r = (|| {
+        b.node_mut(0).request(f.clone());
+        b.forced_bit(&[0], Field::Ident, 3, R, 1, BE_A)?;
+        // (withdrawn: TEC must stay 128 until tx_6's good frame)
+        b.node_mut(0).withdraw();
+        b.settle(0)?;
+        b.run_idle(400)?;
+        tec_is(b, 128, 1)
+    })();
+    ctx.record("emlcount_tx_4", r);
+    let f1 = choose(false, false, |f| (f.id >> 7) == 0 && level_of(f, Field::Ident, 4, true) == Some(true));
+    let r = (|| {
+        ensure!(b.rec(0) == 110, "REC {} before the step (expected 110)", b.rec(0));
+        b.node_mut(1).request(f1.clone());
+        let m = b.force_at(&[0], Field::Ident, 4, true, D, 1)?;
+        // (N2's retry withdrawn: its reception would take REC to 127)
+        b.node_mut(1).withdraw();
+        let x = b.rec_at(0, m)?;
+        ensure!(x.has(EV_STUFF_ERR) && x.has(EV_PEF) && x.rec == 111, "{x}: expected STUFF_ERR, PEF, REC 111");
+        let m2 = force_after_pef(b, m, 16)?;
+        let s: Vec<BitRec> = b.since(0, m2)[..16].to_vec();
+        for (k, want) in [(0usize, 119u32), (6, 119), (7, 127), (14, 127), (15, 135)] {
+            ensure!(s[k].rec == want, "dominant bit {} after the flag: {} (expected REC {want})", k + 1, s[k]);
+        }
+        b.settle(0)?;
+        b.run_idle(400)?;
+        rec_is(b, 135)?;
+        tec_is(b, 128, 1)
+    })();
+    ctx.record("emlcount_tx_5", r);
+    let r = (|| {
+        good(b, &f)?;
+        tec_is(b, 127, 1)?;
+        rec_is(b, 135)?;
+        b.node_mut(0).request(f.clone());
+        b.forced_step(&[0], Field::Ident, 3, R, 1, BE_P, Ctr::Tec, 8)?;
+        tec_is(b, 135, 1)
+    })();
+    ctx.record("emlcount_tx_6", r);
 }
 
 const BE_A: &[usize] = &[EV_BIT_ERR, EV_AEF];

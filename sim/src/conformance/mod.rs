@@ -32,29 +32,52 @@
 //!
 //! # Programs and deviations
 //!
-//! Implemented: baudrate, biterror, btl (case a only), crc, dlc, emlcount
-//! (all but tx_1..tx_6), extd_id, formerr, idle, overload, stuffbit,
-//! stufferr, txarb. Not yet: emlcount tx_1..tx_6, btl cases b–f. Where a
+//! Implemented: all 13 programs, every step of the plan: baudrate,
+//! biterror, btl (cases a–f, three timings), crc, dlc, emlcount (rx_1..20,
+//! tx_1..37), extd_id, formerr, idle, overload, stuffbit, stufferr, txarb.
+//! Not yet: nothing of the plan's step list. Where a
 //! step's frame condition cannot be met by a legal frame the program says
 //! so at the step (txarb_12, stufferr_5) and uses the
 //! nearest legal frame. biterror resets N1 between its receiver and
 //! transmitter parts. Frames with a recessive r0/r1 or a dominant SRR come
 //! from the scripted transmitter, a bus participant besides N2.
 //!
+//! # Lock-step mode
+//!
+//! With [`RunOptions::lockstep`] (or [`set_lockstep`] before building a
+//! bench) every node of the bench is a [`LockstepNode`]: the RTL plus its
+//! own golden model (P§19), fed with the node's receive stream *after* its
+//! interference, so both see the same disturbed bits. The programs run
+//! unchanged (they see the RTL through [`Bench::node`]). A divergence fails
+//! the step during which it was found (the plan's pass criterion: no
+//! lock-step mismatch during the program); the divergences of all benches
+//! of a run, with the checkers' §19.7 warnings, are collected in the
+//! [`RunLog`] of [`run_program_with`] and printed by
+//! `canstar conformance --lockstep`.
+//! Nodes 2..N are checked too, and the scripted transmitter has no model.
+//!
 //! # Timing of a stimulus
 //!
 //! The node reads the bus `L_rx` clocks late (`CanCore::l_rx`: synchroniser
-//! and bit-timing input stage). The override is therefore set `L_rx` clocks
-//! before the node's TX edge of the target bit, so that the node sees it
-//! from its SYNC_SEG, as the manual's WAIT_FOR does (never earlier than the
-//! clock that carries the previous bit's events: with T10/8/1 the override
-//! starts 2 clocks late).
+//! and bit-timing input stage). Its TX edge of the target bit comes on the
+//! tick that ends the previous bit, and that tick still reads the level of
+//! `L_rx` clocks before, in the previous bit's last TQ. The override is
+//! therefore set `L_rx − 1` clocks before the node's TX edge of the target
+//! bit, so that the node first reads it in the target bit's SYNC_SEG, as
+//! the manual's WAIT_FOR does (never earlier than the clock that carries the
+//! previous bit's events: with T10/8/1 the override starts 1 clock late).
+//! The btl cases b–f check this alignment to the TQ: they place edges at
+//! `WAIT_FOR instant + j TQ` and assert the resulting sample points.
+//! (Until the btl cases existed the override was set one clock earlier,
+//! in the previous bit's last TQ; no step's outcome depended on it.)
 #![allow(clippy::redundant_closure_call)]
 
 use crate::bus::{Bus, NodeDelays};
 use crate::kernel::{ClockSpec, Component, Handle, Io, Sim};
+use crate::lockstep::{Divergence, LockstepNode};
 use crate::net::Interference;
 use crate::node::{CanNode, NodeConfig, RESET_CYCLES};
+use std::cell::{Cell, RefCell};
 use canstar_controller::frame::{bus_bits, BuildOptions, BusBit, Frame};
 use canstar_controller::fsm::*;
 use std::path::{Path, PathBuf};
@@ -120,12 +143,21 @@ pub struct Ctx {
 }
 
 impl Ctx {
-    /// Record the outcome of step `name`.
+    /// Record the outcome of step `name`. In lock-step mode a divergence
+    /// found while the step ran fails it (P§19.9).
     pub fn record(&mut self, name: &str, r: Result<(), String>) {
-        let (pass, msg) = match r {
+        let divs = NEW_DIVS.with(|d| std::mem::take(&mut *d.borrow_mut()));
+        let (mut pass, mut msg) = match r {
             Ok(()) => (true, String::new()),
             Err(m) => (false, m),
         };
+        if !divs.is_empty() {
+            pass = false;
+            if !msg.is_empty() {
+                msg.push_str("; ");
+            }
+            msg.push_str(&divs.join("; "));
+        }
         self.results.push(StepResult { name: name.to_string(), pass, msg });
     }
 
@@ -136,30 +168,73 @@ impl Ctx {
     }
 }
 
+/// Options of a program run.
+#[derive(Clone, Debug, Default)]
+pub struct RunOptions {
+    /// Write the VCD files of the program into this directory.
+    pub vcd_dir: Option<PathBuf>,
+    /// Run every node of every bench in lock step with its own golden model.
+    pub lockstep: bool,
+}
+
+/// Everything one program run produced.
+#[derive(Clone, Debug)]
+pub struct ProgramRun {
+    pub results: Vec<StepResult>,
+    /// Divergences and simulation effort of the program's benches.
+    pub log: RunLog,
+    /// Wall-clock time of the run.
+    pub wall: std::time::Duration,
+}
+
 /// Run program `name`; `None` if there is no such program.
 pub fn run_program(name: &str, vcd_dir: Option<&Path>) -> Option<Vec<StepResult>> {
+    run_program_with(name, &RunOptions { vcd_dir: vcd_dir.map(|d| d.to_path_buf()), lockstep: false }).map(|r| r.results)
+}
+
+/// Run program `name` with `opts`; `None` if there is no such program.
+/// With `opts.lockstep` every node of the program's benches is a
+/// [`LockstepNode`]; the divergences are in the returned [`RunLog`], and the
+/// step during which one was found fails with it (see [`Ctx::record`]).
+pub fn run_program_with(name: &str, opts: &RunOptions) -> Option<ProgramRun> {
     let p = programs().into_iter().find(|p| p.name == name)?;
-    let mut ctx = Ctx { program: name.to_string(), vcd: vcd_dir.map(|d| d.to_path_buf()), results: vec![] };
+    let mut ctx = Ctx { program: name.to_string(), vcd: opts.vcd_dir.clone(), results: vec![] };
     let run = p.run;
+    let was = lockstep_mode();
+    set_lockstep(opts.lockstep);
+    let _ = take_run_log();
+    NEW_DIVS.with(|d| d.borrow_mut().clear());
+    let t0 = std::time::Instant::now();
     let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| run(&mut ctx)));
+    let wall = t0.elapsed();
+    set_lockstep(was);
     if let Err(e) = r {
         let m = e.downcast_ref::<String>().cloned().or_else(|| e.downcast_ref::<&str>().map(|s| s.to_string())).unwrap_or_default();
         ctx.results.push(StepResult { name: format!("{name}_panic"), pass: false, msg: m });
     }
-    Some(ctx.results)
+    Some(ProgramRun { results: ctx.results, log: take_run_log(), wall })
 }
 
 /// The `canstar conformance` command: runs `program` (or all), prints one
 /// line per program and a final `N passed, M failed` line counting steps,
 /// and returns (passed, failed). Failed steps are listed with their message.
 pub fn run_cli(program: Option<&str>, vcd_dir: Option<&Path>, out: &mut dyn std::io::Write) -> std::io::Result<(usize, usize)> {
+    run_cli_with(program, vcd_dir, false, out).map(|(p, f, _)| (p, f))
+}
+
+/// [`run_cli`] with lock-step mode: with `lockstep` every divergence is
+/// printed after its program's line and the final line reads
+/// `N passed, M failed, K divergences`. Before the final line a summary gives
+/// the simulation effort (clock cycles, simulated bit times, wall time and
+/// the rates). Returns (passed, failed, divergences).
+pub fn run_cli_with(program: Option<&str>, vcd_dir: Option<&Path>, lockstep: bool, out: &mut dyn std::io::Write) -> std::io::Result<(usize, usize, usize)> {
     let names: Vec<&'static str> = programs().iter().map(|p| p.name).collect();
     let chosen: Vec<&str> = match program {
         Some(p) => {
             if !names.contains(&p) {
                 writeln!(out, "unknown program {p}; programs: {}", names.join(", "))?;
                 writeln!(out, "0 passed, 1 failed")?;
-                return Ok((0, 1));
+                return Ok((0, 1, 0));
             }
             vec![p]
         }
@@ -168,21 +243,61 @@ pub fn run_cli(program: Option<&str>, vcd_dir: Option<&Path>, out: &mut dyn std:
     if let Some(d) = vcd_dir {
         std::fs::create_dir_all(d)?;
     }
-    let (mut tp, mut tf) = (0, 0);
+    let opts = RunOptions { vcd_dir: vcd_dir.map(|d| d.to_path_buf()), lockstep };
+    let (mut tp, mut tf, mut td) = (0, 0, 0);
+    let mut total = RunLog::default();
+    let mut wall = std::time::Duration::ZERO;
     for p in chosen {
-        let t0 = std::time::Instant::now();
-        let res = run_program(p, vcd_dir).unwrap_or_default();
+        let run = run_program_with(p, &opts).expect("program exists");
+        let res = &run.results;
         let pass = res.iter().filter(|r| r.pass).count();
         let fail = res.len() - pass;
         tp += pass;
         tf += fail;
-        writeln!(out, "{p:<9} {:>3} steps, {pass:>3} passed, {fail:>3} failed ({:.1} s)", res.len(), t0.elapsed().as_secs_f64())?;
+        let nd = run.log.divergences.len();
+        td += nd;
+        let ls = if lockstep {
+            format!(", {nd} divergences, {} bits and {} frames checked, {} warnings", run.log.checked_bits, run.log.checked_frames, run.log.warnings.len())
+        } else {
+            String::new()
+        };
+        writeln!(out, "{p:<9} {:>3} steps, {pass:>3} passed, {fail:>3} failed{ls} ({:.1} s)", res.len(), run.wall.as_secs_f64())?;
         for r in res.iter().filter(|r| !r.pass) {
             writeln!(out, "  FAIL {}: {}", r.name, r.msg)?;
         }
+        for d in &run.log.divergences {
+            for l in format!("{d}").lines() {
+                writeln!(out, "  {l}")?;
+            }
+        }
+        for w in &run.log.warnings {
+            writeln!(out, "  warning {w}")?;
+        }
+        wall += run.wall;
+        total.cycles += run.log.cycles;
+        total.node_cycles += run.log.node_cycles;
+        total.sim_ps += run.log.sim_ps;
+        total.bit_times += run.log.bit_times;
+        total.checked_bits += run.log.checked_bits;
     }
-    writeln!(out, "{tp} passed, {tf} failed")?;
-    Ok((tp, tf))
+    let w = wall.as_secs_f64().max(1e-9);
+    writeln!(
+        out,
+        "simulated {:.3} ms ({} bit times), {} node clock cycles ({} component ticks) in {:.2} s wall: {:.0} node cycles/s, {:.0} bit times/s",
+        total.sim_ps as f64 / 1e9,
+        total.bit_times,
+        total.node_cycles,
+        total.cycles,
+        w,
+        total.node_cycles as f64 / w,
+        total.bit_times as f64 / w
+    )?;
+    if lockstep {
+        writeln!(out, "{tp} passed, {tf} failed, {td} divergences")?;
+    } else {
+        writeln!(out, "{tp} passed, {tf} failed")?;
+    }
+    Ok((tp, tf, td))
 }
 
 /// Assert inside a step: returns `Err(message)` from the enclosing function.
@@ -376,14 +491,83 @@ pub fn choose(ide: bool, rtr: bool, pred: impl Fn(&Frame) -> bool) -> Frame {
     panic!("no frame meets the step's condition");
 }
 
+thread_local! {
+    /// Lock-step mode of the benches built on this thread.
+    static LOCKSTEP: Cell<bool> = const { Cell::new(false) };
+    /// What the benches of the current program run left behind.
+    static RUN_LOG: RefCell<RunLog> = RefCell::new(RunLog::default());
+    /// Divergences found since the last recorded step (one line each).
+    static NEW_DIVS: RefCell<Vec<String>> = const { RefCell::new(Vec::new()) };
+}
+
+/// Build every node of the benches created on this thread from now on as a
+/// [`LockstepNode`] (`true`) or a plain [`CanNode`] (`false`, the default).
+pub fn set_lockstep(on: bool) {
+    LOCKSTEP.with(|c| c.set(on));
+}
+
+/// Is lock-step mode on for benches built on this thread?
+pub fn lockstep_mode() -> bool {
+    LOCKSTEP.with(|c| c.get())
+}
+
+/// What the benches of one program run did, collected when each bench is
+/// dropped: lock-step divergences and simulation effort.
+#[derive(Clone, Debug, Default)]
+pub struct RunLog {
+    /// The first divergence of every lock-stepped node that had one.
+    pub divergences: Vec<Divergence>,
+    /// Benches built.
+    pub benches: usize,
+    /// Clock cycles (ticks) of every kernel component, summed.
+    pub cycles: u64,
+    /// Clock cycles of the CAN nodes only.
+    pub node_cycles: u64,
+    /// Simulated time, summed over the benches (ps).
+    pub sim_ps: u64,
+    /// Simulated nominal bit times of N1, summed over the benches.
+    pub bit_times: u64,
+    /// Sample points compared by the lock-step checkers.
+    pub checked_bits: u64,
+    /// Frames found identical by the lock-step checkers.
+    pub checked_frames: u64,
+    /// Diagnostic differences (§19.7: labels, event words) the checkers
+    /// noted, prefixed with the node name (at most 8 per node).
+    pub warnings: Vec<String>,
+}
+
+fn take_run_log() -> RunLog {
+    RUN_LOG.with(|l| std::mem::take(&mut *l.borrow_mut()))
+}
+
+/// A node of the bench: the RTL alone, or the RTL in lock step with its
+/// golden model.
+#[derive(Clone, Copy, Debug)]
+pub enum NodeHandle {
+    Rtl(Handle<CanNode>),
+    Lockstep(Handle<LockstepNode>),
+}
+
+impl NodeHandle {
+    /// The RTL node behind this handle.
+    pub fn get(self, sim: &Sim) -> &CanNode {
+        match self {
+            NodeHandle::Rtl(h) => sim.get(h),
+            NodeHandle::Lockstep(h) => &sim.get(h).node,
+        }
+    }
+}
+
 /// The simulation bench of one program (see the module documentation).
 pub struct Bench {
     pub sim: Sim,
     pub bus: Bus,
-    pub nodes: Vec<Handle<CanNode>>,
+    pub nodes: Vec<NodeHandle>,
     pub script: Option<Handle<Scripted>>,
     recs: Vec<Vec<BitRec>>,
     pending: Vec<Option<BitRec>>,
+    /// Divergence of node i already reported to the current step.
+    div_seen: Vec<bool>,
     seen_cycles: Vec<u64>,
     /// Nominal bit time of N1 in ps.
     pub bit_ps: u64,
@@ -424,9 +608,15 @@ impl Bench {
         let ntq = cfgs[0].ntq();
         let bit_ps = clock.period_ps * cfgs[0].brp as u64 * ntq as u64;
         let mut nodes = vec![];
+        let lockstep = lockstep_mode();
         for (i, mut c) in cfgs.into_iter().enumerate() {
             c.name = names[i].clone();
-            nodes.push(sim.add(CanNode::new(c, clocks[i]), &[bus.nodes[i].rx], &[bus.nodes[i].tx]));
+            let (rx, tx) = (bus.nodes[i].rx, bus.nodes[i].tx);
+            nodes.push(if lockstep {
+                NodeHandle::Lockstep(sim.add(LockstepNode::new(c, clocks[i]), &[rx], &[tx]))
+            } else {
+                NodeHandle::Rtl(sim.add(CanNode::new(c, clocks[i]), &[rx], &[tx]))
+            });
         }
         let script = if scripted {
             Some(sim.add(Scripted::new("script", clock, ntq * cfgs_brp0), &[bus.nodes[n].rx], &[bus.nodes[n].tx]))
@@ -439,7 +629,7 @@ impl Bench {
                 vcd_on = true;
             }
         }
-        let mut b = Bench { sim, bus, nodes, script, recs: vec![vec![]; n], pending: vec![None; n], seen_cycles: vec![0; n], bit_ps, vcd: vcd_on };
+        let mut b = Bench { sim, bus, nodes, script, recs: vec![vec![]; n], pending: vec![None; n], div_seen: vec![false; n], seen_cycles: vec![0; n], bit_ps, vcd: vcd_on };
         // Reset, then one dominant bit on every node's RX, then integration.
         let t = b.sim.now() + (RESET_CYCLES as u64 + 2) * clocks.iter().map(|c| c.period_ps).max().unwrap_or(CLOCK_PS);
         b.run_until_time(t);
@@ -458,10 +648,24 @@ impl Bench {
         self.nodes.len()
     }
     pub fn node(&self, i: usize) -> &CanNode {
-        self.sim.get(self.nodes[i])
+        self.nodes[i].get(&self.sim)
     }
     pub fn node_mut(&mut self, i: usize) -> &mut CanNode {
-        self.sim.get_mut(self.nodes[i])
+        match self.nodes[i] {
+            NodeHandle::Rtl(h) => self.sim.get_mut(h),
+            NodeHandle::Lockstep(h) => &mut self.sim.get_mut(h).node,
+        }
+    }
+    /// Node `i`'s lock-step checker (`None` unless the bench runs in lock step).
+    pub fn lockstep(&self, i: usize) -> Option<&LockstepNode> {
+        match self.nodes[i] {
+            NodeHandle::Rtl(_) => None,
+            NodeHandle::Lockstep(h) => Some(self.sim.get(h)),
+        }
+    }
+    /// The divergences found so far (one at most per node).
+    pub fn divergences(&self) -> Vec<Divergence> {
+        (0..self.n()).filter_map(|i| self.lockstep(i).and_then(|l| l.divergence().cloned())).collect()
     }
     pub fn tec(&self, i: usize) -> u32 {
         self.node(i).tec()
@@ -521,7 +725,16 @@ impl Bench {
     pub fn step(&mut self) {
         self.sim.step();
         for i in 0..self.nodes.len() {
-            let nd = self.sim.get(self.nodes[i]);
+            if let NodeHandle::Lockstep(h) = self.nodes[i] {
+                if !self.div_seen[i] {
+                    if let Some(d) = self.sim.get(h).divergence() {
+                        self.div_seen[i] = true;
+                        let m = format!("lock-step divergence at {} ns, node {}: {} DUT={} golden={} ({})", d.t_ps / 1000, d.node, d.signal, d.dut, d.golden, d.golden_label);
+                        NEW_DIVS.with(|v| v.borrow_mut().push(m));
+                    }
+                }
+            }
+            let nd = self.nodes[i].get(&self.sim);
             let cy = nd.cycles();
             if cy == self.seen_cycles[i] {
                 continue;
@@ -634,14 +847,15 @@ impl Bench {
     /// Time from the clock that carries a bit's events to the end of its PH2
     /// as the node perceives it: the node reads the bus `L_rx` clocks late
     /// (RX synchroniser and bit timing input stage, §1.5), so an override
-    /// set `L_rx` clocks before its TX edge reaches it at its SYNC_SEG, as
-    /// in the manual's WAIT_FOR. Never earlier than now.
+    /// set `L_rx − 1` clocks before its TX edge of the next bit is first
+    /// read in that bit's SYNC_SEG, as in the manual's WAIT_FOR (see the
+    /// module documentation). Never earlier than now.
     pub fn ph2_rest_ps(&self, i: usize) -> u64 {
         let nd = self.node(i);
         let c = nd.config();
         let period = nd.bit_time_ps() / (c.ntq() as u64 * c.brp as u64);
         let l_rx = canstar_controller::core::CanCore::l_rx(c.sync_depth) as u64;
-        (c.ph2() as u64 * c.brp as u64).saturating_sub(1 + l_rx) * period
+        (c.ph2() as u64 * c.brp as u64).saturating_sub(l_rx) * period
     }
 
     /// Set the interference of `nodes` for `k` nominal bit times from now,
@@ -689,6 +903,31 @@ impl Bench {
 impl Drop for Bench {
     fn drop(&mut self) {
         self.finish();
+        let divs = self.divergences();
+        let mut node_cycles = 0;
+        let (mut bits, mut frames) = (0, 0);
+        let mut warnings = vec![];
+        for i in 0..self.n() {
+            node_cycles += self.node(i).cycles();
+            if let Some(l) = self.lockstep(i) {
+                bits += l.stats().bits;
+                frames += l.stats().frames;
+                warnings.extend(l.warnings().iter().map(|w| format!("N{}: {w}", i + 1)));
+            }
+        }
+        let (cycles, now, bit_ps) = (self.sim.total_cycles(), self.sim.now(), self.bit_ps);
+        RUN_LOG.with(|l| {
+            let mut l = l.borrow_mut();
+            l.divergences.extend(divs);
+            l.benches += 1;
+            l.cycles += cycles;
+            l.node_cycles += node_cycles;
+            l.sim_ps += now;
+            l.bit_times += now / bit_ps.max(1);
+            l.checked_bits += bits;
+            l.checked_frames += frames;
+            l.warnings.extend(warnings);
+        });
     }
 }
 
