@@ -163,3 +163,17 @@ mod tests {
         assert!(format!("{e:#}").contains("exceeds ph1"), "{e:#}");
     }
 }
+
+#[cfg(test)]
+mod shipped {
+    use super::*;
+
+    /// `configs/default.toml` documents every key; it must stay equal to the defaults.
+    #[test]
+    fn shipped_default_config_equals_the_defaults() {
+        let p = Path::new(env!("CARGO_MANIFEST_DIR")).join("configs/default.toml");
+        assert_eq!(Config::load(&p).unwrap(), Config::default());
+        let c = Config::from_toml("[hub.fault_injection]\npoint = { Uplink = 0 }\nkind = \"StuckDominant\"\nstart_field = 6\n").unwrap();
+        assert!(c.hub.fault_injection.is_some());
+    }
+}
