@@ -247,8 +247,6 @@ pub struct Sja1000 {
     alc_lock: DFF<Bit>,
     ecc: DFF<Bits<8>>,
     ecc_lock: DFF<Bit>,
-    tec_sh: DFF<Bits<8>>,
-    rec_sh: DFF<Bits<8>>,
     acr0: DFF<Bits<8>>,
     acr1: DFF<Bits<8>>,
     acr2: DFF<Bits<8>>,
@@ -316,9 +314,14 @@ pub struct Sja1000 {
     l_irn: Signal<Local, Bits<8>>,
     l_tecv: Signal<Local, Bits<8>>,
     l_recv: Signal<Local, Bits<8>>,
+    l_frz: Signal<Local, Bit>,
+    l_cbsr: Signal<Local, Bit>,
     l_cbs: Signal<Local, Bit>,
     l_es: Signal<Local, Bit>,
     l_pas: Signal<Local, Bit>,
+    l_cload: Signal<Local, Bit>,
+    l_tecin: Signal<Local, Bits<9>>,
+    l_recin: Signal<Local, Bits<8>>,
     l_fld: Signal<Local, Bits<5>>,
     l_wait: Signal<Local, Bit>,
     l_busy: Signal<Local, Bit>,
@@ -368,8 +371,7 @@ pub struct Sja1000 {
     // bit timing
     l_t1: Signal<Local, Bits<6>>,
     l_t2: Signal<Local, Bits<6>>,
-    l_e: Signal<Local, Bits<6>>,
-    l_k: Signal<Local, Bits<6>>,
+    l_s: Signal<Local, Bits<6>>,
     l_prop: Signal<Local, Bits<6>>,
     l_ph1: Signal<Local, Bits<6>>,
     l_sjw: Signal<Local, Bits<6>>,
@@ -384,6 +386,12 @@ impl Sja1000 {
             ..Default::default()
         }
     }
+
+    /// The wrapped CAN core (read-only, for tests and debugging: e.g. its
+    /// `dbg_sample` strobe and `state`).
+    pub fn core(&self) -> &CanCore {
+        &self.core
+    }
 }
 
 impl Logic for Sja1000 {
@@ -391,7 +399,7 @@ impl Logic for Sja1000 {
     fn update(&mut self) {
         dff_setup!(
             self, clock, ack, rdat, ramsel, opm, lom, stm, afm, sleep, boff, core_bs, ier, ir, btr0, btr1, ocr, ewl,
-            cdr, alc, alc_lock, ecc, ecc_lock, tec_sh, rec_sh, acr0, acr1, acr2, acr3, amr0, amr1, amr2, amr3,
+            cdr, alc, alc_lock, ecc, ecc_lock, acr0, acr1, acr2, acr3, amr0, amr1, amr2, amr3,
             txb0, txb1, txb2, txb3, txb4, txb5, txb6, txb7, txb8, txb9, txb10, txb11, txb12, tx_pend, tx_single,
             tx_srr, tx_abrt, tx_lb, tcs_n, dos, rbsa, used, rmc, wr_busy, wr_src, wr_idx, wr_len, fetch_q, fetch_a,
             cur_fi, es_q, bs_q, pas_q, seen_ext
@@ -413,23 +421,38 @@ impl Logic for Sja1000 {
         // ------------------------------------------------------------------
         // Core status views.
         self.l_fld.next = self.core.dbg_field.val();
-        self.l_cbs.next = self.core.state.val() == 2;
+        // Reset mode proper (not the bus-off hold): the core is held in reset
+        // with its counters loaded, and the status bits are frozen.
+        self.l_frz.next = !self.opm.q.val() & !self.boff.q.val();
+        self.l_cbsr.next = self.core.state.val() == 2;
         self.l_wait.next = (self.l_fld.val() == 0) | (self.l_fld.val() == 1) | (self.l_fld.val() == 3);
         self.l_busy.next = self.l_fld.val() >= 4;
         self.l_txact.next = self.core.dbg_role.val() & (self.l_fld.val() >= 4) & (self.l_fld.val() <= 17);
-        // Visible error counters.
+        // Visible error counters: the core's (a loaded bus-off, TEC 256,
+        // reads 255); while bus-off 127 - completed recovery runs and 0.
         self.l_tecv.next = self.core.tec.val().get_bits::<8>(0);
+        if self.core.tec.val().get_bit(8) {
+            self.l_tecv.next = 255.into();
+        }
         self.l_recv.next = self.core.rec.val();
-        if self.l_cbs.val() {
+        if self.l_cbsr.val() & !self.l_frz.val() {
             self.l_tecv.next = 127 - self.core.dbg_runs.val();
             self.l_recv.next = 0.into();
-        } else if self.l_rm.val() {
-            self.l_tecv.next = self.tec_sh.q.val();
-            self.l_recv.next = self.rec_sh.q.val();
         }
+        self.l_cbs.next = self.l_cbsr.val();
         self.l_es.next =
-            self.l_cbs.val() | (self.l_tecv.val() >= self.ewl.q.val()) | (self.l_recv.val() >= self.ewl.q.val());
-        self.l_pas.next = !self.l_cbs.val() & ((self.l_tecv.val() >= 128) | (self.l_recv.val() >= 128));
+            self.l_cbsr.val() | (self.l_tecv.val() >= self.ewl.q.val()) | (self.l_recv.val() >= self.ewl.q.val());
+        self.l_pas.next = !self.l_cbsr.val() & ((self.l_tecv.val() >= 128) | (self.l_recv.val() >= 128));
+        if self.l_frz.val() {
+            self.l_cbs.next = self.bs_q.q.val();
+            self.l_es.next = self.es_q.q.val();
+            self.l_pas.next = self.pas_q.q.val();
+        }
+        // Counter load: every clock in reset mode (the core holds its own
+        // values, or takes a host write) and while the timing is rejected.
+        self.l_cload.next = self.l_frz.val() | self.core.cfg_err.val();
+        self.l_tecin.next = self.core.tec.val();
+        self.l_recin.next = self.core.rec.val();
 
         // ------------------------------------------------------------------
         // TX buffer as the core's native request.
@@ -463,31 +486,28 @@ impl Logic for Sja1000 {
 
         // ------------------------------------------------------------------
         // Bit timing: SJA1000 BTR0/BTR1 onto the core's fields (value - 1).
-        self.core.brp.next = (self.btr0.q.val().get_bits::<5>(0) << 1) | 1;
-        if self.btr0.q.val().get_bits::<2>(4).any() {
-            self.core.brp.next = 31.into();
-        }
+        // TQ = 2 (BRP + 1) clocks: the core's prescaler field is 2 BRP + 1.
+        self.core.brp.next = (bit_cast::<7, 6>(self.btr0.q.val().get_bits::<6>(0)) << 1) | 1;
+        // t1 = TSEG1 + 1 (1..16), t2 = TSEG2 + 1 (1..8), bit = 1 + t1 + t2.
         self.l_t1.next = bit_cast::<6, 4>(self.btr1.q.val().get_bits::<4>(0)) + 1;
         self.l_t2.next = bit_cast::<6, 3>(self.btr1.q.val().get_bits::<3>(4)) + 1;
-        // e = t1 - t2 + 8 (1..23)
-        self.l_e.next = (self.l_t1.val() + 8) - self.l_t2.val();
-        self.l_k.next = 0.into();
-        self.l_prop.next = self.l_e.val() - 8;
+        self.l_s.next = self.l_t1.val() + self.l_t2.val();
+        // exact: PH1 = PH2 = t2, PROP = t1 - t2 (t1 > t2 >= 2)
         self.l_ph1.next = self.l_t2.val();
-        if self.l_e.val() > 16 {
-            self.l_k.next = (self.l_e.val() - 15) >> 1;
-            self.l_prop.next = (self.l_e.val() - 8) - (self.l_k.val() << 1);
-            self.l_ph1.next = self.l_t2.val() + self.l_k.val();
-        } else if self.l_e.val() < 9 {
-            self.l_k.next = (10 - self.l_e.val()) >> 1;
-            self.l_prop.next = (self.l_e.val() - 8) + (self.l_k.val() << 1);
-            self.l_ph1.next = self.l_t2.val() - self.l_k.val();
-        }
-        if (self.l_ph1.val() == 0) | (self.l_ph1.val() > 32) {
+        self.l_prop.next = self.l_t1.val() - self.l_t2.val();
+        if self.l_t2.val() == 1 {
+            // PH2 is at least 2: keep the bit time, sample point 1 TQ earlier
             self.l_ph1.next = 1.into();
+            self.l_prop.next = self.l_t1.val() - 2;
+        } else if self.l_t1.val() <= self.l_t2.val() {
+            // keep the bit time and PH2 = PH1, sample point later
+            self.l_ph1.next = (self.l_s.val() - 1) >> 1;
+            self.l_prop.next = self.l_s.val() - (self.l_ph1.val() << 1);
         }
-        if self.l_ph1.val() > 8 {
-            self.l_ph1.next = 8.into();
+        if self.l_s.val() < 7 {
+            // under 8 TQ: a setting the core rejects
+            self.l_prop.next = 1.into();
+            self.l_ph1.next = 1.into();
         }
         self.l_sjw.next = bit_cast::<6, 2>(self.btr0.q.val().get_bits::<2>(6)) + 1;
         if self.l_sjw.val() > self.l_ph1.val() {
@@ -496,7 +516,7 @@ impl Logic for Sja1000 {
         self.l_prop.next = self.l_prop.val() - 1;
         self.l_ph1.next = self.l_ph1.val() - 1;
         self.l_sjw.next = self.l_sjw.val() - 1;
-        self.core.prop.next = self.l_prop.val().get_bits::<3>(0);
+        self.core.prop.next = self.l_prop.val().get_bits::<4>(0);
         self.core.ph1.next = self.l_ph1.val().get_bits::<3>(0);
         self.core.sjw.next = self.l_sjw.val().get_bits::<2>(0);
         self.core.triple.next = self.btr1.q.val().get_bit(7);
@@ -679,7 +699,7 @@ impl Logic for Sja1000 {
         self.afm.d.next = self.afm.q.val();
         self.sleep.d.next = self.sleep.q.val();
         self.boff.d.next = self.boff.q.val();
-        self.core_bs.d.next = self.l_cbs.val();
+        self.core_bs.d.next = self.l_cbsr.val() & !self.l_frz.val();
         self.ier.d.next = self.ier.q.val();
         self.ir.d.next = self.ir.q.val();
         self.l_irn.next = self.ir.q.val();
@@ -692,8 +712,6 @@ impl Logic for Sja1000 {
         self.alc_lock.d.next = self.alc_lock.q.val();
         self.ecc.d.next = self.ecc.q.val();
         self.ecc_lock.d.next = self.ecc_lock.q.val();
-        self.tec_sh.d.next = self.tec_sh.q.val();
-        self.rec_sh.d.next = self.rec_sh.q.val();
         self.acr0.d.next = self.acr0.q.val();
         self.acr1.d.next = self.acr1.q.val();
         self.acr2.d.next = self.acr2.q.val();
@@ -934,8 +952,6 @@ impl Logic for Sja1000 {
                     }
                 } else if self.l_d.val().get_bit(0) {
                     self.l_enter_rm.next = true;
-                    self.tec_sh.d.next = self.l_tecv.val();
-                    self.rec_sh.d.next = self.l_recv.val();
                 } else if self.l_d.val().get_bit(4) {
                     if !self.sleep.q.val()
                         & (self.l_irv.val() == 0)
@@ -993,12 +1009,27 @@ impl Logic for Sja1000 {
                 if self.l_a.val() == 13 {
                     self.ewl.d.next = self.l_d.val();
                 }
-                if self.l_a.val() == 14 {
-                    self.rec_sh.d.next = self.l_d.val();
+                if (self.l_a.val() == 14) & self.l_frz.val() {
+                    // (no effect while bus-off)
+                    self.l_cload.next = true;
+                    self.l_recin.next = self.l_d.val();
                 }
                 if self.l_a.val() == 15 {
-                    self.tec_sh.d.next = self.l_d.val();
-                    self.boff.d.next = false;
+                    // 255: CPU-driven bus-off when reset mode is left
+                    self.l_cload.next = true;
+                    self.l_tecin.next = bit_cast::<9, 8>(self.l_d.val());
+                    if self.l_d.val() == 255 {
+                        self.l_tecin.next = 256.into();
+                    }
+                    if self.boff.q.val() {
+                        // ends the bus-off hold: the core restarts from the
+                        // written value (integration of 11 recessive bits)
+                        self.boff.d.next = false;
+                        self.l_recin.next = 0.into();
+                        if self.l_d.val() != 255 {
+                            self.bs_q.d.next = false;
+                        }
+                    }
                 }
                 if self.l_a.val() == 16 {
                     self.acr0.d.next = self.l_d.val();
@@ -1273,14 +1304,13 @@ impl Logic for Sja1000 {
         if (self.l_pas.val() & !self.pas_q.q.val()) | (!self.l_pas.val() & self.pas_q.q.val() & !self.l_cbs.val()) {
             self.l_ev.next = self.l_ev.val().replace_bit(5, true);
         }
-        if self.l_cbs.val() & !self.core_bs.q.val() {
+        if (self.l_cbsr.val() & !self.l_frz.val()) & !self.core_bs.q.val() {
             // bus-off: reset mode, core kept in its bus-off state
             self.boff.d.next = true;
             self.l_enter_rm.next = true;
-            self.tec_sh.d.next = 127.into();
-            self.rec_sh.d.next = 0.into();
+            self.l_ev.next = self.l_ev.val().replace_bit(2, true);
         }
-        if !self.l_cbs.val() & self.core_bs.q.val() {
+        if !self.l_cbsr.val() & self.core_bs.q.val() {
             self.boff.d.next = false;
         }
         if self.sleep.q.val() & self.core.dbg_sample.val() & !self.core.dbg_busmon.val() {
@@ -1324,8 +1354,6 @@ impl Logic for Sja1000 {
             self.alc_lock.d.next = false;
             self.ecc.d.next = 0.into();
             self.ecc_lock.d.next = false;
-            self.tec_sh.d.next = 0.into();
-            self.rec_sh.d.next = 0.into();
             self.amr0.d.next = 0xFF.into();
             self.amr1.d.next = 0xFF.into();
             self.amr2.d.next = 0xFF.into();
@@ -1359,6 +1387,9 @@ impl Logic for Sja1000 {
         self.core.tx_dlc.next = self.txb0.q.val().get_bits::<4>(0);
         self.core.tx_data.next = self.l_tx_data.val();
         self.core.tx_abort.next = self.l_abort.val();
+        self.core.cnt_load.next = self.l_cload.val() & !self.rst.val();
+        self.core.tec_in.next = self.l_tecin.val();
+        self.core.rec_in.next = self.l_recin.val();
 
         // ------------------------------------------------------------------
         // Outputs.
