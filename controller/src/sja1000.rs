@@ -40,7 +40,7 @@
 //! | 0x0B | ALC | arbitration lost capture (bits 4..0) |
 //! | 0x0C | ECC | error code capture |
 //! | 0x0D | EWL | error warning limit (96 after reset), writable in reset mode |
-//! | 0x0E/0x0F | RXERR/TXERR | error counters; writable in reset mode (see gaps) |
+//! | 0x0E/0x0F | RXERR/TXERR | the core's error counters; writable in reset mode |
 //! | 0x10..0x1C | operating mode: read = RX window (FIFO RAM from RBSA), write = TX buffer |
 //! | 0x10..0x17 | reset mode: ACR0..3, AMR0..3 (0x18..0x1C read 0) |
 //! | 0x1D | RMC | RX message counter |
@@ -56,32 +56,43 @@
 //!   then). Entering it cancels a pending transmission (TBS = 1, no TI),
 //!   empties the FIFO (RMC = 0; RBSA is kept, the next message is stored at
 //!   RBSA) and leaves sleep. Writing RBSA empties the FIFO too.
-//! - **Error counters**: the core has no write port for TEC/REC. RXERR and
-//!   TXERR read, in reset mode, shadow registers that hold the counters of
-//!   the moment reset mode was entered and take host writes; on leaving
-//!   reset mode the core starts from 0, whatever was written (the Linux
-//!   driver writes 0, so it sees no difference). Writing 255 to TXERR
-//!   (CPU-driven bus-off) is therefore not possible.
+//! - **Error counters** are the core's TEC and REC. Entering reset mode
+//!   keeps them: while in reset mode the core is held in reset with its
+//!   counters loaded (`cnt_load`) from their own values or from a host
+//!   write to TXERR/RXERR, so the core continues from them when reset mode
+//!   is left; only the hardware reset clears them. As on the SJA1000, the
+//!   error state follows from the written values (error-passive from 128),
+//!   but ES, BS and the EI/EPI interrupts they cause change only when reset
+//!   mode is left: SR bits 7 and 6 are frozen in reset mode. Writing 255 to
+//!   TXERR is a CPU-driven bus-off (TXERR reads 255 until then): leaving
+//!   reset mode performs the bus-off event (RM set again, TXERR 127, RXERR 0,
+//!   BS, ES, EI), and clearing RM once more starts the recovery.
 //! - **Bus-off** sets RM; the core is then *not* reset but stays in its
 //!   bus-off state (`host_recovery` = 1). While bus-off, TXERR reads
 //!   127 − (completed recovery runs), counting down like the SJA1000's, and
-//!   RXERR reads 0. Clearing RM starts the recovery of 128 × 11 recessive
-//!   bits (the core's `recover` strobe); at its end BS and ES clear and EI
-//!   is raised. Writing TXERR (any value) while bus-off and in reset mode
-//!   clears BS at once and resets the core, so it only waits for 11
-//!   recessive bits after RM is cleared (data sheet behaviour for 0..254).
+//!   RXERR reads 0 (writes to it have no effect). Clearing RM starts the
+//!   recovery of 128 × 11 recessive bits (the core's `recover` strobe); at
+//!   its end BS and ES clear and EI is raised. Writing TXERR 0..254 while
+//!   bus-off clears BS at once and loads the core with the value (REC 0),
+//!   so it only waits for 11 recessive bits after RM is cleared; writing 255
+//!   then restarts the bus-off (a new bus-off event when RM is cleared).
 //!   Bit timing changes made while bus-off take effect at the next reset
 //!   mode entry that is not a bus-off (or after such a TXERR write).
-//! - **Bit timing**: BTR0/BTR1 are mapped onto the core's fields. BRP 0..15
-//!   (2..32 clocks per TQ) is exact; BRP 16..63 saturates at 15 (the core's
-//!   prescaler is 5 bits wide). TSEG1+1 = PROP+PH1 and TSEG2+1 = PH2, with
-//!   the core's PH2 = max(PH1, 2): when TSEG1 − TSEG2 lies in 1..8 the mapping
-//!   is exact; otherwise PH1 (= PH2) is moved by the smallest amount that
-//!   keeps PROP in 1..8, which keeps the bit time and moves the sample point
-//!   (e.g. BTR1 = 0x1C, 16 TQ with SP 87.5 %, becomes PROP 7, PH1 = PH2 4,
-//!   SP 75 %). TSEG2 = 0 gives PH2 = 2 (one TQ longer bit). SJW is limited to
-//!   PH1. Bit times below 8 TQ are rejected by the core (it stays inert,
-//!   RS = TS = 1). SAM selects triple sampling.
+//!   Entering reset mode during the recovery does not freeze TXERR: the
+//!   recovery keeps counting (the SJA1000 freezes it).
+//! - **Bit timing**: BTR0/BTR1 are mapped onto the core's fields. Every BRP
+//!   0..63 is exact: TQ = 2·(BRP+1) clocks (the core's prescaler field is
+//!   2·BRP+1, 7 bits). With t1 = TSEG1+1 (1..16 TQ) and t2 = TSEG2+1
+//!   (1..8 TQ) the bit is 1 + t1 + t2 TQ; the core has PH2 = max(PH1, 2),
+//!   PROP 1..16, PH1 1..8. When t1 > t2 ≥ 2 the mapping is exact: PROP =
+//!   t1 − t2, PH1 = PH2 = t2 (sample point after 1 + t1 TQ, as on the
+//!   SJA1000). The other settings keep the bit time and move the sample
+//!   point: t2 = 1 gives PROP = t1 − 2, PH1 = 1, PH2 = 2 (sample point one TQ
+//!   earlier); t1 ≤ t2 gives PH1 = PH2 = ⌊(t1 + t2 − 1)/2⌋ and PROP =
+//!   t1 + t2 − 2·PH1 (1 or 2; sample point later). SJW is limited to PH1
+//!   (so to t2 in the exact case). Bit times below 8 TQ are rejected by the
+//!   core (it stays inert, TX recessive, RS = TS = 1). SAM selects triple
+//!   sampling.
 //! - **TS/RS** are both 1 while the core waits for bus idle (reset, the
 //!   11-bit integration, bus-off), as the SJA1000's 0x3C status after reset;
 //!   otherwise TS = transmitting, RS = receiving a frame (SOF to the end of
