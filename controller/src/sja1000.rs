@@ -1354,6 +1354,10 @@ impl Logic for Sja1000 {
             self.afm.d.next = false;
             self.sleep.d.next = false;
             self.boff.d.next = false;
+            self.core_bs.d.next = false;
+            self.es_q.d.next = false;
+            self.bs_q.d.next = false;
+            self.pas_q.d.next = false;
             self.ier.d.next = 0.into();
             self.ir.d.next = 0.into();
             self.btr0.d.next = 0.into();

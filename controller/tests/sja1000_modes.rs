@@ -173,7 +173,7 @@ fn sja_interrupt_enables_mask_every_source() {
 #[test]
 fn sja_bit_timing_registers() {
     // BRP 3 -> 8 clocks per TQ; TSEG1 5, TSEG2 2 (10 TQ): 80 clocks per bit,
-    // and BTR1 0x1C (16 TQ, SP moved by the mapping) with BRP 0: 32 clocks per bit
+    // and BTR1 0x1C (16 TQ, SP 87.5 %) with BRP 0: 32 clocks per bit
     for (btr0, btr1, bit) in [(0x03u8, 0x25u8, 80usize), (0x00, 0x1C, 32), (0xC1, 0xA7, 4 * 12)] {
         let mut n = Net::new(2);
         for i in 0..2 {
@@ -255,4 +255,5 @@ fn sja_error_counters_in_reset_mode() {
     n.nodes[0].rst.next = false;
     n.step();
     assert_eq!((n.rd(0, REG_TXERR), n.rd(0, REG_RXERR)), (0, 0));
+    assert_eq!(n.rd(0, REG_SR), 0x3C, "reset value");
 }
