@@ -1681,6 +1681,10 @@ module canstar_sja1000(clock,rst,wb_cyc,wb_stb,wb_we,wb_adr,wb_dat_w,wb_dat_r,wb
             afm$d = 1'b0;
             sleep$d = 1'b0;
             boff$d = 1'b0;
+            core_bs$d = 1'b0;
+            es_q$d = 1'b0;
+            bs_q$d = 1'b0;
+            pas_q$d = 1'b0;
             ier$d = 32'h0;
             ir$d = 32'h0;
             btr0$d = 32'h0;
