@@ -179,3 +179,62 @@ fn sja_linux_restart_after_cpu_bus_off() {
     n.run(20 * BIT);
     assert_eq!(n.drv[1].rx, vec![Frame::std(0x44, &[1])]);
 }
+
+/// The counter-load port of `CanCore` the block uses, on its own: a load
+/// with TEC >= 256 is a bus-off (Bus_Off field, automatic recovery after
+/// 128 x 11 recessive bits), a load below 256 while bus-off leaves it for
+/// the 11-bit integration, REC >= 128 is error-passive; outside reset too.
+#[test]
+fn core_counter_load_port() {
+    use canstar_controller::core::CanCore;
+    use canstar_hdl::drive;
+    let mut c = CanCore::new();
+    drive::init(&mut c);
+    // 1 clock per TQ, PROP 1, PH1 4: 10 clocks per bit
+    c.brp.next = 0u64.into();
+    c.prop.next = 0u64.into();
+    c.ph1.next = 3u64.into();
+    c.sjw.next = 0u64.into();
+    c.rx.next = true;
+    let clk = |c: &mut CanCore, k: usize| {
+        for _ in 0..k {
+            c.rx.next = c.tx.val();
+            drive::cycle(c);
+        }
+    };
+    // loaded under reset: kept when reset is released
+    c.reset.next = true;
+    c.cnt_load.next = true;
+    c.tec_in.next = 300u64.into();
+    c.rec_in.next = 5u64.into();
+    clk(&mut c, 3);
+    c.reset.next = false;
+    c.cnt_load.next = false;
+    clk(&mut c, 1);
+    assert_eq!((c.tec.val().index(), c.rec.val().index(), c.state.val().index()), (300, 5, 2));
+    clk(&mut c, 30);
+    assert_eq!(c.dbg_field.val().index(), 3, "Bus_Off");
+    assert!(c.tx.val(), "recessive while bus-off");
+    // automatic recovery: 128 x 11 recessive bits
+    clk(&mut c, 128 * 11 * 10 + 200);
+    assert_eq!((c.tec.val().index(), c.rec.val().index(), c.state.val().index()), (0, 0, 0));
+    // outside reset: bus-off again, then a load below 256 ends it
+    c.cnt_load.next = true;
+    c.tec_in.next = 256u64.into();
+    c.rec_in.next = 0u64.into();
+    clk(&mut c, 1);
+    c.cnt_load.next = false;
+    clk(&mut c, 40);
+    assert_eq!((c.state.val().index(), c.dbg_field.val().index()), (2, 3));
+    c.cnt_load.next = true;
+    c.tec_in.next = 10u64.into();
+    c.rec_in.next = 200u64.into();
+    clk(&mut c, 1);
+    c.cnt_load.next = false;
+    clk(&mut c, 1);
+    assert_eq!((c.tec.val().index(), c.rec.val().index(), c.state.val().index()), (10, 200, 1));
+    assert_eq!(c.dbg_field.val().index(), 1, "Wait_For_Bus_Idle");
+    clk(&mut c, 13 * 10);
+    assert_eq!(c.dbg_field.val().index(), 2, "Bus_Idle after 11 recessive bits");
+    assert_eq!((c.tec.val().index(), c.rec.val().index()), (10, 200));
+}
