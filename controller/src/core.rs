@@ -27,7 +27,14 @@
 //! `host_recovery` and the `recover` strobe; the transmit request `tx_req`
 //! with `tx_ide`, `tx_rtr`, `tx_id` (29 bits, standard ids in bits 10..0),
 //! `tx_dlc`, `tx_data` (byte 0 in bits 63..56) and `tx_abort`. See
-//! [`crate::fsm::CanFsm`] for the request handshake.
+//! [`crate::fsm::CanFsm`] for the request handshake. The counter load
+//! `cnt_load` with `tec_in` (9 bits, ≥ 256 = bus-off) and `rec_in`: on every
+//! clock with `cnt_load` high TEC and REC take these values, with priority
+//! over `reset` (see [`crate::fsm::CanFsm`]); tie it low when unused.
+//!
+//! Timing fields (value − 1): `brp` 7 bits (1..128 clocks per TQ), `prop`
+//! 4 bits (PROP 1..16), `ph1` 3 bits (1..8), `sjw` 2 bits (1..4); PH2 =
+//! max(PH1, 2) and NTQ 8..25 as in [`canstar_hdl::btl`].
 //!
 //! Outputs: `tx`; 1-clock event strobes `tx_done`, `arb_lost`
 //! (+`arb_lost_pos`), `error` (+`err_kind` mask of `ERRK_*`, `err_field`,
@@ -64,8 +71,8 @@ pub struct CanCore {
     pub clock: Signal<In, Clock>,
     pub reset: Signal<In, Bit>,
     pub rx: Signal<In, Bit>,
-    pub brp: Signal<In, Bits<5>>,
-    pub prop: Signal<In, Bits<3>>,
+    pub brp: Signal<In, Bits<7>>,
+    pub prop: Signal<In, Bits<4>>,
     pub ph1: Signal<In, Bits<3>>,
     pub sjw: Signal<In, Bits<2>>,
     pub triple: Signal<In, Bit>,
@@ -81,6 +88,9 @@ pub struct CanCore {
     pub tx_dlc: Signal<In, Bits<4>>,
     pub tx_data: Signal<In, Bits<64>>,
     pub tx_abort: Signal<In, Bit>,
+    pub cnt_load: Signal<In, Bit>,
+    pub tec_in: Signal<In, Bits<9>>,
+    pub rec_in: Signal<In, Bits<8>>,
 
     pub tx: Signal<Out, Bit>,
     pub tx_done: Signal<Out, Bit>,
@@ -150,6 +160,9 @@ impl CanCore {
             tx_dlc: Default::default(),
             tx_data: Default::default(),
             tx_abort: Default::default(),
+            cnt_load: Default::default(),
+            tec_in: Default::default(),
+            rec_in: Default::default(),
             tx: Default::default(),
             tx_done: Default::default(),
             arb_lost: Default::default(),
@@ -238,6 +251,9 @@ impl Logic for CanCore {
         self.fsm.tx_dlc.next = self.tx_dlc.val();
         self.fsm.tx_data.next = self.tx_data.val();
         self.fsm.tx_abort.next = self.tx_abort.val();
+        self.fsm.cnt_load.next = self.cnt_load.val();
+        self.fsm.tec_in.next = self.tec_in.val();
+        self.fsm.rec_in.next = self.rec_in.val();
 
         self.tx.next = self.btl.tx.val();
         self.tx_done.next = self.fsm.tx_done.val();

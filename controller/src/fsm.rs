@@ -253,6 +253,18 @@ impl Field {
 /// transmit request `tx_req` (level; `tx_ide`, `tx_rtr`, `tx_id`, `tx_dlc`,
 /// `tx_data` are latched when a frame starts) and `tx_abort`.
 ///
+/// Counter load: on every clock with `cnt_load` high, TEC and REC take
+/// `tec_in` and `rec_in`; this has priority over `reset` and over the
+/// protocol's own counter updates (the SJA1000 register block holds it high
+/// while in reset mode, so host-written counters survive the release of
+/// reset). The state follows from the loaded values as from counted ones
+/// (error-passive from 128, bus-off from 256). A load with `tec_in` ≥ 256
+/// also puts the node at the start of Bus_Off (recessive, recovery runs
+/// counted from 0, waiting for `recover` with `host_recovery`), as a bus-off
+/// from an error does; a load with `tec_in` < 256 while in Bus_Off leaves it
+/// for Wait_For_Bus_Idle (11 recessive bits, as after reset). Tie
+/// `cnt_load` low when unused.
+///
 /// Request handshake: while `tx_req` is high the controller (re)tries until
 /// success; after `tx_done` (or, in single-shot mode, after the first failed
 /// attempt, or after `tx_abort`) it starts no further attempt until `tx_req` has
@@ -275,6 +287,10 @@ pub struct CanFsm {
     pub tx_dlc: Signal<In, Bits<4>>,
     pub tx_data: Signal<In, Bits<64>>,
     pub tx_abort: Signal<In, Bit>,
+    /// Load TEC/REC from `tec_in`/`rec_in` (see above).
+    pub cnt_load: Signal<In, Bit>,
+    pub tec_in: Signal<In, Bits<9>>,
+    pub rec_in: Signal<In, Bits<8>>,
 
     /// Level wanted on TX from the next transmit point (1 = recessive).
     pub drive: Signal<Out, Bit>,
@@ -1453,6 +1469,25 @@ impl Logic for CanFsm {
             self.evr.d.next = 0.into();
             self.rext.d.next = false;
             self.rrtr.d.next = false;
+        }
+        // Counter load (priority over reset and the protocol).
+        if self.cnt_load.val() {
+            self.tecr.d.next = self.tec_in.val();
+            self.recr.d.next = self.rec_in.val();
+            if self.tec_in.val().get_bit(8) {
+                self.fld.d.next = Field::BusOff;
+                self.fpos.d.next = 1.into();
+                self.rtx.d.next = false;
+                self.dom.d.next = false;
+                self.runr.d.next = 0.into();
+                self.rarmed.d.next = false;
+            } else if self.fld.q.val() == Field::BusOff {
+                self.fld.d.next = Field::WaitIdle;
+                self.fpos.d.next = 1.into();
+                self.dom.d.next = false;
+                self.runr.d.next = 0.into();
+                self.rarmed.d.next = false;
+            }
         }
 
         // ------------------------------------------------------------------

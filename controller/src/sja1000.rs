@@ -40,7 +40,7 @@
 //! | 0x0B | ALC | arbitration lost capture (bits 4..0) |
 //! | 0x0C | ECC | error code capture |
 //! | 0x0D | EWL | error warning limit (96 after reset), writable in reset mode |
-//! | 0x0E/0x0F | RXERR/TXERR | error counters; writable in reset mode (see gaps) |
+//! | 0x0E/0x0F | RXERR/TXERR | the core's error counters; writable in reset mode |
 //! | 0x10..0x1C | operating mode: read = RX window (FIFO RAM from RBSA), write = TX buffer |
 //! | 0x10..0x17 | reset mode: ACR0..3, AMR0..3 (0x18..0x1C read 0) |
 //! | 0x1D | RMC | RX message counter |
@@ -56,32 +56,43 @@
 //!   then). Entering it cancels a pending transmission (TBS = 1, no TI),
 //!   empties the FIFO (RMC = 0; RBSA is kept, the next message is stored at
 //!   RBSA) and leaves sleep. Writing RBSA empties the FIFO too.
-//! - **Error counters**: the core has no write port for TEC/REC. RXERR and
-//!   TXERR read, in reset mode, shadow registers that hold the counters of
-//!   the moment reset mode was entered and take host writes; on leaving
-//!   reset mode the core starts from 0, whatever was written (the Linux
-//!   driver writes 0, so it sees no difference). Writing 255 to TXERR
-//!   (CPU-driven bus-off) is therefore not possible.
+//! - **Error counters** are the core's TEC and REC. Entering reset mode
+//!   keeps them: while in reset mode the core is held in reset with its
+//!   counters loaded (`cnt_load`) from their own values or from a host
+//!   write to TXERR/RXERR, so the core continues from them when reset mode
+//!   is left; only the hardware reset clears them. As on the SJA1000, the
+//!   error state follows from the written values (error-passive from 128),
+//!   but ES, BS and the EI/EPI interrupts they cause change only when reset
+//!   mode is left: SR bits 7 and 6 are frozen in reset mode. Writing 255 to
+//!   TXERR is a CPU-driven bus-off (TXERR reads 255 until then): leaving
+//!   reset mode performs the bus-off event (RM set again, TXERR 127, RXERR 0,
+//!   BS, ES, EI), and clearing RM once more starts the recovery.
 //! - **Bus-off** sets RM; the core is then *not* reset but stays in its
 //!   bus-off state (`host_recovery` = 1). While bus-off, TXERR reads
 //!   127 − (completed recovery runs), counting down like the SJA1000's, and
-//!   RXERR reads 0. Clearing RM starts the recovery of 128 × 11 recessive
-//!   bits (the core's `recover` strobe); at its end BS and ES clear and EI
-//!   is raised. Writing TXERR (any value) while bus-off and in reset mode
-//!   clears BS at once and resets the core, so it only waits for 11
-//!   recessive bits after RM is cleared (data sheet behaviour for 0..254).
+//!   RXERR reads 0 (writes to it have no effect). Clearing RM starts the
+//!   recovery of 128 × 11 recessive bits (the core's `recover` strobe); at
+//!   its end BS and ES clear and EI is raised. Writing TXERR 0..254 while
+//!   bus-off clears BS at once and loads the core with the value (REC 0),
+//!   so it only waits for 11 recessive bits after RM is cleared; writing 255
+//!   then restarts the bus-off (a new bus-off event when RM is cleared).
 //!   Bit timing changes made while bus-off take effect at the next reset
 //!   mode entry that is not a bus-off (or after such a TXERR write).
-//! - **Bit timing**: BTR0/BTR1 are mapped onto the core's fields. BRP 0..15
-//!   (2..32 clocks per TQ) is exact; BRP 16..63 saturates at 15 (the core's
-//!   prescaler is 5 bits wide). TSEG1+1 = PROP+PH1 and TSEG2+1 = PH2, with
-//!   the core's PH2 = max(PH1, 2): when TSEG1 − TSEG2 lies in 1..8 the mapping
-//!   is exact; otherwise PH1 (= PH2) is moved by the smallest amount that
-//!   keeps PROP in 1..8, which keeps the bit time and moves the sample point
-//!   (e.g. BTR1 = 0x1C, 16 TQ with SP 87.5 %, becomes PROP 7, PH1 = PH2 4,
-//!   SP 75 %). TSEG2 = 0 gives PH2 = 2 (one TQ longer bit). SJW is limited to
-//!   PH1. Bit times below 8 TQ are rejected by the core (it stays inert,
-//!   RS = TS = 1). SAM selects triple sampling.
+//!   Entering reset mode during the recovery does not freeze TXERR: the
+//!   recovery keeps counting (the SJA1000 freezes it).
+//! - **Bit timing**: BTR0/BTR1 are mapped onto the core's fields. Every BRP
+//!   0..63 is exact: TQ = 2·(BRP+1) clocks (the core's prescaler field is
+//!   2·BRP+1, 7 bits). With t1 = TSEG1+1 (1..16 TQ) and t2 = TSEG2+1
+//!   (1..8 TQ) the bit is 1 + t1 + t2 TQ; the core has PH2 = max(PH1, 2),
+//!   PROP 1..16, PH1 1..8. When t1 > t2 ≥ 2 the mapping is exact: PROP =
+//!   t1 − t2, PH1 = PH2 = t2 (sample point after 1 + t1 TQ, as on the
+//!   SJA1000). The other settings keep the bit time and move the sample
+//!   point: t2 = 1 gives PROP = t1 − 2, PH1 = 1, PH2 = 2 (sample point one TQ
+//!   earlier); t1 ≤ t2 gives PH1 = PH2 = ⌊(t1 + t2 − 1)/2⌋ and PROP =
+//!   t1 + t2 − 2·PH1 (1 or 2; sample point later). SJW is limited to PH1
+//!   (so to t2 in the exact case). Bit times below 8 TQ are rejected by the
+//!   core (it stays inert, TX recessive, RS = TS = 1). SAM selects triple
+//!   sampling.
 //! - **TS/RS** are both 1 while the core waits for bus idle (reset, the
 //!   11-bit integration, bus-off), as the SJA1000's 0x3C status after reset;
 //!   otherwise TS = transmitting, RS = receiving a frame (SOF to the end of
@@ -247,8 +258,6 @@ pub struct Sja1000 {
     alc_lock: DFF<Bit>,
     ecc: DFF<Bits<8>>,
     ecc_lock: DFF<Bit>,
-    tec_sh: DFF<Bits<8>>,
-    rec_sh: DFF<Bits<8>>,
     acr0: DFF<Bits<8>>,
     acr1: DFF<Bits<8>>,
     acr2: DFF<Bits<8>>,
@@ -316,9 +325,14 @@ pub struct Sja1000 {
     l_irn: Signal<Local, Bits<8>>,
     l_tecv: Signal<Local, Bits<8>>,
     l_recv: Signal<Local, Bits<8>>,
+    l_frz: Signal<Local, Bit>,
+    l_cbsr: Signal<Local, Bit>,
     l_cbs: Signal<Local, Bit>,
     l_es: Signal<Local, Bit>,
     l_pas: Signal<Local, Bit>,
+    l_cload: Signal<Local, Bit>,
+    l_tecin: Signal<Local, Bits<9>>,
+    l_recin: Signal<Local, Bits<8>>,
     l_fld: Signal<Local, Bits<5>>,
     l_wait: Signal<Local, Bit>,
     l_busy: Signal<Local, Bit>,
@@ -368,8 +382,7 @@ pub struct Sja1000 {
     // bit timing
     l_t1: Signal<Local, Bits<6>>,
     l_t2: Signal<Local, Bits<6>>,
-    l_e: Signal<Local, Bits<6>>,
-    l_k: Signal<Local, Bits<6>>,
+    l_s: Signal<Local, Bits<6>>,
     l_prop: Signal<Local, Bits<6>>,
     l_ph1: Signal<Local, Bits<6>>,
     l_sjw: Signal<Local, Bits<6>>,
@@ -384,6 +397,12 @@ impl Sja1000 {
             ..Default::default()
         }
     }
+
+    /// The wrapped CAN core (read-only, for tests and debugging: e.g. its
+    /// `dbg_sample` strobe and `state`).
+    pub fn core(&self) -> &CanCore {
+        &self.core
+    }
 }
 
 impl Logic for Sja1000 {
@@ -391,7 +410,7 @@ impl Logic for Sja1000 {
     fn update(&mut self) {
         dff_setup!(
             self, clock, ack, rdat, ramsel, opm, lom, stm, afm, sleep, boff, core_bs, ier, ir, btr0, btr1, ocr, ewl,
-            cdr, alc, alc_lock, ecc, ecc_lock, tec_sh, rec_sh, acr0, acr1, acr2, acr3, amr0, amr1, amr2, amr3,
+            cdr, alc, alc_lock, ecc, ecc_lock, acr0, acr1, acr2, acr3, amr0, amr1, amr2, amr3,
             txb0, txb1, txb2, txb3, txb4, txb5, txb6, txb7, txb8, txb9, txb10, txb11, txb12, tx_pend, tx_single,
             tx_srr, tx_abrt, tx_lb, tcs_n, dos, rbsa, used, rmc, wr_busy, wr_src, wr_idx, wr_len, fetch_q, fetch_a,
             cur_fi, es_q, bs_q, pas_q, seen_ext
@@ -413,23 +432,38 @@ impl Logic for Sja1000 {
         // ------------------------------------------------------------------
         // Core status views.
         self.l_fld.next = self.core.dbg_field.val();
-        self.l_cbs.next = self.core.state.val() == 2;
+        // Reset mode proper (not the bus-off hold): the core is held in reset
+        // with its counters loaded, and the status bits are frozen.
+        self.l_frz.next = !self.opm.q.val() & !self.boff.q.val();
+        self.l_cbsr.next = self.core.state.val() == 2;
         self.l_wait.next = (self.l_fld.val() == 0) | (self.l_fld.val() == 1) | (self.l_fld.val() == 3);
         self.l_busy.next = self.l_fld.val() >= 4;
         self.l_txact.next = self.core.dbg_role.val() & (self.l_fld.val() >= 4) & (self.l_fld.val() <= 17);
-        // Visible error counters.
+        // Visible error counters: the core's (a loaded bus-off, TEC 256,
+        // reads 255); while bus-off 127 - completed recovery runs and 0.
         self.l_tecv.next = self.core.tec.val().get_bits::<8>(0);
+        if self.core.tec.val().get_bit(8) {
+            self.l_tecv.next = 255.into();
+        }
         self.l_recv.next = self.core.rec.val();
-        if self.l_cbs.val() {
+        if self.l_cbsr.val() & !self.l_frz.val() {
             self.l_tecv.next = 127 - self.core.dbg_runs.val();
             self.l_recv.next = 0.into();
-        } else if self.l_rm.val() {
-            self.l_tecv.next = self.tec_sh.q.val();
-            self.l_recv.next = self.rec_sh.q.val();
         }
+        self.l_cbs.next = self.l_cbsr.val();
         self.l_es.next =
-            self.l_cbs.val() | (self.l_tecv.val() >= self.ewl.q.val()) | (self.l_recv.val() >= self.ewl.q.val());
-        self.l_pas.next = !self.l_cbs.val() & ((self.l_tecv.val() >= 128) | (self.l_recv.val() >= 128));
+            self.l_cbsr.val() | (self.l_tecv.val() >= self.ewl.q.val()) | (self.l_recv.val() >= self.ewl.q.val());
+        self.l_pas.next = !self.l_cbsr.val() & ((self.l_tecv.val() >= 128) | (self.l_recv.val() >= 128));
+        if self.l_frz.val() {
+            self.l_cbs.next = self.bs_q.q.val();
+            self.l_es.next = self.es_q.q.val();
+            self.l_pas.next = self.pas_q.q.val();
+        }
+        // Counter load: every clock in reset mode (the core holds its own
+        // values, or takes a host write) and while the timing is rejected.
+        self.l_cload.next = self.l_frz.val() | self.core.cfg_err.val();
+        self.l_tecin.next = self.core.tec.val();
+        self.l_recin.next = self.core.rec.val();
 
         // ------------------------------------------------------------------
         // TX buffer as the core's native request.
@@ -463,31 +497,28 @@ impl Logic for Sja1000 {
 
         // ------------------------------------------------------------------
         // Bit timing: SJA1000 BTR0/BTR1 onto the core's fields (value - 1).
-        self.core.brp.next = (self.btr0.q.val().get_bits::<5>(0) << 1) | 1;
-        if self.btr0.q.val().get_bits::<2>(4).any() {
-            self.core.brp.next = 31.into();
-        }
+        // TQ = 2 (BRP + 1) clocks: the core's prescaler field is 2 BRP + 1.
+        self.core.brp.next = (bit_cast::<7, 6>(self.btr0.q.val().get_bits::<6>(0)) << 1) | 1;
+        // t1 = TSEG1 + 1 (1..16), t2 = TSEG2 + 1 (1..8), bit = 1 + t1 + t2.
         self.l_t1.next = bit_cast::<6, 4>(self.btr1.q.val().get_bits::<4>(0)) + 1;
         self.l_t2.next = bit_cast::<6, 3>(self.btr1.q.val().get_bits::<3>(4)) + 1;
-        // e = t1 - t2 + 8 (1..23)
-        self.l_e.next = (self.l_t1.val() + 8) - self.l_t2.val();
-        self.l_k.next = 0.into();
-        self.l_prop.next = self.l_e.val() - 8;
+        self.l_s.next = self.l_t1.val() + self.l_t2.val();
+        // exact: PH1 = PH2 = t2, PROP = t1 - t2 (t1 > t2 >= 2)
         self.l_ph1.next = self.l_t2.val();
-        if self.l_e.val() > 16 {
-            self.l_k.next = (self.l_e.val() - 15) >> 1;
-            self.l_prop.next = (self.l_e.val() - 8) - (self.l_k.val() << 1);
-            self.l_ph1.next = self.l_t2.val() + self.l_k.val();
-        } else if self.l_e.val() < 9 {
-            self.l_k.next = (10 - self.l_e.val()) >> 1;
-            self.l_prop.next = (self.l_e.val() - 8) + (self.l_k.val() << 1);
-            self.l_ph1.next = self.l_t2.val() - self.l_k.val();
-        }
-        if (self.l_ph1.val() == 0) | (self.l_ph1.val() > 32) {
+        self.l_prop.next = self.l_t1.val() - self.l_t2.val();
+        if self.l_t2.val() == 1 {
+            // PH2 is at least 2: keep the bit time, sample point 1 TQ earlier
             self.l_ph1.next = 1.into();
+            self.l_prop.next = self.l_t1.val() - 2;
+        } else if self.l_t1.val() <= self.l_t2.val() {
+            // keep the bit time and PH2 = PH1, sample point later
+            self.l_ph1.next = (self.l_s.val() - 1) >> 1;
+            self.l_prop.next = self.l_s.val() - (self.l_ph1.val() << 1);
         }
-        if self.l_ph1.val() > 8 {
-            self.l_ph1.next = 8.into();
+        if self.l_s.val() < 7 {
+            // under 8 TQ: a setting the core rejects
+            self.l_prop.next = 1.into();
+            self.l_ph1.next = 1.into();
         }
         self.l_sjw.next = bit_cast::<6, 2>(self.btr0.q.val().get_bits::<2>(6)) + 1;
         if self.l_sjw.val() > self.l_ph1.val() {
@@ -496,7 +527,7 @@ impl Logic for Sja1000 {
         self.l_prop.next = self.l_prop.val() - 1;
         self.l_ph1.next = self.l_ph1.val() - 1;
         self.l_sjw.next = self.l_sjw.val() - 1;
-        self.core.prop.next = self.l_prop.val().get_bits::<3>(0);
+        self.core.prop.next = self.l_prop.val().get_bits::<4>(0);
         self.core.ph1.next = self.l_ph1.val().get_bits::<3>(0);
         self.core.sjw.next = self.l_sjw.val().get_bits::<2>(0);
         self.core.triple.next = self.btr1.q.val().get_bit(7);
@@ -679,7 +710,7 @@ impl Logic for Sja1000 {
         self.afm.d.next = self.afm.q.val();
         self.sleep.d.next = self.sleep.q.val();
         self.boff.d.next = self.boff.q.val();
-        self.core_bs.d.next = self.l_cbs.val();
+        self.core_bs.d.next = self.l_cbsr.val() & !self.l_frz.val();
         self.ier.d.next = self.ier.q.val();
         self.ir.d.next = self.ir.q.val();
         self.l_irn.next = self.ir.q.val();
@@ -692,8 +723,6 @@ impl Logic for Sja1000 {
         self.alc_lock.d.next = self.alc_lock.q.val();
         self.ecc.d.next = self.ecc.q.val();
         self.ecc_lock.d.next = self.ecc_lock.q.val();
-        self.tec_sh.d.next = self.tec_sh.q.val();
-        self.rec_sh.d.next = self.rec_sh.q.val();
         self.acr0.d.next = self.acr0.q.val();
         self.acr1.d.next = self.acr1.q.val();
         self.acr2.d.next = self.acr2.q.val();
@@ -934,8 +963,6 @@ impl Logic for Sja1000 {
                     }
                 } else if self.l_d.val().get_bit(0) {
                     self.l_enter_rm.next = true;
-                    self.tec_sh.d.next = self.l_tecv.val();
-                    self.rec_sh.d.next = self.l_recv.val();
                 } else if self.l_d.val().get_bit(4) {
                     if !self.sleep.q.val()
                         & (self.l_irv.val() == 0)
@@ -993,12 +1020,27 @@ impl Logic for Sja1000 {
                 if self.l_a.val() == 13 {
                     self.ewl.d.next = self.l_d.val();
                 }
-                if self.l_a.val() == 14 {
-                    self.rec_sh.d.next = self.l_d.val();
+                if (self.l_a.val() == 14) & self.l_frz.val() {
+                    // (no effect while bus-off)
+                    self.l_cload.next = true;
+                    self.l_recin.next = self.l_d.val();
                 }
                 if self.l_a.val() == 15 {
-                    self.tec_sh.d.next = self.l_d.val();
-                    self.boff.d.next = false;
+                    // 255: CPU-driven bus-off when reset mode is left
+                    self.l_cload.next = true;
+                    self.l_tecin.next = bit_cast::<9, 8>(self.l_d.val());
+                    if self.l_d.val() == 255 {
+                        self.l_tecin.next = 256.into();
+                    }
+                    if self.boff.q.val() {
+                        // ends the bus-off hold: the core restarts from the
+                        // written value (integration of 11 recessive bits)
+                        self.boff.d.next = false;
+                        self.l_recin.next = 0.into();
+                        if self.l_d.val() != 255 {
+                            self.bs_q.d.next = false;
+                        }
+                    }
                 }
                 if self.l_a.val() == 16 {
                     self.acr0.d.next = self.l_d.val();
@@ -1273,14 +1315,13 @@ impl Logic for Sja1000 {
         if (self.l_pas.val() & !self.pas_q.q.val()) | (!self.l_pas.val() & self.pas_q.q.val() & !self.l_cbs.val()) {
             self.l_ev.next = self.l_ev.val().replace_bit(5, true);
         }
-        if self.l_cbs.val() & !self.core_bs.q.val() {
+        if (self.l_cbsr.val() & !self.l_frz.val()) & !self.core_bs.q.val() {
             // bus-off: reset mode, core kept in its bus-off state
             self.boff.d.next = true;
             self.l_enter_rm.next = true;
-            self.tec_sh.d.next = 127.into();
-            self.rec_sh.d.next = 0.into();
+            self.l_ev.next = self.l_ev.val().replace_bit(2, true);
         }
-        if !self.l_cbs.val() & self.core_bs.q.val() {
+        if !self.l_cbsr.val() & self.core_bs.q.val() {
             self.boff.d.next = false;
         }
         if self.sleep.q.val() & self.core.dbg_sample.val() & !self.core.dbg_busmon.val() {
@@ -1313,6 +1354,10 @@ impl Logic for Sja1000 {
             self.afm.d.next = false;
             self.sleep.d.next = false;
             self.boff.d.next = false;
+            self.core_bs.d.next = false;
+            self.es_q.d.next = false;
+            self.bs_q.d.next = false;
+            self.pas_q.d.next = false;
             self.ier.d.next = 0.into();
             self.ir.d.next = 0.into();
             self.btr0.d.next = 0.into();
@@ -1324,8 +1369,6 @@ impl Logic for Sja1000 {
             self.alc_lock.d.next = false;
             self.ecc.d.next = 0.into();
             self.ecc_lock.d.next = false;
-            self.tec_sh.d.next = 0.into();
-            self.rec_sh.d.next = 0.into();
             self.amr0.d.next = 0xFF.into();
             self.amr1.d.next = 0xFF.into();
             self.amr2.d.next = 0xFF.into();
@@ -1359,6 +1402,9 @@ impl Logic for Sja1000 {
         self.core.tx_dlc.next = self.txb0.q.val().get_bits::<4>(0);
         self.core.tx_data.next = self.l_tx_data.val();
         self.core.tx_abort.next = self.l_abort.val();
+        self.core.cnt_load.next = self.l_cload.val() & !self.rst.val();
+        self.core.tec_in.next = self.l_tecin.val();
+        self.core.rec_in.next = self.l_recin.val();
 
         // ------------------------------------------------------------------
         // Outputs.

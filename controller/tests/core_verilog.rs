@@ -94,6 +94,7 @@ fn core_verilog_flow() {
         u.triple.next = phase2 && cycle % 80_000 > 72_000;
         u.recover.next = phase2 && rng.gen_bool(0.0005);
         u.tx_abort.next = phase2 && rng.gen_bool(0.00005);
+        (u.cnt_load.next, u.tec_in.next, u.rec_in.next) = (phase2 && cycle % 23_000 < 3, ((cycle * 37 % 512) as u64).into(), ((cycle * 11 % 256) as u64).into());
     })
     .expect("CanCore Verilog flow");
     assert_eq!(cs.cycles, cycles);

@@ -73,6 +73,7 @@ fn fsm_cosim() {
         u.host_recovery.next = !alone && cycle % 60_000 > 50_000;
         u.recover.next = rng.gen_bool(0.001);
         u.tx_abort.next = !alone && rng.gen_bool(0.0002);
+        (u.cnt_load.next, u.tec_in.next, u.rec_in.next) = (!alone && cycle % 23_000 < 3, ((cycle * 37 % 512) as u64).into(), ((cycle * 11 % 256) as u64).into());
     })
     .expect("cosim");
     assert_eq!(seen.get(), [true; 4], "active, passive, bus-off and recovery all reached");

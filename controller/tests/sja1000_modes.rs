@@ -173,7 +173,7 @@ fn sja_interrupt_enables_mask_every_source() {
 #[test]
 fn sja_bit_timing_registers() {
     // BRP 3 -> 8 clocks per TQ; TSEG1 5, TSEG2 2 (10 TQ): 80 clocks per bit,
-    // and BTR1 0x1C (16 TQ, SP moved by the mapping) with BRP 0: 32 clocks per bit
+    // and BTR1 0x1C (16 TQ, SP 87.5 %) with BRP 0: 32 clocks per bit
     for (btr0, btr1, bit) in [(0x03u8, 0x25u8, 80usize), (0x00, 0x1C, 32), (0xC1, 0xA7, 4 * 12)] {
         let mut n = Net::new(2);
         for i in 0..2 {
@@ -213,9 +213,9 @@ fn sja_bit_timing_registers() {
 
 #[test]
 fn sja_error_counters_in_reset_mode() {
-    // counters are kept (shadow) when reset mode is entered, writable there,
-    // and ES follows the written values; the core restarts from 0 when reset
-    // mode is left (no counter write port in CanCore: documented gap)
+    // the counters are kept when reset mode is entered, writable there, and
+    // the core continues from the written values when reset mode is left;
+    // status bits and interrupts follow only then (data sheet, TXERR/RXERR)
     let mut n = Net::new(1);
     n.open(0, CtrlMode::default());
     n.run(13 * BIT);
@@ -229,13 +229,31 @@ fn sja_error_counters_in_reset_mode() {
     let t = n.rd(0, REG_TXERR);
     n.wr(0, REG_MOD, MOD_RM);
     assert_eq!(n.rd(0, REG_TXERR), t, "kept on entering reset mode");
+    assert_eq!(n.nodes[0].core().tec.val().index() as u8, t, "in the core");
     assert_eq!(n.rd(0, REG_SR) & SR_TBS, SR_TBS, "pending transmission cancelled");
+    n.run(50 * BIT);
+    assert_eq!(n.rd(0, REG_TXERR), t, "held while in reset mode");
+    n.wr(0, REG_IER, 0xFF);
+    n.rd(0, REG_IR);
     n.wr(0, REG_TXERR, 100);
     n.wr(0, REG_RXERR, 7);
     assert_eq!((n.rd(0, REG_TXERR), n.rd(0, REG_RXERR)), (100, 7));
-    assert_eq!(n.rd(0, REG_SR) & SR_ES, SR_ES, "ES from the written counter");
+    assert_eq!(n.nodes[0].core().tec.val().index(), 100, "loaded into the core");
+    assert_eq!(n.nodes[0].core().rec.val().index(), 7);
+    assert_eq!(n.rd(0, REG_SR) & SR_ES, 0, "ES changes only when reset mode is left");
+    assert!(!n.int(0), "no interrupt in reset mode");
     n.wr(0, REG_TXERR, 5);
-    assert_eq!(n.rd(0, REG_SR) & SR_ES, 0);
+    assert_eq!(n.rd(0, REG_TXERR), 5);
+    n.wr(0, REG_TXERR, 100);
     n.wr(0, REG_MOD, 0);
-    assert_eq!((n.rd(0, REG_TXERR), n.rd(0, REG_RXERR)), (0, 0), "core restarts from 0");
+    assert_eq!((n.rd(0, REG_TXERR), n.rd(0, REG_RXERR)), (100, 7), "the core continues from the written values");
+    assert_eq!(n.rd(0, REG_SR) & (SR_ES | SR_BS), SR_ES, "warning: 100 >= EWL 96");
+    assert_eq!(n.rd(0, REG_IR), IRQ_EI);
+    // the hardware reset clears them
+    n.nodes[0].rst.next = true;
+    n.step();
+    n.nodes[0].rst.next = false;
+    n.step();
+    assert_eq!((n.rd(0, REG_TXERR), n.rd(0, REG_RXERR)), (0, 0));
+    assert_eq!(n.rd(0, REG_SR), 0x3C, "reset value");
 }

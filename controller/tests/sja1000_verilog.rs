@@ -27,6 +27,8 @@ struct Seen {
     writes: usize,
     peer_rx: usize,
     peer_tx: usize,
+    /// reads of TXERR/RXERR that returned a host-written value (255, 140, 130)
+    loaded: usize,
 }
 
 fn random_frame<R: Rng>(rng: &mut R) -> Frame {
@@ -88,8 +90,15 @@ fn push_init<R: Rng>(q: &mut VecDeque<(bool, u8, u8)>, rng: &mut R, odd_timing: 
         }
     }
     q.push_back((true, REG_EWL, [96u8, 96, 1, 200][rng.gen_range(0..4)]));
-    q.push_back((true, REG_TXERR, [0u8, 0, 100, 255][rng.gen_range(0..4)]));
-    q.push_back((true, REG_RXERR, [0u8, 0, 130][rng.gen_range(0..3)]));
+    // counters: the core continues from them (255: a CPU-driven bus-off);
+    // the deterministic phases start from 0
+    let (tec, rec) = if first { (0, 0) } else { ([0u8, 0, 100, 140, 255][rng.gen_range(0..5)], [0u8, 0, 130][rng.gen_range(0..3)]) };
+    q.push_back((true, REG_TXERR, tec));
+    q.push_back((true, REG_RXERR, rec));
+    if rng.gen_bool(0.3) {
+        q.push_back((false, REG_TXERR, 0));
+        q.push_back((false, REG_RXERR, 0));
+    }
     if rng.gen_bool(0.2) {
         q.push_back((true, REG_RBSA, rng.gen()));
     }
@@ -230,6 +239,8 @@ fn stimulus(st: Rc<RefCell<Seen>>) -> impl FnMut(&mut Sja1000, &mut rand_chacha:
                         }
                         REG_RMC => s.max_rmc = s.max_rmc.max(d),
                         REG_MOD => s.modes |= d,
+                        REG_TXERR if d == 255 || d == 140 => s.loaded += 1,
+                        REG_RXERR if d == 130 => s.loaded += 1,
                         _ => {}
                     }
                 } else {
@@ -352,6 +363,7 @@ fn check_coverage(s: &Seen) {
     assert!(s.sr & SR_BS != 0, "bus-off never seen");
     assert!(s.sr & SR_DOS != 0, "data overrun never seen");
     assert!(s.max_rmc >= 3);
+    assert!(s.loaded >= 1, "no counter write read back");
     assert!(s.peer_rx > 10 && s.peer_tx > 10);
 }
 

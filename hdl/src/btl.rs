@@ -17,9 +17,13 @@
 //!   synchronisation is enabled. SP, NTQ and the validity of the
 //!   configuration are computed from the latched fields, so they are fixed
 //!   from the release of reset on.
-//! - `brp` (BRP − 1, 5 bits), `prop` (PROP − 1), `ph1` (PH1 − 1), `sjw`
-//!   (SJW − 1), `triple` (triple sampling): the host fields of §2.2.
-//!   PH2 = max(PH1, IPT = 2), SP = 1 + PROP + PH1, NTQ = SP + PH2.
+//! - `brp` (BRP − 1, 7 bits), `prop` (PROP − 1, 4 bits), `ph1` (PH1 − 1,
+//!   3 bits), `sjw` (SJW − 1, 2 bits), `triple` (triple sampling): the host
+//!   fields of §2.2. PH2 = max(PH1, IPT = 2), SP = 1 + PROP + PH1,
+//!   NTQ = SP + PH2. The prescaler (1..128) and PROP (1..16) are wider than
+//!   §2.2's 1..32 and 1..8, so that every SJA1000 bus timing setting
+//!   (TQ = 2·(BRP+1) clocks, TSEG1 up to 16 TQ) can be expressed; NTQ is
+//!   still limited to 8..25.
 //! - `rx`: the synchronised RX level (1 = recessive), looked at only on TQ
 //!   ticks.
 //! - `drive`: the level the bit-stream logic wants on TX from the next
@@ -100,9 +104,9 @@ pub const L_RX: usize = 1;
 /// Bit timing configuration in real values (not value − 1).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct BtlConfig {
-    /// Prescaler 1..32.
+    /// Prescaler 1..128.
     pub brp: u32,
-    /// PROP_SEG 1..8.
+    /// PROP_SEG 1..16 (wider than §2.2's 1..8, for the SJA1000 block).
     pub prop: u32,
     /// PHASE_SEG1 1..8.
     pub ph1: u32,
@@ -119,7 +123,7 @@ impl BtlConfig {
     }
     /// From the host fields (value − 1 encoding); out-of-range bits ignored.
     pub fn from_fields(brp: u32, prop: u32, ph1: u32, sjw: u32, triple: bool) -> Self {
-        Self { brp: (brp & 31) + 1, prop: (prop & 7) + 1, ph1: (ph1 & 7) + 1, sjw: (sjw & 3) + 1, triple }
+        Self { brp: (brp & 127) + 1, prop: (prop & 15) + 1, ph1: (ph1 & 7) + 1, sjw: (sjw & 3) + 1, triple }
     }
     /// The host fields (value − 1): (brp, prop, ph1, sjw).
     pub fn fields(&self) -> (u32, u32, u32, u32) {
@@ -139,8 +143,8 @@ impl BtlConfig {
     }
     /// Is the configuration accepted (§2.2)?
     pub fn is_valid(&self) -> bool {
-        (1..=32).contains(&self.brp)
-            && (1..=8).contains(&self.prop)
+        (1..=128).contains(&self.brp)
+            && (1..=16).contains(&self.prop)
             && (1..=8).contains(&self.ph1)
             && (1..=4).contains(&self.sjw)
             && (8..=25).contains(&self.ntq())
@@ -449,8 +453,8 @@ impl BtlCycleModel {
 pub struct BitTiming {
     pub clock: Signal<In, Clock>,
     pub reset: Signal<In, Bit>,
-    pub brp: Signal<In, Bits<5>>,
-    pub prop: Signal<In, Bits<3>>,
+    pub brp: Signal<In, Bits<7>>,
+    pub prop: Signal<In, Bits<4>>,
     pub ph1: Signal<In, Bits<3>>,
     pub sjw: Signal<In, Bits<2>>,
     pub triple: Signal<In, Bit>,
@@ -466,7 +470,7 @@ pub struct BitTiming {
     pub resync: Signal<Out, Bit>,
     pub cfg_err: Signal<Out, Bit>,
     // Configuration latched under reset.
-    c_brp: DFF<Bits<5>>,
+    c_brp: DFF<Bits<7>>,
     c_sp: DFF<Bits<5>>,
     c_ntq: DFF<Bits<5>>,
     c_sjw: DFF<Bits<5>>,
@@ -475,7 +479,7 @@ pub struct BitTiming {
     c_bad: DFF<Bit>,
     // Prescaler and counter model state. Levels that must be recessive at
     // power-up are stored inverted (DFFs power up at 0).
-    pre: DFF<Bits<5>>,
+    pre: DFF<Bits<7>>,
     cnt: DFF<Bits<5>>,
     spw: DFF<Bits<5>>,
     nbw: DFF<Bits<5>>,
@@ -490,9 +494,9 @@ pub struct BitTiming {
     hard_r: DFF<Bit>,
     resync_r: DFF<Bit>,
     // Combinational temporaries.
-    in_sp: Signal<Local, Bits<5>>,
-    in_ph2: Signal<Local, Bits<5>>,
-    in_ntq: Signal<Local, Bits<5>>,
+    in_sp: Signal<Local, Bits<6>>,
+    in_ph2: Signal<Local, Bits<6>>,
+    in_ntq: Signal<Local, Bits<6>>,
     in_sjw: Signal<Local, Bits<5>>,
     in_bad: Signal<Local, Bit>,
     tick: Signal<Local, Bit>,
@@ -528,14 +532,15 @@ impl Logic for BitTiming {
         );
 
         // Configuration from the input fields (value - 1 encoding).
-        self.in_sp.next = (bit_cast::<5, 3>(self.prop.val()) + bit_cast::<5, 3>(self.ph1.val())) + 3;
-        self.in_ph2.next = bit_cast::<5, 3>(self.ph1.val()) + 1;
+        self.in_sp.next = (bit_cast::<6, 4>(self.prop.val()) + bit_cast::<6, 3>(self.ph1.val())) + 3;
+        self.in_ph2.next = bit_cast::<6, 3>(self.ph1.val()) + 1;
         if self.ph1.val() == 0 {
             self.in_ph2.next = 2.into();
         }
         self.in_ntq.next = self.in_sp.val() + self.in_ph2.val();
         self.in_sjw.next = bit_cast::<5, 2>(self.sjw.val()) + 1;
-        self.in_bad.next = (self.in_ntq.val() < 8) | (bit_cast::<3, 2>(self.sjw.val()) > self.ph1.val());
+        self.in_bad.next = ((self.in_ntq.val() < 8) | (self.in_ntq.val() > 25))
+            | (bit_cast::<3, 2>(self.sjw.val()) > self.ph1.val());
 
         // Prescaler tick.
         self.tick.next = (self.c_valid.q.val() & !self.reset.val()) & (self.pre.q.val() == self.c_brp.q.val());
@@ -609,16 +614,16 @@ impl Logic for BitTiming {
         // Registers.
         if self.reset.val() {
             self.c_brp.d.next = self.brp.val();
-            self.c_sp.d.next = self.in_sp.val();
-            self.c_ntq.d.next = self.in_ntq.val();
+            self.c_sp.d.next = self.in_sp.val().get_bits::<5>(0);
+            self.c_ntq.d.next = self.in_ntq.val().get_bits::<5>(0);
             self.c_sjw.d.next = self.in_sjw.val();
             self.c_triple.d.next = self.triple.val();
             self.c_bad.d.next = self.in_bad.val();
             self.c_valid.d.next = !self.in_bad.val();
             self.pre.d.next = 0.into();
             self.cnt.d.next = 0.into();
-            self.spw.d.next = self.in_sp.val();
-            self.nbw.d.next = self.in_ntq.val();
+            self.spw.d.next = self.in_sp.val().get_bits::<5>(0);
+            self.nbw.d.next = self.in_ntq.val().get_bits::<5>(0);
             self.busmon_n.d.next = false;
             self.sync_dis.d.next = false;
             self.since.d.next = 2.into();
@@ -689,8 +694,8 @@ impl BitTiming {
     /// Set every input from `i`.
     pub fn set_inputs(&mut self, i: &BtlInputs) {
         self.reset.next = i.reset;
-        self.brp.next = (i.brp as u64 & 31).into();
-        self.prop.next = (i.prop as u64 & 7).into();
+        self.brp.next = (i.brp as u64 & 127).into();
+        self.prop.next = (i.prop as u64 & 15).into();
         self.ph1.next = (i.ph1 as u64 & 7).into();
         self.sjw.next = (i.sjw as u64 & 3).into();
         self.triple.next = i.triple;

@@ -432,16 +432,16 @@ impl Stim {
     }
 
     fn random_config(rng: &mut ChaCha8Rng) -> BtlConfig {
-        let brp = [1, 1, 1, 1, 2, 2, 3, 4, 5, 8, 32][rng.gen_range(0..11)];
+        let brp = [1, 1, 1, 1, 2, 2, 3, 4, 5, 8, 32, 33, 128][rng.gen_range(0..13)];
         let mut cfg = match rng.gen_range(0..10) {
             0 => BtlConfig::T10_6_4,
             1 => BtlConfig::T25_17_1,
             2 => BtlConfig::T10_8_1,
             3 => BtlConfig::T10_6_2,
             // Anything, valid or not.
-            4 => BtlConfig::from_fields(0, rng.gen_range(0..8), rng.gen_range(0..8), rng.gen_range(0..4), false),
+            4 => BtlConfig::from_fields(0, rng.gen_range(0..16), rng.gen_range(0..8), rng.gen_range(0..4), false),
             _ => loop {
-                let c = BtlConfig::from_fields(0, rng.gen_range(0..8), rng.gen_range(0..8), rng.gen_range(0..4), false);
+                let c = BtlConfig::from_fields(0, rng.gen_range(0..16), rng.gen_range(0..8), rng.gen_range(0..4), false);
                 if c.is_valid() {
                     break c;
                 }

@@ -636,8 +636,8 @@ impl Logic for Hub {
         self.monitor.clock.next = self.clock.val();
         self.monitor.reset.next = !self.rst_n.val();
         self.monitor.rx.next = self.core.bt.val();
-        self.monitor.brp.next = self.brp.val();
-        self.monitor.prop.next = self.prop.val();
+        self.monitor.brp.next = bit_cast::<7, 5>(self.brp.val());
+        self.monitor.prop.next = bit_cast::<4, 3>(self.prop.val());
         self.monitor.ph1.next = self.ph1.val();
         self.monitor.sjw.next = self.sjw.val();
         self.monitor.triple.next = false;
@@ -653,6 +653,9 @@ impl Logic for Hub {
         self.monitor.tx_dlc.next = 0.into();
         self.monitor.tx_data.next = 0.into();
         self.monitor.tx_abort.next = false;
+        self.monitor.cnt_load.next = false;
+        self.monitor.tec_in.next = 0.into();
+        self.monitor.rec_in.next = 0.into();
         // frame state adapter
         self.adapter.clock.next = self.clock.val();
         self.adapter.reset.next = !self.rst_n.val();

@@ -167,6 +167,7 @@ impl CanNode {
         self.core.self_test.next = c.self_test;
         self.core.single_shot.next = c.single_shot;
         self.core.host_recovery.next = c.host_recovery;
+        self.core.cnt_load.next = false;
     }
 
     pub fn config(&self) -> &NodeConfig {

@@ -8,8 +8,8 @@ module canstar_bit_timing(clock,reset,brp,prop,ph1,sjw,triple,rx,drive,hs_en,tq,
     // Module arguments
     input wire  clock;
     input wire  reset;
-    input wire  [4:0] brp;
-    input wire  [2:0] prop;
+    input wire  [6:0] brp;
+    input wire  [3:0] prop;
     input wire  [2:0] ph1;
     input wire  [1:0] sjw;
     input wire  triple;
@@ -26,8 +26,8 @@ module canstar_bit_timing(clock,reset,brp,prop,ph1,sjw,triple,rx,drive,hs_en,tq,
     output reg  cfg_err;
     
     // Stub signals
-    reg  [4:0] c_brp$d;
-    wire  [4:0] c_brp$q;
+    reg  [6:0] c_brp$d;
+    wire  [6:0] c_brp$q;
     reg  c_brp$clock;
     reg  [4:0] c_sp$d;
     wire  [4:0] c_sp$q;
@@ -47,8 +47,8 @@ module canstar_bit_timing(clock,reset,brp,prop,ph1,sjw,triple,rx,drive,hs_en,tq,
     reg  c_bad$d;
     wire  c_bad$q;
     reg  c_bad$clock;
-    reg  [4:0] pre$d;
-    wire  [4:0] pre$q;
+    reg  [6:0] pre$d;
+    wire  [6:0] pre$q;
     reg  pre$clock;
     reg  [4:0] cnt$d;
     wire  [4:0] cnt$q;
@@ -91,9 +91,9 @@ module canstar_bit_timing(clock,reset,brp,prop,ph1,sjw,triple,rx,drive,hs_en,tq,
     reg  resync_r$clock;
     
     // Local signals
-    reg  [4:0] in_sp;
-    reg  [4:0] in_ph2;
-    reg  [4:0] in_ntq;
+    reg  [5:0] in_sp;
+    reg  [5:0] in_ph2;
+    reg  [5:0] in_ntq;
     reg  [4:0] in_sjw;
     reg  in_bad;
     reg  tick;
@@ -268,14 +268,14 @@ module canstar_bit_timing(clock,reset,brp,prop,ph1,sjw,triple,rx,drive,hs_en,tq,
         sample_r$d = sample_r$q;
         hard_r$d = hard_r$q;
         resync_r$d = resync_r$q;
-        in_sp = (((prop) & 5'h1f) + ((ph1) & 5'h1f)) + 32'h3;
-        in_ph2 = ((ph1) & 5'h1f) + 32'h1;
+        in_sp = (((prop) & 6'h3f) + ((ph1) & 6'h3f)) + 32'h3;
+        in_ph2 = ((ph1) & 6'h3f) + 32'h1;
         if (ph1 == 32'h0) begin
             in_ph2 = 32'h2;
         end
         in_ntq = in_sp + in_ph2;
         in_sjw = ((sjw) & 5'h1f) + 32'h1;
-        in_bad = (in_ntq < 32'h8) | (((sjw) & 3'h7) > ph1);
+        in_bad = ((in_ntq < 32'h8) | (in_ntq > 32'h19)) | (((sjw) & 3'h7) > ph1);
         tick = (c_valid$q & ~reset) & (pre$q == c_brp$q);
         c1 = cnt$q + 32'h1;
         late = c1 > spw$q;
@@ -336,16 +336,16 @@ module canstar_bit_timing(clock,reset,brp,prop,ph1,sjw,triple,rx,drive,hs_en,tq,
         fire = (restart | eob | pending$q) & (since_inc == 32'h2);
         if (reset) begin
             c_brp$d = brp;
-            c_sp$d = in_sp;
-            c_ntq$d = in_ntq;
+            c_sp$d = in_sp[(32'h0)+:(5)];
+            c_ntq$d = in_ntq[(32'h0)+:(5)];
             c_sjw$d = in_sjw;
             c_triple$d = triple;
             c_bad$d = in_bad;
             c_valid$d = ~in_bad;
             pre$d = 32'h0;
             cnt$d = 32'h0;
-            spw$d = in_sp;
-            nbw$d = in_ntq;
+            spw$d = in_sp[(32'h0)+:(5)];
+            nbw$d = in_ntq[(32'h0)+:(5)];
             busmon_n$d = 1'b0;
             sync_dis$d = 1'b0;
             since$d = 32'h2;
@@ -446,13 +446,13 @@ endmodule // canstar_bit_timing$c_bad
 module canstar_bit_timing$c_brp(d,q,clock);
     
     // Module arguments
-    input wire  [4:0] d;
-    output reg  [4:0] q;
+    input wire  [6:0] d;
+    output reg  [6:0] q;
     input wire  clock;
     
     // Update code (custom)
     initial begin
-       q = 5'h0;
+       q = 7'h0;
     end
     
     always @(posedge clock) begin
@@ -674,13 +674,13 @@ endmodule // canstar_bit_timing$pending
 module canstar_bit_timing$pre(d,q,clock);
     
     // Module arguments
-    input wire  [4:0] d;
-    output reg  [4:0] q;
+    input wire  [6:0] d;
+    output reg  [6:0] q;
     input wire  clock;
     
     // Update code (custom)
     initial begin
-       q = 5'h0;
+       q = 7'h0;
     end
     
     always @(posedge clock) begin

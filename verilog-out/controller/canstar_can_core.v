@@ -3,14 +3,14 @@
 
 
 
-module canstar_can_core(clock,reset,rx,brp,prop,ph1,sjw,triple,listen_only,self_test,single_shot,host_recovery,recover,tx_req,tx_ide,tx_rtr,tx_id,tx_dlc,tx_data,tx_abort,tx,tx_done,arb_lost,arb_lost_pos,error,err_kind,err_field,err_pos,err_tx,rx_valid,rx_ide,rx_rtr,rx_id,rx_dlc,rx_data,tec,rec,state,err_warn,cfg_err,dbg_busmon,dbg_sample,dbg_tx_rqst,dbg_field,dbg_pos,dbg_stuff,dbg_role,dbg_events,dbg_runs,dbg_hard_sync,dbg_resync);
+module canstar_can_core(clock,reset,rx,brp,prop,ph1,sjw,triple,listen_only,self_test,single_shot,host_recovery,recover,tx_req,tx_ide,tx_rtr,tx_id,tx_dlc,tx_data,tx_abort,cnt_load,tec_in,rec_in,tx,tx_done,arb_lost,arb_lost_pos,error,err_kind,err_field,err_pos,err_tx,rx_valid,rx_ide,rx_rtr,rx_id,rx_dlc,rx_data,tec,rec,state,err_warn,cfg_err,dbg_busmon,dbg_sample,dbg_tx_rqst,dbg_field,dbg_pos,dbg_stuff,dbg_role,dbg_events,dbg_runs,dbg_hard_sync,dbg_resync);
     
     // Module arguments
     input wire  clock;
     input wire  reset;
     input wire  rx;
-    input wire  [4:0] brp;
-    input wire  [2:0] prop;
+    input wire  [6:0] brp;
+    input wire  [3:0] prop;
     input wire  [2:0] ph1;
     input wire  [1:0] sjw;
     input wire  triple;
@@ -26,6 +26,9 @@ module canstar_can_core(clock,reset,rx,brp,prop,ph1,sjw,triple,listen_only,self_
     input wire  [3:0] tx_dlc;
     input wire  [63:0] tx_data;
     input wire  tx_abort;
+    input wire  cnt_load;
+    input wire  [8:0] tec_in;
+    input wire  [7:0] rec_in;
     output reg  tx;
     output reg  tx_done;
     output reg  arb_lost;
@@ -92,8 +95,8 @@ module canstar_can_core(clock,reset,rx,brp,prop,ph1,sjw,triple,listen_only,self_
     wire  sync$q;
     reg  btl$clock;
     reg  btl$reset;
-    reg  [4:0] btl$brp;
-    reg  [2:0] btl$prop;
+    reg  [6:0] btl$brp;
+    reg  [3:0] btl$prop;
     reg  [2:0] btl$ph1;
     reg  [1:0] btl$sjw;
     reg  btl$triple;
@@ -124,6 +127,9 @@ module canstar_can_core(clock,reset,rx,brp,prop,ph1,sjw,triple,listen_only,self_
     reg  [3:0] fsm$tx_dlc;
     reg  [63:0] fsm$tx_data;
     reg  fsm$tx_abort;
+    reg  fsm$cnt_load;
+    reg  [8:0] fsm$tec_in;
+    reg  [7:0] fsm$rec_in;
     wire  fsm$drive;
     wire  fsm$hs_en;
     wire  fsm$tx_done;
@@ -199,6 +205,9 @@ module canstar_can_core(clock,reset,rx,brp,prop,ph1,sjw,triple,listen_only,self_
         .tx_dlc(fsm$tx_dlc),
         .tx_data(fsm$tx_data),
         .tx_abort(fsm$tx_abort),
+        .cnt_load(fsm$cnt_load),
+        .tec_in(fsm$tec_in),
+        .rec_in(fsm$rec_in),
         .drive(fsm$drive),
         .hs_en(fsm$hs_en),
         .tx_done(fsm$tx_done),
@@ -260,6 +269,9 @@ module canstar_can_core(clock,reset,rx,brp,prop,ph1,sjw,triple,listen_only,self_
         fsm$tx_dlc = tx_dlc;
         fsm$tx_data = tx_data;
         fsm$tx_abort = tx_abort;
+        fsm$cnt_load = cnt_load;
+        fsm$tec_in = tec_in;
+        fsm$rec_in = rec_in;
         tx = btl$tx;
         tx_done = fsm$tx_done;
         arb_lost = fsm$arb_lost;
@@ -304,8 +316,8 @@ module canstar_can_core$btl(clock,reset,brp,prop,ph1,sjw,triple,rx,drive,hs_en,t
     // Module arguments
     input wire  clock;
     input wire  reset;
-    input wire  [4:0] brp;
-    input wire  [2:0] prop;
+    input wire  [6:0] brp;
+    input wire  [3:0] prop;
     input wire  [2:0] ph1;
     input wire  [1:0] sjw;
     input wire  triple;
@@ -322,8 +334,8 @@ module canstar_can_core$btl(clock,reset,brp,prop,ph1,sjw,triple,rx,drive,hs_en,t
     output reg  cfg_err;
     
     // Stub signals
-    reg  [4:0] c_brp$d;
-    wire  [4:0] c_brp$q;
+    reg  [6:0] c_brp$d;
+    wire  [6:0] c_brp$q;
     reg  c_brp$clock;
     reg  [4:0] c_sp$d;
     wire  [4:0] c_sp$q;
@@ -343,8 +355,8 @@ module canstar_can_core$btl(clock,reset,brp,prop,ph1,sjw,triple,rx,drive,hs_en,t
     reg  c_bad$d;
     wire  c_bad$q;
     reg  c_bad$clock;
-    reg  [4:0] pre$d;
-    wire  [4:0] pre$q;
+    reg  [6:0] pre$d;
+    wire  [6:0] pre$q;
     reg  pre$clock;
     reg  [4:0] cnt$d;
     wire  [4:0] cnt$q;
@@ -387,9 +399,9 @@ module canstar_can_core$btl(clock,reset,brp,prop,ph1,sjw,triple,rx,drive,hs_en,t
     reg  resync_r$clock;
     
     // Local signals
-    reg  [4:0] in_sp;
-    reg  [4:0] in_ph2;
-    reg  [4:0] in_ntq;
+    reg  [5:0] in_sp;
+    reg  [5:0] in_ph2;
+    reg  [5:0] in_ntq;
     reg  [4:0] in_sjw;
     reg  in_bad;
     reg  tick;
@@ -564,14 +576,14 @@ module canstar_can_core$btl(clock,reset,brp,prop,ph1,sjw,triple,rx,drive,hs_en,t
         sample_r$d = sample_r$q;
         hard_r$d = hard_r$q;
         resync_r$d = resync_r$q;
-        in_sp = (((prop) & 5'h1f) + ((ph1) & 5'h1f)) + 32'h3;
-        in_ph2 = ((ph1) & 5'h1f) + 32'h1;
+        in_sp = (((prop) & 6'h3f) + ((ph1) & 6'h3f)) + 32'h3;
+        in_ph2 = ((ph1) & 6'h3f) + 32'h1;
         if (ph1 == 32'h0) begin
             in_ph2 = 32'h2;
         end
         in_ntq = in_sp + in_ph2;
         in_sjw = ((sjw) & 5'h1f) + 32'h1;
-        in_bad = (in_ntq < 32'h8) | (((sjw) & 3'h7) > ph1);
+        in_bad = ((in_ntq < 32'h8) | (in_ntq > 32'h19)) | (((sjw) & 3'h7) > ph1);
         tick = (c_valid$q & ~reset) & (pre$q == c_brp$q);
         c1 = cnt$q + 32'h1;
         late = c1 > spw$q;
@@ -632,16 +644,16 @@ module canstar_can_core$btl(clock,reset,brp,prop,ph1,sjw,triple,rx,drive,hs_en,t
         fire = (restart | eob | pending$q) & (since_inc == 32'h2);
         if (reset) begin
             c_brp$d = brp;
-            c_sp$d = in_sp;
-            c_ntq$d = in_ntq;
+            c_sp$d = in_sp[(32'h0)+:(5)];
+            c_ntq$d = in_ntq[(32'h0)+:(5)];
             c_sjw$d = in_sjw;
             c_triple$d = triple;
             c_bad$d = in_bad;
             c_valid$d = ~in_bad;
             pre$d = 32'h0;
             cnt$d = 32'h0;
-            spw$d = in_sp;
-            nbw$d = in_ntq;
+            spw$d = in_sp[(32'h0)+:(5)];
+            nbw$d = in_ntq[(32'h0)+:(5)];
             busmon_n$d = 1'b0;
             sync_dis$d = 1'b0;
             since$d = 32'h2;
@@ -742,13 +754,13 @@ endmodule // canstar_can_core$btl$c_bad
 module canstar_can_core$btl$c_brp(d,q,clock);
     
     // Module arguments
-    input wire  [4:0] d;
-    output reg  [4:0] q;
+    input wire  [6:0] d;
+    output reg  [6:0] q;
     input wire  clock;
     
     // Update code (custom)
     initial begin
-       q = 5'h0;
+       q = 7'h0;
     end
     
     always @(posedge clock) begin
@@ -970,13 +982,13 @@ endmodule // canstar_can_core$btl$pending
 module canstar_can_core$btl$pre(d,q,clock);
     
     // Module arguments
-    input wire  [4:0] d;
-    output reg  [4:0] q;
+    input wire  [6:0] d;
+    output reg  [6:0] q;
     input wire  clock;
     
     // Update code (custom)
     initial begin
-       q = 5'h0;
+       q = 7'h0;
     end
     
     always @(posedge clock) begin
@@ -1100,7 +1112,7 @@ module canstar_can_core$btl$tx_n(d,q,clock);
 endmodule // canstar_can_core$btl$tx_n
 
 
-module canstar_can_core$fsm(clock,reset,sample,busmon,listen_only,self_test,single_shot,host_recovery,recover,tx_req,tx_ide,tx_rtr,tx_id,tx_dlc,tx_data,tx_abort,drive,hs_en,tx_done,arb_lost,arb_lost_pos,error,err_kind,err_field,err_pos,err_tx,rx_valid,rx_ide,rx_rtr,rx_id,rx_dlc,rx_data,tec,rec,state,err_warn,tx_rqst,field,pos,stuff,role,events,runs);
+module canstar_can_core$fsm(clock,reset,sample,busmon,listen_only,self_test,single_shot,host_recovery,recover,tx_req,tx_ide,tx_rtr,tx_id,tx_dlc,tx_data,tx_abort,cnt_load,tec_in,rec_in,drive,hs_en,tx_done,arb_lost,arb_lost_pos,error,err_kind,err_field,err_pos,err_tx,rx_valid,rx_ide,rx_rtr,rx_id,rx_dlc,rx_data,tec,rec,state,err_warn,tx_rqst,field,pos,stuff,role,events,runs);
     
     // Module arguments
     input wire  clock;
@@ -1119,6 +1131,9 @@ module canstar_can_core$fsm(clock,reset,sample,busmon,listen_only,self_test,sing
     input wire  [3:0] tx_dlc;
     input wire  [63:0] tx_data;
     input wire  tx_abort;
+    input wire  cnt_load;
+    input wire  [8:0] tec_in;
+    input wire  [7:0] rec_in;
     output reg  drive;
     output reg  hs_en;
     output reg  tx_done;
@@ -2772,6 +2787,25 @@ module canstar_can_core$fsm(clock,reset,sample,busmon,listen_only,self_test,sing
             evr$d = 32'h0;
             rext$d = 1'b0;
             rrtr$d = 1'b0;
+        end
+        if (cnt_load) begin
+            tecr$d = tec_in;
+            recr$d = rec_in;
+            if (tec_in[32'h8]) begin
+                fld$d = Field$BusOff;
+                fpos$d = 32'h1;
+                rtx$d = 1'b0;
+                dom$d = 1'b0;
+                runr$d = 32'h0;
+                rarmed$d = 1'b0;
+            end
+            else if (fld$q == Field$BusOff) begin
+                fld$d = Field$WaitIdle;
+                fpos$d = 32'h1;
+                dom$d = 1'b0;
+                runr$d = 32'h0;
+                rarmed$d = 1'b0;
+            end
         end
         pos = l_dpos;
         stuff = l_curstf;

@@ -23,8 +23,8 @@ module canstar_sja1000(clock,rst,wb_cyc,wb_stb,wb_we,wb_adr,wb_dat_w,wb_dat_r,wb
     reg  core$clock;
     reg  core$reset;
     reg  core$rx;
-    reg  [4:0] core$brp;
-    reg  [2:0] core$prop;
+    reg  [6:0] core$brp;
+    reg  [3:0] core$prop;
     reg  [2:0] core$ph1;
     reg  [1:0] core$sjw;
     reg  core$triple;
@@ -40,6 +40,9 @@ module canstar_sja1000(clock,rst,wb_cyc,wb_stb,wb_we,wb_adr,wb_dat_w,wb_dat_r,wb
     reg  [3:0] core$tx_dlc;
     reg  [63:0] core$tx_data;
     reg  core$tx_abort;
+    reg  core$cnt_load;
+    reg  [8:0] core$tec_in;
+    reg  [7:0] core$rec_in;
     wire  core$tx;
     wire  core$tx_done;
     wire  core$arb_lost;
@@ -141,12 +144,6 @@ module canstar_sja1000(clock,rst,wb_cyc,wb_stb,wb_we,wb_adr,wb_dat_w,wb_dat_r,wb
     reg  ecc_lock$d;
     wire  ecc_lock$q;
     reg  ecc_lock$clock;
-    reg  [7:0] tec_sh$d;
-    wire  [7:0] tec_sh$q;
-    reg  tec_sh$clock;
-    reg  [7:0] rec_sh$d;
-    wire  [7:0] rec_sh$q;
-    reg  rec_sh$clock;
     reg  [7:0] acr0$d;
     wire  [7:0] acr0$q;
     reg  acr0$clock;
@@ -295,9 +292,14 @@ module canstar_sja1000(clock,rst,wb_cyc,wb_stb,wb_we,wb_adr,wb_dat_w,wb_dat_r,wb
     reg  [7:0] l_irn;
     reg  [7:0] l_tecv;
     reg  [7:0] l_recv;
+    reg  l_frz;
+    reg  l_cbsr;
     reg  l_cbs;
     reg  l_es;
     reg  l_pas;
+    reg  l_cload;
+    reg  [8:0] l_tecin;
+    reg  [7:0] l_recin;
     reg  [4:0] l_fld;
     reg  l_wait;
     reg  l_busy;
@@ -342,8 +344,7 @@ module canstar_sja1000(clock,rst,wb_cyc,wb_stb,wb_we,wb_adr,wb_dat_w,wb_dat_r,wb
     reg  [7:0] l_pos;
     reg  [5:0] l_t1;
     reg  [5:0] l_t2;
-    reg  [5:0] l_e;
-    reg  [5:0] l_k;
+    reg  [5:0] l_s;
     reg  [5:0] l_prop;
     reg  [5:0] l_ph1;
     reg  [5:0] l_sjw;
@@ -370,6 +371,9 @@ module canstar_sja1000(clock,rst,wb_cyc,wb_stb,wb_we,wb_adr,wb_dat_w,wb_dat_r,wb
         .tx_dlc(core$tx_dlc),
         .tx_data(core$tx_data),
         .tx_abort(core$tx_abort),
+        .cnt_load(core$cnt_load),
+        .tec_in(core$tec_in),
+        .rec_in(core$rec_in),
         .tx(core$tx),
         .tx_done(core$tx_done),
         .arb_lost(core$arb_lost),
@@ -515,16 +519,6 @@ module canstar_sja1000(clock,rst,wb_cyc,wb_stb,wb_we,wb_adr,wb_dat_w,wb_dat_r,wb
         .d(ecc_lock$d),
         .q(ecc_lock$q),
         .clock(ecc_lock$clock)
-    );
-    canstar_sja1000$tec_sh tec_sh(
-        .d(tec_sh$d),
-        .q(tec_sh$q),
-        .clock(tec_sh$clock)
-    );
-    canstar_sja1000$rec_sh rec_sh(
-        .d(rec_sh$d),
-        .q(rec_sh$q),
-        .clock(rec_sh$clock)
     );
     canstar_sja1000$acr0 acr0(
         .d(acr0$d),
@@ -760,8 +754,6 @@ module canstar_sja1000(clock,rst,wb_cyc,wb_stb,wb_we,wb_adr,wb_dat_w,wb_dat_r,wb
         alc_lock$clock = clock;
         ecc$clock = clock;
         ecc_lock$clock = clock;
-        tec_sh$clock = clock;
-        rec_sh$clock = clock;
         acr0$clock = clock;
         acr1$clock = clock;
         acr2$clock = clock;
@@ -825,8 +817,6 @@ module canstar_sja1000(clock,rst,wb_cyc,wb_stb,wb_we,wb_adr,wb_dat_w,wb_dat_r,wb
         alc_lock$d = alc_lock$q;
         ecc$d = ecc$q;
         ecc_lock$d = ecc_lock$q;
-        tec_sh$d = tec_sh$q;
-        rec_sh$d = rec_sh$q;
         acr0$d = acr0$q;
         acr1$d = acr1$q;
         acr2$d = acr2$q;
@@ -880,22 +870,31 @@ module canstar_sja1000(clock,rst,wb_cyc,wb_stb,wb_we,wb_adr,wb_dat_w,wb_dat_r,wb
         l_win = (l_a >= 32'h10) & (l_a <= 32'h1c);
         l_aoff = l_a - 32'h20;
         l_fld = core$dbg_field;
-        l_cbs = core$state == 32'h2;
+        l_frz = ~opm$q & ~boff$q;
+        l_cbsr = core$state == 32'h2;
         l_wait = (l_fld == 32'h0) | (l_fld == 32'h1) | (l_fld == 32'h3);
         l_busy = l_fld >= 32'h4;
         l_txact = core$dbg_role & (l_fld >= 32'h4) & (l_fld <= 32'h11);
         l_tecv = core$tec[(32'h0)+:(8)];
+        if (core$tec[32'h8]) begin
+            l_tecv = 32'hff;
+        end
         l_recv = core$rec;
-        if (l_cbs) begin
+        if (l_cbsr & ~l_frz) begin
             l_tecv = 32'h7f - core$dbg_runs;
             l_recv = 32'h0;
         end
-        else if (l_rm) begin
-            l_tecv = tec_sh$q;
-            l_recv = rec_sh$q;
+        l_cbs = l_cbsr;
+        l_es = l_cbsr | (l_tecv >= ewl$q) | (l_recv >= ewl$q);
+        l_pas = ~l_cbsr & ((l_tecv >= 32'h80) | (l_recv >= 32'h80));
+        if (l_frz) begin
+            l_cbs = bs_q$q;
+            l_es = es_q$q;
+            l_pas = pas_q$q;
         end
-        l_es = l_cbs | (l_tecv >= ewl$q) | (l_recv >= ewl$q);
-        l_pas = ~l_cbs & ((l_tecv >= 32'h80) | (l_recv >= 32'h80));
+        l_cload = l_frz | core$cfg_err;
+        l_tecin = core$tec;
+        l_recin = core$rec;
         l_tx_ide = txb0$q[32'h7];
         l_tx_rtr = txb0$q[32'h6];
         if (l_tx_ide) begin
@@ -906,31 +905,23 @@ module canstar_sja1000(clock,rst,wb_cyc,wb_stb,wb_we,wb_adr,wb_dat_w,wb_dat_r,wb
             l_tx_id = (((txb1$q) & 29'h1fffffff) << 32'h3) | (((txb2$q) & 29'h1fffffff) >> 32'h5);
             l_tx_data = (((txb3$q) & 64'hffffffffffffffff) << 32'h38) | (((txb4$q) & 64'hffffffffffffffff) << 32'h30) | (((txb5$q) & 64'hffffffffffffffff) << 32'h28) | (((txb6$q) & 64'hffffffffffffffff) << 32'h20) | (((txb7$q) & 64'hffffffffffffffff) << 32'h18) | (((txb8$q) & 64'hffffffffffffffff) << 32'h10) | (((txb9$q) & 64'hffffffffffffffff) << 32'h8) | ((txb10$q) & 64'hffffffffffffffff);
         end
-        core$brp = (btr0$q[(32'h0)+:(5)] << 32'h1) | 32'h1;
-        if (|btr0$q[(32'h4)+:(2)]) begin
-            core$brp = 32'h1f;
-        end
+        core$brp = (((btr0$q[(32'h0)+:(6)]) & 7'h7f) << 32'h1) | 32'h1;
         l_t1 = ((btr1$q[(32'h0)+:(4)]) & 6'h3f) + 32'h1;
         l_t2 = ((btr1$q[(32'h4)+:(3)]) & 6'h3f) + 32'h1;
-        l_e = (l_t1 + 32'h8) - l_t2;
-        l_k = 32'h0;
-        l_prop = l_e - 32'h8;
+        l_s = l_t1 + l_t2;
         l_ph1 = l_t2;
-        if (l_e > 32'h10) begin
-            l_k = (l_e - 32'hf) >> 32'h1;
-            l_prop = (l_e - 32'h8) - (l_k << 32'h1);
-            l_ph1 = l_t2 + l_k;
-        end
-        else if (l_e < 32'h9) begin
-            l_k = (32'ha - l_e) >> 32'h1;
-            l_prop = (l_e - 32'h8) + (l_k << 32'h1);
-            l_ph1 = l_t2 - l_k;
-        end
-        if ((l_ph1 == 32'h0) | (l_ph1 > 32'h20)) begin
+        l_prop = l_t1 - l_t2;
+        if (l_t2 == 32'h1) begin
             l_ph1 = 32'h1;
+            l_prop = l_t1 - 32'h2;
         end
-        if (l_ph1 > 32'h8) begin
-            l_ph1 = 32'h8;
+        else if (l_t1 <= l_t2) begin
+            l_ph1 = (l_s - 32'h1) >> 32'h1;
+            l_prop = l_s - (l_ph1 << 32'h1);
+        end
+        if (l_s < 32'h7) begin
+            l_prop = 32'h1;
+            l_ph1 = 32'h1;
         end
         l_sjw = ((btr0$q[(32'h6)+:(2)]) & 6'h3f) + 32'h1;
         if (l_sjw > l_ph1) begin
@@ -939,7 +930,7 @@ module canstar_sja1000(clock,rst,wb_cyc,wb_stb,wb_we,wb_adr,wb_dat_w,wb_dat_r,wb
         l_prop = l_prop - 32'h1;
         l_ph1 = l_ph1 - 32'h1;
         l_sjw = l_sjw - 32'h1;
-        core$prop = l_prop[(32'h0)+:(3)];
+        core$prop = l_prop[(32'h0)+:(4)];
         core$ph1 = l_ph1[(32'h0)+:(3)];
         core$sjw = l_sjw[(32'h0)+:(2)];
         core$triple = btr1$q[32'h7];
@@ -1095,7 +1086,7 @@ module canstar_sja1000(clock,rst,wb_cyc,wb_stb,wb_we,wb_adr,wb_dat_w,wb_dat_r,wb
         afm$d = afm$q;
         sleep$d = sleep$q;
         boff$d = boff$q;
-        core_bs$d = l_cbs;
+        core_bs$d = l_cbsr & ~l_frz;
         ier$d = ier$q;
         ir$d = ir$q;
         l_irn = ir$q;
@@ -1108,8 +1099,6 @@ module canstar_sja1000(clock,rst,wb_cyc,wb_stb,wb_we,wb_adr,wb_dat_w,wb_dat_r,wb
         alc_lock$d = alc_lock$q;
         ecc$d = ecc$q;
         ecc_lock$d = ecc_lock$q;
-        tec_sh$d = tec_sh$q;
-        rec_sh$d = rec_sh$q;
         acr0$d = acr0$q;
         acr1$d = acr1$q;
         acr2$d = acr2$q;
@@ -1336,8 +1325,6 @@ module canstar_sja1000(clock,rst,wb_cyc,wb_stb,wb_we,wb_adr,wb_dat_w,wb_dat_r,wb
                 end
                 else if (l_d[32'h0]) begin
                     l_enter_rm = 1'b1;
-                    tec_sh$d = l_tecv;
-                    rec_sh$d = l_recv;
                 end
                 else if (l_d[32'h4]) begin
                     if (~sleep$q & (l_irv == 32'h0) & (l_fld == 32'h2) & ~tx_pend$q) begin
@@ -1391,12 +1378,23 @@ module canstar_sja1000(clock,rst,wb_cyc,wb_stb,wb_we,wb_adr,wb_dat_w,wb_dat_r,wb
                 if (l_a == 32'hd) begin
                     ewl$d = l_d;
                 end
-                if (l_a == 32'he) begin
-                    rec_sh$d = l_d;
+                if ((l_a == 32'he) & l_frz) begin
+                    l_cload = 1'b1;
+                    l_recin = l_d;
                 end
                 if (l_a == 32'hf) begin
-                    tec_sh$d = l_d;
-                    boff$d = 1'b0;
+                    l_cload = 1'b1;
+                    l_tecin = ((l_d) & 9'h1ff);
+                    if (l_d == 32'hff) begin
+                        l_tecin = 32'h100;
+                    end
+                    if (boff$q) begin
+                        boff$d = 1'b0;
+                        l_recin = 32'h0;
+                        if (l_d != 32'hff) begin
+                            bs_q$d = 1'b0;
+                        end
+                    end
                 end
                 if (l_a == 32'h10) begin
                     acr0$d = l_d;
@@ -1648,13 +1646,12 @@ module canstar_sja1000(clock,rst,wb_cyc,wb_stb,wb_we,wb_adr,wb_dat_w,wb_dat_r,wb
         if ((l_pas & ~pas_q$q) | (~l_pas & pas_q$q & ~l_cbs)) begin
             l_ev = (l_ev & ~(1 << (32'h5)) | ((1'b1) << (32'h5)));
         end
-        if (l_cbs & ~core_bs$q) begin
+        if ((l_cbsr & ~l_frz) & ~core_bs$q) begin
             boff$d = 1'b1;
             l_enter_rm = 1'b1;
-            tec_sh$d = 32'h7f;
-            rec_sh$d = 32'h0;
+            l_ev = (l_ev & ~(1 << (32'h2)) | ((1'b1) << (32'h2)));
         end
-        if (~l_cbs & core_bs$q) begin
+        if (~l_cbsr & core_bs$q) begin
             boff$d = 1'b0;
         end
         if (sleep$q & core$dbg_sample & ~core$dbg_busmon) begin
@@ -1684,6 +1681,10 @@ module canstar_sja1000(clock,rst,wb_cyc,wb_stb,wb_we,wb_adr,wb_dat_w,wb_dat_r,wb
             afm$d = 1'b0;
             sleep$d = 1'b0;
             boff$d = 1'b0;
+            core_bs$d = 1'b0;
+            es_q$d = 1'b0;
+            bs_q$d = 1'b0;
+            pas_q$d = 1'b0;
             ier$d = 32'h0;
             ir$d = 32'h0;
             btr0$d = 32'h0;
@@ -1695,8 +1696,6 @@ module canstar_sja1000(clock,rst,wb_cyc,wb_stb,wb_we,wb_adr,wb_dat_w,wb_dat_r,wb
             alc_lock$d = 1'b0;
             ecc$d = 32'h0;
             ecc_lock$d = 1'b0;
-            tec_sh$d = 32'h0;
-            rec_sh$d = 32'h0;
             amr0$d = 32'hff;
             amr1$d = 32'hff;
             amr2$d = 32'hff;
@@ -1727,6 +1726,9 @@ module canstar_sja1000(clock,rst,wb_cyc,wb_stb,wb_we,wb_adr,wb_dat_w,wb_dat_r,wb
         core$tx_dlc = txb0$q[(32'h0)+:(4)];
         core$tx_data = l_tx_data;
         core$tx_abort = l_abort;
+        core$cnt_load = l_cload & ~rst;
+        core$tec_in = l_tecin;
+        core$rec_in = l_recin;
         tx = core$tx;
         wb_ack = ack$q;
         wb_dat_r = rdat$q;
@@ -2062,14 +2064,14 @@ module canstar_sja1000$cdr(d,q,clock);
 endmodule // canstar_sja1000$cdr
 
 
-module canstar_sja1000$core(clock,reset,rx,brp,prop,ph1,sjw,triple,listen_only,self_test,single_shot,host_recovery,recover,tx_req,tx_ide,tx_rtr,tx_id,tx_dlc,tx_data,tx_abort,tx,tx_done,arb_lost,arb_lost_pos,error,err_kind,err_field,err_pos,err_tx,rx_valid,rx_ide,rx_rtr,rx_id,rx_dlc,rx_data,tec,rec,state,err_warn,cfg_err,dbg_busmon,dbg_sample,dbg_tx_rqst,dbg_field,dbg_pos,dbg_stuff,dbg_role,dbg_events,dbg_runs,dbg_hard_sync,dbg_resync);
+module canstar_sja1000$core(clock,reset,rx,brp,prop,ph1,sjw,triple,listen_only,self_test,single_shot,host_recovery,recover,tx_req,tx_ide,tx_rtr,tx_id,tx_dlc,tx_data,tx_abort,cnt_load,tec_in,rec_in,tx,tx_done,arb_lost,arb_lost_pos,error,err_kind,err_field,err_pos,err_tx,rx_valid,rx_ide,rx_rtr,rx_id,rx_dlc,rx_data,tec,rec,state,err_warn,cfg_err,dbg_busmon,dbg_sample,dbg_tx_rqst,dbg_field,dbg_pos,dbg_stuff,dbg_role,dbg_events,dbg_runs,dbg_hard_sync,dbg_resync);
     
     // Module arguments
     input wire  clock;
     input wire  reset;
     input wire  rx;
-    input wire  [4:0] brp;
-    input wire  [2:0] prop;
+    input wire  [6:0] brp;
+    input wire  [3:0] prop;
     input wire  [2:0] ph1;
     input wire  [1:0] sjw;
     input wire  triple;
@@ -2085,6 +2087,9 @@ module canstar_sja1000$core(clock,reset,rx,brp,prop,ph1,sjw,triple,listen_only,s
     input wire  [3:0] tx_dlc;
     input wire  [63:0] tx_data;
     input wire  tx_abort;
+    input wire  cnt_load;
+    input wire  [8:0] tec_in;
+    input wire  [7:0] rec_in;
     output reg  tx;
     output reg  tx_done;
     output reg  arb_lost;
@@ -2151,8 +2156,8 @@ module canstar_sja1000$core(clock,reset,rx,brp,prop,ph1,sjw,triple,listen_only,s
     wire  sync$q;
     reg  btl$clock;
     reg  btl$reset;
-    reg  [4:0] btl$brp;
-    reg  [2:0] btl$prop;
+    reg  [6:0] btl$brp;
+    reg  [3:0] btl$prop;
     reg  [2:0] btl$ph1;
     reg  [1:0] btl$sjw;
     reg  btl$triple;
@@ -2183,6 +2188,9 @@ module canstar_sja1000$core(clock,reset,rx,brp,prop,ph1,sjw,triple,listen_only,s
     reg  [3:0] fsm$tx_dlc;
     reg  [63:0] fsm$tx_data;
     reg  fsm$tx_abort;
+    reg  fsm$cnt_load;
+    reg  [8:0] fsm$tec_in;
+    reg  [7:0] fsm$rec_in;
     wire  fsm$drive;
     wire  fsm$hs_en;
     wire  fsm$tx_done;
@@ -2258,6 +2266,9 @@ module canstar_sja1000$core(clock,reset,rx,brp,prop,ph1,sjw,triple,listen_only,s
         .tx_dlc(fsm$tx_dlc),
         .tx_data(fsm$tx_data),
         .tx_abort(fsm$tx_abort),
+        .cnt_load(fsm$cnt_load),
+        .tec_in(fsm$tec_in),
+        .rec_in(fsm$rec_in),
         .drive(fsm$drive),
         .hs_en(fsm$hs_en),
         .tx_done(fsm$tx_done),
@@ -2319,6 +2330,9 @@ module canstar_sja1000$core(clock,reset,rx,brp,prop,ph1,sjw,triple,listen_only,s
         fsm$tx_dlc = tx_dlc;
         fsm$tx_data = tx_data;
         fsm$tx_abort = tx_abort;
+        fsm$cnt_load = cnt_load;
+        fsm$tec_in = tec_in;
+        fsm$rec_in = rec_in;
         tx = btl$tx;
         tx_done = fsm$tx_done;
         arb_lost = fsm$arb_lost;
@@ -2363,8 +2377,8 @@ module canstar_sja1000$core$btl(clock,reset,brp,prop,ph1,sjw,triple,rx,drive,hs_
     // Module arguments
     input wire  clock;
     input wire  reset;
-    input wire  [4:0] brp;
-    input wire  [2:0] prop;
+    input wire  [6:0] brp;
+    input wire  [3:0] prop;
     input wire  [2:0] ph1;
     input wire  [1:0] sjw;
     input wire  triple;
@@ -2381,8 +2395,8 @@ module canstar_sja1000$core$btl(clock,reset,brp,prop,ph1,sjw,triple,rx,drive,hs_
     output reg  cfg_err;
     
     // Stub signals
-    reg  [4:0] c_brp$d;
-    wire  [4:0] c_brp$q;
+    reg  [6:0] c_brp$d;
+    wire  [6:0] c_brp$q;
     reg  c_brp$clock;
     reg  [4:0] c_sp$d;
     wire  [4:0] c_sp$q;
@@ -2402,8 +2416,8 @@ module canstar_sja1000$core$btl(clock,reset,brp,prop,ph1,sjw,triple,rx,drive,hs_
     reg  c_bad$d;
     wire  c_bad$q;
     reg  c_bad$clock;
-    reg  [4:0] pre$d;
-    wire  [4:0] pre$q;
+    reg  [6:0] pre$d;
+    wire  [6:0] pre$q;
     reg  pre$clock;
     reg  [4:0] cnt$d;
     wire  [4:0] cnt$q;
@@ -2446,9 +2460,9 @@ module canstar_sja1000$core$btl(clock,reset,brp,prop,ph1,sjw,triple,rx,drive,hs_
     reg  resync_r$clock;
     
     // Local signals
-    reg  [4:0] in_sp;
-    reg  [4:0] in_ph2;
-    reg  [4:0] in_ntq;
+    reg  [5:0] in_sp;
+    reg  [5:0] in_ph2;
+    reg  [5:0] in_ntq;
     reg  [4:0] in_sjw;
     reg  in_bad;
     reg  tick;
@@ -2623,14 +2637,14 @@ module canstar_sja1000$core$btl(clock,reset,brp,prop,ph1,sjw,triple,rx,drive,hs_
         sample_r$d = sample_r$q;
         hard_r$d = hard_r$q;
         resync_r$d = resync_r$q;
-        in_sp = (((prop) & 5'h1f) + ((ph1) & 5'h1f)) + 32'h3;
-        in_ph2 = ((ph1) & 5'h1f) + 32'h1;
+        in_sp = (((prop) & 6'h3f) + ((ph1) & 6'h3f)) + 32'h3;
+        in_ph2 = ((ph1) & 6'h3f) + 32'h1;
         if (ph1 == 32'h0) begin
             in_ph2 = 32'h2;
         end
         in_ntq = in_sp + in_ph2;
         in_sjw = ((sjw) & 5'h1f) + 32'h1;
-        in_bad = (in_ntq < 32'h8) | (((sjw) & 3'h7) > ph1);
+        in_bad = ((in_ntq < 32'h8) | (in_ntq > 32'h19)) | (((sjw) & 3'h7) > ph1);
         tick = (c_valid$q & ~reset) & (pre$q == c_brp$q);
         c1 = cnt$q + 32'h1;
         late = c1 > spw$q;
@@ -2691,16 +2705,16 @@ module canstar_sja1000$core$btl(clock,reset,brp,prop,ph1,sjw,triple,rx,drive,hs_
         fire = (restart | eob | pending$q) & (since_inc == 32'h2);
         if (reset) begin
             c_brp$d = brp;
-            c_sp$d = in_sp;
-            c_ntq$d = in_ntq;
+            c_sp$d = in_sp[(32'h0)+:(5)];
+            c_ntq$d = in_ntq[(32'h0)+:(5)];
             c_sjw$d = in_sjw;
             c_triple$d = triple;
             c_bad$d = in_bad;
             c_valid$d = ~in_bad;
             pre$d = 32'h0;
             cnt$d = 32'h0;
-            spw$d = in_sp;
-            nbw$d = in_ntq;
+            spw$d = in_sp[(32'h0)+:(5)];
+            nbw$d = in_ntq[(32'h0)+:(5)];
             busmon_n$d = 1'b0;
             sync_dis$d = 1'b0;
             since$d = 32'h2;
@@ -2801,13 +2815,13 @@ endmodule // canstar_sja1000$core$btl$c_bad
 module canstar_sja1000$core$btl$c_brp(d,q,clock);
     
     // Module arguments
-    input wire  [4:0] d;
-    output reg  [4:0] q;
+    input wire  [6:0] d;
+    output reg  [6:0] q;
     input wire  clock;
     
     // Update code (custom)
     initial begin
-       q = 5'h0;
+       q = 7'h0;
     end
     
     always @(posedge clock) begin
@@ -3029,13 +3043,13 @@ endmodule // canstar_sja1000$core$btl$pending
 module canstar_sja1000$core$btl$pre(d,q,clock);
     
     // Module arguments
-    input wire  [4:0] d;
-    output reg  [4:0] q;
+    input wire  [6:0] d;
+    output reg  [6:0] q;
     input wire  clock;
     
     // Update code (custom)
     initial begin
-       q = 5'h0;
+       q = 7'h0;
     end
     
     always @(posedge clock) begin
@@ -3159,7 +3173,7 @@ module canstar_sja1000$core$btl$tx_n(d,q,clock);
 endmodule // canstar_sja1000$core$btl$tx_n
 
 
-module canstar_sja1000$core$fsm(clock,reset,sample,busmon,listen_only,self_test,single_shot,host_recovery,recover,tx_req,tx_ide,tx_rtr,tx_id,tx_dlc,tx_data,tx_abort,drive,hs_en,tx_done,arb_lost,arb_lost_pos,error,err_kind,err_field,err_pos,err_tx,rx_valid,rx_ide,rx_rtr,rx_id,rx_dlc,rx_data,tec,rec,state,err_warn,tx_rqst,field,pos,stuff,role,events,runs);
+module canstar_sja1000$core$fsm(clock,reset,sample,busmon,listen_only,self_test,single_shot,host_recovery,recover,tx_req,tx_ide,tx_rtr,tx_id,tx_dlc,tx_data,tx_abort,cnt_load,tec_in,rec_in,drive,hs_en,tx_done,arb_lost,arb_lost_pos,error,err_kind,err_field,err_pos,err_tx,rx_valid,rx_ide,rx_rtr,rx_id,rx_dlc,rx_data,tec,rec,state,err_warn,tx_rqst,field,pos,stuff,role,events,runs);
     
     // Module arguments
     input wire  clock;
@@ -3178,6 +3192,9 @@ module canstar_sja1000$core$fsm(clock,reset,sample,busmon,listen_only,self_test,
     input wire  [3:0] tx_dlc;
     input wire  [63:0] tx_data;
     input wire  tx_abort;
+    input wire  cnt_load;
+    input wire  [8:0] tec_in;
+    input wire  [7:0] rec_in;
     output reg  drive;
     output reg  hs_en;
     output reg  tx_done;
@@ -4832,6 +4849,25 @@ module canstar_sja1000$core$fsm(clock,reset,sample,busmon,listen_only,self_test,
             rext$d = 1'b0;
             rrtr$d = 1'b0;
         end
+        if (cnt_load) begin
+            tecr$d = tec_in;
+            recr$d = rec_in;
+            if (tec_in[32'h8]) begin
+                fld$d = Field$BusOff;
+                fpos$d = 32'h1;
+                rtx$d = 1'b0;
+                dom$d = 1'b0;
+                runr$d = 32'h0;
+                rarmed$d = 1'b0;
+            end
+            else if (fld$q == Field$BusOff) begin
+                fld$d = Field$WaitIdle;
+                fpos$d = 32'h1;
+                dom$d = 1'b0;
+                runr$d = 32'h0;
+                rarmed$d = 1'b0;
+            end
+        end
         pos = l_dpos;
         stuff = l_curstf;
         role = rtx$q;
@@ -6376,25 +6412,6 @@ module canstar_sja1000$rdat(d,q,clock);
 endmodule // canstar_sja1000$rdat
 
 
-module canstar_sja1000$rec_sh(d,q,clock);
-    
-    // Module arguments
-    input wire  [7:0] d;
-    output reg  [7:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 8'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_sja1000$rec_sh
-
-
 module canstar_sja1000$rmc(d,q,clock);
     
     // Module arguments
@@ -6488,25 +6505,6 @@ module canstar_sja1000$tcs_n(d,q,clock);
     end
           
 endmodule // canstar_sja1000$tcs_n
-
-
-module canstar_sja1000$tec_sh(d,q,clock);
-    
-    // Module arguments
-    input wire  [7:0] d;
-    output reg  [7:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 8'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_sja1000$tec_sh
 
 
 module canstar_sja1000$tx_abrt(d,q,clock);

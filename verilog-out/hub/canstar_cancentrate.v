@@ -79,8 +79,8 @@ module canstar_cancentrate_core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,tx$0,tx$
     reg  monitor$clock;
     reg  monitor$reset;
     reg  monitor$rx;
-    reg  [4:0] monitor$brp;
-    reg  [2:0] monitor$prop;
+    reg  [6:0] monitor$brp;
+    reg  [3:0] monitor$prop;
     reg  [2:0] monitor$ph1;
     reg  [1:0] monitor$sjw;
     reg  monitor$triple;
@@ -96,6 +96,9 @@ module canstar_cancentrate_core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,tx$0,tx$
     reg  [3:0] monitor$tx_dlc;
     reg  [63:0] monitor$tx_data;
     reg  monitor$tx_abort;
+    reg  monitor$cnt_load;
+    reg  [8:0] monitor$tec_in;
+    reg  [7:0] monitor$rec_in;
     wire  monitor$tx;
     wire  monitor$tx_done;
     wire  monitor$arb_lost;
@@ -200,6 +203,9 @@ module canstar_cancentrate_core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,tx$0,tx$
         .tx_dlc(monitor$tx_dlc),
         .tx_data(monitor$tx_data),
         .tx_abort(monitor$tx_abort),
+        .cnt_load(monitor$cnt_load),
+        .tec_in(monitor$tec_in),
+        .rec_in(monitor$rec_in),
         .tx(monitor$tx),
         .tx_done(monitor$tx_done),
         .arb_lost(monitor$arb_lost),
@@ -253,8 +259,8 @@ module canstar_cancentrate_core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,tx$0,tx$
         monitor$clock = clock;
         monitor$reset = ~rst_n;
         monitor$rx = core$bt;
-        monitor$brp = brp;
-        monitor$prop = prop;
+        monitor$brp = ((brp) & 7'h7f);
+        monitor$prop = ((prop) & 4'hf);
         monitor$ph1 = ph1;
         monitor$sjw = sjw;
         monitor$triple = 1'b0;
@@ -270,6 +276,9 @@ module canstar_cancentrate_core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,tx$0,tx$
         monitor$tx_dlc = 32'h0;
         monitor$tx_data = 32'h0;
         monitor$tx_abort = 1'b0;
+        monitor$cnt_load = 1'b0;
+        monitor$tec_in = 32'h0;
+        monitor$rec_in = 32'h0;
         adapter$clock = clock;
         adapter$reset = ~rst_n;
         adapter$sample = monitor$dbg_sample;
@@ -3778,14 +3787,14 @@ module canstar_cancentrate_core$core$pj$2$rep_seen(d,q,clock);
 endmodule // canstar_cancentrate_core$core$pj$2$rep_seen
 
 
-module canstar_cancentrate_core$monitor(clock,reset,rx,brp,prop,ph1,sjw,triple,listen_only,self_test,single_shot,host_recovery,recover,tx_req,tx_ide,tx_rtr,tx_id,tx_dlc,tx_data,tx_abort,tx,tx_done,arb_lost,arb_lost_pos,error,err_kind,err_field,err_pos,err_tx,rx_valid,rx_ide,rx_rtr,rx_id,rx_dlc,rx_data,tec,rec,state,err_warn,cfg_err,dbg_busmon,dbg_sample,dbg_tx_rqst,dbg_field,dbg_pos,dbg_stuff,dbg_role,dbg_events,dbg_runs,dbg_hard_sync,dbg_resync);
+module canstar_cancentrate_core$monitor(clock,reset,rx,brp,prop,ph1,sjw,triple,listen_only,self_test,single_shot,host_recovery,recover,tx_req,tx_ide,tx_rtr,tx_id,tx_dlc,tx_data,tx_abort,cnt_load,tec_in,rec_in,tx,tx_done,arb_lost,arb_lost_pos,error,err_kind,err_field,err_pos,err_tx,rx_valid,rx_ide,rx_rtr,rx_id,rx_dlc,rx_data,tec,rec,state,err_warn,cfg_err,dbg_busmon,dbg_sample,dbg_tx_rqst,dbg_field,dbg_pos,dbg_stuff,dbg_role,dbg_events,dbg_runs,dbg_hard_sync,dbg_resync);
     
     // Module arguments
     input wire  clock;
     input wire  reset;
     input wire  rx;
-    input wire  [4:0] brp;
-    input wire  [2:0] prop;
+    input wire  [6:0] brp;
+    input wire  [3:0] prop;
     input wire  [2:0] ph1;
     input wire  [1:0] sjw;
     input wire  triple;
@@ -3801,6 +3810,9 @@ module canstar_cancentrate_core$monitor(clock,reset,rx,brp,prop,ph1,sjw,triple,l
     input wire  [3:0] tx_dlc;
     input wire  [63:0] tx_data;
     input wire  tx_abort;
+    input wire  cnt_load;
+    input wire  [8:0] tec_in;
+    input wire  [7:0] rec_in;
     output reg  tx;
     output reg  tx_done;
     output reg  arb_lost;
@@ -3867,8 +3879,8 @@ module canstar_cancentrate_core$monitor(clock,reset,rx,brp,prop,ph1,sjw,triple,l
     wire  sync$q;
     reg  btl$clock;
     reg  btl$reset;
-    reg  [4:0] btl$brp;
-    reg  [2:0] btl$prop;
+    reg  [6:0] btl$brp;
+    reg  [3:0] btl$prop;
     reg  [2:0] btl$ph1;
     reg  [1:0] btl$sjw;
     reg  btl$triple;
@@ -3899,6 +3911,9 @@ module canstar_cancentrate_core$monitor(clock,reset,rx,brp,prop,ph1,sjw,triple,l
     reg  [3:0] fsm$tx_dlc;
     reg  [63:0] fsm$tx_data;
     reg  fsm$tx_abort;
+    reg  fsm$cnt_load;
+    reg  [8:0] fsm$tec_in;
+    reg  [7:0] fsm$rec_in;
     wire  fsm$drive;
     wire  fsm$hs_en;
     wire  fsm$tx_done;
@@ -3974,6 +3989,9 @@ module canstar_cancentrate_core$monitor(clock,reset,rx,brp,prop,ph1,sjw,triple,l
         .tx_dlc(fsm$tx_dlc),
         .tx_data(fsm$tx_data),
         .tx_abort(fsm$tx_abort),
+        .cnt_load(fsm$cnt_load),
+        .tec_in(fsm$tec_in),
+        .rec_in(fsm$rec_in),
         .drive(fsm$drive),
         .hs_en(fsm$hs_en),
         .tx_done(fsm$tx_done),
@@ -4035,6 +4053,9 @@ module canstar_cancentrate_core$monitor(clock,reset,rx,brp,prop,ph1,sjw,triple,l
         fsm$tx_dlc = tx_dlc;
         fsm$tx_data = tx_data;
         fsm$tx_abort = tx_abort;
+        fsm$cnt_load = cnt_load;
+        fsm$tec_in = tec_in;
+        fsm$rec_in = rec_in;
         tx = btl$tx;
         tx_done = fsm$tx_done;
         arb_lost = fsm$arb_lost;
@@ -4079,8 +4100,8 @@ module canstar_cancentrate_core$monitor$btl(clock,reset,brp,prop,ph1,sjw,triple,
     // Module arguments
     input wire  clock;
     input wire  reset;
-    input wire  [4:0] brp;
-    input wire  [2:0] prop;
+    input wire  [6:0] brp;
+    input wire  [3:0] prop;
     input wire  [2:0] ph1;
     input wire  [1:0] sjw;
     input wire  triple;
@@ -4097,8 +4118,8 @@ module canstar_cancentrate_core$monitor$btl(clock,reset,brp,prop,ph1,sjw,triple,
     output reg  cfg_err;
     
     // Stub signals
-    reg  [4:0] c_brp$d;
-    wire  [4:0] c_brp$q;
+    reg  [6:0] c_brp$d;
+    wire  [6:0] c_brp$q;
     reg  c_brp$clock;
     reg  [4:0] c_sp$d;
     wire  [4:0] c_sp$q;
@@ -4118,8 +4139,8 @@ module canstar_cancentrate_core$monitor$btl(clock,reset,brp,prop,ph1,sjw,triple,
     reg  c_bad$d;
     wire  c_bad$q;
     reg  c_bad$clock;
-    reg  [4:0] pre$d;
-    wire  [4:0] pre$q;
+    reg  [6:0] pre$d;
+    wire  [6:0] pre$q;
     reg  pre$clock;
     reg  [4:0] cnt$d;
     wire  [4:0] cnt$q;
@@ -4162,9 +4183,9 @@ module canstar_cancentrate_core$monitor$btl(clock,reset,brp,prop,ph1,sjw,triple,
     reg  resync_r$clock;
     
     // Local signals
-    reg  [4:0] in_sp;
-    reg  [4:0] in_ph2;
-    reg  [4:0] in_ntq;
+    reg  [5:0] in_sp;
+    reg  [5:0] in_ph2;
+    reg  [5:0] in_ntq;
     reg  [4:0] in_sjw;
     reg  in_bad;
     reg  tick;
@@ -4339,14 +4360,14 @@ module canstar_cancentrate_core$monitor$btl(clock,reset,brp,prop,ph1,sjw,triple,
         sample_r$d = sample_r$q;
         hard_r$d = hard_r$q;
         resync_r$d = resync_r$q;
-        in_sp = (((prop) & 5'h1f) + ((ph1) & 5'h1f)) + 32'h3;
-        in_ph2 = ((ph1) & 5'h1f) + 32'h1;
+        in_sp = (((prop) & 6'h3f) + ((ph1) & 6'h3f)) + 32'h3;
+        in_ph2 = ((ph1) & 6'h3f) + 32'h1;
         if (ph1 == 32'h0) begin
             in_ph2 = 32'h2;
         end
         in_ntq = in_sp + in_ph2;
         in_sjw = ((sjw) & 5'h1f) + 32'h1;
-        in_bad = (in_ntq < 32'h8) | (((sjw) & 3'h7) > ph1);
+        in_bad = ((in_ntq < 32'h8) | (in_ntq > 32'h19)) | (((sjw) & 3'h7) > ph1);
         tick = (c_valid$q & ~reset) & (pre$q == c_brp$q);
         c1 = cnt$q + 32'h1;
         late = c1 > spw$q;
@@ -4407,16 +4428,16 @@ module canstar_cancentrate_core$monitor$btl(clock,reset,brp,prop,ph1,sjw,triple,
         fire = (restart | eob | pending$q) & (since_inc == 32'h2);
         if (reset) begin
             c_brp$d = brp;
-            c_sp$d = in_sp;
-            c_ntq$d = in_ntq;
+            c_sp$d = in_sp[(32'h0)+:(5)];
+            c_ntq$d = in_ntq[(32'h0)+:(5)];
             c_sjw$d = in_sjw;
             c_triple$d = triple;
             c_bad$d = in_bad;
             c_valid$d = ~in_bad;
             pre$d = 32'h0;
             cnt$d = 32'h0;
-            spw$d = in_sp;
-            nbw$d = in_ntq;
+            spw$d = in_sp[(32'h0)+:(5)];
+            nbw$d = in_ntq[(32'h0)+:(5)];
             busmon_n$d = 1'b0;
             sync_dis$d = 1'b0;
             since$d = 32'h2;
@@ -4517,13 +4538,13 @@ endmodule // canstar_cancentrate_core$monitor$btl$c_bad
 module canstar_cancentrate_core$monitor$btl$c_brp(d,q,clock);
     
     // Module arguments
-    input wire  [4:0] d;
-    output reg  [4:0] q;
+    input wire  [6:0] d;
+    output reg  [6:0] q;
     input wire  clock;
     
     // Update code (custom)
     initial begin
-       q = 5'h0;
+       q = 7'h0;
     end
     
     always @(posedge clock) begin
@@ -4745,13 +4766,13 @@ endmodule // canstar_cancentrate_core$monitor$btl$pending
 module canstar_cancentrate_core$monitor$btl$pre(d,q,clock);
     
     // Module arguments
-    input wire  [4:0] d;
-    output reg  [4:0] q;
+    input wire  [6:0] d;
+    output reg  [6:0] q;
     input wire  clock;
     
     // Update code (custom)
     initial begin
-       q = 5'h0;
+       q = 7'h0;
     end
     
     always @(posedge clock) begin
@@ -4875,7 +4896,7 @@ module canstar_cancentrate_core$monitor$btl$tx_n(d,q,clock);
 endmodule // canstar_cancentrate_core$monitor$btl$tx_n
 
 
-module canstar_cancentrate_core$monitor$fsm(clock,reset,sample,busmon,listen_only,self_test,single_shot,host_recovery,recover,tx_req,tx_ide,tx_rtr,tx_id,tx_dlc,tx_data,tx_abort,drive,hs_en,tx_done,arb_lost,arb_lost_pos,error,err_kind,err_field,err_pos,err_tx,rx_valid,rx_ide,rx_rtr,rx_id,rx_dlc,rx_data,tec,rec,state,err_warn,tx_rqst,field,pos,stuff,role,events,runs);
+module canstar_cancentrate_core$monitor$fsm(clock,reset,sample,busmon,listen_only,self_test,single_shot,host_recovery,recover,tx_req,tx_ide,tx_rtr,tx_id,tx_dlc,tx_data,tx_abort,cnt_load,tec_in,rec_in,drive,hs_en,tx_done,arb_lost,arb_lost_pos,error,err_kind,err_field,err_pos,err_tx,rx_valid,rx_ide,rx_rtr,rx_id,rx_dlc,rx_data,tec,rec,state,err_warn,tx_rqst,field,pos,stuff,role,events,runs);
     
     // Module arguments
     input wire  clock;
@@ -4894,6 +4915,9 @@ module canstar_cancentrate_core$monitor$fsm(clock,reset,sample,busmon,listen_onl
     input wire  [3:0] tx_dlc;
     input wire  [63:0] tx_data;
     input wire  tx_abort;
+    input wire  cnt_load;
+    input wire  [8:0] tec_in;
+    input wire  [7:0] rec_in;
     output reg  drive;
     output reg  hs_en;
     output reg  tx_done;
@@ -6547,6 +6571,25 @@ module canstar_cancentrate_core$monitor$fsm(clock,reset,sample,busmon,listen_onl
             evr$d = 32'h0;
             rext$d = 1'b0;
             rrtr$d = 1'b0;
+        end
+        if (cnt_load) begin
+            tecr$d = tec_in;
+            recr$d = rec_in;
+            if (tec_in[32'h8]) begin
+                fld$d = Field$BusOff;
+                fpos$d = 32'h1;
+                rtx$d = 1'b0;
+                dom$d = 1'b0;
+                runr$d = 32'h0;
+                rarmed$d = 1'b0;
+            end
+            else if (fld$q == Field$BusOff) begin
+                fld$d = Field$WaitIdle;
+                fpos$d = 32'h1;
+                dom$d = 1'b0;
+                runr$d = 32'h0;
+                rarmed$d = 1'b0;
+            end
         end
         pos = l_dpos;
         stuff = l_curstf;

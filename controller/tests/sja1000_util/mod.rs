@@ -207,6 +207,18 @@ impl Net {
         panic!("condition not reached within {max} cycles");
     }
 
+    /// Run, reading SR every bit time, until `SR & mask == want`.
+    #[track_caller]
+    pub fn wait_sr(&mut self, i: usize, mask: u8, want: u8, max_bits: usize) {
+        for _ in 0..max_bits {
+            if self.rd(i, REG_SR) & mask == want {
+                return;
+            }
+            self.run(BIT);
+        }
+        panic!("SR & {mask:#x} != {want:#x} within {max_bits} bits");
+    }
+
     // ---------------------------------------------------------------
     // The Linux driver's register sequences.
 
