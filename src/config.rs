@@ -5,52 +5,57 @@ use anyhow::{bail, Context, Result};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 
-/// CAN bit timing in time quanta (real values, not the register encoding).
+/// Power-up bit timing of the SJA1000-compatible top: the values a hardware
+/// reset loads into BTR0/BTR1 (a real SJA1000 leaves them undefined; the host
+/// may rewrite them in reset mode as usual). In time quanta, not the register
+/// encoding. The default is the ReCANcentrate reference profile on the
+/// XSA-3S1000's 14.74 MHz clock: 2 clocks per TQ, 8 TQ per bit, sample point
+/// after 6 TQ, SJW 1: 921.25 kbit/s.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct BitTiming {
-    /// Prescaler: clocks per time quantum, 1..=32.
+    /// Clocks per time quantum: 2·(BRP+1) on the SJA1000, so even, 2..=128.
     pub brp: u32,
-    /// Propagation segment, 1..=8 TQ.
+    /// Propagation segment in TQ (TSEG1 = PROP + PH1 <= 16).
     pub prop: u32,
-    /// Phase segment 1, 1..=8 TQ. Phase segment 2 is max(PH1, IPT = 2).
+    /// Phase segment 1, 1..=8 TQ. Phase segment 2 (TSEG2) is max(PH1, IPT = 2).
     pub ph1: u32,
     /// Synchronisation jump width, 1..=min(4, PH1) TQ.
     pub sjw: u32,
-    /// Triple sampling.
+    /// Triple sampling (BTR1 SAM).
     pub triple: bool,
 }
 
 impl Default for BitTiming {
-    /// The conformance default T10/6/4: NTQ 10, sample point 6, SJW 4.
     fn default() -> Self {
-        Self { brp: 1, prop: 1, ph1: 4, sjw: 4, triple: false }
+        Self { brp: 2, prop: 3, ph1: 2, sjw: 1, triple: false }
     }
 }
 
-/// Information processing time in TQ (a fixed property of the design).
-pub const IPT: u32 = 2;
-
 impl BitTiming {
+    fn btl(&self) -> canstar_hdl::btl::BtlConfig {
+        canstar_hdl::btl::BtlConfig { triple: self.triple, ..canstar_hdl::btl::BtlConfig::new(self.brp, self.prop, self.ph1, self.sjw) }
+    }
     pub fn ph2(&self) -> u32 {
-        self.ph1.max(IPT)
+        self.btl().ph2()
     }
     pub fn ntq(&self) -> u32 {
-        1 + self.prop + self.ph1 + self.ph2()
+        self.btl().ntq()
     }
     pub fn sample_point(&self) -> u32 {
-        1 + self.prop + self.ph1
+        self.btl().sp()
     }
-    /// Check the ranges of can-protocol.md §2.2.
+    /// Check the ranges of can-protocol.md §2.2 (the bit timing logic's own
+    /// check, `BtlConfig::is_valid`) and that BTR0/BTR1 can express it.
     pub fn validate(&self) -> Result<()> {
-        if !(1..=32).contains(&self.brp) {
-            bail!("invalid bit timing: brp = {} (must be 1..=32)", self.brp);
-        }
-        if !(1..=8).contains(&self.prop) {
-            bail!("invalid bit timing: prop = {} TQ (must be 1..=8)", self.prop);
+        if self.brp < 2 || self.brp > 128 || self.brp % 2 != 0 {
+            bail!("invalid bit timing: brp = {} clocks per TQ (the SJA1000 top has 2·(BRP+1): even, 2..=128)", self.brp);
         }
         if !(1..=8).contains(&self.ph1) {
             bail!("invalid bit timing: ph1 = {} TQ (must be 1..=8)", self.ph1);
+        }
+        if self.prop < 1 || self.prop + self.ph1 > 16 {
+            bail!("invalid bit timing: prop = {} TQ (must be >= 1 with prop + ph1 = TSEG1 <= 16)", self.prop);
         }
         if !(1..=4).contains(&self.sjw) {
             bail!("invalid bit timing: sjw = {} TQ (must be 1..=4)", self.sjw);
@@ -62,7 +67,16 @@ impl BitTiming {
         if !(8..=25).contains(&ntq) {
             bail!("invalid bit timing: 1 + prop + ph1 + ph2 = {ntq} TQ per bit (must be 8..=25)");
         }
+        if !self.btl().is_valid() {
+            bail!("invalid bit timing: {self:?} is rejected by the bit timing logic");
+        }
         Ok(())
+    }
+    /// The BTR0 and BTR1 register values of this timing.
+    pub fn btr(&self) -> (u8, u8) {
+        let btr0 = ((self.sjw - 1) << 6) | (self.brp / 2 - 1);
+        let btr1 = ((self.triple as u32) << 7) | ((self.ph2() - 1) << 4) | (self.prop + self.ph1 - 1);
+        (btr0 as u8, btr1 as u8)
     }
 }
 
@@ -136,8 +150,15 @@ mod tests {
     #[test]
     fn defaults_are_valid() {
         Config::default().validate().unwrap();
-        assert_eq!(BitTiming::default().ntq(), 10);
+        // the reference profile: 8 TQ, sample point after 6, BTR0 0x00, BTR1 0x14
+        assert_eq!(BitTiming::default().ntq(), 8);
         assert_eq!(BitTiming::default().sample_point(), 6);
+        assert_eq!(BitTiming::default().btr(), (0x00, 0x14));
+        let t = BitTiming { brp: 128, prop: 8, ph1: 8, sjw: 4, triple: true };
+        t.validate().unwrap();
+        assert_eq!(t.btr(), (0xFF, 0xFF));
+        let e = Config::from_toml("[bit_timing]\nbrp = 3\n").unwrap_err();
+        assert!(format!("{e:#}").contains("even"), "{e:#}");
     }
 
     #[test]

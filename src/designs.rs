@@ -45,18 +45,26 @@ pub fn controller(config: &Config) -> Result<Vec<Artifact>> {
 /// `verilog-out/controller/canstar_sja1000.v` (module `canstar_sja1000`, plus the board
 /// top `canstar_sja1000_board` with an active-low reset), and its pin files on every
 /// board with a controller pinout (or the one asked for).
-pub fn sja1000(_config: &Config, board: Option<&str>) -> Result<Vec<Artifact>> {
-    let mut uut = canstar_controller::sja1000::Sja1000::new();
+pub fn sja1000(config: &Config, board: Option<&str>) -> Result<Vec<Artifact>> {
+    let (btr0, btr1) = config.bit_timing.btr();
+    let mut uut = canstar_controller::sja1000::Sja1000::with_reset_timing(btr0, btr1);
     uut.connect_all();
     let name = "canstar_sja1000";
     let inner = canstar_hdl::flow::rename_top(&canstar_hdl::flow::emit(&uut), name);
     let board_name = format!("{name}_board");
     let (top, ports) = crate::generate::board_top(&inner, name, "rst", &board_name);
-    let desc = "SJA1000 (PeliCAN) compatible CAN controller, Wishbone B4 classic slave, 8-bit (see controller/src/sja1000.rs); board top with active-low reset";
+    let t = &config.bit_timing;
+    let desc = format!(
+        "SJA1000 (PeliCAN) compatible CAN controller, Wishbone B4 classic slave, 8-bit (see controller/src/sja1000.rs); \
+         board top with active-low reset; BTR0/BTR1 after reset 0x{btr0:02X}/0x{btr1:02X} ({} clocks per TQ, {} TQ per bit, sample point {})",
+        t.brp,
+        t.ntq(),
+        t.sample_point()
+    );
     let mut out = vec![Artifact {
         root: Root::Verilog,
         path: format!("controller/{name}.v").into(),
-        contents: crate::generate::header_text(name, desc) + &inner + "\n" + &top,
+        contents: crate::generate::header_text(name, &desc) + &inner + "\n" + &top,
     }];
     let mut pins = DesignPins::default();
     for (p, bits, _) in &ports {

@@ -216,6 +216,35 @@ pub const FI_RTR: u8 = 0x40;
 pub const CDR_PELICAN: u8 = 0x80;
 
 /// The register block (see the module documentation).
+/// The BTR0/BTR1 values a hardware reset loads (generation-time constants).
+#[derive(LogicBlock)]
+pub struct BtrReset {
+    pub btr0: Signal<Out, Bits<8>>,
+    pub btr1: Signal<Out, Bits<8>>,
+    v0: Constant<Bits<8>>,
+    v1: Constant<Bits<8>>,
+}
+
+impl BtrReset {
+    pub fn new(btr0: u8, btr1: u8) -> Self {
+        Self { btr0: Default::default(), btr1: Default::default(), v0: Constant::new((btr0 as u64).into()), v1: Constant::new((btr1 as u64).into()) }
+    }
+}
+
+impl Default for BtrReset {
+    fn default() -> Self {
+        Self::new(0, 0)
+    }
+}
+
+impl Logic for BtrReset {
+    #[hdl_gen]
+    fn update(&mut self) {
+        self.btr0.next = self.v0.val();
+        self.btr1.next = self.v1.val();
+    }
+}
+
 #[derive(LogicBlock, Default)]
 pub struct Sja1000 {
     pub clock: Signal<In, Clock>,
@@ -251,6 +280,7 @@ pub struct Sja1000 {
     ir: DFF<Bits<8>>,
     btr0: DFF<Bits<8>>,
     btr1: DFF<Bits<8>>,
+    btr_reset: BtrReset,
     ocr: DFF<Bits<8>>,
     ewl: DFF<Bits<8>>,
     cdr: DFF<Bits<8>>,
@@ -390,12 +420,20 @@ pub struct Sja1000 {
 
 impl Sja1000 {
     /// A new register block (hold `rst` high for a clock to initialise it).
+    /// A hardware reset clears BTR0 and BTR1.
     pub fn new() -> Self {
         Self {
             // zero-initialised FIFO RAM (block RAM initial contents)
             ram: (0..64).map(|_| Bits::<8>::from(0u64)).into(),
             ..Default::default()
         }
+    }
+
+    /// As [`Sja1000::new`], with the values a hardware reset loads into BTR0
+    /// and BTR1 (a real SJA1000 leaves them undefined), so that the
+    /// controller runs at a chosen bit rate from power-up.
+    pub fn with_reset_timing(btr0: u8, btr1: u8) -> Self {
+        Self { btr_reset: BtrReset::new(btr0, btr1), ..Self::new() }
     }
 
     /// The wrapped CAN core (read-only, for tests and debugging: e.g. its
@@ -1360,8 +1398,8 @@ impl Logic for Sja1000 {
             self.pas_q.d.next = false;
             self.ier.d.next = 0.into();
             self.ir.d.next = 0.into();
-            self.btr0.d.next = 0.into();
-            self.btr1.d.next = 0.into();
+            self.btr0.d.next = self.btr_reset.btr0.val();
+            self.btr1.d.next = self.btr_reset.btr1.val();
             self.ocr.d.next = 0.into();
             self.ewl.d.next = 96.into();
             self.cdr.d.next = 0.into();
