@@ -10,7 +10,7 @@
 //! # Ports (1 = recessive on every CAN line)
 //! | port | dir | meaning |
 //! |---|---|---|
-//! | `rst_n` | in | reset, active low, synchronous (H3) |
+//! | `rst_n` | in | reset, active low; synchronised by 2 flip-flops ([`RESET_SYNC_DEPTH`]), then a synchronous reset of everything (H3) |
 //! | `inject_fault` | in | fault-injection button (H8), unused without hooks |
 //! | `rx$i` (N) | in | uplinks |
 //! | `reh_rx$j` (M) | in | incoming sublinks |
@@ -24,6 +24,7 @@
 //! | `tx$i` (N) | out | downlinks, `BT` through one output register |
 //! | `hub_tx$j` (M) | out | outgoing sublinks, `ANDC` through one output register |
 //! | `bt` | out | the coupled bit, combinational, for the frame monitor |
+//! | `reset_out` | out | the synchronised internal reset (active high), for the frame monitor |
 //! | `isolated$i`, `silent$i` (N) | out | port isolated (judge `dis`), port reported silent (NACK) |
 //! | `sub_isolated$j` (M) | out | sublink isolated |
 //! | `frame_state` (4) | out | `mon_field` (H9) |
@@ -148,7 +149,8 @@ pub struct HubConfig {
     /// Hub clock in Hz (documentation and pin constraints; the RTL counts clocks).
     pub clock_hz: u64,
     pub timing: HubBitTiming,
-    /// Input synchroniser depth, 1 or 2.
+    /// Input synchroniser depth, 1 or 2 (default 1: two coupled hubs need it to keep the
+    /// arbitration loop inside PROP with the reference timing, see the crate docs).
     pub sync_depth: usize,
     /// BIC threshold (isolation at bic >= 8 * threshold), 1..=31.
     pub bic_threshold: u64,
@@ -177,7 +179,7 @@ impl Default for HubConfig {
             sublinks: 2,
             clock_hz: 14_740_000,
             timing: HubBitTiming::default(),
-            sync_depth: 2,
+            sync_depth: 1,
             bic_threshold: 8,
             nack_threshold: 7,
             dbc_threshold: 13,
@@ -283,6 +285,8 @@ pub struct HubCore {
     pub tx: Vec<Signal<Out, Bit>>,
     pub hub_tx: Vec<Signal<Out, Bit>>,
     pub bt: Signal<Out, Bit>,
+    /// The synchronised internal reset (active high), for the frame monitor.
+    pub reset_out: Signal<Out, Bit>,
     pub isolated: Vec<Signal<Out, Bit>>,
     pub silent: Vec<Signal<Out, Bit>>,
     pub sub_isolated: Vec<Signal<Out, Bit>>,
@@ -306,6 +310,8 @@ pub struct HubCore {
     down_code: Vec<Constant<Bits<2>>>,
     hub_code: Vec<Constant<Bits<2>>>,
     reset: Signal<Local, Bit>,
+    rst_s1: DFF<Bit>,
+    rst_s2: DFF<Bit>,
     err_phase: Signal<Local, Bit>,
     any_blame: Signal<Local, Bit>,
     any_tx_error: Signal<Local, Bit>,
@@ -351,6 +357,7 @@ impl HubCore {
             tx: sigs(n),
             hub_tx: sigs(m),
             bt: Default::default(),
+            reset_out: Default::default(),
             isolated: sigs(n),
             silent: sigs(n),
             sub_isolated: sigs(m),
@@ -374,6 +381,8 @@ impl HubCore {
             down_code: (0..n).map(|i| code(FaultPoint::Downlink(i))).collect(),
             hub_code: (0..m).map(|j| code(FaultPoint::Sublink(j))).collect(),
             reset: Default::default(),
+            rst_s1: Default::default(),
+            rst_s2: Default::default(),
             err_phase: Default::default(),
             any_blame: Default::default(),
             any_tx_error: Default::default(),
@@ -409,7 +418,14 @@ impl HubCore {
 impl Logic for HubCore {
     #[hdl_gen]
     fn update(&mut self) {
-        self.reset.next = !self.rst_n.val();
+        // reset synchroniser (2 flip-flops): `rst_n` may come from an asynchronous
+        // button; the internal reset (active high) follows it after 2 clocks
+        self.rst_s1.clock.next = self.clock.val();
+        self.rst_s2.clock.next = self.clock.val();
+        self.rst_s1.d.next = !self.rst_n.val();
+        self.rst_s2.d.next = self.rst_s1.q.val();
+        self.reset.next = self.rst_s2.q.val();
+        self.reset_out.next = self.rst_s2.q.val();
         // frame state
         self.decode.clock.next = self.clock.val();
         self.decode.field.next = self.mon_field.val();
@@ -575,6 +591,10 @@ pub struct Hub {
     _dm: usize,
 }
 
+/// Flip-flops of the reset synchroniser: the internal reset follows `rst_n` after this
+/// many clocks, and the outputs are recessive one clock later.
+pub const RESET_SYNC_DEPTH: usize = 2;
+
 /// Synchroniser depth of the monitor's RX input: BT is already synchronous.
 pub const MONITOR_SYNC_DEPTH: usize = 1;
 
@@ -634,7 +654,7 @@ impl Logic for Hub {
     fn update(&mut self) {
         // frame monitor: the CAN controller, listen-only, on BT
         self.monitor.clock.next = self.clock.val();
-        self.monitor.reset.next = !self.rst_n.val();
+        self.monitor.reset.next = self.core.reset_out.val();
         self.monitor.rx.next = self.core.bt.val();
         self.monitor.brp.next = self.brp.val();
         self.monitor.prop.next = self.prop.val();
@@ -655,7 +675,7 @@ impl Logic for Hub {
         self.monitor.tx_abort.next = false;
         // frame state adapter
         self.adapter.clock.next = self.clock.val();
-        self.adapter.reset.next = !self.rst_n.val();
+        self.adapter.reset.next = self.core.reset_out.val();
         self.adapter.sample.next = self.monitor.dbg_sample.val();
         self.adapter.field.next = self.monitor.dbg_field.val();
         self.adapter.pos.next = self.monitor.dbg_pos.val();
