@@ -154,6 +154,11 @@ pub struct HubConfig {
     pub sync_depth: usize,
     /// BIC threshold (isolation at bic >= 8 * threshold), 1..=31.
     pub bic_threshold: u64,
+    /// Lifetime limit of blames per port (non-decaying counter, see [`crate::judge`]),
+    /// 1..=127.
+    pub life_threshold: u64,
+    /// Lifetime limit of blames per sublink, 1..=127.
+    pub sub_life_threshold: u64,
     /// NACK threshold, 1..=7.
     pub nack_threshold: u64,
     /// DBC threshold for ports, 1..=31 (reference value 24 is available).
@@ -181,6 +186,8 @@ impl Default for HubConfig {
             timing: HubBitTiming::default(),
             sync_depth: 1,
             bic_threshold: 8,
+            life_threshold: 32,
+            sub_life_threshold: 64,
             nack_threshold: 7,
             dbc_threshold: 13,
             sub_bic_threshold: 16,
@@ -202,6 +209,7 @@ impl HubConfig {
     pub fn port_params(&self) -> JudgeParams {
         JudgeParams {
             bic_limit: 8 * self.bic_threshold,
+            life_limit: self.life_threshold,
             dbc_threshold: self.dbc_threshold,
             nack_threshold: self.nack_threshold,
             replica_limit: self.replica_limit,
@@ -212,6 +220,7 @@ impl HubConfig {
     pub fn sublink_params(&self) -> JudgeParams {
         JudgeParams {
             bic_limit: 8 * self.sub_bic_threshold,
+            life_limit: self.sub_life_threshold,
             dbc_threshold: self.sub_dbc_threshold,
             nack_threshold: self.nack_threshold,
             replica_limit: self.replica_limit,
@@ -237,6 +246,8 @@ impl HubConfig {
             ("sub_dbc_threshold", self.sub_dbc_threshold, 31),
             ("nack_threshold", self.nack_threshold, 7),
             ("replica_limit", self.replica_limit, 7),
+            ("life_threshold", self.life_threshold, 127),
+            ("sub_life_threshold", self.sub_life_threshold, 127),
         ] {
             if v == 0 || v > hi {
                 return Err(format!("{n} must be in 1..={hi}"));
@@ -491,7 +502,7 @@ impl Logic for HubCore {
             self.pj[i].ack_slot.next = self.decode.ack_slot.val();
             self.pj[i].ack_delim.next = self.decode.ack_delim.val();
             self.pj[i].eof_1_6.next = self.decode.eof_1_6.val();
-            self.pj[i].im_1_2.next = self.decode.im_1_2.val();
+            self.pj[i].im_2.next = self.decode.im_2.val();
             self.pj[i].err_phase.next = self.err_phase.val();
             self.pj[i].crc_ok.next = self.mon_crc_ok.val();
             self.pj[i].frame_ok.next = self.mon_frame_ok.val();
@@ -514,7 +525,7 @@ impl Logic for HubCore {
             self.sj[j].ack_slot.next = self.decode.ack_slot.val();
             self.sj[j].ack_delim.next = self.decode.ack_delim.val();
             self.sj[j].eof_1_6.next = self.decode.eof_1_6.val();
-            self.sj[j].im_1_2.next = self.decode.im_1_2.val();
+            self.sj[j].im_2.next = self.decode.im_2.val();
             self.sj[j].err_phase.next = self.err_phase.val();
             self.sj[j].crc_ok.next = self.mon_crc_ok.val();
             self.sj[j].frame_ok.next = self.mon_frame_ok.val();

@@ -711,7 +711,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
     wire  decode$ack_delim;
     wire  decode$eof_1_6;
     wire  decode$eof_last;
-    wire  decode$im_1_2;
+    wire  decode$im_2;
     wire  decode$err_phase;
     reg  injector$clock;
     reg  injector$reset;
@@ -733,7 +733,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
     reg  pj$0$ack_slot;
     reg  pj$0$ack_delim;
     reg  pj$0$eof_1_6;
-    reg  pj$0$im_1_2;
+    reg  pj$0$im_2;
     reg  pj$0$err_phase;
     reg  pj$0$crc_ok;
     reg  pj$0$frame_ok;
@@ -744,6 +744,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
     wire  pj$0$blame;
     wire  pj$0$tx_error;
     wire  [7:0] pj$0$bic;
+    wire  [6:0] pj$0$life;
     wire  [4:0] pj$0$dbc;
     wire  [2:0] pj$0$nack;
     wire  [2:0] pj$0$rep_cnt;
@@ -761,7 +762,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
     reg  pj$1$ack_slot;
     reg  pj$1$ack_delim;
     reg  pj$1$eof_1_6;
-    reg  pj$1$im_1_2;
+    reg  pj$1$im_2;
     reg  pj$1$err_phase;
     reg  pj$1$crc_ok;
     reg  pj$1$frame_ok;
@@ -772,6 +773,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
     wire  pj$1$blame;
     wire  pj$1$tx_error;
     wire  [7:0] pj$1$bic;
+    wire  [6:0] pj$1$life;
     wire  [4:0] pj$1$dbc;
     wire  [2:0] pj$1$nack;
     wire  [2:0] pj$1$rep_cnt;
@@ -789,7 +791,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
     reg  pj$2$ack_slot;
     reg  pj$2$ack_delim;
     reg  pj$2$eof_1_6;
-    reg  pj$2$im_1_2;
+    reg  pj$2$im_2;
     reg  pj$2$err_phase;
     reg  pj$2$crc_ok;
     reg  pj$2$frame_ok;
@@ -800,6 +802,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
     wire  pj$2$blame;
     wire  pj$2$tx_error;
     wire  [7:0] pj$2$bic;
+    wire  [6:0] pj$2$life;
     wire  [4:0] pj$2$dbc;
     wire  [2:0] pj$2$nack;
     wire  [2:0] pj$2$rep_cnt;
@@ -873,7 +876,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         .ack_delim(decode$ack_delim),
         .eof_1_6(decode$eof_1_6),
         .eof_last(decode$eof_last),
-        .im_1_2(decode$im_1_2),
+        .im_2(decode$im_2),
         .err_phase(decode$err_phase)
     );
     canstar_cancentrate_core$core$injector injector(
@@ -899,7 +902,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         .ack_slot(pj$0$ack_slot),
         .ack_delim(pj$0$ack_delim),
         .eof_1_6(pj$0$eof_1_6),
-        .im_1_2(pj$0$im_1_2),
+        .im_2(pj$0$im_2),
         .err_phase(pj$0$err_phase),
         .crc_ok(pj$0$crc_ok),
         .frame_ok(pj$0$frame_ok),
@@ -910,6 +913,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         .blame(pj$0$blame),
         .tx_error(pj$0$tx_error),
         .bic(pj$0$bic),
+        .life(pj$0$life),
         .dbc(pj$0$dbc),
         .nack(pj$0$nack),
         .rep_cnt(pj$0$rep_cnt),
@@ -929,7 +933,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         .ack_slot(pj$1$ack_slot),
         .ack_delim(pj$1$ack_delim),
         .eof_1_6(pj$1$eof_1_6),
-        .im_1_2(pj$1$im_1_2),
+        .im_2(pj$1$im_2),
         .err_phase(pj$1$err_phase),
         .crc_ok(pj$1$crc_ok),
         .frame_ok(pj$1$frame_ok),
@@ -940,6 +944,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         .blame(pj$1$blame),
         .tx_error(pj$1$tx_error),
         .bic(pj$1$bic),
+        .life(pj$1$life),
         .dbc(pj$1$dbc),
         .nack(pj$1$nack),
         .rep_cnt(pj$1$rep_cnt),
@@ -959,7 +964,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         .ack_slot(pj$2$ack_slot),
         .ack_delim(pj$2$ack_delim),
         .eof_1_6(pj$2$eof_1_6),
-        .im_1_2(pj$2$im_1_2),
+        .im_2(pj$2$im_2),
         .err_phase(pj$2$err_phase),
         .crc_ok(pj$2$crc_ok),
         .frame_ok(pj$2$frame_ok),
@@ -970,6 +975,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         .blame(pj$2$blame),
         .tx_error(pj$2$tx_error),
         .bic(pj$2$bic),
+        .life(pj$2$life),
         .dbc(pj$2$dbc),
         .nack(pj$2$nack),
         .rep_cnt(pj$2$rep_cnt),
@@ -1040,7 +1046,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         pj$0$ack_slot = decode$ack_slot;
         pj$0$ack_delim = decode$ack_delim;
         pj$0$eof_1_6 = decode$eof_1_6;
-        pj$0$im_1_2 = decode$im_1_2;
+        pj$0$im_2 = decode$im_2;
         pj$0$err_phase = err_phase;
         pj$0$crc_ok = mon_crc_ok;
         pj$0$frame_ok = mon_frame_ok;
@@ -1074,7 +1080,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         pj$1$ack_slot = decode$ack_slot;
         pj$1$ack_delim = decode$ack_delim;
         pj$1$eof_1_6 = decode$eof_1_6;
-        pj$1$im_1_2 = decode$im_1_2;
+        pj$1$im_2 = decode$im_2;
         pj$1$err_phase = err_phase;
         pj$1$crc_ok = mon_crc_ok;
         pj$1$frame_ok = mon_frame_ok;
@@ -1108,7 +1114,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         pj$2$ack_slot = decode$ack_slot;
         pj$2$ack_delim = decode$ack_delim;
         pj$2$eof_1_6 = decode$eof_1_6;
-        pj$2$im_1_2 = decode$im_1_2;
+        pj$2$im_2 = decode$im_2;
         pj$2$err_phase = err_phase;
         pj$2$crc_ok = mon_crc_ok;
         pj$2$frame_ok = mon_frame_ok;
@@ -1677,7 +1683,7 @@ module canstar_cancentrate_core$core$coupler$up_sync$2$s2_n(d,q,clock);
 endmodule // canstar_cancentrate_core$core$coupler$up_sync$2$s2_n
 
 
-module canstar_cancentrate_core$core$decode(clock,field,pos,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,eof_last,im_1_2,err_phase);
+module canstar_cancentrate_core$core$decode(clock,field,pos,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,eof_last,im_2,err_phase);
     
     // Module arguments
     input wire  clock;
@@ -1691,7 +1697,7 @@ module canstar_cancentrate_core$core$decode(clock,field,pos,sof,tx_region,arb,cr
     output reg  ack_delim;
     output reg  eof_1_6;
     output reg  eof_last;
-    output reg  im_1_2;
+    output reg  im_2;
     output reg  err_phase;
     
     // Update code
@@ -1704,7 +1710,7 @@ module canstar_cancentrate_core$core$decode(clock,field,pos,sof,tx_region,arb,cr
         ack_delim = field == 32'ha;
         eof_1_6 = (field == 32'hb) & (pos < 32'h6);
         eof_last = (field == 32'hb) & (pos == 32'h6);
-        im_1_2 = (field == 32'hc) & (pos < 32'h2);
+        im_2 = (field == 32'hc) & (pos == 32'h1);
         err_phase = field >= 32'hd;
     end
     
@@ -2035,7 +2041,7 @@ module canstar_cancentrate_core$core$injector$state(d,q,clock);
 endmodule // canstar_cancentrate_core$core$injector$state
 
 
-module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_1_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,dis,blame,tx_error,bic,dbc,nack,rep_cnt,silent,contender);
+module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,dis,blame,tx_error,bic,life,dbc,nack,rep_cnt,silent,contender);
     
     // Module arguments
     input wire  clock;
@@ -2050,7 +2056,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
     input wire  ack_slot;
     input wire  ack_delim;
     input wire  eof_1_6;
-    input wire  im_1_2;
+    input wire  im_2;
     input wire  err_phase;
     input wire  crc_ok;
     input wire  frame_ok;
@@ -2061,6 +2067,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
     output reg  blame;
     output reg  tx_error;
     output reg  [7:0] bic;
+    output reg  [6:0] life;
     output reg  [4:0] dbc;
     output reg  [2:0] nack;
     output reg  [2:0] rep_cnt;
@@ -2069,6 +2076,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
     
     // Constant declarations
     localparam  bic_limit = 8'h40;
+    localparam  life_limit = 7'b100000;
     localparam  dbc_thr = 5'b1101;
     localparam  nack_thr = 3'b111;
     localparam  rep_limit = 3'b11;
@@ -2085,6 +2093,9 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
     reg  [7:0] bic_r$d;
     wire  [7:0] bic_r$q;
     reg  bic_r$clock;
+    reg  [6:0] life_r$d;
+    wire  [6:0] life_r$q;
+    reg  life_r$clock;
     reg  [4:0] dbc_r$d;
     wire  [4:0] dbc_r$q;
     reg  dbc_r$clock;
@@ -2137,6 +2148,11 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         .d(bic_r$d),
         .q(bic_r$q),
         .clock(bic_r$clock)
+    );
+    canstar_cancentrate_core$core$pj$0$life_r life_r(
+        .d(life_r$d),
+        .q(life_r$q),
+        .clock(life_r$clock)
     );
     canstar_cancentrate_core$core$pj$0$dbc_r dbc_r(
         .d(dbc_r$d),
@@ -2203,6 +2219,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
     always @(*) begin
         dis_r$clock = clock;
         bic_r$clock = clock;
+        life_r$clock = clock;
         dbc_r$clock = clock;
         nack_r$clock = clock;
         cont_r$clock = clock;
@@ -2217,6 +2234,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         ack_rx$clock = clock;
         dis_r$d = dis_r$q;
         bic_r$d = bic_r$q;
+        life_r$d = life_r$q;
         dbc_r$d = dbc_r$q;
         nack_r$d = nack_r$q;
         cont_r$d = cont_r$q;
@@ -2231,7 +2249,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         ack_rx$d = ack_rx$q;
         dom = ~c;
         enabled = ~dis_r$q;
-        unj = dom & ~err_phase & ((tx_region & ~cont_r$q) | crc_delim | (ack_delim & ~ack_missing$q) | eof_1_6 | im_1_2 | (ack_slot & cont_r$q & ack_rule));
+        unj = dom & ~err_phase & ((tx_region & ~cont_r$q) | crc_delim | (ack_delim & ~ack_missing$q) | eof_1_6 | im_2 | (ack_slot & cont_r$q & ack_rule));
         blame = sample & unj & enabled;
         tx_error = sample & nack_on & enabled & cont_r$q & tx_region & ~arb & c & ~bt & ~err_phase;
         if (sample) begin
@@ -2254,6 +2272,9 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
             end
             if (frame_ok & enabled & (bic_r$q != 32'h0)) begin
                 bic_r$d = bic_r$q - 32'h1;
+            end
+            if (blame & (life_r$q != 32'h7f)) begin
+                life_r$d = life_r$q + 32'h1;
             end
             if (blame) begin
                 if (bic_r$q > 32'hf7) begin
@@ -2303,7 +2324,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
                 rep_r$d = rep_r$q + 32'h1;
             end
         end
-        if (enabled & ((bic_r$q >= bic_limit) | (dbc_r$q >= dbc_thr) | (rep_on & (rep_r$q >= rep_limit)))) begin
+        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (rep_on & (rep_r$q >= rep_limit)))) begin
             dis_r$d = 1'b1;
         end
         if (enabled) begin
@@ -2319,6 +2340,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
                 if (reint_on & ((ok_r$q + 32'h1) >= reint_w)) begin
                     dis_r$d = 1'b0;
                     bic_r$d = 32'h0;
+                    life_r$d = 32'h0;
                     dbc_r$d = 32'h0;
                     nack_r$d = 32'h0;
                     rep_r$d = 32'h0;
@@ -2333,6 +2355,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         if (reset) begin
             dis_r$d = 1'b0;
             bic_r$d = 32'h0;
+            life_r$d = 32'h0;
             dbc_r$d = 32'h0;
             nack_r$d = 32'h0;
             cont_r$d = 1'b0;
@@ -2348,6 +2371,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         end
         dis = dis_r$q;
         bic = bic_r$q;
+        life = life_r$q;
         dbc = dbc_r$q;
         nack = nack_r$q;
         rep_cnt = rep_r$q;
@@ -2529,6 +2553,25 @@ module canstar_cancentrate_core$core$pj$0$dis_r(d,q,clock);
 endmodule // canstar_cancentrate_core$core$pj$0$dis_r
 
 
+module canstar_cancentrate_core$core$pj$0$life_r(d,q,clock);
+    
+    // Module arguments
+    input wire  [6:0] d;
+    output reg  [6:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 7'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$0$life_r
+
+
 module canstar_cancentrate_core$core$pj$0$nack_r(d,q,clock);
     
     // Module arguments
@@ -2624,7 +2667,7 @@ module canstar_cancentrate_core$core$pj$0$rep_seen(d,q,clock);
 endmodule // canstar_cancentrate_core$core$pj$0$rep_seen
 
 
-module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_1_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,dis,blame,tx_error,bic,dbc,nack,rep_cnt,silent,contender);
+module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,dis,blame,tx_error,bic,life,dbc,nack,rep_cnt,silent,contender);
     
     // Module arguments
     input wire  clock;
@@ -2639,7 +2682,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
     input wire  ack_slot;
     input wire  ack_delim;
     input wire  eof_1_6;
-    input wire  im_1_2;
+    input wire  im_2;
     input wire  err_phase;
     input wire  crc_ok;
     input wire  frame_ok;
@@ -2650,6 +2693,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
     output reg  blame;
     output reg  tx_error;
     output reg  [7:0] bic;
+    output reg  [6:0] life;
     output reg  [4:0] dbc;
     output reg  [2:0] nack;
     output reg  [2:0] rep_cnt;
@@ -2658,6 +2702,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
     
     // Constant declarations
     localparam  bic_limit = 8'h40;
+    localparam  life_limit = 7'b100000;
     localparam  dbc_thr = 5'b1101;
     localparam  nack_thr = 3'b111;
     localparam  rep_limit = 3'b11;
@@ -2674,6 +2719,9 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
     reg  [7:0] bic_r$d;
     wire  [7:0] bic_r$q;
     reg  bic_r$clock;
+    reg  [6:0] life_r$d;
+    wire  [6:0] life_r$q;
+    reg  life_r$clock;
     reg  [4:0] dbc_r$d;
     wire  [4:0] dbc_r$q;
     reg  dbc_r$clock;
@@ -2726,6 +2774,11 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         .d(bic_r$d),
         .q(bic_r$q),
         .clock(bic_r$clock)
+    );
+    canstar_cancentrate_core$core$pj$1$life_r life_r(
+        .d(life_r$d),
+        .q(life_r$q),
+        .clock(life_r$clock)
     );
     canstar_cancentrate_core$core$pj$1$dbc_r dbc_r(
         .d(dbc_r$d),
@@ -2792,6 +2845,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
     always @(*) begin
         dis_r$clock = clock;
         bic_r$clock = clock;
+        life_r$clock = clock;
         dbc_r$clock = clock;
         nack_r$clock = clock;
         cont_r$clock = clock;
@@ -2806,6 +2860,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         ack_rx$clock = clock;
         dis_r$d = dis_r$q;
         bic_r$d = bic_r$q;
+        life_r$d = life_r$q;
         dbc_r$d = dbc_r$q;
         nack_r$d = nack_r$q;
         cont_r$d = cont_r$q;
@@ -2820,7 +2875,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         ack_rx$d = ack_rx$q;
         dom = ~c;
         enabled = ~dis_r$q;
-        unj = dom & ~err_phase & ((tx_region & ~cont_r$q) | crc_delim | (ack_delim & ~ack_missing$q) | eof_1_6 | im_1_2 | (ack_slot & cont_r$q & ack_rule));
+        unj = dom & ~err_phase & ((tx_region & ~cont_r$q) | crc_delim | (ack_delim & ~ack_missing$q) | eof_1_6 | im_2 | (ack_slot & cont_r$q & ack_rule));
         blame = sample & unj & enabled;
         tx_error = sample & nack_on & enabled & cont_r$q & tx_region & ~arb & c & ~bt & ~err_phase;
         if (sample) begin
@@ -2843,6 +2898,9 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
             end
             if (frame_ok & enabled & (bic_r$q != 32'h0)) begin
                 bic_r$d = bic_r$q - 32'h1;
+            end
+            if (blame & (life_r$q != 32'h7f)) begin
+                life_r$d = life_r$q + 32'h1;
             end
             if (blame) begin
                 if (bic_r$q > 32'hf7) begin
@@ -2892,7 +2950,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
                 rep_r$d = rep_r$q + 32'h1;
             end
         end
-        if (enabled & ((bic_r$q >= bic_limit) | (dbc_r$q >= dbc_thr) | (rep_on & (rep_r$q >= rep_limit)))) begin
+        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (rep_on & (rep_r$q >= rep_limit)))) begin
             dis_r$d = 1'b1;
         end
         if (enabled) begin
@@ -2908,6 +2966,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
                 if (reint_on & ((ok_r$q + 32'h1) >= reint_w)) begin
                     dis_r$d = 1'b0;
                     bic_r$d = 32'h0;
+                    life_r$d = 32'h0;
                     dbc_r$d = 32'h0;
                     nack_r$d = 32'h0;
                     rep_r$d = 32'h0;
@@ -2922,6 +2981,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         if (reset) begin
             dis_r$d = 1'b0;
             bic_r$d = 32'h0;
+            life_r$d = 32'h0;
             dbc_r$d = 32'h0;
             nack_r$d = 32'h0;
             cont_r$d = 1'b0;
@@ -2937,6 +2997,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         end
         dis = dis_r$q;
         bic = bic_r$q;
+        life = life_r$q;
         dbc = dbc_r$q;
         nack = nack_r$q;
         rep_cnt = rep_r$q;
@@ -3118,6 +3179,25 @@ module canstar_cancentrate_core$core$pj$1$dis_r(d,q,clock);
 endmodule // canstar_cancentrate_core$core$pj$1$dis_r
 
 
+module canstar_cancentrate_core$core$pj$1$life_r(d,q,clock);
+    
+    // Module arguments
+    input wire  [6:0] d;
+    output reg  [6:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 7'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$1$life_r
+
+
 module canstar_cancentrate_core$core$pj$1$nack_r(d,q,clock);
     
     // Module arguments
@@ -3213,7 +3293,7 @@ module canstar_cancentrate_core$core$pj$1$rep_seen(d,q,clock);
 endmodule // canstar_cancentrate_core$core$pj$1$rep_seen
 
 
-module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_1_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,dis,blame,tx_error,bic,dbc,nack,rep_cnt,silent,contender);
+module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,dis,blame,tx_error,bic,life,dbc,nack,rep_cnt,silent,contender);
     
     // Module arguments
     input wire  clock;
@@ -3228,7 +3308,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
     input wire  ack_slot;
     input wire  ack_delim;
     input wire  eof_1_6;
-    input wire  im_1_2;
+    input wire  im_2;
     input wire  err_phase;
     input wire  crc_ok;
     input wire  frame_ok;
@@ -3239,6 +3319,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
     output reg  blame;
     output reg  tx_error;
     output reg  [7:0] bic;
+    output reg  [6:0] life;
     output reg  [4:0] dbc;
     output reg  [2:0] nack;
     output reg  [2:0] rep_cnt;
@@ -3247,6 +3328,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
     
     // Constant declarations
     localparam  bic_limit = 8'h40;
+    localparam  life_limit = 7'b100000;
     localparam  dbc_thr = 5'b1101;
     localparam  nack_thr = 3'b111;
     localparam  rep_limit = 3'b11;
@@ -3263,6 +3345,9 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
     reg  [7:0] bic_r$d;
     wire  [7:0] bic_r$q;
     reg  bic_r$clock;
+    reg  [6:0] life_r$d;
+    wire  [6:0] life_r$q;
+    reg  life_r$clock;
     reg  [4:0] dbc_r$d;
     wire  [4:0] dbc_r$q;
     reg  dbc_r$clock;
@@ -3315,6 +3400,11 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         .d(bic_r$d),
         .q(bic_r$q),
         .clock(bic_r$clock)
+    );
+    canstar_cancentrate_core$core$pj$2$life_r life_r(
+        .d(life_r$d),
+        .q(life_r$q),
+        .clock(life_r$clock)
     );
     canstar_cancentrate_core$core$pj$2$dbc_r dbc_r(
         .d(dbc_r$d),
@@ -3381,6 +3471,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
     always @(*) begin
         dis_r$clock = clock;
         bic_r$clock = clock;
+        life_r$clock = clock;
         dbc_r$clock = clock;
         nack_r$clock = clock;
         cont_r$clock = clock;
@@ -3395,6 +3486,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         ack_rx$clock = clock;
         dis_r$d = dis_r$q;
         bic_r$d = bic_r$q;
+        life_r$d = life_r$q;
         dbc_r$d = dbc_r$q;
         nack_r$d = nack_r$q;
         cont_r$d = cont_r$q;
@@ -3409,7 +3501,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         ack_rx$d = ack_rx$q;
         dom = ~c;
         enabled = ~dis_r$q;
-        unj = dom & ~err_phase & ((tx_region & ~cont_r$q) | crc_delim | (ack_delim & ~ack_missing$q) | eof_1_6 | im_1_2 | (ack_slot & cont_r$q & ack_rule));
+        unj = dom & ~err_phase & ((tx_region & ~cont_r$q) | crc_delim | (ack_delim & ~ack_missing$q) | eof_1_6 | im_2 | (ack_slot & cont_r$q & ack_rule));
         blame = sample & unj & enabled;
         tx_error = sample & nack_on & enabled & cont_r$q & tx_region & ~arb & c & ~bt & ~err_phase;
         if (sample) begin
@@ -3432,6 +3524,9 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
             end
             if (frame_ok & enabled & (bic_r$q != 32'h0)) begin
                 bic_r$d = bic_r$q - 32'h1;
+            end
+            if (blame & (life_r$q != 32'h7f)) begin
+                life_r$d = life_r$q + 32'h1;
             end
             if (blame) begin
                 if (bic_r$q > 32'hf7) begin
@@ -3481,7 +3576,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
                 rep_r$d = rep_r$q + 32'h1;
             end
         end
-        if (enabled & ((bic_r$q >= bic_limit) | (dbc_r$q >= dbc_thr) | (rep_on & (rep_r$q >= rep_limit)))) begin
+        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (rep_on & (rep_r$q >= rep_limit)))) begin
             dis_r$d = 1'b1;
         end
         if (enabled) begin
@@ -3497,6 +3592,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
                 if (reint_on & ((ok_r$q + 32'h1) >= reint_w)) begin
                     dis_r$d = 1'b0;
                     bic_r$d = 32'h0;
+                    life_r$d = 32'h0;
                     dbc_r$d = 32'h0;
                     nack_r$d = 32'h0;
                     rep_r$d = 32'h0;
@@ -3511,6 +3607,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         if (reset) begin
             dis_r$d = 1'b0;
             bic_r$d = 32'h0;
+            life_r$d = 32'h0;
             dbc_r$d = 32'h0;
             nack_r$d = 32'h0;
             cont_r$d = 1'b0;
@@ -3526,6 +3623,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         end
         dis = dis_r$q;
         bic = bic_r$q;
+        life = life_r$q;
         dbc = dbc_r$q;
         nack = nack_r$q;
         rep_cnt = rep_r$q;
@@ -3705,6 +3803,25 @@ module canstar_cancentrate_core$core$pj$2$dis_r(d,q,clock);
     end
           
 endmodule // canstar_cancentrate_core$core$pj$2$dis_r
+
+
+module canstar_cancentrate_core$core$pj$2$life_r(d,q,clock);
+    
+    // Module arguments
+    input wire  [6:0] d;
+    output reg  [6:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 7'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$2$life_r
 
 
 module canstar_cancentrate_core$core$pj$2$nack_r(d,q,clock);

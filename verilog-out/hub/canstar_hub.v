@@ -783,7 +783,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     wire  decode$ack_delim;
     wire  decode$eof_1_6;
     wire  decode$eof_last;
-    wire  decode$im_1_2;
+    wire  decode$im_2;
     wire  decode$err_phase;
     reg  injector$clock;
     reg  injector$reset;
@@ -805,7 +805,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     reg  pj$0$ack_slot;
     reg  pj$0$ack_delim;
     reg  pj$0$eof_1_6;
-    reg  pj$0$im_1_2;
+    reg  pj$0$im_2;
     reg  pj$0$err_phase;
     reg  pj$0$crc_ok;
     reg  pj$0$frame_ok;
@@ -816,6 +816,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     wire  pj$0$blame;
     wire  pj$0$tx_error;
     wire  [7:0] pj$0$bic;
+    wire  [6:0] pj$0$life;
     wire  [4:0] pj$0$dbc;
     wire  [2:0] pj$0$nack;
     wire  [2:0] pj$0$rep_cnt;
@@ -833,7 +834,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     reg  pj$1$ack_slot;
     reg  pj$1$ack_delim;
     reg  pj$1$eof_1_6;
-    reg  pj$1$im_1_2;
+    reg  pj$1$im_2;
     reg  pj$1$err_phase;
     reg  pj$1$crc_ok;
     reg  pj$1$frame_ok;
@@ -844,6 +845,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     wire  pj$1$blame;
     wire  pj$1$tx_error;
     wire  [7:0] pj$1$bic;
+    wire  [6:0] pj$1$life;
     wire  [4:0] pj$1$dbc;
     wire  [2:0] pj$1$nack;
     wire  [2:0] pj$1$rep_cnt;
@@ -861,7 +863,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     reg  pj$2$ack_slot;
     reg  pj$2$ack_delim;
     reg  pj$2$eof_1_6;
-    reg  pj$2$im_1_2;
+    reg  pj$2$im_2;
     reg  pj$2$err_phase;
     reg  pj$2$crc_ok;
     reg  pj$2$frame_ok;
@@ -872,6 +874,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     wire  pj$2$blame;
     wire  pj$2$tx_error;
     wire  [7:0] pj$2$bic;
+    wire  [6:0] pj$2$life;
     wire  [4:0] pj$2$dbc;
     wire  [2:0] pj$2$nack;
     wire  [2:0] pj$2$rep_cnt;
@@ -889,7 +892,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     reg  sj$0$ack_slot;
     reg  sj$0$ack_delim;
     reg  sj$0$eof_1_6;
-    reg  sj$0$im_1_2;
+    reg  sj$0$im_2;
     reg  sj$0$err_phase;
     reg  sj$0$crc_ok;
     reg  sj$0$frame_ok;
@@ -900,6 +903,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     wire  sj$0$blame;
     wire  sj$0$tx_error;
     wire  [7:0] sj$0$bic;
+    wire  [6:0] sj$0$life;
     wire  [4:0] sj$0$dbc;
     wire  [2:0] sj$0$nack;
     wire  [2:0] sj$0$rep_cnt;
@@ -917,7 +921,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     reg  sj$1$ack_slot;
     reg  sj$1$ack_delim;
     reg  sj$1$eof_1_6;
-    reg  sj$1$im_1_2;
+    reg  sj$1$im_2;
     reg  sj$1$err_phase;
     reg  sj$1$crc_ok;
     reg  sj$1$frame_ok;
@@ -928,6 +932,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     wire  sj$1$blame;
     wire  sj$1$tx_error;
     wire  [7:0] sj$1$bic;
+    wire  [6:0] sj$1$life;
     wire  [4:0] sj$1$dbc;
     wire  [2:0] sj$1$nack;
     wire  [2:0] sj$1$rep_cnt;
@@ -1011,7 +1016,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .ack_delim(decode$ack_delim),
         .eof_1_6(decode$eof_1_6),
         .eof_last(decode$eof_last),
-        .im_1_2(decode$im_1_2),
+        .im_2(decode$im_2),
         .err_phase(decode$err_phase)
     );
     canstar_hub_core$core$injector injector(
@@ -1037,7 +1042,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .ack_slot(pj$0$ack_slot),
         .ack_delim(pj$0$ack_delim),
         .eof_1_6(pj$0$eof_1_6),
-        .im_1_2(pj$0$im_1_2),
+        .im_2(pj$0$im_2),
         .err_phase(pj$0$err_phase),
         .crc_ok(pj$0$crc_ok),
         .frame_ok(pj$0$frame_ok),
@@ -1048,6 +1053,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .blame(pj$0$blame),
         .tx_error(pj$0$tx_error),
         .bic(pj$0$bic),
+        .life(pj$0$life),
         .dbc(pj$0$dbc),
         .nack(pj$0$nack),
         .rep_cnt(pj$0$rep_cnt),
@@ -1067,7 +1073,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .ack_slot(pj$1$ack_slot),
         .ack_delim(pj$1$ack_delim),
         .eof_1_6(pj$1$eof_1_6),
-        .im_1_2(pj$1$im_1_2),
+        .im_2(pj$1$im_2),
         .err_phase(pj$1$err_phase),
         .crc_ok(pj$1$crc_ok),
         .frame_ok(pj$1$frame_ok),
@@ -1078,6 +1084,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .blame(pj$1$blame),
         .tx_error(pj$1$tx_error),
         .bic(pj$1$bic),
+        .life(pj$1$life),
         .dbc(pj$1$dbc),
         .nack(pj$1$nack),
         .rep_cnt(pj$1$rep_cnt),
@@ -1097,7 +1104,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .ack_slot(pj$2$ack_slot),
         .ack_delim(pj$2$ack_delim),
         .eof_1_6(pj$2$eof_1_6),
-        .im_1_2(pj$2$im_1_2),
+        .im_2(pj$2$im_2),
         .err_phase(pj$2$err_phase),
         .crc_ok(pj$2$crc_ok),
         .frame_ok(pj$2$frame_ok),
@@ -1108,6 +1115,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .blame(pj$2$blame),
         .tx_error(pj$2$tx_error),
         .bic(pj$2$bic),
+        .life(pj$2$life),
         .dbc(pj$2$dbc),
         .nack(pj$2$nack),
         .rep_cnt(pj$2$rep_cnt),
@@ -1127,7 +1135,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .ack_slot(sj$0$ack_slot),
         .ack_delim(sj$0$ack_delim),
         .eof_1_6(sj$0$eof_1_6),
-        .im_1_2(sj$0$im_1_2),
+        .im_2(sj$0$im_2),
         .err_phase(sj$0$err_phase),
         .crc_ok(sj$0$crc_ok),
         .frame_ok(sj$0$frame_ok),
@@ -1138,6 +1146,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .blame(sj$0$blame),
         .tx_error(sj$0$tx_error),
         .bic(sj$0$bic),
+        .life(sj$0$life),
         .dbc(sj$0$dbc),
         .nack(sj$0$nack),
         .rep_cnt(sj$0$rep_cnt),
@@ -1157,7 +1166,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .ack_slot(sj$1$ack_slot),
         .ack_delim(sj$1$ack_delim),
         .eof_1_6(sj$1$eof_1_6),
-        .im_1_2(sj$1$im_1_2),
+        .im_2(sj$1$im_2),
         .err_phase(sj$1$err_phase),
         .crc_ok(sj$1$crc_ok),
         .frame_ok(sj$1$frame_ok),
@@ -1168,6 +1177,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .blame(sj$1$blame),
         .tx_error(sj$1$tx_error),
         .bic(sj$1$bic),
+        .life(sj$1$life),
         .dbc(sj$1$dbc),
         .nack(sj$1$nack),
         .rep_cnt(sj$1$rep_cnt),
@@ -1266,7 +1276,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         pj$0$ack_slot = decode$ack_slot;
         pj$0$ack_delim = decode$ack_delim;
         pj$0$eof_1_6 = decode$eof_1_6;
-        pj$0$im_1_2 = decode$im_1_2;
+        pj$0$im_2 = decode$im_2;
         pj$0$err_phase = err_phase;
         pj$0$crc_ok = mon_crc_ok;
         pj$0$frame_ok = mon_frame_ok;
@@ -1300,7 +1310,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         pj$1$ack_slot = decode$ack_slot;
         pj$1$ack_delim = decode$ack_delim;
         pj$1$eof_1_6 = decode$eof_1_6;
-        pj$1$im_1_2 = decode$im_1_2;
+        pj$1$im_2 = decode$im_2;
         pj$1$err_phase = err_phase;
         pj$1$crc_ok = mon_crc_ok;
         pj$1$frame_ok = mon_frame_ok;
@@ -1334,7 +1344,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         pj$2$ack_slot = decode$ack_slot;
         pj$2$ack_delim = decode$ack_delim;
         pj$2$eof_1_6 = decode$eof_1_6;
-        pj$2$im_1_2 = decode$im_1_2;
+        pj$2$im_2 = decode$im_2;
         pj$2$err_phase = err_phase;
         pj$2$crc_ok = mon_crc_ok;
         pj$2$frame_ok = mon_frame_ok;
@@ -1355,7 +1365,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         sj$0$ack_slot = decode$ack_slot;
         sj$0$ack_delim = decode$ack_delim;
         sj$0$eof_1_6 = decode$eof_1_6;
-        sj$0$im_1_2 = decode$im_1_2;
+        sj$0$im_2 = decode$im_2;
         sj$0$err_phase = err_phase;
         sj$0$crc_ok = mon_crc_ok;
         sj$0$frame_ok = mon_frame_ok;
@@ -1375,7 +1385,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         sj$1$ack_slot = decode$ack_slot;
         sj$1$ack_delim = decode$ack_delim;
         sj$1$eof_1_6 = decode$eof_1_6;
-        sj$1$im_1_2 = decode$im_1_2;
+        sj$1$im_2 = decode$im_2;
         sj$1$err_phase = err_phase;
         sj$1$crc_ok = mon_crc_ok;
         sj$1$frame_ok = mon_frame_ok;
@@ -2263,7 +2273,7 @@ module canstar_hub_core$core$coupler$up_sync$2$s2_n(d,q,clock);
 endmodule // canstar_hub_core$core$coupler$up_sync$2$s2_n
 
 
-module canstar_hub_core$core$decode(clock,field,pos,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,eof_last,im_1_2,err_phase);
+module canstar_hub_core$core$decode(clock,field,pos,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,eof_last,im_2,err_phase);
     
     // Module arguments
     input wire  clock;
@@ -2277,7 +2287,7 @@ module canstar_hub_core$core$decode(clock,field,pos,sof,tx_region,arb,crc_delim,
     output reg  ack_delim;
     output reg  eof_1_6;
     output reg  eof_last;
-    output reg  im_1_2;
+    output reg  im_2;
     output reg  err_phase;
     
     // Update code
@@ -2290,7 +2300,7 @@ module canstar_hub_core$core$decode(clock,field,pos,sof,tx_region,arb,crc_delim,
         ack_delim = field == 32'ha;
         eof_1_6 = (field == 32'hb) & (pos < 32'h6);
         eof_last = (field == 32'hb) & (pos == 32'h6);
-        im_1_2 = (field == 32'hc) & (pos < 32'h2);
+        im_2 = (field == 32'hc) & (pos == 32'h1);
         err_phase = field >= 32'hd;
     end
     
@@ -2621,7 +2631,7 @@ module canstar_hub_core$core$injector$state(d,q,clock);
 endmodule // canstar_hub_core$core$injector$state
 
 
-module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_1_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,dis,blame,tx_error,bic,dbc,nack,rep_cnt,silent,contender);
+module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,dis,blame,tx_error,bic,life,dbc,nack,rep_cnt,silent,contender);
     
     // Module arguments
     input wire  clock;
@@ -2636,7 +2646,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     input wire  ack_slot;
     input wire  ack_delim;
     input wire  eof_1_6;
-    input wire  im_1_2;
+    input wire  im_2;
     input wire  err_phase;
     input wire  crc_ok;
     input wire  frame_ok;
@@ -2647,6 +2657,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     output reg  blame;
     output reg  tx_error;
     output reg  [7:0] bic;
+    output reg  [6:0] life;
     output reg  [4:0] dbc;
     output reg  [2:0] nack;
     output reg  [2:0] rep_cnt;
@@ -2655,6 +2666,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     
     // Constant declarations
     localparam  bic_limit = 8'h40;
+    localparam  life_limit = 7'b100000;
     localparam  dbc_thr = 5'b1101;
     localparam  nack_thr = 3'b111;
     localparam  rep_limit = 3'b11;
@@ -2671,6 +2683,9 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  [7:0] bic_r$d;
     wire  [7:0] bic_r$q;
     reg  bic_r$clock;
+    reg  [6:0] life_r$d;
+    wire  [6:0] life_r$q;
+    reg  life_r$clock;
     reg  [4:0] dbc_r$d;
     wire  [4:0] dbc_r$q;
     reg  dbc_r$clock;
@@ -2723,6 +2738,11 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .d(bic_r$d),
         .q(bic_r$q),
         .clock(bic_r$clock)
+    );
+    canstar_hub_core$core$pj$0$life_r life_r(
+        .d(life_r$d),
+        .q(life_r$q),
+        .clock(life_r$clock)
     );
     canstar_hub_core$core$pj$0$dbc_r dbc_r(
         .d(dbc_r$d),
@@ -2789,6 +2809,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     always @(*) begin
         dis_r$clock = clock;
         bic_r$clock = clock;
+        life_r$clock = clock;
         dbc_r$clock = clock;
         nack_r$clock = clock;
         cont_r$clock = clock;
@@ -2803,6 +2824,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         ack_rx$clock = clock;
         dis_r$d = dis_r$q;
         bic_r$d = bic_r$q;
+        life_r$d = life_r$q;
         dbc_r$d = dbc_r$q;
         nack_r$d = nack_r$q;
         cont_r$d = cont_r$q;
@@ -2817,7 +2839,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         ack_rx$d = ack_rx$q;
         dom = ~c;
         enabled = ~dis_r$q;
-        unj = dom & ~err_phase & ((tx_region & ~cont_r$q) | crc_delim | (ack_delim & ~ack_missing$q) | eof_1_6 | im_1_2 | (ack_slot & cont_r$q & ack_rule));
+        unj = dom & ~err_phase & ((tx_region & ~cont_r$q) | crc_delim | (ack_delim & ~ack_missing$q) | eof_1_6 | im_2 | (ack_slot & cont_r$q & ack_rule));
         blame = sample & unj & enabled;
         tx_error = sample & nack_on & enabled & cont_r$q & tx_region & ~arb & c & ~bt & ~err_phase;
         if (sample) begin
@@ -2840,6 +2862,9 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             end
             if (frame_ok & enabled & (bic_r$q != 32'h0)) begin
                 bic_r$d = bic_r$q - 32'h1;
+            end
+            if (blame & (life_r$q != 32'h7f)) begin
+                life_r$d = life_r$q + 32'h1;
             end
             if (blame) begin
                 if (bic_r$q > 32'hf7) begin
@@ -2889,7 +2914,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                 rep_r$d = rep_r$q + 32'h1;
             end
         end
-        if (enabled & ((bic_r$q >= bic_limit) | (dbc_r$q >= dbc_thr) | (rep_on & (rep_r$q >= rep_limit)))) begin
+        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (rep_on & (rep_r$q >= rep_limit)))) begin
             dis_r$d = 1'b1;
         end
         if (enabled) begin
@@ -2905,6 +2930,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                 if (reint_on & ((ok_r$q + 32'h1) >= reint_w)) begin
                     dis_r$d = 1'b0;
                     bic_r$d = 32'h0;
+                    life_r$d = 32'h0;
                     dbc_r$d = 32'h0;
                     nack_r$d = 32'h0;
                     rep_r$d = 32'h0;
@@ -2919,6 +2945,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         if (reset) begin
             dis_r$d = 1'b0;
             bic_r$d = 32'h0;
+            life_r$d = 32'h0;
             dbc_r$d = 32'h0;
             nack_r$d = 32'h0;
             cont_r$d = 1'b0;
@@ -2934,6 +2961,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         end
         dis = dis_r$q;
         bic = bic_r$q;
+        life = life_r$q;
         dbc = dbc_r$q;
         nack = nack_r$q;
         rep_cnt = rep_r$q;
@@ -3115,6 +3143,25 @@ module canstar_hub_core$core$pj$0$dis_r(d,q,clock);
 endmodule // canstar_hub_core$core$pj$0$dis_r
 
 
+module canstar_hub_core$core$pj$0$life_r(d,q,clock);
+    
+    // Module arguments
+    input wire  [6:0] d;
+    output reg  [6:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 7'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$0$life_r
+
+
 module canstar_hub_core$core$pj$0$nack_r(d,q,clock);
     
     // Module arguments
@@ -3210,7 +3257,7 @@ module canstar_hub_core$core$pj$0$rep_seen(d,q,clock);
 endmodule // canstar_hub_core$core$pj$0$rep_seen
 
 
-module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_1_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,dis,blame,tx_error,bic,dbc,nack,rep_cnt,silent,contender);
+module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,dis,blame,tx_error,bic,life,dbc,nack,rep_cnt,silent,contender);
     
     // Module arguments
     input wire  clock;
@@ -3225,7 +3272,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     input wire  ack_slot;
     input wire  ack_delim;
     input wire  eof_1_6;
-    input wire  im_1_2;
+    input wire  im_2;
     input wire  err_phase;
     input wire  crc_ok;
     input wire  frame_ok;
@@ -3236,6 +3283,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     output reg  blame;
     output reg  tx_error;
     output reg  [7:0] bic;
+    output reg  [6:0] life;
     output reg  [4:0] dbc;
     output reg  [2:0] nack;
     output reg  [2:0] rep_cnt;
@@ -3244,6 +3292,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     
     // Constant declarations
     localparam  bic_limit = 8'h40;
+    localparam  life_limit = 7'b100000;
     localparam  dbc_thr = 5'b1101;
     localparam  nack_thr = 3'b111;
     localparam  rep_limit = 3'b11;
@@ -3260,6 +3309,9 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  [7:0] bic_r$d;
     wire  [7:0] bic_r$q;
     reg  bic_r$clock;
+    reg  [6:0] life_r$d;
+    wire  [6:0] life_r$q;
+    reg  life_r$clock;
     reg  [4:0] dbc_r$d;
     wire  [4:0] dbc_r$q;
     reg  dbc_r$clock;
@@ -3312,6 +3364,11 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .d(bic_r$d),
         .q(bic_r$q),
         .clock(bic_r$clock)
+    );
+    canstar_hub_core$core$pj$1$life_r life_r(
+        .d(life_r$d),
+        .q(life_r$q),
+        .clock(life_r$clock)
     );
     canstar_hub_core$core$pj$1$dbc_r dbc_r(
         .d(dbc_r$d),
@@ -3378,6 +3435,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     always @(*) begin
         dis_r$clock = clock;
         bic_r$clock = clock;
+        life_r$clock = clock;
         dbc_r$clock = clock;
         nack_r$clock = clock;
         cont_r$clock = clock;
@@ -3392,6 +3450,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         ack_rx$clock = clock;
         dis_r$d = dis_r$q;
         bic_r$d = bic_r$q;
+        life_r$d = life_r$q;
         dbc_r$d = dbc_r$q;
         nack_r$d = nack_r$q;
         cont_r$d = cont_r$q;
@@ -3406,7 +3465,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         ack_rx$d = ack_rx$q;
         dom = ~c;
         enabled = ~dis_r$q;
-        unj = dom & ~err_phase & ((tx_region & ~cont_r$q) | crc_delim | (ack_delim & ~ack_missing$q) | eof_1_6 | im_1_2 | (ack_slot & cont_r$q & ack_rule));
+        unj = dom & ~err_phase & ((tx_region & ~cont_r$q) | crc_delim | (ack_delim & ~ack_missing$q) | eof_1_6 | im_2 | (ack_slot & cont_r$q & ack_rule));
         blame = sample & unj & enabled;
         tx_error = sample & nack_on & enabled & cont_r$q & tx_region & ~arb & c & ~bt & ~err_phase;
         if (sample) begin
@@ -3429,6 +3488,9 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             end
             if (frame_ok & enabled & (bic_r$q != 32'h0)) begin
                 bic_r$d = bic_r$q - 32'h1;
+            end
+            if (blame & (life_r$q != 32'h7f)) begin
+                life_r$d = life_r$q + 32'h1;
             end
             if (blame) begin
                 if (bic_r$q > 32'hf7) begin
@@ -3478,7 +3540,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                 rep_r$d = rep_r$q + 32'h1;
             end
         end
-        if (enabled & ((bic_r$q >= bic_limit) | (dbc_r$q >= dbc_thr) | (rep_on & (rep_r$q >= rep_limit)))) begin
+        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (rep_on & (rep_r$q >= rep_limit)))) begin
             dis_r$d = 1'b1;
         end
         if (enabled) begin
@@ -3494,6 +3556,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                 if (reint_on & ((ok_r$q + 32'h1) >= reint_w)) begin
                     dis_r$d = 1'b0;
                     bic_r$d = 32'h0;
+                    life_r$d = 32'h0;
                     dbc_r$d = 32'h0;
                     nack_r$d = 32'h0;
                     rep_r$d = 32'h0;
@@ -3508,6 +3571,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         if (reset) begin
             dis_r$d = 1'b0;
             bic_r$d = 32'h0;
+            life_r$d = 32'h0;
             dbc_r$d = 32'h0;
             nack_r$d = 32'h0;
             cont_r$d = 1'b0;
@@ -3523,6 +3587,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         end
         dis = dis_r$q;
         bic = bic_r$q;
+        life = life_r$q;
         dbc = dbc_r$q;
         nack = nack_r$q;
         rep_cnt = rep_r$q;
@@ -3704,6 +3769,25 @@ module canstar_hub_core$core$pj$1$dis_r(d,q,clock);
 endmodule // canstar_hub_core$core$pj$1$dis_r
 
 
+module canstar_hub_core$core$pj$1$life_r(d,q,clock);
+    
+    // Module arguments
+    input wire  [6:0] d;
+    output reg  [6:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 7'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$1$life_r
+
+
 module canstar_hub_core$core$pj$1$nack_r(d,q,clock);
     
     // Module arguments
@@ -3799,7 +3883,7 @@ module canstar_hub_core$core$pj$1$rep_seen(d,q,clock);
 endmodule // canstar_hub_core$core$pj$1$rep_seen
 
 
-module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_1_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,dis,blame,tx_error,bic,dbc,nack,rep_cnt,silent,contender);
+module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,dis,blame,tx_error,bic,life,dbc,nack,rep_cnt,silent,contender);
     
     // Module arguments
     input wire  clock;
@@ -3814,7 +3898,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     input wire  ack_slot;
     input wire  ack_delim;
     input wire  eof_1_6;
-    input wire  im_1_2;
+    input wire  im_2;
     input wire  err_phase;
     input wire  crc_ok;
     input wire  frame_ok;
@@ -3825,6 +3909,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     output reg  blame;
     output reg  tx_error;
     output reg  [7:0] bic;
+    output reg  [6:0] life;
     output reg  [4:0] dbc;
     output reg  [2:0] nack;
     output reg  [2:0] rep_cnt;
@@ -3833,6 +3918,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     
     // Constant declarations
     localparam  bic_limit = 8'h40;
+    localparam  life_limit = 7'b100000;
     localparam  dbc_thr = 5'b1101;
     localparam  nack_thr = 3'b111;
     localparam  rep_limit = 3'b11;
@@ -3849,6 +3935,9 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  [7:0] bic_r$d;
     wire  [7:0] bic_r$q;
     reg  bic_r$clock;
+    reg  [6:0] life_r$d;
+    wire  [6:0] life_r$q;
+    reg  life_r$clock;
     reg  [4:0] dbc_r$d;
     wire  [4:0] dbc_r$q;
     reg  dbc_r$clock;
@@ -3901,6 +3990,11 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .d(bic_r$d),
         .q(bic_r$q),
         .clock(bic_r$clock)
+    );
+    canstar_hub_core$core$pj$2$life_r life_r(
+        .d(life_r$d),
+        .q(life_r$q),
+        .clock(life_r$clock)
     );
     canstar_hub_core$core$pj$2$dbc_r dbc_r(
         .d(dbc_r$d),
@@ -3967,6 +4061,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     always @(*) begin
         dis_r$clock = clock;
         bic_r$clock = clock;
+        life_r$clock = clock;
         dbc_r$clock = clock;
         nack_r$clock = clock;
         cont_r$clock = clock;
@@ -3981,6 +4076,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         ack_rx$clock = clock;
         dis_r$d = dis_r$q;
         bic_r$d = bic_r$q;
+        life_r$d = life_r$q;
         dbc_r$d = dbc_r$q;
         nack_r$d = nack_r$q;
         cont_r$d = cont_r$q;
@@ -3995,7 +4091,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         ack_rx$d = ack_rx$q;
         dom = ~c;
         enabled = ~dis_r$q;
-        unj = dom & ~err_phase & ((tx_region & ~cont_r$q) | crc_delim | (ack_delim & ~ack_missing$q) | eof_1_6 | im_1_2 | (ack_slot & cont_r$q & ack_rule));
+        unj = dom & ~err_phase & ((tx_region & ~cont_r$q) | crc_delim | (ack_delim & ~ack_missing$q) | eof_1_6 | im_2 | (ack_slot & cont_r$q & ack_rule));
         blame = sample & unj & enabled;
         tx_error = sample & nack_on & enabled & cont_r$q & tx_region & ~arb & c & ~bt & ~err_phase;
         if (sample) begin
@@ -4018,6 +4114,9 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             end
             if (frame_ok & enabled & (bic_r$q != 32'h0)) begin
                 bic_r$d = bic_r$q - 32'h1;
+            end
+            if (blame & (life_r$q != 32'h7f)) begin
+                life_r$d = life_r$q + 32'h1;
             end
             if (blame) begin
                 if (bic_r$q > 32'hf7) begin
@@ -4067,7 +4166,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                 rep_r$d = rep_r$q + 32'h1;
             end
         end
-        if (enabled & ((bic_r$q >= bic_limit) | (dbc_r$q >= dbc_thr) | (rep_on & (rep_r$q >= rep_limit)))) begin
+        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (rep_on & (rep_r$q >= rep_limit)))) begin
             dis_r$d = 1'b1;
         end
         if (enabled) begin
@@ -4083,6 +4182,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                 if (reint_on & ((ok_r$q + 32'h1) >= reint_w)) begin
                     dis_r$d = 1'b0;
                     bic_r$d = 32'h0;
+                    life_r$d = 32'h0;
                     dbc_r$d = 32'h0;
                     nack_r$d = 32'h0;
                     rep_r$d = 32'h0;
@@ -4097,6 +4197,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         if (reset) begin
             dis_r$d = 1'b0;
             bic_r$d = 32'h0;
+            life_r$d = 32'h0;
             dbc_r$d = 32'h0;
             nack_r$d = 32'h0;
             cont_r$d = 1'b0;
@@ -4112,6 +4213,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         end
         dis = dis_r$q;
         bic = bic_r$q;
+        life = life_r$q;
         dbc = dbc_r$q;
         nack = nack_r$q;
         rep_cnt = rep_r$q;
@@ -4293,6 +4395,25 @@ module canstar_hub_core$core$pj$2$dis_r(d,q,clock);
 endmodule // canstar_hub_core$core$pj$2$dis_r
 
 
+module canstar_hub_core$core$pj$2$life_r(d,q,clock);
+    
+    // Module arguments
+    input wire  [6:0] d;
+    output reg  [6:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 7'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$2$life_r
+
+
 module canstar_hub_core$core$pj$2$nack_r(d,q,clock);
     
     // Module arguments
@@ -4426,7 +4547,7 @@ module canstar_hub_core$core$rst_s2(d,q,clock);
 endmodule // canstar_hub_core$core$rst_s2
 
 
-module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_1_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,dis,blame,tx_error,bic,dbc,nack,rep_cnt,silent,contender);
+module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,dis,blame,tx_error,bic,life,dbc,nack,rep_cnt,silent,contender);
     
     // Module arguments
     input wire  clock;
@@ -4441,7 +4562,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     input wire  ack_slot;
     input wire  ack_delim;
     input wire  eof_1_6;
-    input wire  im_1_2;
+    input wire  im_2;
     input wire  err_phase;
     input wire  crc_ok;
     input wire  frame_ok;
@@ -4452,6 +4573,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     output reg  blame;
     output reg  tx_error;
     output reg  [7:0] bic;
+    output reg  [6:0] life;
     output reg  [4:0] dbc;
     output reg  [2:0] nack;
     output reg  [2:0] rep_cnt;
@@ -4460,6 +4582,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     
     // Constant declarations
     localparam  bic_limit = 8'h80;
+    localparam  life_limit = 7'b1000000;
     localparam  dbc_thr = 5'b11100;
     localparam  nack_thr = 3'b111;
     localparam  rep_limit = 3'b11;
@@ -4476,6 +4599,9 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  [7:0] bic_r$d;
     wire  [7:0] bic_r$q;
     reg  bic_r$clock;
+    reg  [6:0] life_r$d;
+    wire  [6:0] life_r$q;
+    reg  life_r$clock;
     reg  [4:0] dbc_r$d;
     wire  [4:0] dbc_r$q;
     reg  dbc_r$clock;
@@ -4528,6 +4654,11 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .d(bic_r$d),
         .q(bic_r$q),
         .clock(bic_r$clock)
+    );
+    canstar_hub_core$core$sj$0$life_r life_r(
+        .d(life_r$d),
+        .q(life_r$q),
+        .clock(life_r$clock)
     );
     canstar_hub_core$core$sj$0$dbc_r dbc_r(
         .d(dbc_r$d),
@@ -4594,6 +4725,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     always @(*) begin
         dis_r$clock = clock;
         bic_r$clock = clock;
+        life_r$clock = clock;
         dbc_r$clock = clock;
         nack_r$clock = clock;
         cont_r$clock = clock;
@@ -4608,6 +4740,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         ack_rx$clock = clock;
         dis_r$d = dis_r$q;
         bic_r$d = bic_r$q;
+        life_r$d = life_r$q;
         dbc_r$d = dbc_r$q;
         nack_r$d = nack_r$q;
         cont_r$d = cont_r$q;
@@ -4622,7 +4755,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         ack_rx$d = ack_rx$q;
         dom = ~c;
         enabled = ~dis_r$q;
-        unj = dom & ~err_phase & ((tx_region & ~cont_r$q) | crc_delim | (ack_delim & ~ack_missing$q) | eof_1_6 | im_1_2 | (ack_slot & cont_r$q & ack_rule));
+        unj = dom & ~err_phase & ((tx_region & ~cont_r$q) | crc_delim | (ack_delim & ~ack_missing$q) | eof_1_6 | im_2 | (ack_slot & cont_r$q & ack_rule));
         blame = sample & unj & enabled;
         tx_error = sample & nack_on & enabled & cont_r$q & tx_region & ~arb & c & ~bt & ~err_phase;
         if (sample) begin
@@ -4645,6 +4778,9 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             end
             if (frame_ok & enabled & (bic_r$q != 32'h0)) begin
                 bic_r$d = bic_r$q - 32'h1;
+            end
+            if (blame & (life_r$q != 32'h7f)) begin
+                life_r$d = life_r$q + 32'h1;
             end
             if (blame) begin
                 if (bic_r$q > 32'hf7) begin
@@ -4694,7 +4830,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                 rep_r$d = rep_r$q + 32'h1;
             end
         end
-        if (enabled & ((bic_r$q >= bic_limit) | (dbc_r$q >= dbc_thr) | (rep_on & (rep_r$q >= rep_limit)))) begin
+        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (rep_on & (rep_r$q >= rep_limit)))) begin
             dis_r$d = 1'b1;
         end
         if (enabled) begin
@@ -4710,6 +4846,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                 if (reint_on & ((ok_r$q + 32'h1) >= reint_w)) begin
                     dis_r$d = 1'b0;
                     bic_r$d = 32'h0;
+                    life_r$d = 32'h0;
                     dbc_r$d = 32'h0;
                     nack_r$d = 32'h0;
                     rep_r$d = 32'h0;
@@ -4724,6 +4861,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         if (reset) begin
             dis_r$d = 1'b0;
             bic_r$d = 32'h0;
+            life_r$d = 32'h0;
             dbc_r$d = 32'h0;
             nack_r$d = 32'h0;
             cont_r$d = 1'b0;
@@ -4739,6 +4877,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         end
         dis = dis_r$q;
         bic = bic_r$q;
+        life = life_r$q;
         dbc = dbc_r$q;
         nack = nack_r$q;
         rep_cnt = rep_r$q;
@@ -4920,6 +5059,25 @@ module canstar_hub_core$core$sj$0$dis_r(d,q,clock);
 endmodule // canstar_hub_core$core$sj$0$dis_r
 
 
+module canstar_hub_core$core$sj$0$life_r(d,q,clock);
+    
+    // Module arguments
+    input wire  [6:0] d;
+    output reg  [6:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 7'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$sj$0$life_r
+
+
 module canstar_hub_core$core$sj$0$nack_r(d,q,clock);
     
     // Module arguments
@@ -5015,7 +5173,7 @@ module canstar_hub_core$core$sj$0$rep_seen(d,q,clock);
 endmodule // canstar_hub_core$core$sj$0$rep_seen
 
 
-module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_1_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,dis,blame,tx_error,bic,dbc,nack,rep_cnt,silent,contender);
+module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,dis,blame,tx_error,bic,life,dbc,nack,rep_cnt,silent,contender);
     
     // Module arguments
     input wire  clock;
@@ -5030,7 +5188,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     input wire  ack_slot;
     input wire  ack_delim;
     input wire  eof_1_6;
-    input wire  im_1_2;
+    input wire  im_2;
     input wire  err_phase;
     input wire  crc_ok;
     input wire  frame_ok;
@@ -5041,6 +5199,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     output reg  blame;
     output reg  tx_error;
     output reg  [7:0] bic;
+    output reg  [6:0] life;
     output reg  [4:0] dbc;
     output reg  [2:0] nack;
     output reg  [2:0] rep_cnt;
@@ -5049,6 +5208,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     
     // Constant declarations
     localparam  bic_limit = 8'h80;
+    localparam  life_limit = 7'b1000000;
     localparam  dbc_thr = 5'b11100;
     localparam  nack_thr = 3'b111;
     localparam  rep_limit = 3'b11;
@@ -5065,6 +5225,9 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  [7:0] bic_r$d;
     wire  [7:0] bic_r$q;
     reg  bic_r$clock;
+    reg  [6:0] life_r$d;
+    wire  [6:0] life_r$q;
+    reg  life_r$clock;
     reg  [4:0] dbc_r$d;
     wire  [4:0] dbc_r$q;
     reg  dbc_r$clock;
@@ -5117,6 +5280,11 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .d(bic_r$d),
         .q(bic_r$q),
         .clock(bic_r$clock)
+    );
+    canstar_hub_core$core$sj$1$life_r life_r(
+        .d(life_r$d),
+        .q(life_r$q),
+        .clock(life_r$clock)
     );
     canstar_hub_core$core$sj$1$dbc_r dbc_r(
         .d(dbc_r$d),
@@ -5183,6 +5351,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     always @(*) begin
         dis_r$clock = clock;
         bic_r$clock = clock;
+        life_r$clock = clock;
         dbc_r$clock = clock;
         nack_r$clock = clock;
         cont_r$clock = clock;
@@ -5197,6 +5366,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         ack_rx$clock = clock;
         dis_r$d = dis_r$q;
         bic_r$d = bic_r$q;
+        life_r$d = life_r$q;
         dbc_r$d = dbc_r$q;
         nack_r$d = nack_r$q;
         cont_r$d = cont_r$q;
@@ -5211,7 +5381,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         ack_rx$d = ack_rx$q;
         dom = ~c;
         enabled = ~dis_r$q;
-        unj = dom & ~err_phase & ((tx_region & ~cont_r$q) | crc_delim | (ack_delim & ~ack_missing$q) | eof_1_6 | im_1_2 | (ack_slot & cont_r$q & ack_rule));
+        unj = dom & ~err_phase & ((tx_region & ~cont_r$q) | crc_delim | (ack_delim & ~ack_missing$q) | eof_1_6 | im_2 | (ack_slot & cont_r$q & ack_rule));
         blame = sample & unj & enabled;
         tx_error = sample & nack_on & enabled & cont_r$q & tx_region & ~arb & c & ~bt & ~err_phase;
         if (sample) begin
@@ -5234,6 +5404,9 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             end
             if (frame_ok & enabled & (bic_r$q != 32'h0)) begin
                 bic_r$d = bic_r$q - 32'h1;
+            end
+            if (blame & (life_r$q != 32'h7f)) begin
+                life_r$d = life_r$q + 32'h1;
             end
             if (blame) begin
                 if (bic_r$q > 32'hf7) begin
@@ -5283,7 +5456,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                 rep_r$d = rep_r$q + 32'h1;
             end
         end
-        if (enabled & ((bic_r$q >= bic_limit) | (dbc_r$q >= dbc_thr) | (rep_on & (rep_r$q >= rep_limit)))) begin
+        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (rep_on & (rep_r$q >= rep_limit)))) begin
             dis_r$d = 1'b1;
         end
         if (enabled) begin
@@ -5299,6 +5472,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                 if (reint_on & ((ok_r$q + 32'h1) >= reint_w)) begin
                     dis_r$d = 1'b0;
                     bic_r$d = 32'h0;
+                    life_r$d = 32'h0;
                     dbc_r$d = 32'h0;
                     nack_r$d = 32'h0;
                     rep_r$d = 32'h0;
@@ -5313,6 +5487,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         if (reset) begin
             dis_r$d = 1'b0;
             bic_r$d = 32'h0;
+            life_r$d = 32'h0;
             dbc_r$d = 32'h0;
             nack_r$d = 32'h0;
             cont_r$d = 1'b0;
@@ -5328,6 +5503,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         end
         dis = dis_r$q;
         bic = bic_r$q;
+        life = life_r$q;
         dbc = dbc_r$q;
         nack = nack_r$q;
         rep_cnt = rep_r$q;
@@ -5507,6 +5683,25 @@ module canstar_hub_core$core$sj$1$dis_r(d,q,clock);
     end
           
 endmodule // canstar_hub_core$core$sj$1$dis_r
+
+
+module canstar_hub_core$core$sj$1$life_r(d,q,clock);
+    
+    // Module arguments
+    input wire  [6:0] d;
+    output reg  [6:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 7'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$sj$1$life_r
 
 
 module canstar_hub_core$core$sj$1$nack_r(d,q,clock);
