@@ -317,3 +317,148 @@ fn overload_frames_one_hub() {
         assert_never_blamed(st.rtl(), if on_uplink { "overload via uplink" } else { "overload via downlink" });
     }
 }
+
+// ---------------------------------------------------------------- A3: faulty ports
+
+fn faulty_star(cfg: &canstar_hub::hub::HubConfig, seed: u64, frames: usize) -> (Star, Vec<Vec<Frame>>) {
+    let mut st = Star::new(cfg, &[0.0, 0.0, 0.0], seed);
+    let nodes = st.nodes.clone();
+    let sent = load(&mut st.sim, &nodes, frames, seed + 1000);
+    (st, sent)
+}
+
+/// A3: a stuck-at-dominant uplink, started in the middle of full-load traffic, is
+/// isolated within DBC threshold + 2 bits; then the others communicate again.
+#[test]
+fn stuck_dominant_uplink_isolated_in_time() {
+    let cfg = hub_cfg(3, 0);
+    for (seed, start_bits) in [(21u64, 300u64), (22, 417), (23, 733)] {
+        let (mut st, sent) = faulty_star(&cfg, seed, 12);
+        let t_f = start_bits * BIT + BIT / 7 * (seed % 7);
+        st.ports.uplinks[1].schedule_fault(&mut st.sim, t_f, LinkFault::StuckDominant);
+        st.sim.run_until(t_f + 40 * BIT);
+        let iso = st.rtl().stats.isolated_at[1].expect("port 1 isolated");
+        let bits = (iso - t_f) as f64 / BIT as f64;
+        eprintln!("stuck dominant from {start_bits} bits: isolated after {bits:.2} bits");
+        assert!(bits <= (cfg.dbc_threshold + 2) as f64, "isolated after {bits} bits");
+        assert_eq!(st.rtl().isolated(), vec![false, true, false]);
+        // the others go on and deliver all their frames
+        st.node_mut(1).withdraw();
+        let (tec, rec) = run_tracking(&mut st.sim, &[st.nodes[0], st.nodes[2]], 300 * BIT);
+        assert!(st.run_until_drained(5000), "healthy nodes drained their queues");
+        assert!(received_in_order(st.node(0), &sent[2]) && received_in_order(st.node(2), &sent[0]));
+        assert!(tec < 96 && rec < 96, "healthy tec {tec} rec {rec}");
+        assert_eq!(st.rtl().isolated(), vec![false, true, false]);
+    }
+}
+
+/// A3: a node whose downlink is stuck recessive keeps restarting its error flag; its
+/// uplink is isolated within one error episode (the dominant-run rule).
+#[test]
+fn stuck_recessive_downlink_node_isolated() {
+    let cfg = hub_cfg(3, 0);
+    let (mut st, _) = faulty_star(&cfg, 24, 10);
+    let t_f = 250 * BIT;
+    st.ports.downlinks[2].schedule_fault(&mut st.sim, t_f, LinkFault::StuckRecessive);
+    let (tec, rec) = run_tracking(&mut st.sim, &[st.nodes[0], st.nodes[1]], 600 * BIT);
+    let iso = st.rtl().stats.isolated_at[2].expect("port 2 isolated");
+    let s = &st.rtl().stats;
+    eprintln!("stuck recessive downlink: isolated {:.1} bits after the fault, blames {}, max dbc {:?}, healthy tec {tec} rec {rec}", (iso - t_f) as f64 / BIT as f64, s.blames, s.max_dbc);
+    assert_eq!(st.rtl().isolated(), vec![false, false, true]);
+    assert!(tec < 96 && rec < 96);
+    // one error episode: at most two error flags of the hub between fault and isolation
+    assert!(st.node(0).errors() <= 3, "{:?}", st.node(0).log());
+}
+
+fn bit_flipping_uplink(cfg: &canstar_hub::hub::HubConfig, seed: u64, every_bits: u64, count: usize, budget_bits: u64) -> (Star, f64, u32, u32) {
+    let (mut st, _) = faulty_star(cfg, seed, 400);
+    let t_f = 200 * BIT;
+    // half-bit inversions at a fixed period unrelated to the frame length
+    st.sim.add_flip_pattern(st.ports.uplinks[0].output, t_f, BIT / 2, every_bits * BIT + BIT / 3, count);
+    let healthy = [st.nodes[1], st.nodes[2]];
+    let mut worst = (0, 0);
+    let step = 500 * BIT;
+    while st.sim.now() < t_f + budget_bits * BIT && st.rtl().stats.isolated_at[0].is_none() {
+        let (t, r) = run_tracking(&mut st.sim, &healthy, step);
+        worst = (worst.0.max(t), worst.1.max(r));
+    }
+    let iso = st.rtl().stats.isolated_at[0].map(|t| (t - t_f) as f64 / BIT as f64).unwrap_or(f64::INFINITY);
+    (st, iso, worst.0, worst.1)
+}
+
+/// A3: a bit-flipping uplink (one half-bit inversion every 23 bits) is isolated by the
+/// decaying BIC before any healthy controller's TEC or REC reaches 96.
+#[test]
+fn bit_flipping_uplink_isolated_before_96() {
+    let cfg = hub_cfg(3, 0);
+    let (st, iso, tec, rec) = bit_flipping_uplink(&cfg, 25, 23, 2000, 20_000);
+    let s = &st.rtl().stats;
+    eprintln!("flips every 23 bits: isolated after {iso:.0} bits, blames {}, max bic {:?}, healthy tec {tec} rec {rec}", s.blames, s.max_bic);
+    assert!(iso.is_finite());
+    assert_eq!(st.rtl().isolated(), vec![true, false, false]);
+    assert!(tec < 96 && rec < 96, "healthy tec {tec} rec {rec}");
+}
+
+/// A3 "any rate": a rarely flipping uplink (one inversion every 1201 bits, about one
+/// per 10 frames: the decaying BIC never passes 8) is isolated by the lifetime counter
+/// (threshold lowered to 4 to keep the test short), healthy TEC/REC stay below 96.
+#[test]
+fn slow_bit_flipping_uplink_isolated_by_lifetime_counter() {
+    let cfg = canstar_hub::hub::HubConfig { life_threshold: 4, ..hub_cfg(3, 0) };
+    let (st, iso, tec, rec) = bit_flipping_uplink(&cfg, 26, 1201, 40, 40_000);
+    let s = &st.rtl().stats;
+    eprintln!("flips every 1201 bits: isolated after {iso:.0} bits, blames {}, max bic {:?}, healthy tec {tec} rec {rec}", s.blames, s.max_bic);
+    assert!(iso.is_finite(), "isolated");
+    assert!(s.max_bic[0] <= 16, "the decaying counter alone would not isolate: {:?}", s.max_bic);
+    assert_eq!(st.rtl().isolated(), vec![true, false, false]);
+    assert!(tec < 96 && rec < 96);
+    // without the lifetime counter (threshold at its maximum) the same run is not isolated
+    let cfg = canstar_hub::hub::HubConfig { life_threshold: 127, ..hub_cfg(3, 0) };
+    let (st, iso, _, _) = bit_flipping_uplink(&cfg, 26, 1201, 40, 12_000);
+    assert!(iso.is_infinite(), "decay alone isolates after {iso} bits? {:?}", st.rtl().stats);
+}
+
+/// §5.5: a port that never acknowledges (uplink stuck recessive) is reported silent
+/// and not isolated; the others keep communicating.
+#[test]
+fn never_acknowledging_port_silent_not_isolated() {
+    let cfg = hub_cfg(3, 0);
+    let mut st = Star::new(&cfg, &[0.0, 0.0, 0.0], 27);
+    st.ports.uplinks[2].set_fault(&mut st.sim, LinkFault::StuckRecessive);
+    let nodes = st.nodes.clone();
+    let sent = load(&mut st.sim, &nodes[..2], 6, 2700);
+    assert!(st.run_until_drained(3000));
+    assert!(st.rtl().stats.silent_at[2].is_some(), "{:?}", st.rtl().stats);
+    assert_eq!(st.rtl().silent(), vec![false, false, true]);
+    assert_eq!(st.rtl().isolated(), vec![false; 3]);
+    assert_eq!(st.rtl().stats.blames, 0);
+    assert!(received_in_order(st.node(0), &sent[1]) && received_in_order(st.node(1), &sent[0]));
+}
+
+/// §5.6: with reintegration (W = 4), a port isolated for a transient stuck-dominant
+/// fault is re-enabled after 4 good frames once the fault is gone, and sends again.
+#[test]
+fn reintegration_after_transient_fault() {
+    let cfg = canstar_hub::hub::HubConfig { reintegration: Some(4), ..hub_cfg(3, 0) };
+    let (mut st, _) = faulty_star(&cfg, 28, 30);
+    let t_f = 300 * BIT;
+    st.ports.uplinks[1].schedule_fault(&mut st.sim, t_f, LinkFault::StuckDominant);
+    st.ports.uplinks[1].schedule_fault(&mut st.sim, t_f + 60 * BIT, LinkFault::None);
+    st.sim.run_until(t_f);
+    // node 1 stops sending (a transmitter on an isolated port sees bit errors on every
+    // frame and ends bus-off, not acknowledging, so it could not be reintegrated); it
+    // keeps receiving and acknowledging
+    st.node_mut(1).withdraw();
+    st.sim.run_until(t_f + 60 * BIT);
+    assert!(st.rtl().isolated()[1], "isolated during the fault");
+    let sent_before = st.node(1).sent().len();
+    assert!(st.sim.run_until_cond(t_f + 2000 * BIT, |s| !s.get(st.hub).isolated()[1]), "reintegrated");
+    let back = st.sim.now();
+    eprintln!("reintegrated {:.0} bits after the fault ended", (back - t_f - 60 * BIT) as f64 / BIT as f64);
+    for i in 0..3 {
+        st.node_mut(1).request(Frame::std(0x001 + i, &[i as u8]));
+    }
+    st.sim.run_for(800 * BIT);
+    assert!(st.node(1).sent().len() >= sent_before + 3, "node 1 sends again");
+    assert_eq!(st.rtl().isolated(), vec![false; 3]);
+}

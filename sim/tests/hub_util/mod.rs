@@ -238,3 +238,23 @@ pub fn flip_bit_at(
     }
     found
 }
+
+/// Run for `dt` ps and return the largest TEC and REC seen (checked every 32 kernel
+/// steps) over the given controllers.
+pub fn run_tracking(sim: &mut Sim, ctrls: &[Handle<CanNode>], dt: u64) -> (u32, u32) {
+    let end = sim.now() + dt;
+    let (mut tec, mut rec) = (0, 0);
+    let mut k = 0u64;
+    sim.run_until_cond(end, |s| {
+        k += 1;
+        if k % 32 == 0 {
+            for &h in ctrls {
+                tec = tec.max(s.get(h).tec());
+                rec = rec.max(s.get(h).rec());
+            }
+        }
+        false
+    });
+    sim.run_until(end);
+    (tec, rec)
+}
