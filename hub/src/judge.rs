@@ -58,7 +58,8 @@
 //! bit error is globalised by the peer hub.
 //!
 //! **§5.2 unjustified dominant.** Outside the error phase, a dominant contribution is
-//! unjustified when: it comes from a non-contender in the transmission region; or it
+//! unjustified when: it comes from a non-contender in the transmission region after the
+//! arbitration field (**(changed)**: not in the arbitration field, see below); or it
 //! falls in the CRC delimiter, the ACK delimiter (**(changed)**: not when BT was
 //! recessive in the ACK slot: then the transmitter legitimately starts its ACK-error
 //! flag in the ACK delimiter, e.g. after a CRC error or when no receiver is alive), EOF
@@ -76,6 +77,18 @@
 //! too, so the ACK slot rule is off for sublinks **(changed)**). The port is blamed once
 //! per episode: `bic += 8` (saturating) and `blame` triggers the hub's error flag, whose
 //! `busy` time is error phase, so the same episode cannot blame the port again.
+//!
+//! **No receiver blame in the arbitration field (changed).** In the arbitration field
+//! "recessive while BT is dominant" is ambiguous: the port lost arbitration, *or* BT was
+//! dominant only for part of the bit (a glitch of another, faulty port) and the port's
+//! controller, sampling at another phase than the hub's frame monitor, never saw it and
+//! goes on transmitting. The baseline then blamed the *healthy* transmitter for its
+//! next dominant identifier bit. Seen with two hubs (sample points one hub crossing
+//! apart) and a port flipping half bits: the healthy transmitter of node 0 reached
+//! bic 48 of 64 (`sim/tests/hub_cosim.rs`, `reference_hub_cosim_on_recorded_traffic`,
+//! now asserts it stays 0). A dominant bit of a real receiver in the arbitration field
+//! corrupts the frame, which the monitor detects (stuff, CRC or form error); only the
+//! attribution to the port is lost there, and every other rule still applies.
 //!
 //! **§5.3 decay.** At `frame_ok` every enabled unit's `bic` decreases by 1 (not below 0).
 //! The unit isolates when `bic >= 8 * BIC_threshold` (`bic_limit`, 8 bits: ports default
@@ -297,7 +310,7 @@ impl Logic for JudgeUnit {
         self.enabled.next = !self.dis_r.q.val();
         self.unj.next = self.dom.val()
             & !self.err_phase.val()
-            & ((self.tx_region.val() & !self.cont_r.q.val())
+            & ((self.tx_region.val() & !self.arb.val() & !self.cont_r.q.val())
                 | self.crc_delim.val()
                 | (self.ack_delim.val() & !self.ack_missing.q.val())
                 | self.eof_1_6.val()

@@ -254,6 +254,8 @@ pub struct HubStats {
     pub monitor_errors: u64,
     /// Bits the frame monitor sampled in an overload frame.
     pub overload_bits: u64,
+    /// Every blame: (time ps, unit: port i or sublink N + j, field code, position).
+    pub blame_log: Vec<(u64, usize, u8, u8)>,
 }
 
 /// One clock of an [`RtlHub`]'s input stimulus, packed: bit 0 `rst_n`, bit 1
@@ -419,6 +421,17 @@ impl Component for RtlHub {
         let core = hub.core();
         if core.blame_any() {
             st.blames += 1;
+            let (f, p) = (core.mon_field.val().index() as u8, core.mon_pos.val().index() as u8);
+            for i in 0..self.n {
+                if core.port_judge(i).blame.val() {
+                    st.blame_log.push((now, i, f, p));
+                }
+            }
+            for k in 0..self.m {
+                if core.sublink_judge(k).blame.val() {
+                    st.blame_log.push((now, self.n + k, f, p));
+                }
+            }
         }
         if hub.efg_active.val() {
             st.efg_clocks += 1;

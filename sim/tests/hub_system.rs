@@ -564,3 +564,29 @@ fn two_hubs_faulty_port_isolates_only_the_port() {
         assert_traffic_goes_on(&mut d);
     }
 }
+
+#[test]
+#[ignore = "diagnostic"]
+fn diag_collateral_blame() {
+    let cfg = hub_cfg(3, 2);
+    let mut d = Dual::new(&cfg, &[0.0, 0.0, 0.0], 41);
+    let tx = vec![d.a[0], d.b[1], d.a[2]];
+    let _ = load(&mut d.sim, &tx, 80, 4100);
+    d.net.hubs[0].uplinks[2].schedule_fault(&mut d.sim, 600 * BIT, LinkFault::StuckDominant);
+    d.sim.add_flip_pattern(d.net.hubs[0].uplinks[1].output, 1500 * BIT, BIT / 2, 23 * BIT + BIT / 3, 100);
+    d.sim.run_until(4000 * BIT);
+    for h in 0..2 {
+        for b in &d.rtl(h).stats.blame_log {
+            eprintln!("hub {h}: t {:.1} bits unit {} field {} pos {}", b.0 as f64 / BIT as f64, b.1, b.2, b.3);
+        }
+    }
+    for (name, hd) in [("a0", d.a[0]), ("b1", d.b[1]), ("a1", d.a[1])] {
+        for (t, e) in d.sim.get(hd).log() {
+            let tb = *t as f64 / BIT as f64;
+            if (2140.0..2240.0).contains(&tb) {
+                eprintln!("{name} {tb:.1}: {e:?}");
+            }
+        }
+        eprintln!("{name} tec {} rec {} state {}", d.sim.get(hd).tec(), d.sim.get(hd).rec(), d.sim.get(hd).state());
+    }
+}

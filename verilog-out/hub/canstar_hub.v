@@ -2839,7 +2839,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         ack_rx$d = ack_rx$q;
         dom = ~c;
         enabled = ~dis_r$q;
-        unj = dom & ~err_phase & ((tx_region & ~cont_r$q) | crc_delim | (ack_delim & ~ack_missing$q) | eof_1_6 | im_2 | (ack_slot & cont_r$q & ack_rule));
+        unj = dom & ~err_phase & ((tx_region & ~arb & ~cont_r$q) | crc_delim | (ack_delim & ~ack_missing$q) | eof_1_6 | im_2 | (ack_slot & cont_r$q & ack_rule));
         blame = sample & unj & enabled;
         tx_error = sample & nack_on & enabled & cont_r$q & tx_region & ~arb & c & ~bt & ~err_phase;
         if (sample) begin
@@ -3465,7 +3465,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         ack_rx$d = ack_rx$q;
         dom = ~c;
         enabled = ~dis_r$q;
-        unj = dom & ~err_phase & ((tx_region & ~cont_r$q) | crc_delim | (ack_delim & ~ack_missing$q) | eof_1_6 | im_2 | (ack_slot & cont_r$q & ack_rule));
+        unj = dom & ~err_phase & ((tx_region & ~arb & ~cont_r$q) | crc_delim | (ack_delim & ~ack_missing$q) | eof_1_6 | im_2 | (ack_slot & cont_r$q & ack_rule));
         blame = sample & unj & enabled;
         tx_error = sample & nack_on & enabled & cont_r$q & tx_region & ~arb & c & ~bt & ~err_phase;
         if (sample) begin
@@ -4091,7 +4091,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         ack_rx$d = ack_rx$q;
         dom = ~c;
         enabled = ~dis_r$q;
-        unj = dom & ~err_phase & ((tx_region & ~cont_r$q) | crc_delim | (ack_delim & ~ack_missing$q) | eof_1_6 | im_2 | (ack_slot & cont_r$q & ack_rule));
+        unj = dom & ~err_phase & ((tx_region & ~arb & ~cont_r$q) | crc_delim | (ack_delim & ~ack_missing$q) | eof_1_6 | im_2 | (ack_slot & cont_r$q & ack_rule));
         blame = sample & unj & enabled;
         tx_error = sample & nack_on & enabled & cont_r$q & tx_region & ~arb & c & ~bt & ~err_phase;
         if (sample) begin
@@ -4755,7 +4755,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         ack_rx$d = ack_rx$q;
         dom = ~c;
         enabled = ~dis_r$q;
-        unj = dom & ~err_phase & ((tx_region & ~cont_r$q) | crc_delim | (ack_delim & ~ack_missing$q) | eof_1_6 | im_2 | (ack_slot & cont_r$q & ack_rule));
+        unj = dom & ~err_phase & ((tx_region & ~arb & ~cont_r$q) | crc_delim | (ack_delim & ~ack_missing$q) | eof_1_6 | im_2 | (ack_slot & cont_r$q & ack_rule));
         blame = sample & unj & enabled;
         tx_error = sample & nack_on & enabled & cont_r$q & tx_region & ~arb & c & ~bt & ~err_phase;
         if (sample) begin
@@ -5381,7 +5381,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         ack_rx$d = ack_rx$q;
         dom = ~c;
         enabled = ~dis_r$q;
-        unj = dom & ~err_phase & ((tx_region & ~cont_r$q) | crc_delim | (ack_delim & ~ack_missing$q) | eof_1_6 | im_2 | (ack_slot & cont_r$q & ack_rule));
+        unj = dom & ~err_phase & ((tx_region & ~arb & ~cont_r$q) | crc_delim | (ack_delim & ~ack_missing$q) | eof_1_6 | im_2 | (ack_slot & cont_r$q & ack_rule));
         blame = sample & unj & enabled;
         tx_error = sample & nack_on & enabled & cont_r$q & tx_region & ~arb & c & ~bt & ~err_phase;
         if (sample) begin
