@@ -88,7 +88,15 @@
 //! bic 48 of 64 (`sim/tests/hub_cosim.rs`, `reference_hub_cosim_on_recorded_traffic`,
 //! now asserts it stays 0). A dominant bit of a real receiver in the arbitration field
 //! corrupts the frame, which the monitor detects (stuff, CRC or form error); only the
-//! attribution to the port is lost there, and every other rule still applies.
+//! attribution to the port is lost there, and every other rule still applies. For the
+//! same reason a port that is dominant in the arbitration field becomes a contender
+//! again (otherwise the healthy transmitter that never saw the glitch would be blamed at
+//! its first dominant bit after the arbitration field instead). Collateral blame from
+//! sub-bit glitches is reduced, not removed: a glitch that ends between two nodes'
+//! sample points makes one of them flag an error the hub did not see (or one bit
+//! earlier than the hub), and that flag is blamed on the healthy node's port (or on the
+//! sublinks carrying it). It is bounded by the time the faulty port needs to be
+//! isolated (a few blames, each decaying like any other).
 //!
 //! **§5.3 decay.** At `frame_ok` every enabled unit's `bic` decreases by 1 (not below 0).
 //! The unit isolates when `bic >= 8 * BIC_threshold` (`bic_limit`, 8 bits: ports default
@@ -337,6 +345,9 @@ impl Logic for JudgeUnit {
                 self.cont_r.d.next = true;
             } else if self.tx_region.val() & self.c.val() & !self.bt.val() {
                 self.cont_r.d.next = false;
+            } else if self.arb.val() & self.dom.val() {
+                // arbitration field: a dominant port is (again) a contender
+                self.cont_r.d.next = true;
             }
             // §5.4 dominant run
             if self.dom.val() {

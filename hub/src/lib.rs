@@ -71,7 +71,13 @@
 //!   flag); NACK is counted at the ACK delimiter (where the monitor signals CRC
 //!   errors); the ACK-slot rule is off for sublinks; the replica rule charges the
 //!   replica whose value the consequence shows wrong (error episode: the dominant one,
-//!   correct frame: the recessive one) instead of always the dominant one.
+//!   correct frame: the recessive one) instead of always the dominant one; a
+//!   non-decaying lifetime blame counter (`life`, ports 32, sublinks 64) isolates a port
+//!   that flips at any rate (decay alone never isolates one error per 8 frames); the
+//!   first intermission bit is not blamed (a node's overload or error flag after a
+//!   dominant last EOF bit that only it saw); no receiver blame in the arbitration field,
+//!   where a dominant port becomes a contender again (sub-bit glitches of a faulty port
+//!   otherwise blamed a healthy transmitter that never saw them).
 
 pub mod coupler;
 pub mod efg;

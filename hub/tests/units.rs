@@ -158,6 +158,25 @@ fn lifetime_counter_isolates_rare_blames() {
     assert_eq!(j.life.val().index(), 0);
 }
 
+/// Arbitration field: a port that dropped out (recessive while BT dominant) and is
+/// dominant again is not blamed there and is a contender again (it may be a transmitter
+/// that never saw a glitch); after the arbitration field a non-contender is blamed.
+#[test]
+fn arbitration_field_readmits_instead_of_blaming() {
+    let mut j = unit(params());
+    sample(&mut j, Bit { c: false, bt: false, sof: true, ..Default::default() });
+    j.arb.next = true;
+    sample(&mut j, Bit { c: true, bt: false, tx: true, ..Default::default() });
+    assert!(!j.contender.val(), "dropped out");
+    assert!(!sample(&mut j, Bit { c: false, bt: false, tx: true, ..Default::default() }), "not blamed in arbitration");
+    assert!(j.contender.val(), "contender again");
+    j.arb.next = false;
+    assert!(!sample(&mut j, Bit { c: false, bt: false, tx: true, ..Default::default() }), "transmitter's dominant data bit");
+    sample(&mut j, Bit { c: true, bt: false, tx: true, ..Default::default() });
+    assert!(!j.contender.val());
+    assert!(sample(&mut j, Bit { c: false, bt: false, tx: true, ..Default::default() }), "receiver dominant after arbitration");
+}
+
 /// The first intermission bit is not blamed (a node's reaction to a dominant last EOF
 /// bit that only it saw); the decoder's `im_2` marks the second bit only.
 #[test]

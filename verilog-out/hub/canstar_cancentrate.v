@@ -2262,6 +2262,9 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
             else if (tx_region & c & ~bt) begin
                 cont_r$d = 1'b0;
             end
+            else if (arb & dom) begin
+                cont_r$d = 1'b1;
+            end
             if (dom) begin
                 if (dbc_r$q != 32'h1f) begin
                     dbc_r$d = dbc_r$q + 32'h1;
@@ -2888,6 +2891,9 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
             else if (tx_region & c & ~bt) begin
                 cont_r$d = 1'b0;
             end
+            else if (arb & dom) begin
+                cont_r$d = 1'b1;
+            end
             if (dom) begin
                 if (dbc_r$q != 32'h1f) begin
                     dbc_r$d = dbc_r$q + 32'h1;
@@ -3513,6 +3519,9 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
             end
             else if (tx_region & c & ~bt) begin
                 cont_r$d = 1'b0;
+            end
+            else if (arb & dom) begin
+                cont_r$d = 1'b1;
             end
             if (dom) begin
                 if (dbc_r$q != 32'h1f) begin

@@ -2852,6 +2852,9 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             else if (tx_region & c & ~bt) begin
                 cont_r$d = 1'b0;
             end
+            else if (arb & dom) begin
+                cont_r$d = 1'b1;
+            end
             if (dom) begin
                 if (dbc_r$q != 32'h1f) begin
                     dbc_r$d = dbc_r$q + 32'h1;
@@ -3478,6 +3481,9 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             else if (tx_region & c & ~bt) begin
                 cont_r$d = 1'b0;
             end
+            else if (arb & dom) begin
+                cont_r$d = 1'b1;
+            end
             if (dom) begin
                 if (dbc_r$q != 32'h1f) begin
                     dbc_r$d = dbc_r$q + 32'h1;
@@ -4103,6 +4109,9 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             end
             else if (tx_region & c & ~bt) begin
                 cont_r$d = 1'b0;
+            end
+            else if (arb & dom) begin
+                cont_r$d = 1'b1;
             end
             if (dom) begin
                 if (dbc_r$q != 32'h1f) begin
@@ -4768,6 +4777,9 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             else if (tx_region & c & ~bt) begin
                 cont_r$d = 1'b0;
             end
+            else if (arb & dom) begin
+                cont_r$d = 1'b1;
+            end
             if (dom) begin
                 if (dbc_r$q != 32'h1f) begin
                     dbc_r$d = dbc_r$q + 32'h1;
@@ -5393,6 +5405,9 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             end
             else if (tx_region & c & ~bt) begin
                 cont_r$d = 1'b0;
+            end
+            else if (arb & dom) begin
+                cont_r$d = 1'b1;
             end
             if (dom) begin
                 if (dbc_r$q != 32'h1f) begin
