@@ -414,7 +414,7 @@ fn slow_bit_flipping_uplink_isolated_by_lifetime_counter() {
     assert!(tec < 96 && rec < 96);
     // without the lifetime counter (threshold at its maximum) the same run is not isolated
     let cfg = canstar_hub::hub::HubConfig { life_threshold: 127, ..hub_cfg(3, 0) };
-    let (st, iso, _, _) = bit_flipping_uplink(&cfg, 26, 1201, 40, 12_000);
+    let (st, iso, _, _) = bit_flipping_uplink(&cfg, 26, 1201, 40, 9_000);
     assert!(iso.is_infinite(), "decay alone isolates after {iso} bits? {:?}", st.rtl().stats);
 }
 
