@@ -28,6 +28,8 @@ fn fault_free_full_load_one_hub() {
     }
     assert_never_blamed(st.rtl(), "one hub");
     assert_eq!(st.rtl().stats.frames_ok, 12);
+    assert!(arb_losses(&st.sim, &st.nodes) > 3, "arbitration among the nodes");
+    assert_frame_mix(&sent);
 }
 
 /// Compare the two hubs' downlink levels at every sample point of hub 0's frame
@@ -90,6 +92,8 @@ fn dual_fault_free_cfg(cfg: &canstar_hub::hub::HubConfig, seed: u64, ppm: &[f64]
     let (n, bad) = compare_downlinks(&d);
     assert!(bad.is_none(), "downlinks differ at a sample point: {bad:?}");
     assert!(n > 500, "compared {n} samples");
+    assert!(arb_losses(&d.sim, &tx) > 2, "arbitration across the hubs");
+    assert_frame_mix(&sent);
     d
 }
 

@@ -258,3 +258,15 @@ pub fn run_tracking(sim: &mut Sim, ctrls: &[Handle<CanNode>], dt: u64) -> (u32, 
     sim.run_until(end);
     (tec, rec)
 }
+
+/// Arbitration losses reported by the given controllers.
+pub fn arb_losses(sim: &Sim, ctrls: &[Handle<CanNode>]) -> usize {
+    ctrls.iter().map(|&h| sim.get(h).log().iter().filter(|(_, e)| matches!(e, canstar_sim::node::HostEvent::ArbLost(_))).count()).sum()
+}
+
+/// The frames cover extended, standard, remote and data frames.
+pub fn assert_frame_mix(sent: &[Vec<Frame>]) {
+    let all: Vec<&Frame> = sent.iter().flatten().collect();
+    assert!(all.iter().any(|f| f.ide) && all.iter().any(|f| !f.ide), "standard and extended frames");
+    assert!(all.iter().any(|f| f.rtr) && all.iter().any(|f| !f.rtr), "remote and data frames");
+}
