@@ -2,6 +2,7 @@
 //! (`CanNode`) in the simulation kernel: hub.md acceptance A1 (fault-free traffic is
 //! never blamed), A3 (faulty uplinks isolated in time), A4 (two coupled hubs) and H2
 //! (coupling latency measured on the pins).
+#![allow(clippy::needless_range_loop)]
 mod hub_util;
 use canstar_controller::frame::Frame;
 #[allow(unused_imports)]
@@ -104,7 +105,8 @@ fn two_hubs_fault_free_full_load() {
 
 /// H2 in the kernel: clocks from a dominant edge on an uplink pin (the hub's input net)
 /// to the downlink pins of the same hub and, across the interlink, of the other hub.
-/// Returns (same hub, other hub) latency in hub clocks, ceil over 8 phases.
+/// Returns (best, worst) same-hub and worst other-hub latency in hub clock periods,
+/// rounded up, over 8 phases of the uplink edge within a clock period.
 fn measure_latency(sync_depth: usize) -> (u64, u64, u64) {
     use canstar_sim::star::{LinkSpec, RtlHub, TwoHubs};
     use canstar_sim::{ClockSpec, Sim};
@@ -143,6 +145,10 @@ fn coupling_latency_in_the_kernel() {
     for depth in [1usize, 2] {
         let (best, same, other) = measure_latency(depth);
         eprintln!("sync depth {depth}: uplink pin -> own downlink {best}..{same} clocks, -> other hub's downlink {other} clocks");
+        let lat = canstar_hub::hub::HubConfig { sync_depth: depth, ..Default::default() }.coupling_latency() as u64;
+        // an edge between two clock edges is seen at the next one: pin to pin takes
+        // (lat - 1, lat] clock periods, rounded up: lat; across the interlink twice that
+        assert_eq!((best, same, other), (lat, lat, 2 * lat), "depth {depth}");
     }
 }
 

@@ -89,7 +89,7 @@ impl Star {
         let mut k = 0u64;
         let ok = self.sim.run_until_cond(deadline, |s| {
             k += 1;
-            k % 64 == 0 && nodes.iter().all(|&h| !s.get(h).pending())
+            k.is_multiple_of(64) && nodes.iter().all(|&h| !s.get(h).pending())
         });
         self.sim.run_for(30 * BIT);
         ok
@@ -154,7 +154,7 @@ impl Dual {
         let mut k = 0u64;
         let ok = self.sim.run_until_cond(deadline, |s| {
             k += 1;
-            k % 64 == 0 && nodes.iter().all(|&h| !s.get(h).pending())
+            k.is_multiple_of(64) && nodes.iter().all(|&h| !s.get(h).pending())
         });
         self.sim.run_for(30 * BIT);
         ok
@@ -247,7 +247,7 @@ pub fn run_tracking(sim: &mut Sim, ctrls: &[Handle<CanNode>], dt: u64) -> (u32, 
     let mut k = 0u64;
     sim.run_until_cond(end, |s| {
         k += 1;
-        if k % 32 == 0 {
+        if k.is_multiple_of(32) {
             for &h in ctrls {
                 tec = tec.max(s.get(h).tec());
                 rec = rec.max(s.get(h).rec());
