@@ -31,8 +31,8 @@ fn invalid_networks_are_rejected_with_a_reason() {
     assert!(NetworkSpec::from_toml(minimal).unwrap_err().contains("bogus"));
     let minimal = "[network]\n[[nodes]]\nname = \"x\"\napp = \"counter\"\nid = 1\n";
     assert_eq!(NetworkSpec::from_toml(minimal).unwrap().nodes.len(), 1);
-    assert!(err(|s| s.hubs.pop()).contains("hubs"));
-    assert!(err(|s| s.interlinks.pop()).contains("interlinks"));
+    assert!(err(|s| { s.hubs.pop(); }).contains("hubs"));
+    assert!(err(|s| { s.interlinks.pop(); }).contains("interlinks"));
     assert!(err(|s| s.nodes[1].id = 0x0A0).contains("used by another sender"));
     assert!(err(|s| s.nodes[0].id = 0x800).contains("11 bits"));
     assert!(err(|s| s.nodes[2].b.brp = 5).contains("bit time"));

@@ -132,7 +132,7 @@ pub fn published_scenario(n: usize, seed: u64) -> (RunSpec, Expected) {
             1 => Some(COUNTER),
             _ => Some(BLINKER),
         };
-        (rng.gen_range(2..6), rng.gen_range(0..len), f, of)
+        (rng.gen_range(2..5), rng.gen_range(0..len), f, of)
     };
     if !canonical {
         for h in &mut net.hubs {
@@ -231,7 +231,7 @@ pub fn published_scenario(n: usize, seed: u64) -> (RunSpec, Expected) {
         seed,
         faults: vec![fault],
         frames: 60,
-        quiet_frames: Some(6),
+        quiet_frames: Some(5),
         max_time_ps: None,
         vcd: None,
         trace: false,
