@@ -43,3 +43,19 @@ fn randomised_variants_of_every_scenario() {
     let bad = sweep(&(1..=21).collect::<Vec<_>>(), 1..=seeds);
     assert!(bad.is_empty(), "{bad:#?}");
 }
+
+/// `RECAN_ONE=n,seed cargo test --release --test recan_random -- --ignored one --nocapture`
+#[test]
+#[ignore = "diagnostic: one scenario variant with its driver trace"]
+fn one() {
+    let v: Vec<u64> = std::env::var("RECAN_ONE").unwrap_or("1,0".into()).split(',').map(|x| x.parse().unwrap()).collect();
+    let (mut spec, exp) = published_scenario(v[0] as usize, v[1]);
+    spec.trace = true;
+    eprintln!("{:?}", spec.faults);
+    let r = run(&spec);
+    for l in &r.trace {
+        eprintln!("{l}");
+    }
+    eprintln!("{r:?}");
+    eprintln!("{:?}", check(&r, &exp));
+}
