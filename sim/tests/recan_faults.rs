@@ -90,3 +90,14 @@ fn bit_flipping_receiver_uplink_is_isolated_before_any_healthy_controller_reache
     assert_eq!(iso, vec![Isolated::Port { hub: 0, port: 2 }]);
     assert!(r.worst_healthy_tec_rec < 96, "{}", r.worst_healthy_tec_rec);
 }
+
+#[test]
+fn broken_interlink_costs_nothing_while_the_other_interlink_works() {
+    let f = FaultSpec::new(FaultTarget::Interlink { interlink: 1 }, FaultKind::Sar, FaultSpec::at_field(StartField::Dlc, 2));
+    let r = go(vec![f], 10, |_| {});
+    assert!(r.ok, "{:?}", r.failures);
+    assert!(r.isolated.is_empty(), "{:?}", r.isolated);
+    assert!(r.quarantined.is_empty());
+    assert_eq!(r.healthy_errors_after_fault, 0);
+    assert_eq!(r.max_retransmissions, 0);
+}

@@ -6,7 +6,7 @@
 //! of the named field of a Blinker frame, or of any frame for the Receiver;
 //! "any" = the data field; no oscillator offsets). Other seeds randomise the
 //! number of frames before the fault, the bit within the field (and the field
-//! for "any", leaving out the overload region: last EOF bit, first two
+//! for "any", leaving out the overload region: last two EOF bits, first two
 //! intermission bits), whose frame it is (always the Blinker's own frame when
 //! its tx controller is faulty and the row names a field), the oscillator offsets (±100 ppm), the
 //! clock phases, the applications' start time and which controller of each
@@ -129,11 +129,13 @@ pub fn published_scenario(n: usize, seed: u64) -> (RunSpec, Expected) {
             StartField::Eof => 7,
             StartField::Inter => 3,
         };
-        // "any" leaves out the overload region (the last EOF bit and the first two
-        // intermission bits), where a dominant bit is an overload condition and not
-        // an error: that is the inconsistency scenario of §6, not a published row.
+        // "any" leaves out the overload region (the last two EOF bits and the first
+        // two intermission bits): a dominant bit there (or a transmitter's error flag
+        // one bit after a fault on its downlink) is an overload condition for the
+        // receivers and not an error. That is the inconsistency scenario of §6, not
+        // a published row.
         let bits = match (field, f) {
-            (None, StartField::Eof) => 0..6,
+            (None, StartField::Eof) => 0..5,
             (None, StartField::Inter) => 2..3,
             _ => 0..len,
         };
