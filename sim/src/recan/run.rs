@@ -164,12 +164,12 @@ fn mode_of(k: FaultKind) -> FaultMode {
 }
 
 /// Two controllers of one node, mutably, from the simulation.
-fn pair<'a>(sim: &'a mut Sim, h: [Handle<Ctrl>; 2]) -> [&'a mut Ctrl; 2] {
+fn pair(sim: &mut Sim, h: [Handle<Ctrl>; 2]) -> [&mut Ctrl; 2] {
     // two distinct components: split the borrow through raw pointers
     let a: *mut Ctrl = sim.get_mut(h[0]);
     let b: *mut Ctrl = sim.get_mut(h[1]);
     assert!(!std::ptr::eq(a, b));
-    // SAFETY: the handles refer to different components of `sim`, borrowed mutably for 'a
+    // SAFETY: the handles refer to different components of `sim`, which stays borrowed mutably
     unsafe { [&mut *a, &mut *b] }
 }
 
@@ -381,9 +381,7 @@ fn run_impl(spec: &RunSpec) -> RunResult {
                 if now >= t && drivers[k].pending.is_none() {
                     let f: Frame = s.frame();
                     let mut cs = pair(&mut sim, net.ctrls[k]);
-                    if drivers[k].tx_request(f, now, &mut cs) {
-                        next_req[k] = None;
-                    } else if drivers[k].tx.is_none() {
+                    if drivers[k].tx_request(f, now, &mut cs) || drivers[k].tx.is_none() {
                         next_req[k] = None;
                     }
                 }
