@@ -51,25 +51,10 @@ impl BitTiming {
         if self.brp < 2 || self.brp > 128 || self.brp % 2 != 0 {
             bail!("invalid bit timing: brp = {} clocks per TQ (the SJA1000 top has 2·(BRP+1): even, 2..=128)", self.brp);
         }
-        if !(1..=8).contains(&self.ph1) {
-            bail!("invalid bit timing: ph1 = {} TQ (must be 1..=8)", self.ph1);
+        if self.prop + self.ph1 > 16 {
+            bail!("invalid bit timing: prop + ph1 = TSEG1 = {} TQ (must be <= 16)", self.prop + self.ph1);
         }
-        if self.prop < 1 || self.prop + self.ph1 > 16 {
-            bail!("invalid bit timing: prop = {} TQ (must be >= 1 with prop + ph1 = TSEG1 <= 16)", self.prop);
-        }
-        if !(1..=4).contains(&self.sjw) {
-            bail!("invalid bit timing: sjw = {} TQ (must be 1..=4)", self.sjw);
-        }
-        if self.sjw > self.ph1 {
-            bail!("invalid bit timing: sjw = {} TQ exceeds ph1 = {} TQ", self.sjw, self.ph1);
-        }
-        let ntq = self.ntq();
-        if !(8..=25).contains(&ntq) {
-            bail!("invalid bit timing: 1 + prop + ph1 + ph2 = {ntq} TQ per bit (must be 8..=25)");
-        }
-        if !self.btl().is_valid() {
-            bail!("invalid bit timing: {self:?} is rejected by the bit timing logic");
-        }
+        self.btl().check().map_err(|e| anyhow::anyhow!("invalid bit timing: {e}"))?;
         Ok(())
     }
     /// The BTR0 and BTR1 register values of this timing.

@@ -143,12 +143,31 @@ impl BtlConfig {
     }
     /// Is the configuration accepted (§2.2)?
     pub fn is_valid(&self) -> bool {
-        (1..=128).contains(&self.brp)
-            && (1..=16).contains(&self.prop)
-            && (1..=8).contains(&self.ph1)
-            && (1..=4).contains(&self.sjw)
-            && (8..=25).contains(&self.ntq())
-            && self.sjw <= self.ph1
+        self.check().is_ok()
+    }
+    /// The ranges of §2.2 (as widened for the SJA1000 top), with a message
+    /// naming the first value out of range. The one bit-timing check that the
+    /// configuration, scenario and network file readers all use.
+    pub fn check(&self) -> Result<(), String> {
+        if !(1..=128).contains(&self.brp) {
+            return Err(format!("brp = {} clocks per TQ (must be 1..=128)", self.brp));
+        }
+        if !(1..=16).contains(&self.prop) {
+            return Err(format!("prop = {} TQ (must be 1..=16)", self.prop));
+        }
+        if !(1..=8).contains(&self.ph1) {
+            return Err(format!("ph1 = {} TQ (must be 1..=8)", self.ph1));
+        }
+        if !(1..=4).contains(&self.sjw) {
+            return Err(format!("sjw = {} TQ (must be 1..=4)", self.sjw));
+        }
+        if self.sjw > self.ph1 {
+            return Err(format!("sjw = {} TQ exceeds ph1 = {} TQ", self.sjw, self.ph1));
+        }
+        if !(8..=25).contains(&self.ntq()) {
+            return Err(format!("1 + prop + ph1 + ph2 = {} TQ per bit (must be 8..=25)", self.ntq()));
+        }
+        Ok(())
     }
     /// T10/6/4 (default timing, PROP 1, PH1 4, SJW 4).
     pub const T10_6_4: Self = Self::new(1, 1, 4, 4);

@@ -80,13 +80,17 @@ impl NodeConfig {
         self.sjw = sjw;
         self
     }
+    /// The bit timing as the bit timing logic's configuration.
+    pub fn btl(&self) -> canstar_hdl::btl::BtlConfig {
+        canstar_hdl::btl::BtlConfig { triple: self.triple, ..canstar_hdl::btl::BtlConfig::new(self.brp, self.prop, self.ph1, self.sjw) }
+    }
     /// Phase segment 2 (max(PH1, IPT = 2)).
     pub fn ph2(&self) -> u32 {
-        self.ph1.max(2)
+        self.btl().ph2()
     }
     /// Time quanta per bit.
     pub fn ntq(&self) -> u32 {
-        1 + self.prop + self.ph1 + self.ph2()
+        self.btl().ntq()
     }
 }
 

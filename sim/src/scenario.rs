@@ -54,26 +54,17 @@ impl Default for BitTimingSpec {
 }
 
 impl BitTimingSpec {
+    fn btl(&self) -> canstar_hdl::btl::BtlConfig {
+        canstar_hdl::btl::BtlConfig { triple: self.triple, ..canstar_hdl::btl::BtlConfig::new(self.brp, self.prop, self.ph1, self.sjw) }
+    }
     pub fn ph2(&self) -> u32 {
-        self.ph1.max(2)
+        self.btl().ph2()
     }
     pub fn ntq(&self) -> u32 {
-        1 + self.prop + self.ph1 + self.ph2()
+        self.btl().ntq()
     }
     pub fn validate(&self) -> Result<(), String> {
-        if !(1..=32).contains(&self.brp) {
-            return Err(format!("brp = {} (must be 1..=32)", self.brp));
-        }
-        if !(1..=8).contains(&self.prop) || !(1..=8).contains(&self.ph1) {
-            return Err(format!("prop = {}, ph1 = {} (each must be 1..=8)", self.prop, self.ph1));
-        }
-        if !(1..=4).contains(&self.sjw) || self.sjw > self.ph1 {
-            return Err(format!("sjw = {} (must be 1..=min(4, ph1 = {}))", self.sjw, self.ph1));
-        }
-        if !(8..=25).contains(&self.ntq()) {
-            return Err(format!("{} TQ per bit (must be 8..=25)", self.ntq()));
-        }
-        Ok(())
+        self.btl().check()
     }
 }
 

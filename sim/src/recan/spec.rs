@@ -60,9 +60,9 @@ pub struct CtrlSpec {
     pub ppm: f64,
     /// Time of the first clock edge in ps (None = random from the run seed).
     pub phase_ps: Option<u64>,
-    /// Clocks per time quantum, 1..=32.
+    /// Clocks per time quantum, 1..=128.
     pub brp: u32,
-    /// Propagation segment, 1..=8 TQ.
+    /// Propagation segment, 1..=16 TQ.
     pub prop: u32,
     /// Phase segment 1, 1..=8 TQ (PH2 = max(PH1, 2)).
     pub ph1: u32,
@@ -371,12 +371,7 @@ impl NetworkSpec {
                 if cs.clock_hz == 0 {
                     return Err(format!("{who}: clock_hz must be > 0"));
                 }
-                if !(1..=32).contains(&cs.brp) || !(1..=8).contains(&cs.prop) || !(1..=8).contains(&cs.ph1) {
-                    return Err(format!("{who}: brp 1..=32, prop 1..=8, ph1 1..=8 expected"));
-                }
-                if !(1..=4).contains(&cs.sjw) || cs.sjw > cs.ph1 {
-                    return Err(format!("{who}: sjw must be in 1..=4 and <= ph1"));
-                }
+                canstar_hdl::btl::BtlConfig::new(cs.brp, cs.prop, cs.ph1, cs.sjw).check().map_err(|e| format!("{who}: bit timing: {e}"))?;
                 if !(1..=2).contains(&cs.sync_depth) {
                     return Err(format!("{who}: sync_depth must be 1 or 2"));
                 }
