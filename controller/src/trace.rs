@@ -121,13 +121,7 @@ impl BitTracer {
             }
         }
         if c.rx_valid.val() {
-            let f = Frame::from_native(
-                c.rx_ide.val(),
-                c.rx_rtr.val(),
-                c.rx_id.val().index() as u32,
-                c.rx_dlc.val().index() as u8,
-                c.rx_data.val().to_u64(),
-            );
+            let f = c.rx_frame();
             out.push(msg_line(t_ns, &self.node, &f));
         }
         if c.dbg_sample.val() {

@@ -499,13 +499,7 @@ impl LockstepNode {
         let c_rx_valid = self.node.core.rx_valid.val();
         let dut_frame = c_rx_valid.then(|| {
             let c = &self.node.core;
-            to_golden_frame(&canstar_controller::frame::Frame::from_native(
-                c.rx_ide.val(),
-                c.rx_rtr.val(),
-                c.rx_id.val().index() as u32,
-                c.rx_dlc.val().index() as u8,
-                c.rx_data.val().to_u64(),
-            ))
+            to_golden_frame(&c.rx_frame())
         });
         let mut delivered_golden: Option<golden::Frame> = None;
         let mut had_shown = false;

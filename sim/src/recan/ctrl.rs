@@ -121,22 +121,22 @@ impl Ctrl {
         !self.events.is_empty()
     }
     pub fn tec(&self) -> u32 {
-        self.core.tec.val().index() as u32
+        self.core.tec_value()
     }
     pub fn rec(&self) -> u32 {
-        self.core.rec.val().index() as u32
+        self.core.rec_value()
     }
     /// 0 error-active, 1 error-passive, 2 bus-off.
     pub fn state(&self) -> u32 {
-        self.core.state.val().index() as u32
+        self.core.state_value()
     }
     /// FIELD of the bit in progress (between sample points: of the next bit).
     pub fn field(&self) -> Field {
-        Field::from_code(self.core.dbg_field.val().index() as u64).unwrap_or(Field::Reset)
+        self.core.field()
     }
     /// POSITION of the bit in progress.
     pub fn pos(&self) -> u32 {
-        self.core.dbg_pos.val().index() as u32
+        self.core.pos()
     }
     /// Is the controller the transmitter of the frame in progress?
     pub fn transmitting(&self) -> bool {
@@ -162,13 +162,7 @@ impl Ctrl {
             self.events.push((now, CtrlEvent::Error { tx: c.err_tx.val() }));
         }
         if c.rx_valid.val() {
-            let f = Frame::from_native(
-                c.rx_ide.val(),
-                c.rx_rtr.val(),
-                c.rx_id.val().index() as u32,
-                c.rx_dlc.val().index() as u8,
-                c.rx_data.val().to_u64(),
-            );
+            let f = c.rx_frame();
             self.events.push((now, CtrlEvent::Rx(f)));
         }
     }
