@@ -126,16 +126,21 @@ pub enum EofSubset {
     /// The transmitting node's tx controller, which then crashes before it can
     /// retransmit (the classic inconsistent omission).
     TransmitterTxThenCrash,
+    /// Both Receiver controllers, and the transmitting node's tx controller crashes
+    /// before it can retransmit (omission at the Receiver unless the node model
+    /// re-sends on the other controller).
+    ReceiverBothThenCrash,
 }
 
 impl EofSubset {
-    pub const ALL: [EofSubset; 6] = [
+    pub const ALL: [EofSubset; 7] = [
         EofSubset::ReceiverOne,
         EofSubset::ReceiverBoth,
         EofSubset::TransmitterTx,
         EofSubset::TransmitterNonTx,
         EofSubset::AllButTransmitter,
         EofSubset::TransmitterTxThenCrash,
+        EofSubset::ReceiverBothThenCrash,
     ];
     pub fn name(self) -> &'static str {
         match self {
@@ -145,6 +150,7 @@ impl EofSubset {
             EofSubset::TransmitterNonTx => "nontx",
             EofSubset::AllButTransmitter => "others",
             EofSubset::TransmitterTxThenCrash => "tx-crash",
+            EofSubset::ReceiverBothThenCrash => "rx2-crash",
         }
     }
 }

@@ -36,6 +36,10 @@ pub struct RunOutcome {
     pub delivered: u32,
     /// Simulated clock cycles (all components).
     pub sim_cycles: u64,
+    /// The faults as resolved at their start, with their start in bit times.
+    pub faults: Vec<String>,
+    /// Remarks that are not failures (losses of excused nodes, known deviations).
+    pub notes: Vec<String>,
 }
 
 /// Per-class aggregate.
