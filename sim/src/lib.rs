@@ -52,6 +52,7 @@ pub mod lockstep;
 mod kernel;
 pub mod net;
 pub mod node;
+pub mod recan;
 pub mod scenario;
 pub mod star;
 pub mod vcd;
