@@ -21,6 +21,7 @@
 pub mod classes;
 pub mod plot;
 pub mod report;
+pub mod system;
 
 use std::fmt;
 

@@ -255,7 +255,7 @@ fn small_fixed_seed_campaign() {
     let out = campaign::execute(&plans, 2, |p| system::run_plan(p, &s), |_| {});
     let r = CampaignReport::new(s.clone(), &classes, None, out);
     println!("{}", r.table());
-    let by = |c: &str| r.runs.iter().filter(move |o| o.class == c);
+    let by = |c: &'static str| r.runs.iter().filter(move |o| o.class == c);
     for o in &r.runs {
         assert!(o.pass, "{} seed {} failed: {:?}", o.class, o.seed, o.failures);
         assert!(o.delivered >= 40, "{} delivered {}", o.class, o.delivered);

@@ -234,7 +234,7 @@ pub fn build(class: &Class, seed: u64, settings: &Settings) -> Built {
         ClassKind::Double(d) => {
             let delay = settings.double_delay_bits as u64 * bit;
             let t0 = (net.driver.start_bits as u64 + rng.gen_range(100..600)) * bit + rng.gen_range(0..bit);
-            let mut link = |g: &mut Generic, faults: &mut Vec<FaultSpec>, rng: &mut ChaCha8Rng, k: usize, c: usize, dir: Dir, f: Fault, t: u64| {
+            let link = |g: &mut Generic, faults: &mut Vec<FaultSpec>, rng: &mut ChaCha8Rng, k: usize, c: usize, dir: Dir, f: Fault, t: u64| {
                 let kind = kind_of(f, rng, &net);
                 faults.push(FaultSpec::new(FaultTarget::Link { node: k, ctrl: cref(c), dir: rdir(dir) }, kind, FaultStart::At { t_ps: t }));
                 link_expect(g, k, c, dir, f);
