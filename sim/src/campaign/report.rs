@@ -135,8 +135,8 @@ impl CampaignReport {
         let mut s = String::new();
         let _ = writeln!(
             s,
-            "{:<28} {:>5} {:>5} {:>9} {:>6} {:>17} {:>5} {:>5} {:>5} {:>5}  {}",
-            "class", "runs", "pass", "TEC/REC", "iso", "iso bits min/med/max", "quar", "retx", "dup", "lost", "verdict"
+            "{:<28} {:>5} {:>5} {:>4} {:>8} {:>4} {:>14} {:>5} {:>5} {:>5} {:>5}  {}",
+            "class", "runs", "pass", "max", "TEC/REC", "iso", "iso bits", "quar", "retx", "dup", "lost", "verdict"
         );
         let sums = self.summaries();
         let (mut runs, mut passes) = (0, 0);
@@ -149,10 +149,11 @@ impl CampaignReport {
             };
             let _ = writeln!(
                 s,
-                "{:<28} {:>5} {:>5} {:>9} {:>6} {:>17} {:>5} {:>5} {:>5} {:>5}  {}",
+                "{:<28} {:>5} {:>5} {:>4} {:>8} {:>4} {:>14} {:>5} {:>5} {:>5} {:>5}  {}",
                 c.class,
                 c.runs,
                 c.passes,
+                c.worst_healthy,
                 format!("{}/{}", c.worst_healthy_tec, c.worst_healthy_rec),
                 c.runs_isolated,
                 iso,
@@ -164,6 +165,13 @@ impl CampaignReport {
             );
         }
         let _ = writeln!(s, "total: {passes} of {runs} runs passed in {} classes", sums.len());
+        let _ = writeln!(
+            s,
+            "(max: highest TEC or REC of a healthy controller; TEC/REC: highest of each, sampled at every delivery and \
+             quarantine; iso: runs with a hub isolation; iso bits: min/median/max bit times from the fault to the first \
+             isolation; quar: runs with a quarantine; retx: most retransmissions of one frame; dup: runs with \
+             duplicates at a node; lost: frames missed by the Receiver)"
+        );
         let mut first = true;
         for c in &sums {
             for (rep, seed, msgs) in &c.failing {
