@@ -127,7 +127,7 @@ pub fn plan(classes: &[Class], settings: &Settings, shard: Option<Shard>) -> Vec
     let mut k = 0usize;
     for c in classes {
         for rep in 0..settings.reps {
-            if shard.map_or(true, |s| s.contains(k)) {
+            if shard.is_none_or(|s| s.contains(k)) {
                 v.push(RunPlan { class: c.clone(), rep, seed: run_seed(settings.seed, &c.name, rep) });
             }
             k += 1;

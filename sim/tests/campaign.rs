@@ -50,7 +50,7 @@ fn filters_and_bad_inputs() {
 
 /// A mock outcome, to test the bookkeeping without simulating.
 fn fake(p: &campaign::RunPlan) -> campaign::RunOutcome {
-    let pass = p.seed % 5 != 0;
+    let pass = !p.seed.is_multiple_of(5);
     campaign::RunOutcome {
         class: p.class.name.clone(),
         rep: p.rep,
@@ -60,7 +60,7 @@ fn fake(p: &campaign::RunPlan) -> campaign::RunOutcome {
         worst_healthy: (p.seed % 97) as u32,
         worst_healthy_tec: (p.seed % 50) as u32,
         worst_healthy_rec: (p.seed % 60) as u32,
-        isolation_latency_bits: (p.seed % 3 != 0).then_some((p.seed % 40) as u32),
+        isolation_latency_bits: (!p.seed.is_multiple_of(3)).then_some((p.seed % 40) as u32),
         isolations: vec![format!("hub 0 port {}@1", p.rep)],
         duplicates: (p.seed % 2) as u32,
         ..Default::default()

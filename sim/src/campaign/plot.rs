@@ -107,25 +107,21 @@ pub fn svg(d: &PlotData) -> String {
     for (i, se) in d.series.iter().enumerate() {
         let col = COLORS[i % COLORS.len()];
         for (k, dash) in [(1usize, ""), (2usize, r#" stroke-dasharray="5,3""#)] {
-            let mut pts = String::new();
-            let mut last: Option<u32> = None;
-            let mut lx = 0.0;
+            // counters are 0 at power-up; each sample holds until the next
+            let mut pts = format!("{:.2},{:.2} ", x(0), y(0));
+            let mut last = 0u32;
+            let mut lx = x(0);
             for &(t, tec, rec) in &se.points {
                 let v = if k == 1 { tec } else { rec };
                 let xx = x(t);
-                match last {
-                    None => {
-                        let _ = write!(pts, "{:.2},{:.2} ", x(0), y(v));
-                    }
-                    Some(p) if p != v => {
-                        let _ = write!(pts, "{xx:.2},{:.2} {xx:.2},{:.2} ", y(p), y(v));
-                    }
-                    _ => {}
+                if v != last {
+                    let _ = write!(pts, "{xx:.2},{:.2} {xx:.2},{:.2} ", y(last), y(v));
                 }
-                last = Some(v);
+                last = v;
                 lx = xx;
             }
-            if let Some(p) = last {
+            {
+                let p = last;
                 let _ = write!(pts, "{:.2},{:.2}", x(end).max(lx), y(p));
                 let _ = writeln!(
                     s,

@@ -135,8 +135,8 @@ impl CampaignReport {
         let mut s = String::new();
         let _ = writeln!(
             s,
-            "{:<28} {:>5} {:>5} {:>4} {:>8} {:>4} {:>14} {:>5} {:>5} {:>5} {:>5}  {}",
-            "class", "runs", "pass", "max", "TEC/REC", "iso", "iso bits", "quar", "retx", "dup", "lost", "verdict"
+            "{:<28} {:>5} {:>5} {:>4} {:>8} {:>4} {:>14} {:>5} {:>5} {:>5} {:>5}  verdict",
+            "class", "runs", "pass", "max", "TEC/REC", "iso", "iso bits", "quar", "retx", "dup", "lost"
         );
         let sums = self.summaries();
         let (mut runs, mut passes) = (0, 0);
