@@ -70,6 +70,8 @@ pub struct Driver {
     pub msg_tx_omi: u32,
     /// The pending frame (`TxPending` = `pending.is_some()`).
     pub pending: Option<Frame>,
+    /// When the pending frame was requested.
+    pub pending_since: Option<u64>,
     /// The tx controller reported the transmission of the pending frame.
     tx_reported: bool,
     timer: Option<u64>,
@@ -96,6 +98,7 @@ impl Driver {
             frame_managed: false,
             msg_tx_omi: 0,
             pending: None,
+            pending_since: None,
             tx_reported: false,
             timer: None,
             rx_flag: [None, None],
@@ -128,6 +131,7 @@ impl Driver {
         ctrls[tx].request(f.clone());
         self.note(now, || format!("tx request {:#x}[{:?}] on {}", f.id, f.data, "AB".as_bytes()[tx] as char));
         self.pending = Some(f);
+        self.pending_since = Some(now);
         self.tx_reported = false;
         self.retx_this_frame = 0;
         self.timer = Some(now + self.timeout_ps);
@@ -348,6 +352,7 @@ impl Driver {
             0
         };
         self.timer = None;
+        self.pending_since = None;
         if self.pending.take().is_some() {
             out.push(Notice::TxSuccess(now));
         }

@@ -26,6 +26,11 @@ pub struct RunSpec {
     /// transmissions of any node) after the last fault started (after the
     /// start of the applications if there is no fault).
     pub frames: u32,
+    /// Stop earlier, once this many frames were delivered after the last
+    /// disturbance (an error at an active controller, an isolation, a
+    /// quarantine, a retransmission) with no frame pending for more than 150
+    /// bit times (None: run all `frames`).
+    pub quiet_frames: Option<u32>,
     /// Hard limit of simulated time in ps (None: 100 frame times per
     /// requested frame plus the time to the fault, i.e. only a stuck network hits it).
     pub max_time_ps: Option<u64>,
@@ -38,7 +43,7 @@ pub struct RunSpec {
 impl RunSpec {
     /// The reference network without faults.
     pub fn new(network: NetworkSpec, seed: u64, frames: u32) -> Self {
-        RunSpec { network, seed, faults: Vec::new(), frames, max_time_ps: None, vcd: None, trace: false }
+        RunSpec { network, seed, faults: Vec::new(), frames, quiet_frames: None, max_time_ps: None, vcd: None, trace: false }
     }
 }
 
@@ -204,6 +209,9 @@ fn run_impl(spec: &RunSpec) -> RunResult {
     let mut fault_info: Vec<Option<Active>> = (0..spec.faults.len()).map(|_| None).collect();
     res.fault_resolved = vec![String::new(); spec.faults.len()];
     let mut delivered_at_last_fault: u64 = 0;
+    let mut last_disturb: u64 = 0;
+    let mut quiet_stop = false;
+    let mut errors_seen: u64 = 0;
     let mut seen_iso: Vec<Isolated> = Vec::new();
     let mut unhealthy: Vec<(usize, usize)> = Vec::new();
     let mut healthy_errors_base: Option<Vec<u64>> = None;
@@ -218,8 +226,6 @@ fn run_impl(spec: &RunSpec) -> RunResult {
         .max()
         .unwrap_or(0);
     let limit = spec.max_time_ps.unwrap_or(start_at + max_after + (spec.frames as u64 + 5) * 200 * bit);
-    // observer for field-triggered faults (a transmitting controller seen in EOF, for Inter)
-    let mut inter_obs: Option<Handle<Ctrl>> = None;
 
     loop {
         let now = sim.now();
@@ -227,6 +233,13 @@ fn run_impl(spec: &RunSpec) -> RunResult {
         let all_started = fault_start.iter().all(|s| s.is_some());
         if all_started && res.delivered >= delivered_at_last_fault + spec.frames as u64 {
             break;
+        }
+        if let (true, Some(q)) = (all_started, spec.quiet_frames) {
+            let stuck = drivers.iter().any(|d| d.pending_since.is_some_and(|t| now > t + 150 * bit));
+            if !stuck && res.delivered >= delivered_at_last_fault.max(last_disturb) + q as u64 {
+                quiet_stop = true;
+                break;
+            }
         }
         if now >= limit {
             break;
@@ -257,28 +270,12 @@ fn run_impl(spec: &RunSpec) -> RunResult {
                 .filter(|(k, _)| of_node.is_none_or(|o| o == *k))
                 .flat_map(|(_, p)| p.iter().copied())
                 .collect();
+            // POSITION is 1-based; the transmitter keeps its role through intermission
             let hit = sim.run_until_cond(target, |s| {
-                for &h in &cands {
+                cands.iter().any(|&h| {
                     let c = s.get(h);
-                    if c.transmitting() && c.field() == Field::Eof {
-                        inter_obs = Some(h);
-                    }
-                    if want == Field::Inter {
-                        continue;
-                    }
-                    if c.transmitting() && c.field() == want && c.pos() == fbit {
-                        return true;
-                    }
-                }
-                if want == Field::Inter {
-                    if let Some(h) = inter_obs {
-                        let c = s.get(h);
-                        if c.field() == Field::Inter && c.pos() == fbit {
-                            return true;
-                        }
-                    }
-                }
-                false
+                    c.transmitting() && !c.is_held() && c.field() == want && c.pos() == fbit + 1
+                })
             });
             if hit {
                 // the field value changes at the sample point of the previous bit;
@@ -286,9 +283,6 @@ fn run_impl(spec: &RunSpec) -> RunResult {
                 let c = sim.get(cands[0]).spec().clone();
                 let ph2 = c.period_ps() * c.brp as u64 * c.ph2() as u64;
                 trigger = Some((i, sim.now() + ph2 + (delay_ns * 1000.0).round() as u64));
-                if want == Field::Inter {
-                    inter_obs = None;
-                }
             } else {
                 sim.run_until(target);
             }
@@ -334,6 +328,7 @@ fn run_impl(spec: &RunSpec) -> RunResult {
             }
         }
         while res.isolated.len() < seen_iso.len() {
+            last_disturb = res.delivered;
             let what = seen_iso[res.isolated.len()];
             let first = fault_start.iter().flatten().min().copied();
             let latency_bits = first.filter(|&f| f <= now).map(|f| (now - f) as f64 / bit as f64);
@@ -360,6 +355,7 @@ fn run_impl(spec: &RunSpec) -> RunResult {
                         receivers[k].deliver(&f);
                     }
                     Notice::Quarantined { ctrl, t, reason } => {
+                        last_disturb = res.delivered;
                         res.quarantined.push((k, ctrl, t));
                         res.quarantine_reasons.push(
                             match reason {
@@ -372,6 +368,7 @@ fn run_impl(spec: &RunSpec) -> RunResult {
                         sample = true;
                     }
                     Notice::Retransmit => {
+                        last_disturb = res.delivered;
                         res.retransmissions += 1;
                         res.max_retransmissions = res.max_retransmissions.max(drivers[k].retx_this_frame);
                     }
@@ -398,6 +395,12 @@ fn run_impl(spec: &RunSpec) -> RunResult {
                     }
                 }
             }
+        }
+        // ---- errors at active controllers
+        let errs: u64 = net.ctrls.iter().flat_map(|p| p.iter()).map(|&h| sim.get(h).errors).sum();
+        if errs != errors_seen {
+            errors_seen = errs;
+            last_disturb = res.delivered;
         }
         // ---- healthy counters
         for (k, p) in net.ctrls.iter().enumerate() {
@@ -448,7 +451,7 @@ fn run_impl(spec: &RunSpec) -> RunResult {
         }
     }
     let after = res.delivered.saturating_sub(delivered_at_last_fault);
-    if fault_start.iter().all(|s| s.is_some()) && after < spec.frames as u64 {
+    if !quiet_stop && fault_start.iter().all(|s| s.is_some()) && after < spec.frames as u64 {
         res.failures.push(format!("only {after} of {} frames delivered after the fault (time limit)", spec.frames));
     }
     if spec.trace {

@@ -99,7 +99,7 @@ pub fn published_scenario(n: usize, seed: u64) -> (RunSpec, Expected) {
         _ => unreachable!(),
     };
     let mut rng = ChaCha8Rng::seed_from_u64(seed.wrapping_mul(0x9e37_79b9_7f4a_7c15) ^ n as u64);
-    let mut net = NetworkSpec::default();
+    let mut net = NetworkSpec::fast();
     let canonical = seed == 0;
     let (after_frames, bit, field, of_node) = if canonical {
         let of = if node == BLINKER { Some(BLINKER) } else { None };
@@ -212,7 +212,8 @@ pub fn published_scenario(n: usize, seed: u64) -> (RunSpec, Expected) {
         network: net,
         seed,
         faults: vec![fault],
-        frames: 40,
+        frames: 60,
+        quiet_frames: Some(8),
         max_time_ps: None,
         vcd: None,
         trace: false,

@@ -260,6 +260,24 @@ impl Default for NetworkSpec {
 }
 
 impl NetworkSpec {
+    /// The reference system with the node controllers clocked at 14.74 MHz
+    /// (TQ = 2 clocks: the same 135.7 ns quantum and bit timing) instead of
+    /// 29.48 MHz: half the controller clock cycles per simulated second,
+    /// used by the published scenarios and the campaign.
+    pub fn fast() -> Self {
+        let mut s = Self::default();
+        s.network.name = "recancentrate-fast".into();
+        for n in &mut s.nodes {
+            for c in 0..2 {
+                let cs = n.ctrl_mut(c);
+                cs.clock_hz = 14_740_000;
+                cs.brp = 2;
+            }
+        }
+        s.driver.timer_clock_hz = 29_480_000;
+        s
+    }
+
     /// Parse a network file (TOML) and validate it.
     pub fn from_toml(text: &str) -> Result<NetworkSpec, String> {
         let s: NetworkSpec = toml::from_str(text).map_err(|e| e.to_string())?;
