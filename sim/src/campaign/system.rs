@@ -24,8 +24,11 @@ use std::path::PathBuf;
 /// Oscillator offset range of the non-published classes, ± ppm (the CAN tolerance of
 /// the reference bit timing, SJW 1 of 8 TQ, is about ±4900 ppm).
 pub const PPM: f64 = 300.0;
-/// Frames delivered after the last fault started before a run ends.
-pub const FRAMES_AFTER_FAULT: u32 = 40;
+/// Frames delivered after the last fault started before a run ends at the latest.
+pub const FRAMES_AFTER_FAULT: u32 = 60;
+/// A run ends earlier once this many frames were delivered after the last disturbance
+/// (error, isolation, quarantine, retransmission) as in the published scenarios.
+pub const QUIET_FRAMES: u32 = 8;
 
 /// Generic pass criteria (recancentrate.md §5–6).
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
@@ -181,7 +184,9 @@ pub fn build(class: &Class, seed: u64, settings: &Settings) -> Built {
         return Built { spec, expect: Expectation::Published(e), simultaneous: false };
     }
     let mut rng = ChaCha8Rng::seed_from_u64(seed ^ 0xca3a_1a7e);
-    let mut net = NetworkSpec::default();
+    // the reference system with 14.74 MHz controller clocks (same time quantum and bit
+    // timing, half the cycles), as the published scenarios
+    let mut net = NetworkSpec::fast();
     randomise(&mut net, &mut rng);
     let nn = net.nodes.len();
     let bit = net.bit_time_ps();
@@ -318,6 +323,7 @@ pub fn build(class: &Class, seed: u64, settings: &Settings) -> Built {
     }
     let g = finish(g, nn);
     let mut spec = RunSpec::new(net, seed, FRAMES_AFTER_FAULT);
+    spec.quiet_frames = Some(QUIET_FRAMES);
     spec.faults = faults;
     Built { spec, expect: Expectation::Generic(g), simultaneous }
 }
@@ -329,6 +335,7 @@ fn resolve_simultaneous(spec: &mut RunSpec) -> Result<(), String> {
     let mut pre = spec.clone();
     pre.faults.truncate(1);
     pre.frames = 0;
+    pre.quiet_frames = None;
     pre.vcd = None;
     pre.trace = false;
     let r = recan::run(&pre);
