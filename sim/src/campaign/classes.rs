@@ -14,8 +14,9 @@
 //! Every class except the published ones is judged by the generic criteria of §5/§6:
 //! no frame of a node that keeps a fault-free controller path is lost at the
 //! Receiver, no healthy controller reaches 96, the faulty path is isolated where a hub
-//! can see it (stuck-dominant uplinks and sublinks), and the hubs never isolate each
-//! other for a single fault.
+//! can see it (stuck-dominant uplinks and sublinks), no healthy path is isolated (in
+//! particular the hubs never isolate each other's fault-free sublinks), and no healthy
+//! controller is quarantined. The faulty path itself may always be isolated.
 
 use serde::{Deserialize, Serialize};
 

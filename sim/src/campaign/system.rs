@@ -144,25 +144,18 @@ fn rdir(d: Dir) -> RDir {
 fn link_expect(g: &mut Generic, node: usize, c: usize, dir: Dir, kind: Fault) {
     g.unhealthy.push((node, c));
     let port = Isolated::Port { hub: c, port: node };
-    match (dir, kind) {
-        (Dir::Up, Fault::Sad) => {
-            g.must_isolate.push(port);
-            g.may_isolate.push(port);
-        }
-        (Dir::Up, Fault::Sar) => {}
-        _ => g.may_isolate.push(port),
+    // the faulty path may always be cut; a hub must cut it when it sees it stuck dominant
+    g.may_isolate.push(port);
+    if (dir, kind) == (Dir::Up, Fault::Sad) {
+        g.must_isolate.push(port);
     }
 }
 
 fn sublink_expect(g: &mut Generic, interlink: usize, from_hub: usize, kind: Fault) {
     let s = Isolated::Sublink { hub: 1 - from_hub, sublink: interlink };
-    match kind {
-        Fault::Sad => {
-            g.must_isolate.push(s);
-            g.may_isolate.push(s);
-        }
-        Fault::Flip => g.may_isolate.push(s),
-        Fault::Sar => {}
+    g.may_isolate.push(s);
+    if kind == Fault::Sad {
+        g.must_isolate.push(s);
     }
 }
 
@@ -235,6 +228,7 @@ pub fn build(class: &Class, seed: u64, settings: &Settings) -> Built {
             let t = (net.driver.start_bits as u64 + rng.gen_range(100..600)) * bit + rng.gen_range(0..bit);
             faults.push(FaultSpec::new(FaultTarget::Crash { node: k, ctrl: cref(c) }, FaultKind::Sar, FaultStart::At { t_ps: t }));
             g.unhealthy.push((k, c));
+            g.may_isolate.push(Isolated::Port { hub: c, port: k });
         }
         ClassKind::Double(d) => {
             let delay = settings.double_delay_bits as u64 * bit;
