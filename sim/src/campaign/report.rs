@@ -172,6 +172,24 @@ impl CampaignReport {
              isolation; quar: runs with a quarantine; retx: most retransmissions of one frame; dup: runs with \
              duplicates at a node; lost: frames missed by the Receiver)"
         );
+        let eof: Vec<&ClassSummary> = sums.iter().filter(|c| c.class.starts_with("eof-")).collect();
+        if !eof.is_empty() {
+            let _ = writeln!(s, "inconsistency scenarios (disturbance at the last/penultimate EOF bit seen by a subset of controllers):");
+            for c in eof {
+                let runs: Vec<&RunOutcome> = self.runs.iter().filter(|r| r.class == c.class).collect();
+                let omitted = runs.iter().filter(|r| !r.lost.is_empty() || r.notes.iter().any(|n| n.contains(" missed "))).count();
+                let _ = writeln!(
+                    s,
+                    "  {:<26} duplication in {}/{} runs, omission in {}/{} runs: {}",
+                    c.class,
+                    c.runs_with_duplicates,
+                    c.runs,
+                    omitted,
+                    c.runs,
+                    if omitted == 0 && c.passes == c.runs { "tolerated" } else { "NOT tolerated" }
+                );
+            }
+        }
         let mut first = true;
         for c in &sums {
             for (rep, seed, msgs) in &c.failing {
