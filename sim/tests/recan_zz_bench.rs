@@ -68,3 +68,9 @@ fn field_probe() {
         if s != last { eprintln!("{:>8} {s}", sim.now() / 1000); last = s; }
     }
 }
+
+#[test]
+#[ignore]
+fn print_toml() {
+    println!("{}", canstar_sim::recan::NetworkSpec::default().to_toml());
+}

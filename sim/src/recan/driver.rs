@@ -82,6 +82,11 @@ pub struct Driver {
     wait: Option<Wait>,
     /// Retransmissions of the pending frame so far.
     pub retx_this_frame: u32,
+    /// Reports not yet seen by the host (interrupt latency).
+    inbox: Vec<(u64, usize, CtrlEvent)>,
+    latency_ps: u64,
+    /// When each controller's TEC or REC was first seen at the warning limit.
+    warn_since: [Option<(u64, QuaReason)>; 2],
     /// Routine log (only with tracing).
     pub log: Option<Vec<String>>,
 }
@@ -106,6 +111,9 @@ impl Driver {
             queue: VecDeque::new(),
             wait: None,
             retx_this_frame: 0,
+            inbox: Vec::new(),
+            latency_ps: (spec.irq_latency_ns * 1000.0).round() as u64,
+            warn_since: [None, None],
             log: trace.then(Vec::new),
         }
     }
@@ -142,14 +150,21 @@ impl Driver {
     /// and run routines. Returns what happened.
     pub fn step(&mut self, now: u64, ctrls: &mut [&mut Ctrl; 2]) -> Vec<Notice> {
         let mut out = Vec::new();
-        // 1. reports, in time order across both controllers
-        let mut evs: Vec<(u64, usize, CtrlEvent)> = Vec::new();
+        // 1. reports, in time order across both controllers, once the
+        //    interrupt latency has passed
         for (c, ctrl) in ctrls.iter_mut().enumerate() {
             if ctrl.has_events() {
                 for (t, e) in ctrl.take_events() {
-                    evs.push((t, c, e));
+                    self.inbox.push((t, c, e));
                 }
             }
+        }
+        let lat = self.latency_ps;
+        let mut evs: Vec<(u64, usize, CtrlEvent)> = Vec::new();
+        if !self.inbox.is_empty() {
+            let (due, later): (Vec<_>, Vec<_>) = std::mem::take(&mut self.inbox).into_iter().partition(|e| e.0 + lat <= now);
+            self.inbox = later;
+            evs = due;
         }
         evs.sort_by_key(|e| (e.0, e.1));
         for (t, c, e) in evs {
@@ -171,14 +186,20 @@ impl Driver {
                 CtrlEvent::Error { .. } => {}
             }
         }
-        // 2. error warning limit (after the receptions of this slice)
+        // 2. error warning limit (seen after the interrupt latency; after the
+        //    receptions of this slice)
         for c in 0..2 {
             if self.active[c] && !ctrls[c].is_crashed() {
                 let (tec, rec) = (ctrls[c].tec(), ctrls[c].rec());
                 let lim = self.spec.warning_limit;
-                if (tec >= lim || rec >= lim) && !self.queue.iter().any(|r| matches!(r, Routine::Qua { ctrl, .. } if *ctrl == c)) {
+                if self.warn_since[c].is_none() && (tec >= lim || rec >= lim) {
                     let reason = if tec >= lim { QuaReason::Tec } else { QuaReason::Rec };
-                    self.queue.push_back(Routine::Qua { ctrl: c, reason });
+                    self.warn_since[c] = Some((now, reason));
+                }
+                if let Some((t, reason)) = self.warn_since[c] {
+                    if t + lat <= now && !self.queue.iter().any(|r| matches!(r, Routine::Qua { ctrl, .. } if *ctrl == c)) {
+                        self.queue.push_back(Routine::Qua { ctrl: c, reason });
+                    }
                 }
             }
         }
@@ -222,7 +243,7 @@ impl Driver {
 
     fn start(&mut self, r: Routine, now: u64, ctrls: &mut [&mut Ctrl; 2], out: &mut Vec<Notice>) -> Option<Wait> {
         match &r {
-            Routine::Tx { ctrl, t } => {
+            Routine::Tx { ctrl, .. } => {
                 if !self.active[*ctrl] {
                     return None;
                 }
@@ -232,10 +253,10 @@ impl Driver {
                     self.note(now, || format!("tx routine {}: managed", abc(*ctrl)));
                     return None;
                 }
-                let deadline = t + self.k_ps;
+                let deadline = now + self.k_ps;
                 self.resume(Wait { routine: r, deadline }, now, ctrls, out)
             }
-            Routine::Rx { ctrl, t, .. } => {
+            Routine::Rx { ctrl, .. } => {
                 if !self.active[*ctrl] {
                     return None;
                 }
@@ -244,7 +265,7 @@ impl Driver {
                     self.note(now, || format!("rx routine {}: managed", abc(*ctrl)));
                     return None;
                 }
-                let deadline = t + self.k_ps;
+                let deadline = now + self.k_ps;
                 self.resume(Wait { routine: r, deadline }, now, ctrls, out)
             }
             Routine::Qua { ctrl, reason } => {

@@ -24,7 +24,8 @@ pub struct RunSpec {
     pub faults: Vec<FaultSpec>,
     /// The run stops when this many frames were delivered (successful
     /// transmissions of any node) after the last fault started (after the
-    /// start of the applications if there is no fault).
+    /// start of the applications if there is no fault). 0: no frame target,
+    /// run until `max_time_ps`.
     pub frames: u32,
     /// Stop earlier, once this many frames were delivered after the last
     /// disturbance (an error at an active controller, an isolation, a
@@ -109,7 +110,7 @@ pub struct RunResult {
     /// Error events of healthy controllers after the first fault started
     /// (> 0 means a global error was seen).
     pub healthy_errors_after_fault: u64,
-    /// Sampled at every delivery and at every quarantine.
+    /// Sampled at every delivery, at every quarantine and at the end.
     pub counters: Vec<CounterSample>,
     /// When each fault started (ps), None if it never did.
     pub fault_start_ps: Vec<Option<u64>>,
@@ -125,6 +126,9 @@ pub struct RunResult {
     pub sim_cycles: u64,
     /// Simulated time at the end (ps).
     pub end_ps: u64,
+    /// Final blame counter (BIC, counter units) of every port, per hub
+    /// (empty without the hub's debug outputs).
+    pub final_bic: Vec<Vec<u32>>,
     /// Driver routine log (with `RunSpec::trace`).
     pub trace: Vec<String>,
 }
@@ -231,7 +235,7 @@ fn run_impl(spec: &RunSpec) -> RunResult {
         let now = sim.now();
         // ---- faults waiting for their start
         let all_started = fault_start.iter().all(|s| s.is_some());
-        if all_started && res.delivered >= delivered_at_last_fault + spec.frames as u64 {
+        if all_started && spec.frames > 0 && res.delivered >= delivered_at_last_fault + spec.frames as u64 {
             break;
         }
         if let (true, Some(q)) = (all_started, spec.quiet_frames) {
@@ -417,9 +421,16 @@ fn run_impl(spec: &RunSpec) -> RunResult {
     }
     // ---- results
     res.end_ps = sim.now();
+    for (k, p) in net.ctrls.iter().enumerate() {
+        for (c, &h) in p.iter().enumerate() {
+            let x = sim.get(h);
+            res.counters.push(CounterSample { t_ps: res.end_ps, node: k, ctrl: c, tec: x.tec(), rec: x.rec() });
+        }
+    }
     res.sim_cycles = sim.total_cycles();
     res.fault_start_ps = fault_start.clone();
     res.tx_ctrl = drivers.iter().map(|d| d.tx).collect();
+    res.final_bic = net.hubs.iter().map(|&h| sim.get(h).hub.bic.iter().map(|b| b.val().index() as u32).collect()).collect();
     if let Some(base) = &healthy_errors_base {
         let now_err = all_errors(&sim, &net);
         let mut i = 0;
@@ -451,7 +462,7 @@ fn run_impl(spec: &RunSpec) -> RunResult {
         }
     }
     let after = res.delivered.saturating_sub(delivered_at_last_fault);
-    if !quiet_stop && fault_start.iter().all(|s| s.is_some()) && after < spec.frames as u64 {
+    if !quiet_stop && spec.frames > 0 && fault_start.iter().all(|s| s.is_some()) && after < spec.frames as u64 {
         res.failures.push(format!("only {after} of {} frames delivered after the fault (time limit)", spec.frames));
     }
     if spec.trace {

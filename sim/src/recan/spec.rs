@@ -185,6 +185,12 @@ pub struct DriverSpec {
     pub app_delay_bits: f64,
     /// Bit times after power-up before the applications start.
     pub start_bits: u32,
+    /// Interrupt latency of the host in ns: a controller's report (or its
+    /// error-warning condition) reaches the driver this long after it happens.
+    /// A microcontroller reading its controllers' status over a bus takes
+    /// microseconds; with 0 the driver would quarantine a controller whose
+    /// counter jumps to 96 inside one error flag before the hub can judge it.
+    pub irq_latency_ns: f64,
 }
 
 impl Default for DriverSpec {
@@ -197,6 +203,7 @@ impl Default for DriverSpec {
             warning_limit: 96,
             app_delay_bits: 4.0,
             start_bits: 20,
+            irq_latency_ns: 10_000.0,
         }
     }
 }
@@ -334,8 +341,8 @@ impl NetworkSpec {
             }
         }
         let d = &self.driver;
-        if !(d.k_bits > 0.0) || !(d.app_delay_bits >= 0.0) {
-            return Err("driver: k_bits must be > 0 and app_delay_bits >= 0".into());
+        if !(d.k_bits > 0.0) || !(d.app_delay_bits >= 0.0) || !(d.irq_latency_ns >= 0.0) {
+            return Err("driver: k_bits must be > 0, app_delay_bits and irq_latency_ns >= 0".into());
         }
         if d.max_inconsists == 0 || d.warning_limit == 0 || d.warning_limit > 255 {
             return Err("driver: max_inconsists must be >= 1 and warning_limit in 1..=255".into());

@@ -1,0 +1,45 @@
+//! Published scenarios with randomised variants (injection instant and field, traffic
+//! phase, oscillator offsets, initial tx controllers), as the campaign runs them.
+use canstar_sim::recan::{check, published_scenario, run};
+
+fn sweep(scenarios: &[usize], seeds: std::ops::RangeInclusive<u64>) -> Vec<String> {
+    let mut bad = Vec::new();
+    for &n in scenarios {
+        for seed in seeds.clone() {
+            let (spec, exp) = published_scenario(n, seed);
+            let t = std::time::Instant::now();
+            let r = run(&spec);
+            let f = check(&r, &exp);
+            eprintln!(
+                "scenario {n:2} seed {seed:3}: {} in {:.2}s ({} cycles, {} frames) fault {:?} at {:?} iso {:?} qua {:?} retx {}",
+                if f.is_empty() { "ok  " } else { "FAIL" },
+                t.elapsed().as_secs_f64(),
+                r.sim_cycles,
+                r.delivered,
+                r.fault_resolved,
+                r.fault_start_ps,
+                r.isolated.iter().map(|i| (i.what, i.latency_bits)).collect::<Vec<_>>(),
+                r.quarantined,
+                r.max_retransmissions
+            );
+            if !f.is_empty() {
+                bad.push(format!("scenario {n} seed {seed}: {f:?}"));
+            }
+        }
+    }
+    bad
+}
+
+#[test]
+fn randomised_variants_of_some_scenarios_keep_their_outcome() {
+    let bad = sweep(&[3, 7, 12, 18, 20], 1..=1);
+    assert!(bad.is_empty(), "{bad:#?}");
+}
+
+#[test]
+#[ignore = "long: every scenario with several seeds"]
+fn randomised_variants_of_every_scenario() {
+    let seeds: u64 = std::env::var("RECAN_SEEDS").ok().and_then(|s| s.parse().ok()).unwrap_or(3);
+    let bad = sweep(&(1..=21).collect::<Vec<_>>(), 1..=seeds);
+    assert!(bad.is_empty(), "{bad:#?}");
+}
