@@ -28,7 +28,7 @@ pub const PPM: f64 = 300.0;
 pub const FRAMES_AFTER_FAULT: u32 = 60;
 /// A run ends earlier once this many frames were delivered after the last disturbance
 /// (error, isolation, quarantine, retransmission) as in the published scenarios.
-pub const QUIET_FRAMES: u32 = 8;
+pub const QUIET_FRAMES: u32 = 5;
 
 /// Generic pass criteria (recancentrate.md §5–6).
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
