@@ -14,7 +14,7 @@
 //! | `crc_delim`, `ack_slot`, `ack_delim` | those fields |
 //! | `eof_1_6` | field `Eof`, position 0..5 |
 //! | `eof_last` | field `Eof`, position 6 (the last EOF bit) |
-//! | `im_1_2` | field `Intermission`, position 0..1 |
+//! | `im_2` | field `Intermission`, position 1 (the second intermission bit) |
 //! | `err_phase` | fields `ErrorFlag`, `ErrorDelim`, `Overload` (the monitor's error or overload phase: from the bit after an error / overload condition until the end of the delimiter) |
 //!
 //! All outputs are combinational; they are meaningful at `sample` strobes.
@@ -73,7 +73,7 @@ pub struct FrameDecode {
     pub ack_delim: Signal<Out, Bit>,
     pub eof_1_6: Signal<Out, Bit>,
     pub eof_last: Signal<Out, Bit>,
-    pub im_1_2: Signal<Out, Bit>,
+    pub im_2: Signal<Out, Bit>,
     pub err_phase: Signal<Out, Bit>,
 }
 
@@ -88,7 +88,7 @@ impl Logic for FrameDecode {
         self.ack_delim.next = self.field.val() == 10;
         self.eof_1_6.next = (self.field.val() == 11) & (self.pos.val() < 6);
         self.eof_last.next = (self.field.val() == 11) & (self.pos.val() == 6);
-        self.im_1_2.next = (self.field.val() == 12) & (self.pos.val() < 2);
+        self.im_2.next = (self.field.val() == 12) & (self.pos.val() == 1);
         self.err_phase.next = self.field.val() >= 13;
     }
 }

@@ -10,7 +10,7 @@
 //! # Ports (1 = recessive on every CAN line)
 //! | port | dir | meaning |
 //! |---|---|---|
-//! | `rst_n` | in | reset, active low, synchronous (H3) |
+//! | `rst_n` | in | reset, active low; synchronised by 2 flip-flops ([`RESET_SYNC_DEPTH`]), then a synchronous reset of everything (H3) |
 //! | `inject_fault` | in | fault-injection button (H8), unused without hooks |
 //! | `rx$i` (N) | in | uplinks |
 //! | `reh_rx$j` (M) | in | incoming sublinks |
@@ -24,6 +24,7 @@
 //! | `tx$i` (N) | out | downlinks, `BT` through one output register |
 //! | `hub_tx$j` (M) | out | outgoing sublinks, `ANDC` through one output register |
 //! | `bt` | out | the coupled bit, combinational, for the frame monitor |
+//! | `reset_out` | out | the synchronised internal reset (active high), for the frame monitor |
 //! | `isolated$i`, `silent$i` (N) | out | port isolated (judge `dis`), port reported silent (NACK) |
 //! | `sub_isolated$j` (M) | out | sublink isolated |
 //! | `frame_state` (4) | out | `mon_field` (H9) |
@@ -32,8 +33,10 @@
 //! | `bic$i` (8), `dbc$i` (5), `nack$i` (3) | out | port counters, only with `debug` |
 //! | `sub_bic$j` (8), `sub_dbc$j` (5), `sub_rep$j` (3) | out | sublink counters, only with `debug` |
 //!
-//! Coupling latency (H2): [`HubConfig::coupling_latency`] = sync depth + 1 clocks from
-//! `rx` to `tx` (and from `reh_rx` to `tx`, from `rx` to `hub_tx`).
+//! Coupling latency (H2): [`HubConfig::coupling_latency`] = sync depth + 1 clock edges
+//! from `rx` to `tx` (and from `reh_rx` to `tx`, from `rx` to `hub_tx`): with the default
+//! depth 1, 2 clocks (at most 135.7 ns at 14.74 MHz) to the own downlinks and 4 clocks to
+//! the other hub's downlinks (measured on the pins in the kernel, plus cable delays).
 //!
 //! Verilog note: every signal that crosses a module boundary inside a combinational
 //! path is assigned exactly once per evaluation (if/else, never "default, then
@@ -148,10 +151,16 @@ pub struct HubConfig {
     /// Hub clock in Hz (documentation and pin constraints; the RTL counts clocks).
     pub clock_hz: u64,
     pub timing: HubBitTiming,
-    /// Input synchroniser depth, 1 or 2.
+    /// Input synchroniser depth, 1 or 2 (default 1: two coupled hubs need it to keep the
+    /// arbitration loop inside PROP with the reference timing, see the crate docs).
     pub sync_depth: usize,
     /// BIC threshold (isolation at bic >= 8 * threshold), 1..=31.
     pub bic_threshold: u64,
+    /// Lifetime limit of blames per port (non-decaying counter, see [`crate::judge`]),
+    /// 1..=127.
+    pub life_threshold: u64,
+    /// Lifetime limit of blames per sublink, 1..=127.
+    pub sub_life_threshold: u64,
     /// NACK threshold, 1..=7.
     pub nack_threshold: u64,
     /// DBC threshold for ports, 1..=31 (reference value 24 is available).
@@ -177,8 +186,10 @@ impl Default for HubConfig {
             sublinks: 2,
             clock_hz: 14_740_000,
             timing: HubBitTiming::default(),
-            sync_depth: 2,
+            sync_depth: 1,
             bic_threshold: 8,
+            life_threshold: 32,
+            sub_life_threshold: 64,
             nack_threshold: 7,
             dbc_threshold: 13,
             sub_bic_threshold: 16,
@@ -200,6 +211,7 @@ impl HubConfig {
     pub fn port_params(&self) -> JudgeParams {
         JudgeParams {
             bic_limit: 8 * self.bic_threshold,
+            life_limit: self.life_threshold,
             dbc_threshold: self.dbc_threshold,
             nack_threshold: self.nack_threshold,
             replica_limit: self.replica_limit,
@@ -210,6 +222,7 @@ impl HubConfig {
     pub fn sublink_params(&self) -> JudgeParams {
         JudgeParams {
             bic_limit: 8 * self.sub_bic_threshold,
+            life_limit: self.sub_life_threshold,
             dbc_threshold: self.sub_dbc_threshold,
             nack_threshold: self.nack_threshold,
             replica_limit: self.replica_limit,
@@ -235,6 +248,8 @@ impl HubConfig {
             ("sub_dbc_threshold", self.sub_dbc_threshold, 31),
             ("nack_threshold", self.nack_threshold, 7),
             ("replica_limit", self.replica_limit, 7),
+            ("life_threshold", self.life_threshold, 127),
+            ("sub_life_threshold", self.sub_life_threshold, 127),
         ] {
             if v == 0 || v > hi {
                 return Err(format!("{n} must be in 1..={hi}"));
@@ -283,6 +298,8 @@ pub struct HubCore {
     pub tx: Vec<Signal<Out, Bit>>,
     pub hub_tx: Vec<Signal<Out, Bit>>,
     pub bt: Signal<Out, Bit>,
+    /// The synchronised internal reset (active high), for the frame monitor.
+    pub reset_out: Signal<Out, Bit>,
     pub isolated: Vec<Signal<Out, Bit>>,
     pub silent: Vec<Signal<Out, Bit>>,
     pub sub_isolated: Vec<Signal<Out, Bit>>,
@@ -306,6 +323,8 @@ pub struct HubCore {
     down_code: Vec<Constant<Bits<2>>>,
     hub_code: Vec<Constant<Bits<2>>>,
     reset: Signal<Local, Bit>,
+    rst_s1: DFF<Bit>,
+    rst_s2: DFF<Bit>,
     err_phase: Signal<Local, Bit>,
     any_blame: Signal<Local, Bit>,
     any_tx_error: Signal<Local, Bit>,
@@ -351,6 +370,7 @@ impl HubCore {
             tx: sigs(n),
             hub_tx: sigs(m),
             bt: Default::default(),
+            reset_out: Default::default(),
             isolated: sigs(n),
             silent: sigs(n),
             sub_isolated: sigs(m),
@@ -374,6 +394,8 @@ impl HubCore {
             down_code: (0..n).map(|i| code(FaultPoint::Downlink(i))).collect(),
             hub_code: (0..m).map(|j| code(FaultPoint::Sublink(j))).collect(),
             reset: Default::default(),
+            rst_s1: Default::default(),
+            rst_s2: Default::default(),
             err_phase: Default::default(),
             any_blame: Default::default(),
             any_tx_error: Default::default(),
@@ -409,7 +431,14 @@ impl HubCore {
 impl Logic for HubCore {
     #[hdl_gen]
     fn update(&mut self) {
-        self.reset.next = !self.rst_n.val();
+        // reset synchroniser (2 flip-flops): `rst_n` may come from an asynchronous
+        // button; the internal reset (active high) follows it after 2 clocks
+        self.rst_s1.clock.next = self.clock.val();
+        self.rst_s2.clock.next = self.clock.val();
+        self.rst_s1.d.next = !self.rst_n.val();
+        self.rst_s2.d.next = self.rst_s1.q.val();
+        self.reset.next = self.rst_s2.q.val();
+        self.reset_out.next = self.rst_s2.q.val();
         // frame state
         self.decode.clock.next = self.clock.val();
         self.decode.field.next = self.mon_field.val();
@@ -475,7 +504,7 @@ impl Logic for HubCore {
             self.pj[i].ack_slot.next = self.decode.ack_slot.val();
             self.pj[i].ack_delim.next = self.decode.ack_delim.val();
             self.pj[i].eof_1_6.next = self.decode.eof_1_6.val();
-            self.pj[i].im_1_2.next = self.decode.im_1_2.val();
+            self.pj[i].im_2.next = self.decode.im_2.val();
             self.pj[i].err_phase.next = self.err_phase.val();
             self.pj[i].crc_ok.next = self.mon_crc_ok.val();
             self.pj[i].frame_ok.next = self.mon_frame_ok.val();
@@ -498,7 +527,7 @@ impl Logic for HubCore {
             self.sj[j].ack_slot.next = self.decode.ack_slot.val();
             self.sj[j].ack_delim.next = self.decode.ack_delim.val();
             self.sj[j].eof_1_6.next = self.decode.eof_1_6.val();
-            self.sj[j].im_1_2.next = self.decode.im_1_2.val();
+            self.sj[j].im_2.next = self.decode.im_2.val();
             self.sj[j].err_phase.next = self.err_phase.val();
             self.sj[j].crc_ok.next = self.mon_crc_ok.val();
             self.sj[j].frame_ok.next = self.mon_frame_ok.val();
@@ -575,6 +604,10 @@ pub struct Hub {
     _dm: usize,
 }
 
+/// Flip-flops of the reset synchroniser: the internal reset follows `rst_n` after this
+/// many clocks, and the outputs are recessive one clock later.
+pub const RESET_SYNC_DEPTH: usize = 2;
+
 /// Synchroniser depth of the monitor's RX input: BT is already synchronous.
 pub const MONITOR_SYNC_DEPTH: usize = 1;
 
@@ -634,7 +667,7 @@ impl Logic for Hub {
     fn update(&mut self) {
         // frame monitor: the CAN controller, listen-only, on BT
         self.monitor.clock.next = self.clock.val();
-        self.monitor.reset.next = !self.rst_n.val();
+        self.monitor.reset.next = self.core.reset_out.val();
         self.monitor.rx.next = self.core.bt.val();
         self.monitor.brp.next = self.brp.val();
         self.monitor.prop.next = self.prop.val();
@@ -655,7 +688,7 @@ impl Logic for Hub {
         self.monitor.tx_abort.next = false;
         // frame state adapter
         self.adapter.clock.next = self.clock.val();
-        self.adapter.reset.next = !self.rst_n.val();
+        self.adapter.reset.next = self.core.reset_out.val();
         self.adapter.sample.next = self.monitor.dbg_sample.val();
         self.adapter.field.next = self.monitor.dbg_field.val();
         self.adapter.pos.next = self.monitor.dbg_pos.val();

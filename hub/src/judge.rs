@@ -11,7 +11,7 @@
 //! - Frame state C, decoded by [`crate::frame_state::FrameDecode`] for the bit being
 //!   sampled: `sof`, `tx_region` (first identifier bit to last CRC bit), `arb`
 //!   (SOF, identifier, SRR, IDE, extended identifier, RTR), `crc_delim`,
-//!   `ack_slot`, `ack_delim`, `eof_1_6`, `im_1_2`, `crc_ok` (read in the ACK
+//!   `ack_slot`, `ack_delim`, `eof_1_6`, `im_2`, `crc_ok` (read in the ACK
 //!   delimiter, where a CAN receiver signals a CRC error: 1 = the CRC was correct),
 //!   `frame_ok` (strobe with the sample of the last EOF bit of a frame completed without
 //!   error), `err_phase` (the monitor's error/overload phase OR the hub's own error flag
@@ -26,7 +26,7 @@
 //! blamed now; the hub triggers its error flag with it), `tx_error` (combinational
 //! strobe: this unit's transmitter has just seen a bit error, see §5.1 below; the hub
 //! also triggers its error flag with it, without blaming anyone), `bic`, `dbc`, `nack`,
-//! `rep_cnt` counters, `silent` (NACK threshold reached), `contender` (role, debug).
+//! `life` (lifetime blame count), `rep_cnt` counters, `silent` (NACK threshold reached), `contender` (role, debug).
 //!
 //! # Rules
 //! **§5.1 roles (changed).** The baseline makes a port a contender if it is dominant at
@@ -58,21 +58,62 @@
 //! bit error is globalised by the peer hub.
 //!
 //! **§5.2 unjustified dominant.** Outside the error phase, a dominant contribution is
-//! unjustified when: it comes from a non-contender in the transmission region; or it
+//! unjustified when: it comes from a non-contender in the transmission region after the
+//! arbitration field (**(changed)**: not in the arbitration field, see below); or it
 //! falls in the CRC delimiter, the ACK delimiter (**(changed)**: not when BT was
 //! recessive in the ACK slot: then the transmitter legitimately starts its ACK-error
 //! flag in the ACK delimiter, e.g. after a CRC error or when no receiver is alive), EOF
-//! bits 1-6 or intermission bits 1-2 (a
+//! bits 1-6 or intermission bit 2 (a
 //! dominant bit there after a dominant last EOF / delimiter bit is inside the monitor's
-//! overload phase, hence error phase, hence not blamed); or it comes from a contender in
+//! overload phase, hence error phase, hence not blamed; **(changed)** intermission bit 1
+//! is not blamed: a node that saw *its* last EOF bit dominant legally starts an
+//! overload flag there (a receiver) or an error flag (a transmitter), and on a star that
+//! happens without BT showing it when a short disturbance hits that node's downlink;
+//! blaming it made a single downlink glitch cost the port `bic += 8` in
+//! `sim/tests/hub_system.rs`, `overload_frames_one_hub`. The bit only starts an overload
+//! frame for everyone (no frame is lost, no error counter of another node moves), and a
+//! stuck or flipping port is still caught by every other rule); or it comes from a contender in
 //! the ACK slot (port units only: a sublink carries the peer's acknowledging receivers
 //! too, so the ACK slot rule is off for sublinks **(changed)**). The port is blamed once
 //! per episode: `bic += 8` (saturating) and `blame` triggers the hub's error flag, whose
 //! `busy` time is error phase, so the same episode cannot blame the port again.
 //!
+//! **No receiver blame in the arbitration field (changed).** In the arbitration field
+//! "recessive while BT is dominant" is ambiguous: the port lost arbitration, *or* BT was
+//! dominant only for part of the bit (a glitch of another, faulty port) and the port's
+//! controller, sampling at another phase than the hub's frame monitor, never saw it and
+//! goes on transmitting. The baseline then blamed the *healthy* transmitter for its
+//! next dominant identifier bit. Seen with two hubs (sample points one hub crossing
+//! apart) and a port flipping half bits: the healthy transmitter of node 0 reached
+//! bic 48 of 64 (`sim/tests/hub_cosim.rs`, `reference_hub_cosim_on_recorded_traffic`,
+//! now asserts it stays 0). A dominant bit of a real receiver in the arbitration field
+//! corrupts the frame, which the monitor detects (stuff, CRC or form error); only the
+//! attribution to the port is lost there, and every other rule still applies. For the
+//! same reason a port that is dominant in the arbitration field becomes a contender
+//! again (otherwise the healthy transmitter that never saw the glitch would be blamed at
+//! its first dominant bit after the arbitration field instead). Collateral blame from
+//! sub-bit glitches is reduced, not removed: a glitch that ends between two nodes'
+//! sample points makes one of them flag an error the hub did not see (or one bit
+//! earlier than the hub), and that flag is blamed on the healthy node's port (or on the
+//! sublinks carrying it). It is bounded by the time the faulty port needs to be
+//! isolated (a few blames, each decaying like any other).
+//!
 //! **§5.3 decay.** At `frame_ok` every enabled unit's `bic` decreases by 1 (not below 0).
 //! The unit isolates when `bic >= 8 * BIC_threshold` (`bic_limit`, 8 bits: ports default
 //! 64, sublinks twice the port threshold, 128).
+//!
+//! **§5.3 lifetime counter (added).** With decay alone a port that causes one error
+//! episode every 8 or more frames never reaches the limit (bic settles at 8 or below),
+//! so a rarely flipping uplink would disturb the network for ever (A3 asks for "any
+//! rate"). Every blame therefore also increments `life` (7 bits, saturating), which
+//! never decays; the unit isolates when `life >= life_limit` (ports default 32,
+//! sublinks 64). Fault-free traffic never blames (A1), so `life` stays 0 there; the
+//! price is that a healthy port hit by 32 separate transient disturbances over its
+//! lifetime is isolated too (enable reintegration, §5.6, to get it back). The decaying
+//! `bic` keeps isolating fast flippers quickly (before a healthy TEC/REC reaches 96),
+//! `life` isolates slow ones, whose errors a healthy node's counters absorb anyway (one
+//! error per 8 or more frames keeps a TEC below 16). Evidence: `sim/tests/hub_system.rs`,
+//! `slow_bit_flipping_uplink_isolated_by_lifetime_counter`.
 //!
 //! **§5.4 dominant run.** `dbc` counts consecutive dominant samples in any state
 //! (saturating at 31) and clears on a recessive sample; isolation when `dbc >=
@@ -116,6 +157,8 @@ use rust_hdl::prelude::*;
 pub struct JudgeParams {
     /// Isolation limit of `bic` in counter units (8 x the BIC threshold), 1..=255.
     pub bic_limit: u64,
+    /// Isolation limit of the non-decaying lifetime blame counter `life`, 1..=127.
+    pub life_limit: u64,
     /// DBC threshold, 1..=31.
     pub dbc_threshold: u64,
     /// NACK threshold, 1..=7 (ports only).
@@ -140,7 +183,7 @@ pub struct JudgeUnit {
     pub ack_slot: Signal<In, Bit>,
     pub ack_delim: Signal<In, Bit>,
     pub eof_1_6: Signal<In, Bit>,
-    pub im_1_2: Signal<In, Bit>,
+    pub im_2: Signal<In, Bit>,
     pub err_phase: Signal<In, Bit>,
     pub crc_ok: Signal<In, Bit>,
     pub frame_ok: Signal<In, Bit>,
@@ -151,12 +194,14 @@ pub struct JudgeUnit {
     pub blame: Signal<Out, Bit>,
     pub tx_error: Signal<Out, Bit>,
     pub bic: Signal<Out, Bits<8>>,
+    pub life: Signal<Out, Bits<7>>,
     pub dbc: Signal<Out, Bits<5>>,
     pub nack: Signal<Out, Bits<3>>,
     pub rep_cnt: Signal<Out, Bits<3>>,
     pub silent: Signal<Out, Bit>,
     pub contender: Signal<Out, Bit>,
     bic_limit: Constant<Bits<8>>,
+    life_limit: Constant<Bits<7>>,
     dbc_thr: Constant<Bits<5>>,
     nack_thr: Constant<Bits<3>>,
     rep_limit: Constant<Bits<3>>,
@@ -167,6 +212,7 @@ pub struct JudgeUnit {
     reint_w: Constant<Bits<8>>,
     dis_r: DFF<Bit>,
     bic_r: DFF<Bits<8>>,
+    life_r: DFF<Bits<7>>,
     dbc_r: DFF<Bits<5>>,
     nack_r: DFF<Bits<3>>,
     cont_r: DFF<Bit>,
@@ -187,6 +233,7 @@ pub struct JudgeUnit {
 impl JudgeUnit {
     fn build(p: JudgeParams, port: bool) -> Self {
         assert!((1..=255).contains(&p.bic_limit), "bic limit out of range");
+        assert!((1..=127).contains(&p.life_limit), "lifetime limit out of range");
         assert!((1..=31).contains(&p.dbc_threshold), "DBC threshold out of range");
         assert!((1..=7).contains(&p.nack_threshold), "NACK threshold out of range");
         assert!((1..=7).contains(&p.replica_limit), "replica limit out of range");
@@ -206,7 +253,7 @@ impl JudgeUnit {
             ack_slot: Default::default(),
             ack_delim: Default::default(),
             eof_1_6: Default::default(),
-            im_1_2: Default::default(),
+            im_2: Default::default(),
             err_phase: Default::default(),
             crc_ok: Default::default(),
             frame_ok: Default::default(),
@@ -217,12 +264,14 @@ impl JudgeUnit {
             blame: Default::default(),
             tx_error: Default::default(),
             bic: Default::default(),
+            life: Default::default(),
             dbc: Default::default(),
             nack: Default::default(),
             rep_cnt: Default::default(),
             silent: Default::default(),
             contender: Default::default(),
             bic_limit: Constant::new(p.bic_limit.into()),
+            life_limit: Constant::new(p.life_limit.into()),
             dbc_thr: Constant::new(p.dbc_threshold.into()),
             nack_thr: Constant::new(p.nack_threshold.into()),
             rep_limit: Constant::new(p.replica_limit.into()),
@@ -233,6 +282,7 @@ impl JudgeUnit {
             reint_w: Constant::new(p.reintegration.unwrap_or(1).into()),
             dis_r: Default::default(),
             bic_r: Default::default(),
+            life_r: Default::default(),
             dbc_r: Default::default(),
             nack_r: Default::default(),
             cont_r: Default::default(),
@@ -263,16 +313,16 @@ impl JudgeUnit {
 impl Logic for JudgeUnit {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, dis_r, bic_r, dbc_r, nack_r, cont_r, rep_r, rep_seen, rep_first_dom, ok_r, acked, bad, ack_missing, ack_c, ack_rx);
+        dff_setup!(self, clock, dis_r, bic_r, life_r, dbc_r, nack_r, cont_r, rep_r, rep_seen, rep_first_dom, ok_r, acked, bad, ack_missing, ack_c, ack_rx);
         self.dom.next = !self.c.val();
         self.enabled.next = !self.dis_r.q.val();
         self.unj.next = self.dom.val()
             & !self.err_phase.val()
-            & ((self.tx_region.val() & !self.cont_r.q.val())
+            & ((self.tx_region.val() & !self.arb.val() & !self.cont_r.q.val())
                 | self.crc_delim.val()
                 | (self.ack_delim.val() & !self.ack_missing.q.val())
                 | self.eof_1_6.val()
-                | self.im_1_2.val()
+                | self.im_2.val()
                 | (self.ack_slot.val() & self.cont_r.q.val() & self.ack_rule.val()));
         self.blame.next = self.sample.val() & self.unj.val() & self.enabled.val();
         // (port units only: `nack_on` is the port-unit constant)
@@ -295,6 +345,9 @@ impl Logic for JudgeUnit {
                 self.cont_r.d.next = true;
             } else if self.tx_region.val() & self.c.val() & !self.bt.val() {
                 self.cont_r.d.next = false;
+            } else if self.arb.val() & self.dom.val() {
+                // arbitration field: a dominant port is (again) a contender
+                self.cont_r.d.next = true;
             }
             // §5.4 dominant run
             if self.dom.val() {
@@ -307,6 +360,9 @@ impl Logic for JudgeUnit {
             // §5.3 decay, §5.2 blame
             if self.frame_ok.val() & self.enabled.val() & (self.bic_r.q.val() != 0) {
                 self.bic_r.d.next = self.bic_r.q.val() - 1;
+            }
+            if self.blame.val() & (self.life_r.q.val() != 127) {
+                self.life_r.d.next = self.life_r.q.val() + 1;
             }
             if self.blame.val() {
                 if self.bic_r.q.val() > 247 {
@@ -365,6 +421,7 @@ impl Logic for JudgeUnit {
         // isolation
         if self.enabled.val()
             & ((self.bic_r.q.val() >= self.bic_limit.val())
+                | (self.life_r.q.val() >= self.life_limit.val())
                 | (self.dbc_r.q.val() >= self.dbc_thr.val())
                 | (self.rep_on.val() & (self.rep_r.q.val() >= self.rep_limit.val())))
         {
@@ -383,6 +440,7 @@ impl Logic for JudgeUnit {
                 if self.reint_on.val() & ((self.ok_r.q.val() + 1) >= self.reint_w.val()) {
                     self.dis_r.d.next = false;
                     self.bic_r.d.next = 0.into();
+                    self.life_r.d.next = 0.into();
                     self.dbc_r.d.next = 0.into();
                     self.nack_r.d.next = 0.into();
                     self.rep_r.d.next = 0.into();
@@ -396,6 +454,7 @@ impl Logic for JudgeUnit {
         if self.reset.val() {
             self.dis_r.d.next = false;
             self.bic_r.d.next = 0.into();
+            self.life_r.d.next = 0.into();
             self.dbc_r.d.next = 0.into();
             self.nack_r.d.next = 0.into();
             self.cont_r.d.next = false;
@@ -411,6 +470,7 @@ impl Logic for JudgeUnit {
         }
         self.dis.next = self.dis_r.q.val();
         self.bic.next = self.bic_r.q.val();
+        self.life.next = self.life_r.q.val();
         self.dbc.next = self.dbc_r.q.val();
         self.nack.next = self.nack_r.q.val();
         self.rep_cnt.next = self.rep_r.q.val();

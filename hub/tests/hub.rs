@@ -73,11 +73,15 @@ fn reset_forces_recessive_and_clears_isolation() {
     }
     assert!(h.isolated[0].val());
     assert!(h.tx.iter().all(|t| t.val()), "isolated port no longer drives BT");
-    // now hold reset with dominant inputs everywhere
+    // now hold reset (it takes effect after the 2-flip-flop reset synchroniser),
+    // then drive dominant inputs everywhere
+    h.rst_n.next = false;
+    for _ in 0..=canstar_hub::hub::RESET_SYNC_DEPTH {
+        drive::cycle(&mut h);
+    }
     for r in h.rx.iter_mut().chain(h.reh_rx.iter_mut()) {
         r.next = false;
     }
-    h.rst_n.next = false;
     for _ in 0..6 {
         drive::cycle(&mut h);
         assert!(h.tx.iter().chain(h.hub_tx.iter()).all(|t| t.val()));
@@ -203,7 +207,7 @@ fn cancentrate_and_single_port_configurations() {
 #[test]
 fn config_defaults_serde_and_validation() {
     let d = HubConfig::default();
-    assert_eq!((d.ports, d.sublinks, d.clock_hz, d.sync_depth), (3, 2, 14_740_000, 2));
+    assert_eq!((d.ports, d.sublinks, d.clock_hz, d.sync_depth), (3, 2, 14_740_000, 1));
     assert_eq!((d.timing.brp, d.timing.prop, d.timing.ph1, d.timing.sjw), (1, 2, 1, 0));
     assert_eq!((d.timing.tq_per_bit(), d.timing.sample_tq(), d.timing.ph2_tq(), d.timing.bit_clocks()), (8, 6, 2, 16));
     assert_eq!((d.bic_threshold, d.nack_threshold, d.dbc_threshold), (8, 7, 13));
@@ -436,8 +440,9 @@ fn complete_hub_latency_and_reset() {
         assert_eq!(edges, cfg.coupling_latency());
         assert!(h.hub_tx.iter().all(|t| !t.val()));
         h.rst_n.next = false;
-        drive::cycle(&mut h);
-        drive::cycle(&mut h);
+        for _ in 0..=canstar_hub::hub::RESET_SYNC_DEPTH {
+            drive::cycle(&mut h);
+        }
         assert!(h.tx.iter().chain(h.hub_tx.iter()).all(|t| t.val()), "recessive in reset");
     }
 }

@@ -6,7 +6,7 @@ use canstar_hub::judge::{JudgeParams, JudgeUnit};
 use rand::Rng;
 
 fn params() -> JudgeParams {
-    JudgeParams { bic_limit: 64, dbc_threshold: 13, nack_threshold: 7, replica_limit: 3, reintegration: None }
+    JudgeParams { bic_limit: 64, life_limit: 32, dbc_threshold: 13, nack_threshold: 7, replica_limit: 3, reintegration: None }
 }
 
 #[derive(Default, Clone, Copy)]
@@ -35,7 +35,7 @@ fn sample(j: &mut JudgeUnit, b: Bit) -> bool {
     j.ack_slot.next = b.ack_slot;
     j.ack_delim.next = b.ack_delim;
     j.eof_1_6.next = b.eof;
-    j.im_1_2.next = b.im;
+    j.im_2.next = b.im;
     j.err_phase.next = b.err;
     j.crc_ok.next = b.crc_ok;
     j.frame_ok.next = b.frame_ok;
@@ -129,6 +129,61 @@ fn bic_saturates_isolates_and_decays() {
         sample(&mut j, Bit { c: true, bt: true, frame_ok: true, ..Default::default() });
         assert_eq!(j.bic.val().index(), 7usize.saturating_sub(k));
     }
+}
+
+/// §5.3 lifetime counter: blames rarer than the decay can absorb (one per 9 frames,
+/// so `bic` never exceeds 8) still isolate after `life_limit` blames.
+#[test]
+fn lifetime_counter_isolates_rare_blames() {
+    let mut j = unit(JudgeParams { life_limit: 5, ..params() });
+    for k in 1..=5u64 {
+        assert!(!j.dis.val(), "not yet isolated after {} blames", k - 1);
+        assert!(sample(&mut j, Bit { c: false, bt: false, eof: true, ..Default::default() }));
+        assert_eq!(j.life.val().index() as u64, k);
+        assert!(j.bic.val().index() <= 8);
+        for _ in 0..9 {
+            sample(&mut j, Bit { c: true, bt: true, frame_ok: true, ..Default::default() });
+        }
+        if k < 5 {
+            assert_eq!(j.bic.val().index(), 0, "decayed");
+        }
+    }
+    assert!(j.dis.val(), "isolated by the lifetime counter");
+    // reset clears it
+    j.reset.next = true;
+    drive::cycle(&mut j);
+    j.reset.next = false;
+    drive::cycle(&mut j);
+    assert!(!j.dis.val());
+    assert_eq!(j.life.val().index(), 0);
+}
+
+/// Arbitration field: a port that dropped out (recessive while BT dominant) and is
+/// dominant again is not blamed there and is a contender again (it may be a transmitter
+/// that never saw a glitch); after the arbitration field a non-contender is blamed.
+#[test]
+fn arbitration_field_readmits_instead_of_blaming() {
+    let mut j = unit(params());
+    sample(&mut j, Bit { c: false, bt: false, sof: true, ..Default::default() });
+    j.arb.next = true;
+    sample(&mut j, Bit { c: true, bt: false, tx: true, ..Default::default() });
+    assert!(!j.contender.val(), "dropped out");
+    assert!(!sample(&mut j, Bit { c: false, bt: false, tx: true, ..Default::default() }), "not blamed in arbitration");
+    assert!(j.contender.val(), "contender again");
+    j.arb.next = false;
+    assert!(!sample(&mut j, Bit { c: false, bt: false, tx: true, ..Default::default() }), "transmitter's dominant data bit");
+    sample(&mut j, Bit { c: true, bt: false, tx: true, ..Default::default() });
+    assert!(!j.contender.val());
+    assert!(sample(&mut j, Bit { c: false, bt: false, tx: true, ..Default::default() }), "receiver dominant after arbitration");
+}
+
+/// The first intermission bit is not blamed (a node's reaction to a dominant last EOF
+/// bit that only it saw); the decoder's `im_2` marks the second bit only.
+#[test]
+fn first_intermission_bit_not_blamed() {
+    let mut j = unit(params());
+    assert!(!sample(&mut j, Bit { c: false, bt: false, ..Default::default() }), "im bit 1: no rule");
+    assert!(sample(&mut j, Bit { c: false, bt: false, im: true, ..Default::default() }), "im bit 2 blamed");
 }
 
 #[test]
@@ -227,7 +282,7 @@ fn frame_decode_matches_its_table() {
             assert_eq!(d.ack_delim.val(), field == Field::AckDelim);
             assert_eq!(d.eof_1_6.val(), field == Field::Eof && pos < 6);
             assert_eq!(d.eof_last.val(), field == Field::Eof && pos == 6);
-            assert_eq!(d.im_1_2.val(), field == Field::Intermission && pos < 2);
+            assert_eq!(d.im_2.val(), field == Field::Intermission && pos == 1);
             assert_eq!(d.err_phase.val(), matches!(field, Field::ErrorFlag | Field::ErrorDelim | Field::Overload));
         }
     }
@@ -258,7 +313,7 @@ fn judge_stim(j: &mut JudgeUnit, rng: &mut rand_chacha::ChaCha8Rng, c: usize) {
         j.ack_slot.next = f == 9;
         j.ack_delim.next = f == 10;
         j.eof_1_6.next = (64..70).contains(&phase);
-        j.im_1_2.next = (71..73).contains(&phase);
+        j.im_2.next = phase == 72;
         j.frame_ok.next = phase == 70;
         j.crc_ok.next = rng.gen_bool(0.9);
         j.err_phase.next = err;

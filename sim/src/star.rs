@@ -223,7 +223,44 @@ pub struct RtlHub {
     pub inject_button: bool,
     /// Scheduled presses: (start ps, end ps) during which the button is held.
     presses: Vec<(u64, u64)>,
+    /// What the judges did so far (updated every clock).
+    pub stats: HubStats,
+    record: Option<Vec<u64>>,
+    samples: Option<Vec<(u64, bool, u8)>>,
 }
+
+/// Judge activity of an [`RtlHub`], accumulated clock by clock (needs
+/// `debug: true` in the configuration for the counter maxima).
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct HubStats {
+    /// Clocks in which some judge unit blamed its port or sublink (`HubCore::blame_any`).
+    pub blames: u64,
+    /// Largest `bic` seen per port / per sublink.
+    pub max_bic: Vec<u64>,
+    pub max_sub_bic: Vec<u64>,
+    /// Largest `dbc` seen per port / per sublink.
+    pub max_dbc: Vec<u64>,
+    pub max_sub_dbc: Vec<u64>,
+    /// Time (ps) of the first clock with the port / sublink isolated.
+    pub isolated_at: Vec<Option<u64>>,
+    pub sub_isolated_at: Vec<Option<u64>>,
+    /// Time (ps) of the first clock with the port reported silent.
+    pub silent_at: Vec<Option<u64>>,
+    /// Clocks with the hub's error flag driven.
+    pub efg_clocks: u64,
+    /// Frames the frame monitor saw completed without error.
+    pub frames_ok: u64,
+    /// Errors (stuff, CRC, form) the frame monitor detected.
+    pub monitor_errors: u64,
+    /// Bits the frame monitor sampled in an overload frame.
+    pub overload_bits: u64,
+    /// Every blame: (time ps, unit: port i or sublink N + j, field code, position).
+    pub blame_log: Vec<(u64, usize, u8, u8)>,
+}
+
+/// One clock of an [`RtlHub`]'s input stimulus, packed: bit 0 `rst_n`, bit 1
+/// `inject_fault`, bits 2.. `rx[i]`, then `reh_rx[j]` (see [`RtlHub::start_recording`]).
+pub type HubInputWord = u64;
 
 impl RtlHub {
     /// Clocks with `rst_n` low after power-up.
@@ -252,7 +289,63 @@ impl RtlHub {
             cycles: 0,
             inject_button: false,
             presses: Vec::new(),
+            stats: HubStats {
+                max_bic: vec![0; cfg.ports],
+                max_sub_bic: vec![0; cfg.sublinks],
+                max_dbc: vec![0; cfg.ports],
+                max_sub_dbc: vec![0; cfg.sublinks],
+                isolated_at: vec![None; cfg.ports],
+                sub_isolated_at: vec![None; cfg.sublinks],
+                silent_at: vec![None; cfg.ports],
+                ..Default::default()
+            },
+            record: None,
+            samples: None,
         }
+    }
+
+    /// Record the hub's inputs from now on, one [`HubInputWord`] per clock (for
+    /// replaying the run on the generated Verilog, e.g. with `canstar_hdl::flow::cosim`).
+    /// Ports + sublinks + 2 must not exceed 64.
+    pub fn start_recording(&mut self) {
+        assert!(self.n + self.m + 2 <= 64, "too many inputs to record");
+        self.record = Some(Vec::new());
+    }
+
+    /// The recorded input words (empty if recording was never started).
+    pub fn take_recording(&mut self) -> Vec<HubInputWord> {
+        self.record.take().unwrap_or_default()
+    }
+
+    /// Record, at every sample point of the hub's frame monitor, the time, the level the
+    /// hub drives on its downlink 0 and the monitor's field code (see [`RtlHub::samples`]).
+    pub fn record_samples(&mut self) {
+        self.samples = Some(Vec::new());
+    }
+
+    /// (time ps, downlink 0 level, field code of `canstar_hub::frame_state::Field`) at
+    /// each sample point of the frame monitor.
+    pub fn samples(&self) -> &[(u64, bool, u8)] {
+        self.samples.as_deref().unwrap_or(&[])
+    }
+
+    /// Apply one recorded input word to a hub RTL (the replay side of
+    /// [`RtlHub::start_recording`]).
+    pub fn apply_input_word(hub: &mut canstar_hub::hub::Hub, w: HubInputWord) {
+        let n = hub.rx.len();
+        hub.rst_n.next = w & 1 != 0;
+        hub.inject_fault.next = w & 2 != 0;
+        for (i, r) in hub.rx.iter_mut().enumerate() {
+            r.next = (w >> (2 + i)) & 1 != 0;
+        }
+        for (j, r) in hub.reh_rx.iter_mut().enumerate() {
+            r.next = (w >> (2 + n + j)) & 1 != 0;
+        }
+    }
+
+    /// Port `i` isolated at time `t` or before?
+    pub fn isolated_at(&self, i: usize) -> Option<u64> {
+        self.stats.isolated_at[i]
     }
 
     /// Hold the `inject_fault` button during `[t, t + width)` (ps).
@@ -305,6 +398,16 @@ impl Component for RtlHub {
         for j in 0..self.m {
             hub.reh_rx[j].next = io.input(self.n + j);
         }
+        if let Some(r) = self.record.as_mut() {
+            let mut w: HubInputWord = hub.rst_n.next as u64 | (pressed as u64) << 1;
+            for i in 0..self.n {
+                w |= (io.input(i) as u64) << (2 + i);
+            }
+            for j in 0..self.m {
+                w |= (io.input(self.n + j) as u64) << (2 + self.n + j);
+            }
+            r.push(w);
+        }
         canstar_hdl::drive::cycle(hub);
         for i in 0..self.n {
             io.set_output(i, hub.tx[i].val());
@@ -313,6 +416,61 @@ impl Component for RtlHub {
             io.set_output(self.n + j, hub.hub_tx[j].val());
         }
         self.cycles += 1;
+        // judge activity
+        let st = &mut self.stats;
+        let core = hub.core();
+        if core.blame_any() {
+            st.blames += 1;
+            let (f, p) = (core.mon_field.val().index() as u8, core.mon_pos.val().index() as u8);
+            for i in 0..self.n {
+                if core.port_judge(i).blame.val() {
+                    st.blame_log.push((now, i, f, p));
+                }
+            }
+            for k in 0..self.m {
+                if core.sublink_judge(k).blame.val() {
+                    st.blame_log.push((now, self.n + k, f, p));
+                }
+            }
+        }
+        if hub.efg_active.val() {
+            st.efg_clocks += 1;
+        }
+        if core.mon_sample.val() {
+            if core.mon_frame_ok.val() {
+                st.frames_ok += 1;
+            }
+            if core.mon_error.val() {
+                st.monitor_errors += 1;
+            }
+            if core.mon_field.val().index() as u64 == canstar_hub::frame_state::Field::Overload.code() {
+                st.overload_bits += 1;
+            }
+            if let Some(s) = self.samples.as_mut() {
+                if self.n > 0 {
+                    s.push((now, hub.tx[0].val(), core.mon_field.val().index() as u8));
+                }
+            }
+        }
+        for i in 0..self.n {
+            let j = core.port_judge(i);
+            st.max_bic[i] = st.max_bic[i].max(j.bic.val().index() as u64);
+            st.max_dbc[i] = st.max_dbc[i].max(j.dbc.val().index() as u64);
+            if hub.isolated[i].val() && st.isolated_at[i].is_none() {
+                st.isolated_at[i] = Some(now);
+            }
+            if hub.silent[i].val() && st.silent_at[i].is_none() {
+                st.silent_at[i] = Some(now);
+            }
+        }
+        for k in 0..self.m {
+            let j = core.sublink_judge(k);
+            st.max_sub_bic[k] = st.max_sub_bic[k].max(j.bic.val().index() as u64);
+            st.max_sub_dbc[k] = st.max_sub_dbc[k].max(j.dbc.val().index() as u64);
+            if hub.sub_isolated[k].val() && st.sub_isolated_at[k].is_none() {
+                st.sub_isolated_at[k] = Some(now);
+            }
+        }
     }
     fn probe(&self, probe: &mut dyn rust_hdl::prelude::Probe) {
         use rust_hdl::prelude::Block;

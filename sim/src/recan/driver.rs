@@ -188,9 +188,9 @@ impl Driver {
         }
         // 2. error warning limit (seen after the interrupt latency; after the
         //    receptions of this slice)
-        for c in 0..2 {
-            if self.active[c] && !ctrls[c].is_crashed() {
-                let (tec, rec) = (ctrls[c].tec(), ctrls[c].rec());
+        for (c, ctrl) in ctrls.iter().enumerate() {
+            if self.active[c] && !ctrl.is_crashed() {
+                let (tec, rec) = (ctrl.tec(), ctrl.rec());
                 let lim = self.spec.warning_limit;
                 if self.warn_since[c].is_none() && (tec >= lim || rec >= lim) {
                     let reason = if tec >= lim { QuaReason::Tec } else { QuaReason::Rec };

@@ -105,7 +105,8 @@ pub struct RunResult {
     pub lost: Vec<String>,
     /// Duplicates delivered to applications (allowed).
     pub duplicates: u32,
-    /// Largest TEC or REC of any healthy controller (not on a faulty link, not crashed).
+    /// Largest TEC or REC of any healthy controller (not on a faulty link,
+    /// not crashed, not attached to a faulty hub).
     pub worst_healthy_tec_rec: u32,
     /// Error events of healthy controllers after the first fault started
     /// (> 0 means a global error was seen).
@@ -163,18 +164,18 @@ fn mode_of(k: FaultKind) -> FaultMode {
 }
 
 /// Two controllers of one node, mutably, from the simulation.
-fn pair<'a>(sim: &'a mut Sim, h: [Handle<Ctrl>; 2]) -> [&'a mut Ctrl; 2] {
+fn pair(sim: &mut Sim, h: [Handle<Ctrl>; 2]) -> [&mut Ctrl; 2] {
     // two distinct components: split the borrow through raw pointers
     let a: *mut Ctrl = sim.get_mut(h[0]);
     let b: *mut Ctrl = sim.get_mut(h[1]);
     assert!(!std::ptr::eq(a, b));
-    // SAFETY: the handles refer to different components of `sim`, borrowed mutably for 'a
+    // SAFETY: the handles refer to different components of `sim`, which stays borrowed mutably
     unsafe { [&mut *a, &mut *b] }
 }
 
 struct Active {
-    /// (node, ctrl) made unhealthy by this fault (links and crashes).
-    unhealthy: Option<(usize, usize)>,
+    /// (node, ctrl) made unhealthy by this fault (their links, their crash, their hub).
+    unhealthy: Vec<(usize, usize)>,
 }
 
 fn run_impl(spec: &RunSpec) -> RunResult {
@@ -210,7 +211,6 @@ fn run_impl(spec: &RunSpec) -> RunResult {
     // next request time per sender
     let mut next_req: Vec<Option<u64>> = senders.iter().map(|s| s.as_ref().map(|_| start_at)).collect();
     let mut fault_start: Vec<Option<u64>> = vec![None; spec.faults.len()];
-    let mut fault_info: Vec<Option<Active>> = (0..spec.faults.len()).map(|_| None).collect();
     res.fault_resolved = vec![String::new(); spec.faults.len()];
     let mut delivered_at_last_fault: u64 = 0;
     let mut last_disturb: u64 = 0;
@@ -305,10 +305,7 @@ fn run_impl(spec: &RunSpec) -> RunResult {
                 _ => continue,
             };
             let info = inject(&mut sim, &net, &drivers, f, t, bit, limit, &mut res.fault_resolved[i]);
-            if let Some(u) = info.unhealthy {
-                unhealthy.push(u);
-            }
-            fault_info[i] = Some(info);
+            unhealthy.extend(info.unhealthy.iter().copied());
             fault_start[i] = Some(t);
             delivered_at_last_fault = res.delivered;
             if healthy_errors_base.is_none() {
@@ -384,9 +381,7 @@ fn run_impl(spec: &RunSpec) -> RunResult {
                 if now >= t && drivers[k].pending.is_none() {
                     let f: Frame = s.frame();
                     let mut cs = pair(&mut sim, net.ctrls[k]);
-                    if drivers[k].tx_request(f, now, &mut cs) {
-                        next_req[k] = None;
-                    } else if drivers[k].tx.is_none() {
+                    if drivers[k].tx_request(f, now, &mut cs) || drivers[k].tx.is_none() {
                         next_req[k] = None;
                     }
                 }
@@ -507,7 +502,7 @@ fn inject(sim: &mut Sim, net: &Network, drivers: &[Driver], f: &FaultSpec, t: u6
     };
     let role = |node: usize, c: usize| if drivers[node].tx == Some(c) { "tx" } else { "non-tx" };
     let mut nets: Vec<NetId> = Vec::new();
-    let mut unhealthy = None;
+    let mut unhealthy = Vec::new();
     match f.target {
         FaultTarget::Link { node, ctrl, dir } => {
             let c = resolve(node, ctrl);
@@ -516,7 +511,7 @@ fn inject(sim: &mut Sim, net: &Network, drivers: &[Driver], f: &FaultSpec, t: u6
                 Dir::Up => hp.uplinks[node].output,
                 Dir::Down => hp.downlinks[node].output,
             });
-            unhealthy = Some((node, c));
+            unhealthy.push((node, c));
             *desc = format!("node {node} ctrl {} ({}) {:?}link {:?}", "AB".as_bytes()[c] as char, role(node, c), dir, f.kind);
         }
         FaultTarget::Sublink { interlink, from_hub } => {
@@ -532,6 +527,7 @@ fn inject(sim: &mut Sim, net: &Network, drivers: &[Driver], f: &FaultSpec, t: u6
             let hp = &net.links.hubs[hub];
             nets.extend(hp.downlinks.iter().map(|l| l.output));
             nets.extend(hp.sub_out.iter().map(|l| l.output));
+            unhealthy.extend((0..net.ctrls.len()).map(|k| (k, hub)));
             *desc = format!("hub {hub} output {:?}", f.kind);
         }
         FaultTarget::Crash { node, ctrl } => {
@@ -539,7 +535,7 @@ fn inject(sim: &mut Sim, net: &Network, drivers: &[Driver], f: &FaultSpec, t: u6
             *desc = format!("node {node} ctrl {} ({}) crash", "AB".as_bytes()[c] as char, role(node, c));
             // the crash is immediate (at the slice boundary)
             sim.get_mut(net.ctrls[node][c]).crash();
-            return Active { unhealthy: Some((node, c)) };
+            return Active { unhealthy: vec![(node, c)] };
         }
     }
     let end = f.duration_ps.map(|d| t + d);

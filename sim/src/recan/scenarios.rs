@@ -6,7 +6,9 @@
 //! of the named field of a Blinker frame, or of any frame for the Receiver;
 //! "any" = the data field; no oscillator offsets). Other seeds randomise the
 //! number of frames before the fault, the bit within the field (and the field
-//! for "any"), whose frame it is, the oscillator offsets (±100 ppm), the
+//! for "any", leaving out the overload region: last two EOF bits, first two
+//! intermission bits), whose frame it is (always the Blinker's own frame when
+//! its tx controller is faulty and the row names a field), the oscillator offsets (±100 ppm), the
 //! clock phases, the applications' start time and which controller of each
 //! node starts as tx controller.
 
@@ -127,12 +129,27 @@ pub fn published_scenario(n: usize, seed: u64) -> (RunSpec, Expected) {
             StartField::Eof => 7,
             StartField::Inter => 3,
         };
-        let of = match rng.gen_range(0..3) {
-            0 => None,
-            1 => Some(COUNTER),
-            _ => Some(BLINKER),
+        // "any" leaves out the overload region (the last two EOF bits and the first
+        // two intermission bits): a dominant bit there (or a transmitter's error flag
+        // one bit after a fault on its downlink) is an overload condition for the
+        // receivers and not an error. That is the inconsistency scenario of §6, not
+        // a published row.
+        let bits = match (field, f) {
+            (None, StartField::Eof) => 0..5,
+            (None, StartField::Inter) => 2..3,
+            _ => 0..len,
         };
-        (rng.gen_range(2..5), rng.gen_range(0..len), f, of)
+        // a field of "its" frame: the faulty transmitter's own frame
+        let of = if node == BLINKER && role == CtrlRef::Tx && field.is_some() {
+            Some(BLINKER)
+        } else {
+            match rng.gen_range(0..3) {
+                0 => None,
+                1 => Some(COUNTER),
+                _ => Some(BLINKER),
+            }
+        };
+        (rng.gen_range(2..5), rng.gen_range(bits), f, of)
     };
     if !canonical {
         for h in &mut net.hubs {

@@ -336,12 +336,12 @@ impl NetworkSpec {
             return Err(format!("nodes: {} nodes but hub.ports = {}", self.nodes.len(), self.hub.ports));
         }
         for (i, h) in self.hubs.iter().enumerate() {
-            if !(h.ppm.abs() < 10_000.0) {
+            if !(h.ppm.is_finite() && h.ppm.abs() < 10_000.0) {
                 return Err(format!("hubs[{i}].ppm = {} out of range (|ppm| < 10000)", h.ppm));
             }
         }
         let d = &self.driver;
-        if !(d.k_bits > 0.0) || !(d.app_delay_bits >= 0.0) || !(d.irq_latency_ns >= 0.0) {
+        if !(d.k_bits.is_finite() && d.k_bits > 0.0 && d.app_delay_bits.is_finite() && d.app_delay_bits >= 0.0 && d.irq_latency_ns.is_finite() && d.irq_latency_ns >= 0.0) {
             return Err("driver: k_bits must be > 0, app_delay_bits and irq_latency_ns >= 0".into());
         }
         if d.max_inconsists == 0 || d.warning_limit == 0 || d.warning_limit > 255 {
@@ -380,7 +380,7 @@ impl NetworkSpec {
                 if !(1..=2).contains(&cs.sync_depth) {
                     return Err(format!("{who}: sync_depth must be 1 or 2"));
                 }
-                if !(cs.ppm.abs() < 10_000.0) {
+                if !(cs.ppm.is_finite() && cs.ppm.abs() < 10_000.0) {
                     return Err(format!("{who}: ppm {} out of range (|ppm| < 10000)", cs.ppm));
                 }
                 let bt = cs.bit_time_ps() as f64;
