@@ -156,7 +156,7 @@ struct CampaignArgs {
     #[arg(long, default_value_t = canstar_sim::campaign::classes::DEFAULT_DOUBLE_DELAY_BITS)]
     double_delay_bits: u32,
     /// Run one run of this class only and print its details (with --run-seed or --rep).
-    #[arg(long)]
+    #[arg(long, conflicts_with_all = ["classes", "shard", "json"])]
     class: Option<String>,
     /// With --class: the run seed (as printed for a failure).
     #[arg(long, conflicts_with = "rep")]
