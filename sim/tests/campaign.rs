@@ -258,7 +258,7 @@ fn small_fixed_seed_campaign() {
     let by = |c: &'static str| r.runs.iter().filter(move |o| o.class == c);
     for o in &r.runs {
         assert!(o.pass, "{} seed {} failed: {:?}", o.class, o.seed, o.failures);
-        assert!(o.delivered >= 10, "{} delivered {}", o.class, o.delivered);
+        assert!(o.delivered >= 5, "{} delivered {}", o.class, o.delivered);
         assert!(o.worst_healthy < 96);
     }
     // pub18: Receiver tx uplink SAD: the hub isolates it, nobody is quarantined
