@@ -45,6 +45,7 @@
 pub mod bench;
 pub mod golden;
 pub mod bus;
+pub mod campaign;
 pub mod conformance;
 pub mod fuzz;
 pub mod lockstep;
