@@ -209,7 +209,7 @@ fn two_hubs_clock_tolerance_limit() {
 
 #[test]
 #[ignore = "diagnostic: shows that sync depth 2 fails at the tolerance limit with two hubs"]
-fn probe_tolerance() {
+fn diag_probe_tolerance() {
     let tol = tolerance_ppm();
     eprintln!("tolerance {tol} ppm");
     for depth in [2usize, 1] {

@@ -4,7 +4,7 @@ use canstar_sim::recan::{published_scenario, run};
 
 #[test]
 #[ignore = "diagnostic: prints CPU time and simulated cycles per run"]
-fn cost_of_published_scenario_runs() {
+fn diag_cost_of_published_scenario_runs() {
     let mut total = 0.0;
     let mut cycles = 0u64;
     for n in 1..=21 {

@@ -38,17 +38,17 @@ fn randomised_variants_of_some_scenarios_keep_their_outcome() {
 
 #[test]
 #[ignore = "long: every scenario with several seeds"]
-fn randomised_variants_of_every_scenario() {
+fn long_randomised_variants_of_every_scenario() {
     let env = |k: &str, d: u64| std::env::var(k).ok().and_then(|s| s.parse().ok()).unwrap_or(d);
     let (first, seeds) = (env("RECAN_SEED0", 1), env("RECAN_SEEDS", 3));
     let bad = sweep(&(1..=21).collect::<Vec<_>>(), first..=first + seeds - 1);
     assert!(bad.is_empty(), "{bad:#?}");
 }
 
-/// `RECAN_ONE=n,seed cargo test --release --test recan_random -- --ignored one --nocapture`
+/// `RECAN_ONE=n,seed cargo test --release --test recan_random -- --ignored diag_one_variant --nocapture`
 #[test]
 #[ignore = "diagnostic: one scenario variant with its driver trace"]
-fn one() {
+fn diag_one_variant() {
     let v: Vec<u64> = std::env::var("RECAN_ONE").unwrap_or("1,0".into()).split(',').map(|x| x.parse().unwrap()).collect();
     let (mut spec, exp) = published_scenario(v[0] as usize, v[1]);
     spec.trace = true;
