@@ -216,9 +216,13 @@ pub const FI_RTR: u8 = 0x40;
 pub const CDR_PELICAN: u8 = 0x80;
 
 /// The register block (see the module documentation).
-/// The BTR0/BTR1 values a hardware reset loads (generation-time constants).
+/// The BTR0/BTR1 values a hardware reset loads (generation-time constants),
+/// output while `en` (the reset) is high. The input matters in Verilog: a
+/// combinational block that reads only constants has an empty sensitivity
+/// list and would never drive its outputs in an event-driven simulator.
 #[derive(LogicBlock)]
 pub struct BtrReset {
+    pub en: Signal<In, Bit>,
     pub btr0: Signal<Out, Bits<8>>,
     pub btr1: Signal<Out, Bits<8>>,
     v0: Constant<Bits<8>>,
@@ -227,7 +231,7 @@ pub struct BtrReset {
 
 impl BtrReset {
     pub fn new(btr0: u8, btr1: u8) -> Self {
-        Self { btr0: Default::default(), btr1: Default::default(), v0: Constant::new((btr0 as u64).into()), v1: Constant::new((btr1 as u64).into()) }
+        Self { en: Default::default(), btr0: Default::default(), btr1: Default::default(), v0: Constant::new((btr0 as u64).into()), v1: Constant::new((btr1 as u64).into()) }
     }
 }
 
@@ -240,8 +244,12 @@ impl Default for BtrReset {
 impl Logic for BtrReset {
     #[hdl_gen]
     fn update(&mut self) {
-        self.btr0.next = self.v0.val();
-        self.btr1.next = self.v1.val();
+        self.btr0.next = 0.into();
+        self.btr1.next = 0.into();
+        if self.en.val() {
+            self.btr0.next = self.v0.val();
+            self.btr1.next = self.v1.val();
+        }
     }
 }
 
@@ -1426,6 +1434,7 @@ impl Logic for Sja1000 {
         // ------------------------------------------------------------------
         // Core.
         self.core.clock.next = self.clock.val();
+        self.btr_reset.en.next = self.rst.val();
         self.core.reset.next = self.rst.val() | (!self.opm.q.val() & !self.boff.q.val());
         self.core.rx.next = self.rx.val();
         self.core.listen_only.next = self.lom.q.val();

@@ -257,3 +257,27 @@ fn sja_error_counters_in_reset_mode() {
     assert_eq!((n.rd(0, REG_TXERR), n.rd(0, REG_RXERR)), (0, 0));
     assert_eq!(n.rd(0, REG_SR), 0x3C, "reset value");
 }
+
+#[test]
+fn sja_power_up_bit_timing_from_generation() {
+    // BTR0/BTR1 after a hardware reset are the generation-time values
+    // (`[bit_timing]` of the generator config); two controllers started
+    // without any bus-timing write exchange a frame at that rate.
+    let mut n = Net::with_reset_timing(2, BTR0, BTR1);
+    for i in 0..2 {
+        assert_eq!(n.rd(i, REG_BTR0), BTR0);
+        assert_eq!(n.rd(i, REG_BTR1), BTR1);
+        n.drv[i].auto = true;
+        n.set_reset_mode(i);
+        n.start(i);
+    }
+    n.run(13 * BIT);
+    let f = Frame::std(0x123, &[0xA5, 0x5A]);
+    n.xmit(0, &f);
+    n.run_until(400 * BIT, |n| !n.drv[0].tx_busy);
+    n.run(20 * BIT);
+    assert_eq!(n.drv[1].rx, vec![f]);
+    // the default model (no generation-time timing) powers up with zeros
+    let mut z = Net::new(1);
+    assert_eq!((z.rd(0, REG_BTR0), z.rd(0, REG_BTR1)), (0, 0));
+}

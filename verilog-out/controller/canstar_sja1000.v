@@ -123,6 +123,7 @@ module canstar_sja1000(clock,rst,wb_cyc,wb_stb,wb_we,wb_adr,wb_dat_w,wb_dat_r,wb
     reg  [7:0] btr1$d;
     wire  [7:0] btr1$q;
     reg  btr1$clock;
+    reg  btr_reset$en;
     wire  [7:0] btr_reset$btr0;
     wire  [7:0] btr_reset$btr1;
     reg  [7:0] ocr$d;
@@ -488,6 +489,7 @@ module canstar_sja1000(clock,rst,wb_cyc,wb_stb,wb_we,wb_adr,wb_dat_w,wb_dat_r,wb
         .clock(btr1$clock)
     );
     canstar_sja1000$btr_reset btr_reset(
+        .en(btr_reset$en),
         .btr0(btr_reset$btr0),
         .btr1(btr_reset$btr1)
     );
@@ -1718,6 +1720,7 @@ module canstar_sja1000(clock,rst,wb_cyc,wb_stb,wb_we,wb_adr,wb_dat_w,wb_dat_r,wb
             ram$write_enable = 1'b0;
         end
         core$clock = clock;
+        btr_reset$en = rst;
         core$reset = rst | (~opm$q & ~boff$q);
         core$rx = rx;
         core$listen_only = lom$q;
@@ -2051,9 +2054,10 @@ module canstar_sja1000$btr1(d,q,clock);
 endmodule // canstar_sja1000$btr1
 
 
-module canstar_sja1000$btr_reset(btr0,btr1);
+module canstar_sja1000$btr_reset(en,btr0,btr1);
     
     // Module arguments
+    input wire  en;
     output reg  [7:0] btr0;
     output reg  [7:0] btr1;
     
@@ -2063,8 +2067,12 @@ module canstar_sja1000$btr_reset(btr0,btr1);
     
     // Update code
     always @(*) begin
-        btr0 = v0;
-        btr1 = v1;
+        btr0 = 32'h0;
+        btr1 = 32'h0;
+        if (en) begin
+            btr0 = v0;
+            btr1 = v1;
+        end
     end
     
 endmodule // canstar_sja1000$btr_reset

@@ -68,9 +68,14 @@ pub struct Net {
 
 impl Net {
     pub fn new(n: usize) -> Net {
+        Self::with_reset_timing(n, 0, 0)
+    }
+
+    /// `n` controllers whose hardware reset loads `btr0`/`btr1`.
+    pub fn with_reset_timing(n: usize, btr0: u8, btr1: u8) -> Net {
         let mut nodes = Vec::new();
         for _ in 0..n {
-            let mut u = Box::new(Sja1000::new());
+            let mut u = Box::new(Sja1000::with_reset_timing(btr0, btr1));
             drive::init(&mut *u);
             u.rx.next = true;
             u.rst.next = true;
