@@ -3,8 +3,9 @@
 //! - iCE40-HX8K (CB132, the Alchitry Cu's package): Yosys `synth_ice40`, then `nextpnr-ice40` for the
 //!   placed logic-cell count and the maximum clock frequency;
 //! - Xilinx Spartan-3 (the XSA-3S1000's family; Yosys `synth_xilinx -family
-//!   xc3s`, marked experimental by Yosys): LUT and flip-flop counts, no place
-//!   and route (there is no open Spartan-3 flow).
+//!   xc3s -flatten`, marked experimental by Yosys; flattened like `synth_ice40`,
+//!   so that constants propagate across module boundaries): LUT and flip-flop
+//!   counts, no place and route (there is no open Spartan-3 flow).
 
 use anyhow::{bail, Context, Result};
 use std::process::Command;
@@ -140,7 +141,7 @@ pub fn measure(design: &str, verilog: &str, top: &str, clock_mhz: f64, pnr_timeo
     let ice = std::fs::read_to_string(&ice_stat)?;
     let xil_stat = wd.path().join("xc3s.stat");
     yosys(&format!(
-        "read_verilog {v}; synth_xilinx -family xc3s -top {top}; tee -q -o {s} stat",
+        "read_verilog {v}; synth_xilinx -family xc3s -flatten -top {top}; tee -q -o {s} stat",
         v = v.display(),
         s = xil_stat.display()
     ))?;
