@@ -175,11 +175,17 @@ pub fn vector_wrapper(inner: &str, inner_top: &str, name: &str) -> (String, Vec<
         }
         list.push((base, total, out));
     }
+    (wrapper_module(name, inner_top, &list, &decl, &conns), list)
+}
+
+/// A module `name` with ports `list`, declarations `decl`, and one instance
+/// `core` of `inner_top` connected by `conns`.
+fn wrapper_module(name: &str, inner_top: &str, list: &[(String, usize, bool)], decl: &[String], conns: &[String]) -> String {
     let names: Vec<&str> = list.iter().map(|p| p.0.as_str()).collect();
     let mut v = format!("module {name}({});\n", names.join(", "));
     v += &decl.join("\n");
     v += &format!("\n    {inner_top} core (\n{}\n    );\nendmodule // {name}\n", conns.join(",\n"));
-    (v, list)
+    v
 }
 
 /// A board top around `inner_top` with the same ports, except that the
@@ -194,7 +200,7 @@ pub fn board_top(inner: &str, inner_top: &str, reset: &str, name: &str) -> (Stri
         let range = if *bits > 1 { format!("[{}:0] ", bits - 1) } else { String::new() };
         let dir = if *out { "output" } else { "input" };
         if p == reset {
-            decl.push(format!("    input wire rst_n;"));
+            decl.push("    input wire rst_n;".to_string());
             conns.push(format!("        .{p}(~rst_n)"));
             list.push(("rst_n".to_string(), 1, false));
         } else {
@@ -203,11 +209,7 @@ pub fn board_top(inner: &str, inner_top: &str, reset: &str, name: &str) -> (Stri
             list.push((p.clone(), *bits, *out));
         }
     }
-    let names: Vec<&str> = list.iter().map(|p| p.0.as_str()).collect();
-    let mut v = format!("module {name}({});\n", names.join(", "));
-    v += &decl.join("\n");
-    v += &format!("\n    {inner_top} core (\n{}\n    );\nendmodule // {name}\n", conns.join(",\n"));
-    (v, list)
+    (wrapper_module(name, inner_top, &list, &decl, &conns), list)
 }
 
 #[cfg(test)]
