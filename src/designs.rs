@@ -1,13 +1,11 @@
-//! The registry of generatable designs and benchmarks.
+//! The registry of generatable designs: every design `canstar generate` renders,
+//! with its Verilog file, board top and pin files.
 use crate::config::Config;
 use crate::boards::{pin_file, Board, DesignPins, Format, Pinout, BUILTIN};
-use crate::generate::{block, Artifact, Root};
+use crate::verilog::{block, board_top, header, vector_wrapper, Artifact, Root};
 use rust_hdl::prelude::Block;
 use anyhow::Result;
 use canstar_hdl::{btl, crc15, stuff, sync};
-use canstar_sim::bench::{bench as run_bench, build_bus, BenchConfig};
-use std::path::Path;
-use canstar_sim::HdlComponent;
 
 /// The shared RTL blocks as standalone modules (`verilog-out/blocks/`).
 pub fn blocks(config: &Config) -> Result<Vec<Artifact>> {
@@ -52,7 +50,7 @@ pub fn sja1000(config: &Config, board: Option<&str>) -> Result<Vec<Artifact>> {
     let name = "canstar_sja1000";
     let inner = canstar_hdl::flow::rename_top(&canstar_hdl::flow::emit(&uut), name);
     let board_name = format!("{name}_board");
-    let (top, ports) = crate::generate::board_top(&inner, name, "rst", &board_name);
+    let (top, ports) = board_top(&inner, name, "rst", &board_name);
     let t = &config.bit_timing;
     let desc = format!(
         "SJA1000 (PeliCAN) compatible CAN controller, Wishbone B4 classic slave, 8-bit (see controller/src/sja1000.rs); \
@@ -64,7 +62,7 @@ pub fn sja1000(config: &Config, board: Option<&str>) -> Result<Vec<Artifact>> {
     let mut out = vec![Artifact {
         root: Root::Verilog,
         path: format!("controller/{name}.v").into(),
-        contents: crate::generate::header_text(name, &desc) + &inner + "\n" + &top,
+        contents: header(name, &desc) + &inner + "\n" + &top,
     }];
     let mut pins = DesignPins::default();
     for (p, bits, _) in &ports {
@@ -120,7 +118,7 @@ pub fn hub(config: &Config, board: Option<&str>) -> Result<Vec<Artifact>> {
         h.connect_all();
         let core = format!("{name}_core");
         let inner = canstar_hdl::flow::rename_top(&canstar_hdl::flow::emit(&h), &core);
-        let (wrapper, ports) = crate::generate::vector_wrapper(&inner, &core, name);
+        let (wrapper, ports) = vector_wrapper(&inner, &core, name);
         let desc = format!(
             "{what}, N = {} ports, M = {} interlinks, {} Hz clock, coupling latency {} clocks",
             cfg.ports,
@@ -131,7 +129,7 @@ pub fn hub(config: &Config, board: Option<&str>) -> Result<Vec<Artifact>> {
         out.push(Artifact {
             root: Root::Verilog,
             path: format!("hub/{name}.v").into(),
-            contents: crate::generate::header_text(name, &desc) + &inner + "\n" + &wrapper,
+            contents: header(name, &desc) + &inner + "\n" + &wrapper,
         });
         let mut pins = DesignPins::default();
         for (p, bits, _) in &ports {
@@ -172,69 +170,3 @@ pub fn report_designs(config: &Config) -> Result<Vec<(String, String, String)>> 
     Ok(v)
 }
 
-/// A bit-timing instance as a simulation component: 40 MHz clock, BRP 4,
-/// T10/6/4 (1 Mbit/s), held in reset for its first two cycles. Its RX is the
-/// bus; the benchmark's pattern driver puts pseudo-random bits on the bus.
-fn btl_node(i: usize, clock: canstar_sim::ClockSpec) -> HdlComponent<btl::BitTiming> {
-    let cfg = btl::BtlConfig::from_fields(4, 1, 4, 4, false);
-    let mut b = btl::BitTiming::default();
-    b.set_config(&cfg);
-    let mut n = 0u32;
-    HdlComponent::new(
-        &format!("btl{i}"),
-        clock,
-        b,
-        1,
-        0,
-        move |b, v| {
-            b.reset.next = n < 2;
-            n = n.saturating_add(1);
-            b.rx.next = v[0];
-        },
-        |_, _| {},
-    )
-}
-
-/// `canstar bench`: simulated clock cycles per second of bit-timing
-/// instances, alone and sharing a bus (nodes spread over +-100 ppm).
-pub fn bench(cycles: u64, nodes: &[usize]) -> Result<()> {
-    anyhow::ensure!(cycles > 0, "--cycles must be positive");
-    anyhow::ensure!(nodes.iter().all(|&n| n >= 1), "node counts must be at least 1");
-    println!("canstar bench: bit timing logic (canstar_hdl::btl::BitTiming), 40 MHz clocks, 1 Mbit/s, direct-drive kernel");
-    let mut first = true;
-    for &n in nodes {
-        let cfg = BenchConfig {
-            single_cycles: if first { cycles } else { 1 },
-            bus_nodes: n,
-            bus_cycles_per_node: (cycles / n as u64).max(1),
-            ..BenchConfig::default()
-        };
-        let r = run_bench(&cfg, btl_node);
-        if first {
-            println!(
-                "1 instance alone:    {:>12.0} cycles/s ({} cycles in {:.2} s)",
-                r.single_cycles_per_sec, r.single_cycles, r.single_secs
-            );
-            first = false;
-        }
-        println!(
-            "{n:>2} instances on a bus: {:>12.0} cycles/s in total, {:>12.0} cycles/s per instance ({} cycles in {:.2} s)",
-            r.bus_cycles_per_sec, r.bus_node_cycles_per_sec, r.bus_cycles, r.bus_secs
-        );
-    }
-    Ok(())
-}
-
-/// Simulate `nodes` bit-timing instances on a bus for `cycles` clock cycles
-/// per node and write a VCD of every instance's signals and every bus wire
-/// (or only the signals matching `signals`, see `canstar_sim::vcd`).
-pub fn bench_vcd(path: &Path, nodes: usize, cycles: u64, signals: Option<&[String]>, seed: u64) -> Result<()> {
-    anyhow::ensure!(nodes >= 1, "node count must be at least 1");
-    let cfg = BenchConfig { seed, ..BenchConfig::default() };
-    let mut sim = build_bus(&cfg, nodes, &mut btl_node);
-    let filter: Option<Vec<&str>> = signals.map(|v| v.iter().map(|s| s.as_str()).collect());
-    sim.start_vcd_file(path, filter.as_deref())?;
-    sim.run_until(cfg.period_ps * cycles);
-    sim.finish_vcd()?;
-    Ok(())
-}

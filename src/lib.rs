@@ -1,9 +1,16 @@
-//! The `canstar` command-line tool's library: configuration, design
-//! registry and file generation. The RTL itself lives in the `canstar-hdl`,
-//! `canstar-controller` and `canstar-hub` crates, the simulator in `canstar-sim`.
+//! The `canstar` command-line tool's library: configuration, boards, the design
+//! registry, Verilog text helpers, file generation, the resource report and the
+//! kernel benchmark. The RTL lives in `canstar-hdl`, `canstar-controller` and
+//! `canstar-hub`; the simulation in `canstar-sim` (kernel), `canstar-verify`
+//! (controller verification) and `canstar-recan` (ReCANcentrate system).
+//!
+//! Dependencies point one way: `generate` → `designs` → `verilog`, `boards`,
+//! `config`; `report` → `verilog`.
 
+pub mod bench;
 pub mod boards;
 pub mod config;
 pub mod designs;
 pub mod generate;
 pub mod report;
+pub mod verilog;

@@ -59,30 +59,6 @@ fn yosys(script: &str) -> Result<String> {
     Ok(String::from_utf8_lossy(&out.stdout).into_owned())
 }
 
-/// Top-level ports of a rust-hdl module: (name, bits, is_output), parsed
-/// from its declarations (`input wire [7:0] x;`, `output reg y;`).
-pub fn parse_ports(verilog: &str, top: &str) -> Vec<(String, usize, bool)> {
-    let start = verilog.find(&format!("module {top}(")).unwrap_or(0);
-    let body = &verilog[start..];
-    let body = &body[..body.find("endmodule").unwrap_or(body.len())];
-    let mut ports = vec![];
-    for l in body.lines() {
-        let t = l.trim();
-        let out = t.starts_with("output ");
-        if !(out || t.starts_with("input ")) || !t.ends_with(';') {
-            continue;
-        }
-        let decl = t.trim_end_matches(';');
-        let name = decl.split_whitespace().last().unwrap_or("").to_string();
-        let bits = match (decl.find('['), decl.find(':')) {
-            (Some(a), Some(b)) if b > a => decl[a + 1..b].trim().parse::<usize>().map(|h| h + 1).unwrap_or(1),
-            _ => 1,
-        };
-        ports.push((name, bits, out));
-    }
-    ports
-}
-
 /// A measurement wrapper for designs with more ports than the package has
 /// pins: every input of `top` (but `clock`) comes from one long shift
 /// register fed by pin `sin`, every output is registered and XOR-reduced to
@@ -90,7 +66,7 @@ pub fn parse_ports(verilog: &str, top: &str) -> Vec<(String, usize, bool)> {
 /// with three I/Os. The wrapper's own flip-flops (one per port bit) are
 /// included in the placed figures.
 pub fn pnr_wrapper(verilog: &str, top: &str) -> (String, String) {
-    let ports = parse_ports(verilog, top);
+    let ports = crate::verilog::parse_ports(verilog, top);
     let inb: usize = ports.iter().filter(|p| !p.2 && p.0 != "clock").map(|p| p.1).sum();
     let outb: usize = ports.iter().filter(|p| p.2).map(|p| p.1).sum();
     let name = format!("{top}_pnr");
@@ -259,7 +235,7 @@ mod wrapper_tests {
     #[test]
     fn wrapper_connects_every_port_bit() {
         let v = "module top(clock,a,b,y);\n    input wire  clock;\n    input wire  [3:0] a;\n    input wire  b;\n    output reg  [1:0] y;\nendmodule // top\n";
-        assert_eq!(parse_ports(v, "top"), vec![("clock".into(), 1, false), ("a".into(), 4, false), ("b".into(), 1, false), ("y".into(), 2, true)]);
+        assert_eq!(crate::verilog::parse_ports(v, "top"), vec![("clock".into(), 1, false), ("a".into(), 4, false), ("b".into(), 1, false), ("y".into(), 2, true)]);
         let (w, name) = pnr_wrapper(v, "top");
         assert_eq!(name, "top_pnr");
         assert!(w.contains("reg [4:0] chain") && w.contains(".a(chain[3:0])") && w.contains(".b(chain[4:4])") && w.contains(".y(outs[1:0])"), "{w}");

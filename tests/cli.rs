@@ -100,7 +100,7 @@ fn bench_vcd_dumps_all_or_a_selection_deterministically() {
 #[test]
 fn sim_runs_an_example_and_rejects_a_malformed_scenario() {
     let d = tempfile::tempdir().unwrap();
-    let ex = Path::new(env!("CARGO_MANIFEST_DIR")).join("sim/examples/arbitration.toml");
+    let ex = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/arbitration.toml");
     let (ok, out, err) = canstar(&["sim", ex.to_str().unwrap(), "--log", "a.log", "--trace", "a.trace", "--vcd", "a.vcd"], d.path());
     assert!(ok, "{out}{err}");
     let log = std::fs::read_to_string(d.path().join("a.log")).unwrap();

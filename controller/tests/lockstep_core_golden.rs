@@ -8,11 +8,9 @@
 //! sample strobe, TEC and REC at every sample point (REC exact up to 127),
 //! and the delivered frames.
 //!
-//! The golden model's source is included by path (canstar-sim depends on
-//! this crate).
+//! The golden model is the `canstar-golden` crate (it depends on no RTL crate).
 #![allow(dead_code, unused_imports, clippy::needless_range_loop, clippy::enum_variant_names)]
-#[path = "../../sim/src/golden/mod.rs"]
-mod golden;
+use canstar_golden as golden;
 mod common;
 use canstar_controller::core::{CanCore, SYNC_DEPTH};
 use canstar_controller::frame::Frame;

@@ -1,5 +1,5 @@
 //! Bit-level lock-step of the RTL frame state machine (`CanFsm`) against the
-//! golden behavioural model of canstar-sim (an independent implementation of
+//! golden behavioural model (canstar-golden) (an independent implementation of
 //! can-protocol.md): 2..4 RTL nodes on a wired-AND bus, each with a golden
 //! twin fed the same sampled levels; random traffic and random receive-path
 //! disturbances (up to error-passive and bus-off). Compared at every bit: the
@@ -7,12 +7,9 @@
 //! event tokens, TEC, REC (exact up to 127, then only "> 127", §19) and the
 //! delivered frames. The golden request follows the RTL's `tx_rqst` (§19.2).
 //!
-//! canstar-sim depends on this crate, so the golden model's source is
-//! included by path instead of a (cyclic) dev-dependency; the natural home of
-//! this test is sim/tests once the conformance suite exists there.
+//! The golden model is the `canstar-golden` crate (it depends on no RTL crate).
 #![allow(dead_code, unused_imports, clippy::needless_range_loop, clippy::enum_variant_names)]
-#[path = "../../sim/src/golden/mod.rs"]
-mod golden;
+use canstar_golden as golden;
 mod common;
 use canstar_controller::frame::Frame;
 use canstar_controller::fsm::*;

@@ -21,17 +21,15 @@
 //! never depends on processing order.
 //!
 //! Builders: [`bus::Bus`] (wired-AND bus with per-node delays and
-//! [`Interference`]), [`star::HubPorts`] / [`star::TwoHubs`] (star and
-//! two-hub networks of [`star::Link`]s with [`LinkFault`]s).
+//! receive-path interference), [`star::HubPorts`] / [`star::TwoHubs`] (star and
+//! two-hub networks of [`star::Link`]s with link faults).
 //!
 //! VCD output ([`vcd`]): [`Sim::start_vcd_file`] / [`Sim::finish_vcd`].
+//! Benchmark of the kernel itself: [`bench::bench`].
 //!
-//! Verification: [`lockstep::LockstepNode`] runs an RTL node in lock step with
-//! an independent golden model (golden bit timing + [`golden::GoldenNode`],
-//! can-protocol.md §19); [`fuzz`] runs randomised multi-node lock-step
-//! sessions with receive-path disturbances and network properties
-//! (`canstar fuzz`).
-//! Benchmark: [`bench::bench`].
+//! This crate knows no CAN controller and no hub: the controller as a node,
+//! lock-step, fuzzing and the conformance suite are `canstar-verify`; the hub
+//! RTL as a component and the ReCANcentrate system are `canstar-recan`.
 //!
 //! ```
 //! use canstar_sim::{Sim, ClockSpec, bus::{Bus, NodeDelays}, star::AndHub};
@@ -43,17 +41,9 @@
 //! ```
 
 pub mod bench;
-pub mod golden;
 pub mod bus;
-pub mod campaign;
-pub mod conformance;
-pub mod fuzz;
-pub mod lockstep;
 mod kernel;
 pub mod net;
-pub mod node;
-pub mod recan;
-pub mod scenario;
 pub mod star;
 pub mod vcd;
 

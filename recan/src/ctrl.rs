@@ -1,0 +1,218 @@
+//! [`Ctrl`]: one CAN controller of a ReCANcentrate node as a kernel component:
+//! the RTL [`CanCore`] plus the native host interface the media-management
+//! driver uses (request a frame, withdraw it, deactivate = hold in reset,
+//! crash = stop), and an event queue the driver drains between steps.
+//!
+//! Bind it with one input (its downlink) and one output (its uplink).
+
+use canstar_sim::{ClockSpec, Component, Io};
+use crate::spec::CtrlSpec;
+use canstar_controller::core::CanCore;
+use canstar_controller::frame::Frame;
+use canstar_controller::fsm::Field;
+use canstar_hdl::drive;
+use rust_hdl::prelude::*;
+
+/// Clocks the controller is held in reset after power-up.
+pub const RESET_CYCLES: u32 = 4;
+
+/// What a controller reported to its host.
+#[derive(Clone, Debug, PartialEq)]
+pub enum CtrlEvent {
+    /// The requested frame was sent.
+    TxDone(Frame),
+    /// A frame was received.
+    Rx(Frame),
+    /// An error was detected (while transmitting or not).
+    Error { tx: bool },
+}
+
+/// A controller with its host interface. See the module documentation.
+pub struct Ctrl {
+    name: String,
+    clock: ClockSpec,
+    /// The controller RTL.
+    pub core: CanCore,
+    spec: CtrlSpec,
+    reset_left: u32,
+    request: Option<Frame>,
+    /// The last frame requested (reported with a `tx_done` that follows a withdraw).
+    last: Option<Frame>,
+    gap: bool,
+    held: bool,
+    crashed: bool,
+    events: Vec<(u64, CtrlEvent)>,
+    cycles: u64,
+    /// Error events seen so far (also while inactive: none are produced then).
+    pub errors: u64,
+}
+
+impl Ctrl {
+    pub fn new(name: &str, spec: &CtrlSpec, clock: ClockSpec) -> Self {
+        let mut core = CanCore::with_sync_depth(spec.sync_depth);
+        drive::init(&mut core);
+        let mut c = Ctrl {
+            name: name.to_string(),
+            clock,
+            core,
+            spec: spec.clone(),
+            reset_left: RESET_CYCLES,
+            request: None,
+            last: None,
+            gap: false,
+            held: false,
+            crashed: false,
+            events: Vec::new(),
+            cycles: 0,
+            errors: 0,
+        };
+        c.apply_config();
+        c
+    }
+
+    fn apply_config(&mut self) {
+        let s = &self.spec;
+        let f = |v: u32| v.saturating_sub(1) as u64;
+        self.core.brp.next = f(s.brp).into();
+        self.core.prop.next = f(s.prop).into();
+        self.core.ph1.next = f(s.ph1).into();
+        self.core.sjw.next = f(s.sjw).into();
+        self.core.triple.next = false;
+        self.core.listen_only.next = false;
+        self.core.self_test.next = false;
+        self.core.single_shot.next = false;
+        self.core.host_recovery.next = false;
+    }
+
+    /// Request `f` (replaces a pending request; the controller retries until it is sent).
+    pub fn request(&mut self, f: Frame) {
+        self.last = Some(f.clone());
+        self.request = Some(f);
+    }
+    /// Withdraw the pending request (an attempt in progress finishes).
+    pub fn withdraw(&mut self) {
+        self.request = None;
+    }
+    /// The frame requested and not yet reported sent.
+    pub fn pending(&self) -> Option<&Frame> {
+        self.request.as_ref()
+    }
+    /// Deactivate: reset the controller and hold it in reset (uplink recessive).
+    pub fn deactivate(&mut self) {
+        self.held = true;
+        self.request = None;
+    }
+    /// Crash: the controller stops; its uplink is recessive; it reports nothing.
+    pub fn crash(&mut self) {
+        self.crashed = true;
+        self.request = None;
+    }
+    pub fn is_held(&self) -> bool {
+        self.held
+    }
+    pub fn is_crashed(&self) -> bool {
+        self.crashed
+    }
+    /// Take the events reported since the last call.
+    pub fn take_events(&mut self) -> Vec<(u64, CtrlEvent)> {
+        std::mem::take(&mut self.events)
+    }
+    pub fn has_events(&self) -> bool {
+        !self.events.is_empty()
+    }
+    pub fn tec(&self) -> u32 {
+        self.core.tec_value()
+    }
+    pub fn rec(&self) -> u32 {
+        self.core.rec_value()
+    }
+    /// 0 error-active, 1 error-passive, 2 bus-off.
+    pub fn state(&self) -> u32 {
+        self.core.state_value()
+    }
+    /// FIELD of the bit in progress (between sample points: of the next bit).
+    pub fn field(&self) -> Field {
+        self.core.field()
+    }
+    /// POSITION of the bit in progress.
+    pub fn pos(&self) -> u32 {
+        self.core.pos()
+    }
+    /// Is the controller the transmitter of the frame in progress?
+    pub fn transmitting(&self) -> bool {
+        self.core.dbg_role.val()
+    }
+    pub fn cycles(&self) -> u64 {
+        self.cycles
+    }
+    pub fn spec(&self) -> &CtrlSpec {
+        &self.spec
+    }
+
+    fn collect(&mut self, now: u64) {
+        let c = &self.core;
+        if c.tx_done.val() {
+            if let Some(f) = self.request.take().or_else(|| self.last.clone()) {
+                self.events.push((now, CtrlEvent::TxDone(f)));
+            }
+            self.gap = true;
+        }
+        if c.error.val() {
+            self.errors += 1;
+            self.events.push((now, CtrlEvent::Error { tx: c.err_tx.val() }));
+        }
+        if c.rx_valid.val() {
+            let f = c.rx_frame();
+            self.events.push((now, CtrlEvent::Rx(f)));
+        }
+    }
+}
+
+impl Component for Ctrl {
+    fn name(&self) -> &str {
+        &self.name
+    }
+    fn clock(&self) -> ClockSpec {
+        self.clock
+    }
+    fn tick(&mut self, io: &mut Io<'_>) {
+        if self.held || self.crashed {
+            // off: no logic runs, the uplink is recessive
+            io.set_output(0, true);
+            return;
+        }
+        self.cycles += 1;
+        let core = &mut self.core;
+        core.rx.next = io.input(0);
+        if self.reset_left > 0 {
+            self.reset_left -= 1;
+            core.reset.next = true;
+        } else {
+            core.reset.next = false;
+        }
+        core.tx_abort.next = false;
+        if self.gap {
+            // tx_req low for one clock after a success
+            core.tx_req.next = false;
+            self.gap = false;
+        } else if let Some(f) = &self.request {
+            core.tx_req.next = true;
+            core.tx_ide.next = f.ide;
+            core.tx_rtr.next = f.rtr;
+            core.tx_id.next = (f.id as u64).into();
+            core.tx_dlc.next = (f.dlc as u64).into();
+            core.tx_data.next = f.data_word().into();
+        } else {
+            core.tx_req.next = false;
+        }
+        if self.reset_left > 0 {
+            self.apply_config();
+        }
+        drive::cycle(&mut self.core);
+        self.collect(io.now());
+        io.set_output(0, self.core.tx.val());
+    }
+    fn probe(&self, probe: &mut dyn Probe) {
+        self.core.accept(&self.name, probe);
+    }
+}

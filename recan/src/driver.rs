@@ -1,0 +1,389 @@
+//! The media-management driver of one node (recancentrate.md §2), a Rust
+//! model run between kernel slices.
+//!
+//! The driver owns no controller: [`Driver::step`] gets the node's two
+//! controllers ([`Ctrl`]) and the current time, drains their reports, and
+//! runs the tx, rx and qua routines one at a time in report order (a qua found
+//! in the same slice as an rx runs after it). A routine that waits K for the
+//! other controller's report stays current until the report arrives or K has
+//! passed; reports arriving meanwhile are queued (their own routines run
+//! later, and find `FrameManaged` set when the waiting routine handled them).
+//!
+//! Reports are timestamped by the controller's clock edge; the driver reacts
+//! at the end of the slice (a quarter bit), which models the host's latency.
+
+use std::collections::VecDeque;
+
+use canstar_controller::frame::Frame;
+
+use crate::ctrl::{Ctrl, CtrlEvent};
+use crate::spec::DriverSpec;
+
+/// Why a controller was quarantined.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum QuaReason {
+    Tec,
+    Rec,
+    Timer,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+enum Routine {
+    Tx { ctrl: usize, t: u64 },
+    Rx { ctrl: usize, t: u64, frame: Frame },
+    Qua { ctrl: usize, reason: QuaReason },
+}
+
+#[derive(Clone, Debug)]
+struct Wait {
+    routine: Routine,
+    deadline: u64,
+}
+
+/// What a driver tells its application and the run.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Notice {
+    /// The pending frame was sent (at this time).
+    TxSuccess(u64),
+    /// A frame of another node, delivered once.
+    Deliver(Frame),
+    /// A controller was quarantined.
+    Quarantined { ctrl: usize, t: u64, reason: QuaReason },
+    /// The pending frame was requested again after an omission discrepancy.
+    Retransmit,
+    /// The pending frame was requested on a new tx controller.
+    Rerequest,
+    /// No active controller is left.
+    NoController,
+}
+
+/// State of one node's driver.
+pub struct Driver {
+    pub node: usize,
+    spec: DriverSpec,
+    k_ps: u64,
+    timeout_ps: u64,
+    pub active: [bool; 2],
+    /// The tx controller (None when no controller is active).
+    pub tx: Option<usize>,
+    pub frame_managed: bool,
+    pub msg_tx_omi: u32,
+    /// The pending frame (`TxPending` = `pending.is_some()`).
+    pub pending: Option<Frame>,
+    /// When the pending frame was requested.
+    pub pending_since: Option<u64>,
+    /// The tx controller reported the transmission of the pending frame.
+    tx_reported: bool,
+    timer: Option<u64>,
+    /// Last report per controller: (time, frame) of the last reception, time of the last transmission.
+    rx_flag: [Option<(u64, Frame)>; 2],
+    tx_flag: [Option<u64>; 2],
+    queue: VecDeque<Routine>,
+    wait: Option<Wait>,
+    /// Retransmissions of the pending frame so far.
+    pub retx_this_frame: u32,
+    /// Reports not yet seen by the host (interrupt latency).
+    inbox: Vec<(u64, usize, CtrlEvent)>,
+    latency_ps: u64,
+    /// When each controller's TEC or REC was first seen at the warning limit.
+    warn_since: [Option<(u64, QuaReason)>; 2],
+    /// Routine log (only with tracing).
+    pub log: Option<Vec<String>>,
+}
+
+impl Driver {
+    pub fn new(node: usize, spec: &DriverSpec, bit_time_ps: u64, initial_tx: usize, trace: bool) -> Self {
+        Driver {
+            node,
+            spec: spec.clone(),
+            k_ps: (spec.k_bits * bit_time_ps as f64).round() as u64,
+            timeout_ps: spec.tx_timeout_ps(),
+            active: [true, true],
+            tx: Some(initial_tx),
+            frame_managed: false,
+            msg_tx_omi: 0,
+            pending: None,
+            pending_since: None,
+            tx_reported: false,
+            timer: None,
+            rx_flag: [None, None],
+            tx_flag: [None, None],
+            queue: VecDeque::new(),
+            wait: None,
+            retx_this_frame: 0,
+            inbox: Vec::new(),
+            latency_ps: (spec.irq_latency_ns * 1000.0).round() as u64,
+            warn_since: [None, None],
+            log: trace.then(Vec::new),
+        }
+    }
+
+    fn note(&mut self, now: u64, s: impl FnOnce() -> String) {
+        if let Some(l) = &mut self.log {
+            l.push(format!("{:>10.3} us node {}: {}", now as f64 / 1e6, self.node, s()));
+        }
+    }
+
+    /// Is a routine running or queued?
+    pub fn busy(&self) -> bool {
+        self.wait.is_some() || !self.queue.is_empty()
+    }
+
+    /// tx request (application): refused (false) if a frame is pending or no
+    /// controller is active.
+    pub fn tx_request(&mut self, f: Frame, now: u64, ctrls: &mut [&mut Ctrl; 2]) -> bool {
+        if self.pending.is_some() {
+            return false;
+        }
+        let Some(tx) = self.tx else { return false };
+        ctrls[tx].request(f.clone());
+        self.note(now, || format!("tx request {:#x}[{:?}] on {}", f.id, f.data, "AB".as_bytes()[tx] as char));
+        self.pending = Some(f);
+        self.pending_since = Some(now);
+        self.tx_reported = false;
+        self.retx_this_frame = 0;
+        self.timer = Some(now + self.timeout_ps);
+        true
+    }
+
+    /// Drain the controllers' reports, check the warning limit and the timer,
+    /// and run routines. Returns what happened.
+    pub fn step(&mut self, now: u64, ctrls: &mut [&mut Ctrl; 2]) -> Vec<Notice> {
+        let mut out = Vec::new();
+        // 1. reports, in time order across both controllers, once the
+        //    interrupt latency has passed
+        for (c, ctrl) in ctrls.iter_mut().enumerate() {
+            if ctrl.has_events() {
+                for (t, e) in ctrl.take_events() {
+                    self.inbox.push((t, c, e));
+                }
+            }
+        }
+        let lat = self.latency_ps;
+        let mut evs: Vec<(u64, usize, CtrlEvent)> = Vec::new();
+        if !self.inbox.is_empty() {
+            let (due, later): (Vec<_>, Vec<_>) = std::mem::take(&mut self.inbox).into_iter().partition(|e| e.0 + lat <= now);
+            self.inbox = later;
+            evs = due;
+        }
+        evs.sort_by_key(|e| (e.0, e.1));
+        for (t, c, e) in evs {
+            if !self.active[c] {
+                continue;
+            }
+            match e {
+                CtrlEvent::TxDone(_) => {
+                    self.tx_flag[c] = Some(t);
+                    if Some(c) == self.tx {
+                        self.tx_reported = true;
+                    }
+                    self.queue.push_back(Routine::Tx { ctrl: c, t });
+                }
+                CtrlEvent::Rx(f) => {
+                    self.rx_flag[c] = Some((t, f.clone()));
+                    self.queue.push_back(Routine::Rx { ctrl: c, t, frame: f });
+                }
+                CtrlEvent::Error { .. } => {}
+            }
+        }
+        // 2. error warning limit (seen after the interrupt latency; after the
+        //    receptions of this slice)
+        for (c, ctrl) in ctrls.iter().enumerate() {
+            if self.active[c] && !ctrl.is_crashed() {
+                let (tec, rec) = (ctrl.tec(), ctrl.rec());
+                let lim = self.spec.warning_limit;
+                if self.warn_since[c].is_none() && (tec >= lim || rec >= lim) {
+                    let reason = if tec >= lim { QuaReason::Tec } else { QuaReason::Rec };
+                    self.warn_since[c] = Some((now, reason));
+                }
+                if let Some((t, reason)) = self.warn_since[c] {
+                    if t + lat <= now && !self.queue.iter().any(|r| matches!(r, Routine::Qua { ctrl, .. } if *ctrl == c)) {
+                        self.queue.push_back(Routine::Qua { ctrl: c, reason });
+                    }
+                }
+            }
+        }
+        // 3. transmission timer
+        if let (Some(t), Some(tx)) = (self.timer, self.tx) {
+            if now >= t {
+                self.timer = None;
+                self.queue.push_back(Routine::Qua { ctrl: tx, reason: QuaReason::Timer });
+            }
+        }
+        // 4. routines
+        loop {
+            if let Some(w) = self.wait.take() {
+                match self.resume(w, now, ctrls, &mut out) {
+                    Some(w) => {
+                        self.wait = Some(w);
+                        break;
+                    }
+                    None => continue,
+                }
+            }
+            let Some(r) = self.queue.pop_front() else { break };
+            if let Some(w) = self.start(r, now, ctrls, &mut out) {
+                self.wait = Some(w);
+            }
+        }
+        out
+    }
+
+    /// Did controller `c` report a transmission at or after `since`?
+    fn tx_seen(&self, c: usize, since: u64) -> bool {
+        self.tx_flag[c].is_some_and(|t| t >= since)
+    }
+    /// Did controller `c` report the reception of `f` at or after `since`?
+    fn rx_seen(&self, c: usize, since: u64, f: Option<&Frame>) -> bool {
+        match &self.rx_flag[c] {
+            Some((t, g)) => *t >= since && f.is_none_or(|f| f == g),
+            None => false,
+        }
+    }
+
+    fn start(&mut self, r: Routine, now: u64, ctrls: &mut [&mut Ctrl; 2], out: &mut Vec<Notice>) -> Option<Wait> {
+        match &r {
+            Routine::Tx { ctrl, .. } => {
+                if !self.active[*ctrl] {
+                    return None;
+                }
+                self.timer = None;
+                if self.frame_managed {
+                    self.frame_managed = false;
+                    self.note(now, || format!("tx routine {}: managed", abc(*ctrl)));
+                    return None;
+                }
+                let deadline = now + self.k_ps;
+                self.resume(Wait { routine: r, deadline }, now, ctrls, out)
+            }
+            Routine::Rx { ctrl, .. } => {
+                if !self.active[*ctrl] {
+                    return None;
+                }
+                if self.frame_managed {
+                    self.frame_managed = false;
+                    self.note(now, || format!("rx routine {}: managed", abc(*ctrl)));
+                    return None;
+                }
+                let deadline = now + self.k_ps;
+                self.resume(Wait { routine: r, deadline }, now, ctrls, out)
+            }
+            Routine::Qua { ctrl, reason } => {
+                let c = *ctrl;
+                if !self.active[c] {
+                    return None;
+                }
+                self.active[c] = false;
+                ctrls[c].deactivate();
+                out.push(Notice::Quarantined { ctrl: c, t: now, reason: *reason });
+                self.note(now, || format!("qua routine {} ({reason:?}): deactivated", abc(c)));
+                if self.tx == Some(c) {
+                    self.timer = None;
+                    let o = 1 - c;
+                    if self.active[o] {
+                        self.tx = Some(o);
+                        if let Some(f) = self.pending.clone() {
+                            if !self.tx_reported {
+                                ctrls[o].request(f);
+                                self.timer = Some(now + self.timeout_ps);
+                                out.push(Notice::Rerequest);
+                                self.note(now, || format!("pending frame requested on {}", abc(o)));
+                            }
+                        }
+                    } else {
+                        self.tx = None;
+                        out.push(Notice::NoController);
+                    }
+                }
+                None
+            }
+        }
+    }
+
+    /// Continue a waiting routine: finish it (None) or keep waiting.
+    fn resume(&mut self, w: Wait, now: u64, ctrls: &mut [&mut Ctrl; 2], out: &mut Vec<Notice>) -> Option<Wait> {
+        let k = self.k_ps;
+        match &w.routine {
+            Routine::Tx { ctrl, t } => {
+                let (c, o) = (*ctrl, 1 - *ctrl);
+                let since = t.saturating_sub(k);
+                if self.rx_seen(o, since, self.pending.as_ref()) {
+                    self.frame_managed = true;
+                    self.success(now, out);
+                    self.note(now, || format!("tx routine {}: other rx seen, success", abc(c)));
+                    return None;
+                }
+                if now < w.deadline {
+                    return Some(w);
+                }
+                // omission discrepancy
+                if self.msg_tx_omi >= self.spec.max_inconsists {
+                    self.success(now, out);
+                    self.note(now, || format!("tx routine {}: omission, MsgTxOmi at max, success", abc(c)));
+                } else {
+                    self.msg_tx_omi += 1;
+                    if let Some(f) = self.pending.clone() {
+                        if self.active[c] && self.tx == Some(c) {
+                            ctrls[c].request(f);
+                            self.tx_reported = false;
+                            self.timer = Some(now + self.timeout_ps);
+                            self.retx_this_frame += 1;
+                            out.push(Notice::Retransmit);
+                        }
+                    }
+                    let m = self.msg_tx_omi;
+                    self.note(now, || format!("tx routine {}: omission {m}, retransmit", abc(c)));
+                }
+                None
+            }
+            Routine::Rx { ctrl, t, frame } => {
+                let (c, o) = (*ctrl, 1 - *ctrl);
+                let since = t.saturating_sub(k);
+                if self.pending.as_ref() == Some(frame) && self.tx_seen(o, since) {
+                    self.frame_managed = true;
+                    self.success(now, out);
+                    self.note(now, || format!("rx routine {}: own frame, other tx seen, success", abc(c)));
+                    return None;
+                }
+                if now < w.deadline {
+                    return Some(w);
+                }
+                if self.pending.as_ref() == Some(frame) {
+                    self.msg_tx_omi += 1;
+                    let m = self.msg_tx_omi;
+                    self.note(now, || format!("rx routine {}: own frame without tx report, omission {m}", abc(c)));
+                    return None;
+                }
+                if self.active[o] && self.rx_seen(o, since, Some(frame)) {
+                    self.frame_managed = true;
+                }
+                let fm = self.frame_managed;
+                self.note(now, || format!("rx routine {}: deliver {:#x}[{:?}] (managed {fm})", abc(c), frame.id, frame.data));
+                out.push(Notice::Deliver(frame.clone()));
+                None
+            }
+            Routine::Qua { .. } => None,
+        }
+    }
+
+    fn success(&mut self, now: u64, out: &mut Vec<Notice>) {
+        self.msg_tx_omi = if self.msg_tx_omi >= self.spec.max_inconsists && !self.frame_managed {
+            self.msg_tx_omi
+        } else {
+            0
+        };
+        self.timer = None;
+        self.pending_since = None;
+        if self.pending.take().is_some() {
+            out.push(Notice::TxSuccess(now));
+        }
+    }
+}
+
+fn abc(c: usize) -> char {
+    if c == 0 {
+        'A'
+    } else {
+        'B'
+    }
+}

@@ -1,0 +1,279 @@
+//! The generated hub RTL as a kernel component ([`RtlHub`]), with judge statistics
+//! and input recording for replay (co-simulation, benchmarks).
+
+use canstar_sim::{ClockSpec, Component, Io};
+
+/// The generated hub RTL ([`canstar_hub::hub::Hub`], frame monitor included) as a
+/// kernel component. Bind it exactly like [`AndHub`]:
+/// `sim.add(hub, &ports.hub_inputs(), &ports.hub_outputs())` (inputs: uplinks then
+/// incoming sublinks; outputs: downlinks then outgoing sublinks).
+///
+/// `rst_n` is held low for the first [`RtlHub::RESET_CYCLES`] clocks, then high.
+/// The `inject_fault` button is a field ([`RtlHub::inject_button`]): set it from
+/// the test or schedule presses with [`RtlHub::press_inject_at`].
+pub struct RtlHub {
+    name: String,
+    clock: ClockSpec,
+    /// The RTL (read status outputs such as `isolated[i].val()` between steps).
+    pub hub: canstar_hub::hub::Hub,
+    n: usize,
+    m: usize,
+    cycles: u64,
+    /// Level of the `inject_fault` input.
+    pub inject_button: bool,
+    /// Scheduled presses: (start ps, end ps) during which the button is held.
+    presses: Vec<(u64, u64)>,
+    /// What the judges did so far (updated every clock).
+    pub stats: HubStats,
+    record: Option<Vec<u64>>,
+    samples: Option<Vec<(u64, bool, u8)>>,
+}
+
+/// Judge activity of an [`RtlHub`], accumulated clock by clock (needs
+/// `debug: true` in the configuration for the counter maxima).
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct HubStats {
+    /// Clocks in which some judge unit blamed its port or sublink (`HubCore::blame_any`).
+    pub blames: u64,
+    /// Largest `bic` seen per port / per sublink.
+    pub max_bic: Vec<u64>,
+    pub max_sub_bic: Vec<u64>,
+    /// Largest `dbc` seen per port / per sublink.
+    pub max_dbc: Vec<u64>,
+    pub max_sub_dbc: Vec<u64>,
+    /// Time (ps) of the first clock with the port / sublink isolated.
+    pub isolated_at: Vec<Option<u64>>,
+    pub sub_isolated_at: Vec<Option<u64>>,
+    /// Time (ps) of the first clock with the port reported silent.
+    pub silent_at: Vec<Option<u64>>,
+    /// Clocks with the hub's error flag driven.
+    pub efg_clocks: u64,
+    /// Frames the frame monitor saw completed without error.
+    pub frames_ok: u64,
+    /// Errors (stuff, CRC, form) the frame monitor detected.
+    pub monitor_errors: u64,
+    /// Bits the frame monitor sampled in an overload frame.
+    pub overload_bits: u64,
+    /// Every blame: (time ps, unit: port i or sublink N + j, field code, position).
+    pub blame_log: Vec<(u64, usize, u8, u8)>,
+}
+
+/// One clock of an [`RtlHub`]'s input stimulus, packed: bit 0 `rst_n`, bit 1
+/// `inject_fault`, bits 2.. `rx[i]`, then `reh_rx[j]` (see [`RtlHub::start_recording`]).
+pub type HubInputWord = u64;
+
+impl RtlHub {
+    /// Clocks with `rst_n` low after power-up.
+    pub const RESET_CYCLES: u64 = 4;
+
+    /// A hub with the configuration's clock (`clock_hz`, no offset).
+    pub fn new(name: &str, cfg: &canstar_hub::hub::HubConfig) -> Self {
+        let period = (1e12 / cfg.clock_hz as f64).round() as u64;
+        Self::with_clock(name, cfg, ClockSpec::new(period))
+    }
+
+    /// A hub with an explicit clock (ppm offset, phase).
+    pub fn with_clock(name: &str, cfg: &canstar_hub::hub::HubConfig, clock: ClockSpec) -> Self {
+        let mut hub = canstar_hub::hub::Hub::new(cfg);
+        for r in hub.rx.iter_mut().chain(hub.reh_rx.iter_mut()) {
+            r.next = true;
+        }
+        hub.rst_n.next = false;
+        canstar_hdl::drive::init(&mut hub);
+        RtlHub {
+            name: name.to_string(),
+            clock,
+            hub,
+            n: cfg.ports,
+            m: cfg.sublinks,
+            cycles: 0,
+            inject_button: false,
+            presses: Vec::new(),
+            stats: HubStats {
+                max_bic: vec![0; cfg.ports],
+                max_sub_bic: vec![0; cfg.sublinks],
+                max_dbc: vec![0; cfg.ports],
+                max_sub_dbc: vec![0; cfg.sublinks],
+                isolated_at: vec![None; cfg.ports],
+                sub_isolated_at: vec![None; cfg.sublinks],
+                silent_at: vec![None; cfg.ports],
+                ..Default::default()
+            },
+            record: None,
+            samples: None,
+        }
+    }
+
+    /// Record the hub's inputs from now on, one [`HubInputWord`] per clock (for
+    /// replaying the run on the generated Verilog, e.g. with `canstar_hdl::flow::cosim`).
+    /// Ports + sublinks + 2 must not exceed 64.
+    pub fn start_recording(&mut self) {
+        assert!(self.n + self.m + 2 <= 64, "too many inputs to record");
+        self.record = Some(Vec::new());
+    }
+
+    /// The recorded input words (empty if recording was never started).
+    pub fn take_recording(&mut self) -> Vec<HubInputWord> {
+        self.record.take().unwrap_or_default()
+    }
+
+    /// Record, at every sample point of the hub's frame monitor, the time, the level the
+    /// hub drives on its downlink 0 and the monitor's field code (see [`RtlHub::samples`]).
+    pub fn record_samples(&mut self) {
+        self.samples = Some(Vec::new());
+    }
+
+    /// (time ps, downlink 0 level, field code of `canstar_hub::frame_state::Field`) at
+    /// each sample point of the frame monitor.
+    pub fn samples(&self) -> &[(u64, bool, u8)] {
+        self.samples.as_deref().unwrap_or(&[])
+    }
+
+    /// Apply one recorded input word to a hub RTL (the replay side of
+    /// [`RtlHub::start_recording`]).
+    pub fn apply_input_word(hub: &mut canstar_hub::hub::Hub, w: HubInputWord) {
+        let n = hub.rx.len();
+        hub.rst_n.next = w & 1 != 0;
+        hub.inject_fault.next = w & 2 != 0;
+        for (i, r) in hub.rx.iter_mut().enumerate() {
+            r.next = (w >> (2 + i)) & 1 != 0;
+        }
+        for (j, r) in hub.reh_rx.iter_mut().enumerate() {
+            r.next = (w >> (2 + n + j)) & 1 != 0;
+        }
+    }
+
+    /// Port `i` isolated at time `t` or before?
+    pub fn isolated_at(&self, i: usize) -> Option<u64> {
+        self.stats.isolated_at[i]
+    }
+
+    /// Hold the `inject_fault` button during `[t, t + width)` (ps).
+    pub fn press_inject_at(&mut self, t: u64, width: u64) {
+        self.presses.push((t, t + width));
+    }
+
+    /// Which node ports are isolated.
+    pub fn isolated(&self) -> Vec<bool> {
+        self.hub.isolated.iter().map(|s| s.val()).collect()
+    }
+
+    /// Which node ports are reported silent.
+    pub fn silent(&self) -> Vec<bool> {
+        self.hub.silent.iter().map(|s| s.val()).collect()
+    }
+
+    /// Which incoming sublinks are isolated.
+    pub fn sub_isolated(&self) -> Vec<bool> {
+        self.hub.sub_isolated.iter().map(|s| s.val()).collect()
+    }
+
+    /// The 4-bit frame state output.
+    pub fn frame_state(&self) -> u8 {
+        self.hub.frame_state.val().index() as u8
+    }
+
+    /// Clock cycles simulated.
+    pub fn cycles(&self) -> u64 {
+        self.cycles
+    }
+}
+
+impl Component for RtlHub {
+    fn name(&self) -> &str {
+        &self.name
+    }
+    fn clock(&self) -> ClockSpec {
+        self.clock
+    }
+    fn tick(&mut self, io: &mut Io<'_>) {
+        let now = io.now();
+        let pressed = self.inject_button || self.presses.iter().any(|&(a, b)| now >= a && now < b);
+        let hub = &mut self.hub;
+        hub.rst_n.next = self.cycles >= Self::RESET_CYCLES;
+        hub.inject_fault.next = pressed;
+        for i in 0..self.n {
+            hub.rx[i].next = io.input(i);
+        }
+        for j in 0..self.m {
+            hub.reh_rx[j].next = io.input(self.n + j);
+        }
+        if let Some(r) = self.record.as_mut() {
+            let mut w: HubInputWord = hub.rst_n.next as u64 | (pressed as u64) << 1;
+            for i in 0..self.n {
+                w |= (io.input(i) as u64) << (2 + i);
+            }
+            for j in 0..self.m {
+                w |= (io.input(self.n + j) as u64) << (2 + self.n + j);
+            }
+            r.push(w);
+        }
+        canstar_hdl::drive::cycle(hub);
+        for i in 0..self.n {
+            io.set_output(i, hub.tx[i].val());
+        }
+        for j in 0..self.m {
+            io.set_output(self.n + j, hub.hub_tx[j].val());
+        }
+        self.cycles += 1;
+        // judge activity
+        let st = &mut self.stats;
+        let core = hub.core();
+        if core.blame_any() {
+            st.blames += 1;
+            let (f, p) = (core.mon_field.val().index() as u8, core.mon_pos.val().index() as u8);
+            for i in 0..self.n {
+                if core.port_judge(i).blame.val() {
+                    st.blame_log.push((now, i, f, p));
+                }
+            }
+            for k in 0..self.m {
+                if core.sublink_judge(k).blame.val() {
+                    st.blame_log.push((now, self.n + k, f, p));
+                }
+            }
+        }
+        if hub.efg_active.val() {
+            st.efg_clocks += 1;
+        }
+        if core.mon_sample.val() {
+            if core.mon_frame_ok.val() {
+                st.frames_ok += 1;
+            }
+            if core.mon_error.val() {
+                st.monitor_errors += 1;
+            }
+            if core.mon_field.val().index() as u64 == canstar_hub::frame_state::Field::Overload.code() {
+                st.overload_bits += 1;
+            }
+            if let Some(s) = self.samples.as_mut() {
+                if self.n > 0 {
+                    s.push((now, hub.tx[0].val(), core.mon_field.val().index() as u8));
+                }
+            }
+        }
+        for i in 0..self.n {
+            let j = core.port_judge(i);
+            st.max_bic[i] = st.max_bic[i].max(j.bic.val().index() as u64);
+            st.max_dbc[i] = st.max_dbc[i].max(j.dbc.val().index() as u64);
+            if hub.isolated[i].val() && st.isolated_at[i].is_none() {
+                st.isolated_at[i] = Some(now);
+            }
+            if hub.silent[i].val() && st.silent_at[i].is_none() {
+                st.silent_at[i] = Some(now);
+            }
+        }
+        for k in 0..self.m {
+            let j = core.sublink_judge(k);
+            st.max_sub_bic[k] = st.max_sub_bic[k].max(j.bic.val().index() as u64);
+            st.max_sub_dbc[k] = st.max_sub_dbc[k].max(j.dbc.val().index() as u64);
+            if hub.sub_isolated[k].val() && st.sub_isolated_at[k].is_none() {
+                st.sub_isolated_at[k] = Some(now);
+            }
+        }
+    }
+    fn probe(&self, probe: &mut dyn rust_hdl::prelude::Probe) {
+        use rust_hdl::prelude::Block;
+        self.hub.accept(&self.name, probe);
+    }
+}

@@ -1,0 +1,465 @@
+//! [`NetworkSpec`]: the description of a ReCANcentrate network (TOML), its
+//! validation and the builder that instantiates it in a [`Sim`].
+//!
+//! Node `k` has controller A on port `k` of hub 0 and controller B on port `k`
+//! of hub 1. Unused hub ports stay recessive.
+
+use canstar_hub::hub::HubConfig;
+use serde::{Deserialize, Serialize};
+
+use canstar_sim::{ClockSpec, Handle, Sim};
+use crate::ctrl::Ctrl;
+use crate::rtl_hub::RtlHub;
+use canstar_sim::star::{LinkSpec, PortSpec, TwoHubs};
+
+/// Name of the network (the top-level `[network]` table marks a network file).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct NetworkMeta {
+    pub name: String,
+}
+
+impl Default for NetworkMeta {
+    fn default() -> Self {
+        NetworkMeta { name: "recancentrate".into() }
+    }
+}
+
+/// Per-hub clock (both hubs share the generation-time [`HubConfig`]).
+#[derive(Clone, Debug, PartialEq, Default, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct HubClock {
+    /// Oscillator offset in ppm (positive = slower).
+    pub ppm: f64,
+    /// Time of the first clock edge in ps (None = random from the run seed).
+    pub phase_ps: Option<u64>,
+}
+
+/// One interlink: a pair of sublinks with their propagation delays.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct InterlinkSpec {
+    /// Delay of the sublink hub 0 → hub 1 in ps.
+    pub h0_to_h1_ps: u64,
+    /// Delay of the sublink hub 1 → hub 0 in ps.
+    pub h1_to_h0_ps: u64,
+}
+
+impl Default for InterlinkSpec {
+    fn default() -> Self {
+        InterlinkSpec { h0_to_h1_ps: 10_000, h1_to_h0_ps: 10_000 }
+    }
+}
+
+/// One CAN controller of a node: clock, bit timing (real values, as
+/// [`crate::node::NodeConfig`]: PH2 = max(PH1, 2)), and its link delays.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct CtrlSpec {
+    pub clock_hz: u64,
+    /// Oscillator offset in ppm (positive = slower).
+    pub ppm: f64,
+    /// Time of the first clock edge in ps (None = random from the run seed).
+    pub phase_ps: Option<u64>,
+    /// Clocks per time quantum, 1..=128.
+    pub brp: u32,
+    /// Propagation segment, 1..=16 TQ.
+    pub prop: u32,
+    /// Phase segment 1, 1..=8 TQ (PH2 = max(PH1, 2)).
+    pub ph1: u32,
+    /// Synchronisation jump width, 1..=4 TQ.
+    pub sjw: u32,
+    /// RX synchroniser depth (1 or 2).
+    pub sync_depth: usize,
+    /// Uplink (controller TX → hub) propagation delay in ps.
+    pub up_ps: u64,
+    /// Downlink (hub → controller RX) propagation delay in ps.
+    pub down_ps: u64,
+}
+
+impl Default for CtrlSpec {
+    /// The reference node controller: 29.48 MHz, TQ = 4 clocks (135.7 ns),
+    /// 8 TQ per bit with the sample point after 6 TQ (SYNC 1, PROP 3, PH1 2,
+    /// PH2 2, SJW 1: the same sample point as the prototype's PROP 2 / PH1 3 /
+    /// PH2 2, which this controller cannot express since its PH2 >= PH1),
+    /// 10 ns links.
+    fn default() -> Self {
+        CtrlSpec {
+            clock_hz: 29_480_000,
+            ppm: 0.0,
+            phase_ps: None,
+            brp: 4,
+            prop: 3,
+            ph1: 2,
+            sjw: 1,
+            sync_depth: 1,
+            up_ps: 10_000,
+            down_ps: 10_000,
+        }
+    }
+}
+
+impl CtrlSpec {
+    pub fn period_ps(&self) -> u64 {
+        (1e12 / self.clock_hz as f64).round() as u64
+    }
+    pub fn ph2(&self) -> u32 {
+        self.ph1.max(2)
+    }
+    pub fn tq_per_bit(&self) -> u32 {
+        1 + self.prop + self.ph1 + self.ph2()
+    }
+    /// Nominal bit time in ps.
+    pub fn bit_time_ps(&self) -> u64 {
+        self.period_ps() * self.brp as u64 * self.tq_per_bit() as u64
+    }
+}
+
+/// The test application a node runs (recancentrate.md §3).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum AppKind {
+    /// 3BitCounter: sends an incrementing 1-byte counter as fast as it can.
+    Counter,
+    /// Blinker: the same with its own identifier.
+    Blinker,
+    /// Receiver: sends nothing; classifies the counters it receives.
+    Receiver,
+    /// Nothing (the node's driver still receives and acknowledges).
+    None,
+}
+
+/// One node: its application and its two controllers.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct NodeSpec {
+    pub name: String,
+    pub app: AppKind,
+    /// 11-bit identifier of the node's frames (senders only).
+    #[serde(default)]
+    pub id: u32,
+    /// The tx controller at start: 0 = A, 1 = B.
+    #[serde(default)]
+    pub initial_tx: usize,
+    /// Controller A (on hub 0).
+    #[serde(default)]
+    pub a: CtrlSpec,
+    /// Controller B (on hub 1).
+    #[serde(default)]
+    pub b: CtrlSpec,
+}
+
+impl NodeSpec {
+    pub fn ctrl(&self, c: usize) -> &CtrlSpec {
+        if c == 0 {
+            &self.a
+        } else {
+            &self.b
+        }
+    }
+    pub fn ctrl_mut(&mut self, c: usize) -> &mut CtrlSpec {
+        if c == 0 {
+            &mut self.a
+        } else {
+            &mut self.b
+        }
+    }
+}
+
+/// Parameters of the media-management driver (recancentrate.md §2).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct DriverSpec {
+    /// K: how long a routine waits for the other controller's report, in bit times.
+    pub k_bits: f64,
+    /// Transmission timeout in ticks of `timer_clock_hz` (prototype: 0xFFFF).
+    pub tx_timeout_ticks: u64,
+    pub timer_clock_hz: u64,
+    /// Omission discrepancies tolerated before the non-tx path is taken as deaf.
+    pub max_inconsists: u32,
+    /// TEC or REC at which a controller is quarantined.
+    pub warning_limit: u32,
+    /// Host reaction time from a reported success to the application's next
+    /// request, in bit times. It must exceed the 3-bit intermission so that two
+    /// nodes sending at maximal rate alternate (otherwise the higher identifier
+    /// priority starves the other node).
+    pub app_delay_bits: f64,
+    /// Bit times after power-up before the applications start.
+    pub start_bits: u32,
+    /// Interrupt latency of the host in ns: a controller's report (or its
+    /// error-warning condition) reaches the driver this long after it happens.
+    /// A microcontroller reading its controllers' status over a bus takes
+    /// microseconds; with 0 the driver would quarantine a controller whose
+    /// counter jumps to 96 inside one error flag before the hub can judge it.
+    pub irq_latency_ns: f64,
+}
+
+impl Default for DriverSpec {
+    fn default() -> Self {
+        DriverSpec {
+            k_bits: 4.0,
+            tx_timeout_ticks: 0xFFFF,
+            timer_clock_hz: 29_480_000,
+            max_inconsists: 3,
+            warning_limit: 96,
+            app_delay_bits: 4.0,
+            start_bits: 20,
+            irq_latency_ns: 10_000.0,
+        }
+    }
+}
+
+impl DriverSpec {
+    /// Transmission timeout in ps.
+    pub fn tx_timeout_ps(&self) -> u64 {
+        (self.tx_timeout_ticks as f64 * 1e12 / self.timer_clock_hz as f64).round() as u64
+    }
+}
+
+/// A ReCANcentrate network: two hubs, interlinks, nodes with two controllers.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct NetworkSpec {
+    #[serde(default)]
+    pub network: NetworkMeta,
+    /// Generation-time configuration shared by both hubs.
+    #[serde(default = "reference_hub")]
+    pub hub: HubConfig,
+    /// Exactly two entries: the clocks of hub 0 and hub 1.
+    #[serde(default = "two_hubs")]
+    pub hubs: Vec<HubClock>,
+    /// One entry per interlink (as many as `hub.sublinks`).
+    #[serde(default = "two_interlinks")]
+    pub interlinks: Vec<InterlinkSpec>,
+    #[serde(default)]
+    pub driver: DriverSpec,
+    pub nodes: Vec<NodeSpec>,
+}
+
+fn reference_hub() -> HubConfig {
+    HubConfig { ports: 3, sublinks: 2, sync_depth: 1, ..HubConfig::default() }
+}
+fn two_hubs() -> Vec<HubClock> {
+    vec![HubClock::default(), HubClock::default()]
+}
+fn two_interlinks() -> Vec<InterlinkSpec> {
+    vec![InterlinkSpec::default(), InterlinkSpec::default()]
+}
+
+impl Default for NetworkSpec {
+    /// The reference system of recancentrate.md §1: two hubs (N = 3, M = 2,
+    /// 14.74 MHz, TQ 2 clocks, one input flip-flop as the prototype), three
+    /// nodes (3BitCounter id 0x0A0, Blinker id 0x0B0, Receiver) at 921.25 kbit/s.
+    fn default() -> Self {
+        let node = |name: &str, app, id| NodeSpec { name: name.into(), app, id, initial_tx: 0, a: CtrlSpec::default(), b: CtrlSpec::default() };
+        NetworkSpec {
+            network: NetworkMeta::default(),
+            hub: reference_hub(),
+            hubs: two_hubs(),
+            interlinks: two_interlinks(),
+            driver: DriverSpec::default(),
+            nodes: vec![
+                node("counter", AppKind::Counter, 0x0A0),
+                node("blinker", AppKind::Blinker, 0x0B0),
+                node("receiver", AppKind::Receiver, 0),
+            ],
+        }
+    }
+}
+
+impl NetworkSpec {
+    /// The reference system with the node controllers clocked at 14.74 MHz
+    /// (TQ = 2 clocks: the same 135.7 ns quantum and bit timing) instead of
+    /// 29.48 MHz: half the controller clock cycles per simulated second,
+    /// used by the published scenarios and the campaign.
+    pub fn fast() -> Self {
+        let mut s = Self::default();
+        s.network.name = "recancentrate-fast".into();
+        for n in &mut s.nodes {
+            for c in 0..2 {
+                let cs = n.ctrl_mut(c);
+                cs.clock_hz = 14_740_000;
+                cs.brp = 2;
+            }
+        }
+        s.driver.timer_clock_hz = 29_480_000;
+        s
+    }
+
+    /// Parse a network file (TOML) and validate it.
+    pub fn from_toml(text: &str) -> Result<NetworkSpec, String> {
+        let s: NetworkSpec = toml::from_str(text).map_err(|e| e.to_string())?;
+        s.validate()?;
+        Ok(s)
+    }
+
+    /// The spec as TOML text.
+    pub fn to_toml(&self) -> String {
+        toml::to_string_pretty(self).expect("network spec serialises")
+    }
+
+    /// Does this TOML text look like a network file (a top-level `[network]`
+    /// table or `[[nodes]]` with two controllers and `hubs`)?
+    pub fn is_network_file(text: &str) -> bool {
+        match text.parse::<toml::Table>() {
+            Ok(t) => t.contains_key("network") || t.contains_key("hubs") || t.contains_key("interlinks"),
+            Err(_) => false,
+        }
+    }
+
+    /// Hub clock period in ps.
+    pub fn hub_period_ps(&self) -> u64 {
+        (1e12 / self.hub.clock_hz as f64).round() as u64
+    }
+
+    /// Nominal bit time of the hubs in ps (the reference bit time of the network).
+    pub fn bit_time_ps(&self) -> u64 {
+        self.hub_period_ps() * self.hub.timing.bit_clocks() as u64
+    }
+
+    /// Check the spec; the error names the problem.
+    pub fn validate(&self) -> Result<(), String> {
+        self.hub.validate().map_err(|e| format!("hub: {e}"))?;
+        if self.hubs.len() != 2 {
+            return Err(format!("hubs: exactly 2 entries expected, found {}", self.hubs.len()));
+        }
+        if self.interlinks.len() != self.hub.sublinks {
+            return Err(format!(
+                "interlinks: {} entries but hub.sublinks = {}",
+                self.interlinks.len(),
+                self.hub.sublinks
+            ));
+        }
+        if self.nodes.is_empty() {
+            return Err("nodes: at least one node expected".into());
+        }
+        if self.nodes.len() > self.hub.ports {
+            return Err(format!("nodes: {} nodes but hub.ports = {}", self.nodes.len(), self.hub.ports));
+        }
+        for (i, h) in self.hubs.iter().enumerate() {
+            if !(h.ppm.is_finite() && h.ppm.abs() < 10_000.0) {
+                return Err(format!("hubs[{i}].ppm = {} out of range (|ppm| < 10000)", h.ppm));
+            }
+        }
+        let d = &self.driver;
+        if !(d.k_bits.is_finite() && d.k_bits > 0.0 && d.app_delay_bits.is_finite() && d.app_delay_bits >= 0.0 && d.irq_latency_ns.is_finite() && d.irq_latency_ns >= 0.0) {
+            return Err("driver: k_bits must be > 0, app_delay_bits and irq_latency_ns >= 0".into());
+        }
+        if d.max_inconsists == 0 || d.warning_limit == 0 || d.warning_limit > 255 {
+            return Err("driver: max_inconsists must be >= 1 and warning_limit in 1..=255".into());
+        }
+        if d.tx_timeout_ticks == 0 || d.timer_clock_hz == 0 {
+            return Err("driver: tx_timeout_ticks and timer_clock_hz must be > 0".into());
+        }
+        let hub_bit = self.bit_time_ps() as f64;
+        let mut ids = Vec::new();
+        for (k, n) in self.nodes.iter().enumerate() {
+            let who = format!("nodes[{k}] ({})", n.name);
+            if matches!(n.app, AppKind::Counter | AppKind::Blinker) {
+                if n.id > 0x7FF {
+                    return Err(format!("{who}: id {:#x} does not fit 11 bits", n.id));
+                }
+                if ids.contains(&n.id) {
+                    return Err(format!("{who}: id {:#x} used by another sender", n.id));
+                }
+                ids.push(n.id);
+            }
+            if n.initial_tx > 1 {
+                return Err(format!("{who}: initial_tx must be 0 (A) or 1 (B)"));
+            }
+            for (c, cs) in [(0, &n.a), (1, &n.b)] {
+                let who = format!("{who} controller {}", ["a", "b"][c]);
+                if cs.clock_hz == 0 {
+                    return Err(format!("{who}: clock_hz must be > 0"));
+                }
+                canstar_hdl::btl::BtlConfig::new(cs.brp, cs.prop, cs.ph1, cs.sjw).check().map_err(|e| format!("{who}: bit timing: {e}"))?;
+                if !(1..=2).contains(&cs.sync_depth) {
+                    return Err(format!("{who}: sync_depth must be 1 or 2"));
+                }
+                if !(cs.ppm.is_finite() && cs.ppm.abs() < 10_000.0) {
+                    return Err(format!("{who}: ppm {} out of range (|ppm| < 10000)", cs.ppm));
+                }
+                let bt = cs.bit_time_ps() as f64;
+                if (bt - hub_bit).abs() > 0.01 * hub_bit {
+                    return Err(format!(
+                        "{who}: bit time {:.1} ns differs from the hubs' {:.1} ns by more than 1 %",
+                        bt / 1000.0,
+                        hub_bit / 1000.0
+                    ));
+                }
+                // one-way delay to the farthest controller must stay below half a bit
+                let lat = self.hub.coupling_latency() as u64 * self.hub_period_ps();
+                let sub = self.interlinks.iter().map(|l| l.h0_to_h1_ps.max(l.h1_to_h0_ps)).min().unwrap_or(0);
+                let one_way = cs.up_ps + 2 * lat + sub + cs.down_ps;
+                if one_way as f64 > 0.5 * hub_bit {
+                    return Err(format!(
+                        "{who}: the path through both hubs takes {:.1} ns, more than half a bit",
+                        one_way as f64 / 1000.0
+                    ));
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+/// A network instantiated in a [`Sim`].
+pub struct Network {
+    pub spec: NetworkSpec,
+    pub links: TwoHubs,
+    pub hubs: [Handle<RtlHub>; 2],
+    /// `ctrls[node][c]`, c = 0 (A, hub 0) or 1 (B, hub 1).
+    pub ctrls: Vec<[Handle<Ctrl>; 2]>,
+}
+
+impl Network {
+    /// Build the network in `sim` (validates first). Clock phases left `None`
+    /// in the spec are drawn from `sim.rng()`.
+    pub fn build(sim: &mut Sim, spec: &NetworkSpec) -> Result<Network, String> {
+        spec.validate()?;
+        let n = spec.hub.ports;
+        let mut ports: [Vec<PortSpec>; 2] = [vec![PortSpec::default(); n], vec![PortSpec::default(); n]];
+        for (k, node) in spec.nodes.iter().enumerate() {
+            for (c, p) in ports.iter_mut().enumerate() {
+                let cs = node.ctrl(c);
+                p[k] = PortSpec { up: LinkSpec::symmetric(cs.up_ps), down: LinkSpec::symmetric(cs.down_ps) };
+            }
+        }
+        let il: Vec<(LinkSpec, LinkSpec)> = spec
+            .interlinks
+            .iter()
+            .map(|l| (LinkSpec::symmetric(l.h0_to_h1_ps), LinkSpec::symmetric(l.h1_to_h0_ps)))
+            .collect();
+        let links = TwoHubs::build(sim, "r", [&ports[0], &ports[1]], &il);
+        let hp = spec.hub_period_ps();
+        let mut hub_handles = Vec::new();
+        for (h, hc) in spec.hubs.iter().enumerate() {
+            let phase = match hc.phase_ps {
+                Some(p) => p,
+                None => rand::Rng::gen_range(sim.rng(), 0..hp),
+            };
+            let clock = ClockSpec::new(hp).with_ppm(hc.ppm).with_phase(phase);
+            let hub = RtlHub::with_clock(&format!("hub{h}"), &spec.hub, clock);
+            hub_handles.push(sim.add(hub, &links.hubs[h].hub_inputs(), &links.hubs[h].hub_outputs()));
+        }
+        let mut ctrls = Vec::new();
+        for (k, node) in spec.nodes.iter().enumerate() {
+            let mut pair = Vec::new();
+            for c in 0..2 {
+                let cs = node.ctrl(c);
+                let p = cs.period_ps();
+                let phase = match cs.phase_ps {
+                    Some(x) => x,
+                    None => rand::Rng::gen_range(sim.rng(), 0..p),
+                };
+                let clock = ClockSpec::new(p).with_ppm(cs.ppm).with_phase(phase);
+                let name = format!("{}.{}", node.name, ["a", "b"][c]);
+                let ctrl = Ctrl::new(&name, cs, clock);
+                let hp = &links.hubs[c];
+                pair.push(sim.add(ctrl, &[hp.node_rx(k)], &[hp.node_tx(k)]));
+            }
+            ctrls.push([pair[0], pair[1]]);
+        }
+        Ok(Network { spec: spec.clone(), links, hubs: [hub_handles[0], hub_handles[1]], ctrls })
+    }
+}

@@ -1,0 +1,122 @@
+//! `canstar fuzz`: randomised lock-step runs against the golden model.
+
+use anyhow::Result;
+use std::path::PathBuf;
+
+#[derive(clap::Args)]
+pub struct Args {
+    /// Frames to run in total.
+    #[arg(long, default_value_t = 1000)]
+    frames: u64,
+    /// Master seed (run k uses a seed derived from it; failing runs print their own seed).
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
+    /// Frames per run.
+    #[arg(long, default_value_t = 24)]
+    per_run: usize,
+    /// Worker threads (default: available parallelism).
+    #[arg(long)]
+    jobs: Option<usize>,
+    /// Rerun only this run seed (as printed for a failure) and print its report.
+    #[arg(long)]
+    run_seed: Option<u64>,
+    /// No receive-path disturbances.
+    #[arg(long)]
+    no_disturb: bool,
+    /// Directory for the VCD written around a divergence.
+    #[arg(long, default_value = ".")]
+    vcd_dir: PathBuf,
+    /// Stop after this many failing runs.
+    #[arg(long, default_value_t = 5)]
+    max_failures: usize,
+}
+
+pub fn run(a: Args) -> Result<()> {
+    fuzz_cmd(a.frames, a.seed, a.per_run, a.jobs, a.run_seed, !a.no_disturb, a.vcd_dir, a.max_failures)
+}
+
+#[allow(clippy::too_many_arguments)]
+fn fuzz_cmd(
+    frames: u64,
+    seed: u64,
+    per_run: usize,
+    jobs: Option<usize>,
+    run_seed: Option<u64>,
+    disturb: bool,
+    vcd_dir: PathBuf,
+    max_failures: usize,
+) -> Result<()> {
+    use canstar_verify::fuzz::{self, RunOptions, RunReport};
+    let opts = RunOptions { frames: per_run, disturb, vcd_dir: Some(vcd_dir) };
+    let show = |r: &RunReport| {
+        println!(
+            "run seed {} ({:#x}): {} nodes, {} frames, {} sent, {} errors, worst state {}",
+            r.seed, r.seed, r.nodes, r.frames, r.sent, r.errors, ["error-active", "error-passive", "bus-off"][r.worst_state.min(2) as usize]
+        );
+        if let Some(d) = &r.divergence {
+            println!("{d}");
+        }
+        if let Some(v) = &r.vcd {
+            println!("  VCD of the divergence window: {}", v.display());
+        }
+        for v in &r.violations {
+            println!("  property violation: {v}");
+        }
+    };
+    if let Some(s) = run_seed {
+        let r = fuzz::run_seed(s, &opts);
+        show(&r);
+        anyhow::ensure!(r.ok(), "run seed {s} failed");
+        return Ok(());
+    }
+    let jobs = jobs.unwrap_or_else(|| std::thread::available_parallelism().map(|n| n.get()).unwrap_or(1));
+    let bar = indicatif::ProgressBar::new(frames);
+    bar.set_style(
+        indicatif::ProgressStyle::with_template("{elapsed_precise} [{bar:40}] {pos}/{len} frames ({per_sec}, eta {eta}) {msg}")
+            .unwrap()
+            .progress_chars("=> "),
+    );
+    let t0 = std::time::Instant::now();
+    let s = fuzz::fuzz(frames, seed, &opts, jobs, max_failures, |s, r| {
+        bar.set_position(s.frames);
+        let div = s.failures.iter().filter(|f| f.divergence.is_some()).count();
+        let viol: usize = s.failures.iter().map(|f| f.violations.len()).sum();
+        bar.set_message(format!("runs {} divergences {div} violations {viol}", s.runs));
+        if !r.ok() {
+            bar.suspend(|| show(r));
+        }
+        if bar.is_hidden() && s.runs % 20 == 0 {
+            let dt = t0.elapsed().as_secs_f64();
+            eprintln!(
+                "{:.0} s: {} frames, {} runs, {:.1} frames/s, divergences {div}, violations {viol}, passive runs {}, bus-off runs {}",
+                dt, s.frames, s.runs, s.frames as f64 / dt, s.passive_runs, s.busoff_runs
+            );
+        }
+    });
+    bar.finish();
+    let dt = t0.elapsed().as_secs_f64();
+    let div = s.failures.iter().filter(|f| f.divergence.is_some()).count();
+    let viol: usize = s.failures.iter().map(|f| f.violations.len()).sum();
+    println!(
+        "{} frames in {} runs ({} sent, {} errors, {} runs reached error-passive, {} bus-off), {} bits compared in lock step",
+        s.frames, s.runs, s.sent, s.errors, s.passive_runs, s.busoff_runs, s.bits
+    );
+    println!(
+        "{:.1} s: {:.1} frames/s, {:.0} simulated clock cycles/s, {} jobs",
+        dt,
+        s.frames as f64 / dt,
+        s.cycles as f64 / dt,
+        jobs
+    );
+    println!(
+        "longest dominant run driven by one node: {} bits (bound {} for its flag restarts)",
+        s.max_dom_run.0, s.max_dom_run.1
+    );
+    println!("divergences: {div}, property violations: {viol}");
+    for f in &s.failures {
+        println!("  failing run seed {} (rerun: canstar fuzz --run-seed {} --per-run {})", f.seed, f.seed, f.frames);
+    }
+    anyhow::ensure!(s.failures.is_empty(), "{} failing run(s)", s.failures.len());
+    Ok(())
+}
+

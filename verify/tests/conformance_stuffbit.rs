@@ -1,0 +1,22 @@
+//! stuffbit program (conformance-tests.md §11), one test per step.
+canstar_verify::conformance_tests!("stuffbit";
+    stuffbit_rx_1,
+    stuffbit_rx_2,
+    stuffbit_rx_3,
+    stuffbit_rx_4,
+    stuffbit_rx_5,
+    stuffbit_rx_6,
+    stuffbit_rx_7,
+    stuffbit_rx_8,
+    stuffbit_rx_9,
+    stuffbit_rx_10,
+    stuffbit_rx_11,
+    stuffbit_tx_1,
+    stuffbit_tx_2,
+    stuffbit_tx_3,
+    stuffbit_tx_4,
+    stuffbit_tx_5,
+    stuffbit_tx_6,
+    stuffbit_tx_7,
+    stuffbit_tx_8,
+);

@@ -1,0 +1,23 @@
+//! txarb program (conformance-tests.md §13), one test per step.
+canstar_verify::conformance_tests!("txarb";
+    txarb_1,
+    txarb_2,
+    txarb_3,
+    txarb_4,
+    txarb_5,
+    txarb_6,
+    txarb_7,
+    txarb_8,
+    txarb_9,
+    txarb_10,
+    txarb_11,
+    txarb_12,
+    txarb_13,
+    txarb_14,
+    txarb_15,
+    txarb_16,
+    txarb_17,
+    txarb_18,
+    txarb_19,
+    txarb_20,
+);
