@@ -104,8 +104,8 @@ pub struct Config {
     pub controller: Controller,
     /// The star hub (defaults: the reference ReCANcentrate hub, N = 3, M = 2,
     /// 14.74 MHz, 8 TQ of 2 clocks per bit). Bit-timing fields here use the
-    /// register encoding (value - 1), see `canstar_hub::hub::HubBitTiming`.
-    pub hub: canstar_hub::hub::HubConfig,
+    /// register encoding (value - 1), see `canstar_hub::config::HubBitTiming`.
+    pub hub: canstar_hub::config::HubConfig,
 }
 
 impl Config {

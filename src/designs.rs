@@ -108,7 +108,7 @@ pub fn hub(config: &Config, board: Option<&str>) -> Result<Vec<Artifact>> {
     let boards = hub_boards(board)?;
     let mut out = vec![];
     let rec = config.hub.clone();
-    let cc = canstar_hub::hub::HubConfig { sublinks: 0, ..config.hub.clone() };
+    let cc = canstar_hub::config::HubConfig { sublinks: 0, ..config.hub.clone() };
     for (name, cfg, what) in [
         ("canstar_hub", rec, "ReCANcentrate star hub"),
         ("canstar_cancentrate", cc, "CANcentrate star hub (no interlinks)"),

@@ -150,8 +150,8 @@ fn committed_sja1000_cosimulates() {
 #[ignore = "needs iverilog: run scripts/test-all.sh"]
 fn committed_hubs_cosimulate() {
     for (file, top, cfg) in [
-        ("hub/canstar_hub.v", "canstar_hub_core", canstar_hub::hub::HubConfig::default()),
-        ("hub/canstar_cancentrate.v", "canstar_cancentrate_core", canstar_hub::hub::HubConfig { sublinks: 0, ..Default::default() }),
+        ("hub/canstar_hub.v", "canstar_hub_core", canstar_hub::config::HubConfig::default()),
+        ("hub/canstar_cancentrate.v", "canstar_cancentrate_core", canstar_hub::config::HubConfig { sublinks: 0, ..Default::default() }),
     ] {
         let mut uut = canstar_hub::hub::Hub::new(&cfg);
         let mut blamed = 0;

@@ -2,7 +2,7 @@
 //!
 //! Which point (uplink, downlink or outgoing sublink), which fault (stuck-at-recessive,
 //! stuck-at-dominant, bit flip) and which start field are generation-time choices
-//! ([`crate::hub::FaultInjection`]); the hub applies the fault code through the
+//! ([`crate::config::FaultInjection`]); the hub applies the fault code through the
 //! coupler's fault hooks while `active` is 1. This block only decides *when*:
 //!
 //! - `button` (the `inject_fault` input, 1 = pressed) is registered and edge detected;

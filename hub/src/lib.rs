@@ -14,7 +14,7 @@
 //! - [`hub`]: [`hub::HubCore`] (everything but the frame monitor, frame state on `mon_*`
 //!   inputs), [`hub::Hub`] (the complete hub: `HubCore` + the CAN controller
 //!   `canstar_controller::CanCore` in listen-only mode as frame monitor + adapter),
-//!   and [`hub::HubConfig`] (serde, defaults = the reference hub).
+//!   and [`config::HubConfig`] (serde, defaults = the reference hub).
 //!
 //! # Design notes
 //! - **One frame tracker.** The hub has no frame tracking of its own: the frame
@@ -100,6 +100,7 @@
 //! - The lifetime counter also counts transient disturbances of healthy ports; without
 //!   reintegration a port hit 32 times in its life is isolated.
 
+pub mod config;
 pub mod coupler;
 pub mod efg;
 pub mod frame_state;

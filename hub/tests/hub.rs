@@ -3,7 +3,8 @@
 mod common;
 use canstar_hdl::{drive, flow};
 use canstar_hub::frame_state::Field;
-use canstar_hub::hub::{FaultInjection, FaultKind, FaultPoint, Hub, HubConfig, HubCore};
+use canstar_hub::config::{FaultInjection, FaultKind, FaultPoint, HubConfig};
+use canstar_hub::hub::{Hub, HubCore};
 use common::*;
 use rand::{Rng, SeedableRng};
 

@@ -2,7 +2,7 @@
 //! standing in for the frame monitor (hub.md §5, acceptance A1/A3).
 mod common;
 use canstar_hub::frame_state::Field;
-use canstar_hub::hub::HubConfig;
+use canstar_hub::config::HubConfig;
 use canstar_hub::hub::{Hub, HubCore};
 use common::*;
 use rand::{Rng, SeedableRng};

@@ -5,7 +5,8 @@
 #![allow(clippy::needless_range_loop)]
 mod common;
 use canstar_hdl::drive;
-use canstar_hub::hub::{Hub, HubConfig};
+use canstar_hub::config::HubConfig;
+use canstar_hub::hub::Hub;
 use common::*;
 
 /// A closure that may corrupt the wire from one hub's `hub_tx[j]` to the other's

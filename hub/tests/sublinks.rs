@@ -1,7 +1,7 @@
 //! Sublink judge units (hub.md §5.7, acceptance A4) with a modelled peer hub.
 mod common;
 use canstar_hub::frame_state::Field;
-use canstar_hub::hub::HubConfig;
+use canstar_hub::config::HubConfig;
 use canstar_hub::hub::{Hub, HubCore};
 use common::*;
 

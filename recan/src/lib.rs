@@ -4,7 +4,7 @@
 //! published single-fault scenarios.
 //!
 //! - [`spec`]: [`NetworkSpec`] (TOML network file; `NetworkSpec::default()` is
-//!   the reference system) and the builder [`spec::Network::build`].
+//!   the reference system); [`network`]: the builder [`network::Network::build`].
 //! - [`ctrl`]: [`ctrl::Ctrl`], one controller (RTL `CanCore`) with its native host
 //!   interface, as a kernel component.
 //! - [`driver`]: the media-management driver of one node (tx, rx and qua
@@ -46,6 +46,7 @@ pub mod campaign;
 pub mod ctrl;
 pub mod driver;
 pub mod fault;
+pub mod network;
 pub mod rtl_hub;
 pub mod run;
 pub mod scenarios;

@@ -67,13 +67,13 @@ impl RtlHub {
     pub const RESET_CYCLES: u64 = 4;
 
     /// A hub with the configuration's clock (`clock_hz`, no offset).
-    pub fn new(name: &str, cfg: &canstar_hub::hub::HubConfig) -> Self {
+    pub fn new(name: &str, cfg: &canstar_hub::config::HubConfig) -> Self {
         let period = (1e12 / cfg.clock_hz as f64).round() as u64;
         Self::with_clock(name, cfg, ClockSpec::new(period))
     }
 
     /// A hub with an explicit clock (ppm offset, phase).
-    pub fn with_clock(name: &str, cfg: &canstar_hub::hub::HubConfig, clock: ClockSpec) -> Self {
+    pub fn with_clock(name: &str, cfg: &canstar_hub::config::HubConfig, clock: ClockSpec) -> Self {
         let mut hub = canstar_hub::hub::Hub::new(cfg);
         for r in hub.rx.iter_mut().chain(hub.reh_rx.iter_mut()) {
             r.next = true;

@@ -13,7 +13,8 @@ use crate::app::{Receiver, Sender};
 use crate::ctrl::Ctrl;
 use crate::driver::{Driver, Notice, QuaReason};
 use crate::fault::{CtrlRef, Dir, FaultKind, FaultSpec, FaultStart, FaultTarget, StartField};
-use crate::spec::{AppKind, Network, NetworkSpec};
+use crate::network::Network;
+use crate::spec::{AppKind, NetworkSpec};
 
 /// What to run.
 #[derive(Clone, Debug, PartialEq)]

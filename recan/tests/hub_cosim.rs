@@ -7,7 +7,8 @@
 //! CANcentrate (M = 0).
 mod hub_util;
 use canstar_hdl::flow;
-use canstar_hub::hub::{Hub, HubConfig};
+use canstar_hub::config::HubConfig;
+use canstar_hub::hub::Hub;
 use canstar_recan::rtl_hub::RtlHub;
 use canstar_sim::LinkFault;
 use hub_util::*;

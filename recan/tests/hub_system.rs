@@ -66,7 +66,7 @@ fn dual_fault_free(seed: u64, ppm: &[f64]) -> (Dual, Vec<Vec<Frame>>) {
     dual_fault_free_cfg(&hub_cfg(3, 2), seed, ppm, 4)
 }
 
-fn dual_fault_free_cfg(cfg: &canstar_hub::hub::HubConfig, seed: u64, ppm: &[f64], frames: usize) -> (Dual, Vec<Vec<Frame>>) {
+fn dual_fault_free_cfg(cfg: &canstar_hub::config::HubConfig, seed: u64, ppm: &[f64], frames: usize) -> (Dual, Vec<Vec<Frame>>) {
     let cfg = cfg.clone();
     let mut d = Dual::new(&cfg, ppm, seed);
     d.rtl_mut(0).record_samples();
@@ -111,7 +111,7 @@ fn measure_latency(sync_depth: usize) -> (u64, u64, u64) {
     use canstar_sim::star::{LinkSpec, TwoHubs};
     use canstar_recan::rtl_hub::RtlHub;
     use canstar_sim::{ClockSpec, Sim};
-    let cfg = canstar_hub::hub::HubConfig { sync_depth, ..hub_cfg(3, 2) };
+    let cfg = canstar_hub::config::HubConfig { sync_depth, ..hub_cfg(3, 2) };
     let (mut worst_same, mut worst_other, mut best_same) = (0, 0, u64::MAX);
     for phase in 0..8u64 {
         let mut sim = Sim::new(phase);
@@ -146,7 +146,7 @@ fn coupling_latency_in_the_kernel() {
     for depth in [1usize, 2] {
         let (best, same, other) = measure_latency(depth);
         eprintln!("sync depth {depth}: uplink pin -> own downlink {best}..{same} clocks, -> other hub's downlink {other} clocks");
-        let lat = canstar_hub::hub::HubConfig { sync_depth: depth, ..Default::default() }.coupling_latency() as u64;
+        let lat = canstar_hub::config::HubConfig { sync_depth: depth, ..Default::default() }.coupling_latency() as u64;
         // an edge between two clock edges is seen at the next one: pin to pin takes
         // (lat - 1, lat] clock periods, rounded up: lat; across the interlink twice that
         assert_eq!((best, same, other), (lat, lat, 2 * lat), "depth {depth}");
@@ -215,7 +215,7 @@ fn diag_probe_tolerance() {
     eprintln!("tolerance {tol} ppm");
     for depth in [2usize, 1] {
         for (seed, ppm) in [(5u64, [tol, -tol, 0.0]), (6, [-tol, tol, tol]), (7, [tol, -tol, -tol])] {
-            let cfg = canstar_hub::hub::HubConfig { sync_depth: depth, ..hub_cfg(3, 2) };
+            let cfg = canstar_hub::config::HubConfig { sync_depth: depth, ..hub_cfg(3, 2) };
             let r = std::panic::catch_unwind(|| { dual_fault_free_cfg(&cfg, seed, &ppm, 6); });
             eprintln!("depth {depth} seed {seed} ppm {ppm:?}: {}", if r.is_ok() { "ok" } else { "FAIL" });
         }
@@ -331,7 +331,7 @@ fn overload_frames_one_hub() {
 
 // ---------------------------------------------------------------- A3: faulty ports
 
-fn faulty_star(cfg: &canstar_hub::hub::HubConfig, seed: u64, frames: usize) -> (Star, Vec<Vec<Frame>>) {
+fn faulty_star(cfg: &canstar_hub::config::HubConfig, seed: u64, frames: usize) -> (Star, Vec<Vec<Frame>>) {
     let mut st = Star::new(cfg, &[0.0, 0.0, 0.0], seed);
     let nodes = st.nodes.clone();
     let sent = load(&mut st.sim, &nodes, frames, seed + 1000);
@@ -381,7 +381,7 @@ fn stuck_recessive_downlink_node_isolated() {
     assert!(st.node(0).errors() <= 3, "{:?}", st.node(0).log());
 }
 
-fn bit_flipping_uplink(cfg: &canstar_hub::hub::HubConfig, seed: u64, every_bits: u64, count: usize, budget_bits: u64) -> (Star, f64, u32, u32) {
+fn bit_flipping_uplink(cfg: &canstar_hub::config::HubConfig, seed: u64, every_bits: u64, count: usize, budget_bits: u64) -> (Star, f64, u32, u32) {
     let (mut st, _) = faulty_star(cfg, seed, 400);
     let t_f = 200 * BIT;
     // half-bit inversions at a fixed period unrelated to the frame length
@@ -415,7 +415,7 @@ fn bit_flipping_uplink_isolated_before_96() {
 /// (threshold lowered to 4 to keep the test short), healthy TEC/REC stay below 96.
 #[test]
 fn slow_bit_flipping_uplink_isolated_by_lifetime_counter() {
-    let cfg = canstar_hub::hub::HubConfig { life_threshold: 4, ..hub_cfg(3, 0) };
+    let cfg = canstar_hub::config::HubConfig { life_threshold: 4, ..hub_cfg(3, 0) };
     let (st, iso, tec, rec) = bit_flipping_uplink(&cfg, 26, 1201, 40, 40_000);
     let s = &st.rtl().stats;
     eprintln!("flips every 1201 bits: isolated after {iso:.0} bits, blames {}, max bic {:?}, healthy tec {tec} rec {rec}", s.blames, s.max_bic);
@@ -424,7 +424,7 @@ fn slow_bit_flipping_uplink_isolated_by_lifetime_counter() {
     assert_eq!(st.rtl().isolated(), vec![true, false, false]);
     assert!(tec < 96 && rec < 96);
     // without the lifetime counter (threshold at its maximum) the same run is not isolated
-    let cfg = canstar_hub::hub::HubConfig { life_threshold: 127, ..hub_cfg(3, 0) };
+    let cfg = canstar_hub::config::HubConfig { life_threshold: 127, ..hub_cfg(3, 0) };
     let (st, iso, _, _) = bit_flipping_uplink(&cfg, 26, 1201, 40, 9_000);
     assert!(iso.is_infinite(), "decay alone isolates after {iso} bits? {:?}", st.rtl().stats);
 }
@@ -450,7 +450,7 @@ fn never_acknowledging_port_silent_not_isolated() {
 /// fault is re-enabled after 4 good frames once the fault is gone, and sends again.
 #[test]
 fn reintegration_after_transient_fault() {
-    let cfg = canstar_hub::hub::HubConfig { reintegration: Some(4), ..hub_cfg(3, 0) };
+    let cfg = canstar_hub::config::HubConfig { reintegration: Some(4), ..hub_cfg(3, 0) };
     let (mut st, _) = faulty_star(&cfg, 28, 30);
     let t_f = 300 * BIT;
     st.ports.uplinks[1].schedule_fault(&mut st.sim, t_f, LinkFault::StuckDominant);

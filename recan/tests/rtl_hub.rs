@@ -1,6 +1,6 @@
 //! The RTL hub as a kernel component: a dominant pulse on one uplink reaches every
 //! downlink after the documented coupling latency.
-use canstar_hub::hub::HubConfig;
+use canstar_hub::config::HubConfig;
 use canstar_sim::star::{HubPorts, LinkSpec};
 use canstar_recan::rtl_hub::RtlHub;
 use canstar_sim::Sim;

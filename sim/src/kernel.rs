@@ -12,7 +12,7 @@ use rand_chacha::ChaCha8Rng;
 use rust_hdl::prelude::Probe;
 
 use crate::net::{FaultMode, NetId, Nets, Node};
-use crate::vcd::VcdState;
+use crate::vcd::{VcdState, VcdView};
 
 /// Clock of one component: nominal period in ps, oscillator offset and
 /// start phase.
@@ -654,5 +654,26 @@ impl Sim {
         let ticked: &[usize] = if with_ticked { &self.ticked } else { &[] };
         st.dump(self, t, ticked).expect("VCD write failed");
         self.vcd = Some(st);
+    }
+}
+
+impl VcdView for Sim {
+    fn now(&self) -> u64 {
+        self.now
+    }
+    fn component_count(&self) -> usize {
+        self.slots.len()
+    }
+    fn probe_component(&self, i: usize, probe: &mut dyn Probe) {
+        self.slots[i].comp.probe(probe)
+    }
+    fn net_names(&self) -> Vec<(&str, NetId)> {
+        self.nets.by_name.iter().map(|(n, &id)| (n.as_str(), id)).collect()
+    }
+    fn net_at(&self, id: NetId, t: u64) -> bool {
+        self.nets.at(id, t)
+    }
+    fn next_event(&self, id: NetId, after: i64) -> Option<u64> {
+        self.nets.next_event(id, after)
     }
 }

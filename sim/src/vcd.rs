@@ -25,8 +25,25 @@ use std::rc::Rc;
 use rust_hdl::core::prelude::{Atom, Block, Probe, TypeDescriptor, TypeKind, VCDValue};
 use vcd::{IdCode, TimescaleUnit, Value, VarType, Writer};
 
-use crate::kernel::Sim;
 use crate::net::NetId;
+
+/// What the VCD writer reads of a simulation: the components' signals (through
+/// rust-hdl's [`Probe`]) and the nets' levels and transition times. The kernel's
+/// `Sim` implements it; the writer knows nothing else of the kernel.
+pub trait VcdView {
+    /// Current time in ps.
+    fn now(&self) -> u64;
+    /// Number of components, in order of addition.
+    fn component_count(&self) -> usize;
+    /// Present component `i`'s signals to `probe`.
+    fn probe_component(&self, i: usize, probe: &mut dyn Probe);
+    /// Every net with its hierarchical name.
+    fn net_names(&self) -> Vec<(&str, NetId)>;
+    /// Level of a net at instant `t`.
+    fn net_at(&self, id: NetId, t: u64) -> bool;
+    /// First transition of a net strictly after `after` (None: no later transition known).
+    fn next_event(&self, id: NetId, after: i64) -> Option<u64>;
+}
 
 /// Does hierarchical `name` match one of the patterns (`None` = everything)?
 pub fn matches(filter: Option<&[String]>, name: &str) -> bool {
@@ -215,7 +232,7 @@ fn bit(v: bool) -> Value {
 }
 
 impl VcdState {
-    pub(crate) fn start(sim: &Sim, out: Box<dyn Write>, filter: Option<&[&str]>) -> io::Result<Self> {
+    pub(crate) fn start(sim: &dyn VcdView, out: Box<dyn Write>, filter: Option<&[&str]>) -> io::Result<Self> {
         let filter: Option<Vec<String>> = filter.map(|f| f.iter().map(|s| s.to_string()).collect());
         let filter = filter.as_deref();
         let out = Shared(Rc::new(RefCell::new(out)));
@@ -223,9 +240,9 @@ impl VcdState {
         w.timescale(1, TimescaleUnit::PS)?;
         w.add_module("sim")?;
         let mut comps = Vec::new();
-        for slot in &sim.slots {
+        for i in 0..sim.component_count() {
             let mut hp = HeaderProbe { w: &mut w, filter, path: Vec::new(), opened: 0, slots: Vec::new(), err: None };
-            slot.comp.probe(&mut hp);
+            sim.probe_component(i, &mut hp);
             if let Some(e) = hp.err {
                 return Err(e);
             }
@@ -236,13 +253,9 @@ impl VcdState {
             comps.push(hp.slots);
         }
         // nets, sorted by their name segments
-        let mut nets: Vec<(Vec<&str>, NetId)> = sim
-            .nets
-            .by_name
-            .iter()
-            .filter(|(n, _)| matches(filter, n))
-            .map(|(n, &id)| (n.split('.').collect(), id))
-            .collect();
+        let names = sim.net_names();
+        let mut nets: Vec<(Vec<&str>, NetId)> =
+            names.iter().filter(|(n, _)| matches(filter, n)).map(|(n, id)| (n.split('.').collect(), *id)).collect();
         nets.sort();
         let mut stack: Vec<&str> = Vec::new();
         let mut wires = Vec::new();
@@ -258,7 +271,7 @@ impl VcdState {
                 stack.push(s);
             }
             let code = w.add_wire(1, segs[segs.len() - 1])?;
-            wires.push(Wire { net: *id, code, last: sim.nets.at(*id, sim.now()) });
+            wires.push(Wire { net: *id, code, last: sim.net_at(*id, sim.now()) });
         }
         for _ in stack {
             w.upscope()?;
@@ -268,8 +281,8 @@ impl VcdState {
         let mut st = VcdState { w, out, comps, wires, last_t: sim.now(), ts: None, err: None };
         set_time(&mut st.w, &mut st.ts, sim.now())?;
         st.w.begin(vcd::SimulationCommand::Dumpvars)?;
-        for (i, slot) in sim.slots.iter().enumerate() {
-            st.visit(slot.comp.as_ref(), i, sim.now(), true)?;
+        for i in 0..sim.component_count() {
+            st.visit(sim, i, sim.now(), true)?;
         }
         for wire in &st.wires {
             st.w.change_scalar(wire.code, bit(wire.last))?;
@@ -278,10 +291,10 @@ impl VcdState {
         Ok(st)
     }
 
-    fn visit(&mut self, comp: &dyn crate::Component, i: usize, t: u64, dump: bool) -> io::Result<()> {
+    fn visit(&mut self, sim: &dyn VcdView, i: usize, t: u64, dump: bool) -> io::Result<()> {
         let mut cp =
             ChangeProbe { w: &mut self.w, ts: &mut self.ts, t, slots: &mut self.comps[i], k: 0, dump, err: None };
-        comp.probe(&mut cp);
+        sim.probe_component(i, &mut cp);
         match cp.err {
             Some(e) => Err(e),
             None => Ok(()),
@@ -289,14 +302,14 @@ impl VcdState {
     }
 
     /// Write wire changes in `(last_t, t]` and the signals of `ticked` components at `t`.
-    pub(crate) fn dump(&mut self, sim: &Sim, t: u64, ticked: &[usize]) -> io::Result<()> {
+    pub(crate) fn dump(&mut self, sim: &dyn VcdView, t: u64, ticked: &[usize]) -> io::Result<()> {
         if let Some(e) = self.err.take() {
             return Err(e);
         }
         // changes at last_t made after the last dump (test code setting a fault or driving a net)
         let lt = self.last_t;
         for k in 0..self.wires.len() {
-            let v = sim.nets.at(self.wires[k].net, lt);
+            let v = sim.net_at(self.wires[k].net, lt);
             if v != self.wires[k].last {
                 set_time(&mut self.w, &mut self.ts, lt)?;
                 self.w.change_scalar(self.wires[k].code, bit(v))?;
@@ -306,11 +319,11 @@ impl VcdState {
         let mut events: Vec<(u64, usize, bool)> = Vec::new();
         for (k, wire) in self.wires.iter_mut().enumerate() {
             let mut after = lt as i64;
-            while let Some(e) = sim.nets.next_event(wire.net, after) {
+            while let Some(e) = sim.next_event(wire.net, after) {
                 if e > t {
                     break;
                 }
-                let v = sim.nets.at(wire.net, e);
+                let v = sim.net_at(wire.net, e);
                 if v != wire.last {
                     events.push((e, k, v));
                     wire.last = v;
@@ -324,7 +337,7 @@ impl VcdState {
             self.w.change_scalar(self.wires[k].code, bit(v))?;
         }
         for &i in ticked {
-            self.visit(sim.slots[i].comp.as_ref(), i, t, false)?;
+            self.visit(sim, i, t, false)?;
         }
         self.last_t = t;
         Ok(())

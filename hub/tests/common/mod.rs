@@ -6,7 +6,8 @@
 use canstar_hdl::drive;
 use canstar_hdl::drive::Clocked;
 use canstar_hub::frame_state::Field;
-use canstar_hub::hub::{Hub, HubConfig, HubCore};
+use canstar_hub::config::HubConfig;
+use canstar_hub::hub::{Hub, HubCore};
 
 /// What the harness needs from a hub: [`HubCore`] (frame state from the reference
 /// tracker) or [`Hub`] (frame state from its own monitor, the CAN controller).

@@ -4,7 +4,7 @@
 #![allow(dead_code)]
 
 use canstar_controller::frame::Frame;
-use canstar_hub::hub::HubConfig;
+use canstar_hub::config::HubConfig;
 use canstar_sim::Handle;
 use canstar_verify::node::{CanNode, NodeConfig};
 use canstar_sim::star::{HubPorts, LinkSpec, PortSpec, TwoHubs};

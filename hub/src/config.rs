@@ -1,0 +1,227 @@
+//! Generation-time configuration of a hub ([`HubConfig`], requirement H1 of hub.md):
+//! ports, interlinks, clock, frame-monitor bit timing, judging thresholds,
+//! reintegration and the optional fault-injection hook (H8).
+
+use crate::coupler;
+use crate::judge::JudgeParams;
+use serde::{Deserialize, Serialize};
+
+/// Bit timing of the hub's frame monitor, in the controller's encoding (every field is
+/// the value minus one; see `canstar_hdl::btl`): TQ = brp + 1 clocks, PROP = prop + 1,
+/// PH1 = ph1 + 1, PH2 = max(PH1, 2) TQ, SJW = sjw + 1, sample point after
+/// 1 + PROP + PH1 TQ. The default is the reference hub: TQ = 2 clocks of 14.74 MHz
+/// (the reference's "brp 0" of an SJA1000-style prescaler, which doubles), 8 TQ per
+/// bit, sample point at 6 TQ (75 %), SJW 1.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct HubBitTiming {
+    pub brp: u32,
+    pub prop: u32,
+    pub ph1: u32,
+    pub sjw: u32,
+}
+
+impl Default for HubBitTiming {
+    fn default() -> Self {
+        Self { brp: 1, prop: 2, ph1: 1, sjw: 0 }
+    }
+}
+
+impl HubBitTiming {
+    /// Clocks per time quantum.
+    pub fn tq_clocks(&self) -> u32 {
+        self.brp + 1
+    }
+    /// Phase segment 2 in TQ.
+    pub fn ph2_tq(&self) -> u32 {
+        (self.ph1 + 1).max(2)
+    }
+    /// Time quanta per bit (sync segment included).
+    pub fn tq_per_bit(&self) -> u32 {
+        self.sample_tq() + self.ph2_tq()
+    }
+    /// Time quanta from the start of the bit to the sample point.
+    pub fn sample_tq(&self) -> u32 {
+        1 + (self.prop + 1) + (self.ph1 + 1)
+    }
+    /// Clocks per bit.
+    pub fn bit_clocks(&self) -> u32 {
+        self.tq_per_bit() * self.tq_clocks()
+    }
+}
+
+/// Where a fault is injected.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub enum FaultPoint {
+    /// Uplink of port i, after the input stage (coupler and judge see it).
+    Uplink(usize),
+    /// Downlink of port i, after ANDT.
+    Downlink(usize),
+    /// Outgoing sublink j.
+    Sublink(usize),
+}
+
+/// Which fault.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub enum FaultKind {
+    StuckRecessive,
+    StuckDominant,
+    /// Inversion of the signal while active (every bit flipped once).
+    BitFlip,
+}
+
+impl FaultKind {
+    pub fn code(self) -> u64 {
+        match self {
+            FaultKind::StuckRecessive => coupler::FAULT_STUCK_RECESSIVE,
+            FaultKind::StuckDominant => coupler::FAULT_STUCK_DOMINANT,
+            FaultKind::BitFlip => coupler::FAULT_BIT_FLIP,
+        }
+    }
+}
+
+/// A fault-injection hook (H8).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct FaultInjection {
+    pub point: FaultPoint,
+    pub kind: FaultKind,
+    /// Field code at which an armed injection starts ([`Field`] code, e.g. 6 = data).
+    pub start_field: u8,
+}
+
+/// Generation-time parameters of a hub (H1). Defaults = the reference hub.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct HubConfig {
+    /// Node ports N (>= 1).
+    pub ports: usize,
+    /// Interlink sublink pairs M (>= 0; 0 = CANcentrate).
+    pub sublinks: usize,
+    /// Hub clock in Hz (documentation and pin constraints; the RTL counts clocks).
+    pub clock_hz: u64,
+    pub timing: HubBitTiming,
+    /// Input synchroniser depth, 1 or 2 (default 1: two coupled hubs need it to keep the
+    /// arbitration loop inside PROP with the reference timing, see the crate docs).
+    pub sync_depth: usize,
+    /// BIC threshold (isolation at bic >= 8 * threshold), 1..=31.
+    pub bic_threshold: u64,
+    /// Lifetime limit of blames per port (non-decaying counter, see [`crate::judge`]),
+    /// 1..=127.
+    pub life_threshold: u64,
+    /// Lifetime limit of blames per sublink, 1..=127.
+    pub sub_life_threshold: u64,
+    /// NACK threshold, 1..=7.
+    pub nack_threshold: u64,
+    /// DBC threshold for ports, 1..=31 (reference value 24 is available).
+    pub dbc_threshold: u64,
+    /// BIC threshold for sublinks (default twice the port threshold), 1..=31.
+    pub sub_bic_threshold: u64,
+    /// Dominant-run threshold for sublinks, 1..=31.
+    pub sub_dbc_threshold: u64,
+    /// Replica disagreement limit, 1..=7.
+    pub replica_limit: u64,
+    /// Reintegration window W in frames (None = isolation latched until reset).
+    pub reintegration: Option<u64>,
+    /// Fault-injection hook (None = no hooks).
+    pub fault_injection: Option<FaultInjection>,
+    /// Debug outputs (counters).
+    pub debug: bool,
+}
+
+impl Default for HubConfig {
+    fn default() -> Self {
+        Self {
+            ports: 3,
+            sublinks: 2,
+            clock_hz: 14_740_000,
+            timing: HubBitTiming::default(),
+            sync_depth: 1,
+            bic_threshold: 8,
+            life_threshold: 32,
+            sub_life_threshold: 64,
+            nack_threshold: 7,
+            dbc_threshold: 13,
+            sub_bic_threshold: 16,
+            sub_dbc_threshold: 28,
+            replica_limit: 3,
+            reintegration: None,
+            fault_injection: None,
+            debug: true,
+        }
+    }
+}
+
+impl HubConfig {
+    /// Clock edges from an uplink pin to the downlink pins.
+    pub fn coupling_latency(&self) -> usize {
+        coupler::coupling_latency(self.sync_depth)
+    }
+    /// Parameters of the port judge units.
+    pub fn port_params(&self) -> JudgeParams {
+        JudgeParams {
+            bic_limit: 8 * self.bic_threshold,
+            life_limit: self.life_threshold,
+            dbc_threshold: self.dbc_threshold,
+            nack_threshold: self.nack_threshold,
+            replica_limit: self.replica_limit,
+            reintegration: self.reintegration,
+        }
+    }
+    /// Parameters of the sublink judge units.
+    pub fn sublink_params(&self) -> JudgeParams {
+        JudgeParams {
+            bic_limit: 8 * self.sub_bic_threshold,
+            life_limit: self.sub_life_threshold,
+            dbc_threshold: self.sub_dbc_threshold,
+            nack_threshold: self.nack_threshold,
+            replica_limit: self.replica_limit,
+            reintegration: self.reintegration,
+        }
+    }
+    /// Check the ranges; returns a description of the first problem.
+    pub fn validate(&self) -> Result<(), String> {
+        if self.ports == 0 {
+            return Err("ports must be >= 1".into());
+        }
+        if !(1..=2).contains(&self.sync_depth) {
+            return Err("sync_depth must be 1 or 2".into());
+        }
+        let t = &self.timing;
+        if t.brp > 31 || t.prop > 7 || t.ph1 > 7 || t.sjw > 3 || t.tq_per_bit() < 8 || t.sjw > t.ph1 {
+            return Err("bit timing out of range (brp <= 31, prop, ph1 <= 7, sjw <= min(3, ph1), >= 8 TQ per bit)".into());
+        }
+        for (n, v, hi) in [
+            ("bic_threshold", self.bic_threshold, 31),
+            ("sub_bic_threshold", self.sub_bic_threshold, 31),
+            ("dbc_threshold", self.dbc_threshold, 31),
+            ("sub_dbc_threshold", self.sub_dbc_threshold, 31),
+            ("nack_threshold", self.nack_threshold, 7),
+            ("replica_limit", self.replica_limit, 7),
+            ("life_threshold", self.life_threshold, 127),
+            ("sub_life_threshold", self.sub_life_threshold, 127),
+        ] {
+            if v == 0 || v > hi {
+                return Err(format!("{n} must be in 1..={hi}"));
+            }
+        }
+        if let Some(w) = self.reintegration {
+            if w == 0 || w > 255 {
+                return Err("reintegration window must be in 1..=255".into());
+            }
+        }
+        if let Some(f) = self.fault_injection {
+            let ok = match f.point {
+                FaultPoint::Uplink(i) | FaultPoint::Downlink(i) => i < self.ports,
+                FaultPoint::Sublink(j) => j < self.sublinks,
+            };
+            if !ok {
+                return Err("fault-injection point out of range".into());
+            }
+            if f.start_field > 15 {
+                return Err("start_field must be a 4-bit field code".into());
+            }
+        }
+        Ok(())
+    }
+}
+
