@@ -5,64 +5,43 @@ use anyhow::{bail, Context, Result};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 
+use canstar_hdl::timing::{BtlConfig, TimingPatch};
+
 /// Power-up bit timing of the SJA1000-compatible top: the values a hardware
 /// reset loads into BTR0/BTR1 (a real SJA1000 leaves them undefined; the host
-/// may rewrite them in reset mode as usual). In time quanta, not the register
-/// encoding. The default is the ReCANcentrate reference profile on the
-/// XSA-3S1000's 14.74 MHz clock: 2 clocks per TQ, 8 TQ per bit, sample point
-/// after 6 TQ, SJW 1: 921.25 kbit/s.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields, default)]
-pub struct BitTiming {
-    /// Clocks per time quantum: 2·(BRP+1) on the SJA1000, so even, 2..=128.
-    pub brp: u32,
-    /// Propagation segment in TQ (TSEG1 = PROP + PH1 <= 16).
-    pub prop: u32,
-    /// Phase segment 1, 1..=8 TQ. Phase segment 2 (TSEG2) is max(PH1, IPT = 2).
-    pub ph1: u32,
-    /// Synchronisation jump width, 1..=min(4, PH1) TQ.
-    pub sjw: u32,
-    /// Triple sampling (BTR1 SAM).
-    pub triple: bool,
+/// may rewrite them in reset mode as usual), as `[bit_timing]` in time quanta
+/// (not the register encoding); every key is optional. The default is the
+/// ReCANcentrate reference profile on the XSA-3S1000's 14.74 MHz clock: 2
+/// clocks per TQ, 8 TQ per bit, sample point after 6 TQ, SJW 1: 921.25 kbit/s.
+pub const SJA1000_POWER_UP: BtlConfig = BtlConfig::new(2, 3, 2, 1);
+
+fn power_up_default() -> BtlConfig {
+    SJA1000_POWER_UP
 }
 
-impl Default for BitTiming {
-    fn default() -> Self {
-        Self { brp: 2, prop: 3, ph1: 2, sjw: 1, triple: false }
-    }
+fn power_up_timing<'de, D: serde::Deserializer<'de>>(d: D) -> std::result::Result<BtlConfig, D::Error> {
+    Ok(TimingPatch::deserialize(d)?.over(SJA1000_POWER_UP))
 }
 
-impl BitTiming {
-    fn btl(&self) -> canstar_hdl::btl::BtlConfig {
-        canstar_hdl::btl::BtlConfig { triple: self.triple, ..canstar_hdl::btl::BtlConfig::new(self.brp, self.prop, self.ph1, self.sjw) }
+/// Check a power-up timing: the ranges of can-protocol.md §2.2 (the bit timing
+/// logic's own check, [`BtlConfig::check`]) and that BTR0/BTR1 can express it
+/// (clocks per TQ = 2·(BRP+1), TSEG1 = PROP + PH1 <= 16).
+pub fn validate_power_up(t: &BtlConfig) -> Result<()> {
+    if t.brp < 2 || t.brp > 128 || t.brp % 2 != 0 {
+        bail!("invalid bit timing: brp = {} clocks per TQ (the SJA1000 top has 2·(BRP+1): even, 2..=128)", t.brp);
     }
-    pub fn ph2(&self) -> u32 {
-        self.btl().ph2()
+    if t.prop + t.ph1 > 16 {
+        bail!("invalid bit timing: prop + ph1 = TSEG1 = {} TQ (must be <= 16)", t.prop + t.ph1);
     }
-    pub fn ntq(&self) -> u32 {
-        self.btl().ntq()
-    }
-    pub fn sample_point(&self) -> u32 {
-        self.btl().sp()
-    }
-    /// Check the ranges of can-protocol.md §2.2 (the bit timing logic's own
-    /// check, `BtlConfig::is_valid`) and that BTR0/BTR1 can express it.
-    pub fn validate(&self) -> Result<()> {
-        if self.brp < 2 || self.brp > 128 || self.brp % 2 != 0 {
-            bail!("invalid bit timing: brp = {} clocks per TQ (the SJA1000 top has 2·(BRP+1): even, 2..=128)", self.brp);
-        }
-        if self.prop + self.ph1 > 16 {
-            bail!("invalid bit timing: prop + ph1 = TSEG1 = {} TQ (must be <= 16)", self.prop + self.ph1);
-        }
-        self.btl().check().map_err(|e| anyhow::anyhow!("invalid bit timing: {e}"))?;
-        Ok(())
-    }
-    /// The BTR0 and BTR1 register values of this timing.
-    pub fn btr(&self) -> (u8, u8) {
-        let btr0 = ((self.sjw - 1) << 6) | (self.brp / 2 - 1);
-        let btr1 = ((self.triple as u32) << 7) | ((self.ph2() - 1) << 4) | (self.prop + self.ph1 - 1);
-        (btr0 as u8, btr1 as u8)
-    }
+    t.check().map_err(|e| anyhow::anyhow!("invalid bit timing: {e}"))?;
+    Ok(())
+}
+
+/// The BTR0 and BTR1 register values of a (valid) power-up timing.
+pub fn btr(t: &BtlConfig) -> (u8, u8) {
+    let btr0 = ((t.sjw - 1) << 6) | (t.brp / 2 - 1);
+    let btr1 = ((t.triple as u32) << 7) | ((t.ph2() - 1) << 4) | (t.prop + t.ph1 - 1);
+    (btr0 as u8, btr1 as u8)
 }
 
 /// RTL-level options shared by the designs.
@@ -96,16 +75,24 @@ impl Default for Controller {
 }
 
 /// The whole generator configuration.
-#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct Config {
-    pub bit_timing: BitTiming,
+    /// `[bit_timing]`: the SJA1000 top's power-up BTR0/BTR1 ([`SJA1000_POWER_UP`] for missing keys).
+    #[serde(deserialize_with = "power_up_timing", default = "power_up_default")]
+    pub bit_timing: BtlConfig,
     pub rtl: Rtl,
     pub controller: Controller,
     /// The star hub (defaults: the reference ReCANcentrate hub, N = 3, M = 2,
     /// 14.74 MHz, 8 TQ of 2 clocks per bit). Bit-timing fields here use the
-    /// register encoding (value - 1), see `canstar_hub::config::HubBitTiming`.
+    /// register encoding (value - 1), read into `canstar_hdl::timing::BtlConfig`.
     pub hub: canstar_hub::config::HubConfig,
+}
+
+impl Default for Config {
+    fn default() -> Self {
+        Config { bit_timing: SJA1000_POWER_UP, rtl: Rtl::default(), controller: Controller::default(), hub: Default::default() }
+    }
 }
 
 impl Config {
@@ -119,7 +106,7 @@ impl Config {
         Self::from_toml(&text).with_context(|| format!("in config {}", path.display()))
     }
     pub fn validate(&self) -> Result<()> {
-        self.bit_timing.validate()?;
+        validate_power_up(&self.bit_timing)?;
         if !(1..=2).contains(&self.rtl.sync_depth) {
             bail!("invalid rtl.sync_depth = {} (must be 1 or 2)", self.rtl.sync_depth);
         }
@@ -136,12 +123,15 @@ mod tests {
     fn defaults_are_valid() {
         Config::default().validate().unwrap();
         // the reference profile: 8 TQ, sample point after 6, BTR0 0x00, BTR1 0x14
-        assert_eq!(BitTiming::default().ntq(), 8);
-        assert_eq!(BitTiming::default().sample_point(), 6);
-        assert_eq!(BitTiming::default().btr(), (0x00, 0x14));
-        let t = BitTiming { brp: 128, prop: 8, ph1: 8, sjw: 4, triple: true };
-        t.validate().unwrap();
-        assert_eq!(t.btr(), (0xFF, 0xFF));
+        assert_eq!(SJA1000_POWER_UP.ntq(), 8);
+        assert_eq!(SJA1000_POWER_UP.sp(), 6);
+        assert_eq!(btr(&SJA1000_POWER_UP), (0x00, 0x14));
+        let t = BtlConfig { triple: true, ..BtlConfig::new(128, 8, 8, 4) };
+        validate_power_up(&t).unwrap();
+        assert_eq!(btr(&t), (0xFF, 0xFF));
+        // a partial [bit_timing] keeps the power-up default for the other keys
+        let c = Config::from_toml("[bit_timing]\nprop = 4\n").unwrap();
+        assert_eq!(c.bit_timing, BtlConfig { prop: 4, ..SJA1000_POWER_UP });
         let e = Config::from_toml("[bit_timing]\nbrp = 3\n").unwrap_err();
         assert!(format!("{e:#}").contains("even"), "{e:#}");
     }

@@ -44,7 +44,7 @@ pub fn controller(config: &Config) -> Result<Vec<Artifact>> {
 /// top `canstar_sja1000_board` with an active-low reset), and its pin files on every
 /// board with a controller pinout (or the one asked for).
 pub fn sja1000(config: &Config, board: Option<&str>) -> Result<Vec<Artifact>> {
-    let (btr0, btr1) = config.bit_timing.btr();
+    let (btr0, btr1) = crate::config::btr(&config.bit_timing);
     let mut uut = canstar_controller::sja1000::Sja1000::with_reset_timing(btr0, btr1);
     uut.connect_all();
     let name = "canstar_sja1000";
@@ -57,7 +57,7 @@ pub fn sja1000(config: &Config, board: Option<&str>) -> Result<Vec<Artifact>> {
          board top with active-low reset; BTR0/BTR1 after reset 0x{btr0:02X}/0x{btr1:02X} ({} clocks per TQ, {} TQ per bit, sample point {})",
         t.brp,
         t.ntq(),
-        t.sample_point()
+        t.sp()
     );
     let mut out = vec![Artifact {
         root: Root::Verilog,

@@ -124,7 +124,7 @@ fn committed_sja1000_cosimulates() {
     // Wishbone cycles with random addresses and data (mode, command, timing,
     // TX buffer writes; reads of every register), CAN loopback.
     // the committed file is generated with the default configuration's power-up BTR values
-    let (btr0, btr1) = canstar::config::Config::default().bit_timing.btr();
+    let (btr0, btr1) = canstar::config::btr(&canstar::config::Config::default().bit_timing);
     let mut uut = canstar_controller::sja1000::Sja1000::with_reset_timing(btr0, btr1);
     run(&mut uut, "controller/canstar_sja1000.v", "canstar_sja1000", |u, r, c| {
         u.rst.next = c < 5;

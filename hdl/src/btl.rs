@@ -92,96 +92,12 @@
 //! ```
 
 use crate::impl_clocked;
+pub use crate::timing::{BtlConfig, IPT};
 use rust_hdl::prelude::*;
-
-/// Information processing time in TQ (§2.2, C1).
-pub const IPT: u32 = 2;
 
 /// Clocks from the tick clock on which `rx` is looked at to the clock on
 /// which `busmon` and `tx` show the result of that TQ step.
 pub const L_RX: usize = 1;
-
-/// Bit timing configuration in real values (not value − 1).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct BtlConfig {
-    /// Prescaler 1..128.
-    pub brp: u32,
-    /// PROP_SEG 1..16 (wider than §2.2's 1..8, for the SJA1000 block).
-    pub prop: u32,
-    /// PHASE_SEG1 1..8.
-    pub ph1: u32,
-    /// SJW 1..4.
-    pub sjw: u32,
-    /// Triple sampling.
-    pub triple: bool,
-}
-
-impl BtlConfig {
-    /// Build from real values.
-    pub const fn new(brp: u32, prop: u32, ph1: u32, sjw: u32) -> Self {
-        Self { brp, prop, ph1, sjw, triple: false }
-    }
-    /// From the host fields (value − 1 encoding); out-of-range bits ignored.
-    pub fn from_fields(brp: u32, prop: u32, ph1: u32, sjw: u32, triple: bool) -> Self {
-        Self { brp: (brp & 127) + 1, prop: (prop & 15) + 1, ph1: (ph1 & 7) + 1, sjw: (sjw & 3) + 1, triple }
-    }
-    /// The host fields (value − 1): (brp, prop, ph1, sjw).
-    pub fn fields(&self) -> (u32, u32, u32, u32) {
-        (self.brp - 1, self.prop - 1, self.ph1 - 1, self.sjw - 1)
-    }
-    /// PH2 = max(PH1, IPT).
-    pub fn ph2(&self) -> u32 {
-        self.ph1.max(IPT)
-    }
-    /// Sample point, TQ from the start of the bit.
-    pub fn sp(&self) -> u32 {
-        1 + self.prop + self.ph1
-    }
-    /// Bit time in TQ.
-    pub fn ntq(&self) -> u32 {
-        self.sp() + self.ph2()
-    }
-    /// Is the configuration accepted (§2.2)?
-    pub fn is_valid(&self) -> bool {
-        self.check().is_ok()
-    }
-    /// The ranges of §2.2 (as widened for the SJA1000 top), with a message
-    /// naming the first value out of range. The one bit-timing check that the
-    /// configuration, scenario and network file readers all use.
-    pub fn check(&self) -> Result<(), String> {
-        if !(1..=128).contains(&self.brp) {
-            return Err(format!("brp = {} clocks per TQ (must be 1..=128)", self.brp));
-        }
-        if !(1..=16).contains(&self.prop) {
-            return Err(format!("prop = {} TQ (must be 1..=16)", self.prop));
-        }
-        if !(1..=8).contains(&self.ph1) {
-            return Err(format!("ph1 = {} TQ (must be 1..=8)", self.ph1));
-        }
-        if !(1..=4).contains(&self.sjw) {
-            return Err(format!("sjw = {} TQ (must be 1..=4)", self.sjw));
-        }
-        if self.sjw > self.ph1 {
-            return Err(format!("sjw = {} TQ exceeds ph1 = {} TQ", self.sjw, self.ph1));
-        }
-        if !(8..=25).contains(&self.ntq()) {
-            return Err(format!("1 + prop + ph1 + ph2 = {} TQ per bit (must be 8..=25)", self.ntq()));
-        }
-        Ok(())
-    }
-    /// T10/6/4 (default timing, PROP 1, PH1 4, SJW 4).
-    pub const T10_6_4: Self = Self::new(1, 1, 4, 4);
-    /// T25/17/1 (PROP 8, PH1 8, SJW 1).
-    pub const T25_17_1: Self = Self::new(1, 8, 8, 1);
-    /// T10/8/1 (PROP 5, PH1 2, SJW 1).
-    pub const T10_8_1: Self = Self::new(1, 5, 2, 1);
-    /// T10/6/2 (PROP 1, PH1 4, SJW 2).
-    pub const T10_6_2: Self = Self::new(1, 1, 4, 2);
-    /// Same timing with another prescaler.
-    pub const fn with_brp(self, brp: u32) -> Self {
-        Self { brp, ..self }
-    }
-}
 
 /// What happened on one TQ tick of [`BtlModel`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]

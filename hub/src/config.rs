@@ -4,51 +4,8 @@
 
 use crate::coupler;
 use crate::judge::JudgeParams;
+use canstar_hdl::timing::BtlConfig;
 use serde::{Deserialize, Serialize};
-
-/// Bit timing of the hub's frame monitor, in the controller's encoding (every field is
-/// the value minus one; see `canstar_hdl::btl`): TQ = brp + 1 clocks, PROP = prop + 1,
-/// PH1 = ph1 + 1, PH2 = max(PH1, 2) TQ, SJW = sjw + 1, sample point after
-/// 1 + PROP + PH1 TQ. The default is the reference hub: TQ = 2 clocks of 14.74 MHz
-/// (the reference's "brp 0" of an SJA1000-style prescaler, which doubles), 8 TQ per
-/// bit, sample point at 6 TQ (75 %), SJW 1.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct HubBitTiming {
-    pub brp: u32,
-    pub prop: u32,
-    pub ph1: u32,
-    pub sjw: u32,
-}
-
-impl Default for HubBitTiming {
-    fn default() -> Self {
-        Self { brp: 1, prop: 2, ph1: 1, sjw: 0 }
-    }
-}
-
-impl HubBitTiming {
-    /// Clocks per time quantum.
-    pub fn tq_clocks(&self) -> u32 {
-        self.brp + 1
-    }
-    /// Phase segment 2 in TQ.
-    pub fn ph2_tq(&self) -> u32 {
-        (self.ph1 + 1).max(2)
-    }
-    /// Time quanta per bit (sync segment included).
-    pub fn tq_per_bit(&self) -> u32 {
-        self.sample_tq() + self.ph2_tq()
-    }
-    /// Time quanta from the start of the bit to the sample point.
-    pub fn sample_tq(&self) -> u32 {
-        1 + (self.prop + 1) + (self.ph1 + 1)
-    }
-    /// Clocks per bit.
-    pub fn bit_clocks(&self) -> u32 {
-        self.tq_per_bit() * self.tq_clocks()
-    }
-}
 
 /// Where a fault is injected.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -99,7 +56,13 @@ pub struct HubConfig {
     pub sublinks: usize,
     /// Hub clock in Hz (documentation and pin constraints; the RTL counts clocks).
     pub clock_hz: u64,
-    pub timing: HubBitTiming,
+    /// Bit timing of the frame monitor. Files write it in the controller's register
+    /// encoding (every field the value − 1, `[hub.timing]`), converted when read.
+    /// The default is the reference hub: TQ = 2 clocks of 14.74 MHz (the reference's
+    /// "brp 0" of an SJA1000-style prescaler, which doubles), 8 TQ per bit, sample
+    /// point at 6 TQ (75 %), SJW 1.
+    #[serde(with = "canstar_hdl::timing::encoded")]
+    pub timing: BtlConfig,
     /// Input synchroniser depth, 1 or 2 (default 1: two coupled hubs need it to keep the
     /// arbitration loop inside PROP with the reference timing, see the crate docs).
     pub sync_depth: usize,
@@ -134,7 +97,7 @@ impl Default for HubConfig {
             ports: 3,
             sublinks: 2,
             clock_hz: 14_740_000,
-            timing: HubBitTiming::default(),
+            timing: REFERENCE_TIMING,
             sync_depth: 1,
             bic_threshold: 8,
             life_threshold: 32,
@@ -151,7 +114,14 @@ impl Default for HubConfig {
     }
 }
 
+/// The reference hub's monitor timing: TQ = 2 clocks, PROP 3, PH1 2, PH2 2, SJW 1 TQ.
+pub const REFERENCE_TIMING: BtlConfig = BtlConfig::new(2, 3, 2, 1);
+
 impl HubConfig {
+    /// Clocks per bit of the frame monitor.
+    pub fn bit_clocks(&self) -> u32 {
+        self.timing.ntq() * self.timing.brp
+    }
     /// Clock edges from an uplink pin to the downlink pins.
     pub fn coupling_latency(&self) -> usize {
         coupler::coupling_latency(self.sync_depth)
@@ -187,9 +157,10 @@ impl HubConfig {
             return Err("sync_depth must be 1 or 2".into());
         }
         let t = &self.timing;
-        if t.brp > 31 || t.prop > 7 || t.ph1 > 7 || t.sjw > 3 || t.tq_per_bit() < 8 || t.sjw > t.ph1 {
-            return Err("bit timing out of range (brp <= 31, prop, ph1 <= 7, sjw <= min(3, ph1), >= 8 TQ per bit)".into());
+        if t.brp > 32 || t.prop > 8 || t.triple {
+            return Err("bit timing out of range for the hub's monitor (at most 32 clocks per TQ, PROP <= 8 TQ, no triple sampling)".into());
         }
+        t.check().map_err(|e| format!("bit timing: {e}"))?;
         for (n, v, hi) in [
             ("bic_threshold", self.bic_threshold, 31),
             ("sub_bic_threshold", self.sub_bic_threshold, 31),

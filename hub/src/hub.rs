@@ -400,7 +400,8 @@ impl Hub {
         let (n, m) = (cfg.ports, cfg.sublinks);
         let (dn, dm) = if cfg.debug { (n, m) } else { (0, 0) };
         let t = cfg.timing;
-        let bs_delay = (t.ph2_tq() * t.tq_clocks()).saturating_sub(2) as u64;
+        let bs_delay = (t.ph2() * t.brp).saturating_sub(2) as u64;
+        let (brp, prop, ph1, sjw) = t.fields();
         Self {
             clock: Default::default(),
             rst_n: Default::default(),
@@ -424,10 +425,10 @@ impl Hub {
             core,
             monitor: CanCore::with_sync_depth(MONITOR_SYNC_DEPTH),
             adapter: MonitorAdapter::new(bs_delay),
-            brp: Constant::new((t.brp as u64).into()),
-            prop: Constant::new((t.prop as u64).into()),
-            ph1: Constant::new((t.ph1 as u64).into()),
-            sjw: Constant::new((t.sjw as u64).into()),
+            brp: Constant::new((brp as u64).into()),
+            prop: Constant::new((prop as u64).into()),
+            ph1: Constant::new((ph1 as u64).into()),
+            sjw: Constant::new((sjw as u64).into()),
             _n: n,
             _m: m,
             _dn: dn,

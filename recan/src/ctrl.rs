@@ -73,10 +73,10 @@ impl Ctrl {
     fn apply_config(&mut self) {
         let s = &self.spec;
         let f = |v: u32| v.saturating_sub(1) as u64;
-        self.core.brp.next = f(s.brp).into();
-        self.core.prop.next = f(s.prop).into();
-        self.core.ph1.next = f(s.ph1).into();
-        self.core.sjw.next = f(s.sjw).into();
+        self.core.brp.next = f(s.timing.brp).into();
+        self.core.prop.next = f(s.timing.prop).into();
+        self.core.ph1.next = f(s.timing.ph1).into();
+        self.core.sjw.next = f(s.timing.sjw).into();
         self.core.triple.next = false;
         self.core.listen_only.next = false;
         self.core.self_test.next = false;

@@ -5,6 +5,7 @@
 //! of hub 1. Unused hub ports stay recessive.
 
 use canstar_hub::config::HubConfig;
+use canstar_hdl::timing::BtlConfig;
 use serde::{Deserialize, Serialize};
 
 
@@ -47,24 +48,19 @@ impl Default for InterlinkSpec {
     }
 }
 
-/// One CAN controller of a node: clock, bit timing (real values, as
-/// [`crate::node::NodeConfig`]: PH2 = max(PH1, 2)), and its link delays.
+/// One CAN controller of a node: clock, bit timing (real values, PH2 = max(PH1, 2)),
+/// and its link delays. In a network file the timing keys (`brp`, `prop`, `ph1`,
+/// `sjw`) sit beside the others (see [`CtrlSpecFile`]).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
+#[serde(from = "CtrlSpecFile", into = "CtrlSpecFile")]
 pub struct CtrlSpec {
     pub clock_hz: u64,
     /// Oscillator offset in ppm (positive = slower).
     pub ppm: f64,
     /// Time of the first clock edge in ps (None = random from the run seed).
     pub phase_ps: Option<u64>,
-    /// Clocks per time quantum, 1..=128.
-    pub brp: u32,
-    /// Propagation segment, 1..=16 TQ.
-    pub prop: u32,
-    /// Phase segment 1, 1..=8 TQ (PH2 = max(PH1, 2)).
-    pub ph1: u32,
-    /// Synchronisation jump width, 1..=4 TQ.
-    pub sjw: u32,
+    /// Bit timing: clocks per TQ 1..=128, PROP 1..=16, PH1 1..=8, SJW 1..=4 TQ.
+    pub timing: BtlConfig,
     /// RX synchroniser depth (1 or 2).
     pub sync_depth: usize,
     /// Uplink (controller TX → hub) propagation delay in ps.
@@ -73,24 +69,79 @@ pub struct CtrlSpec {
     pub down_ps: u64,
 }
 
+/// The reference node controller's timing: TQ = 4 clocks, SYNC 1, PROP 3, PH1 2,
+/// PH2 2, SJW 1 (the same sample point as the prototype's PROP 2 / PH1 3 / PH2 2,
+/// which this controller cannot express since its PH2 >= PH1).
+pub const REFERENCE_CTRL_TIMING: BtlConfig = BtlConfig::new(4, 3, 2, 1);
+
 impl Default for CtrlSpec {
     /// The reference node controller: 29.48 MHz, TQ = 4 clocks (135.7 ns),
-    /// 8 TQ per bit with the sample point after 6 TQ (SYNC 1, PROP 3, PH1 2,
-    /// PH2 2, SJW 1: the same sample point as the prototype's PROP 2 / PH1 3 /
-    /// PH2 2, which this controller cannot express since its PH2 >= PH1),
+    /// 8 TQ per bit with the sample point after 6 TQ ([`REFERENCE_CTRL_TIMING`]),
     /// 10 ns links.
     fn default() -> Self {
         CtrlSpec {
             clock_hz: 29_480_000,
             ppm: 0.0,
             phase_ps: None,
-            brp: 4,
-            prop: 3,
-            ph1: 2,
-            sjw: 1,
+            timing: REFERENCE_CTRL_TIMING,
             sync_depth: 1,
             up_ps: 10_000,
             down_ps: 10_000,
+        }
+    }
+}
+
+/// A controller as a network file writes it: every key optional (default: the
+/// reference controller), the bit timing keys inline.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct CtrlSpecFile {
+    clock_hz: u64,
+    ppm: f64,
+    phase_ps: Option<u64>,
+    brp: u32,
+    prop: u32,
+    ph1: u32,
+    sjw: u32,
+    sync_depth: usize,
+    up_ps: u64,
+    down_ps: u64,
+}
+
+impl Default for CtrlSpecFile {
+    fn default() -> Self {
+        CtrlSpec::default().into()
+    }
+}
+
+impl From<CtrlSpecFile> for CtrlSpec {
+    fn from(f: CtrlSpecFile) -> Self {
+        CtrlSpec {
+            clock_hz: f.clock_hz,
+            ppm: f.ppm,
+            phase_ps: f.phase_ps,
+            timing: BtlConfig::new(f.brp, f.prop, f.ph1, f.sjw),
+            sync_depth: f.sync_depth,
+            up_ps: f.up_ps,
+            down_ps: f.down_ps,
+        }
+    }
+}
+
+impl From<CtrlSpec> for CtrlSpecFile {
+    fn from(c: CtrlSpec) -> Self {
+        let t = c.timing;
+        CtrlSpecFile {
+            clock_hz: c.clock_hz,
+            ppm: c.ppm,
+            phase_ps: c.phase_ps,
+            brp: t.brp,
+            prop: t.prop,
+            ph1: t.ph1,
+            sjw: t.sjw,
+            sync_depth: c.sync_depth,
+            up_ps: c.up_ps,
+            down_ps: c.down_ps,
         }
     }
 }
@@ -99,15 +150,9 @@ impl CtrlSpec {
     pub fn period_ps(&self) -> u64 {
         (1e12 / self.clock_hz as f64).round() as u64
     }
-    pub fn ph2(&self) -> u32 {
-        self.ph1.max(2)
-    }
-    pub fn tq_per_bit(&self) -> u32 {
-        1 + self.prop + self.ph1 + self.ph2()
-    }
     /// Nominal bit time in ps.
     pub fn bit_time_ps(&self) -> u64 {
-        self.period_ps() * self.brp as u64 * self.tq_per_bit() as u64
+        self.period_ps() * self.timing.brp as u64 * self.timing.ntq() as u64
     }
 }
 
@@ -275,7 +320,7 @@ impl NetworkSpec {
             for c in 0..2 {
                 let cs = n.ctrl_mut(c);
                 cs.clock_hz = 14_740_000;
-                cs.brp = 2;
+                cs.timing.brp = 2;
             }
         }
         s.driver.timer_clock_hz = 29_480_000;
@@ -310,7 +355,7 @@ impl NetworkSpec {
 
     /// Nominal bit time of the hubs in ps (the reference bit time of the network).
     pub fn bit_time_ps(&self) -> u64 {
-        self.hub_period_ps() * self.hub.timing.bit_clocks() as u64
+        self.hub_period_ps() * self.hub.bit_clocks() as u64
     }
 
     /// Check the spec; the error names the problem.
@@ -368,7 +413,7 @@ impl NetworkSpec {
                 if cs.clock_hz == 0 {
                     return Err(format!("{who}: clock_hz must be > 0"));
                 }
-                canstar_hdl::btl::BtlConfig::new(cs.brp, cs.prop, cs.ph1, cs.sjw).check().map_err(|e| format!("{who}: bit timing: {e}"))?;
+                cs.timing.check().map_err(|e| format!("{who}: bit timing: {e}"))?;
                 if !(1..=2).contains(&cs.sync_depth) {
                     return Err(format!("{who}: sync_depth must be 1 or 2"));
                 }

@@ -35,8 +35,8 @@ fn invalid_networks_are_rejected_with_a_reason() {
     assert!(err(|s| { s.interlinks.pop(); }).contains("interlinks"));
     assert!(err(|s| s.nodes[1].id = 0x0A0).contains("used by another sender"));
     assert!(err(|s| s.nodes[0].id = 0x800).contains("11 bits"));
-    assert!(err(|s| s.nodes[2].b.brp = 5).contains("bit time"));
-    assert!(err(|s| s.nodes[2].a.sjw = 3).contains("sjw"));
+    assert!(err(|s| s.nodes[2].b.timing.brp = 5).contains("bit time"));
+    assert!(err(|s| s.nodes[2].a.timing.sjw = 3).contains("sjw"));
     assert!(err(|s| s.nodes[0].b.up_ps = 400_000).contains("half a bit"));
     assert!(err(|s| s.nodes[0].initial_tx = 2).contains("initial_tx"));
     assert!(err(|s| s.hub.ports = 2).contains("hub.ports"));

@@ -245,11 +245,11 @@ impl LockstepNode {
         let f = |v: u32| v.saturating_sub(1);
         let btl_cfg = BtlInputs {
             reset: false,
-            brp: f(cfg.brp),
-            prop: f(cfg.prop),
-            ph1: f(cfg.ph1),
-            sjw: f(cfg.sjw),
-            triple: cfg.triple,
+            brp: f(cfg.timing.brp),
+            prop: f(cfg.timing.prop),
+            ph1: f(cfg.timing.ph1),
+            sjw: f(cfg.timing.sjw),
+            triple: cfg.timing.triple,
             rx: true,
             drive: true,
             hs_en: false,

@@ -29,6 +29,7 @@ use canstar_controller::frame::Frame;
 use canstar_controller::fsm::{Field, ERRK_ACK, ERRK_BIT, ERRK_CRC, ERRK_FORM, ERRK_STUFF};
 use canstar_controller::trace::BitTracer;
 use canstar_hdl::drive;
+use canstar_hdl::timing::BtlConfig;
 use rust_hdl::prelude::*;
 use std::collections::VecDeque;
 
@@ -39,15 +40,8 @@ pub const RESET_CYCLES: u32 = 4;
 #[derive(Debug, Clone, PartialEq)]
 pub struct NodeConfig {
     pub name: String,
-    /// Clocks per time quantum, 1..=32.
-    pub brp: u32,
-    /// Propagation segment, 1..=8 TQ.
-    pub prop: u32,
-    /// Phase segment 1, 1..=8 TQ.
-    pub ph1: u32,
-    /// Synchronisation jump width, 1..=4 TQ.
-    pub sjw: u32,
-    pub triple: bool,
+    /// Bit timing (real values; PH2 = max(PH1, 2)).
+    pub timing: BtlConfig,
     pub listen_only: bool,
     pub self_test: bool,
     pub single_shot: bool,
@@ -61,11 +55,7 @@ impl NodeConfig {
     pub fn named(name: &str) -> Self {
         NodeConfig {
             name: name.to_string(),
-            brp: 1,
-            prop: 1,
-            ph1: 4,
-            sjw: 4,
-            triple: false,
+            timing: BtlConfig::T10_6_4,
             listen_only: false,
             self_test: false,
             single_shot: false,
@@ -73,24 +63,11 @@ impl NodeConfig {
             sync_depth: canstar_controller::core::SYNC_DEPTH,
         }
     }
+    /// The same node with bit timing `brp` clocks per TQ, PROP, PH1, SJW in TQ
+    /// (triple sampling unchanged).
     pub fn timing(mut self, brp: u32, prop: u32, ph1: u32, sjw: u32) -> Self {
-        self.brp = brp;
-        self.prop = prop;
-        self.ph1 = ph1;
-        self.sjw = sjw;
+        self.timing = BtlConfig { triple: self.timing.triple, ..BtlConfig::new(brp, prop, ph1, sjw) };
         self
-    }
-    /// The bit timing as the bit timing logic's configuration.
-    pub fn btl(&self) -> canstar_hdl::btl::BtlConfig {
-        canstar_hdl::btl::BtlConfig { triple: self.triple, ..canstar_hdl::btl::BtlConfig::new(self.brp, self.prop, self.ph1, self.sjw) }
-    }
-    /// Phase segment 2 (max(PH1, IPT = 2)).
-    pub fn ph2(&self) -> u32 {
-        self.btl().ph2()
-    }
-    /// Time quanta per bit.
-    pub fn ntq(&self) -> u32 {
-        self.btl().ntq()
     }
 }
 
@@ -162,11 +139,11 @@ impl CanNode {
     fn apply_config(&mut self) {
         let c = &self.cfg;
         let f = |v: u32| v.saturating_sub(1) as u64;
-        self.core.brp.next = f(c.brp).into();
-        self.core.prop.next = f(c.prop).into();
-        self.core.ph1.next = f(c.ph1).into();
-        self.core.sjw.next = f(c.sjw).into();
-        self.core.triple.next = c.triple;
+        self.core.brp.next = f(c.timing.brp).into();
+        self.core.prop.next = f(c.timing.prop).into();
+        self.core.ph1.next = f(c.timing.ph1).into();
+        self.core.sjw.next = f(c.timing.sjw).into();
+        self.core.triple.next = c.timing.triple;
         self.core.listen_only.next = c.listen_only;
         self.core.self_test.next = c.self_test;
         self.core.single_shot.next = c.single_shot;
@@ -260,7 +237,7 @@ impl CanNode {
     }
     /// Nominal bit time in ps.
     pub fn bit_time_ps(&self) -> u64 {
-        self.clock.period_ps * self.cfg.brp as u64 * self.cfg.ntq() as u64
+        self.clock.period_ps * self.cfg.timing.brp as u64 * self.cfg.timing.ntq() as u64
     }
 
     fn drive_request(&mut self) {

@@ -32,53 +32,21 @@
 //! bits = 1
 //! ```
 
+use canstar_hdl::timing::BtlConfig;
 use serde::Deserialize;
 use std::fmt::Write as _;
-
-/// Bit timing in time quanta, as the scenario writes it.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct BitTimingSpec {
-    pub brp: u32,
-    pub prop: u32,
-    pub ph1: u32,
-    pub sjw: u32,
-    #[serde(default)]
-    pub triple: bool,
-}
-
-impl Default for BitTimingSpec {
-    fn default() -> Self {
-        Self { brp: 1, prop: 1, ph1: 4, sjw: 4, triple: false }
-    }
-}
-
-impl BitTimingSpec {
-    fn btl(&self) -> canstar_hdl::btl::BtlConfig {
-        canstar_hdl::btl::BtlConfig { triple: self.triple, ..canstar_hdl::btl::BtlConfig::new(self.brp, self.prop, self.ph1, self.sjw) }
-    }
-    pub fn ph2(&self) -> u32 {
-        self.btl().ph2()
-    }
-    pub fn ntq(&self) -> u32 {
-        self.btl().ntq()
-    }
-    pub fn validate(&self) -> Result<(), String> {
-        self.btl().check()
-    }
-}
 
 /// Values every node takes unless it sets its own.
 #[derive(Debug, Clone, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct Defaults {
     pub clock_mhz: f64,
-    pub bit_timing: BitTimingSpec,
+    pub bit_timing: BtlConfig,
 }
 
 impl Default for Defaults {
     fn default() -> Self {
-        Self { clock_mhz: 10.0, bit_timing: BitTimingSpec::default() }
+        Self { clock_mhz: 10.0, bit_timing: BtlConfig::T10_6_4 }
     }
 }
 
@@ -101,7 +69,7 @@ pub struct NodeSpec {
     #[serde(default)]
     pub ppm: f64,
     #[serde(default)]
-    pub bit_timing: Option<BitTimingSpec>,
+    pub bit_timing: Option<BtlConfig>,
     /// TX to bus delay (both edges), ns.
     #[serde(default)]
     pub tx_delay_ns: u64,
@@ -223,7 +191,7 @@ impl Scenario {
         self.nodes.iter().position(|n| n.name == name)
     }
 
-    pub fn bit_timing(&self, node: usize) -> BitTimingSpec {
+    pub fn bit_timing(&self, node: usize) -> BtlConfig {
         self.nodes[node].bit_timing.unwrap_or(self.defaults.bit_timing)
     }
 
@@ -238,7 +206,7 @@ impl Scenario {
         if self.duration_us == 0 {
             return Err("duration_us must be positive".into());
         }
-        self.defaults.bit_timing.validate().map_err(|e| format!("defaults: invalid bit timing: {e}"))?;
+        self.defaults.bit_timing.check().map_err(|e| format!("defaults: invalid bit timing: {e}"))?;
         for (i, n) in self.nodes.iter().enumerate() {
             if n.name.is_empty() || !n.name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_') {
                 return Err(format!("node {}: name `{}` must be non-empty letters, digits or _", i + 1, n.name));
@@ -253,7 +221,7 @@ impl Scenario {
             if n.ppm.abs() > 10_000.0 {
                 return Err(format!("node {}: ppm = {} is not an oscillator offset (|ppm| <= 10000)", n.name, n.ppm));
             }
-            self.bit_timing(i).validate().map_err(|e| format!("node {}: invalid bit timing: {e}", n.name))?;
+            self.bit_timing(i).check().map_err(|e| format!("node {}: invalid bit timing: {e}", n.name))?;
         }
         for (k, f) in self.frames.iter().enumerate() {
             let what = format!("frame {} (node {})", k + 1, f.node);
@@ -473,8 +441,8 @@ pub fn run(s: &Scenario, opts: &RunOptions) -> Result<RunResult, String> {
     let mut tq_ps = vec![];
     for (i, n) in s.nodes.iter().enumerate() {
         let bt = s.bit_timing(i);
-        let mut cfg = NodeConfig::named(&n.name).timing(bt.brp, bt.prop, bt.ph1, bt.sjw);
-        cfg.triple = bt.triple;
+        let mut cfg = NodeConfig::named(&n.name);
+        cfg.timing = bt;
         cfg.listen_only = n.mode == NodeMode::ListenOnly;
         cfg.self_test = n.mode == NodeMode::SelfTest;
         cfg.single_shot = n.single_shot;

@@ -21,12 +21,12 @@ fn timings() -> Vec<(u32, NodeConfig)> {
 
 pub fn run(ctx: &mut Ctx) {
     for (tn, c) in timings() {
-        let ntq = c.ntq() as u64;
-        let sp = 1 + c.prop + c.ph1;
+        let ntq = c.timing.ntq() as u64;
+        let sp = 1 + c.timing.prop + c.timing.ph1;
         let vcd = ctx.vcd.as_ref().map(|d| d.join(format!("btl_{tn}.vcd")));
         let mut b = Bench::with_clocks(vec![c.clone()], vec![ClockSpec::new(CLOCK_PS)], false, vcd.as_deref());
         let ok = b.run_until(40, |b| b.node(0).field() == Field::Idle);
-        let tq = CLOCK_PS * c.brp as u64;
+        let tq = CLOCK_PS * c.timing.brp as u64;
         let l_rx = canstar_controller::core::CanCore::l_rx(c.sync_depth) as i64;
         for j in (0..ntq).filter(|&j| j != (sp - 1) as u64) {
             let name = format!("btl_{tn}a_j{j}");
@@ -192,7 +192,7 @@ fn fresh(b: &mut Bench) -> Result<(), String> {
 fn ph2_off(b: &Bench) -> i64 {
     let c = b.node(0).config();
     let l_rx = canstar_controller::core::CanCore::l_rx(c.sync_depth) as i64;
-    (c.ph2() as i64 * c.brp as i64 - l_rx) * CLOCK_PS as i64
+    (c.timing.ph2() as i64 * c.timing.brp as i64 - l_rx) * CLOCK_PS as i64
 }
 
 /// Start of TQ 0 of the bit after the one whose record is at `t_rec`, on
@@ -289,9 +289,9 @@ fn check_timing(b: &Bench, tm: &Tm, t0: u64, j: u64, m: usize, x_sample: u64, tx
 ///   SOF bit until TQ j: no synchronisation, SOF sampled `D` at SP and TX to
 ///   `R` (ID 1) at the normal bit end. Other j are left to lock-step.
 pub fn cases_b_to_f(ctx: &mut Ctx, tn: u32, c: &NodeConfig) {
-    let ntq = c.ntq() as u64;
-    let sp = (1 + c.prop + c.ph1) as u64;
-    let tm = Tm { tn, ntq, sp, sjw: c.sjw as u64 };
+    let ntq = c.timing.ntq() as u64;
+    let sp = (1 + c.timing.prop + c.timing.ph1) as u64;
+    let tm = Tm { tn, ntq, sp, sjw: c.timing.sjw as u64 };
     let tq = CLOCK_PS;
     let vcd = ctx.vcd.as_ref().map(|d| d.join(format!("btl_{tn}_bf.vcd")));
     let mut bench = Bench::with_clocks(vec![c.clone()], vec![ClockSpec::new(CLOCK_PS)], true, vcd.as_deref());

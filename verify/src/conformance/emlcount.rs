@@ -29,7 +29,7 @@ fn move_edge(b: &mut Bench, field: Field, pos: u32, d: i64) -> Result<(), String
     } else {
         b.wait_for(0, field, pos - 1, false, 300)?;
         let t = b.recs(0).last().unwrap().t + b.ph2_rest_ps(0);
-        let ntq = b.node(0).config().ntq() as i64;
+        let ntq = b.node(0).config().timing.ntq() as i64;
         b.run_until_time((t as i64 + (ntq + d) * tq) as u64);
         b.set(0, D);
         b.run_until_time((t as i64 + ntq * tq) as u64);

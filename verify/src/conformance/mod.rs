@@ -597,7 +597,7 @@ impl Bench {
     pub fn with_clocks(cfgs: Vec<NodeConfig>, clocks: Vec<ClockSpec>, scripted: bool, vcd: Option<&Path>) -> Bench {
         let mut sim = Sim::new(1);
         let n = cfgs.len();
-        let cfgs_brp0 = cfgs[0].brp;
+        let cfgs_brp0 = cfgs[0].timing.brp;
         let mut names: Vec<String> = (1..=n).map(|i| format!("n{i}")).collect();
         if scripted {
             names.push("script".into());
@@ -605,8 +605,8 @@ impl Bench {
         let spec: Vec<(&str, NodeDelays)> = names.iter().map(|s| (s.as_str(), NodeDelays::default())).collect();
         let bus = Bus::build(&mut sim, "bus", &spec);
         let clock = clocks[0];
-        let ntq = cfgs[0].ntq();
-        let bit_ps = clock.period_ps * cfgs[0].brp as u64 * ntq as u64;
+        let ntq = cfgs[0].timing.ntq();
+        let bit_ps = clock.period_ps * cfgs[0].timing.brp as u64 * ntq as u64;
         let mut nodes = vec![];
         let lockstep = lockstep_mode();
         for (i, mut c) in cfgs.into_iter().enumerate() {
@@ -817,7 +817,7 @@ impl Bench {
         // already be the bit in progress.
         let rest = self.ph2_rest_ps(i);
         let nd = self.node(i);
-        let period = nd.bit_time_ps() / (nd.config().ntq() as u64 * nd.config().brp as u64);
+        let period = nd.bit_time_ps() / (nd.config().timing.ntq() as u64 * nd.config().timing.brp as u64);
         if self.recs[i].last().is_some_and(|r| self.sim.now() <= r.t + rest + period) {
             m = usize::MAX;
         }
@@ -853,9 +853,9 @@ impl Bench {
     pub fn ph2_rest_ps(&self, i: usize) -> u64 {
         let nd = self.node(i);
         let c = nd.config();
-        let period = nd.bit_time_ps() / (c.ntq() as u64 * c.brp as u64);
+        let period = nd.bit_time_ps() / (c.timing.ntq() as u64 * c.timing.brp as u64);
         let l_rx = canstar_controller::core::CanCore::l_rx(c.sync_depth) as u64;
-        (c.ph2() as u64 * c.brp as u64).saturating_sub(l_rx) * period
+        (c.timing.ph2() as u64 * c.timing.brp as u64).saturating_sub(l_rx) * period
     }
 
     /// Set the interference of `nodes` for `k` nominal bit times from now,
