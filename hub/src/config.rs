@@ -20,19 +20,19 @@ pub enum FaultPoint {
 
 /// Which fault.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-pub enum FaultKind {
+pub enum InjectionKind {
     StuckRecessive,
     StuckDominant,
     /// Inversion of the signal while active (every bit flipped once).
     BitFlip,
 }
 
-impl FaultKind {
+impl InjectionKind {
     pub fn code(self) -> u64 {
         match self {
-            FaultKind::StuckRecessive => coupler::FAULT_STUCK_RECESSIVE,
-            FaultKind::StuckDominant => coupler::FAULT_STUCK_DOMINANT,
-            FaultKind::BitFlip => coupler::FAULT_BIT_FLIP,
+            InjectionKind::StuckRecessive => coupler::FAULT_STUCK_RECESSIVE,
+            InjectionKind::StuckDominant => coupler::FAULT_STUCK_DOMINANT,
+            InjectionKind::BitFlip => coupler::FAULT_BIT_FLIP,
         }
     }
 }
@@ -41,7 +41,7 @@ impl FaultKind {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 pub struct FaultInjection {
     pub point: FaultPoint,
-    pub kind: FaultKind,
+    pub kind: InjectionKind,
     /// Field code at which an armed injection starts ([`Field`] code, e.g. 6 = data).
     pub start_field: u8,
 }

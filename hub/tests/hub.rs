@@ -3,7 +3,7 @@
 mod common;
 use canstar_hdl::{drive, flow};
 use canstar_hub::frame_state::Field;
-use canstar_hub::config::{FaultInjection, FaultKind, FaultPoint, HubConfig};
+use canstar_hub::config::{FaultInjection, InjectionKind, FaultPoint, HubConfig};
 use canstar_hub::hub::{Hub, HubCore};
 use common::*;
 use rand::{Rng, SeedableRng};
@@ -121,7 +121,7 @@ fn monitor_error_sends_error_flag_from_next_bit() {
 fn fault_injection_hook_downlink() {
     let cfg = HubConfig {
         sublinks: 0,
-        fault_injection: Some(FaultInjection { point: FaultPoint::Downlink(1), kind: FaultKind::StuckRecessive, start_field: Field::Data.code() as u8 }),
+        fault_injection: Some(FaultInjection { point: FaultPoint::Downlink(1), kind: InjectionKind::StuckRecessive, start_field: Field::Data.code() as u8 }),
         ..Default::default()
     };
     let mut n: Vec<Node> = (0..3).map(|_| Node::default()).collect();
@@ -161,7 +161,7 @@ fn fault_injection_hook_downlink() {
 #[test]
 fn fault_injection_hook_uplink_isolated_by_judge() {
     let cfg = HubConfig {
-        fault_injection: Some(FaultInjection { point: FaultPoint::Uplink(2), kind: FaultKind::StuckDominant, start_field: Field::Idle.code() as u8 }),
+        fault_injection: Some(FaultInjection { point: FaultPoint::Uplink(2), kind: InjectionKind::StuckDominant, start_field: Field::Idle.code() as u8 }),
         ..Default::default()
     };
     let mut net = CoreNet::new(&cfg, (0..3).map(|_| Node::default()).collect());
@@ -221,7 +221,7 @@ fn config_defaults_serde_and_validation() {
     let partial: HubConfig = toml::from_str("ports = 5\ndbc_threshold = 24\nreintegration = 10\n").unwrap();
     assert_eq!((partial.ports, partial.dbc_threshold, partial.reintegration, partial.sublinks), (5, 24, Some(10), 2));
     let with_fault = HubConfig {
-        fault_injection: Some(FaultInjection { point: FaultPoint::Sublink(1), kind: FaultKind::BitFlip, start_field: 6 }),
+        fault_injection: Some(FaultInjection { point: FaultPoint::Sublink(1), kind: InjectionKind::BitFlip, start_field: 6 }),
         ..Default::default()
     };
     let back: HubConfig = toml::from_str(&toml::to_string(&with_fault).unwrap()).unwrap();
@@ -233,7 +233,7 @@ fn config_defaults_serde_and_validation() {
         HubConfig { nack_threshold: 8, ..Default::default() },
         HubConfig { reintegration: Some(0), ..Default::default() },
         HubConfig {
-            fault_injection: Some(FaultInjection { point: FaultPoint::Sublink(2), kind: FaultKind::BitFlip, start_field: 6 }),
+            fault_injection: Some(FaultInjection { point: FaultPoint::Sublink(2), kind: InjectionKind::BitFlip, start_field: 6 }),
             ..Default::default()
         },
     ] {
@@ -250,7 +250,7 @@ fn config_defaults_serde_and_validation() {
 fn hub_flow() {
     let hub_flow_cycles: usize = std::env::var("HUB_FLOW_CYCLES").ok().and_then(|v| v.parse().ok()).unwrap_or(100_000);
     let cfg = HubConfig {
-        fault_injection: Some(FaultInjection { point: FaultPoint::Uplink(0), kind: FaultKind::BitFlip, start_field: Field::Crc.code() as u8 }),
+        fault_injection: Some(FaultInjection { point: FaultPoint::Uplink(0), kind: InjectionKind::BitFlip, start_field: Field::Crc.code() as u8 }),
         reintegration: Some(3),
         ..Default::default()
     };
@@ -379,7 +379,7 @@ fn adapter_constants_match_the_controller() {
 fn complete_hub_flow() {
     let cycles: usize = std::env::var("HUB_FLOW_CYCLES").ok().and_then(|v| v.parse().ok()).unwrap_or(100_000);
     let cfg = HubConfig {
-        fault_injection: Some(FaultInjection { point: FaultPoint::Uplink(1), kind: FaultKind::StuckDominant, start_field: Field::Data.code() as u8 }),
+        fault_injection: Some(FaultInjection { point: FaultPoint::Uplink(1), kind: InjectionKind::StuckDominant, start_field: Field::Data.code() as u8 }),
         ..Default::default()
     };
     let mut hub = Hub::new(&cfg);

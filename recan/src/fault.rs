@@ -23,13 +23,23 @@ pub enum CtrlRef {
 }
 
 /// Direction of a controller's link.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Dir {
     /// Controller TX → hub.
     Up,
     /// Hub → controller RX.
     Down,
+}
+
+impl Dir {
+    /// The name used in class names and files (`up`, `down`).
+    pub fn name(self) -> &'static str {
+        match self {
+            Dir::Up => "up",
+            Dir::Down => "down",
+        }
+    }
 }
 
 /// Where a fault is.

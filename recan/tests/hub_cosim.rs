@@ -10,7 +10,7 @@ use canstar_hdl::flow;
 use canstar_hub::config::HubConfig;
 use canstar_hub::hub::Hub;
 use canstar_recan::rtl_hub::RtlHub;
-use canstar_sim::LinkFault;
+use canstar_sim::FaultMode;
 use hub_util::*;
 
 /// Replay `rec` through the Verilog and the Rust model; check the replayed model ends
@@ -39,9 +39,9 @@ fn reference_hub_cosim_on_recorded_traffic() {
     let _ = load(&mut d.sim, &tx, 80, 4100);
     // one fault after the other: stuck-dominant uplink of node 2's controller, bit
     // flips on node 1's uplink (both on hub 0), then a stuck-recessive sublink into hub 0
-    d.net.hubs[0].uplinks[2].schedule_fault(&mut d.sim, 600 * BIT, LinkFault::StuckDominant);
+    d.net.hubs[0].uplinks[2].schedule_fault(&mut d.sim, 600 * BIT, FaultMode::StuckDominant);
     d.sim.add_flip_pattern(d.net.hubs[0].uplinks[1].output, 1500 * BIT, BIT / 2, 23 * BIT + BIT / 3, 100);
-    d.net.hubs[1].sub_out[0].schedule_fault(&mut d.sim, 4200 * BIT, LinkFault::StuckRecessive);
+    d.net.hubs[1].sub_out[0].schedule_fault(&mut d.sim, 4200 * BIT, FaultMode::StuckRecessive);
     d.sim.run_until(6200 * BIT);
     let h = d.rtl_mut(0);
     let rec = h.take_recording();
@@ -64,9 +64,9 @@ fn cancentrate_cosim_on_recorded_traffic() {
     st.rtl_mut().start_recording();
     let nodes = st.nodes.clone();
     let _ = load(&mut st.sim, &nodes, 80, 4200);
-    st.ports.uplinks[1].schedule_fault(&mut st.sim, 600 * BIT, LinkFault::StuckDominant);
+    st.ports.uplinks[1].schedule_fault(&mut st.sim, 600 * BIT, FaultMode::StuckDominant);
     st.sim.add_flip_pattern(st.ports.uplinks[2].output, 1500 * BIT, BIT / 2, 23 * BIT + BIT / 3, 150);
-    st.ports.downlinks[0].schedule_fault(&mut st.sim, 5000 * BIT, LinkFault::StuckRecessive);
+    st.ports.downlinks[0].schedule_fault(&mut st.sim, 5000 * BIT, FaultMode::StuckRecessive);
     st.sim.run_until(6200 * BIT);
     let h = st.rtl_mut();
     let rec = h.take_recording();

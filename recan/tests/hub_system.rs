@@ -6,7 +6,7 @@
 mod hub_util;
 use canstar_controller::frame::Frame;
 #[allow(unused_imports)]
-use canstar_sim::LinkFault;
+use canstar_sim::FaultMode;
 use canstar_verify::node::{ErrorKind, HostEvent};
 use hub_util::*;
 
@@ -346,7 +346,7 @@ fn stuck_dominant_uplink_isolated_in_time() {
     for (seed, start_bits) in [(21u64, 300u64), (22, 417), (23, 733)] {
         let (mut st, sent) = faulty_star(&cfg, seed, 12);
         let t_f = start_bits * BIT + BIT / 7 * (seed % 7);
-        st.ports.uplinks[1].schedule_fault(&mut st.sim, t_f, LinkFault::StuckDominant);
+        st.ports.uplinks[1].schedule_fault(&mut st.sim, t_f, FaultMode::StuckDominant);
         st.sim.run_until(t_f + 40 * BIT);
         let iso = st.rtl().stats.isolated_at[1].expect("port 1 isolated");
         let bits = (iso - t_f) as f64 / BIT as f64;
@@ -370,7 +370,7 @@ fn stuck_recessive_downlink_node_isolated() {
     let cfg = hub_cfg(3, 0);
     let (mut st, _) = faulty_star(&cfg, 24, 10);
     let t_f = 250 * BIT;
-    st.ports.downlinks[2].schedule_fault(&mut st.sim, t_f, LinkFault::StuckRecessive);
+    st.ports.downlinks[2].schedule_fault(&mut st.sim, t_f, FaultMode::StuckRecessive);
     let (tec, rec) = run_tracking(&mut st.sim, &[st.nodes[0], st.nodes[1]], 600 * BIT);
     let iso = st.rtl().stats.isolated_at[2].expect("port 2 isolated");
     let s = &st.rtl().stats;
@@ -435,7 +435,7 @@ fn slow_bit_flipping_uplink_isolated_by_lifetime_counter() {
 fn never_acknowledging_port_silent_not_isolated() {
     let cfg = hub_cfg(3, 0);
     let mut st = Star::new(&cfg, &[0.0, 0.0, 0.0], 27);
-    st.ports.uplinks[2].set_fault(&mut st.sim, LinkFault::StuckRecessive);
+    st.ports.uplinks[2].set_fault(&mut st.sim, FaultMode::StuckRecessive);
     let nodes = st.nodes.clone();
     let sent = load(&mut st.sim, &nodes[..2], 6, 2700);
     assert!(st.run_until_drained(3000));
@@ -453,8 +453,8 @@ fn reintegration_after_transient_fault() {
     let cfg = canstar_hub::config::HubConfig { reintegration: Some(4), ..hub_cfg(3, 0) };
     let (mut st, _) = faulty_star(&cfg, 28, 30);
     let t_f = 300 * BIT;
-    st.ports.uplinks[1].schedule_fault(&mut st.sim, t_f, LinkFault::StuckDominant);
-    st.ports.uplinks[1].schedule_fault(&mut st.sim, t_f + 60 * BIT, LinkFault::None);
+    st.ports.uplinks[1].schedule_fault(&mut st.sim, t_f, FaultMode::StuckDominant);
+    st.ports.uplinks[1].schedule_fault(&mut st.sim, t_f + 60 * BIT, FaultMode::None);
     st.sim.run_until(t_f);
     // node 1 stops sending (a transmitter on an isolated port sees bit errors on every
     // frame and ends bus-off, not acknowledging, so it could not be reintegrated); it
@@ -513,7 +513,7 @@ fn assert_traffic_goes_on(d: &mut Dual) {
 /// (replica rule), nothing else is isolated.
 #[test]
 fn two_hubs_sublink_stuck_recessive() {
-    let (mut d, _, t_f) = dual_with_fault(31, 800, |d, t| d.net.hubs[0].sub_out[0].schedule_fault(&mut d.sim, t, LinkFault::StuckRecessive));
+    let (mut d, _, t_f) = dual_with_fault(31, 800, |d, t| d.net.hubs[0].sub_out[0].schedule_fault(&mut d.sim, t, FaultMode::StuckRecessive));
     let at = d.rtl(1).stats.sub_isolated_at[0].expect("isolated");
     eprintln!("stuck recessive sublink: isolated after {:.0} bits", (at - t_f) as f64 / BIT as f64);
     assert_no_isolation_except(&d, [vec![false; 3], vec![false; 3]], [vec![false, false], vec![true, false]]);
@@ -524,7 +524,7 @@ fn two_hubs_sublink_stuck_recessive() {
 /// run), hub 0 isolates nothing.
 #[test]
 fn two_hubs_sublink_stuck_dominant() {
-    let (mut d, _, t_f) = dual_with_fault(32, 300, |d, t| d.net.hubs[0].sub_out[0].schedule_fault(&mut d.sim, t, LinkFault::StuckDominant));
+    let (mut d, _, t_f) = dual_with_fault(32, 300, |d, t| d.net.hubs[0].sub_out[0].schedule_fault(&mut d.sim, t, FaultMode::StuckDominant));
     let at = d.rtl(1).stats.sub_isolated_at[0].expect("isolated");
     let bits = (at - t_f) as f64 / BIT as f64;
     eprintln!("stuck dominant sublink: isolated after {bits:.1} bits");
@@ -551,11 +551,11 @@ fn two_hubs_sublink_bit_flips() {
 /// that port is isolated, no sublink on either hub, and the downlinks of both hubs agree.
 #[test]
 fn two_hubs_faulty_port_isolates_only_the_port() {
-    for (seed, kind) in [(34u64, LinkFault::StuckDominant), (35, LinkFault::BitFlip)] {
+    for (seed, kind) in [(34u64, FaultMode::StuckDominant), (35, FaultMode::Invert)] {
         let (mut d, _, t_f) = dual_with_fault(seed, 1500, |d, t| {
             d.rtl_mut(0).record_samples();
             d.rtl_mut(1).record_samples();
-            if kind == LinkFault::BitFlip {
+            if kind == FaultMode::Invert {
                 let out = d.net.hubs[0].uplinks[1].output;
                 d.sim.add_flip_pattern(out, t, BIT / 2, 23 * BIT + BIT / 3, 200);
             } else {
@@ -565,7 +565,7 @@ fn two_hubs_faulty_port_isolates_only_the_port() {
         let at = d.rtl(0).stats.isolated_at[1].expect("isolated");
         eprintln!("{kind:?} on port 1 of hub 0: isolated after {:.1} bits", (at - t_f) as f64 / BIT as f64);
         assert_no_isolation_except(&d, [vec![false, true, false], vec![false; 3]], [vec![false, false], vec![false, false]]);
-        if kind == LinkFault::StuckDominant {
+        if kind == FaultMode::StuckDominant {
             // (a half-bit inversion at an arbitrary phase can end between the two hubs'
             // sample points, which lie one hub crossing apart: then the hubs legitimately
             // sample different levels, so the comparison is made for the stable fault)
@@ -583,7 +583,7 @@ fn diag_collateral_blame() {
     let mut d = Dual::new(&cfg, &[0.0, 0.0, 0.0], 41);
     let tx = vec![d.a[0], d.b[1], d.a[2]];
     let _ = load(&mut d.sim, &tx, 80, 4100);
-    d.net.hubs[0].uplinks[2].schedule_fault(&mut d.sim, 600 * BIT, LinkFault::StuckDominant);
+    d.net.hubs[0].uplinks[2].schedule_fault(&mut d.sim, 600 * BIT, FaultMode::StuckDominant);
     d.sim.add_flip_pattern(d.net.hubs[0].uplinks[1].output, 1500 * BIT, BIT / 2, 23 * BIT + BIT / 3, 100);
     d.sim.run_until(4000 * BIT);
     for h in 0..2 {

@@ -10,10 +10,10 @@
 //! | `p.n.tx_at_bus`  | delay       | TX as it reaches the bus (`tx_dom`, `tx_rec` ps) |
 //! | `p.level`        | wired-AND   | the bus level |
 //! | `p.n.rx_path`    | delay       | bus level at the node's receiver (`rx_dom`, `rx_rec` ps) |
-//! | `p.n.rx`         | fault       | what the node receives, after [`Interference`] (bind as input) |
+//! | `p.n.rx`         | fault       | what the node receives, after [`FaultMode`] (bind as input) |
 
 use crate::kernel::Sim;
-use crate::net::{Interference, NetId};
+use crate::net::{FaultMode, NetId};
 
 /// Delays of one node's bus interface in ps.
 #[derive(Copy, Clone, Debug, PartialEq, Eq, Default)]
@@ -44,7 +44,7 @@ pub struct BusNode {
     /// The node's TX as it reaches the bus.
     pub tx_at_bus: NetId,
     /// Fault net: what the node receives; bind as the node's RX input and
-    /// change its [`Interference`] with [`Bus::set_interference`].
+    /// change its [`FaultMode`] with [`Bus::set_interference`].
     pub rx: NetId,
 }
 
@@ -85,12 +85,12 @@ impl Bus {
     }
 
     /// Change node `i`'s receive-path interference now.
-    pub fn set_interference(&self, sim: &mut Sim, i: usize, mode: Interference) {
+    pub fn set_interference(&self, sim: &mut Sim, i: usize, mode: FaultMode) {
         sim.set_fault(self.nodes[i].rx, mode);
     }
 
     /// Schedule a change of node `i`'s interference at time `t`.
-    pub fn schedule_interference(&self, sim: &mut Sim, i: usize, t: u64, mode: Interference) {
+    pub fn schedule_interference(&self, sim: &mut Sim, i: usize, t: u64, mode: FaultMode) {
         sim.schedule_fault(self.nodes[i].rx, t, mode);
     }
 }

@@ -48,4 +48,4 @@ pub mod star;
 pub mod vcd;
 
 pub use kernel::{ClockSpec, CompId, Component, FnComponent, Handle, HdlComponent, InputMap, Io, OutputMap, Sim};
-pub use net::{FaultMode, Interference, LinkFault, NetId};
+pub use net::{FaultMode, NetId};

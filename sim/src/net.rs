@@ -41,9 +41,14 @@ impl NetId {
     }
 }
 
-/// What a fault transform does to its source (the common form of
-/// [`Interference`] and [`LinkFault`]).
-#[derive(Copy, Clone, Debug, PartialEq, Eq, Default)]
+/// What a fault transform does to its source: the one fault mode of the kernel,
+/// used for the receive-path interference of a bus node (the four modes of the
+/// Bosch reference CAN bus interface) and for the faults of star links. In files
+/// it is written in kebab case (`none`, `invert`, `stuck-recessive`,
+/// `stuck-dominant`). For inversion during given time windows only, see
+/// [`crate::Sim::add_flip_window`].
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Default, serde::Deserialize, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
 pub enum FaultMode {
     /// Pass the source unchanged.
     #[default]
@@ -64,51 +69,6 @@ impl FaultMode {
             FaultMode::Invert => !v,
             FaultMode::StuckRecessive => true,
             FaultMode::StuckDominant => false,
-        }
-    }
-}
-
-/// Receive-path interference of one bus node, the four modes of the Bosch
-/// reference CAN bus interface. It changes only what that node receives.
-#[derive(Copy, Clone, Debug, PartialEq, Eq, Default)]
-pub enum Interference {
-    #[default]
-    None,
-    Invert,
-    StuckRecessive,
-    StuckDominant,
-}
-
-impl From<Interference> for FaultMode {
-    fn from(i: Interference) -> FaultMode {
-        match i {
-            Interference::None => FaultMode::None,
-            Interference::Invert => FaultMode::Invert,
-            Interference::StuckRecessive => FaultMode::StuckRecessive,
-            Interference::StuckDominant => FaultMode::StuckDominant,
-        }
-    }
-}
-
-/// Fault mode of a star link (uplink, downlink or sublink).
-#[derive(Copy, Clone, Debug, PartialEq, Eq, Default)]
-pub enum LinkFault {
-    #[default]
-    None,
-    StuckRecessive,
-    StuckDominant,
-    /// Invert every bit while the mode is active. For inversion during
-    /// given time windows only, see [`crate::Sim::add_flip_window`].
-    BitFlip,
-}
-
-impl From<LinkFault> for FaultMode {
-    fn from(f: LinkFault) -> FaultMode {
-        match f {
-            LinkFault::None => FaultMode::None,
-            LinkFault::BitFlip => FaultMode::Invert,
-            LinkFault::StuckRecessive => FaultMode::StuckRecessive,
-            LinkFault::StuckDominant => FaultMode::StuckDominant,
         }
     }
 }

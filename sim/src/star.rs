@@ -3,7 +3,7 @@
 //!
 //! A [`Link`] is three nets: `<name>.in` (driven: bind it as the sender's
 //! output), `<name>.delayed` (delay line) and `<name>.out` (fault transform
-//! with a [`LinkFault`]: bind it as the receiver's input).
+//! with a [`FaultMode`]: bind it as the receiver's input).
 //!
 //! A hub is an ordinary [`crate::Component`]. Bind it with
 //! `sim.add(hub, &ports.hub_inputs(), &ports.hub_outputs())`:
@@ -16,7 +16,7 @@
 //! of a two-hub network `r`: `r.il<j>.h0_to_h1.*` and `r.il<j>.h1_to_h0.*`.
 
 use crate::kernel::{ClockSpec, Component, Io, Sim};
-use crate::net::{LinkFault, NetId};
+use crate::net::{FaultMode, NetId};
 
 /// Delays of a link in ps.
 #[derive(Copy, Clone, Debug, PartialEq, Eq, Default)]
@@ -53,11 +53,11 @@ impl Link {
         Link { input, delayed, output }
     }
     /// Change the fault mode now.
-    pub fn set_fault(&self, sim: &mut Sim, f: LinkFault) {
+    pub fn set_fault(&self, sim: &mut Sim, f: FaultMode) {
         sim.set_fault(self.output, f);
     }
     /// Change the fault mode at time `t`.
-    pub fn schedule_fault(&self, sim: &mut Sim, t: u64, f: LinkFault) {
+    pub fn schedule_fault(&self, sim: &mut Sim, t: u64, f: FaultMode) {
         sim.schedule_fault(self.output, t, f);
     }
     /// Invert the link's output during `[start, end)`.

@@ -4,7 +4,7 @@ mod common;
 
 use canstar_sim::bus::{Bus, NodeDelays};
 use canstar_sim::star::{Link, LinkSpec};
-use canstar_sim::{ClockSpec, FaultMode, Interference, LinkFault, NetId, Sim};
+use canstar_sim::{ClockSpec, FaultMode, NetId, Sim};
 use common::Scripted;
 
 /// Drive `net` (no component driver) with level changes at the given times.
@@ -199,7 +199,7 @@ fn wired_and_is_dominant_if_any_input_is() {
 }
 
 /// A two-node bus; node 0's TX is driven by test code with `pattern`.
-fn interference_bus(mode: Interference) -> (Sim, Bus) {
+fn interference_bus(mode: FaultMode) -> (Sim, Bus) {
     let mut sim = Sim::new(0);
     let bus = Bus::uniform(&mut sim, "bus", 2, NodeDelays::symmetric(5, 3));
     bus.set_interference(&mut sim, 1, mode);
@@ -210,17 +210,17 @@ fn interference_bus(mode: Interference) -> (Sim, Bus) {
 fn each_interference_mode_changes_only_that_node() {
     let pattern = [(100u64, false), (150, true), (200, false), (260, true)];
     let bus_dom = [(108u64, 158u64), (208, 268)];
-    for mode in [Interference::None, Interference::Invert, Interference::StuckRecessive, Interference::StuckDominant] {
+    for mode in [FaultMode::None, FaultMode::Invert, FaultMode::StuckRecessive, FaultMode::StuckDominant] {
         let (mut sim, bus) = interference_bus(mode);
         drive_pattern(&mut sim, bus.nodes[0].tx, &pattern);
         sim.run_until(400);
         assert_eq!(dominant_intervals(&sim, bus.nodes[0].rx, 0, 400), bus_dom.to_vec(), "{mode:?}");
         let rx1 = dominant_intervals(&sim, bus.nodes[1].rx, 0, 400);
         let expect = match mode {
-            Interference::None => bus_dom.to_vec(),
-            Interference::Invert => vec![(0, 108), (158, 208), (268, 400)],
-            Interference::StuckRecessive => vec![],
-            Interference::StuckDominant => vec![(0, 400)],
+            FaultMode::None => bus_dom.to_vec(),
+            FaultMode::Invert => vec![(0, 108), (158, 208), (268, 400)],
+            FaultMode::StuckRecessive => vec![],
+            FaultMode::StuckDominant => vec![(0, 400)],
         };
         assert_eq!(rx1, expect, "{mode:?}");
         // the bus itself is never affected
@@ -230,10 +230,10 @@ fn each_interference_mode_changes_only_that_node() {
 
 #[test]
 fn interference_switches_at_scheduled_and_current_times() {
-    let (mut sim, bus) = interference_bus(Interference::None);
+    let (mut sim, bus) = interference_bus(FaultMode::None);
     let rx1 = bus.nodes[1].rx;
-    bus.schedule_interference(&mut sim, 1, 1000, Interference::StuckDominant);
-    bus.schedule_interference(&mut sim, 1, 2000, Interference::Invert);
+    bus.schedule_interference(&mut sim, 1, 1000, FaultMode::StuckDominant);
+    bus.schedule_interference(&mut sim, 1, 2000, FaultMode::Invert);
     sim.run_until(999);
     assert!(sim.value(rx1));
     sim.run_until(1000);
@@ -244,7 +244,7 @@ fn interference_switches_at_scheduled_and_current_times() {
     assert!(!sim.value(rx1), "inverted recessive bus");
     assert_eq!(sim.fault_mode_at(rx1, 2000), FaultMode::Invert);
     sim.run_until(2500);
-    bus.set_interference(&mut sim, 1, Interference::StuckRecessive);
+    bus.set_interference(&mut sim, 1, FaultMode::StuckRecessive);
     assert!(sim.value(rx1));
     assert!(!sim.value_at(rx1, 2499), "the past is unchanged");
     assert!(sim.value(bus.nodes[0].rx));
@@ -256,8 +256,8 @@ fn components_see_interference_changes_from_the_next_edge() {
     let bus = Bus::uniform(&mut sim, "bus", 1, NodeDelays::symmetric(0, 0));
     let h = sim.add(Scripted::new("n", ClockSpec::new(100), &[]), &[bus.nodes[0].rx], &[]);
     sim.run_until(300); // edges 0..=300
-    bus.set_interference(&mut sim, 0, Interference::StuckDominant);
-    bus.schedule_interference(&mut sim, 0, 550, Interference::None);
+    bus.set_interference(&mut sim, 0, FaultMode::StuckDominant);
+    bus.schedule_interference(&mut sim, 0, 550, FaultMode::None);
     sim.run_until(700);
     let s: Vec<(u64, bool)> = sim.get(h).samples.clone();
     let expect: Vec<(u64, bool)> =
@@ -267,7 +267,7 @@ fn components_see_interference_changes_from_the_next_edge() {
 
 #[test]
 fn each_link_fault_mode() {
-    for f in [LinkFault::None, LinkFault::BitFlip, LinkFault::StuckRecessive, LinkFault::StuckDominant] {
+    for f in [FaultMode::None, FaultMode::Invert, FaultMode::StuckRecessive, FaultMode::StuckDominant] {
         let mut sim = Sim::new(0);
         let l = Link::build(&mut sim, "l", LinkSpec { d_dom: 10, d_rec: 20 });
         l.set_fault(&mut sim, f);
@@ -275,10 +275,10 @@ fn each_link_fault_mode() {
         sim.run_until(400);
         let got = dominant_intervals(&sim, l.output, 0, 400);
         let expect = match f {
-            LinkFault::None => vec![(110, 220)],
-            LinkFault::BitFlip => vec![(0, 110), (220, 400)],
-            LinkFault::StuckRecessive => vec![],
-            LinkFault::StuckDominant => vec![(0, 400)],
+            FaultMode::None => vec![(110, 220)],
+            FaultMode::Invert => vec![(0, 110), (220, 400)],
+            FaultMode::StuckRecessive => vec![],
+            FaultMode::StuckDominant => vec![(0, 400)],
         };
         assert_eq!(got, expect, "{f:?}");
         assert_eq!(dominant_intervals(&sim, l.delayed, 0, 400), vec![(110, 220)]);
@@ -289,8 +289,8 @@ fn each_link_fault_mode() {
 fn link_fault_schedule_and_flip_windows() {
     let mut sim = Sim::new(0);
     let l = Link::build(&mut sim, "l", LinkSpec::symmetric(0));
-    l.schedule_fault(&mut sim, 100, LinkFault::StuckDominant);
-    l.schedule_fault(&mut sim, 200, LinkFault::None);
+    l.schedule_fault(&mut sim, 100, FaultMode::StuckDominant);
+    l.schedule_fault(&mut sim, 200, FaultMode::None);
     l.add_flip_window(&mut sim, 300, 310);
     l.add_flip_window(&mut sim, 305, 320); // merges to [300, 320)
     sim.add_flip_pattern(l.output, 400, 5, 20, 3); // [400,405) [420,425) [440,445)

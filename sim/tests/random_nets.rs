@@ -65,8 +65,8 @@ fn vcd_wires_show_every_change_of_nested_nets_at_its_exact_time() {
         let w = sim.wired_and("w", &[da, db]);
         let dw = sim.delay("x.dw", w, rng.gen_range(0..30), rng.gen_range(0..30));
         let f = sim.fault("x.f", dw);
-        sim.schedule_fault(f, 500, canstar_sim::LinkFault::BitFlip);
-        sim.schedule_fault(f, 900, canstar_sim::LinkFault::None);
+        sim.schedule_fault(f, 500, canstar_sim::FaultMode::Invert);
+        sim.schedule_fault(f, 900, canstar_sim::FaultMode::None);
         sim.add_flip_window(f, 1200, 1213);
         let file = dir.path().join(format!("r{round}.vcd"));
         sim.start_vcd_file(&file, None).unwrap();

@@ -5,7 +5,7 @@ mod common;
 use canstar_sim::bench::{edge_counter_node, EdgeCounter, PatternNode};
 use canstar_sim::bus::{Bus, NodeDelays};
 use canstar_sim::star::{AndHub, HubPorts, LinkSpec, PortSpec, TwoHubs};
-use canstar_sim::{ClockSpec, HdlComponent, LinkFault, Sim};
+use canstar_sim::{ClockSpec, HdlComponent, FaultMode, Sim};
 use common::Scripted;
 
 /// Index of the first edge of `c` strictly after `t` (by brute force).
@@ -126,16 +126,16 @@ fn star_link_faults_reach_everybody_through_the_hub() {
     sim.run_until(10_000);
     assert!(sim.value(star.node_rx(0)) && sim.value(star.node_rx(1)));
     // uplink 0 stuck dominant: both downlinks dominant after a hub cycle
-    star.uplinks[0].set_fault(&mut sim, LinkFault::StuckDominant);
+    star.uplinks[0].set_fault(&mut sim, FaultMode::StuckDominant);
     sim.run_until(12_000);
     assert!(!sim.value(star.node_rx(0)) && !sim.value(star.node_rx(1)));
     // downlink 1 stuck recessive hides it from node 1 only
-    star.downlinks[1].set_fault(&mut sim, LinkFault::StuckRecessive);
+    star.downlinks[1].set_fault(&mut sim, FaultMode::StuckRecessive);
     sim.run_until(13_000);
     assert!(!sim.value(star.node_rx(0)) && sim.value(star.node_rx(1)));
     // back to normal at scheduled times; bit flip on downlink 0 during a window
-    star.uplinks[0].schedule_fault(&mut sim, 20_000, LinkFault::None);
-    star.downlinks[1].schedule_fault(&mut sim, 20_000, LinkFault::None);
+    star.uplinks[0].schedule_fault(&mut sim, 20_000, FaultMode::None);
+    star.downlinks[1].schedule_fault(&mut sim, 20_000, FaultMode::None);
     star.downlinks[0].add_flip_window(&mut sim, 30_000, 30_500);
     sim.run_until(29_999);
     assert!(sim.value(star.node_rx(0)) && sim.value(star.node_rx(1)));
@@ -144,7 +144,7 @@ fn star_link_faults_reach_everybody_through_the_hub() {
     sim.run_until(30_500);
     assert!(sim.value(star.node_rx(0)));
     // BitFlip mode
-    star.downlinks[1].set_fault(&mut sim, LinkFault::BitFlip);
+    star.downlinks[1].set_fault(&mut sim, FaultMode::Invert);
     assert!(!sim.value(star.node_rx(1)));
 }
 
@@ -181,7 +181,7 @@ fn two_hubs_joined_by_interlinks() {
     assert!(sim.value_at(rx10, 123_999) && !sim.value_at(rx10, 124_000));
     // both interlinks broken: hub 1 no longer hears hub 0
     for l in &net.hubs[0].sub_out {
-        l.set_fault(&mut sim, LinkFault::StuckRecessive);
+        l.set_fault(&mut sim, FaultMode::StuckRecessive);
     }
     sim.run_until(300_000);
     assert!(!sim.value(rx00));

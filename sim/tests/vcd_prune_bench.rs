@@ -3,7 +3,7 @@
 use canstar_sim::bench::{bench, bench_default, edge_counter_node, BenchConfig, PatternNode};
 use canstar_sim::bus::{Bus, NodeDelays};
 use canstar_sim::star::{AndHub, HubPorts, LinkSpec};
-use canstar_sim::{ClockSpec, Interference, Sim};
+use canstar_sim::{ClockSpec, FaultMode, Sim};
 
 /// A bus with three EdgeCounter nodes driven by pseudo-random patterns, a
 /// star with the stand-in hub, random phases from the seed.
@@ -25,7 +25,7 @@ fn run_with_vcd(seed: u64, file: &std::path::Path, filter: Option<&[&str]>) -> S
     let (mut sim, bus) = build(seed);
     sim.start_vcd_file(file, filter).unwrap();
     sim.run_until(3_000_000);
-    bus.set_interference(&mut sim, 2, Interference::Invert);
+    bus.set_interference(&mut sim, 2, FaultMode::Invert);
     sim.run_until(6_000_000);
     sim.finish_vcd().unwrap();
     std::fs::read_to_string(file).unwrap()

@@ -84,7 +84,7 @@ use canstar_sim::bus::{Bus, NodeDelays};
 use canstar_golden::{Event, FaultState, Field};
 use canstar_sim::{ClockSpec, Handle, Sim};
 use crate::lockstep::{Divergence, LockstepNode};
-use canstar_sim::net::Interference;
+use canstar_sim::net::FaultMode;
 use crate::node::{HostEvent, NodeConfig};
 
 /// Options of one run.
@@ -147,8 +147,8 @@ const TIMINGS: [(u32, u32, u32); 4] = [(1, 4, 4), (1, 4, 2), (5, 2, 1), (8, 8, 1
 #[derive(Clone, Debug)]
 enum Action {
     Request { node: usize, frame: Frame },
-    /// Interference on node's receive path during [t, t + len).
-    Disturb { node: usize, mode: Interference, len: u64 },
+    /// Interference (a [`FaultMode`]) on the node's receive path during [t, t + len).
+    Disturb { node: usize, mode: FaultMode, len: u64 },
     /// `count` inverted windows of `len`, one every `every`.
     Flip { node: usize, len: u64, every: u64, count: usize },
 }
@@ -275,12 +275,12 @@ fn plan(seed: u64, opts: &RunOptions) -> Plan {
                     }
                     6..=7 => {
                         let len = rng.gen_range(1..=40) * bit_ps + rng.gen_range(0..bit_ps);
-                        (Action::Disturb { node, mode: Interference::StuckDominant, len }, len)
+                        (Action::Disturb { node, mode: FaultMode::StuckDominant, len }, len)
                     }
                     _ => {
                         let bits = if rng.gen_bool(0.15) { rng.gen_range(200..=1500) } else { rng.gen_range(1..=40) };
                         let len = bits * bit_ps + rng.gen_range(0..bit_ps);
-                        (Action::Disturb { node, mode: Interference::StuckRecessive, len }, len)
+                        (Action::Disturb { node, mode: FaultMode::StuckRecessive, len }, len)
                     }
                 };
                 windows[node].push((at, at + len));
@@ -408,7 +408,7 @@ fn apply(sim: &mut Sim, bus: &Bus, hs: &[Handle<LockstepNode>], t: u64, a: &Acti
         Action::Request { node, frame } => sim.get_mut(hs[*node]).node.request(frame.clone()),
         Action::Disturb { node, mode, len } => {
             bus.schedule_interference(sim, *node, t, *mode);
-            bus.schedule_interference(sim, *node, t + len, Interference::None);
+            bus.schedule_interference(sim, *node, t + len, FaultMode::None);
         }
         Action::Flip { node, len, every, count } => sim.add_flip_pattern(bus.nodes[*node].rx, t, *len, *every, *count),
     }

@@ -107,15 +107,6 @@ impl FrameSpec {
     }
 }
 
-/// The four receive-path modes of the Bosch reference bus interface.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum InterferenceMode {
-    None,
-    Invert,
-    StuckRecessive,
-    StuckDominant,
-}
 
 /// A protocol position (FIELD name of can-protocol.md §4.5, 1-based position).
 #[derive(Debug, Clone, PartialEq, Eq, Deserialize)]
@@ -145,7 +136,7 @@ pub const FIELD_NAMES: &[&str] = &[
 #[serde(deny_unknown_fields)]
 pub struct InterferenceSpec {
     pub node: String,
-    pub mode: InterferenceMode,
+    pub mode: FaultMode,
     /// Start at a simulated time ...
     #[serde(default)]
     pub at_us: Option<f64>,
@@ -364,7 +355,7 @@ bits = 1
 
 use canstar_sim::bus::{Bus, NodeDelays};
 use canstar_sim::{Component, Handle, Sim};
-use canstar_sim::net::Interference;
+use canstar_sim::net::FaultMode;
 use crate::node::{CanNode, HostEvent, NodeConfig};
 use canstar_controller::frame::Frame;
 
@@ -404,14 +395,6 @@ pub struct RunResult {
     pub nodes: Vec<NodeSummary>,
 }
 
-fn interference(m: InterferenceMode) -> Interference {
-    match m {
-        InterferenceMode::None => Interference::None,
-        InterferenceMode::Invert => Interference::Invert,
-        InterferenceMode::StuckRecessive => Interference::StuckRecessive,
-        InterferenceMode::StuckDominant => Interference::StuckDominant,
-    }
-}
 
 fn frame_of(f: &FrameSpec) -> Frame {
     if f.rtr {
@@ -467,7 +450,7 @@ pub fn run(s: &Scenario, opts: &RunOptions) -> Result<RunResult, String> {
     // are armed and watched.
     struct Armed {
         node: usize,
-        mode: Interference,
+        mode: FaultMode,
         field: String,
         pos: u32,
         left: u32,
@@ -481,14 +464,14 @@ pub fn run(s: &Scenario, opts: &RunOptions) -> Result<RunResult, String> {
         match (&x.at_us, &x.at) {
             (Some(t), _) => {
                 let t0 = (t * 1e6).round() as u64;
-                bus.schedule_interference(&mut sim, i, t0, interference(x.mode));
+                bus.schedule_interference(&mut sim, i, t0, x.mode);
                 if let Some(b) = x.bits {
-                    bus.schedule_interference(&mut sim, i, t0 + b as u64 * ntq * tq_ps[i], Interference::None);
+                    bus.schedule_interference(&mut sim, i, t0 + b as u64 * ntq * tq_ps[i], FaultMode::None);
                 }
             }
             (None, Some(p)) => armed.push(Armed {
                 node: i,
-                mode: interference(x.mode),
+                mode: x.mode,
                 field: p.field.clone(),
                 pos: p.pos,
                 left: p.occurrence,
@@ -528,7 +511,7 @@ pub fn run(s: &Scenario, opts: &RunOptions) -> Result<RunResult, String> {
                     bus.schedule_interference(&mut sim, a.node, start, a.mode);
                     if let Some(b) = a.bits {
                         let stop = start + b as u64 * bt.ntq() as u64 * tq_ps[a.node];
-                        bus.schedule_interference(&mut sim, a.node, stop, Interference::None);
+                        bus.schedule_interference(&mut sim, a.node, stop, FaultMode::None);
                     }
                 }
             }

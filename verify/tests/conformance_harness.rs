@@ -4,7 +4,7 @@ use canstar_controller::core::CanCore;
 use canstar_controller::frame::{BuildOptions, Frame};
 use canstar_controller::fsm::{Field, EV_SOF};
 use canstar_verify::conformance::*;
-use canstar_sim::Interference;
+use canstar_sim::FaultMode;
 
 /// The override is set `L_rx − 1` clocks before N1's TX edge of the target
 /// bit: the tick of that TX edge still reads the previous bit's last TQ, so
@@ -37,7 +37,7 @@ fn forcing_starts_l_rx_minus_1_clocks_before_the_target_bit_on_tx() {
 fn forced_bit_is_recorded_at_the_target() {
     let mut b = Bench::new(vec![cfg()], false, None);
     b.node_mut(0).request(Frame::std(0x0F0, &[]));
-    let m = b.force_at(&[0], Field::Ident, 4, false, Interference::StuckDominant, 1).unwrap();
+    let m = b.force_at(&[0], Field::Ident, 4, false, FaultMode::StuckDominant, 1).unwrap();
     let r = b.rec_at(0, m).unwrap();
     assert_eq!((r.field, r.pos, r.level, r.drove), (Field::Ident, 4, false, true), "{r}");
 }

@@ -36,17 +36,17 @@ fn dominant_pulse_at_every_offset_after_reset_stays_in_lock_step() {
     use canstar_sim::bus::{Bus, NodeDelays};
     use canstar_verify::lockstep::LockstepNode;
     use canstar_verify::node::NodeConfig;
-    use canstar_sim::{ClockSpec, Interference, Sim};
+    use canstar_sim::{ClockSpec, FaultMode, Sim};
     for k in 0..30u64 {
         let mut sim = Sim::new(5);
         let bus = Bus::uniform(&mut sim, "bus", 1, NodeDelays::symmetric(0, 0));
         let a = sim.add(LockstepNode::new(NodeConfig::named("n1"), ClockSpec::new(100_000)), &[bus.nodes[0].rx], &[bus.nodes[0].tx]);
         for c in 0..400u64 {
             if c == k {
-                bus.set_interference(&mut sim, 0, Interference::StuckDominant);
+                bus.set_interference(&mut sim, 0, FaultMode::StuckDominant);
             }
             if c == k + 10 {
-                bus.set_interference(&mut sim, 0, Interference::None);
+                bus.set_interference(&mut sim, 0, FaultMode::None);
             }
             sim.step();
         }
@@ -62,13 +62,13 @@ fn dominant_pulse_at_every_offset_after_reset_stays_in_lock_step() {
 #[test]
 fn hardware_reset_with_counters_set_stays_in_lock_step() {
     use canstar_verify::conformance::{cfg, Bench};
-    use canstar_sim::Interference;
+    use canstar_sim::FaultMode;
     canstar_verify::conformance::set_lockstep(true);
     let mut b = Bench::new(vec![cfg(), cfg()], false, None);
     canstar_verify::conformance::set_lockstep(false);
     b.node_mut(1).request(canstar_controller::frame::Frame::std(0x123, &[1]));
     // N1 reads its own ACK recessive: a bit error, REC > 0.
-    b.force_at(&[0], canstar_controller::fsm::Field::AckSlot, 1, false, Interference::StuckRecessive, 1).unwrap();
+    b.force_at(&[0], canstar_controller::fsm::Field::AckSlot, 1, false, FaultMode::StuckRecessive, 1).unwrap();
     b.run_bits(20);
     assert!(b.rec(0) > 0, "REC {}", b.rec(0));
     b.node_mut(0).hard_reset();

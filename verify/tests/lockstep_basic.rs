@@ -4,7 +4,7 @@ use canstar_controller::frame::Frame;
 use canstar_sim::bus::{Bus, NodeDelays};
 use canstar_verify::lockstep::LockstepNode;
 use canstar_verify::node::NodeConfig;
-use canstar_sim::{ClockSpec, Handle, Interference, Sim};
+use canstar_sim::{ClockSpec, Handle, FaultMode, Sim};
 
 fn two(ppm: f64, delay: u64) -> (Sim, Bus, Handle<LockstepNode>, Handle<LockstepNode>) {
     let mut sim = Sim::new(5);
@@ -51,8 +51,8 @@ fn disturbed_receive_paths_stay_in_lock_step() {
         sim.get_mut(a).node.request(Frame::std(0x100 + k as u32, &[k as u8; 4]));
         let t = sim.now();
         // a few stuck and inverted windows on both receive paths
-        bus.schedule_interference(&mut sim, (k % 2) as usize, t + 30_000_000 + k * 3_100_000, Interference::StuckDominant);
-        bus.schedule_interference(&mut sim, (k % 2) as usize, t + 30_000_000 + k * 3_100_000 + 700_000 * (k + 1), Interference::None);
+        bus.schedule_interference(&mut sim, (k % 2) as usize, t + 30_000_000 + k * 3_100_000, FaultMode::StuckDominant);
+        bus.schedule_interference(&mut sim, (k % 2) as usize, t + 30_000_000 + k * 3_100_000 + 700_000 * (k + 1), FaultMode::None);
         sim.add_flip_window(bus.nodes[1 - (k % 2) as usize].rx, t + 45_000_000 + k * 1_700_000, t + 45_000_000 + k * 1_700_000 + 900_000);
         sim.run_for(150_000_000);
     }
@@ -102,11 +102,11 @@ fn bus_off_and_recovery_stay_in_lock_step() {
     }
     sim.run_for(30_000_000);
     // n0 deaf while it transmits: bit errors until bus-off
-    bus.set_interference(&mut sim, 0, Interference::StuckRecessive);
+    bus.set_interference(&mut sim, 0, FaultMode::StuckRecessive);
     sim.get_mut(hs[0]).node.request(Frame::std(0x2aa, &[0xde, 0xad]));
     sim.get_mut(hs[1]).node.request(Frame::ext(0x1555_5555, &[1, 2, 3]));
     sim.run_for(900_000_000);
-    bus.set_interference(&mut sim, 0, Interference::None);
+    bus.set_interference(&mut sim, 0, FaultMode::None);
     let ok = sim.run_until_cond(sim.now() + 5_000_000_000, |s| hs.iter().all(|h| !s.get(*h).node.pending()));
     assert!(ok, "frames not sent after recovery");
     sim.run_for(30_000_000);

@@ -3,7 +3,7 @@
 use canstar_controller::frame::Frame;
 use canstar_sim::bus::{Bus, NodeDelays};
 use canstar_verify::node::{CanNode, HostEvent, NodeConfig};
-use canstar_sim::{ClockSpec, Interference, Sim};
+use canstar_sim::{ClockSpec, FaultMode, Sim};
 
 fn two_nodes(ppm: f64, delay_ps: u64) -> (Sim, Bus, canstar_sim::Handle<CanNode>, canstar_sim::Handle<CanNode>) {
     let mut sim = Sim::new(3);
@@ -44,7 +44,7 @@ fn receive_interference_causes_errors_only_where_applied() {
     let (mut sim, bus, a, b) = two_nodes(0.0, 0);
     // Let both integrate, then make n2 deaf (stuck recessive): n1 gets no ACK.
     sim.run_for(30_000_000);
-    bus.set_interference(&mut sim, 1, Interference::StuckRecessive);
+    bus.set_interference(&mut sim, 1, FaultMode::StuckRecessive);
     sim.get_mut(a).request(Frame::std(0x321, &[0xAA]));
     sim.run_for(200_000_000);
     let n1 = sim.get(a);
@@ -54,7 +54,7 @@ fn receive_interference_causes_errors_only_where_applied() {
     assert_eq!(sim.get(b).errors(), 0);
     assert!(sim.get(b).received().is_empty());
     // Remove the interference: the retry succeeds and n2 receives it once.
-    bus.set_interference(&mut sim, 1, Interference::None);
+    bus.set_interference(&mut sim, 1, FaultMode::None);
     let ok = sim.run_until_cond(sim.now() + 200_000_000, |s| !s.get(a).sent().is_empty());
     assert!(ok);
     sim.run_for(20_000_000);

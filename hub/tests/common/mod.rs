@@ -1,8 +1,9 @@
-//! Test-only CAN stimulus for the hub: a frame encoder, a plain-Rust reference frame
+//! Test-only CAN stimulus for the hub: frames (the controller crate's frame builder), a plain-Rust reference frame
 //! tracker (the frame state C that the real frame monitor will provide) and simple
 //! node models, all driving a `HubCore` bit by bit.
 #![allow(dead_code, clippy::too_many_arguments, clippy::needless_range_loop, clippy::nonminimal_bool, clippy::type_complexity)]
 
+use canstar_controller::frame::{self, crc15, BuildOptions, Frame as CanFrame};
 use canstar_hdl::drive;
 use canstar_hdl::drive::Clocked;
 use canstar_hub::frame_state::Field;
@@ -137,95 +138,48 @@ impl Dut for Hub {
 pub const CLOCKS_PER_BIT: usize = 16;
 pub const SAMPLE_CLOCK: usize = 12;
 
+/// A frame a test node sends: the controller crate's [`CanFrame`] (read its fields
+/// through `Deref`), optionally with a wrong CRC.
 #[derive(Clone, Debug)]
 pub struct Frame {
-    pub id: u32,
-    pub ext: bool,
-    pub rtr: bool,
-    pub dlc: u8,
-    pub data: Vec<u8>,
+    pub can: CanFrame,
     /// Send a wrong CRC (once: a retransmission is correct).
     pub corrupt_crc: bool,
 }
 
-impl Frame {
-    pub fn std(id: u32, data: &[u8]) -> Frame {
-        Frame { id, ext: false, rtr: false, dlc: data.len() as u8, data: data.to_vec(), corrupt_crc: false }
-    }
-    pub fn ext(id: u32, data: &[u8]) -> Frame {
-        Frame { id, ext: true, rtr: false, dlc: data.len() as u8, data: data.to_vec(), corrupt_crc: false }
-    }
-    pub fn remote(id: u32, ext: bool, dlc: u8) -> Frame {
-        Frame { id, ext, rtr: true, dlc, data: vec![], corrupt_crc: false }
-    }
-    /// Unstuffed bits SOF .. end of data field.
-    pub fn raw_bits(&self) -> Vec<bool> {
-        let mut v = vec![false];
-        let push = |v: &mut Vec<bool>, x: u64, n: usize| {
-            for k in (0..n).rev() {
-                v.push((x >> k) & 1 == 1);
-            }
-        };
-        if self.ext {
-            push(&mut v, (self.id >> 18) as u64, 11);
-            v.push(true); // SRR
-            v.push(true); // IDE
-            push(&mut v, (self.id & 0x3ffff) as u64, 18);
-            v.push(self.rtr);
-            v.push(false);
-            v.push(false);
-        } else {
-            push(&mut v, self.id as u64, 11);
-            v.push(self.rtr);
-            v.push(false); // IDE
-            v.push(false); // r0
-        }
-        push(&mut v, self.dlc as u64, 4);
-        if !self.rtr {
-            let n = (self.dlc.min(8)) as usize;
-            for k in 0..n {
-                push(&mut v, *self.data.get(k).unwrap_or(&0) as u64, 8);
-            }
-        }
-        let crc = crc15(&v) ^ (self.corrupt_crc as u16);
-        push(&mut v, crc as u64, 15);
-        v
-    }
-    /// Stuffed bits SOF .. end of CRC, then CRC delimiter, ACK slot (recessive),
-    /// ACK delimiter, 7 EOF bits.
-    pub fn wire_bits(&self) -> Vec<bool> {
-        let raw = self.raw_bits();
-        let mut out = vec![];
-        let (mut last, mut run) = (true, 0);
-        for b in raw {
-            out.push(b);
-            if b == last {
-                run += 1;
-            } else {
-                last = b;
-                run = 1;
-            }
-            if run == 5 {
-                out.push(!b);
-                last = !b;
-                run = 1;
-            }
-        }
-        out.extend([true; 10]);
-        out
+impl std::ops::Deref for Frame {
+    type Target = CanFrame;
+    fn deref(&self) -> &CanFrame {
+        &self.can
     }
 }
 
-pub fn crc15(bits: &[bool]) -> u16 {
-    let mut crc: u16 = 0;
-    for &b in bits {
-        let nxt = b ^ ((crc >> 14) & 1 == 1);
-        crc = (crc << 1) & 0x7fff;
-        if nxt {
-            crc ^= 0x4599;
-        }
+impl std::ops::DerefMut for Frame {
+    fn deref_mut(&mut self) -> &mut CanFrame {
+        &mut self.can
     }
-    crc
+}
+
+impl Frame {
+    pub fn std(id: u32, data: &[u8]) -> Frame {
+        Frame { can: CanFrame::std(id, data), corrupt_crc: false }
+    }
+    pub fn ext(id: u32, data: &[u8]) -> Frame {
+        Frame { can: CanFrame::ext(id, data), corrupt_crc: false }
+    }
+    pub fn remote(id: u32, ext: bool, dlc: u8) -> Frame {
+        Frame { can: CanFrame::remote(ext, id, dlc), corrupt_crc: false }
+    }
+    /// Stuffed bits SOF .. end of CRC, then CRC delimiter, ACK slot (recessive),
+    /// ACK delimiter, 7 EOF bits (the controller crate's frame builder).
+    pub fn wire_bits(&self) -> Vec<bool> {
+        let mut raw: Vec<bool> = frame::unstuffed(&self.can, BuildOptions::default()).iter().map(|b| b.level).collect();
+        let crc = crc15(&raw) ^ (self.corrupt_crc as u16);
+        raw.extend((0..15).rev().map(|k| (crc >> k) & 1 == 1));
+        let mut out: Vec<bool> = frame::stuff(&raw).into_iter().map(|(b, _)| b).collect();
+        out.extend([true; 10]);
+        out
+    }
 }
 
 /// What the tracker found at one sampled bit.
@@ -615,7 +569,7 @@ impl Node {
 
 /// A fault between a node and its hub pin (uplink) or between the hub pin and the node
 /// (downlink): gets (bit index, value, tracker before the bit) and returns the new value.
-pub type LinkFault = Box<dyn FnMut(usize, bool, &Tracker) -> bool>;
+pub type FaultMode = Box<dyn FnMut(usize, bool, &Tracker) -> bool>;
 /// The value of incoming sublink j at bit b, given the nodes' own contributions of that
 /// bit (before the faults on this hub's uplinks).
 pub type SublinkFn = Box<dyn FnMut(usize, usize, &[bool], &Tracker) -> bool>;
@@ -625,8 +579,8 @@ pub type SublinkFn = Box<dyn FnMut(usize, usize, &[bool], &Tracker) -> bool>;
 pub struct Stim {
     pub tracker: Tracker,
     pub nodes: Vec<Node>,
-    pub up_faults: Vec<Option<LinkFault>>,
-    pub down_faults: Vec<Option<LinkFault>>,
+    pub up_faults: Vec<Option<FaultMode>>,
+    pub down_faults: Vec<Option<FaultMode>>,
     pub sublink: SublinkFn,
     pub bit: usize,
     pub log: Vec<BitLog>,

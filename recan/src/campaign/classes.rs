@@ -18,6 +18,7 @@
 //! particular the hubs never isolate each other's fault-free sublinks), and no healthy
 //! controller is quarantined. The faulty path itself may always be isolated.
 
+use crate::fault::Dir;
 use serde::{Deserialize, Serialize};
 
 /// Default delay between the two faults of the `double-*` classes, in bit times.
@@ -56,22 +57,6 @@ impl Role {
         match self {
             Role::Tx => "tx",
             Role::NonTx => "nontx",
-        }
-    }
-}
-
-/// Direction of a node link.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
-pub enum Dir {
-    Up,
-    Down,
-}
-
-impl Dir {
-    pub fn name(self) -> &'static str {
-        match self {
-            Dir::Up => "up",
-            Dir::Down => "down",
         }
     }
 }

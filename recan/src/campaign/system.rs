@@ -10,11 +10,11 @@
 //! the injection instant (a random bit of a random field of a random frame, or a
 //! random absolute time, which also randomises the phase within a bit).
 
-use super::classes::{Class, ClassKind, Dir, Double, EofBit, EofSubset, Fault, Node, Role, FLIP_RATE_PERMILLE};
+use super::classes::{Class, ClassKind, Double, EofBit, EofSubset, Fault, Node, Role, FLIP_RATE_PERMILLE};
 use super::plot::{Marker, MarkerKind, PlotData, Series};
 use super::{RunOutcome, RunPlan, Settings};
 use crate::{
-    CtrlRef, Dir as RDir, FaultKind, FaultSpec, FaultStart, FaultTarget, Isolated, NetworkSpec, RunResult, RunSpec,
+    CtrlRef, Dir, FaultKind, FaultSpec, FaultStart, FaultTarget, Isolated, NetworkSpec, RunResult, RunSpec,
     StartField,
 };
 use rand::{Rng, SeedableRng};
@@ -133,12 +133,6 @@ fn cref(c: usize) -> CtrlRef {
     }
 }
 
-fn rdir(d: Dir) -> RDir {
-    match d {
-        Dir::Up => RDir::Up,
-        Dir::Down => RDir::Down,
-    }
-}
 
 /// Add the criteria of one node-link fault.
 fn link_expect(g: &mut Generic, node: usize, c: usize, dir: Dir, kind: Fault) {
@@ -192,7 +186,7 @@ pub fn build(class: &Class, seed: u64, settings: &Settings) -> Built {
             let k = node_idx(node);
             let c = ctrl_of(&net, k, role);
             let start = rand_start(&mut rng, &net);
-            faults.push(FaultSpec::new(FaultTarget::Link { node: k, ctrl: cref(c), dir: rdir(dir) }, flip_kind(&mut rng, &net, rate), start));
+            faults.push(FaultSpec::new(FaultTarget::Link { node: k, ctrl: cref(c), dir: dir }, flip_kind(&mut rng, &net, rate), start));
             link_expect(&mut g, k, c, dir, Fault::Flip);
         }
         ClassKind::Sublink(f) => {
@@ -235,7 +229,7 @@ pub fn build(class: &Class, seed: u64, settings: &Settings) -> Built {
             let t0 = (net.driver.start_bits as u64 + rng.gen_range(100..600)) * bit + rng.gen_range(0..bit);
             let link = |g: &mut Generic, faults: &mut Vec<FaultSpec>, rng: &mut ChaCha8Rng, k: usize, c: usize, dir: Dir, f: Fault, t: u64| {
                 let kind = kind_of(f, rng, &net);
-                faults.push(FaultSpec::new(FaultTarget::Link { node: k, ctrl: cref(c), dir: rdir(dir) }, kind, FaultStart::At { t_ps: t }));
+                faults.push(FaultSpec::new(FaultTarget::Link { node: k, ctrl: cref(c), dir: dir }, kind, FaultStart::At { t_ps: t }));
                 link_expect(g, k, c, dir, f);
             };
             let b = Node::Blinker.index();
@@ -301,7 +295,7 @@ pub fn build(class: &Class, seed: u64, settings: &Settings) -> Built {
                 EofSubset::AllButTransmitter => (0..nn).flat_map(|k| [(k, 0), (k, 1)]).filter(|&p| p != (b, btx)).collect(),
             };
             for &(k, c) in &targets {
-                let mut f = FaultSpec::new(FaultTarget::Link { node: k, ctrl: cref(c), dir: RDir::Down }, FaultKind::Sad, start);
+                let mut f = FaultSpec::new(FaultTarget::Link { node: k, ctrl: cref(c), dir: Dir::Down }, FaultKind::Sad, start);
                 f.duration_ps = Some(bit);
                 faults.push(f);
                 g.unhealthy.push((k, c));

@@ -96,10 +96,10 @@ pub fn run(ctx: &mut Ctx) {
             b.run_bits(3);
             let m = b.mark(0);
             let rec0 = b.rec(0);
-            b.set(0, Interference::StuckDominant);
+            b.set(0, FaultMode::StuckDominant);
             let t = b.sim.now() + len as u64;
             b.run_until_time(t);
-            b.set(0, Interference::None);
+            b.set(0, FaultMode::None);
             b.run_bits(12);
             let s = b.count(0, m, EV_SOF);
             if sof {

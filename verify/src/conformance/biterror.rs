@@ -6,8 +6,8 @@
 //! to 127).
 use super::*;
 
-const D: Interference = Interference::StuckDominant;
-const R: Interference = Interference::StuckRecessive;
+const D: FaultMode = FaultMode::StuckDominant;
+const R: FaultMode = FaultMode::StuckRecessive;
 const BE_A: &[usize] = &[EV_BIT_ERR, EV_AEF];
 const BE_P: &[usize] = &[EV_BIT_ERR, EV_PEF];
 const OL: &[usize] = &[EV_OVL, EV_OLF];
@@ -125,7 +125,7 @@ fn rx_part(ctx: &mut Ctx, b: &mut Bench) {
 
 /// N1 sends a frame, `f` forced at (field, pos) with `mode`: +8 and the
 /// given flag; the retry then succeeds.
-fn tx_simple(b: &mut Bench, f: &Frame, field: Field, pos: u32, mode: Interference, flag: &[usize]) -> Result<(), String> {
+fn tx_simple(b: &mut Bench, f: &Frame, field: Field, pos: u32, mode: FaultMode, flag: &[usize]) -> Result<(), String> {
     b.node_mut(0).request(f.clone());
     b.forced_step(&[0], field, pos, mode, 1, flag, Ctr::Tec, 8)?;
     finish(b)
@@ -176,7 +176,7 @@ fn tx_part(ctx: &mut Ctx, b: &mut Bench) {
     let f9 = choose(false, false, |f| !f.data.is_empty() && f.data[0] % 2 == 0);
     let f10 = choose(false, false, |f| lv(f, Field::Crc, 1, false) == Some(true));
     let f11 = choose(false, false, |f| lv(f, Field::Crc, 15, false) == Some(false));
-    let six: [(&Frame, Field, u32, Interference); 6] =
+    let six: [(&Frame, Field, u32, FaultMode); 6] =
         [(&f6, Field::Dlc, 1, D), (&f7, Field::Dlc, 4, R), (&f8, Field::Data, 1, D), (&f9, Field::Data, 8, R), (&f10, Field::Crc, 1, D), (&f11, Field::Crc, 15, R)];
     for (k, (ff, field, pos, mode)) in six.iter().enumerate() {
         let r = tx_simple(b, ff, *field, *pos, *mode, BE_A);

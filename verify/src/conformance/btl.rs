@@ -45,10 +45,10 @@ pub fn run(ctx: &mut Ctx) {
                 let m = b.mark(0);
                 b.run_until_time(edge);
                 ensure!(b.since(0, m).iter().all(|r| r.level), "an earlier bit was not recessive");
-                b.set(0, Interference::StuckDominant);
+                b.set(0, FaultMode::StuckDominant);
                 let t = b.sim.now() + ntq * tq;
                 b.run_until_time(t);
-                b.set(0, Interference::None);
+                b.set(0, FaultMode::None);
                 b.run_until(3, |b| b.count(0, m, EV_SOF) > 0)?;
                 let sof = b.events(0, m, EV_SOF)[0];
                 ensure!(sof.field == Field::Idle && !sof.level, "SOF record {sof}");
@@ -161,7 +161,7 @@ fn run_watch(b: &mut Bench, until: u64, tx: &mut Vec<(u64, bool)>) {
 }
 
 /// Override changes (time, mode) applied in order, watching TX, then run to `end`.
-fn play(b: &mut Bench, seq: &[(u64, Interference)], end: u64) -> Vec<(u64, bool)> {
+fn play(b: &mut Bench, seq: &[(u64, FaultMode)], end: u64) -> Vec<(u64, bool)> {
     let mut tx = vec![];
     for &(t, m) in seq {
         run_watch(b, t, &mut tx);
@@ -176,7 +176,7 @@ fn play(b: &mut Bench, seq: &[(u64, Interference)], end: u64) -> Vec<(u64, bool)
 fn fresh(b: &mut Bench) -> Result<(), String> {
     let sc = b.script;
     b.run_until(400, |b| sc.is_none_or(|h| !b.sim.get(h).busy()))?;
-    b.set(0, Interference::None);
+    b.set(0, FaultMode::None);
     b.node_mut(0).withdraw();
     b.node_mut(0).hard_reset();
     b.run_bits(1);
@@ -299,9 +299,9 @@ pub fn cases_b_to_f(ctx: &mut Ctx, tn: u32, c: &NodeConfig) {
     let start = b.run_until(40, |b| b.node(0).field() == Field::Idle);
     let js: Vec<u64> = (0..ntq).filter(|&j| j != sp - 1).collect();
     let f = frame_bde();
-    const R: Interference = Interference::StuckRecessive;
-    const D: Interference = Interference::StuckDominant;
-    const NONE: Interference = Interference::None;
+    const R: FaultMode = FaultMode::StuckRecessive;
+    const D: FaultMode = FaultMode::StuckDominant;
+    const NONE: FaultMode = FaultMode::None;
 
     // b and c: the scripted transmitter plays the frame.
     for case in ['b', 'c'] {

@@ -3,8 +3,8 @@
 //! override so that N1 gets no acknowledgement).
 use super::*;
 
-const D: Interference = Interference::StuckDominant;
-const R: Interference = Interference::StuckRecessive;
+const D: FaultMode = FaultMode::StuckDominant;
+const R: FaultMode = FaultMode::StuckRecessive;
 
 /// Does inverting the bus bit of `f` at (field, pos, non-stuff) leave every
 /// run shorter than six (so the receiver's destuffing is unchanged)?
@@ -35,7 +35,7 @@ pub(crate) fn flip_keeps_stuffing(f: &Frame, field: Field, pos: u32) -> bool {
     true
 }
 
-fn rx_step(b: &mut Bench, f: &Frame, field: Field, pos: u32, mode: Interference, exact: bool) -> Result<(), String> {
+fn rx_step(b: &mut Bench, f: &Frame, field: Field, pos: u32, mode: FaultMode, exact: bool) -> Result<(), String> {
     let (rec0, tec2) = (b.rec(0), b.tec(1));
     let rx0 = b.node(0).received().len();
     b.node_mut(1).request(f.clone());
@@ -109,7 +109,7 @@ pub fn run(ctx: &mut Ctx) {
     })();
     ctx.record("crc_tx_3", r);
     let r = (|| {
-        b.set(1, Interference::None);
+        b.set(1, FaultMode::None);
         let n = b.node(0).sent().len();
         b.run_until(300, |b| b.node(0).sent().len() > n)?;
         b.run_idle(100)?;
@@ -151,7 +151,7 @@ pub fn run(ctx: &mut Ctx) {
         b.run_bits(3);
         ensure!(b.state(0) == 2 && b.tec(0) == 263, "TEC {} state {} (expected 263, bus-off):{}", b.tec(0), b.state(0), b.dump_events(0, m.saturating_sub(12)));
         b.node_mut(0).withdraw();
-        b.set(1, Interference::None);
+        b.set(1, FaultMode::None);
         Ok(())
     })();
     ctx.record("crc_tx_8", r);

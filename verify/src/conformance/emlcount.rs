@@ -12,8 +12,8 @@
 //! from 135 to 127 before tx_6).
 use super::*;
 
-const D: Interference = Interference::StuckDominant;
-const R: Interference = Interference::StuckRecessive;
+const D: FaultMode = FaultMode::StuckDominant;
+const R: FaultMode = FaultMode::StuckRecessive;
 
 /// Move the R→D edge at the start of N1's bit (field, pos) by `d` TQ
 /// (positive: later, by reading `R` for d TQ; negative: earlier, by reading
@@ -34,7 +34,7 @@ fn move_edge(b: &mut Bench, field: Field, pos: u32, d: i64) -> Result<(), String
         b.set(0, D);
         b.run_until_time((t as i64 + ntq * tq) as u64);
     }
-    b.set(0, Interference::None);
+    b.set(0, FaultMode::None);
     Ok(())
 }
 
@@ -157,7 +157,7 @@ fn rx_part(ctx: &mut Ctx, b: &mut Bench) {
     let r = (|| {
         let m = b.mark(0);
         b.node_mut(1).request(fc.clone());
-        b.force_at(&[0], Field::Crc, 5, false, Interference::Invert, 1)?;
+        b.force_at(&[0], Field::Crc, 5, false, FaultMode::Invert, 1)?;
         b.wait_for(0, Field::AckSlot, 1, false, 30)?;
         ensure!(b.since(0, m).iter().all(|r| r.ev & ((1 << EV_AEF) | (1 << EV_PEF)) == 0), "error before the ACK slot:{}", b.dump_events(0, m));
         Ok(())

@@ -4,7 +4,7 @@
 //! orders them.
 use super::*;
 
-const D: Interference = Interference::StuckDominant;
+const D: FaultMode = FaultMode::StuckDominant;
 const OL: &[usize] = &[EV_OVL, EV_OLF];
 const FE: &[usize] = &[EV_FORM_ERR, EV_AEF];
 

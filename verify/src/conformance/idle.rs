@@ -3,8 +3,8 @@
 //! override.
 use super::*;
 
-const D: Interference = Interference::StuckDominant;
-const R: Interference = Interference::StuckRecessive;
+const D: FaultMode = FaultMode::StuckDominant;
+const R: FaultMode = FaultMode::StuckRecessive;
 
 fn restarted(b: &Bench, field: Field, what: &str) -> Result<(), String> {
     ensure!(b.at(0) == (field, 1), "{what}: N1 at {:?} {}, expected {} 1 (count restarted)", b.at(0).0, b.at(0).1, field.name());
@@ -81,7 +81,7 @@ pub fn run(ctx: &mut Ctx) {
         let m2 = b.mark(0);
         b.set(0, R);
         b.run_until(200, |b| b.tec(0) >= 128)?;
-        b.set(0, Interference::None);
+        b.set(0, FaultMode::None);
         let errs = b.events(0, m2, EV_BIT_ERR);
         ensure!(b.tec(0) == 128 && errs.len() == 15, "TEC {} after {} bit errors (expected 128 after 15)", b.tec(0), errs.len());
         ensure!(errs.iter().all(|r| r.field == Field::ActFlag), "bit errors outside active flags:{}", b.dump_events(0, m2));
@@ -146,7 +146,7 @@ pub fn run(ctx: &mut Ctx) {
 
     let r = (|| {
         b.node_mut(0).withdraw();
-        b.set(0, Interference::None);
+        b.set(0, FaultMode::None);
         let m = b.mark(0);
         b.run_bits(5);
         let s = b.since(0, m);

@@ -75,7 +75,7 @@
 use canstar_sim::bus::{Bus, NodeDelays};
 use canstar_sim::{ClockSpec, Component, Handle, Io, Sim};
 use crate::lockstep::{Divergence, LockstepNode};
-use canstar_sim::net::Interference;
+use canstar_sim::net::FaultMode;
 use crate::node::{CanNode, NodeConfig, RESET_CYCLES};
 use std::cell::{Cell, RefCell};
 use canstar_controller::frame::{bus_bits, BuildOptions, BusBit, Frame};
@@ -634,12 +634,12 @@ impl Bench {
         let t = b.sim.now() + (RESET_CYCLES as u64 + 2) * clocks.iter().map(|c| c.period_ps).max().unwrap_or(CLOCK_PS);
         b.run_until_time(t);
         for i in 0..n {
-            b.bus.set_interference(&mut b.sim, i, Interference::StuckDominant);
+            b.bus.set_interference(&mut b.sim, i, FaultMode::StuckDominant);
         }
         let t = b.sim.now() + b.bit_ps;
         b.run_until_time(t);
         for i in 0..n {
-            b.bus.set_interference(&mut b.sim, i, Interference::None);
+            b.bus.set_interference(&mut b.sim, i, FaultMode::None);
         }
         b
     }
@@ -685,7 +685,7 @@ impl Bench {
         (self.node(i).field(), self.node(i).pos())
     }
     /// Set the interference of node `i` now (and leave it).
-    pub fn set(&mut self, i: usize, mode: Interference) {
+    pub fn set(&mut self, i: usize, mode: FaultMode) {
         self.bus.set_interference(&mut self.sim, i, mode);
     }
     /// All bits node `i` processed so far.
@@ -860,21 +860,21 @@ impl Bench {
 
     /// Set the interference of `nodes` for `k` nominal bit times from now,
     /// then back to none.
-    pub fn force_now(&mut self, nodes: &[usize], mode: Interference, k: u64) {
+    pub fn force_now(&mut self, nodes: &[usize], mode: FaultMode, k: u64) {
         for &i in nodes {
             self.bus.set_interference(&mut self.sim, i, mode);
         }
         let t = self.sim.now() + k * self.bit_ps;
         self.run_until_time(t);
         for &i in nodes {
-            self.bus.set_interference(&mut self.sim, i, Interference::None);
+            self.bus.set_interference(&mut self.sim, i, FaultMode::None);
         }
     }
 
     /// WAIT_FOR (field, pos, stuff) at `nodes[0]`, then force `nodes` for `k`
     /// bits, and run until `nodes[0]` has processed the k forced bits. Returns the mark of `nodes[0]` at the first forced bit (its
     /// record is `since(nodes[0], mark)[0]`).
-    pub fn force_at(&mut self, nodes: &[usize], field: Field, pos: u32, stuff: bool, mode: Interference, k: u64) -> Result<usize, String> {
+    pub fn force_at(&mut self, nodes: &[usize], field: Field, pos: u32, stuff: bool, mode: FaultMode, k: u64) -> Result<usize, String> {
         let i = nodes[0];
         self.wait_for(i, field, pos, stuff, 3000)?;
         let t = self.recs[i].last().map_or(0, |r| r.t) + self.ph2_rest_ps(i);
@@ -1009,7 +1009,7 @@ impl Bench {
     /// WAIT_FOR the target at `nodes[0]`, force `nodes` for `k` bits and
     /// check that the first forced bit of `nodes[0]` carries every event of
     /// `want`. Returns the mark of the first forced bit.
-    pub fn forced_bit(&mut self, nodes: &[usize], field: Field, pos: u32, mode: Interference, k: u64, want: &[usize]) -> Result<usize, String> {
+    pub fn forced_bit(&mut self, nodes: &[usize], field: Field, pos: u32, mode: FaultMode, k: u64, want: &[usize]) -> Result<usize, String> {
         let i = nodes[0];
         let m = self.force_at(nodes, field, pos, false, mode, k)?;
         let r = self.rec_at(i, m)?;
@@ -1026,7 +1026,7 @@ impl Bench {
     /// every event of `want`, settle, and check the change of `nodes[0]`'s
     /// counter. Returns the mark of the first forced bit.
     #[allow(clippy::too_many_arguments)]
-    pub fn forced_step(&mut self, nodes: &[usize], field: Field, pos: u32, mode: Interference, k: u64, want: &[usize], ctr: Ctr, delta: i64) -> Result<usize, String> {
+    pub fn forced_step(&mut self, nodes: &[usize], field: Field, pos: u32, mode: FaultMode, k: u64, want: &[usize], ctr: Ctr, delta: i64) -> Result<usize, String> {
         let i = nodes[0];
         let c0 = self.ctr(i, ctr) as i64;
         let m = self.forced_bit(nodes, field, pos, mode, k, want)?;

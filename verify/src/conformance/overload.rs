@@ -2,8 +2,8 @@
 //! N2 → N1 (`overload_rx_*`) and N1 → N2 (`overload_tx_*`).
 use super::*;
 
-const D: Interference = Interference::StuckDominant;
-const R: Interference = Interference::StuckRecessive;
+const D: FaultMode = FaultMode::StuckDominant;
+const R: FaultMode = FaultMode::StuckRecessive;
 const OL: &[usize] = &[EV_OVL, EV_OLF];
 
 /// `N1+N2 D!` at Intermission 3 with a request pending at `t`: both take the

@@ -4,15 +4,15 @@
 //! same frames with the roles swapped.
 use super::*;
 
-const D: Interference = Interference::StuckDominant;
-const R: Interference = Interference::StuckRecessive;
+const D: FaultMode = FaultMode::StuckDominant;
+const R: FaultMode = FaultMode::StuckRecessive;
 
 struct Row {
     k: u32,
     frame: Frame,
     field: Field,
     pos: u32,
-    mode: Interference,
+    mode: FaultMode,
     /// Transmitter: stuff error in arbitration (EXC2, +0) instead of +8.
     exc2: bool,
 }

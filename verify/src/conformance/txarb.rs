@@ -4,8 +4,8 @@
 //! error-active throughout.
 use super::*;
 
-const D: Interference = Interference::StuckDominant;
-const R: Interference = Interference::StuckRecessive;
+const D: FaultMode = FaultMode::StuckDominant;
+const R: FaultMode = FaultMode::StuckRecessive;
 
 struct Step {
     name: &'static str,
@@ -13,7 +13,7 @@ struct Step {
     field: Field,
     pos: u32,
     stuff: bool,
-    mode: Interference,
+    mode: FaultMode,
     /// Expected: (event at the forced bit, TEC delta, REC delta, where the
     /// stuff error of a lost arbitration falls).
     ev: usize,
