@@ -6,7 +6,7 @@
 //! with [`BtlConfig::check`] (the ranges of can-protocol.md §2.2, widened for the
 //! SJA1000 top). Files that write the controller's register encoding (the hub's
 //! `[hub.timing]`) use [`encoded`]; files where every key is optional and the
-//! default depends on the file use [`TimingPatch`]. The RTL ports take the
+//! default depends on the file use [`TimingPatch`] (or [`encoded::deserialize_over`]). The RTL ports take the
 //! register encoding from [`BtlConfig::fields`].
 
 use serde::{Deserialize, Serialize};
@@ -124,15 +124,15 @@ impl TimingPatch {
 }
 
 /// Serde form of a [`BtlConfig`] in the controller's register encoding (every field
-/// the value − 1, no triple sampling), for `#[serde(with = "canstar_hdl::timing::encoded")]`.
-/// Values that do not fit the ports (brp > 127, prop > 15, ph1 > 7, sjw > 3) are
-/// rejected when read.
+/// the value − 1, no triple sampling). Writing: `#[serde(serialize_with =
+/// "canstar_hdl::timing::encoded::serialize")]`; reading, with the keys left out taken
+/// from a file-specific default: [`encoded::deserialize_over`]. Values that do not fit
+/// the ports (brp > 127, prop > 15, ph1 > 7, sjw > 3) are rejected when read.
 pub mod encoded {
     use super::BtlConfig;
     use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
-    #[derive(Serialize, Deserialize)]
-    #[serde(deny_unknown_fields)]
+    #[derive(Serialize)]
     struct Encoded {
         brp: u32,
         prop: u32,
@@ -140,20 +140,31 @@ pub mod encoded {
         sjw: u32,
     }
 
+    #[derive(Deserialize)]
+    #[serde(deny_unknown_fields)]
+    struct EncodedPatch {
+        brp: Option<u32>,
+        prop: Option<u32>,
+        ph1: Option<u32>,
+        sjw: Option<u32>,
+    }
+
     pub fn serialize<S: Serializer>(t: &BtlConfig, s: S) -> Result<S::Ok, S::Error> {
         let (brp, prop, ph1, sjw) = t.fields();
         Encoded { brp, prop, ph1, sjw }.serialize(s)
     }
 
-    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<BtlConfig, D::Error> {
-        let e = Encoded::deserialize(d)?;
-        if e.brp > 127 || e.prop > 15 || e.ph1 > 7 || e.sjw > 3 {
+    /// Read an encoded timing; keys left out keep `base`'s values.
+    pub fn deserialize_over<'de, D: Deserializer<'de>>(d: D, base: BtlConfig) -> Result<BtlConfig, D::Error> {
+        let p = EncodedPatch::deserialize(d)?;
+        let (b0, b1, b2, b3) = base.fields();
+        let (brp, prop, ph1, sjw) = (p.brp.unwrap_or(b0), p.prop.unwrap_or(b1), p.ph1.unwrap_or(b2), p.sjw.unwrap_or(b3));
+        if brp > 127 || prop > 15 || ph1 > 7 || sjw > 3 {
             return Err(serde::de::Error::custom(format!(
-                "register encoding out of range: brp = {}, prop = {}, ph1 = {}, sjw = {} (at most 127, 15, 7, 3)",
-                e.brp, e.prop, e.ph1, e.sjw
+                "register encoding out of range: brp = {brp}, prop = {prop}, ph1 = {ph1}, sjw = {sjw} (at most 127, 15, 7, 3)"
             )));
         }
-        Ok(BtlConfig::from_fields(e.brp, e.prop, e.ph1, e.sjw, false))
+        Ok(BtlConfig::from_fields(brp, prop, ph1, sjw, false))
     }
 }
 
@@ -163,9 +174,12 @@ mod tests {
 
     #[test]
     fn encoded_round_trip_and_range() {
+        fn base<'de, D: serde::Deserializer<'de>>(d: D) -> Result<BtlConfig, D::Error> {
+            encoded::deserialize_over(d, BtlConfig::T10_6_4)
+        }
         #[derive(Serialize, Deserialize, PartialEq, Debug)]
         struct W {
-            #[serde(with = "encoded")]
+            #[serde(serialize_with = "encoded::serialize", deserialize_with = "base")]
             t: BtlConfig,
         }
         let w: W = toml::from_str("[t]\nbrp = 1\nprop = 2\nph1 = 1\nsjw = 0\n").unwrap();
@@ -173,6 +187,9 @@ mod tests {
         assert_eq!(toml::from_str::<W>(&toml::to_string(&w).unwrap()).unwrap(), w);
         let e = toml::from_str::<W>("[t]\nbrp = 1\nprop = 16\nph1 = 1\nsjw = 0\n").unwrap_err();
         assert!(e.to_string().contains("out of range"), "{e}");
+        // keys left out keep the default's
+        let w: W = toml::from_str("[t]\nsjw = 1\n").unwrap();
+        assert_eq!(w.t, BtlConfig { sjw: 2, ..BtlConfig::T10_6_4 });
     }
 
     #[test]

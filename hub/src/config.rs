@@ -61,7 +61,7 @@ pub struct HubConfig {
     /// The default is the reference hub: TQ = 2 clocks of 14.74 MHz (the reference's
     /// "brp 0" of an SJA1000-style prescaler, which doubles), 8 TQ per bit, sample
     /// point at 6 TQ (75 %), SJW 1.
-    #[serde(with = "canstar_hdl::timing::encoded")]
+    #[serde(serialize_with = "canstar_hdl::timing::encoded::serialize", deserialize_with = "reference_timing_over")]
     pub timing: BtlConfig,
     /// Input synchroniser depth, 1 or 2 (default 1: two coupled hubs need it to keep the
     /// arbitration loop inside PROP with the reference timing, see the crate docs).
@@ -116,6 +116,10 @@ impl Default for HubConfig {
 
 /// The reference hub's monitor timing: TQ = 2 clocks, PROP 3, PH1 2, PH2 2, SJW 1 TQ.
 pub const REFERENCE_TIMING: BtlConfig = BtlConfig::new(2, 3, 2, 1);
+
+fn reference_timing_over<'de, D: serde::Deserializer<'de>>(d: D) -> Result<BtlConfig, D::Error> {
+    canstar_hdl::timing::encoded::deserialize_over(d, REFERENCE_TIMING)
+}
 
 impl HubConfig {
     /// Clocks per bit of the frame monitor.

@@ -13,7 +13,7 @@ use std::time::Instant;
 use rust_hdl::prelude::*;
 
 use crate::bus::{Bus, NodeDelays};
-use crate::kernel::{ClockSpec, Component, HdlComponent, Io, Sim};
+use crate::{ClockSpec, Component, HdlComponent, Io, Sim};
 
 /// A small clocked block: two-flip-flop synchroniser on `rx`, counter of
 /// the synchronised level's edges.

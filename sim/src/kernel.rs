@@ -1,4 +1,6 @@
-//! Time, clocks, components and the scheduler ([`Sim`]).
+//! Components, their ports and the scheduler ([`Sim`]). Clocks are in
+//! [`crate::clock`], the adapters from rust-hdl blocks and closures in
+//! [`crate::component`].
 
 use std::any::Any;
 use std::cmp::Reverse;
@@ -6,87 +8,14 @@ use std::collections::{BinaryHeap, VecDeque};
 use std::io::Write;
 use std::marker::PhantomData;
 
-use canstar_hdl::drive::{self, Clocked};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rust_hdl::prelude::Probe;
 
+use crate::clock::ClockSpec;
+
 use crate::net::{FaultMode, NetId, Nets, Node};
 use crate::vcd::{VcdState, VcdView};
-
-/// Clock of one component: nominal period in ps, oscillator offset and
-/// start phase.
-///
-/// Rising edge `n` (from 0) is at
-/// `phase_ps + floor(n * period_ps * (1e9 + ppb) / 1e9)`, computed in
-/// integers, so edge times are exact and never accumulate rounding error.
-/// The offset is stored in parts per billion (ppm are rounded to 0.001 ppm).
-///
-/// Optional jitter: in a [`Sim`], every edge is delayed by a random
-/// `0..=jitter_ps` ps drawn from a per-component generator derived from the
-/// simulation seed and the component index (non-accumulating: the nominal
-/// edge times above stay the reference).
-#[derive(Copy, Clone, Debug, PartialEq, Eq)]
-pub struct ClockSpec {
-    pub period_ps: u64,
-    /// Oscillator offset in parts per billion (positive = slower clock).
-    pub ppb: i64,
-    /// Time of edge 0.
-    pub phase_ps: u64,
-    /// Maximum random delay of each edge (0 = none).
-    pub jitter_ps: u64,
-}
-
-impl ClockSpec {
-    /// A clock with the given nominal period, no offset, edge 0 at time 0.
-    pub fn new(period_ps: u64) -> Self {
-        assert!(period_ps > 0, "clock period must be positive");
-        ClockSpec { period_ps, ppb: 0, phase_ps: 0, jitter_ps: 0 }
-    }
-    /// A clock of `mhz` MHz (period rounded to the picosecond).
-    pub fn mhz(mhz: f64) -> Self {
-        Self::new((1e6 / mhz).round() as u64)
-    }
-    /// Oscillator offset in ppm: the period is `period_ps * (1 + ppm * 1e-6)`
-    /// (positive ppm = slower clock).
-    pub fn with_ppm(mut self, ppm: f64) -> Self {
-        self.ppb = (ppm * 1000.0).round() as i64;
-        assert!(self.ppb > -1_000_000_000, "offset must be above -1e6 ppm");
-        self
-    }
-    /// Time of edge 0.
-    pub fn with_phase(mut self, phase_ps: u64) -> Self {
-        self.phase_ps = phase_ps;
-        self
-    }
-    /// Random delay of up to `jitter_ps` on every edge (less than half a period).
-    pub fn with_jitter(mut self, jitter_ps: u64) -> Self {
-        assert!(jitter_ps * 2 < self.period_ps, "jitter must stay below half a period");
-        self.jitter_ps = jitter_ps;
-        self
-    }
-    /// Nominal time of rising edge `n` (without jitter).
-    #[inline]
-    pub fn edge_time(&self, n: u64) -> u64 {
-        let scaled = n as u128 * self.period_ps as u128 * (1_000_000_000i64 + self.ppb) as u128;
-        self.phase_ps + (scaled / 1_000_000_000u128) as u64
-    }
-    /// Index of the first edge at a time `> t`.
-    pub fn first_edge_after(&self, t: u64) -> u64 {
-        if t < self.phase_ps {
-            return 0;
-        }
-        let eff = self.period_ps as f64 * (1.0 + self.ppb as f64 * 1e-9);
-        let mut n = ((t - self.phase_ps) as f64 / eff) as u64;
-        while n > 0 && self.edge_time(n - 1) > t {
-            n -= 1;
-        }
-        while self.edge_time(n) <= t {
-            n += 1;
-        }
-        n
-    }
-}
 
 /// Ports of a component during one tick: read inputs, write outputs.
 ///
@@ -145,114 +74,6 @@ pub trait Component: Any {
     /// VCD hook: present the component's signals to `probe` (rust-hdl
     /// blocks: `self.block.accept(self.name(), probe)`). Default: none.
     fn probe(&self, _probe: &mut dyn Probe) {}
-}
-
-/// Maps the input nets' levels (in binding order) to the block's inputs.
-pub type InputMap<B> = Box<dyn FnMut(&mut B, &[bool])>;
-/// Maps the block's outputs to the output nets' levels (in binding order).
-pub type OutputMap<B> = Box<dyn FnMut(&B, &mut [bool])>;
-
-/// Adapter turning any clocked rust-hdl block into a [`Component`].
-///
-/// Each edge: input net levels are read and handed to `set_inputs`, then
-/// `drive::cycle` settles the block, applies the rising edge (and the falling
-/// edge), then `get_outputs` maps the block's outputs to the output nets.
-///
-/// ```
-/// use canstar_sim::{bench::EdgeCounter, bus::{Bus, NodeDelays}, ClockSpec, HdlComponent, Sim};
-/// let mut sim = Sim::new(1);
-/// let bus = Bus::uniform(&mut sim, "bus", 1, NodeDelays::symmetric(0, 0));
-/// // one input (RX), no outputs; a controller would map `o[0] = b.tx.val()`
-/// let node = HdlComponent::new("node0", ClockSpec::mhz(40.0), EdgeCounter::default(), 1, 0,
-///     |b, i| b.rx.next = i[0], |_b, _o| {});
-/// let h = sim.add(node, &[bus.nodes[0].rx], &[]);
-/// sim.drive(bus.nodes[0].tx, false);
-/// sim.run_until(1_000_000);
-/// // the synchroniser powers up at 0 (one edge to recessive), then sees the dominant edge
-/// assert_eq!(sim.get(h).block.edges.val().index(), 2);
-/// ```
-pub struct HdlComponent<B: Clocked> {
-    name: String,
-    clock: ClockSpec,
-    /// The wrapped block (read its signals with `.val()` between steps).
-    pub block: B,
-    set_inputs: InputMap<B>,
-    get_outputs: OutputMap<B>,
-    ins: Vec<bool>,
-    outs: Vec<bool>,
-}
-
-impl<B: Clocked + 'static> HdlComponent<B> {
-    /// Wrap `block` (it is connected and settled here with `drive::init`).
-    pub fn new(
-        name: &str,
-        clock: ClockSpec,
-        mut block: B,
-        n_inputs: usize,
-        n_outputs: usize,
-        set_inputs: impl FnMut(&mut B, &[bool]) + 'static,
-        get_outputs: impl FnMut(&B, &mut [bool]) + 'static,
-    ) -> Self {
-        drive::init(&mut block);
-        HdlComponent {
-            name: name.to_string(),
-            clock,
-            block,
-            set_inputs: Box::new(set_inputs),
-            get_outputs: Box::new(get_outputs),
-            ins: vec![true; n_inputs],
-            outs: vec![true; n_outputs],
-        }
-    }
-}
-
-impl<B: Clocked + 'static> Component for HdlComponent<B> {
-    fn name(&self) -> &str {
-        &self.name
-    }
-    fn clock(&self) -> ClockSpec {
-        self.clock
-    }
-    fn tick(&mut self, io: &mut Io<'_>) {
-        for (i, v) in self.ins.iter_mut().enumerate() {
-            *v = io.input(i);
-        }
-        (self.set_inputs)(&mut self.block, &self.ins);
-        drive::cycle(&mut self.block);
-        (self.get_outputs)(&self.block, &mut self.outs);
-        for (i, &v) in self.outs.iter().enumerate() {
-            io.set_output(i, v);
-        }
-    }
-    fn probe(&self, probe: &mut dyn Probe) {
-        self.block.accept(&self.name, probe);
-    }
-}
-
-/// A plain-Rust component from a closure called on every edge (stimulus
-/// generators, testers, stand-ins). State lives in the closure's captures.
-pub struct FnComponent<F: FnMut(&mut Io<'_>) + 'static> {
-    name: String,
-    clock: ClockSpec,
-    f: F,
-}
-
-impl<F: FnMut(&mut Io<'_>) + 'static> FnComponent<F> {
-    pub fn new(name: &str, clock: ClockSpec, f: F) -> Self {
-        FnComponent { name: name.to_string(), clock, f }
-    }
-}
-
-impl<F: FnMut(&mut Io<'_>) + 'static> Component for FnComponent<F> {
-    fn name(&self) -> &str {
-        &self.name
-    }
-    fn clock(&self) -> ClockSpec {
-        self.clock
-    }
-    fn tick(&mut self, io: &mut Io<'_>) {
-        (self.f)(io)
-    }
 }
 
 /// Index of a component in its simulation.

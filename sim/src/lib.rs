@@ -42,10 +42,14 @@
 
 pub mod bench;
 pub mod bus;
+mod clock;
+mod component;
 mod kernel;
 pub mod net;
 pub mod star;
 pub mod vcd;
 
-pub use kernel::{ClockSpec, CompId, Component, FnComponent, Handle, HdlComponent, InputMap, Io, OutputMap, Sim};
+pub use clock::ClockSpec;
+pub use component::{FnComponent, HdlComponent, InputMap, OutputMap};
+pub use kernel::{CompId, Component, Handle, Io, Sim};
 pub use net::{FaultMode, NetId};

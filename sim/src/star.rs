@@ -15,7 +15,7 @@
 //! Net names: hub `h`, port `i`: `h.p<i>.up.*`, `h.p<i>.down.*`; interlink `j`
 //! of a two-hub network `r`: `r.il<j>.h0_to_h1.*` and `r.il<j>.h1_to_h0.*`.
 
-use crate::kernel::{ClockSpec, Component, Io, Sim};
+use crate::{ClockSpec, Component, Io, Sim};
 use crate::net::{FaultMode, NetId};
 
 /// Delays of a link in ps.
