@@ -1,4 +1,4 @@
-//! [`GoldenBus`]: ideal bit-level bus of golden nodes (no timing).
+//! [`GoldenBus`]: ideal bit-level bus of golden nodes (no timing; can-protocol.md).
 
 use super::{trace, BitLabel, Field, GoldenNode, Role, StepOut};
 

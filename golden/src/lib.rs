@@ -112,7 +112,7 @@ impl Field {
     }
 }
 
-/// Frame role (§ conventions): transmitter, receiver, or none outside frames.
+/// Frame role (can-protocol.md, Conventions): transmitter, receiver, or none outside frames.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Role {
     None,

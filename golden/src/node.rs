@@ -1,4 +1,5 @@
-//! [`GoldenNode`]: one CAN controller, processed bit by bit at its sample points.
+//! [`GoldenNode`]: one CAN controller, processed bit by bit at its sample points
+//! (can-protocol.md).
 
 use super::frame::{crc15_step, unstuffed_bits, BitInfo, Frame, FrameVariant};
 use super::{BitLabel, ErrorKind, Event, FaultState, Field, ReqStatus, Role};

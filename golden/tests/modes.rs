@@ -96,7 +96,7 @@ fn hold_reset_then_release_integrates() {
     assert!(!b.nodes[0].pending(), "reset drops the request");
 }
 
-/// hs_en (§3.3): set in idle-type states, from Intermission 3 and through an own SOF,
+/// hs_en (can-protocol.md §3.3): set in idle-type states, from Intermission 3 and through an own SOF,
 /// cleared once the SOF has been sampled.
 #[test]
 fn hs_en_follows_section_3_3() {

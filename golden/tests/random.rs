@@ -1,5 +1,5 @@
 //! Randomised robustness of the golden model: random traffic and random receive-path
-//! disturbances on 3 nodes. Checks the §13 invariants at every bit, and that the bus
+//! disturbances on 3 nodes. Checks the can-protocol.md §13 invariants at every bit, and that the bus
 //! returns to error-free operation once the disturbances stop.
 
 #![allow(clippy::needless_range_loop)]

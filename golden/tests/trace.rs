@@ -1,4 +1,4 @@
-//! §18 trace records: exact column format and a traced arbitration on the golden bus.
+//! can-protocol.md §18 trace records: exact column format and a traced arbitration on the golden bus.
 
 mod util;
 use canstar_golden::trace::{msg_line, req_line, trace_line, HEADER};
@@ -20,7 +20,7 @@ fn out(role: Role, field: Field, pos: u32, stuff: bool, smp: bool, drv: bool, te
     }
 }
 
-/// The example lines of §18 are reproduced character for character.
+/// The example lines of can-protocol.md §18 are reproduced character for character.
 #[test]
 fn trace_line_matches_spec_example_exactly() {
     assert_eq!(HEADER, "# t_ns   node field             pos stf smp drv tec rec st event");

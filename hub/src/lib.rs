@@ -1,5 +1,5 @@
 //! canstar-hub: the CAN star hub RTL (CANcentrate with M = 0 sublinks, ReCANcentrate
-//! with M >= 1), after `/work/shared/spec/hub.md` (requirements H1-H9, judging rules §5).
+//! with M >= 1), after `docs/hub.md` (requirements H1-H9, judging rules §5).
 //!
 //! # Blocks
 //! - [`coupler`]: input synchronisers (`canstar_hdl::sync::Synchroniser`), ANDC, ANDT,

@@ -131,7 +131,7 @@ fn bic_saturates_isolates_and_decays() {
     }
 }
 
-/// §5.3 lifetime counter: blames rarer than the decay can absorb (one per 9 frames,
+/// hub.md §5.3 lifetime counter: blames rarer than the decay can absorb (one per 9 frames,
 /// so `bic` never exceeds 8) still isolate after `life_limit` blames.
 #[test]
 fn lifetime_counter_isolates_rare_blames() {

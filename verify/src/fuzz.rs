@@ -1,6 +1,6 @@
 //! Randomised differential testing: 2 to 5 RTL nodes on one bus, each in
 //! lock step with its own golden model ([`crate::lockstep`]), random traffic
-//! and random receive-path disturbances, plus network properties.
+//! and random receive-path disturbances, plus network properties (can-protocol.md).
 //!
 //! One *run* ([`run_seed`]) is a pure function of its seed (and
 //! [`RunOptions`]): the seed draws the node count, bit timing, clock offsets

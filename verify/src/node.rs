@@ -183,7 +183,7 @@ impl CanNode {
         self.recover_pulse = true;
     }
 
-    /// Record the §18 per-bit trace of this node under `label` (e.g. `D1`).
+    /// Record the can-protocol.md §18 per-bit trace of this node under `label` (e.g. `D1`).
     pub fn enable_trace(&mut self, label: &str) {
         self.tracer = Some(BitTracer::new(label));
     }

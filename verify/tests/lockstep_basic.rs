@@ -1,4 +1,4 @@
-//! Lock-step checker (§19): the RTL and its golden model agree on clean and
+//! Lock-step checker (can-protocol.md §19): the RTL and its golden model agree on clean and
 //! disturbed traffic, and a corrupted golden model is caught.
 use canstar_controller::frame::Frame;
 use canstar_sim::bus::{Bus, NodeDelays};

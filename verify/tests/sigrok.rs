@@ -18,7 +18,7 @@ use canstar_sim::{ClockSpec, FnComponent, Sim};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
-/// Unstuffed bits from SOF through the data field (the CRC coverage, §6).
+/// Unstuffed bits from SOF through the data field (the CRC coverage, can-protocol.md §6).
 fn crc_bits(f: &Frame) -> Vec<bool> {
     let mut b = vec![false];
     let push = |b: &mut Vec<bool>, v: u64, n: u32| (0..n).rev().for_each(|i| b.push((v >> i) & 1 == 1));

@@ -277,7 +277,7 @@ impl Tracker {
                     (Field::Sof, 0)
                 }
             }
-            // a stuff bit carries the FIELD and POSITION of the bit before it (§4.5)
+            // a stuff bit carries the FIELD and POSITION of the bit before it (can-protocol.md §4.5)
             Ph::Frame if self.run == 5 => self.prev_label,
             Ph::Frame => self.in_frame_field(),
             Ph::CrcDelim => (Field::CrcDelim, 0),

@@ -44,7 +44,7 @@ pub struct RunLog {
     pub checked_bits: u64,
     /// Frames found identical by the lock-step checkers.
     pub checked_frames: u64,
-    /// Diagnostic differences (§19.7: labels, event words) the checkers
+    /// Diagnostic differences (can-protocol.md §19.7: labels, event words) the checkers
     /// noted, prefixed with the node name (at most 8 per node).
     pub warnings: Vec<String>,
 }
@@ -89,7 +89,7 @@ pub struct Bench {
 
 impl Bench {
     /// N nodes with the given configurations (100 ns clocks, in phase), an
-    /// optional scripted transmitter, started up as §0 says.
+    /// optional scripted transmitter, started up as conformance-tests.md §0 says.
     pub fn new(cfgs: Vec<NodeConfig>, scripted: bool, vcd: Option<&Path>) -> Bench {
         let mut b = Self::new_unintegrated(cfgs, scripted, vcd);
         let n = b.n();
@@ -359,7 +359,7 @@ impl Bench {
 
     /// Time from the clock that carries a bit's events to the end of its PH2
     /// as the node perceives it: the node reads the bus `L_rx` clocks late
-    /// (RX synchroniser and bit timing input stage, §1.5), so an override
+    /// (RX synchroniser and bit timing input stage, can-protocol.md §1.5), so an override
     /// set `L_rx − 1` clocks before its TX edge of the next bit is first
     /// read in that bit's SYNC_SEG, as in the manual's WAIT_FOR (see the
     /// module documentation). Never earlier than now.

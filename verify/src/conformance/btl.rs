@@ -187,7 +187,7 @@ fn fresh(b: &mut Bench) -> Result<(), String> {
 }
 
 /// Offset from the record of a bit to the forcing instant of the next bit
-/// (P§0 WAIT_FOR, see [`Bench::ph2_rest_ps`]), unsaturated: it may lie
+/// (conformance-tests.md §0 WAIT_FOR, see [`Bench::ph2_rest_ps`]), unsaturated: it may lie
 /// before the record.
 fn ph2_off(b: &Bench) -> i64 {
     let c = b.node(0).config();

@@ -3,7 +3,7 @@
 //! transmitter (a third bus participant); the RTL N2 then only receives.
 use super::*;
 
-/// The frame condition columns of §7: (level of the stuff bit right before
+/// The frame condition columns of §7 of the plan: (level of the stuff bit right before
 /// IDE, level of the bit right after IDE, is that bit a stuff bit).
 fn around_ide(f: &Frame, o: BuildOptions) -> (Option<bool>, bool, bool) {
     let bits = bus_bits(f, o, false);

@@ -51,7 +51,7 @@
 //! unchanged (they see the RTL through [`Bench::node`]). A divergence fails
 //! the step during which it was found (the plan's pass criterion: no
 //! lock-step mismatch during the program); the divergences of all benches
-//! of a run, with the checkers' §19.7 warnings, are collected in the
+//! of a run, with the checkers' P§19.7 warnings, are collected in the
 //! [`RunLog`] of [`run_program_with`] and printed by
 //! `canstar conformance --lockstep`.
 //! Nodes 2..N are checked too, and the scripted transmitter has no model.

@@ -29,7 +29,7 @@ impl BitRec {
     pub fn has(&self, ev: usize) -> bool {
         (self.ev >> ev) & 1 == 1
     }
-    /// Event names as in the §18 trace.
+    /// Event names as in the can-protocol.md §18 trace.
     pub fn events(&self) -> String {
         let names = [
             (EV_SOF, "SOF"),
