@@ -9,6 +9,7 @@
 //! - [`flow`]: Verilog emission, Verilator lint, Yosys synthesis and co-simulation.
 
 pub mod btl;
+pub mod btl_model;
 pub mod crc15;
 pub mod drive;
 pub mod flow;

@@ -70,7 +70,7 @@
 //! overload flag there (a receiver) or an error flag (a transmitter), and on a star that
 //! happens without BT showing it when a short disturbance hits that node's downlink;
 //! blaming it made a single downlink glitch cost the port `bic += 8` in
-//! `sim/tests/hub_system.rs`, `overload_frames_one_hub`. The bit only starts an overload
+//! `recan/tests/hub_system.rs`, `overload_frames_one_hub`. The bit only starts an overload
 //! frame for everyone (no frame is lost, no error counter of another node moves), and a
 //! stuck or flipping port is still caught by every other rule); or it comes from a contender in
 //! the ACK slot (port units only: a sublink carries the peer's acknowledging receivers
@@ -85,7 +85,7 @@
 //! goes on transmitting. The baseline then blamed the *healthy* transmitter for its
 //! next dominant identifier bit. Seen with two hubs (sample points one hub crossing
 //! apart) and a port flipping half bits: the healthy transmitter of node 0 reached
-//! bic 48 of 64 (`sim/tests/hub_cosim.rs`, `reference_hub_cosim_on_recorded_traffic`,
+//! bic 48 of 64 (`recan/tests/hub_cosim.rs`, `reference_hub_cosim_on_recorded_traffic`,
 //! now asserts it stays 0). A dominant bit of a real receiver in the arbitration field
 //! corrupts the frame, which the monitor detects (stuff, CRC or form error); only the
 //! attribution to the port is lost there, and every other rule still applies. For the
@@ -112,7 +112,7 @@
 //! lifetime is isolated too (enable reintegration, §5.6, to get it back). The decaying
 //! `bic` keeps isolating fast flippers quickly (before a healthy TEC/REC reaches 96),
 //! `life` isolates slow ones, whose errors a healthy node's counters absorb anyway (one
-//! error per 8 or more frames keeps a TEC below 16). Evidence: `sim/tests/hub_system.rs`,
+//! error per 8 or more frames keeps a TEC below 16). Evidence: `recan/tests/hub_system.rs`,
 //! `slow_bit_flipping_uplink_isolated_by_lifetime_counter`.
 //!
 //! **§5.4 dominant run.** `dbc` counts consecutive dominant samples in any state

@@ -30,7 +30,7 @@
 //! - **Coupling latency (H2)**: sync depth + 1 clock edges from an uplink pin to every
 //!   downlink pin; the same from an incoming sublink pin to the downlinks and from an
 //!   uplink pin to the outgoing sublinks. Measured on the pins in the kernel
-//!   (`sim/tests/hub_system.rs`, `coupling_latency_in_the_kernel`) and in the Verilog
+//!   (`recan/tests/hub_system.rs`, `coupling_latency_in_the_kernel`) and in the Verilog
 //!   (`tests/hub.rs`): with the default depth 1, 2 clocks uplink pin → own downlink pin
 //!   (at most 135.7 ns = 1 TQ at 14.74 MHz), 4 clocks uplink pin of hub 0 → downlink pin
 //!   of hub 1 (both hubs on one clock, interlink delay 0; with independent clocks up to
@@ -43,7 +43,7 @@
 //!   PH1 2, PH2 2, SJW 1 TQ of 135.7 ns) and depth 2 that loop (≈ 2 × 223 ns plus the
 //!   node's own loop of ≈ 311 ns with 20 ns cables) reaches 1.6 TQ into PH1, and the two
 //!   hub system with nodes at ±6250 ppm (the tolerance limit of this timing) fails
-//!   (errors, no progress: `sim/tests/hub_system.rs`, `two_hubs_clock_tolerance_limit`
+//!   (errors, no progress: `recan/tests/hub_system.rs`, `two_hubs_clock_tolerance_limit`
 //!   passes only with depth 1). With depth 1 the loop ends ≈ 0.1 TQ into PH1. At
 //!   14.74 MHz a single flip-flop has a full 68 ns clock period to resolve
 //!   metastability, ample for FPGA flip-flops.
@@ -79,7 +79,7 @@
 //!   where a dominant port becomes a contender again (sub-bit glitches of a faulty port
 //!   otherwise blamed a healthy transmitter that never saw them).
 //!
-//! # Measured with real controllers (`sim/tests/hub_system.rs`)
+//! # Measured with real controllers (`recan/tests/hub_system.rs`)
 //! Reference timing (hub 14.74 MHz, nodes 29.48 MHz / BRP 4, 8 TQ per bit, 20 ns
 //! links), full load: stuck-dominant uplink isolated 9.9-12.9 bits after the fault
 //! starts (A3 limit: DBC 13 + 2); stuck-recessive downlink (node keeps flagging)

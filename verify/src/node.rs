@@ -7,7 +7,7 @@
 //! ```
 //! use canstar_controller::frame::Frame;
 //! use canstar_sim::bus::{Bus, NodeDelays};
-//! use canstar_sim::node::{CanNode, NodeConfig};
+//! use canstar_verify::node::{CanNode, NodeConfig};
 //! use canstar_sim::{ClockSpec, Sim};
 //! let mut sim = Sim::new(1);
 //! let bus = Bus::uniform(&mut sim, "bus", 2, NodeDelays::symmetric(0, 0));

@@ -1,8 +1,12 @@
 //! [`GoldenNode`]: one CAN controller, processed bit by bit at its sample points
 //! (can-protocol.md).
 
-use super::frame::{crc15_step, unstuffed_bits, BitInfo, Frame, FrameVariant};
+use super::frame::{unstuffed_bits, BitInfo, Frame, FrameVariant};
 use super::{BitLabel, ErrorKind, Event, FaultState, Field, ReqStatus, Role};
+
+mod confinement;
+mod decoder;
+use decoder::{rx_field, Decoder};
 
 const D: bool = false;
 const R: bool = true;
@@ -89,108 +93,6 @@ enum Mode {
     Suspend { pos: u32 },
     /// `pos` = bits of the current run so far, `runs` = completed runs.
     BusOff { pos: u32, runs: u32 },
-}
-
-/// Layout of the received frame, derived from the bits received so far.
-fn rx_field(bits: &[bool], i: usize) -> Option<(Field, u32)> {
-    let p = |x: usize| x as u32;
-    match i {
-        0 => return Some((Field::StartOfFrame, 1)),
-        1..=11 => return Some((Field::Identifier, p(i))),
-        12 => return Some((Field::RtrBit, 1)),
-        13 => return Some((Field::IdeBit, 1)),
-        _ => {}
-    }
-    let ext = bits[13];
-    let data_start = if ext {
-        match i {
-            14..=31 => return Some((Field::ExIdentifier, p(i - 13))),
-            32 => return Some((Field::RtrBit, 1)),
-            33..=34 => return Some((Field::ReservedBits, p(i - 32))),
-            35..=38 => return Some((Field::DataLengthCode, p(i - 34))),
-            _ => 39,
-        }
-    } else {
-        match i {
-            14 => return Some((Field::ReservedBits, 1)),
-            15..=18 => return Some((Field::DataLengthCode, p(i - 14))),
-            _ => 19,
-        }
-    };
-    let rtr = if ext { bits[32] } else { bits[12] };
-    let dlc = bits[data_start - 4..data_start].iter().fold(0u8, |a, &b| (a << 1) | b as u8);
-    let ndata = if rtr { 0 } else { 8 * dlc.min(8) as usize };
-    let crc_start = data_start + ndata;
-    if i < crc_start {
-        Some((Field::DataField, p(i - data_start + 1)))
-    } else if i < crc_start + 15 {
-        Some((Field::CrcSequence, p(i - crc_start + 1)))
-    } else {
-        None
-    }
-}
-
-/// Destuffing frame decoder working on sampled levels (§5, §6).
-#[derive(Clone, Debug, Default)]
-struct Decoder {
-    bits: Vec<bool>,
-    run_level: bool,
-    run_len: u8,
-    stuff_next: bool,
-    crc: u16,
-    crc_rx: u16,
-}
-
-impl Decoder {
-    fn clear(&mut self) {
-        self.bits.clear();
-        self.run_len = 0;
-        self.stuff_next = false;
-        self.crc = 0;
-        self.crc_rx = 0;
-    }
-    fn next_field(&self) -> Option<(Field, u32)> {
-        rx_field(&self.bits, self.bits.len())
-    }
-    fn push(&mut self, s: bool) {
-        let (f, _) = self.next_field().expect("decoder past CRC");
-        if f == Field::CrcSequence {
-            self.crc_rx = (self.crc_rx << 1) | s as u16;
-        } else {
-            self.crc = crc15_step(self.crc, s);
-        }
-        self.bits.push(s);
-        if self.run_len > 0 && s == self.run_level {
-            self.run_len += 1;
-        } else {
-            self.run_level = s;
-            self.run_len = 1;
-        }
-        self.stuff_next = self.run_len == 5;
-    }
-    fn push_stuff(&mut self, s: bool) {
-        self.run_level = s;
-        self.run_len = 1;
-        self.stuff_next = false;
-    }
-    /// All bits through the last CRC bit received (a stuff bit may still follow).
-    fn crc_done(&self) -> bool {
-        !self.bits.is_empty() && self.next_field().is_none()
-    }
-    fn frame(&self) -> Frame {
-        let b = &self.bits;
-        let num = |r: std::ops::Range<usize>| b[r].iter().fold(0u32, |a, &x| (a << 1) | x as u32);
-        let ext = b[13];
-        let (id, rtr, ds) = if ext {
-            ((num(1..12) << 18) | num(14..32), b[32], 39)
-        } else {
-            (num(1..12), b[12], 19)
-        };
-        let dlc = num(ds - 4..ds) as u8;
-        let n = if rtr { 0 } else { dlc.min(8) as usize };
-        let data = (0..n).map(|k| num(ds + 8 * k..ds + 8 * k + 8) as u8).collect();
-        Frame { ide: ext, id, rtr, dlc, data }
-    }
 }
 
 #[derive(Clone, Debug)]
@@ -429,75 +331,6 @@ impl GoldenNode {
             Mode::Flag(fl) => !(fl.kind != FlagKind::Passive && fl.pos <= 6),
             _ => R,
         }
-    }
-
-    // ---- counters and states -------------------------------------------------------------
-
-    fn update_state(&mut self) {
-        let new = if self.tec > 255 {
-            FaultState::BusOff
-        } else if self.tec >= 128 || self.rec >= 128 {
-            FaultState::ErrorPassive
-        } else {
-            FaultState::ErrorActive
-        };
-        if new != self.state {
-            self.state = new;
-            self.ev.push(match new {
-                FaultState::ErrorActive => Event::ToEa,
-                FaultState::ErrorPassive => Event::ToEp,
-                FaultState::BusOff => Event::ToBo,
-            });
-        }
-        let w = self.tec >= 96 || self.rec >= 96;
-        if w != self.warn {
-            self.warn = w;
-            self.ev.push(if w { Event::Warn } else { Event::WarnClr });
-        }
-        if new == FaultState::BusOff && !matches!(self.mode, Mode::BusOff { .. }) {
-            self.enter_bus_off();
-        }
-    }
-
-    fn enter_bus_off(&mut self) {
-        self.mode = Mode::BusOff { pos: 0, runs: 0 };
-        self.role = Role::None;
-        self.att = None;
-        self.recovery_started = false;
-        if self.req_status == ReqStatus::Transmitting {
-            self.set_req(if self.pending.is_some() { ReqStatus::Pending } else { ReqStatus::Error });
-        }
-    }
-
-    fn add_tec(&mut self, n: u16) {
-        if self.cfg.listen_only || n == 0 {
-            return;
-        }
-        self.tec += n;
-        self.update_state();
-    }
-
-    fn add_rec(&mut self, n: u8) {
-        if self.cfg.listen_only || n == 0 {
-            return;
-        }
-        if self.rec <= 127 {
-            self.rec += n; // C12: increments while REC >= 128 are not applied
-        }
-        self.update_state();
-    }
-
-    /// Counter increment by role: `tx` to TEC for a transmitter, `rx` to REC otherwise.
-    fn inc(&mut self, tx: u16, rx: u8) {
-        if self.role == Role::Tx {
-            self.add_tec(tx)
-        } else {
-            self.add_rec(rx)
-        }
-    }
-
-    fn bus_off(&self) -> bool {
-        matches!(self.mode, Mode::BusOff { .. })
     }
 
     fn attempt_failed(&mut self) {
