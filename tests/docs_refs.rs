@@ -422,10 +422,8 @@ fn check_tree(dir: &Path) -> (usize, usize, Vec<String>) {
     (files.len(), n_refs, problems)
 }
 
-/// The whole repository. Ignored until the lead applies the reference fixes after the crate
-/// restructure (the list is in the docs branch's report).
+/// The whole repository: every reference resolves.
 #[test]
-#[ignore = "references being fixed after the restructure"]
 fn every_reference_in_the_repository_resolves() {
     let (files, _, problems) = check_tree(&root());
     assert!(files > 50, "the scan found only {files} files");

@@ -1,4 +1,5 @@
-//! [`CanCore`]: the complete CAN 2.0A/B protocol controller of one node.
+//! [`CanCore`]: the complete CAN 2.0A/B protocol controller of one node
+//! (can-protocol.md; bare section numbers below refer to it).
 //!
 //! Wiring (all on one clock, synchronous reset):
 //!

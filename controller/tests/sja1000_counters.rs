@@ -1,4 +1,4 @@
-//! TXERR/RXERR written in reset mode (data sheet §TXERR, §RXERR): the core
+//! TXERR/RXERR written in reset mode (SJA1000 data sheet, registers TXERR and RXERR): the core
 //! continues from the written values when reset mode is left; the error
 //! state (warning, passive, bus-off) and its status bits and interrupts
 //! follow from them then; 255 in TXERR is a CPU-driven bus-off; a TXERR write

@@ -1,4 +1,4 @@
-//! Tests of the bit timing logic (`canstar_hdl::btl`) beyond the conformance
+//! Tests of the bit timing logic (`canstar_hdl::btl`, can-protocol.md §2 and §3) beyond the conformance
 //! tables (those are `btl_cases.rs`):
 //!
 //! - Properties (one synchronisation per sample interval, none after a `D`
