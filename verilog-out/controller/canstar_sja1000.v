@@ -19,6 +19,42 @@ module canstar_sja1000(clock,rst,wb_cyc,wb_stb,wb_we,wb_adr,wb_dat_w,wb_dat_r,wb
     output reg  tx;
     output reg  int_n;
     
+    // Constant declarations
+    localparam  a_mod = 7'b0;
+    localparam  a_cmr = 7'b1;
+    localparam  a_sr = 7'b10;
+    localparam  a_ir = 7'b11;
+    localparam  a_ier = 7'b100;
+    localparam  a_btr0 = 7'b110;
+    localparam  a_btr1 = 7'b111;
+    localparam  a_ocr = 7'b1000;
+    localparam  a_alc = 7'b1011;
+    localparam  a_ecc = 7'b1100;
+    localparam  a_ewl = 7'b1101;
+    localparam  a_rxerr = 7'b1110;
+    localparam  a_txerr = 7'b1111;
+    localparam  a_acc = 7'b10000;
+    localparam  a_acc_end = 7'b10111;
+    localparam  a_win = 7'b10000;
+    localparam  a_win_end = 7'b11100;
+    localparam  a_rmc = 7'b11101;
+    localparam  a_rbsa = 7'b11110;
+    localparam  a_cdr = 7'b11111;
+    localparam  a_ram = 7'b100000;
+    localparam  a_ram_end = 7'b1011111;
+    localparam  a_txb = 7'b1100000;
+    localparam  a_txb_end = 7'b1101100;
+    localparam  wm_cdr_op = 8'hf;
+    localparam  wm_cdr_rm = 8'hef;
+    localparam  rv_ewl = 8'h60;
+    localparam  rv_ocr = 8'h0;
+    localparam  rv_cdr = 8'h0;
+    localparam  cmd_tr = 3'b0;
+    localparam  cmd_at = 3'b1;
+    localparam  cmd_rrb = 3'b10;
+    localparam  cmd_cdo = 3'b11;
+    localparam  cmd_srr = 3'b100;
+    
     // Stub signals
     reg  core$clock;
     reg  core$reset;
@@ -74,13 +110,182 @@ module canstar_sja1000(clock,rst,wb_cyc,wb_stb,wb_we,wb_adr,wb_dat_w,wb_dat_r,wb
     wire  [7:0] core$dbg_runs;
     wire  core$dbg_hard_sync;
     wire  core$dbg_resync;
-    reg  [5:0] ram$read_address;
-    reg  ram$read_clock;
-    wire  [7:0] ram$read_data;
-    reg  [5:0] ram$write_address;
-    reg  ram$write_clock;
-    reg  [7:0] ram$write_data;
-    reg  ram$write_enable;
+    reg  timing$clock;
+    reg  timing$rst;
+    reg  timing$we0;
+    reg  timing$we1;
+    reg  [7:0] timing$wdata;
+    wire  [7:0] timing$btr0;
+    wire  [7:0] timing$btr1;
+    wire  [6:0] timing$brp;
+    wire  [3:0] timing$prop;
+    wire  [2:0] timing$ph1;
+    wire  [1:0] timing$sjw;
+    wire  timing$triple;
+    reg  txbuf$clock;
+    reg  txbuf$we;
+    reg  [3:0] txbuf$idx;
+    reg  [7:0] txbuf$wdata;
+    wire  [7:0] txbuf$rdata;
+    wire  txbuf$ide;
+    wire  txbuf$rtr;
+    wire  [28:0] txbuf$id;
+    wire  [3:0] txbuf$dlc;
+    wire  [63:0] txbuf$data;
+    reg  filter$clock;
+    reg  filter$rst;
+    reg  filter$we;
+    reg  [2:0] filter$idx;
+    reg  [7:0] filter$wdata;
+    wire  [7:0] filter$rdata;
+    reg  filter$single;
+    reg  filter$ide;
+    reg  filter$rtr;
+    reg  [28:0] filter$id;
+    reg  [3:0] filter$n;
+    reg  [15:0] filter$d01;
+    wire  filter$accept;
+    reg  fifo$clock;
+    reg  fifo$rst;
+    reg  fifo$clear;
+    reg  fifo$offer_rx;
+    reg  fifo$offer_own;
+    reg  fifo$rx_ide;
+    reg  fifo$rx_rtr;
+    reg  [28:0] fifo$rx_id;
+    reg  [3:0] fifo$rx_dlc;
+    reg  [63:0] fifo$rx_data;
+    reg  fifo$own_ide;
+    reg  fifo$own_rtr;
+    reg  [28:0] fifo$own_id;
+    reg  [3:0] fifo$own_dlc;
+    reg  [63:0] fifo$own_data;
+    reg  fifo$accept;
+    reg  fifo$rrb;
+    reg  fifo$cdo;
+    reg  fifo$rbsa_we;
+    reg  fifo$ram_we;
+    reg  [7:0] fifo$wdata;
+    reg  fifo$host_rd;
+    reg  fifo$host_win;
+    reg  [5:0] fifo$host_idx;
+    wire  fifo$f_ide;
+    wire  fifo$f_rtr;
+    wire  [28:0] fifo$f_id;
+    wire  [3:0] fifo$f_n;
+    wire  [15:0] fifo$f_d01;
+    wire  [7:0] fifo$rdata;
+    wire  [4:0] fifo$rmc;
+    wire  [5:0] fifo$rbsa;
+    wire  fifo$dos;
+    wire  fifo$overrun;
+    wire  fifo$own_done;
+    wire  fifo$own_dropped;
+    wire  fifo$busy;
+    wire  fifo$busy_own;
+    reg  capture$clock;
+    reg  capture$rst;
+    reg  capture$arb_lost;
+    reg  [5:0] capture$arb_lost_pos;
+    reg  capture$error;
+    reg  [4:0] capture$err_kind;
+    reg  [4:0] capture$err_field;
+    reg  [7:0] capture$err_pos;
+    reg  capture$err_tx;
+    reg  [4:0] capture$field;
+    reg  capture$rd_alc;
+    reg  capture$rd_ecc;
+    wire  [4:0] capture$alc;
+    wire  [7:0] capture$ecc;
+    reg  txctl$clock;
+    reg  txctl$rst;
+    reg  txctl$opm;
+    reg  txctl$sleep;
+    reg  txctl$enter_rm;
+    reg  txctl$cmd;
+    reg  txctl$tr;
+    reg  txctl$at;
+    reg  txctl$srr;
+    reg  txctl$tx_done;
+    reg  txctl$arb_lost;
+    reg  txctl$error;
+    reg  txctl$err_tx;
+    reg  txctl$tx_rqst;
+    reg  txctl$txact;
+    reg  txctl$own_done;
+    reg  txctl$own_dropped;
+    wire  txctl$pending;
+    wire  txctl$single_shot;
+    wire  txctl$req;
+    wire  txctl$abort;
+    wire  txctl$tcs;
+    wire  txctl$own_offer;
+    wire  txctl$ti;
+    reg  status$clock;
+    reg  status$rst;
+    reg  status$opm;
+    reg  [1:0] status$state;
+    reg  [8:0] status$tec;
+    reg  [7:0] status$rec;
+    reg  [7:0] status$runs;
+    reg  status$cfg_err;
+    reg  [7:0] status$ewl;
+    reg  status$wr_rxerr;
+    reg  status$wr_txerr;
+    reg  [7:0] status$wdata;
+    reg  status$rbs;
+    reg  status$dos;
+    reg  status$tbs;
+    reg  status$tcs;
+    reg  [4:0] status$field;
+    reg  status$role;
+    wire  [7:0] status$sr;
+    wire  status$txact;
+    wire  status$idle;
+    wire  [7:0] status$rxerr;
+    wire  [7:0] status$txerr;
+    wire  status$es;
+    wire  status$bs;
+    wire  status$ei;
+    wire  status$epi;
+    wire  status$busoff;
+    wire  status$hold;
+    wire  status$cnt_load;
+    wire  [8:0] status$tec_in;
+    wire  [7:0] status$rec_in;
+    reg  mode$clock;
+    reg  mode$rst;
+    reg  mode$wr;
+    reg  [7:0] mode$wdata;
+    reg  mode$may_sleep;
+    reg  mode$bus_dom;
+    reg  mode$busoff;
+    reg  mode$hold;
+    wire  mode$opm;
+    wire  mode$lom;
+    wire  mode$stm;
+    wire  mode$afm;
+    wire  mode$sleep;
+    wire  [7:0] mode$rdata;
+    wire  mode$enter_rm;
+    wire  mode$recover;
+    wire  mode$wui;
+    reg  irq$clock;
+    reg  irq$rst;
+    reg  irq$wr_ier;
+    reg  [7:0] irq$wdata;
+    reg  irq$rd_ir;
+    reg  irq$rbs;
+    reg  irq$ti;
+    reg  irq$ei;
+    reg  irq$doi;
+    reg  irq$wui;
+    reg  irq$epi;
+    reg  irq$ali;
+    reg  irq$bei;
+    wire  [7:0] irq$ier;
+    wire  [7:0] irq$ir;
+    wire  irq$int_n;
     reg  ack$d;
     wire  ack$q;
     reg  ack$clock;
@@ -90,42 +295,6 @@ module canstar_sja1000(clock,rst,wb_cyc,wb_stb,wb_we,wb_adr,wb_dat_w,wb_dat_r,wb
     reg  ramsel$d;
     wire  ramsel$q;
     reg  ramsel$clock;
-    reg  opm$d;
-    wire  opm$q;
-    reg  opm$clock;
-    reg  lom$d;
-    wire  lom$q;
-    reg  lom$clock;
-    reg  stm$d;
-    wire  stm$q;
-    reg  stm$clock;
-    reg  afm$d;
-    wire  afm$q;
-    reg  afm$clock;
-    reg  sleep$d;
-    wire  sleep$q;
-    reg  sleep$clock;
-    reg  boff$d;
-    wire  boff$q;
-    reg  boff$clock;
-    reg  core_bs$d;
-    wire  core_bs$q;
-    reg  core_bs$clock;
-    reg  [7:0] ier$d;
-    wire  [7:0] ier$q;
-    reg  ier$clock;
-    reg  [7:0] ir$d;
-    wire  [7:0] ir$q;
-    reg  ir$clock;
-    reg  [7:0] btr0$d;
-    wire  [7:0] btr0$q;
-    reg  btr0$clock;
-    reg  [7:0] btr1$d;
-    wire  [7:0] btr1$q;
-    reg  btr1$clock;
-    reg  btr_reset$en;
-    wire  [7:0] btr_reset$btr0;
-    wire  [7:0] btr_reset$btr1;
     reg  [7:0] ocr$d;
     wire  [7:0] ocr$q;
     reg  ocr$clock;
@@ -135,222 +304,34 @@ module canstar_sja1000(clock,rst,wb_cyc,wb_stb,wb_we,wb_adr,wb_dat_w,wb_dat_r,wb
     reg  [7:0] cdr$d;
     wire  [7:0] cdr$q;
     reg  cdr$clock;
-    reg  [4:0] alc$d;
-    wire  [4:0] alc$q;
-    reg  alc$clock;
-    reg  alc_lock$d;
-    wire  alc_lock$q;
-    reg  alc_lock$clock;
-    reg  [7:0] ecc$d;
-    wire  [7:0] ecc$q;
-    reg  ecc$clock;
-    reg  ecc_lock$d;
-    wire  ecc_lock$q;
-    reg  ecc_lock$clock;
-    reg  [7:0] acr0$d;
-    wire  [7:0] acr0$q;
-    reg  acr0$clock;
-    reg  [7:0] acr1$d;
-    wire  [7:0] acr1$q;
-    reg  acr1$clock;
-    reg  [7:0] acr2$d;
-    wire  [7:0] acr2$q;
-    reg  acr2$clock;
-    reg  [7:0] acr3$d;
-    wire  [7:0] acr3$q;
-    reg  acr3$clock;
-    reg  [7:0] amr0$d;
-    wire  [7:0] amr0$q;
-    reg  amr0$clock;
-    reg  [7:0] amr1$d;
-    wire  [7:0] amr1$q;
-    reg  amr1$clock;
-    reg  [7:0] amr2$d;
-    wire  [7:0] amr2$q;
-    reg  amr2$clock;
-    reg  [7:0] amr3$d;
-    wire  [7:0] amr3$q;
-    reg  amr3$clock;
-    reg  [7:0] txb0$d;
-    wire  [7:0] txb0$q;
-    reg  txb0$clock;
-    reg  [7:0] txb1$d;
-    wire  [7:0] txb1$q;
-    reg  txb1$clock;
-    reg  [7:0] txb2$d;
-    wire  [7:0] txb2$q;
-    reg  txb2$clock;
-    reg  [7:0] txb3$d;
-    wire  [7:0] txb3$q;
-    reg  txb3$clock;
-    reg  [7:0] txb4$d;
-    wire  [7:0] txb4$q;
-    reg  txb4$clock;
-    reg  [7:0] txb5$d;
-    wire  [7:0] txb5$q;
-    reg  txb5$clock;
-    reg  [7:0] txb6$d;
-    wire  [7:0] txb6$q;
-    reg  txb6$clock;
-    reg  [7:0] txb7$d;
-    wire  [7:0] txb7$q;
-    reg  txb7$clock;
-    reg  [7:0] txb8$d;
-    wire  [7:0] txb8$q;
-    reg  txb8$clock;
-    reg  [7:0] txb9$d;
-    wire  [7:0] txb9$q;
-    reg  txb9$clock;
-    reg  [7:0] txb10$d;
-    wire  [7:0] txb10$q;
-    reg  txb10$clock;
-    reg  [7:0] txb11$d;
-    wire  [7:0] txb11$q;
-    reg  txb11$clock;
-    reg  [7:0] txb12$d;
-    wire  [7:0] txb12$q;
-    reg  txb12$clock;
-    reg  tx_pend$d;
-    wire  tx_pend$q;
-    reg  tx_pend$clock;
-    reg  tx_single$d;
-    wire  tx_single$q;
-    reg  tx_single$clock;
-    reg  tx_srr$d;
-    wire  tx_srr$q;
-    reg  tx_srr$clock;
-    reg  tx_abrt$d;
-    wire  tx_abrt$q;
-    reg  tx_abrt$clock;
-    reg  tx_lb$d;
-    wire  tx_lb$q;
-    reg  tx_lb$clock;
-    reg  tcs_n$d;
-    wire  tcs_n$q;
-    reg  tcs_n$clock;
-    reg  dos$d;
-    wire  dos$q;
-    reg  dos$clock;
-    reg  [5:0] rbsa$d;
-    wire  [5:0] rbsa$q;
-    reg  rbsa$clock;
-    reg  [6:0] used$d;
-    wire  [6:0] used$q;
-    reg  used$clock;
-    reg  [4:0] rmc$d;
-    wire  [4:0] rmc$q;
-    reg  rmc$clock;
-    reg  wr_busy$d;
-    wire  wr_busy$q;
-    reg  wr_busy$clock;
-    reg  wr_src$d;
-    wire  wr_src$q;
-    reg  wr_src$clock;
-    reg  [3:0] wr_idx$d;
-    wire  [3:0] wr_idx$q;
-    reg  wr_idx$clock;
-    reg  [3:0] wr_len$d;
-    wire  [3:0] wr_len$q;
-    reg  wr_len$clock;
-    reg  fetch_q$d;
-    wire  fetch_q$q;
-    reg  fetch_q$clock;
-    reg  [5:0] fetch_a$d;
-    wire  [5:0] fetch_a$q;
-    reg  fetch_a$clock;
-    reg  [7:0] cur_fi$d;
-    wire  [7:0] cur_fi$q;
-    reg  cur_fi$clock;
-    reg  es_q$d;
-    wire  es_q$q;
-    reg  es_q$clock;
-    reg  bs_q$d;
-    wire  bs_q$q;
-    reg  bs_q$clock;
-    reg  pas_q$d;
-    wire  pas_q$q;
-    reg  pas_q$clock;
-    reg  seen_ext$d;
-    wire  seen_ext$q;
-    reg  seen_ext$clock;
     
     // Local signals
     reg  l_req;
     reg  l_wr;
     reg  l_rd;
     reg  [6:0] l_a;
-    reg  [6:0] l_aoff;
-    reg  [5:0] l_alcm1;
     reg  [7:0] l_d;
     reg  l_rm;
     reg  l_win;
+    reg  l_ram_a;
+    reg  [6:0] l_off;
+    reg  l_txb_a;
+    reg  l_acc_a;
     reg  l_ramrd;
     reg  [7:0] l_rdv;
-    reg  [7:0] l_sr;
-    reg  [7:0] l_irv;
-    reg  [7:0] l_ev;
-    reg  l_tbs;
-    reg  l_tcs;
-    reg  l_dirrx;
-    reg  [7:0] l_irn;
-    reg  [7:0] l_tecv;
-    reg  [7:0] l_recv;
-    reg  l_frz;
-    reg  l_cbsr;
-    reg  l_cbs;
-    reg  l_es;
-    reg  l_pas;
-    reg  l_cload;
-    reg  [8:0] l_tecin;
-    reg  [7:0] l_recin;
-    reg  [4:0] l_fld;
-    reg  l_wait;
-    reg  l_busy;
-    reg  l_txact;
-    reg  l_enter_rm;
-    reg  l_abort;
-    reg  l_recover;
-    reg  l_txok;
-    reg  l_txfail;
-    reg  l_txrel;
-    reg  l_tx_ide;
-    reg  l_tx_rtr;
-    reg  [28:0] l_tx_id;
-    reg  [63:0] l_tx_data;
-    reg  l_stx;
-    reg  l_srx;
-    reg  l_srctx;
-    reg  l_s_ide;
-    reg  l_s_rtr;
-    reg  [28:0] l_s_id;
-    reg  [3:0] l_s_dlc;
-    reg  [63:0] l_s_data;
-    reg  [3:0] l_s_n;
-    reg  [3:0] l_s_len;
-    reg  [103:0] l_msg;
-    reg  [7:0] l_wbyte;
-    reg  l_wdone;
-    reg  l_fits;
-    reg  [31:0] l_acr;
-    reg  [31:0] l_amr;
-    reg  [31:0] l_v1;
-    reg  [31:0] l_v2;
-    reg  [31:0] l_m1;
-    reg  [31:0] l_m2;
-    reg  l_acc;
-    reg  [7:0] l_fi;
-    reg  [3:0] l_cur_n;
-    reg  [3:0] l_cur_len;
+    reg  [7:0] l_cdrm;
     reg  l_rrb;
-    reg  [4:0] l_seg;
-    reg  [7:0] l_ecode;
-    reg  [7:0] l_pos;
-    reg  [5:0] l_t1;
-    reg  [5:0] l_t2;
-    reg  [5:0] l_s;
-    reg  [5:0] l_prop;
-    reg  [5:0] l_ph1;
-    reg  [5:0] l_sjw;
+    reg  l_cdo;
+    reg  l_cmd;
+    reg  l_we_mod;
+    reg  l_we_ier;
+    reg  l_we_rxerr;
+    reg  l_we_txerr;
+    reg  l_we_btr0;
+    reg  l_we_btr1;
+    reg  l_we_acc;
+    reg  l_we_rbsa;
+    reg  l_we_txb;
     
     // Sub module instances
     canstar_sja1000$core core(
@@ -409,14 +390,199 @@ module canstar_sja1000(clock,rst,wb_cyc,wb_stb,wb_we,wb_adr,wb_dat_w,wb_dat_r,wb
         .dbg_hard_sync(core$dbg_hard_sync),
         .dbg_resync(core$dbg_resync)
     );
-    canstar_sja1000$ram ram(
-        .read_address(ram$read_address),
-        .read_clock(ram$read_clock),
-        .read_data(ram$read_data),
-        .write_address(ram$write_address),
-        .write_clock(ram$write_clock),
-        .write_data(ram$write_data),
-        .write_enable(ram$write_enable)
+    canstar_sja1000$timing timing(
+        .clock(timing$clock),
+        .rst(timing$rst),
+        .we0(timing$we0),
+        .we1(timing$we1),
+        .wdata(timing$wdata),
+        .btr0(timing$btr0),
+        .btr1(timing$btr1),
+        .brp(timing$brp),
+        .prop(timing$prop),
+        .ph1(timing$ph1),
+        .sjw(timing$sjw),
+        .triple(timing$triple)
+    );
+    canstar_sja1000$txbuf txbuf(
+        .clock(txbuf$clock),
+        .we(txbuf$we),
+        .idx(txbuf$idx),
+        .wdata(txbuf$wdata),
+        .rdata(txbuf$rdata),
+        .ide(txbuf$ide),
+        .rtr(txbuf$rtr),
+        .id(txbuf$id),
+        .dlc(txbuf$dlc),
+        .data(txbuf$data)
+    );
+    canstar_sja1000$filter filter(
+        .clock(filter$clock),
+        .rst(filter$rst),
+        .we(filter$we),
+        .idx(filter$idx),
+        .wdata(filter$wdata),
+        .rdata(filter$rdata),
+        .single(filter$single),
+        .ide(filter$ide),
+        .rtr(filter$rtr),
+        .id(filter$id),
+        .n(filter$n),
+        .d01(filter$d01),
+        .accept(filter$accept)
+    );
+    canstar_sja1000$fifo fifo(
+        .clock(fifo$clock),
+        .rst(fifo$rst),
+        .clear(fifo$clear),
+        .offer_rx(fifo$offer_rx),
+        .offer_own(fifo$offer_own),
+        .rx_ide(fifo$rx_ide),
+        .rx_rtr(fifo$rx_rtr),
+        .rx_id(fifo$rx_id),
+        .rx_dlc(fifo$rx_dlc),
+        .rx_data(fifo$rx_data),
+        .own_ide(fifo$own_ide),
+        .own_rtr(fifo$own_rtr),
+        .own_id(fifo$own_id),
+        .own_dlc(fifo$own_dlc),
+        .own_data(fifo$own_data),
+        .accept(fifo$accept),
+        .rrb(fifo$rrb),
+        .cdo(fifo$cdo),
+        .rbsa_we(fifo$rbsa_we),
+        .ram_we(fifo$ram_we),
+        .wdata(fifo$wdata),
+        .host_rd(fifo$host_rd),
+        .host_win(fifo$host_win),
+        .host_idx(fifo$host_idx),
+        .f_ide(fifo$f_ide),
+        .f_rtr(fifo$f_rtr),
+        .f_id(fifo$f_id),
+        .f_n(fifo$f_n),
+        .f_d01(fifo$f_d01),
+        .rdata(fifo$rdata),
+        .rmc(fifo$rmc),
+        .rbsa(fifo$rbsa),
+        .dos(fifo$dos),
+        .overrun(fifo$overrun),
+        .own_done(fifo$own_done),
+        .own_dropped(fifo$own_dropped),
+        .busy(fifo$busy),
+        .busy_own(fifo$busy_own)
+    );
+    canstar_sja1000$capture capture(
+        .clock(capture$clock),
+        .rst(capture$rst),
+        .arb_lost(capture$arb_lost),
+        .arb_lost_pos(capture$arb_lost_pos),
+        .error(capture$error),
+        .err_kind(capture$err_kind),
+        .err_field(capture$err_field),
+        .err_pos(capture$err_pos),
+        .err_tx(capture$err_tx),
+        .field(capture$field),
+        .rd_alc(capture$rd_alc),
+        .rd_ecc(capture$rd_ecc),
+        .alc(capture$alc),
+        .ecc(capture$ecc)
+    );
+    canstar_sja1000$txctl txctl(
+        .clock(txctl$clock),
+        .rst(txctl$rst),
+        .opm(txctl$opm),
+        .sleep(txctl$sleep),
+        .enter_rm(txctl$enter_rm),
+        .cmd(txctl$cmd),
+        .tr(txctl$tr),
+        .at(txctl$at),
+        .srr(txctl$srr),
+        .tx_done(txctl$tx_done),
+        .arb_lost(txctl$arb_lost),
+        .error(txctl$error),
+        .err_tx(txctl$err_tx),
+        .tx_rqst(txctl$tx_rqst),
+        .txact(txctl$txact),
+        .own_done(txctl$own_done),
+        .own_dropped(txctl$own_dropped),
+        .pending(txctl$pending),
+        .single_shot(txctl$single_shot),
+        .req(txctl$req),
+        .abort(txctl$abort),
+        .tcs(txctl$tcs),
+        .own_offer(txctl$own_offer),
+        .ti(txctl$ti)
+    );
+    canstar_sja1000$status status(
+        .clock(status$clock),
+        .rst(status$rst),
+        .opm(status$opm),
+        .state(status$state),
+        .tec(status$tec),
+        .rec(status$rec),
+        .runs(status$runs),
+        .cfg_err(status$cfg_err),
+        .ewl(status$ewl),
+        .wr_rxerr(status$wr_rxerr),
+        .wr_txerr(status$wr_txerr),
+        .wdata(status$wdata),
+        .rbs(status$rbs),
+        .dos(status$dos),
+        .tbs(status$tbs),
+        .tcs(status$tcs),
+        .field(status$field),
+        .role(status$role),
+        .sr(status$sr),
+        .txact(status$txact),
+        .idle(status$idle),
+        .rxerr(status$rxerr),
+        .txerr(status$txerr),
+        .es(status$es),
+        .bs(status$bs),
+        .ei(status$ei),
+        .epi(status$epi),
+        .busoff(status$busoff),
+        .hold(status$hold),
+        .cnt_load(status$cnt_load),
+        .tec_in(status$tec_in),
+        .rec_in(status$rec_in)
+    );
+    canstar_sja1000$mode mode(
+        .clock(mode$clock),
+        .rst(mode$rst),
+        .wr(mode$wr),
+        .wdata(mode$wdata),
+        .may_sleep(mode$may_sleep),
+        .bus_dom(mode$bus_dom),
+        .busoff(mode$busoff),
+        .hold(mode$hold),
+        .opm(mode$opm),
+        .lom(mode$lom),
+        .stm(mode$stm),
+        .afm(mode$afm),
+        .sleep(mode$sleep),
+        .rdata(mode$rdata),
+        .enter_rm(mode$enter_rm),
+        .recover(mode$recover),
+        .wui(mode$wui)
+    );
+    canstar_sja1000$irq irq(
+        .clock(irq$clock),
+        .rst(irq$rst),
+        .wr_ier(irq$wr_ier),
+        .wdata(irq$wdata),
+        .rd_ir(irq$rd_ir),
+        .rbs(irq$rbs),
+        .ti(irq$ti),
+        .ei(irq$ei),
+        .doi(irq$doi),
+        .wui(irq$wui),
+        .epi(irq$epi),
+        .ali(irq$ali),
+        .bei(irq$bei),
+        .ier(irq$ier),
+        .ir(irq$ir),
+        .int_n(irq$int_n)
     );
     canstar_sja1000$ack ack(
         .d(ack$d),
@@ -433,66 +599,6 @@ module canstar_sja1000(clock,rst,wb_cyc,wb_stb,wb_we,wb_adr,wb_dat_w,wb_dat_r,wb
         .q(ramsel$q),
         .clock(ramsel$clock)
     );
-    canstar_sja1000$opm opm(
-        .d(opm$d),
-        .q(opm$q),
-        .clock(opm$clock)
-    );
-    canstar_sja1000$lom lom(
-        .d(lom$d),
-        .q(lom$q),
-        .clock(lom$clock)
-    );
-    canstar_sja1000$stm stm(
-        .d(stm$d),
-        .q(stm$q),
-        .clock(stm$clock)
-    );
-    canstar_sja1000$afm afm(
-        .d(afm$d),
-        .q(afm$q),
-        .clock(afm$clock)
-    );
-    canstar_sja1000$sleep sleep(
-        .d(sleep$d),
-        .q(sleep$q),
-        .clock(sleep$clock)
-    );
-    canstar_sja1000$boff boff(
-        .d(boff$d),
-        .q(boff$q),
-        .clock(boff$clock)
-    );
-    canstar_sja1000$core_bs core_bs(
-        .d(core_bs$d),
-        .q(core_bs$q),
-        .clock(core_bs$clock)
-    );
-    canstar_sja1000$ier ier(
-        .d(ier$d),
-        .q(ier$q),
-        .clock(ier$clock)
-    );
-    canstar_sja1000$ir ir(
-        .d(ir$d),
-        .q(ir$q),
-        .clock(ir$clock)
-    );
-    canstar_sja1000$btr0 btr0(
-        .d(btr0$d),
-        .q(btr0$q),
-        .clock(btr0$clock)
-    );
-    canstar_sja1000$btr1 btr1(
-        .d(btr1$d),
-        .q(btr1$q),
-        .clock(btr1$clock)
-    );
-    canstar_sja1000$btr_reset btr_reset(
-        .en(btr_reset$en),
-        .btr0(btr_reset$btr0),
-        .btr1(btr_reset$btr1)
-    );
     canstar_sja1000$ocr ocr(
         .d(ocr$d),
         .q(ocr$q),
@@ -508,1243 +614,291 @@ module canstar_sja1000(clock,rst,wb_cyc,wb_stb,wb_we,wb_adr,wb_dat_w,wb_dat_r,wb
         .q(cdr$q),
         .clock(cdr$clock)
     );
-    canstar_sja1000$alc alc(
-        .d(alc$d),
-        .q(alc$q),
-        .clock(alc$clock)
-    );
-    canstar_sja1000$alc_lock alc_lock(
-        .d(alc_lock$d),
-        .q(alc_lock$q),
-        .clock(alc_lock$clock)
-    );
-    canstar_sja1000$ecc ecc(
-        .d(ecc$d),
-        .q(ecc$q),
-        .clock(ecc$clock)
-    );
-    canstar_sja1000$ecc_lock ecc_lock(
-        .d(ecc_lock$d),
-        .q(ecc_lock$q),
-        .clock(ecc_lock$clock)
-    );
-    canstar_sja1000$acr0 acr0(
-        .d(acr0$d),
-        .q(acr0$q),
-        .clock(acr0$clock)
-    );
-    canstar_sja1000$acr1 acr1(
-        .d(acr1$d),
-        .q(acr1$q),
-        .clock(acr1$clock)
-    );
-    canstar_sja1000$acr2 acr2(
-        .d(acr2$d),
-        .q(acr2$q),
-        .clock(acr2$clock)
-    );
-    canstar_sja1000$acr3 acr3(
-        .d(acr3$d),
-        .q(acr3$q),
-        .clock(acr3$clock)
-    );
-    canstar_sja1000$amr0 amr0(
-        .d(amr0$d),
-        .q(amr0$q),
-        .clock(amr0$clock)
-    );
-    canstar_sja1000$amr1 amr1(
-        .d(amr1$d),
-        .q(amr1$q),
-        .clock(amr1$clock)
-    );
-    canstar_sja1000$amr2 amr2(
-        .d(amr2$d),
-        .q(amr2$q),
-        .clock(amr2$clock)
-    );
-    canstar_sja1000$amr3 amr3(
-        .d(amr3$d),
-        .q(amr3$q),
-        .clock(amr3$clock)
-    );
-    canstar_sja1000$txb0 txb0(
-        .d(txb0$d),
-        .q(txb0$q),
-        .clock(txb0$clock)
-    );
-    canstar_sja1000$txb1 txb1(
-        .d(txb1$d),
-        .q(txb1$q),
-        .clock(txb1$clock)
-    );
-    canstar_sja1000$txb2 txb2(
-        .d(txb2$d),
-        .q(txb2$q),
-        .clock(txb2$clock)
-    );
-    canstar_sja1000$txb3 txb3(
-        .d(txb3$d),
-        .q(txb3$q),
-        .clock(txb3$clock)
-    );
-    canstar_sja1000$txb4 txb4(
-        .d(txb4$d),
-        .q(txb4$q),
-        .clock(txb4$clock)
-    );
-    canstar_sja1000$txb5 txb5(
-        .d(txb5$d),
-        .q(txb5$q),
-        .clock(txb5$clock)
-    );
-    canstar_sja1000$txb6 txb6(
-        .d(txb6$d),
-        .q(txb6$q),
-        .clock(txb6$clock)
-    );
-    canstar_sja1000$txb7 txb7(
-        .d(txb7$d),
-        .q(txb7$q),
-        .clock(txb7$clock)
-    );
-    canstar_sja1000$txb8 txb8(
-        .d(txb8$d),
-        .q(txb8$q),
-        .clock(txb8$clock)
-    );
-    canstar_sja1000$txb9 txb9(
-        .d(txb9$d),
-        .q(txb9$q),
-        .clock(txb9$clock)
-    );
-    canstar_sja1000$txb10 txb10(
-        .d(txb10$d),
-        .q(txb10$q),
-        .clock(txb10$clock)
-    );
-    canstar_sja1000$txb11 txb11(
-        .d(txb11$d),
-        .q(txb11$q),
-        .clock(txb11$clock)
-    );
-    canstar_sja1000$txb12 txb12(
-        .d(txb12$d),
-        .q(txb12$q),
-        .clock(txb12$clock)
-    );
-    canstar_sja1000$tx_pend tx_pend(
-        .d(tx_pend$d),
-        .q(tx_pend$q),
-        .clock(tx_pend$clock)
-    );
-    canstar_sja1000$tx_single tx_single(
-        .d(tx_single$d),
-        .q(tx_single$q),
-        .clock(tx_single$clock)
-    );
-    canstar_sja1000$tx_srr tx_srr(
-        .d(tx_srr$d),
-        .q(tx_srr$q),
-        .clock(tx_srr$clock)
-    );
-    canstar_sja1000$tx_abrt tx_abrt(
-        .d(tx_abrt$d),
-        .q(tx_abrt$q),
-        .clock(tx_abrt$clock)
-    );
-    canstar_sja1000$tx_lb tx_lb(
-        .d(tx_lb$d),
-        .q(tx_lb$q),
-        .clock(tx_lb$clock)
-    );
-    canstar_sja1000$tcs_n tcs_n(
-        .d(tcs_n$d),
-        .q(tcs_n$q),
-        .clock(tcs_n$clock)
-    );
-    canstar_sja1000$dos dos(
-        .d(dos$d),
-        .q(dos$q),
-        .clock(dos$clock)
-    );
-    canstar_sja1000$rbsa rbsa(
-        .d(rbsa$d),
-        .q(rbsa$q),
-        .clock(rbsa$clock)
-    );
-    canstar_sja1000$used used(
-        .d(used$d),
-        .q(used$q),
-        .clock(used$clock)
-    );
-    canstar_sja1000$rmc rmc(
-        .d(rmc$d),
-        .q(rmc$q),
-        .clock(rmc$clock)
-    );
-    canstar_sja1000$wr_busy wr_busy(
-        .d(wr_busy$d),
-        .q(wr_busy$q),
-        .clock(wr_busy$clock)
-    );
-    canstar_sja1000$wr_src wr_src(
-        .d(wr_src$d),
-        .q(wr_src$q),
-        .clock(wr_src$clock)
-    );
-    canstar_sja1000$wr_idx wr_idx(
-        .d(wr_idx$d),
-        .q(wr_idx$q),
-        .clock(wr_idx$clock)
-    );
-    canstar_sja1000$wr_len wr_len(
-        .d(wr_len$d),
-        .q(wr_len$q),
-        .clock(wr_len$clock)
-    );
-    canstar_sja1000$fetch_q fetch_q(
-        .d(fetch_q$d),
-        .q(fetch_q$q),
-        .clock(fetch_q$clock)
-    );
-    canstar_sja1000$fetch_a fetch_a(
-        .d(fetch_a$d),
-        .q(fetch_a$q),
-        .clock(fetch_a$clock)
-    );
-    canstar_sja1000$cur_fi cur_fi(
-        .d(cur_fi$d),
-        .q(cur_fi$q),
-        .clock(cur_fi$clock)
-    );
-    canstar_sja1000$es_q es_q(
-        .d(es_q$d),
-        .q(es_q$q),
-        .clock(es_q$clock)
-    );
-    canstar_sja1000$bs_q bs_q(
-        .d(bs_q$d),
-        .q(bs_q$q),
-        .clock(bs_q$clock)
-    );
-    canstar_sja1000$pas_q pas_q(
-        .d(pas_q$d),
-        .q(pas_q$q),
-        .clock(pas_q$clock)
-    );
-    canstar_sja1000$seen_ext seen_ext(
-        .d(seen_ext$d),
-        .q(seen_ext$q),
-        .clock(seen_ext$clock)
-    );
     
     // Update code
     always @(*) begin
         ack$clock = clock;
         rdat$clock = clock;
         ramsel$clock = clock;
-        opm$clock = clock;
-        lom$clock = clock;
-        stm$clock = clock;
-        afm$clock = clock;
-        sleep$clock = clock;
-        boff$clock = clock;
-        core_bs$clock = clock;
-        ier$clock = clock;
-        ir$clock = clock;
-        btr0$clock = clock;
-        btr1$clock = clock;
         ocr$clock = clock;
         ewl$clock = clock;
         cdr$clock = clock;
-        alc$clock = clock;
-        alc_lock$clock = clock;
-        ecc$clock = clock;
-        ecc_lock$clock = clock;
-        acr0$clock = clock;
-        acr1$clock = clock;
-        acr2$clock = clock;
-        acr3$clock = clock;
-        amr0$clock = clock;
-        amr1$clock = clock;
-        amr2$clock = clock;
-        amr3$clock = clock;
-        txb0$clock = clock;
-        txb1$clock = clock;
-        txb2$clock = clock;
-        txb3$clock = clock;
-        txb4$clock = clock;
-        txb5$clock = clock;
-        txb6$clock = clock;
-        txb7$clock = clock;
-        txb8$clock = clock;
-        txb9$clock = clock;
-        txb10$clock = clock;
-        txb11$clock = clock;
-        txb12$clock = clock;
-        tx_pend$clock = clock;
-        tx_single$clock = clock;
-        tx_srr$clock = clock;
-        tx_abrt$clock = clock;
-        tx_lb$clock = clock;
-        tcs_n$clock = clock;
-        dos$clock = clock;
-        rbsa$clock = clock;
-        used$clock = clock;
-        rmc$clock = clock;
-        wr_busy$clock = clock;
-        wr_src$clock = clock;
-        wr_idx$clock = clock;
-        wr_len$clock = clock;
-        fetch_q$clock = clock;
-        fetch_a$clock = clock;
-        cur_fi$clock = clock;
-        es_q$clock = clock;
-        bs_q$clock = clock;
-        pas_q$clock = clock;
-        seen_ext$clock = clock;
         ack$d = ack$q;
         rdat$d = rdat$q;
         ramsel$d = ramsel$q;
-        opm$d = opm$q;
-        lom$d = lom$q;
-        stm$d = stm$q;
-        afm$d = afm$q;
-        sleep$d = sleep$q;
-        boff$d = boff$q;
-        core_bs$d = core_bs$q;
-        ier$d = ier$q;
-        ir$d = ir$q;
-        btr0$d = btr0$q;
-        btr1$d = btr1$q;
         ocr$d = ocr$q;
         ewl$d = ewl$q;
         cdr$d = cdr$q;
-        alc$d = alc$q;
-        alc_lock$d = alc_lock$q;
-        ecc$d = ecc$q;
-        ecc_lock$d = ecc_lock$q;
-        acr0$d = acr0$q;
-        acr1$d = acr1$q;
-        acr2$d = acr2$q;
-        acr3$d = acr3$q;
-        amr0$d = amr0$q;
-        amr1$d = amr1$q;
-        amr2$d = amr2$q;
-        amr3$d = amr3$q;
-        txb0$d = txb0$q;
-        txb1$d = txb1$q;
-        txb2$d = txb2$q;
-        txb3$d = txb3$q;
-        txb4$d = txb4$q;
-        txb5$d = txb5$q;
-        txb6$d = txb6$q;
-        txb7$d = txb7$q;
-        txb8$d = txb8$q;
-        txb9$d = txb9$q;
-        txb10$d = txb10$q;
-        txb11$d = txb11$q;
-        txb12$d = txb12$q;
-        tx_pend$d = tx_pend$q;
-        tx_single$d = tx_single$q;
-        tx_srr$d = tx_srr$q;
-        tx_abrt$d = tx_abrt$q;
-        tx_lb$d = tx_lb$q;
-        tcs_n$d = tcs_n$q;
-        dos$d = dos$q;
-        rbsa$d = rbsa$q;
-        used$d = used$q;
-        rmc$d = rmc$q;
-        wr_busy$d = wr_busy$q;
-        wr_src$d = wr_src$q;
-        wr_idx$d = wr_idx$q;
-        wr_len$d = wr_len$q;
-        fetch_q$d = fetch_q$q;
-        fetch_a$d = fetch_a$q;
-        cur_fi$d = cur_fi$q;
-        es_q$d = es_q$q;
-        bs_q$d = bs_q$q;
-        pas_q$d = pas_q$q;
-        seen_ext$d = seen_ext$q;
-        ram$read_clock = clock;
-        ram$write_clock = clock;
         l_req = wb_cyc & wb_stb & ~ack$q;
         l_wr = l_req & wb_we;
         l_rd = l_req & ~wb_we;
         l_a = wb_adr[(32'h0)+:(7)];
         l_d = wb_dat_w;
-        l_rm = ~opm$q;
-        l_win = (l_a >= 32'h10) & (l_a <= 32'h1c);
-        l_aoff = l_a - 32'h20;
-        l_fld = core$dbg_field;
-        l_frz = ~opm$q & ~boff$q;
-        l_cbsr = core$state == 32'h2;
-        l_wait = (l_fld == 32'h0) | (l_fld == 32'h1) | (l_fld == 32'h3);
-        l_busy = l_fld >= 32'h4;
-        l_txact = core$dbg_role & (l_fld >= 32'h4) & (l_fld <= 32'h11);
-        l_tecv = core$tec[(32'h0)+:(8)];
-        if (core$tec[32'h8]) begin
-            l_tecv = 32'hff;
+        l_rm = ~mode$opm;
+        l_win = (l_a >= a_win) & (l_a <= a_win_end);
+        l_acc_a = (l_a >= a_acc) & (l_a <= a_acc_end);
+        l_ram_a = (l_a >= a_ram) & (l_a <= a_ram_end);
+        l_txb_a = (l_a >= a_txb) & (l_a <= a_txb_end);
+        l_off = l_a - a_ram;
+        if (l_win) begin
+            l_off = l_a - a_win;
         end
-        l_recv = core$rec;
-        if (l_cbsr & ~l_frz) begin
-            l_tecv = 32'h7f - core$dbg_runs;
-            l_recv = 32'h0;
-        end
-        l_cbs = l_cbsr;
-        l_es = l_cbsr | (l_tecv >= ewl$q) | (l_recv >= ewl$q);
-        l_pas = ~l_cbsr & ((l_tecv >= 32'h80) | (l_recv >= 32'h80));
-        if (l_frz) begin
-            l_cbs = bs_q$q;
-            l_es = es_q$q;
-            l_pas = pas_q$q;
-        end
-        l_cload = l_frz | core$cfg_err;
-        l_tecin = core$tec;
-        l_recin = core$rec;
-        l_tx_ide = txb0$q[32'h7];
-        l_tx_rtr = txb0$q[32'h6];
-        if (l_tx_ide) begin
-            l_tx_id = (((txb1$q) & 29'h1fffffff) << 32'h15) | (((txb2$q) & 29'h1fffffff) << 32'hd) | (((txb3$q) & 29'h1fffffff) << 32'h5) | (((txb4$q) & 29'h1fffffff) >> 32'h3);
-            l_tx_data = (((txb5$q) & 64'hffffffffffffffff) << 32'h38) | (((txb6$q) & 64'hffffffffffffffff) << 32'h30) | (((txb7$q) & 64'hffffffffffffffff) << 32'h28) | (((txb8$q) & 64'hffffffffffffffff) << 32'h20) | (((txb9$q) & 64'hffffffffffffffff) << 32'h18) | (((txb10$q) & 64'hffffffffffffffff) << 32'h10) | (((txb11$q) & 64'hffffffffffffffff) << 32'h8) | ((txb12$q) & 64'hffffffffffffffff);
-        end
-        else begin
-            l_tx_id = (((txb1$q) & 29'h1fffffff) << 32'h3) | (((txb2$q) & 29'h1fffffff) >> 32'h5);
-            l_tx_data = (((txb3$q) & 64'hffffffffffffffff) << 32'h38) | (((txb4$q) & 64'hffffffffffffffff) << 32'h30) | (((txb5$q) & 64'hffffffffffffffff) << 32'h28) | (((txb6$q) & 64'hffffffffffffffff) << 32'h20) | (((txb7$q) & 64'hffffffffffffffff) << 32'h18) | (((txb8$q) & 64'hffffffffffffffff) << 32'h10) | (((txb9$q) & 64'hffffffffffffffff) << 32'h8) | ((txb10$q) & 64'hffffffffffffffff);
-        end
-        core$brp = (((btr0$q[(32'h0)+:(6)]) & 7'h7f) << 32'h1) | 32'h1;
-        l_t1 = ((btr1$q[(32'h0)+:(4)]) & 6'h3f) + 32'h1;
-        l_t2 = ((btr1$q[(32'h4)+:(3)]) & 6'h3f) + 32'h1;
-        l_s = l_t1 + l_t2;
-        l_ph1 = l_t2;
-        l_prop = l_t1 - l_t2;
-        if (l_t2 == 32'h1) begin
-            l_ph1 = 32'h1;
-            l_prop = l_t1 - 32'h2;
-        end
-        else if (l_t1 <= l_t2) begin
-            l_ph1 = (l_s - 32'h1) >> 32'h1;
-            l_prop = l_s - (l_ph1 << 32'h1);
-        end
-        if (l_s < 32'h7) begin
-            l_prop = 32'h1;
-            l_ph1 = 32'h1;
-        end
-        l_sjw = ((btr0$q[(32'h6)+:(2)]) & 6'h3f) + 32'h1;
-        if (l_sjw > l_ph1) begin
-            l_sjw = l_ph1;
-        end
-        l_prop = l_prop - 32'h1;
-        l_ph1 = l_ph1 - 32'h1;
-        l_sjw = l_sjw - 32'h1;
-        core$prop = l_prop[(32'h0)+:(4)];
-        core$ph1 = l_ph1[(32'h0)+:(3)];
-        core$sjw = l_sjw[(32'h0)+:(2)];
-        core$triple = btr1$q[32'h7];
-        l_txok = tx_pend$q & core$tx_done;
-        l_stx = l_txok & tx_srr$q & opm$q;
-        l_srx = core$rx_valid & opm$q;
-        l_srctx = l_stx;
-        if (wr_busy$q) begin
-            l_srctx = wr_src$q;
-        end
-        l_s_ide = core$rx_ide;
-        l_s_rtr = core$rx_rtr;
-        l_s_id = core$rx_id;
-        l_s_dlc = core$rx_dlc;
-        l_s_data = core$rx_data;
-        if (l_srctx) begin
-            l_s_ide = l_tx_ide;
-            l_s_rtr = l_tx_rtr;
-            l_s_id = l_tx_id;
-            l_s_dlc = txb0$q[(32'h0)+:(4)];
-            l_s_data = l_tx_data;
-        end
-        if (~l_s_ide) begin
-            l_s_id = l_s_id & 32'h7ff;
-        end
-        l_s_n = l_s_dlc;
-        if (l_s_dlc[32'h3]) begin
-            l_s_n = 32'h8;
-        end
-        if (l_s_rtr) begin
-            l_s_n = 32'h0;
-        end
-        l_s_len = l_s_n + 32'h3;
-        if (l_s_ide) begin
-            l_s_len = l_s_n + 32'h5;
-        end
-        l_msg = (((l_s_dlc) & 104'hffffffffffffffffffffffffff) << 32'h60) | (((l_s_data) & 104'hffffffffffffffffffffffffff) << 32'h10);
-        l_msg = (l_msg & ~(1 << (32'h66)) | ((l_s_rtr) << (32'h66)));
-        if (l_s_ide) begin
-            l_msg = (((l_s_dlc) & 104'hffffffffffffffffffffffffff) << 32'h60) | (((l_s_id) & 104'hffffffffffffffffffffffffff) << 32'h43) | ((l_s_data) & 104'hffffffffffffffffffffffffff);
-            l_msg = (l_msg & ~(1 << (32'h67)) | ((1'b1) << (32'h67)));
-            l_msg = (l_msg & ~(1 << (32'h66)) | ((l_s_rtr) << (32'h66)));
-            l_msg = (l_msg & ~(1 << (32'h42)) | ((l_s_rtr) << (32'h42)));
-        end
-        else begin
-            l_msg = l_msg | (((l_s_id) & 104'hffffffffffffffffffffffffff) << 32'h55);
-            l_msg = (l_msg & ~(1 << (32'h54)) | ((l_s_rtr) << (32'h54)));
-        end
-        l_acr = (((acr0$q) & 32'hffffffff) << 32'h18) | (((acr1$q) & 32'hffffffff) << 32'h10) | (((acr2$q) & 32'hffffffff) << 32'h8) | ((acr3$q) & 32'hffffffff);
-        l_amr = (((amr0$q) & 32'hffffffff) << 32'h18) | (((amr1$q) & 32'hffffffff) << 32'h10) | (((amr2$q) & 32'hffffffff) << 32'h8) | ((amr3$q) & 32'hffffffff);
-        if (afm$q) begin
-            if (l_s_ide) begin
-                l_v1 = ((l_s_id) & 32'hffffffff) << 32'h3;
-                l_v1 = (l_v1 & ~(1 << (32'h2)) | ((l_s_rtr) << (32'h2)));
-                l_m1 = l_amr | 32'h3;
-            end
-            else begin
-                l_v1 = (((l_s_id[(32'h0)+:(11)]) & 32'hffffffff) << 32'h15) | ((l_s_data[(32'h30)+:(16)]) & 32'hffffffff);
-                l_v1 = (l_v1 & ~(1 << (32'h14)) | ((l_s_rtr) << (32'h14)));
-                l_m1 = l_amr | 32'hf0000;
-                if (l_s_n < 32'h2) begin
-                    l_m1 = l_m1 | 32'hff;
-                end
-                if (l_s_n < 32'h1) begin
-                    l_m1 = l_m1 | 32'hff00;
-                end
-            end
-            l_v2 = 32'h0;
-            l_m2 = 32'h0;
-            l_acc = ((l_v1 ^ l_acr) & ~l_m1) == 32'h0;
-        end
-        else begin
-            if (l_s_ide) begin
-                l_v1 = ((l_s_id[(32'hd)+:(16)]) & 32'hffffffff) << 32'h10;
-                l_m1 = l_amr | 32'hffff;
-                l_v2 = ((l_s_id[(32'hd)+:(16)]) & 32'hffffffff);
-                l_m2 = l_amr | 64'hffff0000;
-            end
-            else begin
-                l_v1 = (((l_s_id[(32'h0)+:(11)]) & 32'hffffffff) << 32'h15) | (((l_s_data[(32'h3c)+:(4)]) & 32'hffffffff) << 32'h10) | ((l_s_data[(32'h38)+:(4)]) & 32'hffffffff);
-                l_v1 = (l_v1 & ~(1 << (32'h14)) | ((l_s_rtr) << (32'h14)));
-                l_m1 = l_amr | 32'hfff0;
-                if (l_s_n < 32'h1) begin
-                    l_m1 = l_m1 | 32'hf000f;
-                end
-                l_v2 = ((l_s_id[(32'h0)+:(11)]) & 32'hffffffff) << 32'h5;
-                l_v2 = (l_v2 & ~(1 << (32'h4)) | ((l_s_rtr) << (32'h4)));
-                l_m2 = l_amr | 64'hffff000f;
-            end
-            l_acc = (((l_v1 ^ l_acr) & ~l_m1) == 32'h0) | (((l_v2 ^ l_acr) & ~l_m2) == 32'h0);
-        end
-        l_fi = cur_fi$q;
-        if (fetch_q$q & (fetch_a$q == rbsa$q)) begin
-            l_fi = ram$read_data;
-        end
-        cur_fi$d = l_fi;
-        l_cur_n = l_fi[(32'h0)+:(4)];
-        if (l_fi[32'h3]) begin
-            l_cur_n = 32'h8;
-        end
-        if (l_fi[32'h6]) begin
-            l_cur_n = 32'h0;
-        end
-        l_cur_len = l_cur_n + 32'h3;
-        if (l_fi[32'h7]) begin
-            l_cur_len = l_cur_n + 32'h5;
-        end
-        l_wbyte = l_msg[(32'h60)+:(8)];
-        if (wr_idx$q == 32'h1) begin
-            l_wbyte = l_msg[(32'h58)+:(8)];
-        end
-        if (wr_idx$q == 32'h2) begin
-            l_wbyte = l_msg[(32'h50)+:(8)];
-        end
-        if (wr_idx$q == 32'h3) begin
-            l_wbyte = l_msg[(32'h48)+:(8)];
-        end
-        if (wr_idx$q == 32'h4) begin
-            l_wbyte = l_msg[(32'h40)+:(8)];
-        end
-        if (wr_idx$q == 32'h5) begin
-            l_wbyte = l_msg[(32'h38)+:(8)];
-        end
-        if (wr_idx$q == 32'h6) begin
-            l_wbyte = l_msg[(32'h30)+:(8)];
-        end
-        if (wr_idx$q == 32'h7) begin
-            l_wbyte = l_msg[(32'h28)+:(8)];
-        end
-        if (wr_idx$q == 32'h8) begin
-            l_wbyte = l_msg[(32'h20)+:(8)];
-        end
-        if (wr_idx$q == 32'h9) begin
-            l_wbyte = l_msg[(32'h18)+:(8)];
-        end
-        if (wr_idx$q == 32'ha) begin
-            l_wbyte = l_msg[(32'h10)+:(8)];
-        end
-        if (wr_idx$q == 32'hb) begin
-            l_wbyte = l_msg[(32'h8)+:(8)];
-        end
-        if (wr_idx$q == 32'hc) begin
-            l_wbyte = l_msg[(32'h0)+:(8)];
-        end
-        l_wdone = wr_busy$q & ((wr_idx$q + 32'h1) == wr_len$q);
-        l_fits = (used$q + ((l_s_len) & 7'h7f)) <= 32'h40;
         ack$d = l_req;
-        rdat$d = rdat$q;
-        ramsel$d = ramsel$q;
-        opm$d = opm$q;
-        lom$d = lom$q;
-        stm$d = stm$q;
-        afm$d = afm$q;
-        sleep$d = sleep$q;
-        boff$d = boff$q;
-        core_bs$d = l_cbsr & ~l_frz;
-        ier$d = ier$q;
-        ir$d = ir$q;
-        l_irn = ir$q;
-        btr0$d = btr0$q;
-        btr1$d = btr1$q;
-        ocr$d = ocr$q;
-        ewl$d = ewl$q;
-        cdr$d = cdr$q;
-        alc$d = alc$q;
-        alc_lock$d = alc_lock$q;
-        ecc$d = ecc$q;
-        ecc_lock$d = ecc_lock$q;
-        acr0$d = acr0$q;
-        acr1$d = acr1$q;
-        acr2$d = acr2$q;
-        acr3$d = acr3$q;
-        amr0$d = amr0$q;
-        amr1$d = amr1$q;
-        amr2$d = amr2$q;
-        amr3$d = amr3$q;
-        txb0$d = txb0$q;
-        txb1$d = txb1$q;
-        txb2$d = txb2$q;
-        txb3$d = txb3$q;
-        txb4$d = txb4$q;
-        txb5$d = txb5$q;
-        txb6$d = txb6$q;
-        txb7$d = txb7$q;
-        txb8$d = txb8$q;
-        txb9$d = txb9$q;
-        txb10$d = txb10$q;
-        txb11$d = txb11$q;
-        txb12$d = txb12$q;
-        tx_pend$d = tx_pend$q;
-        tx_single$d = tx_single$q;
-        tx_srr$d = tx_srr$q;
-        tx_abrt$d = tx_abrt$q;
-        tx_lb$d = tx_lb$q;
-        tcs_n$d = tcs_n$q;
-        dos$d = dos$q;
-        rbsa$d = rbsa$q;
-        used$d = used$q;
-        rmc$d = rmc$q;
-        wr_busy$d = wr_busy$q;
-        wr_src$d = wr_src$q;
-        wr_idx$d = wr_idx$q;
-        wr_len$d = wr_len$q;
-        es_q$d = l_es;
-        bs_q$d = l_cbs;
-        pas_q$d = l_pas;
-        seen_ext$d = seen_ext$q;
-        if (l_fld == 32'h9) begin
-            seen_ext$d = 1'b1;
-        end
-        if (l_fld == 32'h4) begin
-            seen_ext$d = 1'b0;
-        end
-        l_ev = 32'h0;
-        l_enter_rm = 1'b0;
-        l_abort = 1'b0;
-        l_recover = 1'b0;
         l_rrb = 1'b0;
-        l_txrel = 1'b0;
-        l_sr = 32'h0;
-        l_sr = (l_sr & ~(1 << (32'h0)) | ((rmc$q != 32'h0) << (32'h0)));
-        l_sr = (l_sr & ~(1 << (32'h1)) | ((dos$q) << (32'h1)));
-        l_tbs = ~tx_pend$q;
-        l_tcs = ~tcs_n$q;
-        l_sr = (l_sr & ~(1 << (32'h2)) | ((l_tbs) << (32'h2)));
-        l_sr = (l_sr & ~(1 << (32'h3)) | ((l_tcs) << (32'h3)));
-        l_sr = (l_sr & ~(1 << (32'h4)) | ((l_wait | (l_busy & ~core$dbg_role)) << (32'h4)));
-        l_sr = (l_sr & ~(1 << (32'h5)) | ((l_wait | (l_busy & core$dbg_role)) << (32'h5)));
-        l_sr = (l_sr & ~(1 << (32'h6)) | ((l_es) << (32'h6)));
-        l_sr = (l_sr & ~(1 << (32'h7)) | ((l_cbs) << (32'h7)));
-        l_irv = (ir$q & ~(1 << (32'h0)) | ((ier$q[32'h0] & (rmc$q != 32'h0)) << (32'h0)));
+        l_cdo = 1'b0;
+        l_cmd = 1'b0;
+        l_we_mod = 1'b0;
+        l_we_ier = 1'b0;
+        l_we_btr0 = 1'b0;
+        l_we_btr1 = 1'b0;
+        l_we_rxerr = 1'b0;
+        l_we_txerr = 1'b0;
+        l_we_acc = 1'b0;
+        l_we_rbsa = 1'b0;
         l_ramrd = 1'b0;
         l_rdv = 32'h0;
-        if (l_a == 32'h0) begin
-            l_rdv = (l_rdv & ~(1 << (32'h0)) | ((l_rm) << (32'h0)));
-            l_rdv = (l_rdv & ~(1 << (32'h1)) | ((lom$q) << (32'h1)));
-            l_rdv = (l_rdv & ~(1 << (32'h2)) | ((stm$q) << (32'h2)));
-            l_rdv = (l_rdv & ~(1 << (32'h3)) | ((afm$q) << (32'h3)));
-            l_rdv = (l_rdv & ~(1 << (32'h4)) | ((sleep$q) << (32'h4)));
+        if (l_a == a_mod) begin
+            l_rdv = mode$rdata;
         end
-        if (l_a == 32'h2) begin
-            l_rdv = l_sr;
+        if (l_a == a_sr) begin
+            l_rdv = status$sr;
         end
-        if (l_a == 32'h3) begin
-            l_rdv = l_irv;
+        if (l_a == a_ir) begin
+            l_rdv = irq$ir;
         end
-        if (l_a == 32'h4) begin
-            l_rdv = ier$q;
+        if (l_a == a_ier) begin
+            l_rdv = irq$ier;
         end
-        if (l_a == 32'h6) begin
-            l_rdv = btr0$q;
+        if (l_a == a_btr0) begin
+            l_rdv = timing$btr0;
         end
-        if (l_a == 32'h7) begin
-            l_rdv = btr1$q;
+        if (l_a == a_btr1) begin
+            l_rdv = timing$btr1;
         end
-        if (l_a == 32'h8) begin
+        if (l_a == a_ocr) begin
             l_rdv = ocr$q;
         end
-        if (l_a == 32'hb) begin
-            l_rdv = ((alc$q) & 8'hff);
+        if (l_a == a_alc) begin
+            l_rdv = ((capture$alc) & 8'hff);
         end
-        if (l_a == 32'hc) begin
-            l_rdv = ecc$q;
+        if (l_a == a_ecc) begin
+            l_rdv = capture$ecc;
         end
-        if (l_a == 32'hd) begin
+        if (l_a == a_ewl) begin
             l_rdv = ewl$q;
         end
-        if (l_a == 32'he) begin
-            l_rdv = l_recv;
+        if (l_a == a_rxerr) begin
+            l_rdv = status$rxerr;
         end
-        if (l_a == 32'hf) begin
-            l_rdv = l_tecv;
+        if (l_a == a_txerr) begin
+            l_rdv = status$txerr;
         end
         if (l_rm) begin
-            if (l_a == 32'h10) begin
-                l_rdv = acr0$q;
-            end
-            if (l_a == 32'h11) begin
-                l_rdv = acr1$q;
-            end
-            if (l_a == 32'h12) begin
-                l_rdv = acr2$q;
-            end
-            if (l_a == 32'h13) begin
-                l_rdv = acr3$q;
-            end
-            if (l_a == 32'h14) begin
-                l_rdv = amr0$q;
-            end
-            if (l_a == 32'h15) begin
-                l_rdv = amr1$q;
-            end
-            if (l_a == 32'h16) begin
-                l_rdv = amr2$q;
-            end
-            if (l_a == 32'h17) begin
-                l_rdv = amr3$q;
+            if (l_acc_a) begin
+                l_rdv = filter$rdata;
             end
         end
         else if (l_win) begin
             l_ramrd = 1'b1;
         end
-        if (l_a == 32'h1d) begin
-            l_rdv = ((rmc$q) & 8'hff);
+        if (l_a == a_rmc) begin
+            l_rdv = ((fifo$rmc) & 8'hff);
         end
-        if (l_a == 32'h1e) begin
-            l_rdv = ((rbsa$q) & 8'hff);
+        if (l_a == a_rbsa) begin
+            l_rdv = ((fifo$rbsa) & 8'hff);
         end
-        if (l_a == 32'h1f) begin
+        if (l_a == a_cdr) begin
             l_rdv = cdr$q;
         end
-        if ((l_a >= 32'h20) & (l_a < 32'h60)) begin
+        if (l_ram_a) begin
             l_ramrd = 1'b1;
         end
-        if (l_a == 32'h60) begin
-            l_rdv = txb0$q;
+        if (l_txb_a) begin
+            l_rdv = txbuf$rdata;
         end
-        if (l_a == 32'h61) begin
-            l_rdv = txb1$q;
-        end
-        if (l_a == 32'h62) begin
-            l_rdv = txb2$q;
-        end
-        if (l_a == 32'h63) begin
-            l_rdv = txb3$q;
-        end
-        if (l_a == 32'h64) begin
-            l_rdv = txb4$q;
-        end
-        if (l_a == 32'h65) begin
-            l_rdv = txb5$q;
-        end
-        if (l_a == 32'h66) begin
-            l_rdv = txb6$q;
-        end
-        if (l_a == 32'h67) begin
-            l_rdv = txb7$q;
-        end
-        if (l_a == 32'h68) begin
-            l_rdv = txb8$q;
-        end
-        if (l_a == 32'h69) begin
-            l_rdv = txb9$q;
-        end
-        if (l_a == 32'h6a) begin
-            l_rdv = txb10$q;
-        end
-        if (l_a == 32'h6b) begin
-            l_rdv = txb11$q;
-        end
-        if (l_a == 32'h6c) begin
-            l_rdv = txb12$q;
-        end
-        ram$read_address = rbsa$q;
-        fetch_q$d = 1'b1;
-        if (l_rd & l_ramrd) begin
-            fetch_q$d = 1'b0;
-            if (l_win) begin
-                ram$read_address = rbsa$q + (l_a[(32'h0)+:(6)] - 32'h10);
-            end
-            else begin
-                ram$read_address = l_aoff[(32'h0)+:(6)];
-            end
-        end
-        fetch_a$d = rbsa$q;
         if (l_rd) begin
             rdat$d = l_rdv;
             ramsel$d = l_ramrd;
-            if (l_a == 32'h3) begin
-                l_irn = 32'h0;
-            end
-            if (l_a == 32'hb) begin
-                alc_lock$d = 1'b0;
-            end
-            if (l_a == 32'hc) begin
-                ecc_lock$d = 1'b0;
-            end
         end
-        ram$write_address = l_aoff[(32'h0)+:(6)];
-        ram$write_data = l_d;
-        ram$write_enable = 1'b0;
+        l_cdrm = wm_cdr_op;
+        if (l_rm) begin
+            l_cdrm = wm_cdr_rm;
+        end
         if (l_wr) begin
-            if (l_a == 32'h0) begin
-                if (l_rm) begin
-                    lom$d = l_d[32'h1];
-                    stm$d = l_d[32'h2];
-                    afm$d = l_d[32'h3];
-                    if (~l_d[32'h0]) begin
-                        opm$d = 1'b1;
-                        l_recover = boff$q;
-                    end
-                end
-                else if (l_d[32'h0]) begin
-                    l_enter_rm = 1'b1;
-                end
-                else if (l_d[32'h4]) begin
-                    if (~sleep$q & (l_irv == 32'h0) & (l_fld == 32'h2) & ~tx_pend$q) begin
-                        sleep$d = 1'b1;
-                    end
-                end
-                else if (sleep$q) begin
-                    sleep$d = 1'b0;
-                    l_ev = (l_ev & ~(1 << (32'h4)) | ((1'b1) << (32'h4)));
-                end
+            l_we_mod = l_a == a_mod;
+            if (l_a == a_cmr) begin
+                l_cmd = 1'b1;
+                l_rrb = l_d[cmd_rrb] & (fifo$rmc != 32'h0);
+                l_cdo = l_d[cmd_cdo];
             end
-            if (l_a == 32'h1) begin
-                if (opm$q) begin
-                    if ((l_d[32'h0] | l_d[32'h4]) & ~tx_pend$q & ~sleep$q) begin
-                        tx_pend$d = 1'b1;
-                        tx_single$d = l_d[32'h1];
-                        tx_srr$d = l_d[32'h4];
-                        tx_abrt$d = 1'b0;
-                    end
-                    else if (l_d[32'h1] & tx_pend$q & ~tx_lb$q) begin
-                        l_abort = 1'b1;
-                        tx_abrt$d = 1'b1;
-                    end
-                end
-                if (l_d[32'h2] & (rmc$q != 32'h0)) begin
-                    l_rrb = 1'b1;
-                end
-                if (l_d[32'h3]) begin
-                    dos$d = 1'b0;
-                end
-            end
-            if (l_a == 32'h4) begin
-                ier$d = l_d;
-            end
-            if (l_a == 32'h1f) begin
-                cdr$d = (cdr$q & 32'he0) | (l_d & 32'hf);
-                if (l_rm) begin
-                    cdr$d = l_d & 32'hef;
-                end
+            l_we_ier = l_a == a_ier;
+            if (l_a == a_cdr) begin
+                cdr$d = ((cdr$q & ~l_cdrm) | (l_d & l_cdrm)) & (wm_cdr_op | wm_cdr_rm);
             end
             if (l_rm) begin
-                if (l_a == 32'h6) begin
-                    btr0$d = l_d;
-                end
-                if (l_a == 32'h7) begin
-                    btr1$d = l_d;
-                end
-                if (l_a == 32'h8) begin
+                l_we_btr0 = l_a == a_btr0;
+                l_we_btr1 = l_a == a_btr1;
+                if (l_a == a_ocr) begin
                     ocr$d = l_d;
                 end
-                if (l_a == 32'hd) begin
+                if (l_a == a_ewl) begin
                     ewl$d = l_d;
                 end
-                if ((l_a == 32'he) & l_frz) begin
-                    l_cload = 1'b1;
-                    l_recin = l_d;
-                end
-                if (l_a == 32'hf) begin
-                    l_cload = 1'b1;
-                    l_tecin = ((l_d) & 9'h1ff);
-                    if (l_d == 32'hff) begin
-                        l_tecin = 32'h100;
-                    end
-                    if (boff$q) begin
-                        boff$d = 1'b0;
-                        l_recin = 32'h0;
-                        if (l_d != 32'hff) begin
-                            bs_q$d = 1'b0;
-                        end
-                    end
-                end
-                if (l_a == 32'h10) begin
-                    acr0$d = l_d;
-                end
-                if (l_a == 32'h11) begin
-                    acr1$d = l_d;
-                end
-                if (l_a == 32'h12) begin
-                    acr2$d = l_d;
-                end
-                if (l_a == 32'h13) begin
-                    acr3$d = l_d;
-                end
-                if (l_a == 32'h14) begin
-                    amr0$d = l_d;
-                end
-                if (l_a == 32'h15) begin
-                    amr1$d = l_d;
-                end
-                if (l_a == 32'h16) begin
-                    amr2$d = l_d;
-                end
-                if (l_a == 32'h17) begin
-                    amr3$d = l_d;
-                end
-                if (l_a == 32'h1e) begin
-                    rbsa$d = l_d[(32'h0)+:(6)];
-                    used$d = 32'h0;
-                    rmc$d = 32'h0;
-                end
-                if ((l_a >= 32'h20) & (l_a < 32'h60)) begin
-                    ram$write_enable = 1'b1;
-                end
-            end
-            if ((opm$q & l_win & ~tx_pend$q) | (l_rm & (l_a >= 32'h60) & (l_a <= 32'h6c))) begin
-                if (l_a[(32'h0)+:(4)] == 32'h0) begin
-                    txb0$d = l_d;
-                end
-                if (l_a[(32'h0)+:(4)] == 32'h1) begin
-                    txb1$d = l_d;
-                end
-                if (l_a[(32'h0)+:(4)] == 32'h2) begin
-                    txb2$d = l_d;
-                end
-                if (l_a[(32'h0)+:(4)] == 32'h3) begin
-                    txb3$d = l_d;
-                end
-                if (l_a[(32'h0)+:(4)] == 32'h4) begin
-                    txb4$d = l_d;
-                end
-                if (l_a[(32'h0)+:(4)] == 32'h5) begin
-                    txb5$d = l_d;
-                end
-                if (l_a[(32'h0)+:(4)] == 32'h6) begin
-                    txb6$d = l_d;
-                end
-                if (l_a[(32'h0)+:(4)] == 32'h7) begin
-                    txb7$d = l_d;
-                end
-                if (l_a[(32'h0)+:(4)] == 32'h8) begin
-                    txb8$d = l_d;
-                end
-                if (l_a[(32'h0)+:(4)] == 32'h9) begin
-                    txb9$d = l_d;
-                end
-                if (l_a[(32'h0)+:(4)] == 32'ha) begin
-                    txb10$d = l_d;
-                end
-                if (l_a[(32'h0)+:(4)] == 32'hb) begin
-                    txb11$d = l_d;
-                end
-                if (l_a[(32'h0)+:(4)] == 32'hc) begin
-                    txb12$d = l_d;
-                end
+                l_we_rxerr = l_a == a_rxerr;
+                l_we_txerr = l_a == a_txerr;
+                l_we_acc = l_acc_a;
+                l_we_rbsa = l_a == a_rbsa;
             end
         end
-        l_txfail = tx_pend$q & ~tx_lb$q & (tx_single$q | tx_abrt$q) & (core$arb_lost | (core$error & core$err_tx));
-        if (tx_pend$q & tx_abrt$q & ~tx_lb$q & ~core$dbg_tx_rqst & ~l_txact & ~l_txok) begin
-            l_txfail = 1'b1;
-        end
-        if (l_txok) begin
-            tcs_n$d = 1'b0;
-            if (tx_srr$q) begin
-                tx_lb$d = 1'b1;
-            end
-            else begin
-                l_txrel = 1'b1;
-            end
-        end
-        else if (l_txfail) begin
-            tcs_n$d = 1'b1;
-            l_txrel = 1'b1;
-        end
-        if (wr_busy$q) begin
-            ram$write_address = (rbsa$q + used$q[(32'h0)+:(6)]) + ((wr_idx$q) & 6'h3f);
-            ram$write_data = l_wbyte;
-            ram$write_enable = 1'b1;
-            wr_idx$d = wr_idx$q + 32'h1;
-            if (l_wdone) begin
-                wr_busy$d = 1'b0;
-                if (wr_src$q) begin
-                    l_txrel = 1'b1;
-                    tx_lb$d = 1'b0;
-                end
-            end
-        end
-        if (l_srx | l_stx) begin
-            if (l_acc & l_fits & ~wr_busy$q) begin
-                wr_busy$d = 1'b1;
-                wr_src$d = l_stx;
-                wr_idx$d = 32'h0;
-                wr_len$d = l_s_len;
-            end
-            else begin
-                if (l_acc) begin
-                    dos$d = 1'b1;
-                    if (~dos$q) begin
-                        l_ev = (l_ev & ~(1 << (32'h3)) | ((1'b1) << (32'h3)));
-                    end
-                end
-                if (l_stx) begin
-                    l_txrel = 1'b1;
-                    tx_lb$d = 1'b0;
-                end
-            end
-        end
-        if (l_rrb) begin
-            rbsa$d = rbsa$q + ((l_cur_len) & 6'h3f);
-        end
-        if (l_wdone & ~l_rrb) begin
-            rmc$d = rmc$q + 32'h1;
-            used$d = used$q + ((wr_len$q) & 7'h7f);
-        end
-        else if (l_rrb & ~l_wdone) begin
-            rmc$d = rmc$q - 32'h1;
-            used$d = used$q - ((l_cur_len) & 7'h7f);
-        end
-        else if (l_rrb & l_wdone) begin
-            used$d = (used$q + ((wr_len$q) & 7'h7f)) - ((l_cur_len) & 7'h7f);
-        end
-        if (l_txrel) begin
-            tx_pend$d = 1'b0;
-            l_ev = (l_ev & ~(1 << (32'h1)) | ((1'b1) << (32'h1)));
-        end
-        l_alcm1 = core$arb_lost_pos - 32'h1;
-        if (core$arb_lost) begin
-            l_ev = (l_ev & ~(1 << (32'h6)) | ((1'b1) << (32'h6)));
-            if (~alc_lock$q) begin
-                alc$d = l_alcm1[(32'h0)+:(5)];
-                alc_lock$d = 1'b1;
-            end
-        end
-        l_pos = core$err_pos;
-        l_seg = 32'h12;
-        if (core$err_field == 32'h4) begin
-            l_seg = 32'h3;
-        end
-        if (core$err_field == 32'h5) begin
-            l_seg = 32'h2;
-            if (l_pos > 32'h8) begin
-                l_seg = 32'h6;
-            end
-        end
-        if (core$err_field == 32'h6) begin
-            l_seg = 32'h4;
-        end
-        if (core$err_field == 32'h7) begin
-            l_seg = 32'h5;
-        end
-        if (core$err_field == 32'h8) begin
-            l_seg = 32'h4;
-            if (seen_ext$q) begin
-                l_seg = 32'hc;
-            end
-        end
-        if (core$err_field == 32'h9) begin
-            l_seg = 32'h7;
-            if (l_pos > 32'h5) begin
-                l_seg = 32'hf;
-            end
-            if (l_pos > 32'hd) begin
-                l_seg = 32'he;
-            end
-        end
-        if (core$err_field == 32'ha) begin
-            l_seg = 32'h9;
-            if (seen_ext$q & (l_pos == 32'h1)) begin
-                l_seg = 32'hd;
-            end
-        end
-        if (core$err_field == 32'hb) begin
-            l_seg = 32'hb;
-        end
-        if (core$err_field == 32'hc) begin
-            l_seg = 32'ha;
-        end
-        if (core$err_field == 32'hd) begin
-            l_seg = 32'h8;
-        end
-        if (core$err_field == 32'he) begin
-            l_seg = 32'h18;
-        end
-        if (core$err_field == 32'hf) begin
-            l_seg = 32'h19;
-        end
-        if (core$err_field == 32'h10) begin
-            l_seg = 32'h1b;
-        end
-        if (core$err_field == 32'h11) begin
-            l_seg = 32'h1a;
-        end
-        if (core$err_field == 32'h12) begin
-            l_seg = 32'h11;
-        end
-        if (core$err_field == 32'h13) begin
-            l_seg = 32'h16;
-        end
-        if (core$err_field == 32'h14) begin
-            l_seg = 32'h1c;
-        end
-        if ((core$err_field == 32'h15) | (core$err_field == 32'h16)) begin
-            l_seg = 32'h17;
-        end
-        l_dirrx = ~core$err_tx;
-        l_ecode = 32'hc0;
-        if (core$err_kind[32'h3]) begin
-            l_ecode = 32'h40;
-        end
-        if (core$err_kind[32'h1]) begin
-            l_ecode = 32'h80;
-        end
-        if (core$err_kind[32'h0]) begin
-            l_ecode = 32'h0;
-        end
-        l_ecode = ((l_ecode | ((l_seg) & 8'hff)) & ~(1 << (32'h5)) | ((l_dirrx) << (32'h5)));
-        if (core$error) begin
-            l_ev = (l_ev & ~(1 << (32'h7)) | ((1'b1) << (32'h7)));
-            if (~ecc_lock$q) begin
-                ecc$d = l_ecode;
-                ecc_lock$d = 1'b1;
-            end
-        end
-        if (l_es != es_q$q) begin
-            l_ev = (l_ev & ~(1 << (32'h2)) | ((1'b1) << (32'h2)));
-        end
-        if (l_cbs != bs_q$q) begin
-            l_ev = (l_ev & ~(1 << (32'h2)) | ((1'b1) << (32'h2)));
-        end
-        if ((l_pas & ~pas_q$q) | (~l_pas & pas_q$q & ~l_cbs)) begin
-            l_ev = (l_ev & ~(1 << (32'h5)) | ((1'b1) << (32'h5)));
-        end
-        if ((l_cbsr & ~l_frz) & ~core_bs$q) begin
-            boff$d = 1'b1;
-            l_enter_rm = 1'b1;
-            l_ev = (l_ev & ~(1 << (32'h2)) | ((1'b1) << (32'h2)));
-        end
-        if (~l_cbsr & core_bs$q) begin
-            boff$d = 1'b0;
-        end
-        if (sleep$q & core$dbg_sample & ~core$dbg_busmon) begin
-            sleep$d = 1'b0;
-            l_ev = (l_ev & ~(1 << (32'h4)) | ((1'b1) << (32'h4)));
-        end
-        if (l_enter_rm) begin
-            opm$d = 1'b0;
-            tx_pend$d = 1'b0;
-            tx_lb$d = 1'b0;
-            tx_abrt$d = 1'b0;
-            wr_busy$d = 1'b0;
-            used$d = 32'h0;
-            rmc$d = 32'h0;
-            sleep$d = 1'b0;
-            if (sleep$q) begin
-                l_ev = (l_ev & ~(1 << (32'h4)) | ((1'b1) << (32'h4)));
-            end
-            l_ev = (l_ev & ~(1 << (32'h1)) | ((1'b0) << (32'h1)));
-        end
-        ir$d = l_irn | (l_ev & ier$q & 32'hfe);
+        l_we_txb = l_wr & ((mode$opm & l_win & ~txctl$pending) | (l_rm & l_txb_a));
         if (rst) begin
             ack$d = 1'b0;
-            opm$d = 1'b0;
-            lom$d = 1'b0;
-            stm$d = 1'b0;
-            afm$d = 1'b0;
-            sleep$d = 1'b0;
-            boff$d = 1'b0;
-            core_bs$d = 1'b0;
-            es_q$d = 1'b0;
-            bs_q$d = 1'b0;
-            pas_q$d = 1'b0;
-            ier$d = 32'h0;
-            ir$d = 32'h0;
-            btr0$d = btr_reset$btr0;
-            btr1$d = btr_reset$btr1;
-            ocr$d = 32'h0;
-            ewl$d = 32'h60;
-            cdr$d = 32'h0;
-            alc$d = 32'h0;
-            alc_lock$d = 1'b0;
-            ecc$d = 32'h0;
-            ecc_lock$d = 1'b0;
-            amr0$d = 32'hff;
-            amr1$d = 32'hff;
-            amr2$d = 32'hff;
-            amr3$d = 32'hff;
-            tx_pend$d = 1'b0;
-            tx_lb$d = 1'b0;
-            tx_abrt$d = 1'b0;
-            tcs_n$d = 1'b0;
-            dos$d = 1'b0;
-            rbsa$d = 32'h0;
-            used$d = 32'h0;
-            rmc$d = 32'h0;
-            wr_busy$d = 1'b0;
-            ram$write_enable = 1'b0;
+            ocr$d = rv_ocr;
+            ewl$d = rv_ewl;
+            cdr$d = rv_cdr;
         end
         core$clock = clock;
-        btr_reset$en = rst;
-        core$reset = rst | (~opm$q & ~boff$q);
+        core$reset = rst | (~mode$opm & ~status$hold);
         core$rx = rx;
-        core$listen_only = lom$q;
-        core$self_test = stm$q;
-        core$single_shot = tx_single$q;
+        core$brp = timing$brp;
+        core$prop = timing$prop;
+        core$ph1 = timing$ph1;
+        core$sjw = timing$sjw;
+        core$triple = timing$triple;
+        core$listen_only = mode$lom;
+        core$self_test = mode$stm;
+        core$single_shot = txctl$single_shot;
         core$host_recovery = 1'b1;
-        core$recover = l_recover;
-        core$tx_req = tx_pend$q & ~tx_lb$q & opm$q;
-        core$tx_ide = l_tx_ide;
-        core$tx_rtr = l_tx_rtr;
-        core$tx_id = l_tx_id;
-        core$tx_dlc = txb0$q[(32'h0)+:(4)];
-        core$tx_data = l_tx_data;
-        core$tx_abort = l_abort;
-        core$cnt_load = l_cload & ~rst;
-        core$tec_in = l_tecin;
-        core$rec_in = l_recin;
+        core$recover = mode$recover;
+        core$tx_req = txctl$req;
+        core$tx_ide = txbuf$ide;
+        core$tx_rtr = txbuf$rtr;
+        core$tx_id = txbuf$id;
+        core$tx_dlc = txbuf$dlc;
+        core$tx_data = txbuf$data;
+        core$tx_abort = txctl$abort;
+        core$cnt_load = status$cnt_load;
+        core$tec_in = status$tec_in;
+        core$rec_in = status$rec_in;
+        timing$clock = clock;
+        timing$rst = rst;
+        timing$we0 = l_we_btr0;
+        timing$we1 = l_we_btr1;
+        timing$wdata = l_d;
+        txbuf$clock = clock;
+        txbuf$we = l_we_txb;
+        txbuf$idx = l_a[(32'h0)+:(4)];
+        txbuf$wdata = l_d;
+        txctl$clock = clock;
+        txctl$rst = rst;
+        txctl$opm = mode$opm;
+        txctl$sleep = mode$sleep;
+        txctl$enter_rm = mode$enter_rm;
+        txctl$cmd = l_cmd;
+        txctl$tr = l_d[cmd_tr];
+        txctl$at = l_d[cmd_at];
+        txctl$srr = l_d[cmd_srr];
+        txctl$tx_done = core$tx_done;
+        txctl$arb_lost = core$arb_lost;
+        txctl$error = core$error;
+        txctl$err_tx = core$err_tx;
+        txctl$tx_rqst = core$dbg_tx_rqst;
+        txctl$txact = status$txact;
+        txctl$own_done = fifo$own_done;
+        txctl$own_dropped = fifo$own_dropped;
+        status$clock = clock;
+        status$rst = rst;
+        status$opm = mode$opm;
+        status$state = core$state;
+        status$tec = core$tec;
+        status$rec = core$rec;
+        status$runs = core$dbg_runs;
+        status$cfg_err = core$cfg_err;
+        status$ewl = ewl$q;
+        status$wr_rxerr = l_we_rxerr;
+        status$wr_txerr = l_we_txerr;
+        status$wdata = l_d;
+        status$rbs = fifo$rmc != 32'h0;
+        status$dos = fifo$dos;
+        status$tbs = ~txctl$pending;
+        status$tcs = txctl$tcs;
+        status$field = core$dbg_field;
+        status$role = core$dbg_role;
+        filter$clock = clock;
+        filter$rst = rst;
+        filter$we = l_we_acc;
+        filter$idx = l_a[(32'h0)+:(3)];
+        filter$wdata = l_d;
+        filter$single = mode$afm;
+        filter$ide = fifo$f_ide;
+        filter$rtr = fifo$f_rtr;
+        filter$id = fifo$f_id;
+        filter$n = fifo$f_n;
+        filter$d01 = fifo$f_d01;
+        fifo$clock = clock;
+        fifo$rst = rst;
+        fifo$clear = mode$enter_rm;
+        fifo$offer_rx = core$rx_valid & mode$opm;
+        fifo$offer_own = txctl$own_offer;
+        fifo$rx_ide = core$rx_ide;
+        fifo$rx_rtr = core$rx_rtr;
+        fifo$rx_id = core$rx_id;
+        fifo$rx_dlc = core$rx_dlc;
+        fifo$rx_data = core$rx_data;
+        fifo$own_ide = txbuf$ide;
+        fifo$own_rtr = txbuf$rtr;
+        fifo$own_id = txbuf$id;
+        fifo$own_dlc = txbuf$dlc;
+        fifo$own_data = txbuf$data;
+        fifo$accept = filter$accept;
+        fifo$rrb = l_rrb;
+        fifo$cdo = l_cdo;
+        fifo$rbsa_we = l_we_rbsa;
+        fifo$ram_we = l_wr & l_rm & l_ram_a;
+        fifo$wdata = l_d;
+        fifo$host_rd = l_rd & l_ramrd;
+        fifo$host_win = l_win;
+        fifo$host_idx = l_off[(32'h0)+:(6)];
+        mode$clock = clock;
+        mode$rst = rst;
+        mode$wr = l_we_mod;
+        mode$wdata = l_d;
+        mode$may_sleep = (irq$ir == 32'h0) & status$idle & ~txctl$pending;
+        mode$bus_dom = core$dbg_sample & ~core$dbg_busmon;
+        mode$busoff = status$busoff;
+        mode$hold = status$hold;
+        irq$clock = clock;
+        irq$rst = rst;
+        irq$wr_ier = l_we_ier;
+        irq$wdata = l_d;
+        irq$rd_ir = l_rd & (l_a == a_ir);
+        irq$rbs = fifo$rmc != 32'h0;
+        irq$ti = txctl$ti;
+        irq$ei = status$ei;
+        irq$doi = fifo$overrun;
+        irq$wui = mode$wui;
+        irq$epi = status$epi;
+        irq$ali = core$arb_lost;
+        irq$bei = core$error;
+        capture$clock = clock;
+        capture$rst = rst;
+        capture$arb_lost = core$arb_lost;
+        capture$arb_lost_pos = core$arb_lost_pos;
+        capture$error = core$error;
+        capture$err_kind = core$err_kind;
+        capture$err_field = core$err_field;
+        capture$err_pos = core$err_pos;
+        capture$err_tx = core$err_tx;
+        capture$field = core$dbg_field;
+        capture$rd_alc = l_rd & (l_a == a_alc);
+        capture$rd_ecc = l_rd & (l_a == a_ecc);
         tx = core$tx;
         wb_ack = ack$q;
         wb_dat_r = rdat$q;
         if (ramsel$q) begin
-            wb_dat_r = ram$read_data;
+            wb_dat_r = fifo$rdata;
         end
-        int_n = ~(|l_irv);
+        int_n = irq$int_n;
     end
     
 endmodule // canstar_sja1000
@@ -1769,83 +923,233 @@ module canstar_sja1000$ack(d,q,clock);
 endmodule // canstar_sja1000$ack
 
 
-module canstar_sja1000$acr0(d,q,clock);
+module canstar_sja1000$capture(clock,rst,arb_lost,arb_lost_pos,error,err_kind,err_field,err_pos,err_tx,field,rd_alc,rd_ecc,alc,ecc);
     
     // Module arguments
-    input wire  [7:0] d;
-    output reg  [7:0] q;
     input wire  clock;
+    input wire  rst;
+    input wire  arb_lost;
+    input wire  [5:0] arb_lost_pos;
+    input wire  error;
+    input wire  [4:0] err_kind;
+    input wire  [4:0] err_field;
+    input wire  [7:0] err_pos;
+    input wire  err_tx;
+    input wire  [4:0] field;
+    input wire  rd_alc;
+    input wire  rd_ecc;
+    output reg  [4:0] alc;
+    output reg  [7:0] ecc;
     
-    // Update code (custom)
-    initial begin
-       q = 8'h0;
+    // Constant declarations
+    localparam  f_sof = 5'b100;
+    localparam  f_ident = 5'b101;
+    localparam  f_srr = 5'b110;
+    localparam  f_ide = 5'b111;
+    localparam  f_rtr = 5'b1000;
+    localparam  f_exident = 5'b1001;
+    localparam  f_resv = 5'b1010;
+    localparam  f_dlc = 5'b1011;
+    localparam  f_data = 5'b1100;
+    localparam  f_crc = 5'b1101;
+    localparam  f_crcdel = 5'b1110;
+    localparam  f_ackslot = 5'b1111;
+    localparam  f_ackdel = 5'b10000;
+    localparam  f_eof = 5'b10001;
+    localparam  f_actflag = 5'b10010;
+    localparam  f_pasflag = 5'b10011;
+    localparam  f_ovlflag = 5'b10100;
+    localparam  f_errdel = 5'b10101;
+    localparam  f_ovldel = 5'b10110;
+    localparam  k_bit = 3'b0;
+    localparam  k_stuff = 3'b1;
+    localparam  k_form = 3'b11;
+    localparam  c_bit = 8'h0;
+    localparam  c_stuff = 8'h80;
+    localparam  c_form = 8'h40;
+    localparam  c_other = 8'hc0;
+    localparam  c_dir = 8'h20;
+    
+    // Stub signals
+    reg  [4:0] alc_r$d;
+    wire  [4:0] alc_r$q;
+    reg  alc_r$clock;
+    reg  alc_lock$d;
+    wire  alc_lock$q;
+    reg  alc_lock$clock;
+    reg  [7:0] ecc_r$d;
+    wire  [7:0] ecc_r$q;
+    reg  ecc_r$clock;
+    reg  ecc_lock$d;
+    wire  ecc_lock$q;
+    reg  ecc_lock$clock;
+    reg  seen_ext$d;
+    wire  seen_ext$q;
+    reg  seen_ext$clock;
+    
+    // Local signals
+    reg  [5:0] l_alcm1;
+    reg  [4:0] l_seg;
+    reg  [7:0] l_ecode;
+    
+    // Sub module instances
+    canstar_sja1000$capture$alc_r alc_r(
+        .d(alc_r$d),
+        .q(alc_r$q),
+        .clock(alc_r$clock)
+    );
+    canstar_sja1000$capture$alc_lock alc_lock(
+        .d(alc_lock$d),
+        .q(alc_lock$q),
+        .clock(alc_lock$clock)
+    );
+    canstar_sja1000$capture$ecc_r ecc_r(
+        .d(ecc_r$d),
+        .q(ecc_r$q),
+        .clock(ecc_r$clock)
+    );
+    canstar_sja1000$capture$ecc_lock ecc_lock(
+        .d(ecc_lock$d),
+        .q(ecc_lock$q),
+        .clock(ecc_lock$clock)
+    );
+    canstar_sja1000$capture$seen_ext seen_ext(
+        .d(seen_ext$d),
+        .q(seen_ext$q),
+        .clock(seen_ext$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        alc_r$clock = clock;
+        alc_lock$clock = clock;
+        ecc_r$clock = clock;
+        ecc_lock$clock = clock;
+        seen_ext$clock = clock;
+        alc_r$d = alc_r$q;
+        alc_lock$d = alc_lock$q;
+        ecc_r$d = ecc_r$q;
+        ecc_lock$d = ecc_lock$q;
+        seen_ext$d = seen_ext$q;
+        if (field == f_exident) begin
+            seen_ext$d = 1'b1;
+        end
+        if (field == f_sof) begin
+            seen_ext$d = 1'b0;
+        end
+        if (rd_alc) begin
+            alc_lock$d = 1'b0;
+        end
+        if (rd_ecc) begin
+            ecc_lock$d = 1'b0;
+        end
+        l_alcm1 = arb_lost_pos - 32'h1;
+        if (arb_lost & ~alc_lock$q) begin
+            alc_r$d = l_alcm1[(32'h0)+:(5)];
+            alc_lock$d = 1'b1;
+        end
+        l_seg = 32'h12;
+        if (err_field == f_sof) begin
+            l_seg = 32'h3;
+        end
+        if (err_field == f_ident) begin
+            l_seg = 32'h2;
+            if (err_pos > 32'h8) begin
+                l_seg = 32'h6;
+            end
+        end
+        if (err_field == f_srr) begin
+            l_seg = 32'h4;
+        end
+        if (err_field == f_ide) begin
+            l_seg = 32'h5;
+        end
+        if (err_field == f_rtr) begin
+            l_seg = 32'h4;
+            if (seen_ext$q) begin
+                l_seg = 32'hc;
+            end
+        end
+        if (err_field == f_exident) begin
+            l_seg = 32'h7;
+            if (err_pos > 32'h5) begin
+                l_seg = 32'hf;
+            end
+            if (err_pos > 32'hd) begin
+                l_seg = 32'he;
+            end
+        end
+        if (err_field == f_resv) begin
+            l_seg = 32'h9;
+            if (seen_ext$q & (err_pos == 32'h1)) begin
+                l_seg = 32'hd;
+            end
+        end
+        if (err_field == f_dlc) begin
+            l_seg = 32'hb;
+        end
+        if (err_field == f_data) begin
+            l_seg = 32'ha;
+        end
+        if (err_field == f_crc) begin
+            l_seg = 32'h8;
+        end
+        if (err_field == f_crcdel) begin
+            l_seg = 32'h18;
+        end
+        if (err_field == f_ackslot) begin
+            l_seg = 32'h19;
+        end
+        if (err_field == f_ackdel) begin
+            l_seg = 32'h1b;
+        end
+        if (err_field == f_eof) begin
+            l_seg = 32'h1a;
+        end
+        if (err_field == f_actflag) begin
+            l_seg = 32'h11;
+        end
+        if (err_field == f_pasflag) begin
+            l_seg = 32'h16;
+        end
+        if (err_field == f_ovlflag) begin
+            l_seg = 32'h1c;
+        end
+        if ((err_field == f_errdel) | (err_field == f_ovldel)) begin
+            l_seg = 32'h17;
+        end
+        l_ecode = c_other;
+        if (err_kind[k_form]) begin
+            l_ecode = c_form;
+        end
+        if (err_kind[k_stuff]) begin
+            l_ecode = c_stuff;
+        end
+        if (err_kind[k_bit]) begin
+            l_ecode = c_bit;
+        end
+        l_ecode = l_ecode | ((l_seg) & 8'hff);
+        if (~err_tx) begin
+            l_ecode = l_ecode | c_dir;
+        end
+        if (error & ~ecc_lock$q) begin
+            ecc_r$d = l_ecode;
+            ecc_lock$d = 1'b1;
+        end
+        if (rst) begin
+            alc_r$d = 32'h0;
+            alc_lock$d = 1'b0;
+            ecc_r$d = 32'h0;
+            ecc_lock$d = 1'b0;
+        end
+        alc = alc_r$q;
+        ecc = ecc_r$q;
     end
     
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_sja1000$acr0
+endmodule // canstar_sja1000$capture
 
 
-module canstar_sja1000$acr1(d,q,clock);
-    
-    // Module arguments
-    input wire  [7:0] d;
-    output reg  [7:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 8'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_sja1000$acr1
-
-
-module canstar_sja1000$acr2(d,q,clock);
-    
-    // Module arguments
-    input wire  [7:0] d;
-    output reg  [7:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 8'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_sja1000$acr2
-
-
-module canstar_sja1000$acr3(d,q,clock);
-    
-    // Module arguments
-    input wire  [7:0] d;
-    output reg  [7:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 8'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_sja1000$acr3
-
-
-module canstar_sja1000$afm(d,q,clock);
+module canstar_sja1000$capture$alc_lock(d,q,clock);
     
     // Module arguments
     input wire  d;
@@ -1861,10 +1165,10 @@ module canstar_sja1000$afm(d,q,clock);
        q <= d;
     end
           
-endmodule // canstar_sja1000$afm
+endmodule // canstar_sja1000$capture$alc_lock
 
 
-module canstar_sja1000$alc(d,q,clock);
+module canstar_sja1000$capture$alc_r(d,q,clock);
     
     // Module arguments
     input wire  [4:0] d;
@@ -1880,10 +1184,10 @@ module canstar_sja1000$alc(d,q,clock);
        q <= d;
     end
           
-endmodule // canstar_sja1000$alc
+endmodule // canstar_sja1000$capture$alc_r
 
 
-module canstar_sja1000$alc_lock(d,q,clock);
+module canstar_sja1000$capture$ecc_lock(d,q,clock);
     
     // Module arguments
     input wire  d;
@@ -1899,10 +1203,10 @@ module canstar_sja1000$alc_lock(d,q,clock);
        q <= d;
     end
           
-endmodule // canstar_sja1000$alc_lock
+endmodule // canstar_sja1000$capture$ecc_lock
 
 
-module canstar_sja1000$amr0(d,q,clock);
+module canstar_sja1000$capture$ecc_r(d,q,clock);
     
     // Module arguments
     input wire  [7:0] d;
@@ -1918,67 +1222,10 @@ module canstar_sja1000$amr0(d,q,clock);
        q <= d;
     end
           
-endmodule // canstar_sja1000$amr0
+endmodule // canstar_sja1000$capture$ecc_r
 
 
-module canstar_sja1000$amr1(d,q,clock);
-    
-    // Module arguments
-    input wire  [7:0] d;
-    output reg  [7:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 8'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_sja1000$amr1
-
-
-module canstar_sja1000$amr2(d,q,clock);
-    
-    // Module arguments
-    input wire  [7:0] d;
-    output reg  [7:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 8'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_sja1000$amr2
-
-
-module canstar_sja1000$amr3(d,q,clock);
-    
-    // Module arguments
-    input wire  [7:0] d;
-    output reg  [7:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 8'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_sja1000$amr3
-
-
-module canstar_sja1000$boff(d,q,clock);
+module canstar_sja1000$capture$seen_ext(d,q,clock);
     
     // Module arguments
     input wire  d;
@@ -1994,88 +1241,7 @@ module canstar_sja1000$boff(d,q,clock);
        q <= d;
     end
           
-endmodule // canstar_sja1000$boff
-
-
-module canstar_sja1000$bs_q(d,q,clock);
-    
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_sja1000$bs_q
-
-
-module canstar_sja1000$btr0(d,q,clock);
-    
-    // Module arguments
-    input wire  [7:0] d;
-    output reg  [7:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 8'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_sja1000$btr0
-
-
-module canstar_sja1000$btr1(d,q,clock);
-    
-    // Module arguments
-    input wire  [7:0] d;
-    output reg  [7:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 8'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_sja1000$btr1
-
-
-module canstar_sja1000$btr_reset(en,btr0,btr1);
-    
-    // Module arguments
-    input wire  en;
-    output reg  [7:0] btr0;
-    output reg  [7:0] btr1;
-    
-    // Constant declarations
-    localparam  v0 = 8'h0;
-    localparam  v1 = 8'h14;
-    
-    // Update code
-    always @(*) begin
-        btr0 = 32'h0;
-        btr1 = 32'h0;
-        if (en) begin
-            btr0 = v0;
-            btr1 = v1;
-        end
-    end
-    
-endmodule // canstar_sja1000$btr_reset
+endmodule // canstar_sja1000$capture$seen_ext
 
 
 module canstar_sja1000$cdr(d,q,clock);
@@ -2154,33 +1320,6 @@ module canstar_sja1000$core(clock,reset,rx,brp,prop,ph1,sjw,triple,listen_only,s
     output reg  [7:0] dbg_runs;
     output reg  dbg_hard_sync;
     output reg  dbg_resync;
-    
-    // Enums
-    localparam Field$Reset = 0;
-    localparam Field$WaitIdle = 1;
-    localparam Field$Idle = 2;
-    localparam Field$BusOff = 3;
-    localparam Field$Sof = 4;
-    localparam Field$Ident = 5;
-    localparam Field$Srr = 6;
-    localparam Field$Ide = 7;
-    localparam Field$Rtr = 8;
-    localparam Field$ExIdent = 9;
-    localparam Field$Resv = 10;
-    localparam Field$Dlc = 11;
-    localparam Field$Data = 12;
-    localparam Field$Crc = 13;
-    localparam Field$CrcDel = 14;
-    localparam Field$AckSlot = 15;
-    localparam Field$AckDel = 16;
-    localparam Field$Eof = 17;
-    localparam Field$ActFlag = 18;
-    localparam Field$PasFlag = 19;
-    localparam Field$OvlFlag = 20;
-    localparam Field$ErrDel = 21;
-    localparam Field$OvlDel = 22;
-    localparam Field$Inter = 23;
-    localparam Field$Suspend = 24;
     
     // Stub signals
     reg  sync$clock;
@@ -3284,24 +2423,6 @@ module canstar_sja1000$core$fsm(clock,reset,sample,busmon,listen_only,self_test,
     localparam Field$Suspend = 24;
     
     // Stub signals
-    reg  [4:0] fld$d;
-    wire  [4:0] fld$q;
-    reg  fld$clock;
-    reg  [7:0] fpos$d;
-    wire  [7:0] fpos$q;
-    reg  fpos$clock;
-    reg  [4:0] pfld$d;
-    wire  [4:0] pfld$q;
-    reg  pfld$clock;
-    reg  [7:0] ppos$d;
-    wire  [7:0] ppos$q;
-    reg  ppos$clock;
-    reg  rtx$d;
-    wire  rtx$q;
-    reg  rtx$clock;
-    reg  dom$d;
-    wire  dom$q;
-    reg  dom$clock;
     reg  dstf$clock;
     reg  dstf$reset;
     reg  dstf$en;
@@ -3318,197 +2439,247 @@ module canstar_sja1000$core$fsm(clock,reset,sample,busmon,listen_only,self_test,
     reg  crcb$din;
     wire  [14:0] crcb$crc;
     wire  [14:0] crcb$crc_next;
-    reg  crcerr$d;
-    wire  crcerr$q;
-    reg  crcerr$clock;
-    reg  [28:0] tid$d;
-    wire  [28:0] tid$q;
-    reg  tid$clock;
-    reg  [63:0] tdat$d;
-    wire  [63:0] tdat$q;
-    reg  tdat$clock;
-    reg  [3:0] tdlc$d;
-    wire  [3:0] tdlc$q;
-    reg  tdlc$clock;
-    reg  tide$d;
-    wire  tide$q;
-    reg  tide$clock;
-    reg  trtr$d;
-    wire  trtr$q;
-    reg  trtr$clock;
-    reg  [28:0] rid$d;
-    wire  [28:0] rid$q;
-    reg  rid$clock;
-    reg  [63:0] rdat$d;
-    wire  [63:0] rdat$q;
-    reg  rdat$clock;
-    reg  [3:0] rdlc$d;
-    wire  [3:0] rdlc$q;
-    reg  rdlc$clock;
-    reg  rrtr$d;
-    wire  rrtr$q;
-    reg  rrtr$clock;
-    reg  rext$d;
-    wire  rext$q;
-    reg  rext$clock;
-    reg  fdone$d;
-    wire  fdone$q;
-    reg  fdone$clock;
-    reg  [2:0] eqcnt$d;
-    wire  [2:0] eqcnt$q;
-    reg  eqcnt$clock;
-    reg  eqlast$d;
-    wire  eqlast$q;
-    reg  eqlast$clock;
-    reg  [2:0] dafc$d;
-    wire  [2:0] dafc$q;
-    reg  dafc$clock;
-    reg  dafany$d;
-    wire  dafany$q;
-    reg  dafany$clock;
-    reg  exc1$d;
-    wire  exc1$q;
-    reg  exc1$clock;
-    reg  [8:0] tecr$d;
-    wire  [8:0] tecr$q;
-    reg  tecr$clock;
-    reg  [7:0] recr$d;
-    wire  [7:0] recr$q;
-    reg  recr$clock;
-    reg  [7:0] runr$d;
-    wire  [7:0] runr$q;
-    reg  runr$clock;
-    reg  rarmed$d;
-    wire  rarmed$q;
-    reg  rarmed$clock;
-    reg  req$d;
-    wire  req$q;
-    reg  req$clock;
-    reg  blocked$d;
-    wire  blocked$q;
-    reg  blocked$clock;
-    reg  [19:0] evr$d;
-    wire  [19:0] evr$q;
-    reg  evr$clock;
-    reg  [5:0] arbpos_r$d;
-    wire  [5:0] arbpos_r$q;
-    reg  arbpos_r$clock;
-    reg  [4:0] errf_r$d;
-    wire  [4:0] errf_r$q;
-    reg  errf_r$clock;
-    reg  [7:0] errp_r$d;
-    wire  [7:0] errp_r$q;
-    reg  errp_r$clock;
-    reg  errtx_r$d;
-    wire  errtx_r$q;
-    reg  errtx_r$clock;
-    reg  rxide_r$d;
-    wire  rxide_r$q;
-    reg  rxide_r$clock;
-    reg  rxrtr_r$d;
-    wire  rxrtr_r$q;
-    reg  rxrtr_r$clock;
-    reg  [28:0] rxid_r$d;
-    wire  [28:0] rxid_r$q;
-    reg  rxid_r$clock;
-    reg  [3:0] rxdlc_r$d;
-    wire  [3:0] rxdlc_r$q;
-    reg  rxdlc_r$clock;
-    reg  [63:0] rxdat_r$d;
-    wire  [63:0] rxdat_r$q;
-    reg  rxdat_r$clock;
-    
-    // Local signals
-    reg  l_bit;
-    reg  l_sent;
-    reg  l_active;
-    reg  l_cantx;
-    reg  [4:0] l_nf;
-    reg  [7:0] l_npos;
-    reg  [7:0] l_posinc;
-    reg  l_curstf;
-    reg  [4:0] l_dfld;
-    reg  [7:0] l_dpos;
-    reg  l_crcen;
-    reg  l_ndom;
-    reg  l_usetx;
-    reg  l_txv;
-    reg  l_role;
-    reg  l_instf;
-    reg  l_arbf;
-    reg  l_arbstuff;
-    reg  l_adv;
-    reg  l_err;
-    reg  [4:0] l_errk;
-    reg  l_ovl;
-    reg  l_start;
-    reg  l_sofinit;
-    reg  l_txsof;
-    reg  l_tinc;
-    reg  l_tdec;
-    reg  l_rinc1;
-    reg  l_rinc8;
-    reg  l_rok;
-    reg  l_clear;
-    reg  l_deliver;
-    reg  l_crcerr;
-    reg  [28:0] l_tid;
-    reg  [63:0] l_tdat;
-    reg  [3:0] l_tdlc;
-    reg  l_tide;
-    reg  l_trtr;
-    reg  [28:0] l_rid;
-    reg  [63:0] l_rdat;
-    reg  [3:0] l_rdlc;
-    reg  l_rrtr;
-    reg  l_rext;
-    reg  [3:0] l_nbytes;
-    reg  [7:0] l_nbits;
-    reg  l_fdone;
-    reg  [2:0] l_eqcnt;
-    reg  l_eqlast;
-    reg  [2:0] l_dafc;
-    reg  l_dafany;
-    reg  l_exc1;
-    reg  [19:0] l_ev;
-    reg  [8:0] l_tec;
-    reg  [7:0] l_rec;
-    reg  [7:0] l_runs;
-    reg  l_rarmed;
-    reg  [5:0] l_shamt;
-    reg  [5:0] l_arbpos;
+    reg  [4:0] dec$fld;
+    reg  [7:0] dec$fpos;
+    reg  [4:0] dec$pfld;
+    reg  [7:0] dec$ppos;
+    reg  dec$ext;
+    reg  dec$tx_role;
+    reg  dec$dom;
+    reg  dec$listen_only;
+    reg  dec$next_is_stuff;
+    reg  dec$stuff_level;
+    wire  dec$stuffed;
+    wire  dec$stuff;
+    wire  [4:0] dec$code;
+    wire  [7:0] dec$pos;
+    wire  dec$hs_en;
+    wire  dec$arb;
+    wire  dec$arb_stuff;
+    wire  [5:0] dec$arb_pos;
+    wire  dec$drive;
+    reg  seq$clock;
+    reg  seq$reset;
+    reg  seq$sample;
+    reg  seq$rxbit;
+    reg  seq$listen_only;
+    reg  seq$host_recovery;
+    reg  seq$cnt_load;
+    reg  [8:0] seq$tec_in;
+    reg  seq$stuff;
+    reg  seq$req;
+    reg  seq$active;
+    reg  seq$armed;
+    reg  seq$last_run;
+    reg  seq$busoff;
+    reg  seq$level;
+    reg  seq$f_own;
+    reg  [4:0] seq$f_nf;
+    reg  [7:0] seq$f_npos;
+    reg  seq$f_ndom;
+    reg  seq$f_usetx;
+    reg  seq$f_lost;
+    reg  seq$f_err;
+    reg  seq$f_ovl;
+    reg  seq$f_sof;
+    reg  seq$g_own;
+    reg  [4:0] seq$g_nf;
+    reg  [7:0] seq$g_npos;
+    reg  seq$g_ndom;
+    reg  seq$g_err;
+    reg  seq$g_ovl;
+    wire  [4:0] seq$fld;
+    wire  [7:0] seq$fpos;
+    wire  [4:0] seq$pfld;
+    wire  [7:0] seq$ppos;
+    wire  seq$tx_role;
+    wire  seq$dom;
+    wire  seq$in_busoff;
+    wire  [4:0] seq$nf_tx;
+    wire  seq$err;
+    wire  seq$flag_start;
+    wire  seq$sofinit;
+    wire  seq$txsof;
+    wire  seq$ev_aef;
+    wire  seq$ev_pef;
+    wire  seq$ev_olf;
+    wire  seq$ev_ovl;
+    wire  seq$ev_integrated;
+    wire  seq$ev_run;
+    wire  seq$ev_recovered;
+    reg  frame$clock;
+    reg  frame$reset;
+    reg  frame$sample;
+    reg  frame$rxbit;
+    reg  frame$sent;
+    reg  [4:0] frame$fld;
+    reg  [7:0] frame$fpos;
+    reg  frame$tx_role;
+    reg  frame$dom;
+    reg  frame$listen_only;
+    reg  frame$self_test;
+    reg  frame$active;
+    reg  frame$stuffed;
+    reg  frame$stuff;
+    reg  frame$arb;
+    reg  frame$arb_stuff;
+    reg  frame$stuff_error;
+    reg  frame$crc_rem;
+    reg  frame$ext;
+    reg  frame$rtr;
+    reg  frame$dlc_lo_zero;
+    reg  [7:0] frame$data_bits;
+    reg  frame$tx_ide;
+    reg  frame$sofinit;
+    reg  frame$err_now;
+    wire  frame$own;
+    wire  [4:0] frame$nf;
+    wire  [7:0] frame$npos;
+    wire  frame$ndom;
+    wire  frame$usetx;
+    wire  frame$lost;
+    wire  frame$err;
+    wire  frame$err_bit;
+    wire  frame$err_stuff;
+    wire  frame$err_crc;
+    wire  frame$err_form;
+    wire  frame$err_ack;
+    wire  frame$tinc;
+    wire  frame$rinc1;
+    wire  frame$rok;
+    wire  frame$ovl;
+    wire  frame$exc1;
+    wire  frame$exc2;
+    wire  frame$tx_ok;
+    wire  frame$rx_ok;
+    wire  frame$sof;
+    wire  frame$adv;
+    reg  flags$clock;
+    reg  flags$reset;
+    reg  flags$sample;
+    reg  flags$rxbit;
+    reg  flags$sent;
+    reg  [4:0] flags$fld;
+    reg  [7:0] flags$fpos;
+    reg  flags$tx_role;
+    reg  flags$flag_start;
+    reg  flags$exc1_set;
+    wire  flags$own;
+    wire  [4:0] flags$nf;
+    wire  [7:0] flags$npos;
+    wire  flags$ndom;
+    wire  flags$err;
+    wire  flags$err_bit;
+    wire  flags$err_form;
+    wire  flags$tinc;
+    wire  flags$rinc1;
+    wire  flags$rinc8;
+    wire  flags$ovl;
+    wire  flags$daf;
+    wire  flags$exc1_met;
+    reg  conf$clock;
+    reg  conf$reset;
+    reg  conf$sample;
+    reg  conf$listen_only;
+    reg  conf$recover;
+    reg  conf$tinc;
+    reg  conf$tdec;
+    reg  conf$rinc1;
+    reg  conf$rinc8;
+    reg  conf$rok;
+    reg  conf$run;
+    reg  conf$in_busoff;
+    reg  conf$cnt_load;
+    reg  [8:0] conf$tec_in;
+    reg  [7:0] conf$rec_in;
+    wire  [8:0] conf$tec;
+    wire  [7:0] conf$rec;
+    wire  [1:0] conf$state;
+    wire  conf$err_warn;
+    wire  conf$active;
+    wire  [7:0] conf$runs;
+    wire  conf$last_run;
+    wire  conf$armed;
+    wire  conf$busoff;
+    reg  txq$clock;
+    reg  txq$reset;
+    reg  txq$sample;
+    reg  txq$tx_req;
+    reg  txq$tx_abort;
+    reg  txq$single_shot;
+    reg  txq$tx_ide;
+    reg  txq$tx_rtr;
+    reg  [28:0] txq$tx_id;
+    reg  [3:0] txq$tx_dlc;
+    reg  [63:0] txq$tx_data;
+    reg  txq$load;
+    reg  txq$adv;
+    reg  [4:0] txq$fld;
+    reg  [4:0] txq$nf;
+    reg  txq$crc_bit;
+    reg  txq$lost;
+    reg  txq$done;
+    reg  txq$err_now;
+    reg  txq$tx_role;
+    wire  txq$req;
+    wire  txq$ide;
+    wire  txq$level;
+    reg  rxf$clock;
+    reg  rxf$reset;
+    reg  rxf$sample;
+    reg  rxf$rxbit;
+    reg  rxf$adv;
+    reg  [4:0] rxf$fld;
+    reg  rxf$sofinit;
+    reg  rxf$deliver;
+    wire  rxf$ext;
+    wire  rxf$rtr;
+    wire  rxf$dlc_lo_zero;
+    wire  [7:0] rxf$data_bits;
+    wire  rxf$rx_ide;
+    wire  rxf$rx_rtr;
+    wire  [28:0] rxf$rx_id;
+    wire  [3:0] rxf$rx_dlc;
+    wire  [63:0] rxf$rx_data;
+    reg  rpt$clock;
+    reg  rpt$reset;
+    reg  rpt$sample;
+    reg  rpt$ev_sof;
+    reg  rpt$ev_arb_lost;
+    reg  rpt$ev_bit_err;
+    reg  rpt$ev_stuff_err;
+    reg  rpt$ev_crc_err;
+    reg  rpt$ev_form_err;
+    reg  rpt$ev_ack_err;
+    reg  rpt$ev_aef;
+    reg  rpt$ev_pef;
+    reg  rpt$ev_olf;
+    reg  rpt$ev_ovl;
+    reg  rpt$ev_daf;
+    reg  rpt$ev_tx_ok;
+    reg  rpt$ev_rx_ok;
+    reg  rpt$ev_exc1;
+    reg  rpt$ev_exc2;
+    reg  rpt$ev_run;
+    reg  rpt$ev_recovered;
+    reg  rpt$ev_integrated;
+    reg  rpt$err_now;
+    reg  [4:0] rpt$code;
+    reg  [7:0] rpt$pos;
+    reg  rpt$tx_role;
+    reg  [5:0] rpt$arb_pos;
+    wire  [19:0] rpt$events;
+    wire  rpt$tx_done;
+    wire  rpt$arb_lost;
+    wire  [5:0] rpt$arb_lost_pos;
+    wire  rpt$error;
+    wire  [4:0] rpt$err_kind;
+    wire  [4:0] rpt$err_field;
+    wire  [7:0] rpt$err_pos;
+    wire  rpt$err_tx;
+    wire  rpt$rx_valid;
     
     // Sub module instances
-    canstar_sja1000$core$fsm$fld fld(
-        .d(fld$d),
-        .q(fld$q),
-        .clock(fld$clock)
-    );
-    canstar_sja1000$core$fsm$fpos fpos(
-        .d(fpos$d),
-        .q(fpos$q),
-        .clock(fpos$clock)
-    );
-    canstar_sja1000$core$fsm$pfld pfld(
-        .d(pfld$d),
-        .q(pfld$q),
-        .clock(pfld$clock)
-    );
-    canstar_sja1000$core$fsm$ppos ppos(
-        .d(ppos$d),
-        .q(ppos$q),
-        .clock(ppos$clock)
-    );
-    canstar_sja1000$core$fsm$rtx rtx(
-        .d(rtx$d),
-        .q(rtx$q),
-        .clock(rtx$clock)
-    );
-    canstar_sja1000$core$fsm$dom dom(
-        .d(dom$d),
-        .q(dom$q),
-        .clock(dom$clock)
-    );
     canstar_sja1000$core$fsm$dstf dstf(
         .clock(dstf$clock),
         .reset(dstf$reset),
@@ -3529,1433 +2700,608 @@ module canstar_sja1000$core$fsm(clock,reset,sample,busmon,listen_only,self_test,
         .crc(crcb$crc),
         .crc_next(crcb$crc_next)
     );
-    canstar_sja1000$core$fsm$crcerr crcerr(
-        .d(crcerr$d),
-        .q(crcerr$q),
-        .clock(crcerr$clock)
+    canstar_sja1000$core$fsm$dec dec(
+        .fld(dec$fld),
+        .fpos(dec$fpos),
+        .pfld(dec$pfld),
+        .ppos(dec$ppos),
+        .ext(dec$ext),
+        .tx_role(dec$tx_role),
+        .dom(dec$dom),
+        .listen_only(dec$listen_only),
+        .next_is_stuff(dec$next_is_stuff),
+        .stuff_level(dec$stuff_level),
+        .stuffed(dec$stuffed),
+        .stuff(dec$stuff),
+        .code(dec$code),
+        .pos(dec$pos),
+        .hs_en(dec$hs_en),
+        .arb(dec$arb),
+        .arb_stuff(dec$arb_stuff),
+        .arb_pos(dec$arb_pos),
+        .drive(dec$drive)
     );
-    canstar_sja1000$core$fsm$tid tid(
-        .d(tid$d),
-        .q(tid$q),
-        .clock(tid$clock)
+    canstar_sja1000$core$fsm$seq seq(
+        .clock(seq$clock),
+        .reset(seq$reset),
+        .sample(seq$sample),
+        .rxbit(seq$rxbit),
+        .listen_only(seq$listen_only),
+        .host_recovery(seq$host_recovery),
+        .cnt_load(seq$cnt_load),
+        .tec_in(seq$tec_in),
+        .stuff(seq$stuff),
+        .req(seq$req),
+        .active(seq$active),
+        .armed(seq$armed),
+        .last_run(seq$last_run),
+        .busoff(seq$busoff),
+        .level(seq$level),
+        .f_own(seq$f_own),
+        .f_nf(seq$f_nf),
+        .f_npos(seq$f_npos),
+        .f_ndom(seq$f_ndom),
+        .f_usetx(seq$f_usetx),
+        .f_lost(seq$f_lost),
+        .f_err(seq$f_err),
+        .f_ovl(seq$f_ovl),
+        .f_sof(seq$f_sof),
+        .g_own(seq$g_own),
+        .g_nf(seq$g_nf),
+        .g_npos(seq$g_npos),
+        .g_ndom(seq$g_ndom),
+        .g_err(seq$g_err),
+        .g_ovl(seq$g_ovl),
+        .fld(seq$fld),
+        .fpos(seq$fpos),
+        .pfld(seq$pfld),
+        .ppos(seq$ppos),
+        .tx_role(seq$tx_role),
+        .dom(seq$dom),
+        .in_busoff(seq$in_busoff),
+        .nf_tx(seq$nf_tx),
+        .err(seq$err),
+        .flag_start(seq$flag_start),
+        .sofinit(seq$sofinit),
+        .txsof(seq$txsof),
+        .ev_aef(seq$ev_aef),
+        .ev_pef(seq$ev_pef),
+        .ev_olf(seq$ev_olf),
+        .ev_ovl(seq$ev_ovl),
+        .ev_integrated(seq$ev_integrated),
+        .ev_run(seq$ev_run),
+        .ev_recovered(seq$ev_recovered)
     );
-    canstar_sja1000$core$fsm$tdat tdat(
-        .d(tdat$d),
-        .q(tdat$q),
-        .clock(tdat$clock)
+    canstar_sja1000$core$fsm$frame frame(
+        .clock(frame$clock),
+        .reset(frame$reset),
+        .sample(frame$sample),
+        .rxbit(frame$rxbit),
+        .sent(frame$sent),
+        .fld(frame$fld),
+        .fpos(frame$fpos),
+        .tx_role(frame$tx_role),
+        .dom(frame$dom),
+        .listen_only(frame$listen_only),
+        .self_test(frame$self_test),
+        .active(frame$active),
+        .stuffed(frame$stuffed),
+        .stuff(frame$stuff),
+        .arb(frame$arb),
+        .arb_stuff(frame$arb_stuff),
+        .stuff_error(frame$stuff_error),
+        .crc_rem(frame$crc_rem),
+        .ext(frame$ext),
+        .rtr(frame$rtr),
+        .dlc_lo_zero(frame$dlc_lo_zero),
+        .data_bits(frame$data_bits),
+        .tx_ide(frame$tx_ide),
+        .sofinit(frame$sofinit),
+        .err_now(frame$err_now),
+        .own(frame$own),
+        .nf(frame$nf),
+        .npos(frame$npos),
+        .ndom(frame$ndom),
+        .usetx(frame$usetx),
+        .lost(frame$lost),
+        .err(frame$err),
+        .err_bit(frame$err_bit),
+        .err_stuff(frame$err_stuff),
+        .err_crc(frame$err_crc),
+        .err_form(frame$err_form),
+        .err_ack(frame$err_ack),
+        .tinc(frame$tinc),
+        .rinc1(frame$rinc1),
+        .rok(frame$rok),
+        .ovl(frame$ovl),
+        .exc1(frame$exc1),
+        .exc2(frame$exc2),
+        .tx_ok(frame$tx_ok),
+        .rx_ok(frame$rx_ok),
+        .sof(frame$sof),
+        .adv(frame$adv)
     );
-    canstar_sja1000$core$fsm$tdlc tdlc(
-        .d(tdlc$d),
-        .q(tdlc$q),
-        .clock(tdlc$clock)
+    canstar_sja1000$core$fsm$flags flags(
+        .clock(flags$clock),
+        .reset(flags$reset),
+        .sample(flags$sample),
+        .rxbit(flags$rxbit),
+        .sent(flags$sent),
+        .fld(flags$fld),
+        .fpos(flags$fpos),
+        .tx_role(flags$tx_role),
+        .flag_start(flags$flag_start),
+        .exc1_set(flags$exc1_set),
+        .own(flags$own),
+        .nf(flags$nf),
+        .npos(flags$npos),
+        .ndom(flags$ndom),
+        .err(flags$err),
+        .err_bit(flags$err_bit),
+        .err_form(flags$err_form),
+        .tinc(flags$tinc),
+        .rinc1(flags$rinc1),
+        .rinc8(flags$rinc8),
+        .ovl(flags$ovl),
+        .daf(flags$daf),
+        .exc1_met(flags$exc1_met)
     );
-    canstar_sja1000$core$fsm$tide tide(
-        .d(tide$d),
-        .q(tide$q),
-        .clock(tide$clock)
+    canstar_sja1000$core$fsm$conf conf(
+        .clock(conf$clock),
+        .reset(conf$reset),
+        .sample(conf$sample),
+        .listen_only(conf$listen_only),
+        .recover(conf$recover),
+        .tinc(conf$tinc),
+        .tdec(conf$tdec),
+        .rinc1(conf$rinc1),
+        .rinc8(conf$rinc8),
+        .rok(conf$rok),
+        .run(conf$run),
+        .in_busoff(conf$in_busoff),
+        .cnt_load(conf$cnt_load),
+        .tec_in(conf$tec_in),
+        .rec_in(conf$rec_in),
+        .tec(conf$tec),
+        .rec(conf$rec),
+        .state(conf$state),
+        .err_warn(conf$err_warn),
+        .active(conf$active),
+        .runs(conf$runs),
+        .last_run(conf$last_run),
+        .armed(conf$armed),
+        .busoff(conf$busoff)
     );
-    canstar_sja1000$core$fsm$trtr trtr(
-        .d(trtr$d),
-        .q(trtr$q),
-        .clock(trtr$clock)
+    canstar_sja1000$core$fsm$txq txq(
+        .clock(txq$clock),
+        .reset(txq$reset),
+        .sample(txq$sample),
+        .tx_req(txq$tx_req),
+        .tx_abort(txq$tx_abort),
+        .single_shot(txq$single_shot),
+        .tx_ide(txq$tx_ide),
+        .tx_rtr(txq$tx_rtr),
+        .tx_id(txq$tx_id),
+        .tx_dlc(txq$tx_dlc),
+        .tx_data(txq$tx_data),
+        .load(txq$load),
+        .adv(txq$adv),
+        .fld(txq$fld),
+        .nf(txq$nf),
+        .crc_bit(txq$crc_bit),
+        .lost(txq$lost),
+        .done(txq$done),
+        .err_now(txq$err_now),
+        .tx_role(txq$tx_role),
+        .req(txq$req),
+        .ide(txq$ide),
+        .level(txq$level)
     );
-    canstar_sja1000$core$fsm$rid rid(
-        .d(rid$d),
-        .q(rid$q),
-        .clock(rid$clock)
+    canstar_sja1000$core$fsm$rxf rxf(
+        .clock(rxf$clock),
+        .reset(rxf$reset),
+        .sample(rxf$sample),
+        .rxbit(rxf$rxbit),
+        .adv(rxf$adv),
+        .fld(rxf$fld),
+        .sofinit(rxf$sofinit),
+        .deliver(rxf$deliver),
+        .ext(rxf$ext),
+        .rtr(rxf$rtr),
+        .dlc_lo_zero(rxf$dlc_lo_zero),
+        .data_bits(rxf$data_bits),
+        .rx_ide(rxf$rx_ide),
+        .rx_rtr(rxf$rx_rtr),
+        .rx_id(rxf$rx_id),
+        .rx_dlc(rxf$rx_dlc),
+        .rx_data(rxf$rx_data)
     );
-    canstar_sja1000$core$fsm$rdat rdat(
-        .d(rdat$d),
-        .q(rdat$q),
-        .clock(rdat$clock)
-    );
-    canstar_sja1000$core$fsm$rdlc rdlc(
-        .d(rdlc$d),
-        .q(rdlc$q),
-        .clock(rdlc$clock)
-    );
-    canstar_sja1000$core$fsm$rrtr rrtr(
-        .d(rrtr$d),
-        .q(rrtr$q),
-        .clock(rrtr$clock)
-    );
-    canstar_sja1000$core$fsm$rext rext(
-        .d(rext$d),
-        .q(rext$q),
-        .clock(rext$clock)
-    );
-    canstar_sja1000$core$fsm$fdone fdone(
-        .d(fdone$d),
-        .q(fdone$q),
-        .clock(fdone$clock)
-    );
-    canstar_sja1000$core$fsm$eqcnt eqcnt(
-        .d(eqcnt$d),
-        .q(eqcnt$q),
-        .clock(eqcnt$clock)
-    );
-    canstar_sja1000$core$fsm$eqlast eqlast(
-        .d(eqlast$d),
-        .q(eqlast$q),
-        .clock(eqlast$clock)
-    );
-    canstar_sja1000$core$fsm$dafc dafc(
-        .d(dafc$d),
-        .q(dafc$q),
-        .clock(dafc$clock)
-    );
-    canstar_sja1000$core$fsm$dafany dafany(
-        .d(dafany$d),
-        .q(dafany$q),
-        .clock(dafany$clock)
-    );
-    canstar_sja1000$core$fsm$exc1 exc1(
-        .d(exc1$d),
-        .q(exc1$q),
-        .clock(exc1$clock)
-    );
-    canstar_sja1000$core$fsm$tecr tecr(
-        .d(tecr$d),
-        .q(tecr$q),
-        .clock(tecr$clock)
-    );
-    canstar_sja1000$core$fsm$recr recr(
-        .d(recr$d),
-        .q(recr$q),
-        .clock(recr$clock)
-    );
-    canstar_sja1000$core$fsm$runr runr(
-        .d(runr$d),
-        .q(runr$q),
-        .clock(runr$clock)
-    );
-    canstar_sja1000$core$fsm$rarmed rarmed(
-        .d(rarmed$d),
-        .q(rarmed$q),
-        .clock(rarmed$clock)
-    );
-    canstar_sja1000$core$fsm$req req(
-        .d(req$d),
-        .q(req$q),
-        .clock(req$clock)
-    );
-    canstar_sja1000$core$fsm$blocked blocked(
-        .d(blocked$d),
-        .q(blocked$q),
-        .clock(blocked$clock)
-    );
-    canstar_sja1000$core$fsm$evr evr(
-        .d(evr$d),
-        .q(evr$q),
-        .clock(evr$clock)
-    );
-    canstar_sja1000$core$fsm$arbpos_r arbpos_r(
-        .d(arbpos_r$d),
-        .q(arbpos_r$q),
-        .clock(arbpos_r$clock)
-    );
-    canstar_sja1000$core$fsm$errf_r errf_r(
-        .d(errf_r$d),
-        .q(errf_r$q),
-        .clock(errf_r$clock)
-    );
-    canstar_sja1000$core$fsm$errp_r errp_r(
-        .d(errp_r$d),
-        .q(errp_r$q),
-        .clock(errp_r$clock)
-    );
-    canstar_sja1000$core$fsm$errtx_r errtx_r(
-        .d(errtx_r$d),
-        .q(errtx_r$q),
-        .clock(errtx_r$clock)
-    );
-    canstar_sja1000$core$fsm$rxide_r rxide_r(
-        .d(rxide_r$d),
-        .q(rxide_r$q),
-        .clock(rxide_r$clock)
-    );
-    canstar_sja1000$core$fsm$rxrtr_r rxrtr_r(
-        .d(rxrtr_r$d),
-        .q(rxrtr_r$q),
-        .clock(rxrtr_r$clock)
-    );
-    canstar_sja1000$core$fsm$rxid_r rxid_r(
-        .d(rxid_r$d),
-        .q(rxid_r$q),
-        .clock(rxid_r$clock)
-    );
-    canstar_sja1000$core$fsm$rxdlc_r rxdlc_r(
-        .d(rxdlc_r$d),
-        .q(rxdlc_r$q),
-        .clock(rxdlc_r$clock)
-    );
-    canstar_sja1000$core$fsm$rxdat_r rxdat_r(
-        .d(rxdat_r$d),
-        .q(rxdat_r$q),
-        .clock(rxdat_r$clock)
+    canstar_sja1000$core$fsm$rpt rpt(
+        .clock(rpt$clock),
+        .reset(rpt$reset),
+        .sample(rpt$sample),
+        .ev_sof(rpt$ev_sof),
+        .ev_arb_lost(rpt$ev_arb_lost),
+        .ev_bit_err(rpt$ev_bit_err),
+        .ev_stuff_err(rpt$ev_stuff_err),
+        .ev_crc_err(rpt$ev_crc_err),
+        .ev_form_err(rpt$ev_form_err),
+        .ev_ack_err(rpt$ev_ack_err),
+        .ev_aef(rpt$ev_aef),
+        .ev_pef(rpt$ev_pef),
+        .ev_olf(rpt$ev_olf),
+        .ev_ovl(rpt$ev_ovl),
+        .ev_daf(rpt$ev_daf),
+        .ev_tx_ok(rpt$ev_tx_ok),
+        .ev_rx_ok(rpt$ev_rx_ok),
+        .ev_exc1(rpt$ev_exc1),
+        .ev_exc2(rpt$ev_exc2),
+        .ev_run(rpt$ev_run),
+        .ev_recovered(rpt$ev_recovered),
+        .ev_integrated(rpt$ev_integrated),
+        .err_now(rpt$err_now),
+        .code(rpt$code),
+        .pos(rpt$pos),
+        .tx_role(rpt$tx_role),
+        .arb_pos(rpt$arb_pos),
+        .events(rpt$events),
+        .tx_done(rpt$tx_done),
+        .arb_lost(rpt$arb_lost),
+        .arb_lost_pos(rpt$arb_lost_pos),
+        .error(rpt$error),
+        .err_kind(rpt$err_kind),
+        .err_field(rpt$err_field),
+        .err_pos(rpt$err_pos),
+        .err_tx(rpt$err_tx),
+        .rx_valid(rpt$rx_valid)
     );
     
     // Update code
     always @(*) begin
-        fld$clock = clock;
-        fpos$clock = clock;
-        pfld$clock = clock;
-        ppos$clock = clock;
-        rtx$clock = clock;
-        dom$clock = clock;
-        crcerr$clock = clock;
-        tid$clock = clock;
-        tdat$clock = clock;
-        tdlc$clock = clock;
-        tide$clock = clock;
-        trtr$clock = clock;
-        rid$clock = clock;
-        rdat$clock = clock;
-        rdlc$clock = clock;
-        rrtr$clock = clock;
-        rext$clock = clock;
-        fdone$clock = clock;
-        eqcnt$clock = clock;
-        eqlast$clock = clock;
-        dafc$clock = clock;
-        dafany$clock = clock;
-        exc1$clock = clock;
-        tecr$clock = clock;
-        recr$clock = clock;
-        runr$clock = clock;
-        rarmed$clock = clock;
-        req$clock = clock;
-        blocked$clock = clock;
-        evr$clock = clock;
-        arbpos_r$clock = clock;
-        errf_r$clock = clock;
-        errp_r$clock = clock;
-        errtx_r$clock = clock;
-        rxide_r$clock = clock;
-        rxrtr_r$clock = clock;
-        rxid_r$clock = clock;
-        rxdlc_r$clock = clock;
-        rxdat_r$clock = clock;
-        fld$d = fld$q;
-        fpos$d = fpos$q;
-        pfld$d = pfld$q;
-        ppos$d = ppos$q;
-        rtx$d = rtx$q;
-        dom$d = dom$q;
-        crcerr$d = crcerr$q;
-        tid$d = tid$q;
-        tdat$d = tdat$q;
-        tdlc$d = tdlc$q;
-        tide$d = tide$q;
-        trtr$d = trtr$q;
-        rid$d = rid$q;
-        rdat$d = rdat$q;
-        rdlc$d = rdlc$q;
-        rrtr$d = rrtr$q;
-        rext$d = rext$q;
-        fdone$d = fdone$q;
-        eqcnt$d = eqcnt$q;
-        eqlast$d = eqlast$q;
-        dafc$d = dafc$q;
-        dafany$d = dafany$q;
-        exc1$d = exc1$q;
-        tecr$d = tecr$q;
-        recr$d = recr$q;
-        runr$d = runr$q;
-        rarmed$d = rarmed$q;
-        req$d = req$q;
-        blocked$d = blocked$q;
-        evr$d = evr$q;
-        arbpos_r$d = arbpos_r$q;
-        errf_r$d = errf_r$q;
-        errp_r$d = errp_r$q;
-        errtx_r$d = errtx_r$q;
-        rxide_r$d = rxide_r$q;
-        rxrtr_r$d = rxrtr_r$q;
-        rxid_r$d = rxid_r$q;
-        rxdlc_r$d = rxdlc_r$q;
-        rxdat_r$d = rxdat_r$q;
-        l_bit = busmon;
-        l_sent = ~dom$q;
-        l_active = (tecr$q < 32'h80) & (recr$q < 32'h80);
-        l_cantx = req$q & ~listen_only;
-        l_nf = fld$q;
-        l_npos = fpos$q;
-        l_posinc = fpos$q + 32'h1;
-        if (fpos$q == 32'hff) begin
-            l_posinc = fpos$q;
-        end
-        l_ndom = 1'b0;
-        l_usetx = 1'b0;
-        l_txv = 1'b1;
-        l_role = rtx$q;
-        l_instf = 1'b0;
-        l_arbf = 1'b0;
-        l_arbstuff = 1'b0;
-        l_adv = 1'b0;
-        l_err = 1'b0;
-        l_errk = 32'h0;
-        l_ovl = 1'b0;
-        l_start = 1'b0;
-        l_sofinit = 1'b0;
-        l_txsof = 1'b0;
-        l_tinc = 1'b0;
-        l_tdec = 1'b0;
-        l_rinc1 = 1'b0;
-        l_rinc8 = 1'b0;
-        l_rok = 1'b0;
-        l_clear = 1'b0;
-        l_deliver = 1'b0;
-        l_crcen = 1'b0;
-        l_crcerr = crcerr$q;
-        l_tid = tid$q;
-        l_tdat = tdat$q;
-        l_tdlc = tdlc$q;
-        l_tide = tide$q;
-        l_trtr = trtr$q;
-        l_rid = rid$q;
-        l_rdat = rdat$q;
-        l_rdlc = rdlc$q;
-        l_rrtr = rrtr$q;
-        l_rext = rext$q;
-        l_fdone = fdone$q;
-        l_eqcnt = eqcnt$q;
-        l_eqlast = eqlast$q;
-        l_dafc = dafc$q;
-        l_dafany = dafany$q;
-        l_exc1 = exc1$q;
-        l_ev = 32'h0;
-        l_tec = tecr$q;
-        l_rec = recr$q;
-        l_runs = runr$q;
-        l_rarmed = rarmed$q | recover;
-        l_nbytes = rdlc$q;
-        l_nbits = 32'h0;
-        l_shamt = 32'h0;
-        l_arbpos = 32'h0;
-        fld$d = fld$q;
-        fpos$d = fpos$q;
-        pfld$d = pfld$q;
-        ppos$d = ppos$q;
-        rtx$d = rtx$q;
-        dom$d = dom$q;
-        crcerr$d = crcerr$q;
-        tid$d = tid$q;
-        tdat$d = tdat$q;
-        tdlc$d = tdlc$q;
-        tide$d = tide$q;
-        trtr$d = trtr$q;
-        rid$d = rid$q;
-        rdat$d = rdat$q;
-        rdlc$d = rdlc$q;
-        rrtr$d = rrtr$q;
-        rext$d = rext$q;
-        fdone$d = fdone$q;
-        eqcnt$d = eqcnt$q;
-        eqlast$d = eqlast$q;
-        dafc$d = dafc$q;
-        dafany$d = dafany$q;
-        exc1$d = exc1$q;
-        tecr$d = tecr$q;
-        recr$d = recr$q;
-        runr$d = runr$q;
-        rarmed$d = rarmed$q | recover;
-        evr$d = 32'h0;
-        arbpos_r$d = arbpos_r$q;
-        errf_r$d = errf_r$q;
-        errp_r$d = errp_r$q;
-        errtx_r$d = errtx_r$q;
-        rxide_r$d = rxide_r$q;
-        rxrtr_r$d = rxrtr_r$q;
-        rxid_r$d = rxid_r$q;
-        rxdlc_r$d = rxdlc_r$q;
-        rxdat_r$d = rxdat_r$q;
-        blocked$d = blocked$q;
-        if (tx_abort) begin
-            blocked$d = 1'b1;
-        end
-        if (~tx_req) begin
-            blocked$d = 1'b0;
-        end
-        req$d = tx_req & ~blocked$q & ~tx_abort;
-        if (l_rdlc[32'h3]) begin
-            l_nbytes = 32'h8;
-        end
-        case (fld$q)
-            Field$Sof:
-                begin
-                    l_instf = 1'b1;
-                end
-            Field$Ident:
-                begin
-                    l_instf = 1'b1;
-                end
-            Field$Srr:
-                begin
-                    l_instf = 1'b1;
-                end
-            Field$Ide:
-                begin
-                    l_instf = 1'b1;
-                end
-            Field$Rtr:
-                begin
-                    l_instf = 1'b1;
-                end
-            Field$ExIdent:
-                begin
-                    l_instf = 1'b1;
-                end
-            Field$Resv:
-                begin
-                    l_instf = 1'b1;
-                end
-            Field$Dlc:
-                begin
-                    l_instf = 1'b1;
-                end
-            Field$Data:
-                begin
-                    l_instf = 1'b1;
-                end
-            Field$Crc:
-                begin
-                    l_instf = 1'b1;
-                end
-            default:
-                begin
-                end
-        endcase
-        l_curstf = dstf$next_is_stuff & (l_instf | (fld$q == Field$CrcDel));
-        l_instf = l_instf | l_curstf;
-        l_dfld = fld$q;
-        l_dpos = fpos$q;
-        if (l_curstf) begin
-            l_dfld = pfld$q;
-            l_dpos = ppos$q;
-        end
-        drive = ~dom$q;
-        if (l_curstf) begin
-            drive = ~rtx$q | dstf$stuff_level;
-        end
-        if (listen_only) begin
-            drive = 1'b1;
-        end
-        l_sent = drive;
-        hs_en = 1'b0;
-        field = 32'h0;
-        case (l_dfld)
-            Field$Reset:
-                begin
-                    field = 32'h0;
-                    hs_en = 1'b1;
-                end
-            Field$WaitIdle:
-                begin
-                    field = 32'h1;
-                    hs_en = 1'b1;
-                end
-            Field$Idle:
-                begin
-                    field = 32'h2;
-                    hs_en = 1'b1;
-                end
-            Field$BusOff:
-                begin
-                    field = 32'h3;
-                    hs_en = 1'b1;
-                end
-            Field$Sof:
-                begin
-                    field = 32'h4;
-                    hs_en = 1'b1;
-                end
-            Field$Ident:
-                begin
-                    field = 32'h5;
-                end
-            Field$Srr:
-                begin
-                    field = 32'h6;
-                end
-            Field$Ide:
-                begin
-                    field = 32'h7;
-                end
-            Field$Rtr:
-                begin
-                    field = 32'h8;
-                end
-            Field$ExIdent:
-                begin
-                    field = 32'h9;
-                end
-            Field$Resv:
-                begin
-                    field = 32'ha;
-                end
-            Field$Dlc:
-                begin
-                    field = 32'hb;
-                end
-            Field$Data:
-                begin
-                    field = 32'hc;
-                end
-            Field$Crc:
-                begin
-                    field = 32'hd;
-                end
-            Field$CrcDel:
-                begin
-                    field = 32'he;
-                end
-            Field$AckSlot:
-                begin
-                    field = 32'hf;
-                end
-            Field$AckDel:
-                begin
-                    field = 32'h10;
-                end
-            Field$Eof:
-                begin
-                    field = 32'h11;
-                end
-            Field$ActFlag:
-                begin
-                    field = 32'h12;
-                end
-            Field$PasFlag:
-                begin
-                    field = 32'h13;
-                end
-            Field$OvlFlag:
-                begin
-                    field = 32'h14;
-                end
-            Field$ErrDel:
-                begin
-                    field = 32'h15;
-                end
-            Field$OvlDel:
-                begin
-                    field = 32'h16;
-                end
-            Field$Inter:
-                begin
-                    field = 32'h17;
-                    hs_en = fpos$q == 32'h3;
-                end
-            Field$Suspend:
-                begin
-                    field = 32'h18;
-                    hs_en = 1'b1;
-                end
-            default:
-                begin
-                end
-        endcase
-        case (l_dfld)
-            Field$Ident:
-                begin
-                    l_arbf = 1'b1;
-                    l_arbstuff = 1'b1;
-                    l_arbpos = ((l_dpos) & 6'h3f);
-                end
-            Field$Srr:
-                begin
-                    l_arbf = 1'b1;
-                    l_arbstuff = 1'b1;
-                    l_arbpos = 32'hc;
-                end
-            Field$Ide:
-                begin
-                    l_arbf = 1'b1;
-                    l_arbstuff = rext$q;
-                    l_arbpos = 32'hd;
-                end
-            Field$Rtr:
-                begin
-                    l_arbf = 1'b1;
-                    l_arbstuff = ~rext$q;
-                    l_arbpos = 32'hc;
-                    if (rext$q) begin
-                        l_arbpos = 32'h20;
-                    end
-                end
-            Field$ExIdent:
-                begin
-                    l_arbf = 1'b1;
-                    l_arbstuff = 1'b1;
-                    l_arbpos = ((l_dpos) & 6'h3f) + 32'hd;
-                end
-            default:
-                begin
-                end
-        endcase
-        if (sample) begin
-            l_ev = (l_ev & ~(1 << (32'h13)) | ((1'b1) << (32'h13)));
-            if (l_instf) begin
-                if (l_curstf) begin
-                    l_ndom = dom$q;
-                    if (dstf$stuff_error) begin
-                        l_err = 1'b1;
-                        if (rtx$q) begin
-                            if (l_bit & ~l_sent) begin
-                                l_errk = (l_errk & ~(1 << (32'h0)) | ((1'b1) << (32'h0)));
-                                l_tinc = 1'b1;
-                            end
-                            else begin
-                                l_errk = (l_errk & ~(1 << (32'h1)) | ((1'b1) << (32'h1)));
-                                if (l_arbstuff) begin
-                                    l_ev = (l_ev & ~(1 << (32'hf)) | ((1'b1) << (32'hf)));
-                                end
-                                else begin
-                                    l_tinc = 1'b1;
-                                end
-                            end
-                        end
-                        else begin
-                            l_errk = (l_errk & ~(1 << (32'h1)) | ((1'b1) << (32'h1)));
-                            l_rinc1 = 1'b1;
-                        end
-                    end
-                end
-                else begin
-                    if (rtx$q & (l_bit != l_sent)) begin
-                        if (l_arbf & l_sent) begin
-                            l_role = 1'b0;
-                            l_ev = (l_ev & ~(1 << (32'h1)) | ((1'b1) << (32'h1)));
-                            if (single_shot) begin
-                                blocked$d = 1'b1;
-                            end
-                        end
-                        else begin
-                            l_err = 1'b1;
-                            l_errk = (l_errk & ~(1 << (32'h0)) | ((1'b1) << (32'h0)));
-                            l_tinc = 1'b1;
-                        end
-                    end
-                    if (~l_err) begin
-                        l_crcen = 1'b1;
-                        case (fld$q)
-                            Field$Sof:
-                                begin
-                                    l_sofinit = 1'b1;
-                                end
-                            Field$Ident:
-                                begin
-                                    l_rid = rid$q << 32'h1;
-                                    if (l_bit) begin
-                                        l_rid = l_rid | 32'h1;
-                                    end
-                                    l_tid = tid$q << 32'h1;
-                                end
-                            Field$ExIdent:
-                                begin
-                                    l_rid = rid$q << 32'h1;
-                                    if (l_bit) begin
-                                        l_rid = l_rid | 32'h1;
-                                    end
-                                    l_tid = tid$q << 32'h1;
-                                end
-                            Field$Srr:
-                                begin
-                                    l_rrtr = l_bit;
-                                end
-                            Field$Rtr:
-                                begin
-                                    l_rrtr = l_bit;
-                                end
-                            Field$Ide:
-                                begin
-                                    l_rext = l_bit;
-                                end
-                            Field$Dlc:
-                                begin
-                                    l_rdlc = rdlc$q << 32'h1;
-                                    if (l_bit) begin
-                                        l_rdlc = l_rdlc | 32'h1;
-                                    end
-                                    l_tdlc = tdlc$q << 32'h1;
-                                end
-                            Field$Data:
-                                begin
-                                    l_rdat = rdat$q << 32'h1;
-                                    if (l_bit) begin
-                                        l_rdat = l_rdat | 32'h1;
-                                    end
-                                    l_tdat = tdat$q << 32'h1;
-                                end
-                            Field$Crc:
-                                begin
-                                    if ((fpos$q == 32'hf) & |crcb$crc_next) begin
-                                        l_crcerr = 1'b1;
-                                    end
-                                end
-                            default:
-                                begin
-                                end
-                        endcase
-                        l_adv = 1'b1;
-                    end
-                end
-            end
-            else begin
-                case (fld$q)
-                    Field$Reset:
-                        begin
-                            l_nf = Field$WaitIdle;
-                            l_npos = 32'h1;
-                        end
-                    Field$WaitIdle:
-                        begin
-                            if (~l_bit) begin
-                                l_npos = 32'h1;
-                            end
-                            else if (fpos$q == 32'hb) begin
-                                l_ev = (l_ev & ~(1 << (32'h12)) | ((1'b1) << (32'h12)));
-                                l_start = 1'b1;
-                            end
-                            else begin
-                                l_npos = l_posinc;
-                            end
-                        end
-                    Field$Idle:
-                        begin
-                            if (~l_bit) begin
-                                l_sofinit = 1'b1;
-                                l_role = 1'b0;
-                            end
-                            else begin
-                                l_start = 1'b1;
-                            end
-                        end
-                    Field$BusOff:
-                        begin
-                            if ((host_recovery & ~(rarmed$q | recover)) | ~l_bit) begin
-                                l_npos = 32'h1;
-                            end
-                            else if (fpos$q == 32'hb) begin
-                                l_ev = (l_ev & ~(1 << (32'h10)) | ((1'b1) << (32'h10)));
-                                l_npos = 32'h1;
-                                l_runs = runr$q + 32'h1;
-                                if (runr$q == 32'h7f) begin
-                                    l_ev = (l_ev & ~(1 << (32'h11)) | ((1'b1) << (32'h11)));
-                                    l_clear = 1'b1;
-                                    l_runs = 32'h0;
-                                    l_rarmed = 1'b0;
-                                    l_start = 1'b1;
-                                end
-                            end
-                            else begin
-                                l_npos = l_posinc;
-                            end
-                        end
-                    Field$CrcDel:
-                        begin
-                            if (~l_bit) begin
-                                l_err = 1'b1;
-                                l_errk = (l_errk & ~(1 << (32'h3)) | ((1'b1) << (32'h3)));
-                                l_tinc = rtx$q;
-                                l_rinc1 = ~rtx$q;
-                            end
-                            else begin
-                                l_nf = Field$AckSlot;
-                                l_npos = 32'h1;
-                                l_ndom = ~rtx$q & ~crcerr$q & ~listen_only;
-                            end
-                        end
-                    Field$AckSlot:
-                        begin
-                            l_nf = Field$AckDel;
-                            l_npos = 32'h1;
-                            if (l_bit) begin
-                                if (rtx$q) begin
-                                    if (~self_test) begin
-                                        l_err = 1'b1;
-                                        l_errk = (l_errk & ~(1 << (32'h4)) | ((1'b1) << (32'h4)));
-                                        if (l_active) begin
-                                            l_tinc = 1'b1;
-                                        end
-                                        else begin
-                                            l_exc1 = 1'b1;
-                                        end
-                                    end
-                                end
-                                else if (dom$q) begin
-                                    l_err = 1'b1;
-                                    l_errk = (l_errk & ~(1 << (32'h0)) | ((1'b1) << (32'h0)));
-                                    l_rinc1 = 1'b1;
-                                end
-                            end
-                        end
-                    Field$AckDel:
-                        begin
-                            if (~l_bit) begin
-                                l_err = 1'b1;
-                                l_errk = (l_errk & ~(1 << (32'h3)) | ((1'b1) << (32'h3)));
-                                l_tinc = rtx$q;
-                                l_rinc1 = ~rtx$q;
-                            end
-                            if (~rtx$q & crcerr$q) begin
-                                l_err = 1'b1;
-                                l_errk = 32'h0;
-                                l_errk = (l_errk & ~(1 << (32'h2)) | ((1'b1) << (32'h2)));
-                                l_rinc1 = 1'b1;
-                            end
-                            l_nf = Field$Eof;
-                            l_npos = 32'h1;
-                        end
-                    Field$Eof:
-                        begin
-                            l_npos = l_posinc;
-                            if (fpos$q == 32'h7) begin
-                                l_nf = Field$Inter;
-                                l_npos = 32'h1;
-                                if (rtx$q) begin
-                                    if (~l_bit) begin
-                                        l_err = 1'b1;
-                                        l_errk = (l_errk & ~(1 << (32'h3)) | ((1'b1) << (32'h3)));
-                                        l_tinc = 1'b1;
-                                    end
-                                    else begin
-                                        l_tdec = 1'b1;
-                                        l_ev = (l_ev & ~(1 << (32'hc)) | ((1'b1) << (32'hc)));
-                                        blocked$d = 1'b1;
-                                    end
-                                end
-                                else begin
-                                    l_deliver = 1'b1;
-                                    l_ev = (l_ev & ~(1 << (32'hd)) | ((1'b1) << (32'hd)));
-                                    if (~l_bit) begin
-                                        l_ovl = 1'b1;
-                                    end
-                                    else begin
-                                        l_rok = 1'b1;
-                                    end
-                                end
-                            end
-                            else if (~l_bit) begin
-                                l_err = 1'b1;
-                                l_errk = (l_errk & ~(1 << (32'h3)) | ((1'b1) << (32'h3)));
-                                l_tinc = rtx$q;
-                                l_rinc1 = ~rtx$q;
-                            end
-                        end
-                    Field$ActFlag:
-                        begin
-                            if (~fdone$q) begin
-                                if (l_bit & ~l_sent) begin
-                                    l_err = 1'b1;
-                                    l_errk = (l_errk & ~(1 << (32'h0)) | ((1'b1) << (32'h0)));
-                                    l_tinc = rtx$q;
-                                    l_rinc8 = ~rtx$q;
-                                end
-                                else begin
-                                    l_npos = l_posinc;
-                                    l_ndom = 1'b1;
-                                    if (fpos$q == 32'h6) begin
-                                        l_fdone = 1'b1;
-                                        l_ndom = 1'b0;
-                                        l_dafc = 32'h0;
-                                        l_dafany = 1'b0;
-                                    end
-                                end
-                            end
-                            else if (l_bit) begin
-                                l_nf = Field$ErrDel;
-                                l_npos = 32'h2;
-                            end
-                            else begin
-                                l_npos = l_posinc;
-                                l_ev = (l_ev & ~(1 << (32'hb)) | ((1'b1) << (32'hb)));
-                                l_dafany = 1'b1;
-                                l_dafc = dafc$q + 32'h1;
-                                if (~dafany$q & ~rtx$q) begin
-                                    l_rinc8 = 1'b1;
-                                end
-                                if (dafc$q == 32'h7) begin
-                                    l_tinc = rtx$q;
-                                    l_rinc8 = ~rtx$q;
-                                end
-                            end
-                        end
-                    Field$OvlFlag:
-                        begin
-                            if (~fdone$q) begin
-                                if (l_bit & ~l_sent) begin
-                                    l_err = 1'b1;
-                                    l_errk = (l_errk & ~(1 << (32'h0)) | ((1'b1) << (32'h0)));
-                                    l_tinc = rtx$q;
-                                    l_rinc8 = ~rtx$q;
-                                end
-                                else begin
-                                    l_npos = l_posinc;
-                                    l_ndom = 1'b1;
-                                    if (fpos$q == 32'h6) begin
-                                        l_fdone = 1'b1;
-                                        l_ndom = 1'b0;
-                                        l_dafc = 32'h0;
-                                        l_dafany = 1'b0;
-                                    end
-                                end
-                            end
-                            else if (l_bit) begin
-                                l_nf = Field$OvlDel;
-                                l_npos = 32'h2;
-                            end
-                            else begin
-                                l_npos = l_posinc;
-                                l_ev = (l_ev & ~(1 << (32'hb)) | ((1'b1) << (32'hb)));
-                                l_dafany = 1'b1;
-                                l_dafc = dafc$q + 32'h1;
-                                if (dafc$q == 32'h7) begin
-                                    l_tinc = rtx$q;
-                                    l_rinc8 = ~rtx$q;
-                                end
-                            end
-                        end
-                    Field$PasFlag:
-                        begin
-                            if (~fdone$q) begin
-                                l_npos = l_posinc;
-                                if (fpos$q == 32'h1) begin
-                                    l_eqcnt = 32'h1;
-                                    l_eqlast = l_bit;
-                                end
-                                else if (l_bit == eqlast$q) begin
-                                    l_eqcnt = eqcnt$q + 32'h1;
-                                end
-                                else begin
-                                    l_eqcnt = 32'h1;
-                                    l_eqlast = l_bit;
-                                end
-                                if (exc1$q & ~l_bit) begin
-                                    l_exc1 = 1'b0;
-                                    l_tinc = 1'b1;
-                                end
-                                if (l_eqcnt == 32'h6) begin
-                                    l_fdone = 1'b1;
-                                    l_dafc = 32'h0;
-                                    l_dafany = 1'b0;
-                                    if (l_exc1) begin
-                                        l_ev = (l_ev & ~(1 << (32'he)) | ((1'b1) << (32'he)));
-                                    end
-                                    l_exc1 = 1'b0;
-                                end
-                            end
-                            else if (l_bit) begin
-                                l_nf = Field$ErrDel;
-                                l_npos = 32'h2;
-                            end
-                            else begin
-                                l_npos = l_posinc;
-                                l_ev = (l_ev & ~(1 << (32'hb)) | ((1'b1) << (32'hb)));
-                                l_dafany = 1'b1;
-                                l_dafc = dafc$q + 32'h1;
-                                if (~dafany$q & ~rtx$q) begin
-                                    l_rinc8 = 1'b1;
-                                end
-                                if (dafc$q == 32'h7) begin
-                                    l_tinc = rtx$q;
-                                    l_rinc8 = ~rtx$q;
-                                end
-                            end
-                        end
-                    Field$ErrDel:
-                        begin
-                            l_npos = l_posinc;
-                            if (fpos$q == 32'h8) begin
-                                l_nf = Field$Inter;
-                                l_npos = 32'h1;
-                                if (~l_bit) begin
-                                    l_ovl = 1'b1;
-                                end
-                            end
-                            else if (~l_bit) begin
-                                l_err = 1'b1;
-                                l_errk = (l_errk & ~(1 << (32'h3)) | ((1'b1) << (32'h3)));
-                                l_tinc = rtx$q;
-                                l_rinc1 = ~rtx$q;
-                            end
-                        end
-                    Field$OvlDel:
-                        begin
-                            l_npos = l_posinc;
-                            if (fpos$q == 32'h8) begin
-                                l_nf = Field$Inter;
-                                l_npos = 32'h1;
-                                if (~l_bit) begin
-                                    l_ovl = 1'b1;
-                                end
-                            end
-                            else if (~l_bit) begin
-                                l_err = 1'b1;
-                                l_errk = (l_errk & ~(1 << (32'h3)) | ((1'b1) << (32'h3)));
-                                l_tinc = rtx$q;
-                                l_rinc1 = ~rtx$q;
-                            end
-                        end
-                    Field$Inter:
-                        begin
-                            l_npos = l_posinc;
-                            if (fpos$q == 32'h3) begin
-                                if (~l_bit) begin
-                                    l_sofinit = 1'b1;
-                                    if (l_cantx & ~(rtx$q & ~l_active)) begin
-                                        l_role = 1'b1;
-                                        l_txsof = 1'b1;
-                                    end
-                                    else begin
-                                        l_role = 1'b0;
-                                    end
-                                end
-                                else if (rtx$q & ~l_active) begin
-                                    l_nf = Field$Suspend;
-                                    l_npos = 32'h1;
-                                end
-                                else begin
-                                    l_start = 1'b1;
-                                end
-                            end
-                            else if (~l_bit) begin
-                                l_ovl = 1'b1;
-                            end
-                        end
-                    Field$Suspend:
-                        begin
-                            l_npos = l_posinc;
-                            if (~l_bit) begin
-                                l_sofinit = 1'b1;
-                                l_role = 1'b0;
-                            end
-                            else if (fpos$q == 32'h8) begin
-                                l_start = 1'b1;
-                            end
-                        end
-                    default:
-                        begin
-                        end
-                endcase
-            end
-            if (l_adv) begin
-                l_usetx = 1'b1;
-                l_npos = l_posinc;
-                if (l_rdlc[32'h3]) begin
-                    l_nbytes = 32'h8;
-                end
-                else begin
-                    l_nbytes = l_rdlc;
-                end
-                l_nbits = ((l_nbytes) & 8'hff) << 32'h3;
-                case (fld$q)
-                    Field$Sof:
-                        begin
-                            l_nf = Field$Ident;
-                            l_npos = 32'h1;
-                        end
-                    Field$Ident:
-                        begin
-                            if (fpos$q == 32'hb) begin
-                                l_npos = 32'h1;
-                                if (l_role & tide$q) begin
-                                    l_nf = Field$Srr;
-                                end
-                                else begin
-                                    l_nf = Field$Rtr;
-                                end
-                            end
-                        end
-                    Field$Srr:
-                        begin
-                            l_nf = Field$Ide;
-                            l_npos = 32'h1;
-                        end
-                    Field$Rtr:
-                        begin
-                            l_npos = 32'h1;
-                            if (rext$q) begin
-                                l_nf = Field$Resv;
-                            end
-                            else begin
-                                l_nf = Field$Ide;
-                            end
-                        end
-                    Field$Ide:
-                        begin
-                            l_npos = 32'h1;
-                            if (l_rext) begin
-                                l_nf = Field$ExIdent;
-                            end
-                            else begin
-                                l_nf = Field$Resv;
-                            end
-                        end
-                    Field$ExIdent:
-                        begin
-                            if (fpos$q == 32'h12) begin
-                                l_nf = Field$Rtr;
-                                l_npos = 32'h1;
-                            end
-                        end
-                    Field$Resv:
-                        begin
-                            if (~(rext$q & (fpos$q == 32'h1))) begin
-                                l_nf = Field$Dlc;
-                                l_npos = 32'h1;
-                            end
-                        end
-                    Field$Dlc:
-                        begin
-                            if (fpos$q == 32'h4) begin
-                                l_npos = 32'h1;
-                                if (l_rrtr | (l_nbytes == 32'h0)) begin
-                                    l_nf = Field$Crc;
-                                end
-                                else begin
-                                    l_nf = Field$Data;
-                                end
-                            end
-                        end
-                    Field$Data:
-                        begin
-                            if (fpos$q == l_nbits) begin
-                                l_nf = Field$Crc;
-                                l_npos = 32'h1;
-                            end
-                        end
-                    Field$Crc:
-                        begin
-                            if (fpos$q == 32'hf) begin
-                                l_nf = Field$CrcDel;
-                                l_npos = 32'h1;
-                                l_usetx = 1'b0;
-                            end
-                        end
-                    default:
-                        begin
-                        end
-                endcase
-            end
-            if (l_sofinit) begin
-                l_ev = (l_ev & ~(1 << (32'h0)) | ((1'b1) << (32'h0)));
-                l_crcerr = 1'b0;
-                l_rid = 32'h0;
-                l_rdat = 32'h0;
-                l_rdlc = 32'h0;
-                l_rrtr = 1'b0;
-                l_rext = 1'b0;
-                l_nf = Field$Ident;
-                l_npos = 32'h1;
-                l_usetx = 1'b1;
-            end
-            if (l_start) begin
-                if (l_cantx) begin
-                    l_nf = Field$Sof;
-                    l_npos = 32'h1;
-                    l_role = 1'b1;
-                    l_txsof = 1'b1;
-                    l_usetx = 1'b1;
-                end
-                else begin
-                    l_nf = Field$Idle;
-                    l_npos = 32'h1;
-                    if (fld$q == Field$Idle) begin
-                        l_npos = l_posinc;
-                    end
-                end
-            end
-            if (l_txsof) begin
-                l_tide = tx_ide;
-                l_trtr = tx_rtr;
-                if (tx_ide) begin
-                    l_tid = tx_id;
-                end
-                else begin
-                    l_tid = tx_id << 32'h12;
-                end
-                l_tdlc = tx_dlc;
-                l_tdat = tx_data;
-            end
-            if (l_usetx) begin
-                case (l_nf)
-                    Field$Sof:
-                        begin
-                            l_txv = 1'b0;
-                        end
-                    Field$Ident:
-                        begin
-                            l_txv = l_tid[32'h1c];
-                        end
-                    Field$ExIdent:
-                        begin
-                            l_txv = l_tid[32'h1c];
-                        end
-                    Field$Srr:
-                        begin
-                            l_txv = 1'b1;
-                        end
-                    Field$Ide:
-                        begin
-                            l_txv = l_tide;
-                        end
-                    Field$Rtr:
-                        begin
-                            l_txv = l_trtr;
-                        end
-                    Field$Resv:
-                        begin
-                            l_txv = 1'b0;
-                        end
-                    Field$Dlc:
-                        begin
-                            l_txv = l_tdlc[32'h3];
-                        end
-                    Field$Data:
-                        begin
-                            l_txv = l_tdat[32'h3f];
-                        end
-                    Field$Crc:
-                        begin
-                            l_txv = crcb$crc_next[32'he];
-                        end
-                    default:
-                        begin
-                            l_txv = 1'b1;
-                        end
-                endcase
-                l_ndom = l_role & ~l_txv;
-            end
-            if (l_err) begin
-                l_npos = 32'h1;
-                l_fdone = 1'b0;
-                l_crcerr = 1'b0;
-                l_dafc = 32'h0;
-                l_dafany = 1'b0;
-                l_ev = l_ev | (((l_errk) & 20'hfffff) << 32'h2);
-                if (l_active) begin
-                    l_nf = Field$ActFlag;
-                    l_ndom = 1'b1;
-                    l_ev = (l_ev & ~(1 << (32'h7)) | ((1'b1) << (32'h7)));
-                end
-                else begin
-                    l_nf = Field$PasFlag;
-                    l_ndom = 1'b0;
-                    l_ev = (l_ev & ~(1 << (32'h8)) | ((1'b1) << (32'h8)));
-                end
-                if (rtx$q & single_shot) begin
-                    blocked$d = 1'b1;
-                end
-                errf_r$d = field;
-                errp_r$d = l_dpos;
-                errtx_r$d = rtx$q;
-            end
-            else if (l_ovl) begin
-                l_nf = Field$OvlFlag;
-                l_npos = 32'h1;
-                l_ndom = 1'b1;
-                l_fdone = 1'b0;
-                l_dafc = 32'h0;
-                l_dafany = 1'b0;
-                l_ev = (l_ev & ~(1 << (32'ha)) | ((1'b1) << (32'ha)));
-                l_ev = (l_ev & ~(1 << (32'h9)) | ((1'b1) << (32'h9)));
-            end
-            if (listen_only) begin
-                l_tec = tecr$q;
-                l_rec = recr$q;
-            end
-            else if (l_clear) begin
-                l_tec = 32'h0;
-                l_rec = 32'h0;
-            end
-            else begin
-                if (l_tinc) begin
-                    l_tec = tecr$q + 32'h8;
-                end
-                else if (l_tdec & (tecr$q != 32'h0)) begin
-                    l_tec = tecr$q - 32'h1;
-                end
-                if (recr$q < 32'h80) begin
-                    if (l_rinc8) begin
-                        l_rec = recr$q + 32'h8;
-                    end
-                    else if (l_rinc1) begin
-                        l_rec = recr$q + 32'h1;
-                    end
-                    else if (l_rok & (recr$q != 32'h0)) begin
-                        l_rec = recr$q - 32'h1;
-                    end
-                end
-                else if (l_rok) begin
-                    l_rec = 32'h7f;
-                end
-            end
-            if (l_tec[32'h8] & (fld$q != Field$BusOff)) begin
-                l_ev = (l_ev & ~(1 << (32'h7)) | ((1'b0) << (32'h7)));
-                l_ev = (l_ev & ~(1 << (32'h8)) | ((1'b0) << (32'h8)));
-                l_ev = (l_ev & ~(1 << (32'h9)) | ((1'b0) << (32'h9)));
-                l_nf = Field$BusOff;
-                l_npos = 32'h1;
-                l_ndom = 1'b0;
-                l_runs = 32'h0;
-                l_rarmed = 1'b0;
-            end
-            if (l_deliver) begin
-                rxide_r$d = rext$q;
-                rxrtr_r$d = rrtr$q;
-                rxid_r$d = rid$q;
-                rxdlc_r$d = rdlc$q;
-                l_shamt = ((l_nbytes) & 6'h3f) << 32'h3;
-                l_shamt = (~l_shamt) + 32'h1;
-                if (rrtr$q | (l_nbytes == 32'h0)) begin
-                    rxdat_r$d = 32'h0;
-                end
-                else begin
-                    rxdat_r$d = rdat$q << l_shamt;
-                end
-            end
-            if (l_ev[32'h1]) begin
-                arbpos_r$d = l_arbpos;
-            end
-            if (~l_curstf) begin
-                pfld$d = fld$q;
-                ppos$d = fpos$q;
-            end
-            fld$d = l_nf;
-            fpos$d = l_npos;
-            rtx$d = l_role;
-            dom$d = l_ndom;
-            crcerr$d = l_crcerr;
-            tid$d = l_tid;
-            tdat$d = l_tdat;
-            tdlc$d = l_tdlc;
-            tide$d = l_tide;
-            trtr$d = l_trtr;
-            rid$d = l_rid;
-            rdat$d = l_rdat;
-            rdlc$d = l_rdlc;
-            rrtr$d = l_rrtr;
-            rext$d = l_rext;
-            fdone$d = l_fdone;
-            eqcnt$d = l_eqcnt;
-            eqlast$d = l_eqlast;
-            dafc$d = l_dafc;
-            dafany$d = l_dafany;
-            exc1$d = l_exc1;
-            tecr$d = l_tec;
-            recr$d = l_rec;
-            runr$d = l_runs;
-            rarmed$d = l_rarmed;
-            evr$d = l_ev;
-        end
         dstf$clock = clock;
         dstf$reset = reset;
         dstf$en = sample;
         dstf$din = busmon;
-        dstf$active = l_instf | l_sofinit;
+        dstf$active = dec$stuffed | seq$sofinit;
         crcb$clock = clock;
         crcb$reset = reset;
         crcb$din = busmon;
-        crcb$en = sample & l_crcen;
-        crcb$clear = sample & l_sofinit;
+        crcb$en = sample & frame$adv;
+        crcb$clear = sample & seq$sofinit;
+        dec$fld = seq$fld;
+        dec$fpos = seq$fpos;
+        dec$pfld = seq$pfld;
+        dec$ppos = seq$ppos;
+        dec$ext = rxf$ext;
+        dec$tx_role = seq$tx_role;
+        dec$dom = seq$dom;
+        dec$listen_only = listen_only;
+        dec$next_is_stuff = dstf$next_is_stuff;
+        dec$stuff_level = dstf$stuff_level;
+        frame$clock = clock;
+        frame$reset = reset;
+        frame$sample = sample;
+        frame$rxbit = busmon;
+        frame$sent = dec$drive;
+        frame$fld = seq$fld;
+        frame$fpos = seq$fpos;
+        frame$tx_role = seq$tx_role;
+        frame$dom = seq$dom;
+        frame$listen_only = listen_only;
+        frame$self_test = self_test;
+        frame$active = conf$active;
+        frame$stuffed = dec$stuffed;
+        frame$stuff = dec$stuff;
+        frame$arb = dec$arb;
+        frame$arb_stuff = dec$arb_stuff;
+        frame$stuff_error = dstf$stuff_error;
+        frame$crc_rem = |crcb$crc_next;
+        frame$ext = rxf$ext;
+        frame$rtr = rxf$rtr;
+        frame$dlc_lo_zero = rxf$dlc_lo_zero;
+        frame$data_bits = rxf$data_bits;
+        frame$tx_ide = txq$ide;
+        frame$sofinit = seq$sofinit;
+        frame$err_now = seq$err;
+        flags$clock = clock;
+        flags$reset = reset;
+        flags$sample = sample;
+        flags$rxbit = busmon;
+        flags$sent = dec$drive;
+        flags$fld = seq$fld;
+        flags$fpos = seq$fpos;
+        flags$tx_role = seq$tx_role;
+        flags$flag_start = seq$flag_start;
+        flags$exc1_set = frame$exc1;
+        seq$clock = clock;
+        seq$reset = reset;
+        seq$sample = sample;
+        seq$rxbit = busmon;
+        seq$listen_only = listen_only;
+        seq$host_recovery = host_recovery;
+        seq$cnt_load = cnt_load;
+        seq$tec_in = tec_in;
+        seq$stuff = dec$stuff;
+        seq$req = txq$req;
+        seq$active = conf$active;
+        seq$armed = conf$armed;
+        seq$last_run = conf$last_run;
+        seq$busoff = conf$busoff;
+        seq$level = txq$level;
+        seq$f_own = frame$own;
+        seq$f_nf = frame$nf;
+        seq$f_npos = frame$npos;
+        seq$f_ndom = frame$ndom;
+        seq$f_usetx = frame$usetx;
+        seq$f_lost = frame$lost;
+        seq$f_err = frame$err;
+        seq$f_ovl = frame$ovl;
+        seq$f_sof = frame$sof;
+        seq$g_own = flags$own;
+        seq$g_nf = flags$nf;
+        seq$g_npos = flags$npos;
+        seq$g_ndom = flags$ndom;
+        seq$g_err = flags$err;
+        seq$g_ovl = flags$ovl;
+        conf$clock = clock;
+        conf$reset = reset;
+        conf$sample = sample;
+        conf$listen_only = listen_only;
+        conf$recover = recover;
+        conf$tinc = frame$tinc | flags$tinc;
+        conf$tdec = frame$tx_ok;
+        conf$rinc1 = frame$rinc1 | flags$rinc1;
+        conf$rinc8 = flags$rinc8;
+        conf$rok = frame$rok;
+        conf$run = seq$ev_run;
+        conf$in_busoff = seq$in_busoff;
+        conf$cnt_load = cnt_load;
+        conf$tec_in = tec_in;
+        conf$rec_in = rec_in;
+        txq$clock = clock;
+        txq$reset = reset;
+        txq$sample = sample;
+        txq$tx_req = tx_req;
+        txq$tx_abort = tx_abort;
+        txq$single_shot = single_shot;
+        txq$tx_ide = tx_ide;
+        txq$tx_rtr = tx_rtr;
+        txq$tx_id = tx_id;
+        txq$tx_dlc = tx_dlc;
+        txq$tx_data = tx_data;
+        txq$load = seq$txsof;
+        txq$adv = frame$adv;
+        txq$fld = seq$fld;
+        txq$nf = seq$nf_tx;
+        txq$crc_bit = crcb$crc_next[32'he];
+        txq$lost = frame$lost;
+        txq$done = frame$tx_ok;
+        txq$err_now = seq$err;
+        txq$tx_role = seq$tx_role;
+        rxf$clock = clock;
+        rxf$reset = reset;
+        rxf$sample = sample;
+        rxf$rxbit = busmon;
+        rxf$adv = frame$adv;
+        rxf$fld = seq$fld;
+        rxf$sofinit = seq$sofinit;
+        rxf$deliver = frame$rx_ok;
+        rpt$clock = clock;
+        rpt$reset = reset;
+        rpt$sample = sample;
+        rpt$ev_sof = seq$sofinit;
+        rpt$ev_arb_lost = frame$lost;
+        rpt$ev_bit_err = frame$err_bit | flags$err_bit;
+        rpt$ev_stuff_err = frame$err_stuff;
+        rpt$ev_crc_err = frame$err_crc;
+        rpt$ev_form_err = frame$err_form | flags$err_form;
+        rpt$ev_ack_err = frame$err_ack;
+        rpt$ev_aef = seq$ev_aef;
+        rpt$ev_pef = seq$ev_pef;
+        rpt$ev_olf = seq$ev_olf;
+        rpt$ev_ovl = seq$ev_ovl;
+        rpt$ev_daf = flags$daf;
+        rpt$ev_tx_ok = frame$tx_ok;
+        rpt$ev_rx_ok = frame$rx_ok;
+        rpt$ev_exc1 = flags$exc1_met;
+        rpt$ev_exc2 = frame$exc2;
+        rpt$ev_run = seq$ev_run;
+        rpt$ev_recovered = seq$ev_recovered;
+        rpt$ev_integrated = seq$ev_integrated;
+        rpt$err_now = seq$err;
+        rpt$code = dec$code;
+        rpt$pos = dec$pos;
+        rpt$tx_role = seq$tx_role;
+        rpt$arb_pos = dec$arb_pos;
+        drive = dec$drive;
+        hs_en = dec$hs_en;
+        tx_done = rpt$tx_done;
+        arb_lost = rpt$arb_lost;
+        arb_lost_pos = rpt$arb_lost_pos;
+        error = rpt$error;
+        err_kind = rpt$err_kind;
+        err_field = rpt$err_field;
+        err_pos = rpt$err_pos;
+        err_tx = rpt$err_tx;
+        rx_valid = rpt$rx_valid;
+        rx_ide = rxf$rx_ide;
+        rx_rtr = rxf$rx_rtr;
+        rx_id = rxf$rx_id;
+        rx_dlc = rxf$rx_dlc;
+        rx_data = rxf$rx_data;
+        tec = conf$tec;
+        rec = conf$rec;
+        state = conf$state;
+        err_warn = conf$err_warn;
+        tx_rqst = txq$req;
+        field = dec$code;
+        pos = dec$pos;
+        stuff = dec$stuff;
+        role = seq$tx_role;
+        events = rpt$events;
+        runs = conf$runs;
+    end
+    
+endmodule // canstar_sja1000$core$fsm
+
+
+module canstar_sja1000$core$fsm$conf(clock,reset,sample,listen_only,recover,tinc,tdec,rinc1,rinc8,rok,run,in_busoff,cnt_load,tec_in,rec_in,tec,rec,state,err_warn,active,runs,last_run,armed,busoff);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  reset;
+    input wire  sample;
+    input wire  listen_only;
+    input wire  recover;
+    input wire  tinc;
+    input wire  tdec;
+    input wire  rinc1;
+    input wire  rinc8;
+    input wire  rok;
+    input wire  run;
+    input wire  in_busoff;
+    input wire  cnt_load;
+    input wire  [8:0] tec_in;
+    input wire  [7:0] rec_in;
+    output reg  [8:0] tec;
+    output reg  [7:0] rec;
+    output reg  [1:0] state;
+    output reg  err_warn;
+    output reg  active;
+    output reg  [7:0] runs;
+    output reg  last_run;
+    output reg  armed;
+    output reg  busoff;
+    
+    // Stub signals
+    reg  [8:0] tecr$d;
+    wire  [8:0] tecr$q;
+    reg  tecr$clock;
+    reg  [7:0] recr$d;
+    wire  [7:0] recr$q;
+    reg  recr$clock;
+    reg  [7:0] runr$d;
+    wire  [7:0] runr$q;
+    reg  runr$clock;
+    reg  rarmed$d;
+    wire  rarmed$q;
+    reg  rarmed$clock;
+    
+    // Local signals
+    reg  [8:0] l_tec;
+    reg  [7:0] l_rec;
+    reg  l_clear;
+    
+    // Sub module instances
+    canstar_sja1000$core$fsm$conf$tecr tecr(
+        .d(tecr$d),
+        .q(tecr$q),
+        .clock(tecr$clock)
+    );
+    canstar_sja1000$core$fsm$conf$recr recr(
+        .d(recr$d),
+        .q(recr$q),
+        .clock(recr$clock)
+    );
+    canstar_sja1000$core$fsm$conf$runr runr(
+        .d(runr$d),
+        .q(runr$q),
+        .clock(runr$clock)
+    );
+    canstar_sja1000$core$fsm$conf$rarmed rarmed(
+        .d(rarmed$d),
+        .q(rarmed$q),
+        .clock(rarmed$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        tecr$clock = clock;
+        recr$clock = clock;
+        runr$clock = clock;
+        rarmed$clock = clock;
+        tecr$d = tecr$q;
+        recr$d = recr$q;
+        runr$d = runr$q;
+        rarmed$d = rarmed$q;
+        l_clear = run & (runr$q == 32'h7f);
+        l_tec = tecr$q;
+        l_rec = recr$q;
+        if (sample & ~listen_only) begin
+            if (l_clear) begin
+                l_tec = 32'h0;
+                l_rec = 32'h0;
+            end
+            else begin
+                if (tinc) begin
+                    l_tec = tecr$q + 32'h8;
+                end
+                else if (tdec & (tecr$q != 32'h0)) begin
+                    l_tec = tecr$q - 32'h1;
+                end
+                if (recr$q < 32'h80) begin
+                    if (rinc8) begin
+                        l_rec = recr$q + 32'h8;
+                    end
+                    else if (rinc1) begin
+                        l_rec = recr$q + 32'h1;
+                    end
+                    else if (rok & (recr$q != 32'h0)) begin
+                        l_rec = recr$q - 32'h1;
+                    end
+                end
+                else if (rok) begin
+                    l_rec = 32'h7f;
+                end
+            end
+        end
+        busoff = sample & (l_tec >= 32'h100) & ~in_busoff;
+        rarmed$d = rarmed$q | recover;
+        if (sample) begin
+            tecr$d = l_tec;
+            recr$d = l_rec;
+            if (run) begin
+                runr$d = runr$q + 32'h1;
+            end
+            if (l_clear | busoff) begin
+                runr$d = 32'h0;
+                rarmed$d = 1'b0;
+            end
+        end
         if (reset) begin
-            fld$d = Field$WaitIdle;
-            fpos$d = 32'h1;
-            rtx$d = 1'b0;
-            dom$d = 1'b0;
-            crcerr$d = 1'b0;
-            fdone$d = 1'b0;
-            eqcnt$d = 32'h0;
-            eqlast$d = 1'b0;
-            dafc$d = 32'h0;
-            dafany$d = 1'b0;
-            exc1$d = 1'b0;
             tecr$d = 32'h0;
             recr$d = 32'h0;
             runr$d = 32'h0;
             rarmed$d = 1'b0;
-            req$d = 1'b0;
-            blocked$d = 1'b0;
-            evr$d = 32'h0;
-            rext$d = 1'b0;
-            rrtr$d = 1'b0;
         end
         if (cnt_load) begin
             tecr$d = tec_in;
             recr$d = rec_in;
-            if (tec_in[32'h8]) begin
-                fld$d = Field$BusOff;
-                fpos$d = 32'h1;
-                rtx$d = 1'b0;
-                dom$d = 1'b0;
-                runr$d = 32'h0;
-                rarmed$d = 1'b0;
-            end
-            else if (fld$q == Field$BusOff) begin
-                fld$d = Field$WaitIdle;
-                fpos$d = 32'h1;
-                dom$d = 1'b0;
+            if ((tec_in >= 32'h100) | in_busoff) begin
                 runr$d = 32'h0;
                 rarmed$d = 1'b0;
             end
         end
-        pos = l_dpos;
-        stuff = l_curstf;
-        role = rtx$q;
-        events = evr$q;
-        tx_done = evr$q[32'hc];
-        arb_lost = evr$q[32'h1];
-        arb_lost_pos = arbpos_r$q;
-        error = |(evr$q[(32'h2)+:(5)]);
-        err_kind = evr$q[(32'h2)+:(5)];
-        err_field = errf_r$q;
-        err_pos = errp_r$q;
-        err_tx = errtx_r$q;
-        rx_valid = evr$q[32'hd];
-        rx_ide = rxide_r$q;
-        rx_rtr = rxrtr_r$q;
-        rx_id = rxid_r$q;
-        rx_dlc = rxdlc_r$q;
-        rx_data = rxdat_r$q;
         tec = tecr$q;
         rec = recr$q;
         state = 32'h0;
-        if (tecr$q[32'h8]) begin
+        if (tecr$q >= 32'h100) begin
             state = 32'h2;
         end
         else if ((tecr$q >= 32'h80) | (recr$q >= 32'h80)) begin
             state = 32'h1;
         end
         err_warn = (tecr$q >= 32'h60) | (recr$q >= 32'h60);
-        tx_rqst = req$q;
+        active = (tecr$q < 32'h80) & (recr$q < 32'h80);
         runs = runr$q;
+        last_run = runr$q == 32'h7f;
+        armed = rarmed$q | recover;
     end
     
-endmodule // canstar_sja1000$core$fsm
+endmodule // canstar_sja1000$core$fsm$conf
 
 
-module canstar_sja1000$core$fsm$arbpos_r(d,q,clock);
-    
-    // Module arguments
-    input wire  [5:0] d;
-    output reg  [5:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 6'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_sja1000$core$fsm$arbpos_r
-
-
-module canstar_sja1000$core$fsm$blocked(d,q,clock);
+module canstar_sja1000$core$fsm$conf$rarmed(d,q,clock);
     
     // Module arguments
     input wire  d;
@@ -4971,7 +3317,64 @@ module canstar_sja1000$core$fsm$blocked(d,q,clock);
        q <= d;
     end
           
-endmodule // canstar_sja1000$core$fsm$blocked
+endmodule // canstar_sja1000$core$fsm$conf$rarmed
+
+
+module canstar_sja1000$core$fsm$conf$recr(d,q,clock);
+    
+    // Module arguments
+    input wire  [7:0] d;
+    output reg  [7:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 8'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_sja1000$core$fsm$conf$recr
+
+
+module canstar_sja1000$core$fsm$conf$runr(d,q,clock);
+    
+    // Module arguments
+    input wire  [7:0] d;
+    output reg  [7:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 8'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_sja1000$core$fsm$conf$runr
+
+
+module canstar_sja1000$core$fsm$conf$tecr(d,q,clock);
+    
+    // Module arguments
+    input wire  [8:0] d;
+    output reg  [8:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 9'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_sja1000$core$fsm$conf$tecr
 
 
 module canstar_sja1000$core$fsm$crcb(clock,reset,clear,en,din,crc,crc_next);
@@ -5047,80 +3450,122 @@ module canstar_sja1000$core$fsm$crcb$state(d,q,clock);
 endmodule // canstar_sja1000$core$fsm$crcb$state
 
 
-module canstar_sja1000$core$fsm$crcerr(d,q,clock);
+module canstar_sja1000$core$fsm$dec(fld,fpos,pfld,ppos,ext,tx_role,dom,listen_only,next_is_stuff,stuff_level,stuffed,stuff,code,pos,hs_en,arb,arb_stuff,arb_pos,drive);
     
     // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
+    input wire  [4:0] fld;
+    input wire  [7:0] fpos;
+    input wire  [4:0] pfld;
+    input wire  [7:0] ppos;
+    input wire  ext;
+    input wire  tx_role;
+    input wire  dom;
+    input wire  listen_only;
+    input wire  next_is_stuff;
+    input wire  stuff_level;
+    output reg  stuffed;
+    output reg  stuff;
+    output reg  [4:0] code;
+    output reg  [7:0] pos;
+    output reg  hs_en;
+    output reg  arb;
+    output reg  arb_stuff;
+    output reg  [5:0] arb_pos;
+    output reg  drive;
     
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
+    // Enums
+    localparam Field$Reset = 0;
+    localparam Field$WaitIdle = 1;
+    localparam Field$Idle = 2;
+    localparam Field$BusOff = 3;
+    localparam Field$Sof = 4;
+    localparam Field$Ident = 5;
+    localparam Field$Srr = 6;
+    localparam Field$Ide = 7;
+    localparam Field$Rtr = 8;
+    localparam Field$ExIdent = 9;
+    localparam Field$Resv = 10;
+    localparam Field$Dlc = 11;
+    localparam Field$Data = 12;
+    localparam Field$Crc = 13;
+    localparam Field$CrcDel = 14;
+    localparam Field$AckSlot = 15;
+    localparam Field$AckDel = 16;
+    localparam Field$Eof = 17;
+    localparam Field$ActFlag = 18;
+    localparam Field$PasFlag = 19;
+    localparam Field$OvlFlag = 20;
+    localparam Field$ErrDel = 21;
+    localparam Field$OvlDel = 22;
+    localparam Field$Inter = 23;
+    localparam Field$Suspend = 24;
+    
+    // Local signals
+    reg  l_area;
+    reg  [4:0] l_dfld;
+    
+    // Update code
+    always @(*) begin
+        l_area = (fld == Field$Sof) | (fld == Field$Ident) | (fld == Field$Srr) | (fld == Field$Ide) | (fld == Field$Rtr) | (fld == Field$ExIdent) | (fld == Field$Resv) | (fld == Field$Dlc) | (fld == Field$Data) | (fld == Field$Crc);
+        stuff = next_is_stuff & (l_area | (fld == Field$CrcDel));
+        l_dfld = fld;
+        pos = fpos;
+        drive = ~dom;
+        if (stuff) begin
+            l_dfld = pfld;
+            pos = ppos;
+            drive = ~tx_role | stuff_level;
+        end
+        if (listen_only) begin
+            drive = 1'b1;
+        end
+        arb = 1'b0;
+        arb_stuff = 1'b0;
+        arb_pos = 32'h0;
+        case (l_dfld)
+            Field$Ident:
+                begin
+                    arb = 1'b1;
+                    arb_stuff = 1'b1;
+                    arb_pos = ((pos) & 6'h3f);
+                end
+            Field$Srr:
+                begin
+                    arb = 1'b1;
+                    arb_stuff = 1'b1;
+                    arb_pos = 32'hc;
+                end
+            Field$Ide:
+                begin
+                    arb = 1'b1;
+                    arb_stuff = ext;
+                    arb_pos = 32'hd;
+                end
+            Field$Rtr:
+                begin
+                    arb = 1'b1;
+                    arb_stuff = ~ext;
+                    arb_pos = 32'hc;
+                    if (ext) begin
+                        arb_pos = 32'h20;
+                    end
+                end
+            Field$ExIdent:
+                begin
+                    arb = 1'b1;
+                    arb_stuff = 1'b1;
+                    arb_pos = ((pos) & 6'h3f) + 32'hd;
+                end
+            default:
+                begin
+                end
+        endcase
+        stuffed = l_area | stuff;
+        code = l_dfld;
+        hs_en = (l_dfld == Field$Reset) | (l_dfld == Field$WaitIdle) | (l_dfld == Field$Idle) | (l_dfld == Field$BusOff) | (l_dfld == Field$Sof) | (l_dfld == Field$Suspend) | ((l_dfld == Field$Inter) & (fpos == 32'h3));
     end
     
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_sja1000$core$fsm$crcerr
-
-
-module canstar_sja1000$core$fsm$dafany(d,q,clock);
-    
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_sja1000$core$fsm$dafany
-
-
-module canstar_sja1000$core$fsm$dafc(d,q,clock);
-    
-    // Module arguments
-    input wire  [2:0] d;
-    output reg  [2:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 3'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_sja1000$core$fsm$dafc
-
-
-module canstar_sja1000$core$fsm$dom(d,q,clock);
-    
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_sja1000$core$fsm$dom
+endmodule // canstar_sja1000$core$fsm$dec
 
 
 module canstar_sja1000$core$fsm$dstf(clock,reset,en,din,active,stuff_bit,stuff_error,next_is_stuff,stuff_level);
@@ -5237,7 +3682,288 @@ module canstar_sja1000$core$fsm$dstf$lvl(d,q,clock);
 endmodule // canstar_sja1000$core$fsm$dstf$lvl
 
 
-module canstar_sja1000$core$fsm$eqcnt(d,q,clock);
+module canstar_sja1000$core$fsm$flags(clock,reset,sample,rxbit,sent,fld,fpos,tx_role,flag_start,exc1_set,own,nf,npos,ndom,err,err_bit,err_form,tinc,rinc1,rinc8,ovl,daf,exc1_met);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  reset;
+    input wire  sample;
+    input wire  rxbit;
+    input wire  sent;
+    input wire  [4:0] fld;
+    input wire  [7:0] fpos;
+    input wire  tx_role;
+    input wire  flag_start;
+    input wire  exc1_set;
+    output reg  own;
+    output reg  [4:0] nf;
+    output reg  [7:0] npos;
+    output reg  ndom;
+    output reg  err;
+    output reg  err_bit;
+    output reg  err_form;
+    output reg  tinc;
+    output reg  rinc1;
+    output reg  rinc8;
+    output reg  ovl;
+    output reg  daf;
+    output reg  exc1_met;
+    
+    // Enums
+    localparam Field$Reset = 0;
+    localparam Field$WaitIdle = 1;
+    localparam Field$Idle = 2;
+    localparam Field$BusOff = 3;
+    localparam Field$Sof = 4;
+    localparam Field$Ident = 5;
+    localparam Field$Srr = 6;
+    localparam Field$Ide = 7;
+    localparam Field$Rtr = 8;
+    localparam Field$ExIdent = 9;
+    localparam Field$Resv = 10;
+    localparam Field$Dlc = 11;
+    localparam Field$Data = 12;
+    localparam Field$Crc = 13;
+    localparam Field$CrcDel = 14;
+    localparam Field$AckSlot = 15;
+    localparam Field$AckDel = 16;
+    localparam Field$Eof = 17;
+    localparam Field$ActFlag = 18;
+    localparam Field$PasFlag = 19;
+    localparam Field$OvlFlag = 20;
+    localparam Field$ErrDel = 21;
+    localparam Field$OvlDel = 22;
+    localparam Field$Inter = 23;
+    localparam Field$Suspend = 24;
+    
+    // Stub signals
+    reg  fdone$d;
+    wire  fdone$q;
+    reg  fdone$clock;
+    reg  [2:0] eqcnt$d;
+    wire  [2:0] eqcnt$q;
+    reg  eqcnt$clock;
+    reg  eqlast$d;
+    wire  eqlast$q;
+    reg  eqlast$clock;
+    reg  [2:0] dafc$d;
+    wire  [2:0] dafc$q;
+    reg  dafc$clock;
+    reg  dafany$d;
+    wire  dafany$q;
+    reg  dafany$clock;
+    reg  exc1$d;
+    wire  exc1$q;
+    reg  exc1$clock;
+    
+    // Local signals
+    reg  [7:0] l_posinc;
+    reg  l_flag;
+    reg  l_delim;
+    reg  l_errflag;
+    reg  l_fdone;
+    reg  [2:0] l_eqcnt;
+    reg  l_eqlast;
+    reg  [2:0] l_dafc;
+    reg  l_dafany;
+    reg  l_exc1;
+    
+    // Sub module instances
+    canstar_sja1000$core$fsm$flags$fdone fdone(
+        .d(fdone$d),
+        .q(fdone$q),
+        .clock(fdone$clock)
+    );
+    canstar_sja1000$core$fsm$flags$eqcnt eqcnt(
+        .d(eqcnt$d),
+        .q(eqcnt$q),
+        .clock(eqcnt$clock)
+    );
+    canstar_sja1000$core$fsm$flags$eqlast eqlast(
+        .d(eqlast$d),
+        .q(eqlast$q),
+        .clock(eqlast$clock)
+    );
+    canstar_sja1000$core$fsm$flags$dafc dafc(
+        .d(dafc$d),
+        .q(dafc$q),
+        .clock(dafc$clock)
+    );
+    canstar_sja1000$core$fsm$flags$dafany dafany(
+        .d(dafany$d),
+        .q(dafany$q),
+        .clock(dafany$clock)
+    );
+    canstar_sja1000$core$fsm$flags$exc1 exc1(
+        .d(exc1$d),
+        .q(exc1$q),
+        .clock(exc1$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        fdone$clock = clock;
+        eqcnt$clock = clock;
+        eqlast$clock = clock;
+        dafc$clock = clock;
+        dafany$clock = clock;
+        exc1$clock = clock;
+        fdone$d = fdone$q;
+        eqcnt$d = eqcnt$q;
+        eqlast$d = eqlast$q;
+        dafc$d = dafc$q;
+        dafany$d = dafany$q;
+        exc1$d = exc1$q;
+        l_posinc = fpos + 32'h1;
+        if (fpos == 32'hff) begin
+            l_posinc = fpos;
+        end
+        l_errflag = (fld == Field$ActFlag) | (fld == Field$PasFlag);
+        l_flag = sample & (l_errflag | (fld == Field$OvlFlag));
+        l_delim = sample & ((fld == Field$ErrDel) | (fld == Field$OvlDel));
+        own = l_flag | l_delim;
+        nf = fld;
+        npos = fpos;
+        ndom = 1'b0;
+        err = 1'b0;
+        err_bit = 1'b0;
+        err_form = 1'b0;
+        tinc = 1'b0;
+        rinc1 = 1'b0;
+        rinc8 = 1'b0;
+        ovl = 1'b0;
+        daf = 1'b0;
+        exc1_met = 1'b0;
+        l_fdone = fdone$q;
+        l_eqcnt = eqcnt$q;
+        l_eqlast = eqlast$q;
+        l_dafc = dafc$q;
+        l_dafany = dafany$q;
+        l_exc1 = exc1$q | exc1_set;
+        if (l_flag) begin
+            if (~fdone$q) begin
+                npos = l_posinc;
+                if (fld == Field$PasFlag) begin
+                    if (fpos == 32'h1) begin
+                        l_eqcnt = 32'h1;
+                        l_eqlast = rxbit;
+                    end
+                    else if (rxbit == eqlast$q) begin
+                        l_eqcnt = eqcnt$q + 32'h1;
+                    end
+                    else begin
+                        l_eqcnt = 32'h1;
+                        l_eqlast = rxbit;
+                    end
+                    if (exc1$q & ~rxbit) begin
+                        l_exc1 = 1'b0;
+                        tinc = 1'b1;
+                    end
+                    if (l_eqcnt == 32'h6) begin
+                        l_fdone = 1'b1;
+                        exc1_met = l_exc1;
+                        l_exc1 = 1'b0;
+                    end
+                end
+                else if (rxbit & ~sent) begin
+                    err = 1'b1;
+                    err_bit = 1'b1;
+                    tinc = tx_role;
+                    rinc8 = ~tx_role;
+                end
+                else begin
+                    ndom = 1'b1;
+                    if (fpos == 32'h6) begin
+                        l_fdone = 1'b1;
+                        ndom = 1'b0;
+                    end
+                end
+                if (l_fdone) begin
+                    l_dafc = 32'h0;
+                    l_dafany = 1'b0;
+                end
+            end
+            else if (rxbit) begin
+                npos = 32'h2;
+                if (fld == Field$OvlFlag) begin
+                    nf = Field$OvlDel;
+                end
+                else begin
+                    nf = Field$ErrDel;
+                end
+            end
+            else begin
+                npos = l_posinc;
+                daf = 1'b1;
+                l_dafany = 1'b1;
+                l_dafc = dafc$q + 32'h1;
+                if (l_errflag & ~dafany$q & ~tx_role) begin
+                    rinc8 = 1'b1;
+                end
+                if (dafc$q == 32'h7) begin
+                    tinc = tx_role;
+                    rinc8 = ~tx_role;
+                end
+            end
+        end
+        if (l_delim) begin
+            npos = l_posinc;
+            if (fpos == 32'h8) begin
+                nf = Field$Inter;
+                npos = 32'h1;
+                ovl = ~rxbit;
+            end
+            else if (~rxbit) begin
+                err = 1'b1;
+                err_form = 1'b1;
+                tinc = tx_role;
+                rinc1 = ~tx_role;
+            end
+        end
+        if (sample) begin
+            fdone$d = l_fdone & ~flag_start;
+            eqcnt$d = l_eqcnt;
+            eqlast$d = l_eqlast;
+            dafc$d = l_dafc;
+            dafany$d = l_dafany & ~flag_start;
+            if (flag_start) begin
+                dafc$d = 32'h0;
+            end
+            exc1$d = l_exc1;
+        end
+        if (reset) begin
+            fdone$d = 1'b0;
+            eqcnt$d = 32'h0;
+            eqlast$d = 1'b0;
+            dafc$d = 32'h0;
+            dafany$d = 1'b0;
+            exc1$d = 1'b0;
+        end
+    end
+    
+endmodule // canstar_sja1000$core$fsm$flags
+
+
+module canstar_sja1000$core$fsm$flags$dafany(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_sja1000$core$fsm$flags$dafany
+
+
+module canstar_sja1000$core$fsm$flags$dafc(d,q,clock);
     
     // Module arguments
     input wire  [2:0] d;
@@ -5253,10 +3979,29 @@ module canstar_sja1000$core$fsm$eqcnt(d,q,clock);
        q <= d;
     end
           
-endmodule // canstar_sja1000$core$fsm$eqcnt
+endmodule // canstar_sja1000$core$fsm$flags$dafc
 
 
-module canstar_sja1000$core$fsm$eqlast(d,q,clock);
+module canstar_sja1000$core$fsm$flags$eqcnt(d,q,clock);
+    
+    // Module arguments
+    input wire  [2:0] d;
+    output reg  [2:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 3'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_sja1000$core$fsm$flags$eqcnt
+
+
+module canstar_sja1000$core$fsm$flags$eqlast(d,q,clock);
     
     // Module arguments
     input wire  d;
@@ -5272,10 +4017,619 @@ module canstar_sja1000$core$fsm$eqlast(d,q,clock);
        q <= d;
     end
           
-endmodule // canstar_sja1000$core$fsm$eqlast
+endmodule // canstar_sja1000$core$fsm$flags$eqlast
 
 
-module canstar_sja1000$core$fsm$errf_r(d,q,clock);
+module canstar_sja1000$core$fsm$flags$exc1(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_sja1000$core$fsm$flags$exc1
+
+
+module canstar_sja1000$core$fsm$flags$fdone(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_sja1000$core$fsm$flags$fdone
+
+
+module canstar_sja1000$core$fsm$frame(clock,reset,sample,rxbit,sent,fld,fpos,tx_role,dom,listen_only,self_test,active,stuffed,stuff,arb,arb_stuff,stuff_error,crc_rem,ext,rtr,dlc_lo_zero,data_bits,tx_ide,sofinit,err_now,own,nf,npos,ndom,usetx,lost,err,err_bit,err_stuff,err_crc,err_form,err_ack,tinc,rinc1,rok,ovl,exc1,exc2,tx_ok,rx_ok,sof,adv);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  reset;
+    input wire  sample;
+    input wire  rxbit;
+    input wire  sent;
+    input wire  [4:0] fld;
+    input wire  [7:0] fpos;
+    input wire  tx_role;
+    input wire  dom;
+    input wire  listen_only;
+    input wire  self_test;
+    input wire  active;
+    input wire  stuffed;
+    input wire  stuff;
+    input wire  arb;
+    input wire  arb_stuff;
+    input wire  stuff_error;
+    input wire  crc_rem;
+    input wire  ext;
+    input wire  rtr;
+    input wire  dlc_lo_zero;
+    input wire  [7:0] data_bits;
+    input wire  tx_ide;
+    input wire  sofinit;
+    input wire  err_now;
+    output reg  own;
+    output reg  [4:0] nf;
+    output reg  [7:0] npos;
+    output reg  ndom;
+    output reg  usetx;
+    output reg  lost;
+    output reg  err;
+    output reg  err_bit;
+    output reg  err_stuff;
+    output reg  err_crc;
+    output reg  err_form;
+    output reg  err_ack;
+    output reg  tinc;
+    output reg  rinc1;
+    output reg  rok;
+    output reg  ovl;
+    output reg  exc1;
+    output reg  exc2;
+    output reg  tx_ok;
+    output reg  rx_ok;
+    output reg  sof;
+    output reg  adv;
+    
+    // Enums
+    localparam Field$Reset = 0;
+    localparam Field$WaitIdle = 1;
+    localparam Field$Idle = 2;
+    localparam Field$BusOff = 3;
+    localparam Field$Sof = 4;
+    localparam Field$Ident = 5;
+    localparam Field$Srr = 6;
+    localparam Field$Ide = 7;
+    localparam Field$Rtr = 8;
+    localparam Field$ExIdent = 9;
+    localparam Field$Resv = 10;
+    localparam Field$Dlc = 11;
+    localparam Field$Data = 12;
+    localparam Field$Crc = 13;
+    localparam Field$CrcDel = 14;
+    localparam Field$AckSlot = 15;
+    localparam Field$AckDel = 16;
+    localparam Field$Eof = 17;
+    localparam Field$ActFlag = 18;
+    localparam Field$PasFlag = 19;
+    localparam Field$OvlFlag = 20;
+    localparam Field$ErrDel = 21;
+    localparam Field$OvlDel = 22;
+    localparam Field$Inter = 23;
+    localparam Field$Suspend = 24;
+    
+    // Stub signals
+    reg  crcerr$d;
+    wire  crcerr$q;
+    reg  crcerr$clock;
+    
+    // Local signals
+    reg  [7:0] l_posinc;
+    reg  l_role;
+    reg  l_form;
+    reg  l_crcset;
+    
+    // Sub module instances
+    canstar_sja1000$core$fsm$frame$crcerr crcerr(
+        .d(crcerr$d),
+        .q(crcerr$q),
+        .clock(crcerr$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        crcerr$clock = clock;
+        crcerr$d = crcerr$q;
+        l_posinc = fpos + 32'h1;
+        if (fpos == 32'hff) begin
+            l_posinc = fpos;
+        end
+        own = sample & (stuffed | (fld == Field$CrcDel) | (fld == Field$AckSlot) | (fld == Field$AckDel) | (fld == Field$Eof));
+        nf = fld;
+        npos = fpos;
+        ndom = 1'b0;
+        usetx = 1'b0;
+        l_role = tx_role;
+        err = 1'b0;
+        err_bit = 1'b0;
+        err_stuff = 1'b0;
+        err_crc = 1'b0;
+        err_form = 1'b0;
+        err_ack = 1'b0;
+        l_form = 1'b0;
+        tinc = 1'b0;
+        rinc1 = 1'b0;
+        rok = 1'b0;
+        ovl = 1'b0;
+        exc1 = 1'b0;
+        exc2 = 1'b0;
+        tx_ok = 1'b0;
+        rx_ok = 1'b0;
+        adv = 1'b0;
+        l_crcset = 1'b0;
+        if (own) begin
+            if (stuffed) begin
+                if (stuff) begin
+                    ndom = dom;
+                    if (stuff_error) begin
+                        err = 1'b1;
+                        if (tx_role & rxbit & ~sent) begin
+                            err_bit = 1'b1;
+                            tinc = 1'b1;
+                        end
+                        else begin
+                            err_stuff = 1'b1;
+                            if (~tx_role) begin
+                                rinc1 = 1'b1;
+                            end
+                            else if (arb_stuff) begin
+                                exc2 = 1'b1;
+                            end
+                            else begin
+                                tinc = 1'b1;
+                            end
+                        end
+                    end
+                end
+                else begin
+                    if (tx_role & (rxbit != sent)) begin
+                        if (arb & sent) begin
+                            l_role = 1'b0;
+                        end
+                        else begin
+                            err = 1'b1;
+                            err_bit = 1'b1;
+                            tinc = 1'b1;
+                        end
+                    end
+                    if (~err) begin
+                        adv = 1'b1;
+                        usetx = 1'b1;
+                        npos = l_posinc;
+                        case (fld)
+                            Field$Sof:
+                                begin
+                                    nf = Field$Ident;
+                                    npos = 32'h1;
+                                end
+                            Field$Ident:
+                                begin
+                                    if (fpos == 32'hb) begin
+                                        npos = 32'h1;
+                                        if (l_role & tx_ide) begin
+                                            nf = Field$Srr;
+                                        end
+                                        else begin
+                                            nf = Field$Rtr;
+                                        end
+                                    end
+                                end
+                            Field$Srr:
+                                begin
+                                    nf = Field$Ide;
+                                    npos = 32'h1;
+                                end
+                            Field$Rtr:
+                                begin
+                                    npos = 32'h1;
+                                    if (ext) begin
+                                        nf = Field$Resv;
+                                    end
+                                    else begin
+                                        nf = Field$Ide;
+                                    end
+                                end
+                            Field$Ide:
+                                begin
+                                    npos = 32'h1;
+                                    if (rxbit) begin
+                                        nf = Field$ExIdent;
+                                    end
+                                    else begin
+                                        nf = Field$Resv;
+                                    end
+                                end
+                            Field$ExIdent:
+                                begin
+                                    if (fpos == 32'h12) begin
+                                        nf = Field$Rtr;
+                                        npos = 32'h1;
+                                    end
+                                end
+                            Field$Resv:
+                                begin
+                                    if (~(ext & (fpos == 32'h1))) begin
+                                        nf = Field$Dlc;
+                                        npos = 32'h1;
+                                    end
+                                end
+                            Field$Dlc:
+                                begin
+                                    if (fpos == 32'h4) begin
+                                        npos = 32'h1;
+                                        if (rtr | (dlc_lo_zero & ~rxbit)) begin
+                                            nf = Field$Crc;
+                                        end
+                                        else begin
+                                            nf = Field$Data;
+                                        end
+                                    end
+                                end
+                            Field$Data:
+                                begin
+                                    if (fpos == data_bits) begin
+                                        nf = Field$Crc;
+                                        npos = 32'h1;
+                                    end
+                                end
+                            Field$Crc:
+                                begin
+                                    if (fpos == 32'hf) begin
+                                        nf = Field$CrcDel;
+                                        npos = 32'h1;
+                                        usetx = 1'b0;
+                                        l_crcset = crc_rem;
+                                    end
+                                end
+                            default:
+                                begin
+                                end
+                        endcase
+                    end
+                end
+            end
+            else begin
+                case (fld)
+                    Field$CrcDel:
+                        begin
+                            if (~rxbit) begin
+                                l_form = 1'b1;
+                            end
+                            else begin
+                                nf = Field$AckSlot;
+                                npos = 32'h1;
+                                ndom = ~tx_role & ~crcerr$q & ~listen_only;
+                            end
+                        end
+                    Field$AckSlot:
+                        begin
+                            nf = Field$AckDel;
+                            npos = 32'h1;
+                            if (rxbit) begin
+                                if (tx_role) begin
+                                    if (~self_test) begin
+                                        err = 1'b1;
+                                        err_ack = 1'b1;
+                                        if (active) begin
+                                            tinc = 1'b1;
+                                        end
+                                        else begin
+                                            exc1 = 1'b1;
+                                        end
+                                    end
+                                end
+                                else if (dom) begin
+                                    err = 1'b1;
+                                    err_bit = 1'b1;
+                                    rinc1 = 1'b1;
+                                end
+                            end
+                        end
+                    Field$AckDel:
+                        begin
+                            l_form = ~rxbit;
+                            nf = Field$Eof;
+                            npos = 32'h1;
+                        end
+                    Field$Eof:
+                        begin
+                            npos = l_posinc;
+                            if (fpos == 32'h7) begin
+                                nf = Field$Inter;
+                                npos = 32'h1;
+                                if (tx_role) begin
+                                    if (~rxbit) begin
+                                        l_form = 1'b1;
+                                    end
+                                    else begin
+                                        tx_ok = 1'b1;
+                                    end
+                                end
+                                else begin
+                                    rx_ok = 1'b1;
+                                    if (~rxbit) begin
+                                        ovl = 1'b1;
+                                    end
+                                    else begin
+                                        rok = 1'b1;
+                                    end
+                                end
+                            end
+                            else begin
+                                l_form = ~rxbit;
+                            end
+                        end
+                    default:
+                        begin
+                        end
+                endcase
+                if (l_form) begin
+                    err = 1'b1;
+                    err_form = 1'b1;
+                    tinc = tx_role;
+                    rinc1 = ~tx_role;
+                end
+                if ((fld == Field$AckDel) & ~tx_role & crcerr$q) begin
+                    err = 1'b1;
+                    err_form = 1'b0;
+                    err_crc = 1'b1;
+                    rinc1 = 1'b1;
+                end
+            end
+        end
+        if (sample) begin
+            crcerr$d = (crcerr$q | l_crcset) & ~sofinit & ~err_now;
+        end
+        if (reset) begin
+            crcerr$d = 1'b0;
+        end
+        sof = adv & (fld == Field$Sof);
+        lost = tx_role & ~l_role;
+    end
+    
+endmodule // canstar_sja1000$core$fsm$frame
+
+
+module canstar_sja1000$core$fsm$frame$crcerr(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_sja1000$core$fsm$frame$crcerr
+
+
+module canstar_sja1000$core$fsm$rpt(clock,reset,sample,ev_sof,ev_arb_lost,ev_bit_err,ev_stuff_err,ev_crc_err,ev_form_err,ev_ack_err,ev_aef,ev_pef,ev_olf,ev_ovl,ev_daf,ev_tx_ok,ev_rx_ok,ev_exc1,ev_exc2,ev_run,ev_recovered,ev_integrated,err_now,code,pos,tx_role,arb_pos,events,tx_done,arb_lost,arb_lost_pos,error,err_kind,err_field,err_pos,err_tx,rx_valid);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  reset;
+    input wire  sample;
+    input wire  ev_sof;
+    input wire  ev_arb_lost;
+    input wire  ev_bit_err;
+    input wire  ev_stuff_err;
+    input wire  ev_crc_err;
+    input wire  ev_form_err;
+    input wire  ev_ack_err;
+    input wire  ev_aef;
+    input wire  ev_pef;
+    input wire  ev_olf;
+    input wire  ev_ovl;
+    input wire  ev_daf;
+    input wire  ev_tx_ok;
+    input wire  ev_rx_ok;
+    input wire  ev_exc1;
+    input wire  ev_exc2;
+    input wire  ev_run;
+    input wire  ev_recovered;
+    input wire  ev_integrated;
+    input wire  err_now;
+    input wire  [4:0] code;
+    input wire  [7:0] pos;
+    input wire  tx_role;
+    input wire  [5:0] arb_pos;
+    output reg  [19:0] events;
+    output reg  tx_done;
+    output reg  arb_lost;
+    output reg  [5:0] arb_lost_pos;
+    output reg  error;
+    output reg  [4:0] err_kind;
+    output reg  [4:0] err_field;
+    output reg  [7:0] err_pos;
+    output reg  err_tx;
+    output reg  rx_valid;
+    
+    // Constant declarations
+    localparam  k_sof = 5'b0;
+    localparam  k_arb_lost = 5'b1;
+    localparam  k_bit_err = 5'b10;
+    localparam  k_stuff_err = 5'b11;
+    localparam  k_crc_err = 5'b100;
+    localparam  k_form_err = 5'b101;
+    localparam  k_ack_err = 5'b110;
+    localparam  k_aef = 5'b111;
+    localparam  k_pef = 5'b1000;
+    localparam  k_olf = 5'b1001;
+    localparam  k_ovl = 5'b1010;
+    localparam  k_daf = 5'b1011;
+    localparam  k_tx_ok = 5'b1100;
+    localparam  k_rx_ok = 5'b1101;
+    localparam  k_exc1 = 5'b1110;
+    localparam  k_exc2 = 5'b1111;
+    localparam  k_run = 5'b10000;
+    localparam  k_recovered = 5'b10001;
+    localparam  k_integrated = 5'b10010;
+    localparam  k_bit = 5'b10011;
+    
+    // Stub signals
+    reg  [19:0] evr$d;
+    wire  [19:0] evr$q;
+    reg  evr$clock;
+    reg  [5:0] arbpos_r$d;
+    wire  [5:0] arbpos_r$q;
+    reg  arbpos_r$clock;
+    reg  [4:0] errf_r$d;
+    wire  [4:0] errf_r$q;
+    reg  errf_r$clock;
+    reg  [7:0] errp_r$d;
+    wire  [7:0] errp_r$q;
+    reg  errp_r$clock;
+    reg  errtx_r$d;
+    wire  errtx_r$q;
+    reg  errtx_r$clock;
+    
+    // Local signals
+    reg  [19:0] l_ev;
+    
+    // Sub module instances
+    canstar_sja1000$core$fsm$rpt$evr evr(
+        .d(evr$d),
+        .q(evr$q),
+        .clock(evr$clock)
+    );
+    canstar_sja1000$core$fsm$rpt$arbpos_r arbpos_r(
+        .d(arbpos_r$d),
+        .q(arbpos_r$q),
+        .clock(arbpos_r$clock)
+    );
+    canstar_sja1000$core$fsm$rpt$errf_r errf_r(
+        .d(errf_r$d),
+        .q(errf_r$q),
+        .clock(errf_r$clock)
+    );
+    canstar_sja1000$core$fsm$rpt$errp_r errp_r(
+        .d(errp_r$d),
+        .q(errp_r$q),
+        .clock(errp_r$clock)
+    );
+    canstar_sja1000$core$fsm$rpt$errtx_r errtx_r(
+        .d(errtx_r$d),
+        .q(errtx_r$q),
+        .clock(errtx_r$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        evr$clock = clock;
+        arbpos_r$clock = clock;
+        errf_r$clock = clock;
+        errp_r$clock = clock;
+        errtx_r$clock = clock;
+        evr$d = evr$q;
+        arbpos_r$d = arbpos_r$q;
+        errf_r$d = errf_r$q;
+        errp_r$d = errp_r$q;
+        errtx_r$d = errtx_r$q;
+        evr$d = 32'h0;
+        l_ev = 32'h0;
+        if (sample) begin
+            l_ev = (l_ev & ~(1 << (k_sof)) | ((ev_sof) << (k_sof)));
+            l_ev = (l_ev & ~(1 << (k_arb_lost)) | ((ev_arb_lost) << (k_arb_lost)));
+            l_ev = (l_ev & ~(1 << (k_bit_err)) | ((ev_bit_err) << (k_bit_err)));
+            l_ev = (l_ev & ~(1 << (k_stuff_err)) | ((ev_stuff_err) << (k_stuff_err)));
+            l_ev = (l_ev & ~(1 << (k_crc_err)) | ((ev_crc_err) << (k_crc_err)));
+            l_ev = (l_ev & ~(1 << (k_form_err)) | ((ev_form_err) << (k_form_err)));
+            l_ev = (l_ev & ~(1 << (k_ack_err)) | ((ev_ack_err) << (k_ack_err)));
+            l_ev = (l_ev & ~(1 << (k_aef)) | ((ev_aef) << (k_aef)));
+            l_ev = (l_ev & ~(1 << (k_pef)) | ((ev_pef) << (k_pef)));
+            l_ev = (l_ev & ~(1 << (k_olf)) | ((ev_olf) << (k_olf)));
+            l_ev = (l_ev & ~(1 << (k_ovl)) | ((ev_ovl) << (k_ovl)));
+            l_ev = (l_ev & ~(1 << (k_daf)) | ((ev_daf) << (k_daf)));
+            l_ev = (l_ev & ~(1 << (k_tx_ok)) | ((ev_tx_ok) << (k_tx_ok)));
+            l_ev = (l_ev & ~(1 << (k_rx_ok)) | ((ev_rx_ok) << (k_rx_ok)));
+            l_ev = (l_ev & ~(1 << (k_exc1)) | ((ev_exc1) << (k_exc1)));
+            l_ev = (l_ev & ~(1 << (k_exc2)) | ((ev_exc2) << (k_exc2)));
+            l_ev = (l_ev & ~(1 << (k_run)) | ((ev_run) << (k_run)));
+            l_ev = (l_ev & ~(1 << (k_recovered)) | ((ev_recovered) << (k_recovered)));
+            l_ev = (l_ev & ~(1 << (k_integrated)) | ((ev_integrated) << (k_integrated)));
+            l_ev = (l_ev & ~(1 << (k_bit)) | ((1'b1) << (k_bit)));
+            evr$d = l_ev;
+            if (ev_arb_lost) begin
+                arbpos_r$d = arb_pos;
+            end
+            if (err_now) begin
+                errf_r$d = code;
+                errp_r$d = pos;
+                errtx_r$d = tx_role;
+            end
+        end
+        if (reset) begin
+            evr$d = 32'h0;
+        end
+        err_kind = evr$q[(k_bit_err)+:(5)];
+        events = evr$q;
+        tx_done = evr$q[k_tx_ok];
+        arb_lost = evr$q[k_arb_lost];
+        arb_lost_pos = arbpos_r$q;
+        error = |err_kind;
+        err_field = errf_r$q;
+        err_pos = errp_r$q;
+        err_tx = errtx_r$q;
+        rx_valid = evr$q[k_rx_ok];
+    end
+    
+endmodule // canstar_sja1000$core$fsm$rpt
+
+
+module canstar_sja1000$core$fsm$rpt$arbpos_r(d,q,clock);
+    
+    // Module arguments
+    input wire  [5:0] d;
+    output reg  [5:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 6'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_sja1000$core$fsm$rpt$arbpos_r
+
+
+module canstar_sja1000$core$fsm$rpt$errf_r(d,q,clock);
     
     // Module arguments
     input wire  [4:0] d;
@@ -5291,10 +4645,10 @@ module canstar_sja1000$core$fsm$errf_r(d,q,clock);
        q <= d;
     end
           
-endmodule // canstar_sja1000$core$fsm$errf_r
+endmodule // canstar_sja1000$core$fsm$rpt$errf_r
 
 
-module canstar_sja1000$core$fsm$errp_r(d,q,clock);
+module canstar_sja1000$core$fsm$rpt$errp_r(d,q,clock);
     
     // Module arguments
     input wire  [7:0] d;
@@ -5310,10 +4664,10 @@ module canstar_sja1000$core$fsm$errp_r(d,q,clock);
        q <= d;
     end
           
-endmodule // canstar_sja1000$core$fsm$errp_r
+endmodule // canstar_sja1000$core$fsm$rpt$errp_r
 
 
-module canstar_sja1000$core$fsm$errtx_r(d,q,clock);
+module canstar_sja1000$core$fsm$rpt$errtx_r(d,q,clock);
     
     // Module arguments
     input wire  d;
@@ -5329,10 +4683,10 @@ module canstar_sja1000$core$fsm$errtx_r(d,q,clock);
        q <= d;
     end
           
-endmodule // canstar_sja1000$core$fsm$errtx_r
+endmodule // canstar_sja1000$core$fsm$rpt$errtx_r
 
 
-module canstar_sja1000$core$fsm$evr(d,q,clock);
+module canstar_sja1000$core$fsm$rpt$evr(d,q,clock);
     
     // Module arguments
     input wire  [19:0] d;
@@ -5348,10 +4702,313 @@ module canstar_sja1000$core$fsm$evr(d,q,clock);
        q <= d;
     end
           
-endmodule // canstar_sja1000$core$fsm$evr
+endmodule // canstar_sja1000$core$fsm$rpt$evr
 
 
-module canstar_sja1000$core$fsm$exc1(d,q,clock);
+module canstar_sja1000$core$fsm$rxf(clock,reset,sample,rxbit,adv,fld,sofinit,deliver,ext,rtr,dlc_lo_zero,data_bits,rx_ide,rx_rtr,rx_id,rx_dlc,rx_data);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  reset;
+    input wire  sample;
+    input wire  rxbit;
+    input wire  adv;
+    input wire  [4:0] fld;
+    input wire  sofinit;
+    input wire  deliver;
+    output reg  ext;
+    output reg  rtr;
+    output reg  dlc_lo_zero;
+    output reg  [7:0] data_bits;
+    output reg  rx_ide;
+    output reg  rx_rtr;
+    output reg  [28:0] rx_id;
+    output reg  [3:0] rx_dlc;
+    output reg  [63:0] rx_data;
+    
+    // Enums
+    localparam Field$Reset = 0;
+    localparam Field$WaitIdle = 1;
+    localparam Field$Idle = 2;
+    localparam Field$BusOff = 3;
+    localparam Field$Sof = 4;
+    localparam Field$Ident = 5;
+    localparam Field$Srr = 6;
+    localparam Field$Ide = 7;
+    localparam Field$Rtr = 8;
+    localparam Field$ExIdent = 9;
+    localparam Field$Resv = 10;
+    localparam Field$Dlc = 11;
+    localparam Field$Data = 12;
+    localparam Field$Crc = 13;
+    localparam Field$CrcDel = 14;
+    localparam Field$AckSlot = 15;
+    localparam Field$AckDel = 16;
+    localparam Field$Eof = 17;
+    localparam Field$ActFlag = 18;
+    localparam Field$PasFlag = 19;
+    localparam Field$OvlFlag = 20;
+    localparam Field$ErrDel = 21;
+    localparam Field$OvlDel = 22;
+    localparam Field$Inter = 23;
+    localparam Field$Suspend = 24;
+    
+    // Stub signals
+    reg  [28:0] rid$d;
+    wire  [28:0] rid$q;
+    reg  rid$clock;
+    reg  [63:0] rdat$d;
+    wire  [63:0] rdat$q;
+    reg  rdat$clock;
+    reg  [3:0] rdlc$d;
+    wire  [3:0] rdlc$q;
+    reg  rdlc$clock;
+    reg  rrtr$d;
+    wire  rrtr$q;
+    reg  rrtr$clock;
+    reg  rext$d;
+    wire  rext$q;
+    reg  rext$clock;
+    reg  rxide_r$d;
+    wire  rxide_r$q;
+    reg  rxide_r$clock;
+    reg  rxrtr_r$d;
+    wire  rxrtr_r$q;
+    reg  rxrtr_r$clock;
+    reg  [28:0] rxid_r$d;
+    wire  [28:0] rxid_r$q;
+    reg  rxid_r$clock;
+    reg  [3:0] rxdlc_r$d;
+    wire  [3:0] rxdlc_r$q;
+    reg  rxdlc_r$clock;
+    reg  [63:0] rxdat_r$d;
+    wire  [63:0] rxdat_r$q;
+    reg  rxdat_r$clock;
+    
+    // Local signals
+    reg  [28:0] l_rid;
+    reg  [63:0] l_rdat;
+    reg  [3:0] l_rdlc;
+    reg  l_rrtr;
+    reg  l_rext;
+    reg  [3:0] l_nbytes;
+    reg  [5:0] l_shamt;
+    
+    // Sub module instances
+    canstar_sja1000$core$fsm$rxf$rid rid(
+        .d(rid$d),
+        .q(rid$q),
+        .clock(rid$clock)
+    );
+    canstar_sja1000$core$fsm$rxf$rdat rdat(
+        .d(rdat$d),
+        .q(rdat$q),
+        .clock(rdat$clock)
+    );
+    canstar_sja1000$core$fsm$rxf$rdlc rdlc(
+        .d(rdlc$d),
+        .q(rdlc$q),
+        .clock(rdlc$clock)
+    );
+    canstar_sja1000$core$fsm$rxf$rrtr rrtr(
+        .d(rrtr$d),
+        .q(rrtr$q),
+        .clock(rrtr$clock)
+    );
+    canstar_sja1000$core$fsm$rxf$rext rext(
+        .d(rext$d),
+        .q(rext$q),
+        .clock(rext$clock)
+    );
+    canstar_sja1000$core$fsm$rxf$rxide_r rxide_r(
+        .d(rxide_r$d),
+        .q(rxide_r$q),
+        .clock(rxide_r$clock)
+    );
+    canstar_sja1000$core$fsm$rxf$rxrtr_r rxrtr_r(
+        .d(rxrtr_r$d),
+        .q(rxrtr_r$q),
+        .clock(rxrtr_r$clock)
+    );
+    canstar_sja1000$core$fsm$rxf$rxid_r rxid_r(
+        .d(rxid_r$d),
+        .q(rxid_r$q),
+        .clock(rxid_r$clock)
+    );
+    canstar_sja1000$core$fsm$rxf$rxdlc_r rxdlc_r(
+        .d(rxdlc_r$d),
+        .q(rxdlc_r$q),
+        .clock(rxdlc_r$clock)
+    );
+    canstar_sja1000$core$fsm$rxf$rxdat_r rxdat_r(
+        .d(rxdat_r$d),
+        .q(rxdat_r$q),
+        .clock(rxdat_r$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        rid$clock = clock;
+        rdat$clock = clock;
+        rdlc$clock = clock;
+        rrtr$clock = clock;
+        rext$clock = clock;
+        rxide_r$clock = clock;
+        rxrtr_r$clock = clock;
+        rxid_r$clock = clock;
+        rxdlc_r$clock = clock;
+        rxdat_r$clock = clock;
+        rid$d = rid$q;
+        rdat$d = rdat$q;
+        rdlc$d = rdlc$q;
+        rrtr$d = rrtr$q;
+        rext$d = rext$q;
+        rxide_r$d = rxide_r$q;
+        rxrtr_r$d = rxrtr_r$q;
+        rxid_r$d = rxid_r$q;
+        rxdlc_r$d = rxdlc_r$q;
+        rxdat_r$d = rxdat_r$q;
+        l_nbytes = rdlc$q;
+        if (rdlc$q >= 32'h8) begin
+            l_nbytes = 32'h8;
+        end
+        l_shamt = ((l_nbytes) & 6'h3f) << 32'h3;
+        l_shamt = (~l_shamt) + 32'h1;
+        l_rid = rid$q;
+        l_rdat = rdat$q;
+        l_rdlc = rdlc$q;
+        l_rrtr = rrtr$q;
+        l_rext = rext$q;
+        if (sample) begin
+            if (adv) begin
+                case (fld)
+                    Field$Ident:
+                        begin
+                            l_rid = rid$q << 32'h1;
+                            if (rxbit) begin
+                                l_rid = l_rid | 32'h1;
+                            end
+                        end
+                    Field$ExIdent:
+                        begin
+                            l_rid = rid$q << 32'h1;
+                            if (rxbit) begin
+                                l_rid = l_rid | 32'h1;
+                            end
+                        end
+                    Field$Srr:
+                        begin
+                            l_rrtr = rxbit;
+                        end
+                    Field$Rtr:
+                        begin
+                            l_rrtr = rxbit;
+                        end
+                    Field$Ide:
+                        begin
+                            l_rext = rxbit;
+                        end
+                    Field$Dlc:
+                        begin
+                            l_rdlc = rdlc$q << 32'h1;
+                            if (rxbit) begin
+                                l_rdlc = l_rdlc | 32'h1;
+                            end
+                        end
+                    Field$Data:
+                        begin
+                            l_rdat = rdat$q << 32'h1;
+                            if (rxbit) begin
+                                l_rdat = l_rdat | 32'h1;
+                            end
+                        end
+                    default:
+                        begin
+                        end
+                endcase
+            end
+            if (sofinit) begin
+                l_rid = 32'h0;
+                l_rdat = 32'h0;
+                l_rdlc = 32'h0;
+                l_rrtr = 1'b0;
+                l_rext = 1'b0;
+            end
+            rid$d = l_rid;
+            rdat$d = l_rdat;
+            rdlc$d = l_rdlc;
+            rrtr$d = l_rrtr;
+            rext$d = l_rext;
+            if (deliver) begin
+                rxide_r$d = rext$q;
+                rxrtr_r$d = rrtr$q;
+                rxid_r$d = rid$q;
+                rxdlc_r$d = rdlc$q;
+                if (rrtr$q | (l_nbytes == 32'h0)) begin
+                    rxdat_r$d = 32'h0;
+                end
+                else begin
+                    rxdat_r$d = rdat$q << l_shamt;
+                end
+            end
+        end
+        if (reset) begin
+            rrtr$d = 1'b0;
+            rext$d = 1'b0;
+        end
+        ext = rext$q;
+        rtr = rrtr$q;
+        dlc_lo_zero = rdlc$q[(32'h0)+:(3)] == 32'h0;
+        data_bits = ((l_nbytes) & 8'hff) << 32'h3;
+        rx_ide = rxide_r$q;
+        rx_rtr = rxrtr_r$q;
+        rx_id = rxid_r$q;
+        rx_dlc = rxdlc_r$q;
+        rx_data = rxdat_r$q;
+    end
+    
+endmodule // canstar_sja1000$core$fsm$rxf
+
+
+module canstar_sja1000$core$fsm$rxf$rdat(d,q,clock);
+    
+    // Module arguments
+    input wire  [63:0] d;
+    output reg  [63:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 64'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_sja1000$core$fsm$rxf$rdat
+
+
+module canstar_sja1000$core$fsm$rxf$rdlc(d,q,clock);
+    
+    // Module arguments
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 4'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_sja1000$core$fsm$rxf$rdlc
+
+
+module canstar_sja1000$core$fsm$rxf$rext(d,q,clock);
     
     // Module arguments
     input wire  d;
@@ -5367,10 +5024,29 @@ module canstar_sja1000$core$fsm$exc1(d,q,clock);
        q <= d;
     end
           
-endmodule // canstar_sja1000$core$fsm$exc1
+endmodule // canstar_sja1000$core$fsm$rxf$rext
 
 
-module canstar_sja1000$core$fsm$fdone(d,q,clock);
+module canstar_sja1000$core$fsm$rxf$rid(d,q,clock);
+    
+    // Module arguments
+    input wire  [28:0] d;
+    output reg  [28:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 29'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_sja1000$core$fsm$rxf$rid
+
+
+module canstar_sja1000$core$fsm$rxf$rrtr(d,q,clock);
     
     // Module arguments
     input wire  d;
@@ -5386,10 +5062,505 @@ module canstar_sja1000$core$fsm$fdone(d,q,clock);
        q <= d;
     end
           
-endmodule // canstar_sja1000$core$fsm$fdone
+endmodule // canstar_sja1000$core$fsm$rxf$rrtr
 
 
-module canstar_sja1000$core$fsm$fld(d,q,clock);
+module canstar_sja1000$core$fsm$rxf$rxdat_r(d,q,clock);
+    
+    // Module arguments
+    input wire  [63:0] d;
+    output reg  [63:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 64'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_sja1000$core$fsm$rxf$rxdat_r
+
+
+module canstar_sja1000$core$fsm$rxf$rxdlc_r(d,q,clock);
+    
+    // Module arguments
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 4'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_sja1000$core$fsm$rxf$rxdlc_r
+
+
+module canstar_sja1000$core$fsm$rxf$rxid_r(d,q,clock);
+    
+    // Module arguments
+    input wire  [28:0] d;
+    output reg  [28:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 29'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_sja1000$core$fsm$rxf$rxid_r
+
+
+module canstar_sja1000$core$fsm$rxf$rxide_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_sja1000$core$fsm$rxf$rxide_r
+
+
+module canstar_sja1000$core$fsm$rxf$rxrtr_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_sja1000$core$fsm$rxf$rxrtr_r
+
+
+module canstar_sja1000$core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_recovery,cnt_load,tec_in,stuff,req,active,armed,last_run,busoff,level,f_own,f_nf,f_npos,f_ndom,f_usetx,f_lost,f_err,f_ovl,f_sof,g_own,g_nf,g_npos,g_ndom,g_err,g_ovl,fld,fpos,pfld,ppos,tx_role,dom,in_busoff,nf_tx,err,flag_start,sofinit,txsof,ev_aef,ev_pef,ev_olf,ev_ovl,ev_integrated,ev_run,ev_recovered);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  reset;
+    input wire  sample;
+    input wire  rxbit;
+    input wire  listen_only;
+    input wire  host_recovery;
+    input wire  cnt_load;
+    input wire  [8:0] tec_in;
+    input wire  stuff;
+    input wire  req;
+    input wire  active;
+    input wire  armed;
+    input wire  last_run;
+    input wire  busoff;
+    input wire  level;
+    input wire  f_own;
+    input wire  [4:0] f_nf;
+    input wire  [7:0] f_npos;
+    input wire  f_ndom;
+    input wire  f_usetx;
+    input wire  f_lost;
+    input wire  f_err;
+    input wire  f_ovl;
+    input wire  f_sof;
+    input wire  g_own;
+    input wire  [4:0] g_nf;
+    input wire  [7:0] g_npos;
+    input wire  g_ndom;
+    input wire  g_err;
+    input wire  g_ovl;
+    output reg  [4:0] fld;
+    output reg  [7:0] fpos;
+    output reg  [4:0] pfld;
+    output reg  [7:0] ppos;
+    output reg  tx_role;
+    output reg  dom;
+    output reg  in_busoff;
+    output reg  [4:0] nf_tx;
+    output reg  err;
+    output reg  flag_start;
+    output reg  sofinit;
+    output reg  txsof;
+    output reg  ev_aef;
+    output reg  ev_pef;
+    output reg  ev_olf;
+    output reg  ev_ovl;
+    output reg  ev_integrated;
+    output reg  ev_run;
+    output reg  ev_recovered;
+    
+    // Enums
+    localparam Field$Reset = 0;
+    localparam Field$WaitIdle = 1;
+    localparam Field$Idle = 2;
+    localparam Field$BusOff = 3;
+    localparam Field$Sof = 4;
+    localparam Field$Ident = 5;
+    localparam Field$Srr = 6;
+    localparam Field$Ide = 7;
+    localparam Field$Rtr = 8;
+    localparam Field$ExIdent = 9;
+    localparam Field$Resv = 10;
+    localparam Field$Dlc = 11;
+    localparam Field$Data = 12;
+    localparam Field$Crc = 13;
+    localparam Field$CrcDel = 14;
+    localparam Field$AckSlot = 15;
+    localparam Field$AckDel = 16;
+    localparam Field$Eof = 17;
+    localparam Field$ActFlag = 18;
+    localparam Field$PasFlag = 19;
+    localparam Field$OvlFlag = 20;
+    localparam Field$ErrDel = 21;
+    localparam Field$OvlDel = 22;
+    localparam Field$Inter = 23;
+    localparam Field$Suspend = 24;
+    
+    // Stub signals
+    reg  [4:0] rfld$d;
+    wire  [4:0] rfld$q;
+    reg  rfld$clock;
+    reg  [7:0] rpos$d;
+    wire  [7:0] rpos$q;
+    reg  rpos$clock;
+    reg  [4:0] rpfld$d;
+    wire  [4:0] rpfld$q;
+    reg  rpfld$clock;
+    reg  [7:0] rppos$d;
+    wire  [7:0] rppos$q;
+    reg  rppos$clock;
+    reg  rtx$d;
+    wire  rtx$q;
+    reg  rtx$clock;
+    reg  rdom$d;
+    wire  rdom$q;
+    reg  rdom$clock;
+    
+    // Local signals
+    reg  [7:0] l_posinc;
+    reg  l_cantx;
+    reg  [4:0] l_nf;
+    reg  [7:0] l_npos;
+    reg  l_ndom;
+    reg  l_usetx;
+    reg  l_role;
+    reg  l_start;
+    reg  l_ovl;
+    
+    // Sub module instances
+    canstar_sja1000$core$fsm$seq$rfld rfld(
+        .d(rfld$d),
+        .q(rfld$q),
+        .clock(rfld$clock)
+    );
+    canstar_sja1000$core$fsm$seq$rpos rpos(
+        .d(rpos$d),
+        .q(rpos$q),
+        .clock(rpos$clock)
+    );
+    canstar_sja1000$core$fsm$seq$rpfld rpfld(
+        .d(rpfld$d),
+        .q(rpfld$q),
+        .clock(rpfld$clock)
+    );
+    canstar_sja1000$core$fsm$seq$rppos rppos(
+        .d(rppos$d),
+        .q(rppos$q),
+        .clock(rppos$clock)
+    );
+    canstar_sja1000$core$fsm$seq$rtx rtx(
+        .d(rtx$d),
+        .q(rtx$q),
+        .clock(rtx$clock)
+    );
+    canstar_sja1000$core$fsm$seq$rdom rdom(
+        .d(rdom$d),
+        .q(rdom$q),
+        .clock(rdom$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        rfld$clock = clock;
+        rpos$clock = clock;
+        rpfld$clock = clock;
+        rppos$clock = clock;
+        rtx$clock = clock;
+        rdom$clock = clock;
+        rfld$d = rfld$q;
+        rpos$d = rpos$q;
+        rpfld$d = rpfld$q;
+        rppos$d = rppos$q;
+        rtx$d = rtx$q;
+        rdom$d = rdom$q;
+        l_posinc = rpos$q + 32'h1;
+        if (rpos$q == 32'hff) begin
+            l_posinc = rpos$q;
+        end
+        l_cantx = req & ~listen_only;
+        l_nf = rfld$q;
+        l_npos = rpos$q;
+        l_ndom = 1'b0;
+        l_usetx = 1'b0;
+        l_role = rtx$q;
+        l_start = 1'b0;
+        l_ovl = 1'b0;
+        sofinit = 1'b0;
+        txsof = 1'b0;
+        err = 1'b0;
+        ev_integrated = 1'b0;
+        ev_run = 1'b0;
+        ev_recovered = 1'b0;
+        if (sample) begin
+            if (f_own) begin
+                l_nf = f_nf;
+                l_npos = f_npos;
+                l_ndom = f_ndom;
+                l_usetx = f_usetx;
+                l_role = rtx$q & ~f_lost;
+                sofinit = f_sof;
+                err = f_err;
+                l_ovl = f_ovl;
+            end
+            else if (g_own) begin
+                l_nf = g_nf;
+                l_npos = g_npos;
+                l_ndom = g_ndom;
+                err = g_err;
+                l_ovl = g_ovl;
+            end
+            else begin
+                case (rfld$q)
+                    Field$Reset:
+                        begin
+                            l_nf = Field$WaitIdle;
+                            l_npos = 32'h1;
+                        end
+                    Field$WaitIdle:
+                        begin
+                            if (~rxbit) begin
+                                l_npos = 32'h1;
+                            end
+                            else if (rpos$q == 32'hb) begin
+                                ev_integrated = 1'b1;
+                                l_start = 1'b1;
+                            end
+                            else begin
+                                l_npos = l_posinc;
+                            end
+                        end
+                    Field$Idle:
+                        begin
+                            if (~rxbit) begin
+                                sofinit = 1'b1;
+                                l_role = 1'b0;
+                            end
+                            else begin
+                                l_start = 1'b1;
+                            end
+                        end
+                    Field$BusOff:
+                        begin
+                            if ((host_recovery & ~armed) | ~rxbit) begin
+                                l_npos = 32'h1;
+                            end
+                            else if (rpos$q == 32'hb) begin
+                                ev_run = 1'b1;
+                                l_npos = 32'h1;
+                                if (last_run) begin
+                                    ev_recovered = 1'b1;
+                                    l_start = 1'b1;
+                                end
+                            end
+                            else begin
+                                l_npos = l_posinc;
+                            end
+                        end
+                    Field$Inter:
+                        begin
+                            l_npos = l_posinc;
+                            if (rpos$q == 32'h3) begin
+                                if (~rxbit) begin
+                                    sofinit = 1'b1;
+                                    if (l_cantx & ~(rtx$q & ~active)) begin
+                                        l_role = 1'b1;
+                                        txsof = 1'b1;
+                                    end
+                                    else begin
+                                        l_role = 1'b0;
+                                    end
+                                end
+                                else if (rtx$q & ~active) begin
+                                    l_nf = Field$Suspend;
+                                    l_npos = 32'h1;
+                                end
+                                else begin
+                                    l_start = 1'b1;
+                                end
+                            end
+                            else if (~rxbit) begin
+                                l_ovl = 1'b1;
+                            end
+                        end
+                    Field$Suspend:
+                        begin
+                            l_npos = l_posinc;
+                            if (~rxbit) begin
+                                sofinit = 1'b1;
+                                l_role = 1'b0;
+                            end
+                            else if (rpos$q == 32'h8) begin
+                                l_start = 1'b1;
+                            end
+                        end
+                    default:
+                        begin
+                        end
+                endcase
+            end
+            if (sofinit) begin
+                l_nf = Field$Ident;
+                l_npos = 32'h1;
+                l_usetx = 1'b1;
+            end
+            if (l_start) begin
+                if (l_cantx) begin
+                    l_nf = Field$Sof;
+                    l_npos = 32'h1;
+                    l_role = 1'b1;
+                    txsof = 1'b1;
+                    l_usetx = 1'b1;
+                end
+                else begin
+                    l_nf = Field$Idle;
+                    l_npos = 32'h1;
+                    if (rfld$q == Field$Idle) begin
+                        l_npos = l_posinc;
+                    end
+                end
+            end
+        end
+        nf_tx = l_nf;
+        if (l_usetx) begin
+            l_ndom = l_role & ~level;
+        end
+        ev_aef = 1'b0;
+        ev_pef = 1'b0;
+        ev_olf = 1'b0;
+        if (err) begin
+            l_npos = 32'h1;
+            if (active) begin
+                l_nf = Field$ActFlag;
+                l_ndom = 1'b1;
+                ev_aef = 1'b1;
+            end
+            else begin
+                l_nf = Field$PasFlag;
+                l_ndom = 1'b0;
+                ev_pef = 1'b1;
+            end
+        end
+        else if (l_ovl) begin
+            l_nf = Field$OvlFlag;
+            l_npos = 32'h1;
+            l_ndom = 1'b1;
+            ev_olf = 1'b1;
+        end
+        if (busoff) begin
+            ev_aef = 1'b0;
+            ev_pef = 1'b0;
+            ev_olf = 1'b0;
+            l_nf = Field$BusOff;
+            l_npos = 32'h1;
+            l_ndom = 1'b0;
+        end
+        flag_start = err | l_ovl;
+        ev_ovl = l_ovl & ~err;
+        if (sample) begin
+            if (~stuff) begin
+                rpfld$d = rfld$q;
+                rppos$d = rpos$q;
+            end
+            rfld$d = l_nf;
+            rpos$d = l_npos;
+            rtx$d = l_role;
+            rdom$d = l_ndom;
+        end
+        if (reset) begin
+            rfld$d = Field$WaitIdle;
+            rpos$d = 32'h1;
+            rtx$d = 1'b0;
+            rdom$d = 1'b0;
+        end
+        if (cnt_load) begin
+            if (tec_in >= 32'h100) begin
+                rfld$d = Field$BusOff;
+                rpos$d = 32'h1;
+                rtx$d = 1'b0;
+                rdom$d = 1'b0;
+            end
+            else if (rfld$q == Field$BusOff) begin
+                rfld$d = Field$WaitIdle;
+                rpos$d = 32'h1;
+                rdom$d = 1'b0;
+            end
+        end
+        fld = rfld$q;
+        fpos = rpos$q;
+        pfld = rpfld$q;
+        ppos = rppos$q;
+        tx_role = rtx$q;
+        dom = rdom$q;
+        in_busoff = rfld$q == Field$BusOff;
+    end
+    
+endmodule // canstar_sja1000$core$fsm$seq
+
+
+module canstar_sja1000$core$fsm$seq$rdom(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_sja1000$core$fsm$seq$rdom
+
+
+module canstar_sja1000$core$fsm$seq$rfld(d,q,clock);
     
     // Module arguments
     input wire  [4:0] d;
@@ -5432,29 +5603,10 @@ module canstar_sja1000$core$fsm$fld(d,q,clock);
        q <= d;
     end
           
-endmodule // canstar_sja1000$core$fsm$fld
+endmodule // canstar_sja1000$core$fsm$seq$rfld
 
 
-module canstar_sja1000$core$fsm$fpos(d,q,clock);
-    
-    // Module arguments
-    input wire  [7:0] d;
-    output reg  [7:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 8'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_sja1000$core$fsm$fpos
-
-
-module canstar_sja1000$core$fsm$pfld(d,q,clock);
+module canstar_sja1000$core$fsm$seq$rpfld(d,q,clock);
     
     // Module arguments
     input wire  [4:0] d;
@@ -5497,10 +5649,10 @@ module canstar_sja1000$core$fsm$pfld(d,q,clock);
        q <= d;
     end
           
-endmodule // canstar_sja1000$core$fsm$pfld
+endmodule // canstar_sja1000$core$fsm$seq$rpfld
 
 
-module canstar_sja1000$core$fsm$ppos(d,q,clock);
+module canstar_sja1000$core$fsm$seq$rpos(d,q,clock);
     
     // Module arguments
     input wire  [7:0] d;
@@ -5516,67 +5668,10 @@ module canstar_sja1000$core$fsm$ppos(d,q,clock);
        q <= d;
     end
           
-endmodule // canstar_sja1000$core$fsm$ppos
+endmodule // canstar_sja1000$core$fsm$seq$rpos
 
 
-module canstar_sja1000$core$fsm$rarmed(d,q,clock);
-    
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_sja1000$core$fsm$rarmed
-
-
-module canstar_sja1000$core$fsm$rdat(d,q,clock);
-    
-    // Module arguments
-    input wire  [63:0] d;
-    output reg  [63:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 64'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_sja1000$core$fsm$rdat
-
-
-module canstar_sja1000$core$fsm$rdlc(d,q,clock);
-    
-    // Module arguments
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 4'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_sja1000$core$fsm$rdlc
-
-
-module canstar_sja1000$core$fsm$recr(d,q,clock);
+module canstar_sja1000$core$fsm$seq$rppos(d,q,clock);
     
     // Module arguments
     input wire  [7:0] d;
@@ -5592,10 +5687,10 @@ module canstar_sja1000$core$fsm$recr(d,q,clock);
        q <= d;
     end
           
-endmodule // canstar_sja1000$core$fsm$recr
+endmodule // canstar_sja1000$core$fsm$seq$rppos
 
 
-module canstar_sja1000$core$fsm$req(d,q,clock);
+module canstar_sja1000$core$fsm$seq$rtx(d,q,clock);
     
     // Module arguments
     input wire  d;
@@ -5611,10 +5706,255 @@ module canstar_sja1000$core$fsm$req(d,q,clock);
        q <= d;
     end
           
-endmodule // canstar_sja1000$core$fsm$req
+endmodule // canstar_sja1000$core$fsm$seq$rtx
 
 
-module canstar_sja1000$core$fsm$rext(d,q,clock);
+module canstar_sja1000$core$fsm$txq(clock,reset,sample,tx_req,tx_abort,single_shot,tx_ide,tx_rtr,tx_id,tx_dlc,tx_data,load,adv,fld,nf,crc_bit,lost,done,err_now,tx_role,req,ide,level);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  reset;
+    input wire  sample;
+    input wire  tx_req;
+    input wire  tx_abort;
+    input wire  single_shot;
+    input wire  tx_ide;
+    input wire  tx_rtr;
+    input wire  [28:0] tx_id;
+    input wire  [3:0] tx_dlc;
+    input wire  [63:0] tx_data;
+    input wire  load;
+    input wire  adv;
+    input wire  [4:0] fld;
+    input wire  [4:0] nf;
+    input wire  crc_bit;
+    input wire  lost;
+    input wire  done;
+    input wire  err_now;
+    input wire  tx_role;
+    output reg  req;
+    output reg  ide;
+    output reg  level;
+    
+    // Enums
+    localparam Field$Reset = 0;
+    localparam Field$WaitIdle = 1;
+    localparam Field$Idle = 2;
+    localparam Field$BusOff = 3;
+    localparam Field$Sof = 4;
+    localparam Field$Ident = 5;
+    localparam Field$Srr = 6;
+    localparam Field$Ide = 7;
+    localparam Field$Rtr = 8;
+    localparam Field$ExIdent = 9;
+    localparam Field$Resv = 10;
+    localparam Field$Dlc = 11;
+    localparam Field$Data = 12;
+    localparam Field$Crc = 13;
+    localparam Field$CrcDel = 14;
+    localparam Field$AckSlot = 15;
+    localparam Field$AckDel = 16;
+    localparam Field$Eof = 17;
+    localparam Field$ActFlag = 18;
+    localparam Field$PasFlag = 19;
+    localparam Field$OvlFlag = 20;
+    localparam Field$ErrDel = 21;
+    localparam Field$OvlDel = 22;
+    localparam Field$Inter = 23;
+    localparam Field$Suspend = 24;
+    
+    // Stub signals
+    reg  rq$d;
+    wire  rq$q;
+    reg  rq$clock;
+    reg  blocked$d;
+    wire  blocked$q;
+    reg  blocked$clock;
+    reg  [28:0] tid$d;
+    wire  [28:0] tid$q;
+    reg  tid$clock;
+    reg  [63:0] tdat$d;
+    wire  [63:0] tdat$q;
+    reg  tdat$clock;
+    reg  [3:0] tdlc$d;
+    wire  [3:0] tdlc$q;
+    reg  tdlc$clock;
+    reg  tide$d;
+    wire  tide$q;
+    reg  tide$clock;
+    reg  trtr$d;
+    wire  trtr$q;
+    reg  trtr$clock;
+    
+    // Local signals
+    reg  [28:0] l_tid;
+    reg  [63:0] l_tdat;
+    reg  [3:0] l_tdlc;
+    reg  l_tide;
+    reg  l_trtr;
+    
+    // Sub module instances
+    canstar_sja1000$core$fsm$txq$rq rq(
+        .d(rq$d),
+        .q(rq$q),
+        .clock(rq$clock)
+    );
+    canstar_sja1000$core$fsm$txq$blocked blocked(
+        .d(blocked$d),
+        .q(blocked$q),
+        .clock(blocked$clock)
+    );
+    canstar_sja1000$core$fsm$txq$tid tid(
+        .d(tid$d),
+        .q(tid$q),
+        .clock(tid$clock)
+    );
+    canstar_sja1000$core$fsm$txq$tdat tdat(
+        .d(tdat$d),
+        .q(tdat$q),
+        .clock(tdat$clock)
+    );
+    canstar_sja1000$core$fsm$txq$tdlc tdlc(
+        .d(tdlc$d),
+        .q(tdlc$q),
+        .clock(tdlc$clock)
+    );
+    canstar_sja1000$core$fsm$txq$tide tide(
+        .d(tide$d),
+        .q(tide$q),
+        .clock(tide$clock)
+    );
+    canstar_sja1000$core$fsm$txq$trtr trtr(
+        .d(trtr$d),
+        .q(trtr$q),
+        .clock(trtr$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        rq$clock = clock;
+        blocked$clock = clock;
+        tid$clock = clock;
+        tdat$clock = clock;
+        tdlc$clock = clock;
+        tide$clock = clock;
+        trtr$clock = clock;
+        rq$d = rq$q;
+        blocked$d = blocked$q;
+        tid$d = tid$q;
+        tdat$d = tdat$q;
+        tdlc$d = tdlc$q;
+        tide$d = tide$q;
+        trtr$d = trtr$q;
+        blocked$d = blocked$q | tx_abort;
+        if (~tx_req) begin
+            blocked$d = 1'b0;
+        end
+        if (sample & (done | (single_shot & (lost | (err_now & tx_role))))) begin
+            blocked$d = 1'b1;
+        end
+        rq$d = tx_req & ~blocked$q & ~tx_abort;
+        if (reset) begin
+            rq$d = 1'b0;
+            blocked$d = 1'b0;
+        end
+        l_tid = tid$q;
+        l_tdat = tdat$q;
+        l_tdlc = tdlc$q;
+        l_tide = tide$q;
+        l_trtr = trtr$q;
+        level = 1'b1;
+        if (sample) begin
+            if (adv) begin
+                case (fld)
+                    Field$Ident:
+                        begin
+                            l_tid = tid$q << 32'h1;
+                        end
+                    Field$ExIdent:
+                        begin
+                            l_tid = tid$q << 32'h1;
+                        end
+                    Field$Dlc:
+                        begin
+                            l_tdlc = tdlc$q << 32'h1;
+                        end
+                    Field$Data:
+                        begin
+                            l_tdat = tdat$q << 32'h1;
+                        end
+                    default:
+                        begin
+                        end
+                endcase
+            end
+            if (load) begin
+                l_tide = tx_ide;
+                l_trtr = tx_rtr;
+                if (tx_ide) begin
+                    l_tid = tx_id;
+                end
+                else begin
+                    l_tid = tx_id << 32'h12;
+                end
+                l_tdlc = tx_dlc;
+                l_tdat = tx_data;
+            end
+            tid$d = l_tid;
+            tdat$d = l_tdat;
+            tdlc$d = l_tdlc;
+            tide$d = l_tide;
+            trtr$d = l_trtr;
+            case (nf)
+                Field$Sof:
+                    begin
+                        level = 1'b0;
+                    end
+                Field$Ident:
+                    begin
+                        level = l_tid[32'h1c];
+                    end
+                Field$ExIdent:
+                    begin
+                        level = l_tid[32'h1c];
+                    end
+                Field$Ide:
+                    begin
+                        level = l_tide;
+                    end
+                Field$Rtr:
+                    begin
+                        level = l_trtr;
+                    end
+                Field$Resv:
+                    begin
+                        level = 1'b0;
+                    end
+                Field$Dlc:
+                    begin
+                        level = l_tdlc[32'h3];
+                    end
+                Field$Data:
+                    begin
+                        level = l_tdat[32'h3f];
+                    end
+                Field$Crc:
+                    begin
+                        level = crc_bit;
+                    end
+                default:
+                    begin
+                    end
+            endcase
+        end
+        req = rq$q;
+        ide = tide$q;
+    end
+    
+endmodule // canstar_sja1000$core$fsm$txq
+
+
+module canstar_sja1000$core$fsm$txq$blocked(d,q,clock);
     
     // Module arguments
     input wire  d;
@@ -5630,29 +5970,10 @@ module canstar_sja1000$core$fsm$rext(d,q,clock);
        q <= d;
     end
           
-endmodule // canstar_sja1000$core$fsm$rext
+endmodule // canstar_sja1000$core$fsm$txq$blocked
 
 
-module canstar_sja1000$core$fsm$rid(d,q,clock);
-    
-    // Module arguments
-    input wire  [28:0] d;
-    output reg  [28:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 29'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_sja1000$core$fsm$rid
-
-
-module canstar_sja1000$core$fsm$rrtr(d,q,clock);
+module canstar_sja1000$core$fsm$txq$rq(d,q,clock);
     
     // Module arguments
     input wire  d;
@@ -5668,48 +5989,10 @@ module canstar_sja1000$core$fsm$rrtr(d,q,clock);
        q <= d;
     end
           
-endmodule // canstar_sja1000$core$fsm$rrtr
+endmodule // canstar_sja1000$core$fsm$txq$rq
 
 
-module canstar_sja1000$core$fsm$rtx(d,q,clock);
-    
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_sja1000$core$fsm$rtx
-
-
-module canstar_sja1000$core$fsm$runr(d,q,clock);
-    
-    // Module arguments
-    input wire  [7:0] d;
-    output reg  [7:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 8'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_sja1000$core$fsm$runr
-
-
-module canstar_sja1000$core$fsm$rxdat_r(d,q,clock);
+module canstar_sja1000$core$fsm$txq$tdat(d,q,clock);
     
     // Module arguments
     input wire  [63:0] d;
@@ -5725,10 +6008,10 @@ module canstar_sja1000$core$fsm$rxdat_r(d,q,clock);
        q <= d;
     end
           
-endmodule // canstar_sja1000$core$fsm$rxdat_r
+endmodule // canstar_sja1000$core$fsm$txq$tdat
 
 
-module canstar_sja1000$core$fsm$rxdlc_r(d,q,clock);
+module canstar_sja1000$core$fsm$txq$tdlc(d,q,clock);
     
     // Module arguments
     input wire  [3:0] d;
@@ -5744,10 +6027,10 @@ module canstar_sja1000$core$fsm$rxdlc_r(d,q,clock);
        q <= d;
     end
           
-endmodule // canstar_sja1000$core$fsm$rxdlc_r
+endmodule // canstar_sja1000$core$fsm$txq$tdlc
 
 
-module canstar_sja1000$core$fsm$rxid_r(d,q,clock);
+module canstar_sja1000$core$fsm$txq$tid(d,q,clock);
     
     // Module arguments
     input wire  [28:0] d;
@@ -5763,10 +6046,10 @@ module canstar_sja1000$core$fsm$rxid_r(d,q,clock);
        q <= d;
     end
           
-endmodule // canstar_sja1000$core$fsm$rxid_r
+endmodule // canstar_sja1000$core$fsm$txq$tid
 
 
-module canstar_sja1000$core$fsm$rxide_r(d,q,clock);
+module canstar_sja1000$core$fsm$txq$tide(d,q,clock);
     
     // Module arguments
     input wire  d;
@@ -5782,10 +6065,10 @@ module canstar_sja1000$core$fsm$rxide_r(d,q,clock);
        q <= d;
     end
           
-endmodule // canstar_sja1000$core$fsm$rxide_r
+endmodule // canstar_sja1000$core$fsm$txq$tide
 
 
-module canstar_sja1000$core$fsm$rxrtr_r(d,q,clock);
+module canstar_sja1000$core$fsm$txq$trtr(d,q,clock);
     
     // Module arguments
     input wire  d;
@@ -5801,121 +6084,7 @@ module canstar_sja1000$core$fsm$rxrtr_r(d,q,clock);
        q <= d;
     end
           
-endmodule // canstar_sja1000$core$fsm$rxrtr_r
-
-
-module canstar_sja1000$core$fsm$tdat(d,q,clock);
-    
-    // Module arguments
-    input wire  [63:0] d;
-    output reg  [63:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 64'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_sja1000$core$fsm$tdat
-
-
-module canstar_sja1000$core$fsm$tdlc(d,q,clock);
-    
-    // Module arguments
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 4'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_sja1000$core$fsm$tdlc
-
-
-module canstar_sja1000$core$fsm$tecr(d,q,clock);
-    
-    // Module arguments
-    input wire  [8:0] d;
-    output reg  [8:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 9'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_sja1000$core$fsm$tecr
-
-
-module canstar_sja1000$core$fsm$tid(d,q,clock);
-    
-    // Module arguments
-    input wire  [28:0] d;
-    output reg  [28:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 29'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_sja1000$core$fsm$tid
-
-
-module canstar_sja1000$core$fsm$tide(d,q,clock);
-    
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_sja1000$core$fsm$tide
-
-
-module canstar_sja1000$core$fsm$trtr(d,q,clock);
-    
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_sja1000$core$fsm$trtr
+endmodule // canstar_sja1000$core$fsm$txq$trtr
 
 
 module canstar_sja1000$core$sync(clock,reset,d,q);
@@ -6008,120 +6177,6 @@ module canstar_sja1000$core$sync$s2_n(d,q,clock);
 endmodule // canstar_sja1000$core$sync$s2_n
 
 
-module canstar_sja1000$core_bs(d,q,clock);
-    
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_sja1000$core_bs
-
-
-module canstar_sja1000$cur_fi(d,q,clock);
-    
-    // Module arguments
-    input wire  [7:0] d;
-    output reg  [7:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 8'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_sja1000$cur_fi
-
-
-module canstar_sja1000$dos(d,q,clock);
-    
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_sja1000$dos
-
-
-module canstar_sja1000$ecc(d,q,clock);
-    
-    // Module arguments
-    input wire  [7:0] d;
-    output reg  [7:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 8'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_sja1000$ecc
-
-
-module canstar_sja1000$ecc_lock(d,q,clock);
-    
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_sja1000$ecc_lock
-
-
-module canstar_sja1000$es_q(d,q,clock);
-    
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_sja1000$es_q
-
-
 module canstar_sja1000$ewl(d,q,clock);
     
     // Module arguments
@@ -6141,7 +6196,423 @@ module canstar_sja1000$ewl(d,q,clock);
 endmodule // canstar_sja1000$ewl
 
 
-module canstar_sja1000$fetch_a(d,q,clock);
+module canstar_sja1000$fifo(clock,rst,clear,offer_rx,offer_own,rx_ide,rx_rtr,rx_id,rx_dlc,rx_data,own_ide,own_rtr,own_id,own_dlc,own_data,accept,rrb,cdo,rbsa_we,ram_we,wdata,host_rd,host_win,host_idx,f_ide,f_rtr,f_id,f_n,f_d01,rdata,rmc,rbsa,dos,overrun,own_done,own_dropped,busy,busy_own);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  rst;
+    input wire  clear;
+    input wire  offer_rx;
+    input wire  offer_own;
+    input wire  rx_ide;
+    input wire  rx_rtr;
+    input wire  [28:0] rx_id;
+    input wire  [3:0] rx_dlc;
+    input wire  [63:0] rx_data;
+    input wire  own_ide;
+    input wire  own_rtr;
+    input wire  [28:0] own_id;
+    input wire  [3:0] own_dlc;
+    input wire  [63:0] own_data;
+    input wire  accept;
+    input wire  rrb;
+    input wire  cdo;
+    input wire  rbsa_we;
+    input wire  ram_we;
+    input wire  [7:0] wdata;
+    input wire  host_rd;
+    input wire  host_win;
+    input wire  [5:0] host_idx;
+    output reg  f_ide;
+    output reg  f_rtr;
+    output reg  [28:0] f_id;
+    output reg  [3:0] f_n;
+    output reg  [15:0] f_d01;
+    output reg  [7:0] rdata;
+    output reg  [4:0] rmc;
+    output reg  [5:0] rbsa;
+    output reg  dos;
+    output reg  overrun;
+    output reg  own_done;
+    output reg  own_dropped;
+    output reg  busy;
+    output reg  busy_own;
+    
+    // Stub signals
+    reg  [5:0] ram$read_address;
+    reg  ram$read_clock;
+    wire  [7:0] ram$read_data;
+    reg  [5:0] ram$write_address;
+    reg  ram$write_clock;
+    reg  [7:0] ram$write_data;
+    reg  ram$write_enable;
+    reg  [5:0] rbsa_r$d;
+    wire  [5:0] rbsa_r$q;
+    reg  rbsa_r$clock;
+    reg  [6:0] used$d;
+    wire  [6:0] used$q;
+    reg  used$clock;
+    reg  [4:0] rmc_r$d;
+    wire  [4:0] rmc_r$q;
+    reg  rmc_r$clock;
+    reg  dos_r$d;
+    wire  dos_r$q;
+    reg  dos_r$clock;
+    reg  wr_busy$d;
+    wire  wr_busy$q;
+    reg  wr_busy$clock;
+    reg  wr_src$d;
+    wire  wr_src$q;
+    reg  wr_src$clock;
+    reg  [3:0] wr_idx$d;
+    wire  [3:0] wr_idx$q;
+    reg  wr_idx$clock;
+    reg  [3:0] wr_len$d;
+    wire  [3:0] wr_len$q;
+    reg  wr_len$clock;
+    reg  fetch_q$d;
+    wire  fetch_q$q;
+    reg  fetch_q$clock;
+    reg  [5:0] fetch_a$d;
+    wire  [5:0] fetch_a$q;
+    reg  fetch_a$clock;
+    reg  [7:0] cur_fi$d;
+    wire  [7:0] cur_fi$q;
+    reg  cur_fi$clock;
+    
+    // Local signals
+    reg  l_own;
+    reg  [3:0] l_dlc;
+    reg  [63:0] l_data;
+    reg  [28:0] l_sid;
+    reg  [3:0] l_len;
+    reg  [103:0] l_msg;
+    reg  [7:0] l_wbyte;
+    reg  l_wdone;
+    reg  l_fits;
+    reg  [7:0] l_fi;
+    reg  [3:0] l_cur_n;
+    reg  [3:0] l_cur_len;
+    
+    // Sub module instances
+    canstar_sja1000$fifo$ram ram(
+        .read_address(ram$read_address),
+        .read_clock(ram$read_clock),
+        .read_data(ram$read_data),
+        .write_address(ram$write_address),
+        .write_clock(ram$write_clock),
+        .write_data(ram$write_data),
+        .write_enable(ram$write_enable)
+    );
+    canstar_sja1000$fifo$rbsa_r rbsa_r(
+        .d(rbsa_r$d),
+        .q(rbsa_r$q),
+        .clock(rbsa_r$clock)
+    );
+    canstar_sja1000$fifo$used used(
+        .d(used$d),
+        .q(used$q),
+        .clock(used$clock)
+    );
+    canstar_sja1000$fifo$rmc_r rmc_r(
+        .d(rmc_r$d),
+        .q(rmc_r$q),
+        .clock(rmc_r$clock)
+    );
+    canstar_sja1000$fifo$dos_r dos_r(
+        .d(dos_r$d),
+        .q(dos_r$q),
+        .clock(dos_r$clock)
+    );
+    canstar_sja1000$fifo$wr_busy wr_busy(
+        .d(wr_busy$d),
+        .q(wr_busy$q),
+        .clock(wr_busy$clock)
+    );
+    canstar_sja1000$fifo$wr_src wr_src(
+        .d(wr_src$d),
+        .q(wr_src$q),
+        .clock(wr_src$clock)
+    );
+    canstar_sja1000$fifo$wr_idx wr_idx(
+        .d(wr_idx$d),
+        .q(wr_idx$q),
+        .clock(wr_idx$clock)
+    );
+    canstar_sja1000$fifo$wr_len wr_len(
+        .d(wr_len$d),
+        .q(wr_len$q),
+        .clock(wr_len$clock)
+    );
+    canstar_sja1000$fifo$fetch_q fetch_q(
+        .d(fetch_q$d),
+        .q(fetch_q$q),
+        .clock(fetch_q$clock)
+    );
+    canstar_sja1000$fifo$fetch_a fetch_a(
+        .d(fetch_a$d),
+        .q(fetch_a$q),
+        .clock(fetch_a$clock)
+    );
+    canstar_sja1000$fifo$cur_fi cur_fi(
+        .d(cur_fi$d),
+        .q(cur_fi$q),
+        .clock(cur_fi$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        rbsa_r$clock = clock;
+        used$clock = clock;
+        rmc_r$clock = clock;
+        dos_r$clock = clock;
+        wr_busy$clock = clock;
+        wr_src$clock = clock;
+        wr_idx$clock = clock;
+        wr_len$clock = clock;
+        fetch_q$clock = clock;
+        fetch_a$clock = clock;
+        cur_fi$clock = clock;
+        rbsa_r$d = rbsa_r$q;
+        used$d = used$q;
+        rmc_r$d = rmc_r$q;
+        dos_r$d = dos_r$q;
+        wr_busy$d = wr_busy$q;
+        wr_src$d = wr_src$q;
+        wr_idx$d = wr_idx$q;
+        wr_len$d = wr_len$q;
+        fetch_q$d = fetch_q$q;
+        fetch_a$d = fetch_a$q;
+        cur_fi$d = cur_fi$q;
+        ram$read_clock = clock;
+        ram$write_clock = clock;
+        l_own = offer_own;
+        if (wr_busy$q) begin
+            l_own = wr_src$q;
+        end
+        f_ide = rx_ide;
+        f_rtr = rx_rtr;
+        f_id = rx_id;
+        l_dlc = rx_dlc;
+        l_data = rx_data;
+        if (l_own) begin
+            f_ide = own_ide;
+            f_rtr = own_rtr;
+            f_id = own_id;
+            l_dlc = own_dlc;
+            l_data = own_data;
+        end
+        f_n = l_dlc;
+        if (l_dlc >= 32'h8) begin
+            f_n = 32'h8;
+        end
+        if (f_rtr) begin
+            f_n = 32'h0;
+        end
+        f_d01 = l_data[(32'h30)+:(16)];
+        l_sid = f_id;
+        if (~f_ide) begin
+            l_sid = f_id & 32'h7ff;
+        end
+        l_len = f_n + 32'h3;
+        if (f_ide) begin
+            l_len = f_n + 32'h5;
+        end
+        l_msg = (((l_dlc) & 104'hffffffffffffffffffffffffff) << 32'h60) | (((l_data) & 104'hffffffffffffffffffffffffff) << 32'h10);
+        l_msg = (l_msg & ~(1 << (32'h66)) | ((f_rtr) << (32'h66)));
+        if (f_ide) begin
+            l_msg = (((l_dlc) & 104'hffffffffffffffffffffffffff) << 32'h60) | (((l_sid) & 104'hffffffffffffffffffffffffff) << 32'h43) | ((l_data) & 104'hffffffffffffffffffffffffff);
+            l_msg = (l_msg & ~(1 << (32'h67)) | ((1'b1) << (32'h67)));
+            l_msg = (l_msg & ~(1 << (32'h66)) | ((f_rtr) << (32'h66)));
+            l_msg = (l_msg & ~(1 << (32'h42)) | ((f_rtr) << (32'h42)));
+        end
+        else begin
+            l_msg = l_msg | (((l_sid) & 104'hffffffffffffffffffffffffff) << 32'h55);
+            l_msg = (l_msg & ~(1 << (32'h54)) | ((f_rtr) << (32'h54)));
+        end
+        l_wbyte = l_msg[(32'h60)+:(8)];
+        if (wr_idx$q == 32'h1) begin
+            l_wbyte = l_msg[(32'h58)+:(8)];
+        end
+        if (wr_idx$q == 32'h2) begin
+            l_wbyte = l_msg[(32'h50)+:(8)];
+        end
+        if (wr_idx$q == 32'h3) begin
+            l_wbyte = l_msg[(32'h48)+:(8)];
+        end
+        if (wr_idx$q == 32'h4) begin
+            l_wbyte = l_msg[(32'h40)+:(8)];
+        end
+        if (wr_idx$q == 32'h5) begin
+            l_wbyte = l_msg[(32'h38)+:(8)];
+        end
+        if (wr_idx$q == 32'h6) begin
+            l_wbyte = l_msg[(32'h30)+:(8)];
+        end
+        if (wr_idx$q == 32'h7) begin
+            l_wbyte = l_msg[(32'h28)+:(8)];
+        end
+        if (wr_idx$q == 32'h8) begin
+            l_wbyte = l_msg[(32'h20)+:(8)];
+        end
+        if (wr_idx$q == 32'h9) begin
+            l_wbyte = l_msg[(32'h18)+:(8)];
+        end
+        if (wr_idx$q == 32'ha) begin
+            l_wbyte = l_msg[(32'h10)+:(8)];
+        end
+        if (wr_idx$q == 32'hb) begin
+            l_wbyte = l_msg[(32'h8)+:(8)];
+        end
+        if (wr_idx$q == 32'hc) begin
+            l_wbyte = l_msg[(32'h0)+:(8)];
+        end
+        l_wdone = wr_busy$q & ((wr_idx$q + 32'h1) == wr_len$q);
+        l_fits = (used$q + ((l_len) & 7'h7f)) <= 32'h40;
+        l_fi = cur_fi$q;
+        if (fetch_q$q & (fetch_a$q == rbsa_r$q)) begin
+            l_fi = ram$read_data;
+        end
+        cur_fi$d = l_fi;
+        l_cur_n = l_fi[(32'h0)+:(4)];
+        if (l_fi[32'h3]) begin
+            l_cur_n = 32'h8;
+        end
+        if (l_fi[32'h6]) begin
+            l_cur_n = 32'h0;
+        end
+        l_cur_len = l_cur_n + 32'h3;
+        if (l_fi[32'h7]) begin
+            l_cur_len = l_cur_n + 32'h5;
+        end
+        ram$read_address = rbsa_r$q;
+        fetch_q$d = 1'b1;
+        if (host_rd) begin
+            fetch_q$d = 1'b0;
+            if (host_win) begin
+                ram$read_address = rbsa_r$q + host_idx;
+            end
+            else begin
+                ram$read_address = host_idx;
+            end
+        end
+        fetch_a$d = rbsa_r$q;
+        if (rbsa_we) begin
+            rbsa_r$d = wdata[(32'h0)+:(6)];
+            used$d = 32'h0;
+            rmc_r$d = 32'h0;
+        end
+        if (cdo) begin
+            dos_r$d = 1'b0;
+        end
+        ram$write_address = host_idx;
+        ram$write_data = wdata;
+        ram$write_enable = ram_we;
+        own_done = 1'b0;
+        own_dropped = 1'b0;
+        overrun = 1'b0;
+        if (wr_busy$q) begin
+            ram$write_address = (rbsa_r$q + used$q[(32'h0)+:(6)]) + ((wr_idx$q) & 6'h3f);
+            ram$write_data = l_wbyte;
+            ram$write_enable = 1'b1;
+            wr_idx$d = wr_idx$q + 32'h1;
+            if (l_wdone) begin
+                wr_busy$d = 1'b0;
+                own_done = wr_src$q;
+            end
+        end
+        if (offer_rx | offer_own) begin
+            if (accept & l_fits & ~wr_busy$q) begin
+                wr_busy$d = 1'b1;
+                wr_src$d = offer_own;
+                wr_idx$d = 32'h0;
+                wr_len$d = l_len;
+            end
+            else begin
+                if (accept) begin
+                    dos_r$d = 1'b1;
+                    overrun = ~dos_r$q;
+                end
+                own_dropped = offer_own;
+            end
+        end
+        if (rrb) begin
+            rbsa_r$d = rbsa_r$q + ((l_cur_len) & 6'h3f);
+        end
+        if (l_wdone & ~rrb) begin
+            rmc_r$d = rmc_r$q + 32'h1;
+            used$d = used$q + ((wr_len$q) & 7'h7f);
+        end
+        else if (rrb & ~l_wdone) begin
+            rmc_r$d = rmc_r$q - 32'h1;
+            used$d = used$q - ((l_cur_len) & 7'h7f);
+        end
+        else if (rrb & l_wdone) begin
+            used$d = (used$q + ((wr_len$q) & 7'h7f)) - ((l_cur_len) & 7'h7f);
+        end
+        if (clear) begin
+            wr_busy$d = 1'b0;
+            used$d = 32'h0;
+            rmc_r$d = 32'h0;
+        end
+        if (rst) begin
+            dos_r$d = 1'b0;
+            rbsa_r$d = 32'h0;
+            used$d = 32'h0;
+            rmc_r$d = 32'h0;
+            wr_busy$d = 1'b0;
+            ram$write_enable = 1'b0;
+        end
+        rdata = ram$read_data;
+        rmc = rmc_r$q;
+        rbsa = rbsa_r$q;
+        dos = dos_r$q;
+        busy = wr_busy$q;
+        busy_own = wr_src$q;
+    end
+    
+endmodule // canstar_sja1000$fifo
+
+
+module canstar_sja1000$fifo$cur_fi(d,q,clock);
+    
+    // Module arguments
+    input wire  [7:0] d;
+    output reg  [7:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 8'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_sja1000$fifo$cur_fi
+
+
+module canstar_sja1000$fifo$dos_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_sja1000$fifo$dos_r
+
+
+module canstar_sja1000$fifo$fetch_a(d,q,clock);
     
     // Module arguments
     input wire  [5:0] d;
@@ -6157,10 +6628,10 @@ module canstar_sja1000$fetch_a(d,q,clock);
        q <= d;
     end
           
-endmodule // canstar_sja1000$fetch_a
+endmodule // canstar_sja1000$fifo$fetch_a
 
 
-module canstar_sja1000$fetch_q(d,q,clock);
+module canstar_sja1000$fifo$fetch_q(d,q,clock);
     
     // Module arguments
     input wire  d;
@@ -6176,124 +6647,10 @@ module canstar_sja1000$fetch_q(d,q,clock);
        q <= d;
     end
           
-endmodule // canstar_sja1000$fetch_q
+endmodule // canstar_sja1000$fifo$fetch_q
 
 
-module canstar_sja1000$ier(d,q,clock);
-    
-    // Module arguments
-    input wire  [7:0] d;
-    output reg  [7:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 8'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_sja1000$ier
-
-
-module canstar_sja1000$ir(d,q,clock);
-    
-    // Module arguments
-    input wire  [7:0] d;
-    output reg  [7:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 8'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_sja1000$ir
-
-
-module canstar_sja1000$lom(d,q,clock);
-    
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_sja1000$lom
-
-
-module canstar_sja1000$ocr(d,q,clock);
-    
-    // Module arguments
-    input wire  [7:0] d;
-    output reg  [7:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 8'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_sja1000$ocr
-
-
-module canstar_sja1000$opm(d,q,clock);
-    
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_sja1000$opm
-
-
-module canstar_sja1000$pas_q(d,q,clock);
-    
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_sja1000$pas_q
-
-
-module canstar_sja1000$ram(read_address,read_clock,read_data,write_address,write_clock,write_data,write_enable);
+module canstar_sja1000$fifo$ram(read_address,read_clock,read_data,write_address,write_clock,write_data,write_enable);
     
     // Module arguments
     input wire  [5:0] read_address;
@@ -6385,7 +6742,913 @@ module canstar_sja1000$ram(read_address,read_clock,read_data,write_address,write
        end
     end
                 
-endmodule // canstar_sja1000$ram
+endmodule // canstar_sja1000$fifo$ram
+
+
+module canstar_sja1000$fifo$rbsa_r(d,q,clock);
+    
+    // Module arguments
+    input wire  [5:0] d;
+    output reg  [5:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 6'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_sja1000$fifo$rbsa_r
+
+
+module canstar_sja1000$fifo$rmc_r(d,q,clock);
+    
+    // Module arguments
+    input wire  [4:0] d;
+    output reg  [4:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 5'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_sja1000$fifo$rmc_r
+
+
+module canstar_sja1000$fifo$used(d,q,clock);
+    
+    // Module arguments
+    input wire  [6:0] d;
+    output reg  [6:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 7'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_sja1000$fifo$used
+
+
+module canstar_sja1000$fifo$wr_busy(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_sja1000$fifo$wr_busy
+
+
+module canstar_sja1000$fifo$wr_idx(d,q,clock);
+    
+    // Module arguments
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 4'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_sja1000$fifo$wr_idx
+
+
+module canstar_sja1000$fifo$wr_len(d,q,clock);
+    
+    // Module arguments
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 4'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_sja1000$fifo$wr_len
+
+
+module canstar_sja1000$fifo$wr_src(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_sja1000$fifo$wr_src
+
+
+module canstar_sja1000$filter(clock,rst,we,idx,wdata,rdata,single,ide,rtr,id,n,d01,accept);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  rst;
+    input wire  we;
+    input wire  [2:0] idx;
+    input wire  [7:0] wdata;
+    output reg  [7:0] rdata;
+    input wire  single;
+    input wire  ide;
+    input wire  rtr;
+    input wire  [28:0] id;
+    input wire  [3:0] n;
+    input wire  [15:0] d01;
+    output reg  accept;
+    
+    // Constant declarations
+    localparam  amr_reset = 8'hff;
+    
+    // Stub signals
+    reg  [7:0] acr0$d;
+    wire  [7:0] acr0$q;
+    reg  acr0$clock;
+    reg  [7:0] acr1$d;
+    wire  [7:0] acr1$q;
+    reg  acr1$clock;
+    reg  [7:0] acr2$d;
+    wire  [7:0] acr2$q;
+    reg  acr2$clock;
+    reg  [7:0] acr3$d;
+    wire  [7:0] acr3$q;
+    reg  acr3$clock;
+    reg  [7:0] amr0$d;
+    wire  [7:0] amr0$q;
+    reg  amr0$clock;
+    reg  [7:0] amr1$d;
+    wire  [7:0] amr1$q;
+    reg  amr1$clock;
+    reg  [7:0] amr2$d;
+    wire  [7:0] amr2$q;
+    reg  amr2$clock;
+    reg  [7:0] amr3$d;
+    wire  [7:0] amr3$q;
+    reg  amr3$clock;
+    
+    // Local signals
+    reg  [31:0] l_acr;
+    reg  [31:0] l_amr;
+    reg  [31:0] l_v1;
+    reg  [31:0] l_v2;
+    reg  [31:0] l_m1;
+    reg  [31:0] l_m2;
+    
+    // Sub module instances
+    canstar_sja1000$filter$acr0 acr0(
+        .d(acr0$d),
+        .q(acr0$q),
+        .clock(acr0$clock)
+    );
+    canstar_sja1000$filter$acr1 acr1(
+        .d(acr1$d),
+        .q(acr1$q),
+        .clock(acr1$clock)
+    );
+    canstar_sja1000$filter$acr2 acr2(
+        .d(acr2$d),
+        .q(acr2$q),
+        .clock(acr2$clock)
+    );
+    canstar_sja1000$filter$acr3 acr3(
+        .d(acr3$d),
+        .q(acr3$q),
+        .clock(acr3$clock)
+    );
+    canstar_sja1000$filter$amr0 amr0(
+        .d(amr0$d),
+        .q(amr0$q),
+        .clock(amr0$clock)
+    );
+    canstar_sja1000$filter$amr1 amr1(
+        .d(amr1$d),
+        .q(amr1$q),
+        .clock(amr1$clock)
+    );
+    canstar_sja1000$filter$amr2 amr2(
+        .d(amr2$d),
+        .q(amr2$q),
+        .clock(amr2$clock)
+    );
+    canstar_sja1000$filter$amr3 amr3(
+        .d(amr3$d),
+        .q(amr3$q),
+        .clock(amr3$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        acr0$clock = clock;
+        acr1$clock = clock;
+        acr2$clock = clock;
+        acr3$clock = clock;
+        amr0$clock = clock;
+        amr1$clock = clock;
+        amr2$clock = clock;
+        amr3$clock = clock;
+        acr0$d = acr0$q;
+        acr1$d = acr1$q;
+        acr2$d = acr2$q;
+        acr3$d = acr3$q;
+        amr0$d = amr0$q;
+        amr1$d = amr1$q;
+        amr2$d = amr2$q;
+        amr3$d = amr3$q;
+        rdata = 32'h0;
+        case (idx)
+            0:
+                begin
+                    rdata = acr0$q;
+                    if (we) begin
+                        acr0$d = wdata;
+                    end
+                end
+            1:
+                begin
+                    rdata = acr1$q;
+                    if (we) begin
+                        acr1$d = wdata;
+                    end
+                end
+            2:
+                begin
+                    rdata = acr2$q;
+                    if (we) begin
+                        acr2$d = wdata;
+                    end
+                end
+            3:
+                begin
+                    rdata = acr3$q;
+                    if (we) begin
+                        acr3$d = wdata;
+                    end
+                end
+            4:
+                begin
+                    rdata = amr0$q;
+                    if (we) begin
+                        amr0$d = wdata;
+                    end
+                end
+            5:
+                begin
+                    rdata = amr1$q;
+                    if (we) begin
+                        amr1$d = wdata;
+                    end
+                end
+            6:
+                begin
+                    rdata = amr2$q;
+                    if (we) begin
+                        amr2$d = wdata;
+                    end
+                end
+            7:
+                begin
+                    rdata = amr3$q;
+                    if (we) begin
+                        amr3$d = wdata;
+                    end
+                end
+            default:
+                begin
+                end
+        endcase
+        if (rst) begin
+            amr0$d = amr_reset;
+            amr1$d = amr_reset;
+            amr2$d = amr_reset;
+            amr3$d = amr_reset;
+        end
+        l_acr = (((acr0$q) & 32'hffffffff) << 32'h18) | (((acr1$q) & 32'hffffffff) << 32'h10) | (((acr2$q) & 32'hffffffff) << 32'h8) | ((acr3$q) & 32'hffffffff);
+        l_amr = (((amr0$q) & 32'hffffffff) << 32'h18) | (((amr1$q) & 32'hffffffff) << 32'h10) | (((amr2$q) & 32'hffffffff) << 32'h8) | ((amr3$q) & 32'hffffffff);
+        if (single) begin
+            if (ide) begin
+                l_v1 = ((id) & 32'hffffffff) << 32'h3;
+                l_v1 = (l_v1 & ~(1 << (32'h2)) | ((rtr) << (32'h2)));
+                l_m1 = l_amr | 32'h3;
+            end
+            else begin
+                l_v1 = (((id[(32'h0)+:(11)]) & 32'hffffffff) << 32'h15) | ((d01) & 32'hffffffff);
+                l_v1 = (l_v1 & ~(1 << (32'h14)) | ((rtr) << (32'h14)));
+                l_m1 = l_amr | 32'hf0000;
+                if (n < 32'h2) begin
+                    l_m1 = l_m1 | 32'hff;
+                end
+                if (n < 32'h1) begin
+                    l_m1 = l_m1 | 32'hff00;
+                end
+            end
+            l_v2 = 32'h0;
+            l_m2 = 32'h0;
+            accept = ((l_v1 ^ l_acr) & ~l_m1) == 32'h0;
+        end
+        else begin
+            if (ide) begin
+                l_v1 = ((id[(32'hd)+:(16)]) & 32'hffffffff) << 32'h10;
+                l_m1 = l_amr | 32'hffff;
+                l_v2 = ((id[(32'hd)+:(16)]) & 32'hffffffff);
+                l_m2 = l_amr | 64'hffff0000;
+            end
+            else begin
+                l_v1 = (((id[(32'h0)+:(11)]) & 32'hffffffff) << 32'h15) | (((d01[(32'hc)+:(4)]) & 32'hffffffff) << 32'h10) | ((d01[(32'h8)+:(4)]) & 32'hffffffff);
+                l_v1 = (l_v1 & ~(1 << (32'h14)) | ((rtr) << (32'h14)));
+                l_m1 = l_amr | 32'hfff0;
+                if (n < 32'h1) begin
+                    l_m1 = l_m1 | 32'hf000f;
+                end
+                l_v2 = ((id[(32'h0)+:(11)]) & 32'hffffffff) << 32'h5;
+                l_v2 = (l_v2 & ~(1 << (32'h4)) | ((rtr) << (32'h4)));
+                l_m2 = l_amr | 64'hffff000f;
+            end
+            accept = (((l_v1 ^ l_acr) & ~l_m1) == 32'h0) | (((l_v2 ^ l_acr) & ~l_m2) == 32'h0);
+        end
+    end
+    
+endmodule // canstar_sja1000$filter
+
+
+module canstar_sja1000$filter$acr0(d,q,clock);
+    
+    // Module arguments
+    input wire  [7:0] d;
+    output reg  [7:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 8'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_sja1000$filter$acr0
+
+
+module canstar_sja1000$filter$acr1(d,q,clock);
+    
+    // Module arguments
+    input wire  [7:0] d;
+    output reg  [7:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 8'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_sja1000$filter$acr1
+
+
+module canstar_sja1000$filter$acr2(d,q,clock);
+    
+    // Module arguments
+    input wire  [7:0] d;
+    output reg  [7:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 8'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_sja1000$filter$acr2
+
+
+module canstar_sja1000$filter$acr3(d,q,clock);
+    
+    // Module arguments
+    input wire  [7:0] d;
+    output reg  [7:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 8'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_sja1000$filter$acr3
+
+
+module canstar_sja1000$filter$amr0(d,q,clock);
+    
+    // Module arguments
+    input wire  [7:0] d;
+    output reg  [7:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 8'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_sja1000$filter$amr0
+
+
+module canstar_sja1000$filter$amr1(d,q,clock);
+    
+    // Module arguments
+    input wire  [7:0] d;
+    output reg  [7:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 8'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_sja1000$filter$amr1
+
+
+module canstar_sja1000$filter$amr2(d,q,clock);
+    
+    // Module arguments
+    input wire  [7:0] d;
+    output reg  [7:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 8'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_sja1000$filter$amr2
+
+
+module canstar_sja1000$filter$amr3(d,q,clock);
+    
+    // Module arguments
+    input wire  [7:0] d;
+    output reg  [7:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 8'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_sja1000$filter$amr3
+
+
+module canstar_sja1000$irq(clock,rst,wr_ier,wdata,rd_ir,rbs,ti,ei,doi,wui,epi,ali,bei,ier,ir,int_n);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  rst;
+    input wire  wr_ier;
+    input wire  [7:0] wdata;
+    input wire  rd_ir;
+    input wire  rbs;
+    input wire  ti;
+    input wire  ei;
+    input wire  doi;
+    input wire  wui;
+    input wire  epi;
+    input wire  ali;
+    input wire  bei;
+    output reg  [7:0] ier;
+    output reg  [7:0] ir;
+    output reg  int_n;
+    
+    // Constant declarations
+    localparam  b_ri = 3'b0;
+    localparam  b_ti = 3'b1;
+    localparam  b_ei = 3'b10;
+    localparam  b_doi = 3'b11;
+    localparam  b_wui = 3'b100;
+    localparam  b_epi = 3'b101;
+    localparam  b_ali = 3'b110;
+    localparam  b_bei = 3'b111;
+    
+    // Stub signals
+    reg  [7:0] ier_r$d;
+    wire  [7:0] ier_r$q;
+    reg  ier_r$clock;
+    reg  [7:0] ir_r$d;
+    wire  [7:0] ir_r$q;
+    reg  ir_r$clock;
+    
+    // Local signals
+    reg  [7:0] l_ev;
+    
+    // Sub module instances
+    canstar_sja1000$irq$ier_r ier_r(
+        .d(ier_r$d),
+        .q(ier_r$q),
+        .clock(ier_r$clock)
+    );
+    canstar_sja1000$irq$ir_r ir_r(
+        .d(ir_r$d),
+        .q(ir_r$q),
+        .clock(ir_r$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        ier_r$clock = clock;
+        ir_r$clock = clock;
+        ier_r$d = ier_r$q;
+        ir_r$d = ir_r$q;
+        if (wr_ier) begin
+            ier_r$d = wdata;
+        end
+        l_ev = 32'h0;
+        l_ev = (l_ev & ~(1 << (b_ti)) | ((ti) << (b_ti)));
+        l_ev = (l_ev & ~(1 << (b_ei)) | ((ei) << (b_ei)));
+        l_ev = (l_ev & ~(1 << (b_doi)) | ((doi) << (b_doi)));
+        l_ev = (l_ev & ~(1 << (b_wui)) | ((wui) << (b_wui)));
+        l_ev = (l_ev & ~(1 << (b_epi)) | ((epi) << (b_epi)));
+        l_ev = (l_ev & ~(1 << (b_ali)) | ((ali) << (b_ali)));
+        l_ev = (l_ev & ~(1 << (b_bei)) | ((bei) << (b_bei)));
+        ir_r$d = ir_r$q | (l_ev & ier_r$q);
+        if (rd_ir) begin
+            ir_r$d = l_ev & ier_r$q;
+        end
+        if (rst) begin
+            ier_r$d = 32'h0;
+            ir_r$d = 32'h0;
+        end
+        ier = ier_r$q;
+        ir = (ir_r$q & ~(1 << (b_ri)) | ((ier_r$q[b_ri] & rbs) << (b_ri)));
+        int_n = ~(|ir);
+    end
+    
+endmodule // canstar_sja1000$irq
+
+
+module canstar_sja1000$irq$ier_r(d,q,clock);
+    
+    // Module arguments
+    input wire  [7:0] d;
+    output reg  [7:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 8'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_sja1000$irq$ier_r
+
+
+module canstar_sja1000$irq$ir_r(d,q,clock);
+    
+    // Module arguments
+    input wire  [7:0] d;
+    output reg  [7:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 8'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_sja1000$irq$ir_r
+
+
+module canstar_sja1000$mode(clock,rst,wr,wdata,may_sleep,bus_dom,busoff,hold,opm,lom,stm,afm,sleep,rdata,enter_rm,recover,wui);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  rst;
+    input wire  wr;
+    input wire  [7:0] wdata;
+    input wire  may_sleep;
+    input wire  bus_dom;
+    input wire  busoff;
+    input wire  hold;
+    output reg  opm;
+    output reg  lom;
+    output reg  stm;
+    output reg  afm;
+    output reg  sleep;
+    output reg  [7:0] rdata;
+    output reg  enter_rm;
+    output reg  recover;
+    output reg  wui;
+    
+    // Constant declarations
+    localparam  b_rm = 3'b0;
+    localparam  b_lom = 3'b1;
+    localparam  b_stm = 3'b10;
+    localparam  b_afm = 3'b11;
+    localparam  b_sm = 3'b100;
+    
+    // Stub signals
+    reg  opm_r$d;
+    wire  opm_r$q;
+    reg  opm_r$clock;
+    reg  lom_r$d;
+    wire  lom_r$q;
+    reg  lom_r$clock;
+    reg  stm_r$d;
+    wire  stm_r$q;
+    reg  stm_r$clock;
+    reg  afm_r$d;
+    wire  afm_r$q;
+    reg  afm_r$clock;
+    reg  sleep_r$d;
+    wire  sleep_r$q;
+    reg  sleep_r$clock;
+    
+    // Local signals
+    reg  [7:0] l_rd;
+    reg  l_rm;
+    
+    // Sub module instances
+    canstar_sja1000$mode$opm_r opm_r(
+        .d(opm_r$d),
+        .q(opm_r$q),
+        .clock(opm_r$clock)
+    );
+    canstar_sja1000$mode$lom_r lom_r(
+        .d(lom_r$d),
+        .q(lom_r$q),
+        .clock(lom_r$clock)
+    );
+    canstar_sja1000$mode$stm_r stm_r(
+        .d(stm_r$d),
+        .q(stm_r$q),
+        .clock(stm_r$clock)
+    );
+    canstar_sja1000$mode$afm_r afm_r(
+        .d(afm_r$d),
+        .q(afm_r$q),
+        .clock(afm_r$clock)
+    );
+    canstar_sja1000$mode$sleep_r sleep_r(
+        .d(sleep_r$d),
+        .q(sleep_r$q),
+        .clock(sleep_r$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        opm_r$clock = clock;
+        lom_r$clock = clock;
+        stm_r$clock = clock;
+        afm_r$clock = clock;
+        sleep_r$clock = clock;
+        opm_r$d = opm_r$q;
+        lom_r$d = lom_r$q;
+        stm_r$d = stm_r$q;
+        afm_r$d = afm_r$q;
+        sleep_r$d = sleep_r$q;
+        enter_rm = 1'b0;
+        recover = 1'b0;
+        wui = 1'b0;
+        if (wr) begin
+            if (~opm_r$q) begin
+                lom_r$d = wdata[b_lom];
+                stm_r$d = wdata[b_stm];
+                afm_r$d = wdata[b_afm];
+                if (~wdata[b_rm]) begin
+                    opm_r$d = 1'b1;
+                    recover = hold;
+                end
+            end
+            else if (wdata[b_rm]) begin
+                enter_rm = 1'b1;
+            end
+            else if (wdata[b_sm]) begin
+                if (~sleep_r$q & may_sleep) begin
+                    sleep_r$d = 1'b1;
+                end
+            end
+            else if (sleep_r$q) begin
+                sleep_r$d = 1'b0;
+                wui = 1'b1;
+            end
+        end
+        if (sleep_r$q & bus_dom) begin
+            sleep_r$d = 1'b0;
+            wui = 1'b1;
+        end
+        if (busoff) begin
+            enter_rm = 1'b1;
+        end
+        if (enter_rm) begin
+            opm_r$d = 1'b0;
+            sleep_r$d = 1'b0;
+            if (sleep_r$q) begin
+                wui = 1'b1;
+            end
+        end
+        if (rst) begin
+            opm_r$d = 1'b0;
+            lom_r$d = 1'b0;
+            stm_r$d = 1'b0;
+            afm_r$d = 1'b0;
+            sleep_r$d = 1'b0;
+        end
+        l_rm = ~opm_r$q;
+        l_rd = 32'h0;
+        l_rd = (l_rd & ~(1 << (b_rm)) | ((l_rm) << (b_rm)));
+        l_rd = (l_rd & ~(1 << (b_lom)) | ((lom_r$q) << (b_lom)));
+        l_rd = (l_rd & ~(1 << (b_stm)) | ((stm_r$q) << (b_stm)));
+        l_rd = (l_rd & ~(1 << (b_afm)) | ((afm_r$q) << (b_afm)));
+        l_rd = (l_rd & ~(1 << (b_sm)) | ((sleep_r$q) << (b_sm)));
+        rdata = l_rd;
+        opm = opm_r$q;
+        lom = lom_r$q;
+        stm = stm_r$q;
+        afm = afm_r$q;
+        sleep = sleep_r$q;
+    end
+    
+endmodule // canstar_sja1000$mode
+
+
+module canstar_sja1000$mode$afm_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_sja1000$mode$afm_r
+
+
+module canstar_sja1000$mode$lom_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_sja1000$mode$lom_r
+
+
+module canstar_sja1000$mode$opm_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_sja1000$mode$opm_r
+
+
+module canstar_sja1000$mode$sleep_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_sja1000$mode$sleep_r
+
+
+module canstar_sja1000$mode$stm_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_sja1000$mode$stm_r
+
+
+module canstar_sja1000$ocr(d,q,clock);
+    
+    // Module arguments
+    input wire  [7:0] d;
+    output reg  [7:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 8'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_sja1000$ocr
 
 
 module canstar_sja1000$ramsel(d,q,clock);
@@ -6407,25 +7670,6 @@ module canstar_sja1000$ramsel(d,q,clock);
 endmodule // canstar_sja1000$ramsel
 
 
-module canstar_sja1000$rbsa(d,q,clock);
-    
-    // Module arguments
-    input wire  [5:0] d;
-    output reg  [5:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 6'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_sja1000$rbsa
-
-
 module canstar_sja1000$rdat(d,q,clock);
     
     // Module arguments
@@ -6445,463 +7689,210 @@ module canstar_sja1000$rdat(d,q,clock);
 endmodule // canstar_sja1000$rdat
 
 
-module canstar_sja1000$rmc(d,q,clock);
+module canstar_sja1000$status(clock,rst,opm,state,tec,rec,runs,cfg_err,ewl,wr_rxerr,wr_txerr,wdata,rbs,dos,tbs,tcs,field,role,sr,txact,idle,rxerr,txerr,es,bs,ei,epi,busoff,hold,cnt_load,tec_in,rec_in);
     
     // Module arguments
-    input wire  [4:0] d;
-    output reg  [4:0] q;
     input wire  clock;
+    input wire  rst;
+    input wire  opm;
+    input wire  [1:0] state;
+    input wire  [8:0] tec;
+    input wire  [7:0] rec;
+    input wire  [7:0] runs;
+    input wire  cfg_err;
+    input wire  [7:0] ewl;
+    input wire  wr_rxerr;
+    input wire  wr_txerr;
+    input wire  [7:0] wdata;
+    input wire  rbs;
+    input wire  dos;
+    input wire  tbs;
+    input wire  tcs;
+    input wire  [4:0] field;
+    input wire  role;
+    output reg  [7:0] sr;
+    output reg  txact;
+    output reg  idle;
+    output reg  [7:0] rxerr;
+    output reg  [7:0] txerr;
+    output reg  es;
+    output reg  bs;
+    output reg  ei;
+    output reg  epi;
+    output reg  busoff;
+    output reg  hold;
+    output reg  cnt_load;
+    output reg  [8:0] tec_in;
+    output reg  [7:0] rec_in;
     
-    // Update code (custom)
-    initial begin
-       q = 5'h0;
+    // Constant declarations
+    localparam  f_reset = 5'b0;
+    localparam  f_waitidle = 5'b1;
+    localparam  f_idle = 5'b10;
+    localparam  f_busoff = 5'b11;
+    localparam  f_sof = 5'b100;
+    localparam  f_eof = 5'b10001;
+    localparam  sr_rbs = 3'b0;
+    localparam  sr_dos = 3'b1;
+    localparam  sr_tbs = 3'b10;
+    localparam  sr_tcs = 3'b11;
+    localparam  sr_rs = 3'b100;
+    localparam  sr_ts = 3'b101;
+    localparam  sr_es = 3'b110;
+    localparam  sr_bs = 3'b111;
+    
+    // Stub signals
+    reg  boff$d;
+    wire  boff$q;
+    reg  boff$clock;
+    reg  core_bs$d;
+    wire  core_bs$q;
+    reg  core_bs$clock;
+    reg  es_q$d;
+    wire  es_q$q;
+    reg  es_q$clock;
+    reg  bs_q$d;
+    wire  bs_q$q;
+    reg  bs_q$clock;
+    reg  pas_q$d;
+    wire  pas_q$q;
+    reg  pas_q$clock;
+    
+    // Local signals
+    reg  l_frz;
+    reg  l_cbsr;
+    reg  [7:0] l_tecv;
+    reg  [7:0] l_recv;
+    reg  l_pas;
+    reg  l_cload;
+    reg  l_wait;
+    reg  l_busy;
+    reg  [7:0] l_sr;
+    
+    // Sub module instances
+    canstar_sja1000$status$boff boff(
+        .d(boff$d),
+        .q(boff$q),
+        .clock(boff$clock)
+    );
+    canstar_sja1000$status$core_bs core_bs(
+        .d(core_bs$d),
+        .q(core_bs$q),
+        .clock(core_bs$clock)
+    );
+    canstar_sja1000$status$es_q es_q(
+        .d(es_q$d),
+        .q(es_q$q),
+        .clock(es_q$clock)
+    );
+    canstar_sja1000$status$bs_q bs_q(
+        .d(bs_q$d),
+        .q(bs_q$q),
+        .clock(bs_q$clock)
+    );
+    canstar_sja1000$status$pas_q pas_q(
+        .d(pas_q$d),
+        .q(pas_q$q),
+        .clock(pas_q$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        boff$clock = clock;
+        core_bs$clock = clock;
+        es_q$clock = clock;
+        bs_q$clock = clock;
+        pas_q$clock = clock;
+        boff$d = boff$q;
+        core_bs$d = core_bs$q;
+        es_q$d = es_q$q;
+        bs_q$d = bs_q$q;
+        pas_q$d = pas_q$q;
+        l_frz = ~opm & ~boff$q;
+        l_cbsr = state == 32'h2;
+        l_tecv = tec[(32'h0)+:(8)];
+        if (tec >= 32'h100) begin
+            l_tecv = 32'hff;
+        end
+        l_recv = rec;
+        if (l_cbsr & ~l_frz) begin
+            l_tecv = 32'h7f - runs;
+            l_recv = 32'h0;
+        end
+        bs = l_cbsr;
+        es = l_cbsr | (l_tecv >= ewl) | (l_recv >= ewl);
+        l_pas = ~l_cbsr & ((l_tecv >= 32'h80) | (l_recv >= 32'h80));
+        if (l_frz) begin
+            bs = bs_q$q;
+            es = es_q$q;
+            l_pas = pas_q$q;
+        end
+        core_bs$d = l_cbsr & ~l_frz;
+        es_q$d = es;
+        bs_q$d = bs;
+        pas_q$d = l_pas;
+        l_cload = l_frz | cfg_err;
+        tec_in = tec;
+        rec_in = rec;
+        if (wr_rxerr & l_frz) begin
+            l_cload = 1'b1;
+            rec_in = wdata;
+        end
+        if (wr_txerr) begin
+            l_cload = 1'b1;
+            tec_in = ((wdata) & 9'h1ff);
+            if (wdata == 32'hff) begin
+                tec_in = 32'h100;
+            end
+            if (boff$q) begin
+                boff$d = 1'b0;
+                rec_in = 32'h0;
+                if (wdata != 32'hff) begin
+                    bs_q$d = 1'b0;
+                end
+            end
+        end
+        ei = (es != es_q$q) | (bs != bs_q$q);
+        epi = (l_pas & ~pas_q$q) | (~l_pas & pas_q$q & ~bs);
+        busoff = l_cbsr & ~l_frz & ~core_bs$q;
+        if (busoff) begin
+            boff$d = 1'b1;
+            ei = 1'b1;
+        end
+        if (~l_cbsr & core_bs$q) begin
+            boff$d = 1'b0;
+        end
+        if (rst) begin
+            boff$d = 1'b0;
+            core_bs$d = 1'b0;
+            es_q$d = 1'b0;
+            bs_q$d = 1'b0;
+            pas_q$d = 1'b0;
+        end
+        l_wait = (field == f_reset) | (field == f_waitidle) | (field == f_busoff);
+        l_busy = field >= f_sof;
+        txact = role & (field >= f_sof) & (field <= f_eof);
+        idle = field == f_idle;
+        l_sr = 32'h0;
+        l_sr = (l_sr & ~(1 << (sr_rbs)) | ((rbs) << (sr_rbs)));
+        l_sr = (l_sr & ~(1 << (sr_dos)) | ((dos) << (sr_dos)));
+        l_sr = (l_sr & ~(1 << (sr_tbs)) | ((tbs) << (sr_tbs)));
+        l_sr = (l_sr & ~(1 << (sr_tcs)) | ((tcs) << (sr_tcs)));
+        l_sr = (l_sr & ~(1 << (sr_rs)) | ((l_wait | (l_busy & ~role)) << (sr_rs)));
+        l_sr = (l_sr & ~(1 << (sr_ts)) | ((l_wait | (l_busy & role)) << (sr_ts)));
+        l_sr = (l_sr & ~(1 << (sr_es)) | ((es) << (sr_es)));
+        l_sr = (l_sr & ~(1 << (sr_bs)) | ((bs) << (sr_bs)));
+        sr = l_sr;
+        rxerr = l_recv;
+        txerr = l_tecv;
+        hold = boff$q;
+        cnt_load = l_cload & ~rst;
     end
     
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_sja1000$rmc
+endmodule // canstar_sja1000$status
 
 
-module canstar_sja1000$seen_ext(d,q,clock);
-    
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_sja1000$seen_ext
-
-
-module canstar_sja1000$sleep(d,q,clock);
-    
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_sja1000$sleep
-
-
-module canstar_sja1000$stm(d,q,clock);
-    
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_sja1000$stm
-
-
-module canstar_sja1000$tcs_n(d,q,clock);
-    
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_sja1000$tcs_n
-
-
-module canstar_sja1000$tx_abrt(d,q,clock);
-    
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_sja1000$tx_abrt
-
-
-module canstar_sja1000$tx_lb(d,q,clock);
-    
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_sja1000$tx_lb
-
-
-module canstar_sja1000$tx_pend(d,q,clock);
-    
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_sja1000$tx_pend
-
-
-module canstar_sja1000$tx_single(d,q,clock);
-    
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_sja1000$tx_single
-
-
-module canstar_sja1000$tx_srr(d,q,clock);
-    
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_sja1000$tx_srr
-
-
-module canstar_sja1000$txb0(d,q,clock);
-    
-    // Module arguments
-    input wire  [7:0] d;
-    output reg  [7:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 8'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_sja1000$txb0
-
-
-module canstar_sja1000$txb1(d,q,clock);
-    
-    // Module arguments
-    input wire  [7:0] d;
-    output reg  [7:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 8'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_sja1000$txb1
-
-
-module canstar_sja1000$txb10(d,q,clock);
-    
-    // Module arguments
-    input wire  [7:0] d;
-    output reg  [7:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 8'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_sja1000$txb10
-
-
-module canstar_sja1000$txb11(d,q,clock);
-    
-    // Module arguments
-    input wire  [7:0] d;
-    output reg  [7:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 8'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_sja1000$txb11
-
-
-module canstar_sja1000$txb12(d,q,clock);
-    
-    // Module arguments
-    input wire  [7:0] d;
-    output reg  [7:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 8'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_sja1000$txb12
-
-
-module canstar_sja1000$txb2(d,q,clock);
-    
-    // Module arguments
-    input wire  [7:0] d;
-    output reg  [7:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 8'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_sja1000$txb2
-
-
-module canstar_sja1000$txb3(d,q,clock);
-    
-    // Module arguments
-    input wire  [7:0] d;
-    output reg  [7:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 8'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_sja1000$txb3
-
-
-module canstar_sja1000$txb4(d,q,clock);
-    
-    // Module arguments
-    input wire  [7:0] d;
-    output reg  [7:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 8'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_sja1000$txb4
-
-
-module canstar_sja1000$txb5(d,q,clock);
-    
-    // Module arguments
-    input wire  [7:0] d;
-    output reg  [7:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 8'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_sja1000$txb5
-
-
-module canstar_sja1000$txb6(d,q,clock);
-    
-    // Module arguments
-    input wire  [7:0] d;
-    output reg  [7:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 8'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_sja1000$txb6
-
-
-module canstar_sja1000$txb7(d,q,clock);
-    
-    // Module arguments
-    input wire  [7:0] d;
-    output reg  [7:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 8'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_sja1000$txb7
-
-
-module canstar_sja1000$txb8(d,q,clock);
-    
-    // Module arguments
-    input wire  [7:0] d;
-    output reg  [7:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 8'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_sja1000$txb8
-
-
-module canstar_sja1000$txb9(d,q,clock);
-    
-    // Module arguments
-    input wire  [7:0] d;
-    output reg  [7:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 8'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_sja1000$txb9
-
-
-module canstar_sja1000$used(d,q,clock);
-    
-    // Module arguments
-    input wire  [6:0] d;
-    output reg  [6:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 7'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_sja1000$used
-
-
-module canstar_sja1000$wr_busy(d,q,clock);
+module canstar_sja1000$status$boff(d,q,clock);
     
     // Module arguments
     input wire  d;
@@ -6917,48 +7908,10 @@ module canstar_sja1000$wr_busy(d,q,clock);
        q <= d;
     end
           
-endmodule // canstar_sja1000$wr_busy
+endmodule // canstar_sja1000$status$boff
 
 
-module canstar_sja1000$wr_idx(d,q,clock);
-    
-    // Module arguments
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 4'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_sja1000$wr_idx
-
-
-module canstar_sja1000$wr_len(d,q,clock);
-    
-    // Module arguments
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 4'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_sja1000$wr_len
-
-
-module canstar_sja1000$wr_src(d,q,clock);
+module canstar_sja1000$status$bs_q(d,q,clock);
     
     // Module arguments
     input wire  d;
@@ -6974,7 +7927,986 @@ module canstar_sja1000$wr_src(d,q,clock);
        q <= d;
     end
           
-endmodule // canstar_sja1000$wr_src
+endmodule // canstar_sja1000$status$bs_q
+
+
+module canstar_sja1000$status$core_bs(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_sja1000$status$core_bs
+
+
+module canstar_sja1000$status$es_q(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_sja1000$status$es_q
+
+
+module canstar_sja1000$status$pas_q(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_sja1000$status$pas_q
+
+
+module canstar_sja1000$timing(clock,rst,we0,we1,wdata,btr0,btr1,brp,prop,ph1,sjw,triple);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  rst;
+    input wire  we0;
+    input wire  we1;
+    input wire  [7:0] wdata;
+    output reg  [7:0] btr0;
+    output reg  [7:0] btr1;
+    output reg  [6:0] brp;
+    output reg  [3:0] prop;
+    output reg  [2:0] ph1;
+    output reg  [1:0] sjw;
+    output reg  triple;
+    
+    // Constant declarations
+    localparam  v0 = 8'h0;
+    localparam  v1 = 8'h14;
+    
+    // Stub signals
+    reg  [7:0] r0$d;
+    wire  [7:0] r0$q;
+    reg  r0$clock;
+    reg  [7:0] r1$d;
+    wire  [7:0] r1$q;
+    reg  r1$clock;
+    
+    // Local signals
+    reg  [5:0] l_t1;
+    reg  [5:0] l_t2;
+    reg  [5:0] l_s;
+    reg  [5:0] l_prop;
+    reg  [5:0] l_ph1;
+    reg  [5:0] l_sjw;
+    
+    // Sub module instances
+    canstar_sja1000$timing$r0 r0(
+        .d(r0$d),
+        .q(r0$q),
+        .clock(r0$clock)
+    );
+    canstar_sja1000$timing$r1 r1(
+        .d(r1$d),
+        .q(r1$q),
+        .clock(r1$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        r0$clock = clock;
+        r1$clock = clock;
+        r0$d = r0$q;
+        r1$d = r1$q;
+        if (we0) begin
+            r0$d = wdata;
+        end
+        if (we1) begin
+            r1$d = wdata;
+        end
+        if (rst) begin
+            r0$d = v0;
+            r1$d = v1;
+        end
+        brp = (((r0$q[(32'h0)+:(6)]) & 7'h7f) << 32'h1) | 32'h1;
+        l_t1 = ((r1$q[(32'h0)+:(4)]) & 6'h3f) + 32'h1;
+        l_t2 = ((r1$q[(32'h4)+:(3)]) & 6'h3f) + 32'h1;
+        l_s = l_t1 + l_t2;
+        l_ph1 = l_t2;
+        l_prop = l_t1 - l_t2;
+        if (l_t2 == 32'h1) begin
+            l_ph1 = 32'h1;
+            l_prop = l_t1 - 32'h2;
+        end
+        else if (l_t1 <= l_t2) begin
+            l_ph1 = (l_s - 32'h1) >> 32'h1;
+            l_prop = l_s - (l_ph1 << 32'h1);
+        end
+        if (l_s < 32'h7) begin
+            l_prop = 32'h1;
+            l_ph1 = 32'h1;
+        end
+        l_sjw = ((r0$q[(32'h6)+:(2)]) & 6'h3f) + 32'h1;
+        if (l_sjw > l_ph1) begin
+            l_sjw = l_ph1;
+        end
+        l_prop = l_prop - 32'h1;
+        l_ph1 = l_ph1 - 32'h1;
+        l_sjw = l_sjw - 32'h1;
+        prop = l_prop[(32'h0)+:(4)];
+        ph1 = l_ph1[(32'h0)+:(3)];
+        sjw = l_sjw[(32'h0)+:(2)];
+        triple = r1$q[32'h7];
+        btr0 = r0$q;
+        btr1 = r1$q;
+    end
+    
+endmodule // canstar_sja1000$timing
+
+
+module canstar_sja1000$timing$r0(d,q,clock);
+    
+    // Module arguments
+    input wire  [7:0] d;
+    output reg  [7:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 8'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_sja1000$timing$r0
+
+
+module canstar_sja1000$timing$r1(d,q,clock);
+    
+    // Module arguments
+    input wire  [7:0] d;
+    output reg  [7:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 8'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_sja1000$timing$r1
+
+
+module canstar_sja1000$txbuf(clock,we,idx,wdata,rdata,ide,rtr,id,dlc,data);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  we;
+    input wire  [3:0] idx;
+    input wire  [7:0] wdata;
+    output reg  [7:0] rdata;
+    output reg  ide;
+    output reg  rtr;
+    output reg  [28:0] id;
+    output reg  [3:0] dlc;
+    output reg  [63:0] data;
+    
+    // Stub signals
+    reg  [7:0] b0$d;
+    wire  [7:0] b0$q;
+    reg  b0$clock;
+    reg  [7:0] b1$d;
+    wire  [7:0] b1$q;
+    reg  b1$clock;
+    reg  [7:0] b2$d;
+    wire  [7:0] b2$q;
+    reg  b2$clock;
+    reg  [7:0] b3$d;
+    wire  [7:0] b3$q;
+    reg  b3$clock;
+    reg  [7:0] b4$d;
+    wire  [7:0] b4$q;
+    reg  b4$clock;
+    reg  [7:0] b5$d;
+    wire  [7:0] b5$q;
+    reg  b5$clock;
+    reg  [7:0] b6$d;
+    wire  [7:0] b6$q;
+    reg  b6$clock;
+    reg  [7:0] b7$d;
+    wire  [7:0] b7$q;
+    reg  b7$clock;
+    reg  [7:0] b8$d;
+    wire  [7:0] b8$q;
+    reg  b8$clock;
+    reg  [7:0] b9$d;
+    wire  [7:0] b9$q;
+    reg  b9$clock;
+    reg  [7:0] b10$d;
+    wire  [7:0] b10$q;
+    reg  b10$clock;
+    reg  [7:0] b11$d;
+    wire  [7:0] b11$q;
+    reg  b11$clock;
+    reg  [7:0] b12$d;
+    wire  [7:0] b12$q;
+    reg  b12$clock;
+    
+    // Sub module instances
+    canstar_sja1000$txbuf$b0 b0(
+        .d(b0$d),
+        .q(b0$q),
+        .clock(b0$clock)
+    );
+    canstar_sja1000$txbuf$b1 b1(
+        .d(b1$d),
+        .q(b1$q),
+        .clock(b1$clock)
+    );
+    canstar_sja1000$txbuf$b2 b2(
+        .d(b2$d),
+        .q(b2$q),
+        .clock(b2$clock)
+    );
+    canstar_sja1000$txbuf$b3 b3(
+        .d(b3$d),
+        .q(b3$q),
+        .clock(b3$clock)
+    );
+    canstar_sja1000$txbuf$b4 b4(
+        .d(b4$d),
+        .q(b4$q),
+        .clock(b4$clock)
+    );
+    canstar_sja1000$txbuf$b5 b5(
+        .d(b5$d),
+        .q(b5$q),
+        .clock(b5$clock)
+    );
+    canstar_sja1000$txbuf$b6 b6(
+        .d(b6$d),
+        .q(b6$q),
+        .clock(b6$clock)
+    );
+    canstar_sja1000$txbuf$b7 b7(
+        .d(b7$d),
+        .q(b7$q),
+        .clock(b7$clock)
+    );
+    canstar_sja1000$txbuf$b8 b8(
+        .d(b8$d),
+        .q(b8$q),
+        .clock(b8$clock)
+    );
+    canstar_sja1000$txbuf$b9 b9(
+        .d(b9$d),
+        .q(b9$q),
+        .clock(b9$clock)
+    );
+    canstar_sja1000$txbuf$b10 b10(
+        .d(b10$d),
+        .q(b10$q),
+        .clock(b10$clock)
+    );
+    canstar_sja1000$txbuf$b11 b11(
+        .d(b11$d),
+        .q(b11$q),
+        .clock(b11$clock)
+    );
+    canstar_sja1000$txbuf$b12 b12(
+        .d(b12$d),
+        .q(b12$q),
+        .clock(b12$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        b0$clock = clock;
+        b1$clock = clock;
+        b2$clock = clock;
+        b3$clock = clock;
+        b4$clock = clock;
+        b5$clock = clock;
+        b6$clock = clock;
+        b7$clock = clock;
+        b8$clock = clock;
+        b9$clock = clock;
+        b10$clock = clock;
+        b11$clock = clock;
+        b12$clock = clock;
+        b0$d = b0$q;
+        b1$d = b1$q;
+        b2$d = b2$q;
+        b3$d = b3$q;
+        b4$d = b4$q;
+        b5$d = b5$q;
+        b6$d = b6$q;
+        b7$d = b7$q;
+        b8$d = b8$q;
+        b9$d = b9$q;
+        b10$d = b10$q;
+        b11$d = b11$q;
+        b12$d = b12$q;
+        rdata = 32'h0;
+        case (idx)
+            0:
+                begin
+                    rdata = b0$q;
+                    if (we) begin
+                        b0$d = wdata;
+                    end
+                end
+            1:
+                begin
+                    rdata = b1$q;
+                    if (we) begin
+                        b1$d = wdata;
+                    end
+                end
+            2:
+                begin
+                    rdata = b2$q;
+                    if (we) begin
+                        b2$d = wdata;
+                    end
+                end
+            3:
+                begin
+                    rdata = b3$q;
+                    if (we) begin
+                        b3$d = wdata;
+                    end
+                end
+            4:
+                begin
+                    rdata = b4$q;
+                    if (we) begin
+                        b4$d = wdata;
+                    end
+                end
+            5:
+                begin
+                    rdata = b5$q;
+                    if (we) begin
+                        b5$d = wdata;
+                    end
+                end
+            6:
+                begin
+                    rdata = b6$q;
+                    if (we) begin
+                        b6$d = wdata;
+                    end
+                end
+            7:
+                begin
+                    rdata = b7$q;
+                    if (we) begin
+                        b7$d = wdata;
+                    end
+                end
+            8:
+                begin
+                    rdata = b8$q;
+                    if (we) begin
+                        b8$d = wdata;
+                    end
+                end
+            9:
+                begin
+                    rdata = b9$q;
+                    if (we) begin
+                        b9$d = wdata;
+                    end
+                end
+            10:
+                begin
+                    rdata = b10$q;
+                    if (we) begin
+                        b10$d = wdata;
+                    end
+                end
+            11:
+                begin
+                    rdata = b11$q;
+                    if (we) begin
+                        b11$d = wdata;
+                    end
+                end
+            12:
+                begin
+                    rdata = b12$q;
+                    if (we) begin
+                        b12$d = wdata;
+                    end
+                end
+            default:
+                begin
+                end
+        endcase
+        ide = b0$q[32'h7];
+        rtr = b0$q[32'h6];
+        dlc = b0$q[(32'h0)+:(4)];
+        if (ide) begin
+            id = (((b1$q) & 29'h1fffffff) << 32'h15) | (((b2$q) & 29'h1fffffff) << 32'hd) | (((b3$q) & 29'h1fffffff) << 32'h5) | (((b4$q) & 29'h1fffffff) >> 32'h3);
+            data = (((b5$q) & 64'hffffffffffffffff) << 32'h38) | (((b6$q) & 64'hffffffffffffffff) << 32'h30) | (((b7$q) & 64'hffffffffffffffff) << 32'h28) | (((b8$q) & 64'hffffffffffffffff) << 32'h20) | (((b9$q) & 64'hffffffffffffffff) << 32'h18) | (((b10$q) & 64'hffffffffffffffff) << 32'h10) | (((b11$q) & 64'hffffffffffffffff) << 32'h8) | ((b12$q) & 64'hffffffffffffffff);
+        end
+        else begin
+            id = (((b1$q) & 29'h1fffffff) << 32'h3) | (((b2$q) & 29'h1fffffff) >> 32'h5);
+            data = (((b3$q) & 64'hffffffffffffffff) << 32'h38) | (((b4$q) & 64'hffffffffffffffff) << 32'h30) | (((b5$q) & 64'hffffffffffffffff) << 32'h28) | (((b6$q) & 64'hffffffffffffffff) << 32'h20) | (((b7$q) & 64'hffffffffffffffff) << 32'h18) | (((b8$q) & 64'hffffffffffffffff) << 32'h10) | (((b9$q) & 64'hffffffffffffffff) << 32'h8) | ((b10$q) & 64'hffffffffffffffff);
+        end
+    end
+    
+endmodule // canstar_sja1000$txbuf
+
+
+module canstar_sja1000$txbuf$b0(d,q,clock);
+    
+    // Module arguments
+    input wire  [7:0] d;
+    output reg  [7:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 8'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_sja1000$txbuf$b0
+
+
+module canstar_sja1000$txbuf$b1(d,q,clock);
+    
+    // Module arguments
+    input wire  [7:0] d;
+    output reg  [7:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 8'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_sja1000$txbuf$b1
+
+
+module canstar_sja1000$txbuf$b10(d,q,clock);
+    
+    // Module arguments
+    input wire  [7:0] d;
+    output reg  [7:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 8'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_sja1000$txbuf$b10
+
+
+module canstar_sja1000$txbuf$b11(d,q,clock);
+    
+    // Module arguments
+    input wire  [7:0] d;
+    output reg  [7:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 8'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_sja1000$txbuf$b11
+
+
+module canstar_sja1000$txbuf$b12(d,q,clock);
+    
+    // Module arguments
+    input wire  [7:0] d;
+    output reg  [7:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 8'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_sja1000$txbuf$b12
+
+
+module canstar_sja1000$txbuf$b2(d,q,clock);
+    
+    // Module arguments
+    input wire  [7:0] d;
+    output reg  [7:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 8'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_sja1000$txbuf$b2
+
+
+module canstar_sja1000$txbuf$b3(d,q,clock);
+    
+    // Module arguments
+    input wire  [7:0] d;
+    output reg  [7:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 8'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_sja1000$txbuf$b3
+
+
+module canstar_sja1000$txbuf$b4(d,q,clock);
+    
+    // Module arguments
+    input wire  [7:0] d;
+    output reg  [7:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 8'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_sja1000$txbuf$b4
+
+
+module canstar_sja1000$txbuf$b5(d,q,clock);
+    
+    // Module arguments
+    input wire  [7:0] d;
+    output reg  [7:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 8'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_sja1000$txbuf$b5
+
+
+module canstar_sja1000$txbuf$b6(d,q,clock);
+    
+    // Module arguments
+    input wire  [7:0] d;
+    output reg  [7:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 8'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_sja1000$txbuf$b6
+
+
+module canstar_sja1000$txbuf$b7(d,q,clock);
+    
+    // Module arguments
+    input wire  [7:0] d;
+    output reg  [7:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 8'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_sja1000$txbuf$b7
+
+
+module canstar_sja1000$txbuf$b8(d,q,clock);
+    
+    // Module arguments
+    input wire  [7:0] d;
+    output reg  [7:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 8'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_sja1000$txbuf$b8
+
+
+module canstar_sja1000$txbuf$b9(d,q,clock);
+    
+    // Module arguments
+    input wire  [7:0] d;
+    output reg  [7:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 8'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_sja1000$txbuf$b9
+
+
+module canstar_sja1000$txctl(clock,rst,opm,sleep,enter_rm,cmd,tr,at,srr,tx_done,arb_lost,error,err_tx,tx_rqst,txact,own_done,own_dropped,pending,single_shot,req,abort,tcs,own_offer,ti);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  rst;
+    input wire  opm;
+    input wire  sleep;
+    input wire  enter_rm;
+    input wire  cmd;
+    input wire  tr;
+    input wire  at;
+    input wire  srr;
+    input wire  tx_done;
+    input wire  arb_lost;
+    input wire  error;
+    input wire  err_tx;
+    input wire  tx_rqst;
+    input wire  txact;
+    input wire  own_done;
+    input wire  own_dropped;
+    output reg  pending;
+    output reg  single_shot;
+    output reg  req;
+    output reg  abort;
+    output reg  tcs;
+    output reg  own_offer;
+    output reg  ti;
+    
+    // Stub signals
+    reg  pend$d;
+    wire  pend$q;
+    reg  pend$clock;
+    reg  single$d;
+    wire  single$q;
+    reg  single$clock;
+    reg  srr_r$d;
+    wire  srr_r$q;
+    reg  srr_r$clock;
+    reg  abrt$d;
+    wire  abrt$q;
+    reg  abrt$clock;
+    reg  lb$d;
+    wire  lb$q;
+    reg  lb$clock;
+    reg  tcs_n$d;
+    wire  tcs_n$q;
+    reg  tcs_n$clock;
+    
+    // Local signals
+    reg  l_txok;
+    reg  l_fail;
+    reg  l_rel;
+    
+    // Sub module instances
+    canstar_sja1000$txctl$pend pend(
+        .d(pend$d),
+        .q(pend$q),
+        .clock(pend$clock)
+    );
+    canstar_sja1000$txctl$single single(
+        .d(single$d),
+        .q(single$q),
+        .clock(single$clock)
+    );
+    canstar_sja1000$txctl$srr_r srr_r(
+        .d(srr_r$d),
+        .q(srr_r$q),
+        .clock(srr_r$clock)
+    );
+    canstar_sja1000$txctl$abrt abrt(
+        .d(abrt$d),
+        .q(abrt$q),
+        .clock(abrt$clock)
+    );
+    canstar_sja1000$txctl$lb lb(
+        .d(lb$d),
+        .q(lb$q),
+        .clock(lb$clock)
+    );
+    canstar_sja1000$txctl$tcs_n tcs_n(
+        .d(tcs_n$d),
+        .q(tcs_n$q),
+        .clock(tcs_n$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        pend$clock = clock;
+        single$clock = clock;
+        srr_r$clock = clock;
+        abrt$clock = clock;
+        lb$clock = clock;
+        tcs_n$clock = clock;
+        pend$d = pend$q;
+        single$d = single$q;
+        srr_r$d = srr_r$q;
+        abrt$d = abrt$q;
+        lb$d = lb$q;
+        tcs_n$d = tcs_n$q;
+        l_txok = pend$q & tx_done;
+        abort = 1'b0;
+        if (cmd & opm) begin
+            if ((tr | srr) & ~pend$q & ~sleep) begin
+                pend$d = 1'b1;
+                single$d = at;
+                srr_r$d = srr;
+                abrt$d = 1'b0;
+            end
+            else if (at & pend$q & ~lb$q) begin
+                abort = 1'b1;
+                abrt$d = 1'b1;
+            end
+        end
+        l_fail = pend$q & ~lb$q & (single$q | abrt$q) & (arb_lost | (error & err_tx));
+        if (pend$q & abrt$q & ~lb$q & ~tx_rqst & ~txact & ~l_txok) begin
+            l_fail = 1'b1;
+        end
+        l_rel = 1'b0;
+        if (l_txok) begin
+            tcs_n$d = 1'b0;
+            if (srr_r$q) begin
+                lb$d = 1'b1;
+            end
+            else begin
+                l_rel = 1'b1;
+            end
+        end
+        else if (l_fail) begin
+            tcs_n$d = 1'b1;
+            l_rel = 1'b1;
+        end
+        if (own_done | own_dropped) begin
+            l_rel = 1'b1;
+            lb$d = 1'b0;
+        end
+        if (l_rel) begin
+            pend$d = 1'b0;
+        end
+        if (enter_rm) begin
+            pend$d = 1'b0;
+            lb$d = 1'b0;
+            abrt$d = 1'b0;
+        end
+        if (rst) begin
+            pend$d = 1'b0;
+            lb$d = 1'b0;
+            abrt$d = 1'b0;
+            tcs_n$d = 1'b0;
+        end
+        pending = pend$q;
+        single_shot = single$q;
+        req = pend$q & ~lb$q & opm;
+        tcs = ~tcs_n$q;
+        own_offer = l_txok & srr_r$q & opm;
+        ti = l_rel & ~enter_rm;
+    end
+    
+endmodule // canstar_sja1000$txctl
+
+
+module canstar_sja1000$txctl$abrt(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_sja1000$txctl$abrt
+
+
+module canstar_sja1000$txctl$lb(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_sja1000$txctl$lb
+
+
+module canstar_sja1000$txctl$pend(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_sja1000$txctl$pend
+
+
+module canstar_sja1000$txctl$single(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_sja1000$txctl$single
+
+
+module canstar_sja1000$txctl$srr_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_sja1000$txctl$srr_r
+
+
+module canstar_sja1000$txctl$tcs_n(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_sja1000$txctl$tcs_n
 
 module canstar_sja1000_board(clock, rst_n, wb_cyc, wb_stb, wb_we, wb_adr, wb_dat_w, wb_dat_r, wb_ack, rx, tx, int_n);
     input wire clock;
