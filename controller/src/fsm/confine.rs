@@ -149,3 +149,123 @@ impl Logic for FaultConfinement {
         self.armed.next = self.rarmed.q.val() | self.recover.val();
     }
 }
+
+canstar_hdl::impl_clocked!(FaultConfinement);
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use canstar_hdl::drive;
+
+    fn block() -> FaultConfinement {
+        let mut u = FaultConfinement::default();
+        drive::init(&mut u);
+        u.reset.next = true;
+        drive::cycle(&mut u);
+        u.reset.next = false;
+        u
+    }
+
+    /// One processed bit with the strobes set by `f`, then a clock without `sample`.
+    fn bit(u: &mut FaultConfinement, f: impl Fn(&mut FaultConfinement)) -> bool {
+        u.sample.next = true;
+        f(u);
+        drive::settle(u);
+        let busoff = u.busoff.val();
+        drive::cycle(u);
+        u.sample.next = false;
+        for s in [&mut u.tinc, &mut u.tdec, &mut u.rinc1, &mut u.rinc8, &mut u.rok, &mut u.run] {
+            s.next = false;
+        }
+        drive::cycle(u);
+        busoff
+    }
+
+    fn counters(u: &FaultConfinement) -> (u64, u64, u64) {
+        (u.tec.val().index() as u64, u.rec.val().index() as u64, u.state.val().index() as u64)
+    }
+
+    #[test]
+    fn transmit_counter_warning_passive_and_bus_off() {
+        let mut u = block();
+        for _ in 0..12 {
+            assert!(!bit(&mut u, |u| u.tinc.next = true));
+        }
+        assert_eq!(counters(&u), (96, 0, 0));
+        assert!(u.err_warn.val() && u.active.val());
+        for _ in 0..4 {
+            bit(&mut u, |u| u.tinc.next = true);
+        }
+        assert_eq!(counters(&u), (128, 0, 1));
+        assert!(!u.active.val());
+        bit(&mut u, |u| u.tdec.next = true);
+        assert_eq!(counters(&u), (127, 0, 0), "back to error-active");
+        // 127 + 8k: 255 is still error-passive
+        while u.tec.val().index() < 255 {
+            assert!(!bit(&mut u, |u| u.tinc.next = true));
+        }
+        assert_eq!(counters(&u), (255, 0, 1));
+        // the bit that takes TEC above 255 signals bus-off on its sample clock
+        assert!(bit(&mut u, |u| u.tinc.next = true));
+        assert_eq!(counters(&u), (263, 0, 2));
+        // a bus-off node (in_busoff) does not signal it again
+        u.in_busoff.next = true;
+        assert!(!bit(&mut u, |_| {}));
+    }
+
+    #[test]
+    fn receive_counter_saturation_and_restore() {
+        let mut u = block();
+        for _ in 0..15 {
+            bit(&mut u, |u| u.rinc8.next = true);
+        }
+        bit(&mut u, |u| u.rinc1.next = true);
+        assert_eq!(counters(&u).1, 121);
+        bit(&mut u, |u| u.rinc8.next = true);
+        assert_eq!(counters(&u).1, 129);
+        // C12: no increment at or above 128; C11: a good reception restores 127
+        bit(&mut u, |u| u.rinc8.next = true);
+        bit(&mut u, |u| u.rinc1.next = true);
+        assert_eq!(counters(&u), (0, 129, 1));
+        bit(&mut u, |u| u.rok.next = true);
+        assert_eq!(counters(&u), (0, 127, 0));
+        bit(&mut u, |u| u.rok.next = true);
+        assert_eq!(counters(&u).1, 126);
+        // listen-only mode freezes both counters
+        u.listen_only.next = true;
+        bit(&mut u, |u| {
+            u.tinc.next = true;
+            u.rinc1.next = true
+        });
+        assert_eq!(counters(&u), (0, 126, 0));
+    }
+
+    #[test]
+    fn recovery_runs_load_and_arming() {
+        let mut u = block();
+        // load a bus-off (priority over reset)
+        u.cnt_load.next = true;
+        u.reset.next = true;
+        u.tec_in.next = 300.into();
+        u.rec_in.next = 5.into();
+        drive::cycle(&mut u);
+        u.cnt_load.next = false;
+        u.reset.next = false;
+        u.in_busoff.next = true;
+        assert_eq!(counters(&u), (300, 5, 2));
+        assert!(!u.armed.val());
+        u.recover.next = true;
+        drive::cycle(&mut u);
+        u.recover.next = false;
+        drive::cycle(&mut u);
+        assert!(u.armed.val(), "a recover strobe arms the recovery");
+        for k in 0..128u64 {
+            assert_eq!(u.runs.val().index() as u64, k);
+            assert_eq!(u.last_run.val(), k == 127);
+            bit(&mut u, |u| u.run.next = true);
+        }
+        assert_eq!(counters(&u), (0, 0, 0), "the 128th run clears the counters");
+        assert_eq!(u.runs.val().index(), 0);
+        assert!(!u.armed.val(), "and disarms");
+    }
+}

@@ -125,3 +125,95 @@ impl Logic for BitDecode {
             | ((self.l_dfld.val() == Field::Inter) & (self.fpos.val() == 3));
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use canstar_hdl::drive;
+
+    fn decode(f: impl Fn(&mut BitDecode)) -> BitDecode {
+        let mut u = BitDecode::default();
+        u.connect_all();
+        u.fld.next = Field::Idle;
+        u.pfld.next = Field::Idle;
+        u.dom.next = false;
+        f(&mut u);
+        drive::settle(&mut u);
+        u
+    }
+
+    #[test]
+    fn stuff_bits_show_the_bit_before_and_carry_the_stuff_level() {
+        // the destuffer has seen 5 equal bits in the identifier
+        let u = decode(|u| {
+            u.fld.next = Field::Ident;
+            u.fpos.next = 6.into();
+            u.pfld.next = Field::Ident;
+            u.ppos.next = 5.into();
+            u.next_is_stuff.next = true;
+            u.stuff_level.next = false;
+            u.tx_role.next = true;
+        });
+        assert!(u.stuffed.val() && u.stuff.val());
+        assert_eq!((u.code.val().index(), u.pos.val().index()), (Field::Ident.code() as usize, 5));
+        assert!(!u.drive.val(), "a transmitter sends the stuff level");
+        assert_eq!((u.arb.val(), u.arb_stuff.val(), u.arb_pos.val().index()), (true, true, 5));
+        // a receiver drives nothing on a stuff bit; listen-only nodes never do
+        let u = decode(|u| {
+            u.fld.next = Field::Ident;
+            u.next_is_stuff.next = true;
+            u.stuff_level.next = false;
+        });
+        assert!(u.drive.val());
+        let u = decode(|u| {
+            u.dom.next = true;
+            u.listen_only.next = true;
+        });
+        assert!(u.drive.val());
+        // after CRC bit 15 the stuff bit comes while the field says CRC_Delimiter
+        let u = decode(|u| {
+            u.fld.next = Field::CrcDel;
+            u.pfld.next = Field::Crc;
+            u.ppos.next = 15.into();
+            u.next_is_stuff.next = true;
+        });
+        assert!(u.stuff.val() && u.stuffed.val());
+        assert_eq!(u.code.val().index(), Field::Crc.code() as usize);
+        // outside the stuffed area, 5 equal bits mean nothing
+        let u = decode(|u| {
+            u.fld.next = Field::Eof;
+            u.next_is_stuff.next = true;
+        });
+        assert!(!u.stuff.val() && !u.stuffed.val());
+    }
+
+    #[test]
+    fn arbitration_positions_and_hard_sync() {
+        let cases = [
+            (Field::Ident, 11, false, 11),
+            (Field::Srr, 1, true, 12),
+            (Field::Ide, 1, true, 13),
+            (Field::ExIdent, 18, true, 31),
+            (Field::Rtr, 1, true, 32),
+            (Field::Rtr, 1, false, 12),
+        ];
+        for (f, pos, ext, want) in cases {
+            let u = decode(|u| {
+                u.fld.next = f;
+                u.fpos.next = pos.into();
+                u.ext.next = ext;
+            });
+            assert!(u.arb.val());
+            assert_eq!(u.arb_pos.val().index(), want, "{f:?} {pos}");
+        }
+        for f in Field::ALL {
+            let u = decode(|u| {
+                u.fld.next = f;
+                u.fpos.next = 3.into();
+            });
+            let want = matches!(f, Field::Reset | Field::WaitIdle | Field::Idle | Field::BusOff | Field::Sof | Field::Suspend | Field::Inter);
+            assert_eq!(u.hs_en.val(), want, "{f:?}");
+            assert_eq!(u.code.val().index() as u64, f.code());
+        }
+    }
+}

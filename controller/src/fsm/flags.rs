@@ -220,3 +220,164 @@ impl Logic for FlagFields {
 
     }
 }
+
+canstar_hdl::impl_clocked!(FlagFields);
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use canstar_hdl::drive;
+
+    #[derive(Debug, Default, Clone, Copy, PartialEq)]
+    struct Out {
+        nf: Option<Field>,
+        npos: u64,
+        ndom: bool,
+        err: bool,
+        err_bit: bool,
+        err_form: bool,
+        tinc: bool,
+        rinc1: bool,
+        rinc8: bool,
+        ovl: bool,
+        daf: bool,
+        met: bool,
+    }
+
+    fn block(tx: bool) -> FlagFields {
+        let mut u = FlagFields::default();
+        drive::init(&mut u);
+        u.reset.next = true;
+        drive::cycle(&mut u);
+        u.reset.next = false;
+        u.tx_role.next = tx;
+        u
+    }
+
+    /// One sampled bit in field `fld`/`fpos`; returns the decision.
+    fn bit(u: &mut FlagFields, fld: Field, fpos: u64, level: bool, sent: bool) -> Out {
+        u.sample.next = true;
+        u.fld.next = fld;
+        u.fpos.next = fpos.into();
+        u.rxbit.next = level;
+        u.sent.next = sent;
+        drive::settle(u);
+        let o = Out {
+            nf: u.own.val().then(|| u.nf.val()),
+            npos: u.npos.val().index() as u64,
+            ndom: u.ndom.val(),
+            err: u.err.val(),
+            err_bit: u.err_bit.val(),
+            err_form: u.err_form.val(),
+            tinc: u.tinc.val(),
+            rinc1: u.rinc1.val(),
+            rinc8: u.rinc8.val(),
+            ovl: u.ovl.val(),
+            daf: u.daf.val(),
+            met: u.exc1_met.val(),
+        };
+        drive::cycle(u);
+        u.sample.next = false;
+        u.flag_start.next = false;
+        u.exc1_set.next = false;
+        drive::cycle(u);
+        o
+    }
+
+    /// The bit before a flag (the sequencer starts the flag).
+    fn start(u: &mut FlagFields, exc1: bool) {
+        u.flag_start.next = true;
+        u.exc1_set.next = exc1;
+        let o = bit(u, Field::AckSlot, 1, true, true);
+        assert!(o.nf.is_none(), "not a flag field");
+    }
+
+    /// Drive `n` dominant bits after the flag; the receiver/transmitter counts.
+    fn dafs(u: &mut FlagFields, fld: Field, from: u64, n: u64) -> Vec<Out> {
+        (0..n).map(|k| bit(u, fld, from + k, false, true)).collect()
+    }
+
+    #[test]
+    fn active_error_flag_then_dominant_bits_then_delimiter() {
+        for tx in [false, true] {
+            let mut u = block(tx);
+            start(&mut u, false);
+            for pos in 1..=6 {
+                let o = bit(&mut u, Field::ActFlag, pos, false, false);
+                assert_eq!((o.nf, o.npos, o.ndom, o.err), (Some(Field::ActFlag), pos + 1, pos < 6, false), "flag bit {pos}");
+            }
+            let d = dafs(&mut u, Field::ActFlag, 7, 16);
+            assert!(d.iter().all(|o| o.daf && !o.err));
+            // a receiver: +8 at the first dominant bit after an error flag;
+            // both: +8 at every 8th
+            let counted: Vec<usize> = d.iter().enumerate().filter(|(_, o)| o.rinc8 || o.tinc).map(|(k, _)| k).collect();
+            assert_eq!(counted, if tx { vec![7, 15] } else { vec![0, 7, 15] });
+            assert!(d.iter().all(|o| if tx { !o.rinc8 } else { !o.tinc }));
+            let o = bit(&mut u, Field::ActFlag, 23, true, true);
+            assert_eq!((o.nf, o.npos), (Some(Field::ErrDel), 2));
+        }
+    }
+
+    #[test]
+    fn overload_flag_shares_the_mechanism_but_not_the_first_dominant_bit_rule() {
+        let mut u = block(false);
+        start(&mut u, false);
+        for pos in 1..=6 {
+            assert_eq!(bit(&mut u, Field::OvlFlag, pos, false, false).ndom, pos < 6);
+        }
+        let d = dafs(&mut u, Field::OvlFlag, 7, 8);
+        let counted: Vec<usize> = d.iter().enumerate().filter(|(_, o)| o.rinc8).map(|(k, _)| k).collect();
+        assert_eq!(counted, vec![7], "only every 8th dominant bit after an overload flag");
+        let o = bit(&mut u, Field::OvlFlag, 15, true, true);
+        assert_eq!((o.nf, o.npos), (Some(Field::OvlDel), 2));
+    }
+
+    #[test]
+    fn flag_bit_error_and_delimiter_errors() {
+        let mut u = block(false);
+        start(&mut u, false);
+        bit(&mut u, Field::ActFlag, 1, false, false);
+        // recessive read while driving dominant: bit error, REC +8
+        let o = bit(&mut u, Field::ActFlag, 2, true, false);
+        assert!(o.err && o.err_bit && o.rinc8 && !o.tinc);
+        // a listen-only node sends its flag recessive: no bit error
+        let o = bit(&mut u, Field::ActFlag, 3, true, true);
+        assert!(!o.err);
+        // delimiters: dominant before bit 8 is a form error, at bit 8 an overload condition
+        for del in [Field::ErrDel, Field::OvlDel] {
+            let o = bit(&mut u, del, 3, false, true);
+            assert!(o.err && o.err_form && o.rinc1 && !o.ovl, "{del:?}");
+            let o = bit(&mut u, del, 5, true, true);
+            assert_eq!((o.nf, o.npos, o.err), (Some(del), 6, false));
+            let o = bit(&mut u, del, 8, false, true);
+            assert_eq!((o.nf, o.npos, o.ovl, o.err), (Some(Field::Inter), 1, true, false));
+        }
+    }
+
+    #[test]
+    fn passive_flag_six_equal_bits_and_exception_1() {
+        // 6 equal bits end the flag, counted from its first bit
+        let mut u = block(true);
+        start(&mut u, true);
+        let levels = [true, true, false, false, false, false, false, false];
+        let mut outs = vec![];
+        for (k, l) in levels.iter().enumerate() {
+            outs.push(bit(&mut u, Field::PasFlag, k as u64 + 1, *l, true));
+        }
+        // the first dominant bit costs TEC +8 after all (exception 1 not met)
+        let tinc: Vec<usize> = outs.iter().enumerate().filter(|(_, o)| o.tinc).map(|(k, _)| k).collect();
+        assert_eq!(tinc, vec![2]);
+        assert!(outs.iter().all(|o| !o.met && !o.ndom));
+        // done after the 6th equal (dominant) bit: the next dominant bit is a DAF
+        assert!(bit(&mut u, Field::PasFlag, 9, false, true).daf);
+
+        // no dominant bit during the passive flag: exception 1 met, no TEC change
+        let mut u = block(true);
+        start(&mut u, true);
+        let outs: Vec<Out> = (1..=6).map(|p| bit(&mut u, Field::PasFlag, p, true, true)).collect();
+        assert!(outs.iter().all(|o| !o.tinc));
+        assert_eq!(outs.iter().map(|o| o.met).collect::<Vec<_>>(), [false, false, false, false, false, true]);
+        let o = bit(&mut u, Field::PasFlag, 7, true, true);
+        assert_eq!((o.nf, o.npos), (Some(Field::ErrDel), 2));
+    }
+}

@@ -356,3 +356,5 @@ impl Logic for FrameFields {
         self.lost.next = self.tx_role.val() & !self.l_role.val();
     }
 }
+
+canstar_hdl::impl_clocked!(FrameFields);

@@ -224,3 +224,81 @@ impl Logic for EventReport {
         self.rx_valid.next = self.evr.q.val().get_bit(self.k_rx_ok.val().index());
     }
 }
+
+canstar_hdl::impl_clocked!(EventReport);
+
+#[cfg(test)]
+mod tests {
+    use super::super::{ERRK_ACK, ERRK_BIT, ERRK_CRC, ERRK_FORM, ERRK_STUFF};
+    use super::*;
+    use canstar_hdl::drive;
+
+    #[test]
+    fn each_event_lands_at_its_ev_position_for_one_clock() {
+        let mut u = EventReport::default();
+        drive::init(&mut u);
+        type Input = fn(&mut EventReport) -> &mut Signal<In, Bit>;
+        let inputs: [(Input, usize); 19] = [
+            (|u| &mut u.ev_sof, EV_SOF),
+            (|u| &mut u.ev_arb_lost, EV_ARB_LOST),
+            (|u| &mut u.ev_bit_err, EV_BIT_ERR),
+            (|u| &mut u.ev_stuff_err, EV_STUFF_ERR),
+            (|u| &mut u.ev_crc_err, EV_CRC_ERR),
+            (|u| &mut u.ev_form_err, EV_FORM_ERR),
+            (|u| &mut u.ev_ack_err, EV_ACK_ERR),
+            (|u| &mut u.ev_aef, EV_AEF),
+            (|u| &mut u.ev_pef, EV_PEF),
+            (|u| &mut u.ev_olf, EV_OLF),
+            (|u| &mut u.ev_ovl, EV_OVL),
+            (|u| &mut u.ev_daf, EV_DAF),
+            (|u| &mut u.ev_tx_ok, EV_TX_OK),
+            (|u| &mut u.ev_rx_ok, EV_RX_OK),
+            (|u| &mut u.ev_exc1, EV_EXC1),
+            (|u| &mut u.ev_exc2, EV_EXC2),
+            (|u| &mut u.ev_run, EV_RUN),
+            (|u| &mut u.ev_recovered, EV_RECOVERED),
+            (|u| &mut u.ev_integrated, EV_INTEGRATED),
+        ];
+        for (input, pos) in inputs {
+            input(&mut u).next = true;
+            u.sample.next = true;
+            drive::cycle(&mut u);
+            input(&mut u).next = false;
+            u.sample.next = false;
+            let ev = u.events.val().index() as u64;
+            assert_eq!(ev, (1 << pos) | (1 << EV_BIT), "EV bit {pos}");
+            assert_eq!(u.tx_done.val(), pos == EV_TX_OK);
+            assert_eq!(u.rx_valid.val(), pos == EV_RX_OK);
+            assert_eq!(u.arb_lost.val(), pos == EV_ARB_LOST);
+            let kinds = [(EV_BIT_ERR, ERRK_BIT), (EV_STUFF_ERR, ERRK_STUFF), (EV_CRC_ERR, ERRK_CRC), (EV_FORM_ERR, ERRK_FORM), (EV_ACK_ERR, ERRK_ACK)];
+            let kind = kinds.iter().find(|k| k.0 == pos).map_or(0, |k| 1 << k.1);
+            assert_eq!(u.err_kind.val().index(), kind);
+            assert_eq!(u.error.val(), kind != 0);
+            drive::cycle(&mut u);
+            assert_eq!(u.events.val().index(), 0, "one clock only");
+        }
+    }
+
+    #[test]
+    fn error_and_arbitration_reports_are_captured_and_held() {
+        let mut u = EventReport::default();
+        drive::init(&mut u);
+        u.sample.next = true;
+        u.err_now.next = true;
+        u.code.next = 17.into();
+        u.pos.next = 6.into();
+        u.tx_role.next = true;
+        u.ev_arb_lost.next = true;
+        u.arb_pos.next = 13.into();
+        drive::cycle(&mut u);
+        u.sample.next = false;
+        u.err_now.next = false;
+        u.ev_arb_lost.next = false;
+        u.code.next = 3.into();
+        u.arb_pos.next = 1.into();
+        drive::cycle(&mut u);
+        drive::cycle(&mut u);
+        assert_eq!((u.err_field.val().index(), u.err_pos.val().index(), u.err_tx.val()), (17, 6, true));
+        assert_eq!(u.arb_lost_pos.val().index(), 13);
+    }
+}

@@ -334,3 +334,5 @@ impl Logic for Sequencer {
         self.in_busoff.next = self.rfld.q.val() == Field::BusOff;
     }
 }
+
+canstar_hdl::impl_clocked!(Sequencer);

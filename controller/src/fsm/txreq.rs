@@ -171,3 +171,115 @@ impl Logic for TxRequest {
         self.ide.next = self.tide.q.val();
     }
 }
+
+canstar_hdl::impl_clocked!(TxRequest);
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use canstar_hdl::drive;
+
+    fn block() -> TxRequest {
+        let mut u = TxRequest::default();
+        drive::init(&mut u);
+        u.reset.next = true;
+        drive::cycle(&mut u);
+        u.reset.next = false;
+        drive::cycle(&mut u);
+        u
+    }
+
+    /// One sampled bit: `nf` is the next field; returns the level for it.
+    fn bit(u: &mut TxRequest, fld: Field, nf: Field, adv: bool, load: bool) -> bool {
+        u.sample.next = true;
+        u.fld.next = fld;
+        u.nf.next = nf;
+        u.adv.next = adv;
+        u.load.next = load;
+        drive::settle(u);
+        let l = u.level.val();
+        drive::cycle(u);
+        u.sample.next = false;
+        u.adv.next = false;
+        u.load.next = false;
+        u.done.next = false;
+        u.lost.next = false;
+        drive::cycle(u);
+        l
+    }
+
+    #[test]
+    fn handshake_blocks_after_success_abort_and_single_shot_failure() {
+        let mut u = block();
+        assert!(!u.req.val());
+        u.tx_req.next = true;
+        drive::cycle(&mut u);
+        assert!(u.req.val(), "the request is seen on the next clock");
+        // success blocks further attempts until tx_req falls
+        u.done.next = true;
+        bit(&mut u, Field::Eof, Field::Inter, false, false);
+        drive::cycle(&mut u);
+        assert!(!u.req.val());
+        u.tx_req.next = false;
+        drive::cycle(&mut u);
+        u.tx_req.next = true;
+        drive::cycle(&mut u);
+        drive::cycle(&mut u);
+        assert!(u.req.val());
+        // abort
+        u.tx_abort.next = true;
+        drive::cycle(&mut u);
+        u.tx_abort.next = false;
+        drive::cycle(&mut u);
+        assert!(!u.req.val(), "aborted");
+        u.tx_req.next = false;
+        drive::cycle(&mut u);
+        u.tx_req.next = true;
+        drive::cycle(&mut u);
+        drive::cycle(&mut u);
+        assert!(u.req.val());
+        // single shot: a lost arbitration ends the attempts; without it, not
+        u.lost.next = true;
+        bit(&mut u, Field::Ident, Field::Ident, true, false);
+        assert!(u.req.val(), "retried after a lost arbitration");
+        u.single_shot.next = true;
+        u.lost.next = true;
+        bit(&mut u, Field::Ident, Field::Ident, true, false);
+        assert!(!u.req.val(), "single shot: no retry");
+    }
+
+    #[test]
+    fn frame_register_gives_the_bits_of_the_own_frame_in_order() {
+        let mut u = block();
+        // standard frame 0x5A3, DLC 2, data 0xC3 0x81
+        u.tx_ide.next = false;
+        u.tx_rtr.next = false;
+        u.tx_id.next = 0x5A3.into();
+        u.tx_dlc.next = 2.into();
+        u.tx_data.next = 0xC381_0000_0000_0000u64.into();
+        assert!(!bit(&mut u, Field::Idle, Field::Sof, false, true), "SOF dominant");
+        let mut got = vec![bit(&mut u, Field::Sof, Field::Ident, true, false)];
+        for _ in 0..10 {
+            got.push(bit(&mut u, Field::Ident, Field::Ident, true, false));
+        }
+        let id: Vec<bool> = (0..11).rev().map(|k| (0x5A3 >> k) & 1 == 1).collect();
+        assert_eq!(got, id);
+        assert!(!bit(&mut u, Field::Ident, Field::Rtr, true, false), "RTR dominant (data frame)");
+        assert!(!bit(&mut u, Field::Rtr, Field::Ide, true, false), "IDE dominant");
+        assert!(!bit(&mut u, Field::Ide, Field::Resv, true, false), "r0 dominant");
+        let mut dlc = vec![bit(&mut u, Field::Resv, Field::Dlc, true, false)];
+        for _ in 0..3 {
+            dlc.push(bit(&mut u, Field::Dlc, Field::Dlc, true, false));
+        }
+        assert_eq!(dlc, [false, false, true, false]);
+        let mut data = vec![bit(&mut u, Field::Dlc, Field::Data, true, false)];
+        for _ in 0..15 {
+            data.push(bit(&mut u, Field::Data, Field::Data, true, false));
+        }
+        let want: Vec<bool> = (0..16).rev().map(|k| (0xC381u32 >> k) & 1 == 1).collect();
+        assert_eq!(data, want);
+        u.crc_bit.next = false;
+        assert!(!bit(&mut u, Field::Data, Field::Crc, true, false), "CRC bits from the CRC engine");
+        assert!(bit(&mut u, Field::Crc, Field::CrcDel, true, false), "recessive outside the frame fields");
+    }
+}

@@ -279,3 +279,83 @@ impl Logic for ErrorCapture {
         self.ecc.next = self.ecc_r.q.val();
     }
 }
+
+canstar_hdl::impl_clocked!(ErrorCapture);
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use canstar_hdl::drive;
+
+    fn block() -> ErrorCapture {
+        let mut u = ErrorCapture::default();
+        drive::init(&mut u);
+        u.rst.next = true;
+        drive::cycle(&mut u);
+        u.rst.next = false;
+        u
+    }
+
+    fn error(u: &mut ErrorCapture, kind: usize, field: Field, pos: u64, tx: bool) {
+        u.error.next = true;
+        u.err_kind.next = ((1 << kind) as u64).into();
+        u.err_field.next = field.code().into();
+        u.err_pos.next = pos.into();
+        u.err_tx.next = tx;
+        drive::cycle(u);
+        u.error.next = false;
+        drive::cycle(u);
+    }
+
+    fn read_ecc(u: &mut ErrorCapture) -> u8 {
+        let v = u.ecc.val().index() as u8;
+        u.rd_ecc.next = true;
+        drive::cycle(u);
+        u.rd_ecc.next = false;
+        v
+    }
+
+    #[test]
+    fn error_codes_segments_and_rearming() {
+        let mut u = block();
+        error(&mut u, ERRK_BIT, Field::Data, 3, true);
+        // held until read: a second error is not captured
+        error(&mut u, ERRK_STUFF, Field::Ident, 2, false);
+        assert_eq!(read_ecc(&mut u), regs::ECC_BIT | 0x0A);
+        error(&mut u, ERRK_STUFF, Field::Ident, 9, false);
+        assert_eq!(read_ecc(&mut u), regs::ECC_STUFF | regs::ECC_DIR | 0x06);
+        error(&mut u, ERRK_FORM, Field::AckDel, 1, false);
+        assert_eq!(read_ecc(&mut u), regs::ECC_FORM | regs::ECC_DIR | 0x1B);
+        error(&mut u, crate::fsm::ERRK_CRC, Field::AckDel, 1, false);
+        assert_eq!(read_ecc(&mut u), regs::ECC_OTHER | regs::ECC_DIR | 0x1B);
+        error(&mut u, ERRK_FORM, Field::OvlDel, 4, true);
+        assert_eq!(read_ecc(&mut u), regs::ECC_FORM | 0x17);
+        // RTR and r1/r0 of an extended frame (Ex_Identifier seen)
+        u.field.next = Field::ExIdent.code().into();
+        drive::cycle(&mut u);
+        error(&mut u, ERRK_BIT, Field::Rtr, 1, true);
+        assert_eq!(read_ecc(&mut u), 0x0C);
+        error(&mut u, ERRK_BIT, Field::Resv, 1, true);
+        assert_eq!(read_ecc(&mut u), 0x0D);
+        u.field.next = Field::Sof.code().into();
+        drive::cycle(&mut u);
+        error(&mut u, ERRK_BIT, Field::Rtr, 1, true);
+        assert_eq!(read_ecc(&mut u), 0x04);
+    }
+
+    #[test]
+    fn arbitration_lost_capture() {
+        let mut u = block();
+        for (pos, want) in [(12u64, 11u64), (5, 4)] {
+            u.arb_lost.next = true;
+            u.arb_lost_pos.next = pos.into();
+            drive::cycle(&mut u);
+            u.arb_lost.next = false;
+            drive::cycle(&mut u);
+            assert_eq!(u.alc.val().index() as u64, want);
+            u.rd_alc.next = true;
+            drive::cycle(&mut u);
+            u.rd_alc.next = false;
+        }
+    }
+}

@@ -388,3 +388,5 @@ impl Logic for RxFifo {
         self.busy_own.next = self.wr_src.q.val();
     }
 }
+
+canstar_hdl::impl_clocked!(RxFifo);

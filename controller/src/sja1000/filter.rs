@@ -208,3 +208,66 @@ impl Logic for AcceptanceFilter {
         }
     }
 }
+
+canstar_hdl::impl_clocked!(AcceptanceFilter);
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use canstar_hdl::drive;
+
+    fn filter(single: bool, acr: [u8; 4], amr: [u8; 4]) -> AcceptanceFilter {
+        let mut u = AcceptanceFilter::default();
+        drive::init(&mut u);
+        for (k, v) in acr.iter().chain(amr.iter()).enumerate() {
+            u.we.next = true;
+            u.idx.next = (k as u64).into();
+            u.wdata.next = (*v as u64).into();
+            drive::cycle(&mut u);
+        }
+        u.we.next = false;
+        u.single.next = single;
+        u
+    }
+
+    fn accepts(u: &mut AcceptanceFilter, ide: bool, rtr: bool, id: u32, data: &[u8]) -> bool {
+        u.ide.next = ide;
+        u.rtr.next = rtr;
+        u.id.next = (id as u64).into();
+        u.n.next = (data.len() as u64).into();
+        let d0 = *data.first().unwrap_or(&0) as u64;
+        let d1 = *data.get(1).unwrap_or(&0) as u64;
+        u.d01.next = ((d0 << 8) | d1).into();
+        drive::settle(u);
+        u.accept.val()
+    }
+
+    #[test]
+    fn single_filter_standard_frames_with_data_bytes() {
+        // ID 0x123 (ID1 = 0x24, ID2 = 0x60 | RTR 0x10), data 0xAB 0xCD; AMR3 don't care
+        let mut u = filter(true, [0x24, 0x60, 0xAB, 0x00], [0x00, 0x0F, 0x00, 0xFF]);
+        assert!(accepts(&mut u, false, false, 0x123, &[0xAB, 0x11]));
+        assert!(!accepts(&mut u, false, false, 0x123, &[0xAC]), "data byte 0 compared");
+        assert!(!accepts(&mut u, false, true, 0x123, &[]), "RTR compared");
+        assert!(!accepts(&mut u, false, false, 0x122, &[0xAB]));
+        // bytes the frame does not carry match any code
+        assert!(accepts(&mut u, false, false, 0x123, &[]));
+    }
+
+    #[test]
+    fn dual_filter_extended_frames_and_reset_mask() {
+        // filter 1: ID 28..13 = 0x1234 >> ..., filter 2 matches anything
+        let id: u32 = 0x0246_8ACE;
+        let hi = (id >> 13) as u16;
+        let mut u = filter(false, [(hi >> 8) as u8, hi as u8, 0x00, 0x00], [0x00, 0x00, 0x00, 0x00]);
+        assert!(accepts(&mut u, true, false, id, &[]));
+        assert!(accepts(&mut u, true, true, id ^ 0x1FFF, &[]), "ID 12..0 and RTR not compared");
+        assert!(!accepts(&mut u, true, false, id ^ (1 << 20), &[]));
+        // a hardware reset sets AMR to the table's value: accept all
+        u.rst.next = true;
+        drive::cycle(&mut u);
+        u.rst.next = false;
+        assert!(accepts(&mut u, true, false, id ^ (1 << 20), &[]));
+        assert_eq!(regs::AMR.reset, Some(0xFF));
+    }
+}

@@ -122,3 +122,53 @@ impl Logic for Interrupts {
         self.int_n.next = !(self.ir.val().any());
     }
 }
+
+canstar_hdl::impl_clocked!(Interrupts);
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use canstar_hdl::drive;
+
+    fn ir(u: &Interrupts) -> u8 {
+        u.ir.val().index() as u8
+    }
+
+    #[test]
+    fn enabled_events_latch_until_read_ri_is_a_level() {
+        let mut u = Interrupts::default();
+        drive::init(&mut u);
+        u.rst.next = true;
+        drive::cycle(&mut u);
+        u.rst.next = false;
+        u.wr_ier.next = true;
+        u.wdata.next = ((regs::IRQ_TI | regs::IRQ_BEI | regs::IRQ_RI) as u64).into();
+        drive::cycle(&mut u);
+        u.wr_ier.next = false;
+        // a disabled event is not latched, an enabled one is
+        u.ei.next = true;
+        u.ti.next = true;
+        drive::cycle(&mut u);
+        u.ei.next = false;
+        u.ti.next = false;
+        drive::cycle(&mut u);
+        assert_eq!(ir(&u), regs::IRQ_TI);
+        assert!(!u.int_n.val());
+        u.bei.next = true;
+        drive::cycle(&mut u);
+        u.bei.next = false;
+        u.rbs.next = true;
+        drive::cycle(&mut u);
+        assert_eq!(ir(&u), regs::IRQ_TI | regs::IRQ_BEI | regs::IRQ_RI);
+        // a read clears the latched bits; RI stays while a message is held
+        u.rd_ir.next = true;
+        drive::cycle(&mut u);
+        u.rd_ir.next = false;
+        drive::cycle(&mut u);
+        assert_eq!(ir(&u), regs::IRQ_RI);
+        u.rbs.next = false;
+        drive::settle(&mut u);
+        assert_eq!(ir(&u), 0);
+        assert!(u.int_n.val());
+    }
+}

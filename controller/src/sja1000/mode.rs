@@ -165,3 +165,73 @@ impl Logic for ModeControl {
         self.sleep.next = self.sleep_r.q.val();
     }
 }
+
+canstar_hdl::impl_clocked!(ModeControl);
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use canstar_hdl::drive;
+
+    fn write(u: &mut ModeControl, v: u8) -> bool {
+        u.wr.next = true;
+        u.wdata.next = (v as u64).into();
+        drive::settle(u);
+        let wui = u.wui.val();
+        drive::cycle(u);
+        u.wr.next = false;
+        drive::cycle(u);
+        wui
+    }
+
+    fn rd(u: &ModeControl) -> u8 {
+        u.rdata.val().index() as u8
+    }
+
+    #[test]
+    fn reset_mode_operating_mode_and_sleep() {
+        let mut u = ModeControl::default();
+        drive::init(&mut u);
+        u.rst.next = true;
+        drive::cycle(&mut u);
+        u.rst.next = false;
+        assert_eq!(rd(&u), regs::MOD_RM, "reset mode after a hardware reset");
+        // LOM, STM, AFM are set in reset mode; RM = 0 leaves it
+        write(&mut u, regs::MOD_LOM | regs::MOD_AFM | regs::MOD_RM);
+        assert_eq!(rd(&u), regs::MOD_LOM | regs::MOD_AFM | regs::MOD_RM);
+        write(&mut u, regs::MOD_STM);
+        assert_eq!(rd(&u), regs::MOD_STM);
+        // ... and are kept in operating mode
+        write(&mut u, regs::MOD_LOM);
+        assert_eq!(rd(&u), regs::MOD_STM);
+        // sleep only when allowed; SM = 0 wakes (WUI)
+        u.may_sleep.next = false;
+        write(&mut u, regs::MOD_SM);
+        assert_eq!(rd(&u) & regs::MOD_SM, 0);
+        u.may_sleep.next = true;
+        write(&mut u, regs::MOD_SM);
+        assert_eq!(rd(&u) & regs::MOD_SM, regs::MOD_SM);
+        assert!(write(&mut u, 0), "wake-up by the host");
+        assert_eq!(rd(&u) & regs::MOD_SM, 0);
+        // a dominant bus bit wakes too
+        write(&mut u, regs::MOD_SM);
+        u.bus_dom.next = true;
+        drive::settle(&mut u);
+        assert!(u.wui.val());
+        drive::cycle(&mut u);
+        u.bus_dom.next = false;
+        assert_eq!(rd(&u) & regs::MOD_SM, 0);
+        // a bus-off enters reset mode; leaving it with the hold asks for recovery
+        u.busoff.next = true;
+        drive::settle(&mut u);
+        assert!(u.enter_rm.val());
+        drive::cycle(&mut u);
+        u.busoff.next = false;
+        assert_eq!(rd(&u) & regs::MOD_RM, regs::MOD_RM);
+        u.hold.next = true;
+        u.wr.next = true;
+        u.wdata.next = 0.into();
+        drive::settle(&mut u);
+        assert!(u.recover.val());
+    }
+}

@@ -291,3 +291,5 @@ impl Logic for Status {
         self.cnt_load.next = self.l_cload.val() & !self.rst.val();
     }
 }
+
+canstar_hdl::impl_clocked!(Status);

@@ -131,3 +131,52 @@ impl Logic for BusTiming {
         self.btr1.next = self.r1.q.val();
     }
 }
+
+canstar_hdl::impl_clocked!(BusTiming);
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use canstar_hdl::drive;
+
+    /// (BRP, PROP, PH1, SJW) in TQ and clocks per TQ for BTR0/BTR1.
+    fn map(btr0: u8, btr1: u8) -> (u64, u64, u64, u64, bool) {
+        let mut u = BusTiming::new(btr0, btr1);
+        drive::init(&mut u);
+        u.rst.next = true;
+        drive::cycle(&mut u);
+        let v = |x: usize| x as u64 + 1;
+        (v(u.brp.val().index()), v(u.prop.val().index()), v(u.ph1.val().index()), v(u.sjw.val().index()), u.triple.val())
+    }
+
+    #[test]
+    fn btr_values_map_onto_the_core_fields() {
+        // TQ = 2 (BRP + 1) clocks; exact: t1 = 6, t2 = 3 -> PROP 3, PH1 = PH2 = 3
+        assert_eq!(map(0x00, 0x25), (2, 3, 3, 1, false));
+        assert_eq!(map(0x41, 0x25), (4, 3, 3, 2, false));
+        assert_eq!(map(0xC0, 0xA5), (2, 3, 3, 3, true), "SJW 4 limited to PH1; SAM");
+        // t2 = 1: PH1 1 (PH2 2), PROP t1 - 2, bit time kept (1 + 6 + 1 = 8 = 1 + 4 + 1 + 2)
+        assert_eq!(map(0x00, 0x05), (2, 4, 1, 1, false));
+        // t1 <= t2: PH1 = PH2 = (t1 + t2 - 1) / 2, PROP = t1 + t2 - 2 PH1
+        // (t1 = 3, t2 = 6: PH1 = 4, PROP = 1; 1 + 1 + 4 + 4 = 1 + 3 + 6)
+        assert_eq!(map(0x00, 0x52), (2, 1, 4, 1, false));
+        // under 8 TQ: PROP 1, PH1 1 (the core rejects it)
+        assert_eq!(map(0x00, 0x11).1, 1);
+    }
+
+    #[test]
+    fn writes_and_power_up_values() {
+        let mut u = BusTiming::new(0x12, 0x34);
+        drive::init(&mut u);
+        u.rst.next = true;
+        drive::cycle(&mut u);
+        u.rst.next = false;
+        assert_eq!((u.btr0.val().index(), u.btr1.val().index()), (0x12, 0x34));
+        u.we1.next = true;
+        u.wdata.next = 0x7F.into();
+        drive::cycle(&mut u);
+        u.we1.next = false;
+        drive::cycle(&mut u);
+        assert_eq!((u.btr0.val().index(), u.btr1.val().index()), (0x12, 0x7F));
+    }
+}

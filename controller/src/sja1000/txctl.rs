@@ -138,3 +138,5 @@ impl Logic for TxControl {
         self.ti.next = self.l_rel.val() & !self.enter_rm.val();
     }
 }
+
+canstar_hdl::impl_clocked!(TxControl);
