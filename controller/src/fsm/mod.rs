@@ -1,5 +1,5 @@
 //! The bit-stream processor: the complete CAN 2.0A/B frame state machine of
-//! one node, in one rust-hdl block ([`CanFsm`]).
+//! one node ([`CanFsm`], a composition of sub-blocks, see Structure).
 //!
 //! It works on sampled bits only. Once per bit the bit timing logic raises
 //! `sample` for one clock, with the sampled bus level on `busmon`. On that
