@@ -10,3 +10,18 @@ pub mod lockstep;
 pub mod registry;
 
 pub use canstar_rtlc::rt::Model;
+
+/// A compiled model for a rust-hdl instance: the committed model whose shape
+/// fingerprint matches, loaded with the instance's constants, state and inputs.
+/// A clear error names the fingerprint when no committed model has that shape
+/// (compile one with `canstar_rtlc::generate`).
+pub fn model_for(b: &dyn canstar_rtlc::rt::Block) -> Result<Box<dyn Model>, canstar_rtlc::Error> {
+    let fp = canstar_rtlc::fingerprint(b)?;
+    for mut m in generated::all() {
+        if m.info().fingerprint == fp {
+            m.load(b)?;
+            return Ok(m);
+        }
+    }
+    Err(canstar_rtlc::Error::ShapeMismatch { model: "any committed model".into(), expected: 0, found: fp })
+}

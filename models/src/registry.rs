@@ -112,6 +112,32 @@ pub fn generated_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("src").join("generated")
 }
 
+/// Deliberately wrong models for the test that shows the equivalence checks catch
+/// them: (entry module, operator number swapped by the compiler's debug hook).
+pub const MUTANTS: [(&str, usize); 5] = [("crc15", 0), ("crc15", 2), ("bit_stuffer", 2), ("bit_timing", 7), ("bit_timing", 30)];
+
+/// The directory the mutant models live in (`tests/mutants`).
+pub fn mutants_dir() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests").join("mutants")
+}
+
+/// Every mutant file: (file name, contents, what was changed).
+pub fn mutant_files() -> Result<Vec<(String, String, String)>, canstar_rtlc::Error> {
+    let entries = entries();
+    let mut out = vec![];
+    for (module, k) in MUTANTS {
+        let e = entries.iter().find(|e| e.module == module).expect("registered entry");
+        let mut o = options(e);
+        o.name = format!("{}M{k}", e.name);
+        o.description = format!("MUTANT (operator {k} swapped) of the {}", e.description);
+        o.mutate = Some(k);
+        let b = (e.build)();
+        let c = canstar_rtlc::compile(b.as_ref(), &o)?;
+        out.push((format!("{module}_m{k}.rs"), c.source, c.mutation.unwrap_or_default()));
+    }
+    Ok(out)
+}
+
 /// Every generated file: (path relative to the crate's `src/generated`, contents).
 pub fn files() -> Result<Vec<(String, String)>, canstar_rtlc::Error> {
     let entries = entries();

@@ -38,6 +38,29 @@ fn committed_models_are_current() {
     }
 }
 
+/// The committed mutants (see `tests/mutants.rs`) are current too.
+#[test]
+fn committed_mutants_are_current() {
+    let dir = registry::mutants_dir();
+    let bless = std::env::var("CANSTAR_BLESS").is_ok_and(|v| v == "1");
+    if bless {
+        std::fs::create_dir_all(&dir).unwrap();
+    }
+    let mut stale = vec![];
+    for (f, text, what) in registry::mutant_files().expect("mutants compile") {
+        assert!(!what.is_empty());
+        let p = dir.join(&f);
+        if std::fs::read_to_string(&p).ok().as_deref() != Some(text.as_str()) {
+            if bless {
+                std::fs::write(&p, &text).unwrap();
+                eprintln!("mutant {f}: {what}");
+            }
+            stale.push(f);
+        }
+    }
+    assert!(bless || stale.is_empty(), "stale mutants {stale:?}: regenerate with CANSTAR_BLESS=1 cargo test -p canstar-models --test current");
+}
+
 /// Figures of every compilation (diagnostic).
 #[test]
 #[ignore]

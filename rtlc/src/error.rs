@@ -22,7 +22,7 @@ pub enum Error {
     /// A compiled model built from a rust-hdl instance of another shape.
     #[error(
         "no compiled model for this design shape: {model} has fingerprint {expected:#018x}, the instance has {found:#018x} \
-         (generate a model for this configuration with canstar_rtlc::generate)"
+         (compile a model for this configuration with canstar_rtlc::generate)"
     )]
     ShapeMismatch { model: String, expected: u64, found: u64 },
 }

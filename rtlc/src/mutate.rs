@@ -2,7 +2,7 @@
 //! compiled design (after optimisation), so that a deliberately wrong model can be
 //! generated and shown to be caught.
 
-use crate::ir::{map_exprs, BinOp, Design, Ek, Expr};
+use crate::ir::{BinOp, Design, Ek, Expr, Stmt};
 
 fn swapped(op: BinOp) -> Option<BinOp> {
     Some(match op {
@@ -23,44 +23,56 @@ fn swapped(op: BinOp) -> Option<BinOp> {
     })
 }
 
-fn visit(e: &mut Expr, n: &mut usize, done: &mut Option<String>) {
-    if done.is_some() {
-        return;
-    }
+/// Count down `n` over the swappable operators of `e`; swap the one that reaches 0.
+fn visit(e: &mut Expr, n: &mut usize) -> Option<String> {
     if let Ek::Bin(op, _, _) = &mut e.k {
         if let Some(new) = swapped(*op) {
             if *n == 0 {
-                *done = Some(format!("{op:?} -> {new:?}"));
+                let what = format!("{op:?} -> {new:?}");
                 *op = new;
-                return;
+                return Some(what);
             }
             *n -= 1;
         }
     }
     match &mut e.k {
-        Ek::Lit(_) | Ek::Read(_) => {}
-        Ek::Un(_, a) | Ek::Cast(a) => visit(a, n, done),
-        Ek::Bin(_, a, b) | Ek::Index(a, b) | Ek::Slice(a, b) => {
-            visit(a, n, done);
-            visit(b, n, done);
-        }
-        Ek::Replace(a, b, c) => {
-            visit(a, n, done);
-            visit(b, n, done);
-            visit(c, n, done);
-        }
+        Ek::Lit(_) | Ek::Read(_) => None,
+        Ek::Un(_, a) | Ek::Cast(a) => visit(a, n),
+        Ek::Bin(_, a, b) | Ek::Index(a, b) | Ek::Slice(a, b) => visit(a, n).or_else(|| visit(b, n)),
+        Ek::Replace(a, b, c) => visit(a, n).or_else(|| visit(b, n)).or_else(|| visit(c, n)),
     }
 }
 
+fn stmts(ss: &mut [Stmt], n: &mut usize, d: &[String]) -> Option<String> {
+    for s in ss.iter_mut() {
+        let place = match s {
+            Stmt::Assign { s, .. } | Stmt::AssignSlice { s, .. } => format!("assignment to `{}`", d[*s]),
+            Stmt::If { .. } => "an if condition".to_string(),
+            Stmt::Case { .. } => "a match selector".to_string(),
+        };
+        for e in s.exprs_mut() {
+            if let Some(w) = visit(e, n) {
+                return Some(format!("{w} in {place}"));
+            }
+        }
+        for c in s.children_mut() {
+            if let Some(w) = stmts(c, n, d) {
+                return Some(w);
+            }
+        }
+    }
+    None
+}
+
 /// Swap the `n`-th swappable binary operator (in block order). Returns what was
-/// changed and in which module, or `None` if the design has fewer operators.
+/// changed and where, or `None` if the design has fewer operators.
 pub fn swap_operator(d: &mut Design, n: usize) -> Option<String> {
+    let paths: Vec<String> = d.sigs.iter().map(|s| s.path.clone()).collect();
     let mut left = n;
     for b in 0..d.blocks.len() {
-        let mut done = None;
-        map_exprs(&mut d.blocks[b].stmts, &mut |e| visit(e, &mut left, &mut done));
-        if let Some(what) = done {
-            return Some(format!("module `{}`: {what}", d.module_path(d.blocks[b].module)));
+        let module = d.module_path(d.blocks[b].module);
+        if let Some(w) = stmts(&mut d.blocks[b].stmts, &mut left, &paths) {
+            return Some(format!("module `{module}`: {w}"));
         }
     }
     None
