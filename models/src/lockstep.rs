@@ -99,9 +99,7 @@ impl<H: Clocked, M: Model> Lockstep<H, M> {
     /// every output.
     pub fn step(&mut self, inputs: &[u128]) -> Result<(), Mismatch> {
         (self.set)(&mut self.hdl, inputs);
-        for (i, &v) in inputs.iter().enumerate() {
-            self.model.set_input(i, v);
-        }
+        self.model.set_inputs(inputs);
         drive::cycle(&mut self.hdl);
         self.model.cycle();
         self.cycle += 1;
@@ -111,9 +109,7 @@ impl<H: Clocked, M: Model> Lockstep<H, M> {
     /// Compare the outputs now.
     pub fn compare_outputs(&mut self) -> Result<(), Mismatch> {
         (self.get)(&self.hdl, &mut self.out_h);
-        for i in 0..self.out_m.len() {
-            self.out_m[i] = self.model.output(i);
-        }
+        self.model.outputs(&mut self.out_m);
         if self.out_h != self.out_m {
             let info = self.model.info();
             let diffs: Vec<String> = (0..self.out_h.len())

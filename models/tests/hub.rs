@@ -15,131 +15,23 @@ use canstar_hub::hub::{FaultInjection, FaultKind, FaultPoint, Hub, HubConfig, Hu
 use canstar_models::generated as g;
 use canstar_models::lockstep::{Lockstep, RandomInputs};
 use canstar_rtlc::rt::Model;
-use common::{Host, Ports};
-use rand::{Rng, SeedableRng};
-use rand_chacha::ChaCha8Rng;
-
-/// A CAN node on a hub port: a compiled `CanCore` and its host.
-struct CanNode {
-    m: g::can_core::CanCore,
-    host: Host,
-    out: Vec<u128>,
-}
-
-/// The reference hub's bit timing (2 clocks per TQ, 8 TQ per bit) in the core's fields.
-const HUB_TIMING: (u128, u128, u128, u128) = (1, 2, 1, 0);
-
-impl CanNode {
-    fn new(p: &Ports) -> CanNode {
-        let m = g::can_core::CanCore::new();
-        let out = vec![0; m.info().outputs.len()];
-        CanNode { m, host: Host::new(p, HUB_TIMING, false), out }
-    }
-    fn step(&mut self, p: &Ports, rx: bool, rng: &mut ChaCha8Rng, cycle: u64) -> bool {
-        self.host.tick(p, &self.out, rng, cycle);
-        self.host.v[p.i("rx")] = rx as u128;
-        for (i, &v) in self.host.v.iter().enumerate() {
-            self.m.set_input(i, v);
-        }
-        self.m.cycle();
-        for (i, o) in self.out.iter_mut().enumerate() {
-            *o = self.m.output(i);
-        }
-        self.out[p.o("tx")] != 0
-    }
-}
-
-/// A fault on a link: none, stuck dominant, stuck recessive, inverting.
-#[derive(Clone, Copy)]
-enum Fault {
-    None,
-    Dominant(u32),
-    Recessive(u32),
-    Flip(u32),
-}
-
-impl Fault {
-    fn apply(&mut self, v: bool, rng: &mut ChaCha8Rng, rate: f64) -> bool {
-        let out = match *self {
-            Fault::None => v,
-            Fault::Dominant(_) => false,
-            Fault::Recessive(_) => true,
-            Fault::Flip(_) => !v,
-        };
-        *self = match *self {
-            Fault::None if rng.gen_bool(rate) => match rng.gen_range(0..3) {
-                0 => Fault::Dominant(rng.gen_range(100..3000)),
-                1 => Fault::Recessive(rng.gen_range(100..20_000)),
-                _ => Fault::Flip(rng.gen_range(5..300)),
-            },
-            Fault::Dominant(0) | Fault::Recessive(0) | Fault::Flip(0) => Fault::None,
-            Fault::Dominant(n) => Fault::Dominant(n - 1),
-            Fault::Recessive(n) => Fault::Recessive(n - 1),
-            Fault::Flip(n) => Fault::Flip(n - 1),
-            f => f,
-        };
-        out
-    }
-}
-
-/// Generic view of the two compiled hub shapes used as replica.
-fn replica(m: usize) -> Box<dyn Model> {
-    match m {
-        0 => Box::new(g::hub_n3_m0::HubN3M0::new()),
-        1 => Box::new(g::hub_n3_m1::HubN3M1::new()),
-        _ => Box::new(g::hub_n3_m2::HubN3M2::new()),
-    }
-}
+use common::hubnet::HubNet;
+use common::Ports;
 
 /// Run hub A (rust-hdl and model in lock-step) in a network for `cycles` clocks.
 /// Returns (frames received by the nodes, clocks with a port isolated).
 fn network<M: Model>(a: &mut Lockstep<Hub, M>, m: usize, cycles: u64, seed: u64) -> (u64, u64) {
-    let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    let n = 3;
-    let node_ports = Ports::of(&g::can_core::CanCore::new());
-    let mut nodes: Vec<Vec<CanNode>> = (0..2).map(|_| (0..n).map(|_| CanNode::new(&node_ports)).collect()).collect();
-    let mut b = replica(m);
-    let pa = Ports::of(&a.model);
-    let pb = Ports::of(b.as_ref());
-    let mut va = vec![0u128; pa.ins.len()];
-    let mut vb = vec![0u128; pb.ins.len()];
-    let mut port_faults = vec![Fault::None; n];
-    let mut link_faults = vec![Fault::None; m];
-    let mut node_tx = vec![vec![true; n]; 2];
-    let (mut frames, mut isolated) = (0, 0);
+    let mut net = HubNet::new(Ports::of(&a.model), m, seed);
     for c in 0..cycles {
-        let rst = c < 3 || rng.gen_bool(0.000_001);
-        va[pa.i("rst_n")] = !rst as u128;
-        vb[pb.i("rst_n")] = (c >= 3) as u128;
-        va[pa.i("inject_fault")] = rng.gen_bool(0.0001) as u128;
-        for i in 0..n {
-            va[pa.i(&format!("rx${i}"))] = port_faults[i].apply(node_tx[0][i], &mut rng, 0.000_02) as u128;
-            vb[pb.i(&format!("rx${i}"))] = node_tx[1][i] as u128;
-        }
-        for j in 0..m {
-            let from_b = b.output(pb.o(&format!("hub_tx${j}"))) != 0;
-            va[pa.i(&format!("reh_rx${j}"))] = link_faults[j].apply(from_b, &mut rng, 0.000_01) as u128;
-            vb[pb.i(&format!("reh_rx${j}"))] = a.outputs()[pa.o(&format!("hub_tx${j}"))];
-        }
-        a.step(&va).unwrap_or_else(|e| panic!("hub: {e}"));
-        for (i, &v) in vb.iter().enumerate() {
-            b.set_input(i, v);
-        }
-        b.cycle();
-        for i in 0..n {
-            let down = [a.outputs()[pa.o(&format!("tx${i}"))] != 0, b.output(pb.o(&format!("tx${i}"))) != 0];
-            for h in 0..2 {
-                node_tx[h][i] = nodes[h][i].step(&node_ports, down[h], &mut rng, c);
-                frames += nodes[h][i].out[node_ports.o("rx_valid")] as u64;
-            }
-            isolated += a.outputs()[pa.o(&format!("isolated${i}"))] as u64;
-        }
+        let v = net.inputs(a.outputs()).to_vec();
+        a.step(&v).unwrap_or_else(|e| panic!("hub: {e}"));
+        net.advance(a.outputs());
         if c % 100_000 == 99_999 {
             a.compare_all().unwrap_or_else(|e| panic!("hub: {e}"));
         }
     }
     a.compare_all().unwrap_or_else(|e| panic!("hub: {e}"));
-    (frames, isolated)
+    (net.frames, net.isolated)
 }
 
 fn start<M: Model>(cfg: &HubConfig, make: fn(&dyn canstar_rtlc::rt::Block) -> Result<M, canstar_rtlc::Error>, set: fn(&mut Hub, &[u128]), get: fn(&Hub, &mut [u128])) -> Lockstep<Hub, M> {

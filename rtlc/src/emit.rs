@@ -303,6 +303,16 @@ fn emit_model_impl(s: &mut String, d: &Design, names: &[String], mems: &[String]
         let _ = writeln!(s, "            {i} => self.{} = {},", names[x], from_u128("v", d.sigs[x].width));
     }
     let _ = writeln!(s, "            _ => panic!(\"no input port {{i}}\"),\n        }}\n    }}");
+    let _ = writeln!(s, "    fn set_inputs(&mut self, v: &[u128]) {{\n        let v = &v[..{}];", d.inputs.len());
+    for (i, &x) in d.inputs.iter().enumerate() {
+        let _ = writeln!(s, "        self.{} = {};", names[x], from_u128(&format!("v[{i}]"), d.sigs[x].width));
+    }
+    let _ = writeln!(s, "    }}");
+    let _ = writeln!(s, "    fn outputs(&self, o: &mut [u128]) {{\n        let o = &mut o[..{}];", d.outputs.len());
+    for (i, &x) in d.outputs.iter().enumerate() {
+        let _ = writeln!(s, "        o[{i}] = self.{} as u128;", names[x]);
+    }
+    let _ = writeln!(s, "    }}");
     for (f, ports) in [("input", &d.inputs), ("output", &d.outputs)] {
         let _ = writeln!(s, "    fn {f}(&self, i: usize) -> u128 {{\n        match i {{");
         for (i, &x) in ports.iter().enumerate() {

@@ -90,6 +90,18 @@ pub trait Model {
     fn set_input(&mut self, i: usize, v: u128);
     fn input(&self, i: usize) -> u128;
     fn output(&self, i: usize) -> u128;
+    /// Set every input from a vector (input order; values masked to the widths).
+    fn set_inputs(&mut self, v: &[u128]) {
+        for (i, &x) in v.iter().enumerate() {
+            self.set_input(i, x);
+        }
+    }
+    /// Read every output into a vector (output order).
+    fn outputs(&self, o: &mut [u128]) {
+        for (i, x) in o.iter_mut().enumerate() {
+            *x = self.output(i);
+        }
+    }
     /// The current value of atom `a` (probe order), as its canonical integer.
     fn atom(&self, a: usize) -> u128;
     /// Set a constant, register or input atom; `false` for other atoms.

@@ -233,6 +233,20 @@ impl rt::Model for BitDestuffer {
             _ => panic!("no input port {i}"),
         }
     }
+    fn set_inputs(&mut self, v: &[u128]) {
+        let v = &v[..4];
+        self.reset = (v[0] & 1) != 0;
+        self.en = (v[1] & 1) != 0;
+        self.din = (v[2] & 1) != 0;
+        self.active = (v[3] & 1) != 0;
+    }
+    fn outputs(&self, o: &mut [u128]) {
+        let o = &mut o[..4];
+        o[0] = self.stuff_bit as u128;
+        o[1] = self.stuff_error as u128;
+        o[2] = self.next_is_stuff as u128;
+        o[3] = self.stuff_level as u128;
+    }
     fn input(&self, i: usize) -> u128 {
         match i {
             0 => self.reset as u128,

@@ -5102,6 +5102,65 @@ impl rt::Model for CanCore {
             _ => panic!("no input port {i}"),
         }
     }
+    fn set_inputs(&mut self, v: &[u128]) {
+        let v = &v[..22];
+        self.reset = (v[0] & 1) != 0;
+        self.rx = (v[1] & 1) != 0;
+        self.brp = (v[2] & 0x7f) as u8;
+        self.prop = (v[3] & 0xf) as u8;
+        self.ph1 = (v[4] & 0x7) as u8;
+        self.sjw = (v[5] & 0x3) as u8;
+        self.triple = (v[6] & 1) != 0;
+        self.listen_only = (v[7] & 1) != 0;
+        self.self_test = (v[8] & 1) != 0;
+        self.single_shot = (v[9] & 1) != 0;
+        self.host_recovery = (v[10] & 1) != 0;
+        self.recover = (v[11] & 1) != 0;
+        self.tx_req = (v[12] & 1) != 0;
+        self.tx_ide = (v[13] & 1) != 0;
+        self.tx_rtr = (v[14] & 1) != 0;
+        self.tx_id = (v[15] & 0x1fffffff) as u32;
+        self.tx_dlc = (v[16] & 0xf) as u8;
+        self.tx_data = (v[17] & 0xffffffffffffffff) as u64;
+        self.tx_abort = (v[18] & 1) != 0;
+        self.cnt_load = (v[19] & 1) != 0;
+        self.tec_in = (v[20] & 0x1ff) as u16;
+        self.rec_in = (v[21] & 0xff) as u8;
+    }
+    fn outputs(&self, o: &mut [u128]) {
+        let o = &mut o[..31];
+        o[0] = self.tx as u128;
+        o[1] = self.tx_done as u128;
+        o[2] = self.arb_lost as u128;
+        o[3] = self.arb_lost_pos as u128;
+        o[4] = self.error as u128;
+        o[5] = self.err_kind as u128;
+        o[6] = self.err_field as u128;
+        o[7] = self.err_pos as u128;
+        o[8] = self.err_tx as u128;
+        o[9] = self.rx_valid as u128;
+        o[10] = self.rx_ide as u128;
+        o[11] = self.rx_rtr as u128;
+        o[12] = self.rx_id as u128;
+        o[13] = self.rx_dlc as u128;
+        o[14] = self.rx_data as u128;
+        o[15] = self.tec as u128;
+        o[16] = self.rec as u128;
+        o[17] = self.state as u128;
+        o[18] = self.err_warn as u128;
+        o[19] = self.cfg_err as u128;
+        o[20] = self.dbg_busmon as u128;
+        o[21] = self.dbg_sample as u128;
+        o[22] = self.dbg_tx_rqst as u128;
+        o[23] = self.dbg_field as u128;
+        o[24] = self.dbg_pos as u128;
+        o[25] = self.dbg_stuff as u128;
+        o[26] = self.dbg_role as u128;
+        o[27] = self.dbg_events as u128;
+        o[28] = self.dbg_runs as u128;
+        o[29] = self.dbg_hard_sync as u128;
+        o[30] = self.dbg_resync as u128;
+    }
     fn input(&self, i: usize) -> u128 {
         match i {
             0 => self.reset as u128,

@@ -159,6 +159,17 @@ impl rt::Model for EdgeDetector {
             _ => panic!("no input port {i}"),
         }
     }
+    fn set_inputs(&mut self, v: &[u128]) {
+        let v = &v[..2];
+        self.reset = (v[0] & 1) != 0;
+        self.d = (v[1] & 1) != 0;
+    }
+    fn outputs(&self, o: &mut [u128]) {
+        let o = &mut o[..3];
+        o[0] = self.fall as u128;
+        o[1] = self.rise as u128;
+        o[2] = self.prev as u128;
+    }
     fn input(&self, i: usize) -> u128 {
         match i {
             0 => self.reset as u128,

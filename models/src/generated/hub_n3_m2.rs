@@ -7936,6 +7936,50 @@ impl rt::Model for HubN3M2 {
             _ => panic!("no input port {i}"),
         }
     }
+    fn set_inputs(&mut self, v: &[u128]) {
+        let v = &v[..7];
+        self.rst_n = (v[0] & 1) != 0;
+        self.inject_fault = (v[1] & 1) != 0;
+        self.rx_0 = (v[2] & 1) != 0;
+        self.rx_1 = (v[3] & 1) != 0;
+        self.rx_2 = (v[4] & 1) != 0;
+        self.reh_rx_0 = (v[5] & 1) != 0;
+        self.reh_rx_1 = (v[6] & 1) != 0;
+    }
+    fn outputs(&self, o: &mut [u128]) {
+        let o = &mut o[..31];
+        o[0] = self.tx_0 as u128;
+        o[1] = self.tx_1 as u128;
+        o[2] = self.tx_2 as u128;
+        o[3] = self.hub_tx_0 as u128;
+        o[4] = self.hub_tx_1 as u128;
+        o[5] = self.isolated_0 as u128;
+        o[6] = self.isolated_1 as u128;
+        o[7] = self.isolated_2 as u128;
+        o[8] = self.silent_0 as u128;
+        o[9] = self.silent_1 as u128;
+        o[10] = self.silent_2 as u128;
+        o[11] = self.sub_isolated_0 as u128;
+        o[12] = self.sub_isolated_1 as u128;
+        o[13] = self.frame_state as u128;
+        o[14] = self.efg_active as u128;
+        o[15] = self.inject_active as u128;
+        o[16] = self.bic_0 as u128;
+        o[17] = self.bic_1 as u128;
+        o[18] = self.bic_2 as u128;
+        o[19] = self.dbc_0 as u128;
+        o[20] = self.dbc_1 as u128;
+        o[21] = self.dbc_2 as u128;
+        o[22] = self.nack_0 as u128;
+        o[23] = self.nack_1 as u128;
+        o[24] = self.nack_2 as u128;
+        o[25] = self.sub_bic_0 as u128;
+        o[26] = self.sub_bic_1 as u128;
+        o[27] = self.sub_dbc_0 as u128;
+        o[28] = self.sub_dbc_1 as u128;
+        o[29] = self.sub_rep_0 as u128;
+        o[30] = self.sub_rep_1 as u128;
+    }
     fn input(&self, i: usize) -> u128 {
         match i {
             0 => self.rst_n as u128,

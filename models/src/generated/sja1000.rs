@@ -8525,6 +8525,23 @@ impl rt::Model for Sja1000 {
             _ => panic!("no input port {i}"),
         }
     }
+    fn set_inputs(&mut self, v: &[u128]) {
+        let v = &v[..7];
+        self.rst = (v[0] & 1) != 0;
+        self.wb_cyc = (v[1] & 1) != 0;
+        self.wb_stb = (v[2] & 1) != 0;
+        self.wb_we = (v[3] & 1) != 0;
+        self.wb_adr = (v[4] & 0xff) as u8;
+        self.wb_dat_w = (v[5] & 0xff) as u8;
+        self.rx = (v[6] & 1) != 0;
+    }
+    fn outputs(&self, o: &mut [u128]) {
+        let o = &mut o[..4];
+        o[0] = self.wb_dat_r as u128;
+        o[1] = self.wb_ack as u128;
+        o[2] = self.tx as u128;
+        o[3] = self.int_n as u128;
+    }
     fn input(&self, i: usize) -> u128 {
         match i {
             0 => self.rst as u128,

@@ -157,6 +157,15 @@ impl rt::Model for Synchroniser {
             _ => panic!("no input port {i}"),
         }
     }
+    fn set_inputs(&mut self, v: &[u128]) {
+        let v = &v[..2];
+        self.reset = (v[0] & 1) != 0;
+        self.d = (v[1] & 1) != 0;
+    }
+    fn outputs(&self, o: &mut [u128]) {
+        let o = &mut o[..1];
+        o[0] = self.q as u128;
+    }
     fn input(&self, i: usize) -> u128 {
         match i {
             0 => self.reset as u128,

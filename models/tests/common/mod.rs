@@ -2,6 +2,9 @@
 //! node's host (requests, aborts, mode changes, counter loads, recovery).
 #![allow(dead_code)]
 
+pub mod hubnet;
+pub mod sjanet;
+
 use canstar_rtlc::rt::Model;
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;

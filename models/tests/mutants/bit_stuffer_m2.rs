@@ -236,6 +236,19 @@ impl rt::Model for BitStufferM2 {
             _ => panic!("no input port {i}"),
         }
     }
+    fn set_inputs(&mut self, v: &[u128]) {
+        let v = &v[..4];
+        self.reset = (v[0] & 1) != 0;
+        self.en = (v[1] & 1) != 0;
+        self.data = (v[2] & 1) != 0;
+        self.active = (v[3] & 1) != 0;
+    }
+    fn outputs(&self, o: &mut [u128]) {
+        let o = &mut o[..3];
+        o[0] = self.out as u128;
+        o[1] = self.is_stuff as u128;
+        o[2] = self.stuff_pending as u128;
+    }
     fn input(&self, i: usize) -> u128 {
         match i {
             0 => self.reset as u128,

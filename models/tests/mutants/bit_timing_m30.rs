@@ -800,6 +800,29 @@ impl rt::Model for BitTimingM30 {
             _ => panic!("no input port {i}"),
         }
     }
+    fn set_inputs(&mut self, v: &[u128]) {
+        let v = &v[..9];
+        self.reset = (v[0] & 1) != 0;
+        self.brp = (v[1] & 0x7f) as u8;
+        self.prop = (v[2] & 0xf) as u8;
+        self.ph1 = (v[3] & 0x7) as u8;
+        self.sjw = (v[4] & 0x3) as u8;
+        self.triple = (v[5] & 1) != 0;
+        self.rx = (v[6] & 1) != 0;
+        self.drive = (v[7] & 1) != 0;
+        self.hs_en = (v[8] & 1) != 0;
+    }
+    fn outputs(&self, o: &mut [u128]) {
+        let o = &mut o[..8];
+        o[0] = self.tq as u128;
+        o[1] = self.sample as u128;
+        o[2] = self.busmon as u128;
+        o[3] = self.bit_start as u128;
+        o[4] = self.tx as u128;
+        o[5] = self.hard_sync as u128;
+        o[6] = self.resync as u128;
+        o[7] = self.cfg_err as u128;
+    }
     fn input(&self, i: usize) -> u128 {
         match i {
             0 => self.reset as u128,

@@ -211,6 +211,18 @@ impl rt::Model for Crc15M0 {
             _ => panic!("no input port {i}"),
         }
     }
+    fn set_inputs(&mut self, v: &[u128]) {
+        let v = &v[..4];
+        self.reset = (v[0] & 1) != 0;
+        self.clear = (v[1] & 1) != 0;
+        self.en = (v[2] & 1) != 0;
+        self.din = (v[3] & 1) != 0;
+    }
+    fn outputs(&self, o: &mut [u128]) {
+        let o = &mut o[..2];
+        o[0] = self.crc as u128;
+        o[1] = self.crc_next as u128;
+    }
     fn input(&self, i: usize) -> u128 {
         match i {
             0 => self.reset as u128,
