@@ -1,23 +1,16 @@
 //! Rust source of a compiled model: one struct with every stored value as a field
 //! of the narrowest integer type (named after its rust-hdl path), one method per
-//! scheduled group, and the clock cycle:
-//!
-//! ```text
-//! cycle(): eval_pre()   input-dependent groups (the state-only ones are still valid)
-//!          edge()       registers and memories take their inputs (two-phase)
-//!          eval_post()  state-only groups and the output cone (or every group when tracing)
-//! ```
-//!
-//! plus the [`crate::rt::Model`] implementation (ports, atoms, probe walk) and,
-//! optionally, functions that drive a rust-hdl instance with the same port vectors.
+//! scheduled group, the clock ([`crate::emit_sched`]), the [`crate::rt::Model`]
+//! implementation (ports, atoms, probe walk) and, optionally, functions that drive a
+//! rust-hdl instance with the same port vectors.
 
 use std::collections::{BTreeSet, HashSet};
 use std::fmt::Write;
 
 use crate::collect::ValueType;
 use crate::emit_expr::{convert, lit, ty, Ctx};
-use crate::ir::{Design, Expr, Role, SigId};
-use crate::opt::value_of;
+use crate::emit_sched::{emit_clock, sensed_inputs, store, Activity};
+use crate::ir::{Design, Role, SigId};
 use crate::sched::{Class, Schedule};
 
 const KEYWORDS: &[&str] = &[
@@ -122,6 +115,8 @@ pub fn emit(d: &Design, sch: &Schedule, o: &EmitOptions) -> String {
     let (names, mems) = field_names(d);
     let none = BTreeSet::new();
     let top = Ctx { d, names: &names, locals: &none };
+    let act = Activity::of(d, sch);
+    let sensed = sensed_inputs(d, &act);
     let mut s = String::new();
     let name = o.name;
     let _ = writeln!(s, "//! Compiled model: {}", o.description);
@@ -164,6 +159,10 @@ pub fn emit(d: &Design, sch: &Schedule, o: &EmitOptions) -> String {
         let _ = writeln!(s, "    /// `{}` memory, {} x {} bits", d.module_path(ram.module), 1usize << ram.aw, ram.dw);
         let _ = writeln!(s, "    pub {}: [{}; {}],", mems[r], ty(ram.dw), 1usize << ram.aw);
     }
+    for &x in &sensed {
+        let _ = writeln!(s, "    seen_{}: {},", names[x], ty(d.sigs[x].width));
+    }
+    let _ = writeln!(s, "    /// Groups to evaluate (one bit per group, see `run`).\n    dirty: [u64; {}],", act.words);
     let _ = writeln!(s, "    trace: bool,\n}}\n");
     let _ = writeln!(s, "impl Default for {name} {{\n    fn default() -> Self {{\n        Self::new()\n    }}\n}}\n");
     let _ = writeln!(s, "impl {name} {{");
@@ -200,25 +199,15 @@ pub fn emit(d: &Design, sch: &Schedule, o: &EmitOptions) -> String {
             let _ = writeln!(s, "            {}: [{}],", mems[r], items.join(", "));
         }
     }
+    for &x in &sensed {
+        let _ = writeln!(s, "            seen_{}: {},", names[x], lit(d.hier.atoms[d.sigs[x].atom].value, d.sigs[x].width));
+    }
+    let _ = writeln!(s, "            dirty: [!0; {}],", act.words);
     let _ = writeln!(s, "            trace: false,\n        }};\n        m.eval_all();\n        m\n    }}\n");
     let _ = writeln!(s, "    /// A model with the constants, state and inputs of a rust-hdl instance of the same shape.");
     let _ = writeln!(s, "    pub fn from_instance(b: &dyn rt::Block) -> Result<Self, canstar_rtlc::Error> {{");
     let _ = writeln!(s, "        let mut m = Self::new();\n        rt::Model::load(&mut m, b)?;\n        Ok(m)\n    }}\n");
-    // cycle and evaluation phases
-    let list = |pred: &dyn Fn(Class) -> bool| -> String {
-        sch.groups.iter().enumerate().filter(|(_, g)| pred(g.class)).map(|(i, _)| format!("        self.g{i}();\n")).collect()
-    };
-    let _ = writeln!(s, "    /// One clock cycle (`canstar_hdl::drive::cycle`): settle, rising edge, settle.");
-    let _ = writeln!(s, "    pub fn cycle(&mut self) {{\n        self.eval_pre();\n        self.edge();\n        if self.trace {{\n            self.eval_all();\n        }} else {{\n            self.eval_post();\n        }}\n    }}\n");
-    let _ = writeln!(s, "    /// Propagate input changes (no clock edge).");
-    let _ = writeln!(s, "    pub fn settle(&mut self) {{\n        if self.trace {{\n            self.eval_all();\n        }} else {{\n            self.eval_pre();\n        }}\n    }}\n");
-    let _ = writeln!(s, "    /// Input-dependent groups (before the edge).");
-    let _ = writeln!(s, "    fn eval_pre(&mut self) {{\n{}    }}\n", list(&|c| matches!(c, Class::InputDep | Class::InputDepCone)));
-    let _ = writeln!(s, "    /// State-only groups and the output cone (after the edge).");
-    let _ = writeln!(s, "    fn eval_post(&mut self) {{\n{}    }}\n", list(&|c| matches!(c, Class::StateOnly | Class::InputDepCone)));
-    let _ = writeln!(s, "    /// Every group.");
-    let _ = writeln!(s, "    fn eval_all(&mut self) {{\n{}    }}\n", list(&|_| true));
-    emit_edge(&mut s, d, &names, &mems, &top);
+    emit_clock(&mut s, d, sch, &act, &names, &mems, &top);
     for (i, g) in sch.groups.iter().enumerate() {
         let ctx = Ctx { d, names: &names, locals: &g.locals };
         let targets: Vec<&str> = g.targets.iter().map(|&t| d.sigs[t].path.as_str()).collect();
@@ -232,65 +221,20 @@ pub fn emit(d: &Design, sch: &Schedule, o: &EmitOptions) -> String {
         }
         ctx.stmts(&mut s, &g.stmts, 2);
         for &t in &g.targets {
-            let _ = writeln!(s, "        self.{0} = {0};", names[t]);
+            let _ = writeln!(s, "        {}", store(&act, &names, t, &names[t], Some(i)));
         }
         let _ = writeln!(s, "    }}\n");
     }
     let _ = writeln!(s, "}}\n");
-    emit_model_impl(&mut s, d, &names, &mems, &top, o);
+    emit_model_impl(&mut s, d, &names, &mems, &top, o, act.words);
     if let Some(t) = o.hdl_type {
         emit_hdl_adapters(&mut s, d, t);
     }
     s
 }
 
-/// The state update at the rising edge: reads of state-sourced inputs and memory
-/// reads first, then memory writes, then the register commits.
-fn emit_edge(s: &mut String, d: &Design, names: &[String], mems: &[String], top: &Ctx) {
-    let _ = writeln!(s, "    /// Rising edge: registers and memories take their inputs.");
-    let _ = writeln!(s, "    fn edge(&mut self) {{");
-    let reads_state = |e: &Expr| {
-        let mut st = false;
-        e.reads(&mut |r| st |= matches!(d.sigs[r].role, Role::Reg(_) | Role::RamRead(_)));
-        st
-    };
-    let mut commits = vec![];
-    for (i, f) in d.dffs.iter().enumerate() {
-        if !f.clocked {
-            continue;
-        }
-        let v = value_of(d, f.d);
-        if v == Expr::read(f.q, d.sigs[f.q].width) {
-            continue;
-        }
-        if reads_state(&v) {
-            let _ = writeln!(s, "        let n{i} = {};", top.ex(&v));
-            commits.push(format!("self.{} = n{i};", names[f.q]));
-        } else {
-            commits.push(format!("self.{} = {};", names[f.q], top.ex(&v)));
-        }
-    }
-    for (r, ram) in d.rams.iter().enumerate() {
-        let words = 1usize << ram.aw;
-        let idx = |e: &Expr| format!("(({} as usize) & {})", top.ex(e), words - 1);
-        if ram.read_clocked {
-            let _ = writeln!(s, "        let m{r} = self.{}[{}];", mems[r], idx(&value_of(d, ram.read_address)));
-            commits.push(format!("self.{} = m{r};", names[ram.read_data]));
-        }
-        if ram.write_clocked {
-            let we = value_of(d, ram.write_enable);
-            let _ = writeln!(s, "        if {} {{", top.ex(&we));
-            let _ = writeln!(s, "            self.{}[{}] = {};", mems[r], idx(&value_of(d, ram.write_address)), top.ex(&value_of(d, ram.write_data)));
-            let _ = writeln!(s, "        }}");
-        }
-    }
-    for c in commits {
-        let _ = writeln!(s, "        {c}");
-    }
-    let _ = writeln!(s, "    }}\n");
-}
-
-fn emit_model_impl(s: &mut String, d: &Design, names: &[String], mems: &[String], top: &Ctx, o: &EmitOptions) {
+fn emit_model_impl(s: &mut String, d: &Design, names: &[String], mems: &[String], top: &Ctx, o: &EmitOptions, words: usize) {
+    let act_words = |_: &Design| words;
     let name = o.name;
     let _ = writeln!(s, "impl rt::Model for {name} {{");
     let _ = writeln!(s, "    fn info(&self) -> &'static rt::ModelInfo {{\n        &INFO\n    }}");
@@ -337,7 +281,7 @@ fn emit_model_impl(s: &mut String, d: &Design, names: &[String], mems: &[String]
             let _ = writeln!(s, "            {x} => self.{} = {},", names[x], from_u128("v", d.sigs[x].width));
         }
     }
-    let _ = writeln!(s, "            _ => return false,\n        }}\n        true\n    }}");
+    let _ = writeln!(s, "            _ => return false,\n        }}\n        self.dirty = [!0; {}];\n        true\n    }}", act_words(d));
     let _ = writeln!(s, "    fn set_mem(&mut self, r: usize, addr: usize, v: u128) {{\n        match r {{");
     for (r, ram) in d.rams.iter().enumerate() {
         let _ = writeln!(s, "            {r} => self.{}[addr] = {},", mems[r], from_u128("v", ram.dw));

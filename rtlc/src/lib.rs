@@ -16,6 +16,7 @@
 pub mod collect;
 pub mod emit;
 pub mod emit_expr;
+pub mod emit_sched;
 pub mod error;
 pub mod eval;
 pub mod fingerprint;

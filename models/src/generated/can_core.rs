@@ -602,6 +602,30 @@ pub struct CanCore {
     pub fsm_l_arbpos: u8,
     /// `l_hold` (combinational, 1 bit)
     pub l_hold: bool,
+    seen_reset: bool,
+    seen_rx: bool,
+    seen_brp: u8,
+    seen_prop: u8,
+    seen_ph1: u8,
+    seen_sjw: u8,
+    seen_triple: bool,
+    seen_listen_only: bool,
+    seen_self_test: bool,
+    seen_single_shot: bool,
+    seen_host_recovery: bool,
+    seen_recover: bool,
+    seen_tx_req: bool,
+    seen_tx_ide: bool,
+    seen_tx_rtr: bool,
+    seen_tx_id: u32,
+    seen_tx_dlc: u8,
+    seen_tx_data: u64,
+    seen_tx_abort: bool,
+    seen_cnt_load: bool,
+    seen_tec_in: u16,
+    seen_rec_in: u8,
+    /// Groups to evaluate (one bit per group, see `run`).
+    dirty: [u64; 1],
     trace: bool,
 }
 
@@ -914,6 +938,29 @@ impl CanCore {
             fsm_l_shamt: 0u8,
             fsm_l_arbpos: 0u8,
             l_hold: false,
+            seen_reset: false,
+            seen_rx: false,
+            seen_brp: 0u8,
+            seen_prop: 0u8,
+            seen_ph1: 0u8,
+            seen_sjw: 0u8,
+            seen_triple: false,
+            seen_listen_only: false,
+            seen_self_test: false,
+            seen_single_shot: false,
+            seen_host_recovery: false,
+            seen_recover: false,
+            seen_tx_req: false,
+            seen_tx_ide: false,
+            seen_tx_rtr: false,
+            seen_tx_id: 0u32,
+            seen_tx_dlc: 0u8,
+            seen_tx_data: 0u64,
+            seen_tx_abort: false,
+            seen_cnt_load: false,
+            seen_tec_in: 0u16,
+            seen_rec_in: 0u8,
+            dirty: [!0; 1],
             trace: false,
         };
         m.eval_all();
@@ -927,155 +974,242 @@ impl CanCore {
         Ok(m)
     }
 
+    /// Groups evaluated before the edge: input-dependent.
+    const PRE: [u64; 1] = [0x1a60902a];
+    /// Groups evaluated after the edge: state-only and the output cone.
+    const POST: [u64; 1] = [0x344a95];
+    const ALL: [u64; 1] = [0x3fffffff];
+
     /// One clock cycle (`canstar_hdl::drive::cycle`): settle, rising edge, settle.
     pub fn cycle(&mut self) {
-        self.eval_pre();
+        self.sense();
+        self.run(&Self::PRE);
         self.edge();
-        if self.trace {
-            self.eval_all();
-        } else {
-            self.eval_post();
-        }
+        self.run(if self.trace { &Self::ALL } else { &Self::POST });
     }
 
     /// Propagate input changes (no clock edge).
     pub fn settle(&mut self) {
-        if self.trace {
-            self.eval_all();
-        } else {
-            self.eval_pre();
+        self.sense();
+        self.run(if self.trace { &Self::ALL } else { &Self::PRE });
+    }
+
+    /// Evaluate every group.
+    fn eval_all(&mut self) {
+        self.dirty = [!0; 1];
+        self.sense();
+        self.run(&Self::ALL);
+    }
+
+    /// Run the dirty groups of a phase, in dependency order.
+    fn run(&mut self, phase: &[u64; 1]) {
+        for w in 0..1 {
+            loop {
+                let m = self.dirty[w] & phase[w];
+                if m == 0 {
+                    break;
+                }
+                let k = m.trailing_zeros() as usize;
+                self.dirty[w] &= !(1u64 << k);
+                self.group(w * 64 + k);
+            }
         }
     }
 
-    /// Input-dependent groups (before the edge).
-    fn eval_pre(&mut self) {
-        self.g1();
-        self.g3();
-        self.g5();
-        self.g12();
-        self.g15();
-        self.g21();
-        self.g22();
-        self.g25();
-        self.g27();
-        self.g28();
+    fn group(&mut self, k: usize) {
+        match k {
+            0 => self.g0(),
+            1 => self.g1(),
+            2 => self.g2(),
+            3 => self.g3(),
+            4 => self.g4(),
+            5 => self.g5(),
+            6 => self.g6(),
+            7 => self.g7(),
+            8 => self.g8(),
+            9 => self.g9(),
+            10 => self.g10(),
+            11 => self.g11(),
+            12 => self.g12(),
+            13 => self.g13(),
+            14 => self.g14(),
+            15 => self.g15(),
+            16 => self.g16(),
+            17 => self.g17(),
+            18 => self.g18(),
+            19 => self.g19(),
+            20 => self.g20(),
+            21 => self.g21(),
+            22 => self.g22(),
+            23 => self.g23(),
+            24 => self.g24(),
+            25 => self.g25(),
+            26 => self.g26(),
+            27 => self.g27(),
+            28 => self.g28(),
+            29 => self.g29(),
+            _ => {}
+        }
     }
 
-    /// State-only groups and the output cone (after the edge).
-    fn eval_post(&mut self) {
-        self.g0();
-        self.g2();
-        self.g4();
-        self.g7();
-        self.g9();
-        self.g11();
-        self.g14();
-        self.g18();
-        self.g20();
-        self.g21();
-    }
-
-    /// Every group.
-    fn eval_all(&mut self) {
-        self.g0();
-        self.g1();
-        self.g2();
-        self.g3();
-        self.g4();
-        self.g5();
-        self.g6();
-        self.g7();
-        self.g8();
-        self.g9();
-        self.g10();
-        self.g11();
-        self.g12();
-        self.g13();
-        self.g14();
-        self.g15();
-        self.g16();
-        self.g17();
-        self.g18();
-        self.g19();
-        self.g20();
-        self.g21();
-        self.g22();
-        self.g23();
-        self.g24();
-        self.g25();
-        self.g26();
-        self.g27();
-        self.g28();
-        self.g29();
+    /// Inputs that changed since they were last seen mark their readers.
+    fn sense(&mut self) {
+        if self.reset != self.seen_reset { self.seen_reset = self.reset; self.dirty[0] |= 0xe0106a; }
+        if self.rx != self.seen_rx { self.seen_rx = self.rx; self.dirty[0] |= 0x8; }
+        if self.brp != self.seen_brp { self.seen_brp = self.brp; self.dirty[0] |= 0x20; }
+        if self.prop != self.seen_prop { self.seen_prop = self.prop; self.dirty[0] |= 0x400060; }
+        if self.ph1 != self.seen_ph1 { self.seen_ph1 = self.ph1; self.dirty[0] |= 0x400060; }
+        if self.sjw != self.seen_sjw { self.seen_sjw = self.sjw; self.dirty[0] |= 0x60; }
+        if self.triple != self.seen_triple { self.seen_triple = self.triple; self.dirty[0] |= 0x20; }
+        if self.listen_only != self.seen_listen_only { self.seen_listen_only = self.listen_only; self.dirty[0] |= 0x31018100; }
+        if self.self_test != self.seen_self_test { self.seen_self_test = self.self_test; self.dirty[0] |= 0x30018000; }
+        if self.single_shot != self.seen_single_shot { self.seen_single_shot = self.single_shot; self.dirty[0] |= 0x10000000; }
+        if self.host_recovery != self.seen_host_recovery { self.seen_host_recovery = self.host_recovery; self.dirty[0] |= 0x31018000; }
+        if self.recover != self.seen_recover { self.seen_recover = self.recover; self.dirty[0] |= 0x31018000; }
+        if self.tx_req != self.seen_tx_req { self.seen_tx_req = self.tx_req; self.dirty[0] |= 0x10008000; }
+        if self.tx_ide != self.seen_tx_ide { self.seen_tx_ide = self.tx_ide; self.dirty[0] |= 0x31018000; }
+        if self.tx_rtr != self.seen_tx_rtr { self.seen_tx_rtr = self.tx_rtr; self.dirty[0] |= 0x31018000; }
+        if self.tx_id != self.seen_tx_id { self.seen_tx_id = self.tx_id; self.dirty[0] |= 0x31018000; }
+        if self.tx_dlc != self.seen_tx_dlc { self.seen_tx_dlc = self.tx_dlc; self.dirty[0] |= 0x31018000; }
+        if self.tx_data != self.seen_tx_data { self.seen_tx_data = self.tx_data; self.dirty[0] |= 0x31018000; }
+        if self.tx_abort != self.seen_tx_abort { self.seen_tx_abort = self.tx_abort; self.dirty[0] |= 0x10008000; }
+        if self.cnt_load != self.seen_cnt_load { self.seen_cnt_load = self.cnt_load; self.dirty[0] |= 0x10008000; }
+        if self.tec_in != self.seen_tec_in { self.seen_tec_in = self.tec_in; self.dirty[0] |= 0x10008000; }
+        if self.rec_in != self.seen_rec_in { self.seen_rec_in = self.rec_in; self.dirty[0] |= 0x10000000; }
     }
 
     /// Rising edge: registers and memories take their inputs.
     fn edge(&mut self) {
-        self.sync_s1_n = self.sync_s1_n_d;
-        self.sync_s2_n = self.sync_s2_n_d;
-        self.btl_c_brp = self.btl_c_brp_d;
-        self.btl_c_sp = self.btl_c_sp_d;
-        self.btl_c_ntq = self.btl_c_ntq_d;
-        self.btl_c_sjw = self.btl_c_sjw_d;
-        self.btl_c_triple = self.btl_c_triple_d;
-        self.btl_c_valid = self.btl_c_valid_d;
-        self.btl_c_bad = self.btl_c_bad_d;
-        self.btl_pre = self.btl_pre_d;
-        self.btl_cnt = self.btl_cnt_d;
-        self.btl_spw = self.btl_spw_d;
-        self.btl_nbw = self.btl_nbw_d;
-        self.btl_busmon_n = self.btl_busmon_n_d;
-        self.btl_sync_dis = self.btl_sync_dis_d;
-        self.btl_since = self.btl_since_d;
-        self.btl_pending = self.btl_pending_d;
-        self.btl_tx_n = self.btl_tx_n_d;
-        self.btl_h1_n = self.btl_h1_n_d;
-        self.btl_h2_n = self.btl_h2_n_d;
-        self.btl_sample_r = self.btl_sample_r_d;
-        self.btl_hard_r = self.btl_hard_r_d;
-        self.btl_resync_r = self.btl_resync_r_d;
-        self.fsm_fld = self.fsm_fld_d;
-        self.fsm_fpos = self.fsm_fpos_d;
-        self.fsm_pfld = self.fsm_pfld_d;
-        self.fsm_ppos = self.fsm_ppos_d;
-        self.fsm_rtx = self.fsm_rtx_d;
-        self.fsm_dom = self.fsm_dom_d;
-        self.fsm_dstf_cnt = self.fsm_dstf_cnt_d;
-        self.fsm_dstf_lvl = self.fsm_dstf_lvl_d;
-        self.fsm_crcb_state = self.fsm_crcb_state_d;
-        self.fsm_crcerr = self.fsm_crcerr_d;
-        self.fsm_tid = self.fsm_tid_d;
-        self.fsm_tdat = self.fsm_tdat_d;
-        self.fsm_tdlc = self.fsm_tdlc_d;
-        self.fsm_tide = self.fsm_tide_d;
-        self.fsm_trtr = self.fsm_trtr_d;
-        self.fsm_rid = self.fsm_rid_d;
-        self.fsm_rdat = self.fsm_rdat_d;
-        self.fsm_rdlc = self.fsm_rdlc_d;
-        self.fsm_rrtr = self.fsm_rrtr_d;
-        self.fsm_rext = self.fsm_rext_d;
-        self.fsm_fdone = self.fsm_fdone_d;
-        self.fsm_eqcnt = self.fsm_eqcnt_d;
-        self.fsm_eqlast = self.fsm_eqlast_d;
-        self.fsm_dafc = self.fsm_dafc_d;
-        self.fsm_dafany = self.fsm_dafany_d;
-        self.fsm_exc1 = self.fsm_exc1_d;
-        self.fsm_tecr = self.fsm_tecr_d;
-        self.fsm_recr = self.fsm_recr_d;
-        self.fsm_runr = self.fsm_runr_d;
-        self.fsm_rarmed = self.fsm_rarmed_d;
-        self.fsm_req = self.fsm_req_d;
-        self.fsm_blocked = self.fsm_blocked_d;
-        self.fsm_evr = self.fsm_evr_d;
-        self.fsm_arbpos_r = self.fsm_arbpos_r_d;
-        self.fsm_errf_r = self.fsm_errf_r_d;
-        self.fsm_errp_r = self.fsm_errp_r_d;
-        self.fsm_errtx_r = self.fsm_errtx_r_d;
-        self.fsm_rxide_r = self.fsm_rxide_r_d;
-        self.fsm_rxrtr_r = self.fsm_rxrtr_r_d;
-        self.fsm_rxid_r = self.fsm_rxid_r_d;
-        self.fsm_rxdlc_r = self.fsm_rxdlc_r_d;
-        self.fsm_rxdat_r = self.fsm_rxdat_r_d;
+        let n0 = self.sync_s1_n_d;
+        let n1 = self.sync_s2_n_d;
+        let n2 = self.btl_c_brp_d;
+        let n3 = self.btl_c_sp_d;
+        let n4 = self.btl_c_ntq_d;
+        let n5 = self.btl_c_sjw_d;
+        let n6 = self.btl_c_triple_d;
+        let n7 = self.btl_c_valid_d;
+        let n8 = self.btl_c_bad_d;
+        let n9 = self.btl_pre_d;
+        let n10 = self.btl_cnt_d;
+        let n11 = self.btl_spw_d;
+        let n12 = self.btl_nbw_d;
+        let n13 = self.btl_busmon_n_d;
+        let n14 = self.btl_sync_dis_d;
+        let n15 = self.btl_since_d;
+        let n16 = self.btl_pending_d;
+        let n17 = self.btl_tx_n_d;
+        let n18 = self.btl_h1_n_d;
+        let n19 = self.btl_h2_n_d;
+        let n20 = self.btl_sample_r_d;
+        let n21 = self.btl_hard_r_d;
+        let n22 = self.btl_resync_r_d;
+        let n23 = self.fsm_fld_d;
+        let n24 = self.fsm_fpos_d;
+        let n25 = self.fsm_pfld_d;
+        let n26 = self.fsm_ppos_d;
+        let n27 = self.fsm_rtx_d;
+        let n28 = self.fsm_dom_d;
+        let n29 = self.fsm_dstf_cnt_d;
+        let n30 = self.fsm_dstf_lvl_d;
+        let n31 = self.fsm_crcb_state_d;
+        let n32 = self.fsm_crcerr_d;
+        let n33 = self.fsm_tid_d;
+        let n34 = self.fsm_tdat_d;
+        let n35 = self.fsm_tdlc_d;
+        let n36 = self.fsm_tide_d;
+        let n37 = self.fsm_trtr_d;
+        let n38 = self.fsm_rid_d;
+        let n39 = self.fsm_rdat_d;
+        let n40 = self.fsm_rdlc_d;
+        let n41 = self.fsm_rrtr_d;
+        let n42 = self.fsm_rext_d;
+        let n43 = self.fsm_fdone_d;
+        let n44 = self.fsm_eqcnt_d;
+        let n45 = self.fsm_eqlast_d;
+        let n46 = self.fsm_dafc_d;
+        let n47 = self.fsm_dafany_d;
+        let n48 = self.fsm_exc1_d;
+        let n49 = self.fsm_tecr_d;
+        let n50 = self.fsm_recr_d;
+        let n51 = self.fsm_runr_d;
+        let n52 = self.fsm_rarmed_d;
+        let n53 = self.fsm_req_d;
+        let n54 = self.fsm_blocked_d;
+        let n55 = self.fsm_evr_d;
+        let n56 = self.fsm_arbpos_r_d;
+        let n57 = self.fsm_errf_r_d;
+        let n58 = self.fsm_errp_r_d;
+        let n59 = self.fsm_errtx_r_d;
+        let n60 = self.fsm_rxide_r_d;
+        let n61 = self.fsm_rxrtr_r_d;
+        let n62 = self.fsm_rxid_r_d;
+        let n63 = self.fsm_rxdlc_r_d;
+        let n64 = self.fsm_rxdat_r_d;
+        if n0 != self.sync_s1_n { self.sync_s1_n = n0; self.dirty[0] |= 0xc; }
+        if n1 != self.sync_s2_n { self.sync_s2_n = n1; self.dirty[0] |= 0x4; }
+        if n2 != self.btl_c_brp { self.btl_c_brp = n2; self.dirty[0] |= 0xc01060; }
+        if n3 != self.btl_c_sp { self.btl_c_sp = n3; self.dirty[0] |= 0xc00020; }
+        if n4 != self.btl_c_ntq { self.btl_c_ntq = n4; self.dirty[0] |= 0xc00020; }
+        if n5 != self.btl_c_sjw { self.btl_c_sjw = n5; self.dirty[0] |= 0xc00060; }
+        if n6 != self.btl_c_triple { self.btl_c_triple = n6; self.dirty[0] |= 0x402020; }
+        if n7 != self.btl_c_valid { self.btl_c_valid = n7; self.dirty[0] |= 0xc01060; }
+        if n8 != self.btl_c_bad { self.btl_c_bad = n8; self.dirty[0] |= 0x200023; }
+        if n9 != self.btl_pre { self.btl_pre = n9; self.dirty[0] |= 0xc01060; }
+        if n10 != self.btl_cnt { self.btl_cnt = n10; self.dirty[0] |= 0xc00040; }
+        if n11 != self.btl_spw { self.btl_spw = n11; self.dirty[0] |= 0xc00040; }
+        if n12 != self.btl_nbw { self.btl_nbw = n12; self.dirty[0] |= 0xc00040; }
+        if n13 != self.btl_busmon_n { self.btl_busmon_n = n13; self.dirty[0] |= 0xc02010; }
+        if n14 != self.btl_sync_dis { self.btl_sync_dis = n14; self.dirty[0] |= 0xc02000; }
+        if n15 != self.btl_since { self.btl_since = n15; self.dirty[0] |= 0xc00040; }
+        if n16 != self.btl_pending { self.btl_pending = n16; self.dirty[0] |= 0xc00000; }
+        if n17 != self.btl_tx_n { self.btl_tx_n = n17; self.dirty[0] |= 0x400010; }
+        if n18 != self.btl_h1_n { self.btl_h1_n = n18; self.dirty[0] |= 0x403020; }
+        if n19 != self.btl_h2_n { self.btl_h2_n = n19; self.dirty[0] |= 0x402020; }
+        if n20 != self.btl_sample_r { self.btl_sample_r = n20; self.dirty[0] |= 0x3701c001; }
+        if n21 != self.btl_hard_r { self.btl_hard_r = n21; self.dirty[0] |= 0x1; }
+        if n22 != self.btl_resync_r { self.btl_resync_r = n22; self.dirty[0] |= 0x1; }
+        if n23 != self.fsm_fld { self.fsm_fld = n23; self.dirty[0] |= 0x3101c000; }
+        if n24 != self.fsm_fpos { self.fsm_fpos = n24; self.dirty[0] |= 0x3101c100; }
+        if n25 != self.fsm_pfld { self.fsm_pfld = n25; self.dirty[0] |= 0x3101c000; }
+        if n26 != self.fsm_ppos { self.fsm_ppos = n26; self.dirty[0] |= 0x10014000; }
+        if n27 != self.fsm_rtx { self.fsm_rtx = n27; self.dirty[0] |= 0x3101c001; }
+        if n28 != self.fsm_dom { self.fsm_dom = n28; self.dirty[0] |= 0x31018000; }
+        if n29 != self.fsm_dstf_cnt { self.fsm_dstf_cnt = n29; self.dirty[0] |= 0x6020200; }
+        if n30 != self.fsm_dstf_lvl { self.fsm_dstf_lvl = n30; self.dirty[0] |= 0x6020200; }
+        if n31 != self.fsm_crcb_state { self.fsm_crcb_state = n31; self.dirty[0] |= 0x80c0400; }
+        if n32 != self.fsm_crcerr { self.fsm_crcerr = n32; self.dirty[0] |= 0x30000000; }
+        if n33 != self.fsm_tid { self.fsm_tid = n33; self.dirty[0] |= 0x31018000; }
+        if n34 != self.fsm_tdat { self.fsm_tdat = n34; self.dirty[0] |= 0x31018000; }
+        if n35 != self.fsm_tdlc { self.fsm_tdlc = n35; self.dirty[0] |= 0x31018000; }
+        if n36 != self.fsm_tide { self.fsm_tide = n36; self.dirty[0] |= 0x31018000; }
+        if n37 != self.fsm_trtr { self.fsm_trtr = n37; self.dirty[0] |= 0x31018000; }
+        if n38 != self.fsm_rid { self.fsm_rid = n38; self.dirty[0] |= 0x1c000; }
+        if n39 != self.fsm_rdat { self.fsm_rdat = n39; self.dirty[0] |= 0x18000; }
+        if n40 != self.fsm_rdlc { self.fsm_rdlc = n40; self.dirty[0] |= 0x3101c000; }
+        if n41 != self.fsm_rrtr { self.fsm_rrtr = n41; self.dirty[0] |= 0x3101c000; }
+        if n42 != self.fsm_rext { self.fsm_rext = n42; self.dirty[0] |= 0x3101c000; }
+        if n43 != self.fsm_fdone { self.fsm_fdone = n43; self.dirty[0] |= 0x31018000; }
+        if n44 != self.fsm_eqcnt { self.fsm_eqcnt = n44; self.dirty[0] |= 0x30018000; }
+        if n45 != self.fsm_eqlast { self.fsm_eqlast = n45; self.dirty[0] |= 0x30018000; }
+        if n46 != self.fsm_dafc { self.fsm_dafc = n46; self.dirty[0] |= 0x30010000; }
+        if n47 != self.fsm_dafany { self.fsm_dafany = n47; self.dirty[0] |= 0x30010000; }
+        if n48 != self.fsm_exc1 { self.fsm_exc1 = n48; self.dirty[0] |= 0x30018000; }
+        if n49 != self.fsm_tecr { self.fsm_tecr = n49; self.dirty[0] |= 0x31018181; }
+        if n50 != self.fsm_recr { self.fsm_recr = n50; self.dirty[0] |= 0x31018181; }
+        if n51 != self.fsm_runr { self.fsm_runr = n51; self.dirty[0] |= 0x31018001; }
+        if n52 != self.fsm_rarmed { self.fsm_rarmed = n52; self.dirty[0] |= 0x31018000; }
+        if n53 != self.fsm_req { self.fsm_req = n53; self.dirty[0] |= 0x31018101; }
+        if n54 != self.fsm_blocked { self.fsm_blocked = n54; self.dirty[0] |= 0x10008000; }
+        if n55 != self.fsm_evr { self.fsm_evr = n55; self.dirty[0] |= 0x81; }
+        if n56 != self.fsm_arbpos_r { self.fsm_arbpos_r = n56; self.dirty[0] |= 0x10000001; }
+        if n57 != self.fsm_errf_r { self.fsm_errf_r = n57; self.dirty[0] |= 0x10000001; }
+        if n58 != self.fsm_errp_r { self.fsm_errp_r = n58; self.dirty[0] |= 0x10000001; }
+        if n59 != self.fsm_errtx_r { self.fsm_errtx_r = n59; self.dirty[0] |= 0x10000001; }
+        if n60 != self.fsm_rxide_r { self.fsm_rxide_r = n60; self.dirty[0] |= 0x4001; }
+        if n61 != self.fsm_rxrtr_r { self.fsm_rxrtr_r = n61; self.dirty[0] |= 0x4001; }
+        if n62 != self.fsm_rxid_r { self.fsm_rxid_r = n62; self.dirty[0] |= 0x4001; }
+        if n63 != self.fsm_rxdlc_r { self.fsm_rxdlc_r = n63; self.dirty[0] |= 0x4001; }
+        if n64 != self.fsm_rxdat_r { self.fsm_rxdat_r = n64; self.dirty[0] |= 0x8001; }
     }
 
     /// `top` block, depth 0, state-only: arb_lost_pos, err_field, err_pos, err_tx, rx_ide, rx_rtr, ... (19 signals)
@@ -1143,7 +1277,7 @@ impl CanCore {
     fn g1(&mut self) {
         let mut l_hold: bool = false;
         l_hold = (self.reset | self.btl_c_bad);
-        self.l_hold = l_hold;
+        if l_hold != self.l_hold { self.l_hold = l_hold; self.dirty[0] |= 0x1a008000; }
     }
 
     /// `sync` block, depth 0, state-only: sync.q
@@ -1153,7 +1287,7 @@ impl CanCore {
         if self.sync_two_stages {
             sync_q = (!self.sync_s2_n);
         }
-        self.sync_q = sync_q;
+        if sync_q != self.sync_q { self.sync_q = sync_q; self.dirty[0] |= 0xc03000; }
     }
 
     /// `sync` block, depth 0, input-dependent: sync.s1_n.d, sync.s2_n.d
@@ -1176,8 +1310,8 @@ impl CanCore {
         let mut btl_tx: bool = false;
         btl_busmon = (!self.btl_busmon_n);
         btl_tx = (!self.btl_tx_n);
-        self.btl_busmon = btl_busmon;
-        self.btl_tx = btl_tx;
+        if btl_busmon != self.btl_busmon { self.btl_busmon = btl_busmon; self.dirty[0] |= 0x3f0f8800; }
+        if btl_tx != self.btl_tx { self.btl_tx = btl_tx; self.dirty[0] |= 0x800; }
     }
 
     /// `btl` block, depth 0, input-dependent: btl.c_brp.d, btl.c_sp.d, btl.c_ntq.d, btl.c_sjw.d, btl.c_triple.d, btl.c_valid.d, ... (9 signals)
@@ -1316,13 +1450,13 @@ impl CanCore {
             fsm_state = 1u8;
         }
         fsm_err_warn = ((self.fsm_tecr >= 0x60_u16) | (self.fsm_recr >= 0x60_u8));
-        self.fsm_tx_done = fsm_tx_done;
-        self.fsm_arb_lost = fsm_arb_lost;
-        self.fsm_error = fsm_error;
-        self.fsm_err_kind = fsm_err_kind;
-        self.fsm_rx_valid = fsm_rx_valid;
-        self.fsm_state = fsm_state;
-        self.fsm_err_warn = fsm_err_warn;
+        if fsm_tx_done != self.fsm_tx_done { self.fsm_tx_done = fsm_tx_done; self.dirty[0] |= 0x800; }
+        if fsm_arb_lost != self.fsm_arb_lost { self.fsm_arb_lost = fsm_arb_lost; self.dirty[0] |= 0x800; }
+        if fsm_error != self.fsm_error { self.fsm_error = fsm_error; self.dirty[0] |= 0x800; }
+        if fsm_err_kind != self.fsm_err_kind { self.fsm_err_kind = fsm_err_kind; self.dirty[0] |= 0x800; }
+        if fsm_rx_valid != self.fsm_rx_valid { self.fsm_rx_valid = fsm_rx_valid; self.dirty[0] |= 0x800; }
+        if fsm_state != self.fsm_state { self.fsm_state = fsm_state; self.dirty[0] |= 0x800; }
+        if fsm_err_warn != self.fsm_err_warn { self.fsm_err_warn = fsm_err_warn; self.dirty[0] |= 0x800; }
     }
 
     /// `fsm` block, depth 0, probe-only: fsm.l_active, fsm.l_cantx, fsm.l_posinc
@@ -1347,8 +1481,8 @@ impl CanCore {
         let mut fsm_dstf_at5: bool = false;
         fsm_dstf_at5 = (self.fsm_dstf_cnt == 5u8);
         fsm_dstf_stuff_level = (!self.fsm_dstf_lvl);
-        self.fsm_dstf_stuff_level = fsm_dstf_stuff_level;
-        self.fsm_dstf_at5 = fsm_dstf_at5;
+        if fsm_dstf_stuff_level != self.fsm_dstf_stuff_level { self.fsm_dstf_stuff_level = fsm_dstf_stuff_level; self.dirty[0] |= 0x31018000; }
+        if fsm_dstf_at5 != self.fsm_dstf_at5 { self.fsm_dstf_at5 = fsm_dstf_at5; self.dirty[0] |= 0x3101c000; }
     }
 
     /// `fsm.crcb` block, depth 0, probe-only: fsm.crcb.shifted
@@ -1623,16 +1757,16 @@ impl CanCore {
             }
         }
         fsm_pos = fsm_l_dpos;
-        self.fsm_hs_en = fsm_hs_en;
-        self.fsm_field = fsm_field;
-        self.fsm_pos = fsm_pos;
+        if fsm_hs_en != self.fsm_hs_en { self.fsm_hs_en = fsm_hs_en; self.dirty[0] |= 0xc00000; }
+        if fsm_field != self.fsm_field { self.fsm_field = fsm_field; self.dirty[0] |= 0x200000; }
+        if fsm_pos != self.fsm_pos { self.fsm_pos = fsm_pos; self.dirty[0] |= 0x100000; }
         self.fsm_pfld_d = fsm_pfld_d;
         self.fsm_ppos_d = fsm_ppos_d;
         self.fsm_rxide_r_d = fsm_rxide_r_d;
         self.fsm_rxrtr_r_d = fsm_rxrtr_r_d;
         self.fsm_rxid_r_d = fsm_rxid_r_d;
         self.fsm_rxdlc_r_d = fsm_rxdlc_r_d;
-        self.fsm_l_curstf = fsm_l_curstf;
+        if fsm_l_curstf != self.fsm_l_curstf { self.fsm_l_curstf = fsm_l_curstf; self.dirty[0] |= 0x100000; }
     }
 
     /// `fsm` block, depth 1, input-dependent: fsm.drive, fsm.rtx.d, fsm.dstf.active, fsm.crcb.clear, fsm.crcb.en, fsm.tid.d, ... (20 signals)
@@ -2038,11 +2172,11 @@ impl CanCore {
                 fsm_rtx_d = false;
             }
         }
-        self.fsm_drive = fsm_drive;
+        if fsm_drive != self.fsm_drive { self.fsm_drive = fsm_drive; self.dirty[0] |= 0xc00000; }
         self.fsm_rtx_d = fsm_rtx_d;
-        self.fsm_dstf_active = fsm_dstf_active;
-        self.fsm_crcb_clear = fsm_crcb_clear;
-        self.fsm_crcb_en = fsm_crcb_en;
+        if fsm_dstf_active != self.fsm_dstf_active { self.fsm_dstf_active = fsm_dstf_active; self.dirty[0] |= 0x6000000; }
+        if fsm_crcb_clear != self.fsm_crcb_clear { self.fsm_crcb_clear = fsm_crcb_clear; self.dirty[0] |= 0x8000000; }
+        if fsm_crcb_en != self.fsm_crcb_en { self.fsm_crcb_en = fsm_crcb_en; self.dirty[0] |= 0x8000000; }
         self.fsm_tid_d = fsm_tid_d;
         self.fsm_tdat_d = fsm_tdat_d;
         self.fsm_tdlc_d = fsm_tdlc_d;
@@ -2572,7 +2706,7 @@ impl CanCore {
             fsm_crcb_nxt = (fsm_crcb_shifted ^ self.fsm_crcb_poly);
         }
         fsm_crcb_crc_next = fsm_crcb_nxt;
-        self.fsm_crcb_crc_next = fsm_crcb_crc_next;
+        if fsm_crcb_crc_next != self.fsm_crcb_crc_next { self.fsm_crcb_crc_next = fsm_crcb_crc_next; self.dirty[0] |= 0x31000000; }
     }
 
     /// `fsm.crcb` block, depth 1, probe-only: fsm.crcb.fb, fsm.crcb.nxt
@@ -3294,7 +3428,7 @@ impl CanCore {
             fsm_dstf_cnt_d = 0u8;
             fsm_dstf_lvl_d = false;
         }
-        self.fsm_dstf_stuff_error = fsm_dstf_stuff_error;
+        if fsm_dstf_stuff_error != self.fsm_dstf_stuff_error { self.fsm_dstf_stuff_error = fsm_dstf_stuff_error; self.dirty[0] |= 0x30000000; }
         self.fsm_dstf_cnt_d = fsm_dstf_cnt_d;
         self.fsm_dstf_lvl_d = fsm_dstf_lvl_d;
     }
@@ -5747,6 +5881,7 @@ impl rt::Model for CanCore {
             364 => self.fsm_rxdat_r = (v & 0xffffffffffffffff) as u64,
             _ => return false,
         }
+        self.dirty = [!0; 1];
         true
     }
     fn set_mem(&mut self, r: usize, addr: usize, v: u128) {

@@ -24,6 +24,10 @@ pub struct EdgeDetector {
     pub prev_n: bool,
     /// `prev_n.d` (combinational, 1 bit)
     pub prev_n_d: bool,
+    seen_reset: bool,
+    seen_d: bool,
+    /// Groups to evaluate (one bit per group, see `run`).
+    dirty: [u64; 1],
     trace: bool,
 }
 
@@ -47,6 +51,9 @@ impl EdgeDetector {
             prev: false,
             prev_n: false,
             prev_n_d: false,
+            seen_reset: false,
+            seen_d: false,
+            dirty: [!0; 1],
             trace: false,
         };
         m.eval_all();
@@ -60,48 +67,67 @@ impl EdgeDetector {
         Ok(m)
     }
 
+    /// Groups evaluated before the edge: input-dependent.
+    const PRE: [u64; 1] = [0x6];
+    /// Groups evaluated after the edge: state-only and the output cone.
+    const POST: [u64; 1] = [0x5];
+    const ALL: [u64; 1] = [0x7];
+
     /// One clock cycle (`canstar_hdl::drive::cycle`): settle, rising edge, settle.
     pub fn cycle(&mut self) {
-        self.eval_pre();
+        self.sense();
+        self.run(&Self::PRE);
         self.edge();
-        if self.trace {
-            self.eval_all();
-        } else {
-            self.eval_post();
-        }
+        self.run(if self.trace { &Self::ALL } else { &Self::POST });
     }
 
     /// Propagate input changes (no clock edge).
     pub fn settle(&mut self) {
-        if self.trace {
-            self.eval_all();
-        } else {
-            self.eval_pre();
+        self.sense();
+        self.run(if self.trace { &Self::ALL } else { &Self::PRE });
+    }
+
+    /// Evaluate every group.
+    fn eval_all(&mut self) {
+        self.dirty = [!0; 1];
+        self.sense();
+        self.run(&Self::ALL);
+    }
+
+    /// Run the dirty groups of a phase, in dependency order.
+    fn run(&mut self, phase: &[u64; 1]) {
+        for w in 0..1 {
+            loop {
+                let m = self.dirty[w] & phase[w];
+                if m == 0 {
+                    break;
+                }
+                let k = m.trailing_zeros() as usize;
+                self.dirty[w] &= !(1u64 << k);
+                self.group(w * 64 + k);
+            }
         }
     }
 
-    /// Input-dependent groups (before the edge).
-    fn eval_pre(&mut self) {
-        self.g1();
-        self.g2();
+    fn group(&mut self, k: usize) {
+        match k {
+            0 => self.g0(),
+            1 => self.g1(),
+            2 => self.g2(),
+            _ => {}
+        }
     }
 
-    /// State-only groups and the output cone (after the edge).
-    fn eval_post(&mut self) {
-        self.g0();
-        self.g2();
-    }
-
-    /// Every group.
-    fn eval_all(&mut self) {
-        self.g0();
-        self.g1();
-        self.g2();
+    /// Inputs that changed since they were last seen mark their readers.
+    fn sense(&mut self) {
+        if self.reset != self.seen_reset { self.seen_reset = self.reset; self.dirty[0] |= 0x2; }
+        if self.d != self.seen_d { self.seen_d = self.d; self.dirty[0] |= 0x6; }
     }
 
     /// Rising edge: registers and memories take their inputs.
     fn edge(&mut self) {
-        self.prev_n = self.prev_n_d;
+        let n0 = self.prev_n_d;
+        if n0 != self.prev_n { self.prev_n = n0; self.dirty[0] |= 0x5; }
     }
 
     /// `top` block, depth 0, state-only: prev
@@ -206,6 +232,7 @@ impl rt::Model for EdgeDetector {
             7 => self.prev_n = (v & 1) != 0,
             _ => return false,
         }
+        self.dirty = [!0; 1];
         true
     }
     fn set_mem(&mut self, r: usize, addr: usize, v: u128) {

@@ -670,6 +670,21 @@ pub struct HubCoreN3M1 {
     pub rep_rec: bool,
     /// `rep_dom` (combinational, 1 bit)
     pub rep_dom: bool,
+    seen_rst_n: bool,
+    seen_inject_fault: bool,
+    seen_rx_0: bool,
+    seen_rx_1: bool,
+    seen_rx_2: bool,
+    seen_reh_rx_0: bool,
+    seen_mon_sample: bool,
+    seen_mon_bit_start: bool,
+    seen_mon_field: u8,
+    seen_mon_pos: u8,
+    seen_mon_crc_ok: bool,
+    seen_mon_frame_ok: bool,
+    seen_mon_error: bool,
+    /// Groups to evaluate (one bit per group, see `run`).
+    dirty: [u64; 1],
     trace: bool,
 }
 
@@ -1016,6 +1031,20 @@ impl HubCoreN3M1 {
             trigger: false,
             rep_rec: false,
             rep_dom: false,
+            seen_rst_n: false,
+            seen_inject_fault: false,
+            seen_rx_0: false,
+            seen_rx_1: false,
+            seen_rx_2: false,
+            seen_reh_rx_0: false,
+            seen_mon_sample: false,
+            seen_mon_bit_start: false,
+            seen_mon_field: 0u8,
+            seen_mon_pos: 0u8,
+            seen_mon_crc_ok: false,
+            seen_mon_frame_ok: false,
+            seen_mon_error: false,
+            dirty: [!0; 1],
             trace: false,
         };
         m.eval_all();
@@ -1029,216 +1058,288 @@ impl HubCoreN3M1 {
         Ok(m)
     }
 
+    /// Groups evaluated before the edge: input-dependent.
+    const PRE: [u64; 1] = [0x16a91f4a496aa6];
+    /// Groups evaluated after the edge: state-only and the output cone.
+    const POST: [u64; 1] = [0x4402124955d];
+    const ALL: [u64; 1] = [0x1fffffffffffff];
+
     /// One clock cycle (`canstar_hdl::drive::cycle`): settle, rising edge, settle.
     pub fn cycle(&mut self) {
-        self.eval_pre();
+        self.sense();
+        self.run(&Self::PRE);
         self.edge();
-        if self.trace {
-            self.eval_all();
-        } else {
-            self.eval_post();
-        }
+        self.run(if self.trace { &Self::ALL } else { &Self::POST });
     }
 
     /// Propagate input changes (no clock edge).
     pub fn settle(&mut self) {
-        if self.trace {
-            self.eval_all();
-        } else {
-            self.eval_pre();
+        self.sense();
+        self.run(if self.trace { &Self::ALL } else { &Self::PRE });
+    }
+
+    /// Evaluate every group.
+    fn eval_all(&mut self) {
+        self.dirty = [!0; 1];
+        self.sense();
+        self.run(&Self::ALL);
+    }
+
+    /// Run the dirty groups of a phase, in dependency order.
+    fn run(&mut self, phase: &[u64; 1]) {
+        for w in 0..1 {
+            loop {
+                let m = self.dirty[w] & phase[w];
+                if m == 0 {
+                    break;
+                }
+                let k = m.trailing_zeros() as usize;
+                self.dirty[w] &= !(1u64 << k);
+                self.group(w * 64 + k);
+            }
         }
     }
 
-    /// Input-dependent groups (before the edge).
-    fn eval_pre(&mut self) {
-        self.g1();
-        self.g2();
-        self.g5();
-        self.g7();
-        self.g9();
-        self.g11();
-        self.g13();
-        self.g14();
-        self.g16();
-        self.g19();
-        self.g22();
-        self.g25();
-        self.g27();
-        self.g30();
-        self.g32();
-        self.g33();
-        self.g34();
-        self.g35();
-        self.g36();
-        self.g40();
-        self.g43();
-        self.g45();
-        self.g47();
-        self.g49();
-        self.g50();
-        self.g52();
+    fn group(&mut self, k: usize) {
+        match k {
+            0 => self.g0(),
+            1 => self.g1(),
+            2 => self.g2(),
+            3 => self.g3(),
+            4 => self.g4(),
+            5 => self.g5(),
+            6 => self.g6(),
+            7 => self.g7(),
+            8 => self.g8(),
+            9 => self.g9(),
+            10 => self.g10(),
+            11 => self.g11(),
+            12 => self.g12(),
+            13 => self.g13(),
+            14 => self.g14(),
+            15 => self.g15(),
+            16 => self.g16(),
+            17 => self.g17(),
+            18 => self.g18(),
+            19 => self.g19(),
+            20 => self.g20(),
+            21 => self.g21(),
+            22 => self.g22(),
+            23 => self.g23(),
+            24 => self.g24(),
+            25 => self.g25(),
+            26 => self.g26(),
+            27 => self.g27(),
+            28 => self.g28(),
+            29 => self.g29(),
+            30 => self.g30(),
+            31 => self.g31(),
+            32 => self.g32(),
+            33 => self.g33(),
+            34 => self.g34(),
+            35 => self.g35(),
+            36 => self.g36(),
+            37 => self.g37(),
+            38 => self.g38(),
+            39 => self.g39(),
+            40 => self.g40(),
+            41 => self.g41(),
+            42 => self.g42(),
+            43 => self.g43(),
+            44 => self.g44(),
+            45 => self.g45(),
+            46 => self.g46(),
+            47 => self.g47(),
+            48 => self.g48(),
+            49 => self.g49(),
+            50 => self.g50(),
+            51 => self.g51(),
+            52 => self.g52(),
+            _ => {}
+        }
     }
 
-    /// State-only groups and the output cone (after the edge).
-    fn eval_post(&mut self) {
-        self.g0();
-        self.g2();
-        self.g3();
-        self.g4();
-        self.g6();
-        self.g8();
-        self.g10();
-        self.g12();
-        self.g15();
-        self.g18();
-        self.g21();
-        self.g24();
-        self.g29();
-        self.g38();
-        self.g42();
-    }
-
-    /// Every group.
-    fn eval_all(&mut self) {
-        self.g0();
-        self.g1();
-        self.g2();
-        self.g3();
-        self.g4();
-        self.g5();
-        self.g6();
-        self.g7();
-        self.g8();
-        self.g9();
-        self.g10();
-        self.g11();
-        self.g12();
-        self.g13();
-        self.g14();
-        self.g15();
-        self.g16();
-        self.g17();
-        self.g18();
-        self.g19();
-        self.g20();
-        self.g21();
-        self.g22();
-        self.g23();
-        self.g24();
-        self.g25();
-        self.g26();
-        self.g27();
-        self.g28();
-        self.g29();
-        self.g30();
-        self.g31();
-        self.g32();
-        self.g33();
-        self.g34();
-        self.g35();
-        self.g36();
-        self.g37();
-        self.g38();
-        self.g39();
-        self.g40();
-        self.g41();
-        self.g42();
-        self.g43();
-        self.g44();
-        self.g45();
-        self.g46();
-        self.g47();
-        self.g48();
-        self.g49();
-        self.g50();
-        self.g51();
-        self.g52();
+    /// Inputs that changed since they were last seen mark their readers.
+    fn sense(&mut self) {
+        if self.rst_n != self.seen_rst_n { self.seen_rst_n = self.rst_n; self.dirty[0] |= 0x2; }
+        if self.inject_fault != self.seen_inject_fault { self.seen_inject_fault = self.inject_fault; self.dirty[0] |= 0x10000; }
+        if self.rx_0 != self.seen_rx_0 { self.seen_rx_0 = self.rx_0; self.dirty[0] |= 0x20; }
+        if self.rx_1 != self.seen_rx_1 { self.seen_rx_1 = self.rx_1; self.dirty[0] |= 0x80; }
+        if self.rx_2 != self.seen_rx_2 { self.seen_rx_2 = self.rx_2; self.dirty[0] |= 0x200; }
+        if self.reh_rx_0 != self.seen_reh_rx_0 { self.seen_reh_rx_0 = self.reh_rx_0; self.dirty[0] |= 0x800; }
+        if self.mon_sample != self.seen_mon_sample { self.seen_mon_sample = self.mon_sample; self.dirty[0] |= 0x6a91f0a480000; }
+        if self.mon_bit_start != self.seen_mon_bit_start { self.seen_mon_bit_start = self.mon_bit_start; self.dirty[0] |= 0x10000000002000; }
+        if self.mon_field != self.seen_mon_field { self.seen_mon_field = self.mon_field; self.dirty[0] |= 0x100004004; }
+        if self.mon_pos != self.seen_mon_pos { self.seen_mon_pos = self.mon_pos; self.dirty[0] |= 0x4000; }
+        if self.mon_crc_ok != self.seen_mon_crc_ok { self.seen_mon_crc_ok = self.mon_crc_ok; self.dirty[0] |= 0x1e00000000; }
+        if self.mon_frame_ok != self.seen_mon_frame_ok { self.seen_mon_frame_ok = self.mon_frame_ok; self.dirty[0] |= 0xa91e0a480000; }
+        if self.mon_error != self.seen_mon_error { self.seen_mon_error = self.mon_error; self.dirty[0] |= 0x4000000000000; }
     }
 
     /// Rising edge: registers and memories take their inputs.
     fn edge(&mut self) {
+        let n0 = self.coupler_up_sync_0_s1_n_d;
+        let n1 = self.coupler_up_sync_0_s2_n_d;
+        let n2 = self.coupler_up_sync_1_s1_n_d;
+        let n3 = self.coupler_up_sync_1_s2_n_d;
+        let n4 = self.coupler_up_sync_2_s1_n_d;
+        let n5 = self.coupler_up_sync_2_s2_n_d;
+        let n6 = self.coupler_reh_sync_0_s1_n_d;
+        let n7 = self.coupler_reh_sync_0_s2_n_d;
+        let n8 = self.coupler_tx_n_0_d;
+        let n9 = self.coupler_tx_n_1_d;
+        let n10 = self.coupler_tx_n_2_d;
+        let n11 = self.coupler_hub_tx_n_0_d;
+        let n12 = self.efgen_pending_d;
+        let n13 = self.efgen_driving_d;
+        let n14 = self.efgen_cnt_d;
+        let n15 = self.err_start_r_d;
+        let n16 = self.injector_state_d;
+        let n17 = self.injector_btn_prev_d;
+        let n18 = self.injector_btn_r_d;
+        let n19 = self.pj_0_dis_r_d;
+        let n20 = self.pj_0_bic_r_d;
+        let n21 = self.pj_0_life_r_d;
+        let n22 = self.pj_0_dbc_r_d;
+        let n23 = self.pj_0_nack_r_d;
+        let n24 = self.pj_0_cont_r_d;
+        let n25 = self.pj_0_rep_r_d;
+        let n26 = self.pj_0_rep_seen_d;
+        let n27 = self.pj_0_rep_first_dom_d;
+        let n28 = self.pj_0_ok_r_d;
+        let n29 = self.pj_0_acked_d;
+        let n30 = self.pj_0_bad_d;
+        let n31 = self.pj_0_ack_missing_d;
+        let n32 = self.pj_0_ack_c_d;
+        let n33 = self.pj_0_ack_rx_d;
+        let n34 = self.pj_1_dis_r_d;
+        let n35 = self.pj_1_bic_r_d;
+        let n36 = self.pj_1_life_r_d;
+        let n37 = self.pj_1_dbc_r_d;
+        let n38 = self.pj_1_nack_r_d;
+        let n39 = self.pj_1_cont_r_d;
+        let n40 = self.pj_1_rep_r_d;
+        let n41 = self.pj_1_rep_seen_d;
+        let n42 = self.pj_1_rep_first_dom_d;
+        let n43 = self.pj_1_ok_r_d;
+        let n44 = self.pj_1_acked_d;
+        let n45 = self.pj_1_bad_d;
+        let n46 = self.pj_1_ack_missing_d;
+        let n47 = self.pj_1_ack_c_d;
+        let n48 = self.pj_1_ack_rx_d;
+        let n49 = self.pj_2_dis_r_d;
+        let n50 = self.pj_2_bic_r_d;
+        let n51 = self.pj_2_life_r_d;
+        let n52 = self.pj_2_dbc_r_d;
+        let n53 = self.pj_2_nack_r_d;
+        let n54 = self.pj_2_cont_r_d;
+        let n55 = self.pj_2_rep_r_d;
+        let n56 = self.pj_2_rep_seen_d;
+        let n57 = self.pj_2_rep_first_dom_d;
+        let n58 = self.pj_2_ok_r_d;
+        let n59 = self.pj_2_acked_d;
+        let n60 = self.pj_2_bad_d;
+        let n61 = self.pj_2_ack_missing_d;
+        let n62 = self.pj_2_ack_c_d;
+        let n63 = self.pj_2_ack_rx_d;
+        let n64 = self.sj_0_dis_r_d;
+        let n65 = self.sj_0_bic_r_d;
+        let n66 = self.sj_0_life_r_d;
+        let n67 = self.sj_0_dbc_r_d;
+        let n68 = self.sj_0_nack_r_d;
+        let n69 = self.sj_0_cont_r_d;
+        let n70 = self.sj_0_rep_r_d;
+        let n71 = self.sj_0_rep_seen_d;
+        let n72 = self.sj_0_rep_first_dom_d;
+        let n73 = self.sj_0_ok_r_d;
+        let n74 = self.sj_0_acked_d;
+        let n75 = self.sj_0_bad_d;
+        let n76 = self.sj_0_ack_missing_d;
+        let n77 = self.sj_0_ack_c_d;
+        let n78 = self.sj_0_ack_rx_d;
+        let n79 = self.rst_s1_d;
         let n80 = self.rst_s1;
-        self.coupler_up_sync_0_s1_n = self.coupler_up_sync_0_s1_n_d;
-        self.coupler_up_sync_0_s2_n = self.coupler_up_sync_0_s2_n_d;
-        self.coupler_up_sync_1_s1_n = self.coupler_up_sync_1_s1_n_d;
-        self.coupler_up_sync_1_s2_n = self.coupler_up_sync_1_s2_n_d;
-        self.coupler_up_sync_2_s1_n = self.coupler_up_sync_2_s1_n_d;
-        self.coupler_up_sync_2_s2_n = self.coupler_up_sync_2_s2_n_d;
-        self.coupler_reh_sync_0_s1_n = self.coupler_reh_sync_0_s1_n_d;
-        self.coupler_reh_sync_0_s2_n = self.coupler_reh_sync_0_s2_n_d;
-        self.coupler_tx_n_0 = self.coupler_tx_n_0_d;
-        self.coupler_tx_n_1 = self.coupler_tx_n_1_d;
-        self.coupler_tx_n_2 = self.coupler_tx_n_2_d;
-        self.coupler_hub_tx_n_0 = self.coupler_hub_tx_n_0_d;
-        self.efgen_pending = self.efgen_pending_d;
-        self.efgen_driving = self.efgen_driving_d;
-        self.efgen_cnt = self.efgen_cnt_d;
-        self.err_start_r = self.err_start_r_d;
-        self.injector_state = self.injector_state_d;
-        self.injector_btn_prev = self.injector_btn_prev_d;
-        self.injector_btn_r = self.injector_btn_r_d;
-        self.pj_0_dis_r = self.pj_0_dis_r_d;
-        self.pj_0_bic_r = self.pj_0_bic_r_d;
-        self.pj_0_life_r = self.pj_0_life_r_d;
-        self.pj_0_dbc_r = self.pj_0_dbc_r_d;
-        self.pj_0_nack_r = self.pj_0_nack_r_d;
-        self.pj_0_cont_r = self.pj_0_cont_r_d;
-        self.pj_0_rep_r = self.pj_0_rep_r_d;
-        self.pj_0_rep_seen = self.pj_0_rep_seen_d;
-        self.pj_0_rep_first_dom = self.pj_0_rep_first_dom_d;
-        self.pj_0_ok_r = self.pj_0_ok_r_d;
-        self.pj_0_acked = self.pj_0_acked_d;
-        self.pj_0_bad = self.pj_0_bad_d;
-        self.pj_0_ack_missing = self.pj_0_ack_missing_d;
-        self.pj_0_ack_c = self.pj_0_ack_c_d;
-        self.pj_0_ack_rx = self.pj_0_ack_rx_d;
-        self.pj_1_dis_r = self.pj_1_dis_r_d;
-        self.pj_1_bic_r = self.pj_1_bic_r_d;
-        self.pj_1_life_r = self.pj_1_life_r_d;
-        self.pj_1_dbc_r = self.pj_1_dbc_r_d;
-        self.pj_1_nack_r = self.pj_1_nack_r_d;
-        self.pj_1_cont_r = self.pj_1_cont_r_d;
-        self.pj_1_rep_r = self.pj_1_rep_r_d;
-        self.pj_1_rep_seen = self.pj_1_rep_seen_d;
-        self.pj_1_rep_first_dom = self.pj_1_rep_first_dom_d;
-        self.pj_1_ok_r = self.pj_1_ok_r_d;
-        self.pj_1_acked = self.pj_1_acked_d;
-        self.pj_1_bad = self.pj_1_bad_d;
-        self.pj_1_ack_missing = self.pj_1_ack_missing_d;
-        self.pj_1_ack_c = self.pj_1_ack_c_d;
-        self.pj_1_ack_rx = self.pj_1_ack_rx_d;
-        self.pj_2_dis_r = self.pj_2_dis_r_d;
-        self.pj_2_bic_r = self.pj_2_bic_r_d;
-        self.pj_2_life_r = self.pj_2_life_r_d;
-        self.pj_2_dbc_r = self.pj_2_dbc_r_d;
-        self.pj_2_nack_r = self.pj_2_nack_r_d;
-        self.pj_2_cont_r = self.pj_2_cont_r_d;
-        self.pj_2_rep_r = self.pj_2_rep_r_d;
-        self.pj_2_rep_seen = self.pj_2_rep_seen_d;
-        self.pj_2_rep_first_dom = self.pj_2_rep_first_dom_d;
-        self.pj_2_ok_r = self.pj_2_ok_r_d;
-        self.pj_2_acked = self.pj_2_acked_d;
-        self.pj_2_bad = self.pj_2_bad_d;
-        self.pj_2_ack_missing = self.pj_2_ack_missing_d;
-        self.pj_2_ack_c = self.pj_2_ack_c_d;
-        self.pj_2_ack_rx = self.pj_2_ack_rx_d;
-        self.sj_0_dis_r = self.sj_0_dis_r_d;
-        self.sj_0_bic_r = self.sj_0_bic_r_d;
-        self.sj_0_life_r = self.sj_0_life_r_d;
-        self.sj_0_dbc_r = self.sj_0_dbc_r_d;
-        self.sj_0_nack_r = self.sj_0_nack_r_d;
-        self.sj_0_cont_r = self.sj_0_cont_r_d;
-        self.sj_0_rep_r = self.sj_0_rep_r_d;
-        self.sj_0_rep_seen = self.sj_0_rep_seen_d;
-        self.sj_0_rep_first_dom = self.sj_0_rep_first_dom_d;
-        self.sj_0_ok_r = self.sj_0_ok_r_d;
-        self.sj_0_acked = self.sj_0_acked_d;
-        self.sj_0_bad = self.sj_0_bad_d;
-        self.sj_0_ack_missing = self.sj_0_ack_missing_d;
-        self.sj_0_ack_c = self.sj_0_ack_c_d;
-        self.sj_0_ack_rx = self.sj_0_ack_rx_d;
-        self.rst_s1 = self.rst_s1_d;
-        self.rst_s2 = n80;
+        if n0 != self.coupler_up_sync_0_s1_n { self.coupler_up_sync_0_s1_n = n0; self.dirty[0] |= 0x10; }
+        if n1 != self.coupler_up_sync_0_s2_n { self.coupler_up_sync_0_s2_n = n1; self.dirty[0] |= 0x10; }
+        if n2 != self.coupler_up_sync_1_s1_n { self.coupler_up_sync_1_s1_n = n2; self.dirty[0] |= 0x40; }
+        if n3 != self.coupler_up_sync_1_s2_n { self.coupler_up_sync_1_s2_n = n3; self.dirty[0] |= 0x40; }
+        if n4 != self.coupler_up_sync_2_s1_n { self.coupler_up_sync_2_s1_n = n4; self.dirty[0] |= 0x100; }
+        if n5 != self.coupler_up_sync_2_s2_n { self.coupler_up_sync_2_s2_n = n5; self.dirty[0] |= 0x100; }
+        if n6 != self.coupler_reh_sync_0_s1_n { self.coupler_reh_sync_0_s1_n = n6; self.dirty[0] |= 0x400; }
+        if n7 != self.coupler_reh_sync_0_s2_n { self.coupler_reh_sync_0_s2_n = n7; self.dirty[0] |= 0x400; }
+        if n8 != self.coupler_tx_n_0 { self.coupler_tx_n_0 = n8; self.dirty[0] |= 0x8; }
+        if n9 != self.coupler_tx_n_1 { self.coupler_tx_n_1 = n9; self.dirty[0] |= 0x8; }
+        if n10 != self.coupler_tx_n_2 { self.coupler_tx_n_2 = n10; self.dirty[0] |= 0x8; }
+        if n11 != self.coupler_hub_tx_n_0 { self.coupler_hub_tx_n_0 = n11; self.dirty[0] |= 0x8; }
+        if n12 != self.efgen_pending { self.efgen_pending = n12; self.dirty[0] |= 0x10000000003000; }
+        if n13 != self.efgen_driving { self.efgen_driving = n13; self.dirty[0] |= 0x10000000003001; }
+        if n14 != self.efgen_cnt { self.efgen_cnt = n14; self.dirty[0] |= 0x2000; }
+        if n15 != self.err_start_r { self.err_start_r = n15; self.dirty[0] |= 0x10008000000; }
+        if n16 != self.injector_state { self.injector_state = n16; self.dirty[0] |= 0x100028000; }
+        if n17 != self.injector_btn_prev { self.injector_btn_prev = n17; self.dirty[0] |= 0x100020000; }
+        if n18 != self.injector_btn_r { self.injector_btn_r = n18; self.dirty[0] |= 0x100028000; }
+        if n19 != self.pj_0_dis_r { self.pj_0_dis_r = n19; self.dirty[0] |= 0x8c200180001; }
+        if n20 != self.pj_0_bic_r { self.pj_0_bic_r = n20; self.dirty[0] |= 0x80000080001; }
+        if n21 != self.pj_0_life_r { self.pj_0_life_r = n21; self.dirty[0] |= 0x80000080000; }
+        if n22 != self.pj_0_dbc_r { self.pj_0_dbc_r = n22; self.dirty[0] |= 0x80000080001; }
+        if n23 != self.pj_0_nack_r { self.pj_0_nack_r = n23; self.dirty[0] |= 0x200040001; }
+        if n24 != self.pj_0_cont_r { self.pj_0_cont_r = n24; self.dirty[0] |= 0x180200000000; }
+        if n25 != self.pj_0_rep_r { self.pj_0_rep_r = n25; self.dirty[0] |= 0x80000; }
+        if n26 != self.pj_0_rep_seen { self.pj_0_rep_seen = n26; self.dirty[0] |= 0x80000; }
+        if n27 != self.pj_0_rep_first_dom { self.pj_0_rep_first_dom = n27; self.dirty[0] |= 0xc0000; }
+        if n28 != self.pj_0_ok_r { self.pj_0_ok_r = n28; self.dirty[0] |= 0x80200080000; }
+        if n29 != self.pj_0_acked { self.pj_0_acked = n29; self.dirty[0] |= 0x80200080000; }
+        if n30 != self.pj_0_bad { self.pj_0_bad = n30; self.dirty[0] |= 0x80200080000; }
+        if n31 != self.pj_0_ack_missing { self.pj_0_ack_missing = n31; self.dirty[0] |= 0x180000000000; }
+        if n32 != self.pj_0_ack_c { self.pj_0_ack_c = n32; self.dirty[0] |= 0x80200000000; }
+        if n33 != self.pj_0_ack_rx { self.pj_0_ack_rx = n33; self.dirty[0] |= 0x200000000; }
+        if n34 != self.pj_1_dis_r { self.pj_1_dis_r = n34; self.dirty[0] |= 0x20c400c00001; }
+        if n35 != self.pj_1_bic_r { self.pj_1_bic_r = n35; self.dirty[0] |= 0x200000400001; }
+        if n36 != self.pj_1_life_r { self.pj_1_life_r = n36; self.dirty[0] |= 0x200000400000; }
+        if n37 != self.pj_1_dbc_r { self.pj_1_dbc_r = n37; self.dirty[0] |= 0x200000400001; }
+        if n38 != self.pj_1_nack_r { self.pj_1_nack_r = n38; self.dirty[0] |= 0x400200001; }
+        if n39 != self.pj_1_cont_r { self.pj_1_cont_r = n39; self.dirty[0] |= 0x600400000000; }
+        if n40 != self.pj_1_rep_r { self.pj_1_rep_r = n40; self.dirty[0] |= 0x400000; }
+        if n41 != self.pj_1_rep_seen { self.pj_1_rep_seen = n41; self.dirty[0] |= 0x400000; }
+        if n42 != self.pj_1_rep_first_dom { self.pj_1_rep_first_dom = n42; self.dirty[0] |= 0x600000; }
+        if n43 != self.pj_1_ok_r { self.pj_1_ok_r = n43; self.dirty[0] |= 0x200400400000; }
+        if n44 != self.pj_1_acked { self.pj_1_acked = n44; self.dirty[0] |= 0x200400400000; }
+        if n45 != self.pj_1_bad { self.pj_1_bad = n45; self.dirty[0] |= 0x200400400000; }
+        if n46 != self.pj_1_ack_missing { self.pj_1_ack_missing = n46; self.dirty[0] |= 0x600000000000; }
+        if n47 != self.pj_1_ack_c { self.pj_1_ack_c = n47; self.dirty[0] |= 0x200400000000; }
+        if n48 != self.pj_1_ack_rx { self.pj_1_ack_rx = n48; self.dirty[0] |= 0x400000000; }
+        if n49 != self.pj_2_dis_r { self.pj_2_dis_r = n49; self.dirty[0] |= 0x80c806000001; }
+        if n50 != self.pj_2_bic_r { self.pj_2_bic_r = n50; self.dirty[0] |= 0x800002000001; }
+        if n51 != self.pj_2_life_r { self.pj_2_life_r = n51; self.dirty[0] |= 0x800002000000; }
+        if n52 != self.pj_2_dbc_r { self.pj_2_dbc_r = n52; self.dirty[0] |= 0x800002000001; }
+        if n53 != self.pj_2_nack_r { self.pj_2_nack_r = n53; self.dirty[0] |= 0x801000001; }
+        if n54 != self.pj_2_cont_r { self.pj_2_cont_r = n54; self.dirty[0] |= 0x1800800000000; }
+        if n55 != self.pj_2_rep_r { self.pj_2_rep_r = n55; self.dirty[0] |= 0x2000000; }
+        if n56 != self.pj_2_rep_seen { self.pj_2_rep_seen = n56; self.dirty[0] |= 0x2000000; }
+        if n57 != self.pj_2_rep_first_dom { self.pj_2_rep_first_dom = n57; self.dirty[0] |= 0x3000000; }
+        if n58 != self.pj_2_ok_r { self.pj_2_ok_r = n58; self.dirty[0] |= 0x800802000000; }
+        if n59 != self.pj_2_acked { self.pj_2_acked = n59; self.dirty[0] |= 0x800802000000; }
+        if n60 != self.pj_2_bad { self.pj_2_bad = n60; self.dirty[0] |= 0x800802000000; }
+        if n61 != self.pj_2_ack_missing { self.pj_2_ack_missing = n61; self.dirty[0] |= 0x1800000000000; }
+        if n62 != self.pj_2_ack_c { self.pj_2_ack_c = n62; self.dirty[0] |= 0x800800000000; }
+        if n63 != self.pj_2_ack_rx { self.pj_2_ack_rx = n63; self.dirty[0] |= 0x800000000; }
+        if n64 != self.sj_0_dis_r { self.sj_0_dis_r = n64; self.dirty[0] |= 0x201d0b8000001; }
+        if n65 != self.sj_0_bic_r { self.sj_0_bic_r = n65; self.dirty[0] |= 0x10008000001; }
+        if n66 != self.sj_0_life_r { self.sj_0_life_r = n66; self.dirty[0] |= 0x10008000000; }
+        if n67 != self.sj_0_dbc_r { self.sj_0_dbc_r = n67; self.dirty[0] |= 0x11008000001; }
+        if n68 != self.sj_0_nack_r { self.sj_0_nack_r = n68; self.dirty[0] |= 0x1010000000; }
+        if n69 != self.sj_0_cont_r { self.sj_0_cont_r = n69; self.dirty[0] |= 0x2031000000000; }
+        if n70 != self.sj_0_rep_r { self.sj_0_rep_r = n70; self.dirty[0] |= 0x8000001; }
+        if n71 != self.sj_0_rep_seen { self.sj_0_rep_seen = n71; self.dirty[0] |= 0x10008000000; }
+        if n72 != self.sj_0_rep_first_dom { self.sj_0_rep_first_dom = n72; self.dirty[0] |= 0x10008000000; }
+        if n73 != self.sj_0_ok_r { self.sj_0_ok_r = n73; self.dirty[0] |= 0x11008000000; }
+        if n74 != self.sj_0_acked { self.sj_0_acked = n74; self.dirty[0] |= 0x11008000000; }
+        if n75 != self.sj_0_bad { self.sj_0_bad = n75; self.dirty[0] |= 0x11008000000; }
+        if n76 != self.sj_0_ack_missing { self.sj_0_ack_missing = n76; self.dirty[0] |= 0x2030000000000; }
+        if n77 != self.sj_0_ack_c { self.sj_0_ack_c = n77; self.dirty[0] |= 0x1000000000; }
+        if n78 != self.sj_0_ack_rx { self.sj_0_ack_rx = n78; self.dirty[0] |= 0x1000000000; }
+        self.rst_s1 = n79;
+        if n80 != self.rst_s2 { self.rst_s2 = n80; self.dirty[0] |= 0x12a95f0b6daff1; }
     }
 
     /// `top` block, depth 0, state-only: reset_out, isolated$0, isolated$1, isolated$2, sub_isolated$0, efg_active, ... (18 signals)
@@ -1323,10 +1424,10 @@ impl HubCoreN3M1 {
         coupler_tx_0 = (!self.coupler_tx_n_0);
         coupler_tx_1 = (!self.coupler_tx_n_1);
         coupler_tx_2 = (!self.coupler_tx_n_2);
-        self.coupler_tx_0 = coupler_tx_0;
-        self.coupler_tx_1 = coupler_tx_1;
-        self.coupler_tx_2 = coupler_tx_2;
-        self.coupler_hub_tx_0 = coupler_hub_tx_0;
+        if coupler_tx_0 != self.coupler_tx_0 { self.coupler_tx_0 = coupler_tx_0; self.dirty[0] |= 0x20000000; }
+        if coupler_tx_1 != self.coupler_tx_1 { self.coupler_tx_1 = coupler_tx_1; self.dirty[0] |= 0x20000000; }
+        if coupler_tx_2 != self.coupler_tx_2 { self.coupler_tx_2 = coupler_tx_2; self.dirty[0] |= 0x20000000; }
+        if coupler_hub_tx_0 != self.coupler_hub_tx_0 { self.coupler_hub_tx_0 = coupler_hub_tx_0; self.dirty[0] |= 0x20000000; }
     }
 
     /// `coupler.up_sync$0` block, depth 0, state-only: coupler.up_sync$0.q, coupler.up_sync$0.s2_n.d
@@ -1341,7 +1442,7 @@ impl HubCoreN3M1 {
         if self.coupler_up_sync_0_two_stages {
             coupler_up_sync_0_q = (!self.coupler_up_sync_0_s2_n);
         }
-        self.coupler_up_sync_0_q = coupler_up_sync_0_q;
+        if coupler_up_sync_0_q != self.coupler_up_sync_0_q { self.coupler_up_sync_0_q = coupler_up_sync_0_q; self.dirty[0] |= 0xc000000000; }
         self.coupler_up_sync_0_s2_n_d = coupler_up_sync_0_s2_n_d;
     }
 
@@ -1367,7 +1468,7 @@ impl HubCoreN3M1 {
         if self.coupler_up_sync_1_two_stages {
             coupler_up_sync_1_q = (!self.coupler_up_sync_1_s2_n);
         }
-        self.coupler_up_sync_1_q = coupler_up_sync_1_q;
+        if coupler_up_sync_1_q != self.coupler_up_sync_1_q { self.coupler_up_sync_1_q = coupler_up_sync_1_q; self.dirty[0] |= 0xc000000000; }
         self.coupler_up_sync_1_s2_n_d = coupler_up_sync_1_s2_n_d;
     }
 
@@ -1393,7 +1494,7 @@ impl HubCoreN3M1 {
         if self.coupler_up_sync_2_two_stages {
             coupler_up_sync_2_q = (!self.coupler_up_sync_2_s2_n);
         }
-        self.coupler_up_sync_2_q = coupler_up_sync_2_q;
+        if coupler_up_sync_2_q != self.coupler_up_sync_2_q { self.coupler_up_sync_2_q = coupler_up_sync_2_q; self.dirty[0] |= 0xc000000000; }
         self.coupler_up_sync_2_s2_n_d = coupler_up_sync_2_s2_n_d;
     }
 
@@ -1419,7 +1520,7 @@ impl HubCoreN3M1 {
         if self.coupler_reh_sync_0_two_stages {
             coupler_reh_sync_0_q = (!self.coupler_reh_sync_0_s2_n);
         }
-        self.coupler_reh_sync_0_q = coupler_reh_sync_0_q;
+        if coupler_reh_sync_0_q != self.coupler_reh_sync_0_q { self.coupler_reh_sync_0_q = coupler_reh_sync_0_q; self.dirty[0] |= 0x203f0a0000000; }
         self.coupler_reh_sync_0_s2_n_d = coupler_reh_sync_0_s2_n_d;
     }
 
@@ -1439,8 +1540,8 @@ impl HubCoreN3M1 {
         let mut efgen_busy: bool = false;
         efgen_efg = (!self.efgen_driving);
         efgen_busy = (self.efgen_pending | self.efgen_driving);
-        self.efgen_efg = efgen_efg;
-        self.efgen_busy = efgen_busy;
+        if efgen_efg != self.efgen_efg { self.efgen_efg = efgen_efg; self.dirty[0] |= 0xc000000000; }
+        if efgen_busy != self.efgen_busy { self.efgen_busy = efgen_busy; self.dirty[0] |= 0x4000040000000; }
     }
 
     /// `efgen` block, depth 0, input-dependent: efgen.driving.d, efgen.cnt.d
@@ -1491,16 +1592,16 @@ impl HubCoreN3M1 {
         decode_eof_last = ((self.mon_field == 0xb_u8) & (self.mon_pos == 6u8));
         decode_im_2 = ((self.mon_field == 0xc_u8) & (self.mon_pos == 1u8));
         decode_err_phase = (self.mon_field >= 0xd_u8);
-        self.decode_sof = decode_sof;
-        self.decode_tx_region = decode_tx_region;
-        self.decode_arb = decode_arb;
-        self.decode_crc_delim = decode_crc_delim;
-        self.decode_ack_slot = decode_ack_slot;
-        self.decode_ack_delim = decode_ack_delim;
-        self.decode_eof_1_6 = decode_eof_1_6;
-        self.decode_eof_last = decode_eof_last;
-        self.decode_im_2 = decode_im_2;
-        self.decode_err_phase = decode_err_phase;
+        if decode_sof != self.decode_sof { self.decode_sof = decode_sof; self.dirty[0] |= 0x2a80000000000; }
+        if decode_tx_region != self.decode_tx_region { self.decode_tx_region = decode_tx_region; self.dirty[0] |= 0x3fb0000000000; }
+        if decode_arb != self.decode_arb { self.decode_arb = decode_arb; self.dirty[0] |= 0x3fb0000000000; }
+        if decode_crc_delim != self.decode_crc_delim { self.decode_crc_delim = decode_crc_delim; self.dirty[0] |= 0x1fb0000000000; }
+        if decode_ack_slot != self.decode_ack_slot { self.decode_ack_slot = decode_ack_slot; self.dirty[0] |= 0x3fb1e00000000; }
+        if decode_ack_delim != self.decode_ack_delim { self.decode_ack_delim = decode_ack_delim; self.dirty[0] |= 0x1fb1e00000000; }
+        if decode_eof_1_6 != self.decode_eof_1_6 { self.decode_eof_1_6 = decode_eof_1_6; self.dirty[0] |= 0x1fb0000000000; }
+        if decode_eof_last != self.decode_eof_last { self.decode_eof_last = decode_eof_last; self.dirty[0] |= 0x100000000; }
+        if decode_im_2 != self.decode_im_2 { self.decode_im_2 = decode_im_2; self.dirty[0] |= 0x1fb0000000000; }
+        if decode_err_phase != self.decode_err_phase { self.decode_err_phase = decode_err_phase; self.dirty[0] |= 0x40000000; }
     }
 
     /// `injector` block, depth 0, state-only: injector.active, injector.btn_prev.d
@@ -1512,7 +1613,7 @@ impl HubCoreN3M1 {
             injector_btn_prev_d = false;
         }
         injector_active = ((self.injector_state == 2u8) | (self.injector_state == 3u8));
-        self.injector_active = injector_active;
+        if injector_active != self.injector_active { self.injector_active = injector_active; self.dirty[0] |= 0x20000000; }
         self.injector_btn_prev_d = injector_btn_prev_d;
     }
 
@@ -1545,7 +1646,7 @@ impl HubCoreN3M1 {
             pj_0_rep_first_dom_d = false;
         }
         pj_0_silent = (self.pj_0_nack_r >= self.pj_0_nack_thr);
-        self.pj_0_silent = pj_0_silent;
+        if pj_0_silent != self.pj_0_silent { self.pj_0_silent = pj_0_silent; self.dirty[0] |= 0x20000000; }
         self.pj_0_rep_first_dom_d = pj_0_rep_first_dom_d;
     }
 
@@ -1613,7 +1714,7 @@ impl HubCoreN3M1 {
             pj_1_rep_first_dom_d = false;
         }
         pj_1_silent = (self.pj_1_nack_r >= self.pj_1_nack_thr);
-        self.pj_1_silent = pj_1_silent;
+        if pj_1_silent != self.pj_1_silent { self.pj_1_silent = pj_1_silent; self.dirty[0] |= 0x20000000; }
         self.pj_1_rep_first_dom_d = pj_1_rep_first_dom_d;
     }
 
@@ -1681,7 +1782,7 @@ impl HubCoreN3M1 {
             pj_2_rep_first_dom_d = false;
         }
         pj_2_silent = (self.pj_2_nack_r >= self.pj_2_nack_thr);
-        self.pj_2_silent = pj_2_silent;
+        if pj_2_silent != self.pj_2_silent { self.pj_2_silent = pj_2_silent; self.dirty[0] |= 0x20000000; }
         self.pj_2_rep_first_dom_d = pj_2_rep_first_dom_d;
     }
 
@@ -1867,22 +1968,22 @@ impl HubCoreN3M1 {
         self.silent_1 = silent_1;
         self.silent_2 = silent_2;
         self.inject_active = inject_active;
-        self.coupler_up_fault_0 = coupler_up_fault_0;
-        self.coupler_up_fault_1 = coupler_up_fault_1;
-        self.coupler_up_fault_2 = coupler_up_fault_2;
-        self.coupler_down_fault_0 = coupler_down_fault_0;
-        self.coupler_down_fault_1 = coupler_down_fault_1;
-        self.coupler_down_fault_2 = coupler_down_fault_2;
-        self.coupler_hub_fault_0 = coupler_hub_fault_0;
-        self.sj_0_rep_rec = sj_0_rep_rec;
-        self.sj_0_rep_dom = sj_0_rep_dom;
+        if coupler_up_fault_0 != self.coupler_up_fault_0 { self.coupler_up_fault_0 = coupler_up_fault_0; self.dirty[0] |= 0xc000000000; }
+        if coupler_up_fault_1 != self.coupler_up_fault_1 { self.coupler_up_fault_1 = coupler_up_fault_1; self.dirty[0] |= 0xc000000000; }
+        if coupler_up_fault_2 != self.coupler_up_fault_2 { self.coupler_up_fault_2 = coupler_up_fault_2; self.dirty[0] |= 0xc000000000; }
+        if coupler_down_fault_0 != self.coupler_down_fault_0 { self.coupler_down_fault_0 = coupler_down_fault_0; self.dirty[0] |= 0xc000000000; }
+        if coupler_down_fault_1 != self.coupler_down_fault_1 { self.coupler_down_fault_1 = coupler_down_fault_1; self.dirty[0] |= 0xc000000000; }
+        if coupler_down_fault_2 != self.coupler_down_fault_2 { self.coupler_down_fault_2 = coupler_down_fault_2; self.dirty[0] |= 0xc000000000; }
+        if coupler_hub_fault_0 != self.coupler_hub_fault_0 { self.coupler_hub_fault_0 = coupler_hub_fault_0; self.dirty[0] |= 0xc000000000; }
+        if sj_0_rep_rec != self.sj_0_rep_rec { self.sj_0_rep_rec = sj_0_rep_rec; self.dirty[0] |= 0x10000000000; }
+        if sj_0_rep_dom != self.sj_0_rep_dom { self.sj_0_rep_dom = sj_0_rep_dom; self.dirty[0] |= 0x10000000000; }
     }
 
     /// `top` block, depth 1, input-dependent: err_phase
     fn g30(&mut self) {
         let mut err_phase: bool = false;
         err_phase = (self.decode_err_phase | self.efgen_busy);
-        self.err_phase = err_phase;
+        if err_phase != self.err_phase { self.err_phase = err_phase; self.dirty[0] |= 0x3fb0000000000; }
     }
 
     /// `top` block, depth 1, probe-only: rep_rec, rep_dom
@@ -2259,10 +2360,10 @@ impl HubCoreN3M1 {
         if self.rst_s2 {
             coupler_tx_n_2_d = false;
         }
-        self.coupler_u_0 = coupler_u_0;
-        self.coupler_u_1 = coupler_u_1;
-        self.coupler_u_2 = coupler_u_2;
-        self.coupler_bt = coupler_bt;
+        if coupler_u_0 != self.coupler_u_0 { self.coupler_u_0 = coupler_u_0; self.dirty[0] |= 0x180000000000; }
+        if coupler_u_1 != self.coupler_u_1 { self.coupler_u_1 = coupler_u_1; self.dirty[0] |= 0x600000000000; }
+        if coupler_u_2 != self.coupler_u_2 { self.coupler_u_2 = coupler_u_2; self.dirty[0] |= 0x1800000000000; }
+        if coupler_bt != self.coupler_bt { self.coupler_bt = coupler_bt; self.dirty[0] |= 0x2ac0000000000; }
         self.coupler_tx_n_0_d = coupler_tx_n_0_d;
         self.coupler_tx_n_1_d = coupler_tx_n_1_d;
         self.coupler_tx_n_2_d = coupler_tx_n_2_d;
@@ -2432,7 +2533,7 @@ impl HubCoreN3M1 {
             sj_0_rep_first_dom_d = false;
             sj_0_bad_d = false;
         }
-        self.sj_0_blame = sj_0_blame;
+        if sj_0_blame != self.sj_0_blame { self.sj_0_blame = sj_0_blame; self.dirty[0] |= 0xc000000000000; }
         self.sj_0_bic_r_d = sj_0_bic_r_d;
         self.sj_0_life_r_d = sj_0_life_r_d;
         self.sj_0_rep_seen_d = sj_0_rep_seen_d;
@@ -2544,8 +2645,8 @@ impl HubCoreN3M1 {
             pj_0_ack_missing_d = false;
             pj_0_ack_c_d = false;
         }
-        self.pj_0_blame = pj_0_blame;
-        self.pj_0_tx_error = pj_0_tx_error;
+        if pj_0_blame != self.pj_0_blame { self.pj_0_blame = pj_0_blame; self.dirty[0] |= 0xc000000000000; }
+        if pj_0_tx_error != self.pj_0_tx_error { self.pj_0_tx_error = pj_0_tx_error; self.dirty[0] |= 0xc000000000000; }
         self.pj_0_bic_r_d = pj_0_bic_r_d;
         self.pj_0_life_r_d = pj_0_life_r_d;
         self.pj_0_dbc_r_d = pj_0_dbc_r_d;
@@ -2653,8 +2754,8 @@ impl HubCoreN3M1 {
             pj_1_ack_missing_d = false;
             pj_1_ack_c_d = false;
         }
-        self.pj_1_blame = pj_1_blame;
-        self.pj_1_tx_error = pj_1_tx_error;
+        if pj_1_blame != self.pj_1_blame { self.pj_1_blame = pj_1_blame; self.dirty[0] |= 0xc000000000000; }
+        if pj_1_tx_error != self.pj_1_tx_error { self.pj_1_tx_error = pj_1_tx_error; self.dirty[0] |= 0xc000000000000; }
         self.pj_1_bic_r_d = pj_1_bic_r_d;
         self.pj_1_life_r_d = pj_1_life_r_d;
         self.pj_1_dbc_r_d = pj_1_dbc_r_d;
@@ -2762,8 +2863,8 @@ impl HubCoreN3M1 {
             pj_2_ack_missing_d = false;
             pj_2_ack_c_d = false;
         }
-        self.pj_2_blame = pj_2_blame;
-        self.pj_2_tx_error = pj_2_tx_error;
+        if pj_2_blame != self.pj_2_blame { self.pj_2_blame = pj_2_blame; self.dirty[0] |= 0xc000000000000; }
+        if pj_2_tx_error != self.pj_2_tx_error { self.pj_2_tx_error = pj_2_tx_error; self.dirty[0] |= 0xc000000000000; }
         self.pj_2_bic_r_d = pj_2_bic_r_d;
         self.pj_2_life_r_d = pj_2_life_r_d;
         self.pj_2_dbc_r_d = pj_2_dbc_r_d;
@@ -2811,7 +2912,7 @@ impl HubCoreN3M1 {
             sj_0_cont_r_d = false;
             sj_0_ack_missing_d = false;
         }
-        self.sj_0_tx_error = sj_0_tx_error;
+        if sj_0_tx_error != self.sj_0_tx_error { self.sj_0_tx_error = sj_0_tx_error; self.dirty[0] |= 0xc000000000000; }
         self.sj_0_cont_r_d = sj_0_cont_r_d;
         self.sj_0_ack_missing_d = sj_0_ack_missing_d;
     }
@@ -2835,7 +2936,7 @@ impl HubCoreN3M1 {
         trigger = (self.mon_sample & ((self.mon_error | any_blame) | any_tx_error));
         err_start_r_d = (trigger & (!self.efgen_busy));
         self.err_start_r_d = err_start_r_d;
-        self.trigger = trigger;
+        if trigger != self.trigger { self.trigger = trigger; self.dirty[0] |= 0x10000000000000; }
     }
 
     /// `top` block, depth 4, probe-only: any_blame, any_tx_error
@@ -3720,6 +3821,7 @@ impl rt::Model for HubCoreN3M1 {
             546 => self.rst_s2 = (v & 1) != 0,
             _ => return false,
         }
+        self.dirty = [!0; 1];
         true
     }
     fn set_mem(&mut self, r: usize, addr: usize, v: u128) {

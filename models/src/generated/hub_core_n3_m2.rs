@@ -802,6 +802,22 @@ pub struct HubCoreN3M2 {
     pub rep_rec: bool,
     /// `rep_dom` (combinational, 1 bit)
     pub rep_dom: bool,
+    seen_rst_n: bool,
+    seen_inject_fault: bool,
+    seen_rx_0: bool,
+    seen_rx_1: bool,
+    seen_rx_2: bool,
+    seen_reh_rx_0: bool,
+    seen_reh_rx_1: bool,
+    seen_mon_sample: bool,
+    seen_mon_bit_start: bool,
+    seen_mon_field: u8,
+    seen_mon_pos: u8,
+    seen_mon_crc_ok: bool,
+    seen_mon_frame_ok: bool,
+    seen_mon_error: bool,
+    /// Groups to evaluate (one bit per group, see `run`).
+    dirty: [u64; 1],
     trace: bool,
 }
 
@@ -1214,6 +1230,21 @@ impl HubCoreN3M2 {
             trigger: false,
             rep_rec: false,
             rep_dom: false,
+            seen_rst_n: false,
+            seen_inject_fault: false,
+            seen_rx_0: false,
+            seen_rx_1: false,
+            seen_rx_2: false,
+            seen_reh_rx_0: false,
+            seen_reh_rx_1: false,
+            seen_mon_sample: false,
+            seen_mon_bit_start: false,
+            seen_mon_field: 0u8,
+            seen_mon_pos: 0u8,
+            seen_mon_crc_ok: false,
+            seen_mon_frame_ok: false,
+            seen_mon_error: false,
+            dirty: [!0; 1],
             trace: false,
         };
         m.eval_all();
@@ -1227,249 +1258,334 @@ impl HubCoreN3M2 {
         Ok(m)
     }
 
+    /// Groups evaluated before the edge: input-dependent.
+    const PRE: [u64; 1] = [0x2ea945f4a925aaa6];
+    /// Groups evaluated after the edge: state-only and the output cone.
+    const POST: [u64; 1] = [0x410020492555d];
+    const ALL: [u64; 1] = [0x3fffffffffffffff];
+
     /// One clock cycle (`canstar_hdl::drive::cycle`): settle, rising edge, settle.
     pub fn cycle(&mut self) {
-        self.eval_pre();
+        self.sense();
+        self.run(&Self::PRE);
         self.edge();
-        if self.trace {
-            self.eval_all();
-        } else {
-            self.eval_post();
-        }
+        self.run(if self.trace { &Self::ALL } else { &Self::POST });
     }
 
     /// Propagate input changes (no clock edge).
     pub fn settle(&mut self) {
-        if self.trace {
-            self.eval_all();
-        } else {
-            self.eval_pre();
+        self.sense();
+        self.run(if self.trace { &Self::ALL } else { &Self::PRE });
+    }
+
+    /// Evaluate every group.
+    fn eval_all(&mut self) {
+        self.dirty = [!0; 1];
+        self.sense();
+        self.run(&Self::ALL);
+    }
+
+    /// Run the dirty groups of a phase, in dependency order.
+    fn run(&mut self, phase: &[u64; 1]) {
+        for w in 0..1 {
+            loop {
+                let m = self.dirty[w] & phase[w];
+                if m == 0 {
+                    break;
+                }
+                let k = m.trailing_zeros() as usize;
+                self.dirty[w] &= !(1u64 << k);
+                self.group(w * 64 + k);
+            }
         }
     }
 
-    /// Input-dependent groups (before the edge).
-    fn eval_pre(&mut self) {
-        self.g1();
-        self.g2();
-        self.g5();
-        self.g7();
-        self.g9();
-        self.g11();
-        self.g13();
-        self.g15();
-        self.g16();
-        self.g18();
-        self.g21();
-        self.g24();
-        self.g27();
-        self.g29();
-        self.g31();
-        self.g34();
-        self.g36();
-        self.g37();
-        self.g38();
-        self.g39();
-        self.g40();
-        self.g42();
-        self.g46();
-        self.g48();
-        self.g51();
-        self.g53();
-        self.g55();
-        self.g57();
-        self.g58();
-        self.g59();
-        self.g61();
+    fn group(&mut self, k: usize) {
+        match k {
+            0 => self.g0(),
+            1 => self.g1(),
+            2 => self.g2(),
+            3 => self.g3(),
+            4 => self.g4(),
+            5 => self.g5(),
+            6 => self.g6(),
+            7 => self.g7(),
+            8 => self.g8(),
+            9 => self.g9(),
+            10 => self.g10(),
+            11 => self.g11(),
+            12 => self.g12(),
+            13 => self.g13(),
+            14 => self.g14(),
+            15 => self.g15(),
+            16 => self.g16(),
+            17 => self.g17(),
+            18 => self.g18(),
+            19 => self.g19(),
+            20 => self.g20(),
+            21 => self.g21(),
+            22 => self.g22(),
+            23 => self.g23(),
+            24 => self.g24(),
+            25 => self.g25(),
+            26 => self.g26(),
+            27 => self.g27(),
+            28 => self.g28(),
+            29 => self.g29(),
+            30 => self.g30(),
+            31 => self.g31(),
+            32 => self.g32(),
+            33 => self.g33(),
+            34 => self.g34(),
+            35 => self.g35(),
+            36 => self.g36(),
+            37 => self.g37(),
+            38 => self.g38(),
+            39 => self.g39(),
+            40 => self.g40(),
+            41 => self.g41(),
+            42 => self.g42(),
+            43 => self.g43(),
+            44 => self.g44(),
+            45 => self.g45(),
+            46 => self.g46(),
+            47 => self.g47(),
+            48 => self.g48(),
+            49 => self.g49(),
+            50 => self.g50(),
+            51 => self.g51(),
+            52 => self.g52(),
+            53 => self.g53(),
+            54 => self.g54(),
+            55 => self.g55(),
+            56 => self.g56(),
+            57 => self.g57(),
+            58 => self.g58(),
+            59 => self.g59(),
+            60 => self.g60(),
+            61 => self.g61(),
+            _ => {}
+        }
     }
 
-    /// State-only groups and the output cone (after the edge).
-    fn eval_post(&mut self) {
-        self.g0();
-        self.g2();
-        self.g3();
-        self.g4();
-        self.g6();
-        self.g8();
-        self.g10();
-        self.g12();
-        self.g14();
-        self.g17();
-        self.g20();
-        self.g23();
-        self.g26();
-        self.g33();
-        self.g44();
-        self.g50();
-    }
-
-    /// Every group.
-    fn eval_all(&mut self) {
-        self.g0();
-        self.g1();
-        self.g2();
-        self.g3();
-        self.g4();
-        self.g5();
-        self.g6();
-        self.g7();
-        self.g8();
-        self.g9();
-        self.g10();
-        self.g11();
-        self.g12();
-        self.g13();
-        self.g14();
-        self.g15();
-        self.g16();
-        self.g17();
-        self.g18();
-        self.g19();
-        self.g20();
-        self.g21();
-        self.g22();
-        self.g23();
-        self.g24();
-        self.g25();
-        self.g26();
-        self.g27();
-        self.g28();
-        self.g29();
-        self.g30();
-        self.g31();
-        self.g32();
-        self.g33();
-        self.g34();
-        self.g35();
-        self.g36();
-        self.g37();
-        self.g38();
-        self.g39();
-        self.g40();
-        self.g41();
-        self.g42();
-        self.g43();
-        self.g44();
-        self.g45();
-        self.g46();
-        self.g47();
-        self.g48();
-        self.g49();
-        self.g50();
-        self.g51();
-        self.g52();
-        self.g53();
-        self.g54();
-        self.g55();
-        self.g56();
-        self.g57();
-        self.g58();
-        self.g59();
-        self.g60();
-        self.g61();
+    /// Inputs that changed since they were last seen mark their readers.
+    fn sense(&mut self) {
+        if self.rst_n != self.seen_rst_n { self.seen_rst_n = self.rst_n; self.dirty[0] |= 0x2; }
+        if self.inject_fault != self.seen_inject_fault { self.seen_inject_fault = self.inject_fault; self.dirty[0] |= 0x40000; }
+        if self.rx_0 != self.seen_rx_0 { self.seen_rx_0 = self.rx_0; self.dirty[0] |= 0x20; }
+        if self.rx_1 != self.seen_rx_1 { self.seen_rx_1 = self.rx_1; self.dirty[0] |= 0x80; }
+        if self.rx_2 != self.seen_rx_2 { self.seen_rx_2 = self.rx_2; self.dirty[0] |= 0x200; }
+        if self.reh_rx_0 != self.seen_reh_rx_0 { self.seen_reh_rx_0 = self.reh_rx_0; self.dirty[0] |= 0x800; }
+        if self.reh_rx_1 != self.seen_reh_rx_1 { self.seen_reh_rx_1 = self.reh_rx_1; self.dirty[0] |= 0x2000; }
+        if self.mon_sample != self.seen_mon_sample { self.seen_mon_sample = self.mon_sample; self.dirty[0] |= 0xea945f0a9200000; }
+        if self.mon_bit_start != self.seen_mon_bit_start { self.seen_mon_bit_start = self.mon_bit_start; self.dirty[0] |= 0x2000000000008000; }
+        if self.mon_field != self.seen_mon_field { self.seen_mon_field = self.mon_field; self.dirty[0] |= 0x1000010004; }
+        if self.mon_pos != self.seen_mon_pos { self.seen_mon_pos = self.mon_pos; self.dirty[0] |= 0x10000; }
+        if self.mon_crc_ok != self.seen_mon_crc_ok { self.seen_mon_crc_ok = self.mon_crc_ok; self.dirty[0] |= 0x5e000000000; }
+        if self.mon_frame_ok != self.seen_mon_frame_ok { self.seen_mon_frame_ok = self.mon_frame_ok; self.dirty[0] |= 0xa945e0a9200000; }
+        if self.mon_error != self.seen_mon_error { self.seen_mon_error = self.mon_error; self.dirty[0] |= 0x800000000000000; }
     }
 
     /// Rising edge: registers and memories take their inputs.
     fn edge(&mut self) {
+        let n0 = self.coupler_up_sync_0_s1_n_d;
+        let n1 = self.coupler_up_sync_0_s2_n_d;
+        let n2 = self.coupler_up_sync_1_s1_n_d;
+        let n3 = self.coupler_up_sync_1_s2_n_d;
+        let n4 = self.coupler_up_sync_2_s1_n_d;
+        let n5 = self.coupler_up_sync_2_s2_n_d;
+        let n6 = self.coupler_reh_sync_0_s1_n_d;
+        let n7 = self.coupler_reh_sync_0_s2_n_d;
+        let n8 = self.coupler_reh_sync_1_s1_n_d;
+        let n9 = self.coupler_reh_sync_1_s2_n_d;
+        let n10 = self.coupler_tx_n_0_d;
+        let n11 = self.coupler_tx_n_1_d;
+        let n12 = self.coupler_tx_n_2_d;
+        let n13 = self.coupler_hub_tx_n_0_d;
+        let n14 = self.coupler_hub_tx_n_1_d;
+        let n15 = self.efgen_pending_d;
+        let n16 = self.efgen_driving_d;
+        let n17 = self.efgen_cnt_d;
+        let n18 = self.err_start_r_d;
+        let n19 = self.injector_state_d;
+        let n20 = self.injector_btn_prev_d;
+        let n21 = self.injector_btn_r_d;
+        let n22 = self.pj_0_dis_r_d;
+        let n23 = self.pj_0_bic_r_d;
+        let n24 = self.pj_0_life_r_d;
+        let n25 = self.pj_0_dbc_r_d;
+        let n26 = self.pj_0_nack_r_d;
+        let n27 = self.pj_0_cont_r_d;
+        let n28 = self.pj_0_rep_r_d;
+        let n29 = self.pj_0_rep_seen_d;
+        let n30 = self.pj_0_rep_first_dom_d;
+        let n31 = self.pj_0_ok_r_d;
+        let n32 = self.pj_0_acked_d;
+        let n33 = self.pj_0_bad_d;
+        let n34 = self.pj_0_ack_missing_d;
+        let n35 = self.pj_0_ack_c_d;
+        let n36 = self.pj_0_ack_rx_d;
+        let n37 = self.pj_1_dis_r_d;
+        let n38 = self.pj_1_bic_r_d;
+        let n39 = self.pj_1_life_r_d;
+        let n40 = self.pj_1_dbc_r_d;
+        let n41 = self.pj_1_nack_r_d;
+        let n42 = self.pj_1_cont_r_d;
+        let n43 = self.pj_1_rep_r_d;
+        let n44 = self.pj_1_rep_seen_d;
+        let n45 = self.pj_1_rep_first_dom_d;
+        let n46 = self.pj_1_ok_r_d;
+        let n47 = self.pj_1_acked_d;
+        let n48 = self.pj_1_bad_d;
+        let n49 = self.pj_1_ack_missing_d;
+        let n50 = self.pj_1_ack_c_d;
+        let n51 = self.pj_1_ack_rx_d;
+        let n52 = self.pj_2_dis_r_d;
+        let n53 = self.pj_2_bic_r_d;
+        let n54 = self.pj_2_life_r_d;
+        let n55 = self.pj_2_dbc_r_d;
+        let n56 = self.pj_2_nack_r_d;
+        let n57 = self.pj_2_cont_r_d;
+        let n58 = self.pj_2_rep_r_d;
+        let n59 = self.pj_2_rep_seen_d;
+        let n60 = self.pj_2_rep_first_dom_d;
+        let n61 = self.pj_2_ok_r_d;
+        let n62 = self.pj_2_acked_d;
+        let n63 = self.pj_2_bad_d;
+        let n64 = self.pj_2_ack_missing_d;
+        let n65 = self.pj_2_ack_c_d;
+        let n66 = self.pj_2_ack_rx_d;
+        let n67 = self.sj_0_dis_r_d;
+        let n68 = self.sj_0_bic_r_d;
+        let n69 = self.sj_0_life_r_d;
+        let n70 = self.sj_0_dbc_r_d;
+        let n71 = self.sj_0_nack_r_d;
+        let n72 = self.sj_0_cont_r_d;
+        let n73 = self.sj_0_rep_r_d;
+        let n74 = self.sj_0_rep_seen_d;
+        let n75 = self.sj_0_rep_first_dom_d;
+        let n76 = self.sj_0_ok_r_d;
+        let n77 = self.sj_0_acked_d;
+        let n78 = self.sj_0_bad_d;
+        let n79 = self.sj_0_ack_missing_d;
+        let n80 = self.sj_0_ack_c_d;
+        let n81 = self.sj_0_ack_rx_d;
+        let n82 = self.sj_1_dis_r_d;
+        let n83 = self.sj_1_bic_r_d;
+        let n84 = self.sj_1_life_r_d;
+        let n85 = self.sj_1_dbc_r_d;
+        let n86 = self.sj_1_nack_r_d;
+        let n87 = self.sj_1_cont_r_d;
+        let n88 = self.sj_1_rep_r_d;
+        let n89 = self.sj_1_rep_seen_d;
+        let n90 = self.sj_1_rep_first_dom_d;
+        let n91 = self.sj_1_ok_r_d;
+        let n92 = self.sj_1_acked_d;
+        let n93 = self.sj_1_bad_d;
+        let n94 = self.sj_1_ack_missing_d;
+        let n95 = self.sj_1_ack_c_d;
+        let n96 = self.sj_1_ack_rx_d;
+        let n97 = self.rst_s1_d;
         let n98 = self.rst_s1;
-        self.coupler_up_sync_0_s1_n = self.coupler_up_sync_0_s1_n_d;
-        self.coupler_up_sync_0_s2_n = self.coupler_up_sync_0_s2_n_d;
-        self.coupler_up_sync_1_s1_n = self.coupler_up_sync_1_s1_n_d;
-        self.coupler_up_sync_1_s2_n = self.coupler_up_sync_1_s2_n_d;
-        self.coupler_up_sync_2_s1_n = self.coupler_up_sync_2_s1_n_d;
-        self.coupler_up_sync_2_s2_n = self.coupler_up_sync_2_s2_n_d;
-        self.coupler_reh_sync_0_s1_n = self.coupler_reh_sync_0_s1_n_d;
-        self.coupler_reh_sync_0_s2_n = self.coupler_reh_sync_0_s2_n_d;
-        self.coupler_reh_sync_1_s1_n = self.coupler_reh_sync_1_s1_n_d;
-        self.coupler_reh_sync_1_s2_n = self.coupler_reh_sync_1_s2_n_d;
-        self.coupler_tx_n_0 = self.coupler_tx_n_0_d;
-        self.coupler_tx_n_1 = self.coupler_tx_n_1_d;
-        self.coupler_tx_n_2 = self.coupler_tx_n_2_d;
-        self.coupler_hub_tx_n_0 = self.coupler_hub_tx_n_0_d;
-        self.coupler_hub_tx_n_1 = self.coupler_hub_tx_n_1_d;
-        self.efgen_pending = self.efgen_pending_d;
-        self.efgen_driving = self.efgen_driving_d;
-        self.efgen_cnt = self.efgen_cnt_d;
-        self.err_start_r = self.err_start_r_d;
-        self.injector_state = self.injector_state_d;
-        self.injector_btn_prev = self.injector_btn_prev_d;
-        self.injector_btn_r = self.injector_btn_r_d;
-        self.pj_0_dis_r = self.pj_0_dis_r_d;
-        self.pj_0_bic_r = self.pj_0_bic_r_d;
-        self.pj_0_life_r = self.pj_0_life_r_d;
-        self.pj_0_dbc_r = self.pj_0_dbc_r_d;
-        self.pj_0_nack_r = self.pj_0_nack_r_d;
-        self.pj_0_cont_r = self.pj_0_cont_r_d;
-        self.pj_0_rep_r = self.pj_0_rep_r_d;
-        self.pj_0_rep_seen = self.pj_0_rep_seen_d;
-        self.pj_0_rep_first_dom = self.pj_0_rep_first_dom_d;
-        self.pj_0_ok_r = self.pj_0_ok_r_d;
-        self.pj_0_acked = self.pj_0_acked_d;
-        self.pj_0_bad = self.pj_0_bad_d;
-        self.pj_0_ack_missing = self.pj_0_ack_missing_d;
-        self.pj_0_ack_c = self.pj_0_ack_c_d;
-        self.pj_0_ack_rx = self.pj_0_ack_rx_d;
-        self.pj_1_dis_r = self.pj_1_dis_r_d;
-        self.pj_1_bic_r = self.pj_1_bic_r_d;
-        self.pj_1_life_r = self.pj_1_life_r_d;
-        self.pj_1_dbc_r = self.pj_1_dbc_r_d;
-        self.pj_1_nack_r = self.pj_1_nack_r_d;
-        self.pj_1_cont_r = self.pj_1_cont_r_d;
-        self.pj_1_rep_r = self.pj_1_rep_r_d;
-        self.pj_1_rep_seen = self.pj_1_rep_seen_d;
-        self.pj_1_rep_first_dom = self.pj_1_rep_first_dom_d;
-        self.pj_1_ok_r = self.pj_1_ok_r_d;
-        self.pj_1_acked = self.pj_1_acked_d;
-        self.pj_1_bad = self.pj_1_bad_d;
-        self.pj_1_ack_missing = self.pj_1_ack_missing_d;
-        self.pj_1_ack_c = self.pj_1_ack_c_d;
-        self.pj_1_ack_rx = self.pj_1_ack_rx_d;
-        self.pj_2_dis_r = self.pj_2_dis_r_d;
-        self.pj_2_bic_r = self.pj_2_bic_r_d;
-        self.pj_2_life_r = self.pj_2_life_r_d;
-        self.pj_2_dbc_r = self.pj_2_dbc_r_d;
-        self.pj_2_nack_r = self.pj_2_nack_r_d;
-        self.pj_2_cont_r = self.pj_2_cont_r_d;
-        self.pj_2_rep_r = self.pj_2_rep_r_d;
-        self.pj_2_rep_seen = self.pj_2_rep_seen_d;
-        self.pj_2_rep_first_dom = self.pj_2_rep_first_dom_d;
-        self.pj_2_ok_r = self.pj_2_ok_r_d;
-        self.pj_2_acked = self.pj_2_acked_d;
-        self.pj_2_bad = self.pj_2_bad_d;
-        self.pj_2_ack_missing = self.pj_2_ack_missing_d;
-        self.pj_2_ack_c = self.pj_2_ack_c_d;
-        self.pj_2_ack_rx = self.pj_2_ack_rx_d;
-        self.sj_0_dis_r = self.sj_0_dis_r_d;
-        self.sj_0_bic_r = self.sj_0_bic_r_d;
-        self.sj_0_life_r = self.sj_0_life_r_d;
-        self.sj_0_dbc_r = self.sj_0_dbc_r_d;
-        self.sj_0_nack_r = self.sj_0_nack_r_d;
-        self.sj_0_cont_r = self.sj_0_cont_r_d;
-        self.sj_0_rep_r = self.sj_0_rep_r_d;
-        self.sj_0_rep_seen = self.sj_0_rep_seen_d;
-        self.sj_0_rep_first_dom = self.sj_0_rep_first_dom_d;
-        self.sj_0_ok_r = self.sj_0_ok_r_d;
-        self.sj_0_acked = self.sj_0_acked_d;
-        self.sj_0_bad = self.sj_0_bad_d;
-        self.sj_0_ack_missing = self.sj_0_ack_missing_d;
-        self.sj_0_ack_c = self.sj_0_ack_c_d;
-        self.sj_0_ack_rx = self.sj_0_ack_rx_d;
-        self.sj_1_dis_r = self.sj_1_dis_r_d;
-        self.sj_1_bic_r = self.sj_1_bic_r_d;
-        self.sj_1_life_r = self.sj_1_life_r_d;
-        self.sj_1_dbc_r = self.sj_1_dbc_r_d;
-        self.sj_1_nack_r = self.sj_1_nack_r_d;
-        self.sj_1_cont_r = self.sj_1_cont_r_d;
-        self.sj_1_rep_r = self.sj_1_rep_r_d;
-        self.sj_1_rep_seen = self.sj_1_rep_seen_d;
-        self.sj_1_rep_first_dom = self.sj_1_rep_first_dom_d;
-        self.sj_1_ok_r = self.sj_1_ok_r_d;
-        self.sj_1_acked = self.sj_1_acked_d;
-        self.sj_1_bad = self.sj_1_bad_d;
-        self.sj_1_ack_missing = self.sj_1_ack_missing_d;
-        self.sj_1_ack_c = self.sj_1_ack_c_d;
-        self.sj_1_ack_rx = self.sj_1_ack_rx_d;
-        self.rst_s1 = self.rst_s1_d;
-        self.rst_s2 = n98;
+        if n0 != self.coupler_up_sync_0_s1_n { self.coupler_up_sync_0_s1_n = n0; self.dirty[0] |= 0x10; }
+        if n1 != self.coupler_up_sync_0_s2_n { self.coupler_up_sync_0_s2_n = n1; self.dirty[0] |= 0x10; }
+        if n2 != self.coupler_up_sync_1_s1_n { self.coupler_up_sync_1_s1_n = n2; self.dirty[0] |= 0x40; }
+        if n3 != self.coupler_up_sync_1_s2_n { self.coupler_up_sync_1_s2_n = n3; self.dirty[0] |= 0x40; }
+        if n4 != self.coupler_up_sync_2_s1_n { self.coupler_up_sync_2_s1_n = n4; self.dirty[0] |= 0x100; }
+        if n5 != self.coupler_up_sync_2_s2_n { self.coupler_up_sync_2_s2_n = n5; self.dirty[0] |= 0x100; }
+        if n6 != self.coupler_reh_sync_0_s1_n { self.coupler_reh_sync_0_s1_n = n6; self.dirty[0] |= 0x400; }
+        if n7 != self.coupler_reh_sync_0_s2_n { self.coupler_reh_sync_0_s2_n = n7; self.dirty[0] |= 0x400; }
+        if n8 != self.coupler_reh_sync_1_s1_n { self.coupler_reh_sync_1_s1_n = n8; self.dirty[0] |= 0x1000; }
+        if n9 != self.coupler_reh_sync_1_s2_n { self.coupler_reh_sync_1_s2_n = n9; self.dirty[0] |= 0x1000; }
+        if n10 != self.coupler_tx_n_0 { self.coupler_tx_n_0 = n10; self.dirty[0] |= 0x8; }
+        if n11 != self.coupler_tx_n_1 { self.coupler_tx_n_1 = n11; self.dirty[0] |= 0x8; }
+        if n12 != self.coupler_tx_n_2 { self.coupler_tx_n_2 = n12; self.dirty[0] |= 0x8; }
+        if n13 != self.coupler_hub_tx_n_0 { self.coupler_hub_tx_n_0 = n13; self.dirty[0] |= 0x8; }
+        if n14 != self.coupler_hub_tx_n_1 { self.coupler_hub_tx_n_1 = n14; self.dirty[0] |= 0x8; }
+        if n15 != self.efgen_pending { self.efgen_pending = n15; self.dirty[0] |= 0x200000000000c000; }
+        if n16 != self.efgen_driving { self.efgen_driving = n16; self.dirty[0] |= 0x200000000000c001; }
+        if n17 != self.efgen_cnt { self.efgen_cnt = n17; self.dirty[0] |= 0x8000; }
+        if n18 != self.err_start_r { self.err_start_r = n18; self.dirty[0] |= 0x14000a0000000; }
+        if n19 != self.injector_state { self.injector_state = n19; self.dirty[0] |= 0x10000a0000; }
+        if n20 != self.injector_btn_prev { self.injector_btn_prev = n20; self.dirty[0] |= 0x1000080000; }
+        if n21 != self.injector_btn_r { self.injector_btn_r = n21; self.dirty[0] |= 0x10000a0000; }
+        if n22 != self.pj_0_dis_r { self.pj_0_dis_r = n22; self.dirty[0] |= 0x8302000600001; }
+        if n23 != self.pj_0_bic_r { self.pj_0_bic_r = n23; self.dirty[0] |= 0x8000000200001; }
+        if n24 != self.pj_0_life_r { self.pj_0_life_r = n24; self.dirty[0] |= 0x8000000200000; }
+        if n25 != self.pj_0_dbc_r { self.pj_0_dbc_r = n25; self.dirty[0] |= 0x8000000200001; }
+        if n26 != self.pj_0_nack_r { self.pj_0_nack_r = n26; self.dirty[0] |= 0x2000100001; }
+        if n27 != self.pj_0_cont_r { self.pj_0_cont_r = n27; self.dirty[0] |= 0x18002000000000; }
+        if n28 != self.pj_0_rep_r { self.pj_0_rep_r = n28; self.dirty[0] |= 0x200000; }
+        if n29 != self.pj_0_rep_seen { self.pj_0_rep_seen = n29; self.dirty[0] |= 0x200000; }
+        if n30 != self.pj_0_rep_first_dom { self.pj_0_rep_first_dom = n30; self.dirty[0] |= 0x300000; }
+        if n31 != self.pj_0_ok_r { self.pj_0_ok_r = n31; self.dirty[0] |= 0x8002000200000; }
+        if n32 != self.pj_0_acked { self.pj_0_acked = n32; self.dirty[0] |= 0x8002000200000; }
+        if n33 != self.pj_0_bad { self.pj_0_bad = n33; self.dirty[0] |= 0x8002000200000; }
+        if n34 != self.pj_0_ack_missing { self.pj_0_ack_missing = n34; self.dirty[0] |= 0x18000000000000; }
+        if n35 != self.pj_0_ack_c { self.pj_0_ack_c = n35; self.dirty[0] |= 0x8002000000000; }
+        if n36 != self.pj_0_ack_rx { self.pj_0_ack_rx = n36; self.dirty[0] |= 0x2000000000; }
+        if n37 != self.pj_1_dis_r { self.pj_1_dis_r = n37; self.dirty[0] |= 0x20304003000001; }
+        if n38 != self.pj_1_bic_r { self.pj_1_bic_r = n38; self.dirty[0] |= 0x20000001000001; }
+        if n39 != self.pj_1_life_r { self.pj_1_life_r = n39; self.dirty[0] |= 0x20000001000000; }
+        if n40 != self.pj_1_dbc_r { self.pj_1_dbc_r = n40; self.dirty[0] |= 0x20000001000001; }
+        if n41 != self.pj_1_nack_r { self.pj_1_nack_r = n41; self.dirty[0] |= 0x4000800001; }
+        if n42 != self.pj_1_cont_r { self.pj_1_cont_r = n42; self.dirty[0] |= 0x60004000000000; }
+        if n43 != self.pj_1_rep_r { self.pj_1_rep_r = n43; self.dirty[0] |= 0x1000000; }
+        if n44 != self.pj_1_rep_seen { self.pj_1_rep_seen = n44; self.dirty[0] |= 0x1000000; }
+        if n45 != self.pj_1_rep_first_dom { self.pj_1_rep_first_dom = n45; self.dirty[0] |= 0x1800000; }
+        if n46 != self.pj_1_ok_r { self.pj_1_ok_r = n46; self.dirty[0] |= 0x20004001000000; }
+        if n47 != self.pj_1_acked { self.pj_1_acked = n47; self.dirty[0] |= 0x20004001000000; }
+        if n48 != self.pj_1_bad { self.pj_1_bad = n48; self.dirty[0] |= 0x20004001000000; }
+        if n49 != self.pj_1_ack_missing { self.pj_1_ack_missing = n49; self.dirty[0] |= 0x60000000000000; }
+        if n50 != self.pj_1_ack_c { self.pj_1_ack_c = n50; self.dirty[0] |= 0x20004000000000; }
+        if n51 != self.pj_1_ack_rx { self.pj_1_ack_rx = n51; self.dirty[0] |= 0x4000000000; }
+        if n52 != self.pj_2_dis_r { self.pj_2_dis_r = n52; self.dirty[0] |= 0x80308018000001; }
+        if n53 != self.pj_2_bic_r { self.pj_2_bic_r = n53; self.dirty[0] |= 0x80000008000001; }
+        if n54 != self.pj_2_life_r { self.pj_2_life_r = n54; self.dirty[0] |= 0x80000008000000; }
+        if n55 != self.pj_2_dbc_r { self.pj_2_dbc_r = n55; self.dirty[0] |= 0x80000008000001; }
+        if n56 != self.pj_2_nack_r { self.pj_2_nack_r = n56; self.dirty[0] |= 0x8004000001; }
+        if n57 != self.pj_2_cont_r { self.pj_2_cont_r = n57; self.dirty[0] |= 0x180008000000000; }
+        if n58 != self.pj_2_rep_r { self.pj_2_rep_r = n58; self.dirty[0] |= 0x8000000; }
+        if n59 != self.pj_2_rep_seen { self.pj_2_rep_seen = n59; self.dirty[0] |= 0x8000000; }
+        if n60 != self.pj_2_rep_first_dom { self.pj_2_rep_first_dom = n60; self.dirty[0] |= 0xc000000; }
+        if n61 != self.pj_2_ok_r { self.pj_2_ok_r = n61; self.dirty[0] |= 0x80008008000000; }
+        if n62 != self.pj_2_acked { self.pj_2_acked = n62; self.dirty[0] |= 0x80008008000000; }
+        if n63 != self.pj_2_bad { self.pj_2_bad = n63; self.dirty[0] |= 0x80008008000000; }
+        if n64 != self.pj_2_ack_missing { self.pj_2_ack_missing = n64; self.dirty[0] |= 0x180000000000000; }
+        if n65 != self.pj_2_ack_c { self.pj_2_ack_c = n65; self.dirty[0] |= 0x80008000000000; }
+        if n66 != self.pj_2_ack_rx { self.pj_2_ack_rx = n66; self.dirty[0] |= 0x8000000000; }
+        if n67 != self.sj_0_dis_r { self.sj_0_dis_r = n67; self.dirty[0] |= 0x200710a60000001; }
+        if n68 != self.sj_0_bic_r { self.sj_0_bic_r = n68; self.dirty[0] |= 0x400020000001; }
+        if n69 != self.sj_0_life_r { self.sj_0_life_r = n69; self.dirty[0] |= 0x400020000000; }
+        if n70 != self.sj_0_dbc_r { self.sj_0_dbc_r = n70; self.dirty[0] |= 0x410020000001; }
+        if n71 != self.sj_0_nack_r { self.sj_0_nack_r = n71; self.dirty[0] |= 0x10040000000; }
+        if n72 != self.sj_0_cont_r { self.sj_0_cont_r = n72; self.dirty[0] |= 0x200c10000000000; }
+        if n73 != self.sj_0_rep_r { self.sj_0_rep_r = n73; self.dirty[0] |= 0x20000001; }
+        if n74 != self.sj_0_rep_seen { self.sj_0_rep_seen = n74; self.dirty[0] |= 0x400020000000; }
+        if n75 != self.sj_0_rep_first_dom { self.sj_0_rep_first_dom = n75; self.dirty[0] |= 0x400020000000; }
+        if n76 != self.sj_0_ok_r { self.sj_0_ok_r = n76; self.dirty[0] |= 0x410020000000; }
+        if n77 != self.sj_0_acked { self.sj_0_acked = n77; self.dirty[0] |= 0x410020000000; }
+        if n78 != self.sj_0_bad { self.sj_0_bad = n78; self.dirty[0] |= 0x410020000000; }
+        if n79 != self.sj_0_ack_missing { self.sj_0_ack_missing = n79; self.dirty[0] |= 0x200c00000000000; }
+        if n80 != self.sj_0_ack_c { self.sj_0_ack_c = n80; self.dirty[0] |= 0x10000000000; }
+        if n81 != self.sj_0_ack_rx { self.sj_0_ack_rx = n81; self.dirty[0] |= 0x10000000000; }
+        if n82 != self.sj_1_dis_r { self.sj_1_dis_r = n82; self.dirty[0] |= 0x401340b80000001; }
+        if n83 != self.sj_1_bic_r { self.sj_1_bic_r = n83; self.dirty[0] |= 0x1000080000001; }
+        if n84 != self.sj_1_life_r { self.sj_1_life_r = n84; self.dirty[0] |= 0x1000080000000; }
+        if n85 != self.sj_1_dbc_r { self.sj_1_dbc_r = n85; self.dirty[0] |= 0x1040080000001; }
+        if n86 != self.sj_1_nack_r { self.sj_1_nack_r = n86; self.dirty[0] |= 0x40100000000; }
+        if n87 != self.sj_1_cont_r { self.sj_1_cont_r = n87; self.dirty[0] |= 0x403040000000000; }
+        if n88 != self.sj_1_rep_r { self.sj_1_rep_r = n88; self.dirty[0] |= 0x80000001; }
+        if n89 != self.sj_1_rep_seen { self.sj_1_rep_seen = n89; self.dirty[0] |= 0x1000080000000; }
+        if n90 != self.sj_1_rep_first_dom { self.sj_1_rep_first_dom = n90; self.dirty[0] |= 0x1000080000000; }
+        if n91 != self.sj_1_ok_r { self.sj_1_ok_r = n91; self.dirty[0] |= 0x1040080000000; }
+        if n92 != self.sj_1_acked { self.sj_1_acked = n92; self.dirty[0] |= 0x1040080000000; }
+        if n93 != self.sj_1_bad { self.sj_1_bad = n93; self.dirty[0] |= 0x1040080000000; }
+        if n94 != self.sj_1_ack_missing { self.sj_1_ack_missing = n94; self.dirty[0] |= 0x403000000000000; }
+        if n95 != self.sj_1_ack_c { self.sj_1_ack_c = n95; self.dirty[0] |= 0x40000000000; }
+        if n96 != self.sj_1_ack_rx { self.sj_1_ack_rx = n96; self.dirty[0] |= 0x40000000000; }
+        self.rst_s1 = n97;
+        if n98 != self.rst_s2 { self.rst_s2 = n98; self.dirty[0] |= 0x26a955f0adb6bff1; }
     }
 
     /// `top` block, depth 0, state-only: reset_out, isolated$0, isolated$1, isolated$2, sub_isolated$0, sub_isolated$1, ... (22 signals)
@@ -1568,11 +1684,11 @@ impl HubCoreN3M2 {
         coupler_tx_0 = (!self.coupler_tx_n_0);
         coupler_tx_1 = (!self.coupler_tx_n_1);
         coupler_tx_2 = (!self.coupler_tx_n_2);
-        self.coupler_tx_0 = coupler_tx_0;
-        self.coupler_tx_1 = coupler_tx_1;
-        self.coupler_tx_2 = coupler_tx_2;
-        self.coupler_hub_tx_0 = coupler_hub_tx_0;
-        self.coupler_hub_tx_1 = coupler_hub_tx_1;
+        if coupler_tx_0 != self.coupler_tx_0 { self.coupler_tx_0 = coupler_tx_0; self.dirty[0] |= 0x200000000; }
+        if coupler_tx_1 != self.coupler_tx_1 { self.coupler_tx_1 = coupler_tx_1; self.dirty[0] |= 0x200000000; }
+        if coupler_tx_2 != self.coupler_tx_2 { self.coupler_tx_2 = coupler_tx_2; self.dirty[0] |= 0x200000000; }
+        if coupler_hub_tx_0 != self.coupler_hub_tx_0 { self.coupler_hub_tx_0 = coupler_hub_tx_0; self.dirty[0] |= 0x200000000; }
+        if coupler_hub_tx_1 != self.coupler_hub_tx_1 { self.coupler_hub_tx_1 = coupler_hub_tx_1; self.dirty[0] |= 0x200000000; }
     }
 
     /// `coupler.up_sync$0` block, depth 0, state-only: coupler.up_sync$0.q, coupler.up_sync$0.s2_n.d
@@ -1587,7 +1703,7 @@ impl HubCoreN3M2 {
         if self.coupler_up_sync_0_two_stages {
             coupler_up_sync_0_q = (!self.coupler_up_sync_0_s2_n);
         }
-        self.coupler_up_sync_0_q = coupler_up_sync_0_q;
+        if coupler_up_sync_0_q != self.coupler_up_sync_0_q { self.coupler_up_sync_0_q = coupler_up_sync_0_q; self.dirty[0] |= 0x300000000000; }
         self.coupler_up_sync_0_s2_n_d = coupler_up_sync_0_s2_n_d;
     }
 
@@ -1613,7 +1729,7 @@ impl HubCoreN3M2 {
         if self.coupler_up_sync_1_two_stages {
             coupler_up_sync_1_q = (!self.coupler_up_sync_1_s2_n);
         }
-        self.coupler_up_sync_1_q = coupler_up_sync_1_q;
+        if coupler_up_sync_1_q != self.coupler_up_sync_1_q { self.coupler_up_sync_1_q = coupler_up_sync_1_q; self.dirty[0] |= 0x300000000000; }
         self.coupler_up_sync_1_s2_n_d = coupler_up_sync_1_s2_n_d;
     }
 
@@ -1639,7 +1755,7 @@ impl HubCoreN3M2 {
         if self.coupler_up_sync_2_two_stages {
             coupler_up_sync_2_q = (!self.coupler_up_sync_2_s2_n);
         }
-        self.coupler_up_sync_2_q = coupler_up_sync_2_q;
+        if coupler_up_sync_2_q != self.coupler_up_sync_2_q { self.coupler_up_sync_2_q = coupler_up_sync_2_q; self.dirty[0] |= 0x300000000000; }
         self.coupler_up_sync_2_s2_n_d = coupler_up_sync_2_s2_n_d;
     }
 
@@ -1665,7 +1781,7 @@ impl HubCoreN3M2 {
         if self.coupler_reh_sync_0_two_stages {
             coupler_reh_sync_0_q = (!self.coupler_reh_sync_0_s2_n);
         }
-        self.coupler_reh_sync_0_q = coupler_reh_sync_0_q;
+        if coupler_reh_sync_0_q != self.coupler_reh_sync_0_q { self.coupler_reh_sync_0_q = coupler_reh_sync_0_q; self.dirty[0] |= 0x200f30a00000000; }
         self.coupler_reh_sync_0_s2_n_d = coupler_reh_sync_0_s2_n_d;
     }
 
@@ -1691,7 +1807,7 @@ impl HubCoreN3M2 {
         if self.coupler_reh_sync_1_two_stages {
             coupler_reh_sync_1_q = (!self.coupler_reh_sync_1_s2_n);
         }
-        self.coupler_reh_sync_1_q = coupler_reh_sync_1_q;
+        if coupler_reh_sync_1_q != self.coupler_reh_sync_1_q { self.coupler_reh_sync_1_q = coupler_reh_sync_1_q; self.dirty[0] |= 0x4033c0a00000000; }
         self.coupler_reh_sync_1_s2_n_d = coupler_reh_sync_1_s2_n_d;
     }
 
@@ -1711,8 +1827,8 @@ impl HubCoreN3M2 {
         let mut efgen_busy: bool = false;
         efgen_efg = (!self.efgen_driving);
         efgen_busy = (self.efgen_pending | self.efgen_driving);
-        self.efgen_efg = efgen_efg;
-        self.efgen_busy = efgen_busy;
+        if efgen_efg != self.efgen_efg { self.efgen_efg = efgen_efg; self.dirty[0] |= 0x300000000000; }
+        if efgen_busy != self.efgen_busy { self.efgen_busy = efgen_busy; self.dirty[0] |= 0x800000400000000; }
     }
 
     /// `efgen` block, depth 0, input-dependent: efgen.driving.d, efgen.cnt.d
@@ -1763,16 +1879,16 @@ impl HubCoreN3M2 {
         decode_eof_last = ((self.mon_field == 0xb_u8) & (self.mon_pos == 6u8));
         decode_im_2 = ((self.mon_field == 0xc_u8) & (self.mon_pos == 1u8));
         decode_err_phase = (self.mon_field >= 0xd_u8);
-        self.decode_sof = decode_sof;
-        self.decode_tx_region = decode_tx_region;
-        self.decode_arb = decode_arb;
-        self.decode_crc_delim = decode_crc_delim;
-        self.decode_ack_slot = decode_ack_slot;
-        self.decode_ack_delim = decode_ack_delim;
-        self.decode_eof_1_6 = decode_eof_1_6;
-        self.decode_eof_last = decode_eof_last;
-        self.decode_im_2 = decode_im_2;
-        self.decode_err_phase = decode_err_phase;
+        if decode_sof != self.decode_sof { self.decode_sof = decode_sof; self.dirty[0] |= 0x6a8000000000000; }
+        if decode_tx_region != self.decode_tx_region { self.decode_tx_region = decode_tx_region; self.dirty[0] |= 0x7fbc00000000000; }
+        if decode_arb != self.decode_arb { self.decode_arb = decode_arb; self.dirty[0] |= 0x7fbc00000000000; }
+        if decode_crc_delim != self.decode_crc_delim { self.decode_crc_delim = decode_crc_delim; self.dirty[0] |= 0x1fbc00000000000; }
+        if decode_ack_slot != self.decode_ack_slot { self.decode_ack_slot = decode_ack_slot; self.dirty[0] |= 0x7fbc5e000000000; }
+        if decode_ack_delim != self.decode_ack_delim { self.decode_ack_delim = decode_ack_delim; self.dirty[0] |= 0x1fbc5e000000000; }
+        if decode_eof_1_6 != self.decode_eof_1_6 { self.decode_eof_1_6 = decode_eof_1_6; self.dirty[0] |= 0x1fbc00000000000; }
+        if decode_eof_last != self.decode_eof_last { self.decode_eof_last = decode_eof_last; self.dirty[0] |= 0x1000000000; }
+        if decode_im_2 != self.decode_im_2 { self.decode_im_2 = decode_im_2; self.dirty[0] |= 0x1fbc00000000000; }
+        if decode_err_phase != self.decode_err_phase { self.decode_err_phase = decode_err_phase; self.dirty[0] |= 0x400000000; }
     }
 
     /// `injector` block, depth 0, state-only: injector.active, injector.btn_prev.d
@@ -1784,7 +1900,7 @@ impl HubCoreN3M2 {
             injector_btn_prev_d = false;
         }
         injector_active = ((self.injector_state == 2u8) | (self.injector_state == 3u8));
-        self.injector_active = injector_active;
+        if injector_active != self.injector_active { self.injector_active = injector_active; self.dirty[0] |= 0x200000000; }
         self.injector_btn_prev_d = injector_btn_prev_d;
     }
 
@@ -1817,7 +1933,7 @@ impl HubCoreN3M2 {
             pj_0_rep_first_dom_d = false;
         }
         pj_0_silent = (self.pj_0_nack_r >= self.pj_0_nack_thr);
-        self.pj_0_silent = pj_0_silent;
+        if pj_0_silent != self.pj_0_silent { self.pj_0_silent = pj_0_silent; self.dirty[0] |= 0x200000000; }
         self.pj_0_rep_first_dom_d = pj_0_rep_first_dom_d;
     }
 
@@ -1885,7 +2001,7 @@ impl HubCoreN3M2 {
             pj_1_rep_first_dom_d = false;
         }
         pj_1_silent = (self.pj_1_nack_r >= self.pj_1_nack_thr);
-        self.pj_1_silent = pj_1_silent;
+        if pj_1_silent != self.pj_1_silent { self.pj_1_silent = pj_1_silent; self.dirty[0] |= 0x200000000; }
         self.pj_1_rep_first_dom_d = pj_1_rep_first_dom_d;
     }
 
@@ -1953,7 +2069,7 @@ impl HubCoreN3M2 {
             pj_2_rep_first_dom_d = false;
         }
         pj_2_silent = (self.pj_2_nack_r >= self.pj_2_nack_thr);
-        self.pj_2_silent = pj_2_silent;
+        if pj_2_silent != self.pj_2_silent { self.pj_2_silent = pj_2_silent; self.dirty[0] |= 0x200000000; }
         self.pj_2_rep_first_dom_d = pj_2_rep_first_dom_d;
     }
 
@@ -2212,25 +2328,25 @@ impl HubCoreN3M2 {
         self.silent_1 = silent_1;
         self.silent_2 = silent_2;
         self.inject_active = inject_active;
-        self.coupler_up_fault_0 = coupler_up_fault_0;
-        self.coupler_up_fault_1 = coupler_up_fault_1;
-        self.coupler_up_fault_2 = coupler_up_fault_2;
-        self.coupler_down_fault_0 = coupler_down_fault_0;
-        self.coupler_down_fault_1 = coupler_down_fault_1;
-        self.coupler_down_fault_2 = coupler_down_fault_2;
-        self.coupler_hub_fault_0 = coupler_hub_fault_0;
-        self.coupler_hub_fault_1 = coupler_hub_fault_1;
-        self.sj_0_rep_rec = sj_0_rep_rec;
-        self.sj_0_rep_dom = sj_0_rep_dom;
-        self.sj_1_rep_rec = sj_1_rep_rec;
-        self.sj_1_rep_dom = sj_1_rep_dom;
+        if coupler_up_fault_0 != self.coupler_up_fault_0 { self.coupler_up_fault_0 = coupler_up_fault_0; self.dirty[0] |= 0x300000000000; }
+        if coupler_up_fault_1 != self.coupler_up_fault_1 { self.coupler_up_fault_1 = coupler_up_fault_1; self.dirty[0] |= 0x300000000000; }
+        if coupler_up_fault_2 != self.coupler_up_fault_2 { self.coupler_up_fault_2 = coupler_up_fault_2; self.dirty[0] |= 0x300000000000; }
+        if coupler_down_fault_0 != self.coupler_down_fault_0 { self.coupler_down_fault_0 = coupler_down_fault_0; self.dirty[0] |= 0x300000000000; }
+        if coupler_down_fault_1 != self.coupler_down_fault_1 { self.coupler_down_fault_1 = coupler_down_fault_1; self.dirty[0] |= 0x300000000000; }
+        if coupler_down_fault_2 != self.coupler_down_fault_2 { self.coupler_down_fault_2 = coupler_down_fault_2; self.dirty[0] |= 0x300000000000; }
+        if coupler_hub_fault_0 != self.coupler_hub_fault_0 { self.coupler_hub_fault_0 = coupler_hub_fault_0; self.dirty[0] |= 0x300000000000; }
+        if coupler_hub_fault_1 != self.coupler_hub_fault_1 { self.coupler_hub_fault_1 = coupler_hub_fault_1; self.dirty[0] |= 0x300000000000; }
+        if sj_0_rep_rec != self.sj_0_rep_rec { self.sj_0_rep_rec = sj_0_rep_rec; self.dirty[0] |= 0x400000000000; }
+        if sj_0_rep_dom != self.sj_0_rep_dom { self.sj_0_rep_dom = sj_0_rep_dom; self.dirty[0] |= 0x400000000000; }
+        if sj_1_rep_rec != self.sj_1_rep_rec { self.sj_1_rep_rec = sj_1_rep_rec; self.dirty[0] |= 0x1000000000000; }
+        if sj_1_rep_dom != self.sj_1_rep_dom { self.sj_1_rep_dom = sj_1_rep_dom; self.dirty[0] |= 0x1000000000000; }
     }
 
     /// `top` block, depth 1, input-dependent: err_phase
     fn g34(&mut self) {
         let mut err_phase: bool = false;
         err_phase = (self.decode_err_phase | self.efgen_busy);
-        self.err_phase = err_phase;
+        if err_phase != self.err_phase { self.err_phase = err_phase; self.dirty[0] |= 0x7fbc00000000000; }
     }
 
     /// `top` block, depth 1, probe-only: rep_rec, rep_dom
@@ -2700,10 +2816,10 @@ impl HubCoreN3M2 {
         if self.rst_s2 {
             coupler_tx_n_2_d = false;
         }
-        self.coupler_u_0 = coupler_u_0;
-        self.coupler_u_1 = coupler_u_1;
-        self.coupler_u_2 = coupler_u_2;
-        self.coupler_bt = coupler_bt;
+        if coupler_u_0 != self.coupler_u_0 { self.coupler_u_0 = coupler_u_0; self.dirty[0] |= 0x18000000000000; }
+        if coupler_u_1 != self.coupler_u_1 { self.coupler_u_1 = coupler_u_1; self.dirty[0] |= 0x60000000000000; }
+        if coupler_u_2 != self.coupler_u_2 { self.coupler_u_2 = coupler_u_2; self.dirty[0] |= 0x180000000000000; }
+        if coupler_bt != self.coupler_bt { self.coupler_bt = coupler_bt; self.dirty[0] |= 0x6ac000000000000; }
         self.coupler_tx_n_0_d = coupler_tx_n_0_d;
         self.coupler_tx_n_1_d = coupler_tx_n_1_d;
         self.coupler_tx_n_2_d = coupler_tx_n_2_d;
@@ -2886,7 +3002,7 @@ impl HubCoreN3M2 {
             sj_0_rep_first_dom_d = false;
             sj_0_bad_d = false;
         }
-        self.sj_0_blame = sj_0_blame;
+        if sj_0_blame != self.sj_0_blame { self.sj_0_blame = sj_0_blame; self.dirty[0] |= 0x1800000000000000; }
         self.sj_0_bic_r_d = sj_0_bic_r_d;
         self.sj_0_life_r_d = sj_0_life_r_d;
         self.sj_0_rep_seen_d = sj_0_rep_seen_d;
@@ -2972,7 +3088,7 @@ impl HubCoreN3M2 {
             sj_1_rep_first_dom_d = false;
             sj_1_bad_d = false;
         }
-        self.sj_1_blame = sj_1_blame;
+        if sj_1_blame != self.sj_1_blame { self.sj_1_blame = sj_1_blame; self.dirty[0] |= 0x1800000000000000; }
         self.sj_1_bic_r_d = sj_1_bic_r_d;
         self.sj_1_life_r_d = sj_1_life_r_d;
         self.sj_1_rep_seen_d = sj_1_rep_seen_d;
@@ -3084,8 +3200,8 @@ impl HubCoreN3M2 {
             pj_0_ack_missing_d = false;
             pj_0_ack_c_d = false;
         }
-        self.pj_0_blame = pj_0_blame;
-        self.pj_0_tx_error = pj_0_tx_error;
+        if pj_0_blame != self.pj_0_blame { self.pj_0_blame = pj_0_blame; self.dirty[0] |= 0x1800000000000000; }
+        if pj_0_tx_error != self.pj_0_tx_error { self.pj_0_tx_error = pj_0_tx_error; self.dirty[0] |= 0x1800000000000000; }
         self.pj_0_bic_r_d = pj_0_bic_r_d;
         self.pj_0_life_r_d = pj_0_life_r_d;
         self.pj_0_dbc_r_d = pj_0_dbc_r_d;
@@ -3193,8 +3309,8 @@ impl HubCoreN3M2 {
             pj_1_ack_missing_d = false;
             pj_1_ack_c_d = false;
         }
-        self.pj_1_blame = pj_1_blame;
-        self.pj_1_tx_error = pj_1_tx_error;
+        if pj_1_blame != self.pj_1_blame { self.pj_1_blame = pj_1_blame; self.dirty[0] |= 0x1800000000000000; }
+        if pj_1_tx_error != self.pj_1_tx_error { self.pj_1_tx_error = pj_1_tx_error; self.dirty[0] |= 0x1800000000000000; }
         self.pj_1_bic_r_d = pj_1_bic_r_d;
         self.pj_1_life_r_d = pj_1_life_r_d;
         self.pj_1_dbc_r_d = pj_1_dbc_r_d;
@@ -3302,8 +3418,8 @@ impl HubCoreN3M2 {
             pj_2_ack_missing_d = false;
             pj_2_ack_c_d = false;
         }
-        self.pj_2_blame = pj_2_blame;
-        self.pj_2_tx_error = pj_2_tx_error;
+        if pj_2_blame != self.pj_2_blame { self.pj_2_blame = pj_2_blame; self.dirty[0] |= 0x1800000000000000; }
+        if pj_2_tx_error != self.pj_2_tx_error { self.pj_2_tx_error = pj_2_tx_error; self.dirty[0] |= 0x1800000000000000; }
         self.pj_2_bic_r_d = pj_2_bic_r_d;
         self.pj_2_life_r_d = pj_2_life_r_d;
         self.pj_2_dbc_r_d = pj_2_dbc_r_d;
@@ -3351,7 +3467,7 @@ impl HubCoreN3M2 {
             sj_0_cont_r_d = false;
             sj_0_ack_missing_d = false;
         }
-        self.sj_0_tx_error = sj_0_tx_error;
+        if sj_0_tx_error != self.sj_0_tx_error { self.sj_0_tx_error = sj_0_tx_error; self.dirty[0] |= 0x1800000000000000; }
         self.sj_0_cont_r_d = sj_0_cont_r_d;
         self.sj_0_ack_missing_d = sj_0_ack_missing_d;
     }
@@ -3384,7 +3500,7 @@ impl HubCoreN3M2 {
             sj_1_cont_r_d = false;
             sj_1_ack_missing_d = false;
         }
-        self.sj_1_tx_error = sj_1_tx_error;
+        if sj_1_tx_error != self.sj_1_tx_error { self.sj_1_tx_error = sj_1_tx_error; self.dirty[0] |= 0x1800000000000000; }
         self.sj_1_cont_r_d = sj_1_cont_r_d;
         self.sj_1_ack_missing_d = sj_1_ack_missing_d;
     }
@@ -3410,7 +3526,7 @@ impl HubCoreN3M2 {
         trigger = (self.mon_sample & ((self.mon_error | any_blame) | any_tx_error));
         err_start_r_d = (trigger & (!self.efgen_busy));
         self.err_start_r_d = err_start_r_d;
-        self.trigger = trigger;
+        if trigger != self.trigger { self.trigger = trigger; self.dirty[0] |= 0x2000000000000000; }
     }
 
     /// `top` block, depth 4, probe-only: any_blame, any_tx_error
@@ -4455,6 +4571,7 @@ impl rt::Model for HubCoreN3M2 {
             660 => self.rst_s2 = (v & 1) != 0,
             _ => return false,
         }
+        self.dirty = [!0; 1];
         true
     }
     fn set_mem(&mut self, r: usize, addr: usize, v: u128) {

@@ -1184,6 +1184,14 @@ pub struct HubN3M1 {
     pub adapter_f_map_d: u8,
     /// `adapter.fl` (combinational, 4 bits)
     pub adapter_fl: u8,
+    seen_rst_n: bool,
+    seen_inject_fault: bool,
+    seen_rx_0: bool,
+    seen_rx_1: bool,
+    seen_rx_2: bool,
+    seen_reh_rx_0: bool,
+    /// Groups to evaluate (one bit per group, see `run`).
+    dirty: [u64; 2],
     trace: bool,
 }
 
@@ -1787,6 +1795,13 @@ impl HubN3M1 {
             adapter_bs_cnt_d: 0u8,
             adapter_f_map_d: 0u8,
             adapter_fl: 0u8,
+            seen_rst_n: false,
+            seen_inject_fault: false,
+            seen_rx_0: false,
+            seen_rx_1: false,
+            seen_rx_2: false,
+            seen_reh_rx_0: false,
+            dirty: [!0; 2],
             trace: false,
         };
         m.eval_all();
@@ -1800,329 +1815,451 @@ impl HubN3M1 {
         Ok(m)
     }
 
+    /// Groups evaluated before the edge: input-dependent.
+    const PRE: [u64; 2] = [0x2552, 0x0];
+    /// Groups evaluated after the edge: state-only and the output cone.
+    const POST: [u64; 2] = [0x4fed2bf695ca9aad, 0x16d57];
+    const ALL: [u64; 2] = [0xffffffffffffffff, 0x1ffff];
+
     /// One clock cycle (`canstar_hdl::drive::cycle`): settle, rising edge, settle.
     pub fn cycle(&mut self) {
-        self.eval_pre();
+        self.sense();
+        self.run(&Self::PRE);
         self.edge();
-        if self.trace {
-            self.eval_all();
-        } else {
-            self.eval_post();
-        }
+        self.run(if self.trace { &Self::ALL } else { &Self::POST });
     }
 
     /// Propagate input changes (no clock edge).
     pub fn settle(&mut self) {
-        if self.trace {
-            self.eval_all();
-        } else {
-            self.eval_pre();
+        self.sense();
+        self.run(if self.trace { &Self::ALL } else { &Self::PRE });
+    }
+
+    /// Evaluate every group.
+    fn eval_all(&mut self) {
+        self.dirty = [!0; 2];
+        self.sense();
+        self.run(&Self::ALL);
+    }
+
+    /// Run the dirty groups of a phase, in dependency order.
+    fn run(&mut self, phase: &[u64; 2]) {
+        for w in 0..2 {
+            loop {
+                let m = self.dirty[w] & phase[w];
+                if m == 0 {
+                    break;
+                }
+                let k = m.trailing_zeros() as usize;
+                self.dirty[w] &= !(1u64 << k);
+                self.group(w * 64 + k);
+            }
         }
     }
 
-    /// Input-dependent groups (before the edge).
-    fn eval_pre(&mut self) {
-        self.g1();
-        self.g4();
-        self.g6();
-        self.g8();
-        self.g10();
-        self.g13();
+    fn group(&mut self, k: usize) {
+        match k {
+            0 => self.g0(),
+            1 => self.g1(),
+            2 => self.g2(),
+            3 => self.g3(),
+            4 => self.g4(),
+            5 => self.g5(),
+            6 => self.g6(),
+            7 => self.g7(),
+            8 => self.g8(),
+            9 => self.g9(),
+            10 => self.g10(),
+            11 => self.g11(),
+            12 => self.g12(),
+            13 => self.g13(),
+            14 => self.g14(),
+            15 => self.g15(),
+            16 => self.g16(),
+            17 => self.g17(),
+            18 => self.g18(),
+            19 => self.g19(),
+            20 => self.g20(),
+            21 => self.g21(),
+            22 => self.g22(),
+            23 => self.g23(),
+            24 => self.g24(),
+            25 => self.g25(),
+            26 => self.g26(),
+            27 => self.g27(),
+            28 => self.g28(),
+            29 => self.g29(),
+            30 => self.g30(),
+            31 => self.g31(),
+            32 => self.g32(),
+            33 => self.g33(),
+            34 => self.g34(),
+            35 => self.g35(),
+            36 => self.g36(),
+            37 => self.g37(),
+            38 => self.g38(),
+            39 => self.g39(),
+            40 => self.g40(),
+            41 => self.g41(),
+            42 => self.g42(),
+            43 => self.g43(),
+            44 => self.g44(),
+            45 => self.g45(),
+            46 => self.g46(),
+            47 => self.g47(),
+            48 => self.g48(),
+            49 => self.g49(),
+            50 => self.g50(),
+            51 => self.g51(),
+            52 => self.g52(),
+            53 => self.g53(),
+            54 => self.g54(),
+            55 => self.g55(),
+            56 => self.g56(),
+            57 => self.g57(),
+            58 => self.g58(),
+            59 => self.g59(),
+            60 => self.g60(),
+            61 => self.g61(),
+            62 => self.g62(),
+            63 => self.g63(),
+            64 => self.g64(),
+            65 => self.g65(),
+            66 => self.g66(),
+            67 => self.g67(),
+            68 => self.g68(),
+            69 => self.g69(),
+            70 => self.g70(),
+            71 => self.g71(),
+            72 => self.g72(),
+            73 => self.g73(),
+            74 => self.g74(),
+            75 => self.g75(),
+            76 => self.g76(),
+            77 => self.g77(),
+            78 => self.g78(),
+            79 => self.g79(),
+            80 => self.g80(),
+            _ => {}
+        }
     }
 
-    /// State-only groups and the output cone (after the edge).
-    fn eval_post(&mut self) {
-        self.g0();
-        self.g2();
-        self.g3();
-        self.g5();
-        self.g7();
-        self.g9();
-        self.g11();
-        self.g12();
-        self.g15();
-        self.g17();
-        self.g19();
-        self.g22();
-        self.g23();
-        self.g24();
-        self.g26();
-        self.g28();
-        self.g31();
-        self.g33();
-        self.g34();
-        self.g36();
-        self.g37();
-        self.g38();
-        self.g39();
-        self.g40();
-        self.g41();
-        self.g43();
-        self.g45();
-        self.g48();
-        self.g50();
-        self.g51();
-        self.g53();
-        self.g54();
-        self.g55();
-        self.g56();
-        self.g57();
-        self.g58();
-        self.g59();
-        self.g62();
-        self.g64();
-        self.g65();
-        self.g66();
-        self.g68();
-        self.g70();
-        self.g72();
-        self.g74();
-        self.g75();
-        self.g77();
-        self.g78();
-        self.g80();
-    }
-
-    /// Every group.
-    fn eval_all(&mut self) {
-        self.g0();
-        self.g1();
-        self.g2();
-        self.g3();
-        self.g4();
-        self.g5();
-        self.g6();
-        self.g7();
-        self.g8();
-        self.g9();
-        self.g10();
-        self.g11();
-        self.g12();
-        self.g13();
-        self.g14();
-        self.g15();
-        self.g16();
-        self.g17();
-        self.g18();
-        self.g19();
-        self.g20();
-        self.g21();
-        self.g22();
-        self.g23();
-        self.g24();
-        self.g25();
-        self.g26();
-        self.g27();
-        self.g28();
-        self.g29();
-        self.g30();
-        self.g31();
-        self.g32();
-        self.g33();
-        self.g34();
-        self.g35();
-        self.g36();
-        self.g37();
-        self.g38();
-        self.g39();
-        self.g40();
-        self.g41();
-        self.g42();
-        self.g43();
-        self.g44();
-        self.g45();
-        self.g46();
-        self.g47();
-        self.g48();
-        self.g49();
-        self.g50();
-        self.g51();
-        self.g52();
-        self.g53();
-        self.g54();
-        self.g55();
-        self.g56();
-        self.g57();
-        self.g58();
-        self.g59();
-        self.g60();
-        self.g61();
-        self.g62();
-        self.g63();
-        self.g64();
-        self.g65();
-        self.g66();
-        self.g67();
-        self.g68();
-        self.g69();
-        self.g70();
-        self.g71();
-        self.g72();
-        self.g73();
-        self.g74();
-        self.g75();
-        self.g76();
-        self.g77();
-        self.g78();
-        self.g79();
-        self.g80();
+    /// Inputs that changed since they were last seen mark their readers.
+    fn sense(&mut self) {
+        if self.rst_n != self.seen_rst_n { self.seen_rst_n = self.rst_n; self.dirty[0] |= 0x2; }
+        if self.inject_fault != self.seen_inject_fault { self.seen_inject_fault = self.inject_fault; self.dirty[0] |= 0x2000; }
+        if self.rx_0 != self.seen_rx_0 { self.seen_rx_0 = self.rx_0; self.dirty[0] |= 0x10; }
+        if self.rx_1 != self.seen_rx_1 { self.seen_rx_1 = self.rx_1; self.dirty[0] |= 0x40; }
+        if self.rx_2 != self.seen_rx_2 { self.seen_rx_2 = self.rx_2; self.dirty[0] |= 0x100; }
+        if self.reh_rx_0 != self.seen_reh_rx_0 { self.seen_reh_rx_0 = self.reh_rx_0; self.dirty[0] |= 0x400; }
     }
 
     /// Rising edge: registers and memories take their inputs.
     fn edge(&mut self) {
+        let n0 = self.core_coupler_up_sync_0_s1_n_d;
+        let n1 = self.core_coupler_up_sync_0_s2_n_d;
+        let n2 = self.core_coupler_up_sync_1_s1_n_d;
+        let n3 = self.core_coupler_up_sync_1_s2_n_d;
+        let n4 = self.core_coupler_up_sync_2_s1_n_d;
+        let n5 = self.core_coupler_up_sync_2_s2_n_d;
+        let n6 = self.core_coupler_reh_sync_0_s1_n_d;
+        let n7 = self.core_coupler_reh_sync_0_s2_n_d;
+        let n8 = self.core_coupler_tx_n_0_d;
+        let n9 = self.core_coupler_tx_n_1_d;
+        let n10 = self.core_coupler_tx_n_2_d;
+        let n11 = self.core_coupler_hub_tx_n_0_d;
+        let n12 = self.core_efgen_pending_d;
+        let n13 = self.core_efgen_driving_d;
+        let n14 = self.core_efgen_cnt_d;
+        let n15 = self.core_err_start_r_d;
+        let n16 = self.core_injector_state_d;
+        let n17 = self.core_injector_btn_prev_d;
+        let n18 = self.core_injector_btn_r_d;
+        let n19 = self.core_pj_0_dis_r_d;
+        let n20 = self.core_pj_0_bic_r_d;
+        let n21 = self.core_pj_0_life_r_d;
+        let n22 = self.core_pj_0_dbc_r_d;
+        let n23 = self.core_pj_0_nack_r_d;
+        let n24 = self.core_pj_0_cont_r_d;
+        let n25 = self.core_pj_0_rep_r_d;
+        let n26 = self.core_pj_0_rep_seen_d;
+        let n27 = self.core_pj_0_rep_first_dom_d;
+        let n28 = self.core_pj_0_ok_r_d;
+        let n29 = self.core_pj_0_acked_d;
+        let n30 = self.core_pj_0_bad_d;
+        let n31 = self.core_pj_0_ack_missing_d;
+        let n32 = self.core_pj_0_ack_c_d;
+        let n33 = self.core_pj_0_ack_rx_d;
+        let n34 = self.core_pj_1_dis_r_d;
+        let n35 = self.core_pj_1_bic_r_d;
+        let n36 = self.core_pj_1_life_r_d;
+        let n37 = self.core_pj_1_dbc_r_d;
+        let n38 = self.core_pj_1_nack_r_d;
+        let n39 = self.core_pj_1_cont_r_d;
+        let n40 = self.core_pj_1_rep_r_d;
+        let n41 = self.core_pj_1_rep_seen_d;
+        let n42 = self.core_pj_1_rep_first_dom_d;
+        let n43 = self.core_pj_1_ok_r_d;
+        let n44 = self.core_pj_1_acked_d;
+        let n45 = self.core_pj_1_bad_d;
+        let n46 = self.core_pj_1_ack_missing_d;
+        let n47 = self.core_pj_1_ack_c_d;
+        let n48 = self.core_pj_1_ack_rx_d;
+        let n49 = self.core_pj_2_dis_r_d;
+        let n50 = self.core_pj_2_bic_r_d;
+        let n51 = self.core_pj_2_life_r_d;
+        let n52 = self.core_pj_2_dbc_r_d;
+        let n53 = self.core_pj_2_nack_r_d;
+        let n54 = self.core_pj_2_cont_r_d;
+        let n55 = self.core_pj_2_rep_r_d;
+        let n56 = self.core_pj_2_rep_seen_d;
+        let n57 = self.core_pj_2_rep_first_dom_d;
+        let n58 = self.core_pj_2_ok_r_d;
+        let n59 = self.core_pj_2_acked_d;
+        let n60 = self.core_pj_2_bad_d;
+        let n61 = self.core_pj_2_ack_missing_d;
+        let n62 = self.core_pj_2_ack_c_d;
+        let n63 = self.core_pj_2_ack_rx_d;
+        let n64 = self.core_sj_0_dis_r_d;
+        let n65 = self.core_sj_0_bic_r_d;
+        let n66 = self.core_sj_0_life_r_d;
+        let n67 = self.core_sj_0_dbc_r_d;
+        let n68 = self.core_sj_0_nack_r_d;
+        let n69 = self.core_sj_0_cont_r_d;
+        let n70 = self.core_sj_0_rep_r_d;
+        let n71 = self.core_sj_0_rep_seen_d;
+        let n72 = self.core_sj_0_rep_first_dom_d;
+        let n73 = self.core_sj_0_ok_r_d;
+        let n74 = self.core_sj_0_acked_d;
+        let n75 = self.core_sj_0_bad_d;
+        let n76 = self.core_sj_0_ack_missing_d;
+        let n77 = self.core_sj_0_ack_c_d;
+        let n78 = self.core_sj_0_ack_rx_d;
+        let n79 = self.core_rst_s1_d;
         let n80 = self.core_rst_s1;
-        self.core_coupler_up_sync_0_s1_n = self.core_coupler_up_sync_0_s1_n_d;
-        self.core_coupler_up_sync_0_s2_n = self.core_coupler_up_sync_0_s2_n_d;
-        self.core_coupler_up_sync_1_s1_n = self.core_coupler_up_sync_1_s1_n_d;
-        self.core_coupler_up_sync_1_s2_n = self.core_coupler_up_sync_1_s2_n_d;
-        self.core_coupler_up_sync_2_s1_n = self.core_coupler_up_sync_2_s1_n_d;
-        self.core_coupler_up_sync_2_s2_n = self.core_coupler_up_sync_2_s2_n_d;
-        self.core_coupler_reh_sync_0_s1_n = self.core_coupler_reh_sync_0_s1_n_d;
-        self.core_coupler_reh_sync_0_s2_n = self.core_coupler_reh_sync_0_s2_n_d;
-        self.core_coupler_tx_n_0 = self.core_coupler_tx_n_0_d;
-        self.core_coupler_tx_n_1 = self.core_coupler_tx_n_1_d;
-        self.core_coupler_tx_n_2 = self.core_coupler_tx_n_2_d;
-        self.core_coupler_hub_tx_n_0 = self.core_coupler_hub_tx_n_0_d;
-        self.core_efgen_pending = self.core_efgen_pending_d;
-        self.core_efgen_driving = self.core_efgen_driving_d;
-        self.core_efgen_cnt = self.core_efgen_cnt_d;
-        self.core_err_start_r = self.core_err_start_r_d;
-        self.core_injector_state = self.core_injector_state_d;
-        self.core_injector_btn_prev = self.core_injector_btn_prev_d;
-        self.core_injector_btn_r = self.core_injector_btn_r_d;
-        self.core_pj_0_dis_r = self.core_pj_0_dis_r_d;
-        self.core_pj_0_bic_r = self.core_pj_0_bic_r_d;
-        self.core_pj_0_life_r = self.core_pj_0_life_r_d;
-        self.core_pj_0_dbc_r = self.core_pj_0_dbc_r_d;
-        self.core_pj_0_nack_r = self.core_pj_0_nack_r_d;
-        self.core_pj_0_cont_r = self.core_pj_0_cont_r_d;
-        self.core_pj_0_rep_r = self.core_pj_0_rep_r_d;
-        self.core_pj_0_rep_seen = self.core_pj_0_rep_seen_d;
-        self.core_pj_0_rep_first_dom = self.core_pj_0_rep_first_dom_d;
-        self.core_pj_0_ok_r = self.core_pj_0_ok_r_d;
-        self.core_pj_0_acked = self.core_pj_0_acked_d;
-        self.core_pj_0_bad = self.core_pj_0_bad_d;
-        self.core_pj_0_ack_missing = self.core_pj_0_ack_missing_d;
-        self.core_pj_0_ack_c = self.core_pj_0_ack_c_d;
-        self.core_pj_0_ack_rx = self.core_pj_0_ack_rx_d;
-        self.core_pj_1_dis_r = self.core_pj_1_dis_r_d;
-        self.core_pj_1_bic_r = self.core_pj_1_bic_r_d;
-        self.core_pj_1_life_r = self.core_pj_1_life_r_d;
-        self.core_pj_1_dbc_r = self.core_pj_1_dbc_r_d;
-        self.core_pj_1_nack_r = self.core_pj_1_nack_r_d;
-        self.core_pj_1_cont_r = self.core_pj_1_cont_r_d;
-        self.core_pj_1_rep_r = self.core_pj_1_rep_r_d;
-        self.core_pj_1_rep_seen = self.core_pj_1_rep_seen_d;
-        self.core_pj_1_rep_first_dom = self.core_pj_1_rep_first_dom_d;
-        self.core_pj_1_ok_r = self.core_pj_1_ok_r_d;
-        self.core_pj_1_acked = self.core_pj_1_acked_d;
-        self.core_pj_1_bad = self.core_pj_1_bad_d;
-        self.core_pj_1_ack_missing = self.core_pj_1_ack_missing_d;
-        self.core_pj_1_ack_c = self.core_pj_1_ack_c_d;
-        self.core_pj_1_ack_rx = self.core_pj_1_ack_rx_d;
-        self.core_pj_2_dis_r = self.core_pj_2_dis_r_d;
-        self.core_pj_2_bic_r = self.core_pj_2_bic_r_d;
-        self.core_pj_2_life_r = self.core_pj_2_life_r_d;
-        self.core_pj_2_dbc_r = self.core_pj_2_dbc_r_d;
-        self.core_pj_2_nack_r = self.core_pj_2_nack_r_d;
-        self.core_pj_2_cont_r = self.core_pj_2_cont_r_d;
-        self.core_pj_2_rep_r = self.core_pj_2_rep_r_d;
-        self.core_pj_2_rep_seen = self.core_pj_2_rep_seen_d;
-        self.core_pj_2_rep_first_dom = self.core_pj_2_rep_first_dom_d;
-        self.core_pj_2_ok_r = self.core_pj_2_ok_r_d;
-        self.core_pj_2_acked = self.core_pj_2_acked_d;
-        self.core_pj_2_bad = self.core_pj_2_bad_d;
-        self.core_pj_2_ack_missing = self.core_pj_2_ack_missing_d;
-        self.core_pj_2_ack_c = self.core_pj_2_ack_c_d;
-        self.core_pj_2_ack_rx = self.core_pj_2_ack_rx_d;
-        self.core_sj_0_dis_r = self.core_sj_0_dis_r_d;
-        self.core_sj_0_bic_r = self.core_sj_0_bic_r_d;
-        self.core_sj_0_life_r = self.core_sj_0_life_r_d;
-        self.core_sj_0_dbc_r = self.core_sj_0_dbc_r_d;
-        self.core_sj_0_nack_r = self.core_sj_0_nack_r_d;
-        self.core_sj_0_cont_r = self.core_sj_0_cont_r_d;
-        self.core_sj_0_rep_r = self.core_sj_0_rep_r_d;
-        self.core_sj_0_rep_seen = self.core_sj_0_rep_seen_d;
-        self.core_sj_0_rep_first_dom = self.core_sj_0_rep_first_dom_d;
-        self.core_sj_0_ok_r = self.core_sj_0_ok_r_d;
-        self.core_sj_0_acked = self.core_sj_0_acked_d;
-        self.core_sj_0_bad = self.core_sj_0_bad_d;
-        self.core_sj_0_ack_missing = self.core_sj_0_ack_missing_d;
-        self.core_sj_0_ack_c = self.core_sj_0_ack_c_d;
-        self.core_sj_0_ack_rx = self.core_sj_0_ack_rx_d;
-        self.core_rst_s1 = self.core_rst_s1_d;
-        self.core_rst_s2 = n80;
-        self.monitor_sync_s1_n = self.monitor_sync_s1_n_d;
-        self.monitor_sync_s2_n = self.monitor_sync_s2_n_d;
-        self.monitor_btl_c_brp = self.monitor_btl_c_brp_d;
-        self.monitor_btl_c_sp = self.monitor_btl_c_sp_d;
-        self.monitor_btl_c_ntq = self.monitor_btl_c_ntq_d;
-        self.monitor_btl_c_sjw = self.monitor_btl_c_sjw_d;
-        self.monitor_btl_c_triple = self.monitor_btl_c_triple_d;
-        self.monitor_btl_c_valid = self.monitor_btl_c_valid_d;
-        self.monitor_btl_c_bad = self.monitor_btl_c_bad_d;
-        self.monitor_btl_pre = self.monitor_btl_pre_d;
-        self.monitor_btl_cnt = self.monitor_btl_cnt_d;
-        self.monitor_btl_spw = self.monitor_btl_spw_d;
-        self.monitor_btl_nbw = self.monitor_btl_nbw_d;
-        self.monitor_btl_busmon_n = self.monitor_btl_busmon_n_d;
-        self.monitor_btl_sync_dis = self.monitor_btl_sync_dis_d;
-        self.monitor_btl_since = self.monitor_btl_since_d;
-        self.monitor_btl_pending = self.monitor_btl_pending_d;
-        self.monitor_btl_tx_n = self.monitor_btl_tx_n_d;
-        self.monitor_btl_h1_n = self.monitor_btl_h1_n_d;
-        self.monitor_btl_h2_n = self.monitor_btl_h2_n_d;
-        self.monitor_btl_sample_r = self.monitor_btl_sample_r_d;
-        self.monitor_btl_hard_r = self.monitor_btl_hard_r_d;
-        self.monitor_btl_resync_r = self.monitor_btl_resync_r_d;
-        self.monitor_fsm_fld = self.monitor_fsm_fld_d;
-        self.monitor_fsm_fpos = self.monitor_fsm_fpos_d;
-        self.monitor_fsm_pfld = self.monitor_fsm_pfld_d;
-        self.monitor_fsm_ppos = self.monitor_fsm_ppos_d;
-        self.monitor_fsm_rtx = self.monitor_fsm_rtx_d;
-        self.monitor_fsm_dom = self.monitor_fsm_dom_d;
-        self.monitor_fsm_dstf_cnt = self.monitor_fsm_dstf_cnt_d;
-        self.monitor_fsm_dstf_lvl = self.monitor_fsm_dstf_lvl_d;
-        self.monitor_fsm_crcb_state = self.monitor_fsm_crcb_state_d;
-        self.monitor_fsm_crcerr = self.monitor_fsm_crcerr_d;
-        self.monitor_fsm_tid = self.monitor_fsm_tid_d;
-        self.monitor_fsm_tdat = self.monitor_fsm_tdat_d;
-        self.monitor_fsm_tdlc = self.monitor_fsm_tdlc_d;
-        self.monitor_fsm_tide = self.monitor_fsm_tide_d;
-        self.monitor_fsm_trtr = self.monitor_fsm_trtr_d;
-        self.monitor_fsm_rid = self.monitor_fsm_rid_d;
-        self.monitor_fsm_rdat = self.monitor_fsm_rdat_d;
-        self.monitor_fsm_rdlc = self.monitor_fsm_rdlc_d;
-        self.monitor_fsm_rrtr = self.monitor_fsm_rrtr_d;
-        self.monitor_fsm_rext = self.monitor_fsm_rext_d;
-        self.monitor_fsm_fdone = self.monitor_fsm_fdone_d;
-        self.monitor_fsm_eqcnt = self.monitor_fsm_eqcnt_d;
-        self.monitor_fsm_eqlast = self.monitor_fsm_eqlast_d;
-        self.monitor_fsm_dafc = self.monitor_fsm_dafc_d;
-        self.monitor_fsm_dafany = self.monitor_fsm_dafany_d;
-        self.monitor_fsm_exc1 = self.monitor_fsm_exc1_d;
-        self.monitor_fsm_tecr = self.monitor_fsm_tecr_d;
-        self.monitor_fsm_recr = self.monitor_fsm_recr_d;
-        self.monitor_fsm_runr = self.monitor_fsm_runr_d;
-        self.monitor_fsm_rarmed = self.monitor_fsm_rarmed_d;
-        self.monitor_fsm_req = self.monitor_fsm_req_d;
-        self.monitor_fsm_blocked = self.monitor_fsm_blocked_d;
-        self.monitor_fsm_evr = self.monitor_fsm_evr_d;
-        self.monitor_fsm_arbpos_r = self.monitor_fsm_arbpos_r_d;
-        self.monitor_fsm_errf_r = self.monitor_fsm_errf_r_d;
-        self.monitor_fsm_errp_r = self.monitor_fsm_errp_r_d;
-        self.monitor_fsm_errtx_r = self.monitor_fsm_errtx_r_d;
-        self.monitor_fsm_rxide_r = self.monitor_fsm_rxide_r_d;
-        self.monitor_fsm_rxrtr_r = self.monitor_fsm_rxrtr_r_d;
-        self.monitor_fsm_rxid_r = self.monitor_fsm_rxid_r_d;
-        self.monitor_fsm_rxdlc_r = self.monitor_fsm_rxdlc_r_d;
-        self.monitor_fsm_rxdat_r = self.monitor_fsm_rxdat_r_d;
-        self.adapter_s_r = self.adapter_s_r_d;
-        self.adapter_f_r = self.adapter_f_r_d;
-        self.adapter_p_r = self.adapter_p_r_d;
-        self.adapter_bs_pending = self.adapter_bs_pending_d;
-        self.adapter_bs_cnt = self.adapter_bs_cnt_d;
-        self.adapter_f_map = self.adapter_f_map_d;
+        let n81 = self.monitor_sync_s1_n_d;
+        let n82 = self.monitor_sync_s2_n_d;
+        let n83 = self.monitor_btl_c_brp_d;
+        let n84 = self.monitor_btl_c_sp_d;
+        let n85 = self.monitor_btl_c_ntq_d;
+        let n86 = self.monitor_btl_c_sjw_d;
+        let n87 = self.monitor_btl_c_triple_d;
+        let n88 = self.monitor_btl_c_valid_d;
+        let n89 = self.monitor_btl_c_bad_d;
+        let n90 = self.monitor_btl_pre_d;
+        let n91 = self.monitor_btl_cnt_d;
+        let n92 = self.monitor_btl_spw_d;
+        let n93 = self.monitor_btl_nbw_d;
+        let n94 = self.monitor_btl_busmon_n_d;
+        let n95 = self.monitor_btl_sync_dis_d;
+        let n96 = self.monitor_btl_since_d;
+        let n97 = self.monitor_btl_pending_d;
+        let n98 = self.monitor_btl_tx_n_d;
+        let n99 = self.monitor_btl_h1_n_d;
+        let n100 = self.monitor_btl_h2_n_d;
+        let n101 = self.monitor_btl_sample_r_d;
+        let n102 = self.monitor_btl_hard_r_d;
+        let n103 = self.monitor_btl_resync_r_d;
+        let n104 = self.monitor_fsm_fld_d;
+        let n105 = self.monitor_fsm_fpos_d;
+        let n106 = self.monitor_fsm_pfld_d;
+        let n107 = self.monitor_fsm_ppos_d;
+        let n108 = self.monitor_fsm_rtx_d;
+        let n109 = self.monitor_fsm_dom_d;
+        let n110 = self.monitor_fsm_dstf_cnt_d;
+        let n111 = self.monitor_fsm_dstf_lvl_d;
+        let n112 = self.monitor_fsm_crcb_state_d;
+        let n113 = self.monitor_fsm_crcerr_d;
+        let n114 = self.monitor_fsm_tid_d;
+        let n115 = self.monitor_fsm_tdat_d;
+        let n116 = self.monitor_fsm_tdlc_d;
+        let n117 = self.monitor_fsm_tide_d;
+        let n118 = self.monitor_fsm_trtr_d;
+        let n119 = self.monitor_fsm_rid_d;
+        let n120 = self.monitor_fsm_rdat_d;
+        let n121 = self.monitor_fsm_rdlc_d;
+        let n122 = self.monitor_fsm_rrtr_d;
+        let n123 = self.monitor_fsm_rext_d;
+        let n124 = self.monitor_fsm_fdone_d;
+        let n125 = self.monitor_fsm_eqcnt_d;
+        let n126 = self.monitor_fsm_eqlast_d;
+        let n127 = self.monitor_fsm_dafc_d;
+        let n128 = self.monitor_fsm_dafany_d;
+        let n129 = self.monitor_fsm_exc1_d;
+        let n130 = self.monitor_fsm_tecr_d;
+        let n131 = self.monitor_fsm_recr_d;
+        let n132 = self.monitor_fsm_runr_d;
+        let n133 = self.monitor_fsm_rarmed_d;
+        let n134 = self.monitor_fsm_req_d;
+        let n135 = self.monitor_fsm_blocked_d;
+        let n136 = self.monitor_fsm_evr_d;
+        let n137 = self.monitor_fsm_arbpos_r_d;
+        let n138 = self.monitor_fsm_errf_r_d;
+        let n139 = self.monitor_fsm_errp_r_d;
+        let n140 = self.monitor_fsm_errtx_r_d;
+        let n141 = self.monitor_fsm_rxide_r_d;
+        let n142 = self.monitor_fsm_rxrtr_r_d;
+        let n143 = self.monitor_fsm_rxid_r_d;
+        let n144 = self.monitor_fsm_rxdlc_r_d;
+        let n145 = self.monitor_fsm_rxdat_r_d;
+        let n146 = self.adapter_s_r_d;
+        let n147 = self.adapter_f_r_d;
+        let n148 = self.adapter_p_r_d;
+        let n149 = self.adapter_bs_pending_d;
+        let n150 = self.adapter_bs_cnt_d;
+        let n151 = self.adapter_f_map_d;
+        if n0 != self.core_coupler_up_sync_0_s1_n { self.core_coupler_up_sync_0_s1_n = n0; self.dirty[0] |= 0x8; }
+        if n1 != self.core_coupler_up_sync_0_s2_n { self.core_coupler_up_sync_0_s2_n = n1; self.dirty[0] |= 0x8; }
+        if n2 != self.core_coupler_up_sync_1_s1_n { self.core_coupler_up_sync_1_s1_n = n2; self.dirty[0] |= 0x20; }
+        if n3 != self.core_coupler_up_sync_1_s2_n { self.core_coupler_up_sync_1_s2_n = n3; self.dirty[0] |= 0x20; }
+        if n4 != self.core_coupler_up_sync_2_s1_n { self.core_coupler_up_sync_2_s1_n = n4; self.dirty[0] |= 0x80; }
+        if n5 != self.core_coupler_up_sync_2_s2_n { self.core_coupler_up_sync_2_s2_n = n5; self.dirty[0] |= 0x80; }
+        if n6 != self.core_coupler_reh_sync_0_s1_n { self.core_coupler_reh_sync_0_s1_n = n6; self.dirty[0] |= 0x200; }
+        if n7 != self.core_coupler_reh_sync_0_s2_n { self.core_coupler_reh_sync_0_s2_n = n7; self.dirty[0] |= 0x200; }
+        if n8 != self.core_coupler_tx_n_0 { self.core_coupler_tx_n_0 = n8; self.dirty[0] |= 0x4; }
+        if n9 != self.core_coupler_tx_n_1 { self.core_coupler_tx_n_1 = n9; self.dirty[0] |= 0x4; }
+        if n10 != self.core_coupler_tx_n_2 { self.core_coupler_tx_n_2 = n10; self.dirty[0] |= 0x4; }
+        if n11 != self.core_coupler_hub_tx_n_0 { self.core_coupler_hub_tx_n_0 = n11; self.dirty[0] |= 0x4; }
+        if n12 != self.core_efgen_pending { self.core_efgen_pending = n12; self.dirty[0] |= 0x1000000800; self.dirty[1] |= 0x10000; }
+        if n13 != self.core_efgen_driving { self.core_efgen_driving = n13; self.dirty[0] |= 0x1000000801; self.dirty[1] |= 0x10000; }
+        if n14 != self.core_efgen_cnt { self.core_efgen_cnt = n14; self.dirty[0] |= 0x1000000000; }
+        if n15 != self.core_err_start_r { self.core_err_start_r = n15; self.dirty[0] |= 0x200020000000000; }
+        if n16 != self.core_injector_state { self.core_injector_state = n16; self.dirty[0] |= 0x20000000005000; }
+        if n17 != self.core_injector_btn_prev { self.core_injector_btn_prev = n17; self.dirty[0] |= 0x20000000004000; }
+        if n18 != self.core_injector_btn_r { self.core_injector_btn_r = n18; self.dirty[0] |= 0x20000000005000; }
+        if n19 != self.core_pj_0_dis_r { self.core_pj_0_dis_r = n19; self.dirty[0] |= 0x58004000010001; self.dirty[1] |= 0x4; }
+        if n20 != self.core_pj_0_bic_r { self.core_pj_0_bic_r = n20; self.dirty[0] |= 0x4000000001; self.dirty[1] |= 0x4; }
+        if n21 != self.core_pj_0_life_r { self.core_pj_0_life_r = n21; self.dirty[0] |= 0x4000000000; self.dirty[1] |= 0x4; }
+        if n22 != self.core_pj_0_dbc_r { self.core_pj_0_dbc_r = n22; self.dirty[0] |= 0x4000000001; self.dirty[1] |= 0x4; }
+        if n23 != self.core_pj_0_nack_r { self.core_pj_0_nack_r = n23; self.dirty[0] |= 0x40000000008001; }
+        if n24 != self.core_pj_0_cont_r { self.core_pj_0_cont_r = n24; self.dirty[0] |= 0x40000000000000; self.dirty[1] |= 0xc; }
+        if n25 != self.core_pj_0_rep_r { self.core_pj_0_rep_r = n25; self.dirty[0] |= 0x4000000000; }
+        if n26 != self.core_pj_0_rep_seen { self.core_pj_0_rep_seen = n26; self.dirty[0] |= 0x4000000000; }
+        if n27 != self.core_pj_0_rep_first_dom { self.core_pj_0_rep_first_dom = n27; self.dirty[0] |= 0x4000008000; }
+        if n28 != self.core_pj_0_ok_r { self.core_pj_0_ok_r = n28; self.dirty[0] |= 0x40004000000000; self.dirty[1] |= 0x4; }
+        if n29 != self.core_pj_0_acked { self.core_pj_0_acked = n29; self.dirty[0] |= 0x40004000000000; self.dirty[1] |= 0x4; }
+        if n30 != self.core_pj_0_bad { self.core_pj_0_bad = n30; self.dirty[0] |= 0x40004000000000; self.dirty[1] |= 0x4; }
+        if n31 != self.core_pj_0_ack_missing { self.core_pj_0_ack_missing = n31; self.dirty[1] |= 0xc; }
+        if n32 != self.core_pj_0_ack_c { self.core_pj_0_ack_c = n32; self.dirty[0] |= 0x40000000000000; self.dirty[1] |= 0x4; }
+        if n33 != self.core_pj_0_ack_rx { self.core_pj_0_ack_rx = n33; self.dirty[0] |= 0x40000000000000; }
+        if n34 != self.core_pj_1_dis_r { self.core_pj_1_dis_r = n34; self.dirty[0] |= 0x98008000040001; self.dirty[1] |= 0x10; }
+        if n35 != self.core_pj_1_bic_r { self.core_pj_1_bic_r = n35; self.dirty[0] |= 0x8000000001; self.dirty[1] |= 0x10; }
+        if n36 != self.core_pj_1_life_r { self.core_pj_1_life_r = n36; self.dirty[0] |= 0x8000000000; self.dirty[1] |= 0x10; }
+        if n37 != self.core_pj_1_dbc_r { self.core_pj_1_dbc_r = n37; self.dirty[0] |= 0x8000000001; self.dirty[1] |= 0x10; }
+        if n38 != self.core_pj_1_nack_r { self.core_pj_1_nack_r = n38; self.dirty[0] |= 0x80000000020001; }
+        if n39 != self.core_pj_1_cont_r { self.core_pj_1_cont_r = n39; self.dirty[0] |= 0x80000000000000; self.dirty[1] |= 0x30; }
+        if n40 != self.core_pj_1_rep_r { self.core_pj_1_rep_r = n40; self.dirty[0] |= 0x8000000000; }
+        if n41 != self.core_pj_1_rep_seen { self.core_pj_1_rep_seen = n41; self.dirty[0] |= 0x8000000000; }
+        if n42 != self.core_pj_1_rep_first_dom { self.core_pj_1_rep_first_dom = n42; self.dirty[0] |= 0x8000020000; }
+        if n43 != self.core_pj_1_ok_r { self.core_pj_1_ok_r = n43; self.dirty[0] |= 0x80008000000000; self.dirty[1] |= 0x10; }
+        if n44 != self.core_pj_1_acked { self.core_pj_1_acked = n44; self.dirty[0] |= 0x80008000000000; self.dirty[1] |= 0x10; }
+        if n45 != self.core_pj_1_bad { self.core_pj_1_bad = n45; self.dirty[0] |= 0x80008000000000; self.dirty[1] |= 0x10; }
+        if n46 != self.core_pj_1_ack_missing { self.core_pj_1_ack_missing = n46; self.dirty[1] |= 0x30; }
+        if n47 != self.core_pj_1_ack_c { self.core_pj_1_ack_c = n47; self.dirty[0] |= 0x80000000000000; self.dirty[1] |= 0x10; }
+        if n48 != self.core_pj_1_ack_rx { self.core_pj_1_ack_rx = n48; self.dirty[0] |= 0x80000000000000; }
+        if n49 != self.core_pj_2_dis_r { self.core_pj_2_dis_r = n49; self.dirty[0] |= 0x118010000100001; self.dirty[1] |= 0x40; }
+        if n50 != self.core_pj_2_bic_r { self.core_pj_2_bic_r = n50; self.dirty[0] |= 0x10000000001; self.dirty[1] |= 0x40; }
+        if n51 != self.core_pj_2_life_r { self.core_pj_2_life_r = n51; self.dirty[0] |= 0x10000000000; self.dirty[1] |= 0x40; }
+        if n52 != self.core_pj_2_dbc_r { self.core_pj_2_dbc_r = n52; self.dirty[0] |= 0x10000000001; self.dirty[1] |= 0x40; }
+        if n53 != self.core_pj_2_nack_r { self.core_pj_2_nack_r = n53; self.dirty[0] |= 0x100000000080001; }
+        if n54 != self.core_pj_2_cont_r { self.core_pj_2_cont_r = n54; self.dirty[0] |= 0x100000000000000; self.dirty[1] |= 0xc0; }
+        if n55 != self.core_pj_2_rep_r { self.core_pj_2_rep_r = n55; self.dirty[0] |= 0x10000000000; }
+        if n56 != self.core_pj_2_rep_seen { self.core_pj_2_rep_seen = n56; self.dirty[0] |= 0x10000000000; }
+        if n57 != self.core_pj_2_rep_first_dom { self.core_pj_2_rep_first_dom = n57; self.dirty[0] |= 0x10000080000; }
+        if n58 != self.core_pj_2_ok_r { self.core_pj_2_ok_r = n58; self.dirty[0] |= 0x100010000000000; self.dirty[1] |= 0x40; }
+        if n59 != self.core_pj_2_acked { self.core_pj_2_acked = n59; self.dirty[0] |= 0x100010000000000; self.dirty[1] |= 0x40; }
+        if n60 != self.core_pj_2_bad { self.core_pj_2_bad = n60; self.dirty[0] |= 0x100010000000000; self.dirty[1] |= 0x40; }
+        if n61 != self.core_pj_2_ack_missing { self.core_pj_2_ack_missing = n61; self.dirty[1] |= 0xc0; }
+        if n62 != self.core_pj_2_ack_c { self.core_pj_2_ack_c = n62; self.dirty[0] |= 0x100000000000000; self.dirty[1] |= 0x40; }
+        if n63 != self.core_pj_2_ack_rx { self.core_pj_2_ack_rx = n63; self.dirty[0] |= 0x100000000000000; }
+        if n64 != self.core_sj_0_dis_r { self.core_sj_0_dis_r = n64; self.dirty[0] |= 0x218020c00200001; self.dirty[1] |= 0x100; }
+        if n65 != self.core_sj_0_bic_r { self.core_sj_0_bic_r = n65; self.dirty[0] |= 0x20000000001; self.dirty[1] |= 0x100; }
+        if n66 != self.core_sj_0_life_r { self.core_sj_0_life_r = n66; self.dirty[0] |= 0x20000000000; self.dirty[1] |= 0x100; }
+        if n67 != self.core_sj_0_dbc_r { self.core_sj_0_dbc_r = n67; self.dirty[0] |= 0x20000000001; self.dirty[1] |= 0x100; }
+        if n68 != self.core_sj_0_nack_r { self.core_sj_0_nack_r = n68; self.dirty[0] |= 0x200000000200000; }
+        if n69 != self.core_sj_0_cont_r { self.core_sj_0_cont_r = n69; self.dirty[0] |= 0x200000000000000; self.dirty[1] |= 0x300; }
+        if n70 != self.core_sj_0_rep_r { self.core_sj_0_rep_r = n70; self.dirty[0] |= 0x20000000001; }
+        if n71 != self.core_sj_0_rep_seen { self.core_sj_0_rep_seen = n71; self.dirty[0] |= 0x200020000000000; }
+        if n72 != self.core_sj_0_rep_first_dom { self.core_sj_0_rep_first_dom = n72; self.dirty[0] |= 0x200020000000000; }
+        if n73 != self.core_sj_0_ok_r { self.core_sj_0_ok_r = n73; self.dirty[0] |= 0x200020000000000; self.dirty[1] |= 0x100; }
+        if n74 != self.core_sj_0_acked { self.core_sj_0_acked = n74; self.dirty[0] |= 0x200020000000000; self.dirty[1] |= 0x100; }
+        if n75 != self.core_sj_0_bad { self.core_sj_0_bad = n75; self.dirty[0] |= 0x200020000000000; self.dirty[1] |= 0x100; }
+        if n76 != self.core_sj_0_ack_missing { self.core_sj_0_ack_missing = n76; self.dirty[1] |= 0x300; }
+        if n77 != self.core_sj_0_ack_c { self.core_sj_0_ack_c = n77; self.dirty[0] |= 0x200000000000000; }
+        if n78 != self.core_sj_0_ack_rx { self.core_sj_0_ack_rx = n78; self.dirty[0] |= 0x200000000000000; }
+        self.core_rst_s1 = n79;
+        if n80 != self.core_rst_s2 { self.core_rst_s2 = n80; self.dirty[0] |= 0x1fe80bd083cab7f8; self.dirty[1] |= 0x12556; }
+        if n81 != self.monitor_sync_s1_n { self.monitor_sync_s1_n = n81; self.dirty[0] |= 0x800000; }
+        if n82 != self.monitor_sync_s2_n { self.monitor_sync_s2_n = n82; self.dirty[0] |= 0x800000; }
+        if n83 != self.monitor_btl_c_brp { self.monitor_btl_c_brp = n83; self.dirty[0] |= 0x1800080003000000; }
+        if n84 != self.monitor_btl_c_sp { self.monitor_btl_c_sp = n84; self.dirty[0] |= 0x1800080000000000; }
+        if n85 != self.monitor_btl_c_ntq { self.monitor_btl_c_ntq = n85; self.dirty[0] |= 0x1800080000000000; }
+        if n86 != self.monitor_btl_c_sjw { self.monitor_btl_c_sjw = n86; self.dirty[0] |= 0x1800000003000000; }
+        if n87 != self.monitor_btl_c_triple { self.monitor_btl_c_triple = n87; self.dirty[0] |= 0x800100001000000; }
+        if n88 != self.monitor_btl_c_valid { self.monitor_btl_c_valid = n88; self.dirty[0] |= 0x1800080003000000; }
+        if n89 != self.monitor_btl_c_bad { self.monitor_btl_c_bad = n89; self.dirty[0] |= 0x400080000400000; }
+        if n90 != self.monitor_btl_pre { self.monitor_btl_pre = n90; self.dirty[0] |= 0x1800080003000000; }
+        if n91 != self.monitor_btl_cnt { self.monitor_btl_cnt = n91; self.dirty[0] |= 0x1800000002000000; }
+        if n92 != self.monitor_btl_spw { self.monitor_btl_spw = n92; self.dirty[0] |= 0x1800000002000000; }
+        if n93 != self.monitor_btl_nbw { self.monitor_btl_nbw = n93; self.dirty[0] |= 0x1800000002000000; }
+        if n94 != self.monitor_btl_busmon_n { self.monitor_btl_busmon_n = n94; self.dirty[0] |= 0x1800100001000000; }
+        if n95 != self.monitor_btl_sync_dis { self.monitor_btl_sync_dis = n95; self.dirty[0] |= 0x1800100000000000; }
+        if n96 != self.monitor_btl_since { self.monitor_btl_since = n96; self.dirty[0] |= 0x1800000002000000; }
+        if n97 != self.monitor_btl_pending { self.monitor_btl_pending = n97; self.dirty[0] |= 0x1800000000000000; }
+        if n98 != self.monitor_btl_tx_n { self.monitor_btl_tx_n = n98; self.dirty[0] |= 0x800000002000000; }
+        if n99 != self.monitor_btl_h1_n { self.monitor_btl_h1_n = n99; self.dirty[0] |= 0x800180001000000; }
+        if n100 != self.monitor_btl_h2_n { self.monitor_btl_h2_n = n100; self.dirty[0] |= 0x800100001000000; }
+        if n101 != self.monitor_btl_sample_r { self.monitor_btl_sample_r = n101; self.dirty[0] |= 0xe00060008c000000; self.dirty[1] |= 0x3802; }
+        self.monitor_btl_hard_r = n102;
+        self.monitor_btl_resync_r = n103;
+        if n104 != self.monitor_fsm_fld { self.monitor_fsm_fld = n104; self.dirty[0] |= 0x2000600000000000; self.dirty[1] |= 0x1800; }
+        if n105 != self.monitor_fsm_fpos { self.monitor_fsm_fpos = n105; self.dirty[0] |= 0x2000600008000000; self.dirty[1] |= 0x1800; }
+        if n106 != self.monitor_fsm_pfld { self.monitor_fsm_pfld = n106; self.dirty[0] |= 0x2000600000000000; self.dirty[1] |= 0x1800; }
+        if n107 != self.monitor_fsm_ppos { self.monitor_fsm_ppos = n107; self.dirty[0] |= 0x600000000000; self.dirty[1] |= 0x800; }
+        if n108 != self.monitor_fsm_rtx { self.monitor_fsm_rtx = n108; self.dirty[0] |= 0x2000600000000000; self.dirty[1] |= 0x1800; }
+        if n109 != self.monitor_fsm_dom { self.monitor_fsm_dom = n109; self.dirty[1] |= 0x1800; }
+        if n110 != self.monitor_fsm_dstf_cnt { self.monitor_fsm_dstf_cnt = n110; self.dirty[0] |= 0xc000800010000000; }
+        if n111 != self.monitor_fsm_dstf_lvl { self.monitor_fsm_dstf_lvl = n111; self.dirty[0] |= 0xc000800020000000; }
+        if n112 != self.monitor_fsm_crcb_state { self.monitor_fsm_crcb_state = n112; self.dirty[0] |= 0x3000040000000; self.dirty[1] |= 0x1; }
+        if n113 != self.monitor_fsm_crcerr { self.monitor_fsm_crcerr = n113; self.dirty[1] |= 0x1800; }
+        if n114 != self.monitor_fsm_tid { self.monitor_fsm_tid = n114; self.dirty[0] |= 0x2000600000000000; self.dirty[1] |= 0x1800; }
+        if n115 != self.monitor_fsm_tdat { self.monitor_fsm_tdat = n115; self.dirty[0] |= 0x2000600000000000; self.dirty[1] |= 0x1800; }
+        if n116 != self.monitor_fsm_tdlc { self.monitor_fsm_tdlc = n116; self.dirty[0] |= 0x2000600000000000; self.dirty[1] |= 0x1800; }
+        if n117 != self.monitor_fsm_tide { self.monitor_fsm_tide = n117; self.dirty[0] |= 0x2000000004000000; self.dirty[1] |= 0x1800; }
+        if n118 != self.monitor_fsm_trtr { self.monitor_fsm_trtr = n118; self.dirty[0] |= 0x2000000004000000; self.dirty[1] |= 0x1800; }
+        if n119 != self.monitor_fsm_rid { self.monitor_fsm_rid = n119; self.dirty[0] |= 0x600000000000; }
+        if n120 != self.monitor_fsm_rdat { self.monitor_fsm_rdat = n120; self.dirty[0] |= 0x600000000000; }
+        if n121 != self.monitor_fsm_rdlc { self.monitor_fsm_rdlc = n121; self.dirty[0] |= 0x2000600000000000; self.dirty[1] |= 0x1800; }
+        if n122 != self.monitor_fsm_rrtr { self.monitor_fsm_rrtr = n122; self.dirty[0] |= 0x2000600000000000; self.dirty[1] |= 0x1800; }
+        if n123 != self.monitor_fsm_rext { self.monitor_fsm_rext = n123; self.dirty[0] |= 0x2000600000000000; self.dirty[1] |= 0x1800; }
+        if n124 != self.monitor_fsm_fdone { self.monitor_fsm_fdone = n124; self.dirty[0] |= 0x2000600000000000; self.dirty[1] |= 0x1800; }
+        if n125 != self.monitor_fsm_eqcnt { self.monitor_fsm_eqcnt = n125; self.dirty[0] |= 0x600000000000; self.dirty[1] |= 0x1800; }
+        if n126 != self.monitor_fsm_eqlast { self.monitor_fsm_eqlast = n126; self.dirty[0] |= 0x600000000000; self.dirty[1] |= 0x1800; }
+        if n127 != self.monitor_fsm_dafc { self.monitor_fsm_dafc = n127; self.dirty[0] |= 0x400000000000; self.dirty[1] |= 0x1800; }
+        if n128 != self.monitor_fsm_dafany { self.monitor_fsm_dafany = n128; self.dirty[0] |= 0x400000000000; self.dirty[1] |= 0x1800; }
+        if n129 != self.monitor_fsm_exc1 { self.monitor_fsm_exc1 = n129; self.dirty[0] |= 0x600000000000; self.dirty[1] |= 0x1800; }
+        if n130 != self.monitor_fsm_tecr { self.monitor_fsm_tecr = n130; self.dirty[0] |= 0x2000600008000000; self.dirty[1] |= 0x1800; }
+        if n131 != self.monitor_fsm_recr { self.monitor_fsm_recr = n131; self.dirty[0] |= 0x2000600008000000; self.dirty[1] |= 0x1800; }
+        if n132 != self.monitor_fsm_runr { self.monitor_fsm_runr = n132; self.dirty[0] |= 0x2000600000000000; self.dirty[1] |= 0x1800; }
+        if n133 != self.monitor_fsm_rarmed { self.monitor_fsm_rarmed = n133; self.dirty[0] |= 0x600000000000; }
+        self.monitor_fsm_req = n134;
+        self.monitor_fsm_blocked = n135;
+        if n136 != self.monitor_fsm_evr { self.monitor_fsm_evr = n136; self.dirty[0] |= 0x188000000; }
+        if n137 != self.monitor_fsm_arbpos_r { self.monitor_fsm_arbpos_r = n137; self.dirty[1] |= 0x800; }
+        if n138 != self.monitor_fsm_errf_r { self.monitor_fsm_errf_r = n138; self.dirty[1] |= 0x800; }
+        if n139 != self.monitor_fsm_errp_r { self.monitor_fsm_errp_r = n139; self.dirty[1] |= 0x800; }
+        if n140 != self.monitor_fsm_errtx_r { self.monitor_fsm_errtx_r = n140; self.dirty[1] |= 0x800; }
+        if n141 != self.monitor_fsm_rxide_r { self.monitor_fsm_rxide_r = n141; self.dirty[0] |= 0x200000000000; }
+        if n142 != self.monitor_fsm_rxrtr_r { self.monitor_fsm_rxrtr_r = n142; self.dirty[0] |= 0x200000000000; }
+        if n143 != self.monitor_fsm_rxid_r { self.monitor_fsm_rxid_r = n143; self.dirty[0] |= 0x200000000000; }
+        if n144 != self.monitor_fsm_rxdlc_r { self.monitor_fsm_rxdlc_r = n144; self.dirty[0] |= 0x200000000000; }
+        if n145 != self.monitor_fsm_rxdat_r { self.monitor_fsm_rxdat_r = n145; self.dirty[0] |= 0x200000000000; }
+        if n146 != self.adapter_s_r { self.adapter_s_r = n146; self.dirty[0] |= 0x3e003c080000000; self.dirty[1] |= 0x4154; }
+        if n147 != self.adapter_f_r { self.adapter_f_r = n147; self.dirty[0] |= 0x180000000; self.dirty[1] |= 0x2000; }
+        if n148 != self.adapter_p_r { self.adapter_p_r = n148; self.dirty[0] |= 0x80000000; self.dirty[1] |= 0x2; }
+        if n149 != self.adapter_bs_pending { self.adapter_bs_pending = n149; self.dirty[0] |= 0x80000000; }
+        if n150 != self.adapter_bs_cnt { self.adapter_bs_cnt = n150; self.dirty[0] |= 0x80000000; }
+        if n151 != self.adapter_f_map { self.adapter_f_map = n151; self.dirty[0] |= 0x80000000; }
     }
 
     /// `top` block, depth 0, state-only: isolated$0, isolated$1, isolated$2, sub_isolated$0, efg_active, bic$0, ... (19 signals)
@@ -2182,8 +2319,8 @@ impl HubN3M1 {
         self.sub_bic_0 = sub_bic_0;
         self.sub_dbc_0 = sub_dbc_0;
         self.sub_rep_0 = sub_rep_0;
-        self.monitor_brp = monitor_brp;
-        self.monitor_prop = monitor_prop;
+        if monitor_brp != self.monitor_brp { self.monitor_brp = monitor_brp; self.dirty[0] |= 0x80000000000; }
+        if monitor_prop != self.monitor_prop { self.monitor_prop = monitor_prop; self.dirty[0] |= 0x800180000000000; }
     }
 
     /// `core` block, depth 0, input-dependent: core.rst_s1.d
@@ -2203,10 +2340,10 @@ impl HubN3M1 {
         core_coupler_tx_0 = (!self.core_coupler_tx_n_0);
         core_coupler_tx_1 = (!self.core_coupler_tx_n_1);
         core_coupler_tx_2 = (!self.core_coupler_tx_n_2);
-        self.core_coupler_tx_0 = core_coupler_tx_0;
-        self.core_coupler_tx_1 = core_coupler_tx_1;
-        self.core_coupler_tx_2 = core_coupler_tx_2;
-        self.core_coupler_hub_tx_0 = core_coupler_hub_tx_0;
+        if core_coupler_tx_0 != self.core_coupler_tx_0 { self.core_coupler_tx_0 = core_coupler_tx_0; self.dirty[0] |= 0x200000000; }
+        if core_coupler_tx_1 != self.core_coupler_tx_1 { self.core_coupler_tx_1 = core_coupler_tx_1; self.dirty[0] |= 0x200000000; }
+        if core_coupler_tx_2 != self.core_coupler_tx_2 { self.core_coupler_tx_2 = core_coupler_tx_2; self.dirty[0] |= 0x200000000; }
+        if core_coupler_hub_tx_0 != self.core_coupler_hub_tx_0 { self.core_coupler_hub_tx_0 = core_coupler_hub_tx_0; self.dirty[0] |= 0x200000000; }
     }
 
     /// `core.coupler.up_sync$0` block, depth 0, state-only: core.coupler.up_sync$0.q, core.coupler.up_sync$0.s2_n.d
@@ -2221,7 +2358,7 @@ impl HubN3M1 {
         if self.core_coupler_up_sync_0_two_stages {
             core_coupler_up_sync_0_q = (!self.core_coupler_up_sync_0_s2_n);
         }
-        self.core_coupler_up_sync_0_q = core_coupler_up_sync_0_q;
+        if core_coupler_up_sync_0_q != self.core_coupler_up_sync_0_q { self.core_coupler_up_sync_0_q = core_coupler_up_sync_0_q; self.dirty[0] |= 0x18000000000000; }
         self.core_coupler_up_sync_0_s2_n_d = core_coupler_up_sync_0_s2_n_d;
     }
 
@@ -2247,7 +2384,7 @@ impl HubN3M1 {
         if self.core_coupler_up_sync_1_two_stages {
             core_coupler_up_sync_1_q = (!self.core_coupler_up_sync_1_s2_n);
         }
-        self.core_coupler_up_sync_1_q = core_coupler_up_sync_1_q;
+        if core_coupler_up_sync_1_q != self.core_coupler_up_sync_1_q { self.core_coupler_up_sync_1_q = core_coupler_up_sync_1_q; self.dirty[0] |= 0x18000000000000; }
         self.core_coupler_up_sync_1_s2_n_d = core_coupler_up_sync_1_s2_n_d;
     }
 
@@ -2273,7 +2410,7 @@ impl HubN3M1 {
         if self.core_coupler_up_sync_2_two_stages {
             core_coupler_up_sync_2_q = (!self.core_coupler_up_sync_2_s2_n);
         }
-        self.core_coupler_up_sync_2_q = core_coupler_up_sync_2_q;
+        if core_coupler_up_sync_2_q != self.core_coupler_up_sync_2_q { self.core_coupler_up_sync_2_q = core_coupler_up_sync_2_q; self.dirty[0] |= 0x18000000000000; }
         self.core_coupler_up_sync_2_s2_n_d = core_coupler_up_sync_2_s2_n_d;
     }
 
@@ -2299,7 +2436,7 @@ impl HubN3M1 {
         if self.core_coupler_reh_sync_0_two_stages {
             core_coupler_reh_sync_0_q = (!self.core_coupler_reh_sync_0_s2_n);
         }
-        self.core_coupler_reh_sync_0_q = core_coupler_reh_sync_0_q;
+        if core_coupler_reh_sync_0_q != self.core_coupler_reh_sync_0_q { self.core_coupler_reh_sync_0_q = core_coupler_reh_sync_0_q; self.dirty[0] |= 0x218060c00000000; self.dirty[1] |= 0x300; }
         self.core_coupler_reh_sync_0_s2_n_d = core_coupler_reh_sync_0_s2_n_d;
     }
 
@@ -2319,8 +2456,8 @@ impl HubN3M1 {
         let mut core_efgen_busy: bool = false;
         core_efgen_efg = (!self.core_efgen_driving);
         core_efgen_busy = (self.core_efgen_pending | self.core_efgen_driving);
-        self.core_efgen_efg = core_efgen_efg;
-        self.core_efgen_busy = core_efgen_busy;
+        if core_efgen_efg != self.core_efgen_efg { self.core_efgen_efg = core_efgen_efg; self.dirty[0] |= 0x18000000000000; }
+        if core_efgen_busy != self.core_efgen_busy { self.core_efgen_busy = core_efgen_busy; self.dirty[0] |= 0x4000000000000; self.dirty[1] |= 0x4000; }
     }
 
     /// `core.injector` block, depth 0, state-only: core.injector.active, core.injector.btn_prev.d
@@ -2332,7 +2469,7 @@ impl HubN3M1 {
             core_injector_btn_prev_d = false;
         }
         core_injector_active = ((self.core_injector_state == 2u8) | (self.core_injector_state == 3u8));
-        self.core_injector_active = core_injector_active;
+        if core_injector_active != self.core_injector_active { self.core_injector_active = core_injector_active; self.dirty[0] |= 0x600000000; }
         self.core_injector_btn_prev_d = core_injector_btn_prev_d;
     }
 
@@ -2365,7 +2502,7 @@ impl HubN3M1 {
             core_pj_0_rep_first_dom_d = false;
         }
         core_pj_0_silent = (self.core_pj_0_nack_r >= self.core_pj_0_nack_thr);
-        self.core_pj_0_silent = core_pj_0_silent;
+        if core_pj_0_silent != self.core_pj_0_silent { self.core_pj_0_silent = core_pj_0_silent; self.dirty[0] |= 0x200000000; }
         self.core_pj_0_rep_first_dom_d = core_pj_0_rep_first_dom_d;
     }
 
@@ -2385,7 +2522,7 @@ impl HubN3M1 {
             core_pj_1_rep_first_dom_d = false;
         }
         core_pj_1_silent = (self.core_pj_1_nack_r >= self.core_pj_1_nack_thr);
-        self.core_pj_1_silent = core_pj_1_silent;
+        if core_pj_1_silent != self.core_pj_1_silent { self.core_pj_1_silent = core_pj_1_silent; self.dirty[0] |= 0x200000000; }
         self.core_pj_1_rep_first_dom_d = core_pj_1_rep_first_dom_d;
     }
 
@@ -2405,7 +2542,7 @@ impl HubN3M1 {
             core_pj_2_rep_first_dom_d = false;
         }
         core_pj_2_silent = (self.core_pj_2_nack_r >= self.core_pj_2_nack_thr);
-        self.core_pj_2_silent = core_pj_2_silent;
+        if core_pj_2_silent != self.core_pj_2_silent { self.core_pj_2_silent = core_pj_2_silent; self.dirty[0] |= 0x200000000; }
         self.core_pj_2_rep_first_dom_d = core_pj_2_rep_first_dom_d;
     }
 
@@ -2430,7 +2567,7 @@ impl HubN3M1 {
     fn g22(&mut self) {
         let mut monitor_l_hold: bool = false;
         monitor_l_hold = (self.core_rst_s2 | self.monitor_btl_c_bad);
-        self.monitor_l_hold = monitor_l_hold;
+        if monitor_l_hold != self.monitor_l_hold { self.monitor_l_hold = monitor_l_hold; self.dirty[0] |= 0x4000200000000000; self.dirty[1] |= 0x801; }
     }
 
     /// `monitor.sync` block, depth 0, state-only: monitor.sync.q, monitor.sync.s2_n.d
@@ -2445,7 +2582,7 @@ impl HubN3M1 {
         if self.monitor_sync_two_stages {
             monitor_sync_q = (!self.monitor_sync_s2_n);
         }
-        self.monitor_sync_q = monitor_sync_q;
+        if monitor_sync_q != self.monitor_sync_q { self.monitor_sync_q = monitor_sync_q; self.dirty[0] |= 0x1800180000000000; }
         self.monitor_sync_s2_n_d = monitor_sync_s2_n_d;
     }
 
@@ -2482,7 +2619,7 @@ impl HubN3M1 {
             }
         }
         monitor_btl_busmon = (!self.monitor_btl_busmon_n);
-        self.monitor_btl_busmon = monitor_btl_busmon;
+        if monitor_btl_busmon != self.monitor_btl_busmon { self.monitor_btl_busmon = monitor_btl_busmon; self.dirty[0] |= 0xe003e00000000000; self.dirty[1] |= 0x1801; }
         self.monitor_btl_c_sjw_d = monitor_btl_c_sjw_d;
         self.monitor_btl_c_triple_d = monitor_btl_c_triple_d;
         self.monitor_btl_pre_d = monitor_btl_pre_d;
@@ -2542,7 +2679,7 @@ impl HubN3M1 {
             monitor_fsm_tide_d = self.monitor_fsm_tide;
             monitor_fsm_trtr_d = self.monitor_fsm_trtr;
         }
-        self.monitor_fsm_drive = monitor_fsm_drive;
+        if monitor_fsm_drive != self.monitor_fsm_drive { self.monitor_fsm_drive = monitor_fsm_drive; self.dirty[0] |= 0x1800000000000000; }
         self.monitor_fsm_tide_d = monitor_fsm_tide_d;
         self.monitor_fsm_trtr_d = monitor_fsm_trtr_d;
     }
@@ -2605,7 +2742,7 @@ impl HubN3M1 {
     fn g28(&mut self) {
         let mut monitor_fsm_dstf_at5: bool = false;
         monitor_fsm_dstf_at5 = (self.monitor_fsm_dstf_cnt == 5u8);
-        self.monitor_fsm_dstf_at5 = monitor_fsm_dstf_at5;
+        if monitor_fsm_dstf_at5 != self.monitor_fsm_dstf_at5 { self.monitor_fsm_dstf_at5 = monitor_fsm_dstf_at5; self.dirty[0] |= 0x2000600000000000; self.dirty[1] |= 0x1800; }
     }
 
     /// `monitor.fsm.dstf` block, depth 0, probe-only: monitor.fsm.dstf.stuff_level
@@ -2704,12 +2841,12 @@ impl HubN3M1 {
             adapter_f_map_d = 0u8;
         }
         adapter_bit_start = ((self.adapter_bs_pending & (self.adapter_bs_cnt == 0u8)) & (!self.adapter_s_r));
-        self.adapter_mon_field = adapter_mon_field;
-        self.adapter_mon_pos = adapter_mon_pos;
-        self.adapter_mon_error = adapter_mon_error;
-        self.adapter_mon_crc_ok = adapter_mon_crc_ok;
-        self.adapter_mon_frame_ok = adapter_mon_frame_ok;
-        self.adapter_bit_start = adapter_bit_start;
+        if adapter_mon_field != self.adapter_mon_field { self.adapter_mon_field = adapter_mon_field; self.dirty[0] |= 0x20002200000000; }
+        if adapter_mon_pos != self.adapter_mon_pos { self.adapter_mon_pos = adapter_mon_pos; self.dirty[0] |= 0x2000000000; }
+        if adapter_mon_error != self.adapter_mon_error { self.adapter_mon_error = adapter_mon_error; self.dirty[1] |= 0x4000; }
+        if adapter_mon_crc_ok != self.adapter_mon_crc_ok { self.adapter_mon_crc_ok = adapter_mon_crc_ok; self.dirty[0] |= 0x3c0000000000000; }
+        if adapter_mon_frame_ok != self.adapter_mon_frame_ok { self.adapter_mon_frame_ok = adapter_mon_frame_ok; self.dirty[0] |= 0x3c003c000000000; self.dirty[1] |= 0x154; }
+        if adapter_bit_start != self.adapter_bit_start { self.adapter_bit_start = adapter_bit_start; self.dirty[0] |= 0x1000000000; self.dirty[1] |= 0x10000; }
         self.adapter_s_r_d = adapter_s_r_d;
         self.adapter_bs_pending_d = adapter_bs_pending_d;
         self.adapter_bs_cnt_d = adapter_bs_cnt_d;
@@ -2833,15 +2970,15 @@ impl HubN3M1 {
         }
         core_sj_0_rep_rec = core_rep_rec;
         core_sj_0_rep_dom = core_rep_dom;
-        self.core_coupler_up_fault_0 = core_coupler_up_fault_0;
-        self.core_coupler_up_fault_1 = core_coupler_up_fault_1;
-        self.core_coupler_up_fault_2 = core_coupler_up_fault_2;
-        self.core_coupler_down_fault_0 = core_coupler_down_fault_0;
-        self.core_coupler_down_fault_1 = core_coupler_down_fault_1;
-        self.core_coupler_down_fault_2 = core_coupler_down_fault_2;
-        self.core_coupler_hub_fault_0 = core_coupler_hub_fault_0;
-        self.core_sj_0_rep_rec = core_sj_0_rep_rec;
-        self.core_sj_0_rep_dom = core_sj_0_rep_dom;
+        if core_coupler_up_fault_0 != self.core_coupler_up_fault_0 { self.core_coupler_up_fault_0 = core_coupler_up_fault_0; self.dirty[0] |= 0x18000000000000; }
+        if core_coupler_up_fault_1 != self.core_coupler_up_fault_1 { self.core_coupler_up_fault_1 = core_coupler_up_fault_1; self.dirty[0] |= 0x18000000000000; }
+        if core_coupler_up_fault_2 != self.core_coupler_up_fault_2 { self.core_coupler_up_fault_2 = core_coupler_up_fault_2; self.dirty[0] |= 0x18000000000000; }
+        if core_coupler_down_fault_0 != self.core_coupler_down_fault_0 { self.core_coupler_down_fault_0 = core_coupler_down_fault_0; self.dirty[0] |= 0x18000000000000; }
+        if core_coupler_down_fault_1 != self.core_coupler_down_fault_1 { self.core_coupler_down_fault_1 = core_coupler_down_fault_1; self.dirty[0] |= 0x18000000000000; }
+        if core_coupler_down_fault_2 != self.core_coupler_down_fault_2 { self.core_coupler_down_fault_2 = core_coupler_down_fault_2; self.dirty[0] |= 0x18000000000000; }
+        if core_coupler_hub_fault_0 != self.core_coupler_hub_fault_0 { self.core_coupler_hub_fault_0 = core_coupler_hub_fault_0; self.dirty[0] |= 0x18000000000000; }
+        if core_sj_0_rep_rec != self.core_sj_0_rep_rec { self.core_sj_0_rep_rec = core_sj_0_rep_rec; self.dirty[0] |= 0x200000000000000; }
+        if core_sj_0_rep_dom != self.core_sj_0_rep_dom { self.core_sj_0_rep_dom = core_sj_0_rep_dom; self.dirty[0] |= 0x200000000000000; }
     }
 
     /// `core` block, depth 1, probe-only: core.rep_rec, core.rep_dom
@@ -2906,16 +3043,16 @@ impl HubN3M1 {
         core_decode_eof_last = ((self.adapter_mon_field == 0xb_u8) & (self.adapter_mon_pos == 6u8));
         core_decode_im_2 = ((self.adapter_mon_field == 0xc_u8) & (self.adapter_mon_pos == 1u8));
         core_decode_err_phase = (self.adapter_mon_field >= 0xd_u8);
-        self.core_decode_sof = core_decode_sof;
-        self.core_decode_tx_region = core_decode_tx_region;
-        self.core_decode_arb = core_decode_arb;
-        self.core_decode_crc_delim = core_decode_crc_delim;
-        self.core_decode_ack_slot = core_decode_ack_slot;
-        self.core_decode_ack_delim = core_decode_ack_delim;
-        self.core_decode_eof_1_6 = core_decode_eof_1_6;
-        self.core_decode_eof_last = core_decode_eof_last;
-        self.core_decode_im_2 = core_decode_im_2;
-        self.core_decode_err_phase = core_decode_err_phase;
+        if core_decode_sof != self.core_decode_sof { self.core_decode_sof = core_decode_sof; self.dirty[1] |= 0x154; }
+        if core_decode_tx_region != self.core_decode_tx_region { self.core_decode_tx_region = core_decode_tx_region; self.dirty[1] |= 0x3fc; }
+        if core_decode_arb != self.core_decode_arb { self.core_decode_arb = core_decode_arb; self.dirty[1] |= 0x3fc; }
+        if core_decode_crc_delim != self.core_decode_crc_delim { self.core_decode_crc_delim = core_decode_crc_delim; self.dirty[1] |= 0x3fc; }
+        if core_decode_ack_slot != self.core_decode_ack_slot { self.core_decode_ack_slot = core_decode_ack_slot; self.dirty[0] |= 0x3c0000000000000; self.dirty[1] |= 0x3fc; }
+        if core_decode_ack_delim != self.core_decode_ack_delim { self.core_decode_ack_delim = core_decode_ack_delim; self.dirty[0] |= 0x3c0000000000000; self.dirty[1] |= 0x3fc; }
+        if core_decode_eof_1_6 != self.core_decode_eof_1_6 { self.core_decode_eof_1_6 = core_decode_eof_1_6; self.dirty[1] |= 0x3fc; }
+        if core_decode_eof_last != self.core_decode_eof_last { self.core_decode_eof_last = core_decode_eof_last; self.dirty[0] |= 0x20000000000000; }
+        if core_decode_im_2 != self.core_decode_im_2 { self.core_decode_im_2 = core_decode_im_2; self.dirty[1] |= 0x3fc; }
+        if core_decode_err_phase != self.core_decode_err_phase { self.core_decode_err_phase = core_decode_err_phase; self.dirty[0] |= 0x4000000000000; }
     }
 
     /// `core.pj$0` block, depth 1, state-only: core.pj$0.dis_r.d, core.pj$0.rep_r.d, core.pj$0.rep_seen.d, core.pj$0.ok_r.d
@@ -3693,15 +3830,15 @@ impl HubN3M1 {
             monitor_fsm_rrtr_d = false;
         }
         monitor_fsm_pos = monitor_fsm_l_dpos;
-        self.monitor_fsm_hs_en = monitor_fsm_hs_en;
-        self.monitor_fsm_field = monitor_fsm_field;
-        self.monitor_fsm_pos = monitor_fsm_pos;
+        if monitor_fsm_hs_en != self.monitor_fsm_hs_en { self.monitor_fsm_hs_en = monitor_fsm_hs_en; self.dirty[0] |= 0x1800000000000000; }
+        if monitor_fsm_field != self.monitor_fsm_field { self.monitor_fsm_field = monitor_fsm_field; self.dirty[0] |= 0x400000000000000; }
+        if monitor_fsm_pos != self.monitor_fsm_pos { self.monitor_fsm_pos = monitor_fsm_pos; self.dirty[1] |= 0x2; }
         self.monitor_fsm_pfld_d = monitor_fsm_pfld_d;
         self.monitor_fsm_ppos_d = monitor_fsm_ppos_d;
         self.monitor_fsm_rtx_d = monitor_fsm_rtx_d;
-        self.monitor_fsm_dstf_active = monitor_fsm_dstf_active;
-        self.monitor_fsm_crcb_clear = monitor_fsm_crcb_clear;
-        self.monitor_fsm_crcb_en = monitor_fsm_crcb_en;
+        if monitor_fsm_dstf_active != self.monitor_fsm_dstf_active { self.monitor_fsm_dstf_active = monitor_fsm_dstf_active; self.dirty[0] |= 0xc000000000000000; }
+        if monitor_fsm_crcb_clear != self.monitor_fsm_crcb_clear { self.monitor_fsm_crcb_clear = monitor_fsm_crcb_clear; self.dirty[1] |= 0x1; }
+        if monitor_fsm_crcb_en != self.monitor_fsm_crcb_en { self.monitor_fsm_crcb_en = monitor_fsm_crcb_en; self.dirty[1] |= 0x1; }
         self.monitor_fsm_tid_d = monitor_fsm_tid_d;
         self.monitor_fsm_tdat_d = monitor_fsm_tdat_d;
         self.monitor_fsm_tdlc_d = monitor_fsm_tdlc_d;
@@ -4211,7 +4348,7 @@ impl HubN3M1 {
             monitor_fsm_crcb_nxt = (monitor_fsm_crcb_shifted ^ self.monitor_fsm_crcb_poly);
         }
         monitor_fsm_crcb_crc_next = monitor_fsm_crcb_nxt;
-        self.monitor_fsm_crcb_crc_next = monitor_fsm_crcb_crc_next;
+        if monitor_fsm_crcb_crc_next != self.monitor_fsm_crcb_crc_next { self.monitor_fsm_crcb_crc_next = monitor_fsm_crcb_crc_next; self.dirty[0] |= 0x2000000000000000; self.dirty[1] |= 0x1800; }
     }
 
     /// `monitor.fsm.crcb` block, depth 1, probe-only: monitor.fsm.crcb.fb, monitor.fsm.crcb.nxt
@@ -4233,7 +4370,7 @@ impl HubN3M1 {
     fn g50(&mut self) {
         let mut core_err_phase: bool = false;
         core_err_phase = (self.core_decode_err_phase | self.core_efgen_busy);
-        self.core_err_phase = core_err_phase;
+        if core_err_phase != self.core_err_phase { self.core_err_phase = core_err_phase; self.dirty[1] |= 0x3fc; }
     }
 
     /// `core.coupler` block, depth 2, state-only: core.coupler.u$0, core.coupler.u$1, core.coupler.u$2, core.coupler.bt, core.coupler.tx_n$0.d, core.coupler.tx_n$1.d, ... (8 signals)
@@ -4344,10 +4481,10 @@ impl HubN3M1 {
         if self.core_rst_s2 {
             core_coupler_tx_n_2_d = false;
         }
-        self.core_coupler_u_0 = core_coupler_u_0;
-        self.core_coupler_u_1 = core_coupler_u_1;
-        self.core_coupler_u_2 = core_coupler_u_2;
-        self.core_coupler_bt = core_coupler_bt;
+        if core_coupler_u_0 != self.core_coupler_u_0 { self.core_coupler_u_0 = core_coupler_u_0; self.dirty[1] |= 0xc; }
+        if core_coupler_u_1 != self.core_coupler_u_1 { self.core_coupler_u_1 = core_coupler_u_1; self.dirty[1] |= 0x30; }
+        if core_coupler_u_2 != self.core_coupler_u_2 { self.core_coupler_u_2 = core_coupler_u_2; self.dirty[1] |= 0xc0; }
+        if core_coupler_bt != self.core_coupler_bt { self.core_coupler_bt = core_coupler_bt; self.dirty[1] |= 0x554; }
         self.core_coupler_tx_n_0_d = core_coupler_tx_n_0_d;
         self.core_coupler_tx_n_1_d = core_coupler_tx_n_1_d;
         self.core_coupler_tx_n_2_d = core_coupler_tx_n_2_d;
@@ -4708,7 +4845,7 @@ impl HubN3M1 {
         if monitor_l_hold {
             monitor_dbg_field = 0u8;
         }
-        self.monitor_dbg_field = monitor_dbg_field;
+        if monitor_dbg_field != self.monitor_dbg_field { self.monitor_dbg_field = monitor_dbg_field; self.dirty[1] |= 0x2000; }
     }
 
     /// `monitor.btl` block, depth 2, state-only: monitor.btl.cnt.d, monitor.btl.spw.d, monitor.btl.nbw.d, monitor.btl.busmon_n.d, monitor.btl.sync_dis.d, monitor.btl.since.d, ... (11 signals)
@@ -5357,7 +5494,7 @@ impl HubN3M1 {
             monitor_fsm_dstf_cnt_d = 0u8;
             monitor_fsm_dstf_lvl_d = false;
         }
-        self.monitor_fsm_dstf_stuff_error = monitor_fsm_dstf_stuff_error;
+        if monitor_fsm_dstf_stuff_error != self.monitor_fsm_dstf_stuff_error { self.monitor_fsm_dstf_stuff_error = monitor_fsm_dstf_stuff_error; self.dirty[1] |= 0x1800; }
         self.monitor_fsm_dstf_cnt_d = monitor_fsm_dstf_cnt_d;
         self.monitor_fsm_dstf_lvl_d = monitor_fsm_dstf_lvl_d;
     }
@@ -5499,8 +5636,8 @@ impl HubN3M1 {
             core_pj_0_ack_missing_d = false;
             core_pj_0_ack_c_d = false;
         }
-        self.core_pj_0_blame = core_pj_0_blame;
-        self.core_pj_0_tx_error = core_pj_0_tx_error;
+        if core_pj_0_blame != self.core_pj_0_blame { self.core_pj_0_blame = core_pj_0_blame; self.dirty[1] |= 0xc000; }
+        if core_pj_0_tx_error != self.core_pj_0_tx_error { self.core_pj_0_tx_error = core_pj_0_tx_error; self.dirty[1] |= 0xc000; }
         self.core_pj_0_bic_r_d = core_pj_0_bic_r_d;
         self.core_pj_0_life_r_d = core_pj_0_life_r_d;
         self.core_pj_0_dbc_r_d = core_pj_0_dbc_r_d;
@@ -5608,8 +5745,8 @@ impl HubN3M1 {
             core_pj_1_ack_missing_d = false;
             core_pj_1_ack_c_d = false;
         }
-        self.core_pj_1_blame = core_pj_1_blame;
-        self.core_pj_1_tx_error = core_pj_1_tx_error;
+        if core_pj_1_blame != self.core_pj_1_blame { self.core_pj_1_blame = core_pj_1_blame; self.dirty[1] |= 0xc000; }
+        if core_pj_1_tx_error != self.core_pj_1_tx_error { self.core_pj_1_tx_error = core_pj_1_tx_error; self.dirty[1] |= 0xc000; }
         self.core_pj_1_bic_r_d = core_pj_1_bic_r_d;
         self.core_pj_1_life_r_d = core_pj_1_life_r_d;
         self.core_pj_1_dbc_r_d = core_pj_1_dbc_r_d;
@@ -5717,8 +5854,8 @@ impl HubN3M1 {
             core_pj_2_ack_missing_d = false;
             core_pj_2_ack_c_d = false;
         }
-        self.core_pj_2_blame = core_pj_2_blame;
-        self.core_pj_2_tx_error = core_pj_2_tx_error;
+        if core_pj_2_blame != self.core_pj_2_blame { self.core_pj_2_blame = core_pj_2_blame; self.dirty[1] |= 0xc000; }
+        if core_pj_2_tx_error != self.core_pj_2_tx_error { self.core_pj_2_tx_error = core_pj_2_tx_error; self.dirty[1] |= 0xc000; }
         self.core_pj_2_bic_r_d = core_pj_2_bic_r_d;
         self.core_pj_2_life_r_d = core_pj_2_life_r_d;
         self.core_pj_2_dbc_r_d = core_pj_2_dbc_r_d;
@@ -5809,8 +5946,8 @@ impl HubN3M1 {
             core_sj_0_bad_d = false;
             core_sj_0_ack_missing_d = false;
         }
-        self.core_sj_0_blame = core_sj_0_blame;
-        self.core_sj_0_tx_error = core_sj_0_tx_error;
+        if core_sj_0_blame != self.core_sj_0_blame { self.core_sj_0_blame = core_sj_0_blame; self.dirty[1] |= 0xc000; }
+        if core_sj_0_tx_error != self.core_sj_0_tx_error { self.core_sj_0_tx_error = core_sj_0_tx_error; self.dirty[1] |= 0xc000; }
         self.core_sj_0_bic_r_d = core_sj_0_bic_r_d;
         self.core_sj_0_life_r_d = core_sj_0_life_r_d;
         self.core_sj_0_cont_r_d = core_sj_0_cont_r_d;
@@ -7297,7 +7434,7 @@ impl HubN3M1 {
         core_trigger = (self.adapter_s_r & ((self.adapter_mon_error | core_any_blame) | core_any_tx_error));
         core_err_start_r_d = (core_trigger & (!self.core_efgen_busy));
         self.core_err_start_r_d = core_err_start_r_d;
-        self.core_trigger = core_trigger;
+        if core_trigger != self.core_trigger { self.core_trigger = core_trigger; self.dirty[1] |= 0x10000; }
     }
 
     /// `core` block, depth 4, probe-only: core.any_blame, core.any_tx_error
@@ -8723,6 +8860,7 @@ impl rt::Model for HubN3M1 {
             1048 => self.sjw = (v & 0x3) as u8,
             _ => return false,
         }
+        self.dirty = [!0; 2];
         true
     }
     fn set_mem(&mut self, r: usize, addr: usize, v: u128) {

@@ -968,6 +968,15 @@ pub struct Sja1000 {
     pub l_sjw: u8,
     /// `ram` memory, 64 x 8 bits
     pub ram_mem: [u8; 64],
+    seen_rst: bool,
+    seen_wb_cyc: bool,
+    seen_wb_stb: bool,
+    seen_wb_we: bool,
+    seen_wb_adr: u8,
+    seen_wb_dat_w: u8,
+    seen_rx: bool,
+    /// Groups to evaluate (one bit per group, see `run`).
+    dirty: [u64; 1],
     trace: bool,
 }
 
@@ -1463,6 +1472,14 @@ impl Sja1000 {
             l_ph1: 0u8,
             l_sjw: 0u8,
             ram_mem: [0u8; 64],
+            seen_rst: false,
+            seen_wb_cyc: false,
+            seen_wb_stb: false,
+            seen_wb_we: false,
+            seen_wb_adr: 0u8,
+            seen_wb_dat_w: 0u8,
+            seen_rx: false,
+            dirty: [!0; 1],
             trace: false,
         };
         m.eval_all();
@@ -1476,235 +1493,366 @@ impl Sja1000 {
         Ok(m)
     }
 
+    /// Groups evaluated before the edge: input-dependent.
+    const PRE: [u64; 1] = [0x134b09d402];
+    /// Groups evaluated after the edge: state-only and the output cone.
+    const POST: [u64; 1] = [0x820440959];
+    const ALL: [u64; 1] = [0x3fffffffff];
+
     /// One clock cycle (`canstar_hdl::drive::cycle`): settle, rising edge, settle.
     pub fn cycle(&mut self) {
-        self.eval_pre();
+        self.sense();
+        self.run(&Self::PRE);
         self.edge();
-        if self.trace {
-            self.eval_all();
-        } else {
-            self.eval_post();
-        }
+        self.run(if self.trace { &Self::ALL } else { &Self::POST });
     }
 
     /// Propagate input changes (no clock edge).
     pub fn settle(&mut self) {
-        if self.trace {
-            self.eval_all();
-        } else {
-            self.eval_pre();
+        self.sense();
+        self.run(if self.trace { &Self::ALL } else { &Self::PRE });
+    }
+
+    /// Evaluate every group.
+    fn eval_all(&mut self) {
+        self.dirty = [!0; 1];
+        self.sense();
+        self.run(&Self::ALL);
+    }
+
+    /// Run the dirty groups of a phase, in dependency order.
+    fn run(&mut self, phase: &[u64; 1]) {
+        for w in 0..1 {
+            loop {
+                let m = self.dirty[w] & phase[w];
+                if m == 0 {
+                    break;
+                }
+                let k = m.trailing_zeros() as usize;
+                self.dirty[w] &= !(1u64 << k);
+                self.group(w * 64 + k);
+            }
         }
     }
 
-    /// Input-dependent groups (before the edge).
-    fn eval_pre(&mut self) {
-        self.g1();
-        self.g10();
-        self.g12();
-        self.g14();
-        self.g15();
-        self.g16();
-        self.g19();
-        self.g24();
-        self.g25();
-        self.g27();
-        self.g30();
-        self.g32();
-        self.g33();
-        self.g36();
+    fn group(&mut self, k: usize) {
+        match k {
+            0 => self.g0(),
+            1 => self.g1(),
+            2 => self.g2(),
+            3 => self.g3(),
+            4 => self.g4(),
+            5 => self.g5(),
+            6 => self.g6(),
+            7 => self.g7(),
+            8 => self.g8(),
+            9 => self.g9(),
+            10 => self.g10(),
+            11 => self.g11(),
+            12 => self.g12(),
+            13 => self.g13(),
+            14 => self.g14(),
+            15 => self.g15(),
+            16 => self.g16(),
+            17 => self.g17(),
+            18 => self.g18(),
+            19 => self.g19(),
+            20 => self.g20(),
+            21 => self.g21(),
+            22 => self.g22(),
+            23 => self.g23(),
+            24 => self.g24(),
+            25 => self.g25(),
+            26 => self.g26(),
+            27 => self.g27(),
+            28 => self.g28(),
+            29 => self.g29(),
+            30 => self.g30(),
+            31 => self.g31(),
+            32 => self.g32(),
+            33 => self.g33(),
+            34 => self.g34(),
+            35 => self.g35(),
+            36 => self.g36(),
+            37 => self.g37(),
+            _ => {}
+        }
     }
 
-    /// State-only groups and the output cone (after the edge).
-    fn eval_post(&mut self) {
-        self.g0();
-        self.g3();
-        self.g4();
-        self.g6();
-        self.g8();
-        self.g11();
-        self.g18();
-        self.g22();
-        self.g29();
-        self.g35();
-    }
-
-    /// Every group.
-    fn eval_all(&mut self) {
-        self.g0();
-        self.g1();
-        self.g2();
-        self.g3();
-        self.g4();
-        self.g5();
-        self.g6();
-        self.g7();
-        self.g8();
-        self.g9();
-        self.g10();
-        self.g11();
-        self.g12();
-        self.g13();
-        self.g14();
-        self.g15();
-        self.g16();
-        self.g17();
-        self.g18();
-        self.g19();
-        self.g20();
-        self.g21();
-        self.g22();
-        self.g23();
-        self.g24();
-        self.g25();
-        self.g26();
-        self.g27();
-        self.g28();
-        self.g29();
-        self.g30();
-        self.g31();
-        self.g32();
-        self.g33();
-        self.g34();
-        self.g35();
-        self.g36();
-        self.g37();
+    /// Inputs that changed since they were last seen mark their readers.
+    fn sense(&mut self) {
+        if self.rst != self.seen_rst { self.seen_rst = self.rst; self.dirty[0] |= 0x200001402; }
+        if self.wb_cyc != self.seen_wb_cyc { self.seen_wb_cyc = self.wb_cyc; self.dirty[0] |= 0x600003006; }
+        if self.wb_stb != self.seen_wb_stb { self.seen_wb_stb = self.wb_stb; self.dirty[0] |= 0x600003006; }
+        if self.wb_we != self.seen_wb_we { self.seen_wb_we = self.wb_we; self.dirty[0] |= 0x600003006; }
+        if self.wb_adr != self.seen_wb_adr { self.seen_wb_adr = self.wb_adr; self.dirty[0] |= 0x600003006; }
+        if self.wb_dat_w != self.seen_wb_dat_w { self.seen_wb_dat_w = self.wb_dat_w; self.dirty[0] |= 0x600003006; }
+        if self.rx != self.seen_rx { self.seen_rx = self.rx; self.dirty[0] |= 0x8000; }
     }
 
     /// Rising edge: registers and memories take their inputs.
     fn edge(&mut self) {
+        let n0 = self.core_sync_s1_n_d;
+        let n1 = self.core_sync_s2_n_d;
+        let n2 = self.core_btl_c_brp_d;
+        let n3 = self.core_btl_c_sp_d;
+        let n4 = self.core_btl_c_ntq_d;
+        let n5 = self.core_btl_c_sjw_d;
+        let n6 = self.core_btl_c_triple_d;
+        let n7 = self.core_btl_c_valid_d;
+        let n8 = self.core_btl_c_bad_d;
+        let n9 = self.core_btl_pre_d;
+        let n10 = self.core_btl_cnt_d;
+        let n11 = self.core_btl_spw_d;
+        let n12 = self.core_btl_nbw_d;
+        let n13 = self.core_btl_busmon_n_d;
+        let n14 = self.core_btl_sync_dis_d;
+        let n15 = self.core_btl_since_d;
+        let n16 = self.core_btl_pending_d;
+        let n17 = self.core_btl_tx_n_d;
+        let n18 = self.core_btl_h1_n_d;
+        let n19 = self.core_btl_h2_n_d;
+        let n20 = self.core_btl_sample_r_d;
+        let n21 = self.core_btl_hard_r_d;
+        let n22 = self.core_btl_resync_r_d;
+        let n23 = self.core_fsm_fld_d;
+        let n24 = self.core_fsm_fpos_d;
+        let n25 = self.core_fsm_pfld_d;
+        let n26 = self.core_fsm_ppos_d;
+        let n27 = self.core_fsm_rtx_d;
+        let n28 = self.core_fsm_dom_d;
+        let n29 = self.core_fsm_dstf_cnt_d;
+        let n30 = self.core_fsm_dstf_lvl_d;
+        let n31 = self.core_fsm_crcb_state_d;
+        let n32 = self.core_fsm_crcerr_d;
+        let n33 = self.core_fsm_tid_d;
+        let n34 = self.core_fsm_tdat_d;
+        let n35 = self.core_fsm_tdlc_d;
+        let n36 = self.core_fsm_tide_d;
+        let n37 = self.core_fsm_trtr_d;
+        let n38 = self.core_fsm_rid_d;
+        let n39 = self.core_fsm_rdat_d;
+        let n40 = self.core_fsm_rdlc_d;
+        let n41 = self.core_fsm_rrtr_d;
+        let n42 = self.core_fsm_rext_d;
+        let n43 = self.core_fsm_fdone_d;
+        let n44 = self.core_fsm_eqcnt_d;
+        let n45 = self.core_fsm_eqlast_d;
+        let n46 = self.core_fsm_dafc_d;
+        let n47 = self.core_fsm_dafany_d;
+        let n48 = self.core_fsm_exc1_d;
+        let n49 = self.core_fsm_tecr_d;
+        let n50 = self.core_fsm_recr_d;
+        let n51 = self.core_fsm_runr_d;
+        let n52 = self.core_fsm_rarmed_d;
+        let n53 = self.core_fsm_req_d;
+        let n54 = self.core_fsm_blocked_d;
+        let n55 = self.core_fsm_evr_d;
+        let n56 = self.core_fsm_arbpos_r_d;
+        let n57 = self.core_fsm_errf_r_d;
+        let n58 = self.core_fsm_errp_r_d;
+        let n59 = self.core_fsm_errtx_r_d;
+        let n60 = self.core_fsm_rxide_r_d;
+        let n61 = self.core_fsm_rxrtr_r_d;
+        let n62 = self.core_fsm_rxid_r_d;
+        let n63 = self.core_fsm_rxdlc_r_d;
+        let n64 = self.core_fsm_rxdat_r_d;
+        let n65 = self.ack_d;
+        let n66 = self.rdat_d;
+        let n67 = self.ramsel_d;
+        let n68 = self.opm_d;
+        let n69 = self.lom_d;
+        let n70 = self.stm_d;
+        let n71 = self.afm_d;
+        let n72 = self.sleep_d;
+        let n73 = self.boff_d;
+        let n74 = self.core_bs_d;
+        let n75 = self.ier_d;
+        let n76 = self.ir_d;
+        let n77 = self.btr0_d;
+        let n78 = self.btr1_d;
+        let n79 = self.ocr_d;
+        let n80 = self.ewl_d;
+        let n81 = self.cdr_d;
+        let n82 = self.alc_d;
+        let n83 = self.alc_lock_d;
+        let n84 = self.ecc_d;
+        let n85 = self.ecc_lock_d;
+        let n86 = self.acr0_d;
+        let n87 = self.acr1_d;
+        let n88 = self.acr2_d;
+        let n89 = self.acr3_d;
+        let n90 = self.amr0_d;
+        let n91 = self.amr1_d;
+        let n92 = self.amr2_d;
+        let n93 = self.amr3_d;
+        let n94 = self.txb0_d;
+        let n95 = self.txb1_d;
+        let n96 = self.txb2_d;
+        let n97 = self.txb3_d;
+        let n98 = self.txb4_d;
+        let n99 = self.txb5_d;
+        let n100 = self.txb6_d;
+        let n101 = self.txb7_d;
+        let n102 = self.txb8_d;
+        let n103 = self.txb9_d;
+        let n104 = self.txb10_d;
+        let n105 = self.txb11_d;
+        let n106 = self.txb12_d;
+        let n107 = self.tx_pend_d;
+        let n108 = self.tx_single_d;
+        let n109 = self.tx_srr_d;
+        let n110 = self.tx_abrt_d;
+        let n111 = self.tx_lb_d;
+        let n112 = self.tcs_n_d;
+        let n113 = self.dos_d;
+        let n114 = self.rbsa_d;
+        let n115 = self.used_d;
+        let n116 = self.rmc_d;
+        let n117 = self.wr_busy_d;
+        let n118 = self.wr_src_d;
+        let n119 = self.wr_idx_d;
+        let n120 = self.wr_len_d;
+        let n121 = self.fetch_q_d;
+        let n122 = self.fetch_a_d;
+        let n123 = self.cur_fi_d;
+        let n124 = self.es_q_d;
+        let n125 = self.bs_q_d;
+        let n126 = self.pas_q_d;
+        let n127 = self.seen_ext_d;
         let m0 = self.ram_mem[((self.ram_read_address as usize) & 63)];
         if self.ram_write_enable {
             self.ram_mem[((self.ram_write_address as usize) & 63)] = self.ram_write_data;
         }
-        self.core_sync_s1_n = self.core_sync_s1_n_d;
-        self.core_sync_s2_n = self.core_sync_s2_n_d;
-        self.core_btl_c_brp = self.core_btl_c_brp_d;
-        self.core_btl_c_sp = self.core_btl_c_sp_d;
-        self.core_btl_c_ntq = self.core_btl_c_ntq_d;
-        self.core_btl_c_sjw = self.core_btl_c_sjw_d;
-        self.core_btl_c_triple = self.core_btl_c_triple_d;
-        self.core_btl_c_valid = self.core_btl_c_valid_d;
-        self.core_btl_c_bad = self.core_btl_c_bad_d;
-        self.core_btl_pre = self.core_btl_pre_d;
-        self.core_btl_cnt = self.core_btl_cnt_d;
-        self.core_btl_spw = self.core_btl_spw_d;
-        self.core_btl_nbw = self.core_btl_nbw_d;
-        self.core_btl_busmon_n = self.core_btl_busmon_n_d;
-        self.core_btl_sync_dis = self.core_btl_sync_dis_d;
-        self.core_btl_since = self.core_btl_since_d;
-        self.core_btl_pending = self.core_btl_pending_d;
-        self.core_btl_tx_n = self.core_btl_tx_n_d;
-        self.core_btl_h1_n = self.core_btl_h1_n_d;
-        self.core_btl_h2_n = self.core_btl_h2_n_d;
-        self.core_btl_sample_r = self.core_btl_sample_r_d;
-        self.core_btl_hard_r = self.core_btl_hard_r_d;
-        self.core_btl_resync_r = self.core_btl_resync_r_d;
-        self.core_fsm_fld = self.core_fsm_fld_d;
-        self.core_fsm_fpos = self.core_fsm_fpos_d;
-        self.core_fsm_pfld = self.core_fsm_pfld_d;
-        self.core_fsm_ppos = self.core_fsm_ppos_d;
-        self.core_fsm_rtx = self.core_fsm_rtx_d;
-        self.core_fsm_dom = self.core_fsm_dom_d;
-        self.core_fsm_dstf_cnt = self.core_fsm_dstf_cnt_d;
-        self.core_fsm_dstf_lvl = self.core_fsm_dstf_lvl_d;
-        self.core_fsm_crcb_state = self.core_fsm_crcb_state_d;
-        self.core_fsm_crcerr = self.core_fsm_crcerr_d;
-        self.core_fsm_tid = self.core_fsm_tid_d;
-        self.core_fsm_tdat = self.core_fsm_tdat_d;
-        self.core_fsm_tdlc = self.core_fsm_tdlc_d;
-        self.core_fsm_tide = self.core_fsm_tide_d;
-        self.core_fsm_trtr = self.core_fsm_trtr_d;
-        self.core_fsm_rid = self.core_fsm_rid_d;
-        self.core_fsm_rdat = self.core_fsm_rdat_d;
-        self.core_fsm_rdlc = self.core_fsm_rdlc_d;
-        self.core_fsm_rrtr = self.core_fsm_rrtr_d;
-        self.core_fsm_rext = self.core_fsm_rext_d;
-        self.core_fsm_fdone = self.core_fsm_fdone_d;
-        self.core_fsm_eqcnt = self.core_fsm_eqcnt_d;
-        self.core_fsm_eqlast = self.core_fsm_eqlast_d;
-        self.core_fsm_dafc = self.core_fsm_dafc_d;
-        self.core_fsm_dafany = self.core_fsm_dafany_d;
-        self.core_fsm_exc1 = self.core_fsm_exc1_d;
-        self.core_fsm_tecr = self.core_fsm_tecr_d;
-        self.core_fsm_recr = self.core_fsm_recr_d;
-        self.core_fsm_runr = self.core_fsm_runr_d;
-        self.core_fsm_rarmed = self.core_fsm_rarmed_d;
-        self.core_fsm_req = self.core_fsm_req_d;
-        self.core_fsm_blocked = self.core_fsm_blocked_d;
-        self.core_fsm_evr = self.core_fsm_evr_d;
-        self.core_fsm_arbpos_r = self.core_fsm_arbpos_r_d;
-        self.core_fsm_errf_r = self.core_fsm_errf_r_d;
-        self.core_fsm_errp_r = self.core_fsm_errp_r_d;
-        self.core_fsm_errtx_r = self.core_fsm_errtx_r_d;
-        self.core_fsm_rxide_r = self.core_fsm_rxide_r_d;
-        self.core_fsm_rxrtr_r = self.core_fsm_rxrtr_r_d;
-        self.core_fsm_rxid_r = self.core_fsm_rxid_r_d;
-        self.core_fsm_rxdlc_r = self.core_fsm_rxdlc_r_d;
-        self.core_fsm_rxdat_r = self.core_fsm_rxdat_r_d;
-        self.ack = self.ack_d;
-        self.rdat = self.rdat_d;
-        self.ramsel = self.ramsel_d;
-        self.opm = self.opm_d;
-        self.lom = self.lom_d;
-        self.stm = self.stm_d;
-        self.afm = self.afm_d;
-        self.sleep = self.sleep_d;
-        self.boff = self.boff_d;
-        self.core_bs = self.core_bs_d;
-        self.ier = self.ier_d;
-        self.ir = self.ir_d;
-        self.btr0 = self.btr0_d;
-        self.btr1 = self.btr1_d;
-        self.ocr = self.ocr_d;
-        self.ewl = self.ewl_d;
-        self.cdr = self.cdr_d;
-        self.alc = self.alc_d;
-        self.alc_lock = self.alc_lock_d;
-        self.ecc = self.ecc_d;
-        self.ecc_lock = self.ecc_lock_d;
-        self.acr0 = self.acr0_d;
-        self.acr1 = self.acr1_d;
-        self.acr2 = self.acr2_d;
-        self.acr3 = self.acr3_d;
-        self.amr0 = self.amr0_d;
-        self.amr1 = self.amr1_d;
-        self.amr2 = self.amr2_d;
-        self.amr3 = self.amr3_d;
-        self.txb0 = self.txb0_d;
-        self.txb1 = self.txb1_d;
-        self.txb2 = self.txb2_d;
-        self.txb3 = self.txb3_d;
-        self.txb4 = self.txb4_d;
-        self.txb5 = self.txb5_d;
-        self.txb6 = self.txb6_d;
-        self.txb7 = self.txb7_d;
-        self.txb8 = self.txb8_d;
-        self.txb9 = self.txb9_d;
-        self.txb10 = self.txb10_d;
-        self.txb11 = self.txb11_d;
-        self.txb12 = self.txb12_d;
-        self.tx_pend = self.tx_pend_d;
-        self.tx_single = self.tx_single_d;
-        self.tx_srr = self.tx_srr_d;
-        self.tx_abrt = self.tx_abrt_d;
-        self.tx_lb = self.tx_lb_d;
-        self.tcs_n = self.tcs_n_d;
-        self.dos = self.dos_d;
-        self.rbsa = self.rbsa_d;
-        self.used = self.used_d;
-        self.rmc = self.rmc_d;
-        self.wr_busy = self.wr_busy_d;
-        self.wr_src = self.wr_src_d;
-        self.wr_idx = self.wr_idx_d;
-        self.wr_len = self.wr_len_d;
-        self.fetch_q = self.fetch_q_d;
-        self.fetch_a = self.fetch_a_d;
-        self.cur_fi = self.cur_fi_d;
-        self.es_q = self.es_q_d;
-        self.bs_q = self.bs_q_d;
-        self.pas_q = self.pas_q_d;
-        self.seen_ext = self.seen_ext_d;
-        self.ram_read_data = m0;
+        if n0 != self.core_sync_s1_n { self.core_sync_s1_n = n0; self.dirty[0] |= 0x8008; }
+        if n1 != self.core_sync_s2_n { self.core_sync_s2_n = n1; self.dirty[0] |= 0x8; }
+        if n2 != self.core_btl_c_brp { self.core_btl_c_brp = n2; self.dirty[0] |= 0x6030000; }
+        if n3 != self.core_btl_c_sp { self.core_btl_c_sp = n3; self.dirty[0] |= 0x6010000; }
+        if n4 != self.core_btl_c_ntq { self.core_btl_c_ntq = n4; self.dirty[0] |= 0x6010000; }
+        if n5 != self.core_btl_c_sjw { self.core_btl_c_sjw = n5; self.dirty[0] |= 0x6010020; }
+        if n6 != self.core_btl_c_triple { self.core_btl_c_triple = n6; self.dirty[0] |= 0x2030000; }
+        if n7 != self.core_btl_c_valid { self.core_btl_c_valid = n7; self.dirty[0] |= 0x6030000; }
+        if n8 != self.core_btl_c_bad { self.core_btl_c_bad = n8; self.dirty[0] |= 0x1014006; }
+        if n9 != self.core_btl_pre { self.core_btl_pre = n9; self.dirty[0] |= 0x6030000; }
+        if n10 != self.core_btl_cnt { self.core_btl_cnt = n10; self.dirty[0] |= 0x6000020; }
+        if n11 != self.core_btl_spw { self.core_btl_spw = n11; self.dirty[0] |= 0x6000020; }
+        if n12 != self.core_btl_nbw { self.core_btl_nbw = n12; self.dirty[0] |= 0x6000020; }
+        if n13 != self.core_btl_busmon_n { self.core_btl_busmon_n = n13; self.dirty[0] |= 0x6020010; }
+        if n14 != self.core_btl_sync_dis { self.core_btl_sync_dis = n14; self.dirty[0] |= 0x6020000; }
+        if n15 != self.core_btl_since { self.core_btl_since = n15; self.dirty[0] |= 0x6000020; }
+        if n16 != self.core_btl_pending { self.core_btl_pending = n16; self.dirty[0] |= 0x6000000; }
+        if n17 != self.core_btl_tx_n { self.core_btl_tx_n = n17; self.dirty[0] |= 0x2000010; }
+        if n18 != self.core_btl_h1_n { self.core_btl_h1_n = n18; self.dirty[0] |= 0x2030000; }
+        if n19 != self.core_btl_h2_n { self.core_btl_h2_n = n19; self.dirty[0] |= 0x2030000; }
+        if n20 != self.core_btl_sample_r { self.core_btl_sample_r = n20; self.dirty[0] |= 0x3ef81c0000; }
+        self.core_btl_hard_r = n21;
+        self.core_btl_resync_r = n22;
+        if n23 != self.core_fsm_fld { self.core_fsm_fld = n23; self.dirty[0] |= 0x38181c0000; }
+        if n24 != self.core_fsm_fpos { self.core_fsm_fpos = n24; self.dirty[0] |= 0x38181c0080; }
+        if n25 != self.core_fsm_pfld { self.core_fsm_pfld = n25; self.dirty[0] |= 0x38181c0000; }
+        if n26 != self.core_fsm_ppos { self.core_fsm_ppos = n26; self.dirty[0] |= 0x1800140000; }
+        if n27 != self.core_fsm_rtx { self.core_fsm_rtx = n27; self.dirty[0] |= 0x3e181c0000; }
+        if n28 != self.core_fsm_dom { self.core_fsm_dom = n28; self.dirty[0] |= 0x38181c0000; }
+        if n29 != self.core_fsm_dstf_cnt { self.core_fsm_dstf_cnt = n29; self.dirty[0] |= 0xe0200100; }
+        if n30 != self.core_fsm_dstf_lvl { self.core_fsm_dstf_lvl = n30; self.dirty[0] |= 0xe0200100; }
+        if n31 != self.core_fsm_crcb_state { self.core_fsm_crcb_state = n31; self.dirty[0] |= 0x100c00200; }
+        if n32 != self.core_fsm_crcerr { self.core_fsm_crcerr = n32; self.dirty[0] |= 0x3800000000; }
+        if n33 != self.core_fsm_tid { self.core_fsm_tid = n33; self.dirty[0] |= 0x3010180000; }
+        if n34 != self.core_fsm_tdat { self.core_fsm_tdat = n34; self.dirty[0] |= 0x3010180000; }
+        if n35 != self.core_fsm_tdlc { self.core_fsm_tdlc = n35; self.dirty[0] |= 0x3010180000; }
+        if n36 != self.core_fsm_tide { self.core_fsm_tide = n36; self.dirty[0] |= 0x3010180000; }
+        if n37 != self.core_fsm_trtr { self.core_fsm_trtr = n37; self.dirty[0] |= 0x3010180000; }
+        if n38 != self.core_fsm_rid { self.core_fsm_rid = n38; self.dirty[0] |= 0x140000; }
+        if n39 != self.core_fsm_rdat { self.core_fsm_rdat = n39; self.dirty[0] |= 0x140000; }
+        if n40 != self.core_fsm_rdlc { self.core_fsm_rdlc = n40; self.dirty[0] |= 0x3010140000; }
+        if n41 != self.core_fsm_rrtr { self.core_fsm_rrtr = n41; self.dirty[0] |= 0x3018140000; }
+        if n42 != self.core_fsm_rext { self.core_fsm_rext = n42; self.dirty[0] |= 0x3018140000; }
+        if n43 != self.core_fsm_fdone { self.core_fsm_fdone = n43; self.dirty[0] |= 0x3818100000; }
+        if n44 != self.core_fsm_eqcnt { self.core_fsm_eqcnt = n44; self.dirty[0] |= 0x3008100000; }
+        if n45 != self.core_fsm_eqlast { self.core_fsm_eqlast = n45; self.dirty[0] |= 0x3008100000; }
+        if n46 != self.core_fsm_dafc { self.core_fsm_dafc = n46; self.dirty[0] |= 0x3000100000; }
+        if n47 != self.core_fsm_dafany { self.core_fsm_dafany = n47; self.dirty[0] |= 0x3000100000; }
+        if n48 != self.core_fsm_exc1 { self.core_fsm_exc1 = n48; self.dirty[0] |= 0x3008100000; }
+        if n49 != self.core_fsm_tecr { self.core_fsm_tecr = n49; self.dirty[0] |= 0x36181830c6; }
+        if n50 != self.core_fsm_recr { self.core_fsm_recr = n50; self.dirty[0] |= 0x36181830c6; }
+        if n51 != self.core_fsm_runr { self.core_fsm_runr = n51; self.dirty[0] |= 0x3618183000; }
+        if n52 != self.core_fsm_rarmed { self.core_fsm_rarmed = n52; self.dirty[0] |= 0x3018180000; }
+        if n53 != self.core_fsm_req { self.core_fsm_req = n53; self.dirty[0] |= 0x3618180080; }
+        if n54 != self.core_fsm_blocked { self.core_fsm_blocked = n54; self.dirty[0] |= 0x1008000000; }
+        if n55 != self.core_fsm_evr { self.core_fsm_evr = n55; self.dirty[0] |= 0x40; }
+        if n56 != self.core_fsm_arbpos_r { self.core_fsm_arbpos_r = n56; self.dirty[0] |= 0x1000001004; }
+        if n57 != self.core_fsm_errf_r { self.core_fsm_errf_r = n57; self.dirty[0] |= 0x800003004; }
+        if n58 != self.core_fsm_errp_r { self.core_fsm_errp_r = n58; self.dirty[0] |= 0x800003004; }
+        if n59 != self.core_fsm_errtx_r { self.core_fsm_errtx_r = n59; self.dirty[0] |= 0xe00003004; }
+        if n60 != self.core_fsm_rxide_r { self.core_fsm_rxide_r = n60; self.dirty[0] |= 0x600043800; }
+        if n61 != self.core_fsm_rxrtr_r { self.core_fsm_rxrtr_r = n61; self.dirty[0] |= 0x600043800; }
+        if n62 != self.core_fsm_rxid_r { self.core_fsm_rxid_r = n62; self.dirty[0] |= 0x600043800; }
+        if n63 != self.core_fsm_rxdlc_r { self.core_fsm_rxdlc_r = n63; self.dirty[0] |= 0x600043800; }
+        if n64 != self.core_fsm_rxdat_r { self.core_fsm_rxdat_r = n64; self.dirty[0] |= 0x600043800; }
+        if n65 != self.ack { self.ack = n65; self.dirty[0] |= 0x600003007; }
+        if n66 != self.rdat { self.rdat = n66; self.dirty[0] |= 0x200000001; }
+        if n67 != self.ramsel { self.ramsel = n67; self.dirty[0] |= 0x3; }
+        if n68 != self.opm { self.opm = n68; self.dirty[0] |= 0x600003807; }
+        if n69 != self.lom { self.lom = n69; self.dirty[0] |= 0x3e181c0082; }
+        if n70 != self.stm { self.stm = n70; self.dirty[0] |= 0x3e08100002; }
+        if n71 != self.afm { self.afm = n71; self.dirty[0] |= 0x600003802; }
+        if n72 != self.sleep { self.sleep = n72; self.dirty[0] |= 0x600001006; }
+        if n73 != self.boff { self.boff = n73; self.dirty[0] |= 0x600003006; }
+        if n74 != self.core_bs { self.core_bs = n74; self.dirty[0] |= 0x600003000; }
+        if n75 != self.ier { self.ier = n75; self.dirty[0] |= 0x600000007; }
+        if n76 != self.ir { self.ir = n76; self.dirty[0] |= 0x600000005; }
+        if n77 != self.btr0 { self.btr0 = n77; self.dirty[0] |= 0x600001005; }
+        if n78 != self.btr1 { self.btr1 = n78; self.dirty[0] |= 0x600001005; }
+        if n79 != self.ocr { self.ocr = n79; self.dirty[0] |= 0x600000002; }
+        if n80 != self.ewl { self.ewl = n80; self.dirty[0] |= 0x600003002; }
+        if n81 != self.cdr { self.cdr = n81; self.dirty[0] |= 0x600000002; }
+        if n82 != self.alc { self.alc = n82; self.dirty[0] |= 0x600001000; }
+        if n83 != self.alc_lock { self.alc_lock = n83; self.dirty[0] |= 0x1000; }
+        if n84 != self.ecc { self.ecc = n84; self.dirty[0] |= 0x600001000; }
+        if n85 != self.ecc_lock { self.ecc_lock = n85; self.dirty[0] |= 0x1000; }
+        if n86 != self.acr0 { self.acr0 = n86; self.dirty[0] |= 0x600003806; }
+        if n87 != self.acr1 { self.acr1 = n87; self.dirty[0] |= 0x600003806; }
+        if n88 != self.acr2 { self.acr2 = n88; self.dirty[0] |= 0x600003806; }
+        if n89 != self.acr3 { self.acr3 = n89; self.dirty[0] |= 0x600003806; }
+        if n90 != self.amr0 { self.amr0 = n90; self.dirty[0] |= 0x600003806; }
+        if n91 != self.amr1 { self.amr1 = n91; self.dirty[0] |= 0x600003806; }
+        if n92 != self.amr2 { self.amr2 = n92; self.dirty[0] |= 0x600003806; }
+        if n93 != self.amr3 { self.amr3 = n93; self.dirty[0] |= 0x600003806; }
+        if n94 != self.txb0 { self.txb0 = n94; self.dirty[0] |= 0x600003807; }
+        if n95 != self.txb1 { self.txb1 = n95; self.dirty[0] |= 0x600003807; }
+        if n96 != self.txb2 { self.txb2 = n96; self.dirty[0] |= 0x600003807; }
+        if n97 != self.txb3 { self.txb3 = n97; self.dirty[0] |= 0x600003807; }
+        if n98 != self.txb4 { self.txb4 = n98; self.dirty[0] |= 0x600003807; }
+        if n99 != self.txb5 { self.txb5 = n99; self.dirty[0] |= 0x600003807; }
+        if n100 != self.txb6 { self.txb6 = n100; self.dirty[0] |= 0x600003807; }
+        if n101 != self.txb7 { self.txb7 = n101; self.dirty[0] |= 0x600003807; }
+        if n102 != self.txb8 { self.txb8 = n102; self.dirty[0] |= 0x600003807; }
+        if n103 != self.txb9 { self.txb9 = n103; self.dirty[0] |= 0x600003807; }
+        if n104 != self.txb10 { self.txb10 = n104; self.dirty[0] |= 0x600003807; }
+        if n105 != self.txb11 { self.txb11 = n105; self.dirty[0] |= 0x600003807; }
+        if n106 != self.txb12 { self.txb12 = n106; self.dirty[0] |= 0x600003807; }
+        if n107 != self.tx_pend { self.tx_pend = n107; self.dirty[0] |= 0x600003807; }
+        if n108 != self.tx_single { self.tx_single = n108; self.dirty[0] |= 0x1600000002; }
+        if n109 != self.tx_srr { self.tx_srr = n109; self.dirty[0] |= 0x600003802; }
+        if n110 != self.tx_abrt { self.tx_abrt = n110; self.dirty[0] |= 0x600001000; }
+        if n111 != self.tx_lb { self.tx_lb = n111; self.dirty[0] |= 0x600001007; }
+        if n112 != self.tcs_n { self.tcs_n = n112; self.dirty[0] |= 0x600000004; }
+        if n113 != self.dos { self.dos = n113; self.dirty[0] |= 0x600001000; }
+        if n114 != self.rbsa { self.rbsa = n114; self.dirty[0] |= 0x600001007; }
+        if n115 != self.used { self.used = n115; self.dirty[0] |= 0x600003802; }
+        if n116 != self.rmc { self.rmc = n116; self.dirty[0] |= 0x600001007; }
+        if n117 != self.wr_busy { self.wr_busy = n117; self.dirty[0] |= 0x600003806; }
+        if n118 != self.wr_src { self.wr_src = n118; self.dirty[0] |= 0x600003800; }
+        if n119 != self.wr_idx { self.wr_idx = n119; self.dirty[0] |= 0x600003806; }
+        if n120 != self.wr_len { self.wr_len = n120; self.dirty[0] |= 0x600001804; }
+        if n121 != self.fetch_q { self.fetch_q = n121; self.dirty[0] |= 0x1007; }
+        if n122 != self.fetch_a { self.fetch_a = n122; self.dirty[0] |= 0x1007; }
+        if n123 != self.cur_fi { self.cur_fi = n123; self.dirty[0] |= 0x1007; }
+        if n124 != self.es_q { self.es_q = n124; self.dirty[0] |= 0x600003000; }
+        if n125 != self.bs_q { self.bs_q = n125; self.dirty[0] |= 0x600003000; }
+        if n126 != self.pas_q { self.pas_q = n126; self.dirty[0] |= 0x600003000; }
+        if n127 != self.seen_ext { self.seen_ext = n127; self.dirty[0] |= 0x200003004; }
+        if m0 != self.ram_read_data { self.ram_read_data = m0; self.dirty[0] |= 0x1007; }
     }
 
     /// `top` block, depth 0, state-only: wb_dat_r, wb_ack, int_n, core.brp, core.prop, core.ph1, ... (16 signals)
@@ -1792,19 +1940,19 @@ impl Sja1000 {
         self.wb_dat_r = wb_dat_r;
         self.wb_ack = wb_ack;
         self.int_n = int_n;
-        self.core_brp = core_brp;
-        self.core_prop = core_prop;
-        self.core_ph1 = core_ph1;
-        self.core_sjw = core_sjw;
-        self.core_triple = core_triple;
-        self.core_tx_req = core_tx_req;
-        self.core_tx_id = core_tx_id;
-        self.core_tx_dlc = core_tx_dlc;
-        self.core_tx_data = core_tx_data;
+        if core_brp != self.core_brp { self.core_brp = core_brp; self.dirty[0] |= 0x10000; }
+        if core_prop != self.core_prop { self.core_prop = core_prop; self.dirty[0] |= 0x2030000; }
+        if core_ph1 != self.core_ph1 { self.core_ph1 = core_ph1; self.dirty[0] |= 0x2030000; }
+        if core_sjw != self.core_sjw { self.core_sjw = core_sjw; self.dirty[0] |= 0x30000; }
+        if core_triple != self.core_triple { self.core_triple = core_triple; self.dirty[0] |= 0x10000; }
+        if core_tx_req != self.core_tx_req { self.core_tx_req = core_tx_req; self.dirty[0] |= 0x1008000000; }
+        if core_tx_id != self.core_tx_id { self.core_tx_id = core_tx_id; self.dirty[0] |= 0x3010180000; }
+        if core_tx_dlc != self.core_tx_dlc { self.core_tx_dlc = core_tx_dlc; self.dirty[0] |= 0x3010180000; }
+        if core_tx_data != self.core_tx_data { self.core_tx_data = core_tx_data; self.dirty[0] |= 0x3010180000; }
         self.fetch_a_d = fetch_a_d;
         self.cur_fi_d = cur_fi_d;
-        self.l_tx_ide = l_tx_ide;
-        self.l_tx_rtr = l_tx_rtr;
+        if l_tx_ide != self.l_tx_ide { self.l_tx_ide = l_tx_ide; self.dirty[0] |= 0x3010180000; }
+        if l_tx_rtr != self.l_tx_rtr { self.l_tx_rtr = l_tx_rtr; self.dirty[0] |= 0x3010180000; }
     }
 
     /// `top` block, depth 0, input-dependent: core.reset, core.recover, core.tx_abort, core.cnt_load, core.tec_in, core.rec_in, ... (43 signals)
@@ -2112,12 +2260,12 @@ impl Sja1000 {
         core_cnt_load = (l_cload & (!self.rst));
         core_tec_in = l_tecin;
         core_rec_in = l_recin;
-        self.core_reset = core_reset;
-        self.core_recover = core_recover;
-        self.core_tx_abort = core_tx_abort;
-        self.core_cnt_load = core_cnt_load;
-        self.core_tec_in = core_tec_in;
-        self.core_rec_in = core_rec_in;
+        if core_reset != self.core_reset { self.core_reset = core_reset; self.dirty[0] |= 0x703c000; }
+        if core_recover != self.core_recover { self.core_recover = core_recover; self.dirty[0] |= 0x3018180000; }
+        if core_tx_abort != self.core_tx_abort { self.core_tx_abort = core_tx_abort; self.dirty[0] |= 0x1008000000; }
+        if core_cnt_load != self.core_cnt_load { self.core_cnt_load = core_cnt_load; self.dirty[0] |= 0x1008000000; }
+        if core_tec_in != self.core_tec_in { self.core_tec_in = core_tec_in; self.dirty[0] |= 0x1008000000; }
+        if core_rec_in != self.core_rec_in { self.core_rec_in = core_rec_in; self.dirty[0] |= 0x1000000000; }
         self.ram_read_address = ram_read_address;
         self.ram_write_address = ram_write_address;
         self.ram_write_enable = ram_write_enable;
@@ -2431,7 +2579,7 @@ impl Sja1000 {
         if self.core_sync_two_stages {
             core_sync_q = (!self.core_sync_s2_n);
         }
-        self.core_sync_q = core_sync_q;
+        if core_sync_q != self.core_sync_q { self.core_sync_q = core_sync_q; self.dirty[0] |= 0x6030000; }
     }
 
     /// `core.btl` block, depth 0, state-only: core.btl.busmon, core.btl.tx
@@ -2440,8 +2588,8 @@ impl Sja1000 {
         let mut core_btl_tx: bool = false;
         core_btl_busmon = (!self.core_btl_busmon_n);
         core_btl_tx = (!self.core_btl_tx_n);
-        self.core_btl_busmon = core_btl_busmon;
-        self.core_btl_tx = core_btl_tx;
+        if core_btl_busmon != self.core_btl_busmon { self.core_btl_busmon = core_btl_busmon; self.dirty[0] |= 0x3ff8fc0000; }
+        if core_btl_tx != self.core_btl_tx { self.core_btl_tx = core_btl_tx; self.dirty[0] |= 0x800; }
     }
 
     /// `core.btl` block, depth 0, probe-only: core.btl.c1, core.btl.late, core.btl.neg_mag, core.btl.lengthen, core.btl.since_inc
@@ -2489,12 +2637,12 @@ impl Sja1000 {
         } else if ((self.core_fsm_tecr >= 0x80_u16) | (self.core_fsm_recr >= 0x80_u8)) {
             core_fsm_state = 1u8;
         }
-        self.core_fsm_tx_done = core_fsm_tx_done;
-        self.core_fsm_arb_lost = core_fsm_arb_lost;
-        self.core_fsm_error = core_fsm_error;
-        self.core_fsm_err_kind = core_fsm_err_kind;
-        self.core_fsm_rx_valid = core_fsm_rx_valid;
-        self.core_fsm_state = core_fsm_state;
+        if core_fsm_tx_done != self.core_fsm_tx_done { self.core_fsm_tx_done = core_fsm_tx_done; self.dirty[0] |= 0x600003800; }
+        if core_fsm_arb_lost != self.core_fsm_arb_lost { self.core_fsm_arb_lost = core_fsm_arb_lost; self.dirty[0] |= 0x600001000; }
+        if core_fsm_error != self.core_fsm_error { self.core_fsm_error = core_fsm_error; self.dirty[0] |= 0x600001000; }
+        if core_fsm_err_kind != self.core_fsm_err_kind { self.core_fsm_err_kind = core_fsm_err_kind; self.dirty[0] |= 0x3000; }
+        if core_fsm_rx_valid != self.core_fsm_rx_valid { self.core_fsm_rx_valid = core_fsm_rx_valid; self.dirty[0] |= 0x600003800; }
+        if core_fsm_state != self.core_fsm_state { self.core_fsm_state = core_fsm_state; self.dirty[0] |= 0x600003000; }
     }
 
     /// `core.fsm` block, depth 0, probe-only: core.fsm.err_warn, core.fsm.l_active, core.fsm.l_cantx, core.fsm.l_posinc
@@ -2522,8 +2670,8 @@ impl Sja1000 {
         let mut core_fsm_dstf_at5: bool = false;
         core_fsm_dstf_at5 = (self.core_fsm_dstf_cnt == 5u8);
         core_fsm_dstf_stuff_level = (!self.core_fsm_dstf_lvl);
-        self.core_fsm_dstf_stuff_level = core_fsm_dstf_stuff_level;
-        self.core_fsm_dstf_at5 = core_fsm_dstf_at5;
+        if core_fsm_dstf_stuff_level != self.core_fsm_dstf_stuff_level { self.core_fsm_dstf_stuff_level = core_fsm_dstf_stuff_level; self.dirty[0] |= 0x38181c0000; }
+        if core_fsm_dstf_at5 != self.core_fsm_dstf_at5 { self.core_fsm_dstf_at5 = core_fsm_dstf_at5; self.dirty[0] |= 0x38181c0000; }
     }
 
     /// `core.fsm.crcb` block, depth 0, probe-only: core.fsm.crcb.shifted
@@ -2543,8 +2691,8 @@ impl Sja1000 {
             btr_reset_btr0 = self.btr_reset_v0;
             btr_reset_btr1 = self.btr_reset_v1;
         }
-        self.btr_reset_btr0 = btr_reset_btr0;
-        self.btr_reset_btr1 = btr_reset_btr1;
+        if btr_reset_btr0 != self.btr_reset_btr0 { self.btr_reset_btr0 = btr_reset_btr0; self.dirty[0] |= 0x1000; }
+        if btr_reset_btr1 != self.btr_reset_btr1 { self.btr_reset_btr1 = btr_reset_btr1; self.dirty[0] |= 0x1000; }
     }
 
     /// `top` block, depth 1, state-only: tx, wr_src.d, wr_idx.d, wr_len.d
@@ -3499,7 +3647,7 @@ impl Sja1000 {
     fn g14(&mut self) {
         let mut core_l_hold: bool = false;
         core_l_hold = (self.core_reset | self.core_btl_c_bad);
-        self.core_l_hold = core_l_hold;
+        if core_l_hold != self.core_l_hold { self.core_l_hold = core_l_hold; self.dirty[0] |= 0x1148000000; }
     }
 
     /// `core.sync` block, depth 1, input-dependent: core.sync.s1_n.d, core.sync.s2_n.d
@@ -3974,14 +4122,14 @@ impl Sja1000 {
         core_fsm_dstf_active = (core_fsm_l_instf | core_fsm_l_sofinit);
         core_fsm_crcb_en = (self.core_btl_sample_r & core_fsm_l_crcen);
         core_fsm_crcb_clear = (self.core_btl_sample_r & core_fsm_l_sofinit);
-        self.core_fsm_drive = core_fsm_drive;
-        self.core_fsm_hs_en = core_fsm_hs_en;
-        self.core_fsm_field = core_fsm_field;
+        if core_fsm_drive != self.core_fsm_drive { self.core_fsm_drive = core_fsm_drive; self.dirty[0] |= 0x6000000; }
+        if core_fsm_hs_en != self.core_fsm_hs_en { self.core_fsm_hs_en = core_fsm_hs_en; self.dirty[0] |= 0x6000000; }
+        if core_fsm_field != self.core_fsm_field { self.core_fsm_field = core_fsm_field; self.dirty[0] |= 0x1000000; }
         self.core_fsm_pfld_d = core_fsm_pfld_d;
         self.core_fsm_ppos_d = core_fsm_ppos_d;
-        self.core_fsm_dstf_active = core_fsm_dstf_active;
-        self.core_fsm_crcb_clear = core_fsm_crcb_clear;
-        self.core_fsm_crcb_en = core_fsm_crcb_en;
+        if core_fsm_dstf_active != self.core_fsm_dstf_active { self.core_fsm_dstf_active = core_fsm_dstf_active; self.dirty[0] |= 0xe0000000; }
+        if core_fsm_crcb_clear != self.core_fsm_crcb_clear { self.core_fsm_crcb_clear = core_fsm_crcb_clear; self.dirty[0] |= 0x100000000; }
+        if core_fsm_crcb_en != self.core_fsm_crcb_en { self.core_fsm_crcb_en = core_fsm_crcb_en; self.dirty[0] |= 0x100000000; }
         self.core_fsm_rid_d = core_fsm_rid_d;
         self.core_fsm_rdat_d = core_fsm_rdat_d;
         self.core_fsm_rdlc_d = core_fsm_rdlc_d;
@@ -4748,7 +4896,7 @@ impl Sja1000 {
             core_fsm_crcb_nxt = (core_fsm_crcb_shifted ^ self.core_fsm_crcb_poly);
         }
         core_fsm_crcb_crc_next = core_fsm_crcb_nxt;
-        self.core_fsm_crcb_crc_next = core_fsm_crcb_crc_next;
+        if core_fsm_crcb_crc_next != self.core_fsm_crcb_crc_next { self.core_fsm_crcb_crc_next = core_fsm_crcb_crc_next; self.dirty[0] |= 0x3010000000; }
     }
 
     /// `core.fsm.crcb` block, depth 1, probe-only: core.fsm.crcb.fb, core.fsm.crcb.nxt
@@ -4775,7 +4923,7 @@ impl Sja1000 {
         if core_l_hold {
             core_dbg_field = 0u8;
         }
-        self.core_dbg_field = core_dbg_field;
+        if core_dbg_field != self.core_dbg_field { self.core_dbg_field = core_dbg_field; self.dirty[0] |= 0x600000000; }
     }
 
     /// `core.btl` block, depth 2, input-dependent: core.btl.cnt.d, core.btl.spw.d, core.btl.nbw.d, core.btl.busmon_n.d, core.btl.sync_dis.d, core.btl.since.d, ... (11 signals)
@@ -5729,7 +5877,7 @@ impl Sja1000 {
         core_fsm_dstf_same = ((self.core_fsm_dstf_cnt != 0u8) & (self.core_btl_busmon == self.core_fsm_dstf_lvl));
         core_fsm_dstf_take = (self.core_btl_sample_r & self.core_fsm_dstf_active);
         core_fsm_dstf_stuff_error = ((core_fsm_dstf_take & core_fsm_dstf_at5) & core_fsm_dstf_same);
-        self.core_fsm_dstf_stuff_error = core_fsm_dstf_stuff_error;
+        if core_fsm_dstf_stuff_error != self.core_fsm_dstf_stuff_error { self.core_fsm_dstf_stuff_error = core_fsm_dstf_stuff_error; self.dirty[0] |= 0x3800000000; }
     }
 
     /// `core.fsm.dstf` block, depth 2, input-dependent: core.fsm.dstf.cnt.d, core.fsm.dstf.lvl.d
@@ -9425,6 +9573,7 @@ impl rt::Model for Sja1000 {
             636 => self.seen_ext = (v & 1) != 0,
             _ => return false,
         }
+        self.dirty = [!0; 1];
         true
     }
     fn set_mem(&mut self, r: usize, addr: usize, v: u128) {

@@ -26,6 +26,10 @@ pub struct Synchroniser {
     pub s1_n_d: bool,
     /// `s2_n.d` (combinational, 1 bit)
     pub s2_n_d: bool,
+    seen_reset: bool,
+    seen_d: bool,
+    /// Groups to evaluate (one bit per group, see `run`).
+    dirty: [u64; 1],
     trace: bool,
 }
 
@@ -50,6 +54,9 @@ impl Synchroniser {
             s2_n: false,
             s1_n_d: false,
             s2_n_d: false,
+            seen_reset: false,
+            seen_d: false,
+            dirty: [!0; 1],
             trace: false,
         };
         m.eval_all();
@@ -63,46 +70,68 @@ impl Synchroniser {
         Ok(m)
     }
 
+    /// Groups evaluated before the edge: input-dependent.
+    const PRE: [u64; 1] = [0x2];
+    /// Groups evaluated after the edge: state-only and the output cone.
+    const POST: [u64; 1] = [0x1];
+    const ALL: [u64; 1] = [0x3];
+
     /// One clock cycle (`canstar_hdl::drive::cycle`): settle, rising edge, settle.
     pub fn cycle(&mut self) {
-        self.eval_pre();
+        self.sense();
+        self.run(&Self::PRE);
         self.edge();
-        if self.trace {
-            self.eval_all();
-        } else {
-            self.eval_post();
-        }
+        self.run(if self.trace { &Self::ALL } else { &Self::POST });
     }
 
     /// Propagate input changes (no clock edge).
     pub fn settle(&mut self) {
-        if self.trace {
-            self.eval_all();
-        } else {
-            self.eval_pre();
+        self.sense();
+        self.run(if self.trace { &Self::ALL } else { &Self::PRE });
+    }
+
+    /// Evaluate every group.
+    fn eval_all(&mut self) {
+        self.dirty = [!0; 1];
+        self.sense();
+        self.run(&Self::ALL);
+    }
+
+    /// Run the dirty groups of a phase, in dependency order.
+    fn run(&mut self, phase: &[u64; 1]) {
+        for w in 0..1 {
+            loop {
+                let m = self.dirty[w] & phase[w];
+                if m == 0 {
+                    break;
+                }
+                let k = m.trailing_zeros() as usize;
+                self.dirty[w] &= !(1u64 << k);
+                self.group(w * 64 + k);
+            }
         }
     }
 
-    /// Input-dependent groups (before the edge).
-    fn eval_pre(&mut self) {
-        self.g1();
+    fn group(&mut self, k: usize) {
+        match k {
+            0 => self.g0(),
+            1 => self.g1(),
+            _ => {}
+        }
     }
 
-    /// State-only groups and the output cone (after the edge).
-    fn eval_post(&mut self) {
-        self.g0();
-    }
-
-    /// Every group.
-    fn eval_all(&mut self) {
-        self.g0();
-        self.g1();
+    /// Inputs that changed since they were last seen mark their readers.
+    fn sense(&mut self) {
+        if self.reset != self.seen_reset { self.seen_reset = self.reset; self.dirty[0] |= 0x2; }
+        if self.d != self.seen_d { self.seen_d = self.d; self.dirty[0] |= 0x2; }
     }
 
     /// Rising edge: registers and memories take their inputs.
     fn edge(&mut self) {
-        self.s1_n = self.s1_n_d;
-        self.s2_n = self.s2_n_d;
+        let n0 = self.s1_n_d;
+        let n1 = self.s2_n_d;
+        if n0 != self.s1_n { self.s1_n = n0; self.dirty[0] |= 0x3; }
+        if n1 != self.s2_n { self.s2_n = n1; self.dirty[0] |= 0x1; }
     }
 
     /// `top` block, depth 0, state-only: q
@@ -204,6 +233,7 @@ impl rt::Model for Synchroniser {
             9 => self.s2_n = (v & 1) != 0,
             _ => return false,
         }
+        self.dirty = [!0; 1];
         true
     }
     fn set_mem(&mut self, r: usize, addr: usize, v: u128) {

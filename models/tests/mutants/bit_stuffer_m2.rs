@@ -38,6 +38,12 @@ pub struct BitStufferM2 {
     pub stf: bool,
     /// `o` (combinational, 1 bit)
     pub o: bool,
+    seen_reset: bool,
+    seen_en: bool,
+    seen_data: bool,
+    seen_active: bool,
+    /// Groups to evaluate (one bit per group, see `run`).
+    dirty: [u64; 1],
     trace: bool,
 }
 
@@ -68,6 +74,11 @@ impl BitStufferM2 {
             at5: false,
             stf: false,
             o: false,
+            seen_reset: false,
+            seen_en: false,
+            seen_data: false,
+            seen_active: false,
+            dirty: [!0; 1],
             trace: false,
         };
         m.eval_all();
@@ -81,50 +92,72 @@ impl BitStufferM2 {
         Ok(m)
     }
 
+    /// Groups evaluated before the edge: input-dependent.
+    const PRE: [u64; 1] = [0x6];
+    /// Groups evaluated after the edge: state-only and the output cone.
+    const POST: [u64; 1] = [0x5];
+    const ALL: [u64; 1] = [0xf];
+
     /// One clock cycle (`canstar_hdl::drive::cycle`): settle, rising edge, settle.
     pub fn cycle(&mut self) {
-        self.eval_pre();
+        self.sense();
+        self.run(&Self::PRE);
         self.edge();
-        if self.trace {
-            self.eval_all();
-        } else {
-            self.eval_post();
-        }
+        self.run(if self.trace { &Self::ALL } else { &Self::POST });
     }
 
     /// Propagate input changes (no clock edge).
     pub fn settle(&mut self) {
-        if self.trace {
-            self.eval_all();
-        } else {
-            self.eval_pre();
+        self.sense();
+        self.run(if self.trace { &Self::ALL } else { &Self::PRE });
+    }
+
+    /// Evaluate every group.
+    fn eval_all(&mut self) {
+        self.dirty = [!0; 1];
+        self.sense();
+        self.run(&Self::ALL);
+    }
+
+    /// Run the dirty groups of a phase, in dependency order.
+    fn run(&mut self, phase: &[u64; 1]) {
+        for w in 0..1 {
+            loop {
+                let m = self.dirty[w] & phase[w];
+                if m == 0 {
+                    break;
+                }
+                let k = m.trailing_zeros() as usize;
+                self.dirty[w] &= !(1u64 << k);
+                self.group(w * 64 + k);
+            }
         }
     }
 
-    /// Input-dependent groups (before the edge).
-    fn eval_pre(&mut self) {
-        self.g1();
-        self.g2();
+    fn group(&mut self, k: usize) {
+        match k {
+            0 => self.g0(),
+            1 => self.g1(),
+            2 => self.g2(),
+            3 => self.g3(),
+            _ => {}
+        }
     }
 
-    /// State-only groups and the output cone (after the edge).
-    fn eval_post(&mut self) {
-        self.g0();
-        self.g2();
-    }
-
-    /// Every group.
-    fn eval_all(&mut self) {
-        self.g0();
-        self.g1();
-        self.g2();
-        self.g3();
+    /// Inputs that changed since they were last seen mark their readers.
+    fn sense(&mut self) {
+        if self.reset != self.seen_reset { self.seen_reset = self.reset; self.dirty[0] |= 0x2; }
+        if self.en != self.seen_en { self.seen_en = self.en; self.dirty[0] |= 0x2; }
+        if self.data != self.seen_data { self.seen_data = self.data; self.dirty[0] |= 0xe; }
+        if self.active != self.seen_active { self.seen_active = self.active; self.dirty[0] |= 0xe; }
     }
 
     /// Rising edge: registers and memories take their inputs.
     fn edge(&mut self) {
-        self.cnt = self.cnt_d;
-        self.lvl = self.lvl_d;
+        let n0 = self.cnt_d;
+        let n1 = self.lvl_d;
+        if n0 != self.cnt { self.cnt = n0; self.dirty[0] |= 0xf; }
+        if n1 != self.lvl { self.lvl = n1; self.dirty[0] |= 0xe; }
     }
 
     /// `top` block, depth 0, state-only: stuff_pending
@@ -298,6 +331,7 @@ impl rt::Model for BitStufferM2 {
             12 => self.lvl = (v & 1) != 0,
             _ => return false,
         }
+        self.dirty = [!0; 1];
         true
     }
     fn set_mem(&mut self, r: usize, addr: usize, v: u128) {

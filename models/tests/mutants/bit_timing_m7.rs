@@ -178,6 +178,17 @@ pub struct BitTimingM7 {
     pub fire: bool,
     /// `sampled` (combinational, 1 bit)
     pub sampled: bool,
+    seen_reset: bool,
+    seen_brp: u8,
+    seen_prop: u8,
+    seen_ph1: u8,
+    seen_sjw: u8,
+    seen_triple: bool,
+    seen_rx: bool,
+    seen_drive: bool,
+    seen_hs_en: bool,
+    /// Groups to evaluate (one bit per group, see `run`).
+    dirty: [u64; 1],
     trace: bool,
 }
 
@@ -278,6 +289,16 @@ impl BitTimingM7 {
             since_inc: 0u8,
             fire: false,
             sampled: false,
+            seen_reset: false,
+            seen_brp: 0u8,
+            seen_prop: 0u8,
+            seen_ph1: 0u8,
+            seen_sjw: 0u8,
+            seen_triple: false,
+            seen_rx: false,
+            seen_drive: false,
+            seen_hs_en: false,
+            dirty: [!0; 1],
             trace: false,
         };
         m.eval_all();
@@ -291,69 +312,115 @@ impl BitTimingM7 {
         Ok(m)
     }
 
+    /// Groups evaluated before the edge: input-dependent.
+    const PRE: [u64; 1] = [0x6];
+    /// Groups evaluated after the edge: state-only and the output cone.
+    const POST: [u64; 1] = [0x5];
+    const ALL: [u64; 1] = [0xf];
+
     /// One clock cycle (`canstar_hdl::drive::cycle`): settle, rising edge, settle.
     pub fn cycle(&mut self) {
-        self.eval_pre();
+        self.sense();
+        self.run(&Self::PRE);
         self.edge();
-        if self.trace {
-            self.eval_all();
-        } else {
-            self.eval_post();
-        }
+        self.run(if self.trace { &Self::ALL } else { &Self::POST });
     }
 
     /// Propagate input changes (no clock edge).
     pub fn settle(&mut self) {
-        if self.trace {
-            self.eval_all();
-        } else {
-            self.eval_pre();
+        self.sense();
+        self.run(if self.trace { &Self::ALL } else { &Self::PRE });
+    }
+
+    /// Evaluate every group.
+    fn eval_all(&mut self) {
+        self.dirty = [!0; 1];
+        self.sense();
+        self.run(&Self::ALL);
+    }
+
+    /// Run the dirty groups of a phase, in dependency order.
+    fn run(&mut self, phase: &[u64; 1]) {
+        for w in 0..1 {
+            loop {
+                let m = self.dirty[w] & phase[w];
+                if m == 0 {
+                    break;
+                }
+                let k = m.trailing_zeros() as usize;
+                self.dirty[w] &= !(1u64 << k);
+                self.group(w * 64 + k);
+            }
         }
     }
 
-    /// Input-dependent groups (before the edge).
-    fn eval_pre(&mut self) {
-        self.g1();
-        self.g2();
+    fn group(&mut self, k: usize) {
+        match k {
+            0 => self.g0(),
+            1 => self.g1(),
+            2 => self.g2(),
+            3 => self.g3(),
+            _ => {}
+        }
     }
 
-    /// State-only groups and the output cone (after the edge).
-    fn eval_post(&mut self) {
-        self.g0();
-        self.g2();
-    }
-
-    /// Every group.
-    fn eval_all(&mut self) {
-        self.g0();
-        self.g1();
-        self.g2();
-        self.g3();
+    /// Inputs that changed since they were last seen mark their readers.
+    fn sense(&mut self) {
+        if self.reset != self.seen_reset { self.seen_reset = self.reset; self.dirty[0] |= 0xe; }
+        if self.brp != self.seen_brp { self.seen_brp = self.brp; self.dirty[0] |= 0x2; }
+        if self.prop != self.seen_prop { self.seen_prop = self.prop; self.dirty[0] |= 0xa; }
+        if self.ph1 != self.seen_ph1 { self.seen_ph1 = self.ph1; self.dirty[0] |= 0xa; }
+        if self.sjw != self.seen_sjw { self.seen_sjw = self.sjw; self.dirty[0] |= 0xa; }
+        if self.triple != self.seen_triple { self.seen_triple = self.triple; self.dirty[0] |= 0x2; }
+        if self.rx != self.seen_rx { self.seen_rx = self.rx; self.dirty[0] |= 0xe; }
+        if self.drive != self.seen_drive { self.seen_drive = self.drive; self.dirty[0] |= 0xe; }
+        if self.hs_en != self.seen_hs_en { self.seen_hs_en = self.hs_en; self.dirty[0] |= 0xe; }
     }
 
     /// Rising edge: registers and memories take their inputs.
     fn edge(&mut self) {
-        self.c_brp = self.c_brp_d;
-        self.c_sp = self.c_sp_d;
-        self.c_ntq = self.c_ntq_d;
-        self.c_sjw = self.c_sjw_d;
-        self.c_triple = self.c_triple_d;
-        self.c_valid = self.c_valid_d;
-        self.c_bad = self.c_bad_d;
-        self.pre = self.pre_d;
-        self.cnt = self.cnt_d;
-        self.spw = self.spw_d;
-        self.nbw = self.nbw_d;
-        self.busmon_n = self.busmon_n_d;
-        self.sync_dis = self.sync_dis_d;
-        self.since = self.since_d;
-        self.pending = self.pending_d;
-        self.tx_n = self.tx_n_d;
-        self.h1_n = self.h1_n_d;
-        self.h2_n = self.h2_n_d;
-        self.sample_r = self.sample_r_d;
-        self.hard_r = self.hard_r_d;
-        self.resync_r = self.resync_r_d;
+        let n0 = self.c_brp_d;
+        let n1 = self.c_sp_d;
+        let n2 = self.c_ntq_d;
+        let n3 = self.c_sjw_d;
+        let n4 = self.c_triple_d;
+        let n5 = self.c_valid_d;
+        let n6 = self.c_bad_d;
+        let n7 = self.pre_d;
+        let n8 = self.cnt_d;
+        let n9 = self.spw_d;
+        let n10 = self.nbw_d;
+        let n11 = self.busmon_n_d;
+        let n12 = self.sync_dis_d;
+        let n13 = self.since_d;
+        let n14 = self.pending_d;
+        let n15 = self.tx_n_d;
+        let n16 = self.h1_n_d;
+        let n17 = self.h2_n_d;
+        let n18 = self.sample_r_d;
+        let n19 = self.hard_r_d;
+        let n20 = self.resync_r_d;
+        if n0 != self.c_brp { self.c_brp = n0; self.dirty[0] |= 0xe; }
+        if n1 != self.c_sp { self.c_sp = n1; self.dirty[0] |= 0xa; }
+        if n2 != self.c_ntq { self.c_ntq = n2; self.dirty[0] |= 0xe; }
+        if n3 != self.c_sjw { self.c_sjw = n3; self.dirty[0] |= 0xe; }
+        if n4 != self.c_triple { self.c_triple = n4; self.dirty[0] |= 0xa; }
+        if n5 != self.c_valid { self.c_valid = n5; self.dirty[0] |= 0xe; }
+        if n6 != self.c_bad { self.c_bad = n6; self.dirty[0] |= 0x3; }
+        if n7 != self.pre { self.pre = n7; self.dirty[0] |= 0xe; }
+        if n8 != self.cnt { self.cnt = n8; self.dirty[0] |= 0xe; }
+        if n9 != self.spw { self.spw = n9; self.dirty[0] |= 0xe; }
+        if n10 != self.nbw { self.nbw = n10; self.dirty[0] |= 0xe; }
+        if n11 != self.busmon_n { self.busmon_n = n11; self.dirty[0] |= 0xf; }
+        if n12 != self.sync_dis { self.sync_dis = n12; self.dirty[0] |= 0xe; }
+        if n13 != self.since { self.since = n13; self.dirty[0] |= 0xe; }
+        if n14 != self.pending { self.pending = n14; self.dirty[0] |= 0xe; }
+        if n15 != self.tx_n { self.tx_n = n15; self.dirty[0] |= 0x3; }
+        if n16 != self.h1_n { self.h1_n = n16; self.dirty[0] |= 0xa; }
+        if n17 != self.h2_n { self.h2_n = n17; self.dirty[0] |= 0xa; }
+        if n18 != self.sample_r { self.sample_r = n18; self.dirty[0] |= 0x1; }
+        if n19 != self.hard_r { self.hard_r = n19; self.dirty[0] |= 0x1; }
+        if n20 != self.resync_r { self.resync_r = n20; self.dirty[0] |= 0x1; }
     }
 
     /// `top` block, depth 0, state-only: sample, busmon, tx, hard_sync, resync, cfg_err
@@ -995,6 +1062,7 @@ impl rt::Model for BitTimingM7 {
             79 => self.resync_r = (v & 1) != 0,
             _ => return false,
         }
+        self.dirty = [!0; 1];
         true
     }
     fn set_mem(&mut self, r: usize, addr: usize, v: u128) {

@@ -34,6 +34,12 @@ pub struct Crc15M0 {
     pub shifted: u16,
     /// `nxt` (combinational, 15 bits)
     pub nxt: u16,
+    seen_reset: bool,
+    seen_clear: bool,
+    seen_en: bool,
+    seen_din: bool,
+    /// Groups to evaluate (one bit per group, see `run`).
+    dirty: [u64; 1],
     trace: bool,
 }
 
@@ -62,6 +68,11 @@ impl Crc15M0 {
             fb: false,
             shifted: 0u16,
             nxt: 0u16,
+            seen_reset: false,
+            seen_clear: false,
+            seen_en: false,
+            seen_din: false,
+            dirty: [!0; 1],
             trace: false,
         };
         m.eval_all();
@@ -75,49 +86,70 @@ impl Crc15M0 {
         Ok(m)
     }
 
+    /// Groups evaluated before the edge: input-dependent.
+    const PRE: [u64; 1] = [0x6];
+    /// Groups evaluated after the edge: state-only and the output cone.
+    const POST: [u64; 1] = [0x5];
+    const ALL: [u64; 1] = [0xf];
+
     /// One clock cycle (`canstar_hdl::drive::cycle`): settle, rising edge, settle.
     pub fn cycle(&mut self) {
-        self.eval_pre();
+        self.sense();
+        self.run(&Self::PRE);
         self.edge();
-        if self.trace {
-            self.eval_all();
-        } else {
-            self.eval_post();
-        }
+        self.run(if self.trace { &Self::ALL } else { &Self::POST });
     }
 
     /// Propagate input changes (no clock edge).
     pub fn settle(&mut self) {
-        if self.trace {
-            self.eval_all();
-        } else {
-            self.eval_pre();
+        self.sense();
+        self.run(if self.trace { &Self::ALL } else { &Self::PRE });
+    }
+
+    /// Evaluate every group.
+    fn eval_all(&mut self) {
+        self.dirty = [!0; 1];
+        self.sense();
+        self.run(&Self::ALL);
+    }
+
+    /// Run the dirty groups of a phase, in dependency order.
+    fn run(&mut self, phase: &[u64; 1]) {
+        for w in 0..1 {
+            loop {
+                let m = self.dirty[w] & phase[w];
+                if m == 0 {
+                    break;
+                }
+                let k = m.trailing_zeros() as usize;
+                self.dirty[w] &= !(1u64 << k);
+                self.group(w * 64 + k);
+            }
         }
     }
 
-    /// Input-dependent groups (before the edge).
-    fn eval_pre(&mut self) {
-        self.g1();
-        self.g2();
+    fn group(&mut self, k: usize) {
+        match k {
+            0 => self.g0(),
+            1 => self.g1(),
+            2 => self.g2(),
+            3 => self.g3(),
+            _ => {}
+        }
     }
 
-    /// State-only groups and the output cone (after the edge).
-    fn eval_post(&mut self) {
-        self.g0();
-        self.g2();
-    }
-
-    /// Every group.
-    fn eval_all(&mut self) {
-        self.g0();
-        self.g1();
-        self.g2();
-        self.g3();
+    /// Inputs that changed since they were last seen mark their readers.
+    fn sense(&mut self) {
+        if self.reset != self.seen_reset { self.seen_reset = self.reset; self.dirty[0] |= 0x2; }
+        if self.clear != self.seen_clear { self.seen_clear = self.clear; self.dirty[0] |= 0x2; }
+        if self.en != self.seen_en { self.seen_en = self.en; self.dirty[0] |= 0x2; }
+        if self.din != self.seen_din { self.seen_din = self.din; self.dirty[0] |= 0xe; }
     }
 
     /// Rising edge: registers and memories take their inputs.
     fn edge(&mut self) {
-        self.state = self.state_d;
+        let n0 = self.state_d;
+        if n0 != self.state { self.state = n0; self.dirty[0] |= 0xf; }
     }
 
     /// `top` block, depth 0, state-only: crc
@@ -268,6 +300,7 @@ impl rt::Model for Crc15M0 {
             9 => self.state = (v & 0x7fff) as u16,
             _ => return false,
         }
+        self.dirty = [!0; 1];
         true
     }
     fn set_mem(&mut self, r: usize, addr: usize, v: u128) {
