@@ -8,6 +8,7 @@
 pub mod generated;
 pub mod lockstep;
 pub mod registry;
+pub mod semantics;
 
 pub use canstar_rtlc::rt::Model;
 

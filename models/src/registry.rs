@@ -58,6 +58,9 @@ pub fn entries() -> Vec<Entry> {
         entry("bit_timing", "BitTiming", "canstar_hdl::btl::BitTiming", "bit timing logic (`canstar_hdl::btl::BitTiming`)", || {
             Box::new(btl::BitTiming::default())
         }),
+        entry("semantics", "Ops", "crate::semantics::Ops", "operator semantics test design (`canstar_models::semantics::Ops`)", || {
+            Box::new(crate::semantics::Ops::default())
+        }),
         entry(
             "can_core",
             "CanCore",

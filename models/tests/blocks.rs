@@ -71,3 +71,10 @@ fn bit_timing() {
     b.set_config(&btl::BtlConfig::from_fields(1, 1, 3, 2, false));
     run(b, g::bit_timing::BitTiming::from_instance, g::bit_timing::hdl_set_inputs, g::bit_timing::hdl_outputs, 1_000_000, 7, prob);
 }
+
+/// The operator-semantics design (`canstar_models::semantics`), all inputs random.
+#[test]
+fn operator_semantics() {
+    use canstar_models::semantics::Ops;
+    run(Ops::default(), g::semantics::Ops::from_instance, g::semantics::hdl_set_inputs, g::semantics::hdl_outputs, 300_000, 8, |_| 0.5);
+}

@@ -11,7 +11,7 @@ use rust_hdl::core::prelude::AtomKind;
 
 use crate::collect::{Hierarchy, ValueType};
 use crate::error::{Error, Result};
-use crate::ir::{assigned, CombBlock, Design, Dff, Expr, Ram, Role, Sig, SigId, Stmt};
+use crate::ir::{assigned, CombBlock, Design, Dff, Ram, Role, Sig, SigId, Stmt};
 use crate::names::{fixup, parse_int};
 use crate::prims::{recognise, Prim};
 
@@ -28,6 +28,8 @@ pub(crate) struct Lower<'a> {
     /// Clock wiring found: (target, source).
     pub(crate) clocks: Vec<(SigId, SigId)>,
     pub(crate) warnings: Vec<String>,
+    /// Lowering a bit index or slice offset (a `usize` in Rust).
+    pub(crate) index_mode: bool,
 }
 
 impl Lower<'_> {
@@ -91,8 +93,7 @@ impl Lower<'_> {
             }
             S::SliceAssignment { base, width, offset, replacement } => {
                 let t = self.target(base)?;
-                let off = self.expr(offset)?;
-                let off = self.fit_amount(off)?;
+                let off = self.index_expr(offset, "slice assignment offset")?;
                 let v = self.expr(replacement)?;
                 let v = self.fit(v, *width, "slice assignment")?;
                 out.push(Stmt::AssignSlice { s: t, off, w: *width, v });
@@ -122,15 +123,6 @@ impl Lower<'_> {
             S::Link(_) => return Err(self.unsupported("interface links (LogicInterface join/link)")),
         }
         Ok(())
-    }
-
-    fn fit_amount(&mut self, t: crate::lower_expr::Te) -> Result<Expr> {
-        if t.flex {
-            let v = t.e.as_lit().unwrap();
-            Ok(Expr::lit(v, (128 - v.leading_zeros() as usize).max(1)))
-        } else {
-            Ok(t.e)
-        }
     }
 
     fn lower_match(&mut self, m: &rust_hdl::core::ast::VerilogMatch, depth: usize) -> Result<Stmt> {
@@ -261,7 +253,7 @@ pub fn lower(h: Hierarchy) -> Result<Design> {
         let path = if m == 0 { "top".to_string() } else { h.modules[m].dotted() };
         match &h.modules[m].code {
             Verilog::Combinatorial(code) => {
-                let mut l = Lower { sigs: &sigs, hier: &h, module: m, names: visible_names(&h, m), enum_consts: &enum_consts, loops: vec![], clocks: vec![], warnings: vec![] };
+                let mut l = Lower { sigs: &sigs, hier: &h, module: m, names: visible_names(&h, m), enum_consts: &enum_consts, loops: vec![], clocks: vec![], warnings: vec![], index_mode: false };
                 let stmts = l.block(code, 0)?;
                 clocks.extend(l.clocks);
                 warnings.extend(l.warnings);

@@ -86,6 +86,36 @@ impl Lower<'_> {
         self.fit(t, 1, what)
     }
 
+    /// A bit index or slice offset: a `usize` in Rust, so the AST's `x.index()` has
+    /// lost its conversion. The expression is evaluated as Rust evaluates
+    /// `leaf.index()` arithmetic: signals zero-extended to 64 bits, 64-bit operators
+    /// (the reading rust-hdl's Verilog generator gives it too). `(x + 1).index()`,
+    /// which would wrap at x's width first, reads the same in the AST: a warning says
+    /// so when an index computes with signals.
+    pub(crate) fn index_expr(&mut self, e: &VerilogExpression, what: &str) -> Result<Expr> {
+        let saved = std::mem::replace(&mut self.index_mode, true);
+        let t = self.expr(e);
+        self.index_mode = saved;
+        let t = self.amount(t?, what)?;
+        let computes = matches!(t.k, Ek::Bin(..)) && {
+            let mut reads = false;
+            t.reads(&mut |_| reads = true);
+            reads
+        };
+        if computes {
+            self.warn(format!("{what} computed from signals: evaluated as usize arithmetic (as `x.index() + k`, not `(x + k).index()`)"));
+        }
+        Ok(t)
+    }
+
+    /// A receiver of `get_bit`/`get_bits`/`replace_bit`: a `Bits` value even inside an index.
+    fn receiver(&mut self, e: &VerilogExpression) -> Result<Te> {
+        let saved = std::mem::replace(&mut self.index_mode, false);
+        let t = self.expr(e);
+        self.index_mode = saved;
+        t
+    }
+
     /// An index or shift amount: any width (a literal gets the bits it needs).
     fn amount(&mut self, t: Te, what: &str) -> Result<Expr> {
         if t.clock {
@@ -148,13 +178,12 @@ impl Lower<'_> {
                 Te::fixed(Expr { w, k: Ek::Un(op, Box::new(a.e)) })
             }
             V::Index(a, i) => {
-                let a = self.expr(a)?;
+                let a = self.receiver(a)?;
                 let a = self.operand(a, "get_bit")?;
                 if a.flex {
                     return Err(self.unsupported("get_bit on an untyped literal"));
                 }
-                let i = self.expr(i)?;
-                let i = self.amount(i, "bit index")?;
+                let i = self.index_expr(i, "bit index")?;
                 if let Some(iv) = i.as_lit() {
                     if iv >= a.w() as u128 {
                         self.warn(format!("get_bit({iv}) of a {}-bit value; rust-hdl would panic here", a.w()));
@@ -163,24 +192,25 @@ impl Lower<'_> {
                 Te::fixed(Expr { w: 1, k: Ek::Index(Box::new(a.e), Box::new(i)) })
             }
             V::Slice(a, w, off) => {
-                let a = self.expr(a)?;
+                let a = self.receiver(a)?;
                 let a = self.operand(a, "get_bits")?;
                 if a.flex {
                     return Err(self.unsupported("get_bits on an untyped literal"));
                 }
-                let off = self.expr(off)?;
-                let off = self.amount(off, "slice offset")?;
+                let off = self.index_expr(off, "slice offset")?;
                 Te::fixed(Expr { w: *w, k: Ek::Slice(Box::new(a.e), Box::new(off)) })
             }
             V::IndexReplace(a, i, v) => {
-                let a = self.expr(a)?;
+                let a = self.receiver(a)?;
                 let a = self.operand(a, "replace_bit")?;
                 if a.flex {
                     return Err(self.unsupported("replace_bit on an untyped literal"));
                 }
-                let i = self.expr(i)?;
-                let i = self.amount(i, "bit index")?;
-                let v = self.expr(v)?;
+                let i = self.index_expr(i, "bit index")?;
+                let saved = std::mem::replace(&mut self.index_mode, false);
+                let v = self.expr(v);
+                self.index_mode = saved;
+                let v = v?;
                 let v = self.to_bool(v, "replace_bit value")?;
                 let w = a.w();
                 Te::fixed(Expr { w, k: Ek::Replace(Box::new(a.e), Box::new(i), Box::new(v)) })
@@ -206,7 +236,12 @@ impl Lower<'_> {
     fn read(&mut self, s: SigId) -> Te {
         let sig = &self.sigs[s];
         let clock = sig.ty == ValueType::Clock;
-        Te { e: Expr::read(s, sig.width), flex: false, clock }
+        let e = Expr::read(s, sig.width);
+        if self.index_mode && !clock && sig.width < 64 {
+            // `x.index()`: the value as a usize
+            return Te { e: Expr { w: 64, k: Ek::Cast(Box::new(e)) }, flex: false, clock };
+        }
+        Te { e, flex: false, clock }
     }
 
     fn binary(&mut self, op: &VerilogOp, a: Te, b: Te) -> Result<Te> {

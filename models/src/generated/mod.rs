@@ -6,6 +6,7 @@ pub mod crc15;
 pub mod bit_stuffer;
 pub mod bit_destuffer;
 pub mod bit_timing;
+pub mod semantics;
 pub mod can_core;
 pub mod sja1000;
 pub mod hub_core_n3_m2;
@@ -24,6 +25,7 @@ pub fn all() -> Vec<Box<dyn canstar_rtlc::rt::Model>> {
         Box::new(bit_stuffer::BitStuffer::new()),
         Box::new(bit_destuffer::BitDestuffer::new()),
         Box::new(bit_timing::BitTiming::new()),
+        Box::new(semantics::Ops::new()),
         Box::new(can_core::CanCore::new()),
         Box::new(sja1000::Sja1000::new()),
         Box::new(hub_core_n3_m2::HubCoreN3M2::new()),
