@@ -61,6 +61,39 @@ pub fn simplify(stmts: Vec<Stmt>) -> Vec<Stmt> {
     out
 }
 
+/// Remove top-level full assignments that a later top-level full assignment to the
+/// same signal overwrites before anything reads it (`dff_setup!`'s `d = q` followed
+/// by `d = ...`, defaults overwritten unconditionally).
+pub fn dead_stores(stmts: Vec<Stmt>) -> Vec<Stmt> {
+    let reads_of = |st: &Stmt, sig: SigId| {
+        let mut hit = false;
+        st.walk(&mut |x| {
+            for e in x.exprs() {
+                e.reads(&mut |r| hit |= r == sig);
+            }
+            if let Stmt::AssignSlice { s, .. } = x {
+                hit |= *s == sig;
+            }
+        });
+        hit
+    };
+    let n = stmts.len();
+    let mut dead = vec![false; n];
+    for i in 0..n {
+        let Stmt::Assign { s, .. } = &stmts[i] else { continue };
+        for j in i + 1..n {
+            if reads_of(&stmts[j], *s) {
+                break;
+            }
+            if matches!(&stmts[j], Stmt::Assign { s: t, .. } if t == s) {
+                dead[i] = true;
+                break;
+            }
+        }
+    }
+    stmts.into_iter().zip(dead).filter(|(_, d)| !d).map(|(s, _)| s).collect()
+}
+
 /// Per block: how often each signal is assigned, and which are assigned exactly once
 /// by a full assignment at the top level of the block.
 fn assignment_counts(stmts: &[Stmt]) -> (HashMap<SigId, usize>, HashSet<SigId>) {
@@ -169,7 +202,7 @@ pub fn optimize(d: &mut Design) {
     }
     substitute(d, &undriven);
     for b in &mut d.blocks {
-        b.stmts = simplify(std::mem::take(&mut b.stmts));
+        b.stmts = dead_stores(simplify(std::mem::take(&mut b.stmts)));
     }
     loop {
         let map = resolve(find_aliases(d));
@@ -194,7 +227,7 @@ pub fn optimize(d: &mut Design) {
             }
         }
         for b in &mut d.blocks {
-            b.stmts = simplify(std::mem::take(&mut b.stmts));
+            b.stmts = dead_stores(simplify(std::mem::take(&mut b.stmts)));
         }
     }
 }
