@@ -1,51 +1,38 @@
 //! Throughput of the compiled models against rust-hdl direct drive on the same
-//! stimulus (a benchmark: it prints figures and asserts only that both engines end
-//! with the same outputs):
+//! stimulus (benchmarks: they print figures and assert only that the engines agree):
+//!
 //! `cargo test --release -p canstar-models --test bench -- --ignored --nocapture bench_print`
 //!
-//! - CanCore: 2, 3, 6 nodes on a wired-AND bus sending frames back to back (each
-//!   engine runs the closed loop; the traffic is the same because the engines agree).
-//! - SJA1000: two controllers with register-level hosts (`common/sjanet.rs`); the
-//!   inputs of controller 0 recorded from a model run, replayed into each engine.
-//! - Hub (N = 3, M = 2, with its monitor) and HubCore: the inputs of hub A in a
-//!   ReCANcentrate network (`common/hubnet.rs`) recorded from a model run, replayed.
+//! Workloads (recorded from a compiled-model run of the closed loop, then replayed
+//! into each engine, so every engine gets exactly the same inputs):
+//! - CanCore: 2, 3, 6 nodes on a wired-AND bus sending frames back to back;
+//! - SJA1000: controller 0 of two on a bus with register-level hosts (`common/sjanet.rs`);
+//! - Hub (N = 3, M = 2, with its monitor): hub A of a ReCANcentrate network
+//!   (`common/hubnet.rs`).
 //!
-//! Inputs go in as whole vectors (`Model::set_inputs`, the generated `hdl_set_inputs`).
-//! Rates are per second of this thread's CPU time.
+//! `bench_verilator_files` writes the same workloads (`common/stim.rs` format), the
+//! port adapters and the expected output hashes for `models/verilator/run.sh`, which
+//! measures Verilator on them. Rates are per second of this thread's CPU time.
 
 mod common;
-
-/// CPU time of this thread (the machine is shared: wall time would count other
-/// processes' time slices).
-struct Instant(f64);
-
-impl Instant {
-    fn now() -> Instant {
-        let mut t = libc::timespec { tv_sec: 0, tv_nsec: 0 };
-        // SAFETY: clock_gettime writes the timespec it is given.
-        unsafe { libc::clock_gettime(libc::CLOCK_THREAD_CPUTIME_ID, &mut t) };
-        Instant(t.tv_sec as f64 + t.tv_nsec as f64 * 1e-9)
-    }
-    fn elapsed(&self) -> Elapsed {
-        Elapsed(Instant::now().0 - self.0)
-    }
-}
-
-struct Elapsed(f64);
-
-impl Elapsed {
-    fn as_secs_f64(&self) -> f64 {
-        self.0
-    }
-}
 
 use canstar_controller::core::CanCore;
 use canstar_hdl::drive;
 use canstar_models::generated as g;
 use canstar_rtlc::rt::Model;
+use common::stim::{OutHash, Stim};
 use common::Ports;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
+
+/// CPU time of this thread in seconds (the machine is shared: wall time would count
+/// other processes' time slices).
+fn cpu() -> f64 {
+    let mut t = libc::timespec { tv_sec: 0, tv_nsec: 0 };
+    // SAFETY: clock_gettime writes the timespec it is given.
+    unsafe { libc::clock_gettime(libc::CLOCK_THREAD_CPUTIME_ID, &mut t) };
+    t.tv_sec as f64 + t.tv_nsec as f64 * 1e-9
+}
 
 /// Back-to-back frames for one CanCore: request again as soon as one is sent.
 fn core_inputs(p: &Ports, v: &mut [u128], rng: &mut ChaCha8Rng, done: bool, cycle: u64) {
@@ -70,86 +57,41 @@ fn core_inputs(p: &Ports, v: &mut [u128], rng: &mut ChaCha8Rng, done: bool, cycl
     }
 }
 
-/// `n` CanCore nodes on a bus: node-cycles per second of (rust-hdl, compiled), frames.
-fn can_bus(n: usize, model_cycles: u64, hdl_cycles: u64) -> (f64, f64, u64) {
+/// `n` CanCore nodes on a bus, one stream per node.
+fn record_can(n: usize, cycles: u64) -> Stim {
     let p = Ports::of(&g::can_core::CanCore::new());
-    let (o_tx, o_done, o_rxv, i_rx) = (p.o("tx"), p.o("tx_done"), p.o("rx_valid"), p.i("rx"));
-    let run = |cycles: u64, hdl: bool| -> (f64, u64, Vec<Vec<u128>>) {
-        let mut rng = ChaCha8Rng::seed_from_u64(1);
-        let mut ms: Vec<g::can_core::CanCore> = (0..n).map(|_| g::can_core::CanCore::new()).collect();
-        let mut hs: Vec<Box<CanCore>> = (0..if hdl { n } else { 0 })
-            .map(|_| {
-                let mut c = Box::new(CanCore::new());
-                drive::init(&mut *c);
-                c
-            })
-            .collect();
-        let mut vs = vec![vec![0u128; p.ins.len()]; n];
-        let mut outs = vec![vec![0u128; p.outs.len()]; n];
-        for o in outs.iter_mut() {
-            o[o_tx] = 1;
+    let mut rng = ChaCha8Rng::seed_from_u64(1);
+    let mut ms: Vec<g::can_core::CanCore> = (0..n).map(|_| g::can_core::CanCore::new()).collect();
+    let mut vs = vec![vec![0u128; p.ins.len()]; n];
+    let mut st = Stim::new(n, p.ins.len());
+    for c in 0..cycles {
+        let bus = ms.iter().all(|m| m.tx);
+        for k in 0..n {
+            core_inputs(&p, &mut vs[k], &mut rng, ms[k].tx_done, c);
+            vs[k][p.i("rx")] = bus as u128;
+            ms[k].set_inputs(&vs[k]);
+            ms[k].cycle();
+            st.push(k, &vs[k]);
         }
-        let mut frames = 0;
-        let t = Instant::now();
-        for c in 0..cycles {
-            let bus = outs.iter().all(|o| o[o_tx] != 0);
-            for k in 0..n {
-                core_inputs(&p, &mut vs[k], &mut rng, outs[k][o_done] != 0, c);
-                vs[k][i_rx] = bus as u128;
-                if hdl {
-                    g::can_core::hdl_set_inputs(&mut hs[k], &vs[k]);
-                    drive::cycle(&mut *hs[k]);
-                    g::can_core::hdl_outputs(&hs[k], &mut outs[k]);
-                } else {
-                    ms[k].set_inputs(&vs[k]);
-                    ms[k].cycle();
-                    ms[k].outputs(&mut outs[k]);
-                }
-                frames += outs[k][o_rxv] as u64;
-            }
-        }
-        ((cycles * n as u64) as f64 / t.elapsed().as_secs_f64(), frames, outs)
-    };
-    let (hdl_rate, _, hdl_outs) = run(hdl_cycles, true);
-    let (_, _, check) = run(hdl_cycles, false);
-    assert_eq!(hdl_outs, check, "the engines disagree");
-    let (model_rate, frames, _) = run(model_cycles, false);
-    (hdl_rate, model_rate, frames)
+        st.next();
+    }
+    st
 }
 
-/// Replay recorded inputs into a model and a rust-hdl instance: cycles per second of
-/// (rust-hdl, compiled). The outputs after the rust-hdl part must agree.
-fn replay<M: Model, H: drive::Clocked>(mut m: M, mut h: H, set: fn(&mut H, &[u128]), get: fn(&H, &mut [u128]), rec: &[Vec<u128>], hdl_n: usize) -> (f64, f64) {
-    drive::init(&mut h);
-    let t = Instant::now();
-    for v in &rec[..hdl_n] {
-        set(&mut h, v);
-        drive::cycle(&mut h);
-    }
-    let hdl_rate = hdl_n as f64 / t.elapsed().as_secs_f64();
-    let mut a = vec![0u128; m.info().outputs.len()];
-    get(&h, &mut a);
-    let mut b = a.clone();
-    let t = Instant::now();
-    for (k, v) in rec.iter().enumerate() {
-        m.set_inputs(v);
-        m.cycle();
-        if k + 1 == hdl_n {
-            m.outputs(&mut b);
-        }
-    }
-    let model_rate = rec.len() as f64 / t.elapsed().as_secs_f64();
-    assert_eq!(a, b, "the engines disagree");
-    (hdl_rate, model_rate)
-}
+/// SJA1000 power-up BTR0/BTR1 of the committed Verilog (`configs/default.toml`).
+const SJA_BTR: (u8, u8) = (0x00, 0x14);
 
-/// Inputs of SJA1000 controller 0 of two on a bus with hosts, from a model run.
-fn record_sja(cycles: u64) -> Vec<Vec<u128>> {
+/// Controller 0 of two SJA1000s on a bus with hosts.
+fn record_sja(cycles: u64) -> Stim {
     let mut ms = [g::sja1000::Sja1000::new(), g::sja1000::Sja1000::new()];
+    let b = canstar_controller::sja1000::Sja1000::with_reset_timing(SJA_BTR.0, SJA_BTR.1);
+    for m in ms.iter_mut() {
+        m.load(&b).unwrap();
+    }
     let mut net = common::sjanet::SjaNet::new(&ms[0], 2, 21);
     let n_out = ms[0].info().outputs.len();
     let mut outs = vec![vec![0u128; n_out]; 2];
-    let mut rec = vec![];
+    let mut st = Stim::new(1, ms[0].info().inputs.len());
     for _ in 0..cycles {
         for k in 0..2 {
             let v = net.inputs(k, &outs[k]).to_vec();
@@ -157,45 +99,187 @@ fn record_sja(cycles: u64) -> Vec<Vec<u128>> {
             ms[k].cycle();
             ms[k].outputs(&mut outs[k]);
             if k == 0 {
-                rec.push(v);
+                st.push(0, &v);
             }
         }
         let tx = net.ix.tx;
         net.advance(outs.iter().map(|o| o[tx] != 0));
+        st.next();
     }
-    rec
+    st
 }
 
-/// Inputs of hub A (N = 3, M = 2) in a ReCANcentrate network, from a model run.
-fn record_hub(cycles: u64) -> Vec<Vec<u128>> {
+/// Hub A (N = 3, M = 2) in a ReCANcentrate network.
+fn record_hub(cycles: u64) -> Stim {
     let mut a = g::hub_n3_m2::HubN3M2::new();
     let mut net = common::hubnet::HubNet::new(Ports::of(&a), 2, 31);
     let mut out = vec![0u128; a.info().outputs.len()];
-    let mut rec = vec![];
+    let mut st = Stim::new(1, a.info().inputs.len());
     for _ in 0..cycles {
         let v = net.inputs(&out).to_vec();
         a.set_inputs(&v);
         a.cycle();
         a.outputs(&mut out);
         net.advance(&out);
-        rec.push(v);
+        st.push(0, &v);
+        st.next();
     }
-    rec
+    st
+}
+
+/// Replay into compiled models (one per stream): (cycles per CPU second per stream, output hash).
+fn replay_model<M: Model>(fresh: impl Fn() -> M, st: &Stim, hash: bool) -> (f64, u64) {
+    let mut ms: Vec<M> = (0..st.streams).map(|_| fresh()).collect();
+    let mut out = vec![0u128; ms[0].info().outputs.len()];
+    let mut h = OutHash::new();
+    let t = cpu();
+    st.replay(|_, k, ch| {
+        let m = &mut ms[k];
+        for (i, v) in ch {
+            m.set_input(i, v as u128);
+        }
+        m.cycle();
+        if hash {
+            m.outputs(&mut out);
+            h.add(&out);
+        }
+    });
+    ((st.cycles * st.streams as u64) as f64 / (cpu() - t), h.0)
+}
+
+/// Replay into rust-hdl instances: (cycles per CPU second per stream, output hash).
+fn replay_hdl<H: drive::Clocked>(fresh: impl Fn() -> H, set: fn(&mut H, &[u128]), get: fn(&H, &mut [u128]), n_out: usize, st: &Stim) -> (f64, u64) {
+    let mut hs: Vec<H> = (0..st.streams)
+        .map(|_| {
+            let mut h = fresh();
+            drive::init(&mut h);
+            h
+        })
+        .collect();
+    let mut vs = vec![vec![0u128; st.inputs]; st.streams];
+    let mut out = vec![0u128; n_out];
+    let mut hash = OutHash::new();
+    let t = cpu();
+    st.replay(|_, k, ch| {
+        for (i, v) in ch {
+            vs[k][i] = v as u128;
+        }
+        set(&mut hs[k], &vs[k]);
+        drive::cycle(&mut hs[k]);
+        get(&hs[k], &mut out);
+        hash.add(&out);
+    });
+    ((st.cycles * st.streams as u64) as f64 / (cpu() - t), hash.0)
+}
+
+fn head(st: &Stim, cycles: u64) -> Stim {
+    let mut s = Stim::new(st.streams, st.inputs);
+    let mut v = vec![vec![0u128; st.inputs]; st.streams];
+    st.replay(|c, k, ch| {
+        if c < cycles {
+            for (i, x) in ch {
+                v[k][i] = x as u128;
+            }
+            s.push(k, &v[k]);
+            if k + 1 == st.streams {
+                s.next();
+            }
+        }
+    });
+    s
+}
+
+fn line(what: &str, unit: &str, hdl: f64, model: f64) {
+    println!("{what:<34} rust-hdl {hdl:>9.0} {unit}/s   compiled {model:>11.0} {unit}/s   {:>5.0}x", model / hdl);
 }
 
 #[test]
 #[ignore]
 fn bench_print() {
-    println!("compiled models (canstar-rtlc) against rust-hdl direct drive, same stimulus, cycles/s");
+    println!("compiled models (canstar-rtlc) against rust-hdl direct drive, same recorded stimulus, per CPU second");
     for n in [2, 3, 6] {
-        let (h, m, frames) = can_bus(n, 3_000_000, 100_000);
-        println!("CanCore, {n} nodes on a bus:   rust-hdl {h:>9.0} node-cycles/s   compiled {m:>11.0} node-cycles/s   {:>5.0}x  ({frames} frames)", m / h);
+        let st = record_can(n, 1_000_000);
+        let short = head(&st, 30_000);
+        let n_out = g::can_core::CanCore::new().info().outputs.len();
+        let (h, hh) = replay_hdl(CanCore::new, g::can_core::hdl_set_inputs, g::can_core::hdl_outputs, n_out, &short);
+        let (_, mh) = replay_model(g::can_core::CanCore::new, &short, true);
+        assert_eq!(hh, mh, "the engines disagree");
+        let (m, _) = replay_model(g::can_core::CanCore::new, &st, false);
+        line(&format!("CanCore, {n} nodes on a bus"), "node-cycles", h, m);
     }
-    let rec = record_sja(2_000_000);
-    let (h, m) = replay(g::sja1000::Sja1000::new(), canstar_controller::sja1000::Sja1000::new(), g::sja1000::hdl_set_inputs, g::sja1000::hdl_outputs, &rec, 100_000);
-    println!("SJA1000 top, host traffic:    rust-hdl {h:>9.0} cycles/s        compiled {m:>11.0} cycles/s        {:>5.0}x", m / h);
-    let rec = record_hub(2_000_000);
+    let st = record_sja(2_000_000);
+    let short = head(&st, 50_000);
+    let sja = || canstar_controller::sja1000::Sja1000::with_reset_timing(SJA_BTR.0, SJA_BTR.1);
+    let fresh = || {
+        let mut m = g::sja1000::Sja1000::new();
+        m.load(&sja()).unwrap();
+        m
+    };
+    let (h, hh) = replay_hdl(sja, g::sja1000::hdl_set_inputs, g::sja1000::hdl_outputs, fresh().info().outputs.len(), &short);
+    assert_eq!(hh, replay_model(fresh, &short, true).1, "the engines disagree");
+    line("SJA1000 top, host traffic", "cycles", h, replay_model(fresh, &st, false).0);
+    let st = record_hub(2_000_000);
+    let short = head(&st, 30_000);
     let cfg = canstar_hub::hub::HubConfig::default();
-    let (h, m) = replay(g::hub_n3_m2::HubN3M2::new(), canstar_hub::hub::Hub::new(&cfg), g::hub_n3_m2::hdl_set_inputs, g::hub_n3_m2::hdl_outputs, &rec, 50_000);
-    println!("Hub N3 M2 (with monitor):     rust-hdl {h:>9.0} cycles/s        compiled {m:>11.0} cycles/s        {:>5.0}x", m / h);
+    let n_out = g::hub_n3_m2::HubN3M2::new().info().outputs.len();
+    let (h, hh) = replay_hdl(|| canstar_hub::hub::Hub::new(&cfg), g::hub_n3_m2::hdl_set_inputs, g::hub_n3_m2::hdl_outputs, n_out, &short);
+    assert_eq!(hh, replay_model(g::hub_n3_m2::HubN3M2::new, &short, true).1, "the engines disagree");
+    line("Hub N=3 M=2 (with monitor)", "cycles", h, replay_model(g::hub_n3_m2::HubN3M2::new, &st, false).0);
 }
+
+/// Verilator's mangling of a port name (`rx$0` -> `rx__0240`).
+fn vname(n: &str) -> String {
+    n.chars().map(|c| if c.is_ascii_alphanumeric() || c == '_' { c.to_string() } else { format!("__0{:02x}", c as u32) }).collect()
+}
+
+/// C++ port adapters of a model's top: `set_input(top, i, v)` and `get_outputs(top, o)`.
+fn ports_h(m: &dyn Model) -> String {
+    let info = m.info();
+    let mut s = String::from("// Generated by models/tests/bench.rs (bench_verilator_files): port adapters.\n");
+    s += &format!("static const int N_IN = {};\nstatic const int N_OUT = {};\n", info.inputs.len(), info.outputs.len());
+    s += "static inline void set_input(BENCH_TOP* t, int i, uint64_t v) {\n    switch (i) {\n";
+    for (i, p) in info.inputs.iter().enumerate() {
+        s += &format!("    case {i}: t->{} = v; break;\n", vname(p.name));
+    }
+    s += "    }\n}\nstatic inline void get_outputs(BENCH_TOP* t, uint64_t* o) {\n";
+    for (i, p) in info.outputs.iter().enumerate() {
+        s += &format!("    o[{i}] = t->{};\n", vname(p.name));
+    }
+    s += "}\n";
+    s
+}
+
+/// Write the Verilator workloads: `<dir>/<design>/{stim.bin, ports.h, expect.txt}`.
+#[test]
+#[ignore]
+fn bench_verilator_files() {
+    let dir = std::path::PathBuf::from(std::env::var("CANSTAR_BENCH_DIR").unwrap_or_else(|_| concat!(env!("CARGO_MANIFEST_DIR"), "/../target/verilator-bench").into()));
+    let header = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../verilog-out/controller/canstar_sja1000.v")).unwrap();
+    assert!(header.lines().next().unwrap().contains("BTR0/BTR1 after reset 0x00/0x14"), "SJA_BTR is not the committed Verilog's");
+    let sja_fresh = || {
+        let mut m = g::sja1000::Sja1000::new();
+        m.load(&canstar_controller::sja1000::Sja1000::with_reset_timing(SJA_BTR.0, SJA_BTR.1)).unwrap();
+        m
+    };
+    let work: Vec<(&str, Stim, Box<dyn Fn() -> (f64, u64)>, String)> = {
+        let can3 = record_can(3, 1_000_000);
+        let sja = record_sja(2_000_000);
+        let hub = record_hub(2_000_000);
+        let (c2, s2, h2) = (can3.clone(), sja.clone(), hub.clone());
+        vec![
+            ("can_core", can3, Box::new(move || replay_model(g::can_core::CanCore::new, &c2, true)), ports_h(&g::can_core::CanCore::new())),
+            ("sja1000", sja, Box::new(move || replay_model(sja_fresh, &s2, true)), ports_h(&g::sja1000::Sja1000::new())),
+            ("hub", hub, Box::new(move || replay_model(g::hub_n3_m2::HubN3M2::new, &h2, true)), ports_h(&g::hub_n3_m2::HubN3M2::new())),
+        ]
+    };
+    for (name, st, run, ports) in work {
+        let d = dir.join(name);
+        std::fs::create_dir_all(&d).unwrap();
+        st.save(&d.join("stim.bin")).unwrap();
+        std::fs::write(d.join("ports.h"), ports).unwrap();
+        let (rate, hash) = run();
+        std::fs::write(d.join("expect.txt"), format!("{hash:016x}\n")).unwrap();
+        println!("{name}: {} streams x {} cycles, compiled {rate:.0} cycles/s per stream, output hash {hash:016x}", st.streams, st.cycles);
+    }
+}
+

@@ -4,6 +4,7 @@
 
 pub mod hubnet;
 pub mod sjanet;
+pub mod stim;
 
 use canstar_rtlc::rt::Model;
 use rand::Rng;
