@@ -283,3 +283,26 @@ fn bench_verilator_files() {
     }
 }
 
+
+/// Long compiled-model replays for a profiler (`perf record` on the test binary).
+#[test]
+#[ignore]
+fn diag_profile() {
+    let which = std::env::var("CANSTAR_PROFILE").unwrap_or_default();
+    if which == "hub" {
+        let st = record_hub(1_000_000);
+        for _ in 0..5 {
+            replay_model(g::hub_n3_m2::HubN3M2::new, &st, false);
+        }
+    } else if which == "can" {
+        let st = record_can(3, 1_000_000);
+        for _ in 0..5 {
+            replay_model(g::can_core::CanCore::new, &st, false);
+        }
+    } else if which == "sja" {
+        let st = record_sja(1_000_000);
+        for _ in 0..5 {
+            replay_model(g::sja1000::Sja1000::new, &st, false);
+        }
+    }
+}

@@ -163,6 +163,7 @@ pub fn emit(d: &Design, sch: &Schedule, o: &EmitOptions) -> String {
         let _ = writeln!(s, "    seen_{}: {},", names[x], ty(d.sigs[x].width));
     }
     let _ = writeln!(s, "    /// Groups to evaluate (one bit per group, see `run`).\n    dirty: [u64; {}],", act.words);
+    let _ = writeln!(s, "    /// Registers whose input changed since they took it (see `edge`).\n    pend: [u64; {}],", act.reg_words);
     let _ = writeln!(s, "    trace: bool,\n}}\n");
     let _ = writeln!(s, "impl Default for {name} {{\n    fn default() -> Self {{\n        Self::new()\n    }}\n}}\n");
     let _ = writeln!(s, "impl {name} {{");
@@ -203,6 +204,7 @@ pub fn emit(d: &Design, sch: &Schedule, o: &EmitOptions) -> String {
         let _ = writeln!(s, "            seen_{}: {},", names[x], lit(d.hier.atoms[d.sigs[x].atom].value, d.sigs[x].width));
     }
     let _ = writeln!(s, "            dirty: [!0; {}],", act.words);
+    let _ = writeln!(s, "            pend: [!0; {}],", act.reg_words);
     let _ = writeln!(s, "            trace: false,\n        }};\n        m.eval_all();\n        m\n    }}\n");
     let _ = writeln!(s, "    /// A model with the constants, state and inputs of a rust-hdl instance of the same shape.");
     let _ = writeln!(s, "    pub fn from_instance(b: &dyn rt::Block) -> Result<Self, canstar_rtlc::Error> {{");
@@ -226,14 +228,14 @@ pub fn emit(d: &Design, sch: &Schedule, o: &EmitOptions) -> String {
         let _ = writeln!(s, "    }}\n");
     }
     let _ = writeln!(s, "}}\n");
-    emit_model_impl(&mut s, d, &names, &mems, &top, o, act.words);
+    emit_model_impl(&mut s, d, &names, &mems, &top, o, act.words, act.reg_words);
     if let Some(t) = o.hdl_type {
         emit_hdl_adapters(&mut s, d, t);
     }
     s
 }
 
-fn emit_model_impl(s: &mut String, d: &Design, names: &[String], mems: &[String], top: &Ctx, o: &EmitOptions, words: usize) {
+fn emit_model_impl(s: &mut String, d: &Design, names: &[String], mems: &[String], top: &Ctx, o: &EmitOptions, words: usize, reg_words: usize) {
     let act_words = |_: &Design| words;
     let name = o.name;
     let _ = writeln!(s, "impl rt::Model for {name} {{");
@@ -281,7 +283,7 @@ fn emit_model_impl(s: &mut String, d: &Design, names: &[String], mems: &[String]
             let _ = writeln!(s, "            {x} => self.{} = {},", names[x], from_u128("v", d.sigs[x].width));
         }
     }
-    let _ = writeln!(s, "            _ => return false,\n        }}\n        self.dirty = [!0; {}];\n        true\n    }}", act_words(d));
+    let _ = writeln!(s, "            _ => return false,\n        }}\n        self.dirty = [!0; {}];\n        self.pend = [!0; {}];\n        true\n    }}", act_words(d), reg_words);
     let _ = writeln!(s, "    fn set_mem(&mut self, r: usize, addr: usize, v: u128) {{\n        match r {{");
     for (r, ram) in d.rams.iter().enumerate() {
         let _ = writeln!(s, "            {r} => self.{}[addr] = {},", mems[r], from_u128("v", ram.dw));

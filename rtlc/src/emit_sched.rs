@@ -9,6 +9,12 @@
 //! evaluate everything every clock; a CAN design is idle most clocks (clock enables,
 //! one bit per many clocks), so most groups are skipped.
 //!
+//! Registers work the same way: a register whose input comes from a group, an input
+//! or a constant is pending when that value changed since the register last took it,
+//! and only pending registers are looked at on the edge. Registers fed from other
+//! registers (shift chains) and the memories are handled on every edge, their inputs
+//! read before anything commits (two-phase update).
+//!
 //! Per clock:
 //! ```text
 //! cycle(): sense()        inputs that changed mark their readers
@@ -25,12 +31,27 @@ use crate::ir::{Design, Expr, Role, SigId, Stmt};
 use crate::opt::value_of;
 use crate::sched::{Class, Group, Schedule};
 
-/// Which groups read which stored values.
+/// Which groups (and pending-tracked registers) read which stored values.
 pub struct Activity {
     /// Readers of each stored signal (group numbers, ascending).
     pub readers: BTreeMap<SigId, Vec<usize>>,
     /// Number of 64-bit dirty words.
     pub words: usize,
+    /// Pending-tracked registers: (flip-flop index, source value), numbered in order.
+    pub regs: Vec<(usize, Expr)>,
+    /// Pending-tracked registers fed by each stored signal.
+    pub reg_readers: BTreeMap<SigId, Vec<usize>>,
+    /// Number of 64-bit pending words.
+    pub reg_words: usize,
+    /// Registers taken on every edge (fed from the state): flip-flop indices.
+    pub chained: Vec<usize>,
+}
+
+/// Does `e` read a register or a memory output?
+fn reads_state(d: &Design, e: &Expr) -> bool {
+    let mut st = false;
+    e.reads(&mut |r| st |= matches!(d.sigs[r].role, Role::Reg(_) | Role::RamRead(_)));
+    st
 }
 
 fn stmt_reads(stmts: &[Stmt], f: &mut dyn FnMut(SigId)) {
@@ -63,10 +84,27 @@ impl Activity {
                 readers.entry(r).or_default().push(k);
             }
         }
-        Activity { readers, words: sch.groups.len().div_ceil(64).max(1) }
+        let mut regs = vec![];
+        let mut reg_readers: BTreeMap<SigId, Vec<usize>> = BTreeMap::new();
+        let mut chained = vec![];
+        for (i, f) in d.dffs.iter().enumerate() {
+            let v = value_of(d, f.d);
+            if !f.clocked || v == Expr::read(f.q, d.sigs[f.q].width) {
+                continue;
+            }
+            if reads_state(d, &v) {
+                chained.push(i);
+                continue;
+            }
+            let k = regs.len();
+            v.reads(&mut |r| reg_readers.entry(r).or_default().push(k));
+            regs.push((i, v));
+        }
+        Activity { readers, words: sch.groups.len().div_ceil(64).max(1), reg_words: regs.len().div_ceil(64).max(1), regs, reg_readers, chained }
     }
 
-    /// Statements marking the readers of `s` dirty (except group `me`).
+    /// Statements marking the readers of `s` dirty (except group `me`) and the
+    /// registers it feeds pending.
     pub fn mark(&self, s: SigId, me: Option<usize>) -> String {
         let mut words: BTreeMap<usize, u64> = BTreeMap::new();
         for &k in self.readers.get(&s).into_iter().flatten() {
@@ -74,7 +112,13 @@ impl Activity {
                 *words.entry(k / 64).or_default() |= 1u64 << (k % 64);
             }
         }
-        words.iter().map(|(w, m)| format!("self.dirty[{w}] |= {m:#x};")).collect::<Vec<_>>().join(" ")
+        let mut regs: BTreeMap<usize, u64> = BTreeMap::new();
+        for &k in self.reg_readers.get(&s).into_iter().flatten() {
+            *regs.entry(k / 64).or_default() |= 1u64 << (k % 64);
+        }
+        let mut out: Vec<String> = words.iter().map(|(w, m)| format!("self.dirty[{w}] |= {m:#x};")).collect();
+        out.extend(regs.iter().map(|(w, m)| format!("self.pend[{w}] |= {m:#x};")));
+        out.join(" ")
     }
 
     /// Bit masks (per word) of the groups whose class satisfies `pred`.
@@ -115,13 +159,18 @@ pub fn emit_clock(s: &mut String, d: &Design, sch: &Schedule, act: &Activity, na
     let _ = writeln!(s, "    /// Propagate input changes (no clock edge).");
     let _ = writeln!(s, "    pub fn settle(&mut self) {{\n        self.sense();\n        self.run(if self.trace {{ &Self::ALL }} else {{ &Self::PRE }});\n    }}\n");
     let _ = writeln!(s, "    /// Evaluate every group.");
-    let _ = writeln!(s, "    fn eval_all(&mut self) {{\n        self.dirty = [!0; {w}];\n        self.sense();\n        self.run(&Self::ALL);\n    }}\n");
+    let _ = writeln!(
+        s,
+        "    fn eval_all(&mut self) {{\n        self.dirty = [!0; {w}];\n        self.pend = [!0; {}];\n        self.sense();\n        self.run(&Self::ALL);\n    }}\n",
+        act.reg_words
+    );
     let _ = writeln!(s, "    /// Run the dirty groups of a phase, in dependency order.");
     let _ = writeln!(
         s,
         "    fn run(&mut self, phase: &[u64; {w}]) {{\n        for w in 0..{w} {{\n            loop {{\n                let m = self.dirty[w] & phase[w];\n                if m == 0 {{\n                    break;\n                }}\n                let k = m.trailing_zeros() as usize;\n                self.dirty[w] &= !(1u64 << k);\n                self.group(w * 64 + k);\n            }}\n        }}\n    }}\n"
     );
-    let _ = writeln!(s, "    fn group(&mut self, k: usize) {{\n        match k {{");
+    // not inlined into the loop: the optimiser would hoist every arm's loads out of it
+    let _ = writeln!(s, "    #[inline(never)]\n    fn group(&mut self, k: usize) {{\n        match k {{");
     for k in 0..sch.groups.len() {
         let _ = writeln!(s, "            {k} => self.g{k}(),");
     }
@@ -144,21 +193,15 @@ pub fn sensed_inputs(d: &Design, act: &Activity) -> Vec<SigId> {
     d.inputs.iter().copied().filter(|&x| !act.mark(x, None).is_empty()).collect()
 }
 
-/// The state update at the rising edge: inputs sourced from the state and memory
-/// reads first, then memory writes, then the register commits.
+/// The state update at the rising edge: inputs of the chained registers and memory
+/// reads first, then memory writes, then the pending registers, then the chained ones.
 fn emit_edge(s: &mut String, d: &Design, act: &Activity, names: &[String], mems: &[String], top: &Ctx) {
     let _ = writeln!(s, "    /// Rising edge: registers and memories take their inputs.");
     let _ = writeln!(s, "    fn edge(&mut self) {{");
     let mut commits = vec![];
-    for (i, f) in d.dffs.iter().enumerate() {
-        if !f.clocked {
-            continue;
-        }
-        let v = value_of(d, f.d);
-        if v == Expr::read(f.q, d.sigs[f.q].width) {
-            continue;
-        }
-        let _ = writeln!(s, "        let n{i} = {};", top.ex(&v));
+    for &i in &act.chained {
+        let f = &d.dffs[i];
+        let _ = writeln!(s, "        let n{i} = {};", top.ex(&value_of(d, f.d)));
         commits.push(store(act, names, f.q, &format!("n{i}"), None));
     }
     for (r, ram) in d.rams.iter().enumerate() {
@@ -175,9 +218,20 @@ fn emit_edge(s: &mut String, d: &Design, act: &Activity, names: &[String], mems:
             let _ = writeln!(s, "        }}");
         }
     }
+    let w = act.reg_words;
+    let _ = writeln!(
+        s,
+        "        for w in 0..{w} {{\n            loop {{\n                let m = self.pend[w];\n                if m == 0 {{\n                    break;\n                }}\n                let k = m.trailing_zeros() as usize;\n                self.pend[w] &= !(1u64 << k);\n                self.take(w * 64 + k);\n            }}\n        }}"
+    );
     for c in commits {
         let _ = writeln!(s, "        {c}");
     }
     let _ = writeln!(s, "    }}\n");
-    let _ = Role::Input;
+    let _ = writeln!(s, "    /// Pending register `k` takes its input.");
+    let _ = writeln!(s, "    #[inline(never)]\n    fn take(&mut self, k: usize) {{\n        match k {{");
+    for (k, (i, v)) in act.regs.iter().enumerate() {
+        let q = d.dffs[*i].q;
+        let _ = writeln!(s, "            {k} => {{\n                let n = {};\n                {}\n            }}", top.ex(v), store(act, names, q, "n", None));
+    }
+    let _ = writeln!(s, "            _ => {{}}\n        }}\n    }}\n");
 }

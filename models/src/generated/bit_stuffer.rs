@@ -44,6 +44,8 @@ pub struct BitStuffer {
     seen_active: bool,
     /// Groups to evaluate (one bit per group, see `run`).
     dirty: [u64; 1],
+    /// Registers whose input changed since they took it (see `edge`).
+    pend: [u64; 1],
     trace: bool,
 }
 
@@ -79,6 +81,7 @@ impl BitStuffer {
             seen_data: false,
             seen_active: false,
             dirty: [!0; 1],
+            pend: [!0; 1],
             trace: false,
         };
         m.eval_all();
@@ -115,6 +118,7 @@ impl BitStuffer {
     /// Evaluate every group.
     fn eval_all(&mut self) {
         self.dirty = [!0; 1];
+        self.pend = [!0; 1];
         self.sense();
         self.run(&Self::ALL);
     }
@@ -134,6 +138,7 @@ impl BitStuffer {
         }
     }
 
+    #[inline(never)]
     fn group(&mut self, k: usize) {
         match k {
             0 => self.g0(),
@@ -154,10 +159,33 @@ impl BitStuffer {
 
     /// Rising edge: registers and memories take their inputs.
     fn edge(&mut self) {
-        let n0 = self.cnt_d;
-        let n1 = self.lvl_d;
-        if n0 != self.cnt { self.cnt = n0; self.dirty[0] |= 0xf; }
-        if n1 != self.lvl { self.lvl = n1; self.dirty[0] |= 0xe; }
+        for w in 0..1 {
+            loop {
+                let m = self.pend[w];
+                if m == 0 {
+                    break;
+                }
+                let k = m.trailing_zeros() as usize;
+                self.pend[w] &= !(1u64 << k);
+                self.take(w * 64 + k);
+            }
+        }
+    }
+
+    /// Pending register `k` takes its input.
+    #[inline(never)]
+    fn take(&mut self, k: usize) {
+        match k {
+            0 => {
+                let n = self.cnt_d;
+                if n != self.cnt { self.cnt = n; self.dirty[0] |= 0xf; }
+            }
+            1 => {
+                let n = self.lvl_d;
+                if n != self.lvl { self.lvl = n; self.dirty[0] |= 0xe; }
+            }
+            _ => {}
+        }
     }
 
     /// `top` block, depth 0, state-only: stuff_pending
@@ -200,8 +228,8 @@ impl BitStuffer {
             cnt_d = 0u8;
             lvl_d = false;
         }
-        self.cnt_d = cnt_d;
-        self.lvl_d = lvl_d;
+        if cnt_d != self.cnt_d { self.cnt_d = cnt_d; self.pend[0] |= 0x1; }
+        if lvl_d != self.lvl_d { self.lvl_d = lvl_d; self.pend[0] |= 0x2; }
     }
 
     /// `top` block, depth 0, input-dependent, output cone: out, is_stuff
@@ -332,6 +360,7 @@ impl rt::Model for BitStuffer {
             _ => return false,
         }
         self.dirty = [!0; 1];
+        self.pend = [!0; 1];
         true
     }
     fn set_mem(&mut self, r: usize, addr: usize, v: u128) {

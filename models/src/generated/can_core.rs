@@ -626,6 +626,8 @@ pub struct CanCore {
     seen_rec_in: u8,
     /// Groups to evaluate (one bit per group, see `run`).
     dirty: [u64; 1],
+    /// Registers whose input changed since they took it (see `edge`).
+    pend: [u64; 2],
     trace: bool,
 }
 
@@ -961,6 +963,7 @@ impl CanCore {
             seen_tec_in: 0u16,
             seen_rec_in: 0u8,
             dirty: [!0; 1],
+            pend: [!0; 2],
             trace: false,
         };
         m.eval_all();
@@ -997,6 +1000,7 @@ impl CanCore {
     /// Evaluate every group.
     fn eval_all(&mut self) {
         self.dirty = [!0; 1];
+        self.pend = [!0; 2];
         self.sense();
         self.run(&Self::ALL);
     }
@@ -1016,6 +1020,7 @@ impl CanCore {
         }
     }
 
+    #[inline(never)]
     fn group(&mut self, k: usize) {
         match k {
             0 => self.g0(),
@@ -1080,136 +1085,285 @@ impl CanCore {
 
     /// Rising edge: registers and memories take their inputs.
     fn edge(&mut self) {
-        let n0 = self.sync_s1_n_d;
-        let n1 = self.sync_s2_n_d;
-        let n2 = self.btl_c_brp_d;
-        let n3 = self.btl_c_sp_d;
-        let n4 = self.btl_c_ntq_d;
-        let n5 = self.btl_c_sjw_d;
-        let n6 = self.btl_c_triple_d;
-        let n7 = self.btl_c_valid_d;
-        let n8 = self.btl_c_bad_d;
-        let n9 = self.btl_pre_d;
-        let n10 = self.btl_cnt_d;
-        let n11 = self.btl_spw_d;
-        let n12 = self.btl_nbw_d;
-        let n13 = self.btl_busmon_n_d;
-        let n14 = self.btl_sync_dis_d;
-        let n15 = self.btl_since_d;
-        let n16 = self.btl_pending_d;
-        let n17 = self.btl_tx_n_d;
-        let n18 = self.btl_h1_n_d;
-        let n19 = self.btl_h2_n_d;
-        let n20 = self.btl_sample_r_d;
-        let n21 = self.btl_hard_r_d;
-        let n22 = self.btl_resync_r_d;
-        let n23 = self.fsm_fld_d;
-        let n24 = self.fsm_fpos_d;
-        let n25 = self.fsm_pfld_d;
-        let n26 = self.fsm_ppos_d;
-        let n27 = self.fsm_rtx_d;
-        let n28 = self.fsm_dom_d;
-        let n29 = self.fsm_dstf_cnt_d;
-        let n30 = self.fsm_dstf_lvl_d;
-        let n31 = self.fsm_crcb_state_d;
-        let n32 = self.fsm_crcerr_d;
-        let n33 = self.fsm_tid_d;
-        let n34 = self.fsm_tdat_d;
-        let n35 = self.fsm_tdlc_d;
-        let n36 = self.fsm_tide_d;
-        let n37 = self.fsm_trtr_d;
-        let n38 = self.fsm_rid_d;
-        let n39 = self.fsm_rdat_d;
-        let n40 = self.fsm_rdlc_d;
-        let n41 = self.fsm_rrtr_d;
-        let n42 = self.fsm_rext_d;
-        let n43 = self.fsm_fdone_d;
-        let n44 = self.fsm_eqcnt_d;
-        let n45 = self.fsm_eqlast_d;
-        let n46 = self.fsm_dafc_d;
-        let n47 = self.fsm_dafany_d;
-        let n48 = self.fsm_exc1_d;
-        let n49 = self.fsm_tecr_d;
-        let n50 = self.fsm_recr_d;
-        let n51 = self.fsm_runr_d;
-        let n52 = self.fsm_rarmed_d;
-        let n53 = self.fsm_req_d;
-        let n54 = self.fsm_blocked_d;
-        let n55 = self.fsm_evr_d;
-        let n56 = self.fsm_arbpos_r_d;
-        let n57 = self.fsm_errf_r_d;
-        let n58 = self.fsm_errp_r_d;
-        let n59 = self.fsm_errtx_r_d;
-        let n60 = self.fsm_rxide_r_d;
-        let n61 = self.fsm_rxrtr_r_d;
-        let n62 = self.fsm_rxid_r_d;
-        let n63 = self.fsm_rxdlc_r_d;
-        let n64 = self.fsm_rxdat_r_d;
-        if n0 != self.sync_s1_n { self.sync_s1_n = n0; self.dirty[0] |= 0xc; }
-        if n1 != self.sync_s2_n { self.sync_s2_n = n1; self.dirty[0] |= 0x4; }
-        if n2 != self.btl_c_brp { self.btl_c_brp = n2; self.dirty[0] |= 0xc01060; }
-        if n3 != self.btl_c_sp { self.btl_c_sp = n3; self.dirty[0] |= 0xc00020; }
-        if n4 != self.btl_c_ntq { self.btl_c_ntq = n4; self.dirty[0] |= 0xc00020; }
-        if n5 != self.btl_c_sjw { self.btl_c_sjw = n5; self.dirty[0] |= 0xc00060; }
-        if n6 != self.btl_c_triple { self.btl_c_triple = n6; self.dirty[0] |= 0x402020; }
-        if n7 != self.btl_c_valid { self.btl_c_valid = n7; self.dirty[0] |= 0xc01060; }
-        if n8 != self.btl_c_bad { self.btl_c_bad = n8; self.dirty[0] |= 0x200023; }
-        if n9 != self.btl_pre { self.btl_pre = n9; self.dirty[0] |= 0xc01060; }
-        if n10 != self.btl_cnt { self.btl_cnt = n10; self.dirty[0] |= 0xc00040; }
-        if n11 != self.btl_spw { self.btl_spw = n11; self.dirty[0] |= 0xc00040; }
-        if n12 != self.btl_nbw { self.btl_nbw = n12; self.dirty[0] |= 0xc00040; }
-        if n13 != self.btl_busmon_n { self.btl_busmon_n = n13; self.dirty[0] |= 0xc02010; }
-        if n14 != self.btl_sync_dis { self.btl_sync_dis = n14; self.dirty[0] |= 0xc02000; }
-        if n15 != self.btl_since { self.btl_since = n15; self.dirty[0] |= 0xc00040; }
-        if n16 != self.btl_pending { self.btl_pending = n16; self.dirty[0] |= 0xc00000; }
-        if n17 != self.btl_tx_n { self.btl_tx_n = n17; self.dirty[0] |= 0x400010; }
-        if n18 != self.btl_h1_n { self.btl_h1_n = n18; self.dirty[0] |= 0x403020; }
-        if n19 != self.btl_h2_n { self.btl_h2_n = n19; self.dirty[0] |= 0x402020; }
-        if n20 != self.btl_sample_r { self.btl_sample_r = n20; self.dirty[0] |= 0x3701c001; }
-        if n21 != self.btl_hard_r { self.btl_hard_r = n21; self.dirty[0] |= 0x1; }
-        if n22 != self.btl_resync_r { self.btl_resync_r = n22; self.dirty[0] |= 0x1; }
-        if n23 != self.fsm_fld { self.fsm_fld = n23; self.dirty[0] |= 0x3101c000; }
-        if n24 != self.fsm_fpos { self.fsm_fpos = n24; self.dirty[0] |= 0x3101c100; }
-        if n25 != self.fsm_pfld { self.fsm_pfld = n25; self.dirty[0] |= 0x3101c000; }
-        if n26 != self.fsm_ppos { self.fsm_ppos = n26; self.dirty[0] |= 0x10014000; }
-        if n27 != self.fsm_rtx { self.fsm_rtx = n27; self.dirty[0] |= 0x3101c001; }
-        if n28 != self.fsm_dom { self.fsm_dom = n28; self.dirty[0] |= 0x31018000; }
-        if n29 != self.fsm_dstf_cnt { self.fsm_dstf_cnt = n29; self.dirty[0] |= 0x6020200; }
-        if n30 != self.fsm_dstf_lvl { self.fsm_dstf_lvl = n30; self.dirty[0] |= 0x6020200; }
-        if n31 != self.fsm_crcb_state { self.fsm_crcb_state = n31; self.dirty[0] |= 0x80c0400; }
-        if n32 != self.fsm_crcerr { self.fsm_crcerr = n32; self.dirty[0] |= 0x30000000; }
-        if n33 != self.fsm_tid { self.fsm_tid = n33; self.dirty[0] |= 0x31018000; }
-        if n34 != self.fsm_tdat { self.fsm_tdat = n34; self.dirty[0] |= 0x31018000; }
-        if n35 != self.fsm_tdlc { self.fsm_tdlc = n35; self.dirty[0] |= 0x31018000; }
-        if n36 != self.fsm_tide { self.fsm_tide = n36; self.dirty[0] |= 0x31018000; }
-        if n37 != self.fsm_trtr { self.fsm_trtr = n37; self.dirty[0] |= 0x31018000; }
-        if n38 != self.fsm_rid { self.fsm_rid = n38; self.dirty[0] |= 0x1c000; }
-        if n39 != self.fsm_rdat { self.fsm_rdat = n39; self.dirty[0] |= 0x18000; }
-        if n40 != self.fsm_rdlc { self.fsm_rdlc = n40; self.dirty[0] |= 0x3101c000; }
-        if n41 != self.fsm_rrtr { self.fsm_rrtr = n41; self.dirty[0] |= 0x3101c000; }
-        if n42 != self.fsm_rext { self.fsm_rext = n42; self.dirty[0] |= 0x3101c000; }
-        if n43 != self.fsm_fdone { self.fsm_fdone = n43; self.dirty[0] |= 0x31018000; }
-        if n44 != self.fsm_eqcnt { self.fsm_eqcnt = n44; self.dirty[0] |= 0x30018000; }
-        if n45 != self.fsm_eqlast { self.fsm_eqlast = n45; self.dirty[0] |= 0x30018000; }
-        if n46 != self.fsm_dafc { self.fsm_dafc = n46; self.dirty[0] |= 0x30010000; }
-        if n47 != self.fsm_dafany { self.fsm_dafany = n47; self.dirty[0] |= 0x30010000; }
-        if n48 != self.fsm_exc1 { self.fsm_exc1 = n48; self.dirty[0] |= 0x30018000; }
-        if n49 != self.fsm_tecr { self.fsm_tecr = n49; self.dirty[0] |= 0x31018181; }
-        if n50 != self.fsm_recr { self.fsm_recr = n50; self.dirty[0] |= 0x31018181; }
-        if n51 != self.fsm_runr { self.fsm_runr = n51; self.dirty[0] |= 0x31018001; }
-        if n52 != self.fsm_rarmed { self.fsm_rarmed = n52; self.dirty[0] |= 0x31018000; }
-        if n53 != self.fsm_req { self.fsm_req = n53; self.dirty[0] |= 0x31018101; }
-        if n54 != self.fsm_blocked { self.fsm_blocked = n54; self.dirty[0] |= 0x10008000; }
-        if n55 != self.fsm_evr { self.fsm_evr = n55; self.dirty[0] |= 0x81; }
-        if n56 != self.fsm_arbpos_r { self.fsm_arbpos_r = n56; self.dirty[0] |= 0x10000001; }
-        if n57 != self.fsm_errf_r { self.fsm_errf_r = n57; self.dirty[0] |= 0x10000001; }
-        if n58 != self.fsm_errp_r { self.fsm_errp_r = n58; self.dirty[0] |= 0x10000001; }
-        if n59 != self.fsm_errtx_r { self.fsm_errtx_r = n59; self.dirty[0] |= 0x10000001; }
-        if n60 != self.fsm_rxide_r { self.fsm_rxide_r = n60; self.dirty[0] |= 0x4001; }
-        if n61 != self.fsm_rxrtr_r { self.fsm_rxrtr_r = n61; self.dirty[0] |= 0x4001; }
-        if n62 != self.fsm_rxid_r { self.fsm_rxid_r = n62; self.dirty[0] |= 0x4001; }
-        if n63 != self.fsm_rxdlc_r { self.fsm_rxdlc_r = n63; self.dirty[0] |= 0x4001; }
-        if n64 != self.fsm_rxdat_r { self.fsm_rxdat_r = n64; self.dirty[0] |= 0x8001; }
+        for w in 0..2 {
+            loop {
+                let m = self.pend[w];
+                if m == 0 {
+                    break;
+                }
+                let k = m.trailing_zeros() as usize;
+                self.pend[w] &= !(1u64 << k);
+                self.take(w * 64 + k);
+            }
+        }
+    }
+
+    /// Pending register `k` takes its input.
+    #[inline(never)]
+    fn take(&mut self, k: usize) {
+        match k {
+            0 => {
+                let n = self.sync_s1_n_d;
+                if n != self.sync_s1_n { self.sync_s1_n = n; self.dirty[0] |= 0xc; }
+            }
+            1 => {
+                let n = self.sync_s2_n_d;
+                if n != self.sync_s2_n { self.sync_s2_n = n; self.dirty[0] |= 0x4; }
+            }
+            2 => {
+                let n = self.btl_c_brp_d;
+                if n != self.btl_c_brp { self.btl_c_brp = n; self.dirty[0] |= 0xc01060; }
+            }
+            3 => {
+                let n = self.btl_c_sp_d;
+                if n != self.btl_c_sp { self.btl_c_sp = n; self.dirty[0] |= 0xc00020; }
+            }
+            4 => {
+                let n = self.btl_c_ntq_d;
+                if n != self.btl_c_ntq { self.btl_c_ntq = n; self.dirty[0] |= 0xc00020; }
+            }
+            5 => {
+                let n = self.btl_c_sjw_d;
+                if n != self.btl_c_sjw { self.btl_c_sjw = n; self.dirty[0] |= 0xc00060; }
+            }
+            6 => {
+                let n = self.btl_c_triple_d;
+                if n != self.btl_c_triple { self.btl_c_triple = n; self.dirty[0] |= 0x402020; }
+            }
+            7 => {
+                let n = self.btl_c_valid_d;
+                if n != self.btl_c_valid { self.btl_c_valid = n; self.dirty[0] |= 0xc01060; }
+            }
+            8 => {
+                let n = self.btl_c_bad_d;
+                if n != self.btl_c_bad { self.btl_c_bad = n; self.dirty[0] |= 0x200023; }
+            }
+            9 => {
+                let n = self.btl_pre_d;
+                if n != self.btl_pre { self.btl_pre = n; self.dirty[0] |= 0xc01060; }
+            }
+            10 => {
+                let n = self.btl_cnt_d;
+                if n != self.btl_cnt { self.btl_cnt = n; self.dirty[0] |= 0xc00040; }
+            }
+            11 => {
+                let n = self.btl_spw_d;
+                if n != self.btl_spw { self.btl_spw = n; self.dirty[0] |= 0xc00040; }
+            }
+            12 => {
+                let n = self.btl_nbw_d;
+                if n != self.btl_nbw { self.btl_nbw = n; self.dirty[0] |= 0xc00040; }
+            }
+            13 => {
+                let n = self.btl_busmon_n_d;
+                if n != self.btl_busmon_n { self.btl_busmon_n = n; self.dirty[0] |= 0xc02010; }
+            }
+            14 => {
+                let n = self.btl_sync_dis_d;
+                if n != self.btl_sync_dis { self.btl_sync_dis = n; self.dirty[0] |= 0xc02000; }
+            }
+            15 => {
+                let n = self.btl_since_d;
+                if n != self.btl_since { self.btl_since = n; self.dirty[0] |= 0xc00040; }
+            }
+            16 => {
+                let n = self.btl_pending_d;
+                if n != self.btl_pending { self.btl_pending = n; self.dirty[0] |= 0xc00000; }
+            }
+            17 => {
+                let n = self.btl_tx_n_d;
+                if n != self.btl_tx_n { self.btl_tx_n = n; self.dirty[0] |= 0x400010; }
+            }
+            18 => {
+                let n = self.btl_h1_n_d;
+                if n != self.btl_h1_n { self.btl_h1_n = n; self.dirty[0] |= 0x403020; }
+            }
+            19 => {
+                let n = self.btl_h2_n_d;
+                if n != self.btl_h2_n { self.btl_h2_n = n; self.dirty[0] |= 0x402020; }
+            }
+            20 => {
+                let n = self.btl_sample_r_d;
+                if n != self.btl_sample_r { self.btl_sample_r = n; self.dirty[0] |= 0x3701c001; }
+            }
+            21 => {
+                let n = self.btl_hard_r_d;
+                if n != self.btl_hard_r { self.btl_hard_r = n; self.dirty[0] |= 0x1; }
+            }
+            22 => {
+                let n = self.btl_resync_r_d;
+                if n != self.btl_resync_r { self.btl_resync_r = n; self.dirty[0] |= 0x1; }
+            }
+            23 => {
+                let n = self.fsm_fld_d;
+                if n != self.fsm_fld { self.fsm_fld = n; self.dirty[0] |= 0x3101c000; }
+            }
+            24 => {
+                let n = self.fsm_fpos_d;
+                if n != self.fsm_fpos { self.fsm_fpos = n; self.dirty[0] |= 0x3101c100; }
+            }
+            25 => {
+                let n = self.fsm_pfld_d;
+                if n != self.fsm_pfld { self.fsm_pfld = n; self.dirty[0] |= 0x3101c000; }
+            }
+            26 => {
+                let n = self.fsm_ppos_d;
+                if n != self.fsm_ppos { self.fsm_ppos = n; self.dirty[0] |= 0x10014000; }
+            }
+            27 => {
+                let n = self.fsm_rtx_d;
+                if n != self.fsm_rtx { self.fsm_rtx = n; self.dirty[0] |= 0x3101c001; }
+            }
+            28 => {
+                let n = self.fsm_dom_d;
+                if n != self.fsm_dom { self.fsm_dom = n; self.dirty[0] |= 0x31018000; }
+            }
+            29 => {
+                let n = self.fsm_dstf_cnt_d;
+                if n != self.fsm_dstf_cnt { self.fsm_dstf_cnt = n; self.dirty[0] |= 0x6020200; }
+            }
+            30 => {
+                let n = self.fsm_dstf_lvl_d;
+                if n != self.fsm_dstf_lvl { self.fsm_dstf_lvl = n; self.dirty[0] |= 0x6020200; }
+            }
+            31 => {
+                let n = self.fsm_crcb_state_d;
+                if n != self.fsm_crcb_state { self.fsm_crcb_state = n; self.dirty[0] |= 0x80c0400; }
+            }
+            32 => {
+                let n = self.fsm_crcerr_d;
+                if n != self.fsm_crcerr { self.fsm_crcerr = n; self.dirty[0] |= 0x30000000; }
+            }
+            33 => {
+                let n = self.fsm_tid_d;
+                if n != self.fsm_tid { self.fsm_tid = n; self.dirty[0] |= 0x31018000; }
+            }
+            34 => {
+                let n = self.fsm_tdat_d;
+                if n != self.fsm_tdat { self.fsm_tdat = n; self.dirty[0] |= 0x31018000; }
+            }
+            35 => {
+                let n = self.fsm_tdlc_d;
+                if n != self.fsm_tdlc { self.fsm_tdlc = n; self.dirty[0] |= 0x31018000; }
+            }
+            36 => {
+                let n = self.fsm_tide_d;
+                if n != self.fsm_tide { self.fsm_tide = n; self.dirty[0] |= 0x31018000; }
+            }
+            37 => {
+                let n = self.fsm_trtr_d;
+                if n != self.fsm_trtr { self.fsm_trtr = n; self.dirty[0] |= 0x31018000; }
+            }
+            38 => {
+                let n = self.fsm_rid_d;
+                if n != self.fsm_rid { self.fsm_rid = n; self.dirty[0] |= 0x1c000; }
+            }
+            39 => {
+                let n = self.fsm_rdat_d;
+                if n != self.fsm_rdat { self.fsm_rdat = n; self.dirty[0] |= 0x18000; }
+            }
+            40 => {
+                let n = self.fsm_rdlc_d;
+                if n != self.fsm_rdlc { self.fsm_rdlc = n; self.dirty[0] |= 0x3101c000; }
+            }
+            41 => {
+                let n = self.fsm_rrtr_d;
+                if n != self.fsm_rrtr { self.fsm_rrtr = n; self.dirty[0] |= 0x3101c000; }
+            }
+            42 => {
+                let n = self.fsm_rext_d;
+                if n != self.fsm_rext { self.fsm_rext = n; self.dirty[0] |= 0x3101c000; }
+            }
+            43 => {
+                let n = self.fsm_fdone_d;
+                if n != self.fsm_fdone { self.fsm_fdone = n; self.dirty[0] |= 0x31018000; }
+            }
+            44 => {
+                let n = self.fsm_eqcnt_d;
+                if n != self.fsm_eqcnt { self.fsm_eqcnt = n; self.dirty[0] |= 0x30018000; }
+            }
+            45 => {
+                let n = self.fsm_eqlast_d;
+                if n != self.fsm_eqlast { self.fsm_eqlast = n; self.dirty[0] |= 0x30018000; }
+            }
+            46 => {
+                let n = self.fsm_dafc_d;
+                if n != self.fsm_dafc { self.fsm_dafc = n; self.dirty[0] |= 0x30010000; }
+            }
+            47 => {
+                let n = self.fsm_dafany_d;
+                if n != self.fsm_dafany { self.fsm_dafany = n; self.dirty[0] |= 0x30010000; }
+            }
+            48 => {
+                let n = self.fsm_exc1_d;
+                if n != self.fsm_exc1 { self.fsm_exc1 = n; self.dirty[0] |= 0x30018000; }
+            }
+            49 => {
+                let n = self.fsm_tecr_d;
+                if n != self.fsm_tecr { self.fsm_tecr = n; self.dirty[0] |= 0x31018181; }
+            }
+            50 => {
+                let n = self.fsm_recr_d;
+                if n != self.fsm_recr { self.fsm_recr = n; self.dirty[0] |= 0x31018181; }
+            }
+            51 => {
+                let n = self.fsm_runr_d;
+                if n != self.fsm_runr { self.fsm_runr = n; self.dirty[0] |= 0x31018001; }
+            }
+            52 => {
+                let n = self.fsm_rarmed_d;
+                if n != self.fsm_rarmed { self.fsm_rarmed = n; self.dirty[0] |= 0x31018000; }
+            }
+            53 => {
+                let n = self.fsm_req_d;
+                if n != self.fsm_req { self.fsm_req = n; self.dirty[0] |= 0x31018101; }
+            }
+            54 => {
+                let n = self.fsm_blocked_d;
+                if n != self.fsm_blocked { self.fsm_blocked = n; self.dirty[0] |= 0x10008000; }
+            }
+            55 => {
+                let n = self.fsm_evr_d;
+                if n != self.fsm_evr { self.fsm_evr = n; self.dirty[0] |= 0x81; }
+            }
+            56 => {
+                let n = self.fsm_arbpos_r_d;
+                if n != self.fsm_arbpos_r { self.fsm_arbpos_r = n; self.dirty[0] |= 0x10000001; }
+            }
+            57 => {
+                let n = self.fsm_errf_r_d;
+                if n != self.fsm_errf_r { self.fsm_errf_r = n; self.dirty[0] |= 0x10000001; }
+            }
+            58 => {
+                let n = self.fsm_errp_r_d;
+                if n != self.fsm_errp_r { self.fsm_errp_r = n; self.dirty[0] |= 0x10000001; }
+            }
+            59 => {
+                let n = self.fsm_errtx_r_d;
+                if n != self.fsm_errtx_r { self.fsm_errtx_r = n; self.dirty[0] |= 0x10000001; }
+            }
+            60 => {
+                let n = self.fsm_rxide_r_d;
+                if n != self.fsm_rxide_r { self.fsm_rxide_r = n; self.dirty[0] |= 0x4001; }
+            }
+            61 => {
+                let n = self.fsm_rxrtr_r_d;
+                if n != self.fsm_rxrtr_r { self.fsm_rxrtr_r = n; self.dirty[0] |= 0x4001; }
+            }
+            62 => {
+                let n = self.fsm_rxid_r_d;
+                if n != self.fsm_rxid_r { self.fsm_rxid_r = n; self.dirty[0] |= 0x4001; }
+            }
+            63 => {
+                let n = self.fsm_rxdlc_r_d;
+                if n != self.fsm_rxdlc_r { self.fsm_rxdlc_r = n; self.dirty[0] |= 0x4001; }
+            }
+            64 => {
+                let n = self.fsm_rxdat_r_d;
+                if n != self.fsm_rxdat_r { self.fsm_rxdat_r = n; self.dirty[0] |= 0x8001; }
+            }
+            _ => {}
+        }
     }
 
     /// `top` block, depth 0, state-only: arb_lost_pos, err_field, err_pos, err_tx, rx_ide, rx_rtr, ... (19 signals)
@@ -1300,8 +1454,8 @@ impl CanCore {
             sync_s1_n_d = false;
             sync_s2_n_d = false;
         }
-        self.sync_s1_n_d = sync_s1_n_d;
-        self.sync_s2_n_d = sync_s2_n_d;
+        if sync_s1_n_d != self.sync_s1_n_d { self.sync_s1_n_d = sync_s1_n_d; self.pend[0] |= 0x1; }
+        if sync_s2_n_d != self.sync_s2_n_d { self.sync_s2_n_d = sync_s2_n_d; self.pend[0] |= 0x2; }
     }
 
     /// `btl` block, depth 0, state-only: btl.busmon, btl.tx
@@ -1371,15 +1525,15 @@ impl CanCore {
                 btl_h2_n_d = self.btl_h1_n;
             }
         }
-        self.btl_c_brp_d = btl_c_brp_d;
-        self.btl_c_sp_d = btl_c_sp_d;
-        self.btl_c_ntq_d = btl_c_ntq_d;
-        self.btl_c_sjw_d = btl_c_sjw_d;
-        self.btl_c_triple_d = btl_c_triple_d;
-        self.btl_c_valid_d = btl_c_valid_d;
-        self.btl_c_bad_d = btl_c_bad_d;
-        self.btl_pre_d = btl_pre_d;
-        self.btl_h2_n_d = btl_h2_n_d;
+        if btl_c_brp_d != self.btl_c_brp_d { self.btl_c_brp_d = btl_c_brp_d; self.pend[0] |= 0x4; }
+        if btl_c_sp_d != self.btl_c_sp_d { self.btl_c_sp_d = btl_c_sp_d; self.pend[0] |= 0x8; }
+        if btl_c_ntq_d != self.btl_c_ntq_d { self.btl_c_ntq_d = btl_c_ntq_d; self.pend[0] |= 0x10; }
+        if btl_c_sjw_d != self.btl_c_sjw_d { self.btl_c_sjw_d = btl_c_sjw_d; self.pend[0] |= 0x20; }
+        if btl_c_triple_d != self.btl_c_triple_d { self.btl_c_triple_d = btl_c_triple_d; self.pend[0] |= 0x40; }
+        if btl_c_valid_d != self.btl_c_valid_d { self.btl_c_valid_d = btl_c_valid_d; self.pend[0] |= 0x80; }
+        if btl_c_bad_d != self.btl_c_bad_d { self.btl_c_bad_d = btl_c_bad_d; self.pend[0] |= 0x100; }
+        if btl_pre_d != self.btl_pre_d { self.btl_pre_d = btl_pre_d; self.pend[0] |= 0x200; }
+        if btl_h2_n_d != self.btl_h2_n_d { self.btl_h2_n_d = btl_h2_n_d; self.pend[0] |= 0x80000; }
     }
 
     /// `btl` block, depth 0, probe-only: btl.in_sp, btl.in_ph2, btl.in_ntq, btl.in_sjw, btl.in_bad, btl.tick, ... (11 signals)
@@ -1534,7 +1688,7 @@ impl CanCore {
         } else if btl_tick {
             btl_h1_n_d = (!self.sync_q);
         }
-        self.btl_h1_n_d = btl_h1_n_d;
+        if btl_h1_n_d != self.btl_h1_n_d { self.btl_h1_n_d = btl_h1_n_d; self.pend[0] |= 0x40000; }
     }
 
     /// `btl` block, depth 1, probe-only: btl.sync_cond, btl.sampled
@@ -1760,12 +1914,12 @@ impl CanCore {
         if fsm_hs_en != self.fsm_hs_en { self.fsm_hs_en = fsm_hs_en; self.dirty[0] |= 0xc00000; }
         if fsm_field != self.fsm_field { self.fsm_field = fsm_field; self.dirty[0] |= 0x200000; }
         if fsm_pos != self.fsm_pos { self.fsm_pos = fsm_pos; self.dirty[0] |= 0x100000; }
-        self.fsm_pfld_d = fsm_pfld_d;
-        self.fsm_ppos_d = fsm_ppos_d;
-        self.fsm_rxide_r_d = fsm_rxide_r_d;
-        self.fsm_rxrtr_r_d = fsm_rxrtr_r_d;
-        self.fsm_rxid_r_d = fsm_rxid_r_d;
-        self.fsm_rxdlc_r_d = fsm_rxdlc_r_d;
+        if fsm_pfld_d != self.fsm_pfld_d { self.fsm_pfld_d = fsm_pfld_d; self.pend[0] |= 0x2000000; }
+        if fsm_ppos_d != self.fsm_ppos_d { self.fsm_ppos_d = fsm_ppos_d; self.pend[0] |= 0x4000000; }
+        if fsm_rxide_r_d != self.fsm_rxide_r_d { self.fsm_rxide_r_d = fsm_rxide_r_d; self.pend[0] |= 0x1000000000000000; }
+        if fsm_rxrtr_r_d != self.fsm_rxrtr_r_d { self.fsm_rxrtr_r_d = fsm_rxrtr_r_d; self.pend[0] |= 0x2000000000000000; }
+        if fsm_rxid_r_d != self.fsm_rxid_r_d { self.fsm_rxid_r_d = fsm_rxid_r_d; self.pend[0] |= 0x4000000000000000; }
+        if fsm_rxdlc_r_d != self.fsm_rxdlc_r_d { self.fsm_rxdlc_r_d = fsm_rxdlc_r_d; self.pend[0] |= 0x8000000000000000; }
         if fsm_l_curstf != self.fsm_l_curstf { self.fsm_l_curstf = fsm_l_curstf; self.dirty[0] |= 0x100000; }
     }
 
@@ -2173,25 +2327,25 @@ impl CanCore {
             }
         }
         if fsm_drive != self.fsm_drive { self.fsm_drive = fsm_drive; self.dirty[0] |= 0xc00000; }
-        self.fsm_rtx_d = fsm_rtx_d;
+        if fsm_rtx_d != self.fsm_rtx_d { self.fsm_rtx_d = fsm_rtx_d; self.pend[0] |= 0x8000000; }
         if fsm_dstf_active != self.fsm_dstf_active { self.fsm_dstf_active = fsm_dstf_active; self.dirty[0] |= 0x6000000; }
         if fsm_crcb_clear != self.fsm_crcb_clear { self.fsm_crcb_clear = fsm_crcb_clear; self.dirty[0] |= 0x8000000; }
         if fsm_crcb_en != self.fsm_crcb_en { self.fsm_crcb_en = fsm_crcb_en; self.dirty[0] |= 0x8000000; }
-        self.fsm_tid_d = fsm_tid_d;
-        self.fsm_tdat_d = fsm_tdat_d;
-        self.fsm_tdlc_d = fsm_tdlc_d;
-        self.fsm_tide_d = fsm_tide_d;
-        self.fsm_trtr_d = fsm_trtr_d;
-        self.fsm_rid_d = fsm_rid_d;
-        self.fsm_rdat_d = fsm_rdat_d;
-        self.fsm_rdlc_d = fsm_rdlc_d;
-        self.fsm_rrtr_d = fsm_rrtr_d;
-        self.fsm_rext_d = fsm_rext_d;
-        self.fsm_eqcnt_d = fsm_eqcnt_d;
-        self.fsm_eqlast_d = fsm_eqlast_d;
-        self.fsm_exc1_d = fsm_exc1_d;
-        self.fsm_req_d = fsm_req_d;
-        self.fsm_rxdat_r_d = fsm_rxdat_r_d;
+        if fsm_tid_d != self.fsm_tid_d { self.fsm_tid_d = fsm_tid_d; self.pend[0] |= 0x200000000; }
+        if fsm_tdat_d != self.fsm_tdat_d { self.fsm_tdat_d = fsm_tdat_d; self.pend[0] |= 0x400000000; }
+        if fsm_tdlc_d != self.fsm_tdlc_d { self.fsm_tdlc_d = fsm_tdlc_d; self.pend[0] |= 0x800000000; }
+        if fsm_tide_d != self.fsm_tide_d { self.fsm_tide_d = fsm_tide_d; self.pend[0] |= 0x1000000000; }
+        if fsm_trtr_d != self.fsm_trtr_d { self.fsm_trtr_d = fsm_trtr_d; self.pend[0] |= 0x2000000000; }
+        if fsm_rid_d != self.fsm_rid_d { self.fsm_rid_d = fsm_rid_d; self.pend[0] |= 0x4000000000; }
+        if fsm_rdat_d != self.fsm_rdat_d { self.fsm_rdat_d = fsm_rdat_d; self.pend[0] |= 0x8000000000; }
+        if fsm_rdlc_d != self.fsm_rdlc_d { self.fsm_rdlc_d = fsm_rdlc_d; self.pend[0] |= 0x10000000000; }
+        if fsm_rrtr_d != self.fsm_rrtr_d { self.fsm_rrtr_d = fsm_rrtr_d; self.pend[0] |= 0x20000000000; }
+        if fsm_rext_d != self.fsm_rext_d { self.fsm_rext_d = fsm_rext_d; self.pend[0] |= 0x40000000000; }
+        if fsm_eqcnt_d != self.fsm_eqcnt_d { self.fsm_eqcnt_d = fsm_eqcnt_d; self.pend[0] |= 0x100000000000; }
+        if fsm_eqlast_d != self.fsm_eqlast_d { self.fsm_eqlast_d = fsm_eqlast_d; self.pend[0] |= 0x200000000000; }
+        if fsm_exc1_d != self.fsm_exc1_d { self.fsm_exc1_d = fsm_exc1_d; self.pend[0] |= 0x1000000000000; }
+        if fsm_req_d != self.fsm_req_d { self.fsm_req_d = fsm_req_d; self.pend[0] |= 0x20000000000000; }
+        if fsm_rxdat_r_d != self.fsm_rxdat_r_d { self.fsm_rxdat_r_d = fsm_rxdat_r_d; self.pend[1] |= 0x1; }
     }
 
     /// `fsm` block, depth 1, probe-only: fsm.l_sent, fsm.l_dfld, fsm.l_dpos, fsm.l_crcen, fsm.l_usetx, fsm.l_role, ... (36 signals)
@@ -2887,17 +3041,17 @@ impl CanCore {
                 }
             }
         }
-        self.btl_cnt_d = btl_cnt_d;
-        self.btl_spw_d = btl_spw_d;
-        self.btl_nbw_d = btl_nbw_d;
-        self.btl_busmon_n_d = btl_busmon_n_d;
-        self.btl_sync_dis_d = btl_sync_dis_d;
-        self.btl_since_d = btl_since_d;
-        self.btl_pending_d = btl_pending_d;
-        self.btl_tx_n_d = btl_tx_n_d;
-        self.btl_sample_r_d = btl_sample_r_d;
-        self.btl_hard_r_d = btl_hard_r_d;
-        self.btl_resync_r_d = btl_resync_r_d;
+        if btl_cnt_d != self.btl_cnt_d { self.btl_cnt_d = btl_cnt_d; self.pend[0] |= 0x400; }
+        if btl_spw_d != self.btl_spw_d { self.btl_spw_d = btl_spw_d; self.pend[0] |= 0x800; }
+        if btl_nbw_d != self.btl_nbw_d { self.btl_nbw_d = btl_nbw_d; self.pend[0] |= 0x1000; }
+        if btl_busmon_n_d != self.btl_busmon_n_d { self.btl_busmon_n_d = btl_busmon_n_d; self.pend[0] |= 0x2000; }
+        if btl_sync_dis_d != self.btl_sync_dis_d { self.btl_sync_dis_d = btl_sync_dis_d; self.pend[0] |= 0x4000; }
+        if btl_since_d != self.btl_since_d { self.btl_since_d = btl_since_d; self.pend[0] |= 0x8000; }
+        if btl_pending_d != self.btl_pending_d { self.btl_pending_d = btl_pending_d; self.pend[0] |= 0x10000; }
+        if btl_tx_n_d != self.btl_tx_n_d { self.btl_tx_n_d = btl_tx_n_d; self.pend[0] |= 0x20000; }
+        if btl_sample_r_d != self.btl_sample_r_d { self.btl_sample_r_d = btl_sample_r_d; self.pend[0] |= 0x100000; }
+        if btl_hard_r_d != self.btl_hard_r_d { self.btl_hard_r_d = btl_hard_r_d; self.pend[0] |= 0x200000; }
+        if btl_resync_r_d != self.btl_resync_r_d { self.btl_resync_r_d = btl_resync_r_d; self.pend[0] |= 0x400000; }
     }
 
     /// `btl` block, depth 2, probe-only: btl.bit_start, btl.do_hard, btl.do_resync, btl.restart, btl.sp_a, btl.nb_a, ... (13 signals)
@@ -3429,8 +3583,8 @@ impl CanCore {
             fsm_dstf_lvl_d = false;
         }
         if fsm_dstf_stuff_error != self.fsm_dstf_stuff_error { self.fsm_dstf_stuff_error = fsm_dstf_stuff_error; self.dirty[0] |= 0x30000000; }
-        self.fsm_dstf_cnt_d = fsm_dstf_cnt_d;
-        self.fsm_dstf_lvl_d = fsm_dstf_lvl_d;
+        if fsm_dstf_cnt_d != self.fsm_dstf_cnt_d { self.fsm_dstf_cnt_d = fsm_dstf_cnt_d; self.pend[0] |= 0x20000000; }
+        if fsm_dstf_lvl_d != self.fsm_dstf_lvl_d { self.fsm_dstf_lvl_d = fsm_dstf_lvl_d; self.pend[0] |= 0x40000000; }
     }
 
     /// `fsm.dstf` block, depth 2, probe-only: fsm.dstf.stuff_bit, fsm.dstf.take
@@ -3466,7 +3620,7 @@ impl CanCore {
         if (self.l_hold | self.fsm_crcb_clear) {
             fsm_crcb_state_d = 0u16;
         }
-        self.fsm_crcb_state_d = fsm_crcb_state_d;
+        if fsm_crcb_state_d != self.fsm_crcb_state_d { self.fsm_crcb_state_d = fsm_crcb_state_d; self.pend[0] |= 0x80000000; }
     }
 
     /// `fsm` block, depth 3, input-dependent: fsm.fld.d, fsm.fpos.d, fsm.dom.d, fsm.crcerr.d, fsm.fdone.d, fsm.dafc.d, ... (17 signals)
@@ -4405,23 +4559,23 @@ impl CanCore {
                 fsm_rarmed_d = false;
             }
         }
-        self.fsm_fld_d = fsm_fld_d;
-        self.fsm_fpos_d = fsm_fpos_d;
-        self.fsm_dom_d = fsm_dom_d;
-        self.fsm_crcerr_d = fsm_crcerr_d;
-        self.fsm_fdone_d = fsm_fdone_d;
-        self.fsm_dafc_d = fsm_dafc_d;
-        self.fsm_dafany_d = fsm_dafany_d;
-        self.fsm_tecr_d = fsm_tecr_d;
-        self.fsm_recr_d = fsm_recr_d;
-        self.fsm_runr_d = fsm_runr_d;
-        self.fsm_rarmed_d = fsm_rarmed_d;
-        self.fsm_blocked_d = fsm_blocked_d;
-        self.fsm_evr_d = fsm_evr_d;
-        self.fsm_arbpos_r_d = fsm_arbpos_r_d;
-        self.fsm_errf_r_d = fsm_errf_r_d;
-        self.fsm_errp_r_d = fsm_errp_r_d;
-        self.fsm_errtx_r_d = fsm_errtx_r_d;
+        if fsm_fld_d != self.fsm_fld_d { self.fsm_fld_d = fsm_fld_d; self.pend[0] |= 0x800000; }
+        if fsm_fpos_d != self.fsm_fpos_d { self.fsm_fpos_d = fsm_fpos_d; self.pend[0] |= 0x1000000; }
+        if fsm_dom_d != self.fsm_dom_d { self.fsm_dom_d = fsm_dom_d; self.pend[0] |= 0x10000000; }
+        if fsm_crcerr_d != self.fsm_crcerr_d { self.fsm_crcerr_d = fsm_crcerr_d; self.pend[0] |= 0x100000000; }
+        if fsm_fdone_d != self.fsm_fdone_d { self.fsm_fdone_d = fsm_fdone_d; self.pend[0] |= 0x80000000000; }
+        if fsm_dafc_d != self.fsm_dafc_d { self.fsm_dafc_d = fsm_dafc_d; self.pend[0] |= 0x400000000000; }
+        if fsm_dafany_d != self.fsm_dafany_d { self.fsm_dafany_d = fsm_dafany_d; self.pend[0] |= 0x800000000000; }
+        if fsm_tecr_d != self.fsm_tecr_d { self.fsm_tecr_d = fsm_tecr_d; self.pend[0] |= 0x2000000000000; }
+        if fsm_recr_d != self.fsm_recr_d { self.fsm_recr_d = fsm_recr_d; self.pend[0] |= 0x4000000000000; }
+        if fsm_runr_d != self.fsm_runr_d { self.fsm_runr_d = fsm_runr_d; self.pend[0] |= 0x8000000000000; }
+        if fsm_rarmed_d != self.fsm_rarmed_d { self.fsm_rarmed_d = fsm_rarmed_d; self.pend[0] |= 0x10000000000000; }
+        if fsm_blocked_d != self.fsm_blocked_d { self.fsm_blocked_d = fsm_blocked_d; self.pend[0] |= 0x40000000000000; }
+        if fsm_evr_d != self.fsm_evr_d { self.fsm_evr_d = fsm_evr_d; self.pend[0] |= 0x80000000000000; }
+        if fsm_arbpos_r_d != self.fsm_arbpos_r_d { self.fsm_arbpos_r_d = fsm_arbpos_r_d; self.pend[0] |= 0x100000000000000; }
+        if fsm_errf_r_d != self.fsm_errf_r_d { self.fsm_errf_r_d = fsm_errf_r_d; self.pend[0] |= 0x200000000000000; }
+        if fsm_errp_r_d != self.fsm_errp_r_d { self.fsm_errp_r_d = fsm_errp_r_d; self.pend[0] |= 0x400000000000000; }
+        if fsm_errtx_r_d != self.fsm_errtx_r_d { self.fsm_errtx_r_d = fsm_errtx_r_d; self.pend[0] |= 0x800000000000000; }
     }
 
     /// `fsm` block, depth 3, probe-only: fsm.l_nf, fsm.l_npos, fsm.l_ndom, fsm.l_err, fsm.l_errk, fsm.l_tinc, ... (16 signals)
@@ -5882,6 +6036,7 @@ impl rt::Model for CanCore {
             _ => return false,
         }
         self.dirty = [!0; 1];
+        self.pend = [!0; 2];
         true
     }
     fn set_mem(&mut self, r: usize, addr: usize, v: u128) {

@@ -28,6 +28,8 @@ pub struct EdgeDetector {
     seen_d: bool,
     /// Groups to evaluate (one bit per group, see `run`).
     dirty: [u64; 1],
+    /// Registers whose input changed since they took it (see `edge`).
+    pend: [u64; 1],
     trace: bool,
 }
 
@@ -54,6 +56,7 @@ impl EdgeDetector {
             seen_reset: false,
             seen_d: false,
             dirty: [!0; 1],
+            pend: [!0; 1],
             trace: false,
         };
         m.eval_all();
@@ -90,6 +93,7 @@ impl EdgeDetector {
     /// Evaluate every group.
     fn eval_all(&mut self) {
         self.dirty = [!0; 1];
+        self.pend = [!0; 1];
         self.sense();
         self.run(&Self::ALL);
     }
@@ -109,6 +113,7 @@ impl EdgeDetector {
         }
     }
 
+    #[inline(never)]
     fn group(&mut self, k: usize) {
         match k {
             0 => self.g0(),
@@ -126,8 +131,29 @@ impl EdgeDetector {
 
     /// Rising edge: registers and memories take their inputs.
     fn edge(&mut self) {
-        let n0 = self.prev_n_d;
-        if n0 != self.prev_n { self.prev_n = n0; self.dirty[0] |= 0x5; }
+        for w in 0..1 {
+            loop {
+                let m = self.pend[w];
+                if m == 0 {
+                    break;
+                }
+                let k = m.trailing_zeros() as usize;
+                self.pend[w] &= !(1u64 << k);
+                self.take(w * 64 + k);
+            }
+        }
+    }
+
+    /// Pending register `k` takes its input.
+    #[inline(never)]
+    fn take(&mut self, k: usize) {
+        match k {
+            0 => {
+                let n = self.prev_n_d;
+                if n != self.prev_n { self.prev_n = n; self.dirty[0] |= 0x5; }
+            }
+            _ => {}
+        }
     }
 
     /// `top` block, depth 0, state-only: prev
@@ -144,7 +170,7 @@ impl EdgeDetector {
         if self.reset {
             prev_n_d = false;
         }
-        self.prev_n_d = prev_n_d;
+        if prev_n_d != self.prev_n_d { self.prev_n_d = prev_n_d; self.pend[0] |= 0x1; }
     }
 
     /// `top` block, depth 0, input-dependent, output cone: fall, rise
@@ -233,6 +259,7 @@ impl rt::Model for EdgeDetector {
             _ => return false,
         }
         self.dirty = [!0; 1];
+        self.pend = [!0; 1];
         true
     }
     fn set_mem(&mut self, r: usize, addr: usize, v: u128) {

@@ -546,6 +546,8 @@ pub struct HubCoreN3M0 {
     seen_mon_error: bool,
     /// Groups to evaluate (one bit per group, see `run`).
     dirty: [u64; 1],
+    /// Registers whose input changed since they took it (see `edge`).
+    pend: [u64; 1],
     trace: bool,
 }
 
@@ -836,6 +838,7 @@ impl HubCoreN3M0 {
             seen_mon_frame_ok: false,
             seen_mon_error: false,
             dirty: [!0; 1],
+            pend: [!0; 1],
             trace: false,
         };
         m.eval_all();
@@ -872,6 +875,7 @@ impl HubCoreN3M0 {
     /// Evaluate every group.
     fn eval_all(&mut self) {
         self.dirty = [!0; 1];
+        self.pend = [!0; 1];
         self.sense();
         self.run(&Self::ALL);
     }
@@ -891,6 +895,7 @@ impl HubCoreN3M0 {
         }
     }
 
+    #[inline(never)]
     fn group(&mut self, k: usize) {
         match k {
             0 => self.g0(),
@@ -958,132 +963,275 @@ impl HubCoreN3M0 {
 
     /// Rising edge: registers and memories take their inputs.
     fn edge(&mut self) {
-        let n0 = self.coupler_up_sync_0_s1_n_d;
-        let n1 = self.coupler_up_sync_0_s2_n_d;
-        let n2 = self.coupler_up_sync_1_s1_n_d;
-        let n3 = self.coupler_up_sync_1_s2_n_d;
-        let n4 = self.coupler_up_sync_2_s1_n_d;
-        let n5 = self.coupler_up_sync_2_s2_n_d;
-        let n6 = self.coupler_tx_n_0_d;
-        let n7 = self.coupler_tx_n_1_d;
-        let n8 = self.coupler_tx_n_2_d;
-        let n9 = self.efgen_pending_d;
-        let n10 = self.efgen_driving_d;
-        let n11 = self.efgen_cnt_d;
-        let n12 = self.err_start_r_d;
-        let n13 = self.injector_state_d;
-        let n14 = self.injector_btn_prev_d;
-        let n15 = self.injector_btn_r_d;
-        let n16 = self.pj_0_dis_r_d;
-        let n17 = self.pj_0_bic_r_d;
-        let n18 = self.pj_0_life_r_d;
-        let n19 = self.pj_0_dbc_r_d;
-        let n20 = self.pj_0_nack_r_d;
-        let n21 = self.pj_0_cont_r_d;
-        let n22 = self.pj_0_rep_r_d;
-        let n23 = self.pj_0_rep_seen_d;
-        let n24 = self.pj_0_rep_first_dom_d;
-        let n25 = self.pj_0_ok_r_d;
-        let n26 = self.pj_0_acked_d;
-        let n27 = self.pj_0_bad_d;
-        let n28 = self.pj_0_ack_missing_d;
-        let n29 = self.pj_0_ack_c_d;
-        let n30 = self.pj_0_ack_rx_d;
-        let n31 = self.pj_1_dis_r_d;
-        let n32 = self.pj_1_bic_r_d;
-        let n33 = self.pj_1_life_r_d;
-        let n34 = self.pj_1_dbc_r_d;
-        let n35 = self.pj_1_nack_r_d;
-        let n36 = self.pj_1_cont_r_d;
-        let n37 = self.pj_1_rep_r_d;
-        let n38 = self.pj_1_rep_seen_d;
-        let n39 = self.pj_1_rep_first_dom_d;
-        let n40 = self.pj_1_ok_r_d;
-        let n41 = self.pj_1_acked_d;
-        let n42 = self.pj_1_bad_d;
-        let n43 = self.pj_1_ack_missing_d;
-        let n44 = self.pj_1_ack_c_d;
-        let n45 = self.pj_1_ack_rx_d;
-        let n46 = self.pj_2_dis_r_d;
-        let n47 = self.pj_2_bic_r_d;
-        let n48 = self.pj_2_life_r_d;
-        let n49 = self.pj_2_dbc_r_d;
-        let n50 = self.pj_2_nack_r_d;
-        let n51 = self.pj_2_cont_r_d;
-        let n52 = self.pj_2_rep_r_d;
-        let n53 = self.pj_2_rep_seen_d;
-        let n54 = self.pj_2_rep_first_dom_d;
-        let n55 = self.pj_2_ok_r_d;
-        let n56 = self.pj_2_acked_d;
-        let n57 = self.pj_2_bad_d;
-        let n58 = self.pj_2_ack_missing_d;
-        let n59 = self.pj_2_ack_c_d;
-        let n60 = self.pj_2_ack_rx_d;
-        let n61 = self.rst_s1_d;
         let n62 = self.rst_s1;
-        if n0 != self.coupler_up_sync_0_s1_n { self.coupler_up_sync_0_s1_n = n0; self.dirty[0] |= 0x10; }
-        if n1 != self.coupler_up_sync_0_s2_n { self.coupler_up_sync_0_s2_n = n1; self.dirty[0] |= 0x10; }
-        if n2 != self.coupler_up_sync_1_s1_n { self.coupler_up_sync_1_s1_n = n2; self.dirty[0] |= 0x40; }
-        if n3 != self.coupler_up_sync_1_s2_n { self.coupler_up_sync_1_s2_n = n3; self.dirty[0] |= 0x40; }
-        if n4 != self.coupler_up_sync_2_s1_n { self.coupler_up_sync_2_s1_n = n4; self.dirty[0] |= 0x100; }
-        if n5 != self.coupler_up_sync_2_s2_n { self.coupler_up_sync_2_s2_n = n5; self.dirty[0] |= 0x100; }
-        if n6 != self.coupler_tx_n_0 { self.coupler_tx_n_0 = n6; self.dirty[0] |= 0x8; }
-        if n7 != self.coupler_tx_n_1 { self.coupler_tx_n_1 = n7; self.dirty[0] |= 0x8; }
-        if n8 != self.coupler_tx_n_2 { self.coupler_tx_n_2 = n8; self.dirty[0] |= 0x8; }
-        if n9 != self.efgen_pending { self.efgen_pending = n9; self.dirty[0] |= 0x40000000c00; }
-        if n10 != self.efgen_driving { self.efgen_driving = n10; self.dirty[0] |= 0x40000000c01; }
-        if n11 != self.efgen_cnt { self.efgen_cnt = n11; self.dirty[0] |= 0x800; }
-        self.err_start_r = n12;
-        if n13 != self.injector_state { self.injector_state = n13; self.dirty[0] |= 0x800a000; }
-        if n14 != self.injector_btn_prev { self.injector_btn_prev = n14; self.dirty[0] |= 0x8008000; }
-        if n15 != self.injector_btn_r { self.injector_btn_r = n15; self.dirty[0] |= 0x800a000; }
-        if n16 != self.pj_0_dis_r { self.pj_0_dis_r = n16; self.dirty[0] |= 0x590060001; }
-        if n17 != self.pj_0_bic_r { self.pj_0_bic_r = n17; self.dirty[0] |= 0x400020001; }
-        if n18 != self.pj_0_life_r { self.pj_0_life_r = n18; self.dirty[0] |= 0x400020000; }
-        if n19 != self.pj_0_dbc_r { self.pj_0_dbc_r = n19; self.dirty[0] |= 0x400020001; }
-        if n20 != self.pj_0_nack_r { self.pj_0_nack_r = n20; self.dirty[0] |= 0x10010001; }
-        if n21 != self.pj_0_cont_r { self.pj_0_cont_r = n21; self.dirty[0] |= 0xc10000000; }
-        if n22 != self.pj_0_rep_r { self.pj_0_rep_r = n22; self.dirty[0] |= 0x20000; }
-        if n23 != self.pj_0_rep_seen { self.pj_0_rep_seen = n23; self.dirty[0] |= 0x20000; }
-        if n24 != self.pj_0_rep_first_dom { self.pj_0_rep_first_dom = n24; self.dirty[0] |= 0x30000; }
-        if n25 != self.pj_0_ok_r { self.pj_0_ok_r = n25; self.dirty[0] |= 0x410020000; }
-        if n26 != self.pj_0_acked { self.pj_0_acked = n26; self.dirty[0] |= 0x410020000; }
-        if n27 != self.pj_0_bad { self.pj_0_bad = n27; self.dirty[0] |= 0x410020000; }
-        if n28 != self.pj_0_ack_missing { self.pj_0_ack_missing = n28; self.dirty[0] |= 0xc00000000; }
-        if n29 != self.pj_0_ack_c { self.pj_0_ack_c = n29; self.dirty[0] |= 0x410000000; }
-        if n30 != self.pj_0_ack_rx { self.pj_0_ack_rx = n30; self.dirty[0] |= 0x10000000; }
-        if n31 != self.pj_1_dis_r { self.pj_1_dis_r = n31; self.dirty[0] |= 0x11a0300001; }
-        if n32 != self.pj_1_bic_r { self.pj_1_bic_r = n32; self.dirty[0] |= 0x1000100001; }
-        if n33 != self.pj_1_life_r { self.pj_1_life_r = n33; self.dirty[0] |= 0x1000100000; }
-        if n34 != self.pj_1_dbc_r { self.pj_1_dbc_r = n34; self.dirty[0] |= 0x1000100001; }
-        if n35 != self.pj_1_nack_r { self.pj_1_nack_r = n35; self.dirty[0] |= 0x20080001; }
-        if n36 != self.pj_1_cont_r { self.pj_1_cont_r = n36; self.dirty[0] |= 0x3020000000; }
-        if n37 != self.pj_1_rep_r { self.pj_1_rep_r = n37; self.dirty[0] |= 0x100000; }
-        if n38 != self.pj_1_rep_seen { self.pj_1_rep_seen = n38; self.dirty[0] |= 0x100000; }
-        if n39 != self.pj_1_rep_first_dom { self.pj_1_rep_first_dom = n39; self.dirty[0] |= 0x180000; }
-        if n40 != self.pj_1_ok_r { self.pj_1_ok_r = n40; self.dirty[0] |= 0x1020100000; }
-        if n41 != self.pj_1_acked { self.pj_1_acked = n41; self.dirty[0] |= 0x1020100000; }
-        if n42 != self.pj_1_bad { self.pj_1_bad = n42; self.dirty[0] |= 0x1020100000; }
-        if n43 != self.pj_1_ack_missing { self.pj_1_ack_missing = n43; self.dirty[0] |= 0x3000000000; }
-        if n44 != self.pj_1_ack_c { self.pj_1_ack_c = n44; self.dirty[0] |= 0x1020000000; }
-        if n45 != self.pj_1_ack_rx { self.pj_1_ack_rx = n45; self.dirty[0] |= 0x20000000; }
-        if n46 != self.pj_2_dis_r { self.pj_2_dis_r = n46; self.dirty[0] |= 0x41c1800001; }
-        if n47 != self.pj_2_bic_r { self.pj_2_bic_r = n47; self.dirty[0] |= 0x4000800001; }
-        if n48 != self.pj_2_life_r { self.pj_2_life_r = n48; self.dirty[0] |= 0x4000800000; }
-        if n49 != self.pj_2_dbc_r { self.pj_2_dbc_r = n49; self.dirty[0] |= 0x4000800001; }
-        if n50 != self.pj_2_nack_r { self.pj_2_nack_r = n50; self.dirty[0] |= 0x40400001; }
-        if n51 != self.pj_2_cont_r { self.pj_2_cont_r = n51; self.dirty[0] |= 0xc040000000; }
-        if n52 != self.pj_2_rep_r { self.pj_2_rep_r = n52; self.dirty[0] |= 0x800000; }
-        if n53 != self.pj_2_rep_seen { self.pj_2_rep_seen = n53; self.dirty[0] |= 0x800000; }
-        if n54 != self.pj_2_rep_first_dom { self.pj_2_rep_first_dom = n54; self.dirty[0] |= 0xc00000; }
-        if n55 != self.pj_2_ok_r { self.pj_2_ok_r = n55; self.dirty[0] |= 0x4040800000; }
-        if n56 != self.pj_2_acked { self.pj_2_acked = n56; self.dirty[0] |= 0x4040800000; }
-        if n57 != self.pj_2_bad { self.pj_2_bad = n57; self.dirty[0] |= 0x4040800000; }
-        if n58 != self.pj_2_ack_missing { self.pj_2_ack_missing = n58; self.dirty[0] |= 0xc000000000; }
-        if n59 != self.pj_2_ack_c { self.pj_2_ack_c = n59; self.dirty[0] |= 0x4040000000; }
-        if n60 != self.pj_2_ack_rx { self.pj_2_ack_rx = n60; self.dirty[0] |= 0x40000000; }
-        self.rst_s1 = n61;
+        for w in 0..1 {
+            loop {
+                let m = self.pend[w];
+                if m == 0 {
+                    break;
+                }
+                let k = m.trailing_zeros() as usize;
+                self.pend[w] &= !(1u64 << k);
+                self.take(w * 64 + k);
+            }
+        }
         if n62 != self.rst_s2 { self.rst_s2 = n62; self.dirty[0] |= 0x454f8db6bf1; }
+    }
+
+    /// Pending register `k` takes its input.
+    #[inline(never)]
+    fn take(&mut self, k: usize) {
+        match k {
+            0 => {
+                let n = self.coupler_up_sync_0_s1_n_d;
+                if n != self.coupler_up_sync_0_s1_n { self.coupler_up_sync_0_s1_n = n; self.dirty[0] |= 0x10; }
+            }
+            1 => {
+                let n = self.coupler_up_sync_0_s2_n_d;
+                if n != self.coupler_up_sync_0_s2_n { self.coupler_up_sync_0_s2_n = n; self.dirty[0] |= 0x10; }
+            }
+            2 => {
+                let n = self.coupler_up_sync_1_s1_n_d;
+                if n != self.coupler_up_sync_1_s1_n { self.coupler_up_sync_1_s1_n = n; self.dirty[0] |= 0x40; }
+            }
+            3 => {
+                let n = self.coupler_up_sync_1_s2_n_d;
+                if n != self.coupler_up_sync_1_s2_n { self.coupler_up_sync_1_s2_n = n; self.dirty[0] |= 0x40; }
+            }
+            4 => {
+                let n = self.coupler_up_sync_2_s1_n_d;
+                if n != self.coupler_up_sync_2_s1_n { self.coupler_up_sync_2_s1_n = n; self.dirty[0] |= 0x100; }
+            }
+            5 => {
+                let n = self.coupler_up_sync_2_s2_n_d;
+                if n != self.coupler_up_sync_2_s2_n { self.coupler_up_sync_2_s2_n = n; self.dirty[0] |= 0x100; }
+            }
+            6 => {
+                let n = self.coupler_tx_n_0_d;
+                if n != self.coupler_tx_n_0 { self.coupler_tx_n_0 = n; self.dirty[0] |= 0x8; }
+            }
+            7 => {
+                let n = self.coupler_tx_n_1_d;
+                if n != self.coupler_tx_n_1 { self.coupler_tx_n_1 = n; self.dirty[0] |= 0x8; }
+            }
+            8 => {
+                let n = self.coupler_tx_n_2_d;
+                if n != self.coupler_tx_n_2 { self.coupler_tx_n_2 = n; self.dirty[0] |= 0x8; }
+            }
+            9 => {
+                let n = self.efgen_pending_d;
+                if n != self.efgen_pending { self.efgen_pending = n; self.dirty[0] |= 0x40000000c00; }
+            }
+            10 => {
+                let n = self.efgen_driving_d;
+                if n != self.efgen_driving { self.efgen_driving = n; self.dirty[0] |= 0x40000000c01; }
+            }
+            11 => {
+                let n = self.efgen_cnt_d;
+                if n != self.efgen_cnt { self.efgen_cnt = n; self.dirty[0] |= 0x800; }
+            }
+            12 => {
+                let n = self.err_start_r_d;
+                self.err_start_r = n;
+            }
+            13 => {
+                let n = self.injector_state_d;
+                if n != self.injector_state { self.injector_state = n; self.dirty[0] |= 0x800a000; }
+            }
+            14 => {
+                let n = self.injector_btn_prev_d;
+                if n != self.injector_btn_prev { self.injector_btn_prev = n; self.dirty[0] |= 0x8008000; }
+            }
+            15 => {
+                let n = self.injector_btn_r_d;
+                if n != self.injector_btn_r { self.injector_btn_r = n; self.dirty[0] |= 0x800a000; }
+            }
+            16 => {
+                let n = self.pj_0_dis_r_d;
+                if n != self.pj_0_dis_r { self.pj_0_dis_r = n; self.dirty[0] |= 0x590060001; }
+            }
+            17 => {
+                let n = self.pj_0_bic_r_d;
+                if n != self.pj_0_bic_r { self.pj_0_bic_r = n; self.dirty[0] |= 0x400020001; }
+            }
+            18 => {
+                let n = self.pj_0_life_r_d;
+                if n != self.pj_0_life_r { self.pj_0_life_r = n; self.dirty[0] |= 0x400020000; }
+            }
+            19 => {
+                let n = self.pj_0_dbc_r_d;
+                if n != self.pj_0_dbc_r { self.pj_0_dbc_r = n; self.dirty[0] |= 0x400020001; }
+            }
+            20 => {
+                let n = self.pj_0_nack_r_d;
+                if n != self.pj_0_nack_r { self.pj_0_nack_r = n; self.dirty[0] |= 0x10010001; }
+            }
+            21 => {
+                let n = self.pj_0_cont_r_d;
+                if n != self.pj_0_cont_r { self.pj_0_cont_r = n; self.dirty[0] |= 0xc10000000; }
+            }
+            22 => {
+                let n = self.pj_0_rep_r_d;
+                if n != self.pj_0_rep_r { self.pj_0_rep_r = n; self.dirty[0] |= 0x20000; }
+            }
+            23 => {
+                let n = self.pj_0_rep_seen_d;
+                if n != self.pj_0_rep_seen { self.pj_0_rep_seen = n; self.dirty[0] |= 0x20000; }
+            }
+            24 => {
+                let n = self.pj_0_rep_first_dom_d;
+                if n != self.pj_0_rep_first_dom { self.pj_0_rep_first_dom = n; self.dirty[0] |= 0x30000; }
+            }
+            25 => {
+                let n = self.pj_0_ok_r_d;
+                if n != self.pj_0_ok_r { self.pj_0_ok_r = n; self.dirty[0] |= 0x410020000; }
+            }
+            26 => {
+                let n = self.pj_0_acked_d;
+                if n != self.pj_0_acked { self.pj_0_acked = n; self.dirty[0] |= 0x410020000; }
+            }
+            27 => {
+                let n = self.pj_0_bad_d;
+                if n != self.pj_0_bad { self.pj_0_bad = n; self.dirty[0] |= 0x410020000; }
+            }
+            28 => {
+                let n = self.pj_0_ack_missing_d;
+                if n != self.pj_0_ack_missing { self.pj_0_ack_missing = n; self.dirty[0] |= 0xc00000000; }
+            }
+            29 => {
+                let n = self.pj_0_ack_c_d;
+                if n != self.pj_0_ack_c { self.pj_0_ack_c = n; self.dirty[0] |= 0x410000000; }
+            }
+            30 => {
+                let n = self.pj_0_ack_rx_d;
+                if n != self.pj_0_ack_rx { self.pj_0_ack_rx = n; self.dirty[0] |= 0x10000000; }
+            }
+            31 => {
+                let n = self.pj_1_dis_r_d;
+                if n != self.pj_1_dis_r { self.pj_1_dis_r = n; self.dirty[0] |= 0x11a0300001; }
+            }
+            32 => {
+                let n = self.pj_1_bic_r_d;
+                if n != self.pj_1_bic_r { self.pj_1_bic_r = n; self.dirty[0] |= 0x1000100001; }
+            }
+            33 => {
+                let n = self.pj_1_life_r_d;
+                if n != self.pj_1_life_r { self.pj_1_life_r = n; self.dirty[0] |= 0x1000100000; }
+            }
+            34 => {
+                let n = self.pj_1_dbc_r_d;
+                if n != self.pj_1_dbc_r { self.pj_1_dbc_r = n; self.dirty[0] |= 0x1000100001; }
+            }
+            35 => {
+                let n = self.pj_1_nack_r_d;
+                if n != self.pj_1_nack_r { self.pj_1_nack_r = n; self.dirty[0] |= 0x20080001; }
+            }
+            36 => {
+                let n = self.pj_1_cont_r_d;
+                if n != self.pj_1_cont_r { self.pj_1_cont_r = n; self.dirty[0] |= 0x3020000000; }
+            }
+            37 => {
+                let n = self.pj_1_rep_r_d;
+                if n != self.pj_1_rep_r { self.pj_1_rep_r = n; self.dirty[0] |= 0x100000; }
+            }
+            38 => {
+                let n = self.pj_1_rep_seen_d;
+                if n != self.pj_1_rep_seen { self.pj_1_rep_seen = n; self.dirty[0] |= 0x100000; }
+            }
+            39 => {
+                let n = self.pj_1_rep_first_dom_d;
+                if n != self.pj_1_rep_first_dom { self.pj_1_rep_first_dom = n; self.dirty[0] |= 0x180000; }
+            }
+            40 => {
+                let n = self.pj_1_ok_r_d;
+                if n != self.pj_1_ok_r { self.pj_1_ok_r = n; self.dirty[0] |= 0x1020100000; }
+            }
+            41 => {
+                let n = self.pj_1_acked_d;
+                if n != self.pj_1_acked { self.pj_1_acked = n; self.dirty[0] |= 0x1020100000; }
+            }
+            42 => {
+                let n = self.pj_1_bad_d;
+                if n != self.pj_1_bad { self.pj_1_bad = n; self.dirty[0] |= 0x1020100000; }
+            }
+            43 => {
+                let n = self.pj_1_ack_missing_d;
+                if n != self.pj_1_ack_missing { self.pj_1_ack_missing = n; self.dirty[0] |= 0x3000000000; }
+            }
+            44 => {
+                let n = self.pj_1_ack_c_d;
+                if n != self.pj_1_ack_c { self.pj_1_ack_c = n; self.dirty[0] |= 0x1020000000; }
+            }
+            45 => {
+                let n = self.pj_1_ack_rx_d;
+                if n != self.pj_1_ack_rx { self.pj_1_ack_rx = n; self.dirty[0] |= 0x20000000; }
+            }
+            46 => {
+                let n = self.pj_2_dis_r_d;
+                if n != self.pj_2_dis_r { self.pj_2_dis_r = n; self.dirty[0] |= 0x41c1800001; }
+            }
+            47 => {
+                let n = self.pj_2_bic_r_d;
+                if n != self.pj_2_bic_r { self.pj_2_bic_r = n; self.dirty[0] |= 0x4000800001; }
+            }
+            48 => {
+                let n = self.pj_2_life_r_d;
+                if n != self.pj_2_life_r { self.pj_2_life_r = n; self.dirty[0] |= 0x4000800000; }
+            }
+            49 => {
+                let n = self.pj_2_dbc_r_d;
+                if n != self.pj_2_dbc_r { self.pj_2_dbc_r = n; self.dirty[0] |= 0x4000800001; }
+            }
+            50 => {
+                let n = self.pj_2_nack_r_d;
+                if n != self.pj_2_nack_r { self.pj_2_nack_r = n; self.dirty[0] |= 0x40400001; }
+            }
+            51 => {
+                let n = self.pj_2_cont_r_d;
+                if n != self.pj_2_cont_r { self.pj_2_cont_r = n; self.dirty[0] |= 0xc040000000; }
+            }
+            52 => {
+                let n = self.pj_2_rep_r_d;
+                if n != self.pj_2_rep_r { self.pj_2_rep_r = n; self.dirty[0] |= 0x800000; }
+            }
+            53 => {
+                let n = self.pj_2_rep_seen_d;
+                if n != self.pj_2_rep_seen { self.pj_2_rep_seen = n; self.dirty[0] |= 0x800000; }
+            }
+            54 => {
+                let n = self.pj_2_rep_first_dom_d;
+                if n != self.pj_2_rep_first_dom { self.pj_2_rep_first_dom = n; self.dirty[0] |= 0xc00000; }
+            }
+            55 => {
+                let n = self.pj_2_ok_r_d;
+                if n != self.pj_2_ok_r { self.pj_2_ok_r = n; self.dirty[0] |= 0x4040800000; }
+            }
+            56 => {
+                let n = self.pj_2_acked_d;
+                if n != self.pj_2_acked { self.pj_2_acked = n; self.dirty[0] |= 0x4040800000; }
+            }
+            57 => {
+                let n = self.pj_2_bad_d;
+                if n != self.pj_2_bad { self.pj_2_bad = n; self.dirty[0] |= 0x4040800000; }
+            }
+            58 => {
+                let n = self.pj_2_ack_missing_d;
+                if n != self.pj_2_ack_missing { self.pj_2_ack_missing = n; self.dirty[0] |= 0xc000000000; }
+            }
+            59 => {
+                let n = self.pj_2_ack_c_d;
+                if n != self.pj_2_ack_c { self.pj_2_ack_c = n; self.dirty[0] |= 0x4040000000; }
+            }
+            60 => {
+                let n = self.pj_2_ack_rx_d;
+                if n != self.pj_2_ack_rx { self.pj_2_ack_rx = n; self.dirty[0] |= 0x40000000; }
+            }
+            61 => {
+                let n = self.rst_s1_d;
+                self.rst_s1 = n;
+            }
+            _ => {}
+        }
     }
 
     /// `top` block, depth 0, state-only: reset_out, isolated$0, isolated$1, isolated$2, efg_active, bic$0, ... (14 signals)
@@ -1136,7 +1284,7 @@ impl HubCoreN3M0 {
     fn g1(&mut self) {
         let mut rst_s1_d: bool = false;
         rst_s1_d = (!self.rst_n);
-        self.rst_s1_d = rst_s1_d;
+        if rst_s1_d != self.rst_s1_d { self.rst_s1_d = rst_s1_d; self.pend[0] |= 0x2000000000000000; }
     }
 
     /// `top` block, depth 0, input-dependent, output cone: frame_state
@@ -1172,7 +1320,7 @@ impl HubCoreN3M0 {
             coupler_up_sync_0_q = (!self.coupler_up_sync_0_s2_n);
         }
         if coupler_up_sync_0_q != self.coupler_up_sync_0_q { self.coupler_up_sync_0_q = coupler_up_sync_0_q; self.dirty[0] |= 0x180000000; }
-        self.coupler_up_sync_0_s2_n_d = coupler_up_sync_0_s2_n_d;
+        if coupler_up_sync_0_s2_n_d != self.coupler_up_sync_0_s2_n_d { self.coupler_up_sync_0_s2_n_d = coupler_up_sync_0_s2_n_d; self.pend[0] |= 0x2; }
     }
 
     /// `coupler.up_sync$0` block, depth 0, input-dependent: coupler.up_sync$0.s1_n.d
@@ -1182,7 +1330,7 @@ impl HubCoreN3M0 {
         if self.rst_s2 {
             coupler_up_sync_0_s1_n_d = false;
         }
-        self.coupler_up_sync_0_s1_n_d = coupler_up_sync_0_s1_n_d;
+        if coupler_up_sync_0_s1_n_d != self.coupler_up_sync_0_s1_n_d { self.coupler_up_sync_0_s1_n_d = coupler_up_sync_0_s1_n_d; self.pend[0] |= 0x1; }
     }
 
     /// `coupler.up_sync$1` block, depth 0, state-only: coupler.up_sync$1.q, coupler.up_sync$1.s2_n.d
@@ -1198,7 +1346,7 @@ impl HubCoreN3M0 {
             coupler_up_sync_1_q = (!self.coupler_up_sync_1_s2_n);
         }
         if coupler_up_sync_1_q != self.coupler_up_sync_1_q { self.coupler_up_sync_1_q = coupler_up_sync_1_q; self.dirty[0] |= 0x180000000; }
-        self.coupler_up_sync_1_s2_n_d = coupler_up_sync_1_s2_n_d;
+        if coupler_up_sync_1_s2_n_d != self.coupler_up_sync_1_s2_n_d { self.coupler_up_sync_1_s2_n_d = coupler_up_sync_1_s2_n_d; self.pend[0] |= 0x8; }
     }
 
     /// `coupler.up_sync$1` block, depth 0, input-dependent: coupler.up_sync$1.s1_n.d
@@ -1208,7 +1356,7 @@ impl HubCoreN3M0 {
         if self.rst_s2 {
             coupler_up_sync_1_s1_n_d = false;
         }
-        self.coupler_up_sync_1_s1_n_d = coupler_up_sync_1_s1_n_d;
+        if coupler_up_sync_1_s1_n_d != self.coupler_up_sync_1_s1_n_d { self.coupler_up_sync_1_s1_n_d = coupler_up_sync_1_s1_n_d; self.pend[0] |= 0x4; }
     }
 
     /// `coupler.up_sync$2` block, depth 0, state-only: coupler.up_sync$2.q, coupler.up_sync$2.s2_n.d
@@ -1224,7 +1372,7 @@ impl HubCoreN3M0 {
             coupler_up_sync_2_q = (!self.coupler_up_sync_2_s2_n);
         }
         if coupler_up_sync_2_q != self.coupler_up_sync_2_q { self.coupler_up_sync_2_q = coupler_up_sync_2_q; self.dirty[0] |= 0x180000000; }
-        self.coupler_up_sync_2_s2_n_d = coupler_up_sync_2_s2_n_d;
+        if coupler_up_sync_2_s2_n_d != self.coupler_up_sync_2_s2_n_d { self.coupler_up_sync_2_s2_n_d = coupler_up_sync_2_s2_n_d; self.pend[0] |= 0x20; }
     }
 
     /// `coupler.up_sync$2` block, depth 0, input-dependent: coupler.up_sync$2.s1_n.d
@@ -1234,7 +1382,7 @@ impl HubCoreN3M0 {
         if self.rst_s2 {
             coupler_up_sync_2_s1_n_d = false;
         }
-        self.coupler_up_sync_2_s1_n_d = coupler_up_sync_2_s1_n_d;
+        if coupler_up_sync_2_s1_n_d != self.coupler_up_sync_2_s1_n_d { self.coupler_up_sync_2_s1_n_d = coupler_up_sync_2_s1_n_d; self.pend[0] |= 0x10; }
     }
 
     /// `efgen` block, depth 0, state-only: efgen.efg, efgen.busy
@@ -1269,8 +1417,8 @@ impl HubCoreN3M0 {
             efgen_driving_d = false;
             efgen_cnt_d = 0u8;
         }
-        self.efgen_driving_d = efgen_driving_d;
-        self.efgen_cnt_d = efgen_cnt_d;
+        if efgen_driving_d != self.efgen_driving_d { self.efgen_driving_d = efgen_driving_d; self.pend[0] |= 0x400; }
+        if efgen_cnt_d != self.efgen_cnt_d { self.efgen_cnt_d = efgen_cnt_d; self.pend[0] |= 0x800; }
     }
 
     /// `decode` block, depth 0, input-dependent: decode.sof, decode.tx_region, decode.arb, decode.crc_delim, decode.ack_slot, decode.ack_delim, ... (10 signals)
@@ -1317,7 +1465,7 @@ impl HubCoreN3M0 {
         }
         injector_active = ((self.injector_state == 2u8) | (self.injector_state == 3u8));
         if injector_active != self.injector_active { self.injector_active = injector_active; self.dirty[0] |= 0x2000000; }
-        self.injector_btn_prev_d = injector_btn_prev_d;
+        if injector_btn_prev_d != self.injector_btn_prev_d { self.injector_btn_prev_d = injector_btn_prev_d; self.pend[0] |= 0x4000; }
     }
 
     /// `injector` block, depth 0, input-dependent: injector.btn_r.d
@@ -1327,7 +1475,7 @@ impl HubCoreN3M0 {
         if self.rst_s2 {
             injector_btn_r_d = false;
         }
-        self.injector_btn_r_d = injector_btn_r_d;
+        if injector_btn_r_d != self.injector_btn_r_d { self.injector_btn_r_d = injector_btn_r_d; self.pend[0] |= 0x8000; }
     }
 
     /// `injector` block, depth 0, probe-only: injector.armed, injector.press
@@ -1350,7 +1498,7 @@ impl HubCoreN3M0 {
         }
         pj_0_silent = (self.pj_0_nack_r >= self.pj_0_nack_thr);
         if pj_0_silent != self.pj_0_silent { self.pj_0_silent = pj_0_silent; self.dirty[0] |= 0x2000000; }
-        self.pj_0_rep_first_dom_d = pj_0_rep_first_dom_d;
+        if pj_0_rep_first_dom_d != self.pj_0_rep_first_dom_d { self.pj_0_rep_first_dom_d = pj_0_rep_first_dom_d; self.pend[0] |= 0x1000000; }
     }
 
     /// `pj$0` block, depth 0, input-dependent: pj$0.dis_r.d, pj$0.rep_r.d, pj$0.rep_seen.d, pj$0.ok_r.d
@@ -1395,10 +1543,10 @@ impl HubCoreN3M0 {
             pj_0_rep_seen_d = false;
             pj_0_ok_r_d = 0u8;
         }
-        self.pj_0_dis_r_d = pj_0_dis_r_d;
-        self.pj_0_rep_r_d = pj_0_rep_r_d;
-        self.pj_0_rep_seen_d = pj_0_rep_seen_d;
-        self.pj_0_ok_r_d = pj_0_ok_r_d;
+        if pj_0_dis_r_d != self.pj_0_dis_r_d { self.pj_0_dis_r_d = pj_0_dis_r_d; self.pend[0] |= 0x10000; }
+        if pj_0_rep_r_d != self.pj_0_rep_r_d { self.pj_0_rep_r_d = pj_0_rep_r_d; self.pend[0] |= 0x400000; }
+        if pj_0_rep_seen_d != self.pj_0_rep_seen_d { self.pj_0_rep_seen_d = pj_0_rep_seen_d; self.pend[0] |= 0x800000; }
+        if pj_0_ok_r_d != self.pj_0_ok_r_d { self.pj_0_ok_r_d = pj_0_ok_r_d; self.pend[0] |= 0x2000000; }
     }
 
     /// `pj$0` block, depth 0, probe-only: pj$0.enabled
@@ -1418,7 +1566,7 @@ impl HubCoreN3M0 {
         }
         pj_1_silent = (self.pj_1_nack_r >= self.pj_1_nack_thr);
         if pj_1_silent != self.pj_1_silent { self.pj_1_silent = pj_1_silent; self.dirty[0] |= 0x2000000; }
-        self.pj_1_rep_first_dom_d = pj_1_rep_first_dom_d;
+        if pj_1_rep_first_dom_d != self.pj_1_rep_first_dom_d { self.pj_1_rep_first_dom_d = pj_1_rep_first_dom_d; self.pend[0] |= 0x8000000000; }
     }
 
     /// `pj$1` block, depth 0, input-dependent: pj$1.dis_r.d, pj$1.rep_r.d, pj$1.rep_seen.d, pj$1.ok_r.d
@@ -1463,10 +1611,10 @@ impl HubCoreN3M0 {
             pj_1_rep_seen_d = false;
             pj_1_ok_r_d = 0u8;
         }
-        self.pj_1_dis_r_d = pj_1_dis_r_d;
-        self.pj_1_rep_r_d = pj_1_rep_r_d;
-        self.pj_1_rep_seen_d = pj_1_rep_seen_d;
-        self.pj_1_ok_r_d = pj_1_ok_r_d;
+        if pj_1_dis_r_d != self.pj_1_dis_r_d { self.pj_1_dis_r_d = pj_1_dis_r_d; self.pend[0] |= 0x80000000; }
+        if pj_1_rep_r_d != self.pj_1_rep_r_d { self.pj_1_rep_r_d = pj_1_rep_r_d; self.pend[0] |= 0x2000000000; }
+        if pj_1_rep_seen_d != self.pj_1_rep_seen_d { self.pj_1_rep_seen_d = pj_1_rep_seen_d; self.pend[0] |= 0x4000000000; }
+        if pj_1_ok_r_d != self.pj_1_ok_r_d { self.pj_1_ok_r_d = pj_1_ok_r_d; self.pend[0] |= 0x10000000000; }
     }
 
     /// `pj$1` block, depth 0, probe-only: pj$1.enabled
@@ -1486,7 +1634,7 @@ impl HubCoreN3M0 {
         }
         pj_2_silent = (self.pj_2_nack_r >= self.pj_2_nack_thr);
         if pj_2_silent != self.pj_2_silent { self.pj_2_silent = pj_2_silent; self.dirty[0] |= 0x2000000; }
-        self.pj_2_rep_first_dom_d = pj_2_rep_first_dom_d;
+        if pj_2_rep_first_dom_d != self.pj_2_rep_first_dom_d { self.pj_2_rep_first_dom_d = pj_2_rep_first_dom_d; self.pend[0] |= 0x40000000000000; }
     }
 
     /// `pj$2` block, depth 0, input-dependent: pj$2.dis_r.d, pj$2.rep_r.d, pj$2.rep_seen.d, pj$2.ok_r.d
@@ -1531,10 +1679,10 @@ impl HubCoreN3M0 {
             pj_2_rep_seen_d = false;
             pj_2_ok_r_d = 0u8;
         }
-        self.pj_2_dis_r_d = pj_2_dis_r_d;
-        self.pj_2_rep_r_d = pj_2_rep_r_d;
-        self.pj_2_rep_seen_d = pj_2_rep_seen_d;
-        self.pj_2_ok_r_d = pj_2_ok_r_d;
+        if pj_2_dis_r_d != self.pj_2_dis_r_d { self.pj_2_dis_r_d = pj_2_dis_r_d; self.pend[0] |= 0x400000000000; }
+        if pj_2_rep_r_d != self.pj_2_rep_r_d { self.pj_2_rep_r_d = pj_2_rep_r_d; self.pend[0] |= 0x10000000000000; }
+        if pj_2_rep_seen_d != self.pj_2_rep_seen_d { self.pj_2_rep_seen_d = pj_2_rep_seen_d; self.pend[0] |= 0x20000000000000; }
+        if pj_2_ok_r_d != self.pj_2_ok_r_d { self.pj_2_ok_r_d = pj_2_ok_r_d; self.pend[0] |= 0x80000000000000; }
     }
 
     /// `pj$2` block, depth 0, probe-only: pj$2.enabled
@@ -1644,7 +1792,7 @@ impl HubCoreN3M0 {
         if self.rst_s2 {
             injector_state_d = 0u8;
         }
-        self.injector_state_d = injector_state_d;
+        if injector_state_d != self.injector_state_d { self.injector_state_d = injector_state_d; self.pend[0] |= 0x2000; }
     }
 
     /// `pj$0` block, depth 1, input-dependent: pj$0.nack_r.d, pj$0.acked.d, pj$0.ack_rx.d
@@ -1689,9 +1837,9 @@ impl HubCoreN3M0 {
             pj_0_acked_d = false;
             pj_0_ack_rx_d = false;
         }
-        self.pj_0_nack_r_d = pj_0_nack_r_d;
-        self.pj_0_acked_d = pj_0_acked_d;
-        self.pj_0_ack_rx_d = pj_0_ack_rx_d;
+        if pj_0_nack_r_d != self.pj_0_nack_r_d { self.pj_0_nack_r_d = pj_0_nack_r_d; self.pend[0] |= 0x100000; }
+        if pj_0_acked_d != self.pj_0_acked_d { self.pj_0_acked_d = pj_0_acked_d; self.pend[0] |= 0x4000000; }
+        if pj_0_ack_rx_d != self.pj_0_ack_rx_d { self.pj_0_ack_rx_d = pj_0_ack_rx_d; self.pend[0] |= 0x40000000; }
     }
 
     /// `pj$1` block, depth 1, input-dependent: pj$1.nack_r.d, pj$1.acked.d, pj$1.ack_rx.d
@@ -1736,9 +1884,9 @@ impl HubCoreN3M0 {
             pj_1_acked_d = false;
             pj_1_ack_rx_d = false;
         }
-        self.pj_1_nack_r_d = pj_1_nack_r_d;
-        self.pj_1_acked_d = pj_1_acked_d;
-        self.pj_1_ack_rx_d = pj_1_ack_rx_d;
+        if pj_1_nack_r_d != self.pj_1_nack_r_d { self.pj_1_nack_r_d = pj_1_nack_r_d; self.pend[0] |= 0x800000000; }
+        if pj_1_acked_d != self.pj_1_acked_d { self.pj_1_acked_d = pj_1_acked_d; self.pend[0] |= 0x20000000000; }
+        if pj_1_ack_rx_d != self.pj_1_ack_rx_d { self.pj_1_ack_rx_d = pj_1_ack_rx_d; self.pend[0] |= 0x200000000000; }
     }
 
     /// `pj$2` block, depth 1, input-dependent: pj$2.nack_r.d, pj$2.acked.d, pj$2.ack_rx.d
@@ -1783,9 +1931,9 @@ impl HubCoreN3M0 {
             pj_2_acked_d = false;
             pj_2_ack_rx_d = false;
         }
-        self.pj_2_nack_r_d = pj_2_nack_r_d;
-        self.pj_2_acked_d = pj_2_acked_d;
-        self.pj_2_ack_rx_d = pj_2_ack_rx_d;
+        if pj_2_nack_r_d != self.pj_2_nack_r_d { self.pj_2_nack_r_d = pj_2_nack_r_d; self.pend[0] |= 0x4000000000000; }
+        if pj_2_acked_d != self.pj_2_acked_d { self.pj_2_acked_d = pj_2_acked_d; self.pend[0] |= 0x100000000000000; }
+        if pj_2_ack_rx_d != self.pj_2_ack_rx_d { self.pj_2_ack_rx_d = pj_2_ack_rx_d; self.pend[0] |= 0x1000000000000000; }
     }
 
     /// `coupler` block, depth 2, state-only: coupler.u$0, coupler.u$1, coupler.u$2, coupler.tx_n$0.d, coupler.tx_n$1.d, coupler.tx_n$2.d, ... (7 signals)
@@ -1881,9 +2029,9 @@ impl HubCoreN3M0 {
         if coupler_u_0 != self.coupler_u_0 { self.coupler_u_0 = coupler_u_0; self.dirty[0] |= 0xc00000000; }
         if coupler_u_1 != self.coupler_u_1 { self.coupler_u_1 = coupler_u_1; self.dirty[0] |= 0x3000000000; }
         if coupler_u_2 != self.coupler_u_2 { self.coupler_u_2 = coupler_u_2; self.dirty[0] |= 0xc000000000; }
-        self.coupler_tx_n_0_d = coupler_tx_n_0_d;
-        self.coupler_tx_n_1_d = coupler_tx_n_1_d;
-        self.coupler_tx_n_2_d = coupler_tx_n_2_d;
+        if coupler_tx_n_0_d != self.coupler_tx_n_0_d { self.coupler_tx_n_0_d = coupler_tx_n_0_d; self.pend[0] |= 0x40; }
+        if coupler_tx_n_1_d != self.coupler_tx_n_1_d { self.coupler_tx_n_1_d = coupler_tx_n_1_d; self.pend[0] |= 0x80; }
+        if coupler_tx_n_2_d != self.coupler_tx_n_2_d { self.coupler_tx_n_2_d = coupler_tx_n_2_d; self.pend[0] |= 0x100; }
         if coupler_bt_acc != self.coupler_bt_acc { self.coupler_bt_acc = coupler_bt_acc; self.dirty[0] |= 0x5600000000; }
     }
 
@@ -2065,13 +2213,13 @@ impl HubCoreN3M0 {
         }
         if pj_0_blame != self.pj_0_blame { self.pj_0_blame = pj_0_blame; self.dirty[0] |= 0x30000000000; }
         if pj_0_tx_error != self.pj_0_tx_error { self.pj_0_tx_error = pj_0_tx_error; self.dirty[0] |= 0x30000000000; }
-        self.pj_0_bic_r_d = pj_0_bic_r_d;
-        self.pj_0_life_r_d = pj_0_life_r_d;
-        self.pj_0_dbc_r_d = pj_0_dbc_r_d;
-        self.pj_0_cont_r_d = pj_0_cont_r_d;
-        self.pj_0_bad_d = pj_0_bad_d;
-        self.pj_0_ack_missing_d = pj_0_ack_missing_d;
-        self.pj_0_ack_c_d = pj_0_ack_c_d;
+        if pj_0_bic_r_d != self.pj_0_bic_r_d { self.pj_0_bic_r_d = pj_0_bic_r_d; self.pend[0] |= 0x20000; }
+        if pj_0_life_r_d != self.pj_0_life_r_d { self.pj_0_life_r_d = pj_0_life_r_d; self.pend[0] |= 0x40000; }
+        if pj_0_dbc_r_d != self.pj_0_dbc_r_d { self.pj_0_dbc_r_d = pj_0_dbc_r_d; self.pend[0] |= 0x80000; }
+        if pj_0_cont_r_d != self.pj_0_cont_r_d { self.pj_0_cont_r_d = pj_0_cont_r_d; self.pend[0] |= 0x200000; }
+        if pj_0_bad_d != self.pj_0_bad_d { self.pj_0_bad_d = pj_0_bad_d; self.pend[0] |= 0x8000000; }
+        if pj_0_ack_missing_d != self.pj_0_ack_missing_d { self.pj_0_ack_missing_d = pj_0_ack_missing_d; self.pend[0] |= 0x10000000; }
+        if pj_0_ack_c_d != self.pj_0_ack_c_d { self.pj_0_ack_c_d = pj_0_ack_c_d; self.pend[0] |= 0x20000000; }
     }
 
     /// `pj$0` block, depth 3, probe-only: pj$0.dom, pj$0.unj
@@ -2174,13 +2322,13 @@ impl HubCoreN3M0 {
         }
         if pj_1_blame != self.pj_1_blame { self.pj_1_blame = pj_1_blame; self.dirty[0] |= 0x30000000000; }
         if pj_1_tx_error != self.pj_1_tx_error { self.pj_1_tx_error = pj_1_tx_error; self.dirty[0] |= 0x30000000000; }
-        self.pj_1_bic_r_d = pj_1_bic_r_d;
-        self.pj_1_life_r_d = pj_1_life_r_d;
-        self.pj_1_dbc_r_d = pj_1_dbc_r_d;
-        self.pj_1_cont_r_d = pj_1_cont_r_d;
-        self.pj_1_bad_d = pj_1_bad_d;
-        self.pj_1_ack_missing_d = pj_1_ack_missing_d;
-        self.pj_1_ack_c_d = pj_1_ack_c_d;
+        if pj_1_bic_r_d != self.pj_1_bic_r_d { self.pj_1_bic_r_d = pj_1_bic_r_d; self.pend[0] |= 0x100000000; }
+        if pj_1_life_r_d != self.pj_1_life_r_d { self.pj_1_life_r_d = pj_1_life_r_d; self.pend[0] |= 0x200000000; }
+        if pj_1_dbc_r_d != self.pj_1_dbc_r_d { self.pj_1_dbc_r_d = pj_1_dbc_r_d; self.pend[0] |= 0x400000000; }
+        if pj_1_cont_r_d != self.pj_1_cont_r_d { self.pj_1_cont_r_d = pj_1_cont_r_d; self.pend[0] |= 0x1000000000; }
+        if pj_1_bad_d != self.pj_1_bad_d { self.pj_1_bad_d = pj_1_bad_d; self.pend[0] |= 0x40000000000; }
+        if pj_1_ack_missing_d != self.pj_1_ack_missing_d { self.pj_1_ack_missing_d = pj_1_ack_missing_d; self.pend[0] |= 0x80000000000; }
+        if pj_1_ack_c_d != self.pj_1_ack_c_d { self.pj_1_ack_c_d = pj_1_ack_c_d; self.pend[0] |= 0x100000000000; }
     }
 
     /// `pj$1` block, depth 3, probe-only: pj$1.dom, pj$1.unj
@@ -2283,13 +2431,13 @@ impl HubCoreN3M0 {
         }
         if pj_2_blame != self.pj_2_blame { self.pj_2_blame = pj_2_blame; self.dirty[0] |= 0x30000000000; }
         if pj_2_tx_error != self.pj_2_tx_error { self.pj_2_tx_error = pj_2_tx_error; self.dirty[0] |= 0x30000000000; }
-        self.pj_2_bic_r_d = pj_2_bic_r_d;
-        self.pj_2_life_r_d = pj_2_life_r_d;
-        self.pj_2_dbc_r_d = pj_2_dbc_r_d;
-        self.pj_2_cont_r_d = pj_2_cont_r_d;
-        self.pj_2_bad_d = pj_2_bad_d;
-        self.pj_2_ack_missing_d = pj_2_ack_missing_d;
-        self.pj_2_ack_c_d = pj_2_ack_c_d;
+        if pj_2_bic_r_d != self.pj_2_bic_r_d { self.pj_2_bic_r_d = pj_2_bic_r_d; self.pend[0] |= 0x800000000000; }
+        if pj_2_life_r_d != self.pj_2_life_r_d { self.pj_2_life_r_d = pj_2_life_r_d; self.pend[0] |= 0x1000000000000; }
+        if pj_2_dbc_r_d != self.pj_2_dbc_r_d { self.pj_2_dbc_r_d = pj_2_dbc_r_d; self.pend[0] |= 0x2000000000000; }
+        if pj_2_cont_r_d != self.pj_2_cont_r_d { self.pj_2_cont_r_d = pj_2_cont_r_d; self.pend[0] |= 0x8000000000000; }
+        if pj_2_bad_d != self.pj_2_bad_d { self.pj_2_bad_d = pj_2_bad_d; self.pend[0] |= 0x200000000000000; }
+        if pj_2_ack_missing_d != self.pj_2_ack_missing_d { self.pj_2_ack_missing_d = pj_2_ack_missing_d; self.pend[0] |= 0x400000000000000; }
+        if pj_2_ack_c_d != self.pj_2_ack_c_d { self.pj_2_ack_c_d = pj_2_ack_c_d; self.pend[0] |= 0x800000000000000; }
     }
 
     /// `pj$2` block, depth 3, probe-only: pj$2.dom, pj$2.unj
@@ -2318,7 +2466,7 @@ impl HubCoreN3M0 {
         any_tx_error = (any_tx_error | self.pj_2_tx_error);
         trigger = (self.mon_sample & ((self.mon_error | any_blame) | any_tx_error));
         err_start_r_d = (trigger & (!self.efgen_busy));
-        self.err_start_r_d = err_start_r_d;
+        if err_start_r_d != self.err_start_r_d { self.err_start_r_d = err_start_r_d; self.pend[0] |= 0x1000; }
         if trigger != self.trigger { self.trigger = trigger; self.dirty[0] |= 0x40000000000; }
     }
 
@@ -2353,7 +2501,7 @@ impl HubCoreN3M0 {
         if self.rst_s2 {
             efgen_pending_d = false;
         }
-        self.efgen_pending_d = efgen_pending_d;
+        if efgen_pending_d != self.efgen_pending_d { self.efgen_pending_d = efgen_pending_d; self.pend[0] |= 0x200; }
     }
 
 }
@@ -3045,6 +3193,7 @@ impl rt::Model for HubCoreN3M0 {
             _ => return false,
         }
         self.dirty = [!0; 1];
+        self.pend = [!0; 1];
         true
     }
     fn set_mem(&mut self, r: usize, addr: usize, v: u128) {

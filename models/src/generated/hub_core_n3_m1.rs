@@ -685,6 +685,8 @@ pub struct HubCoreN3M1 {
     seen_mon_error: bool,
     /// Groups to evaluate (one bit per group, see `run`).
     dirty: [u64; 1],
+    /// Registers whose input changed since they took it (see `edge`).
+    pend: [u64; 2],
     trace: bool,
 }
 
@@ -1045,6 +1047,7 @@ impl HubCoreN3M1 {
             seen_mon_frame_ok: false,
             seen_mon_error: false,
             dirty: [!0; 1],
+            pend: [!0; 2],
             trace: false,
         };
         m.eval_all();
@@ -1081,6 +1084,7 @@ impl HubCoreN3M1 {
     /// Evaluate every group.
     fn eval_all(&mut self) {
         self.dirty = [!0; 1];
+        self.pend = [!0; 2];
         self.sense();
         self.run(&Self::ALL);
     }
@@ -1100,6 +1104,7 @@ impl HubCoreN3M1 {
         }
     }
 
+    #[inline(never)]
     fn group(&mut self, k: usize) {
         match k {
             0 => self.g0(),
@@ -1178,168 +1183,347 @@ impl HubCoreN3M1 {
 
     /// Rising edge: registers and memories take their inputs.
     fn edge(&mut self) {
-        let n0 = self.coupler_up_sync_0_s1_n_d;
-        let n1 = self.coupler_up_sync_0_s2_n_d;
-        let n2 = self.coupler_up_sync_1_s1_n_d;
-        let n3 = self.coupler_up_sync_1_s2_n_d;
-        let n4 = self.coupler_up_sync_2_s1_n_d;
-        let n5 = self.coupler_up_sync_2_s2_n_d;
-        let n6 = self.coupler_reh_sync_0_s1_n_d;
-        let n7 = self.coupler_reh_sync_0_s2_n_d;
-        let n8 = self.coupler_tx_n_0_d;
-        let n9 = self.coupler_tx_n_1_d;
-        let n10 = self.coupler_tx_n_2_d;
-        let n11 = self.coupler_hub_tx_n_0_d;
-        let n12 = self.efgen_pending_d;
-        let n13 = self.efgen_driving_d;
-        let n14 = self.efgen_cnt_d;
-        let n15 = self.err_start_r_d;
-        let n16 = self.injector_state_d;
-        let n17 = self.injector_btn_prev_d;
-        let n18 = self.injector_btn_r_d;
-        let n19 = self.pj_0_dis_r_d;
-        let n20 = self.pj_0_bic_r_d;
-        let n21 = self.pj_0_life_r_d;
-        let n22 = self.pj_0_dbc_r_d;
-        let n23 = self.pj_0_nack_r_d;
-        let n24 = self.pj_0_cont_r_d;
-        let n25 = self.pj_0_rep_r_d;
-        let n26 = self.pj_0_rep_seen_d;
-        let n27 = self.pj_0_rep_first_dom_d;
-        let n28 = self.pj_0_ok_r_d;
-        let n29 = self.pj_0_acked_d;
-        let n30 = self.pj_0_bad_d;
-        let n31 = self.pj_0_ack_missing_d;
-        let n32 = self.pj_0_ack_c_d;
-        let n33 = self.pj_0_ack_rx_d;
-        let n34 = self.pj_1_dis_r_d;
-        let n35 = self.pj_1_bic_r_d;
-        let n36 = self.pj_1_life_r_d;
-        let n37 = self.pj_1_dbc_r_d;
-        let n38 = self.pj_1_nack_r_d;
-        let n39 = self.pj_1_cont_r_d;
-        let n40 = self.pj_1_rep_r_d;
-        let n41 = self.pj_1_rep_seen_d;
-        let n42 = self.pj_1_rep_first_dom_d;
-        let n43 = self.pj_1_ok_r_d;
-        let n44 = self.pj_1_acked_d;
-        let n45 = self.pj_1_bad_d;
-        let n46 = self.pj_1_ack_missing_d;
-        let n47 = self.pj_1_ack_c_d;
-        let n48 = self.pj_1_ack_rx_d;
-        let n49 = self.pj_2_dis_r_d;
-        let n50 = self.pj_2_bic_r_d;
-        let n51 = self.pj_2_life_r_d;
-        let n52 = self.pj_2_dbc_r_d;
-        let n53 = self.pj_2_nack_r_d;
-        let n54 = self.pj_2_cont_r_d;
-        let n55 = self.pj_2_rep_r_d;
-        let n56 = self.pj_2_rep_seen_d;
-        let n57 = self.pj_2_rep_first_dom_d;
-        let n58 = self.pj_2_ok_r_d;
-        let n59 = self.pj_2_acked_d;
-        let n60 = self.pj_2_bad_d;
-        let n61 = self.pj_2_ack_missing_d;
-        let n62 = self.pj_2_ack_c_d;
-        let n63 = self.pj_2_ack_rx_d;
-        let n64 = self.sj_0_dis_r_d;
-        let n65 = self.sj_0_bic_r_d;
-        let n66 = self.sj_0_life_r_d;
-        let n67 = self.sj_0_dbc_r_d;
-        let n68 = self.sj_0_nack_r_d;
-        let n69 = self.sj_0_cont_r_d;
-        let n70 = self.sj_0_rep_r_d;
-        let n71 = self.sj_0_rep_seen_d;
-        let n72 = self.sj_0_rep_first_dom_d;
-        let n73 = self.sj_0_ok_r_d;
-        let n74 = self.sj_0_acked_d;
-        let n75 = self.sj_0_bad_d;
-        let n76 = self.sj_0_ack_missing_d;
-        let n77 = self.sj_0_ack_c_d;
-        let n78 = self.sj_0_ack_rx_d;
-        let n79 = self.rst_s1_d;
         let n80 = self.rst_s1;
-        if n0 != self.coupler_up_sync_0_s1_n { self.coupler_up_sync_0_s1_n = n0; self.dirty[0] |= 0x10; }
-        if n1 != self.coupler_up_sync_0_s2_n { self.coupler_up_sync_0_s2_n = n1; self.dirty[0] |= 0x10; }
-        if n2 != self.coupler_up_sync_1_s1_n { self.coupler_up_sync_1_s1_n = n2; self.dirty[0] |= 0x40; }
-        if n3 != self.coupler_up_sync_1_s2_n { self.coupler_up_sync_1_s2_n = n3; self.dirty[0] |= 0x40; }
-        if n4 != self.coupler_up_sync_2_s1_n { self.coupler_up_sync_2_s1_n = n4; self.dirty[0] |= 0x100; }
-        if n5 != self.coupler_up_sync_2_s2_n { self.coupler_up_sync_2_s2_n = n5; self.dirty[0] |= 0x100; }
-        if n6 != self.coupler_reh_sync_0_s1_n { self.coupler_reh_sync_0_s1_n = n6; self.dirty[0] |= 0x400; }
-        if n7 != self.coupler_reh_sync_0_s2_n { self.coupler_reh_sync_0_s2_n = n7; self.dirty[0] |= 0x400; }
-        if n8 != self.coupler_tx_n_0 { self.coupler_tx_n_0 = n8; self.dirty[0] |= 0x8; }
-        if n9 != self.coupler_tx_n_1 { self.coupler_tx_n_1 = n9; self.dirty[0] |= 0x8; }
-        if n10 != self.coupler_tx_n_2 { self.coupler_tx_n_2 = n10; self.dirty[0] |= 0x8; }
-        if n11 != self.coupler_hub_tx_n_0 { self.coupler_hub_tx_n_0 = n11; self.dirty[0] |= 0x8; }
-        if n12 != self.efgen_pending { self.efgen_pending = n12; self.dirty[0] |= 0x10000000003000; }
-        if n13 != self.efgen_driving { self.efgen_driving = n13; self.dirty[0] |= 0x10000000003001; }
-        if n14 != self.efgen_cnt { self.efgen_cnt = n14; self.dirty[0] |= 0x2000; }
-        if n15 != self.err_start_r { self.err_start_r = n15; self.dirty[0] |= 0x10008000000; }
-        if n16 != self.injector_state { self.injector_state = n16; self.dirty[0] |= 0x100028000; }
-        if n17 != self.injector_btn_prev { self.injector_btn_prev = n17; self.dirty[0] |= 0x100020000; }
-        if n18 != self.injector_btn_r { self.injector_btn_r = n18; self.dirty[0] |= 0x100028000; }
-        if n19 != self.pj_0_dis_r { self.pj_0_dis_r = n19; self.dirty[0] |= 0x8c200180001; }
-        if n20 != self.pj_0_bic_r { self.pj_0_bic_r = n20; self.dirty[0] |= 0x80000080001; }
-        if n21 != self.pj_0_life_r { self.pj_0_life_r = n21; self.dirty[0] |= 0x80000080000; }
-        if n22 != self.pj_0_dbc_r { self.pj_0_dbc_r = n22; self.dirty[0] |= 0x80000080001; }
-        if n23 != self.pj_0_nack_r { self.pj_0_nack_r = n23; self.dirty[0] |= 0x200040001; }
-        if n24 != self.pj_0_cont_r { self.pj_0_cont_r = n24; self.dirty[0] |= 0x180200000000; }
-        if n25 != self.pj_0_rep_r { self.pj_0_rep_r = n25; self.dirty[0] |= 0x80000; }
-        if n26 != self.pj_0_rep_seen { self.pj_0_rep_seen = n26; self.dirty[0] |= 0x80000; }
-        if n27 != self.pj_0_rep_first_dom { self.pj_0_rep_first_dom = n27; self.dirty[0] |= 0xc0000; }
-        if n28 != self.pj_0_ok_r { self.pj_0_ok_r = n28; self.dirty[0] |= 0x80200080000; }
-        if n29 != self.pj_0_acked { self.pj_0_acked = n29; self.dirty[0] |= 0x80200080000; }
-        if n30 != self.pj_0_bad { self.pj_0_bad = n30; self.dirty[0] |= 0x80200080000; }
-        if n31 != self.pj_0_ack_missing { self.pj_0_ack_missing = n31; self.dirty[0] |= 0x180000000000; }
-        if n32 != self.pj_0_ack_c { self.pj_0_ack_c = n32; self.dirty[0] |= 0x80200000000; }
-        if n33 != self.pj_0_ack_rx { self.pj_0_ack_rx = n33; self.dirty[0] |= 0x200000000; }
-        if n34 != self.pj_1_dis_r { self.pj_1_dis_r = n34; self.dirty[0] |= 0x20c400c00001; }
-        if n35 != self.pj_1_bic_r { self.pj_1_bic_r = n35; self.dirty[0] |= 0x200000400001; }
-        if n36 != self.pj_1_life_r { self.pj_1_life_r = n36; self.dirty[0] |= 0x200000400000; }
-        if n37 != self.pj_1_dbc_r { self.pj_1_dbc_r = n37; self.dirty[0] |= 0x200000400001; }
-        if n38 != self.pj_1_nack_r { self.pj_1_nack_r = n38; self.dirty[0] |= 0x400200001; }
-        if n39 != self.pj_1_cont_r { self.pj_1_cont_r = n39; self.dirty[0] |= 0x600400000000; }
-        if n40 != self.pj_1_rep_r { self.pj_1_rep_r = n40; self.dirty[0] |= 0x400000; }
-        if n41 != self.pj_1_rep_seen { self.pj_1_rep_seen = n41; self.dirty[0] |= 0x400000; }
-        if n42 != self.pj_1_rep_first_dom { self.pj_1_rep_first_dom = n42; self.dirty[0] |= 0x600000; }
-        if n43 != self.pj_1_ok_r { self.pj_1_ok_r = n43; self.dirty[0] |= 0x200400400000; }
-        if n44 != self.pj_1_acked { self.pj_1_acked = n44; self.dirty[0] |= 0x200400400000; }
-        if n45 != self.pj_1_bad { self.pj_1_bad = n45; self.dirty[0] |= 0x200400400000; }
-        if n46 != self.pj_1_ack_missing { self.pj_1_ack_missing = n46; self.dirty[0] |= 0x600000000000; }
-        if n47 != self.pj_1_ack_c { self.pj_1_ack_c = n47; self.dirty[0] |= 0x200400000000; }
-        if n48 != self.pj_1_ack_rx { self.pj_1_ack_rx = n48; self.dirty[0] |= 0x400000000; }
-        if n49 != self.pj_2_dis_r { self.pj_2_dis_r = n49; self.dirty[0] |= 0x80c806000001; }
-        if n50 != self.pj_2_bic_r { self.pj_2_bic_r = n50; self.dirty[0] |= 0x800002000001; }
-        if n51 != self.pj_2_life_r { self.pj_2_life_r = n51; self.dirty[0] |= 0x800002000000; }
-        if n52 != self.pj_2_dbc_r { self.pj_2_dbc_r = n52; self.dirty[0] |= 0x800002000001; }
-        if n53 != self.pj_2_nack_r { self.pj_2_nack_r = n53; self.dirty[0] |= 0x801000001; }
-        if n54 != self.pj_2_cont_r { self.pj_2_cont_r = n54; self.dirty[0] |= 0x1800800000000; }
-        if n55 != self.pj_2_rep_r { self.pj_2_rep_r = n55; self.dirty[0] |= 0x2000000; }
-        if n56 != self.pj_2_rep_seen { self.pj_2_rep_seen = n56; self.dirty[0] |= 0x2000000; }
-        if n57 != self.pj_2_rep_first_dom { self.pj_2_rep_first_dom = n57; self.dirty[0] |= 0x3000000; }
-        if n58 != self.pj_2_ok_r { self.pj_2_ok_r = n58; self.dirty[0] |= 0x800802000000; }
-        if n59 != self.pj_2_acked { self.pj_2_acked = n59; self.dirty[0] |= 0x800802000000; }
-        if n60 != self.pj_2_bad { self.pj_2_bad = n60; self.dirty[0] |= 0x800802000000; }
-        if n61 != self.pj_2_ack_missing { self.pj_2_ack_missing = n61; self.dirty[0] |= 0x1800000000000; }
-        if n62 != self.pj_2_ack_c { self.pj_2_ack_c = n62; self.dirty[0] |= 0x800800000000; }
-        if n63 != self.pj_2_ack_rx { self.pj_2_ack_rx = n63; self.dirty[0] |= 0x800000000; }
-        if n64 != self.sj_0_dis_r { self.sj_0_dis_r = n64; self.dirty[0] |= 0x201d0b8000001; }
-        if n65 != self.sj_0_bic_r { self.sj_0_bic_r = n65; self.dirty[0] |= 0x10008000001; }
-        if n66 != self.sj_0_life_r { self.sj_0_life_r = n66; self.dirty[0] |= 0x10008000000; }
-        if n67 != self.sj_0_dbc_r { self.sj_0_dbc_r = n67; self.dirty[0] |= 0x11008000001; }
-        if n68 != self.sj_0_nack_r { self.sj_0_nack_r = n68; self.dirty[0] |= 0x1010000000; }
-        if n69 != self.sj_0_cont_r { self.sj_0_cont_r = n69; self.dirty[0] |= 0x2031000000000; }
-        if n70 != self.sj_0_rep_r { self.sj_0_rep_r = n70; self.dirty[0] |= 0x8000001; }
-        if n71 != self.sj_0_rep_seen { self.sj_0_rep_seen = n71; self.dirty[0] |= 0x10008000000; }
-        if n72 != self.sj_0_rep_first_dom { self.sj_0_rep_first_dom = n72; self.dirty[0] |= 0x10008000000; }
-        if n73 != self.sj_0_ok_r { self.sj_0_ok_r = n73; self.dirty[0] |= 0x11008000000; }
-        if n74 != self.sj_0_acked { self.sj_0_acked = n74; self.dirty[0] |= 0x11008000000; }
-        if n75 != self.sj_0_bad { self.sj_0_bad = n75; self.dirty[0] |= 0x11008000000; }
-        if n76 != self.sj_0_ack_missing { self.sj_0_ack_missing = n76; self.dirty[0] |= 0x2030000000000; }
-        if n77 != self.sj_0_ack_c { self.sj_0_ack_c = n77; self.dirty[0] |= 0x1000000000; }
-        if n78 != self.sj_0_ack_rx { self.sj_0_ack_rx = n78; self.dirty[0] |= 0x1000000000; }
-        self.rst_s1 = n79;
+        for w in 0..2 {
+            loop {
+                let m = self.pend[w];
+                if m == 0 {
+                    break;
+                }
+                let k = m.trailing_zeros() as usize;
+                self.pend[w] &= !(1u64 << k);
+                self.take(w * 64 + k);
+            }
+        }
         if n80 != self.rst_s2 { self.rst_s2 = n80; self.dirty[0] |= 0x12a95f0b6daff1; }
+    }
+
+    /// Pending register `k` takes its input.
+    #[inline(never)]
+    fn take(&mut self, k: usize) {
+        match k {
+            0 => {
+                let n = self.coupler_up_sync_0_s1_n_d;
+                if n != self.coupler_up_sync_0_s1_n { self.coupler_up_sync_0_s1_n = n; self.dirty[0] |= 0x10; }
+            }
+            1 => {
+                let n = self.coupler_up_sync_0_s2_n_d;
+                if n != self.coupler_up_sync_0_s2_n { self.coupler_up_sync_0_s2_n = n; self.dirty[0] |= 0x10; }
+            }
+            2 => {
+                let n = self.coupler_up_sync_1_s1_n_d;
+                if n != self.coupler_up_sync_1_s1_n { self.coupler_up_sync_1_s1_n = n; self.dirty[0] |= 0x40; }
+            }
+            3 => {
+                let n = self.coupler_up_sync_1_s2_n_d;
+                if n != self.coupler_up_sync_1_s2_n { self.coupler_up_sync_1_s2_n = n; self.dirty[0] |= 0x40; }
+            }
+            4 => {
+                let n = self.coupler_up_sync_2_s1_n_d;
+                if n != self.coupler_up_sync_2_s1_n { self.coupler_up_sync_2_s1_n = n; self.dirty[0] |= 0x100; }
+            }
+            5 => {
+                let n = self.coupler_up_sync_2_s2_n_d;
+                if n != self.coupler_up_sync_2_s2_n { self.coupler_up_sync_2_s2_n = n; self.dirty[0] |= 0x100; }
+            }
+            6 => {
+                let n = self.coupler_reh_sync_0_s1_n_d;
+                if n != self.coupler_reh_sync_0_s1_n { self.coupler_reh_sync_0_s1_n = n; self.dirty[0] |= 0x400; }
+            }
+            7 => {
+                let n = self.coupler_reh_sync_0_s2_n_d;
+                if n != self.coupler_reh_sync_0_s2_n { self.coupler_reh_sync_0_s2_n = n; self.dirty[0] |= 0x400; }
+            }
+            8 => {
+                let n = self.coupler_tx_n_0_d;
+                if n != self.coupler_tx_n_0 { self.coupler_tx_n_0 = n; self.dirty[0] |= 0x8; }
+            }
+            9 => {
+                let n = self.coupler_tx_n_1_d;
+                if n != self.coupler_tx_n_1 { self.coupler_tx_n_1 = n; self.dirty[0] |= 0x8; }
+            }
+            10 => {
+                let n = self.coupler_tx_n_2_d;
+                if n != self.coupler_tx_n_2 { self.coupler_tx_n_2 = n; self.dirty[0] |= 0x8; }
+            }
+            11 => {
+                let n = self.coupler_hub_tx_n_0_d;
+                if n != self.coupler_hub_tx_n_0 { self.coupler_hub_tx_n_0 = n; self.dirty[0] |= 0x8; }
+            }
+            12 => {
+                let n = self.efgen_pending_d;
+                if n != self.efgen_pending { self.efgen_pending = n; self.dirty[0] |= 0x10000000003000; }
+            }
+            13 => {
+                let n = self.efgen_driving_d;
+                if n != self.efgen_driving { self.efgen_driving = n; self.dirty[0] |= 0x10000000003001; }
+            }
+            14 => {
+                let n = self.efgen_cnt_d;
+                if n != self.efgen_cnt { self.efgen_cnt = n; self.dirty[0] |= 0x2000; }
+            }
+            15 => {
+                let n = self.err_start_r_d;
+                if n != self.err_start_r { self.err_start_r = n; self.dirty[0] |= 0x10008000000; }
+            }
+            16 => {
+                let n = self.injector_state_d;
+                if n != self.injector_state { self.injector_state = n; self.dirty[0] |= 0x100028000; }
+            }
+            17 => {
+                let n = self.injector_btn_prev_d;
+                if n != self.injector_btn_prev { self.injector_btn_prev = n; self.dirty[0] |= 0x100020000; }
+            }
+            18 => {
+                let n = self.injector_btn_r_d;
+                if n != self.injector_btn_r { self.injector_btn_r = n; self.dirty[0] |= 0x100028000; }
+            }
+            19 => {
+                let n = self.pj_0_dis_r_d;
+                if n != self.pj_0_dis_r { self.pj_0_dis_r = n; self.dirty[0] |= 0x8c200180001; }
+            }
+            20 => {
+                let n = self.pj_0_bic_r_d;
+                if n != self.pj_0_bic_r { self.pj_0_bic_r = n; self.dirty[0] |= 0x80000080001; }
+            }
+            21 => {
+                let n = self.pj_0_life_r_d;
+                if n != self.pj_0_life_r { self.pj_0_life_r = n; self.dirty[0] |= 0x80000080000; }
+            }
+            22 => {
+                let n = self.pj_0_dbc_r_d;
+                if n != self.pj_0_dbc_r { self.pj_0_dbc_r = n; self.dirty[0] |= 0x80000080001; }
+            }
+            23 => {
+                let n = self.pj_0_nack_r_d;
+                if n != self.pj_0_nack_r { self.pj_0_nack_r = n; self.dirty[0] |= 0x200040001; }
+            }
+            24 => {
+                let n = self.pj_0_cont_r_d;
+                if n != self.pj_0_cont_r { self.pj_0_cont_r = n; self.dirty[0] |= 0x180200000000; }
+            }
+            25 => {
+                let n = self.pj_0_rep_r_d;
+                if n != self.pj_0_rep_r { self.pj_0_rep_r = n; self.dirty[0] |= 0x80000; }
+            }
+            26 => {
+                let n = self.pj_0_rep_seen_d;
+                if n != self.pj_0_rep_seen { self.pj_0_rep_seen = n; self.dirty[0] |= 0x80000; }
+            }
+            27 => {
+                let n = self.pj_0_rep_first_dom_d;
+                if n != self.pj_0_rep_first_dom { self.pj_0_rep_first_dom = n; self.dirty[0] |= 0xc0000; }
+            }
+            28 => {
+                let n = self.pj_0_ok_r_d;
+                if n != self.pj_0_ok_r { self.pj_0_ok_r = n; self.dirty[0] |= 0x80200080000; }
+            }
+            29 => {
+                let n = self.pj_0_acked_d;
+                if n != self.pj_0_acked { self.pj_0_acked = n; self.dirty[0] |= 0x80200080000; }
+            }
+            30 => {
+                let n = self.pj_0_bad_d;
+                if n != self.pj_0_bad { self.pj_0_bad = n; self.dirty[0] |= 0x80200080000; }
+            }
+            31 => {
+                let n = self.pj_0_ack_missing_d;
+                if n != self.pj_0_ack_missing { self.pj_0_ack_missing = n; self.dirty[0] |= 0x180000000000; }
+            }
+            32 => {
+                let n = self.pj_0_ack_c_d;
+                if n != self.pj_0_ack_c { self.pj_0_ack_c = n; self.dirty[0] |= 0x80200000000; }
+            }
+            33 => {
+                let n = self.pj_0_ack_rx_d;
+                if n != self.pj_0_ack_rx { self.pj_0_ack_rx = n; self.dirty[0] |= 0x200000000; }
+            }
+            34 => {
+                let n = self.pj_1_dis_r_d;
+                if n != self.pj_1_dis_r { self.pj_1_dis_r = n; self.dirty[0] |= 0x20c400c00001; }
+            }
+            35 => {
+                let n = self.pj_1_bic_r_d;
+                if n != self.pj_1_bic_r { self.pj_1_bic_r = n; self.dirty[0] |= 0x200000400001; }
+            }
+            36 => {
+                let n = self.pj_1_life_r_d;
+                if n != self.pj_1_life_r { self.pj_1_life_r = n; self.dirty[0] |= 0x200000400000; }
+            }
+            37 => {
+                let n = self.pj_1_dbc_r_d;
+                if n != self.pj_1_dbc_r { self.pj_1_dbc_r = n; self.dirty[0] |= 0x200000400001; }
+            }
+            38 => {
+                let n = self.pj_1_nack_r_d;
+                if n != self.pj_1_nack_r { self.pj_1_nack_r = n; self.dirty[0] |= 0x400200001; }
+            }
+            39 => {
+                let n = self.pj_1_cont_r_d;
+                if n != self.pj_1_cont_r { self.pj_1_cont_r = n; self.dirty[0] |= 0x600400000000; }
+            }
+            40 => {
+                let n = self.pj_1_rep_r_d;
+                if n != self.pj_1_rep_r { self.pj_1_rep_r = n; self.dirty[0] |= 0x400000; }
+            }
+            41 => {
+                let n = self.pj_1_rep_seen_d;
+                if n != self.pj_1_rep_seen { self.pj_1_rep_seen = n; self.dirty[0] |= 0x400000; }
+            }
+            42 => {
+                let n = self.pj_1_rep_first_dom_d;
+                if n != self.pj_1_rep_first_dom { self.pj_1_rep_first_dom = n; self.dirty[0] |= 0x600000; }
+            }
+            43 => {
+                let n = self.pj_1_ok_r_d;
+                if n != self.pj_1_ok_r { self.pj_1_ok_r = n; self.dirty[0] |= 0x200400400000; }
+            }
+            44 => {
+                let n = self.pj_1_acked_d;
+                if n != self.pj_1_acked { self.pj_1_acked = n; self.dirty[0] |= 0x200400400000; }
+            }
+            45 => {
+                let n = self.pj_1_bad_d;
+                if n != self.pj_1_bad { self.pj_1_bad = n; self.dirty[0] |= 0x200400400000; }
+            }
+            46 => {
+                let n = self.pj_1_ack_missing_d;
+                if n != self.pj_1_ack_missing { self.pj_1_ack_missing = n; self.dirty[0] |= 0x600000000000; }
+            }
+            47 => {
+                let n = self.pj_1_ack_c_d;
+                if n != self.pj_1_ack_c { self.pj_1_ack_c = n; self.dirty[0] |= 0x200400000000; }
+            }
+            48 => {
+                let n = self.pj_1_ack_rx_d;
+                if n != self.pj_1_ack_rx { self.pj_1_ack_rx = n; self.dirty[0] |= 0x400000000; }
+            }
+            49 => {
+                let n = self.pj_2_dis_r_d;
+                if n != self.pj_2_dis_r { self.pj_2_dis_r = n; self.dirty[0] |= 0x80c806000001; }
+            }
+            50 => {
+                let n = self.pj_2_bic_r_d;
+                if n != self.pj_2_bic_r { self.pj_2_bic_r = n; self.dirty[0] |= 0x800002000001; }
+            }
+            51 => {
+                let n = self.pj_2_life_r_d;
+                if n != self.pj_2_life_r { self.pj_2_life_r = n; self.dirty[0] |= 0x800002000000; }
+            }
+            52 => {
+                let n = self.pj_2_dbc_r_d;
+                if n != self.pj_2_dbc_r { self.pj_2_dbc_r = n; self.dirty[0] |= 0x800002000001; }
+            }
+            53 => {
+                let n = self.pj_2_nack_r_d;
+                if n != self.pj_2_nack_r { self.pj_2_nack_r = n; self.dirty[0] |= 0x801000001; }
+            }
+            54 => {
+                let n = self.pj_2_cont_r_d;
+                if n != self.pj_2_cont_r { self.pj_2_cont_r = n; self.dirty[0] |= 0x1800800000000; }
+            }
+            55 => {
+                let n = self.pj_2_rep_r_d;
+                if n != self.pj_2_rep_r { self.pj_2_rep_r = n; self.dirty[0] |= 0x2000000; }
+            }
+            56 => {
+                let n = self.pj_2_rep_seen_d;
+                if n != self.pj_2_rep_seen { self.pj_2_rep_seen = n; self.dirty[0] |= 0x2000000; }
+            }
+            57 => {
+                let n = self.pj_2_rep_first_dom_d;
+                if n != self.pj_2_rep_first_dom { self.pj_2_rep_first_dom = n; self.dirty[0] |= 0x3000000; }
+            }
+            58 => {
+                let n = self.pj_2_ok_r_d;
+                if n != self.pj_2_ok_r { self.pj_2_ok_r = n; self.dirty[0] |= 0x800802000000; }
+            }
+            59 => {
+                let n = self.pj_2_acked_d;
+                if n != self.pj_2_acked { self.pj_2_acked = n; self.dirty[0] |= 0x800802000000; }
+            }
+            60 => {
+                let n = self.pj_2_bad_d;
+                if n != self.pj_2_bad { self.pj_2_bad = n; self.dirty[0] |= 0x800802000000; }
+            }
+            61 => {
+                let n = self.pj_2_ack_missing_d;
+                if n != self.pj_2_ack_missing { self.pj_2_ack_missing = n; self.dirty[0] |= 0x1800000000000; }
+            }
+            62 => {
+                let n = self.pj_2_ack_c_d;
+                if n != self.pj_2_ack_c { self.pj_2_ack_c = n; self.dirty[0] |= 0x800800000000; }
+            }
+            63 => {
+                let n = self.pj_2_ack_rx_d;
+                if n != self.pj_2_ack_rx { self.pj_2_ack_rx = n; self.dirty[0] |= 0x800000000; }
+            }
+            64 => {
+                let n = self.sj_0_dis_r_d;
+                if n != self.sj_0_dis_r { self.sj_0_dis_r = n; self.dirty[0] |= 0x201d0b8000001; }
+            }
+            65 => {
+                let n = self.sj_0_bic_r_d;
+                if n != self.sj_0_bic_r { self.sj_0_bic_r = n; self.dirty[0] |= 0x10008000001; }
+            }
+            66 => {
+                let n = self.sj_0_life_r_d;
+                if n != self.sj_0_life_r { self.sj_0_life_r = n; self.dirty[0] |= 0x10008000000; }
+            }
+            67 => {
+                let n = self.sj_0_dbc_r_d;
+                if n != self.sj_0_dbc_r { self.sj_0_dbc_r = n; self.dirty[0] |= 0x11008000001; }
+            }
+            68 => {
+                let n = self.sj_0_nack_r_d;
+                if n != self.sj_0_nack_r { self.sj_0_nack_r = n; self.dirty[0] |= 0x1010000000; }
+            }
+            69 => {
+                let n = self.sj_0_cont_r_d;
+                if n != self.sj_0_cont_r { self.sj_0_cont_r = n; self.dirty[0] |= 0x2031000000000; }
+            }
+            70 => {
+                let n = self.sj_0_rep_r_d;
+                if n != self.sj_0_rep_r { self.sj_0_rep_r = n; self.dirty[0] |= 0x8000001; }
+            }
+            71 => {
+                let n = self.sj_0_rep_seen_d;
+                if n != self.sj_0_rep_seen { self.sj_0_rep_seen = n; self.dirty[0] |= 0x10008000000; }
+            }
+            72 => {
+                let n = self.sj_0_rep_first_dom_d;
+                if n != self.sj_0_rep_first_dom { self.sj_0_rep_first_dom = n; self.dirty[0] |= 0x10008000000; }
+            }
+            73 => {
+                let n = self.sj_0_ok_r_d;
+                if n != self.sj_0_ok_r { self.sj_0_ok_r = n; self.dirty[0] |= 0x11008000000; }
+            }
+            74 => {
+                let n = self.sj_0_acked_d;
+                if n != self.sj_0_acked { self.sj_0_acked = n; self.dirty[0] |= 0x11008000000; }
+            }
+            75 => {
+                let n = self.sj_0_bad_d;
+                if n != self.sj_0_bad { self.sj_0_bad = n; self.dirty[0] |= 0x11008000000; }
+            }
+            76 => {
+                let n = self.sj_0_ack_missing_d;
+                if n != self.sj_0_ack_missing { self.sj_0_ack_missing = n; self.dirty[0] |= 0x2030000000000; }
+            }
+            77 => {
+                let n = self.sj_0_ack_c_d;
+                if n != self.sj_0_ack_c { self.sj_0_ack_c = n; self.dirty[0] |= 0x1000000000; }
+            }
+            78 => {
+                let n = self.sj_0_ack_rx_d;
+                if n != self.sj_0_ack_rx { self.sj_0_ack_rx = n; self.dirty[0] |= 0x1000000000; }
+            }
+            79 => {
+                let n = self.rst_s1_d;
+                self.rst_s1 = n;
+            }
+            _ => {}
+        }
     }
 
     /// `top` block, depth 0, state-only: reset_out, isolated$0, isolated$1, isolated$2, sub_isolated$0, efg_active, ... (18 signals)
@@ -1404,7 +1588,7 @@ impl HubCoreN3M1 {
     fn g1(&mut self) {
         let mut rst_s1_d: bool = false;
         rst_s1_d = (!self.rst_n);
-        self.rst_s1_d = rst_s1_d;
+        if rst_s1_d != self.rst_s1_d { self.rst_s1_d = rst_s1_d; self.pend[1] |= 0x8000; }
     }
 
     /// `top` block, depth 0, input-dependent, output cone: frame_state
@@ -1443,7 +1627,7 @@ impl HubCoreN3M1 {
             coupler_up_sync_0_q = (!self.coupler_up_sync_0_s2_n);
         }
         if coupler_up_sync_0_q != self.coupler_up_sync_0_q { self.coupler_up_sync_0_q = coupler_up_sync_0_q; self.dirty[0] |= 0xc000000000; }
-        self.coupler_up_sync_0_s2_n_d = coupler_up_sync_0_s2_n_d;
+        if coupler_up_sync_0_s2_n_d != self.coupler_up_sync_0_s2_n_d { self.coupler_up_sync_0_s2_n_d = coupler_up_sync_0_s2_n_d; self.pend[0] |= 0x2; }
     }
 
     /// `coupler.up_sync$0` block, depth 0, input-dependent: coupler.up_sync$0.s1_n.d
@@ -1453,7 +1637,7 @@ impl HubCoreN3M1 {
         if self.rst_s2 {
             coupler_up_sync_0_s1_n_d = false;
         }
-        self.coupler_up_sync_0_s1_n_d = coupler_up_sync_0_s1_n_d;
+        if coupler_up_sync_0_s1_n_d != self.coupler_up_sync_0_s1_n_d { self.coupler_up_sync_0_s1_n_d = coupler_up_sync_0_s1_n_d; self.pend[0] |= 0x1; }
     }
 
     /// `coupler.up_sync$1` block, depth 0, state-only: coupler.up_sync$1.q, coupler.up_sync$1.s2_n.d
@@ -1469,7 +1653,7 @@ impl HubCoreN3M1 {
             coupler_up_sync_1_q = (!self.coupler_up_sync_1_s2_n);
         }
         if coupler_up_sync_1_q != self.coupler_up_sync_1_q { self.coupler_up_sync_1_q = coupler_up_sync_1_q; self.dirty[0] |= 0xc000000000; }
-        self.coupler_up_sync_1_s2_n_d = coupler_up_sync_1_s2_n_d;
+        if coupler_up_sync_1_s2_n_d != self.coupler_up_sync_1_s2_n_d { self.coupler_up_sync_1_s2_n_d = coupler_up_sync_1_s2_n_d; self.pend[0] |= 0x8; }
     }
 
     /// `coupler.up_sync$1` block, depth 0, input-dependent: coupler.up_sync$1.s1_n.d
@@ -1479,7 +1663,7 @@ impl HubCoreN3M1 {
         if self.rst_s2 {
             coupler_up_sync_1_s1_n_d = false;
         }
-        self.coupler_up_sync_1_s1_n_d = coupler_up_sync_1_s1_n_d;
+        if coupler_up_sync_1_s1_n_d != self.coupler_up_sync_1_s1_n_d { self.coupler_up_sync_1_s1_n_d = coupler_up_sync_1_s1_n_d; self.pend[0] |= 0x4; }
     }
 
     /// `coupler.up_sync$2` block, depth 0, state-only: coupler.up_sync$2.q, coupler.up_sync$2.s2_n.d
@@ -1495,7 +1679,7 @@ impl HubCoreN3M1 {
             coupler_up_sync_2_q = (!self.coupler_up_sync_2_s2_n);
         }
         if coupler_up_sync_2_q != self.coupler_up_sync_2_q { self.coupler_up_sync_2_q = coupler_up_sync_2_q; self.dirty[0] |= 0xc000000000; }
-        self.coupler_up_sync_2_s2_n_d = coupler_up_sync_2_s2_n_d;
+        if coupler_up_sync_2_s2_n_d != self.coupler_up_sync_2_s2_n_d { self.coupler_up_sync_2_s2_n_d = coupler_up_sync_2_s2_n_d; self.pend[0] |= 0x20; }
     }
 
     /// `coupler.up_sync$2` block, depth 0, input-dependent: coupler.up_sync$2.s1_n.d
@@ -1505,7 +1689,7 @@ impl HubCoreN3M1 {
         if self.rst_s2 {
             coupler_up_sync_2_s1_n_d = false;
         }
-        self.coupler_up_sync_2_s1_n_d = coupler_up_sync_2_s1_n_d;
+        if coupler_up_sync_2_s1_n_d != self.coupler_up_sync_2_s1_n_d { self.coupler_up_sync_2_s1_n_d = coupler_up_sync_2_s1_n_d; self.pend[0] |= 0x10; }
     }
 
     /// `coupler.reh_sync$0` block, depth 0, state-only: coupler.reh_sync$0.q, coupler.reh_sync$0.s2_n.d
@@ -1521,7 +1705,7 @@ impl HubCoreN3M1 {
             coupler_reh_sync_0_q = (!self.coupler_reh_sync_0_s2_n);
         }
         if coupler_reh_sync_0_q != self.coupler_reh_sync_0_q { self.coupler_reh_sync_0_q = coupler_reh_sync_0_q; self.dirty[0] |= 0x203f0a0000000; }
-        self.coupler_reh_sync_0_s2_n_d = coupler_reh_sync_0_s2_n_d;
+        if coupler_reh_sync_0_s2_n_d != self.coupler_reh_sync_0_s2_n_d { self.coupler_reh_sync_0_s2_n_d = coupler_reh_sync_0_s2_n_d; self.pend[0] |= 0x80; }
     }
 
     /// `coupler.reh_sync$0` block, depth 0, input-dependent: coupler.reh_sync$0.s1_n.d
@@ -1531,7 +1715,7 @@ impl HubCoreN3M1 {
         if self.rst_s2 {
             coupler_reh_sync_0_s1_n_d = false;
         }
-        self.coupler_reh_sync_0_s1_n_d = coupler_reh_sync_0_s1_n_d;
+        if coupler_reh_sync_0_s1_n_d != self.coupler_reh_sync_0_s1_n_d { self.coupler_reh_sync_0_s1_n_d = coupler_reh_sync_0_s1_n_d; self.pend[0] |= 0x40; }
     }
 
     /// `efgen` block, depth 0, state-only: efgen.efg, efgen.busy
@@ -1566,8 +1750,8 @@ impl HubCoreN3M1 {
             efgen_driving_d = false;
             efgen_cnt_d = 0u8;
         }
-        self.efgen_driving_d = efgen_driving_d;
-        self.efgen_cnt_d = efgen_cnt_d;
+        if efgen_driving_d != self.efgen_driving_d { self.efgen_driving_d = efgen_driving_d; self.pend[0] |= 0x2000; }
+        if efgen_cnt_d != self.efgen_cnt_d { self.efgen_cnt_d = efgen_cnt_d; self.pend[0] |= 0x4000; }
     }
 
     /// `decode` block, depth 0, input-dependent: decode.sof, decode.tx_region, decode.arb, decode.crc_delim, decode.ack_slot, decode.ack_delim, ... (10 signals)
@@ -1614,7 +1798,7 @@ impl HubCoreN3M1 {
         }
         injector_active = ((self.injector_state == 2u8) | (self.injector_state == 3u8));
         if injector_active != self.injector_active { self.injector_active = injector_active; self.dirty[0] |= 0x20000000; }
-        self.injector_btn_prev_d = injector_btn_prev_d;
+        if injector_btn_prev_d != self.injector_btn_prev_d { self.injector_btn_prev_d = injector_btn_prev_d; self.pend[0] |= 0x20000; }
     }
 
     /// `injector` block, depth 0, input-dependent: injector.btn_r.d
@@ -1624,7 +1808,7 @@ impl HubCoreN3M1 {
         if self.rst_s2 {
             injector_btn_r_d = false;
         }
-        self.injector_btn_r_d = injector_btn_r_d;
+        if injector_btn_r_d != self.injector_btn_r_d { self.injector_btn_r_d = injector_btn_r_d; self.pend[0] |= 0x40000; }
     }
 
     /// `injector` block, depth 0, probe-only: injector.armed, injector.press
@@ -1647,7 +1831,7 @@ impl HubCoreN3M1 {
         }
         pj_0_silent = (self.pj_0_nack_r >= self.pj_0_nack_thr);
         if pj_0_silent != self.pj_0_silent { self.pj_0_silent = pj_0_silent; self.dirty[0] |= 0x20000000; }
-        self.pj_0_rep_first_dom_d = pj_0_rep_first_dom_d;
+        if pj_0_rep_first_dom_d != self.pj_0_rep_first_dom_d { self.pj_0_rep_first_dom_d = pj_0_rep_first_dom_d; self.pend[0] |= 0x8000000; }
     }
 
     /// `pj$0` block, depth 0, input-dependent: pj$0.dis_r.d, pj$0.rep_r.d, pj$0.rep_seen.d, pj$0.ok_r.d
@@ -1692,10 +1876,10 @@ impl HubCoreN3M1 {
             pj_0_rep_seen_d = false;
             pj_0_ok_r_d = 0u8;
         }
-        self.pj_0_dis_r_d = pj_0_dis_r_d;
-        self.pj_0_rep_r_d = pj_0_rep_r_d;
-        self.pj_0_rep_seen_d = pj_0_rep_seen_d;
-        self.pj_0_ok_r_d = pj_0_ok_r_d;
+        if pj_0_dis_r_d != self.pj_0_dis_r_d { self.pj_0_dis_r_d = pj_0_dis_r_d; self.pend[0] |= 0x80000; }
+        if pj_0_rep_r_d != self.pj_0_rep_r_d { self.pj_0_rep_r_d = pj_0_rep_r_d; self.pend[0] |= 0x2000000; }
+        if pj_0_rep_seen_d != self.pj_0_rep_seen_d { self.pj_0_rep_seen_d = pj_0_rep_seen_d; self.pend[0] |= 0x4000000; }
+        if pj_0_ok_r_d != self.pj_0_ok_r_d { self.pj_0_ok_r_d = pj_0_ok_r_d; self.pend[0] |= 0x10000000; }
     }
 
     /// `pj$0` block, depth 0, probe-only: pj$0.enabled
@@ -1715,7 +1899,7 @@ impl HubCoreN3M1 {
         }
         pj_1_silent = (self.pj_1_nack_r >= self.pj_1_nack_thr);
         if pj_1_silent != self.pj_1_silent { self.pj_1_silent = pj_1_silent; self.dirty[0] |= 0x20000000; }
-        self.pj_1_rep_first_dom_d = pj_1_rep_first_dom_d;
+        if pj_1_rep_first_dom_d != self.pj_1_rep_first_dom_d { self.pj_1_rep_first_dom_d = pj_1_rep_first_dom_d; self.pend[0] |= 0x40000000000; }
     }
 
     /// `pj$1` block, depth 0, input-dependent: pj$1.dis_r.d, pj$1.rep_r.d, pj$1.rep_seen.d, pj$1.ok_r.d
@@ -1760,10 +1944,10 @@ impl HubCoreN3M1 {
             pj_1_rep_seen_d = false;
             pj_1_ok_r_d = 0u8;
         }
-        self.pj_1_dis_r_d = pj_1_dis_r_d;
-        self.pj_1_rep_r_d = pj_1_rep_r_d;
-        self.pj_1_rep_seen_d = pj_1_rep_seen_d;
-        self.pj_1_ok_r_d = pj_1_ok_r_d;
+        if pj_1_dis_r_d != self.pj_1_dis_r_d { self.pj_1_dis_r_d = pj_1_dis_r_d; self.pend[0] |= 0x400000000; }
+        if pj_1_rep_r_d != self.pj_1_rep_r_d { self.pj_1_rep_r_d = pj_1_rep_r_d; self.pend[0] |= 0x10000000000; }
+        if pj_1_rep_seen_d != self.pj_1_rep_seen_d { self.pj_1_rep_seen_d = pj_1_rep_seen_d; self.pend[0] |= 0x20000000000; }
+        if pj_1_ok_r_d != self.pj_1_ok_r_d { self.pj_1_ok_r_d = pj_1_ok_r_d; self.pend[0] |= 0x80000000000; }
     }
 
     /// `pj$1` block, depth 0, probe-only: pj$1.enabled
@@ -1783,7 +1967,7 @@ impl HubCoreN3M1 {
         }
         pj_2_silent = (self.pj_2_nack_r >= self.pj_2_nack_thr);
         if pj_2_silent != self.pj_2_silent { self.pj_2_silent = pj_2_silent; self.dirty[0] |= 0x20000000; }
-        self.pj_2_rep_first_dom_d = pj_2_rep_first_dom_d;
+        if pj_2_rep_first_dom_d != self.pj_2_rep_first_dom_d { self.pj_2_rep_first_dom_d = pj_2_rep_first_dom_d; self.pend[0] |= 0x200000000000000; }
     }
 
     /// `pj$2` block, depth 0, input-dependent: pj$2.dis_r.d, pj$2.rep_r.d, pj$2.rep_seen.d, pj$2.ok_r.d
@@ -1828,10 +2012,10 @@ impl HubCoreN3M1 {
             pj_2_rep_seen_d = false;
             pj_2_ok_r_d = 0u8;
         }
-        self.pj_2_dis_r_d = pj_2_dis_r_d;
-        self.pj_2_rep_r_d = pj_2_rep_r_d;
-        self.pj_2_rep_seen_d = pj_2_rep_seen_d;
-        self.pj_2_ok_r_d = pj_2_ok_r_d;
+        if pj_2_dis_r_d != self.pj_2_dis_r_d { self.pj_2_dis_r_d = pj_2_dis_r_d; self.pend[0] |= 0x2000000000000; }
+        if pj_2_rep_r_d != self.pj_2_rep_r_d { self.pj_2_rep_r_d = pj_2_rep_r_d; self.pend[0] |= 0x80000000000000; }
+        if pj_2_rep_seen_d != self.pj_2_rep_seen_d { self.pj_2_rep_seen_d = pj_2_rep_seen_d; self.pend[0] |= 0x100000000000000; }
+        if pj_2_ok_r_d != self.pj_2_ok_r_d { self.pj_2_ok_r_d = pj_2_ok_r_d; self.pend[0] |= 0x400000000000000; }
     }
 
     /// `pj$2` block, depth 0, probe-only: pj$2.enabled
@@ -1882,9 +2066,9 @@ impl HubCoreN3M1 {
             sj_0_rep_r_d = 0u8;
             sj_0_ok_r_d = 0u8;
         }
-        self.sj_0_dis_r_d = sj_0_dis_r_d;
-        self.sj_0_rep_r_d = sj_0_rep_r_d;
-        self.sj_0_ok_r_d = sj_0_ok_r_d;
+        if sj_0_dis_r_d != self.sj_0_dis_r_d { self.sj_0_dis_r_d = sj_0_dis_r_d; self.pend[1] |= 0x1; }
+        if sj_0_rep_r_d != self.sj_0_rep_r_d { self.sj_0_rep_r_d = sj_0_rep_r_d; self.pend[1] |= 0x40; }
+        if sj_0_ok_r_d != self.sj_0_ok_r_d { self.sj_0_ok_r_d = sj_0_ok_r_d; self.pend[1] |= 0x200; }
     }
 
     /// `sj$0` block, depth 0, probe-only: sj$0.silent, sj$0.enabled
@@ -2035,7 +2219,7 @@ impl HubCoreN3M1 {
         if self.rst_s2 {
             injector_state_d = 0u8;
         }
-        self.injector_state_d = injector_state_d;
+        if injector_state_d != self.injector_state_d { self.injector_state_d = injector_state_d; self.pend[0] |= 0x10000; }
     }
 
     /// `pj$0` block, depth 1, input-dependent: pj$0.nack_r.d, pj$0.acked.d, pj$0.ack_rx.d
@@ -2080,9 +2264,9 @@ impl HubCoreN3M1 {
             pj_0_acked_d = false;
             pj_0_ack_rx_d = false;
         }
-        self.pj_0_nack_r_d = pj_0_nack_r_d;
-        self.pj_0_acked_d = pj_0_acked_d;
-        self.pj_0_ack_rx_d = pj_0_ack_rx_d;
+        if pj_0_nack_r_d != self.pj_0_nack_r_d { self.pj_0_nack_r_d = pj_0_nack_r_d; self.pend[0] |= 0x800000; }
+        if pj_0_acked_d != self.pj_0_acked_d { self.pj_0_acked_d = pj_0_acked_d; self.pend[0] |= 0x20000000; }
+        if pj_0_ack_rx_d != self.pj_0_ack_rx_d { self.pj_0_ack_rx_d = pj_0_ack_rx_d; self.pend[0] |= 0x200000000; }
     }
 
     /// `pj$1` block, depth 1, input-dependent: pj$1.nack_r.d, pj$1.acked.d, pj$1.ack_rx.d
@@ -2127,9 +2311,9 @@ impl HubCoreN3M1 {
             pj_1_acked_d = false;
             pj_1_ack_rx_d = false;
         }
-        self.pj_1_nack_r_d = pj_1_nack_r_d;
-        self.pj_1_acked_d = pj_1_acked_d;
-        self.pj_1_ack_rx_d = pj_1_ack_rx_d;
+        if pj_1_nack_r_d != self.pj_1_nack_r_d { self.pj_1_nack_r_d = pj_1_nack_r_d; self.pend[0] |= 0x4000000000; }
+        if pj_1_acked_d != self.pj_1_acked_d { self.pj_1_acked_d = pj_1_acked_d; self.pend[0] |= 0x100000000000; }
+        if pj_1_ack_rx_d != self.pj_1_ack_rx_d { self.pj_1_ack_rx_d = pj_1_ack_rx_d; self.pend[0] |= 0x1000000000000; }
     }
 
     /// `pj$2` block, depth 1, input-dependent: pj$2.nack_r.d, pj$2.acked.d, pj$2.ack_rx.d
@@ -2174,9 +2358,9 @@ impl HubCoreN3M1 {
             pj_2_acked_d = false;
             pj_2_ack_rx_d = false;
         }
-        self.pj_2_nack_r_d = pj_2_nack_r_d;
-        self.pj_2_acked_d = pj_2_acked_d;
-        self.pj_2_ack_rx_d = pj_2_ack_rx_d;
+        if pj_2_nack_r_d != self.pj_2_nack_r_d { self.pj_2_nack_r_d = pj_2_nack_r_d; self.pend[0] |= 0x20000000000000; }
+        if pj_2_acked_d != self.pj_2_acked_d { self.pj_2_acked_d = pj_2_acked_d; self.pend[0] |= 0x800000000000000; }
+        if pj_2_ack_rx_d != self.pj_2_ack_rx_d { self.pj_2_ack_rx_d = pj_2_ack_rx_d; self.pend[0] |= 0x8000000000000000; }
     }
 
     /// `sj$0` block, depth 1, input-dependent: sj$0.dbc_r.d, sj$0.nack_r.d, sj$0.acked.d, sj$0.ack_c.d, sj$0.ack_rx.d
@@ -2238,11 +2422,11 @@ impl HubCoreN3M1 {
             sj_0_ack_c_d = false;
             sj_0_ack_rx_d = false;
         }
-        self.sj_0_dbc_r_d = sj_0_dbc_r_d;
-        self.sj_0_nack_r_d = sj_0_nack_r_d;
-        self.sj_0_acked_d = sj_0_acked_d;
-        self.sj_0_ack_c_d = sj_0_ack_c_d;
-        self.sj_0_ack_rx_d = sj_0_ack_rx_d;
+        if sj_0_dbc_r_d != self.sj_0_dbc_r_d { self.sj_0_dbc_r_d = sj_0_dbc_r_d; self.pend[1] |= 0x8; }
+        if sj_0_nack_r_d != self.sj_0_nack_r_d { self.sj_0_nack_r_d = sj_0_nack_r_d; self.pend[1] |= 0x10; }
+        if sj_0_acked_d != self.sj_0_acked_d { self.sj_0_acked_d = sj_0_acked_d; self.pend[1] |= 0x400; }
+        if sj_0_ack_c_d != self.sj_0_ack_c_d { self.sj_0_ack_c_d = sj_0_ack_c_d; self.pend[1] |= 0x2000; }
+        if sj_0_ack_rx_d != self.sj_0_ack_rx_d { self.sj_0_ack_rx_d = sj_0_ack_rx_d; self.pend[1] |= 0x4000; }
     }
 
     /// `sj$0` block, depth 1, probe-only: sj$0.dom
@@ -2364,10 +2548,10 @@ impl HubCoreN3M1 {
         if coupler_u_1 != self.coupler_u_1 { self.coupler_u_1 = coupler_u_1; self.dirty[0] |= 0x600000000000; }
         if coupler_u_2 != self.coupler_u_2 { self.coupler_u_2 = coupler_u_2; self.dirty[0] |= 0x1800000000000; }
         if coupler_bt != self.coupler_bt { self.coupler_bt = coupler_bt; self.dirty[0] |= 0x2ac0000000000; }
-        self.coupler_tx_n_0_d = coupler_tx_n_0_d;
-        self.coupler_tx_n_1_d = coupler_tx_n_1_d;
-        self.coupler_tx_n_2_d = coupler_tx_n_2_d;
-        self.coupler_hub_tx_n_0_d = coupler_hub_tx_n_0_d;
+        if coupler_tx_n_0_d != self.coupler_tx_n_0_d { self.coupler_tx_n_0_d = coupler_tx_n_0_d; self.pend[0] |= 0x100; }
+        if coupler_tx_n_1_d != self.coupler_tx_n_1_d { self.coupler_tx_n_1_d = coupler_tx_n_1_d; self.pend[0] |= 0x200; }
+        if coupler_tx_n_2_d != self.coupler_tx_n_2_d { self.coupler_tx_n_2_d = coupler_tx_n_2_d; self.pend[0] |= 0x400; }
+        if coupler_hub_tx_n_0_d != self.coupler_hub_tx_n_0_d { self.coupler_hub_tx_n_0_d = coupler_hub_tx_n_0_d; self.pend[0] |= 0x800; }
     }
 
     /// `coupler` block, depth 2, probe-only: coupler.andc, coupler.dl$0, coupler.dl$1, coupler.dl$2, coupler.hl$0, coupler.ul$0, ... (10 signals)
@@ -2534,11 +2718,11 @@ impl HubCoreN3M1 {
             sj_0_bad_d = false;
         }
         if sj_0_blame != self.sj_0_blame { self.sj_0_blame = sj_0_blame; self.dirty[0] |= 0xc000000000000; }
-        self.sj_0_bic_r_d = sj_0_bic_r_d;
-        self.sj_0_life_r_d = sj_0_life_r_d;
-        self.sj_0_rep_seen_d = sj_0_rep_seen_d;
-        self.sj_0_rep_first_dom_d = sj_0_rep_first_dom_d;
-        self.sj_0_bad_d = sj_0_bad_d;
+        if sj_0_bic_r_d != self.sj_0_bic_r_d { self.sj_0_bic_r_d = sj_0_bic_r_d; self.pend[1] |= 0x2; }
+        if sj_0_life_r_d != self.sj_0_life_r_d { self.sj_0_life_r_d = sj_0_life_r_d; self.pend[1] |= 0x4; }
+        if sj_0_rep_seen_d != self.sj_0_rep_seen_d { self.sj_0_rep_seen_d = sj_0_rep_seen_d; self.pend[1] |= 0x80; }
+        if sj_0_rep_first_dom_d != self.sj_0_rep_first_dom_d { self.sj_0_rep_first_dom_d = sj_0_rep_first_dom_d; self.pend[1] |= 0x100; }
+        if sj_0_bad_d != self.sj_0_bad_d { self.sj_0_bad_d = sj_0_bad_d; self.pend[1] |= 0x800; }
     }
 
     /// `sj$0` block, depth 2, probe-only: sj$0.unj
@@ -2647,13 +2831,13 @@ impl HubCoreN3M1 {
         }
         if pj_0_blame != self.pj_0_blame { self.pj_0_blame = pj_0_blame; self.dirty[0] |= 0xc000000000000; }
         if pj_0_tx_error != self.pj_0_tx_error { self.pj_0_tx_error = pj_0_tx_error; self.dirty[0] |= 0xc000000000000; }
-        self.pj_0_bic_r_d = pj_0_bic_r_d;
-        self.pj_0_life_r_d = pj_0_life_r_d;
-        self.pj_0_dbc_r_d = pj_0_dbc_r_d;
-        self.pj_0_cont_r_d = pj_0_cont_r_d;
-        self.pj_0_bad_d = pj_0_bad_d;
-        self.pj_0_ack_missing_d = pj_0_ack_missing_d;
-        self.pj_0_ack_c_d = pj_0_ack_c_d;
+        if pj_0_bic_r_d != self.pj_0_bic_r_d { self.pj_0_bic_r_d = pj_0_bic_r_d; self.pend[0] |= 0x100000; }
+        if pj_0_life_r_d != self.pj_0_life_r_d { self.pj_0_life_r_d = pj_0_life_r_d; self.pend[0] |= 0x200000; }
+        if pj_0_dbc_r_d != self.pj_0_dbc_r_d { self.pj_0_dbc_r_d = pj_0_dbc_r_d; self.pend[0] |= 0x400000; }
+        if pj_0_cont_r_d != self.pj_0_cont_r_d { self.pj_0_cont_r_d = pj_0_cont_r_d; self.pend[0] |= 0x1000000; }
+        if pj_0_bad_d != self.pj_0_bad_d { self.pj_0_bad_d = pj_0_bad_d; self.pend[0] |= 0x40000000; }
+        if pj_0_ack_missing_d != self.pj_0_ack_missing_d { self.pj_0_ack_missing_d = pj_0_ack_missing_d; self.pend[0] |= 0x80000000; }
+        if pj_0_ack_c_d != self.pj_0_ack_c_d { self.pj_0_ack_c_d = pj_0_ack_c_d; self.pend[0] |= 0x100000000; }
     }
 
     /// `pj$0` block, depth 3, probe-only: pj$0.dom, pj$0.unj
@@ -2756,13 +2940,13 @@ impl HubCoreN3M1 {
         }
         if pj_1_blame != self.pj_1_blame { self.pj_1_blame = pj_1_blame; self.dirty[0] |= 0xc000000000000; }
         if pj_1_tx_error != self.pj_1_tx_error { self.pj_1_tx_error = pj_1_tx_error; self.dirty[0] |= 0xc000000000000; }
-        self.pj_1_bic_r_d = pj_1_bic_r_d;
-        self.pj_1_life_r_d = pj_1_life_r_d;
-        self.pj_1_dbc_r_d = pj_1_dbc_r_d;
-        self.pj_1_cont_r_d = pj_1_cont_r_d;
-        self.pj_1_bad_d = pj_1_bad_d;
-        self.pj_1_ack_missing_d = pj_1_ack_missing_d;
-        self.pj_1_ack_c_d = pj_1_ack_c_d;
+        if pj_1_bic_r_d != self.pj_1_bic_r_d { self.pj_1_bic_r_d = pj_1_bic_r_d; self.pend[0] |= 0x800000000; }
+        if pj_1_life_r_d != self.pj_1_life_r_d { self.pj_1_life_r_d = pj_1_life_r_d; self.pend[0] |= 0x1000000000; }
+        if pj_1_dbc_r_d != self.pj_1_dbc_r_d { self.pj_1_dbc_r_d = pj_1_dbc_r_d; self.pend[0] |= 0x2000000000; }
+        if pj_1_cont_r_d != self.pj_1_cont_r_d { self.pj_1_cont_r_d = pj_1_cont_r_d; self.pend[0] |= 0x8000000000; }
+        if pj_1_bad_d != self.pj_1_bad_d { self.pj_1_bad_d = pj_1_bad_d; self.pend[0] |= 0x200000000000; }
+        if pj_1_ack_missing_d != self.pj_1_ack_missing_d { self.pj_1_ack_missing_d = pj_1_ack_missing_d; self.pend[0] |= 0x400000000000; }
+        if pj_1_ack_c_d != self.pj_1_ack_c_d { self.pj_1_ack_c_d = pj_1_ack_c_d; self.pend[0] |= 0x800000000000; }
     }
 
     /// `pj$1` block, depth 3, probe-only: pj$1.dom, pj$1.unj
@@ -2865,13 +3049,13 @@ impl HubCoreN3M1 {
         }
         if pj_2_blame != self.pj_2_blame { self.pj_2_blame = pj_2_blame; self.dirty[0] |= 0xc000000000000; }
         if pj_2_tx_error != self.pj_2_tx_error { self.pj_2_tx_error = pj_2_tx_error; self.dirty[0] |= 0xc000000000000; }
-        self.pj_2_bic_r_d = pj_2_bic_r_d;
-        self.pj_2_life_r_d = pj_2_life_r_d;
-        self.pj_2_dbc_r_d = pj_2_dbc_r_d;
-        self.pj_2_cont_r_d = pj_2_cont_r_d;
-        self.pj_2_bad_d = pj_2_bad_d;
-        self.pj_2_ack_missing_d = pj_2_ack_missing_d;
-        self.pj_2_ack_c_d = pj_2_ack_c_d;
+        if pj_2_bic_r_d != self.pj_2_bic_r_d { self.pj_2_bic_r_d = pj_2_bic_r_d; self.pend[0] |= 0x4000000000000; }
+        if pj_2_life_r_d != self.pj_2_life_r_d { self.pj_2_life_r_d = pj_2_life_r_d; self.pend[0] |= 0x8000000000000; }
+        if pj_2_dbc_r_d != self.pj_2_dbc_r_d { self.pj_2_dbc_r_d = pj_2_dbc_r_d; self.pend[0] |= 0x10000000000000; }
+        if pj_2_cont_r_d != self.pj_2_cont_r_d { self.pj_2_cont_r_d = pj_2_cont_r_d; self.pend[0] |= 0x40000000000000; }
+        if pj_2_bad_d != self.pj_2_bad_d { self.pj_2_bad_d = pj_2_bad_d; self.pend[0] |= 0x1000000000000000; }
+        if pj_2_ack_missing_d != self.pj_2_ack_missing_d { self.pj_2_ack_missing_d = pj_2_ack_missing_d; self.pend[0] |= 0x2000000000000000; }
+        if pj_2_ack_c_d != self.pj_2_ack_c_d { self.pj_2_ack_c_d = pj_2_ack_c_d; self.pend[0] |= 0x4000000000000000; }
     }
 
     /// `pj$2` block, depth 3, probe-only: pj$2.dom, pj$2.unj
@@ -2913,8 +3097,8 @@ impl HubCoreN3M1 {
             sj_0_ack_missing_d = false;
         }
         if sj_0_tx_error != self.sj_0_tx_error { self.sj_0_tx_error = sj_0_tx_error; self.dirty[0] |= 0xc000000000000; }
-        self.sj_0_cont_r_d = sj_0_cont_r_d;
-        self.sj_0_ack_missing_d = sj_0_ack_missing_d;
+        if sj_0_cont_r_d != self.sj_0_cont_r_d { self.sj_0_cont_r_d = sj_0_cont_r_d; self.pend[1] |= 0x20; }
+        if sj_0_ack_missing_d != self.sj_0_ack_missing_d { self.sj_0_ack_missing_d = sj_0_ack_missing_d; self.pend[1] |= 0x1000; }
     }
 
     /// `top` block, depth 4, input-dependent: err_start_r.d, trigger
@@ -2935,7 +3119,7 @@ impl HubCoreN3M1 {
         any_tx_error = (any_tx_error | self.sj_0_tx_error);
         trigger = (self.mon_sample & ((self.mon_error | any_blame) | any_tx_error));
         err_start_r_d = (trigger & (!self.efgen_busy));
-        self.err_start_r_d = err_start_r_d;
+        if err_start_r_d != self.err_start_r_d { self.err_start_r_d = err_start_r_d; self.pend[0] |= 0x8000; }
         if trigger != self.trigger { self.trigger = trigger; self.dirty[0] |= 0x10000000000000; }
     }
 
@@ -2972,7 +3156,7 @@ impl HubCoreN3M1 {
         if self.rst_s2 {
             efgen_pending_d = false;
         }
-        self.efgen_pending_d = efgen_pending_d;
+        if efgen_pending_d != self.efgen_pending_d { self.efgen_pending_d = efgen_pending_d; self.pend[0] |= 0x1000; }
     }
 
 }
@@ -3822,6 +4006,7 @@ impl rt::Model for HubCoreN3M1 {
             _ => return false,
         }
         self.dirty = [!0; 1];
+        self.pend = [!0; 2];
         true
     }
     fn set_mem(&mut self, r: usize, addr: usize, v: u128) {

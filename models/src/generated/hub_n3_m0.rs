@@ -1053,6 +1053,8 @@ pub struct HubN3M0 {
     seen_rx_2: bool,
     /// Groups to evaluate (one bit per group, see `run`).
     dirty: [u64; 2],
+    /// Registers whose input changed since they took it (see `edge`).
+    pend: [u64; 3],
     trace: bool,
 }
 
@@ -1593,6 +1595,7 @@ impl HubN3M0 {
             seen_rx_1: false,
             seen_rx_2: false,
             dirty: [!0; 2],
+            pend: [!0; 3],
             trace: false,
         };
         m.eval_all();
@@ -1629,6 +1632,7 @@ impl HubN3M0 {
     /// Evaluate every group.
     fn eval_all(&mut self) {
         self.dirty = [!0; 2];
+        self.pend = [!0; 3];
         self.sense();
         self.run(&Self::ALL);
     }
@@ -1648,6 +1652,7 @@ impl HubN3M0 {
         }
     }
 
+    #[inline(never)]
     fn group(&mut self, k: usize) {
         match k {
             0 => self.g0(),
@@ -1737,274 +1742,559 @@ impl HubN3M0 {
 
     /// Rising edge: registers and memories take their inputs.
     fn edge(&mut self) {
-        let n0 = self.core_coupler_up_sync_0_s1_n_d;
-        let n1 = self.core_coupler_up_sync_0_s2_n_d;
-        let n2 = self.core_coupler_up_sync_1_s1_n_d;
-        let n3 = self.core_coupler_up_sync_1_s2_n_d;
-        let n4 = self.core_coupler_up_sync_2_s1_n_d;
-        let n5 = self.core_coupler_up_sync_2_s2_n_d;
-        let n6 = self.core_coupler_tx_n_0_d;
-        let n7 = self.core_coupler_tx_n_1_d;
-        let n8 = self.core_coupler_tx_n_2_d;
-        let n9 = self.core_efgen_pending_d;
-        let n10 = self.core_efgen_driving_d;
-        let n11 = self.core_efgen_cnt_d;
-        let n12 = self.core_err_start_r_d;
-        let n13 = self.core_injector_state_d;
-        let n14 = self.core_injector_btn_prev_d;
-        let n15 = self.core_injector_btn_r_d;
-        let n16 = self.core_pj_0_dis_r_d;
-        let n17 = self.core_pj_0_bic_r_d;
-        let n18 = self.core_pj_0_life_r_d;
-        let n19 = self.core_pj_0_dbc_r_d;
-        let n20 = self.core_pj_0_nack_r_d;
-        let n21 = self.core_pj_0_cont_r_d;
-        let n22 = self.core_pj_0_rep_r_d;
-        let n23 = self.core_pj_0_rep_seen_d;
-        let n24 = self.core_pj_0_rep_first_dom_d;
-        let n25 = self.core_pj_0_ok_r_d;
-        let n26 = self.core_pj_0_acked_d;
-        let n27 = self.core_pj_0_bad_d;
-        let n28 = self.core_pj_0_ack_missing_d;
-        let n29 = self.core_pj_0_ack_c_d;
-        let n30 = self.core_pj_0_ack_rx_d;
-        let n31 = self.core_pj_1_dis_r_d;
-        let n32 = self.core_pj_1_bic_r_d;
-        let n33 = self.core_pj_1_life_r_d;
-        let n34 = self.core_pj_1_dbc_r_d;
-        let n35 = self.core_pj_1_nack_r_d;
-        let n36 = self.core_pj_1_cont_r_d;
-        let n37 = self.core_pj_1_rep_r_d;
-        let n38 = self.core_pj_1_rep_seen_d;
-        let n39 = self.core_pj_1_rep_first_dom_d;
-        let n40 = self.core_pj_1_ok_r_d;
-        let n41 = self.core_pj_1_acked_d;
-        let n42 = self.core_pj_1_bad_d;
-        let n43 = self.core_pj_1_ack_missing_d;
-        let n44 = self.core_pj_1_ack_c_d;
-        let n45 = self.core_pj_1_ack_rx_d;
-        let n46 = self.core_pj_2_dis_r_d;
-        let n47 = self.core_pj_2_bic_r_d;
-        let n48 = self.core_pj_2_life_r_d;
-        let n49 = self.core_pj_2_dbc_r_d;
-        let n50 = self.core_pj_2_nack_r_d;
-        let n51 = self.core_pj_2_cont_r_d;
-        let n52 = self.core_pj_2_rep_r_d;
-        let n53 = self.core_pj_2_rep_seen_d;
-        let n54 = self.core_pj_2_rep_first_dom_d;
-        let n55 = self.core_pj_2_ok_r_d;
-        let n56 = self.core_pj_2_acked_d;
-        let n57 = self.core_pj_2_bad_d;
-        let n58 = self.core_pj_2_ack_missing_d;
-        let n59 = self.core_pj_2_ack_c_d;
-        let n60 = self.core_pj_2_ack_rx_d;
-        let n61 = self.core_rst_s1_d;
         let n62 = self.core_rst_s1;
-        let n63 = self.monitor_sync_s1_n_d;
-        let n64 = self.monitor_sync_s2_n_d;
-        let n65 = self.monitor_btl_c_brp_d;
-        let n66 = self.monitor_btl_c_sp_d;
-        let n67 = self.monitor_btl_c_ntq_d;
-        let n68 = self.monitor_btl_c_sjw_d;
-        let n69 = self.monitor_btl_c_triple_d;
-        let n70 = self.monitor_btl_c_valid_d;
-        let n71 = self.monitor_btl_c_bad_d;
-        let n72 = self.monitor_btl_pre_d;
-        let n73 = self.monitor_btl_cnt_d;
-        let n74 = self.monitor_btl_spw_d;
-        let n75 = self.monitor_btl_nbw_d;
-        let n76 = self.monitor_btl_busmon_n_d;
-        let n77 = self.monitor_btl_sync_dis_d;
-        let n78 = self.monitor_btl_since_d;
-        let n79 = self.monitor_btl_pending_d;
-        let n80 = self.monitor_btl_tx_n_d;
-        let n81 = self.monitor_btl_h1_n_d;
-        let n82 = self.monitor_btl_h2_n_d;
-        let n83 = self.monitor_btl_sample_r_d;
-        let n84 = self.monitor_btl_hard_r_d;
-        let n85 = self.monitor_btl_resync_r_d;
-        let n86 = self.monitor_fsm_fld_d;
-        let n87 = self.monitor_fsm_fpos_d;
-        let n88 = self.monitor_fsm_pfld_d;
-        let n89 = self.monitor_fsm_ppos_d;
-        let n90 = self.monitor_fsm_rtx_d;
-        let n91 = self.monitor_fsm_dom_d;
-        let n92 = self.monitor_fsm_dstf_cnt_d;
-        let n93 = self.monitor_fsm_dstf_lvl_d;
-        let n94 = self.monitor_fsm_crcb_state_d;
-        let n95 = self.monitor_fsm_crcerr_d;
-        let n96 = self.monitor_fsm_tid_d;
-        let n97 = self.monitor_fsm_tdat_d;
-        let n98 = self.monitor_fsm_tdlc_d;
-        let n99 = self.monitor_fsm_tide_d;
-        let n100 = self.monitor_fsm_trtr_d;
-        let n101 = self.monitor_fsm_rid_d;
-        let n102 = self.monitor_fsm_rdat_d;
-        let n103 = self.monitor_fsm_rdlc_d;
-        let n104 = self.monitor_fsm_rrtr_d;
-        let n105 = self.monitor_fsm_rext_d;
-        let n106 = self.monitor_fsm_fdone_d;
-        let n107 = self.monitor_fsm_eqcnt_d;
-        let n108 = self.monitor_fsm_eqlast_d;
-        let n109 = self.monitor_fsm_dafc_d;
-        let n110 = self.monitor_fsm_dafany_d;
-        let n111 = self.monitor_fsm_exc1_d;
-        let n112 = self.monitor_fsm_tecr_d;
-        let n113 = self.monitor_fsm_recr_d;
-        let n114 = self.monitor_fsm_runr_d;
-        let n115 = self.monitor_fsm_rarmed_d;
-        let n116 = self.monitor_fsm_req_d;
-        let n117 = self.monitor_fsm_blocked_d;
-        let n118 = self.monitor_fsm_evr_d;
-        let n119 = self.monitor_fsm_arbpos_r_d;
-        let n120 = self.monitor_fsm_errf_r_d;
-        let n121 = self.monitor_fsm_errp_r_d;
-        let n122 = self.monitor_fsm_errtx_r_d;
-        let n123 = self.monitor_fsm_rxide_r_d;
-        let n124 = self.monitor_fsm_rxrtr_r_d;
-        let n125 = self.monitor_fsm_rxid_r_d;
-        let n126 = self.monitor_fsm_rxdlc_r_d;
-        let n127 = self.monitor_fsm_rxdat_r_d;
-        let n128 = self.adapter_s_r_d;
-        let n129 = self.adapter_f_r_d;
-        let n130 = self.adapter_p_r_d;
-        let n131 = self.adapter_bs_pending_d;
-        let n132 = self.adapter_bs_cnt_d;
-        let n133 = self.adapter_f_map_d;
-        if n0 != self.core_coupler_up_sync_0_s1_n { self.core_coupler_up_sync_0_s1_n = n0; self.dirty[0] |= 0x8; }
-        if n1 != self.core_coupler_up_sync_0_s2_n { self.core_coupler_up_sync_0_s2_n = n1; self.dirty[0] |= 0x8; }
-        if n2 != self.core_coupler_up_sync_1_s1_n { self.core_coupler_up_sync_1_s1_n = n2; self.dirty[0] |= 0x20; }
-        if n3 != self.core_coupler_up_sync_1_s2_n { self.core_coupler_up_sync_1_s2_n = n3; self.dirty[0] |= 0x20; }
-        if n4 != self.core_coupler_up_sync_2_s1_n { self.core_coupler_up_sync_2_s1_n = n4; self.dirty[0] |= 0x80; }
-        if n5 != self.core_coupler_up_sync_2_s2_n { self.core_coupler_up_sync_2_s2_n = n5; self.dirty[0] |= 0x80; }
-        if n6 != self.core_coupler_tx_n_0 { self.core_coupler_tx_n_0 = n6; self.dirty[0] |= 0x4; }
-        if n7 != self.core_coupler_tx_n_1 { self.core_coupler_tx_n_1 = n7; self.dirty[0] |= 0x4; }
-        if n8 != self.core_coupler_tx_n_2 { self.core_coupler_tx_n_2 = n8; self.dirty[0] |= 0x4; }
-        if n9 != self.core_efgen_pending { self.core_efgen_pending = n9; self.dirty[0] |= 0x100000200; self.dirty[1] |= 0x80; }
-        if n10 != self.core_efgen_driving { self.core_efgen_driving = n10; self.dirty[0] |= 0x100000201; self.dirty[1] |= 0x80; }
-        if n11 != self.core_efgen_cnt { self.core_efgen_cnt = n11; self.dirty[0] |= 0x100000000; }
-        self.core_err_start_r = n12;
-        if n13 != self.core_injector_state { self.core_injector_state = n13; self.dirty[0] |= 0x800000001400; }
-        if n14 != self.core_injector_btn_prev { self.core_injector_btn_prev = n14; self.dirty[0] |= 0x800000001000; }
-        if n15 != self.core_injector_btn_r { self.core_injector_btn_r = n15; self.dirty[0] |= 0x800000001400; }
-        if n16 != self.core_pj_0_dis_r { self.core_pj_0_dis_r = n16; self.dirty[0] |= 0x801600400004001; }
-        if n17 != self.core_pj_0_bic_r { self.core_pj_0_bic_r = n17; self.dirty[0] |= 0x800000400000001; }
-        if n18 != self.core_pj_0_life_r { self.core_pj_0_life_r = n18; self.dirty[0] |= 0x800000400000000; }
-        if n19 != self.core_pj_0_dbc_r { self.core_pj_0_dbc_r = n19; self.dirty[0] |= 0x800000400000001; }
-        if n20 != self.core_pj_0_nack_r { self.core_pj_0_nack_r = n20; self.dirty[0] |= 0x1000000002001; }
-        if n21 != self.core_pj_0_cont_r { self.core_pj_0_cont_r = n21; self.dirty[0] |= 0x1801000000000000; }
-        if n22 != self.core_pj_0_rep_r { self.core_pj_0_rep_r = n22; self.dirty[0] |= 0x400000000; }
-        if n23 != self.core_pj_0_rep_seen { self.core_pj_0_rep_seen = n23; self.dirty[0] |= 0x400000000; }
-        if n24 != self.core_pj_0_rep_first_dom { self.core_pj_0_rep_first_dom = n24; self.dirty[0] |= 0x400002000; }
-        if n25 != self.core_pj_0_ok_r { self.core_pj_0_ok_r = n25; self.dirty[0] |= 0x801000400000000; }
-        if n26 != self.core_pj_0_acked { self.core_pj_0_acked = n26; self.dirty[0] |= 0x801000400000000; }
-        if n27 != self.core_pj_0_bad { self.core_pj_0_bad = n27; self.dirty[0] |= 0x801000400000000; }
-        if n28 != self.core_pj_0_ack_missing { self.core_pj_0_ack_missing = n28; self.dirty[0] |= 0x1800000000000000; }
-        if n29 != self.core_pj_0_ack_c { self.core_pj_0_ack_c = n29; self.dirty[0] |= 0x801000000000000; }
-        if n30 != self.core_pj_0_ack_rx { self.core_pj_0_ack_rx = n30; self.dirty[0] |= 0x1000000000000; }
-        if n31 != self.core_pj_1_dis_r { self.core_pj_1_dis_r = n31; self.dirty[0] |= 0x2002600800010001; }
-        if n32 != self.core_pj_1_bic_r { self.core_pj_1_bic_r = n32; self.dirty[0] |= 0x2000000800000001; }
-        if n33 != self.core_pj_1_life_r { self.core_pj_1_life_r = n33; self.dirty[0] |= 0x2000000800000000; }
-        if n34 != self.core_pj_1_dbc_r { self.core_pj_1_dbc_r = n34; self.dirty[0] |= 0x2000000800000001; }
-        if n35 != self.core_pj_1_nack_r { self.core_pj_1_nack_r = n35; self.dirty[0] |= 0x2000000008001; }
-        if n36 != self.core_pj_1_cont_r { self.core_pj_1_cont_r = n36; self.dirty[0] |= 0x6002000000000000; }
-        if n37 != self.core_pj_1_rep_r { self.core_pj_1_rep_r = n37; self.dirty[0] |= 0x800000000; }
-        if n38 != self.core_pj_1_rep_seen { self.core_pj_1_rep_seen = n38; self.dirty[0] |= 0x800000000; }
-        if n39 != self.core_pj_1_rep_first_dom { self.core_pj_1_rep_first_dom = n39; self.dirty[0] |= 0x800008000; }
-        if n40 != self.core_pj_1_ok_r { self.core_pj_1_ok_r = n40; self.dirty[0] |= 0x2002000800000000; }
-        if n41 != self.core_pj_1_acked { self.core_pj_1_acked = n41; self.dirty[0] |= 0x2002000800000000; }
-        if n42 != self.core_pj_1_bad { self.core_pj_1_bad = n42; self.dirty[0] |= 0x2002000800000000; }
-        if n43 != self.core_pj_1_ack_missing { self.core_pj_1_ack_missing = n43; self.dirty[0] |= 0x6000000000000000; }
-        if n44 != self.core_pj_1_ack_c { self.core_pj_1_ack_c = n44; self.dirty[0] |= 0x2002000000000000; }
-        if n45 != self.core_pj_1_ack_rx { self.core_pj_1_ack_rx = n45; self.dirty[0] |= 0x2000000000000; }
-        if n46 != self.core_pj_2_dis_r { self.core_pj_2_dis_r = n46; self.dirty[0] |= 0x8004601000040001; }
-        if n47 != self.core_pj_2_bic_r { self.core_pj_2_bic_r = n47; self.dirty[0] |= 0x8000001000000001; }
-        if n48 != self.core_pj_2_life_r { self.core_pj_2_life_r = n48; self.dirty[0] |= 0x8000001000000000; }
-        if n49 != self.core_pj_2_dbc_r { self.core_pj_2_dbc_r = n49; self.dirty[0] |= 0x8000001000000001; }
-        if n50 != self.core_pj_2_nack_r { self.core_pj_2_nack_r = n50; self.dirty[0] |= 0x4000000020001; }
-        if n51 != self.core_pj_2_cont_r { self.core_pj_2_cont_r = n51; self.dirty[0] |= 0x8004000000000000; self.dirty[1] |= 0x1; }
-        if n52 != self.core_pj_2_rep_r { self.core_pj_2_rep_r = n52; self.dirty[0] |= 0x1000000000; }
-        if n53 != self.core_pj_2_rep_seen { self.core_pj_2_rep_seen = n53; self.dirty[0] |= 0x1000000000; }
-        if n54 != self.core_pj_2_rep_first_dom { self.core_pj_2_rep_first_dom = n54; self.dirty[0] |= 0x1000020000; }
-        if n55 != self.core_pj_2_ok_r { self.core_pj_2_ok_r = n55; self.dirty[0] |= 0x8004001000000000; }
-        if n56 != self.core_pj_2_acked { self.core_pj_2_acked = n56; self.dirty[0] |= 0x8004001000000000; }
-        if n57 != self.core_pj_2_bad { self.core_pj_2_bad = n57; self.dirty[0] |= 0x8004001000000000; }
-        if n58 != self.core_pj_2_ack_missing { self.core_pj_2_ack_missing = n58; self.dirty[0] |= 0x8000000000000000; self.dirty[1] |= 0x1; }
-        if n59 != self.core_pj_2_ack_c { self.core_pj_2_ack_c = n59; self.dirty[0] |= 0x8004000000000000; }
-        if n60 != self.core_pj_2_ack_rx { self.core_pj_2_ack_rx = n60; self.dirty[0] |= 0x4000000000000; }
-        self.core_rst_s1 = n61;
+        for w in 0..3 {
+            loop {
+                let m = self.pend[w];
+                if m == 0 {
+                    break;
+                }
+                let k = m.trailing_zeros() as usize;
+                self.pend[w] &= !(1u64 << k);
+                self.take(w * 64 + k);
+            }
+        }
         if n62 != self.core_rst_s2 { self.core_rst_s2 = n62; self.dirty[0] |= 0xac3fa03d107aadf8; self.dirty[1] |= 0x92; }
-        if n63 != self.monitor_sync_s1_n { self.monitor_sync_s1_n = n63; self.dirty[0] |= 0x100000; }
-        if n64 != self.monitor_sync_s2_n { self.monitor_sync_s2_n = n64; self.dirty[0] |= 0x100000; }
-        if n65 != self.monitor_btl_c_brp { self.monitor_btl_c_brp = n65; self.dirty[0] |= 0x30002000600000; }
-        if n66 != self.monitor_btl_c_sp { self.monitor_btl_c_sp = n66; self.dirty[0] |= 0x30002000000000; }
-        if n67 != self.monitor_btl_c_ntq { self.monitor_btl_c_ntq = n67; self.dirty[0] |= 0x30002000000000; }
-        if n68 != self.monitor_btl_c_sjw { self.monitor_btl_c_sjw = n68; self.dirty[0] |= 0x30000000600000; }
-        if n69 != self.monitor_btl_c_triple { self.monitor_btl_c_triple = n69; self.dirty[0] |= 0x10004000200000; }
-        if n70 != self.monitor_btl_c_valid { self.monitor_btl_c_valid = n70; self.dirty[0] |= 0x30002000600000; }
-        if n71 != self.monitor_btl_c_bad { self.monitor_btl_c_bad = n71; self.dirty[0] |= 0x8002000080000; }
-        if n72 != self.monitor_btl_pre { self.monitor_btl_pre = n72; self.dirty[0] |= 0x30002000600000; }
-        if n73 != self.monitor_btl_cnt { self.monitor_btl_cnt = n73; self.dirty[0] |= 0x30000000400000; }
-        if n74 != self.monitor_btl_spw { self.monitor_btl_spw = n74; self.dirty[0] |= 0x30000000400000; }
-        if n75 != self.monitor_btl_nbw { self.monitor_btl_nbw = n75; self.dirty[0] |= 0x30000000400000; }
-        if n76 != self.monitor_btl_busmon_n { self.monitor_btl_busmon_n = n76; self.dirty[0] |= 0x30004000200000; }
-        if n77 != self.monitor_btl_sync_dis { self.monitor_btl_sync_dis = n77; self.dirty[0] |= 0x30004000000000; }
-        if n78 != self.monitor_btl_since { self.monitor_btl_since = n78; self.dirty[0] |= 0x30000000400000; }
-        if n79 != self.monitor_btl_pending { self.monitor_btl_pending = n79; self.dirty[0] |= 0x30000000000000; }
-        if n80 != self.monitor_btl_tx_n { self.monitor_btl_tx_n = n80; self.dirty[0] |= 0x10000000400000; }
-        if n81 != self.monitor_btl_h1_n { self.monitor_btl_h1_n = n81; self.dirty[0] |= 0x10006000200000; }
-        if n82 != self.monitor_btl_h2_n { self.monitor_btl_h2_n = n82; self.dirty[0] |= 0x10004000200000; }
-        if n83 != self.monitor_btl_sample_r { self.monitor_btl_sample_r = n83; self.dirty[0] |= 0x5c0018011800000; self.dirty[1] |= 0x1c; }
-        self.monitor_btl_hard_r = n84;
-        self.monitor_btl_resync_r = n85;
-        if n86 != self.monitor_fsm_fld { self.monitor_fsm_fld = n86; self.dirty[0] |= 0x40018000000000; self.dirty[1] |= 0xc; }
-        if n87 != self.monitor_fsm_fpos { self.monitor_fsm_fpos = n87; self.dirty[0] |= 0x40018001000000; self.dirty[1] |= 0xc; }
-        if n88 != self.monitor_fsm_pfld { self.monitor_fsm_pfld = n88; self.dirty[0] |= 0x40018000000000; self.dirty[1] |= 0xc; }
-        if n89 != self.monitor_fsm_ppos { self.monitor_fsm_ppos = n89; self.dirty[0] |= 0x18000000000; self.dirty[1] |= 0x4; }
-        if n90 != self.monitor_fsm_rtx { self.monitor_fsm_rtx = n90; self.dirty[0] |= 0x40018000000000; self.dirty[1] |= 0xc; }
-        if n91 != self.monitor_fsm_dom { self.monitor_fsm_dom = n91; self.dirty[1] |= 0xc; }
-        if n92 != self.monitor_fsm_dstf_cnt { self.monitor_fsm_dstf_cnt = n92; self.dirty[0] |= 0x180020002000000; }
-        if n93 != self.monitor_fsm_dstf_lvl { self.monitor_fsm_dstf_lvl = n93; self.dirty[0] |= 0x180020004000000; }
-        if n94 != self.monitor_fsm_crcb_state { self.monitor_fsm_crcb_state = n94; self.dirty[0] |= 0x2000c0008000000; }
-        if n95 != self.monitor_fsm_crcerr { self.monitor_fsm_crcerr = n95; self.dirty[1] |= 0xc; }
-        if n96 != self.monitor_fsm_tid { self.monitor_fsm_tid = n96; self.dirty[0] |= 0x40018000000000; self.dirty[1] |= 0xc; }
-        if n97 != self.monitor_fsm_tdat { self.monitor_fsm_tdat = n97; self.dirty[0] |= 0x40018000000000; self.dirty[1] |= 0xc; }
-        if n98 != self.monitor_fsm_tdlc { self.monitor_fsm_tdlc = n98; self.dirty[0] |= 0x40018000000000; self.dirty[1] |= 0xc; }
-        if n99 != self.monitor_fsm_tide { self.monitor_fsm_tide = n99; self.dirty[0] |= 0x40000000800000; self.dirty[1] |= 0xc; }
-        if n100 != self.monitor_fsm_trtr { self.monitor_fsm_trtr = n100; self.dirty[0] |= 0x40000000800000; self.dirty[1] |= 0xc; }
-        if n101 != self.monitor_fsm_rid { self.monitor_fsm_rid = n101; self.dirty[0] |= 0x18000000000; }
-        if n102 != self.monitor_fsm_rdat { self.monitor_fsm_rdat = n102; self.dirty[0] |= 0x18000000000; }
-        if n103 != self.monitor_fsm_rdlc { self.monitor_fsm_rdlc = n103; self.dirty[0] |= 0x40018000000000; self.dirty[1] |= 0xc; }
-        if n104 != self.monitor_fsm_rrtr { self.monitor_fsm_rrtr = n104; self.dirty[0] |= 0x40018000000000; self.dirty[1] |= 0xc; }
-        if n105 != self.monitor_fsm_rext { self.monitor_fsm_rext = n105; self.dirty[0] |= 0x40018000000000; self.dirty[1] |= 0xc; }
-        if n106 != self.monitor_fsm_fdone { self.monitor_fsm_fdone = n106; self.dirty[0] |= 0x40018000000000; self.dirty[1] |= 0xc; }
-        if n107 != self.monitor_fsm_eqcnt { self.monitor_fsm_eqcnt = n107; self.dirty[0] |= 0x18000000000; self.dirty[1] |= 0xc; }
-        if n108 != self.monitor_fsm_eqlast { self.monitor_fsm_eqlast = n108; self.dirty[0] |= 0x18000000000; self.dirty[1] |= 0xc; }
-        if n109 != self.monitor_fsm_dafc { self.monitor_fsm_dafc = n109; self.dirty[0] |= 0x10000000000; self.dirty[1] |= 0xc; }
-        if n110 != self.monitor_fsm_dafany { self.monitor_fsm_dafany = n110; self.dirty[0] |= 0x10000000000; self.dirty[1] |= 0xc; }
-        if n111 != self.monitor_fsm_exc1 { self.monitor_fsm_exc1 = n111; self.dirty[0] |= 0x18000000000; self.dirty[1] |= 0xc; }
-        if n112 != self.monitor_fsm_tecr { self.monitor_fsm_tecr = n112; self.dirty[0] |= 0x40018001000000; self.dirty[1] |= 0xc; }
-        if n113 != self.monitor_fsm_recr { self.monitor_fsm_recr = n113; self.dirty[0] |= 0x40018001000000; self.dirty[1] |= 0xc; }
-        if n114 != self.monitor_fsm_runr { self.monitor_fsm_runr = n114; self.dirty[0] |= 0x40018000000000; self.dirty[1] |= 0xc; }
-        if n115 != self.monitor_fsm_rarmed { self.monitor_fsm_rarmed = n115; self.dirty[0] |= 0x18000000000; }
-        self.monitor_fsm_req = n116;
-        self.monitor_fsm_blocked = n117;
-        if n118 != self.monitor_fsm_evr { self.monitor_fsm_evr = n118; self.dirty[0] |= 0x31000000; }
-        if n119 != self.monitor_fsm_arbpos_r { self.monitor_fsm_arbpos_r = n119; self.dirty[1] |= 0x4; }
-        if n120 != self.monitor_fsm_errf_r { self.monitor_fsm_errf_r = n120; self.dirty[1] |= 0x4; }
-        if n121 != self.monitor_fsm_errp_r { self.monitor_fsm_errp_r = n121; self.dirty[1] |= 0x4; }
-        if n122 != self.monitor_fsm_errtx_r { self.monitor_fsm_errtx_r = n122; self.dirty[1] |= 0x4; }
-        if n123 != self.monitor_fsm_rxide_r { self.monitor_fsm_rxide_r = n123; self.dirty[0] |= 0x8000000000; }
-        if n124 != self.monitor_fsm_rxrtr_r { self.monitor_fsm_rxrtr_r = n124; self.dirty[0] |= 0x8000000000; }
-        if n125 != self.monitor_fsm_rxid_r { self.monitor_fsm_rxid_r = n125; self.dirty[0] |= 0x8000000000; }
-        if n126 != self.monitor_fsm_rxdlc_r { self.monitor_fsm_rxdlc_r = n126; self.dirty[0] |= 0x8000000000; }
-        if n127 != self.monitor_fsm_rxdat_r { self.monitor_fsm_rxdat_r = n127; self.dirty[0] |= 0x8000000000; }
-        if n128 != self.adapter_s_r { self.adapter_s_r = n128; self.dirty[0] |= 0xa807801c10000000; self.dirty[1] |= 0x20; }
-        if n129 != self.adapter_f_r { self.adapter_f_r = n129; self.dirty[0] |= 0x30000000; self.dirty[1] |= 0x10; }
-        if n130 != self.adapter_p_r { self.adapter_p_r = n130; self.dirty[0] |= 0x400000010000000; }
-        if n131 != self.adapter_bs_pending { self.adapter_bs_pending = n131; self.dirty[0] |= 0x10000000; }
-        if n132 != self.adapter_bs_cnt { self.adapter_bs_cnt = n132; self.dirty[0] |= 0x10000000; }
-        if n133 != self.adapter_f_map { self.adapter_f_map = n133; self.dirty[0] |= 0x10000000; }
+    }
+
+    /// Pending register `k` takes its input.
+    #[inline(never)]
+    fn take(&mut self, k: usize) {
+        match k {
+            0 => {
+                let n = self.core_coupler_up_sync_0_s1_n_d;
+                if n != self.core_coupler_up_sync_0_s1_n { self.core_coupler_up_sync_0_s1_n = n; self.dirty[0] |= 0x8; }
+            }
+            1 => {
+                let n = self.core_coupler_up_sync_0_s2_n_d;
+                if n != self.core_coupler_up_sync_0_s2_n { self.core_coupler_up_sync_0_s2_n = n; self.dirty[0] |= 0x8; }
+            }
+            2 => {
+                let n = self.core_coupler_up_sync_1_s1_n_d;
+                if n != self.core_coupler_up_sync_1_s1_n { self.core_coupler_up_sync_1_s1_n = n; self.dirty[0] |= 0x20; }
+            }
+            3 => {
+                let n = self.core_coupler_up_sync_1_s2_n_d;
+                if n != self.core_coupler_up_sync_1_s2_n { self.core_coupler_up_sync_1_s2_n = n; self.dirty[0] |= 0x20; }
+            }
+            4 => {
+                let n = self.core_coupler_up_sync_2_s1_n_d;
+                if n != self.core_coupler_up_sync_2_s1_n { self.core_coupler_up_sync_2_s1_n = n; self.dirty[0] |= 0x80; }
+            }
+            5 => {
+                let n = self.core_coupler_up_sync_2_s2_n_d;
+                if n != self.core_coupler_up_sync_2_s2_n { self.core_coupler_up_sync_2_s2_n = n; self.dirty[0] |= 0x80; }
+            }
+            6 => {
+                let n = self.core_coupler_tx_n_0_d;
+                if n != self.core_coupler_tx_n_0 { self.core_coupler_tx_n_0 = n; self.dirty[0] |= 0x4; }
+            }
+            7 => {
+                let n = self.core_coupler_tx_n_1_d;
+                if n != self.core_coupler_tx_n_1 { self.core_coupler_tx_n_1 = n; self.dirty[0] |= 0x4; }
+            }
+            8 => {
+                let n = self.core_coupler_tx_n_2_d;
+                if n != self.core_coupler_tx_n_2 { self.core_coupler_tx_n_2 = n; self.dirty[0] |= 0x4; }
+            }
+            9 => {
+                let n = self.core_efgen_pending_d;
+                if n != self.core_efgen_pending { self.core_efgen_pending = n; self.dirty[0] |= 0x100000200; self.dirty[1] |= 0x80; }
+            }
+            10 => {
+                let n = self.core_efgen_driving_d;
+                if n != self.core_efgen_driving { self.core_efgen_driving = n; self.dirty[0] |= 0x100000201; self.dirty[1] |= 0x80; }
+            }
+            11 => {
+                let n = self.core_efgen_cnt_d;
+                if n != self.core_efgen_cnt { self.core_efgen_cnt = n; self.dirty[0] |= 0x100000000; }
+            }
+            12 => {
+                let n = self.core_err_start_r_d;
+                self.core_err_start_r = n;
+            }
+            13 => {
+                let n = self.core_injector_state_d;
+                if n != self.core_injector_state { self.core_injector_state = n; self.dirty[0] |= 0x800000001400; }
+            }
+            14 => {
+                let n = self.core_injector_btn_prev_d;
+                if n != self.core_injector_btn_prev { self.core_injector_btn_prev = n; self.dirty[0] |= 0x800000001000; }
+            }
+            15 => {
+                let n = self.core_injector_btn_r_d;
+                if n != self.core_injector_btn_r { self.core_injector_btn_r = n; self.dirty[0] |= 0x800000001400; }
+            }
+            16 => {
+                let n = self.core_pj_0_dis_r_d;
+                if n != self.core_pj_0_dis_r { self.core_pj_0_dis_r = n; self.dirty[0] |= 0x801600400004001; }
+            }
+            17 => {
+                let n = self.core_pj_0_bic_r_d;
+                if n != self.core_pj_0_bic_r { self.core_pj_0_bic_r = n; self.dirty[0] |= 0x800000400000001; }
+            }
+            18 => {
+                let n = self.core_pj_0_life_r_d;
+                if n != self.core_pj_0_life_r { self.core_pj_0_life_r = n; self.dirty[0] |= 0x800000400000000; }
+            }
+            19 => {
+                let n = self.core_pj_0_dbc_r_d;
+                if n != self.core_pj_0_dbc_r { self.core_pj_0_dbc_r = n; self.dirty[0] |= 0x800000400000001; }
+            }
+            20 => {
+                let n = self.core_pj_0_nack_r_d;
+                if n != self.core_pj_0_nack_r { self.core_pj_0_nack_r = n; self.dirty[0] |= 0x1000000002001; }
+            }
+            21 => {
+                let n = self.core_pj_0_cont_r_d;
+                if n != self.core_pj_0_cont_r { self.core_pj_0_cont_r = n; self.dirty[0] |= 0x1801000000000000; }
+            }
+            22 => {
+                let n = self.core_pj_0_rep_r_d;
+                if n != self.core_pj_0_rep_r { self.core_pj_0_rep_r = n; self.dirty[0] |= 0x400000000; }
+            }
+            23 => {
+                let n = self.core_pj_0_rep_seen_d;
+                if n != self.core_pj_0_rep_seen { self.core_pj_0_rep_seen = n; self.dirty[0] |= 0x400000000; }
+            }
+            24 => {
+                let n = self.core_pj_0_rep_first_dom_d;
+                if n != self.core_pj_0_rep_first_dom { self.core_pj_0_rep_first_dom = n; self.dirty[0] |= 0x400002000; }
+            }
+            25 => {
+                let n = self.core_pj_0_ok_r_d;
+                if n != self.core_pj_0_ok_r { self.core_pj_0_ok_r = n; self.dirty[0] |= 0x801000400000000; }
+            }
+            26 => {
+                let n = self.core_pj_0_acked_d;
+                if n != self.core_pj_0_acked { self.core_pj_0_acked = n; self.dirty[0] |= 0x801000400000000; }
+            }
+            27 => {
+                let n = self.core_pj_0_bad_d;
+                if n != self.core_pj_0_bad { self.core_pj_0_bad = n; self.dirty[0] |= 0x801000400000000; }
+            }
+            28 => {
+                let n = self.core_pj_0_ack_missing_d;
+                if n != self.core_pj_0_ack_missing { self.core_pj_0_ack_missing = n; self.dirty[0] |= 0x1800000000000000; }
+            }
+            29 => {
+                let n = self.core_pj_0_ack_c_d;
+                if n != self.core_pj_0_ack_c { self.core_pj_0_ack_c = n; self.dirty[0] |= 0x801000000000000; }
+            }
+            30 => {
+                let n = self.core_pj_0_ack_rx_d;
+                if n != self.core_pj_0_ack_rx { self.core_pj_0_ack_rx = n; self.dirty[0] |= 0x1000000000000; }
+            }
+            31 => {
+                let n = self.core_pj_1_dis_r_d;
+                if n != self.core_pj_1_dis_r { self.core_pj_1_dis_r = n; self.dirty[0] |= 0x2002600800010001; }
+            }
+            32 => {
+                let n = self.core_pj_1_bic_r_d;
+                if n != self.core_pj_1_bic_r { self.core_pj_1_bic_r = n; self.dirty[0] |= 0x2000000800000001; }
+            }
+            33 => {
+                let n = self.core_pj_1_life_r_d;
+                if n != self.core_pj_1_life_r { self.core_pj_1_life_r = n; self.dirty[0] |= 0x2000000800000000; }
+            }
+            34 => {
+                let n = self.core_pj_1_dbc_r_d;
+                if n != self.core_pj_1_dbc_r { self.core_pj_1_dbc_r = n; self.dirty[0] |= 0x2000000800000001; }
+            }
+            35 => {
+                let n = self.core_pj_1_nack_r_d;
+                if n != self.core_pj_1_nack_r { self.core_pj_1_nack_r = n; self.dirty[0] |= 0x2000000008001; }
+            }
+            36 => {
+                let n = self.core_pj_1_cont_r_d;
+                if n != self.core_pj_1_cont_r { self.core_pj_1_cont_r = n; self.dirty[0] |= 0x6002000000000000; }
+            }
+            37 => {
+                let n = self.core_pj_1_rep_r_d;
+                if n != self.core_pj_1_rep_r { self.core_pj_1_rep_r = n; self.dirty[0] |= 0x800000000; }
+            }
+            38 => {
+                let n = self.core_pj_1_rep_seen_d;
+                if n != self.core_pj_1_rep_seen { self.core_pj_1_rep_seen = n; self.dirty[0] |= 0x800000000; }
+            }
+            39 => {
+                let n = self.core_pj_1_rep_first_dom_d;
+                if n != self.core_pj_1_rep_first_dom { self.core_pj_1_rep_first_dom = n; self.dirty[0] |= 0x800008000; }
+            }
+            40 => {
+                let n = self.core_pj_1_ok_r_d;
+                if n != self.core_pj_1_ok_r { self.core_pj_1_ok_r = n; self.dirty[0] |= 0x2002000800000000; }
+            }
+            41 => {
+                let n = self.core_pj_1_acked_d;
+                if n != self.core_pj_1_acked { self.core_pj_1_acked = n; self.dirty[0] |= 0x2002000800000000; }
+            }
+            42 => {
+                let n = self.core_pj_1_bad_d;
+                if n != self.core_pj_1_bad { self.core_pj_1_bad = n; self.dirty[0] |= 0x2002000800000000; }
+            }
+            43 => {
+                let n = self.core_pj_1_ack_missing_d;
+                if n != self.core_pj_1_ack_missing { self.core_pj_1_ack_missing = n; self.dirty[0] |= 0x6000000000000000; }
+            }
+            44 => {
+                let n = self.core_pj_1_ack_c_d;
+                if n != self.core_pj_1_ack_c { self.core_pj_1_ack_c = n; self.dirty[0] |= 0x2002000000000000; }
+            }
+            45 => {
+                let n = self.core_pj_1_ack_rx_d;
+                if n != self.core_pj_1_ack_rx { self.core_pj_1_ack_rx = n; self.dirty[0] |= 0x2000000000000; }
+            }
+            46 => {
+                let n = self.core_pj_2_dis_r_d;
+                if n != self.core_pj_2_dis_r { self.core_pj_2_dis_r = n; self.dirty[0] |= 0x8004601000040001; }
+            }
+            47 => {
+                let n = self.core_pj_2_bic_r_d;
+                if n != self.core_pj_2_bic_r { self.core_pj_2_bic_r = n; self.dirty[0] |= 0x8000001000000001; }
+            }
+            48 => {
+                let n = self.core_pj_2_life_r_d;
+                if n != self.core_pj_2_life_r { self.core_pj_2_life_r = n; self.dirty[0] |= 0x8000001000000000; }
+            }
+            49 => {
+                let n = self.core_pj_2_dbc_r_d;
+                if n != self.core_pj_2_dbc_r { self.core_pj_2_dbc_r = n; self.dirty[0] |= 0x8000001000000001; }
+            }
+            50 => {
+                let n = self.core_pj_2_nack_r_d;
+                if n != self.core_pj_2_nack_r { self.core_pj_2_nack_r = n; self.dirty[0] |= 0x4000000020001; }
+            }
+            51 => {
+                let n = self.core_pj_2_cont_r_d;
+                if n != self.core_pj_2_cont_r { self.core_pj_2_cont_r = n; self.dirty[0] |= 0x8004000000000000; self.dirty[1] |= 0x1; }
+            }
+            52 => {
+                let n = self.core_pj_2_rep_r_d;
+                if n != self.core_pj_2_rep_r { self.core_pj_2_rep_r = n; self.dirty[0] |= 0x1000000000; }
+            }
+            53 => {
+                let n = self.core_pj_2_rep_seen_d;
+                if n != self.core_pj_2_rep_seen { self.core_pj_2_rep_seen = n; self.dirty[0] |= 0x1000000000; }
+            }
+            54 => {
+                let n = self.core_pj_2_rep_first_dom_d;
+                if n != self.core_pj_2_rep_first_dom { self.core_pj_2_rep_first_dom = n; self.dirty[0] |= 0x1000020000; }
+            }
+            55 => {
+                let n = self.core_pj_2_ok_r_d;
+                if n != self.core_pj_2_ok_r { self.core_pj_2_ok_r = n; self.dirty[0] |= 0x8004001000000000; }
+            }
+            56 => {
+                let n = self.core_pj_2_acked_d;
+                if n != self.core_pj_2_acked { self.core_pj_2_acked = n; self.dirty[0] |= 0x8004001000000000; }
+            }
+            57 => {
+                let n = self.core_pj_2_bad_d;
+                if n != self.core_pj_2_bad { self.core_pj_2_bad = n; self.dirty[0] |= 0x8004001000000000; }
+            }
+            58 => {
+                let n = self.core_pj_2_ack_missing_d;
+                if n != self.core_pj_2_ack_missing { self.core_pj_2_ack_missing = n; self.dirty[0] |= 0x8000000000000000; self.dirty[1] |= 0x1; }
+            }
+            59 => {
+                let n = self.core_pj_2_ack_c_d;
+                if n != self.core_pj_2_ack_c { self.core_pj_2_ack_c = n; self.dirty[0] |= 0x8004000000000000; }
+            }
+            60 => {
+                let n = self.core_pj_2_ack_rx_d;
+                if n != self.core_pj_2_ack_rx { self.core_pj_2_ack_rx = n; self.dirty[0] |= 0x4000000000000; }
+            }
+            61 => {
+                let n = self.core_rst_s1_d;
+                self.core_rst_s1 = n;
+            }
+            62 => {
+                let n = self.monitor_sync_s1_n_d;
+                if n != self.monitor_sync_s1_n { self.monitor_sync_s1_n = n; self.dirty[0] |= 0x100000; }
+            }
+            63 => {
+                let n = self.monitor_sync_s2_n_d;
+                if n != self.monitor_sync_s2_n { self.monitor_sync_s2_n = n; self.dirty[0] |= 0x100000; }
+            }
+            64 => {
+                let n = self.monitor_btl_c_brp_d;
+                if n != self.monitor_btl_c_brp { self.monitor_btl_c_brp = n; self.dirty[0] |= 0x30002000600000; }
+            }
+            65 => {
+                let n = self.monitor_btl_c_sp_d;
+                if n != self.monitor_btl_c_sp { self.monitor_btl_c_sp = n; self.dirty[0] |= 0x30002000000000; }
+            }
+            66 => {
+                let n = self.monitor_btl_c_ntq_d;
+                if n != self.monitor_btl_c_ntq { self.monitor_btl_c_ntq = n; self.dirty[0] |= 0x30002000000000; }
+            }
+            67 => {
+                let n = self.monitor_btl_c_sjw_d;
+                if n != self.monitor_btl_c_sjw { self.monitor_btl_c_sjw = n; self.dirty[0] |= 0x30000000600000; }
+            }
+            68 => {
+                let n = self.monitor_btl_c_triple_d;
+                if n != self.monitor_btl_c_triple { self.monitor_btl_c_triple = n; self.dirty[0] |= 0x10004000200000; }
+            }
+            69 => {
+                let n = self.monitor_btl_c_valid_d;
+                if n != self.monitor_btl_c_valid { self.monitor_btl_c_valid = n; self.dirty[0] |= 0x30002000600000; }
+            }
+            70 => {
+                let n = self.monitor_btl_c_bad_d;
+                if n != self.monitor_btl_c_bad { self.monitor_btl_c_bad = n; self.dirty[0] |= 0x8002000080000; }
+            }
+            71 => {
+                let n = self.monitor_btl_pre_d;
+                if n != self.monitor_btl_pre { self.monitor_btl_pre = n; self.dirty[0] |= 0x30002000600000; }
+            }
+            72 => {
+                let n = self.monitor_btl_cnt_d;
+                if n != self.monitor_btl_cnt { self.monitor_btl_cnt = n; self.dirty[0] |= 0x30000000400000; }
+            }
+            73 => {
+                let n = self.monitor_btl_spw_d;
+                if n != self.monitor_btl_spw { self.monitor_btl_spw = n; self.dirty[0] |= 0x30000000400000; }
+            }
+            74 => {
+                let n = self.monitor_btl_nbw_d;
+                if n != self.monitor_btl_nbw { self.monitor_btl_nbw = n; self.dirty[0] |= 0x30000000400000; }
+            }
+            75 => {
+                let n = self.monitor_btl_busmon_n_d;
+                if n != self.monitor_btl_busmon_n { self.monitor_btl_busmon_n = n; self.dirty[0] |= 0x30004000200000; }
+            }
+            76 => {
+                let n = self.monitor_btl_sync_dis_d;
+                if n != self.monitor_btl_sync_dis { self.monitor_btl_sync_dis = n; self.dirty[0] |= 0x30004000000000; }
+            }
+            77 => {
+                let n = self.monitor_btl_since_d;
+                if n != self.monitor_btl_since { self.monitor_btl_since = n; self.dirty[0] |= 0x30000000400000; }
+            }
+            78 => {
+                let n = self.monitor_btl_pending_d;
+                if n != self.monitor_btl_pending { self.monitor_btl_pending = n; self.dirty[0] |= 0x30000000000000; }
+            }
+            79 => {
+                let n = self.monitor_btl_tx_n_d;
+                if n != self.monitor_btl_tx_n { self.monitor_btl_tx_n = n; self.dirty[0] |= 0x10000000400000; }
+            }
+            80 => {
+                let n = self.monitor_btl_h1_n_d;
+                if n != self.monitor_btl_h1_n { self.monitor_btl_h1_n = n; self.dirty[0] |= 0x10006000200000; }
+            }
+            81 => {
+                let n = self.monitor_btl_h2_n_d;
+                if n != self.monitor_btl_h2_n { self.monitor_btl_h2_n = n; self.dirty[0] |= 0x10004000200000; }
+            }
+            82 => {
+                let n = self.monitor_btl_sample_r_d;
+                if n != self.monitor_btl_sample_r { self.monitor_btl_sample_r = n; self.dirty[0] |= 0x5c0018011800000; self.dirty[1] |= 0x1c; }
+            }
+            83 => {
+                let n = self.monitor_btl_hard_r_d;
+                self.monitor_btl_hard_r = n;
+            }
+            84 => {
+                let n = self.monitor_btl_resync_r_d;
+                self.monitor_btl_resync_r = n;
+            }
+            85 => {
+                let n = self.monitor_fsm_fld_d;
+                if n != self.monitor_fsm_fld { self.monitor_fsm_fld = n; self.dirty[0] |= 0x40018000000000; self.dirty[1] |= 0xc; }
+            }
+            86 => {
+                let n = self.monitor_fsm_fpos_d;
+                if n != self.monitor_fsm_fpos { self.monitor_fsm_fpos = n; self.dirty[0] |= 0x40018001000000; self.dirty[1] |= 0xc; }
+            }
+            87 => {
+                let n = self.monitor_fsm_pfld_d;
+                if n != self.monitor_fsm_pfld { self.monitor_fsm_pfld = n; self.dirty[0] |= 0x40018000000000; self.dirty[1] |= 0xc; }
+            }
+            88 => {
+                let n = self.monitor_fsm_ppos_d;
+                if n != self.monitor_fsm_ppos { self.monitor_fsm_ppos = n; self.dirty[0] |= 0x18000000000; self.dirty[1] |= 0x4; }
+            }
+            89 => {
+                let n = self.monitor_fsm_rtx_d;
+                if n != self.monitor_fsm_rtx { self.monitor_fsm_rtx = n; self.dirty[0] |= 0x40018000000000; self.dirty[1] |= 0xc; }
+            }
+            90 => {
+                let n = self.monitor_fsm_dom_d;
+                if n != self.monitor_fsm_dom { self.monitor_fsm_dom = n; self.dirty[1] |= 0xc; }
+            }
+            91 => {
+                let n = self.monitor_fsm_dstf_cnt_d;
+                if n != self.monitor_fsm_dstf_cnt { self.monitor_fsm_dstf_cnt = n; self.dirty[0] |= 0x180020002000000; }
+            }
+            92 => {
+                let n = self.monitor_fsm_dstf_lvl_d;
+                if n != self.monitor_fsm_dstf_lvl { self.monitor_fsm_dstf_lvl = n; self.dirty[0] |= 0x180020004000000; }
+            }
+            93 => {
+                let n = self.monitor_fsm_crcb_state_d;
+                if n != self.monitor_fsm_crcb_state { self.monitor_fsm_crcb_state = n; self.dirty[0] |= 0x2000c0008000000; }
+            }
+            94 => {
+                let n = self.monitor_fsm_crcerr_d;
+                if n != self.monitor_fsm_crcerr { self.monitor_fsm_crcerr = n; self.dirty[1] |= 0xc; }
+            }
+            95 => {
+                let n = self.monitor_fsm_tid_d;
+                if n != self.monitor_fsm_tid { self.monitor_fsm_tid = n; self.dirty[0] |= 0x40018000000000; self.dirty[1] |= 0xc; }
+            }
+            96 => {
+                let n = self.monitor_fsm_tdat_d;
+                if n != self.monitor_fsm_tdat { self.monitor_fsm_tdat = n; self.dirty[0] |= 0x40018000000000; self.dirty[1] |= 0xc; }
+            }
+            97 => {
+                let n = self.monitor_fsm_tdlc_d;
+                if n != self.monitor_fsm_tdlc { self.monitor_fsm_tdlc = n; self.dirty[0] |= 0x40018000000000; self.dirty[1] |= 0xc; }
+            }
+            98 => {
+                let n = self.monitor_fsm_tide_d;
+                if n != self.monitor_fsm_tide { self.monitor_fsm_tide = n; self.dirty[0] |= 0x40000000800000; self.dirty[1] |= 0xc; }
+            }
+            99 => {
+                let n = self.monitor_fsm_trtr_d;
+                if n != self.monitor_fsm_trtr { self.monitor_fsm_trtr = n; self.dirty[0] |= 0x40000000800000; self.dirty[1] |= 0xc; }
+            }
+            100 => {
+                let n = self.monitor_fsm_rid_d;
+                if n != self.monitor_fsm_rid { self.monitor_fsm_rid = n; self.dirty[0] |= 0x18000000000; }
+            }
+            101 => {
+                let n = self.monitor_fsm_rdat_d;
+                if n != self.monitor_fsm_rdat { self.monitor_fsm_rdat = n; self.dirty[0] |= 0x18000000000; }
+            }
+            102 => {
+                let n = self.monitor_fsm_rdlc_d;
+                if n != self.monitor_fsm_rdlc { self.monitor_fsm_rdlc = n; self.dirty[0] |= 0x40018000000000; self.dirty[1] |= 0xc; }
+            }
+            103 => {
+                let n = self.monitor_fsm_rrtr_d;
+                if n != self.monitor_fsm_rrtr { self.monitor_fsm_rrtr = n; self.dirty[0] |= 0x40018000000000; self.dirty[1] |= 0xc; }
+            }
+            104 => {
+                let n = self.monitor_fsm_rext_d;
+                if n != self.monitor_fsm_rext { self.monitor_fsm_rext = n; self.dirty[0] |= 0x40018000000000; self.dirty[1] |= 0xc; }
+            }
+            105 => {
+                let n = self.monitor_fsm_fdone_d;
+                if n != self.monitor_fsm_fdone { self.monitor_fsm_fdone = n; self.dirty[0] |= 0x40018000000000; self.dirty[1] |= 0xc; }
+            }
+            106 => {
+                let n = self.monitor_fsm_eqcnt_d;
+                if n != self.monitor_fsm_eqcnt { self.monitor_fsm_eqcnt = n; self.dirty[0] |= 0x18000000000; self.dirty[1] |= 0xc; }
+            }
+            107 => {
+                let n = self.monitor_fsm_eqlast_d;
+                if n != self.monitor_fsm_eqlast { self.monitor_fsm_eqlast = n; self.dirty[0] |= 0x18000000000; self.dirty[1] |= 0xc; }
+            }
+            108 => {
+                let n = self.monitor_fsm_dafc_d;
+                if n != self.monitor_fsm_dafc { self.monitor_fsm_dafc = n; self.dirty[0] |= 0x10000000000; self.dirty[1] |= 0xc; }
+            }
+            109 => {
+                let n = self.monitor_fsm_dafany_d;
+                if n != self.monitor_fsm_dafany { self.monitor_fsm_dafany = n; self.dirty[0] |= 0x10000000000; self.dirty[1] |= 0xc; }
+            }
+            110 => {
+                let n = self.monitor_fsm_exc1_d;
+                if n != self.monitor_fsm_exc1 { self.monitor_fsm_exc1 = n; self.dirty[0] |= 0x18000000000; self.dirty[1] |= 0xc; }
+            }
+            111 => {
+                let n = self.monitor_fsm_tecr_d;
+                if n != self.monitor_fsm_tecr { self.monitor_fsm_tecr = n; self.dirty[0] |= 0x40018001000000; self.dirty[1] |= 0xc; }
+            }
+            112 => {
+                let n = self.monitor_fsm_recr_d;
+                if n != self.monitor_fsm_recr { self.monitor_fsm_recr = n; self.dirty[0] |= 0x40018001000000; self.dirty[1] |= 0xc; }
+            }
+            113 => {
+                let n = self.monitor_fsm_runr_d;
+                if n != self.monitor_fsm_runr { self.monitor_fsm_runr = n; self.dirty[0] |= 0x40018000000000; self.dirty[1] |= 0xc; }
+            }
+            114 => {
+                let n = self.monitor_fsm_rarmed_d;
+                if n != self.monitor_fsm_rarmed { self.monitor_fsm_rarmed = n; self.dirty[0] |= 0x18000000000; }
+            }
+            115 => {
+                let n = self.monitor_fsm_req_d;
+                self.monitor_fsm_req = n;
+            }
+            116 => {
+                let n = self.monitor_fsm_blocked_d;
+                self.monitor_fsm_blocked = n;
+            }
+            117 => {
+                let n = self.monitor_fsm_evr_d;
+                if n != self.monitor_fsm_evr { self.monitor_fsm_evr = n; self.dirty[0] |= 0x31000000; }
+            }
+            118 => {
+                let n = self.monitor_fsm_arbpos_r_d;
+                if n != self.monitor_fsm_arbpos_r { self.monitor_fsm_arbpos_r = n; self.dirty[1] |= 0x4; }
+            }
+            119 => {
+                let n = self.monitor_fsm_errf_r_d;
+                if n != self.monitor_fsm_errf_r { self.monitor_fsm_errf_r = n; self.dirty[1] |= 0x4; }
+            }
+            120 => {
+                let n = self.monitor_fsm_errp_r_d;
+                if n != self.monitor_fsm_errp_r { self.monitor_fsm_errp_r = n; self.dirty[1] |= 0x4; }
+            }
+            121 => {
+                let n = self.monitor_fsm_errtx_r_d;
+                if n != self.monitor_fsm_errtx_r { self.monitor_fsm_errtx_r = n; self.dirty[1] |= 0x4; }
+            }
+            122 => {
+                let n = self.monitor_fsm_rxide_r_d;
+                if n != self.monitor_fsm_rxide_r { self.monitor_fsm_rxide_r = n; self.dirty[0] |= 0x8000000000; }
+            }
+            123 => {
+                let n = self.monitor_fsm_rxrtr_r_d;
+                if n != self.monitor_fsm_rxrtr_r { self.monitor_fsm_rxrtr_r = n; self.dirty[0] |= 0x8000000000; }
+            }
+            124 => {
+                let n = self.monitor_fsm_rxid_r_d;
+                if n != self.monitor_fsm_rxid_r { self.monitor_fsm_rxid_r = n; self.dirty[0] |= 0x8000000000; }
+            }
+            125 => {
+                let n = self.monitor_fsm_rxdlc_r_d;
+                if n != self.monitor_fsm_rxdlc_r { self.monitor_fsm_rxdlc_r = n; self.dirty[0] |= 0x8000000000; }
+            }
+            126 => {
+                let n = self.monitor_fsm_rxdat_r_d;
+                if n != self.monitor_fsm_rxdat_r { self.monitor_fsm_rxdat_r = n; self.dirty[0] |= 0x8000000000; }
+            }
+            127 => {
+                let n = self.adapter_s_r_d;
+                if n != self.adapter_s_r { self.adapter_s_r = n; self.dirty[0] |= 0xa807801c10000000; self.dirty[1] |= 0x20; }
+            }
+            128 => {
+                let n = self.adapter_f_r_d;
+                if n != self.adapter_f_r { self.adapter_f_r = n; self.dirty[0] |= 0x30000000; self.dirty[1] |= 0x10; }
+            }
+            129 => {
+                let n = self.adapter_p_r_d;
+                if n != self.adapter_p_r { self.adapter_p_r = n; self.dirty[0] |= 0x400000010000000; }
+            }
+            130 => {
+                let n = self.adapter_bs_pending_d;
+                if n != self.adapter_bs_pending { self.adapter_bs_pending = n; self.dirty[0] |= 0x10000000; }
+            }
+            131 => {
+                let n = self.adapter_bs_cnt_d;
+                if n != self.adapter_bs_cnt { self.adapter_bs_cnt = n; self.dirty[0] |= 0x10000000; }
+            }
+            132 => {
+                let n = self.adapter_f_map_d;
+                if n != self.adapter_f_map { self.adapter_f_map = n; self.dirty[0] |= 0x10000000; }
+            }
+            _ => {}
+        }
     }
 
     /// `top` block, depth 0, state-only: isolated$0, isolated$1, isolated$2, efg_active, bic$0, bic$1, ... (15 signals)
@@ -2060,7 +2350,7 @@ impl HubN3M0 {
     fn g1(&mut self) {
         let mut core_rst_s1_d: bool = false;
         core_rst_s1_d = (!self.rst_n);
-        self.core_rst_s1_d = core_rst_s1_d;
+        if core_rst_s1_d != self.core_rst_s1_d { self.core_rst_s1_d = core_rst_s1_d; self.pend[0] |= 0x2000000000000000; }
     }
 
     /// `core.coupler` block, depth 0, state-only: core.coupler.tx$0, core.coupler.tx$1, core.coupler.tx$2
@@ -2089,7 +2379,7 @@ impl HubN3M0 {
             core_coupler_up_sync_0_q = (!self.core_coupler_up_sync_0_s2_n);
         }
         if core_coupler_up_sync_0_q != self.core_coupler_up_sync_0_q { self.core_coupler_up_sync_0_q = core_coupler_up_sync_0_q; self.dirty[0] |= 0x600000000000; }
-        self.core_coupler_up_sync_0_s2_n_d = core_coupler_up_sync_0_s2_n_d;
+        if core_coupler_up_sync_0_s2_n_d != self.core_coupler_up_sync_0_s2_n_d { self.core_coupler_up_sync_0_s2_n_d = core_coupler_up_sync_0_s2_n_d; self.pend[0] |= 0x2; }
     }
 
     /// `core.coupler.up_sync$0` block, depth 0, input-dependent: core.coupler.up_sync$0.s1_n.d
@@ -2099,7 +2389,7 @@ impl HubN3M0 {
         if self.core_rst_s2 {
             core_coupler_up_sync_0_s1_n_d = false;
         }
-        self.core_coupler_up_sync_0_s1_n_d = core_coupler_up_sync_0_s1_n_d;
+        if core_coupler_up_sync_0_s1_n_d != self.core_coupler_up_sync_0_s1_n_d { self.core_coupler_up_sync_0_s1_n_d = core_coupler_up_sync_0_s1_n_d; self.pend[0] |= 0x1; }
     }
 
     /// `core.coupler.up_sync$1` block, depth 0, state-only: core.coupler.up_sync$1.q, core.coupler.up_sync$1.s2_n.d
@@ -2115,7 +2405,7 @@ impl HubN3M0 {
             core_coupler_up_sync_1_q = (!self.core_coupler_up_sync_1_s2_n);
         }
         if core_coupler_up_sync_1_q != self.core_coupler_up_sync_1_q { self.core_coupler_up_sync_1_q = core_coupler_up_sync_1_q; self.dirty[0] |= 0x600000000000; }
-        self.core_coupler_up_sync_1_s2_n_d = core_coupler_up_sync_1_s2_n_d;
+        if core_coupler_up_sync_1_s2_n_d != self.core_coupler_up_sync_1_s2_n_d { self.core_coupler_up_sync_1_s2_n_d = core_coupler_up_sync_1_s2_n_d; self.pend[0] |= 0x8; }
     }
 
     /// `core.coupler.up_sync$1` block, depth 0, input-dependent: core.coupler.up_sync$1.s1_n.d
@@ -2125,7 +2415,7 @@ impl HubN3M0 {
         if self.core_rst_s2 {
             core_coupler_up_sync_1_s1_n_d = false;
         }
-        self.core_coupler_up_sync_1_s1_n_d = core_coupler_up_sync_1_s1_n_d;
+        if core_coupler_up_sync_1_s1_n_d != self.core_coupler_up_sync_1_s1_n_d { self.core_coupler_up_sync_1_s1_n_d = core_coupler_up_sync_1_s1_n_d; self.pend[0] |= 0x4; }
     }
 
     /// `core.coupler.up_sync$2` block, depth 0, state-only: core.coupler.up_sync$2.q, core.coupler.up_sync$2.s2_n.d
@@ -2141,7 +2431,7 @@ impl HubN3M0 {
             core_coupler_up_sync_2_q = (!self.core_coupler_up_sync_2_s2_n);
         }
         if core_coupler_up_sync_2_q != self.core_coupler_up_sync_2_q { self.core_coupler_up_sync_2_q = core_coupler_up_sync_2_q; self.dirty[0] |= 0x600000000000; }
-        self.core_coupler_up_sync_2_s2_n_d = core_coupler_up_sync_2_s2_n_d;
+        if core_coupler_up_sync_2_s2_n_d != self.core_coupler_up_sync_2_s2_n_d { self.core_coupler_up_sync_2_s2_n_d = core_coupler_up_sync_2_s2_n_d; self.pend[0] |= 0x20; }
     }
 
     /// `core.coupler.up_sync$2` block, depth 0, input-dependent: core.coupler.up_sync$2.s1_n.d
@@ -2151,7 +2441,7 @@ impl HubN3M0 {
         if self.core_rst_s2 {
             core_coupler_up_sync_2_s1_n_d = false;
         }
-        self.core_coupler_up_sync_2_s1_n_d = core_coupler_up_sync_2_s1_n_d;
+        if core_coupler_up_sync_2_s1_n_d != self.core_coupler_up_sync_2_s1_n_d { self.core_coupler_up_sync_2_s1_n_d = core_coupler_up_sync_2_s1_n_d; self.pend[0] |= 0x10; }
     }
 
     /// `core.efgen` block, depth 0, state-only: core.efgen.efg, core.efgen.busy
@@ -2174,7 +2464,7 @@ impl HubN3M0 {
         }
         core_injector_active = ((self.core_injector_state == 2u8) | (self.core_injector_state == 3u8));
         if core_injector_active != self.core_injector_active { self.core_injector_active = core_injector_active; self.dirty[0] |= 0xc0000000; }
-        self.core_injector_btn_prev_d = core_injector_btn_prev_d;
+        if core_injector_btn_prev_d != self.core_injector_btn_prev_d { self.core_injector_btn_prev_d = core_injector_btn_prev_d; self.pend[0] |= 0x4000; }
     }
 
     /// `core.injector` block, depth 0, input-dependent: core.injector.btn_r.d
@@ -2184,7 +2474,7 @@ impl HubN3M0 {
         if self.core_rst_s2 {
             core_injector_btn_r_d = false;
         }
-        self.core_injector_btn_r_d = core_injector_btn_r_d;
+        if core_injector_btn_r_d != self.core_injector_btn_r_d { self.core_injector_btn_r_d = core_injector_btn_r_d; self.pend[0] |= 0x8000; }
     }
 
     /// `core.injector` block, depth 0, probe-only: core.injector.armed, core.injector.press
@@ -2207,7 +2497,7 @@ impl HubN3M0 {
         }
         core_pj_0_silent = (self.core_pj_0_nack_r >= self.core_pj_0_nack_thr);
         if core_pj_0_silent != self.core_pj_0_silent { self.core_pj_0_silent = core_pj_0_silent; self.dirty[0] |= 0x40000000; }
-        self.core_pj_0_rep_first_dom_d = core_pj_0_rep_first_dom_d;
+        if core_pj_0_rep_first_dom_d != self.core_pj_0_rep_first_dom_d { self.core_pj_0_rep_first_dom_d = core_pj_0_rep_first_dom_d; self.pend[0] |= 0x1000000; }
     }
 
     /// `core.pj$0` block, depth 0, probe-only: core.pj$0.enabled
@@ -2227,7 +2517,7 @@ impl HubN3M0 {
         }
         core_pj_1_silent = (self.core_pj_1_nack_r >= self.core_pj_1_nack_thr);
         if core_pj_1_silent != self.core_pj_1_silent { self.core_pj_1_silent = core_pj_1_silent; self.dirty[0] |= 0x40000000; }
-        self.core_pj_1_rep_first_dom_d = core_pj_1_rep_first_dom_d;
+        if core_pj_1_rep_first_dom_d != self.core_pj_1_rep_first_dom_d { self.core_pj_1_rep_first_dom_d = core_pj_1_rep_first_dom_d; self.pend[0] |= 0x8000000000; }
     }
 
     /// `core.pj$1` block, depth 0, probe-only: core.pj$1.enabled
@@ -2247,7 +2537,7 @@ impl HubN3M0 {
         }
         core_pj_2_silent = (self.core_pj_2_nack_r >= self.core_pj_2_nack_thr);
         if core_pj_2_silent != self.core_pj_2_silent { self.core_pj_2_silent = core_pj_2_silent; self.dirty[0] |= 0x40000000; }
-        self.core_pj_2_rep_first_dom_d = core_pj_2_rep_first_dom_d;
+        if core_pj_2_rep_first_dom_d != self.core_pj_2_rep_first_dom_d { self.core_pj_2_rep_first_dom_d = core_pj_2_rep_first_dom_d; self.pend[0] |= 0x40000000000000; }
     }
 
     /// `core.pj$2` block, depth 0, probe-only: core.pj$2.enabled
@@ -2277,7 +2567,7 @@ impl HubN3M0 {
             monitor_sync_q = (!self.monitor_sync_s2_n);
         }
         if monitor_sync_q != self.monitor_sync_q { self.monitor_sync_q = monitor_sync_q; self.dirty[0] |= 0x30006000000000; }
-        self.monitor_sync_s2_n_d = monitor_sync_s2_n_d;
+        if monitor_sync_s2_n_d != self.monitor_sync_s2_n_d { self.monitor_sync_s2_n_d = monitor_sync_s2_n_d; self.pend[0] |= 0x8000000000000000; }
     }
 
     /// `monitor.btl` block, depth 0, state-only: monitor.btl.busmon, monitor.btl.c_sjw.d, monitor.btl.c_triple.d, monitor.btl.pre.d, monitor.btl.h2_n.d
@@ -2314,10 +2604,10 @@ impl HubN3M0 {
         }
         monitor_btl_busmon = (!self.monitor_btl_busmon_n);
         if monitor_btl_busmon != self.monitor_btl_busmon { self.monitor_btl_busmon = monitor_btl_busmon; self.dirty[0] |= 0x3c00f8000000000; self.dirty[1] |= 0xc; }
-        self.monitor_btl_c_sjw_d = monitor_btl_c_sjw_d;
-        self.monitor_btl_c_triple_d = monitor_btl_c_triple_d;
-        self.monitor_btl_pre_d = monitor_btl_pre_d;
-        self.monitor_btl_h2_n_d = monitor_btl_h2_n_d;
+        if monitor_btl_c_sjw_d != self.monitor_btl_c_sjw_d { self.monitor_btl_c_sjw_d = monitor_btl_c_sjw_d; self.pend[1] |= 0x8; }
+        if monitor_btl_c_triple_d != self.monitor_btl_c_triple_d { self.monitor_btl_c_triple_d = monitor_btl_c_triple_d; self.pend[1] |= 0x10; }
+        if monitor_btl_pre_d != self.monitor_btl_pre_d { self.monitor_btl_pre_d = monitor_btl_pre_d; self.pend[1] |= 0x80; }
+        if monitor_btl_h2_n_d != self.monitor_btl_h2_n_d { self.monitor_btl_h2_n_d = monitor_btl_h2_n_d; self.pend[1] |= 0x20000; }
     }
 
     /// `monitor.btl` block, depth 0, probe-only: monitor.btl.tx, monitor.btl.in_ph2, monitor.btl.in_sjw, monitor.btl.tick, monitor.btl.c1, monitor.btl.late, ... (9 signals)
@@ -2374,8 +2664,8 @@ impl HubN3M0 {
             monitor_fsm_trtr_d = self.monitor_fsm_trtr;
         }
         if monitor_fsm_drive != self.monitor_fsm_drive { self.monitor_fsm_drive = monitor_fsm_drive; self.dirty[0] |= 0x30000000000000; }
-        self.monitor_fsm_tide_d = monitor_fsm_tide_d;
-        self.monitor_fsm_trtr_d = monitor_fsm_trtr_d;
+        if monitor_fsm_tide_d != self.monitor_fsm_tide_d { self.monitor_fsm_tide_d = monitor_fsm_tide_d; self.pend[1] |= 0x400000000; }
+        if monitor_fsm_trtr_d != self.monitor_fsm_trtr_d { self.monitor_fsm_trtr_d = monitor_fsm_trtr_d; self.pend[1] |= 0x800000000; }
     }
 
     /// `monitor.fsm` block, depth 0, probe-only: monitor.fsm.tx_done, monitor.fsm.arb_lost, monitor.fsm.error, monitor.fsm.err_kind, monitor.fsm.rx_valid, monitor.fsm.state, ... (12 signals)
@@ -2541,10 +2831,10 @@ impl HubN3M0 {
         if adapter_mon_crc_ok != self.adapter_mon_crc_ok { self.adapter_mon_crc_ok = adapter_mon_crc_ok; self.dirty[0] |= 0x7000000000000; }
         if adapter_mon_frame_ok != self.adapter_mon_frame_ok { self.adapter_mon_frame_ok = adapter_mon_frame_ok; self.dirty[0] |= 0xa807001c00000000; }
         if adapter_bit_start != self.adapter_bit_start { self.adapter_bit_start = adapter_bit_start; self.dirty[0] |= 0x100000000; self.dirty[1] |= 0x80; }
-        self.adapter_s_r_d = adapter_s_r_d;
-        self.adapter_bs_pending_d = adapter_bs_pending_d;
-        self.adapter_bs_cnt_d = adapter_bs_cnt_d;
-        self.adapter_f_map_d = adapter_f_map_d;
+        if adapter_s_r_d != self.adapter_s_r_d { self.adapter_s_r_d = adapter_s_r_d; self.pend[1] |= 0x8000000000000000; }
+        if adapter_bs_pending_d != self.adapter_bs_pending_d { self.adapter_bs_pending_d = adapter_bs_pending_d; self.pend[2] |= 0x4; }
+        if adapter_bs_cnt_d != self.adapter_bs_cnt_d { self.adapter_bs_cnt_d = adapter_bs_cnt_d; self.pend[2] |= 0x8; }
+        if adapter_f_map_d != self.adapter_f_map_d { self.adapter_f_map_d = adapter_f_map_d; self.pend[2] |= 0x10; }
     }
 
     /// `adapter` block, depth 0, probe-only: adapter.fl
@@ -2673,8 +2963,8 @@ impl HubN3M0 {
             core_efgen_driving_d = false;
             core_efgen_cnt_d = 0u8;
         }
-        self.core_efgen_driving_d = core_efgen_driving_d;
-        self.core_efgen_cnt_d = core_efgen_cnt_d;
+        if core_efgen_driving_d != self.core_efgen_driving_d { self.core_efgen_driving_d = core_efgen_driving_d; self.pend[0] |= 0x400; }
+        if core_efgen_cnt_d != self.core_efgen_cnt_d { self.core_efgen_cnt_d = core_efgen_cnt_d; self.pend[0] |= 0x800; }
     }
 
     /// `core.decode` block, depth 1, state-only: core.decode.sof, core.decode.tx_region, core.decode.arb, core.decode.crc_delim, core.decode.ack_slot, core.decode.ack_delim, ... (10 signals)
@@ -2753,10 +3043,10 @@ impl HubN3M0 {
             core_pj_0_rep_seen_d = false;
             core_pj_0_ok_r_d = 0u8;
         }
-        self.core_pj_0_dis_r_d = core_pj_0_dis_r_d;
-        self.core_pj_0_rep_r_d = core_pj_0_rep_r_d;
-        self.core_pj_0_rep_seen_d = core_pj_0_rep_seen_d;
-        self.core_pj_0_ok_r_d = core_pj_0_ok_r_d;
+        if core_pj_0_dis_r_d != self.core_pj_0_dis_r_d { self.core_pj_0_dis_r_d = core_pj_0_dis_r_d; self.pend[0] |= 0x10000; }
+        if core_pj_0_rep_r_d != self.core_pj_0_rep_r_d { self.core_pj_0_rep_r_d = core_pj_0_rep_r_d; self.pend[0] |= 0x400000; }
+        if core_pj_0_rep_seen_d != self.core_pj_0_rep_seen_d { self.core_pj_0_rep_seen_d = core_pj_0_rep_seen_d; self.pend[0] |= 0x800000; }
+        if core_pj_0_ok_r_d != self.core_pj_0_ok_r_d { self.core_pj_0_ok_r_d = core_pj_0_ok_r_d; self.pend[0] |= 0x2000000; }
     }
 
     /// `core.pj$1` block, depth 1, state-only: core.pj$1.dis_r.d, core.pj$1.rep_r.d, core.pj$1.rep_seen.d, core.pj$1.ok_r.d
@@ -2801,10 +3091,10 @@ impl HubN3M0 {
             core_pj_1_rep_seen_d = false;
             core_pj_1_ok_r_d = 0u8;
         }
-        self.core_pj_1_dis_r_d = core_pj_1_dis_r_d;
-        self.core_pj_1_rep_r_d = core_pj_1_rep_r_d;
-        self.core_pj_1_rep_seen_d = core_pj_1_rep_seen_d;
-        self.core_pj_1_ok_r_d = core_pj_1_ok_r_d;
+        if core_pj_1_dis_r_d != self.core_pj_1_dis_r_d { self.core_pj_1_dis_r_d = core_pj_1_dis_r_d; self.pend[0] |= 0x80000000; }
+        if core_pj_1_rep_r_d != self.core_pj_1_rep_r_d { self.core_pj_1_rep_r_d = core_pj_1_rep_r_d; self.pend[0] |= 0x2000000000; }
+        if core_pj_1_rep_seen_d != self.core_pj_1_rep_seen_d { self.core_pj_1_rep_seen_d = core_pj_1_rep_seen_d; self.pend[0] |= 0x4000000000; }
+        if core_pj_1_ok_r_d != self.core_pj_1_ok_r_d { self.core_pj_1_ok_r_d = core_pj_1_ok_r_d; self.pend[0] |= 0x10000000000; }
     }
 
     /// `core.pj$2` block, depth 1, state-only: core.pj$2.dis_r.d, core.pj$2.rep_r.d, core.pj$2.rep_seen.d, core.pj$2.ok_r.d
@@ -2849,10 +3139,10 @@ impl HubN3M0 {
             core_pj_2_rep_seen_d = false;
             core_pj_2_ok_r_d = 0u8;
         }
-        self.core_pj_2_dis_r_d = core_pj_2_dis_r_d;
-        self.core_pj_2_rep_r_d = core_pj_2_rep_r_d;
-        self.core_pj_2_rep_seen_d = core_pj_2_rep_seen_d;
-        self.core_pj_2_ok_r_d = core_pj_2_ok_r_d;
+        if core_pj_2_dis_r_d != self.core_pj_2_dis_r_d { self.core_pj_2_dis_r_d = core_pj_2_dis_r_d; self.pend[0] |= 0x400000000000; }
+        if core_pj_2_rep_r_d != self.core_pj_2_rep_r_d { self.core_pj_2_rep_r_d = core_pj_2_rep_r_d; self.pend[0] |= 0x10000000000000; }
+        if core_pj_2_rep_seen_d != self.core_pj_2_rep_seen_d { self.core_pj_2_rep_seen_d = core_pj_2_rep_seen_d; self.pend[0] |= 0x20000000000000; }
+        if core_pj_2_ok_r_d != self.core_pj_2_ok_r_d { self.core_pj_2_ok_r_d = core_pj_2_ok_r_d; self.pend[0] |= 0x80000000000000; }
     }
 
     /// `monitor.btl` block, depth 1, state-only: monitor.btl.c_brp.d, monitor.btl.c_sp.d, monitor.btl.c_ntq.d, monitor.btl.c_valid.d, monitor.btl.c_bad.d, monitor.btl.h1_n.d
@@ -2892,12 +3182,12 @@ impl HubN3M0 {
         } else if monitor_btl_tick {
             monitor_btl_h1_n_d = (!self.monitor_sync_q);
         }
-        self.monitor_btl_c_brp_d = monitor_btl_c_brp_d;
-        self.monitor_btl_c_sp_d = monitor_btl_c_sp_d;
-        self.monitor_btl_c_ntq_d = monitor_btl_c_ntq_d;
-        self.monitor_btl_c_valid_d = monitor_btl_c_valid_d;
-        self.monitor_btl_c_bad_d = monitor_btl_c_bad_d;
-        self.monitor_btl_h1_n_d = monitor_btl_h1_n_d;
+        if monitor_btl_c_brp_d != self.monitor_btl_c_brp_d { self.monitor_btl_c_brp_d = monitor_btl_c_brp_d; self.pend[1] |= 0x1; }
+        if monitor_btl_c_sp_d != self.monitor_btl_c_sp_d { self.monitor_btl_c_sp_d = monitor_btl_c_sp_d; self.pend[1] |= 0x2; }
+        if monitor_btl_c_ntq_d != self.monitor_btl_c_ntq_d { self.monitor_btl_c_ntq_d = monitor_btl_c_ntq_d; self.pend[1] |= 0x4; }
+        if monitor_btl_c_valid_d != self.monitor_btl_c_valid_d { self.monitor_btl_c_valid_d = monitor_btl_c_valid_d; self.pend[1] |= 0x20; }
+        if monitor_btl_c_bad_d != self.monitor_btl_c_bad_d { self.monitor_btl_c_bad_d = monitor_btl_c_bad_d; self.pend[1] |= 0x40; }
+        if monitor_btl_h1_n_d != self.monitor_btl_h1_n_d { self.monitor_btl_h1_n_d = monitor_btl_h1_n_d; self.pend[1] |= 0x10000; }
     }
 
     /// `monitor.btl` block, depth 1, probe-only: monitor.btl.in_sp, monitor.btl.in_ntq, monitor.btl.in_bad, monitor.btl.sync_cond, monitor.btl.sampled
@@ -3420,34 +3710,34 @@ impl HubN3M0 {
         if monitor_fsm_hs_en != self.monitor_fsm_hs_en { self.monitor_fsm_hs_en = monitor_fsm_hs_en; self.dirty[0] |= 0x30000000000000; }
         if monitor_fsm_field != self.monitor_fsm_field { self.monitor_fsm_field = monitor_fsm_field; self.dirty[0] |= 0x8000000000000; }
         if monitor_fsm_pos != self.monitor_fsm_pos { self.monitor_fsm_pos = monitor_fsm_pos; self.dirty[0] |= 0x400000000000000; }
-        self.monitor_fsm_pfld_d = monitor_fsm_pfld_d;
-        self.monitor_fsm_ppos_d = monitor_fsm_ppos_d;
-        self.monitor_fsm_rtx_d = monitor_fsm_rtx_d;
+        if monitor_fsm_pfld_d != self.monitor_fsm_pfld_d { self.monitor_fsm_pfld_d = monitor_fsm_pfld_d; self.pend[1] |= 0x800000; }
+        if monitor_fsm_ppos_d != self.monitor_fsm_ppos_d { self.monitor_fsm_ppos_d = monitor_fsm_ppos_d; self.pend[1] |= 0x1000000; }
+        if monitor_fsm_rtx_d != self.monitor_fsm_rtx_d { self.monitor_fsm_rtx_d = monitor_fsm_rtx_d; self.pend[1] |= 0x2000000; }
         if monitor_fsm_dstf_active != self.monitor_fsm_dstf_active { self.monitor_fsm_dstf_active = monitor_fsm_dstf_active; self.dirty[0] |= 0x180000000000000; }
         if monitor_fsm_crcb_clear != self.monitor_fsm_crcb_clear { self.monitor_fsm_crcb_clear = monitor_fsm_crcb_clear; self.dirty[0] |= 0x200000000000000; }
         if monitor_fsm_crcb_en != self.monitor_fsm_crcb_en { self.monitor_fsm_crcb_en = monitor_fsm_crcb_en; self.dirty[0] |= 0x200000000000000; }
-        self.monitor_fsm_tid_d = monitor_fsm_tid_d;
-        self.monitor_fsm_tdat_d = monitor_fsm_tdat_d;
-        self.monitor_fsm_tdlc_d = monitor_fsm_tdlc_d;
-        self.monitor_fsm_rid_d = monitor_fsm_rid_d;
-        self.monitor_fsm_rdat_d = monitor_fsm_rdat_d;
-        self.monitor_fsm_rdlc_d = monitor_fsm_rdlc_d;
-        self.monitor_fsm_rrtr_d = monitor_fsm_rrtr_d;
-        self.monitor_fsm_rext_d = monitor_fsm_rext_d;
-        self.monitor_fsm_eqcnt_d = monitor_fsm_eqcnt_d;
-        self.monitor_fsm_eqlast_d = monitor_fsm_eqlast_d;
-        self.monitor_fsm_exc1_d = monitor_fsm_exc1_d;
-        self.monitor_fsm_tecr_d = monitor_fsm_tecr_d;
-        self.monitor_fsm_recr_d = monitor_fsm_recr_d;
-        self.monitor_fsm_runr_d = monitor_fsm_runr_d;
-        self.monitor_fsm_rarmed_d = monitor_fsm_rarmed_d;
-        self.monitor_fsm_req_d = monitor_fsm_req_d;
-        self.monitor_fsm_blocked_d = monitor_fsm_blocked_d;
-        self.monitor_fsm_rxide_r_d = monitor_fsm_rxide_r_d;
-        self.monitor_fsm_rxrtr_r_d = monitor_fsm_rxrtr_r_d;
-        self.monitor_fsm_rxid_r_d = monitor_fsm_rxid_r_d;
-        self.monitor_fsm_rxdlc_r_d = monitor_fsm_rxdlc_r_d;
-        self.monitor_fsm_rxdat_r_d = monitor_fsm_rxdat_r_d;
+        if monitor_fsm_tid_d != self.monitor_fsm_tid_d { self.monitor_fsm_tid_d = monitor_fsm_tid_d; self.pend[1] |= 0x80000000; }
+        if monitor_fsm_tdat_d != self.monitor_fsm_tdat_d { self.monitor_fsm_tdat_d = monitor_fsm_tdat_d; self.pend[1] |= 0x100000000; }
+        if monitor_fsm_tdlc_d != self.monitor_fsm_tdlc_d { self.monitor_fsm_tdlc_d = monitor_fsm_tdlc_d; self.pend[1] |= 0x200000000; }
+        if monitor_fsm_rid_d != self.monitor_fsm_rid_d { self.monitor_fsm_rid_d = monitor_fsm_rid_d; self.pend[1] |= 0x1000000000; }
+        if monitor_fsm_rdat_d != self.monitor_fsm_rdat_d { self.monitor_fsm_rdat_d = monitor_fsm_rdat_d; self.pend[1] |= 0x2000000000; }
+        if monitor_fsm_rdlc_d != self.monitor_fsm_rdlc_d { self.monitor_fsm_rdlc_d = monitor_fsm_rdlc_d; self.pend[1] |= 0x4000000000; }
+        if monitor_fsm_rrtr_d != self.monitor_fsm_rrtr_d { self.monitor_fsm_rrtr_d = monitor_fsm_rrtr_d; self.pend[1] |= 0x8000000000; }
+        if monitor_fsm_rext_d != self.monitor_fsm_rext_d { self.monitor_fsm_rext_d = monitor_fsm_rext_d; self.pend[1] |= 0x10000000000; }
+        if monitor_fsm_eqcnt_d != self.monitor_fsm_eqcnt_d { self.monitor_fsm_eqcnt_d = monitor_fsm_eqcnt_d; self.pend[1] |= 0x40000000000; }
+        if monitor_fsm_eqlast_d != self.monitor_fsm_eqlast_d { self.monitor_fsm_eqlast_d = monitor_fsm_eqlast_d; self.pend[1] |= 0x80000000000; }
+        if monitor_fsm_exc1_d != self.monitor_fsm_exc1_d { self.monitor_fsm_exc1_d = monitor_fsm_exc1_d; self.pend[1] |= 0x400000000000; }
+        if monitor_fsm_tecr_d != self.monitor_fsm_tecr_d { self.monitor_fsm_tecr_d = monitor_fsm_tecr_d; self.pend[1] |= 0x800000000000; }
+        if monitor_fsm_recr_d != self.monitor_fsm_recr_d { self.monitor_fsm_recr_d = monitor_fsm_recr_d; self.pend[1] |= 0x1000000000000; }
+        if monitor_fsm_runr_d != self.monitor_fsm_runr_d { self.monitor_fsm_runr_d = monitor_fsm_runr_d; self.pend[1] |= 0x2000000000000; }
+        if monitor_fsm_rarmed_d != self.monitor_fsm_rarmed_d { self.monitor_fsm_rarmed_d = monitor_fsm_rarmed_d; self.pend[1] |= 0x4000000000000; }
+        if monitor_fsm_req_d != self.monitor_fsm_req_d { self.monitor_fsm_req_d = monitor_fsm_req_d; self.pend[1] |= 0x8000000000000; }
+        if monitor_fsm_blocked_d != self.monitor_fsm_blocked_d { self.monitor_fsm_blocked_d = monitor_fsm_blocked_d; self.pend[1] |= 0x10000000000000; }
+        if monitor_fsm_rxide_r_d != self.monitor_fsm_rxide_r_d { self.monitor_fsm_rxide_r_d = monitor_fsm_rxide_r_d; self.pend[1] |= 0x400000000000000; }
+        if monitor_fsm_rxrtr_r_d != self.monitor_fsm_rxrtr_r_d { self.monitor_fsm_rxrtr_r_d = monitor_fsm_rxrtr_r_d; self.pend[1] |= 0x800000000000000; }
+        if monitor_fsm_rxid_r_d != self.monitor_fsm_rxid_r_d { self.monitor_fsm_rxid_r_d = monitor_fsm_rxid_r_d; self.pend[1] |= 0x1000000000000000; }
+        if monitor_fsm_rxdlc_r_d != self.monitor_fsm_rxdlc_r_d { self.monitor_fsm_rxdlc_r_d = monitor_fsm_rxdlc_r_d; self.pend[1] |= 0x2000000000000000; }
+        if monitor_fsm_rxdat_r_d != self.monitor_fsm_rxdat_r_d { self.monitor_fsm_rxdat_r_d = monitor_fsm_rxdat_r_d; self.pend[1] |= 0x4000000000000000; }
     }
 
     /// `monitor.fsm` block, depth 1, probe-only: monitor.fsm.l_curstf, monitor.fsm.l_dfld, monitor.fsm.l_dpos, monitor.fsm.l_crcen, monitor.fsm.l_usetx, monitor.fsm.l_role, ... (35 signals)
@@ -4053,9 +4343,9 @@ impl HubN3M0 {
         if core_coupler_u_0 != self.core_coupler_u_0 { self.core_coupler_u_0 = core_coupler_u_0; self.dirty[0] |= 0x1800000000000000; }
         if core_coupler_u_1 != self.core_coupler_u_1 { self.core_coupler_u_1 = core_coupler_u_1; self.dirty[0] |= 0x6000000000000000; }
         if core_coupler_u_2 != self.core_coupler_u_2 { self.core_coupler_u_2 = core_coupler_u_2; self.dirty[0] |= 0x8000000000000000; self.dirty[1] |= 0x1; }
-        self.core_coupler_tx_n_0_d = core_coupler_tx_n_0_d;
-        self.core_coupler_tx_n_1_d = core_coupler_tx_n_1_d;
-        self.core_coupler_tx_n_2_d = core_coupler_tx_n_2_d;
+        if core_coupler_tx_n_0_d != self.core_coupler_tx_n_0_d { self.core_coupler_tx_n_0_d = core_coupler_tx_n_0_d; self.pend[0] |= 0x40; }
+        if core_coupler_tx_n_1_d != self.core_coupler_tx_n_1_d { self.core_coupler_tx_n_1_d = core_coupler_tx_n_1_d; self.pend[0] |= 0x80; }
+        if core_coupler_tx_n_2_d != self.core_coupler_tx_n_2_d { self.core_coupler_tx_n_2_d = core_coupler_tx_n_2_d; self.pend[0] |= 0x100; }
         if core_coupler_bt_acc != self.core_coupler_bt_acc { self.core_coupler_bt_acc = core_coupler_bt_acc; self.dirty[0] |= 0xa800000000000000; self.dirty[1] |= 0x2; }
     }
 
@@ -4175,7 +4465,7 @@ impl HubN3M0 {
         if self.core_rst_s2 {
             core_injector_state_d = 0u8;
         }
-        self.core_injector_state_d = core_injector_state_d;
+        if core_injector_state_d != self.core_injector_state_d { self.core_injector_state_d = core_injector_state_d; self.pend[0] |= 0x2000; }
     }
 
     /// `core.pj$0` block, depth 2, state-only: core.pj$0.nack_r.d, core.pj$0.acked.d, core.pj$0.ack_rx.d
@@ -4220,9 +4510,9 @@ impl HubN3M0 {
             core_pj_0_acked_d = false;
             core_pj_0_ack_rx_d = false;
         }
-        self.core_pj_0_nack_r_d = core_pj_0_nack_r_d;
-        self.core_pj_0_acked_d = core_pj_0_acked_d;
-        self.core_pj_0_ack_rx_d = core_pj_0_ack_rx_d;
+        if core_pj_0_nack_r_d != self.core_pj_0_nack_r_d { self.core_pj_0_nack_r_d = core_pj_0_nack_r_d; self.pend[0] |= 0x100000; }
+        if core_pj_0_acked_d != self.core_pj_0_acked_d { self.core_pj_0_acked_d = core_pj_0_acked_d; self.pend[0] |= 0x4000000; }
+        if core_pj_0_ack_rx_d != self.core_pj_0_ack_rx_d { self.core_pj_0_ack_rx_d = core_pj_0_ack_rx_d; self.pend[0] |= 0x40000000; }
     }
 
     /// `core.pj$1` block, depth 2, state-only: core.pj$1.nack_r.d, core.pj$1.acked.d, core.pj$1.ack_rx.d
@@ -4267,9 +4557,9 @@ impl HubN3M0 {
             core_pj_1_acked_d = false;
             core_pj_1_ack_rx_d = false;
         }
-        self.core_pj_1_nack_r_d = core_pj_1_nack_r_d;
-        self.core_pj_1_acked_d = core_pj_1_acked_d;
-        self.core_pj_1_ack_rx_d = core_pj_1_ack_rx_d;
+        if core_pj_1_nack_r_d != self.core_pj_1_nack_r_d { self.core_pj_1_nack_r_d = core_pj_1_nack_r_d; self.pend[0] |= 0x800000000; }
+        if core_pj_1_acked_d != self.core_pj_1_acked_d { self.core_pj_1_acked_d = core_pj_1_acked_d; self.pend[0] |= 0x20000000000; }
+        if core_pj_1_ack_rx_d != self.core_pj_1_ack_rx_d { self.core_pj_1_ack_rx_d = core_pj_1_ack_rx_d; self.pend[0] |= 0x200000000000; }
     }
 
     /// `core.pj$2` block, depth 2, state-only: core.pj$2.nack_r.d, core.pj$2.acked.d, core.pj$2.ack_rx.d
@@ -4314,9 +4604,9 @@ impl HubN3M0 {
             core_pj_2_acked_d = false;
             core_pj_2_ack_rx_d = false;
         }
-        self.core_pj_2_nack_r_d = core_pj_2_nack_r_d;
-        self.core_pj_2_acked_d = core_pj_2_acked_d;
-        self.core_pj_2_ack_rx_d = core_pj_2_ack_rx_d;
+        if core_pj_2_nack_r_d != self.core_pj_2_nack_r_d { self.core_pj_2_nack_r_d = core_pj_2_nack_r_d; self.pend[0] |= 0x4000000000000; }
+        if core_pj_2_acked_d != self.core_pj_2_acked_d { self.core_pj_2_acked_d = core_pj_2_acked_d; self.pend[0] |= 0x100000000000000; }
+        if core_pj_2_ack_rx_d != self.core_pj_2_ack_rx_d { self.core_pj_2_ack_rx_d = core_pj_2_ack_rx_d; self.pend[0] |= 0x1000000000000000; }
     }
 
     /// `monitor` block, depth 2, state-only: monitor.dbg_field
@@ -4472,17 +4762,17 @@ impl HubN3M0 {
                 }
             }
         }
-        self.monitor_btl_cnt_d = monitor_btl_cnt_d;
-        self.monitor_btl_spw_d = monitor_btl_spw_d;
-        self.monitor_btl_nbw_d = monitor_btl_nbw_d;
-        self.monitor_btl_busmon_n_d = monitor_btl_busmon_n_d;
-        self.monitor_btl_sync_dis_d = monitor_btl_sync_dis_d;
-        self.monitor_btl_since_d = monitor_btl_since_d;
-        self.monitor_btl_pending_d = monitor_btl_pending_d;
-        self.monitor_btl_tx_n_d = monitor_btl_tx_n_d;
-        self.monitor_btl_sample_r_d = monitor_btl_sample_r_d;
-        self.monitor_btl_hard_r_d = monitor_btl_hard_r_d;
-        self.monitor_btl_resync_r_d = monitor_btl_resync_r_d;
+        if monitor_btl_cnt_d != self.monitor_btl_cnt_d { self.monitor_btl_cnt_d = monitor_btl_cnt_d; self.pend[1] |= 0x100; }
+        if monitor_btl_spw_d != self.monitor_btl_spw_d { self.monitor_btl_spw_d = monitor_btl_spw_d; self.pend[1] |= 0x200; }
+        if monitor_btl_nbw_d != self.monitor_btl_nbw_d { self.monitor_btl_nbw_d = monitor_btl_nbw_d; self.pend[1] |= 0x400; }
+        if monitor_btl_busmon_n_d != self.monitor_btl_busmon_n_d { self.monitor_btl_busmon_n_d = monitor_btl_busmon_n_d; self.pend[1] |= 0x800; }
+        if monitor_btl_sync_dis_d != self.monitor_btl_sync_dis_d { self.monitor_btl_sync_dis_d = monitor_btl_sync_dis_d; self.pend[1] |= 0x1000; }
+        if monitor_btl_since_d != self.monitor_btl_since_d { self.monitor_btl_since_d = monitor_btl_since_d; self.pend[1] |= 0x2000; }
+        if monitor_btl_pending_d != self.monitor_btl_pending_d { self.monitor_btl_pending_d = monitor_btl_pending_d; self.pend[1] |= 0x4000; }
+        if monitor_btl_tx_n_d != self.monitor_btl_tx_n_d { self.monitor_btl_tx_n_d = monitor_btl_tx_n_d; self.pend[1] |= 0x8000; }
+        if monitor_btl_sample_r_d != self.monitor_btl_sample_r_d { self.monitor_btl_sample_r_d = monitor_btl_sample_r_d; self.pend[1] |= 0x40000; }
+        if monitor_btl_hard_r_d != self.monitor_btl_hard_r_d { self.monitor_btl_hard_r_d = monitor_btl_hard_r_d; self.pend[1] |= 0x80000; }
+        if monitor_btl_resync_r_d != self.monitor_btl_resync_r_d { self.monitor_btl_resync_r_d = monitor_btl_resync_r_d; self.pend[1] |= 0x100000; }
     }
 
     /// `monitor.btl` block, depth 2, probe-only: monitor.btl.bit_start, monitor.btl.do_hard, monitor.btl.do_resync, monitor.btl.restart, monitor.btl.sp_a, monitor.btl.nb_a, ... (13 signals)
@@ -4978,8 +5268,8 @@ impl HubN3M0 {
             monitor_fsm_dstf_lvl_d = false;
         }
         if monitor_fsm_dstf_stuff_error != self.monitor_fsm_dstf_stuff_error { self.monitor_fsm_dstf_stuff_error = monitor_fsm_dstf_stuff_error; self.dirty[1] |= 0xc; }
-        self.monitor_fsm_dstf_cnt_d = monitor_fsm_dstf_cnt_d;
-        self.monitor_fsm_dstf_lvl_d = monitor_fsm_dstf_lvl_d;
+        if monitor_fsm_dstf_cnt_d != self.monitor_fsm_dstf_cnt_d { self.monitor_fsm_dstf_cnt_d = monitor_fsm_dstf_cnt_d; self.pend[1] |= 0x8000000; }
+        if monitor_fsm_dstf_lvl_d != self.monitor_fsm_dstf_lvl_d { self.monitor_fsm_dstf_lvl_d = monitor_fsm_dstf_lvl_d; self.pend[1] |= 0x10000000; }
     }
 
     /// `monitor.fsm.dstf` block, depth 2, probe-only: monitor.fsm.dstf.stuff_bit, monitor.fsm.dstf.take
@@ -5015,7 +5305,7 @@ impl HubN3M0 {
         if (self.monitor_l_hold | self.monitor_fsm_crcb_clear) {
             monitor_fsm_crcb_state_d = 0u16;
         }
-        self.monitor_fsm_crcb_state_d = monitor_fsm_crcb_state_d;
+        if monitor_fsm_crcb_state_d != self.monitor_fsm_crcb_state_d { self.monitor_fsm_crcb_state_d = monitor_fsm_crcb_state_d; self.pend[1] |= 0x20000000; }
     }
 
     /// `adapter` block, depth 2, state-only: adapter.p_r.d
@@ -5028,7 +5318,7 @@ impl HubN3M0 {
         if self.core_rst_s2 {
             adapter_p_r_d = 0u8;
         }
-        self.adapter_p_r_d = adapter_p_r_d;
+        if adapter_p_r_d != self.adapter_p_r_d { self.adapter_p_r_d = adapter_p_r_d; self.pend[2] |= 0x2; }
     }
 
     /// `core.pj$0` block, depth 3, state-only: core.pj$0.blame, core.pj$0.tx_error, core.pj$0.bic_r.d, core.pj$0.life_r.d, core.pj$0.dbc_r.d, core.pj$0.cont_r.d, ... (9 signals)
@@ -5121,13 +5411,13 @@ impl HubN3M0 {
         }
         if core_pj_0_blame != self.core_pj_0_blame { self.core_pj_0_blame = core_pj_0_blame; self.dirty[1] |= 0x60; }
         if core_pj_0_tx_error != self.core_pj_0_tx_error { self.core_pj_0_tx_error = core_pj_0_tx_error; self.dirty[1] |= 0x60; }
-        self.core_pj_0_bic_r_d = core_pj_0_bic_r_d;
-        self.core_pj_0_life_r_d = core_pj_0_life_r_d;
-        self.core_pj_0_dbc_r_d = core_pj_0_dbc_r_d;
-        self.core_pj_0_cont_r_d = core_pj_0_cont_r_d;
-        self.core_pj_0_bad_d = core_pj_0_bad_d;
-        self.core_pj_0_ack_missing_d = core_pj_0_ack_missing_d;
-        self.core_pj_0_ack_c_d = core_pj_0_ack_c_d;
+        if core_pj_0_bic_r_d != self.core_pj_0_bic_r_d { self.core_pj_0_bic_r_d = core_pj_0_bic_r_d; self.pend[0] |= 0x20000; }
+        if core_pj_0_life_r_d != self.core_pj_0_life_r_d { self.core_pj_0_life_r_d = core_pj_0_life_r_d; self.pend[0] |= 0x40000; }
+        if core_pj_0_dbc_r_d != self.core_pj_0_dbc_r_d { self.core_pj_0_dbc_r_d = core_pj_0_dbc_r_d; self.pend[0] |= 0x80000; }
+        if core_pj_0_cont_r_d != self.core_pj_0_cont_r_d { self.core_pj_0_cont_r_d = core_pj_0_cont_r_d; self.pend[0] |= 0x200000; }
+        if core_pj_0_bad_d != self.core_pj_0_bad_d { self.core_pj_0_bad_d = core_pj_0_bad_d; self.pend[0] |= 0x8000000; }
+        if core_pj_0_ack_missing_d != self.core_pj_0_ack_missing_d { self.core_pj_0_ack_missing_d = core_pj_0_ack_missing_d; self.pend[0] |= 0x10000000; }
+        if core_pj_0_ack_c_d != self.core_pj_0_ack_c_d { self.core_pj_0_ack_c_d = core_pj_0_ack_c_d; self.pend[0] |= 0x20000000; }
     }
 
     /// `core.pj$0` block, depth 3, probe-only: core.pj$0.dom, core.pj$0.unj
@@ -5230,13 +5520,13 @@ impl HubN3M0 {
         }
         if core_pj_1_blame != self.core_pj_1_blame { self.core_pj_1_blame = core_pj_1_blame; self.dirty[1] |= 0x60; }
         if core_pj_1_tx_error != self.core_pj_1_tx_error { self.core_pj_1_tx_error = core_pj_1_tx_error; self.dirty[1] |= 0x60; }
-        self.core_pj_1_bic_r_d = core_pj_1_bic_r_d;
-        self.core_pj_1_life_r_d = core_pj_1_life_r_d;
-        self.core_pj_1_dbc_r_d = core_pj_1_dbc_r_d;
-        self.core_pj_1_cont_r_d = core_pj_1_cont_r_d;
-        self.core_pj_1_bad_d = core_pj_1_bad_d;
-        self.core_pj_1_ack_missing_d = core_pj_1_ack_missing_d;
-        self.core_pj_1_ack_c_d = core_pj_1_ack_c_d;
+        if core_pj_1_bic_r_d != self.core_pj_1_bic_r_d { self.core_pj_1_bic_r_d = core_pj_1_bic_r_d; self.pend[0] |= 0x100000000; }
+        if core_pj_1_life_r_d != self.core_pj_1_life_r_d { self.core_pj_1_life_r_d = core_pj_1_life_r_d; self.pend[0] |= 0x200000000; }
+        if core_pj_1_dbc_r_d != self.core_pj_1_dbc_r_d { self.core_pj_1_dbc_r_d = core_pj_1_dbc_r_d; self.pend[0] |= 0x400000000; }
+        if core_pj_1_cont_r_d != self.core_pj_1_cont_r_d { self.core_pj_1_cont_r_d = core_pj_1_cont_r_d; self.pend[0] |= 0x1000000000; }
+        if core_pj_1_bad_d != self.core_pj_1_bad_d { self.core_pj_1_bad_d = core_pj_1_bad_d; self.pend[0] |= 0x40000000000; }
+        if core_pj_1_ack_missing_d != self.core_pj_1_ack_missing_d { self.core_pj_1_ack_missing_d = core_pj_1_ack_missing_d; self.pend[0] |= 0x80000000000; }
+        if core_pj_1_ack_c_d != self.core_pj_1_ack_c_d { self.core_pj_1_ack_c_d = core_pj_1_ack_c_d; self.pend[0] |= 0x100000000000; }
     }
 
     /// `core.pj$1` block, depth 3, probe-only: core.pj$1.dom, core.pj$1.unj
@@ -5339,13 +5629,13 @@ impl HubN3M0 {
         }
         if core_pj_2_blame != self.core_pj_2_blame { self.core_pj_2_blame = core_pj_2_blame; self.dirty[1] |= 0x60; }
         if core_pj_2_tx_error != self.core_pj_2_tx_error { self.core_pj_2_tx_error = core_pj_2_tx_error; self.dirty[1] |= 0x60; }
-        self.core_pj_2_bic_r_d = core_pj_2_bic_r_d;
-        self.core_pj_2_life_r_d = core_pj_2_life_r_d;
-        self.core_pj_2_dbc_r_d = core_pj_2_dbc_r_d;
-        self.core_pj_2_cont_r_d = core_pj_2_cont_r_d;
-        self.core_pj_2_bad_d = core_pj_2_bad_d;
-        self.core_pj_2_ack_missing_d = core_pj_2_ack_missing_d;
-        self.core_pj_2_ack_c_d = core_pj_2_ack_c_d;
+        if core_pj_2_bic_r_d != self.core_pj_2_bic_r_d { self.core_pj_2_bic_r_d = core_pj_2_bic_r_d; self.pend[0] |= 0x800000000000; }
+        if core_pj_2_life_r_d != self.core_pj_2_life_r_d { self.core_pj_2_life_r_d = core_pj_2_life_r_d; self.pend[0] |= 0x1000000000000; }
+        if core_pj_2_dbc_r_d != self.core_pj_2_dbc_r_d { self.core_pj_2_dbc_r_d = core_pj_2_dbc_r_d; self.pend[0] |= 0x2000000000000; }
+        if core_pj_2_cont_r_d != self.core_pj_2_cont_r_d { self.core_pj_2_cont_r_d = core_pj_2_cont_r_d; self.pend[0] |= 0x8000000000000; }
+        if core_pj_2_bad_d != self.core_pj_2_bad_d { self.core_pj_2_bad_d = core_pj_2_bad_d; self.pend[0] |= 0x200000000000000; }
+        if core_pj_2_ack_missing_d != self.core_pj_2_ack_missing_d { self.core_pj_2_ack_missing_d = core_pj_2_ack_missing_d; self.pend[0] |= 0x400000000000000; }
+        if core_pj_2_ack_c_d != self.core_pj_2_ack_c_d { self.core_pj_2_ack_c_d = core_pj_2_ack_c_d; self.pend[0] |= 0x800000000000000; }
     }
 
     /// `core.pj$2` block, depth 3, probe-only: core.pj$2.dom, core.pj$2.unj
@@ -5365,7 +5655,7 @@ impl HubN3M0 {
         if self.core_rst_s2 {
             monitor_sync_s1_n_d = false;
         }
-        self.monitor_sync_s1_n_d = monitor_sync_s1_n_d;
+        if monitor_sync_s1_n_d != self.monitor_sync_s1_n_d { self.monitor_sync_s1_n_d = monitor_sync_s1_n_d; self.pend[0] |= 0x4000000000000000; }
     }
 
     /// `monitor.fsm` block, depth 3, state-only: monitor.fsm.fld.d, monitor.fsm.fpos.d, monitor.fsm.dom.d, monitor.fsm.crcerr.d, monitor.fsm.fdone.d, monitor.fsm.dafc.d, ... (12 signals)
@@ -6120,18 +6410,18 @@ impl HubN3M0 {
             monitor_fsm_dafany_d = false;
             monitor_fsm_evr_d = 0u32;
         }
-        self.monitor_fsm_fld_d = monitor_fsm_fld_d;
-        self.monitor_fsm_fpos_d = monitor_fsm_fpos_d;
-        self.monitor_fsm_dom_d = monitor_fsm_dom_d;
-        self.monitor_fsm_crcerr_d = monitor_fsm_crcerr_d;
-        self.monitor_fsm_fdone_d = monitor_fsm_fdone_d;
-        self.monitor_fsm_dafc_d = monitor_fsm_dafc_d;
-        self.monitor_fsm_dafany_d = monitor_fsm_dafany_d;
-        self.monitor_fsm_evr_d = monitor_fsm_evr_d;
-        self.monitor_fsm_arbpos_r_d = monitor_fsm_arbpos_r_d;
-        self.monitor_fsm_errf_r_d = monitor_fsm_errf_r_d;
-        self.monitor_fsm_errp_r_d = monitor_fsm_errp_r_d;
-        self.monitor_fsm_errtx_r_d = monitor_fsm_errtx_r_d;
+        if monitor_fsm_fld_d != self.monitor_fsm_fld_d { self.monitor_fsm_fld_d = monitor_fsm_fld_d; self.pend[1] |= 0x200000; }
+        if monitor_fsm_fpos_d != self.monitor_fsm_fpos_d { self.monitor_fsm_fpos_d = monitor_fsm_fpos_d; self.pend[1] |= 0x400000; }
+        if monitor_fsm_dom_d != self.monitor_fsm_dom_d { self.monitor_fsm_dom_d = monitor_fsm_dom_d; self.pend[1] |= 0x4000000; }
+        if monitor_fsm_crcerr_d != self.monitor_fsm_crcerr_d { self.monitor_fsm_crcerr_d = monitor_fsm_crcerr_d; self.pend[1] |= 0x40000000; }
+        if monitor_fsm_fdone_d != self.monitor_fsm_fdone_d { self.monitor_fsm_fdone_d = monitor_fsm_fdone_d; self.pend[1] |= 0x20000000000; }
+        if monitor_fsm_dafc_d != self.monitor_fsm_dafc_d { self.monitor_fsm_dafc_d = monitor_fsm_dafc_d; self.pend[1] |= 0x100000000000; }
+        if monitor_fsm_dafany_d != self.monitor_fsm_dafany_d { self.monitor_fsm_dafany_d = monitor_fsm_dafany_d; self.pend[1] |= 0x200000000000; }
+        if monitor_fsm_evr_d != self.monitor_fsm_evr_d { self.monitor_fsm_evr_d = monitor_fsm_evr_d; self.pend[1] |= 0x20000000000000; }
+        if monitor_fsm_arbpos_r_d != self.monitor_fsm_arbpos_r_d { self.monitor_fsm_arbpos_r_d = monitor_fsm_arbpos_r_d; self.pend[1] |= 0x40000000000000; }
+        if monitor_fsm_errf_r_d != self.monitor_fsm_errf_r_d { self.monitor_fsm_errf_r_d = monitor_fsm_errf_r_d; self.pend[1] |= 0x80000000000000; }
+        if monitor_fsm_errp_r_d != self.monitor_fsm_errp_r_d { self.monitor_fsm_errp_r_d = monitor_fsm_errp_r_d; self.pend[1] |= 0x100000000000000; }
+        if monitor_fsm_errtx_r_d != self.monitor_fsm_errtx_r_d { self.monitor_fsm_errtx_r_d = monitor_fsm_errtx_r_d; self.pend[1] |= 0x200000000000000; }
     }
 
     /// `monitor.fsm` block, depth 3, probe-only: monitor.fsm.l_nf, monitor.fsm.l_npos, monitor.fsm.l_ndom, monitor.fsm.l_err, monitor.fsm.l_errk, monitor.fsm.l_tinc, ... (12 signals)
@@ -6806,7 +7096,7 @@ impl HubN3M0 {
         if self.core_rst_s2 {
             adapter_f_r_d = 0u8;
         }
-        self.adapter_f_r_d = adapter_f_r_d;
+        if adapter_f_r_d != self.adapter_f_r_d { self.adapter_f_r_d = adapter_f_r_d; self.pend[2] |= 0x1; }
     }
 
     /// `core` block, depth 4, state-only: core.err_start_r.d, core.trigger
@@ -6825,7 +7115,7 @@ impl HubN3M0 {
         core_any_tx_error = (core_any_tx_error | self.core_pj_2_tx_error);
         core_trigger = (self.adapter_s_r & ((self.adapter_mon_error | core_any_blame) | core_any_tx_error));
         core_err_start_r_d = (core_trigger & (!self.core_efgen_busy));
-        self.core_err_start_r_d = core_err_start_r_d;
+        if core_err_start_r_d != self.core_err_start_r_d { self.core_err_start_r_d = core_err_start_r_d; self.pend[0] |= 0x1000; }
         if core_trigger != self.core_trigger { self.core_trigger = core_trigger; self.dirty[1] |= 0x80; }
     }
 
@@ -6860,7 +7150,7 @@ impl HubN3M0 {
         if self.core_rst_s2 {
             core_efgen_pending_d = false;
         }
-        self.core_efgen_pending_d = core_efgen_pending_d;
+        if core_efgen_pending_d != self.core_efgen_pending_d { self.core_efgen_pending_d = core_efgen_pending_d; self.pend[0] |= 0x200; }
     }
 
 }
@@ -8087,6 +8377,7 @@ impl rt::Model for HubN3M0 {
             _ => return false,
         }
         self.dirty = [!0; 2];
+        self.pend = [!0; 3];
         true
     }
     fn set_mem(&mut self, r: usize, addr: usize, v: u128) {

@@ -1192,6 +1192,8 @@ pub struct HubN3M1 {
     seen_reh_rx_0: bool,
     /// Groups to evaluate (one bit per group, see `run`).
     dirty: [u64; 2],
+    /// Registers whose input changed since they took it (see `edge`).
+    pend: [u64; 3],
     trace: bool,
 }
 
@@ -1802,6 +1804,7 @@ impl HubN3M1 {
             seen_rx_2: false,
             seen_reh_rx_0: false,
             dirty: [!0; 2],
+            pend: [!0; 3],
             trace: false,
         };
         m.eval_all();
@@ -1838,6 +1841,7 @@ impl HubN3M1 {
     /// Evaluate every group.
     fn eval_all(&mut self) {
         self.dirty = [!0; 2];
+        self.pend = [!0; 3];
         self.sense();
         self.run(&Self::ALL);
     }
@@ -1857,6 +1861,7 @@ impl HubN3M1 {
         }
     }
 
+    #[inline(never)]
     fn group(&mut self, k: usize) {
         match k {
             0 => self.g0(),
@@ -1956,310 +1961,631 @@ impl HubN3M1 {
 
     /// Rising edge: registers and memories take their inputs.
     fn edge(&mut self) {
-        let n0 = self.core_coupler_up_sync_0_s1_n_d;
-        let n1 = self.core_coupler_up_sync_0_s2_n_d;
-        let n2 = self.core_coupler_up_sync_1_s1_n_d;
-        let n3 = self.core_coupler_up_sync_1_s2_n_d;
-        let n4 = self.core_coupler_up_sync_2_s1_n_d;
-        let n5 = self.core_coupler_up_sync_2_s2_n_d;
-        let n6 = self.core_coupler_reh_sync_0_s1_n_d;
-        let n7 = self.core_coupler_reh_sync_0_s2_n_d;
-        let n8 = self.core_coupler_tx_n_0_d;
-        let n9 = self.core_coupler_tx_n_1_d;
-        let n10 = self.core_coupler_tx_n_2_d;
-        let n11 = self.core_coupler_hub_tx_n_0_d;
-        let n12 = self.core_efgen_pending_d;
-        let n13 = self.core_efgen_driving_d;
-        let n14 = self.core_efgen_cnt_d;
-        let n15 = self.core_err_start_r_d;
-        let n16 = self.core_injector_state_d;
-        let n17 = self.core_injector_btn_prev_d;
-        let n18 = self.core_injector_btn_r_d;
-        let n19 = self.core_pj_0_dis_r_d;
-        let n20 = self.core_pj_0_bic_r_d;
-        let n21 = self.core_pj_0_life_r_d;
-        let n22 = self.core_pj_0_dbc_r_d;
-        let n23 = self.core_pj_0_nack_r_d;
-        let n24 = self.core_pj_0_cont_r_d;
-        let n25 = self.core_pj_0_rep_r_d;
-        let n26 = self.core_pj_0_rep_seen_d;
-        let n27 = self.core_pj_0_rep_first_dom_d;
-        let n28 = self.core_pj_0_ok_r_d;
-        let n29 = self.core_pj_0_acked_d;
-        let n30 = self.core_pj_0_bad_d;
-        let n31 = self.core_pj_0_ack_missing_d;
-        let n32 = self.core_pj_0_ack_c_d;
-        let n33 = self.core_pj_0_ack_rx_d;
-        let n34 = self.core_pj_1_dis_r_d;
-        let n35 = self.core_pj_1_bic_r_d;
-        let n36 = self.core_pj_1_life_r_d;
-        let n37 = self.core_pj_1_dbc_r_d;
-        let n38 = self.core_pj_1_nack_r_d;
-        let n39 = self.core_pj_1_cont_r_d;
-        let n40 = self.core_pj_1_rep_r_d;
-        let n41 = self.core_pj_1_rep_seen_d;
-        let n42 = self.core_pj_1_rep_first_dom_d;
-        let n43 = self.core_pj_1_ok_r_d;
-        let n44 = self.core_pj_1_acked_d;
-        let n45 = self.core_pj_1_bad_d;
-        let n46 = self.core_pj_1_ack_missing_d;
-        let n47 = self.core_pj_1_ack_c_d;
-        let n48 = self.core_pj_1_ack_rx_d;
-        let n49 = self.core_pj_2_dis_r_d;
-        let n50 = self.core_pj_2_bic_r_d;
-        let n51 = self.core_pj_2_life_r_d;
-        let n52 = self.core_pj_2_dbc_r_d;
-        let n53 = self.core_pj_2_nack_r_d;
-        let n54 = self.core_pj_2_cont_r_d;
-        let n55 = self.core_pj_2_rep_r_d;
-        let n56 = self.core_pj_2_rep_seen_d;
-        let n57 = self.core_pj_2_rep_first_dom_d;
-        let n58 = self.core_pj_2_ok_r_d;
-        let n59 = self.core_pj_2_acked_d;
-        let n60 = self.core_pj_2_bad_d;
-        let n61 = self.core_pj_2_ack_missing_d;
-        let n62 = self.core_pj_2_ack_c_d;
-        let n63 = self.core_pj_2_ack_rx_d;
-        let n64 = self.core_sj_0_dis_r_d;
-        let n65 = self.core_sj_0_bic_r_d;
-        let n66 = self.core_sj_0_life_r_d;
-        let n67 = self.core_sj_0_dbc_r_d;
-        let n68 = self.core_sj_0_nack_r_d;
-        let n69 = self.core_sj_0_cont_r_d;
-        let n70 = self.core_sj_0_rep_r_d;
-        let n71 = self.core_sj_0_rep_seen_d;
-        let n72 = self.core_sj_0_rep_first_dom_d;
-        let n73 = self.core_sj_0_ok_r_d;
-        let n74 = self.core_sj_0_acked_d;
-        let n75 = self.core_sj_0_bad_d;
-        let n76 = self.core_sj_0_ack_missing_d;
-        let n77 = self.core_sj_0_ack_c_d;
-        let n78 = self.core_sj_0_ack_rx_d;
-        let n79 = self.core_rst_s1_d;
         let n80 = self.core_rst_s1;
-        let n81 = self.monitor_sync_s1_n_d;
-        let n82 = self.monitor_sync_s2_n_d;
-        let n83 = self.monitor_btl_c_brp_d;
-        let n84 = self.monitor_btl_c_sp_d;
-        let n85 = self.monitor_btl_c_ntq_d;
-        let n86 = self.monitor_btl_c_sjw_d;
-        let n87 = self.monitor_btl_c_triple_d;
-        let n88 = self.monitor_btl_c_valid_d;
-        let n89 = self.monitor_btl_c_bad_d;
-        let n90 = self.monitor_btl_pre_d;
-        let n91 = self.monitor_btl_cnt_d;
-        let n92 = self.monitor_btl_spw_d;
-        let n93 = self.monitor_btl_nbw_d;
-        let n94 = self.monitor_btl_busmon_n_d;
-        let n95 = self.monitor_btl_sync_dis_d;
-        let n96 = self.monitor_btl_since_d;
-        let n97 = self.monitor_btl_pending_d;
-        let n98 = self.monitor_btl_tx_n_d;
-        let n99 = self.monitor_btl_h1_n_d;
-        let n100 = self.monitor_btl_h2_n_d;
-        let n101 = self.monitor_btl_sample_r_d;
-        let n102 = self.monitor_btl_hard_r_d;
-        let n103 = self.monitor_btl_resync_r_d;
-        let n104 = self.monitor_fsm_fld_d;
-        let n105 = self.monitor_fsm_fpos_d;
-        let n106 = self.monitor_fsm_pfld_d;
-        let n107 = self.monitor_fsm_ppos_d;
-        let n108 = self.monitor_fsm_rtx_d;
-        let n109 = self.monitor_fsm_dom_d;
-        let n110 = self.monitor_fsm_dstf_cnt_d;
-        let n111 = self.monitor_fsm_dstf_lvl_d;
-        let n112 = self.monitor_fsm_crcb_state_d;
-        let n113 = self.monitor_fsm_crcerr_d;
-        let n114 = self.monitor_fsm_tid_d;
-        let n115 = self.monitor_fsm_tdat_d;
-        let n116 = self.monitor_fsm_tdlc_d;
-        let n117 = self.monitor_fsm_tide_d;
-        let n118 = self.monitor_fsm_trtr_d;
-        let n119 = self.monitor_fsm_rid_d;
-        let n120 = self.monitor_fsm_rdat_d;
-        let n121 = self.monitor_fsm_rdlc_d;
-        let n122 = self.monitor_fsm_rrtr_d;
-        let n123 = self.monitor_fsm_rext_d;
-        let n124 = self.monitor_fsm_fdone_d;
-        let n125 = self.monitor_fsm_eqcnt_d;
-        let n126 = self.monitor_fsm_eqlast_d;
-        let n127 = self.monitor_fsm_dafc_d;
-        let n128 = self.monitor_fsm_dafany_d;
-        let n129 = self.monitor_fsm_exc1_d;
-        let n130 = self.monitor_fsm_tecr_d;
-        let n131 = self.monitor_fsm_recr_d;
-        let n132 = self.monitor_fsm_runr_d;
-        let n133 = self.monitor_fsm_rarmed_d;
-        let n134 = self.monitor_fsm_req_d;
-        let n135 = self.monitor_fsm_blocked_d;
-        let n136 = self.monitor_fsm_evr_d;
-        let n137 = self.monitor_fsm_arbpos_r_d;
-        let n138 = self.monitor_fsm_errf_r_d;
-        let n139 = self.monitor_fsm_errp_r_d;
-        let n140 = self.monitor_fsm_errtx_r_d;
-        let n141 = self.monitor_fsm_rxide_r_d;
-        let n142 = self.monitor_fsm_rxrtr_r_d;
-        let n143 = self.monitor_fsm_rxid_r_d;
-        let n144 = self.monitor_fsm_rxdlc_r_d;
-        let n145 = self.monitor_fsm_rxdat_r_d;
-        let n146 = self.adapter_s_r_d;
-        let n147 = self.adapter_f_r_d;
-        let n148 = self.adapter_p_r_d;
-        let n149 = self.adapter_bs_pending_d;
-        let n150 = self.adapter_bs_cnt_d;
-        let n151 = self.adapter_f_map_d;
-        if n0 != self.core_coupler_up_sync_0_s1_n { self.core_coupler_up_sync_0_s1_n = n0; self.dirty[0] |= 0x8; }
-        if n1 != self.core_coupler_up_sync_0_s2_n { self.core_coupler_up_sync_0_s2_n = n1; self.dirty[0] |= 0x8; }
-        if n2 != self.core_coupler_up_sync_1_s1_n { self.core_coupler_up_sync_1_s1_n = n2; self.dirty[0] |= 0x20; }
-        if n3 != self.core_coupler_up_sync_1_s2_n { self.core_coupler_up_sync_1_s2_n = n3; self.dirty[0] |= 0x20; }
-        if n4 != self.core_coupler_up_sync_2_s1_n { self.core_coupler_up_sync_2_s1_n = n4; self.dirty[0] |= 0x80; }
-        if n5 != self.core_coupler_up_sync_2_s2_n { self.core_coupler_up_sync_2_s2_n = n5; self.dirty[0] |= 0x80; }
-        if n6 != self.core_coupler_reh_sync_0_s1_n { self.core_coupler_reh_sync_0_s1_n = n6; self.dirty[0] |= 0x200; }
-        if n7 != self.core_coupler_reh_sync_0_s2_n { self.core_coupler_reh_sync_0_s2_n = n7; self.dirty[0] |= 0x200; }
-        if n8 != self.core_coupler_tx_n_0 { self.core_coupler_tx_n_0 = n8; self.dirty[0] |= 0x4; }
-        if n9 != self.core_coupler_tx_n_1 { self.core_coupler_tx_n_1 = n9; self.dirty[0] |= 0x4; }
-        if n10 != self.core_coupler_tx_n_2 { self.core_coupler_tx_n_2 = n10; self.dirty[0] |= 0x4; }
-        if n11 != self.core_coupler_hub_tx_n_0 { self.core_coupler_hub_tx_n_0 = n11; self.dirty[0] |= 0x4; }
-        if n12 != self.core_efgen_pending { self.core_efgen_pending = n12; self.dirty[0] |= 0x1000000800; self.dirty[1] |= 0x10000; }
-        if n13 != self.core_efgen_driving { self.core_efgen_driving = n13; self.dirty[0] |= 0x1000000801; self.dirty[1] |= 0x10000; }
-        if n14 != self.core_efgen_cnt { self.core_efgen_cnt = n14; self.dirty[0] |= 0x1000000000; }
-        if n15 != self.core_err_start_r { self.core_err_start_r = n15; self.dirty[0] |= 0x200020000000000; }
-        if n16 != self.core_injector_state { self.core_injector_state = n16; self.dirty[0] |= 0x20000000005000; }
-        if n17 != self.core_injector_btn_prev { self.core_injector_btn_prev = n17; self.dirty[0] |= 0x20000000004000; }
-        if n18 != self.core_injector_btn_r { self.core_injector_btn_r = n18; self.dirty[0] |= 0x20000000005000; }
-        if n19 != self.core_pj_0_dis_r { self.core_pj_0_dis_r = n19; self.dirty[0] |= 0x58004000010001; self.dirty[1] |= 0x4; }
-        if n20 != self.core_pj_0_bic_r { self.core_pj_0_bic_r = n20; self.dirty[0] |= 0x4000000001; self.dirty[1] |= 0x4; }
-        if n21 != self.core_pj_0_life_r { self.core_pj_0_life_r = n21; self.dirty[0] |= 0x4000000000; self.dirty[1] |= 0x4; }
-        if n22 != self.core_pj_0_dbc_r { self.core_pj_0_dbc_r = n22; self.dirty[0] |= 0x4000000001; self.dirty[1] |= 0x4; }
-        if n23 != self.core_pj_0_nack_r { self.core_pj_0_nack_r = n23; self.dirty[0] |= 0x40000000008001; }
-        if n24 != self.core_pj_0_cont_r { self.core_pj_0_cont_r = n24; self.dirty[0] |= 0x40000000000000; self.dirty[1] |= 0xc; }
-        if n25 != self.core_pj_0_rep_r { self.core_pj_0_rep_r = n25; self.dirty[0] |= 0x4000000000; }
-        if n26 != self.core_pj_0_rep_seen { self.core_pj_0_rep_seen = n26; self.dirty[0] |= 0x4000000000; }
-        if n27 != self.core_pj_0_rep_first_dom { self.core_pj_0_rep_first_dom = n27; self.dirty[0] |= 0x4000008000; }
-        if n28 != self.core_pj_0_ok_r { self.core_pj_0_ok_r = n28; self.dirty[0] |= 0x40004000000000; self.dirty[1] |= 0x4; }
-        if n29 != self.core_pj_0_acked { self.core_pj_0_acked = n29; self.dirty[0] |= 0x40004000000000; self.dirty[1] |= 0x4; }
-        if n30 != self.core_pj_0_bad { self.core_pj_0_bad = n30; self.dirty[0] |= 0x40004000000000; self.dirty[1] |= 0x4; }
-        if n31 != self.core_pj_0_ack_missing { self.core_pj_0_ack_missing = n31; self.dirty[1] |= 0xc; }
-        if n32 != self.core_pj_0_ack_c { self.core_pj_0_ack_c = n32; self.dirty[0] |= 0x40000000000000; self.dirty[1] |= 0x4; }
-        if n33 != self.core_pj_0_ack_rx { self.core_pj_0_ack_rx = n33; self.dirty[0] |= 0x40000000000000; }
-        if n34 != self.core_pj_1_dis_r { self.core_pj_1_dis_r = n34; self.dirty[0] |= 0x98008000040001; self.dirty[1] |= 0x10; }
-        if n35 != self.core_pj_1_bic_r { self.core_pj_1_bic_r = n35; self.dirty[0] |= 0x8000000001; self.dirty[1] |= 0x10; }
-        if n36 != self.core_pj_1_life_r { self.core_pj_1_life_r = n36; self.dirty[0] |= 0x8000000000; self.dirty[1] |= 0x10; }
-        if n37 != self.core_pj_1_dbc_r { self.core_pj_1_dbc_r = n37; self.dirty[0] |= 0x8000000001; self.dirty[1] |= 0x10; }
-        if n38 != self.core_pj_1_nack_r { self.core_pj_1_nack_r = n38; self.dirty[0] |= 0x80000000020001; }
-        if n39 != self.core_pj_1_cont_r { self.core_pj_1_cont_r = n39; self.dirty[0] |= 0x80000000000000; self.dirty[1] |= 0x30; }
-        if n40 != self.core_pj_1_rep_r { self.core_pj_1_rep_r = n40; self.dirty[0] |= 0x8000000000; }
-        if n41 != self.core_pj_1_rep_seen { self.core_pj_1_rep_seen = n41; self.dirty[0] |= 0x8000000000; }
-        if n42 != self.core_pj_1_rep_first_dom { self.core_pj_1_rep_first_dom = n42; self.dirty[0] |= 0x8000020000; }
-        if n43 != self.core_pj_1_ok_r { self.core_pj_1_ok_r = n43; self.dirty[0] |= 0x80008000000000; self.dirty[1] |= 0x10; }
-        if n44 != self.core_pj_1_acked { self.core_pj_1_acked = n44; self.dirty[0] |= 0x80008000000000; self.dirty[1] |= 0x10; }
-        if n45 != self.core_pj_1_bad { self.core_pj_1_bad = n45; self.dirty[0] |= 0x80008000000000; self.dirty[1] |= 0x10; }
-        if n46 != self.core_pj_1_ack_missing { self.core_pj_1_ack_missing = n46; self.dirty[1] |= 0x30; }
-        if n47 != self.core_pj_1_ack_c { self.core_pj_1_ack_c = n47; self.dirty[0] |= 0x80000000000000; self.dirty[1] |= 0x10; }
-        if n48 != self.core_pj_1_ack_rx { self.core_pj_1_ack_rx = n48; self.dirty[0] |= 0x80000000000000; }
-        if n49 != self.core_pj_2_dis_r { self.core_pj_2_dis_r = n49; self.dirty[0] |= 0x118010000100001; self.dirty[1] |= 0x40; }
-        if n50 != self.core_pj_2_bic_r { self.core_pj_2_bic_r = n50; self.dirty[0] |= 0x10000000001; self.dirty[1] |= 0x40; }
-        if n51 != self.core_pj_2_life_r { self.core_pj_2_life_r = n51; self.dirty[0] |= 0x10000000000; self.dirty[1] |= 0x40; }
-        if n52 != self.core_pj_2_dbc_r { self.core_pj_2_dbc_r = n52; self.dirty[0] |= 0x10000000001; self.dirty[1] |= 0x40; }
-        if n53 != self.core_pj_2_nack_r { self.core_pj_2_nack_r = n53; self.dirty[0] |= 0x100000000080001; }
-        if n54 != self.core_pj_2_cont_r { self.core_pj_2_cont_r = n54; self.dirty[0] |= 0x100000000000000; self.dirty[1] |= 0xc0; }
-        if n55 != self.core_pj_2_rep_r { self.core_pj_2_rep_r = n55; self.dirty[0] |= 0x10000000000; }
-        if n56 != self.core_pj_2_rep_seen { self.core_pj_2_rep_seen = n56; self.dirty[0] |= 0x10000000000; }
-        if n57 != self.core_pj_2_rep_first_dom { self.core_pj_2_rep_first_dom = n57; self.dirty[0] |= 0x10000080000; }
-        if n58 != self.core_pj_2_ok_r { self.core_pj_2_ok_r = n58; self.dirty[0] |= 0x100010000000000; self.dirty[1] |= 0x40; }
-        if n59 != self.core_pj_2_acked { self.core_pj_2_acked = n59; self.dirty[0] |= 0x100010000000000; self.dirty[1] |= 0x40; }
-        if n60 != self.core_pj_2_bad { self.core_pj_2_bad = n60; self.dirty[0] |= 0x100010000000000; self.dirty[1] |= 0x40; }
-        if n61 != self.core_pj_2_ack_missing { self.core_pj_2_ack_missing = n61; self.dirty[1] |= 0xc0; }
-        if n62 != self.core_pj_2_ack_c { self.core_pj_2_ack_c = n62; self.dirty[0] |= 0x100000000000000; self.dirty[1] |= 0x40; }
-        if n63 != self.core_pj_2_ack_rx { self.core_pj_2_ack_rx = n63; self.dirty[0] |= 0x100000000000000; }
-        if n64 != self.core_sj_0_dis_r { self.core_sj_0_dis_r = n64; self.dirty[0] |= 0x218020c00200001; self.dirty[1] |= 0x100; }
-        if n65 != self.core_sj_0_bic_r { self.core_sj_0_bic_r = n65; self.dirty[0] |= 0x20000000001; self.dirty[1] |= 0x100; }
-        if n66 != self.core_sj_0_life_r { self.core_sj_0_life_r = n66; self.dirty[0] |= 0x20000000000; self.dirty[1] |= 0x100; }
-        if n67 != self.core_sj_0_dbc_r { self.core_sj_0_dbc_r = n67; self.dirty[0] |= 0x20000000001; self.dirty[1] |= 0x100; }
-        if n68 != self.core_sj_0_nack_r { self.core_sj_0_nack_r = n68; self.dirty[0] |= 0x200000000200000; }
-        if n69 != self.core_sj_0_cont_r { self.core_sj_0_cont_r = n69; self.dirty[0] |= 0x200000000000000; self.dirty[1] |= 0x300; }
-        if n70 != self.core_sj_0_rep_r { self.core_sj_0_rep_r = n70; self.dirty[0] |= 0x20000000001; }
-        if n71 != self.core_sj_0_rep_seen { self.core_sj_0_rep_seen = n71; self.dirty[0] |= 0x200020000000000; }
-        if n72 != self.core_sj_0_rep_first_dom { self.core_sj_0_rep_first_dom = n72; self.dirty[0] |= 0x200020000000000; }
-        if n73 != self.core_sj_0_ok_r { self.core_sj_0_ok_r = n73; self.dirty[0] |= 0x200020000000000; self.dirty[1] |= 0x100; }
-        if n74 != self.core_sj_0_acked { self.core_sj_0_acked = n74; self.dirty[0] |= 0x200020000000000; self.dirty[1] |= 0x100; }
-        if n75 != self.core_sj_0_bad { self.core_sj_0_bad = n75; self.dirty[0] |= 0x200020000000000; self.dirty[1] |= 0x100; }
-        if n76 != self.core_sj_0_ack_missing { self.core_sj_0_ack_missing = n76; self.dirty[1] |= 0x300; }
-        if n77 != self.core_sj_0_ack_c { self.core_sj_0_ack_c = n77; self.dirty[0] |= 0x200000000000000; }
-        if n78 != self.core_sj_0_ack_rx { self.core_sj_0_ack_rx = n78; self.dirty[0] |= 0x200000000000000; }
-        self.core_rst_s1 = n79;
+        for w in 0..3 {
+            loop {
+                let m = self.pend[w];
+                if m == 0 {
+                    break;
+                }
+                let k = m.trailing_zeros() as usize;
+                self.pend[w] &= !(1u64 << k);
+                self.take(w * 64 + k);
+            }
+        }
         if n80 != self.core_rst_s2 { self.core_rst_s2 = n80; self.dirty[0] |= 0x1fe80bd083cab7f8; self.dirty[1] |= 0x12556; }
-        if n81 != self.monitor_sync_s1_n { self.monitor_sync_s1_n = n81; self.dirty[0] |= 0x800000; }
-        if n82 != self.monitor_sync_s2_n { self.monitor_sync_s2_n = n82; self.dirty[0] |= 0x800000; }
-        if n83 != self.monitor_btl_c_brp { self.monitor_btl_c_brp = n83; self.dirty[0] |= 0x1800080003000000; }
-        if n84 != self.monitor_btl_c_sp { self.monitor_btl_c_sp = n84; self.dirty[0] |= 0x1800080000000000; }
-        if n85 != self.monitor_btl_c_ntq { self.monitor_btl_c_ntq = n85; self.dirty[0] |= 0x1800080000000000; }
-        if n86 != self.monitor_btl_c_sjw { self.monitor_btl_c_sjw = n86; self.dirty[0] |= 0x1800000003000000; }
-        if n87 != self.monitor_btl_c_triple { self.monitor_btl_c_triple = n87; self.dirty[0] |= 0x800100001000000; }
-        if n88 != self.monitor_btl_c_valid { self.monitor_btl_c_valid = n88; self.dirty[0] |= 0x1800080003000000; }
-        if n89 != self.monitor_btl_c_bad { self.monitor_btl_c_bad = n89; self.dirty[0] |= 0x400080000400000; }
-        if n90 != self.monitor_btl_pre { self.monitor_btl_pre = n90; self.dirty[0] |= 0x1800080003000000; }
-        if n91 != self.monitor_btl_cnt { self.monitor_btl_cnt = n91; self.dirty[0] |= 0x1800000002000000; }
-        if n92 != self.monitor_btl_spw { self.monitor_btl_spw = n92; self.dirty[0] |= 0x1800000002000000; }
-        if n93 != self.monitor_btl_nbw { self.monitor_btl_nbw = n93; self.dirty[0] |= 0x1800000002000000; }
-        if n94 != self.monitor_btl_busmon_n { self.monitor_btl_busmon_n = n94; self.dirty[0] |= 0x1800100001000000; }
-        if n95 != self.monitor_btl_sync_dis { self.monitor_btl_sync_dis = n95; self.dirty[0] |= 0x1800100000000000; }
-        if n96 != self.monitor_btl_since { self.monitor_btl_since = n96; self.dirty[0] |= 0x1800000002000000; }
-        if n97 != self.monitor_btl_pending { self.monitor_btl_pending = n97; self.dirty[0] |= 0x1800000000000000; }
-        if n98 != self.monitor_btl_tx_n { self.monitor_btl_tx_n = n98; self.dirty[0] |= 0x800000002000000; }
-        if n99 != self.monitor_btl_h1_n { self.monitor_btl_h1_n = n99; self.dirty[0] |= 0x800180001000000; }
-        if n100 != self.monitor_btl_h2_n { self.monitor_btl_h2_n = n100; self.dirty[0] |= 0x800100001000000; }
-        if n101 != self.monitor_btl_sample_r { self.monitor_btl_sample_r = n101; self.dirty[0] |= 0xe00060008c000000; self.dirty[1] |= 0x3802; }
-        self.monitor_btl_hard_r = n102;
-        self.monitor_btl_resync_r = n103;
-        if n104 != self.monitor_fsm_fld { self.monitor_fsm_fld = n104; self.dirty[0] |= 0x2000600000000000; self.dirty[1] |= 0x1800; }
-        if n105 != self.monitor_fsm_fpos { self.monitor_fsm_fpos = n105; self.dirty[0] |= 0x2000600008000000; self.dirty[1] |= 0x1800; }
-        if n106 != self.monitor_fsm_pfld { self.monitor_fsm_pfld = n106; self.dirty[0] |= 0x2000600000000000; self.dirty[1] |= 0x1800; }
-        if n107 != self.monitor_fsm_ppos { self.monitor_fsm_ppos = n107; self.dirty[0] |= 0x600000000000; self.dirty[1] |= 0x800; }
-        if n108 != self.monitor_fsm_rtx { self.monitor_fsm_rtx = n108; self.dirty[0] |= 0x2000600000000000; self.dirty[1] |= 0x1800; }
-        if n109 != self.monitor_fsm_dom { self.monitor_fsm_dom = n109; self.dirty[1] |= 0x1800; }
-        if n110 != self.monitor_fsm_dstf_cnt { self.monitor_fsm_dstf_cnt = n110; self.dirty[0] |= 0xc000800010000000; }
-        if n111 != self.monitor_fsm_dstf_lvl { self.monitor_fsm_dstf_lvl = n111; self.dirty[0] |= 0xc000800020000000; }
-        if n112 != self.monitor_fsm_crcb_state { self.monitor_fsm_crcb_state = n112; self.dirty[0] |= 0x3000040000000; self.dirty[1] |= 0x1; }
-        if n113 != self.monitor_fsm_crcerr { self.monitor_fsm_crcerr = n113; self.dirty[1] |= 0x1800; }
-        if n114 != self.monitor_fsm_tid { self.monitor_fsm_tid = n114; self.dirty[0] |= 0x2000600000000000; self.dirty[1] |= 0x1800; }
-        if n115 != self.monitor_fsm_tdat { self.monitor_fsm_tdat = n115; self.dirty[0] |= 0x2000600000000000; self.dirty[1] |= 0x1800; }
-        if n116 != self.monitor_fsm_tdlc { self.monitor_fsm_tdlc = n116; self.dirty[0] |= 0x2000600000000000; self.dirty[1] |= 0x1800; }
-        if n117 != self.monitor_fsm_tide { self.monitor_fsm_tide = n117; self.dirty[0] |= 0x2000000004000000; self.dirty[1] |= 0x1800; }
-        if n118 != self.monitor_fsm_trtr { self.monitor_fsm_trtr = n118; self.dirty[0] |= 0x2000000004000000; self.dirty[1] |= 0x1800; }
-        if n119 != self.monitor_fsm_rid { self.monitor_fsm_rid = n119; self.dirty[0] |= 0x600000000000; }
-        if n120 != self.monitor_fsm_rdat { self.monitor_fsm_rdat = n120; self.dirty[0] |= 0x600000000000; }
-        if n121 != self.monitor_fsm_rdlc { self.monitor_fsm_rdlc = n121; self.dirty[0] |= 0x2000600000000000; self.dirty[1] |= 0x1800; }
-        if n122 != self.monitor_fsm_rrtr { self.monitor_fsm_rrtr = n122; self.dirty[0] |= 0x2000600000000000; self.dirty[1] |= 0x1800; }
-        if n123 != self.monitor_fsm_rext { self.monitor_fsm_rext = n123; self.dirty[0] |= 0x2000600000000000; self.dirty[1] |= 0x1800; }
-        if n124 != self.monitor_fsm_fdone { self.monitor_fsm_fdone = n124; self.dirty[0] |= 0x2000600000000000; self.dirty[1] |= 0x1800; }
-        if n125 != self.monitor_fsm_eqcnt { self.monitor_fsm_eqcnt = n125; self.dirty[0] |= 0x600000000000; self.dirty[1] |= 0x1800; }
-        if n126 != self.monitor_fsm_eqlast { self.monitor_fsm_eqlast = n126; self.dirty[0] |= 0x600000000000; self.dirty[1] |= 0x1800; }
-        if n127 != self.monitor_fsm_dafc { self.monitor_fsm_dafc = n127; self.dirty[0] |= 0x400000000000; self.dirty[1] |= 0x1800; }
-        if n128 != self.monitor_fsm_dafany { self.monitor_fsm_dafany = n128; self.dirty[0] |= 0x400000000000; self.dirty[1] |= 0x1800; }
-        if n129 != self.monitor_fsm_exc1 { self.monitor_fsm_exc1 = n129; self.dirty[0] |= 0x600000000000; self.dirty[1] |= 0x1800; }
-        if n130 != self.monitor_fsm_tecr { self.monitor_fsm_tecr = n130; self.dirty[0] |= 0x2000600008000000; self.dirty[1] |= 0x1800; }
-        if n131 != self.monitor_fsm_recr { self.monitor_fsm_recr = n131; self.dirty[0] |= 0x2000600008000000; self.dirty[1] |= 0x1800; }
-        if n132 != self.monitor_fsm_runr { self.monitor_fsm_runr = n132; self.dirty[0] |= 0x2000600000000000; self.dirty[1] |= 0x1800; }
-        if n133 != self.monitor_fsm_rarmed { self.monitor_fsm_rarmed = n133; self.dirty[0] |= 0x600000000000; }
-        self.monitor_fsm_req = n134;
-        self.monitor_fsm_blocked = n135;
-        if n136 != self.monitor_fsm_evr { self.monitor_fsm_evr = n136; self.dirty[0] |= 0x188000000; }
-        if n137 != self.monitor_fsm_arbpos_r { self.monitor_fsm_arbpos_r = n137; self.dirty[1] |= 0x800; }
-        if n138 != self.monitor_fsm_errf_r { self.monitor_fsm_errf_r = n138; self.dirty[1] |= 0x800; }
-        if n139 != self.monitor_fsm_errp_r { self.monitor_fsm_errp_r = n139; self.dirty[1] |= 0x800; }
-        if n140 != self.monitor_fsm_errtx_r { self.monitor_fsm_errtx_r = n140; self.dirty[1] |= 0x800; }
-        if n141 != self.monitor_fsm_rxide_r { self.monitor_fsm_rxide_r = n141; self.dirty[0] |= 0x200000000000; }
-        if n142 != self.monitor_fsm_rxrtr_r { self.monitor_fsm_rxrtr_r = n142; self.dirty[0] |= 0x200000000000; }
-        if n143 != self.monitor_fsm_rxid_r { self.monitor_fsm_rxid_r = n143; self.dirty[0] |= 0x200000000000; }
-        if n144 != self.monitor_fsm_rxdlc_r { self.monitor_fsm_rxdlc_r = n144; self.dirty[0] |= 0x200000000000; }
-        if n145 != self.monitor_fsm_rxdat_r { self.monitor_fsm_rxdat_r = n145; self.dirty[0] |= 0x200000000000; }
-        if n146 != self.adapter_s_r { self.adapter_s_r = n146; self.dirty[0] |= 0x3e003c080000000; self.dirty[1] |= 0x4154; }
-        if n147 != self.adapter_f_r { self.adapter_f_r = n147; self.dirty[0] |= 0x180000000; self.dirty[1] |= 0x2000; }
-        if n148 != self.adapter_p_r { self.adapter_p_r = n148; self.dirty[0] |= 0x80000000; self.dirty[1] |= 0x2; }
-        if n149 != self.adapter_bs_pending { self.adapter_bs_pending = n149; self.dirty[0] |= 0x80000000; }
-        if n150 != self.adapter_bs_cnt { self.adapter_bs_cnt = n150; self.dirty[0] |= 0x80000000; }
-        if n151 != self.adapter_f_map { self.adapter_f_map = n151; self.dirty[0] |= 0x80000000; }
+    }
+
+    /// Pending register `k` takes its input.
+    #[inline(never)]
+    fn take(&mut self, k: usize) {
+        match k {
+            0 => {
+                let n = self.core_coupler_up_sync_0_s1_n_d;
+                if n != self.core_coupler_up_sync_0_s1_n { self.core_coupler_up_sync_0_s1_n = n; self.dirty[0] |= 0x8; }
+            }
+            1 => {
+                let n = self.core_coupler_up_sync_0_s2_n_d;
+                if n != self.core_coupler_up_sync_0_s2_n { self.core_coupler_up_sync_0_s2_n = n; self.dirty[0] |= 0x8; }
+            }
+            2 => {
+                let n = self.core_coupler_up_sync_1_s1_n_d;
+                if n != self.core_coupler_up_sync_1_s1_n { self.core_coupler_up_sync_1_s1_n = n; self.dirty[0] |= 0x20; }
+            }
+            3 => {
+                let n = self.core_coupler_up_sync_1_s2_n_d;
+                if n != self.core_coupler_up_sync_1_s2_n { self.core_coupler_up_sync_1_s2_n = n; self.dirty[0] |= 0x20; }
+            }
+            4 => {
+                let n = self.core_coupler_up_sync_2_s1_n_d;
+                if n != self.core_coupler_up_sync_2_s1_n { self.core_coupler_up_sync_2_s1_n = n; self.dirty[0] |= 0x80; }
+            }
+            5 => {
+                let n = self.core_coupler_up_sync_2_s2_n_d;
+                if n != self.core_coupler_up_sync_2_s2_n { self.core_coupler_up_sync_2_s2_n = n; self.dirty[0] |= 0x80; }
+            }
+            6 => {
+                let n = self.core_coupler_reh_sync_0_s1_n_d;
+                if n != self.core_coupler_reh_sync_0_s1_n { self.core_coupler_reh_sync_0_s1_n = n; self.dirty[0] |= 0x200; }
+            }
+            7 => {
+                let n = self.core_coupler_reh_sync_0_s2_n_d;
+                if n != self.core_coupler_reh_sync_0_s2_n { self.core_coupler_reh_sync_0_s2_n = n; self.dirty[0] |= 0x200; }
+            }
+            8 => {
+                let n = self.core_coupler_tx_n_0_d;
+                if n != self.core_coupler_tx_n_0 { self.core_coupler_tx_n_0 = n; self.dirty[0] |= 0x4; }
+            }
+            9 => {
+                let n = self.core_coupler_tx_n_1_d;
+                if n != self.core_coupler_tx_n_1 { self.core_coupler_tx_n_1 = n; self.dirty[0] |= 0x4; }
+            }
+            10 => {
+                let n = self.core_coupler_tx_n_2_d;
+                if n != self.core_coupler_tx_n_2 { self.core_coupler_tx_n_2 = n; self.dirty[0] |= 0x4; }
+            }
+            11 => {
+                let n = self.core_coupler_hub_tx_n_0_d;
+                if n != self.core_coupler_hub_tx_n_0 { self.core_coupler_hub_tx_n_0 = n; self.dirty[0] |= 0x4; }
+            }
+            12 => {
+                let n = self.core_efgen_pending_d;
+                if n != self.core_efgen_pending { self.core_efgen_pending = n; self.dirty[0] |= 0x1000000800; self.dirty[1] |= 0x10000; }
+            }
+            13 => {
+                let n = self.core_efgen_driving_d;
+                if n != self.core_efgen_driving { self.core_efgen_driving = n; self.dirty[0] |= 0x1000000801; self.dirty[1] |= 0x10000; }
+            }
+            14 => {
+                let n = self.core_efgen_cnt_d;
+                if n != self.core_efgen_cnt { self.core_efgen_cnt = n; self.dirty[0] |= 0x1000000000; }
+            }
+            15 => {
+                let n = self.core_err_start_r_d;
+                if n != self.core_err_start_r { self.core_err_start_r = n; self.dirty[0] |= 0x200020000000000; }
+            }
+            16 => {
+                let n = self.core_injector_state_d;
+                if n != self.core_injector_state { self.core_injector_state = n; self.dirty[0] |= 0x20000000005000; }
+            }
+            17 => {
+                let n = self.core_injector_btn_prev_d;
+                if n != self.core_injector_btn_prev { self.core_injector_btn_prev = n; self.dirty[0] |= 0x20000000004000; }
+            }
+            18 => {
+                let n = self.core_injector_btn_r_d;
+                if n != self.core_injector_btn_r { self.core_injector_btn_r = n; self.dirty[0] |= 0x20000000005000; }
+            }
+            19 => {
+                let n = self.core_pj_0_dis_r_d;
+                if n != self.core_pj_0_dis_r { self.core_pj_0_dis_r = n; self.dirty[0] |= 0x58004000010001; self.dirty[1] |= 0x4; }
+            }
+            20 => {
+                let n = self.core_pj_0_bic_r_d;
+                if n != self.core_pj_0_bic_r { self.core_pj_0_bic_r = n; self.dirty[0] |= 0x4000000001; self.dirty[1] |= 0x4; }
+            }
+            21 => {
+                let n = self.core_pj_0_life_r_d;
+                if n != self.core_pj_0_life_r { self.core_pj_0_life_r = n; self.dirty[0] |= 0x4000000000; self.dirty[1] |= 0x4; }
+            }
+            22 => {
+                let n = self.core_pj_0_dbc_r_d;
+                if n != self.core_pj_0_dbc_r { self.core_pj_0_dbc_r = n; self.dirty[0] |= 0x4000000001; self.dirty[1] |= 0x4; }
+            }
+            23 => {
+                let n = self.core_pj_0_nack_r_d;
+                if n != self.core_pj_0_nack_r { self.core_pj_0_nack_r = n; self.dirty[0] |= 0x40000000008001; }
+            }
+            24 => {
+                let n = self.core_pj_0_cont_r_d;
+                if n != self.core_pj_0_cont_r { self.core_pj_0_cont_r = n; self.dirty[0] |= 0x40000000000000; self.dirty[1] |= 0xc; }
+            }
+            25 => {
+                let n = self.core_pj_0_rep_r_d;
+                if n != self.core_pj_0_rep_r { self.core_pj_0_rep_r = n; self.dirty[0] |= 0x4000000000; }
+            }
+            26 => {
+                let n = self.core_pj_0_rep_seen_d;
+                if n != self.core_pj_0_rep_seen { self.core_pj_0_rep_seen = n; self.dirty[0] |= 0x4000000000; }
+            }
+            27 => {
+                let n = self.core_pj_0_rep_first_dom_d;
+                if n != self.core_pj_0_rep_first_dom { self.core_pj_0_rep_first_dom = n; self.dirty[0] |= 0x4000008000; }
+            }
+            28 => {
+                let n = self.core_pj_0_ok_r_d;
+                if n != self.core_pj_0_ok_r { self.core_pj_0_ok_r = n; self.dirty[0] |= 0x40004000000000; self.dirty[1] |= 0x4; }
+            }
+            29 => {
+                let n = self.core_pj_0_acked_d;
+                if n != self.core_pj_0_acked { self.core_pj_0_acked = n; self.dirty[0] |= 0x40004000000000; self.dirty[1] |= 0x4; }
+            }
+            30 => {
+                let n = self.core_pj_0_bad_d;
+                if n != self.core_pj_0_bad { self.core_pj_0_bad = n; self.dirty[0] |= 0x40004000000000; self.dirty[1] |= 0x4; }
+            }
+            31 => {
+                let n = self.core_pj_0_ack_missing_d;
+                if n != self.core_pj_0_ack_missing { self.core_pj_0_ack_missing = n; self.dirty[1] |= 0xc; }
+            }
+            32 => {
+                let n = self.core_pj_0_ack_c_d;
+                if n != self.core_pj_0_ack_c { self.core_pj_0_ack_c = n; self.dirty[0] |= 0x40000000000000; self.dirty[1] |= 0x4; }
+            }
+            33 => {
+                let n = self.core_pj_0_ack_rx_d;
+                if n != self.core_pj_0_ack_rx { self.core_pj_0_ack_rx = n; self.dirty[0] |= 0x40000000000000; }
+            }
+            34 => {
+                let n = self.core_pj_1_dis_r_d;
+                if n != self.core_pj_1_dis_r { self.core_pj_1_dis_r = n; self.dirty[0] |= 0x98008000040001; self.dirty[1] |= 0x10; }
+            }
+            35 => {
+                let n = self.core_pj_1_bic_r_d;
+                if n != self.core_pj_1_bic_r { self.core_pj_1_bic_r = n; self.dirty[0] |= 0x8000000001; self.dirty[1] |= 0x10; }
+            }
+            36 => {
+                let n = self.core_pj_1_life_r_d;
+                if n != self.core_pj_1_life_r { self.core_pj_1_life_r = n; self.dirty[0] |= 0x8000000000; self.dirty[1] |= 0x10; }
+            }
+            37 => {
+                let n = self.core_pj_1_dbc_r_d;
+                if n != self.core_pj_1_dbc_r { self.core_pj_1_dbc_r = n; self.dirty[0] |= 0x8000000001; self.dirty[1] |= 0x10; }
+            }
+            38 => {
+                let n = self.core_pj_1_nack_r_d;
+                if n != self.core_pj_1_nack_r { self.core_pj_1_nack_r = n; self.dirty[0] |= 0x80000000020001; }
+            }
+            39 => {
+                let n = self.core_pj_1_cont_r_d;
+                if n != self.core_pj_1_cont_r { self.core_pj_1_cont_r = n; self.dirty[0] |= 0x80000000000000; self.dirty[1] |= 0x30; }
+            }
+            40 => {
+                let n = self.core_pj_1_rep_r_d;
+                if n != self.core_pj_1_rep_r { self.core_pj_1_rep_r = n; self.dirty[0] |= 0x8000000000; }
+            }
+            41 => {
+                let n = self.core_pj_1_rep_seen_d;
+                if n != self.core_pj_1_rep_seen { self.core_pj_1_rep_seen = n; self.dirty[0] |= 0x8000000000; }
+            }
+            42 => {
+                let n = self.core_pj_1_rep_first_dom_d;
+                if n != self.core_pj_1_rep_first_dom { self.core_pj_1_rep_first_dom = n; self.dirty[0] |= 0x8000020000; }
+            }
+            43 => {
+                let n = self.core_pj_1_ok_r_d;
+                if n != self.core_pj_1_ok_r { self.core_pj_1_ok_r = n; self.dirty[0] |= 0x80008000000000; self.dirty[1] |= 0x10; }
+            }
+            44 => {
+                let n = self.core_pj_1_acked_d;
+                if n != self.core_pj_1_acked { self.core_pj_1_acked = n; self.dirty[0] |= 0x80008000000000; self.dirty[1] |= 0x10; }
+            }
+            45 => {
+                let n = self.core_pj_1_bad_d;
+                if n != self.core_pj_1_bad { self.core_pj_1_bad = n; self.dirty[0] |= 0x80008000000000; self.dirty[1] |= 0x10; }
+            }
+            46 => {
+                let n = self.core_pj_1_ack_missing_d;
+                if n != self.core_pj_1_ack_missing { self.core_pj_1_ack_missing = n; self.dirty[1] |= 0x30; }
+            }
+            47 => {
+                let n = self.core_pj_1_ack_c_d;
+                if n != self.core_pj_1_ack_c { self.core_pj_1_ack_c = n; self.dirty[0] |= 0x80000000000000; self.dirty[1] |= 0x10; }
+            }
+            48 => {
+                let n = self.core_pj_1_ack_rx_d;
+                if n != self.core_pj_1_ack_rx { self.core_pj_1_ack_rx = n; self.dirty[0] |= 0x80000000000000; }
+            }
+            49 => {
+                let n = self.core_pj_2_dis_r_d;
+                if n != self.core_pj_2_dis_r { self.core_pj_2_dis_r = n; self.dirty[0] |= 0x118010000100001; self.dirty[1] |= 0x40; }
+            }
+            50 => {
+                let n = self.core_pj_2_bic_r_d;
+                if n != self.core_pj_2_bic_r { self.core_pj_2_bic_r = n; self.dirty[0] |= 0x10000000001; self.dirty[1] |= 0x40; }
+            }
+            51 => {
+                let n = self.core_pj_2_life_r_d;
+                if n != self.core_pj_2_life_r { self.core_pj_2_life_r = n; self.dirty[0] |= 0x10000000000; self.dirty[1] |= 0x40; }
+            }
+            52 => {
+                let n = self.core_pj_2_dbc_r_d;
+                if n != self.core_pj_2_dbc_r { self.core_pj_2_dbc_r = n; self.dirty[0] |= 0x10000000001; self.dirty[1] |= 0x40; }
+            }
+            53 => {
+                let n = self.core_pj_2_nack_r_d;
+                if n != self.core_pj_2_nack_r { self.core_pj_2_nack_r = n; self.dirty[0] |= 0x100000000080001; }
+            }
+            54 => {
+                let n = self.core_pj_2_cont_r_d;
+                if n != self.core_pj_2_cont_r { self.core_pj_2_cont_r = n; self.dirty[0] |= 0x100000000000000; self.dirty[1] |= 0xc0; }
+            }
+            55 => {
+                let n = self.core_pj_2_rep_r_d;
+                if n != self.core_pj_2_rep_r { self.core_pj_2_rep_r = n; self.dirty[0] |= 0x10000000000; }
+            }
+            56 => {
+                let n = self.core_pj_2_rep_seen_d;
+                if n != self.core_pj_2_rep_seen { self.core_pj_2_rep_seen = n; self.dirty[0] |= 0x10000000000; }
+            }
+            57 => {
+                let n = self.core_pj_2_rep_first_dom_d;
+                if n != self.core_pj_2_rep_first_dom { self.core_pj_2_rep_first_dom = n; self.dirty[0] |= 0x10000080000; }
+            }
+            58 => {
+                let n = self.core_pj_2_ok_r_d;
+                if n != self.core_pj_2_ok_r { self.core_pj_2_ok_r = n; self.dirty[0] |= 0x100010000000000; self.dirty[1] |= 0x40; }
+            }
+            59 => {
+                let n = self.core_pj_2_acked_d;
+                if n != self.core_pj_2_acked { self.core_pj_2_acked = n; self.dirty[0] |= 0x100010000000000; self.dirty[1] |= 0x40; }
+            }
+            60 => {
+                let n = self.core_pj_2_bad_d;
+                if n != self.core_pj_2_bad { self.core_pj_2_bad = n; self.dirty[0] |= 0x100010000000000; self.dirty[1] |= 0x40; }
+            }
+            61 => {
+                let n = self.core_pj_2_ack_missing_d;
+                if n != self.core_pj_2_ack_missing { self.core_pj_2_ack_missing = n; self.dirty[1] |= 0xc0; }
+            }
+            62 => {
+                let n = self.core_pj_2_ack_c_d;
+                if n != self.core_pj_2_ack_c { self.core_pj_2_ack_c = n; self.dirty[0] |= 0x100000000000000; self.dirty[1] |= 0x40; }
+            }
+            63 => {
+                let n = self.core_pj_2_ack_rx_d;
+                if n != self.core_pj_2_ack_rx { self.core_pj_2_ack_rx = n; self.dirty[0] |= 0x100000000000000; }
+            }
+            64 => {
+                let n = self.core_sj_0_dis_r_d;
+                if n != self.core_sj_0_dis_r { self.core_sj_0_dis_r = n; self.dirty[0] |= 0x218020c00200001; self.dirty[1] |= 0x100; }
+            }
+            65 => {
+                let n = self.core_sj_0_bic_r_d;
+                if n != self.core_sj_0_bic_r { self.core_sj_0_bic_r = n; self.dirty[0] |= 0x20000000001; self.dirty[1] |= 0x100; }
+            }
+            66 => {
+                let n = self.core_sj_0_life_r_d;
+                if n != self.core_sj_0_life_r { self.core_sj_0_life_r = n; self.dirty[0] |= 0x20000000000; self.dirty[1] |= 0x100; }
+            }
+            67 => {
+                let n = self.core_sj_0_dbc_r_d;
+                if n != self.core_sj_0_dbc_r { self.core_sj_0_dbc_r = n; self.dirty[0] |= 0x20000000001; self.dirty[1] |= 0x100; }
+            }
+            68 => {
+                let n = self.core_sj_0_nack_r_d;
+                if n != self.core_sj_0_nack_r { self.core_sj_0_nack_r = n; self.dirty[0] |= 0x200000000200000; }
+            }
+            69 => {
+                let n = self.core_sj_0_cont_r_d;
+                if n != self.core_sj_0_cont_r { self.core_sj_0_cont_r = n; self.dirty[0] |= 0x200000000000000; self.dirty[1] |= 0x300; }
+            }
+            70 => {
+                let n = self.core_sj_0_rep_r_d;
+                if n != self.core_sj_0_rep_r { self.core_sj_0_rep_r = n; self.dirty[0] |= 0x20000000001; }
+            }
+            71 => {
+                let n = self.core_sj_0_rep_seen_d;
+                if n != self.core_sj_0_rep_seen { self.core_sj_0_rep_seen = n; self.dirty[0] |= 0x200020000000000; }
+            }
+            72 => {
+                let n = self.core_sj_0_rep_first_dom_d;
+                if n != self.core_sj_0_rep_first_dom { self.core_sj_0_rep_first_dom = n; self.dirty[0] |= 0x200020000000000; }
+            }
+            73 => {
+                let n = self.core_sj_0_ok_r_d;
+                if n != self.core_sj_0_ok_r { self.core_sj_0_ok_r = n; self.dirty[0] |= 0x200020000000000; self.dirty[1] |= 0x100; }
+            }
+            74 => {
+                let n = self.core_sj_0_acked_d;
+                if n != self.core_sj_0_acked { self.core_sj_0_acked = n; self.dirty[0] |= 0x200020000000000; self.dirty[1] |= 0x100; }
+            }
+            75 => {
+                let n = self.core_sj_0_bad_d;
+                if n != self.core_sj_0_bad { self.core_sj_0_bad = n; self.dirty[0] |= 0x200020000000000; self.dirty[1] |= 0x100; }
+            }
+            76 => {
+                let n = self.core_sj_0_ack_missing_d;
+                if n != self.core_sj_0_ack_missing { self.core_sj_0_ack_missing = n; self.dirty[1] |= 0x300; }
+            }
+            77 => {
+                let n = self.core_sj_0_ack_c_d;
+                if n != self.core_sj_0_ack_c { self.core_sj_0_ack_c = n; self.dirty[0] |= 0x200000000000000; }
+            }
+            78 => {
+                let n = self.core_sj_0_ack_rx_d;
+                if n != self.core_sj_0_ack_rx { self.core_sj_0_ack_rx = n; self.dirty[0] |= 0x200000000000000; }
+            }
+            79 => {
+                let n = self.core_rst_s1_d;
+                self.core_rst_s1 = n;
+            }
+            80 => {
+                let n = self.monitor_sync_s1_n_d;
+                if n != self.monitor_sync_s1_n { self.monitor_sync_s1_n = n; self.dirty[0] |= 0x800000; }
+            }
+            81 => {
+                let n = self.monitor_sync_s2_n_d;
+                if n != self.monitor_sync_s2_n { self.monitor_sync_s2_n = n; self.dirty[0] |= 0x800000; }
+            }
+            82 => {
+                let n = self.monitor_btl_c_brp_d;
+                if n != self.monitor_btl_c_brp { self.monitor_btl_c_brp = n; self.dirty[0] |= 0x1800080003000000; }
+            }
+            83 => {
+                let n = self.monitor_btl_c_sp_d;
+                if n != self.monitor_btl_c_sp { self.monitor_btl_c_sp = n; self.dirty[0] |= 0x1800080000000000; }
+            }
+            84 => {
+                let n = self.monitor_btl_c_ntq_d;
+                if n != self.monitor_btl_c_ntq { self.monitor_btl_c_ntq = n; self.dirty[0] |= 0x1800080000000000; }
+            }
+            85 => {
+                let n = self.monitor_btl_c_sjw_d;
+                if n != self.monitor_btl_c_sjw { self.monitor_btl_c_sjw = n; self.dirty[0] |= 0x1800000003000000; }
+            }
+            86 => {
+                let n = self.monitor_btl_c_triple_d;
+                if n != self.monitor_btl_c_triple { self.monitor_btl_c_triple = n; self.dirty[0] |= 0x800100001000000; }
+            }
+            87 => {
+                let n = self.monitor_btl_c_valid_d;
+                if n != self.monitor_btl_c_valid { self.monitor_btl_c_valid = n; self.dirty[0] |= 0x1800080003000000; }
+            }
+            88 => {
+                let n = self.monitor_btl_c_bad_d;
+                if n != self.monitor_btl_c_bad { self.monitor_btl_c_bad = n; self.dirty[0] |= 0x400080000400000; }
+            }
+            89 => {
+                let n = self.monitor_btl_pre_d;
+                if n != self.monitor_btl_pre { self.monitor_btl_pre = n; self.dirty[0] |= 0x1800080003000000; }
+            }
+            90 => {
+                let n = self.monitor_btl_cnt_d;
+                if n != self.monitor_btl_cnt { self.monitor_btl_cnt = n; self.dirty[0] |= 0x1800000002000000; }
+            }
+            91 => {
+                let n = self.monitor_btl_spw_d;
+                if n != self.monitor_btl_spw { self.monitor_btl_spw = n; self.dirty[0] |= 0x1800000002000000; }
+            }
+            92 => {
+                let n = self.monitor_btl_nbw_d;
+                if n != self.monitor_btl_nbw { self.monitor_btl_nbw = n; self.dirty[0] |= 0x1800000002000000; }
+            }
+            93 => {
+                let n = self.monitor_btl_busmon_n_d;
+                if n != self.monitor_btl_busmon_n { self.monitor_btl_busmon_n = n; self.dirty[0] |= 0x1800100001000000; }
+            }
+            94 => {
+                let n = self.monitor_btl_sync_dis_d;
+                if n != self.monitor_btl_sync_dis { self.monitor_btl_sync_dis = n; self.dirty[0] |= 0x1800100000000000; }
+            }
+            95 => {
+                let n = self.monitor_btl_since_d;
+                if n != self.monitor_btl_since { self.monitor_btl_since = n; self.dirty[0] |= 0x1800000002000000; }
+            }
+            96 => {
+                let n = self.monitor_btl_pending_d;
+                if n != self.monitor_btl_pending { self.monitor_btl_pending = n; self.dirty[0] |= 0x1800000000000000; }
+            }
+            97 => {
+                let n = self.monitor_btl_tx_n_d;
+                if n != self.monitor_btl_tx_n { self.monitor_btl_tx_n = n; self.dirty[0] |= 0x800000002000000; }
+            }
+            98 => {
+                let n = self.monitor_btl_h1_n_d;
+                if n != self.monitor_btl_h1_n { self.monitor_btl_h1_n = n; self.dirty[0] |= 0x800180001000000; }
+            }
+            99 => {
+                let n = self.monitor_btl_h2_n_d;
+                if n != self.monitor_btl_h2_n { self.monitor_btl_h2_n = n; self.dirty[0] |= 0x800100001000000; }
+            }
+            100 => {
+                let n = self.monitor_btl_sample_r_d;
+                if n != self.monitor_btl_sample_r { self.monitor_btl_sample_r = n; self.dirty[0] |= 0xe00060008c000000; self.dirty[1] |= 0x3802; }
+            }
+            101 => {
+                let n = self.monitor_btl_hard_r_d;
+                self.monitor_btl_hard_r = n;
+            }
+            102 => {
+                let n = self.monitor_btl_resync_r_d;
+                self.monitor_btl_resync_r = n;
+            }
+            103 => {
+                let n = self.monitor_fsm_fld_d;
+                if n != self.monitor_fsm_fld { self.monitor_fsm_fld = n; self.dirty[0] |= 0x2000600000000000; self.dirty[1] |= 0x1800; }
+            }
+            104 => {
+                let n = self.monitor_fsm_fpos_d;
+                if n != self.monitor_fsm_fpos { self.monitor_fsm_fpos = n; self.dirty[0] |= 0x2000600008000000; self.dirty[1] |= 0x1800; }
+            }
+            105 => {
+                let n = self.monitor_fsm_pfld_d;
+                if n != self.monitor_fsm_pfld { self.monitor_fsm_pfld = n; self.dirty[0] |= 0x2000600000000000; self.dirty[1] |= 0x1800; }
+            }
+            106 => {
+                let n = self.monitor_fsm_ppos_d;
+                if n != self.monitor_fsm_ppos { self.monitor_fsm_ppos = n; self.dirty[0] |= 0x600000000000; self.dirty[1] |= 0x800; }
+            }
+            107 => {
+                let n = self.monitor_fsm_rtx_d;
+                if n != self.monitor_fsm_rtx { self.monitor_fsm_rtx = n; self.dirty[0] |= 0x2000600000000000; self.dirty[1] |= 0x1800; }
+            }
+            108 => {
+                let n = self.monitor_fsm_dom_d;
+                if n != self.monitor_fsm_dom { self.monitor_fsm_dom = n; self.dirty[1] |= 0x1800; }
+            }
+            109 => {
+                let n = self.monitor_fsm_dstf_cnt_d;
+                if n != self.monitor_fsm_dstf_cnt { self.monitor_fsm_dstf_cnt = n; self.dirty[0] |= 0xc000800010000000; }
+            }
+            110 => {
+                let n = self.monitor_fsm_dstf_lvl_d;
+                if n != self.monitor_fsm_dstf_lvl { self.monitor_fsm_dstf_lvl = n; self.dirty[0] |= 0xc000800020000000; }
+            }
+            111 => {
+                let n = self.monitor_fsm_crcb_state_d;
+                if n != self.monitor_fsm_crcb_state { self.monitor_fsm_crcb_state = n; self.dirty[0] |= 0x3000040000000; self.dirty[1] |= 0x1; }
+            }
+            112 => {
+                let n = self.monitor_fsm_crcerr_d;
+                if n != self.monitor_fsm_crcerr { self.monitor_fsm_crcerr = n; self.dirty[1] |= 0x1800; }
+            }
+            113 => {
+                let n = self.monitor_fsm_tid_d;
+                if n != self.monitor_fsm_tid { self.monitor_fsm_tid = n; self.dirty[0] |= 0x2000600000000000; self.dirty[1] |= 0x1800; }
+            }
+            114 => {
+                let n = self.monitor_fsm_tdat_d;
+                if n != self.monitor_fsm_tdat { self.monitor_fsm_tdat = n; self.dirty[0] |= 0x2000600000000000; self.dirty[1] |= 0x1800; }
+            }
+            115 => {
+                let n = self.monitor_fsm_tdlc_d;
+                if n != self.monitor_fsm_tdlc { self.monitor_fsm_tdlc = n; self.dirty[0] |= 0x2000600000000000; self.dirty[1] |= 0x1800; }
+            }
+            116 => {
+                let n = self.monitor_fsm_tide_d;
+                if n != self.monitor_fsm_tide { self.monitor_fsm_tide = n; self.dirty[0] |= 0x2000000004000000; self.dirty[1] |= 0x1800; }
+            }
+            117 => {
+                let n = self.monitor_fsm_trtr_d;
+                if n != self.monitor_fsm_trtr { self.monitor_fsm_trtr = n; self.dirty[0] |= 0x2000000004000000; self.dirty[1] |= 0x1800; }
+            }
+            118 => {
+                let n = self.monitor_fsm_rid_d;
+                if n != self.monitor_fsm_rid { self.monitor_fsm_rid = n; self.dirty[0] |= 0x600000000000; }
+            }
+            119 => {
+                let n = self.monitor_fsm_rdat_d;
+                if n != self.monitor_fsm_rdat { self.monitor_fsm_rdat = n; self.dirty[0] |= 0x600000000000; }
+            }
+            120 => {
+                let n = self.monitor_fsm_rdlc_d;
+                if n != self.monitor_fsm_rdlc { self.monitor_fsm_rdlc = n; self.dirty[0] |= 0x2000600000000000; self.dirty[1] |= 0x1800; }
+            }
+            121 => {
+                let n = self.monitor_fsm_rrtr_d;
+                if n != self.monitor_fsm_rrtr { self.monitor_fsm_rrtr = n; self.dirty[0] |= 0x2000600000000000; self.dirty[1] |= 0x1800; }
+            }
+            122 => {
+                let n = self.monitor_fsm_rext_d;
+                if n != self.monitor_fsm_rext { self.monitor_fsm_rext = n; self.dirty[0] |= 0x2000600000000000; self.dirty[1] |= 0x1800; }
+            }
+            123 => {
+                let n = self.monitor_fsm_fdone_d;
+                if n != self.monitor_fsm_fdone { self.monitor_fsm_fdone = n; self.dirty[0] |= 0x2000600000000000; self.dirty[1] |= 0x1800; }
+            }
+            124 => {
+                let n = self.monitor_fsm_eqcnt_d;
+                if n != self.monitor_fsm_eqcnt { self.monitor_fsm_eqcnt = n; self.dirty[0] |= 0x600000000000; self.dirty[1] |= 0x1800; }
+            }
+            125 => {
+                let n = self.monitor_fsm_eqlast_d;
+                if n != self.monitor_fsm_eqlast { self.monitor_fsm_eqlast = n; self.dirty[0] |= 0x600000000000; self.dirty[1] |= 0x1800; }
+            }
+            126 => {
+                let n = self.monitor_fsm_dafc_d;
+                if n != self.monitor_fsm_dafc { self.monitor_fsm_dafc = n; self.dirty[0] |= 0x400000000000; self.dirty[1] |= 0x1800; }
+            }
+            127 => {
+                let n = self.monitor_fsm_dafany_d;
+                if n != self.monitor_fsm_dafany { self.monitor_fsm_dafany = n; self.dirty[0] |= 0x400000000000; self.dirty[1] |= 0x1800; }
+            }
+            128 => {
+                let n = self.monitor_fsm_exc1_d;
+                if n != self.monitor_fsm_exc1 { self.monitor_fsm_exc1 = n; self.dirty[0] |= 0x600000000000; self.dirty[1] |= 0x1800; }
+            }
+            129 => {
+                let n = self.monitor_fsm_tecr_d;
+                if n != self.monitor_fsm_tecr { self.monitor_fsm_tecr = n; self.dirty[0] |= 0x2000600008000000; self.dirty[1] |= 0x1800; }
+            }
+            130 => {
+                let n = self.monitor_fsm_recr_d;
+                if n != self.monitor_fsm_recr { self.monitor_fsm_recr = n; self.dirty[0] |= 0x2000600008000000; self.dirty[1] |= 0x1800; }
+            }
+            131 => {
+                let n = self.monitor_fsm_runr_d;
+                if n != self.monitor_fsm_runr { self.monitor_fsm_runr = n; self.dirty[0] |= 0x2000600000000000; self.dirty[1] |= 0x1800; }
+            }
+            132 => {
+                let n = self.monitor_fsm_rarmed_d;
+                if n != self.monitor_fsm_rarmed { self.monitor_fsm_rarmed = n; self.dirty[0] |= 0x600000000000; }
+            }
+            133 => {
+                let n = self.monitor_fsm_req_d;
+                self.monitor_fsm_req = n;
+            }
+            134 => {
+                let n = self.monitor_fsm_blocked_d;
+                self.monitor_fsm_blocked = n;
+            }
+            135 => {
+                let n = self.monitor_fsm_evr_d;
+                if n != self.monitor_fsm_evr { self.monitor_fsm_evr = n; self.dirty[0] |= 0x188000000; }
+            }
+            136 => {
+                let n = self.monitor_fsm_arbpos_r_d;
+                if n != self.monitor_fsm_arbpos_r { self.monitor_fsm_arbpos_r = n; self.dirty[1] |= 0x800; }
+            }
+            137 => {
+                let n = self.monitor_fsm_errf_r_d;
+                if n != self.monitor_fsm_errf_r { self.monitor_fsm_errf_r = n; self.dirty[1] |= 0x800; }
+            }
+            138 => {
+                let n = self.monitor_fsm_errp_r_d;
+                if n != self.monitor_fsm_errp_r { self.monitor_fsm_errp_r = n; self.dirty[1] |= 0x800; }
+            }
+            139 => {
+                let n = self.monitor_fsm_errtx_r_d;
+                if n != self.monitor_fsm_errtx_r { self.monitor_fsm_errtx_r = n; self.dirty[1] |= 0x800; }
+            }
+            140 => {
+                let n = self.monitor_fsm_rxide_r_d;
+                if n != self.monitor_fsm_rxide_r { self.monitor_fsm_rxide_r = n; self.dirty[0] |= 0x200000000000; }
+            }
+            141 => {
+                let n = self.monitor_fsm_rxrtr_r_d;
+                if n != self.monitor_fsm_rxrtr_r { self.monitor_fsm_rxrtr_r = n; self.dirty[0] |= 0x200000000000; }
+            }
+            142 => {
+                let n = self.monitor_fsm_rxid_r_d;
+                if n != self.monitor_fsm_rxid_r { self.monitor_fsm_rxid_r = n; self.dirty[0] |= 0x200000000000; }
+            }
+            143 => {
+                let n = self.monitor_fsm_rxdlc_r_d;
+                if n != self.monitor_fsm_rxdlc_r { self.monitor_fsm_rxdlc_r = n; self.dirty[0] |= 0x200000000000; }
+            }
+            144 => {
+                let n = self.monitor_fsm_rxdat_r_d;
+                if n != self.monitor_fsm_rxdat_r { self.monitor_fsm_rxdat_r = n; self.dirty[0] |= 0x200000000000; }
+            }
+            145 => {
+                let n = self.adapter_s_r_d;
+                if n != self.adapter_s_r { self.adapter_s_r = n; self.dirty[0] |= 0x3e003c080000000; self.dirty[1] |= 0x4154; }
+            }
+            146 => {
+                let n = self.adapter_f_r_d;
+                if n != self.adapter_f_r { self.adapter_f_r = n; self.dirty[0] |= 0x180000000; self.dirty[1] |= 0x2000; }
+            }
+            147 => {
+                let n = self.adapter_p_r_d;
+                if n != self.adapter_p_r { self.adapter_p_r = n; self.dirty[0] |= 0x80000000; self.dirty[1] |= 0x2; }
+            }
+            148 => {
+                let n = self.adapter_bs_pending_d;
+                if n != self.adapter_bs_pending { self.adapter_bs_pending = n; self.dirty[0] |= 0x80000000; }
+            }
+            149 => {
+                let n = self.adapter_bs_cnt_d;
+                if n != self.adapter_bs_cnt { self.adapter_bs_cnt = n; self.dirty[0] |= 0x80000000; }
+            }
+            150 => {
+                let n = self.adapter_f_map_d;
+                if n != self.adapter_f_map { self.adapter_f_map = n; self.dirty[0] |= 0x80000000; }
+            }
+            _ => {}
+        }
     }
 
     /// `top` block, depth 0, state-only: isolated$0, isolated$1, isolated$2, sub_isolated$0, efg_active, bic$0, ... (19 signals)
@@ -2327,7 +2653,7 @@ impl HubN3M1 {
     fn g1(&mut self) {
         let mut core_rst_s1_d: bool = false;
         core_rst_s1_d = (!self.rst_n);
-        self.core_rst_s1_d = core_rst_s1_d;
+        if core_rst_s1_d != self.core_rst_s1_d { self.core_rst_s1_d = core_rst_s1_d; self.pend[1] |= 0x8000; }
     }
 
     /// `core.coupler` block, depth 0, state-only: core.coupler.tx$0, core.coupler.tx$1, core.coupler.tx$2, core.coupler.hub_tx$0
@@ -2359,7 +2685,7 @@ impl HubN3M1 {
             core_coupler_up_sync_0_q = (!self.core_coupler_up_sync_0_s2_n);
         }
         if core_coupler_up_sync_0_q != self.core_coupler_up_sync_0_q { self.core_coupler_up_sync_0_q = core_coupler_up_sync_0_q; self.dirty[0] |= 0x18000000000000; }
-        self.core_coupler_up_sync_0_s2_n_d = core_coupler_up_sync_0_s2_n_d;
+        if core_coupler_up_sync_0_s2_n_d != self.core_coupler_up_sync_0_s2_n_d { self.core_coupler_up_sync_0_s2_n_d = core_coupler_up_sync_0_s2_n_d; self.pend[0] |= 0x2; }
     }
 
     /// `core.coupler.up_sync$0` block, depth 0, input-dependent: core.coupler.up_sync$0.s1_n.d
@@ -2369,7 +2695,7 @@ impl HubN3M1 {
         if self.core_rst_s2 {
             core_coupler_up_sync_0_s1_n_d = false;
         }
-        self.core_coupler_up_sync_0_s1_n_d = core_coupler_up_sync_0_s1_n_d;
+        if core_coupler_up_sync_0_s1_n_d != self.core_coupler_up_sync_0_s1_n_d { self.core_coupler_up_sync_0_s1_n_d = core_coupler_up_sync_0_s1_n_d; self.pend[0] |= 0x1; }
     }
 
     /// `core.coupler.up_sync$1` block, depth 0, state-only: core.coupler.up_sync$1.q, core.coupler.up_sync$1.s2_n.d
@@ -2385,7 +2711,7 @@ impl HubN3M1 {
             core_coupler_up_sync_1_q = (!self.core_coupler_up_sync_1_s2_n);
         }
         if core_coupler_up_sync_1_q != self.core_coupler_up_sync_1_q { self.core_coupler_up_sync_1_q = core_coupler_up_sync_1_q; self.dirty[0] |= 0x18000000000000; }
-        self.core_coupler_up_sync_1_s2_n_d = core_coupler_up_sync_1_s2_n_d;
+        if core_coupler_up_sync_1_s2_n_d != self.core_coupler_up_sync_1_s2_n_d { self.core_coupler_up_sync_1_s2_n_d = core_coupler_up_sync_1_s2_n_d; self.pend[0] |= 0x8; }
     }
 
     /// `core.coupler.up_sync$1` block, depth 0, input-dependent: core.coupler.up_sync$1.s1_n.d
@@ -2395,7 +2721,7 @@ impl HubN3M1 {
         if self.core_rst_s2 {
             core_coupler_up_sync_1_s1_n_d = false;
         }
-        self.core_coupler_up_sync_1_s1_n_d = core_coupler_up_sync_1_s1_n_d;
+        if core_coupler_up_sync_1_s1_n_d != self.core_coupler_up_sync_1_s1_n_d { self.core_coupler_up_sync_1_s1_n_d = core_coupler_up_sync_1_s1_n_d; self.pend[0] |= 0x4; }
     }
 
     /// `core.coupler.up_sync$2` block, depth 0, state-only: core.coupler.up_sync$2.q, core.coupler.up_sync$2.s2_n.d
@@ -2411,7 +2737,7 @@ impl HubN3M1 {
             core_coupler_up_sync_2_q = (!self.core_coupler_up_sync_2_s2_n);
         }
         if core_coupler_up_sync_2_q != self.core_coupler_up_sync_2_q { self.core_coupler_up_sync_2_q = core_coupler_up_sync_2_q; self.dirty[0] |= 0x18000000000000; }
-        self.core_coupler_up_sync_2_s2_n_d = core_coupler_up_sync_2_s2_n_d;
+        if core_coupler_up_sync_2_s2_n_d != self.core_coupler_up_sync_2_s2_n_d { self.core_coupler_up_sync_2_s2_n_d = core_coupler_up_sync_2_s2_n_d; self.pend[0] |= 0x20; }
     }
 
     /// `core.coupler.up_sync$2` block, depth 0, input-dependent: core.coupler.up_sync$2.s1_n.d
@@ -2421,7 +2747,7 @@ impl HubN3M1 {
         if self.core_rst_s2 {
             core_coupler_up_sync_2_s1_n_d = false;
         }
-        self.core_coupler_up_sync_2_s1_n_d = core_coupler_up_sync_2_s1_n_d;
+        if core_coupler_up_sync_2_s1_n_d != self.core_coupler_up_sync_2_s1_n_d { self.core_coupler_up_sync_2_s1_n_d = core_coupler_up_sync_2_s1_n_d; self.pend[0] |= 0x10; }
     }
 
     /// `core.coupler.reh_sync$0` block, depth 0, state-only: core.coupler.reh_sync$0.q, core.coupler.reh_sync$0.s2_n.d
@@ -2437,7 +2763,7 @@ impl HubN3M1 {
             core_coupler_reh_sync_0_q = (!self.core_coupler_reh_sync_0_s2_n);
         }
         if core_coupler_reh_sync_0_q != self.core_coupler_reh_sync_0_q { self.core_coupler_reh_sync_0_q = core_coupler_reh_sync_0_q; self.dirty[0] |= 0x218060c00000000; self.dirty[1] |= 0x300; }
-        self.core_coupler_reh_sync_0_s2_n_d = core_coupler_reh_sync_0_s2_n_d;
+        if core_coupler_reh_sync_0_s2_n_d != self.core_coupler_reh_sync_0_s2_n_d { self.core_coupler_reh_sync_0_s2_n_d = core_coupler_reh_sync_0_s2_n_d; self.pend[0] |= 0x80; }
     }
 
     /// `core.coupler.reh_sync$0` block, depth 0, input-dependent: core.coupler.reh_sync$0.s1_n.d
@@ -2447,7 +2773,7 @@ impl HubN3M1 {
         if self.core_rst_s2 {
             core_coupler_reh_sync_0_s1_n_d = false;
         }
-        self.core_coupler_reh_sync_0_s1_n_d = core_coupler_reh_sync_0_s1_n_d;
+        if core_coupler_reh_sync_0_s1_n_d != self.core_coupler_reh_sync_0_s1_n_d { self.core_coupler_reh_sync_0_s1_n_d = core_coupler_reh_sync_0_s1_n_d; self.pend[0] |= 0x40; }
     }
 
     /// `core.efgen` block, depth 0, state-only: core.efgen.efg, core.efgen.busy
@@ -2470,7 +2796,7 @@ impl HubN3M1 {
         }
         core_injector_active = ((self.core_injector_state == 2u8) | (self.core_injector_state == 3u8));
         if core_injector_active != self.core_injector_active { self.core_injector_active = core_injector_active; self.dirty[0] |= 0x600000000; }
-        self.core_injector_btn_prev_d = core_injector_btn_prev_d;
+        if core_injector_btn_prev_d != self.core_injector_btn_prev_d { self.core_injector_btn_prev_d = core_injector_btn_prev_d; self.pend[0] |= 0x20000; }
     }
 
     /// `core.injector` block, depth 0, input-dependent: core.injector.btn_r.d
@@ -2480,7 +2806,7 @@ impl HubN3M1 {
         if self.core_rst_s2 {
             core_injector_btn_r_d = false;
         }
-        self.core_injector_btn_r_d = core_injector_btn_r_d;
+        if core_injector_btn_r_d != self.core_injector_btn_r_d { self.core_injector_btn_r_d = core_injector_btn_r_d; self.pend[0] |= 0x40000; }
     }
 
     /// `core.injector` block, depth 0, probe-only: core.injector.armed, core.injector.press
@@ -2503,7 +2829,7 @@ impl HubN3M1 {
         }
         core_pj_0_silent = (self.core_pj_0_nack_r >= self.core_pj_0_nack_thr);
         if core_pj_0_silent != self.core_pj_0_silent { self.core_pj_0_silent = core_pj_0_silent; self.dirty[0] |= 0x200000000; }
-        self.core_pj_0_rep_first_dom_d = core_pj_0_rep_first_dom_d;
+        if core_pj_0_rep_first_dom_d != self.core_pj_0_rep_first_dom_d { self.core_pj_0_rep_first_dom_d = core_pj_0_rep_first_dom_d; self.pend[0] |= 0x8000000; }
     }
 
     /// `core.pj$0` block, depth 0, probe-only: core.pj$0.enabled
@@ -2523,7 +2849,7 @@ impl HubN3M1 {
         }
         core_pj_1_silent = (self.core_pj_1_nack_r >= self.core_pj_1_nack_thr);
         if core_pj_1_silent != self.core_pj_1_silent { self.core_pj_1_silent = core_pj_1_silent; self.dirty[0] |= 0x200000000; }
-        self.core_pj_1_rep_first_dom_d = core_pj_1_rep_first_dom_d;
+        if core_pj_1_rep_first_dom_d != self.core_pj_1_rep_first_dom_d { self.core_pj_1_rep_first_dom_d = core_pj_1_rep_first_dom_d; self.pend[0] |= 0x40000000000; }
     }
 
     /// `core.pj$1` block, depth 0, probe-only: core.pj$1.enabled
@@ -2543,7 +2869,7 @@ impl HubN3M1 {
         }
         core_pj_2_silent = (self.core_pj_2_nack_r >= self.core_pj_2_nack_thr);
         if core_pj_2_silent != self.core_pj_2_silent { self.core_pj_2_silent = core_pj_2_silent; self.dirty[0] |= 0x200000000; }
-        self.core_pj_2_rep_first_dom_d = core_pj_2_rep_first_dom_d;
+        if core_pj_2_rep_first_dom_d != self.core_pj_2_rep_first_dom_d { self.core_pj_2_rep_first_dom_d = core_pj_2_rep_first_dom_d; self.pend[0] |= 0x200000000000000; }
     }
 
     /// `core.pj$2` block, depth 0, probe-only: core.pj$2.enabled
@@ -2583,7 +2909,7 @@ impl HubN3M1 {
             monitor_sync_q = (!self.monitor_sync_s2_n);
         }
         if monitor_sync_q != self.monitor_sync_q { self.monitor_sync_q = monitor_sync_q; self.dirty[0] |= 0x1800180000000000; }
-        self.monitor_sync_s2_n_d = monitor_sync_s2_n_d;
+        if monitor_sync_s2_n_d != self.monitor_sync_s2_n_d { self.monitor_sync_s2_n_d = monitor_sync_s2_n_d; self.pend[1] |= 0x20000; }
     }
 
     /// `monitor.btl` block, depth 0, state-only: monitor.btl.busmon, monitor.btl.c_sjw.d, monitor.btl.c_triple.d, monitor.btl.pre.d, monitor.btl.h2_n.d
@@ -2620,10 +2946,10 @@ impl HubN3M1 {
         }
         monitor_btl_busmon = (!self.monitor_btl_busmon_n);
         if monitor_btl_busmon != self.monitor_btl_busmon { self.monitor_btl_busmon = monitor_btl_busmon; self.dirty[0] |= 0xe003e00000000000; self.dirty[1] |= 0x1801; }
-        self.monitor_btl_c_sjw_d = monitor_btl_c_sjw_d;
-        self.monitor_btl_c_triple_d = monitor_btl_c_triple_d;
-        self.monitor_btl_pre_d = monitor_btl_pre_d;
-        self.monitor_btl_h2_n_d = monitor_btl_h2_n_d;
+        if monitor_btl_c_sjw_d != self.monitor_btl_c_sjw_d { self.monitor_btl_c_sjw_d = monitor_btl_c_sjw_d; self.pend[1] |= 0x200000; }
+        if monitor_btl_c_triple_d != self.monitor_btl_c_triple_d { self.monitor_btl_c_triple_d = monitor_btl_c_triple_d; self.pend[1] |= 0x400000; }
+        if monitor_btl_pre_d != self.monitor_btl_pre_d { self.monitor_btl_pre_d = monitor_btl_pre_d; self.pend[1] |= 0x2000000; }
+        if monitor_btl_h2_n_d != self.monitor_btl_h2_n_d { self.monitor_btl_h2_n_d = monitor_btl_h2_n_d; self.pend[1] |= 0x800000000; }
     }
 
     /// `monitor.btl` block, depth 0, probe-only: monitor.btl.tx, monitor.btl.in_ph2, monitor.btl.in_sjw, monitor.btl.tick, monitor.btl.c1, monitor.btl.late, ... (9 signals)
@@ -2680,8 +3006,8 @@ impl HubN3M1 {
             monitor_fsm_trtr_d = self.monitor_fsm_trtr;
         }
         if monitor_fsm_drive != self.monitor_fsm_drive { self.monitor_fsm_drive = monitor_fsm_drive; self.dirty[0] |= 0x1800000000000000; }
-        self.monitor_fsm_tide_d = monitor_fsm_tide_d;
-        self.monitor_fsm_trtr_d = monitor_fsm_trtr_d;
+        if monitor_fsm_tide_d != self.monitor_fsm_tide_d { self.monitor_fsm_tide_d = monitor_fsm_tide_d; self.pend[1] |= 0x10000000000000; }
+        if monitor_fsm_trtr_d != self.monitor_fsm_trtr_d { self.monitor_fsm_trtr_d = monitor_fsm_trtr_d; self.pend[1] |= 0x20000000000000; }
     }
 
     /// `monitor.fsm` block, depth 0, probe-only: monitor.fsm.tx_done, monitor.fsm.arb_lost, monitor.fsm.error, monitor.fsm.err_kind, monitor.fsm.rx_valid, monitor.fsm.state, ... (12 signals)
@@ -2847,10 +3173,10 @@ impl HubN3M1 {
         if adapter_mon_crc_ok != self.adapter_mon_crc_ok { self.adapter_mon_crc_ok = adapter_mon_crc_ok; self.dirty[0] |= 0x3c0000000000000; }
         if adapter_mon_frame_ok != self.adapter_mon_frame_ok { self.adapter_mon_frame_ok = adapter_mon_frame_ok; self.dirty[0] |= 0x3c003c000000000; self.dirty[1] |= 0x154; }
         if adapter_bit_start != self.adapter_bit_start { self.adapter_bit_start = adapter_bit_start; self.dirty[0] |= 0x1000000000; self.dirty[1] |= 0x10000; }
-        self.adapter_s_r_d = adapter_s_r_d;
-        self.adapter_bs_pending_d = adapter_bs_pending_d;
-        self.adapter_bs_cnt_d = adapter_bs_cnt_d;
-        self.adapter_f_map_d = adapter_f_map_d;
+        if adapter_s_r_d != self.adapter_s_r_d { self.adapter_s_r_d = adapter_s_r_d; self.pend[2] |= 0x20000; }
+        if adapter_bs_pending_d != self.adapter_bs_pending_d { self.adapter_bs_pending_d = adapter_bs_pending_d; self.pend[2] |= 0x100000; }
+        if adapter_bs_cnt_d != self.adapter_bs_cnt_d { self.adapter_bs_cnt_d = adapter_bs_cnt_d; self.pend[2] |= 0x200000; }
+        if adapter_f_map_d != self.adapter_f_map_d { self.adapter_f_map_d = adapter_f_map_d; self.pend[2] |= 0x400000; }
     }
 
     /// `adapter` block, depth 0, probe-only: adapter.fl
@@ -3017,8 +3343,8 @@ impl HubN3M1 {
             core_efgen_driving_d = false;
             core_efgen_cnt_d = 0u8;
         }
-        self.core_efgen_driving_d = core_efgen_driving_d;
-        self.core_efgen_cnt_d = core_efgen_cnt_d;
+        if core_efgen_driving_d != self.core_efgen_driving_d { self.core_efgen_driving_d = core_efgen_driving_d; self.pend[0] |= 0x2000; }
+        if core_efgen_cnt_d != self.core_efgen_cnt_d { self.core_efgen_cnt_d = core_efgen_cnt_d; self.pend[0] |= 0x4000; }
     }
 
     /// `core.decode` block, depth 1, state-only: core.decode.sof, core.decode.tx_region, core.decode.arb, core.decode.crc_delim, core.decode.ack_slot, core.decode.ack_delim, ... (10 signals)
@@ -3097,10 +3423,10 @@ impl HubN3M1 {
             core_pj_0_rep_seen_d = false;
             core_pj_0_ok_r_d = 0u8;
         }
-        self.core_pj_0_dis_r_d = core_pj_0_dis_r_d;
-        self.core_pj_0_rep_r_d = core_pj_0_rep_r_d;
-        self.core_pj_0_rep_seen_d = core_pj_0_rep_seen_d;
-        self.core_pj_0_ok_r_d = core_pj_0_ok_r_d;
+        if core_pj_0_dis_r_d != self.core_pj_0_dis_r_d { self.core_pj_0_dis_r_d = core_pj_0_dis_r_d; self.pend[0] |= 0x80000; }
+        if core_pj_0_rep_r_d != self.core_pj_0_rep_r_d { self.core_pj_0_rep_r_d = core_pj_0_rep_r_d; self.pend[0] |= 0x2000000; }
+        if core_pj_0_rep_seen_d != self.core_pj_0_rep_seen_d { self.core_pj_0_rep_seen_d = core_pj_0_rep_seen_d; self.pend[0] |= 0x4000000; }
+        if core_pj_0_ok_r_d != self.core_pj_0_ok_r_d { self.core_pj_0_ok_r_d = core_pj_0_ok_r_d; self.pend[0] |= 0x10000000; }
     }
 
     /// `core.pj$1` block, depth 1, state-only: core.pj$1.dis_r.d, core.pj$1.rep_r.d, core.pj$1.rep_seen.d, core.pj$1.ok_r.d
@@ -3145,10 +3471,10 @@ impl HubN3M1 {
             core_pj_1_rep_seen_d = false;
             core_pj_1_ok_r_d = 0u8;
         }
-        self.core_pj_1_dis_r_d = core_pj_1_dis_r_d;
-        self.core_pj_1_rep_r_d = core_pj_1_rep_r_d;
-        self.core_pj_1_rep_seen_d = core_pj_1_rep_seen_d;
-        self.core_pj_1_ok_r_d = core_pj_1_ok_r_d;
+        if core_pj_1_dis_r_d != self.core_pj_1_dis_r_d { self.core_pj_1_dis_r_d = core_pj_1_dis_r_d; self.pend[0] |= 0x400000000; }
+        if core_pj_1_rep_r_d != self.core_pj_1_rep_r_d { self.core_pj_1_rep_r_d = core_pj_1_rep_r_d; self.pend[0] |= 0x10000000000; }
+        if core_pj_1_rep_seen_d != self.core_pj_1_rep_seen_d { self.core_pj_1_rep_seen_d = core_pj_1_rep_seen_d; self.pend[0] |= 0x20000000000; }
+        if core_pj_1_ok_r_d != self.core_pj_1_ok_r_d { self.core_pj_1_ok_r_d = core_pj_1_ok_r_d; self.pend[0] |= 0x80000000000; }
     }
 
     /// `core.pj$2` block, depth 1, state-only: core.pj$2.dis_r.d, core.pj$2.rep_r.d, core.pj$2.rep_seen.d, core.pj$2.ok_r.d
@@ -3193,10 +3519,10 @@ impl HubN3M1 {
             core_pj_2_rep_seen_d = false;
             core_pj_2_ok_r_d = 0u8;
         }
-        self.core_pj_2_dis_r_d = core_pj_2_dis_r_d;
-        self.core_pj_2_rep_r_d = core_pj_2_rep_r_d;
-        self.core_pj_2_rep_seen_d = core_pj_2_rep_seen_d;
-        self.core_pj_2_ok_r_d = core_pj_2_ok_r_d;
+        if core_pj_2_dis_r_d != self.core_pj_2_dis_r_d { self.core_pj_2_dis_r_d = core_pj_2_dis_r_d; self.pend[0] |= 0x2000000000000; }
+        if core_pj_2_rep_r_d != self.core_pj_2_rep_r_d { self.core_pj_2_rep_r_d = core_pj_2_rep_r_d; self.pend[0] |= 0x80000000000000; }
+        if core_pj_2_rep_seen_d != self.core_pj_2_rep_seen_d { self.core_pj_2_rep_seen_d = core_pj_2_rep_seen_d; self.pend[0] |= 0x100000000000000; }
+        if core_pj_2_ok_r_d != self.core_pj_2_ok_r_d { self.core_pj_2_ok_r_d = core_pj_2_ok_r_d; self.pend[0] |= 0x400000000000000; }
     }
 
     /// `core.sj$0` block, depth 1, state-only: core.sj$0.dis_r.d, core.sj$0.dbc_r.d, core.sj$0.rep_r.d, core.sj$0.ok_r.d
@@ -3255,10 +3581,10 @@ impl HubN3M1 {
             core_sj_0_rep_r_d = 0u8;
             core_sj_0_ok_r_d = 0u8;
         }
-        self.core_sj_0_dis_r_d = core_sj_0_dis_r_d;
-        self.core_sj_0_dbc_r_d = core_sj_0_dbc_r_d;
-        self.core_sj_0_rep_r_d = core_sj_0_rep_r_d;
-        self.core_sj_0_ok_r_d = core_sj_0_ok_r_d;
+        if core_sj_0_dis_r_d != self.core_sj_0_dis_r_d { self.core_sj_0_dis_r_d = core_sj_0_dis_r_d; self.pend[1] |= 0x1; }
+        if core_sj_0_dbc_r_d != self.core_sj_0_dbc_r_d { self.core_sj_0_dbc_r_d = core_sj_0_dbc_r_d; self.pend[1] |= 0x8; }
+        if core_sj_0_rep_r_d != self.core_sj_0_rep_r_d { self.core_sj_0_rep_r_d = core_sj_0_rep_r_d; self.pend[1] |= 0x40; }
+        if core_sj_0_ok_r_d != self.core_sj_0_ok_r_d { self.core_sj_0_ok_r_d = core_sj_0_ok_r_d; self.pend[1] |= 0x200; }
     }
 
     /// `core.sj$0` block, depth 1, probe-only: core.sj$0.dom
@@ -3305,12 +3631,12 @@ impl HubN3M1 {
         } else if monitor_btl_tick {
             monitor_btl_h1_n_d = (!self.monitor_sync_q);
         }
-        self.monitor_btl_c_brp_d = monitor_btl_c_brp_d;
-        self.monitor_btl_c_sp_d = monitor_btl_c_sp_d;
-        self.monitor_btl_c_ntq_d = monitor_btl_c_ntq_d;
-        self.monitor_btl_c_valid_d = monitor_btl_c_valid_d;
-        self.monitor_btl_c_bad_d = monitor_btl_c_bad_d;
-        self.monitor_btl_h1_n_d = monitor_btl_h1_n_d;
+        if monitor_btl_c_brp_d != self.monitor_btl_c_brp_d { self.monitor_btl_c_brp_d = monitor_btl_c_brp_d; self.pend[1] |= 0x40000; }
+        if monitor_btl_c_sp_d != self.monitor_btl_c_sp_d { self.monitor_btl_c_sp_d = monitor_btl_c_sp_d; self.pend[1] |= 0x80000; }
+        if monitor_btl_c_ntq_d != self.monitor_btl_c_ntq_d { self.monitor_btl_c_ntq_d = monitor_btl_c_ntq_d; self.pend[1] |= 0x100000; }
+        if monitor_btl_c_valid_d != self.monitor_btl_c_valid_d { self.monitor_btl_c_valid_d = monitor_btl_c_valid_d; self.pend[1] |= 0x800000; }
+        if monitor_btl_c_bad_d != self.monitor_btl_c_bad_d { self.monitor_btl_c_bad_d = monitor_btl_c_bad_d; self.pend[1] |= 0x1000000; }
+        if monitor_btl_h1_n_d != self.monitor_btl_h1_n_d { self.monitor_btl_h1_n_d = monitor_btl_h1_n_d; self.pend[1] |= 0x400000000; }
     }
 
     /// `monitor.btl` block, depth 1, probe-only: monitor.btl.in_sp, monitor.btl.in_ntq, monitor.btl.in_bad, monitor.btl.sync_cond, monitor.btl.sampled
@@ -3833,34 +4159,34 @@ impl HubN3M1 {
         if monitor_fsm_hs_en != self.monitor_fsm_hs_en { self.monitor_fsm_hs_en = monitor_fsm_hs_en; self.dirty[0] |= 0x1800000000000000; }
         if monitor_fsm_field != self.monitor_fsm_field { self.monitor_fsm_field = monitor_fsm_field; self.dirty[0] |= 0x400000000000000; }
         if monitor_fsm_pos != self.monitor_fsm_pos { self.monitor_fsm_pos = monitor_fsm_pos; self.dirty[1] |= 0x2; }
-        self.monitor_fsm_pfld_d = monitor_fsm_pfld_d;
-        self.monitor_fsm_ppos_d = monitor_fsm_ppos_d;
-        self.monitor_fsm_rtx_d = monitor_fsm_rtx_d;
+        if monitor_fsm_pfld_d != self.monitor_fsm_pfld_d { self.monitor_fsm_pfld_d = monitor_fsm_pfld_d; self.pend[1] |= 0x20000000000; }
+        if monitor_fsm_ppos_d != self.monitor_fsm_ppos_d { self.monitor_fsm_ppos_d = monitor_fsm_ppos_d; self.pend[1] |= 0x40000000000; }
+        if monitor_fsm_rtx_d != self.monitor_fsm_rtx_d { self.monitor_fsm_rtx_d = monitor_fsm_rtx_d; self.pend[1] |= 0x80000000000; }
         if monitor_fsm_dstf_active != self.monitor_fsm_dstf_active { self.monitor_fsm_dstf_active = monitor_fsm_dstf_active; self.dirty[0] |= 0xc000000000000000; }
         if monitor_fsm_crcb_clear != self.monitor_fsm_crcb_clear { self.monitor_fsm_crcb_clear = monitor_fsm_crcb_clear; self.dirty[1] |= 0x1; }
         if monitor_fsm_crcb_en != self.monitor_fsm_crcb_en { self.monitor_fsm_crcb_en = monitor_fsm_crcb_en; self.dirty[1] |= 0x1; }
-        self.monitor_fsm_tid_d = monitor_fsm_tid_d;
-        self.monitor_fsm_tdat_d = monitor_fsm_tdat_d;
-        self.monitor_fsm_tdlc_d = monitor_fsm_tdlc_d;
-        self.monitor_fsm_rid_d = monitor_fsm_rid_d;
-        self.monitor_fsm_rdat_d = monitor_fsm_rdat_d;
-        self.monitor_fsm_rdlc_d = monitor_fsm_rdlc_d;
-        self.monitor_fsm_rrtr_d = monitor_fsm_rrtr_d;
-        self.monitor_fsm_rext_d = monitor_fsm_rext_d;
-        self.monitor_fsm_eqcnt_d = monitor_fsm_eqcnt_d;
-        self.monitor_fsm_eqlast_d = monitor_fsm_eqlast_d;
-        self.monitor_fsm_exc1_d = monitor_fsm_exc1_d;
-        self.monitor_fsm_tecr_d = monitor_fsm_tecr_d;
-        self.monitor_fsm_recr_d = monitor_fsm_recr_d;
-        self.monitor_fsm_runr_d = monitor_fsm_runr_d;
-        self.monitor_fsm_rarmed_d = monitor_fsm_rarmed_d;
-        self.monitor_fsm_req_d = monitor_fsm_req_d;
-        self.monitor_fsm_blocked_d = monitor_fsm_blocked_d;
-        self.monitor_fsm_rxide_r_d = monitor_fsm_rxide_r_d;
-        self.monitor_fsm_rxrtr_r_d = monitor_fsm_rxrtr_r_d;
-        self.monitor_fsm_rxid_r_d = monitor_fsm_rxid_r_d;
-        self.monitor_fsm_rxdlc_r_d = monitor_fsm_rxdlc_r_d;
-        self.monitor_fsm_rxdat_r_d = monitor_fsm_rxdat_r_d;
+        if monitor_fsm_tid_d != self.monitor_fsm_tid_d { self.monitor_fsm_tid_d = monitor_fsm_tid_d; self.pend[1] |= 0x2000000000000; }
+        if monitor_fsm_tdat_d != self.monitor_fsm_tdat_d { self.monitor_fsm_tdat_d = monitor_fsm_tdat_d; self.pend[1] |= 0x4000000000000; }
+        if monitor_fsm_tdlc_d != self.monitor_fsm_tdlc_d { self.monitor_fsm_tdlc_d = monitor_fsm_tdlc_d; self.pend[1] |= 0x8000000000000; }
+        if monitor_fsm_rid_d != self.monitor_fsm_rid_d { self.monitor_fsm_rid_d = monitor_fsm_rid_d; self.pend[1] |= 0x40000000000000; }
+        if monitor_fsm_rdat_d != self.monitor_fsm_rdat_d { self.monitor_fsm_rdat_d = monitor_fsm_rdat_d; self.pend[1] |= 0x80000000000000; }
+        if monitor_fsm_rdlc_d != self.monitor_fsm_rdlc_d { self.monitor_fsm_rdlc_d = monitor_fsm_rdlc_d; self.pend[1] |= 0x100000000000000; }
+        if monitor_fsm_rrtr_d != self.monitor_fsm_rrtr_d { self.monitor_fsm_rrtr_d = monitor_fsm_rrtr_d; self.pend[1] |= 0x200000000000000; }
+        if monitor_fsm_rext_d != self.monitor_fsm_rext_d { self.monitor_fsm_rext_d = monitor_fsm_rext_d; self.pend[1] |= 0x400000000000000; }
+        if monitor_fsm_eqcnt_d != self.monitor_fsm_eqcnt_d { self.monitor_fsm_eqcnt_d = monitor_fsm_eqcnt_d; self.pend[1] |= 0x1000000000000000; }
+        if monitor_fsm_eqlast_d != self.monitor_fsm_eqlast_d { self.monitor_fsm_eqlast_d = monitor_fsm_eqlast_d; self.pend[1] |= 0x2000000000000000; }
+        if monitor_fsm_exc1_d != self.monitor_fsm_exc1_d { self.monitor_fsm_exc1_d = monitor_fsm_exc1_d; self.pend[2] |= 0x1; }
+        if monitor_fsm_tecr_d != self.monitor_fsm_tecr_d { self.monitor_fsm_tecr_d = monitor_fsm_tecr_d; self.pend[2] |= 0x2; }
+        if monitor_fsm_recr_d != self.monitor_fsm_recr_d { self.monitor_fsm_recr_d = monitor_fsm_recr_d; self.pend[2] |= 0x4; }
+        if monitor_fsm_runr_d != self.monitor_fsm_runr_d { self.monitor_fsm_runr_d = monitor_fsm_runr_d; self.pend[2] |= 0x8; }
+        if monitor_fsm_rarmed_d != self.monitor_fsm_rarmed_d { self.monitor_fsm_rarmed_d = monitor_fsm_rarmed_d; self.pend[2] |= 0x10; }
+        if monitor_fsm_req_d != self.monitor_fsm_req_d { self.monitor_fsm_req_d = monitor_fsm_req_d; self.pend[2] |= 0x20; }
+        if monitor_fsm_blocked_d != self.monitor_fsm_blocked_d { self.monitor_fsm_blocked_d = monitor_fsm_blocked_d; self.pend[2] |= 0x40; }
+        if monitor_fsm_rxide_r_d != self.monitor_fsm_rxide_r_d { self.monitor_fsm_rxide_r_d = monitor_fsm_rxide_r_d; self.pend[2] |= 0x1000; }
+        if monitor_fsm_rxrtr_r_d != self.monitor_fsm_rxrtr_r_d { self.monitor_fsm_rxrtr_r_d = monitor_fsm_rxrtr_r_d; self.pend[2] |= 0x2000; }
+        if monitor_fsm_rxid_r_d != self.monitor_fsm_rxid_r_d { self.monitor_fsm_rxid_r_d = monitor_fsm_rxid_r_d; self.pend[2] |= 0x4000; }
+        if monitor_fsm_rxdlc_r_d != self.monitor_fsm_rxdlc_r_d { self.monitor_fsm_rxdlc_r_d = monitor_fsm_rxdlc_r_d; self.pend[2] |= 0x8000; }
+        if monitor_fsm_rxdat_r_d != self.monitor_fsm_rxdat_r_d { self.monitor_fsm_rxdat_r_d = monitor_fsm_rxdat_r_d; self.pend[2] |= 0x10000; }
     }
 
     /// `monitor.fsm` block, depth 1, probe-only: monitor.fsm.l_curstf, monitor.fsm.l_dfld, monitor.fsm.l_dpos, monitor.fsm.l_crcen, monitor.fsm.l_usetx, monitor.fsm.l_role, ... (35 signals)
@@ -4485,10 +4811,10 @@ impl HubN3M1 {
         if core_coupler_u_1 != self.core_coupler_u_1 { self.core_coupler_u_1 = core_coupler_u_1; self.dirty[1] |= 0x30; }
         if core_coupler_u_2 != self.core_coupler_u_2 { self.core_coupler_u_2 = core_coupler_u_2; self.dirty[1] |= 0xc0; }
         if core_coupler_bt != self.core_coupler_bt { self.core_coupler_bt = core_coupler_bt; self.dirty[1] |= 0x554; }
-        self.core_coupler_tx_n_0_d = core_coupler_tx_n_0_d;
-        self.core_coupler_tx_n_1_d = core_coupler_tx_n_1_d;
-        self.core_coupler_tx_n_2_d = core_coupler_tx_n_2_d;
-        self.core_coupler_hub_tx_n_0_d = core_coupler_hub_tx_n_0_d;
+        if core_coupler_tx_n_0_d != self.core_coupler_tx_n_0_d { self.core_coupler_tx_n_0_d = core_coupler_tx_n_0_d; self.pend[0] |= 0x100; }
+        if core_coupler_tx_n_1_d != self.core_coupler_tx_n_1_d { self.core_coupler_tx_n_1_d = core_coupler_tx_n_1_d; self.pend[0] |= 0x200; }
+        if core_coupler_tx_n_2_d != self.core_coupler_tx_n_2_d { self.core_coupler_tx_n_2_d = core_coupler_tx_n_2_d; self.pend[0] |= 0x400; }
+        if core_coupler_hub_tx_n_0_d != self.core_coupler_hub_tx_n_0_d { self.core_coupler_hub_tx_n_0_d = core_coupler_hub_tx_n_0_d; self.pend[0] |= 0x800; }
     }
 
     /// `core.coupler` block, depth 2, probe-only: core.coupler.andc, core.coupler.dl$0, core.coupler.dl$1, core.coupler.dl$2, core.coupler.hl$0, core.coupler.ul$0, ... (10 signals)
@@ -4620,7 +4946,7 @@ impl HubN3M1 {
         if self.core_rst_s2 {
             core_injector_state_d = 0u8;
         }
-        self.core_injector_state_d = core_injector_state_d;
+        if core_injector_state_d != self.core_injector_state_d { self.core_injector_state_d = core_injector_state_d; self.pend[0] |= 0x10000; }
     }
 
     /// `core.pj$0` block, depth 2, state-only: core.pj$0.nack_r.d, core.pj$0.acked.d, core.pj$0.ack_rx.d
@@ -4665,9 +4991,9 @@ impl HubN3M1 {
             core_pj_0_acked_d = false;
             core_pj_0_ack_rx_d = false;
         }
-        self.core_pj_0_nack_r_d = core_pj_0_nack_r_d;
-        self.core_pj_0_acked_d = core_pj_0_acked_d;
-        self.core_pj_0_ack_rx_d = core_pj_0_ack_rx_d;
+        if core_pj_0_nack_r_d != self.core_pj_0_nack_r_d { self.core_pj_0_nack_r_d = core_pj_0_nack_r_d; self.pend[0] |= 0x800000; }
+        if core_pj_0_acked_d != self.core_pj_0_acked_d { self.core_pj_0_acked_d = core_pj_0_acked_d; self.pend[0] |= 0x20000000; }
+        if core_pj_0_ack_rx_d != self.core_pj_0_ack_rx_d { self.core_pj_0_ack_rx_d = core_pj_0_ack_rx_d; self.pend[0] |= 0x200000000; }
     }
 
     /// `core.pj$1` block, depth 2, state-only: core.pj$1.nack_r.d, core.pj$1.acked.d, core.pj$1.ack_rx.d
@@ -4712,9 +5038,9 @@ impl HubN3M1 {
             core_pj_1_acked_d = false;
             core_pj_1_ack_rx_d = false;
         }
-        self.core_pj_1_nack_r_d = core_pj_1_nack_r_d;
-        self.core_pj_1_acked_d = core_pj_1_acked_d;
-        self.core_pj_1_ack_rx_d = core_pj_1_ack_rx_d;
+        if core_pj_1_nack_r_d != self.core_pj_1_nack_r_d { self.core_pj_1_nack_r_d = core_pj_1_nack_r_d; self.pend[0] |= 0x4000000000; }
+        if core_pj_1_acked_d != self.core_pj_1_acked_d { self.core_pj_1_acked_d = core_pj_1_acked_d; self.pend[0] |= 0x100000000000; }
+        if core_pj_1_ack_rx_d != self.core_pj_1_ack_rx_d { self.core_pj_1_ack_rx_d = core_pj_1_ack_rx_d; self.pend[0] |= 0x1000000000000; }
     }
 
     /// `core.pj$2` block, depth 2, state-only: core.pj$2.nack_r.d, core.pj$2.acked.d, core.pj$2.ack_rx.d
@@ -4759,9 +5085,9 @@ impl HubN3M1 {
             core_pj_2_acked_d = false;
             core_pj_2_ack_rx_d = false;
         }
-        self.core_pj_2_nack_r_d = core_pj_2_nack_r_d;
-        self.core_pj_2_acked_d = core_pj_2_acked_d;
-        self.core_pj_2_ack_rx_d = core_pj_2_ack_rx_d;
+        if core_pj_2_nack_r_d != self.core_pj_2_nack_r_d { self.core_pj_2_nack_r_d = core_pj_2_nack_r_d; self.pend[0] |= 0x20000000000000; }
+        if core_pj_2_acked_d != self.core_pj_2_acked_d { self.core_pj_2_acked_d = core_pj_2_acked_d; self.pend[0] |= 0x800000000000000; }
+        if core_pj_2_ack_rx_d != self.core_pj_2_ack_rx_d { self.core_pj_2_ack_rx_d = core_pj_2_ack_rx_d; self.pend[0] |= 0x8000000000000000; }
     }
 
     /// `core.sj$0` block, depth 2, state-only: core.sj$0.nack_r.d, core.sj$0.rep_seen.d, core.sj$0.rep_first_dom.d, core.sj$0.acked.d, core.sj$0.ack_c.d, core.sj$0.ack_rx.d
@@ -4828,12 +5154,12 @@ impl HubN3M1 {
             core_sj_0_ack_c_d = false;
             core_sj_0_ack_rx_d = false;
         }
-        self.core_sj_0_nack_r_d = core_sj_0_nack_r_d;
-        self.core_sj_0_rep_seen_d = core_sj_0_rep_seen_d;
-        self.core_sj_0_rep_first_dom_d = core_sj_0_rep_first_dom_d;
-        self.core_sj_0_acked_d = core_sj_0_acked_d;
-        self.core_sj_0_ack_c_d = core_sj_0_ack_c_d;
-        self.core_sj_0_ack_rx_d = core_sj_0_ack_rx_d;
+        if core_sj_0_nack_r_d != self.core_sj_0_nack_r_d { self.core_sj_0_nack_r_d = core_sj_0_nack_r_d; self.pend[1] |= 0x10; }
+        if core_sj_0_rep_seen_d != self.core_sj_0_rep_seen_d { self.core_sj_0_rep_seen_d = core_sj_0_rep_seen_d; self.pend[1] |= 0x80; }
+        if core_sj_0_rep_first_dom_d != self.core_sj_0_rep_first_dom_d { self.core_sj_0_rep_first_dom_d = core_sj_0_rep_first_dom_d; self.pend[1] |= 0x100; }
+        if core_sj_0_acked_d != self.core_sj_0_acked_d { self.core_sj_0_acked_d = core_sj_0_acked_d; self.pend[1] |= 0x400; }
+        if core_sj_0_ack_c_d != self.core_sj_0_ack_c_d { self.core_sj_0_ack_c_d = core_sj_0_ack_c_d; self.pend[1] |= 0x2000; }
+        if core_sj_0_ack_rx_d != self.core_sj_0_ack_rx_d { self.core_sj_0_ack_rx_d = core_sj_0_ack_rx_d; self.pend[1] |= 0x4000; }
     }
 
     /// `monitor` block, depth 2, state-only: monitor.dbg_field
@@ -4989,17 +5315,17 @@ impl HubN3M1 {
                 }
             }
         }
-        self.monitor_btl_cnt_d = monitor_btl_cnt_d;
-        self.monitor_btl_spw_d = monitor_btl_spw_d;
-        self.monitor_btl_nbw_d = monitor_btl_nbw_d;
-        self.monitor_btl_busmon_n_d = monitor_btl_busmon_n_d;
-        self.monitor_btl_sync_dis_d = monitor_btl_sync_dis_d;
-        self.monitor_btl_since_d = monitor_btl_since_d;
-        self.monitor_btl_pending_d = monitor_btl_pending_d;
-        self.monitor_btl_tx_n_d = monitor_btl_tx_n_d;
-        self.monitor_btl_sample_r_d = monitor_btl_sample_r_d;
-        self.monitor_btl_hard_r_d = monitor_btl_hard_r_d;
-        self.monitor_btl_resync_r_d = monitor_btl_resync_r_d;
+        if monitor_btl_cnt_d != self.monitor_btl_cnt_d { self.monitor_btl_cnt_d = monitor_btl_cnt_d; self.pend[1] |= 0x4000000; }
+        if monitor_btl_spw_d != self.monitor_btl_spw_d { self.monitor_btl_spw_d = monitor_btl_spw_d; self.pend[1] |= 0x8000000; }
+        if monitor_btl_nbw_d != self.monitor_btl_nbw_d { self.monitor_btl_nbw_d = monitor_btl_nbw_d; self.pend[1] |= 0x10000000; }
+        if monitor_btl_busmon_n_d != self.monitor_btl_busmon_n_d { self.monitor_btl_busmon_n_d = monitor_btl_busmon_n_d; self.pend[1] |= 0x20000000; }
+        if monitor_btl_sync_dis_d != self.monitor_btl_sync_dis_d { self.monitor_btl_sync_dis_d = monitor_btl_sync_dis_d; self.pend[1] |= 0x40000000; }
+        if monitor_btl_since_d != self.monitor_btl_since_d { self.monitor_btl_since_d = monitor_btl_since_d; self.pend[1] |= 0x80000000; }
+        if monitor_btl_pending_d != self.monitor_btl_pending_d { self.monitor_btl_pending_d = monitor_btl_pending_d; self.pend[1] |= 0x100000000; }
+        if monitor_btl_tx_n_d != self.monitor_btl_tx_n_d { self.monitor_btl_tx_n_d = monitor_btl_tx_n_d; self.pend[1] |= 0x200000000; }
+        if monitor_btl_sample_r_d != self.monitor_btl_sample_r_d { self.monitor_btl_sample_r_d = monitor_btl_sample_r_d; self.pend[1] |= 0x1000000000; }
+        if monitor_btl_hard_r_d != self.monitor_btl_hard_r_d { self.monitor_btl_hard_r_d = monitor_btl_hard_r_d; self.pend[1] |= 0x2000000000; }
+        if monitor_btl_resync_r_d != self.monitor_btl_resync_r_d { self.monitor_btl_resync_r_d = monitor_btl_resync_r_d; self.pend[1] |= 0x4000000000; }
     }
 
     /// `monitor.btl` block, depth 2, probe-only: monitor.btl.bit_start, monitor.btl.do_hard, monitor.btl.do_resync, monitor.btl.restart, monitor.btl.sp_a, monitor.btl.nb_a, ... (13 signals)
@@ -5495,8 +5821,8 @@ impl HubN3M1 {
             monitor_fsm_dstf_lvl_d = false;
         }
         if monitor_fsm_dstf_stuff_error != self.monitor_fsm_dstf_stuff_error { self.monitor_fsm_dstf_stuff_error = monitor_fsm_dstf_stuff_error; self.dirty[1] |= 0x1800; }
-        self.monitor_fsm_dstf_cnt_d = monitor_fsm_dstf_cnt_d;
-        self.monitor_fsm_dstf_lvl_d = monitor_fsm_dstf_lvl_d;
+        if monitor_fsm_dstf_cnt_d != self.monitor_fsm_dstf_cnt_d { self.monitor_fsm_dstf_cnt_d = monitor_fsm_dstf_cnt_d; self.pend[1] |= 0x200000000000; }
+        if monitor_fsm_dstf_lvl_d != self.monitor_fsm_dstf_lvl_d { self.monitor_fsm_dstf_lvl_d = monitor_fsm_dstf_lvl_d; self.pend[1] |= 0x400000000000; }
     }
 
     /// `monitor.fsm.dstf` block, depth 2, probe-only: monitor.fsm.dstf.stuff_bit, monitor.fsm.dstf.take
@@ -5532,7 +5858,7 @@ impl HubN3M1 {
         if (self.monitor_l_hold | self.monitor_fsm_crcb_clear) {
             monitor_fsm_crcb_state_d = 0u16;
         }
-        self.monitor_fsm_crcb_state_d = monitor_fsm_crcb_state_d;
+        if monitor_fsm_crcb_state_d != self.monitor_fsm_crcb_state_d { self.monitor_fsm_crcb_state_d = monitor_fsm_crcb_state_d; self.pend[1] |= 0x800000000000; }
     }
 
     /// `adapter` block, depth 2, state-only: adapter.p_r.d
@@ -5545,7 +5871,7 @@ impl HubN3M1 {
         if self.core_rst_s2 {
             adapter_p_r_d = 0u8;
         }
-        self.adapter_p_r_d = adapter_p_r_d;
+        if adapter_p_r_d != self.adapter_p_r_d { self.adapter_p_r_d = adapter_p_r_d; self.pend[2] |= 0x80000; }
     }
 
     /// `core.pj$0` block, depth 3, state-only: core.pj$0.blame, core.pj$0.tx_error, core.pj$0.bic_r.d, core.pj$0.life_r.d, core.pj$0.dbc_r.d, core.pj$0.cont_r.d, ... (9 signals)
@@ -5638,13 +5964,13 @@ impl HubN3M1 {
         }
         if core_pj_0_blame != self.core_pj_0_blame { self.core_pj_0_blame = core_pj_0_blame; self.dirty[1] |= 0xc000; }
         if core_pj_0_tx_error != self.core_pj_0_tx_error { self.core_pj_0_tx_error = core_pj_0_tx_error; self.dirty[1] |= 0xc000; }
-        self.core_pj_0_bic_r_d = core_pj_0_bic_r_d;
-        self.core_pj_0_life_r_d = core_pj_0_life_r_d;
-        self.core_pj_0_dbc_r_d = core_pj_0_dbc_r_d;
-        self.core_pj_0_cont_r_d = core_pj_0_cont_r_d;
-        self.core_pj_0_bad_d = core_pj_0_bad_d;
-        self.core_pj_0_ack_missing_d = core_pj_0_ack_missing_d;
-        self.core_pj_0_ack_c_d = core_pj_0_ack_c_d;
+        if core_pj_0_bic_r_d != self.core_pj_0_bic_r_d { self.core_pj_0_bic_r_d = core_pj_0_bic_r_d; self.pend[0] |= 0x100000; }
+        if core_pj_0_life_r_d != self.core_pj_0_life_r_d { self.core_pj_0_life_r_d = core_pj_0_life_r_d; self.pend[0] |= 0x200000; }
+        if core_pj_0_dbc_r_d != self.core_pj_0_dbc_r_d { self.core_pj_0_dbc_r_d = core_pj_0_dbc_r_d; self.pend[0] |= 0x400000; }
+        if core_pj_0_cont_r_d != self.core_pj_0_cont_r_d { self.core_pj_0_cont_r_d = core_pj_0_cont_r_d; self.pend[0] |= 0x1000000; }
+        if core_pj_0_bad_d != self.core_pj_0_bad_d { self.core_pj_0_bad_d = core_pj_0_bad_d; self.pend[0] |= 0x40000000; }
+        if core_pj_0_ack_missing_d != self.core_pj_0_ack_missing_d { self.core_pj_0_ack_missing_d = core_pj_0_ack_missing_d; self.pend[0] |= 0x80000000; }
+        if core_pj_0_ack_c_d != self.core_pj_0_ack_c_d { self.core_pj_0_ack_c_d = core_pj_0_ack_c_d; self.pend[0] |= 0x100000000; }
     }
 
     /// `core.pj$0` block, depth 3, probe-only: core.pj$0.dom, core.pj$0.unj
@@ -5747,13 +6073,13 @@ impl HubN3M1 {
         }
         if core_pj_1_blame != self.core_pj_1_blame { self.core_pj_1_blame = core_pj_1_blame; self.dirty[1] |= 0xc000; }
         if core_pj_1_tx_error != self.core_pj_1_tx_error { self.core_pj_1_tx_error = core_pj_1_tx_error; self.dirty[1] |= 0xc000; }
-        self.core_pj_1_bic_r_d = core_pj_1_bic_r_d;
-        self.core_pj_1_life_r_d = core_pj_1_life_r_d;
-        self.core_pj_1_dbc_r_d = core_pj_1_dbc_r_d;
-        self.core_pj_1_cont_r_d = core_pj_1_cont_r_d;
-        self.core_pj_1_bad_d = core_pj_1_bad_d;
-        self.core_pj_1_ack_missing_d = core_pj_1_ack_missing_d;
-        self.core_pj_1_ack_c_d = core_pj_1_ack_c_d;
+        if core_pj_1_bic_r_d != self.core_pj_1_bic_r_d { self.core_pj_1_bic_r_d = core_pj_1_bic_r_d; self.pend[0] |= 0x800000000; }
+        if core_pj_1_life_r_d != self.core_pj_1_life_r_d { self.core_pj_1_life_r_d = core_pj_1_life_r_d; self.pend[0] |= 0x1000000000; }
+        if core_pj_1_dbc_r_d != self.core_pj_1_dbc_r_d { self.core_pj_1_dbc_r_d = core_pj_1_dbc_r_d; self.pend[0] |= 0x2000000000; }
+        if core_pj_1_cont_r_d != self.core_pj_1_cont_r_d { self.core_pj_1_cont_r_d = core_pj_1_cont_r_d; self.pend[0] |= 0x8000000000; }
+        if core_pj_1_bad_d != self.core_pj_1_bad_d { self.core_pj_1_bad_d = core_pj_1_bad_d; self.pend[0] |= 0x200000000000; }
+        if core_pj_1_ack_missing_d != self.core_pj_1_ack_missing_d { self.core_pj_1_ack_missing_d = core_pj_1_ack_missing_d; self.pend[0] |= 0x400000000000; }
+        if core_pj_1_ack_c_d != self.core_pj_1_ack_c_d { self.core_pj_1_ack_c_d = core_pj_1_ack_c_d; self.pend[0] |= 0x800000000000; }
     }
 
     /// `core.pj$1` block, depth 3, probe-only: core.pj$1.dom, core.pj$1.unj
@@ -5856,13 +6182,13 @@ impl HubN3M1 {
         }
         if core_pj_2_blame != self.core_pj_2_blame { self.core_pj_2_blame = core_pj_2_blame; self.dirty[1] |= 0xc000; }
         if core_pj_2_tx_error != self.core_pj_2_tx_error { self.core_pj_2_tx_error = core_pj_2_tx_error; self.dirty[1] |= 0xc000; }
-        self.core_pj_2_bic_r_d = core_pj_2_bic_r_d;
-        self.core_pj_2_life_r_d = core_pj_2_life_r_d;
-        self.core_pj_2_dbc_r_d = core_pj_2_dbc_r_d;
-        self.core_pj_2_cont_r_d = core_pj_2_cont_r_d;
-        self.core_pj_2_bad_d = core_pj_2_bad_d;
-        self.core_pj_2_ack_missing_d = core_pj_2_ack_missing_d;
-        self.core_pj_2_ack_c_d = core_pj_2_ack_c_d;
+        if core_pj_2_bic_r_d != self.core_pj_2_bic_r_d { self.core_pj_2_bic_r_d = core_pj_2_bic_r_d; self.pend[0] |= 0x4000000000000; }
+        if core_pj_2_life_r_d != self.core_pj_2_life_r_d { self.core_pj_2_life_r_d = core_pj_2_life_r_d; self.pend[0] |= 0x8000000000000; }
+        if core_pj_2_dbc_r_d != self.core_pj_2_dbc_r_d { self.core_pj_2_dbc_r_d = core_pj_2_dbc_r_d; self.pend[0] |= 0x10000000000000; }
+        if core_pj_2_cont_r_d != self.core_pj_2_cont_r_d { self.core_pj_2_cont_r_d = core_pj_2_cont_r_d; self.pend[0] |= 0x40000000000000; }
+        if core_pj_2_bad_d != self.core_pj_2_bad_d { self.core_pj_2_bad_d = core_pj_2_bad_d; self.pend[0] |= 0x1000000000000000; }
+        if core_pj_2_ack_missing_d != self.core_pj_2_ack_missing_d { self.core_pj_2_ack_missing_d = core_pj_2_ack_missing_d; self.pend[0] |= 0x2000000000000000; }
+        if core_pj_2_ack_c_d != self.core_pj_2_ack_c_d { self.core_pj_2_ack_c_d = core_pj_2_ack_c_d; self.pend[0] |= 0x4000000000000000; }
     }
 
     /// `core.pj$2` block, depth 3, probe-only: core.pj$2.dom, core.pj$2.unj
@@ -5948,11 +6274,11 @@ impl HubN3M1 {
         }
         if core_sj_0_blame != self.core_sj_0_blame { self.core_sj_0_blame = core_sj_0_blame; self.dirty[1] |= 0xc000; }
         if core_sj_0_tx_error != self.core_sj_0_tx_error { self.core_sj_0_tx_error = core_sj_0_tx_error; self.dirty[1] |= 0xc000; }
-        self.core_sj_0_bic_r_d = core_sj_0_bic_r_d;
-        self.core_sj_0_life_r_d = core_sj_0_life_r_d;
-        self.core_sj_0_cont_r_d = core_sj_0_cont_r_d;
-        self.core_sj_0_bad_d = core_sj_0_bad_d;
-        self.core_sj_0_ack_missing_d = core_sj_0_ack_missing_d;
+        if core_sj_0_bic_r_d != self.core_sj_0_bic_r_d { self.core_sj_0_bic_r_d = core_sj_0_bic_r_d; self.pend[1] |= 0x2; }
+        if core_sj_0_life_r_d != self.core_sj_0_life_r_d { self.core_sj_0_life_r_d = core_sj_0_life_r_d; self.pend[1] |= 0x4; }
+        if core_sj_0_cont_r_d != self.core_sj_0_cont_r_d { self.core_sj_0_cont_r_d = core_sj_0_cont_r_d; self.pend[1] |= 0x20; }
+        if core_sj_0_bad_d != self.core_sj_0_bad_d { self.core_sj_0_bad_d = core_sj_0_bad_d; self.pend[1] |= 0x800; }
+        if core_sj_0_ack_missing_d != self.core_sj_0_ack_missing_d { self.core_sj_0_ack_missing_d = core_sj_0_ack_missing_d; self.pend[1] |= 0x1000; }
     }
 
     /// `core.sj$0` block, depth 3, probe-only: core.sj$0.unj
@@ -5971,7 +6297,7 @@ impl HubN3M1 {
         if self.core_rst_s2 {
             monitor_sync_s1_n_d = false;
         }
-        self.monitor_sync_s1_n_d = monitor_sync_s1_n_d;
+        if monitor_sync_s1_n_d != self.monitor_sync_s1_n_d { self.monitor_sync_s1_n_d = monitor_sync_s1_n_d; self.pend[1] |= 0x10000; }
     }
 
     /// `monitor.fsm` block, depth 3, state-only: monitor.fsm.fld.d, monitor.fsm.fpos.d, monitor.fsm.dom.d, monitor.fsm.crcerr.d, monitor.fsm.fdone.d, monitor.fsm.dafc.d, ... (12 signals)
@@ -6726,18 +7052,18 @@ impl HubN3M1 {
             monitor_fsm_dafany_d = false;
             monitor_fsm_evr_d = 0u32;
         }
-        self.monitor_fsm_fld_d = monitor_fsm_fld_d;
-        self.monitor_fsm_fpos_d = monitor_fsm_fpos_d;
-        self.monitor_fsm_dom_d = monitor_fsm_dom_d;
-        self.monitor_fsm_crcerr_d = monitor_fsm_crcerr_d;
-        self.monitor_fsm_fdone_d = monitor_fsm_fdone_d;
-        self.monitor_fsm_dafc_d = monitor_fsm_dafc_d;
-        self.monitor_fsm_dafany_d = monitor_fsm_dafany_d;
-        self.monitor_fsm_evr_d = monitor_fsm_evr_d;
-        self.monitor_fsm_arbpos_r_d = monitor_fsm_arbpos_r_d;
-        self.monitor_fsm_errf_r_d = monitor_fsm_errf_r_d;
-        self.monitor_fsm_errp_r_d = monitor_fsm_errp_r_d;
-        self.monitor_fsm_errtx_r_d = monitor_fsm_errtx_r_d;
+        if monitor_fsm_fld_d != self.monitor_fsm_fld_d { self.monitor_fsm_fld_d = monitor_fsm_fld_d; self.pend[1] |= 0x8000000000; }
+        if monitor_fsm_fpos_d != self.monitor_fsm_fpos_d { self.monitor_fsm_fpos_d = monitor_fsm_fpos_d; self.pend[1] |= 0x10000000000; }
+        if monitor_fsm_dom_d != self.monitor_fsm_dom_d { self.monitor_fsm_dom_d = monitor_fsm_dom_d; self.pend[1] |= 0x100000000000; }
+        if monitor_fsm_crcerr_d != self.monitor_fsm_crcerr_d { self.monitor_fsm_crcerr_d = monitor_fsm_crcerr_d; self.pend[1] |= 0x1000000000000; }
+        if monitor_fsm_fdone_d != self.monitor_fsm_fdone_d { self.monitor_fsm_fdone_d = monitor_fsm_fdone_d; self.pend[1] |= 0x800000000000000; }
+        if monitor_fsm_dafc_d != self.monitor_fsm_dafc_d { self.monitor_fsm_dafc_d = monitor_fsm_dafc_d; self.pend[1] |= 0x4000000000000000; }
+        if monitor_fsm_dafany_d != self.monitor_fsm_dafany_d { self.monitor_fsm_dafany_d = monitor_fsm_dafany_d; self.pend[1] |= 0x8000000000000000; }
+        if monitor_fsm_evr_d != self.monitor_fsm_evr_d { self.monitor_fsm_evr_d = monitor_fsm_evr_d; self.pend[2] |= 0x80; }
+        if monitor_fsm_arbpos_r_d != self.monitor_fsm_arbpos_r_d { self.monitor_fsm_arbpos_r_d = monitor_fsm_arbpos_r_d; self.pend[2] |= 0x100; }
+        if monitor_fsm_errf_r_d != self.monitor_fsm_errf_r_d { self.monitor_fsm_errf_r_d = monitor_fsm_errf_r_d; self.pend[2] |= 0x200; }
+        if monitor_fsm_errp_r_d != self.monitor_fsm_errp_r_d { self.monitor_fsm_errp_r_d = monitor_fsm_errp_r_d; self.pend[2] |= 0x400; }
+        if monitor_fsm_errtx_r_d != self.monitor_fsm_errtx_r_d { self.monitor_fsm_errtx_r_d = monitor_fsm_errtx_r_d; self.pend[2] |= 0x800; }
     }
 
     /// `monitor.fsm` block, depth 3, probe-only: monitor.fsm.l_nf, monitor.fsm.l_npos, monitor.fsm.l_ndom, monitor.fsm.l_err, monitor.fsm.l_errk, monitor.fsm.l_tinc, ... (12 signals)
@@ -7412,7 +7738,7 @@ impl HubN3M1 {
         if self.core_rst_s2 {
             adapter_f_r_d = 0u8;
         }
-        self.adapter_f_r_d = adapter_f_r_d;
+        if adapter_f_r_d != self.adapter_f_r_d { self.adapter_f_r_d = adapter_f_r_d; self.pend[2] |= 0x40000; }
     }
 
     /// `core` block, depth 4, state-only: core.err_start_r.d, core.trigger
@@ -7433,7 +7759,7 @@ impl HubN3M1 {
         core_any_tx_error = (core_any_tx_error | self.core_sj_0_tx_error);
         core_trigger = (self.adapter_s_r & ((self.adapter_mon_error | core_any_blame) | core_any_tx_error));
         core_err_start_r_d = (core_trigger & (!self.core_efgen_busy));
-        self.core_err_start_r_d = core_err_start_r_d;
+        if core_err_start_r_d != self.core_err_start_r_d { self.core_err_start_r_d = core_err_start_r_d; self.pend[0] |= 0x8000; }
         if core_trigger != self.core_trigger { self.core_trigger = core_trigger; self.dirty[1] |= 0x10000; }
     }
 
@@ -7470,7 +7796,7 @@ impl HubN3M1 {
         if self.core_rst_s2 {
             core_efgen_pending_d = false;
         }
-        self.core_efgen_pending_d = core_efgen_pending_d;
+        if core_efgen_pending_d != self.core_efgen_pending_d { self.core_efgen_pending_d = core_efgen_pending_d; self.pend[0] |= 0x1000; }
     }
 
 }
@@ -8861,6 +9187,7 @@ impl rt::Model for HubN3M1 {
             _ => return false,
         }
         self.dirty = [!0; 2];
+        self.pend = [!0; 3];
         true
     }
     fn set_mem(&mut self, r: usize, addr: usize, v: u128) {

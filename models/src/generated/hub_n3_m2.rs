@@ -1325,6 +1325,8 @@ pub struct HubN3M2 {
     seen_reh_rx_1: bool,
     /// Groups to evaluate (one bit per group, see `run`).
     dirty: [u64; 2],
+    /// Registers whose input changed since they took it (see `edge`).
+    pend: [u64; 3],
     trace: bool,
 }
 
@@ -2002,6 +2004,7 @@ impl HubN3M2 {
             seen_reh_rx_0: false,
             seen_reh_rx_1: false,
             dirty: [!0; 2],
+            pend: [!0; 3],
             trace: false,
         };
         m.eval_all();
@@ -2038,6 +2041,7 @@ impl HubN3M2 {
     /// Evaluate every group.
     fn eval_all(&mut self) {
         self.dirty = [!0; 2];
+        self.pend = [!0; 3];
         self.sense();
         self.run(&Self::ALL);
     }
@@ -2057,6 +2061,7 @@ impl HubN3M2 {
         }
     }
 
+    #[inline(never)]
     fn group(&mut self, k: usize) {
         match k {
             0 => self.g0(),
@@ -2165,346 +2170,703 @@ impl HubN3M2 {
 
     /// Rising edge: registers and memories take their inputs.
     fn edge(&mut self) {
-        let n0 = self.core_coupler_up_sync_0_s1_n_d;
-        let n1 = self.core_coupler_up_sync_0_s2_n_d;
-        let n2 = self.core_coupler_up_sync_1_s1_n_d;
-        let n3 = self.core_coupler_up_sync_1_s2_n_d;
-        let n4 = self.core_coupler_up_sync_2_s1_n_d;
-        let n5 = self.core_coupler_up_sync_2_s2_n_d;
-        let n6 = self.core_coupler_reh_sync_0_s1_n_d;
-        let n7 = self.core_coupler_reh_sync_0_s2_n_d;
-        let n8 = self.core_coupler_reh_sync_1_s1_n_d;
-        let n9 = self.core_coupler_reh_sync_1_s2_n_d;
-        let n10 = self.core_coupler_tx_n_0_d;
-        let n11 = self.core_coupler_tx_n_1_d;
-        let n12 = self.core_coupler_tx_n_2_d;
-        let n13 = self.core_coupler_hub_tx_n_0_d;
-        let n14 = self.core_coupler_hub_tx_n_1_d;
-        let n15 = self.core_efgen_pending_d;
-        let n16 = self.core_efgen_driving_d;
-        let n17 = self.core_efgen_cnt_d;
-        let n18 = self.core_err_start_r_d;
-        let n19 = self.core_injector_state_d;
-        let n20 = self.core_injector_btn_prev_d;
-        let n21 = self.core_injector_btn_r_d;
-        let n22 = self.core_pj_0_dis_r_d;
-        let n23 = self.core_pj_0_bic_r_d;
-        let n24 = self.core_pj_0_life_r_d;
-        let n25 = self.core_pj_0_dbc_r_d;
-        let n26 = self.core_pj_0_nack_r_d;
-        let n27 = self.core_pj_0_cont_r_d;
-        let n28 = self.core_pj_0_rep_r_d;
-        let n29 = self.core_pj_0_rep_seen_d;
-        let n30 = self.core_pj_0_rep_first_dom_d;
-        let n31 = self.core_pj_0_ok_r_d;
-        let n32 = self.core_pj_0_acked_d;
-        let n33 = self.core_pj_0_bad_d;
-        let n34 = self.core_pj_0_ack_missing_d;
-        let n35 = self.core_pj_0_ack_c_d;
-        let n36 = self.core_pj_0_ack_rx_d;
-        let n37 = self.core_pj_1_dis_r_d;
-        let n38 = self.core_pj_1_bic_r_d;
-        let n39 = self.core_pj_1_life_r_d;
-        let n40 = self.core_pj_1_dbc_r_d;
-        let n41 = self.core_pj_1_nack_r_d;
-        let n42 = self.core_pj_1_cont_r_d;
-        let n43 = self.core_pj_1_rep_r_d;
-        let n44 = self.core_pj_1_rep_seen_d;
-        let n45 = self.core_pj_1_rep_first_dom_d;
-        let n46 = self.core_pj_1_ok_r_d;
-        let n47 = self.core_pj_1_acked_d;
-        let n48 = self.core_pj_1_bad_d;
-        let n49 = self.core_pj_1_ack_missing_d;
-        let n50 = self.core_pj_1_ack_c_d;
-        let n51 = self.core_pj_1_ack_rx_d;
-        let n52 = self.core_pj_2_dis_r_d;
-        let n53 = self.core_pj_2_bic_r_d;
-        let n54 = self.core_pj_2_life_r_d;
-        let n55 = self.core_pj_2_dbc_r_d;
-        let n56 = self.core_pj_2_nack_r_d;
-        let n57 = self.core_pj_2_cont_r_d;
-        let n58 = self.core_pj_2_rep_r_d;
-        let n59 = self.core_pj_2_rep_seen_d;
-        let n60 = self.core_pj_2_rep_first_dom_d;
-        let n61 = self.core_pj_2_ok_r_d;
-        let n62 = self.core_pj_2_acked_d;
-        let n63 = self.core_pj_2_bad_d;
-        let n64 = self.core_pj_2_ack_missing_d;
-        let n65 = self.core_pj_2_ack_c_d;
-        let n66 = self.core_pj_2_ack_rx_d;
-        let n67 = self.core_sj_0_dis_r_d;
-        let n68 = self.core_sj_0_bic_r_d;
-        let n69 = self.core_sj_0_life_r_d;
-        let n70 = self.core_sj_0_dbc_r_d;
-        let n71 = self.core_sj_0_nack_r_d;
-        let n72 = self.core_sj_0_cont_r_d;
-        let n73 = self.core_sj_0_rep_r_d;
-        let n74 = self.core_sj_0_rep_seen_d;
-        let n75 = self.core_sj_0_rep_first_dom_d;
-        let n76 = self.core_sj_0_ok_r_d;
-        let n77 = self.core_sj_0_acked_d;
-        let n78 = self.core_sj_0_bad_d;
-        let n79 = self.core_sj_0_ack_missing_d;
-        let n80 = self.core_sj_0_ack_c_d;
-        let n81 = self.core_sj_0_ack_rx_d;
-        let n82 = self.core_sj_1_dis_r_d;
-        let n83 = self.core_sj_1_bic_r_d;
-        let n84 = self.core_sj_1_life_r_d;
-        let n85 = self.core_sj_1_dbc_r_d;
-        let n86 = self.core_sj_1_nack_r_d;
-        let n87 = self.core_sj_1_cont_r_d;
-        let n88 = self.core_sj_1_rep_r_d;
-        let n89 = self.core_sj_1_rep_seen_d;
-        let n90 = self.core_sj_1_rep_first_dom_d;
-        let n91 = self.core_sj_1_ok_r_d;
-        let n92 = self.core_sj_1_acked_d;
-        let n93 = self.core_sj_1_bad_d;
-        let n94 = self.core_sj_1_ack_missing_d;
-        let n95 = self.core_sj_1_ack_c_d;
-        let n96 = self.core_sj_1_ack_rx_d;
-        let n97 = self.core_rst_s1_d;
         let n98 = self.core_rst_s1;
-        let n99 = self.monitor_sync_s1_n_d;
-        let n100 = self.monitor_sync_s2_n_d;
-        let n101 = self.monitor_btl_c_brp_d;
-        let n102 = self.monitor_btl_c_sp_d;
-        let n103 = self.monitor_btl_c_ntq_d;
-        let n104 = self.monitor_btl_c_sjw_d;
-        let n105 = self.monitor_btl_c_triple_d;
-        let n106 = self.monitor_btl_c_valid_d;
-        let n107 = self.monitor_btl_c_bad_d;
-        let n108 = self.monitor_btl_pre_d;
-        let n109 = self.monitor_btl_cnt_d;
-        let n110 = self.monitor_btl_spw_d;
-        let n111 = self.monitor_btl_nbw_d;
-        let n112 = self.monitor_btl_busmon_n_d;
-        let n113 = self.monitor_btl_sync_dis_d;
-        let n114 = self.monitor_btl_since_d;
-        let n115 = self.monitor_btl_pending_d;
-        let n116 = self.monitor_btl_tx_n_d;
-        let n117 = self.monitor_btl_h1_n_d;
-        let n118 = self.monitor_btl_h2_n_d;
-        let n119 = self.monitor_btl_sample_r_d;
-        let n120 = self.monitor_btl_hard_r_d;
-        let n121 = self.monitor_btl_resync_r_d;
-        let n122 = self.monitor_fsm_fld_d;
-        let n123 = self.monitor_fsm_fpos_d;
-        let n124 = self.monitor_fsm_pfld_d;
-        let n125 = self.monitor_fsm_ppos_d;
-        let n126 = self.monitor_fsm_rtx_d;
-        let n127 = self.monitor_fsm_dom_d;
-        let n128 = self.monitor_fsm_dstf_cnt_d;
-        let n129 = self.monitor_fsm_dstf_lvl_d;
-        let n130 = self.monitor_fsm_crcb_state_d;
-        let n131 = self.monitor_fsm_crcerr_d;
-        let n132 = self.monitor_fsm_tid_d;
-        let n133 = self.monitor_fsm_tdat_d;
-        let n134 = self.monitor_fsm_tdlc_d;
-        let n135 = self.monitor_fsm_tide_d;
-        let n136 = self.monitor_fsm_trtr_d;
-        let n137 = self.monitor_fsm_rid_d;
-        let n138 = self.monitor_fsm_rdat_d;
-        let n139 = self.monitor_fsm_rdlc_d;
-        let n140 = self.monitor_fsm_rrtr_d;
-        let n141 = self.monitor_fsm_rext_d;
-        let n142 = self.monitor_fsm_fdone_d;
-        let n143 = self.monitor_fsm_eqcnt_d;
-        let n144 = self.monitor_fsm_eqlast_d;
-        let n145 = self.monitor_fsm_dafc_d;
-        let n146 = self.monitor_fsm_dafany_d;
-        let n147 = self.monitor_fsm_exc1_d;
-        let n148 = self.monitor_fsm_tecr_d;
-        let n149 = self.monitor_fsm_recr_d;
-        let n150 = self.monitor_fsm_runr_d;
-        let n151 = self.monitor_fsm_rarmed_d;
-        let n152 = self.monitor_fsm_req_d;
-        let n153 = self.monitor_fsm_blocked_d;
-        let n154 = self.monitor_fsm_evr_d;
-        let n155 = self.monitor_fsm_arbpos_r_d;
-        let n156 = self.monitor_fsm_errf_r_d;
-        let n157 = self.monitor_fsm_errp_r_d;
-        let n158 = self.monitor_fsm_errtx_r_d;
-        let n159 = self.monitor_fsm_rxide_r_d;
-        let n160 = self.monitor_fsm_rxrtr_r_d;
-        let n161 = self.monitor_fsm_rxid_r_d;
-        let n162 = self.monitor_fsm_rxdlc_r_d;
-        let n163 = self.monitor_fsm_rxdat_r_d;
-        let n164 = self.adapter_s_r_d;
-        let n165 = self.adapter_f_r_d;
-        let n166 = self.adapter_p_r_d;
-        let n167 = self.adapter_bs_pending_d;
-        let n168 = self.adapter_bs_cnt_d;
-        let n169 = self.adapter_f_map_d;
-        if n0 != self.core_coupler_up_sync_0_s1_n { self.core_coupler_up_sync_0_s1_n = n0; self.dirty[0] |= 0x8; }
-        if n1 != self.core_coupler_up_sync_0_s2_n { self.core_coupler_up_sync_0_s2_n = n1; self.dirty[0] |= 0x8; }
-        if n2 != self.core_coupler_up_sync_1_s1_n { self.core_coupler_up_sync_1_s1_n = n2; self.dirty[0] |= 0x20; }
-        if n3 != self.core_coupler_up_sync_1_s2_n { self.core_coupler_up_sync_1_s2_n = n3; self.dirty[0] |= 0x20; }
-        if n4 != self.core_coupler_up_sync_2_s1_n { self.core_coupler_up_sync_2_s1_n = n4; self.dirty[0] |= 0x80; }
-        if n5 != self.core_coupler_up_sync_2_s2_n { self.core_coupler_up_sync_2_s2_n = n5; self.dirty[0] |= 0x80; }
-        if n6 != self.core_coupler_reh_sync_0_s1_n { self.core_coupler_reh_sync_0_s1_n = n6; self.dirty[0] |= 0x200; }
-        if n7 != self.core_coupler_reh_sync_0_s2_n { self.core_coupler_reh_sync_0_s2_n = n7; self.dirty[0] |= 0x200; }
-        if n8 != self.core_coupler_reh_sync_1_s1_n { self.core_coupler_reh_sync_1_s1_n = n8; self.dirty[0] |= 0x800; }
-        if n9 != self.core_coupler_reh_sync_1_s2_n { self.core_coupler_reh_sync_1_s2_n = n9; self.dirty[0] |= 0x800; }
-        if n10 != self.core_coupler_tx_n_0 { self.core_coupler_tx_n_0 = n10; self.dirty[0] |= 0x4; }
-        if n11 != self.core_coupler_tx_n_1 { self.core_coupler_tx_n_1 = n11; self.dirty[0] |= 0x4; }
-        if n12 != self.core_coupler_tx_n_2 { self.core_coupler_tx_n_2 = n12; self.dirty[0] |= 0x4; }
-        if n13 != self.core_coupler_hub_tx_n_0 { self.core_coupler_hub_tx_n_0 = n13; self.dirty[0] |= 0x4; }
-        if n14 != self.core_coupler_hub_tx_n_1 { self.core_coupler_hub_tx_n_1 = n14; self.dirty[0] |= 0x4; }
-        if n15 != self.core_efgen_pending { self.core_efgen_pending = n15; self.dirty[0] |= 0x8000002000; self.dirty[1] |= 0x1000000; }
-        if n16 != self.core_efgen_driving { self.core_efgen_driving = n16; self.dirty[0] |= 0x8000002001; self.dirty[1] |= 0x1000000; }
-        if n17 != self.core_efgen_cnt { self.core_efgen_cnt = n17; self.dirty[0] |= 0x8000000000; }
-        if n18 != self.core_err_start_r { self.core_err_start_r = n18; self.dirty[0] |= 0xc000500000000000; }
-        if n19 != self.core_injector_state { self.core_injector_state = n19; self.dirty[0] |= 0x400000000014000; }
-        if n20 != self.core_injector_btn_prev { self.core_injector_btn_prev = n20; self.dirty[0] |= 0x400000000010000; }
-        if n21 != self.core_injector_btn_r { self.core_injector_btn_r = n21; self.dirty[0] |= 0x400000000014000; }
-        if n22 != self.core_pj_0_dis_r { self.core_pj_0_dis_r = n22; self.dirty[0] |= 0xb00020000040001; self.dirty[1] |= 0x100; }
-        if n23 != self.core_pj_0_bic_r { self.core_pj_0_bic_r = n23; self.dirty[0] |= 0x20000000001; self.dirty[1] |= 0x100; }
-        if n24 != self.core_pj_0_life_r { self.core_pj_0_life_r = n24; self.dirty[0] |= 0x20000000000; self.dirty[1] |= 0x100; }
-        if n25 != self.core_pj_0_dbc_r { self.core_pj_0_dbc_r = n25; self.dirty[0] |= 0x20000000001; self.dirty[1] |= 0x100; }
-        if n26 != self.core_pj_0_nack_r { self.core_pj_0_nack_r = n26; self.dirty[0] |= 0x800000000020001; }
-        if n27 != self.core_pj_0_cont_r { self.core_pj_0_cont_r = n27; self.dirty[0] |= 0x800000000000000; self.dirty[1] |= 0x300; }
-        if n28 != self.core_pj_0_rep_r { self.core_pj_0_rep_r = n28; self.dirty[0] |= 0x20000000000; }
-        if n29 != self.core_pj_0_rep_seen { self.core_pj_0_rep_seen = n29; self.dirty[0] |= 0x20000000000; }
-        if n30 != self.core_pj_0_rep_first_dom { self.core_pj_0_rep_first_dom = n30; self.dirty[0] |= 0x20000020000; }
-        if n31 != self.core_pj_0_ok_r { self.core_pj_0_ok_r = n31; self.dirty[0] |= 0x800020000000000; self.dirty[1] |= 0x100; }
-        if n32 != self.core_pj_0_acked { self.core_pj_0_acked = n32; self.dirty[0] |= 0x800020000000000; self.dirty[1] |= 0x100; }
-        if n33 != self.core_pj_0_bad { self.core_pj_0_bad = n33; self.dirty[0] |= 0x800020000000000; self.dirty[1] |= 0x100; }
-        if n34 != self.core_pj_0_ack_missing { self.core_pj_0_ack_missing = n34; self.dirty[1] |= 0x300; }
-        if n35 != self.core_pj_0_ack_c { self.core_pj_0_ack_c = n35; self.dirty[0] |= 0x800000000000000; self.dirty[1] |= 0x100; }
-        if n36 != self.core_pj_0_ack_rx { self.core_pj_0_ack_rx = n36; self.dirty[0] |= 0x800000000000000; }
-        if n37 != self.core_pj_1_dis_r { self.core_pj_1_dis_r = n37; self.dirty[0] |= 0x1300040000100001; self.dirty[1] |= 0x400; }
-        if n38 != self.core_pj_1_bic_r { self.core_pj_1_bic_r = n38; self.dirty[0] |= 0x40000000001; self.dirty[1] |= 0x400; }
-        if n39 != self.core_pj_1_life_r { self.core_pj_1_life_r = n39; self.dirty[0] |= 0x40000000000; self.dirty[1] |= 0x400; }
-        if n40 != self.core_pj_1_dbc_r { self.core_pj_1_dbc_r = n40; self.dirty[0] |= 0x40000000001; self.dirty[1] |= 0x400; }
-        if n41 != self.core_pj_1_nack_r { self.core_pj_1_nack_r = n41; self.dirty[0] |= 0x1000000000080001; }
-        if n42 != self.core_pj_1_cont_r { self.core_pj_1_cont_r = n42; self.dirty[0] |= 0x1000000000000000; self.dirty[1] |= 0xc00; }
-        if n43 != self.core_pj_1_rep_r { self.core_pj_1_rep_r = n43; self.dirty[0] |= 0x40000000000; }
-        if n44 != self.core_pj_1_rep_seen { self.core_pj_1_rep_seen = n44; self.dirty[0] |= 0x40000000000; }
-        if n45 != self.core_pj_1_rep_first_dom { self.core_pj_1_rep_first_dom = n45; self.dirty[0] |= 0x40000080000; }
-        if n46 != self.core_pj_1_ok_r { self.core_pj_1_ok_r = n46; self.dirty[0] |= 0x1000040000000000; self.dirty[1] |= 0x400; }
-        if n47 != self.core_pj_1_acked { self.core_pj_1_acked = n47; self.dirty[0] |= 0x1000040000000000; self.dirty[1] |= 0x400; }
-        if n48 != self.core_pj_1_bad { self.core_pj_1_bad = n48; self.dirty[0] |= 0x1000040000000000; self.dirty[1] |= 0x400; }
-        if n49 != self.core_pj_1_ack_missing { self.core_pj_1_ack_missing = n49; self.dirty[1] |= 0xc00; }
-        if n50 != self.core_pj_1_ack_c { self.core_pj_1_ack_c = n50; self.dirty[0] |= 0x1000000000000000; self.dirty[1] |= 0x400; }
-        if n51 != self.core_pj_1_ack_rx { self.core_pj_1_ack_rx = n51; self.dirty[0] |= 0x1000000000000000; }
-        if n52 != self.core_pj_2_dis_r { self.core_pj_2_dis_r = n52; self.dirty[0] |= 0x2300080000400001; self.dirty[1] |= 0x1000; }
-        if n53 != self.core_pj_2_bic_r { self.core_pj_2_bic_r = n53; self.dirty[0] |= 0x80000000001; self.dirty[1] |= 0x1000; }
-        if n54 != self.core_pj_2_life_r { self.core_pj_2_life_r = n54; self.dirty[0] |= 0x80000000000; self.dirty[1] |= 0x1000; }
-        if n55 != self.core_pj_2_dbc_r { self.core_pj_2_dbc_r = n55; self.dirty[0] |= 0x80000000001; self.dirty[1] |= 0x1000; }
-        if n56 != self.core_pj_2_nack_r { self.core_pj_2_nack_r = n56; self.dirty[0] |= 0x2000000000200001; }
-        if n57 != self.core_pj_2_cont_r { self.core_pj_2_cont_r = n57; self.dirty[0] |= 0x2000000000000000; self.dirty[1] |= 0x3000; }
-        if n58 != self.core_pj_2_rep_r { self.core_pj_2_rep_r = n58; self.dirty[0] |= 0x80000000000; }
-        if n59 != self.core_pj_2_rep_seen { self.core_pj_2_rep_seen = n59; self.dirty[0] |= 0x80000000000; }
-        if n60 != self.core_pj_2_rep_first_dom { self.core_pj_2_rep_first_dom = n60; self.dirty[0] |= 0x80000200000; }
-        if n61 != self.core_pj_2_ok_r { self.core_pj_2_ok_r = n61; self.dirty[0] |= 0x2000080000000000; self.dirty[1] |= 0x1000; }
-        if n62 != self.core_pj_2_acked { self.core_pj_2_acked = n62; self.dirty[0] |= 0x2000080000000000; self.dirty[1] |= 0x1000; }
-        if n63 != self.core_pj_2_bad { self.core_pj_2_bad = n63; self.dirty[0] |= 0x2000080000000000; self.dirty[1] |= 0x1000; }
-        if n64 != self.core_pj_2_ack_missing { self.core_pj_2_ack_missing = n64; self.dirty[1] |= 0x3000; }
-        if n65 != self.core_pj_2_ack_c { self.core_pj_2_ack_c = n65; self.dirty[0] |= 0x2000000000000000; self.dirty[1] |= 0x1000; }
-        if n66 != self.core_pj_2_ack_rx { self.core_pj_2_ack_rx = n66; self.dirty[0] |= 0x2000000000000000; }
-        if n67 != self.core_sj_0_dis_r { self.core_sj_0_dis_r = n67; self.dirty[0] |= 0x4300106000800001; self.dirty[1] |= 0x4000; }
-        if n68 != self.core_sj_0_bic_r { self.core_sj_0_bic_r = n68; self.dirty[0] |= 0x100000000001; self.dirty[1] |= 0x4000; }
-        if n69 != self.core_sj_0_life_r { self.core_sj_0_life_r = n69; self.dirty[0] |= 0x100000000000; self.dirty[1] |= 0x4000; }
-        if n70 != self.core_sj_0_dbc_r { self.core_sj_0_dbc_r = n70; self.dirty[0] |= 0x100000000001; self.dirty[1] |= 0x4000; }
-        if n71 != self.core_sj_0_nack_r { self.core_sj_0_nack_r = n71; self.dirty[0] |= 0x4000000000800000; }
-        if n72 != self.core_sj_0_cont_r { self.core_sj_0_cont_r = n72; self.dirty[0] |= 0x4000000000000000; self.dirty[1] |= 0xc000; }
-        if n73 != self.core_sj_0_rep_r { self.core_sj_0_rep_r = n73; self.dirty[0] |= 0x100000000001; }
-        if n74 != self.core_sj_0_rep_seen { self.core_sj_0_rep_seen = n74; self.dirty[0] |= 0x4000100000000000; }
-        if n75 != self.core_sj_0_rep_first_dom { self.core_sj_0_rep_first_dom = n75; self.dirty[0] |= 0x4000100000000000; }
-        if n76 != self.core_sj_0_ok_r { self.core_sj_0_ok_r = n76; self.dirty[0] |= 0x4000100000000000; self.dirty[1] |= 0x4000; }
-        if n77 != self.core_sj_0_acked { self.core_sj_0_acked = n77; self.dirty[0] |= 0x4000100000000000; self.dirty[1] |= 0x4000; }
-        if n78 != self.core_sj_0_bad { self.core_sj_0_bad = n78; self.dirty[0] |= 0x4000100000000000; self.dirty[1] |= 0x4000; }
-        if n79 != self.core_sj_0_ack_missing { self.core_sj_0_ack_missing = n79; self.dirty[1] |= 0xc000; }
-        if n80 != self.core_sj_0_ack_c { self.core_sj_0_ack_c = n80; self.dirty[0] |= 0x4000000000000000; }
-        if n81 != self.core_sj_0_ack_rx { self.core_sj_0_ack_rx = n81; self.dirty[0] |= 0x4000000000000000; }
-        if n82 != self.core_sj_1_dis_r { self.core_sj_1_dis_r = n82; self.dirty[0] |= 0x8300406001000001; self.dirty[1] |= 0x10000; }
-        if n83 != self.core_sj_1_bic_r { self.core_sj_1_bic_r = n83; self.dirty[0] |= 0x400000000001; self.dirty[1] |= 0x10000; }
-        if n84 != self.core_sj_1_life_r { self.core_sj_1_life_r = n84; self.dirty[0] |= 0x400000000000; self.dirty[1] |= 0x10000; }
-        if n85 != self.core_sj_1_dbc_r { self.core_sj_1_dbc_r = n85; self.dirty[0] |= 0x400000000001; self.dirty[1] |= 0x10000; }
-        if n86 != self.core_sj_1_nack_r { self.core_sj_1_nack_r = n86; self.dirty[0] |= 0x8000000001000000; }
-        if n87 != self.core_sj_1_cont_r { self.core_sj_1_cont_r = n87; self.dirty[0] |= 0x8000000000000000; self.dirty[1] |= 0x30000; }
-        if n88 != self.core_sj_1_rep_r { self.core_sj_1_rep_r = n88; self.dirty[0] |= 0x400000000001; }
-        if n89 != self.core_sj_1_rep_seen { self.core_sj_1_rep_seen = n89; self.dirty[0] |= 0x8000400000000000; }
-        if n90 != self.core_sj_1_rep_first_dom { self.core_sj_1_rep_first_dom = n90; self.dirty[0] |= 0x8000400000000000; }
-        if n91 != self.core_sj_1_ok_r { self.core_sj_1_ok_r = n91; self.dirty[0] |= 0x8000400000000000; self.dirty[1] |= 0x10000; }
-        if n92 != self.core_sj_1_acked { self.core_sj_1_acked = n92; self.dirty[0] |= 0x8000400000000000; self.dirty[1] |= 0x10000; }
-        if n93 != self.core_sj_1_bad { self.core_sj_1_bad = n93; self.dirty[0] |= 0x8000400000000000; self.dirty[1] |= 0x10000; }
-        if n94 != self.core_sj_1_ack_missing { self.core_sj_1_ack_missing = n94; self.dirty[1] |= 0x30000; }
-        if n95 != self.core_sj_1_ack_c { self.core_sj_1_ack_c = n95; self.dirty[0] |= 0x8000000000000000; }
-        if n96 != self.core_sj_1_ack_rx { self.core_sj_1_ack_rx = n96; self.dirty[0] |= 0x8000000000000000; }
-        self.core_rst_s1 = n97;
+        for w in 0..3 {
+            loop {
+                let m = self.pend[w];
+                if m == 0 {
+                    break;
+                }
+                let k = m.trailing_zeros() as usize;
+                self.pend[w] &= !(1u64 << k);
+                self.take(w * 64 + k);
+            }
+        }
         if n98 != self.core_rst_s2 { self.core_rst_s2 = n98; self.dirty[0] |= 0xfd015e841e2adff8; self.dirty[1] |= 0x1255587; }
-        if n99 != self.monitor_sync_s1_n { self.monitor_sync_s1_n = n99; self.dirty[0] |= 0x4000000; }
-        if n100 != self.monitor_sync_s2_n { self.monitor_sync_s2_n = n100; self.dirty[0] |= 0x4000000; }
-        if n101 != self.monitor_btl_c_brp { self.monitor_btl_c_brp = n101; self.dirty[0] |= 0x1000018000000; self.dirty[1] |= 0x6; }
-        if n102 != self.monitor_btl_c_sp { self.monitor_btl_c_sp = n102; self.dirty[0] |= 0x1000000000000; self.dirty[1] |= 0x6; }
-        if n103 != self.monitor_btl_c_ntq { self.monitor_btl_c_ntq = n103; self.dirty[0] |= 0x1000000000000; self.dirty[1] |= 0x6; }
-        if n104 != self.monitor_btl_c_sjw { self.monitor_btl_c_sjw = n104; self.dirty[0] |= 0x18000000; self.dirty[1] |= 0x6; }
-        if n105 != self.monitor_btl_c_triple { self.monitor_btl_c_triple = n105; self.dirty[0] |= 0x2000008000000; self.dirty[1] |= 0x2; }
-        if n106 != self.monitor_btl_c_valid { self.monitor_btl_c_valid = n106; self.dirty[0] |= 0x1000018000000; self.dirty[1] |= 0x6; }
-        if n107 != self.monitor_btl_c_bad { self.monitor_btl_c_bad = n107; self.dirty[0] |= 0x1000002000000; self.dirty[1] |= 0x1; }
-        if n108 != self.monitor_btl_pre { self.monitor_btl_pre = n108; self.dirty[0] |= 0x1000018000000; self.dirty[1] |= 0x6; }
-        if n109 != self.monitor_btl_cnt { self.monitor_btl_cnt = n109; self.dirty[0] |= 0x10000000; self.dirty[1] |= 0x6; }
-        if n110 != self.monitor_btl_spw { self.monitor_btl_spw = n110; self.dirty[0] |= 0x10000000; self.dirty[1] |= 0x6; }
-        if n111 != self.monitor_btl_nbw { self.monitor_btl_nbw = n111; self.dirty[0] |= 0x10000000; self.dirty[1] |= 0x6; }
-        if n112 != self.monitor_btl_busmon_n { self.monitor_btl_busmon_n = n112; self.dirty[0] |= 0x2000008000000; self.dirty[1] |= 0x6; }
-        if n113 != self.monitor_btl_sync_dis { self.monitor_btl_sync_dis = n113; self.dirty[0] |= 0x2000000000000; self.dirty[1] |= 0x6; }
-        if n114 != self.monitor_btl_since { self.monitor_btl_since = n114; self.dirty[0] |= 0x10000000; self.dirty[1] |= 0x6; }
-        if n115 != self.monitor_btl_pending { self.monitor_btl_pending = n115; self.dirty[1] |= 0x6; }
-        if n116 != self.monitor_btl_tx_n { self.monitor_btl_tx_n = n116; self.dirty[0] |= 0x10000000; self.dirty[1] |= 0x2; }
-        if n117 != self.monitor_btl_h1_n { self.monitor_btl_h1_n = n117; self.dirty[0] |= 0x3000008000000; self.dirty[1] |= 0x2; }
-        if n118 != self.monitor_btl_h2_n { self.monitor_btl_h2_n = n118; self.dirty[0] |= 0x2000008000000; self.dirty[1] |= 0x2; }
-        if n119 != self.monitor_btl_sample_r { self.monitor_btl_sample_r = n119; self.dirty[0] |= 0xc000460000000; self.dirty[1] |= 0x3800b8; }
-        self.monitor_btl_hard_r = n120;
-        self.monitor_btl_resync_r = n121;
-        if n122 != self.monitor_fsm_fld { self.monitor_fsm_fld = n122; self.dirty[0] |= 0xc000000000000; self.dirty[1] |= 0x180008; }
-        if n123 != self.monitor_fsm_fpos { self.monitor_fsm_fpos = n123; self.dirty[0] |= 0xc000040000000; self.dirty[1] |= 0x180008; }
-        if n124 != self.monitor_fsm_pfld { self.monitor_fsm_pfld = n124; self.dirty[0] |= 0xc000000000000; self.dirty[1] |= 0x180008; }
-        if n125 != self.monitor_fsm_ppos { self.monitor_fsm_ppos = n125; self.dirty[0] |= 0xc000000000000; self.dirty[1] |= 0x80000; }
-        if n126 != self.monitor_fsm_rtx { self.monitor_fsm_rtx = n126; self.dirty[0] |= 0xc000000000000; self.dirty[1] |= 0x180008; }
-        if n127 != self.monitor_fsm_dom { self.monitor_fsm_dom = n127; self.dirty[1] |= 0x180000; }
-        if n128 != self.monitor_fsm_dstf_cnt { self.monitor_fsm_dstf_cnt = n128; self.dirty[0] |= 0x10000080000000; self.dirty[1] |= 0x30; }
-        if n129 != self.monitor_fsm_dstf_lvl { self.monitor_fsm_dstf_lvl = n129; self.dirty[0] |= 0x10000100000000; self.dirty[1] |= 0x30; }
-        if n130 != self.monitor_fsm_crcb_state { self.monitor_fsm_crcb_state = n130; self.dirty[0] |= 0x60000200000000; self.dirty[1] |= 0x40; }
-        if n131 != self.monitor_fsm_crcerr { self.monitor_fsm_crcerr = n131; self.dirty[1] |= 0x180000; }
-        if n132 != self.monitor_fsm_tid { self.monitor_fsm_tid = n132; self.dirty[0] |= 0xc000000000000; self.dirty[1] |= 0x180008; }
-        if n133 != self.monitor_fsm_tdat { self.monitor_fsm_tdat = n133; self.dirty[0] |= 0xc000000000000; self.dirty[1] |= 0x180008; }
-        if n134 != self.monitor_fsm_tdlc { self.monitor_fsm_tdlc = n134; self.dirty[0] |= 0xc000000000000; self.dirty[1] |= 0x180008; }
-        if n135 != self.monitor_fsm_tide { self.monitor_fsm_tide = n135; self.dirty[0] |= 0x20000000; self.dirty[1] |= 0x180008; }
-        if n136 != self.monitor_fsm_trtr { self.monitor_fsm_trtr = n136; self.dirty[0] |= 0x20000000; self.dirty[1] |= 0x180008; }
-        if n137 != self.monitor_fsm_rid { self.monitor_fsm_rid = n137; self.dirty[0] |= 0xc000000000000; }
-        if n138 != self.monitor_fsm_rdat { self.monitor_fsm_rdat = n138; self.dirty[0] |= 0xc000000000000; }
-        if n139 != self.monitor_fsm_rdlc { self.monitor_fsm_rdlc = n139; self.dirty[0] |= 0xc000000000000; self.dirty[1] |= 0x180008; }
-        if n140 != self.monitor_fsm_rrtr { self.monitor_fsm_rrtr = n140; self.dirty[0] |= 0xc000000000000; self.dirty[1] |= 0x180008; }
-        if n141 != self.monitor_fsm_rext { self.monitor_fsm_rext = n141; self.dirty[0] |= 0xc000000000000; self.dirty[1] |= 0x180008; }
-        if n142 != self.monitor_fsm_fdone { self.monitor_fsm_fdone = n142; self.dirty[0] |= 0xc000000000000; self.dirty[1] |= 0x180008; }
-        if n143 != self.monitor_fsm_eqcnt { self.monitor_fsm_eqcnt = n143; self.dirty[0] |= 0xc000000000000; self.dirty[1] |= 0x180000; }
-        if n144 != self.monitor_fsm_eqlast { self.monitor_fsm_eqlast = n144; self.dirty[0] |= 0xc000000000000; self.dirty[1] |= 0x180000; }
-        if n145 != self.monitor_fsm_dafc { self.monitor_fsm_dafc = n145; self.dirty[0] |= 0x8000000000000; self.dirty[1] |= 0x180000; }
-        if n146 != self.monitor_fsm_dafany { self.monitor_fsm_dafany = n146; self.dirty[0] |= 0x8000000000000; self.dirty[1] |= 0x180000; }
-        if n147 != self.monitor_fsm_exc1 { self.monitor_fsm_exc1 = n147; self.dirty[0] |= 0xc000000000000; self.dirty[1] |= 0x180000; }
-        if n148 != self.monitor_fsm_tecr { self.monitor_fsm_tecr = n148; self.dirty[0] |= 0xc000040000000; self.dirty[1] |= 0x180008; }
-        if n149 != self.monitor_fsm_recr { self.monitor_fsm_recr = n149; self.dirty[0] |= 0xc000040000000; self.dirty[1] |= 0x180008; }
-        if n150 != self.monitor_fsm_runr { self.monitor_fsm_runr = n150; self.dirty[0] |= 0xc000000000000; self.dirty[1] |= 0x180008; }
-        if n151 != self.monitor_fsm_rarmed { self.monitor_fsm_rarmed = n151; self.dirty[0] |= 0xc000000000000; }
-        self.monitor_fsm_req = n152;
-        self.monitor_fsm_blocked = n153;
-        if n154 != self.monitor_fsm_evr { self.monitor_fsm_evr = n154; self.dirty[0] |= 0xc40000000; }
-        if n155 != self.monitor_fsm_arbpos_r { self.monitor_fsm_arbpos_r = n155; self.dirty[1] |= 0x80000; }
-        if n156 != self.monitor_fsm_errf_r { self.monitor_fsm_errf_r = n156; self.dirty[1] |= 0x80000; }
-        if n157 != self.monitor_fsm_errp_r { self.monitor_fsm_errp_r = n157; self.dirty[1] |= 0x80000; }
-        if n158 != self.monitor_fsm_errtx_r { self.monitor_fsm_errtx_r = n158; self.dirty[1] |= 0x80000; }
-        if n159 != self.monitor_fsm_rxide_r { self.monitor_fsm_rxide_r = n159; self.dirty[0] |= 0x4000000000000; }
-        if n160 != self.monitor_fsm_rxrtr_r { self.monitor_fsm_rxrtr_r = n160; self.dirty[0] |= 0x4000000000000; }
-        if n161 != self.monitor_fsm_rxid_r { self.monitor_fsm_rxid_r = n161; self.dirty[0] |= 0x4000000000000; }
-        if n162 != self.monitor_fsm_rxdlc_r { self.monitor_fsm_rxdlc_r = n162; self.dirty[0] |= 0x4000000000000; }
-        if n163 != self.monitor_fsm_rxdat_r { self.monitor_fsm_rxdat_r = n163; self.dirty[0] |= 0x4000000000000; }
-        if n164 != self.adapter_s_r { self.adapter_s_r = n164; self.dirty[0] |= 0xfc005e0400000000; self.dirty[1] |= 0x415500; }
-        if n165 != self.adapter_f_r { self.adapter_f_r = n165; self.dirty[0] |= 0xc00000000; self.dirty[1] |= 0x200000; }
-        if n166 != self.adapter_p_r { self.adapter_p_r = n166; self.dirty[0] |= 0x400000000; self.dirty[1] |= 0x80; }
-        if n167 != self.adapter_bs_pending { self.adapter_bs_pending = n167; self.dirty[0] |= 0x400000000; }
-        if n168 != self.adapter_bs_cnt { self.adapter_bs_cnt = n168; self.dirty[0] |= 0x400000000; }
-        if n169 != self.adapter_f_map { self.adapter_f_map = n169; self.dirty[0] |= 0x400000000; }
+    }
+
+    /// Pending register `k` takes its input.
+    #[inline(never)]
+    fn take(&mut self, k: usize) {
+        match k {
+            0 => {
+                let n = self.core_coupler_up_sync_0_s1_n_d;
+                if n != self.core_coupler_up_sync_0_s1_n { self.core_coupler_up_sync_0_s1_n = n; self.dirty[0] |= 0x8; }
+            }
+            1 => {
+                let n = self.core_coupler_up_sync_0_s2_n_d;
+                if n != self.core_coupler_up_sync_0_s2_n { self.core_coupler_up_sync_0_s2_n = n; self.dirty[0] |= 0x8; }
+            }
+            2 => {
+                let n = self.core_coupler_up_sync_1_s1_n_d;
+                if n != self.core_coupler_up_sync_1_s1_n { self.core_coupler_up_sync_1_s1_n = n; self.dirty[0] |= 0x20; }
+            }
+            3 => {
+                let n = self.core_coupler_up_sync_1_s2_n_d;
+                if n != self.core_coupler_up_sync_1_s2_n { self.core_coupler_up_sync_1_s2_n = n; self.dirty[0] |= 0x20; }
+            }
+            4 => {
+                let n = self.core_coupler_up_sync_2_s1_n_d;
+                if n != self.core_coupler_up_sync_2_s1_n { self.core_coupler_up_sync_2_s1_n = n; self.dirty[0] |= 0x80; }
+            }
+            5 => {
+                let n = self.core_coupler_up_sync_2_s2_n_d;
+                if n != self.core_coupler_up_sync_2_s2_n { self.core_coupler_up_sync_2_s2_n = n; self.dirty[0] |= 0x80; }
+            }
+            6 => {
+                let n = self.core_coupler_reh_sync_0_s1_n_d;
+                if n != self.core_coupler_reh_sync_0_s1_n { self.core_coupler_reh_sync_0_s1_n = n; self.dirty[0] |= 0x200; }
+            }
+            7 => {
+                let n = self.core_coupler_reh_sync_0_s2_n_d;
+                if n != self.core_coupler_reh_sync_0_s2_n { self.core_coupler_reh_sync_0_s2_n = n; self.dirty[0] |= 0x200; }
+            }
+            8 => {
+                let n = self.core_coupler_reh_sync_1_s1_n_d;
+                if n != self.core_coupler_reh_sync_1_s1_n { self.core_coupler_reh_sync_1_s1_n = n; self.dirty[0] |= 0x800; }
+            }
+            9 => {
+                let n = self.core_coupler_reh_sync_1_s2_n_d;
+                if n != self.core_coupler_reh_sync_1_s2_n { self.core_coupler_reh_sync_1_s2_n = n; self.dirty[0] |= 0x800; }
+            }
+            10 => {
+                let n = self.core_coupler_tx_n_0_d;
+                if n != self.core_coupler_tx_n_0 { self.core_coupler_tx_n_0 = n; self.dirty[0] |= 0x4; }
+            }
+            11 => {
+                let n = self.core_coupler_tx_n_1_d;
+                if n != self.core_coupler_tx_n_1 { self.core_coupler_tx_n_1 = n; self.dirty[0] |= 0x4; }
+            }
+            12 => {
+                let n = self.core_coupler_tx_n_2_d;
+                if n != self.core_coupler_tx_n_2 { self.core_coupler_tx_n_2 = n; self.dirty[0] |= 0x4; }
+            }
+            13 => {
+                let n = self.core_coupler_hub_tx_n_0_d;
+                if n != self.core_coupler_hub_tx_n_0 { self.core_coupler_hub_tx_n_0 = n; self.dirty[0] |= 0x4; }
+            }
+            14 => {
+                let n = self.core_coupler_hub_tx_n_1_d;
+                if n != self.core_coupler_hub_tx_n_1 { self.core_coupler_hub_tx_n_1 = n; self.dirty[0] |= 0x4; }
+            }
+            15 => {
+                let n = self.core_efgen_pending_d;
+                if n != self.core_efgen_pending { self.core_efgen_pending = n; self.dirty[0] |= 0x8000002000; self.dirty[1] |= 0x1000000; }
+            }
+            16 => {
+                let n = self.core_efgen_driving_d;
+                if n != self.core_efgen_driving { self.core_efgen_driving = n; self.dirty[0] |= 0x8000002001; self.dirty[1] |= 0x1000000; }
+            }
+            17 => {
+                let n = self.core_efgen_cnt_d;
+                if n != self.core_efgen_cnt { self.core_efgen_cnt = n; self.dirty[0] |= 0x8000000000; }
+            }
+            18 => {
+                let n = self.core_err_start_r_d;
+                if n != self.core_err_start_r { self.core_err_start_r = n; self.dirty[0] |= 0xc000500000000000; }
+            }
+            19 => {
+                let n = self.core_injector_state_d;
+                if n != self.core_injector_state { self.core_injector_state = n; self.dirty[0] |= 0x400000000014000; }
+            }
+            20 => {
+                let n = self.core_injector_btn_prev_d;
+                if n != self.core_injector_btn_prev { self.core_injector_btn_prev = n; self.dirty[0] |= 0x400000000010000; }
+            }
+            21 => {
+                let n = self.core_injector_btn_r_d;
+                if n != self.core_injector_btn_r { self.core_injector_btn_r = n; self.dirty[0] |= 0x400000000014000; }
+            }
+            22 => {
+                let n = self.core_pj_0_dis_r_d;
+                if n != self.core_pj_0_dis_r { self.core_pj_0_dis_r = n; self.dirty[0] |= 0xb00020000040001; self.dirty[1] |= 0x100; }
+            }
+            23 => {
+                let n = self.core_pj_0_bic_r_d;
+                if n != self.core_pj_0_bic_r { self.core_pj_0_bic_r = n; self.dirty[0] |= 0x20000000001; self.dirty[1] |= 0x100; }
+            }
+            24 => {
+                let n = self.core_pj_0_life_r_d;
+                if n != self.core_pj_0_life_r { self.core_pj_0_life_r = n; self.dirty[0] |= 0x20000000000; self.dirty[1] |= 0x100; }
+            }
+            25 => {
+                let n = self.core_pj_0_dbc_r_d;
+                if n != self.core_pj_0_dbc_r { self.core_pj_0_dbc_r = n; self.dirty[0] |= 0x20000000001; self.dirty[1] |= 0x100; }
+            }
+            26 => {
+                let n = self.core_pj_0_nack_r_d;
+                if n != self.core_pj_0_nack_r { self.core_pj_0_nack_r = n; self.dirty[0] |= 0x800000000020001; }
+            }
+            27 => {
+                let n = self.core_pj_0_cont_r_d;
+                if n != self.core_pj_0_cont_r { self.core_pj_0_cont_r = n; self.dirty[0] |= 0x800000000000000; self.dirty[1] |= 0x300; }
+            }
+            28 => {
+                let n = self.core_pj_0_rep_r_d;
+                if n != self.core_pj_0_rep_r { self.core_pj_0_rep_r = n; self.dirty[0] |= 0x20000000000; }
+            }
+            29 => {
+                let n = self.core_pj_0_rep_seen_d;
+                if n != self.core_pj_0_rep_seen { self.core_pj_0_rep_seen = n; self.dirty[0] |= 0x20000000000; }
+            }
+            30 => {
+                let n = self.core_pj_0_rep_first_dom_d;
+                if n != self.core_pj_0_rep_first_dom { self.core_pj_0_rep_first_dom = n; self.dirty[0] |= 0x20000020000; }
+            }
+            31 => {
+                let n = self.core_pj_0_ok_r_d;
+                if n != self.core_pj_0_ok_r { self.core_pj_0_ok_r = n; self.dirty[0] |= 0x800020000000000; self.dirty[1] |= 0x100; }
+            }
+            32 => {
+                let n = self.core_pj_0_acked_d;
+                if n != self.core_pj_0_acked { self.core_pj_0_acked = n; self.dirty[0] |= 0x800020000000000; self.dirty[1] |= 0x100; }
+            }
+            33 => {
+                let n = self.core_pj_0_bad_d;
+                if n != self.core_pj_0_bad { self.core_pj_0_bad = n; self.dirty[0] |= 0x800020000000000; self.dirty[1] |= 0x100; }
+            }
+            34 => {
+                let n = self.core_pj_0_ack_missing_d;
+                if n != self.core_pj_0_ack_missing { self.core_pj_0_ack_missing = n; self.dirty[1] |= 0x300; }
+            }
+            35 => {
+                let n = self.core_pj_0_ack_c_d;
+                if n != self.core_pj_0_ack_c { self.core_pj_0_ack_c = n; self.dirty[0] |= 0x800000000000000; self.dirty[1] |= 0x100; }
+            }
+            36 => {
+                let n = self.core_pj_0_ack_rx_d;
+                if n != self.core_pj_0_ack_rx { self.core_pj_0_ack_rx = n; self.dirty[0] |= 0x800000000000000; }
+            }
+            37 => {
+                let n = self.core_pj_1_dis_r_d;
+                if n != self.core_pj_1_dis_r { self.core_pj_1_dis_r = n; self.dirty[0] |= 0x1300040000100001; self.dirty[1] |= 0x400; }
+            }
+            38 => {
+                let n = self.core_pj_1_bic_r_d;
+                if n != self.core_pj_1_bic_r { self.core_pj_1_bic_r = n; self.dirty[0] |= 0x40000000001; self.dirty[1] |= 0x400; }
+            }
+            39 => {
+                let n = self.core_pj_1_life_r_d;
+                if n != self.core_pj_1_life_r { self.core_pj_1_life_r = n; self.dirty[0] |= 0x40000000000; self.dirty[1] |= 0x400; }
+            }
+            40 => {
+                let n = self.core_pj_1_dbc_r_d;
+                if n != self.core_pj_1_dbc_r { self.core_pj_1_dbc_r = n; self.dirty[0] |= 0x40000000001; self.dirty[1] |= 0x400; }
+            }
+            41 => {
+                let n = self.core_pj_1_nack_r_d;
+                if n != self.core_pj_1_nack_r { self.core_pj_1_nack_r = n; self.dirty[0] |= 0x1000000000080001; }
+            }
+            42 => {
+                let n = self.core_pj_1_cont_r_d;
+                if n != self.core_pj_1_cont_r { self.core_pj_1_cont_r = n; self.dirty[0] |= 0x1000000000000000; self.dirty[1] |= 0xc00; }
+            }
+            43 => {
+                let n = self.core_pj_1_rep_r_d;
+                if n != self.core_pj_1_rep_r { self.core_pj_1_rep_r = n; self.dirty[0] |= 0x40000000000; }
+            }
+            44 => {
+                let n = self.core_pj_1_rep_seen_d;
+                if n != self.core_pj_1_rep_seen { self.core_pj_1_rep_seen = n; self.dirty[0] |= 0x40000000000; }
+            }
+            45 => {
+                let n = self.core_pj_1_rep_first_dom_d;
+                if n != self.core_pj_1_rep_first_dom { self.core_pj_1_rep_first_dom = n; self.dirty[0] |= 0x40000080000; }
+            }
+            46 => {
+                let n = self.core_pj_1_ok_r_d;
+                if n != self.core_pj_1_ok_r { self.core_pj_1_ok_r = n; self.dirty[0] |= 0x1000040000000000; self.dirty[1] |= 0x400; }
+            }
+            47 => {
+                let n = self.core_pj_1_acked_d;
+                if n != self.core_pj_1_acked { self.core_pj_1_acked = n; self.dirty[0] |= 0x1000040000000000; self.dirty[1] |= 0x400; }
+            }
+            48 => {
+                let n = self.core_pj_1_bad_d;
+                if n != self.core_pj_1_bad { self.core_pj_1_bad = n; self.dirty[0] |= 0x1000040000000000; self.dirty[1] |= 0x400; }
+            }
+            49 => {
+                let n = self.core_pj_1_ack_missing_d;
+                if n != self.core_pj_1_ack_missing { self.core_pj_1_ack_missing = n; self.dirty[1] |= 0xc00; }
+            }
+            50 => {
+                let n = self.core_pj_1_ack_c_d;
+                if n != self.core_pj_1_ack_c { self.core_pj_1_ack_c = n; self.dirty[0] |= 0x1000000000000000; self.dirty[1] |= 0x400; }
+            }
+            51 => {
+                let n = self.core_pj_1_ack_rx_d;
+                if n != self.core_pj_1_ack_rx { self.core_pj_1_ack_rx = n; self.dirty[0] |= 0x1000000000000000; }
+            }
+            52 => {
+                let n = self.core_pj_2_dis_r_d;
+                if n != self.core_pj_2_dis_r { self.core_pj_2_dis_r = n; self.dirty[0] |= 0x2300080000400001; self.dirty[1] |= 0x1000; }
+            }
+            53 => {
+                let n = self.core_pj_2_bic_r_d;
+                if n != self.core_pj_2_bic_r { self.core_pj_2_bic_r = n; self.dirty[0] |= 0x80000000001; self.dirty[1] |= 0x1000; }
+            }
+            54 => {
+                let n = self.core_pj_2_life_r_d;
+                if n != self.core_pj_2_life_r { self.core_pj_2_life_r = n; self.dirty[0] |= 0x80000000000; self.dirty[1] |= 0x1000; }
+            }
+            55 => {
+                let n = self.core_pj_2_dbc_r_d;
+                if n != self.core_pj_2_dbc_r { self.core_pj_2_dbc_r = n; self.dirty[0] |= 0x80000000001; self.dirty[1] |= 0x1000; }
+            }
+            56 => {
+                let n = self.core_pj_2_nack_r_d;
+                if n != self.core_pj_2_nack_r { self.core_pj_2_nack_r = n; self.dirty[0] |= 0x2000000000200001; }
+            }
+            57 => {
+                let n = self.core_pj_2_cont_r_d;
+                if n != self.core_pj_2_cont_r { self.core_pj_2_cont_r = n; self.dirty[0] |= 0x2000000000000000; self.dirty[1] |= 0x3000; }
+            }
+            58 => {
+                let n = self.core_pj_2_rep_r_d;
+                if n != self.core_pj_2_rep_r { self.core_pj_2_rep_r = n; self.dirty[0] |= 0x80000000000; }
+            }
+            59 => {
+                let n = self.core_pj_2_rep_seen_d;
+                if n != self.core_pj_2_rep_seen { self.core_pj_2_rep_seen = n; self.dirty[0] |= 0x80000000000; }
+            }
+            60 => {
+                let n = self.core_pj_2_rep_first_dom_d;
+                if n != self.core_pj_2_rep_first_dom { self.core_pj_2_rep_first_dom = n; self.dirty[0] |= 0x80000200000; }
+            }
+            61 => {
+                let n = self.core_pj_2_ok_r_d;
+                if n != self.core_pj_2_ok_r { self.core_pj_2_ok_r = n; self.dirty[0] |= 0x2000080000000000; self.dirty[1] |= 0x1000; }
+            }
+            62 => {
+                let n = self.core_pj_2_acked_d;
+                if n != self.core_pj_2_acked { self.core_pj_2_acked = n; self.dirty[0] |= 0x2000080000000000; self.dirty[1] |= 0x1000; }
+            }
+            63 => {
+                let n = self.core_pj_2_bad_d;
+                if n != self.core_pj_2_bad { self.core_pj_2_bad = n; self.dirty[0] |= 0x2000080000000000; self.dirty[1] |= 0x1000; }
+            }
+            64 => {
+                let n = self.core_pj_2_ack_missing_d;
+                if n != self.core_pj_2_ack_missing { self.core_pj_2_ack_missing = n; self.dirty[1] |= 0x3000; }
+            }
+            65 => {
+                let n = self.core_pj_2_ack_c_d;
+                if n != self.core_pj_2_ack_c { self.core_pj_2_ack_c = n; self.dirty[0] |= 0x2000000000000000; self.dirty[1] |= 0x1000; }
+            }
+            66 => {
+                let n = self.core_pj_2_ack_rx_d;
+                if n != self.core_pj_2_ack_rx { self.core_pj_2_ack_rx = n; self.dirty[0] |= 0x2000000000000000; }
+            }
+            67 => {
+                let n = self.core_sj_0_dis_r_d;
+                if n != self.core_sj_0_dis_r { self.core_sj_0_dis_r = n; self.dirty[0] |= 0x4300106000800001; self.dirty[1] |= 0x4000; }
+            }
+            68 => {
+                let n = self.core_sj_0_bic_r_d;
+                if n != self.core_sj_0_bic_r { self.core_sj_0_bic_r = n; self.dirty[0] |= 0x100000000001; self.dirty[1] |= 0x4000; }
+            }
+            69 => {
+                let n = self.core_sj_0_life_r_d;
+                if n != self.core_sj_0_life_r { self.core_sj_0_life_r = n; self.dirty[0] |= 0x100000000000; self.dirty[1] |= 0x4000; }
+            }
+            70 => {
+                let n = self.core_sj_0_dbc_r_d;
+                if n != self.core_sj_0_dbc_r { self.core_sj_0_dbc_r = n; self.dirty[0] |= 0x100000000001; self.dirty[1] |= 0x4000; }
+            }
+            71 => {
+                let n = self.core_sj_0_nack_r_d;
+                if n != self.core_sj_0_nack_r { self.core_sj_0_nack_r = n; self.dirty[0] |= 0x4000000000800000; }
+            }
+            72 => {
+                let n = self.core_sj_0_cont_r_d;
+                if n != self.core_sj_0_cont_r { self.core_sj_0_cont_r = n; self.dirty[0] |= 0x4000000000000000; self.dirty[1] |= 0xc000; }
+            }
+            73 => {
+                let n = self.core_sj_0_rep_r_d;
+                if n != self.core_sj_0_rep_r { self.core_sj_0_rep_r = n; self.dirty[0] |= 0x100000000001; }
+            }
+            74 => {
+                let n = self.core_sj_0_rep_seen_d;
+                if n != self.core_sj_0_rep_seen { self.core_sj_0_rep_seen = n; self.dirty[0] |= 0x4000100000000000; }
+            }
+            75 => {
+                let n = self.core_sj_0_rep_first_dom_d;
+                if n != self.core_sj_0_rep_first_dom { self.core_sj_0_rep_first_dom = n; self.dirty[0] |= 0x4000100000000000; }
+            }
+            76 => {
+                let n = self.core_sj_0_ok_r_d;
+                if n != self.core_sj_0_ok_r { self.core_sj_0_ok_r = n; self.dirty[0] |= 0x4000100000000000; self.dirty[1] |= 0x4000; }
+            }
+            77 => {
+                let n = self.core_sj_0_acked_d;
+                if n != self.core_sj_0_acked { self.core_sj_0_acked = n; self.dirty[0] |= 0x4000100000000000; self.dirty[1] |= 0x4000; }
+            }
+            78 => {
+                let n = self.core_sj_0_bad_d;
+                if n != self.core_sj_0_bad { self.core_sj_0_bad = n; self.dirty[0] |= 0x4000100000000000; self.dirty[1] |= 0x4000; }
+            }
+            79 => {
+                let n = self.core_sj_0_ack_missing_d;
+                if n != self.core_sj_0_ack_missing { self.core_sj_0_ack_missing = n; self.dirty[1] |= 0xc000; }
+            }
+            80 => {
+                let n = self.core_sj_0_ack_c_d;
+                if n != self.core_sj_0_ack_c { self.core_sj_0_ack_c = n; self.dirty[0] |= 0x4000000000000000; }
+            }
+            81 => {
+                let n = self.core_sj_0_ack_rx_d;
+                if n != self.core_sj_0_ack_rx { self.core_sj_0_ack_rx = n; self.dirty[0] |= 0x4000000000000000; }
+            }
+            82 => {
+                let n = self.core_sj_1_dis_r_d;
+                if n != self.core_sj_1_dis_r { self.core_sj_1_dis_r = n; self.dirty[0] |= 0x8300406001000001; self.dirty[1] |= 0x10000; }
+            }
+            83 => {
+                let n = self.core_sj_1_bic_r_d;
+                if n != self.core_sj_1_bic_r { self.core_sj_1_bic_r = n; self.dirty[0] |= 0x400000000001; self.dirty[1] |= 0x10000; }
+            }
+            84 => {
+                let n = self.core_sj_1_life_r_d;
+                if n != self.core_sj_1_life_r { self.core_sj_1_life_r = n; self.dirty[0] |= 0x400000000000; self.dirty[1] |= 0x10000; }
+            }
+            85 => {
+                let n = self.core_sj_1_dbc_r_d;
+                if n != self.core_sj_1_dbc_r { self.core_sj_1_dbc_r = n; self.dirty[0] |= 0x400000000001; self.dirty[1] |= 0x10000; }
+            }
+            86 => {
+                let n = self.core_sj_1_nack_r_d;
+                if n != self.core_sj_1_nack_r { self.core_sj_1_nack_r = n; self.dirty[0] |= 0x8000000001000000; }
+            }
+            87 => {
+                let n = self.core_sj_1_cont_r_d;
+                if n != self.core_sj_1_cont_r { self.core_sj_1_cont_r = n; self.dirty[0] |= 0x8000000000000000; self.dirty[1] |= 0x30000; }
+            }
+            88 => {
+                let n = self.core_sj_1_rep_r_d;
+                if n != self.core_sj_1_rep_r { self.core_sj_1_rep_r = n; self.dirty[0] |= 0x400000000001; }
+            }
+            89 => {
+                let n = self.core_sj_1_rep_seen_d;
+                if n != self.core_sj_1_rep_seen { self.core_sj_1_rep_seen = n; self.dirty[0] |= 0x8000400000000000; }
+            }
+            90 => {
+                let n = self.core_sj_1_rep_first_dom_d;
+                if n != self.core_sj_1_rep_first_dom { self.core_sj_1_rep_first_dom = n; self.dirty[0] |= 0x8000400000000000; }
+            }
+            91 => {
+                let n = self.core_sj_1_ok_r_d;
+                if n != self.core_sj_1_ok_r { self.core_sj_1_ok_r = n; self.dirty[0] |= 0x8000400000000000; self.dirty[1] |= 0x10000; }
+            }
+            92 => {
+                let n = self.core_sj_1_acked_d;
+                if n != self.core_sj_1_acked { self.core_sj_1_acked = n; self.dirty[0] |= 0x8000400000000000; self.dirty[1] |= 0x10000; }
+            }
+            93 => {
+                let n = self.core_sj_1_bad_d;
+                if n != self.core_sj_1_bad { self.core_sj_1_bad = n; self.dirty[0] |= 0x8000400000000000; self.dirty[1] |= 0x10000; }
+            }
+            94 => {
+                let n = self.core_sj_1_ack_missing_d;
+                if n != self.core_sj_1_ack_missing { self.core_sj_1_ack_missing = n; self.dirty[1] |= 0x30000; }
+            }
+            95 => {
+                let n = self.core_sj_1_ack_c_d;
+                if n != self.core_sj_1_ack_c { self.core_sj_1_ack_c = n; self.dirty[0] |= 0x8000000000000000; }
+            }
+            96 => {
+                let n = self.core_sj_1_ack_rx_d;
+                if n != self.core_sj_1_ack_rx { self.core_sj_1_ack_rx = n; self.dirty[0] |= 0x8000000000000000; }
+            }
+            97 => {
+                let n = self.core_rst_s1_d;
+                self.core_rst_s1 = n;
+            }
+            98 => {
+                let n = self.monitor_sync_s1_n_d;
+                if n != self.monitor_sync_s1_n { self.monitor_sync_s1_n = n; self.dirty[0] |= 0x4000000; }
+            }
+            99 => {
+                let n = self.monitor_sync_s2_n_d;
+                if n != self.monitor_sync_s2_n { self.monitor_sync_s2_n = n; self.dirty[0] |= 0x4000000; }
+            }
+            100 => {
+                let n = self.monitor_btl_c_brp_d;
+                if n != self.monitor_btl_c_brp { self.monitor_btl_c_brp = n; self.dirty[0] |= 0x1000018000000; self.dirty[1] |= 0x6; }
+            }
+            101 => {
+                let n = self.monitor_btl_c_sp_d;
+                if n != self.monitor_btl_c_sp { self.monitor_btl_c_sp = n; self.dirty[0] |= 0x1000000000000; self.dirty[1] |= 0x6; }
+            }
+            102 => {
+                let n = self.monitor_btl_c_ntq_d;
+                if n != self.monitor_btl_c_ntq { self.monitor_btl_c_ntq = n; self.dirty[0] |= 0x1000000000000; self.dirty[1] |= 0x6; }
+            }
+            103 => {
+                let n = self.monitor_btl_c_sjw_d;
+                if n != self.monitor_btl_c_sjw { self.monitor_btl_c_sjw = n; self.dirty[0] |= 0x18000000; self.dirty[1] |= 0x6; }
+            }
+            104 => {
+                let n = self.monitor_btl_c_triple_d;
+                if n != self.monitor_btl_c_triple { self.monitor_btl_c_triple = n; self.dirty[0] |= 0x2000008000000; self.dirty[1] |= 0x2; }
+            }
+            105 => {
+                let n = self.monitor_btl_c_valid_d;
+                if n != self.monitor_btl_c_valid { self.monitor_btl_c_valid = n; self.dirty[0] |= 0x1000018000000; self.dirty[1] |= 0x6; }
+            }
+            106 => {
+                let n = self.monitor_btl_c_bad_d;
+                if n != self.monitor_btl_c_bad { self.monitor_btl_c_bad = n; self.dirty[0] |= 0x1000002000000; self.dirty[1] |= 0x1; }
+            }
+            107 => {
+                let n = self.monitor_btl_pre_d;
+                if n != self.monitor_btl_pre { self.monitor_btl_pre = n; self.dirty[0] |= 0x1000018000000; self.dirty[1] |= 0x6; }
+            }
+            108 => {
+                let n = self.monitor_btl_cnt_d;
+                if n != self.monitor_btl_cnt { self.monitor_btl_cnt = n; self.dirty[0] |= 0x10000000; self.dirty[1] |= 0x6; }
+            }
+            109 => {
+                let n = self.monitor_btl_spw_d;
+                if n != self.monitor_btl_spw { self.monitor_btl_spw = n; self.dirty[0] |= 0x10000000; self.dirty[1] |= 0x6; }
+            }
+            110 => {
+                let n = self.monitor_btl_nbw_d;
+                if n != self.monitor_btl_nbw { self.monitor_btl_nbw = n; self.dirty[0] |= 0x10000000; self.dirty[1] |= 0x6; }
+            }
+            111 => {
+                let n = self.monitor_btl_busmon_n_d;
+                if n != self.monitor_btl_busmon_n { self.monitor_btl_busmon_n = n; self.dirty[0] |= 0x2000008000000; self.dirty[1] |= 0x6; }
+            }
+            112 => {
+                let n = self.monitor_btl_sync_dis_d;
+                if n != self.monitor_btl_sync_dis { self.monitor_btl_sync_dis = n; self.dirty[0] |= 0x2000000000000; self.dirty[1] |= 0x6; }
+            }
+            113 => {
+                let n = self.monitor_btl_since_d;
+                if n != self.monitor_btl_since { self.monitor_btl_since = n; self.dirty[0] |= 0x10000000; self.dirty[1] |= 0x6; }
+            }
+            114 => {
+                let n = self.monitor_btl_pending_d;
+                if n != self.monitor_btl_pending { self.monitor_btl_pending = n; self.dirty[1] |= 0x6; }
+            }
+            115 => {
+                let n = self.monitor_btl_tx_n_d;
+                if n != self.monitor_btl_tx_n { self.monitor_btl_tx_n = n; self.dirty[0] |= 0x10000000; self.dirty[1] |= 0x2; }
+            }
+            116 => {
+                let n = self.monitor_btl_h1_n_d;
+                if n != self.monitor_btl_h1_n { self.monitor_btl_h1_n = n; self.dirty[0] |= 0x3000008000000; self.dirty[1] |= 0x2; }
+            }
+            117 => {
+                let n = self.monitor_btl_h2_n_d;
+                if n != self.monitor_btl_h2_n { self.monitor_btl_h2_n = n; self.dirty[0] |= 0x2000008000000; self.dirty[1] |= 0x2; }
+            }
+            118 => {
+                let n = self.monitor_btl_sample_r_d;
+                if n != self.monitor_btl_sample_r { self.monitor_btl_sample_r = n; self.dirty[0] |= 0xc000460000000; self.dirty[1] |= 0x3800b8; }
+            }
+            119 => {
+                let n = self.monitor_btl_hard_r_d;
+                self.monitor_btl_hard_r = n;
+            }
+            120 => {
+                let n = self.monitor_btl_resync_r_d;
+                self.monitor_btl_resync_r = n;
+            }
+            121 => {
+                let n = self.monitor_fsm_fld_d;
+                if n != self.monitor_fsm_fld { self.monitor_fsm_fld = n; self.dirty[0] |= 0xc000000000000; self.dirty[1] |= 0x180008; }
+            }
+            122 => {
+                let n = self.monitor_fsm_fpos_d;
+                if n != self.monitor_fsm_fpos { self.monitor_fsm_fpos = n; self.dirty[0] |= 0xc000040000000; self.dirty[1] |= 0x180008; }
+            }
+            123 => {
+                let n = self.monitor_fsm_pfld_d;
+                if n != self.monitor_fsm_pfld { self.monitor_fsm_pfld = n; self.dirty[0] |= 0xc000000000000; self.dirty[1] |= 0x180008; }
+            }
+            124 => {
+                let n = self.monitor_fsm_ppos_d;
+                if n != self.monitor_fsm_ppos { self.monitor_fsm_ppos = n; self.dirty[0] |= 0xc000000000000; self.dirty[1] |= 0x80000; }
+            }
+            125 => {
+                let n = self.monitor_fsm_rtx_d;
+                if n != self.monitor_fsm_rtx { self.monitor_fsm_rtx = n; self.dirty[0] |= 0xc000000000000; self.dirty[1] |= 0x180008; }
+            }
+            126 => {
+                let n = self.monitor_fsm_dom_d;
+                if n != self.monitor_fsm_dom { self.monitor_fsm_dom = n; self.dirty[1] |= 0x180000; }
+            }
+            127 => {
+                let n = self.monitor_fsm_dstf_cnt_d;
+                if n != self.monitor_fsm_dstf_cnt { self.monitor_fsm_dstf_cnt = n; self.dirty[0] |= 0x10000080000000; self.dirty[1] |= 0x30; }
+            }
+            128 => {
+                let n = self.monitor_fsm_dstf_lvl_d;
+                if n != self.monitor_fsm_dstf_lvl { self.monitor_fsm_dstf_lvl = n; self.dirty[0] |= 0x10000100000000; self.dirty[1] |= 0x30; }
+            }
+            129 => {
+                let n = self.monitor_fsm_crcb_state_d;
+                if n != self.monitor_fsm_crcb_state { self.monitor_fsm_crcb_state = n; self.dirty[0] |= 0x60000200000000; self.dirty[1] |= 0x40; }
+            }
+            130 => {
+                let n = self.monitor_fsm_crcerr_d;
+                if n != self.monitor_fsm_crcerr { self.monitor_fsm_crcerr = n; self.dirty[1] |= 0x180000; }
+            }
+            131 => {
+                let n = self.monitor_fsm_tid_d;
+                if n != self.monitor_fsm_tid { self.monitor_fsm_tid = n; self.dirty[0] |= 0xc000000000000; self.dirty[1] |= 0x180008; }
+            }
+            132 => {
+                let n = self.monitor_fsm_tdat_d;
+                if n != self.monitor_fsm_tdat { self.monitor_fsm_tdat = n; self.dirty[0] |= 0xc000000000000; self.dirty[1] |= 0x180008; }
+            }
+            133 => {
+                let n = self.monitor_fsm_tdlc_d;
+                if n != self.monitor_fsm_tdlc { self.monitor_fsm_tdlc = n; self.dirty[0] |= 0xc000000000000; self.dirty[1] |= 0x180008; }
+            }
+            134 => {
+                let n = self.monitor_fsm_tide_d;
+                if n != self.monitor_fsm_tide { self.monitor_fsm_tide = n; self.dirty[0] |= 0x20000000; self.dirty[1] |= 0x180008; }
+            }
+            135 => {
+                let n = self.monitor_fsm_trtr_d;
+                if n != self.monitor_fsm_trtr { self.monitor_fsm_trtr = n; self.dirty[0] |= 0x20000000; self.dirty[1] |= 0x180008; }
+            }
+            136 => {
+                let n = self.monitor_fsm_rid_d;
+                if n != self.monitor_fsm_rid { self.monitor_fsm_rid = n; self.dirty[0] |= 0xc000000000000; }
+            }
+            137 => {
+                let n = self.monitor_fsm_rdat_d;
+                if n != self.monitor_fsm_rdat { self.monitor_fsm_rdat = n; self.dirty[0] |= 0xc000000000000; }
+            }
+            138 => {
+                let n = self.monitor_fsm_rdlc_d;
+                if n != self.monitor_fsm_rdlc { self.monitor_fsm_rdlc = n; self.dirty[0] |= 0xc000000000000; self.dirty[1] |= 0x180008; }
+            }
+            139 => {
+                let n = self.monitor_fsm_rrtr_d;
+                if n != self.monitor_fsm_rrtr { self.monitor_fsm_rrtr = n; self.dirty[0] |= 0xc000000000000; self.dirty[1] |= 0x180008; }
+            }
+            140 => {
+                let n = self.monitor_fsm_rext_d;
+                if n != self.monitor_fsm_rext { self.monitor_fsm_rext = n; self.dirty[0] |= 0xc000000000000; self.dirty[1] |= 0x180008; }
+            }
+            141 => {
+                let n = self.monitor_fsm_fdone_d;
+                if n != self.monitor_fsm_fdone { self.monitor_fsm_fdone = n; self.dirty[0] |= 0xc000000000000; self.dirty[1] |= 0x180008; }
+            }
+            142 => {
+                let n = self.monitor_fsm_eqcnt_d;
+                if n != self.monitor_fsm_eqcnt { self.monitor_fsm_eqcnt = n; self.dirty[0] |= 0xc000000000000; self.dirty[1] |= 0x180000; }
+            }
+            143 => {
+                let n = self.monitor_fsm_eqlast_d;
+                if n != self.monitor_fsm_eqlast { self.monitor_fsm_eqlast = n; self.dirty[0] |= 0xc000000000000; self.dirty[1] |= 0x180000; }
+            }
+            144 => {
+                let n = self.monitor_fsm_dafc_d;
+                if n != self.monitor_fsm_dafc { self.monitor_fsm_dafc = n; self.dirty[0] |= 0x8000000000000; self.dirty[1] |= 0x180000; }
+            }
+            145 => {
+                let n = self.monitor_fsm_dafany_d;
+                if n != self.monitor_fsm_dafany { self.monitor_fsm_dafany = n; self.dirty[0] |= 0x8000000000000; self.dirty[1] |= 0x180000; }
+            }
+            146 => {
+                let n = self.monitor_fsm_exc1_d;
+                if n != self.monitor_fsm_exc1 { self.monitor_fsm_exc1 = n; self.dirty[0] |= 0xc000000000000; self.dirty[1] |= 0x180000; }
+            }
+            147 => {
+                let n = self.monitor_fsm_tecr_d;
+                if n != self.monitor_fsm_tecr { self.monitor_fsm_tecr = n; self.dirty[0] |= 0xc000040000000; self.dirty[1] |= 0x180008; }
+            }
+            148 => {
+                let n = self.monitor_fsm_recr_d;
+                if n != self.monitor_fsm_recr { self.monitor_fsm_recr = n; self.dirty[0] |= 0xc000040000000; self.dirty[1] |= 0x180008; }
+            }
+            149 => {
+                let n = self.monitor_fsm_runr_d;
+                if n != self.monitor_fsm_runr { self.monitor_fsm_runr = n; self.dirty[0] |= 0xc000000000000; self.dirty[1] |= 0x180008; }
+            }
+            150 => {
+                let n = self.monitor_fsm_rarmed_d;
+                if n != self.monitor_fsm_rarmed { self.monitor_fsm_rarmed = n; self.dirty[0] |= 0xc000000000000; }
+            }
+            151 => {
+                let n = self.monitor_fsm_req_d;
+                self.monitor_fsm_req = n;
+            }
+            152 => {
+                let n = self.monitor_fsm_blocked_d;
+                self.monitor_fsm_blocked = n;
+            }
+            153 => {
+                let n = self.monitor_fsm_evr_d;
+                if n != self.monitor_fsm_evr { self.monitor_fsm_evr = n; self.dirty[0] |= 0xc40000000; }
+            }
+            154 => {
+                let n = self.monitor_fsm_arbpos_r_d;
+                if n != self.monitor_fsm_arbpos_r { self.monitor_fsm_arbpos_r = n; self.dirty[1] |= 0x80000; }
+            }
+            155 => {
+                let n = self.monitor_fsm_errf_r_d;
+                if n != self.monitor_fsm_errf_r { self.monitor_fsm_errf_r = n; self.dirty[1] |= 0x80000; }
+            }
+            156 => {
+                let n = self.monitor_fsm_errp_r_d;
+                if n != self.monitor_fsm_errp_r { self.monitor_fsm_errp_r = n; self.dirty[1] |= 0x80000; }
+            }
+            157 => {
+                let n = self.monitor_fsm_errtx_r_d;
+                if n != self.monitor_fsm_errtx_r { self.monitor_fsm_errtx_r = n; self.dirty[1] |= 0x80000; }
+            }
+            158 => {
+                let n = self.monitor_fsm_rxide_r_d;
+                if n != self.monitor_fsm_rxide_r { self.monitor_fsm_rxide_r = n; self.dirty[0] |= 0x4000000000000; }
+            }
+            159 => {
+                let n = self.monitor_fsm_rxrtr_r_d;
+                if n != self.monitor_fsm_rxrtr_r { self.monitor_fsm_rxrtr_r = n; self.dirty[0] |= 0x4000000000000; }
+            }
+            160 => {
+                let n = self.monitor_fsm_rxid_r_d;
+                if n != self.monitor_fsm_rxid_r { self.monitor_fsm_rxid_r = n; self.dirty[0] |= 0x4000000000000; }
+            }
+            161 => {
+                let n = self.monitor_fsm_rxdlc_r_d;
+                if n != self.monitor_fsm_rxdlc_r { self.monitor_fsm_rxdlc_r = n; self.dirty[0] |= 0x4000000000000; }
+            }
+            162 => {
+                let n = self.monitor_fsm_rxdat_r_d;
+                if n != self.monitor_fsm_rxdat_r { self.monitor_fsm_rxdat_r = n; self.dirty[0] |= 0x4000000000000; }
+            }
+            163 => {
+                let n = self.adapter_s_r_d;
+                if n != self.adapter_s_r { self.adapter_s_r = n; self.dirty[0] |= 0xfc005e0400000000; self.dirty[1] |= 0x415500; }
+            }
+            164 => {
+                let n = self.adapter_f_r_d;
+                if n != self.adapter_f_r { self.adapter_f_r = n; self.dirty[0] |= 0xc00000000; self.dirty[1] |= 0x200000; }
+            }
+            165 => {
+                let n = self.adapter_p_r_d;
+                if n != self.adapter_p_r { self.adapter_p_r = n; self.dirty[0] |= 0x400000000; self.dirty[1] |= 0x80; }
+            }
+            166 => {
+                let n = self.adapter_bs_pending_d;
+                if n != self.adapter_bs_pending { self.adapter_bs_pending = n; self.dirty[0] |= 0x400000000; }
+            }
+            167 => {
+                let n = self.adapter_bs_cnt_d;
+                if n != self.adapter_bs_cnt { self.adapter_bs_cnt = n; self.dirty[0] |= 0x400000000; }
+            }
+            168 => {
+                let n = self.adapter_f_map_d;
+                if n != self.adapter_f_map { self.adapter_f_map = n; self.dirty[0] |= 0x400000000; }
+            }
+            _ => {}
+        }
     }
 
     /// `top` block, depth 0, state-only: isolated$0, isolated$1, isolated$2, sub_isolated$0, sub_isolated$1, efg_active, ... (23 signals)
@@ -2584,7 +2946,7 @@ impl HubN3M2 {
     fn g1(&mut self) {
         let mut core_rst_s1_d: bool = false;
         core_rst_s1_d = (!self.rst_n);
-        self.core_rst_s1_d = core_rst_s1_d;
+        if core_rst_s1_d != self.core_rst_s1_d { self.core_rst_s1_d = core_rst_s1_d; self.pend[1] |= 0x200000000; }
     }
 
     /// `core.coupler` block, depth 0, state-only: core.coupler.tx$0, core.coupler.tx$1, core.coupler.tx$2, core.coupler.hub_tx$0, core.coupler.hub_tx$1
@@ -2619,7 +2981,7 @@ impl HubN3M2 {
             core_coupler_up_sync_0_q = (!self.core_coupler_up_sync_0_s2_n);
         }
         if core_coupler_up_sync_0_q != self.core_coupler_up_sync_0_q { self.core_coupler_up_sync_0_q = core_coupler_up_sync_0_q; self.dirty[0] |= 0x300000000000000; }
-        self.core_coupler_up_sync_0_s2_n_d = core_coupler_up_sync_0_s2_n_d;
+        if core_coupler_up_sync_0_s2_n_d != self.core_coupler_up_sync_0_s2_n_d { self.core_coupler_up_sync_0_s2_n_d = core_coupler_up_sync_0_s2_n_d; self.pend[0] |= 0x2; }
     }
 
     /// `core.coupler.up_sync$0` block, depth 0, input-dependent: core.coupler.up_sync$0.s1_n.d
@@ -2629,7 +2991,7 @@ impl HubN3M2 {
         if self.core_rst_s2 {
             core_coupler_up_sync_0_s1_n_d = false;
         }
-        self.core_coupler_up_sync_0_s1_n_d = core_coupler_up_sync_0_s1_n_d;
+        if core_coupler_up_sync_0_s1_n_d != self.core_coupler_up_sync_0_s1_n_d { self.core_coupler_up_sync_0_s1_n_d = core_coupler_up_sync_0_s1_n_d; self.pend[0] |= 0x1; }
     }
 
     /// `core.coupler.up_sync$1` block, depth 0, state-only: core.coupler.up_sync$1.q, core.coupler.up_sync$1.s2_n.d
@@ -2645,7 +3007,7 @@ impl HubN3M2 {
             core_coupler_up_sync_1_q = (!self.core_coupler_up_sync_1_s2_n);
         }
         if core_coupler_up_sync_1_q != self.core_coupler_up_sync_1_q { self.core_coupler_up_sync_1_q = core_coupler_up_sync_1_q; self.dirty[0] |= 0x300000000000000; }
-        self.core_coupler_up_sync_1_s2_n_d = core_coupler_up_sync_1_s2_n_d;
+        if core_coupler_up_sync_1_s2_n_d != self.core_coupler_up_sync_1_s2_n_d { self.core_coupler_up_sync_1_s2_n_d = core_coupler_up_sync_1_s2_n_d; self.pend[0] |= 0x8; }
     }
 
     /// `core.coupler.up_sync$1` block, depth 0, input-dependent: core.coupler.up_sync$1.s1_n.d
@@ -2655,7 +3017,7 @@ impl HubN3M2 {
         if self.core_rst_s2 {
             core_coupler_up_sync_1_s1_n_d = false;
         }
-        self.core_coupler_up_sync_1_s1_n_d = core_coupler_up_sync_1_s1_n_d;
+        if core_coupler_up_sync_1_s1_n_d != self.core_coupler_up_sync_1_s1_n_d { self.core_coupler_up_sync_1_s1_n_d = core_coupler_up_sync_1_s1_n_d; self.pend[0] |= 0x4; }
     }
 
     /// `core.coupler.up_sync$2` block, depth 0, state-only: core.coupler.up_sync$2.q, core.coupler.up_sync$2.s2_n.d
@@ -2671,7 +3033,7 @@ impl HubN3M2 {
             core_coupler_up_sync_2_q = (!self.core_coupler_up_sync_2_s2_n);
         }
         if core_coupler_up_sync_2_q != self.core_coupler_up_sync_2_q { self.core_coupler_up_sync_2_q = core_coupler_up_sync_2_q; self.dirty[0] |= 0x300000000000000; }
-        self.core_coupler_up_sync_2_s2_n_d = core_coupler_up_sync_2_s2_n_d;
+        if core_coupler_up_sync_2_s2_n_d != self.core_coupler_up_sync_2_s2_n_d { self.core_coupler_up_sync_2_s2_n_d = core_coupler_up_sync_2_s2_n_d; self.pend[0] |= 0x20; }
     }
 
     /// `core.coupler.up_sync$2` block, depth 0, input-dependent: core.coupler.up_sync$2.s1_n.d
@@ -2681,7 +3043,7 @@ impl HubN3M2 {
         if self.core_rst_s2 {
             core_coupler_up_sync_2_s1_n_d = false;
         }
-        self.core_coupler_up_sync_2_s1_n_d = core_coupler_up_sync_2_s1_n_d;
+        if core_coupler_up_sync_2_s1_n_d != self.core_coupler_up_sync_2_s1_n_d { self.core_coupler_up_sync_2_s1_n_d = core_coupler_up_sync_2_s1_n_d; self.pend[0] |= 0x10; }
     }
 
     /// `core.coupler.reh_sync$0` block, depth 0, state-only: core.coupler.reh_sync$0.q, core.coupler.reh_sync$0.s2_n.d
@@ -2697,7 +3059,7 @@ impl HubN3M2 {
             core_coupler_reh_sync_0_q = (!self.core_coupler_reh_sync_0_s2_n);
         }
         if core_coupler_reh_sync_0_q != self.core_coupler_reh_sync_0_q { self.core_coupler_reh_sync_0_q = core_coupler_reh_sync_0_q; self.dirty[0] |= 0x4300306000000000; self.dirty[1] |= 0xc000; }
-        self.core_coupler_reh_sync_0_s2_n_d = core_coupler_reh_sync_0_s2_n_d;
+        if core_coupler_reh_sync_0_s2_n_d != self.core_coupler_reh_sync_0_s2_n_d { self.core_coupler_reh_sync_0_s2_n_d = core_coupler_reh_sync_0_s2_n_d; self.pend[0] |= 0x80; }
     }
 
     /// `core.coupler.reh_sync$0` block, depth 0, input-dependent: core.coupler.reh_sync$0.s1_n.d
@@ -2707,7 +3069,7 @@ impl HubN3M2 {
         if self.core_rst_s2 {
             core_coupler_reh_sync_0_s1_n_d = false;
         }
-        self.core_coupler_reh_sync_0_s1_n_d = core_coupler_reh_sync_0_s1_n_d;
+        if core_coupler_reh_sync_0_s1_n_d != self.core_coupler_reh_sync_0_s1_n_d { self.core_coupler_reh_sync_0_s1_n_d = core_coupler_reh_sync_0_s1_n_d; self.pend[0] |= 0x40; }
     }
 
     /// `core.coupler.reh_sync$1` block, depth 0, state-only: core.coupler.reh_sync$1.q, core.coupler.reh_sync$1.s2_n.d
@@ -2723,7 +3085,7 @@ impl HubN3M2 {
             core_coupler_reh_sync_1_q = (!self.core_coupler_reh_sync_1_s2_n);
         }
         if core_coupler_reh_sync_1_q != self.core_coupler_reh_sync_1_q { self.core_coupler_reh_sync_1_q = core_coupler_reh_sync_1_q; self.dirty[0] |= 0x8300c06000000000; self.dirty[1] |= 0x30000; }
-        self.core_coupler_reh_sync_1_s2_n_d = core_coupler_reh_sync_1_s2_n_d;
+        if core_coupler_reh_sync_1_s2_n_d != self.core_coupler_reh_sync_1_s2_n_d { self.core_coupler_reh_sync_1_s2_n_d = core_coupler_reh_sync_1_s2_n_d; self.pend[0] |= 0x200; }
     }
 
     /// `core.coupler.reh_sync$1` block, depth 0, input-dependent: core.coupler.reh_sync$1.s1_n.d
@@ -2733,7 +3095,7 @@ impl HubN3M2 {
         if self.core_rst_s2 {
             core_coupler_reh_sync_1_s1_n_d = false;
         }
-        self.core_coupler_reh_sync_1_s1_n_d = core_coupler_reh_sync_1_s1_n_d;
+        if core_coupler_reh_sync_1_s1_n_d != self.core_coupler_reh_sync_1_s1_n_d { self.core_coupler_reh_sync_1_s1_n_d = core_coupler_reh_sync_1_s1_n_d; self.pend[0] |= 0x100; }
     }
 
     /// `core.efgen` block, depth 0, state-only: core.efgen.efg, core.efgen.busy
@@ -2756,7 +3118,7 @@ impl HubN3M2 {
         }
         core_injector_active = ((self.core_injector_state == 2u8) | (self.core_injector_state == 3u8));
         if core_injector_active != self.core_injector_active { self.core_injector_active = core_injector_active; self.dirty[0] |= 0x3000000000; }
-        self.core_injector_btn_prev_d = core_injector_btn_prev_d;
+        if core_injector_btn_prev_d != self.core_injector_btn_prev_d { self.core_injector_btn_prev_d = core_injector_btn_prev_d; self.pend[0] |= 0x100000; }
     }
 
     /// `core.injector` block, depth 0, input-dependent: core.injector.btn_r.d
@@ -2766,7 +3128,7 @@ impl HubN3M2 {
         if self.core_rst_s2 {
             core_injector_btn_r_d = false;
         }
-        self.core_injector_btn_r_d = core_injector_btn_r_d;
+        if core_injector_btn_r_d != self.core_injector_btn_r_d { self.core_injector_btn_r_d = core_injector_btn_r_d; self.pend[0] |= 0x200000; }
     }
 
     /// `core.injector` block, depth 0, probe-only: core.injector.armed, core.injector.press
@@ -2789,7 +3151,7 @@ impl HubN3M2 {
         }
         core_pj_0_silent = (self.core_pj_0_nack_r >= self.core_pj_0_nack_thr);
         if core_pj_0_silent != self.core_pj_0_silent { self.core_pj_0_silent = core_pj_0_silent; self.dirty[0] |= 0x1000000000; }
-        self.core_pj_0_rep_first_dom_d = core_pj_0_rep_first_dom_d;
+        if core_pj_0_rep_first_dom_d != self.core_pj_0_rep_first_dom_d { self.core_pj_0_rep_first_dom_d = core_pj_0_rep_first_dom_d; self.pend[0] |= 0x40000000; }
     }
 
     /// `core.pj$0` block, depth 0, probe-only: core.pj$0.enabled
@@ -2809,7 +3171,7 @@ impl HubN3M2 {
         }
         core_pj_1_silent = (self.core_pj_1_nack_r >= self.core_pj_1_nack_thr);
         if core_pj_1_silent != self.core_pj_1_silent { self.core_pj_1_silent = core_pj_1_silent; self.dirty[0] |= 0x1000000000; }
-        self.core_pj_1_rep_first_dom_d = core_pj_1_rep_first_dom_d;
+        if core_pj_1_rep_first_dom_d != self.core_pj_1_rep_first_dom_d { self.core_pj_1_rep_first_dom_d = core_pj_1_rep_first_dom_d; self.pend[0] |= 0x200000000000; }
     }
 
     /// `core.pj$1` block, depth 0, probe-only: core.pj$1.enabled
@@ -2829,7 +3191,7 @@ impl HubN3M2 {
         }
         core_pj_2_silent = (self.core_pj_2_nack_r >= self.core_pj_2_nack_thr);
         if core_pj_2_silent != self.core_pj_2_silent { self.core_pj_2_silent = core_pj_2_silent; self.dirty[0] |= 0x1000000000; }
-        self.core_pj_2_rep_first_dom_d = core_pj_2_rep_first_dom_d;
+        if core_pj_2_rep_first_dom_d != self.core_pj_2_rep_first_dom_d { self.core_pj_2_rep_first_dom_d = core_pj_2_rep_first_dom_d; self.pend[0] |= 0x1000000000000000; }
     }
 
     /// `core.pj$2` block, depth 0, probe-only: core.pj$2.enabled
@@ -2879,7 +3241,7 @@ impl HubN3M2 {
             monitor_sync_q = (!self.monitor_sync_s2_n);
         }
         if monitor_sync_q != self.monitor_sync_q { self.monitor_sync_q = monitor_sync_q; self.dirty[0] |= 0x3000000000000; self.dirty[1] |= 0x6; }
-        self.monitor_sync_s2_n_d = monitor_sync_s2_n_d;
+        if monitor_sync_s2_n_d != self.monitor_sync_s2_n_d { self.monitor_sync_s2_n_d = monitor_sync_s2_n_d; self.pend[1] |= 0x800000000; }
     }
 
     /// `monitor.btl` block, depth 0, state-only: monitor.btl.busmon, monitor.btl.c_sjw.d, monitor.btl.c_triple.d, monitor.btl.pre.d, monitor.btl.h2_n.d
@@ -2916,10 +3278,10 @@ impl HubN3M2 {
         }
         monitor_btl_busmon = (!self.monitor_btl_busmon_n);
         if monitor_btl_busmon != self.monitor_btl_busmon { self.monitor_btl_busmon = monitor_btl_busmon; self.dirty[0] |= 0x7c000000000000; self.dirty[1] |= 0x180078; }
-        self.monitor_btl_c_sjw_d = monitor_btl_c_sjw_d;
-        self.monitor_btl_c_triple_d = monitor_btl_c_triple_d;
-        self.monitor_btl_pre_d = monitor_btl_pre_d;
-        self.monitor_btl_h2_n_d = monitor_btl_h2_n_d;
+        if monitor_btl_c_sjw_d != self.monitor_btl_c_sjw_d { self.monitor_btl_c_sjw_d = monitor_btl_c_sjw_d; self.pend[1] |= 0x8000000000; }
+        if monitor_btl_c_triple_d != self.monitor_btl_c_triple_d { self.monitor_btl_c_triple_d = monitor_btl_c_triple_d; self.pend[1] |= 0x10000000000; }
+        if monitor_btl_pre_d != self.monitor_btl_pre_d { self.monitor_btl_pre_d = monitor_btl_pre_d; self.pend[1] |= 0x80000000000; }
+        if monitor_btl_h2_n_d != self.monitor_btl_h2_n_d { self.monitor_btl_h2_n_d = monitor_btl_h2_n_d; self.pend[1] |= 0x20000000000000; }
     }
 
     /// `monitor.btl` block, depth 0, probe-only: monitor.btl.tx, monitor.btl.in_ph2, monitor.btl.in_sjw, monitor.btl.tick, monitor.btl.c1, monitor.btl.late, ... (9 signals)
@@ -2976,8 +3338,8 @@ impl HubN3M2 {
             monitor_fsm_trtr_d = self.monitor_fsm_trtr;
         }
         if monitor_fsm_drive != self.monitor_fsm_drive { self.monitor_fsm_drive = monitor_fsm_drive; self.dirty[1] |= 0x6; }
-        self.monitor_fsm_tide_d = monitor_fsm_tide_d;
-        self.monitor_fsm_trtr_d = monitor_fsm_trtr_d;
+        if monitor_fsm_tide_d != self.monitor_fsm_tide_d { self.monitor_fsm_tide_d = monitor_fsm_tide_d; self.pend[2] |= 0x40; }
+        if monitor_fsm_trtr_d != self.monitor_fsm_trtr_d { self.monitor_fsm_trtr_d = monitor_fsm_trtr_d; self.pend[2] |= 0x80; }
     }
 
     /// `monitor.fsm` block, depth 0, probe-only: monitor.fsm.tx_done, monitor.fsm.arb_lost, monitor.fsm.error, monitor.fsm.err_kind, monitor.fsm.rx_valid, monitor.fsm.state, ... (12 signals)
@@ -3143,10 +3505,10 @@ impl HubN3M2 {
         if adapter_mon_crc_ok != self.adapter_mon_crc_ok { self.adapter_mon_crc_ok = adapter_mon_crc_ok; self.dirty[0] |= 0xf800000000000000; }
         if adapter_mon_frame_ok != self.adapter_mon_frame_ok { self.adapter_mon_frame_ok = adapter_mon_frame_ok; self.dirty[0] |= 0xf8005e0000000000; self.dirty[1] |= 0x15500; }
         if adapter_bit_start != self.adapter_bit_start { self.adapter_bit_start = adapter_bit_start; self.dirty[0] |= 0x8000000000; self.dirty[1] |= 0x1000000; }
-        self.adapter_s_r_d = adapter_s_r_d;
-        self.adapter_bs_pending_d = adapter_bs_pending_d;
-        self.adapter_bs_cnt_d = adapter_bs_cnt_d;
-        self.adapter_f_map_d = adapter_f_map_d;
+        if adapter_s_r_d != self.adapter_s_r_d { self.adapter_s_r_d = adapter_s_r_d; self.pend[2] |= 0x800000000; }
+        if adapter_bs_pending_d != self.adapter_bs_pending_d { self.adapter_bs_pending_d = adapter_bs_pending_d; self.pend[2] |= 0x4000000000; }
+        if adapter_bs_cnt_d != self.adapter_bs_cnt_d { self.adapter_bs_cnt_d = adapter_bs_cnt_d; self.pend[2] |= 0x8000000000; }
+        if adapter_f_map_d != self.adapter_f_map_d { self.adapter_f_map_d = adapter_f_map_d; self.pend[2] |= 0x10000000000; }
     }
 
     /// `adapter` block, depth 0, probe-only: adapter.fl
@@ -3337,8 +3699,8 @@ impl HubN3M2 {
             core_efgen_driving_d = false;
             core_efgen_cnt_d = 0u8;
         }
-        self.core_efgen_driving_d = core_efgen_driving_d;
-        self.core_efgen_cnt_d = core_efgen_cnt_d;
+        if core_efgen_driving_d != self.core_efgen_driving_d { self.core_efgen_driving_d = core_efgen_driving_d; self.pend[0] |= 0x10000; }
+        if core_efgen_cnt_d != self.core_efgen_cnt_d { self.core_efgen_cnt_d = core_efgen_cnt_d; self.pend[0] |= 0x20000; }
     }
 
     /// `core.decode` block, depth 1, state-only: core.decode.sof, core.decode.tx_region, core.decode.arb, core.decode.crc_delim, core.decode.ack_slot, core.decode.ack_delim, ... (10 signals)
@@ -3417,10 +3779,10 @@ impl HubN3M2 {
             core_pj_0_rep_seen_d = false;
             core_pj_0_ok_r_d = 0u8;
         }
-        self.core_pj_0_dis_r_d = core_pj_0_dis_r_d;
-        self.core_pj_0_rep_r_d = core_pj_0_rep_r_d;
-        self.core_pj_0_rep_seen_d = core_pj_0_rep_seen_d;
-        self.core_pj_0_ok_r_d = core_pj_0_ok_r_d;
+        if core_pj_0_dis_r_d != self.core_pj_0_dis_r_d { self.core_pj_0_dis_r_d = core_pj_0_dis_r_d; self.pend[0] |= 0x400000; }
+        if core_pj_0_rep_r_d != self.core_pj_0_rep_r_d { self.core_pj_0_rep_r_d = core_pj_0_rep_r_d; self.pend[0] |= 0x10000000; }
+        if core_pj_0_rep_seen_d != self.core_pj_0_rep_seen_d { self.core_pj_0_rep_seen_d = core_pj_0_rep_seen_d; self.pend[0] |= 0x20000000; }
+        if core_pj_0_ok_r_d != self.core_pj_0_ok_r_d { self.core_pj_0_ok_r_d = core_pj_0_ok_r_d; self.pend[0] |= 0x80000000; }
     }
 
     /// `core.pj$1` block, depth 1, state-only: core.pj$1.dis_r.d, core.pj$1.rep_r.d, core.pj$1.rep_seen.d, core.pj$1.ok_r.d
@@ -3465,10 +3827,10 @@ impl HubN3M2 {
             core_pj_1_rep_seen_d = false;
             core_pj_1_ok_r_d = 0u8;
         }
-        self.core_pj_1_dis_r_d = core_pj_1_dis_r_d;
-        self.core_pj_1_rep_r_d = core_pj_1_rep_r_d;
-        self.core_pj_1_rep_seen_d = core_pj_1_rep_seen_d;
-        self.core_pj_1_ok_r_d = core_pj_1_ok_r_d;
+        if core_pj_1_dis_r_d != self.core_pj_1_dis_r_d { self.core_pj_1_dis_r_d = core_pj_1_dis_r_d; self.pend[0] |= 0x2000000000; }
+        if core_pj_1_rep_r_d != self.core_pj_1_rep_r_d { self.core_pj_1_rep_r_d = core_pj_1_rep_r_d; self.pend[0] |= 0x80000000000; }
+        if core_pj_1_rep_seen_d != self.core_pj_1_rep_seen_d { self.core_pj_1_rep_seen_d = core_pj_1_rep_seen_d; self.pend[0] |= 0x100000000000; }
+        if core_pj_1_ok_r_d != self.core_pj_1_ok_r_d { self.core_pj_1_ok_r_d = core_pj_1_ok_r_d; self.pend[0] |= 0x400000000000; }
     }
 
     /// `core.pj$2` block, depth 1, state-only: core.pj$2.dis_r.d, core.pj$2.rep_r.d, core.pj$2.rep_seen.d, core.pj$2.ok_r.d
@@ -3513,10 +3875,10 @@ impl HubN3M2 {
             core_pj_2_rep_seen_d = false;
             core_pj_2_ok_r_d = 0u8;
         }
-        self.core_pj_2_dis_r_d = core_pj_2_dis_r_d;
-        self.core_pj_2_rep_r_d = core_pj_2_rep_r_d;
-        self.core_pj_2_rep_seen_d = core_pj_2_rep_seen_d;
-        self.core_pj_2_ok_r_d = core_pj_2_ok_r_d;
+        if core_pj_2_dis_r_d != self.core_pj_2_dis_r_d { self.core_pj_2_dis_r_d = core_pj_2_dis_r_d; self.pend[0] |= 0x10000000000000; }
+        if core_pj_2_rep_r_d != self.core_pj_2_rep_r_d { self.core_pj_2_rep_r_d = core_pj_2_rep_r_d; self.pend[0] |= 0x400000000000000; }
+        if core_pj_2_rep_seen_d != self.core_pj_2_rep_seen_d { self.core_pj_2_rep_seen_d = core_pj_2_rep_seen_d; self.pend[0] |= 0x800000000000000; }
+        if core_pj_2_ok_r_d != self.core_pj_2_ok_r_d { self.core_pj_2_ok_r_d = core_pj_2_ok_r_d; self.pend[0] |= 0x2000000000000000; }
     }
 
     /// `core.sj$0` block, depth 1, state-only: core.sj$0.dis_r.d, core.sj$0.dbc_r.d, core.sj$0.rep_r.d, core.sj$0.ok_r.d
@@ -3575,10 +3937,10 @@ impl HubN3M2 {
             core_sj_0_rep_r_d = 0u8;
             core_sj_0_ok_r_d = 0u8;
         }
-        self.core_sj_0_dis_r_d = core_sj_0_dis_r_d;
-        self.core_sj_0_dbc_r_d = core_sj_0_dbc_r_d;
-        self.core_sj_0_rep_r_d = core_sj_0_rep_r_d;
-        self.core_sj_0_ok_r_d = core_sj_0_ok_r_d;
+        if core_sj_0_dis_r_d != self.core_sj_0_dis_r_d { self.core_sj_0_dis_r_d = core_sj_0_dis_r_d; self.pend[1] |= 0x8; }
+        if core_sj_0_dbc_r_d != self.core_sj_0_dbc_r_d { self.core_sj_0_dbc_r_d = core_sj_0_dbc_r_d; self.pend[1] |= 0x40; }
+        if core_sj_0_rep_r_d != self.core_sj_0_rep_r_d { self.core_sj_0_rep_r_d = core_sj_0_rep_r_d; self.pend[1] |= 0x200; }
+        if core_sj_0_ok_r_d != self.core_sj_0_ok_r_d { self.core_sj_0_ok_r_d = core_sj_0_ok_r_d; self.pend[1] |= 0x1000; }
     }
 
     /// `core.sj$0` block, depth 1, probe-only: core.sj$0.dom
@@ -3644,10 +4006,10 @@ impl HubN3M2 {
             core_sj_1_rep_r_d = 0u8;
             core_sj_1_ok_r_d = 0u8;
         }
-        self.core_sj_1_dis_r_d = core_sj_1_dis_r_d;
-        self.core_sj_1_dbc_r_d = core_sj_1_dbc_r_d;
-        self.core_sj_1_rep_r_d = core_sj_1_rep_r_d;
-        self.core_sj_1_ok_r_d = core_sj_1_ok_r_d;
+        if core_sj_1_dis_r_d != self.core_sj_1_dis_r_d { self.core_sj_1_dis_r_d = core_sj_1_dis_r_d; self.pend[1] |= 0x40000; }
+        if core_sj_1_dbc_r_d != self.core_sj_1_dbc_r_d { self.core_sj_1_dbc_r_d = core_sj_1_dbc_r_d; self.pend[1] |= 0x200000; }
+        if core_sj_1_rep_r_d != self.core_sj_1_rep_r_d { self.core_sj_1_rep_r_d = core_sj_1_rep_r_d; self.pend[1] |= 0x1000000; }
+        if core_sj_1_ok_r_d != self.core_sj_1_ok_r_d { self.core_sj_1_ok_r_d = core_sj_1_ok_r_d; self.pend[1] |= 0x8000000; }
     }
 
     /// `core.sj$1` block, depth 1, probe-only: core.sj$1.dom
@@ -3694,12 +4056,12 @@ impl HubN3M2 {
         } else if monitor_btl_tick {
             monitor_btl_h1_n_d = (!self.monitor_sync_q);
         }
-        self.monitor_btl_c_brp_d = monitor_btl_c_brp_d;
-        self.monitor_btl_c_sp_d = monitor_btl_c_sp_d;
-        self.monitor_btl_c_ntq_d = monitor_btl_c_ntq_d;
-        self.monitor_btl_c_valid_d = monitor_btl_c_valid_d;
-        self.monitor_btl_c_bad_d = monitor_btl_c_bad_d;
-        self.monitor_btl_h1_n_d = monitor_btl_h1_n_d;
+        if monitor_btl_c_brp_d != self.monitor_btl_c_brp_d { self.monitor_btl_c_brp_d = monitor_btl_c_brp_d; self.pend[1] |= 0x1000000000; }
+        if monitor_btl_c_sp_d != self.monitor_btl_c_sp_d { self.monitor_btl_c_sp_d = monitor_btl_c_sp_d; self.pend[1] |= 0x2000000000; }
+        if monitor_btl_c_ntq_d != self.monitor_btl_c_ntq_d { self.monitor_btl_c_ntq_d = monitor_btl_c_ntq_d; self.pend[1] |= 0x4000000000; }
+        if monitor_btl_c_valid_d != self.monitor_btl_c_valid_d { self.monitor_btl_c_valid_d = monitor_btl_c_valid_d; self.pend[1] |= 0x20000000000; }
+        if monitor_btl_c_bad_d != self.monitor_btl_c_bad_d { self.monitor_btl_c_bad_d = monitor_btl_c_bad_d; self.pend[1] |= 0x40000000000; }
+        if monitor_btl_h1_n_d != self.monitor_btl_h1_n_d { self.monitor_btl_h1_n_d = monitor_btl_h1_n_d; self.pend[1] |= 0x10000000000000; }
     }
 
     /// `monitor.btl` block, depth 1, probe-only: monitor.btl.in_sp, monitor.btl.in_ntq, monitor.btl.in_bad, monitor.btl.sync_cond, monitor.btl.sampled
@@ -4222,34 +4584,34 @@ impl HubN3M2 {
         if monitor_fsm_hs_en != self.monitor_fsm_hs_en { self.monitor_fsm_hs_en = monitor_fsm_hs_en; self.dirty[1] |= 0x6; }
         if monitor_fsm_field != self.monitor_fsm_field { self.monitor_fsm_field = monitor_fsm_field; self.dirty[1] |= 0x1; }
         if monitor_fsm_pos != self.monitor_fsm_pos { self.monitor_fsm_pos = monitor_fsm_pos; self.dirty[1] |= 0x80; }
-        self.monitor_fsm_pfld_d = monitor_fsm_pfld_d;
-        self.monitor_fsm_ppos_d = monitor_fsm_ppos_d;
-        self.monitor_fsm_rtx_d = monitor_fsm_rtx_d;
+        if monitor_fsm_pfld_d != self.monitor_fsm_pfld_d { self.monitor_fsm_pfld_d = monitor_fsm_pfld_d; self.pend[1] |= 0x800000000000000; }
+        if monitor_fsm_ppos_d != self.monitor_fsm_ppos_d { self.monitor_fsm_ppos_d = monitor_fsm_ppos_d; self.pend[1] |= 0x1000000000000000; }
+        if monitor_fsm_rtx_d != self.monitor_fsm_rtx_d { self.monitor_fsm_rtx_d = monitor_fsm_rtx_d; self.pend[1] |= 0x2000000000000000; }
         if monitor_fsm_dstf_active != self.monitor_fsm_dstf_active { self.monitor_fsm_dstf_active = monitor_fsm_dstf_active; self.dirty[1] |= 0x30; }
         if monitor_fsm_crcb_clear != self.monitor_fsm_crcb_clear { self.monitor_fsm_crcb_clear = monitor_fsm_crcb_clear; self.dirty[1] |= 0x40; }
         if monitor_fsm_crcb_en != self.monitor_fsm_crcb_en { self.monitor_fsm_crcb_en = monitor_fsm_crcb_en; self.dirty[1] |= 0x40; }
-        self.monitor_fsm_tid_d = monitor_fsm_tid_d;
-        self.monitor_fsm_tdat_d = monitor_fsm_tdat_d;
-        self.monitor_fsm_tdlc_d = monitor_fsm_tdlc_d;
-        self.monitor_fsm_rid_d = monitor_fsm_rid_d;
-        self.monitor_fsm_rdat_d = monitor_fsm_rdat_d;
-        self.monitor_fsm_rdlc_d = monitor_fsm_rdlc_d;
-        self.monitor_fsm_rrtr_d = monitor_fsm_rrtr_d;
-        self.monitor_fsm_rext_d = monitor_fsm_rext_d;
-        self.monitor_fsm_eqcnt_d = monitor_fsm_eqcnt_d;
-        self.monitor_fsm_eqlast_d = monitor_fsm_eqlast_d;
-        self.monitor_fsm_exc1_d = monitor_fsm_exc1_d;
-        self.monitor_fsm_tecr_d = monitor_fsm_tecr_d;
-        self.monitor_fsm_recr_d = monitor_fsm_recr_d;
-        self.monitor_fsm_runr_d = monitor_fsm_runr_d;
-        self.monitor_fsm_rarmed_d = monitor_fsm_rarmed_d;
-        self.monitor_fsm_req_d = monitor_fsm_req_d;
-        self.monitor_fsm_blocked_d = monitor_fsm_blocked_d;
-        self.monitor_fsm_rxide_r_d = monitor_fsm_rxide_r_d;
-        self.monitor_fsm_rxrtr_r_d = monitor_fsm_rxrtr_r_d;
-        self.monitor_fsm_rxid_r_d = monitor_fsm_rxid_r_d;
-        self.monitor_fsm_rxdlc_r_d = monitor_fsm_rxdlc_r_d;
-        self.monitor_fsm_rxdat_r_d = monitor_fsm_rxdat_r_d;
+        if monitor_fsm_tid_d != self.monitor_fsm_tid_d { self.monitor_fsm_tid_d = monitor_fsm_tid_d; self.pend[2] |= 0x8; }
+        if monitor_fsm_tdat_d != self.monitor_fsm_tdat_d { self.monitor_fsm_tdat_d = monitor_fsm_tdat_d; self.pend[2] |= 0x10; }
+        if monitor_fsm_tdlc_d != self.monitor_fsm_tdlc_d { self.monitor_fsm_tdlc_d = monitor_fsm_tdlc_d; self.pend[2] |= 0x20; }
+        if monitor_fsm_rid_d != self.monitor_fsm_rid_d { self.monitor_fsm_rid_d = monitor_fsm_rid_d; self.pend[2] |= 0x100; }
+        if monitor_fsm_rdat_d != self.monitor_fsm_rdat_d { self.monitor_fsm_rdat_d = monitor_fsm_rdat_d; self.pend[2] |= 0x200; }
+        if monitor_fsm_rdlc_d != self.monitor_fsm_rdlc_d { self.monitor_fsm_rdlc_d = monitor_fsm_rdlc_d; self.pend[2] |= 0x400; }
+        if monitor_fsm_rrtr_d != self.monitor_fsm_rrtr_d { self.monitor_fsm_rrtr_d = monitor_fsm_rrtr_d; self.pend[2] |= 0x800; }
+        if monitor_fsm_rext_d != self.monitor_fsm_rext_d { self.monitor_fsm_rext_d = monitor_fsm_rext_d; self.pend[2] |= 0x1000; }
+        if monitor_fsm_eqcnt_d != self.monitor_fsm_eqcnt_d { self.monitor_fsm_eqcnt_d = monitor_fsm_eqcnt_d; self.pend[2] |= 0x4000; }
+        if monitor_fsm_eqlast_d != self.monitor_fsm_eqlast_d { self.monitor_fsm_eqlast_d = monitor_fsm_eqlast_d; self.pend[2] |= 0x8000; }
+        if monitor_fsm_exc1_d != self.monitor_fsm_exc1_d { self.monitor_fsm_exc1_d = monitor_fsm_exc1_d; self.pend[2] |= 0x40000; }
+        if monitor_fsm_tecr_d != self.monitor_fsm_tecr_d { self.monitor_fsm_tecr_d = monitor_fsm_tecr_d; self.pend[2] |= 0x80000; }
+        if monitor_fsm_recr_d != self.monitor_fsm_recr_d { self.monitor_fsm_recr_d = monitor_fsm_recr_d; self.pend[2] |= 0x100000; }
+        if monitor_fsm_runr_d != self.monitor_fsm_runr_d { self.monitor_fsm_runr_d = monitor_fsm_runr_d; self.pend[2] |= 0x200000; }
+        if monitor_fsm_rarmed_d != self.monitor_fsm_rarmed_d { self.monitor_fsm_rarmed_d = monitor_fsm_rarmed_d; self.pend[2] |= 0x400000; }
+        if monitor_fsm_req_d != self.monitor_fsm_req_d { self.monitor_fsm_req_d = monitor_fsm_req_d; self.pend[2] |= 0x800000; }
+        if monitor_fsm_blocked_d != self.monitor_fsm_blocked_d { self.monitor_fsm_blocked_d = monitor_fsm_blocked_d; self.pend[2] |= 0x1000000; }
+        if monitor_fsm_rxide_r_d != self.monitor_fsm_rxide_r_d { self.monitor_fsm_rxide_r_d = monitor_fsm_rxide_r_d; self.pend[2] |= 0x40000000; }
+        if monitor_fsm_rxrtr_r_d != self.monitor_fsm_rxrtr_r_d { self.monitor_fsm_rxrtr_r_d = monitor_fsm_rxrtr_r_d; self.pend[2] |= 0x80000000; }
+        if monitor_fsm_rxid_r_d != self.monitor_fsm_rxid_r_d { self.monitor_fsm_rxid_r_d = monitor_fsm_rxid_r_d; self.pend[2] |= 0x100000000; }
+        if monitor_fsm_rxdlc_r_d != self.monitor_fsm_rxdlc_r_d { self.monitor_fsm_rxdlc_r_d = monitor_fsm_rxdlc_r_d; self.pend[2] |= 0x200000000; }
+        if monitor_fsm_rxdat_r_d != self.monitor_fsm_rxdat_r_d { self.monitor_fsm_rxdat_r_d = monitor_fsm_rxdat_r_d; self.pend[2] |= 0x400000000; }
     }
 
     /// `monitor.fsm` block, depth 1, probe-only: monitor.fsm.l_curstf, monitor.fsm.l_dfld, monitor.fsm.l_dpos, monitor.fsm.l_crcen, monitor.fsm.l_usetx, monitor.fsm.l_role, ... (35 signals)
@@ -4890,11 +5252,11 @@ impl HubN3M2 {
         if core_coupler_u_1 != self.core_coupler_u_1 { self.core_coupler_u_1 = core_coupler_u_1; self.dirty[1] |= 0xc00; }
         if core_coupler_u_2 != self.core_coupler_u_2 { self.core_coupler_u_2 = core_coupler_u_2; self.dirty[1] |= 0x3000; }
         if core_coupler_bt != self.core_coupler_bt { self.core_coupler_bt = core_coupler_bt; self.dirty[1] |= 0x55500; }
-        self.core_coupler_tx_n_0_d = core_coupler_tx_n_0_d;
-        self.core_coupler_tx_n_1_d = core_coupler_tx_n_1_d;
-        self.core_coupler_tx_n_2_d = core_coupler_tx_n_2_d;
-        self.core_coupler_hub_tx_n_0_d = core_coupler_hub_tx_n_0_d;
-        self.core_coupler_hub_tx_n_1_d = core_coupler_hub_tx_n_1_d;
+        if core_coupler_tx_n_0_d != self.core_coupler_tx_n_0_d { self.core_coupler_tx_n_0_d = core_coupler_tx_n_0_d; self.pend[0] |= 0x400; }
+        if core_coupler_tx_n_1_d != self.core_coupler_tx_n_1_d { self.core_coupler_tx_n_1_d = core_coupler_tx_n_1_d; self.pend[0] |= 0x800; }
+        if core_coupler_tx_n_2_d != self.core_coupler_tx_n_2_d { self.core_coupler_tx_n_2_d = core_coupler_tx_n_2_d; self.pend[0] |= 0x1000; }
+        if core_coupler_hub_tx_n_0_d != self.core_coupler_hub_tx_n_0_d { self.core_coupler_hub_tx_n_0_d = core_coupler_hub_tx_n_0_d; self.pend[0] |= 0x2000; }
+        if core_coupler_hub_tx_n_1_d != self.core_coupler_hub_tx_n_1_d { self.core_coupler_hub_tx_n_1_d = core_coupler_hub_tx_n_1_d; self.pend[0] |= 0x4000; }
     }
 
     /// `core.coupler` block, depth 2, probe-only: core.coupler.andc, core.coupler.dl$0, core.coupler.dl$1, core.coupler.dl$2, core.coupler.hl$0, core.coupler.hl$1, ... (11 signals)
@@ -5038,7 +5400,7 @@ impl HubN3M2 {
         if self.core_rst_s2 {
             core_injector_state_d = 0u8;
         }
-        self.core_injector_state_d = core_injector_state_d;
+        if core_injector_state_d != self.core_injector_state_d { self.core_injector_state_d = core_injector_state_d; self.pend[0] |= 0x80000; }
     }
 
     /// `core.pj$0` block, depth 2, state-only: core.pj$0.nack_r.d, core.pj$0.acked.d, core.pj$0.ack_rx.d
@@ -5083,9 +5445,9 @@ impl HubN3M2 {
             core_pj_0_acked_d = false;
             core_pj_0_ack_rx_d = false;
         }
-        self.core_pj_0_nack_r_d = core_pj_0_nack_r_d;
-        self.core_pj_0_acked_d = core_pj_0_acked_d;
-        self.core_pj_0_ack_rx_d = core_pj_0_ack_rx_d;
+        if core_pj_0_nack_r_d != self.core_pj_0_nack_r_d { self.core_pj_0_nack_r_d = core_pj_0_nack_r_d; self.pend[0] |= 0x4000000; }
+        if core_pj_0_acked_d != self.core_pj_0_acked_d { self.core_pj_0_acked_d = core_pj_0_acked_d; self.pend[0] |= 0x100000000; }
+        if core_pj_0_ack_rx_d != self.core_pj_0_ack_rx_d { self.core_pj_0_ack_rx_d = core_pj_0_ack_rx_d; self.pend[0] |= 0x1000000000; }
     }
 
     /// `core.pj$1` block, depth 2, state-only: core.pj$1.nack_r.d, core.pj$1.acked.d, core.pj$1.ack_rx.d
@@ -5130,9 +5492,9 @@ impl HubN3M2 {
             core_pj_1_acked_d = false;
             core_pj_1_ack_rx_d = false;
         }
-        self.core_pj_1_nack_r_d = core_pj_1_nack_r_d;
-        self.core_pj_1_acked_d = core_pj_1_acked_d;
-        self.core_pj_1_ack_rx_d = core_pj_1_ack_rx_d;
+        if core_pj_1_nack_r_d != self.core_pj_1_nack_r_d { self.core_pj_1_nack_r_d = core_pj_1_nack_r_d; self.pend[0] |= 0x20000000000; }
+        if core_pj_1_acked_d != self.core_pj_1_acked_d { self.core_pj_1_acked_d = core_pj_1_acked_d; self.pend[0] |= 0x800000000000; }
+        if core_pj_1_ack_rx_d != self.core_pj_1_ack_rx_d { self.core_pj_1_ack_rx_d = core_pj_1_ack_rx_d; self.pend[0] |= 0x8000000000000; }
     }
 
     /// `core.pj$2` block, depth 2, state-only: core.pj$2.nack_r.d, core.pj$2.acked.d, core.pj$2.ack_rx.d
@@ -5177,9 +5539,9 @@ impl HubN3M2 {
             core_pj_2_acked_d = false;
             core_pj_2_ack_rx_d = false;
         }
-        self.core_pj_2_nack_r_d = core_pj_2_nack_r_d;
-        self.core_pj_2_acked_d = core_pj_2_acked_d;
-        self.core_pj_2_ack_rx_d = core_pj_2_ack_rx_d;
+        if core_pj_2_nack_r_d != self.core_pj_2_nack_r_d { self.core_pj_2_nack_r_d = core_pj_2_nack_r_d; self.pend[0] |= 0x100000000000000; }
+        if core_pj_2_acked_d != self.core_pj_2_acked_d { self.core_pj_2_acked_d = core_pj_2_acked_d; self.pend[0] |= 0x4000000000000000; }
+        if core_pj_2_ack_rx_d != self.core_pj_2_ack_rx_d { self.core_pj_2_ack_rx_d = core_pj_2_ack_rx_d; self.pend[1] |= 0x4; }
     }
 
     /// `core.sj$0` block, depth 2, state-only: core.sj$0.nack_r.d, core.sj$0.rep_seen.d, core.sj$0.rep_first_dom.d, core.sj$0.acked.d, core.sj$0.ack_c.d, core.sj$0.ack_rx.d
@@ -5246,12 +5608,12 @@ impl HubN3M2 {
             core_sj_0_ack_c_d = false;
             core_sj_0_ack_rx_d = false;
         }
-        self.core_sj_0_nack_r_d = core_sj_0_nack_r_d;
-        self.core_sj_0_rep_seen_d = core_sj_0_rep_seen_d;
-        self.core_sj_0_rep_first_dom_d = core_sj_0_rep_first_dom_d;
-        self.core_sj_0_acked_d = core_sj_0_acked_d;
-        self.core_sj_0_ack_c_d = core_sj_0_ack_c_d;
-        self.core_sj_0_ack_rx_d = core_sj_0_ack_rx_d;
+        if core_sj_0_nack_r_d != self.core_sj_0_nack_r_d { self.core_sj_0_nack_r_d = core_sj_0_nack_r_d; self.pend[1] |= 0x80; }
+        if core_sj_0_rep_seen_d != self.core_sj_0_rep_seen_d { self.core_sj_0_rep_seen_d = core_sj_0_rep_seen_d; self.pend[1] |= 0x400; }
+        if core_sj_0_rep_first_dom_d != self.core_sj_0_rep_first_dom_d { self.core_sj_0_rep_first_dom_d = core_sj_0_rep_first_dom_d; self.pend[1] |= 0x800; }
+        if core_sj_0_acked_d != self.core_sj_0_acked_d { self.core_sj_0_acked_d = core_sj_0_acked_d; self.pend[1] |= 0x2000; }
+        if core_sj_0_ack_c_d != self.core_sj_0_ack_c_d { self.core_sj_0_ack_c_d = core_sj_0_ack_c_d; self.pend[1] |= 0x10000; }
+        if core_sj_0_ack_rx_d != self.core_sj_0_ack_rx_d { self.core_sj_0_ack_rx_d = core_sj_0_ack_rx_d; self.pend[1] |= 0x20000; }
     }
 
     /// `core.sj$1` block, depth 2, state-only: core.sj$1.nack_r.d, core.sj$1.rep_seen.d, core.sj$1.rep_first_dom.d, core.sj$1.acked.d, core.sj$1.ack_c.d, core.sj$1.ack_rx.d
@@ -5318,12 +5680,12 @@ impl HubN3M2 {
             core_sj_1_ack_c_d = false;
             core_sj_1_ack_rx_d = false;
         }
-        self.core_sj_1_nack_r_d = core_sj_1_nack_r_d;
-        self.core_sj_1_rep_seen_d = core_sj_1_rep_seen_d;
-        self.core_sj_1_rep_first_dom_d = core_sj_1_rep_first_dom_d;
-        self.core_sj_1_acked_d = core_sj_1_acked_d;
-        self.core_sj_1_ack_c_d = core_sj_1_ack_c_d;
-        self.core_sj_1_ack_rx_d = core_sj_1_ack_rx_d;
+        if core_sj_1_nack_r_d != self.core_sj_1_nack_r_d { self.core_sj_1_nack_r_d = core_sj_1_nack_r_d; self.pend[1] |= 0x400000; }
+        if core_sj_1_rep_seen_d != self.core_sj_1_rep_seen_d { self.core_sj_1_rep_seen_d = core_sj_1_rep_seen_d; self.pend[1] |= 0x2000000; }
+        if core_sj_1_rep_first_dom_d != self.core_sj_1_rep_first_dom_d { self.core_sj_1_rep_first_dom_d = core_sj_1_rep_first_dom_d; self.pend[1] |= 0x4000000; }
+        if core_sj_1_acked_d != self.core_sj_1_acked_d { self.core_sj_1_acked_d = core_sj_1_acked_d; self.pend[1] |= 0x10000000; }
+        if core_sj_1_ack_c_d != self.core_sj_1_ack_c_d { self.core_sj_1_ack_c_d = core_sj_1_ack_c_d; self.pend[1] |= 0x80000000; }
+        if core_sj_1_ack_rx_d != self.core_sj_1_ack_rx_d { self.core_sj_1_ack_rx_d = core_sj_1_ack_rx_d; self.pend[1] |= 0x100000000; }
     }
 
     /// `monitor` block, depth 2, state-only: monitor.dbg_field
@@ -5479,17 +5841,17 @@ impl HubN3M2 {
                 }
             }
         }
-        self.monitor_btl_cnt_d = monitor_btl_cnt_d;
-        self.monitor_btl_spw_d = monitor_btl_spw_d;
-        self.monitor_btl_nbw_d = monitor_btl_nbw_d;
-        self.monitor_btl_busmon_n_d = monitor_btl_busmon_n_d;
-        self.monitor_btl_sync_dis_d = monitor_btl_sync_dis_d;
-        self.monitor_btl_since_d = monitor_btl_since_d;
-        self.monitor_btl_pending_d = monitor_btl_pending_d;
-        self.monitor_btl_tx_n_d = monitor_btl_tx_n_d;
-        self.monitor_btl_sample_r_d = monitor_btl_sample_r_d;
-        self.monitor_btl_hard_r_d = monitor_btl_hard_r_d;
-        self.monitor_btl_resync_r_d = monitor_btl_resync_r_d;
+        if monitor_btl_cnt_d != self.monitor_btl_cnt_d { self.monitor_btl_cnt_d = monitor_btl_cnt_d; self.pend[1] |= 0x100000000000; }
+        if monitor_btl_spw_d != self.monitor_btl_spw_d { self.monitor_btl_spw_d = monitor_btl_spw_d; self.pend[1] |= 0x200000000000; }
+        if monitor_btl_nbw_d != self.monitor_btl_nbw_d { self.monitor_btl_nbw_d = monitor_btl_nbw_d; self.pend[1] |= 0x400000000000; }
+        if monitor_btl_busmon_n_d != self.monitor_btl_busmon_n_d { self.monitor_btl_busmon_n_d = monitor_btl_busmon_n_d; self.pend[1] |= 0x800000000000; }
+        if monitor_btl_sync_dis_d != self.monitor_btl_sync_dis_d { self.monitor_btl_sync_dis_d = monitor_btl_sync_dis_d; self.pend[1] |= 0x1000000000000; }
+        if monitor_btl_since_d != self.monitor_btl_since_d { self.monitor_btl_since_d = monitor_btl_since_d; self.pend[1] |= 0x2000000000000; }
+        if monitor_btl_pending_d != self.monitor_btl_pending_d { self.monitor_btl_pending_d = monitor_btl_pending_d; self.pend[1] |= 0x4000000000000; }
+        if monitor_btl_tx_n_d != self.monitor_btl_tx_n_d { self.monitor_btl_tx_n_d = monitor_btl_tx_n_d; self.pend[1] |= 0x8000000000000; }
+        if monitor_btl_sample_r_d != self.monitor_btl_sample_r_d { self.monitor_btl_sample_r_d = monitor_btl_sample_r_d; self.pend[1] |= 0x40000000000000; }
+        if monitor_btl_hard_r_d != self.monitor_btl_hard_r_d { self.monitor_btl_hard_r_d = monitor_btl_hard_r_d; self.pend[1] |= 0x80000000000000; }
+        if monitor_btl_resync_r_d != self.monitor_btl_resync_r_d { self.monitor_btl_resync_r_d = monitor_btl_resync_r_d; self.pend[1] |= 0x100000000000000; }
     }
 
     /// `monitor.btl` block, depth 2, probe-only: monitor.btl.bit_start, monitor.btl.do_hard, monitor.btl.do_resync, monitor.btl.restart, monitor.btl.sp_a, monitor.btl.nb_a, ... (13 signals)
@@ -5985,8 +6347,8 @@ impl HubN3M2 {
             monitor_fsm_dstf_lvl_d = false;
         }
         if monitor_fsm_dstf_stuff_error != self.monitor_fsm_dstf_stuff_error { self.monitor_fsm_dstf_stuff_error = monitor_fsm_dstf_stuff_error; self.dirty[1] |= 0x180000; }
-        self.monitor_fsm_dstf_cnt_d = monitor_fsm_dstf_cnt_d;
-        self.monitor_fsm_dstf_lvl_d = monitor_fsm_dstf_lvl_d;
+        if monitor_fsm_dstf_cnt_d != self.monitor_fsm_dstf_cnt_d { self.monitor_fsm_dstf_cnt_d = monitor_fsm_dstf_cnt_d; self.pend[1] |= 0x8000000000000000; }
+        if monitor_fsm_dstf_lvl_d != self.monitor_fsm_dstf_lvl_d { self.monitor_fsm_dstf_lvl_d = monitor_fsm_dstf_lvl_d; self.pend[2] |= 0x1; }
     }
 
     /// `monitor.fsm.dstf` block, depth 2, probe-only: monitor.fsm.dstf.stuff_bit, monitor.fsm.dstf.take
@@ -6022,7 +6384,7 @@ impl HubN3M2 {
         if (self.monitor_l_hold | self.monitor_fsm_crcb_clear) {
             monitor_fsm_crcb_state_d = 0u16;
         }
-        self.monitor_fsm_crcb_state_d = monitor_fsm_crcb_state_d;
+        if monitor_fsm_crcb_state_d != self.monitor_fsm_crcb_state_d { self.monitor_fsm_crcb_state_d = monitor_fsm_crcb_state_d; self.pend[2] |= 0x2; }
     }
 
     /// `adapter` block, depth 2, state-only: adapter.p_r.d
@@ -6035,7 +6397,7 @@ impl HubN3M2 {
         if self.core_rst_s2 {
             adapter_p_r_d = 0u8;
         }
-        self.adapter_p_r_d = adapter_p_r_d;
+        if adapter_p_r_d != self.adapter_p_r_d { self.adapter_p_r_d = adapter_p_r_d; self.pend[2] |= 0x2000000000; }
     }
 
     /// `core.pj$0` block, depth 3, state-only: core.pj$0.blame, core.pj$0.tx_error, core.pj$0.bic_r.d, core.pj$0.life_r.d, core.pj$0.dbc_r.d, core.pj$0.cont_r.d, ... (9 signals)
@@ -6128,13 +6490,13 @@ impl HubN3M2 {
         }
         if core_pj_0_blame != self.core_pj_0_blame { self.core_pj_0_blame = core_pj_0_blame; self.dirty[1] |= 0xc00000; }
         if core_pj_0_tx_error != self.core_pj_0_tx_error { self.core_pj_0_tx_error = core_pj_0_tx_error; self.dirty[1] |= 0xc00000; }
-        self.core_pj_0_bic_r_d = core_pj_0_bic_r_d;
-        self.core_pj_0_life_r_d = core_pj_0_life_r_d;
-        self.core_pj_0_dbc_r_d = core_pj_0_dbc_r_d;
-        self.core_pj_0_cont_r_d = core_pj_0_cont_r_d;
-        self.core_pj_0_bad_d = core_pj_0_bad_d;
-        self.core_pj_0_ack_missing_d = core_pj_0_ack_missing_d;
-        self.core_pj_0_ack_c_d = core_pj_0_ack_c_d;
+        if core_pj_0_bic_r_d != self.core_pj_0_bic_r_d { self.core_pj_0_bic_r_d = core_pj_0_bic_r_d; self.pend[0] |= 0x800000; }
+        if core_pj_0_life_r_d != self.core_pj_0_life_r_d { self.core_pj_0_life_r_d = core_pj_0_life_r_d; self.pend[0] |= 0x1000000; }
+        if core_pj_0_dbc_r_d != self.core_pj_0_dbc_r_d { self.core_pj_0_dbc_r_d = core_pj_0_dbc_r_d; self.pend[0] |= 0x2000000; }
+        if core_pj_0_cont_r_d != self.core_pj_0_cont_r_d { self.core_pj_0_cont_r_d = core_pj_0_cont_r_d; self.pend[0] |= 0x8000000; }
+        if core_pj_0_bad_d != self.core_pj_0_bad_d { self.core_pj_0_bad_d = core_pj_0_bad_d; self.pend[0] |= 0x200000000; }
+        if core_pj_0_ack_missing_d != self.core_pj_0_ack_missing_d { self.core_pj_0_ack_missing_d = core_pj_0_ack_missing_d; self.pend[0] |= 0x400000000; }
+        if core_pj_0_ack_c_d != self.core_pj_0_ack_c_d { self.core_pj_0_ack_c_d = core_pj_0_ack_c_d; self.pend[0] |= 0x800000000; }
     }
 
     /// `core.pj$0` block, depth 3, probe-only: core.pj$0.dom, core.pj$0.unj
@@ -6237,13 +6599,13 @@ impl HubN3M2 {
         }
         if core_pj_1_blame != self.core_pj_1_blame { self.core_pj_1_blame = core_pj_1_blame; self.dirty[1] |= 0xc00000; }
         if core_pj_1_tx_error != self.core_pj_1_tx_error { self.core_pj_1_tx_error = core_pj_1_tx_error; self.dirty[1] |= 0xc00000; }
-        self.core_pj_1_bic_r_d = core_pj_1_bic_r_d;
-        self.core_pj_1_life_r_d = core_pj_1_life_r_d;
-        self.core_pj_1_dbc_r_d = core_pj_1_dbc_r_d;
-        self.core_pj_1_cont_r_d = core_pj_1_cont_r_d;
-        self.core_pj_1_bad_d = core_pj_1_bad_d;
-        self.core_pj_1_ack_missing_d = core_pj_1_ack_missing_d;
-        self.core_pj_1_ack_c_d = core_pj_1_ack_c_d;
+        if core_pj_1_bic_r_d != self.core_pj_1_bic_r_d { self.core_pj_1_bic_r_d = core_pj_1_bic_r_d; self.pend[0] |= 0x4000000000; }
+        if core_pj_1_life_r_d != self.core_pj_1_life_r_d { self.core_pj_1_life_r_d = core_pj_1_life_r_d; self.pend[0] |= 0x8000000000; }
+        if core_pj_1_dbc_r_d != self.core_pj_1_dbc_r_d { self.core_pj_1_dbc_r_d = core_pj_1_dbc_r_d; self.pend[0] |= 0x10000000000; }
+        if core_pj_1_cont_r_d != self.core_pj_1_cont_r_d { self.core_pj_1_cont_r_d = core_pj_1_cont_r_d; self.pend[0] |= 0x40000000000; }
+        if core_pj_1_bad_d != self.core_pj_1_bad_d { self.core_pj_1_bad_d = core_pj_1_bad_d; self.pend[0] |= 0x1000000000000; }
+        if core_pj_1_ack_missing_d != self.core_pj_1_ack_missing_d { self.core_pj_1_ack_missing_d = core_pj_1_ack_missing_d; self.pend[0] |= 0x2000000000000; }
+        if core_pj_1_ack_c_d != self.core_pj_1_ack_c_d { self.core_pj_1_ack_c_d = core_pj_1_ack_c_d; self.pend[0] |= 0x4000000000000; }
     }
 
     /// `core.pj$1` block, depth 3, probe-only: core.pj$1.dom, core.pj$1.unj
@@ -6346,13 +6708,13 @@ impl HubN3M2 {
         }
         if core_pj_2_blame != self.core_pj_2_blame { self.core_pj_2_blame = core_pj_2_blame; self.dirty[1] |= 0xc00000; }
         if core_pj_2_tx_error != self.core_pj_2_tx_error { self.core_pj_2_tx_error = core_pj_2_tx_error; self.dirty[1] |= 0xc00000; }
-        self.core_pj_2_bic_r_d = core_pj_2_bic_r_d;
-        self.core_pj_2_life_r_d = core_pj_2_life_r_d;
-        self.core_pj_2_dbc_r_d = core_pj_2_dbc_r_d;
-        self.core_pj_2_cont_r_d = core_pj_2_cont_r_d;
-        self.core_pj_2_bad_d = core_pj_2_bad_d;
-        self.core_pj_2_ack_missing_d = core_pj_2_ack_missing_d;
-        self.core_pj_2_ack_c_d = core_pj_2_ack_c_d;
+        if core_pj_2_bic_r_d != self.core_pj_2_bic_r_d { self.core_pj_2_bic_r_d = core_pj_2_bic_r_d; self.pend[0] |= 0x20000000000000; }
+        if core_pj_2_life_r_d != self.core_pj_2_life_r_d { self.core_pj_2_life_r_d = core_pj_2_life_r_d; self.pend[0] |= 0x40000000000000; }
+        if core_pj_2_dbc_r_d != self.core_pj_2_dbc_r_d { self.core_pj_2_dbc_r_d = core_pj_2_dbc_r_d; self.pend[0] |= 0x80000000000000; }
+        if core_pj_2_cont_r_d != self.core_pj_2_cont_r_d { self.core_pj_2_cont_r_d = core_pj_2_cont_r_d; self.pend[0] |= 0x200000000000000; }
+        if core_pj_2_bad_d != self.core_pj_2_bad_d { self.core_pj_2_bad_d = core_pj_2_bad_d; self.pend[0] |= 0x8000000000000000; }
+        if core_pj_2_ack_missing_d != self.core_pj_2_ack_missing_d { self.core_pj_2_ack_missing_d = core_pj_2_ack_missing_d; self.pend[1] |= 0x1; }
+        if core_pj_2_ack_c_d != self.core_pj_2_ack_c_d { self.core_pj_2_ack_c_d = core_pj_2_ack_c_d; self.pend[1] |= 0x2; }
     }
 
     /// `core.pj$2` block, depth 3, probe-only: core.pj$2.dom, core.pj$2.unj
@@ -6438,11 +6800,11 @@ impl HubN3M2 {
         }
         if core_sj_0_blame != self.core_sj_0_blame { self.core_sj_0_blame = core_sj_0_blame; self.dirty[1] |= 0xc00000; }
         if core_sj_0_tx_error != self.core_sj_0_tx_error { self.core_sj_0_tx_error = core_sj_0_tx_error; self.dirty[1] |= 0xc00000; }
-        self.core_sj_0_bic_r_d = core_sj_0_bic_r_d;
-        self.core_sj_0_life_r_d = core_sj_0_life_r_d;
-        self.core_sj_0_cont_r_d = core_sj_0_cont_r_d;
-        self.core_sj_0_bad_d = core_sj_0_bad_d;
-        self.core_sj_0_ack_missing_d = core_sj_0_ack_missing_d;
+        if core_sj_0_bic_r_d != self.core_sj_0_bic_r_d { self.core_sj_0_bic_r_d = core_sj_0_bic_r_d; self.pend[1] |= 0x10; }
+        if core_sj_0_life_r_d != self.core_sj_0_life_r_d { self.core_sj_0_life_r_d = core_sj_0_life_r_d; self.pend[1] |= 0x20; }
+        if core_sj_0_cont_r_d != self.core_sj_0_cont_r_d { self.core_sj_0_cont_r_d = core_sj_0_cont_r_d; self.pend[1] |= 0x100; }
+        if core_sj_0_bad_d != self.core_sj_0_bad_d { self.core_sj_0_bad_d = core_sj_0_bad_d; self.pend[1] |= 0x4000; }
+        if core_sj_0_ack_missing_d != self.core_sj_0_ack_missing_d { self.core_sj_0_ack_missing_d = core_sj_0_ack_missing_d; self.pend[1] |= 0x8000; }
     }
 
     /// `core.sj$0` block, depth 3, probe-only: core.sj$0.unj
@@ -6527,11 +6889,11 @@ impl HubN3M2 {
         }
         if core_sj_1_blame != self.core_sj_1_blame { self.core_sj_1_blame = core_sj_1_blame; self.dirty[1] |= 0xc00000; }
         if core_sj_1_tx_error != self.core_sj_1_tx_error { self.core_sj_1_tx_error = core_sj_1_tx_error; self.dirty[1] |= 0xc00000; }
-        self.core_sj_1_bic_r_d = core_sj_1_bic_r_d;
-        self.core_sj_1_life_r_d = core_sj_1_life_r_d;
-        self.core_sj_1_cont_r_d = core_sj_1_cont_r_d;
-        self.core_sj_1_bad_d = core_sj_1_bad_d;
-        self.core_sj_1_ack_missing_d = core_sj_1_ack_missing_d;
+        if core_sj_1_bic_r_d != self.core_sj_1_bic_r_d { self.core_sj_1_bic_r_d = core_sj_1_bic_r_d; self.pend[1] |= 0x80000; }
+        if core_sj_1_life_r_d != self.core_sj_1_life_r_d { self.core_sj_1_life_r_d = core_sj_1_life_r_d; self.pend[1] |= 0x100000; }
+        if core_sj_1_cont_r_d != self.core_sj_1_cont_r_d { self.core_sj_1_cont_r_d = core_sj_1_cont_r_d; self.pend[1] |= 0x800000; }
+        if core_sj_1_bad_d != self.core_sj_1_bad_d { self.core_sj_1_bad_d = core_sj_1_bad_d; self.pend[1] |= 0x20000000; }
+        if core_sj_1_ack_missing_d != self.core_sj_1_ack_missing_d { self.core_sj_1_ack_missing_d = core_sj_1_ack_missing_d; self.pend[1] |= 0x40000000; }
     }
 
     /// `core.sj$1` block, depth 3, probe-only: core.sj$1.unj
@@ -6550,7 +6912,7 @@ impl HubN3M2 {
         if self.core_rst_s2 {
             monitor_sync_s1_n_d = false;
         }
-        self.monitor_sync_s1_n_d = monitor_sync_s1_n_d;
+        if monitor_sync_s1_n_d != self.monitor_sync_s1_n_d { self.monitor_sync_s1_n_d = monitor_sync_s1_n_d; self.pend[1] |= 0x400000000; }
     }
 
     /// `monitor.fsm` block, depth 3, state-only: monitor.fsm.fld.d, monitor.fsm.fpos.d, monitor.fsm.dom.d, monitor.fsm.crcerr.d, monitor.fsm.fdone.d, monitor.fsm.dafc.d, ... (12 signals)
@@ -7305,18 +7667,18 @@ impl HubN3M2 {
             monitor_fsm_dafany_d = false;
             monitor_fsm_evr_d = 0u32;
         }
-        self.monitor_fsm_fld_d = monitor_fsm_fld_d;
-        self.monitor_fsm_fpos_d = monitor_fsm_fpos_d;
-        self.monitor_fsm_dom_d = monitor_fsm_dom_d;
-        self.monitor_fsm_crcerr_d = monitor_fsm_crcerr_d;
-        self.monitor_fsm_fdone_d = monitor_fsm_fdone_d;
-        self.monitor_fsm_dafc_d = monitor_fsm_dafc_d;
-        self.monitor_fsm_dafany_d = monitor_fsm_dafany_d;
-        self.monitor_fsm_evr_d = monitor_fsm_evr_d;
-        self.monitor_fsm_arbpos_r_d = monitor_fsm_arbpos_r_d;
-        self.monitor_fsm_errf_r_d = monitor_fsm_errf_r_d;
-        self.monitor_fsm_errp_r_d = monitor_fsm_errp_r_d;
-        self.monitor_fsm_errtx_r_d = monitor_fsm_errtx_r_d;
+        if monitor_fsm_fld_d != self.monitor_fsm_fld_d { self.monitor_fsm_fld_d = monitor_fsm_fld_d; self.pend[1] |= 0x200000000000000; }
+        if monitor_fsm_fpos_d != self.monitor_fsm_fpos_d { self.monitor_fsm_fpos_d = monitor_fsm_fpos_d; self.pend[1] |= 0x400000000000000; }
+        if monitor_fsm_dom_d != self.monitor_fsm_dom_d { self.monitor_fsm_dom_d = monitor_fsm_dom_d; self.pend[1] |= 0x4000000000000000; }
+        if monitor_fsm_crcerr_d != self.monitor_fsm_crcerr_d { self.monitor_fsm_crcerr_d = monitor_fsm_crcerr_d; self.pend[2] |= 0x4; }
+        if monitor_fsm_fdone_d != self.monitor_fsm_fdone_d { self.monitor_fsm_fdone_d = monitor_fsm_fdone_d; self.pend[2] |= 0x2000; }
+        if monitor_fsm_dafc_d != self.monitor_fsm_dafc_d { self.monitor_fsm_dafc_d = monitor_fsm_dafc_d; self.pend[2] |= 0x10000; }
+        if monitor_fsm_dafany_d != self.monitor_fsm_dafany_d { self.monitor_fsm_dafany_d = monitor_fsm_dafany_d; self.pend[2] |= 0x20000; }
+        if monitor_fsm_evr_d != self.monitor_fsm_evr_d { self.monitor_fsm_evr_d = monitor_fsm_evr_d; self.pend[2] |= 0x2000000; }
+        if monitor_fsm_arbpos_r_d != self.monitor_fsm_arbpos_r_d { self.monitor_fsm_arbpos_r_d = monitor_fsm_arbpos_r_d; self.pend[2] |= 0x4000000; }
+        if monitor_fsm_errf_r_d != self.monitor_fsm_errf_r_d { self.monitor_fsm_errf_r_d = monitor_fsm_errf_r_d; self.pend[2] |= 0x8000000; }
+        if monitor_fsm_errp_r_d != self.monitor_fsm_errp_r_d { self.monitor_fsm_errp_r_d = monitor_fsm_errp_r_d; self.pend[2] |= 0x10000000; }
+        if monitor_fsm_errtx_r_d != self.monitor_fsm_errtx_r_d { self.monitor_fsm_errtx_r_d = monitor_fsm_errtx_r_d; self.pend[2] |= 0x20000000; }
     }
 
     /// `monitor.fsm` block, depth 3, probe-only: monitor.fsm.l_nf, monitor.fsm.l_npos, monitor.fsm.l_ndom, monitor.fsm.l_err, monitor.fsm.l_errk, monitor.fsm.l_tinc, ... (12 signals)
@@ -7991,7 +8353,7 @@ impl HubN3M2 {
         if self.core_rst_s2 {
             adapter_f_r_d = 0u8;
         }
-        self.adapter_f_r_d = adapter_f_r_d;
+        if adapter_f_r_d != self.adapter_f_r_d { self.adapter_f_r_d = adapter_f_r_d; self.pend[2] |= 0x1000000000; }
     }
 
     /// `core` block, depth 4, state-only: core.err_start_r.d, core.trigger
@@ -8014,7 +8376,7 @@ impl HubN3M2 {
         core_any_tx_error = (core_any_tx_error | self.core_sj_1_tx_error);
         core_trigger = (self.adapter_s_r & ((self.adapter_mon_error | core_any_blame) | core_any_tx_error));
         core_err_start_r_d = (core_trigger & (!self.core_efgen_busy));
-        self.core_err_start_r_d = core_err_start_r_d;
+        if core_err_start_r_d != self.core_err_start_r_d { self.core_err_start_r_d = core_err_start_r_d; self.pend[0] |= 0x40000; }
         if core_trigger != self.core_trigger { self.core_trigger = core_trigger; self.dirty[1] |= 0x1000000; }
     }
 
@@ -8053,7 +8415,7 @@ impl HubN3M2 {
         if self.core_rst_s2 {
             core_efgen_pending_d = false;
         }
-        self.core_efgen_pending_d = core_efgen_pending_d;
+        if core_efgen_pending_d != self.core_efgen_pending_d { self.core_efgen_pending_d = core_efgen_pending_d; self.pend[0] |= 0x8000; }
     }
 
 }
@@ -9608,6 +9970,7 @@ impl rt::Model for HubN3M2 {
             _ => return false,
         }
         self.dirty = [!0; 2];
+        self.pend = [!0; 3];
         true
     }
     fn set_mem(&mut self, r: usize, addr: usize, v: u128) {

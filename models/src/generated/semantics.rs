@@ -87,6 +87,8 @@ pub struct Ops {
     seen_f: bool,
     /// Groups to evaluate (one bit per group, see `run`).
     dirty: [u64; 1],
+    /// Registers whose input changed since they took it (see `edge`).
+    pend: [u64; 1],
     trace: bool,
 }
 
@@ -145,6 +147,7 @@ impl Ops {
             seen_w: 0u128,
             seen_f: false,
             dirty: [!0; 1],
+            pend: [!0; 1],
             trace: false,
         };
         m.eval_all();
@@ -181,6 +184,7 @@ impl Ops {
     /// Evaluate every group.
     fn eval_all(&mut self) {
         self.dirty = [!0; 1];
+        self.pend = [!0; 1];
         self.sense();
         self.run(&Self::ALL);
     }
@@ -200,6 +204,7 @@ impl Ops {
         }
     }
 
+    #[inline(never)]
     fn group(&mut self, k: usize) {
         match k {
             0 => self.g0(),
@@ -226,16 +231,43 @@ impl Ops {
 
     /// Rising edge: registers and memories take their inputs.
     fn edge(&mut self) {
-        let n0 = self.ph_d;
-        let n1 = self.cnt_d;
-        let n2 = self.child_y_2;
         let n3 = self.pipe1;
-        let n4 = self.child_acc_d;
-        if n0 != self.ph { self.ph = n0; self.dirty[0] |= 0x6; }
-        if n1 != self.cnt { self.cnt = n1; self.dirty[0] |= 0x2; }
-        self.pipe1 = n2;
+        for w in 0..1 {
+            loop {
+                let m = self.pend[w];
+                if m == 0 {
+                    break;
+                }
+                let k = m.trailing_zeros() as usize;
+                self.pend[w] &= !(1u64 << k);
+                self.take(w * 64 + k);
+            }
+        }
         if n3 != self.pipe2 { self.pipe2 = n3; self.dirty[0] |= 0x1; }
-        if n4 != self.child_acc { self.child_acc = n4; self.dirty[0] |= 0x70; }
+    }
+
+    /// Pending register `k` takes its input.
+    #[inline(never)]
+    fn take(&mut self, k: usize) {
+        match k {
+            0 => {
+                let n = self.ph_d;
+                if n != self.ph { self.ph = n; self.dirty[0] |= 0x6; }
+            }
+            1 => {
+                let n = self.cnt_d;
+                if n != self.cnt { self.cnt = n; self.dirty[0] |= 0x2; }
+            }
+            2 => {
+                let n = self.child_y_2;
+                self.pipe1 = n;
+            }
+            3 => {
+                let n = self.child_acc_d;
+                if n != self.child_acc { self.child_acc = n; self.dirty[0] |= 0x70; }
+            }
+            _ => {}
+        }
     }
 
     /// `top` block, depth 0, state-only: chain
@@ -276,8 +308,8 @@ impl Ops {
             _ => {
             }
         }
-        self.ph_d = ph_d;
-        self.cnt_d = cnt_d;
+        if ph_d != self.ph_d { self.ph_d = ph_d; self.pend[0] |= 0x1; }
+        if cnt_d != self.cnt_d { self.cnt_d = cnt_d; self.pend[0] |= 0x2; }
     }
 
     /// `top` block, depth 0, input-dependent, output cone: arith, shifts, lit_shift, prod, flags, slices, ... (13 signals)
@@ -436,14 +468,14 @@ impl Ops {
     fn g4(&mut self) {
         let mut child_acc_d: u8 = 0u8;
         child_acc_d = self.child_acc.wrapping_add(self.child_a);
-        self.child_acc_d = child_acc_d;
+        if child_acc_d != self.child_acc_d { self.child_acc_d = child_acc_d; self.pend[0] |= 0x8; }
     }
 
     /// `child` block, depth 1, input-dependent, output cone: child.y
     fn g5(&mut self) {
         let mut child_y_2: u8 = 0u8;
         child_y_2 = (self.child_a ^ self.child_acc).wrapping_add(1u8);
-        if child_y_2 != self.child_y_2 { self.child_y_2 = child_y_2; self.dirty[0] |= 0x40; }
+        if child_y_2 != self.child_y_2 { self.child_y_2 = child_y_2; self.dirty[0] |= 0x40; self.pend[0] |= 0x4; }
     }
 
     /// `top` block, depth 2, input-dependent, output cone: child_y
@@ -611,6 +643,7 @@ impl rt::Model for Ops {
             _ => return false,
         }
         self.dirty = [!0; 1];
+        self.pend = [!0; 1];
         true
     }
     fn set_mem(&mut self, r: usize, addr: usize, v: u128) {

@@ -975,6 +975,8 @@ pub struct Sja1000 {
     seen_rx: bool,
     /// Groups to evaluate (one bit per group, see `run`).
     dirty: [u64; 1],
+    /// Registers whose input changed since they took it (see `edge`).
+    pend: [u64; 2],
     trace: bool,
 }
 
@@ -1477,6 +1479,7 @@ impl Sja1000 {
             seen_wb_dat_w: 0u8,
             seen_rx: false,
             dirty: [!0; 1],
+            pend: [!0; 2],
             trace: false,
         };
         m.eval_all();
@@ -1513,6 +1516,7 @@ impl Sja1000 {
     /// Evaluate every group.
     fn eval_all(&mut self) {
         self.dirty = [!0; 1];
+        self.pend = [!0; 2];
         self.sense();
         self.run(&Self::ALL);
     }
@@ -1532,6 +1536,7 @@ impl Sja1000 {
         }
     }
 
+    #[inline(never)]
     fn group(&mut self, k: usize) {
         match k {
             0 => self.g0(),
@@ -1589,267 +1594,540 @@ impl Sja1000 {
 
     /// Rising edge: registers and memories take their inputs.
     fn edge(&mut self) {
-        let n0 = self.core_sync_s1_n_d;
-        let n1 = self.core_sync_s2_n_d;
-        let n2 = self.core_btl_c_brp_d;
-        let n3 = self.core_btl_c_sp_d;
-        let n4 = self.core_btl_c_ntq_d;
-        let n5 = self.core_btl_c_sjw_d;
-        let n6 = self.core_btl_c_triple_d;
-        let n7 = self.core_btl_c_valid_d;
-        let n8 = self.core_btl_c_bad_d;
-        let n9 = self.core_btl_pre_d;
-        let n10 = self.core_btl_cnt_d;
-        let n11 = self.core_btl_spw_d;
-        let n12 = self.core_btl_nbw_d;
-        let n13 = self.core_btl_busmon_n_d;
-        let n14 = self.core_btl_sync_dis_d;
-        let n15 = self.core_btl_since_d;
-        let n16 = self.core_btl_pending_d;
-        let n17 = self.core_btl_tx_n_d;
-        let n18 = self.core_btl_h1_n_d;
-        let n19 = self.core_btl_h2_n_d;
-        let n20 = self.core_btl_sample_r_d;
-        let n21 = self.core_btl_hard_r_d;
-        let n22 = self.core_btl_resync_r_d;
-        let n23 = self.core_fsm_fld_d;
-        let n24 = self.core_fsm_fpos_d;
-        let n25 = self.core_fsm_pfld_d;
-        let n26 = self.core_fsm_ppos_d;
-        let n27 = self.core_fsm_rtx_d;
-        let n28 = self.core_fsm_dom_d;
-        let n29 = self.core_fsm_dstf_cnt_d;
-        let n30 = self.core_fsm_dstf_lvl_d;
-        let n31 = self.core_fsm_crcb_state_d;
-        let n32 = self.core_fsm_crcerr_d;
-        let n33 = self.core_fsm_tid_d;
-        let n34 = self.core_fsm_tdat_d;
-        let n35 = self.core_fsm_tdlc_d;
-        let n36 = self.core_fsm_tide_d;
-        let n37 = self.core_fsm_trtr_d;
-        let n38 = self.core_fsm_rid_d;
-        let n39 = self.core_fsm_rdat_d;
-        let n40 = self.core_fsm_rdlc_d;
-        let n41 = self.core_fsm_rrtr_d;
-        let n42 = self.core_fsm_rext_d;
-        let n43 = self.core_fsm_fdone_d;
-        let n44 = self.core_fsm_eqcnt_d;
-        let n45 = self.core_fsm_eqlast_d;
-        let n46 = self.core_fsm_dafc_d;
-        let n47 = self.core_fsm_dafany_d;
-        let n48 = self.core_fsm_exc1_d;
-        let n49 = self.core_fsm_tecr_d;
-        let n50 = self.core_fsm_recr_d;
-        let n51 = self.core_fsm_runr_d;
-        let n52 = self.core_fsm_rarmed_d;
-        let n53 = self.core_fsm_req_d;
-        let n54 = self.core_fsm_blocked_d;
-        let n55 = self.core_fsm_evr_d;
-        let n56 = self.core_fsm_arbpos_r_d;
-        let n57 = self.core_fsm_errf_r_d;
-        let n58 = self.core_fsm_errp_r_d;
-        let n59 = self.core_fsm_errtx_r_d;
-        let n60 = self.core_fsm_rxide_r_d;
-        let n61 = self.core_fsm_rxrtr_r_d;
-        let n62 = self.core_fsm_rxid_r_d;
-        let n63 = self.core_fsm_rxdlc_r_d;
-        let n64 = self.core_fsm_rxdat_r_d;
-        let n65 = self.ack_d;
-        let n66 = self.rdat_d;
-        let n67 = self.ramsel_d;
-        let n68 = self.opm_d;
-        let n69 = self.lom_d;
-        let n70 = self.stm_d;
-        let n71 = self.afm_d;
-        let n72 = self.sleep_d;
-        let n73 = self.boff_d;
-        let n74 = self.core_bs_d;
-        let n75 = self.ier_d;
-        let n76 = self.ir_d;
-        let n77 = self.btr0_d;
-        let n78 = self.btr1_d;
-        let n79 = self.ocr_d;
-        let n80 = self.ewl_d;
-        let n81 = self.cdr_d;
-        let n82 = self.alc_d;
-        let n83 = self.alc_lock_d;
-        let n84 = self.ecc_d;
-        let n85 = self.ecc_lock_d;
-        let n86 = self.acr0_d;
-        let n87 = self.acr1_d;
-        let n88 = self.acr2_d;
-        let n89 = self.acr3_d;
-        let n90 = self.amr0_d;
-        let n91 = self.amr1_d;
-        let n92 = self.amr2_d;
-        let n93 = self.amr3_d;
-        let n94 = self.txb0_d;
-        let n95 = self.txb1_d;
-        let n96 = self.txb2_d;
-        let n97 = self.txb3_d;
-        let n98 = self.txb4_d;
-        let n99 = self.txb5_d;
-        let n100 = self.txb6_d;
-        let n101 = self.txb7_d;
-        let n102 = self.txb8_d;
-        let n103 = self.txb9_d;
-        let n104 = self.txb10_d;
-        let n105 = self.txb11_d;
-        let n106 = self.txb12_d;
-        let n107 = self.tx_pend_d;
-        let n108 = self.tx_single_d;
-        let n109 = self.tx_srr_d;
-        let n110 = self.tx_abrt_d;
-        let n111 = self.tx_lb_d;
-        let n112 = self.tcs_n_d;
-        let n113 = self.dos_d;
-        let n114 = self.rbsa_d;
-        let n115 = self.used_d;
-        let n116 = self.rmc_d;
-        let n117 = self.wr_busy_d;
-        let n118 = self.wr_src_d;
-        let n119 = self.wr_idx_d;
-        let n120 = self.wr_len_d;
-        let n121 = self.fetch_q_d;
         let n122 = self.rbsa;
-        let n123 = self.cur_fi_d;
-        let n124 = self.es_q_d;
-        let n125 = self.bs_q_d;
-        let n126 = self.pas_q_d;
-        let n127 = self.seen_ext_d;
         let m0 = self.ram_mem[((self.ram_read_address as usize) & 63)];
         if self.ram_write_enable {
             self.ram_mem[((self.ram_write_address as usize) & 63)] = self.ram_write_data;
         }
-        if n0 != self.core_sync_s1_n { self.core_sync_s1_n = n0; self.dirty[0] |= 0x8008; }
-        if n1 != self.core_sync_s2_n { self.core_sync_s2_n = n1; self.dirty[0] |= 0x8; }
-        if n2 != self.core_btl_c_brp { self.core_btl_c_brp = n2; self.dirty[0] |= 0x6030000; }
-        if n3 != self.core_btl_c_sp { self.core_btl_c_sp = n3; self.dirty[0] |= 0x6010000; }
-        if n4 != self.core_btl_c_ntq { self.core_btl_c_ntq = n4; self.dirty[0] |= 0x6010000; }
-        if n5 != self.core_btl_c_sjw { self.core_btl_c_sjw = n5; self.dirty[0] |= 0x6010020; }
-        if n6 != self.core_btl_c_triple { self.core_btl_c_triple = n6; self.dirty[0] |= 0x2030000; }
-        if n7 != self.core_btl_c_valid { self.core_btl_c_valid = n7; self.dirty[0] |= 0x6030000; }
-        if n8 != self.core_btl_c_bad { self.core_btl_c_bad = n8; self.dirty[0] |= 0x1014006; }
-        if n9 != self.core_btl_pre { self.core_btl_pre = n9; self.dirty[0] |= 0x6030000; }
-        if n10 != self.core_btl_cnt { self.core_btl_cnt = n10; self.dirty[0] |= 0x6000020; }
-        if n11 != self.core_btl_spw { self.core_btl_spw = n11; self.dirty[0] |= 0x6000020; }
-        if n12 != self.core_btl_nbw { self.core_btl_nbw = n12; self.dirty[0] |= 0x6000020; }
-        if n13 != self.core_btl_busmon_n { self.core_btl_busmon_n = n13; self.dirty[0] |= 0x6020010; }
-        if n14 != self.core_btl_sync_dis { self.core_btl_sync_dis = n14; self.dirty[0] |= 0x6020000; }
-        if n15 != self.core_btl_since { self.core_btl_since = n15; self.dirty[0] |= 0x6000020; }
-        if n16 != self.core_btl_pending { self.core_btl_pending = n16; self.dirty[0] |= 0x6000000; }
-        if n17 != self.core_btl_tx_n { self.core_btl_tx_n = n17; self.dirty[0] |= 0x2000010; }
-        if n18 != self.core_btl_h1_n { self.core_btl_h1_n = n18; self.dirty[0] |= 0x2030000; }
-        if n19 != self.core_btl_h2_n { self.core_btl_h2_n = n19; self.dirty[0] |= 0x2030000; }
-        if n20 != self.core_btl_sample_r { self.core_btl_sample_r = n20; self.dirty[0] |= 0x3ef81c0000; }
-        self.core_btl_hard_r = n21;
-        self.core_btl_resync_r = n22;
-        if n23 != self.core_fsm_fld { self.core_fsm_fld = n23; self.dirty[0] |= 0x38181c0000; }
-        if n24 != self.core_fsm_fpos { self.core_fsm_fpos = n24; self.dirty[0] |= 0x38181c0080; }
-        if n25 != self.core_fsm_pfld { self.core_fsm_pfld = n25; self.dirty[0] |= 0x38181c0000; }
-        if n26 != self.core_fsm_ppos { self.core_fsm_ppos = n26; self.dirty[0] |= 0x1800140000; }
-        if n27 != self.core_fsm_rtx { self.core_fsm_rtx = n27; self.dirty[0] |= 0x3e181c0000; }
-        if n28 != self.core_fsm_dom { self.core_fsm_dom = n28; self.dirty[0] |= 0x38181c0000; }
-        if n29 != self.core_fsm_dstf_cnt { self.core_fsm_dstf_cnt = n29; self.dirty[0] |= 0xe0200100; }
-        if n30 != self.core_fsm_dstf_lvl { self.core_fsm_dstf_lvl = n30; self.dirty[0] |= 0xe0200100; }
-        if n31 != self.core_fsm_crcb_state { self.core_fsm_crcb_state = n31; self.dirty[0] |= 0x100c00200; }
-        if n32 != self.core_fsm_crcerr { self.core_fsm_crcerr = n32; self.dirty[0] |= 0x3800000000; }
-        if n33 != self.core_fsm_tid { self.core_fsm_tid = n33; self.dirty[0] |= 0x3010180000; }
-        if n34 != self.core_fsm_tdat { self.core_fsm_tdat = n34; self.dirty[0] |= 0x3010180000; }
-        if n35 != self.core_fsm_tdlc { self.core_fsm_tdlc = n35; self.dirty[0] |= 0x3010180000; }
-        if n36 != self.core_fsm_tide { self.core_fsm_tide = n36; self.dirty[0] |= 0x3010180000; }
-        if n37 != self.core_fsm_trtr { self.core_fsm_trtr = n37; self.dirty[0] |= 0x3010180000; }
-        if n38 != self.core_fsm_rid { self.core_fsm_rid = n38; self.dirty[0] |= 0x140000; }
-        if n39 != self.core_fsm_rdat { self.core_fsm_rdat = n39; self.dirty[0] |= 0x140000; }
-        if n40 != self.core_fsm_rdlc { self.core_fsm_rdlc = n40; self.dirty[0] |= 0x3010140000; }
-        if n41 != self.core_fsm_rrtr { self.core_fsm_rrtr = n41; self.dirty[0] |= 0x3018140000; }
-        if n42 != self.core_fsm_rext { self.core_fsm_rext = n42; self.dirty[0] |= 0x3018140000; }
-        if n43 != self.core_fsm_fdone { self.core_fsm_fdone = n43; self.dirty[0] |= 0x3818100000; }
-        if n44 != self.core_fsm_eqcnt { self.core_fsm_eqcnt = n44; self.dirty[0] |= 0x3008100000; }
-        if n45 != self.core_fsm_eqlast { self.core_fsm_eqlast = n45; self.dirty[0] |= 0x3008100000; }
-        if n46 != self.core_fsm_dafc { self.core_fsm_dafc = n46; self.dirty[0] |= 0x3000100000; }
-        if n47 != self.core_fsm_dafany { self.core_fsm_dafany = n47; self.dirty[0] |= 0x3000100000; }
-        if n48 != self.core_fsm_exc1 { self.core_fsm_exc1 = n48; self.dirty[0] |= 0x3008100000; }
-        if n49 != self.core_fsm_tecr { self.core_fsm_tecr = n49; self.dirty[0] |= 0x36181830c6; }
-        if n50 != self.core_fsm_recr { self.core_fsm_recr = n50; self.dirty[0] |= 0x36181830c6; }
-        if n51 != self.core_fsm_runr { self.core_fsm_runr = n51; self.dirty[0] |= 0x3618183000; }
-        if n52 != self.core_fsm_rarmed { self.core_fsm_rarmed = n52; self.dirty[0] |= 0x3018180000; }
-        if n53 != self.core_fsm_req { self.core_fsm_req = n53; self.dirty[0] |= 0x3618180080; }
-        if n54 != self.core_fsm_blocked { self.core_fsm_blocked = n54; self.dirty[0] |= 0x1008000000; }
-        if n55 != self.core_fsm_evr { self.core_fsm_evr = n55; self.dirty[0] |= 0x40; }
-        if n56 != self.core_fsm_arbpos_r { self.core_fsm_arbpos_r = n56; self.dirty[0] |= 0x1000001004; }
-        if n57 != self.core_fsm_errf_r { self.core_fsm_errf_r = n57; self.dirty[0] |= 0x800003004; }
-        if n58 != self.core_fsm_errp_r { self.core_fsm_errp_r = n58; self.dirty[0] |= 0x800003004; }
-        if n59 != self.core_fsm_errtx_r { self.core_fsm_errtx_r = n59; self.dirty[0] |= 0xe00003004; }
-        if n60 != self.core_fsm_rxide_r { self.core_fsm_rxide_r = n60; self.dirty[0] |= 0x600043800; }
-        if n61 != self.core_fsm_rxrtr_r { self.core_fsm_rxrtr_r = n61; self.dirty[0] |= 0x600043800; }
-        if n62 != self.core_fsm_rxid_r { self.core_fsm_rxid_r = n62; self.dirty[0] |= 0x600043800; }
-        if n63 != self.core_fsm_rxdlc_r { self.core_fsm_rxdlc_r = n63; self.dirty[0] |= 0x600043800; }
-        if n64 != self.core_fsm_rxdat_r { self.core_fsm_rxdat_r = n64; self.dirty[0] |= 0x600043800; }
-        if n65 != self.ack { self.ack = n65; self.dirty[0] |= 0x600003007; }
-        if n66 != self.rdat { self.rdat = n66; self.dirty[0] |= 0x200000001; }
-        if n67 != self.ramsel { self.ramsel = n67; self.dirty[0] |= 0x3; }
-        if n68 != self.opm { self.opm = n68; self.dirty[0] |= 0x600003807; }
-        if n69 != self.lom { self.lom = n69; self.dirty[0] |= 0x3e181c0082; }
-        if n70 != self.stm { self.stm = n70; self.dirty[0] |= 0x3e08100002; }
-        if n71 != self.afm { self.afm = n71; self.dirty[0] |= 0x600003802; }
-        if n72 != self.sleep { self.sleep = n72; self.dirty[0] |= 0x600001006; }
-        if n73 != self.boff { self.boff = n73; self.dirty[0] |= 0x600003006; }
-        if n74 != self.core_bs { self.core_bs = n74; self.dirty[0] |= 0x600003000; }
-        if n75 != self.ier { self.ier = n75; self.dirty[0] |= 0x600000007; }
-        if n76 != self.ir { self.ir = n76; self.dirty[0] |= 0x600000005; }
-        if n77 != self.btr0 { self.btr0 = n77; self.dirty[0] |= 0x600001005; }
-        if n78 != self.btr1 { self.btr1 = n78; self.dirty[0] |= 0x600001005; }
-        if n79 != self.ocr { self.ocr = n79; self.dirty[0] |= 0x600000002; }
-        if n80 != self.ewl { self.ewl = n80; self.dirty[0] |= 0x600003002; }
-        if n81 != self.cdr { self.cdr = n81; self.dirty[0] |= 0x600000002; }
-        if n82 != self.alc { self.alc = n82; self.dirty[0] |= 0x600001000; }
-        if n83 != self.alc_lock { self.alc_lock = n83; self.dirty[0] |= 0x1000; }
-        if n84 != self.ecc { self.ecc = n84; self.dirty[0] |= 0x600001000; }
-        if n85 != self.ecc_lock { self.ecc_lock = n85; self.dirty[0] |= 0x1000; }
-        if n86 != self.acr0 { self.acr0 = n86; self.dirty[0] |= 0x600003806; }
-        if n87 != self.acr1 { self.acr1 = n87; self.dirty[0] |= 0x600003806; }
-        if n88 != self.acr2 { self.acr2 = n88; self.dirty[0] |= 0x600003806; }
-        if n89 != self.acr3 { self.acr3 = n89; self.dirty[0] |= 0x600003806; }
-        if n90 != self.amr0 { self.amr0 = n90; self.dirty[0] |= 0x600003806; }
-        if n91 != self.amr1 { self.amr1 = n91; self.dirty[0] |= 0x600003806; }
-        if n92 != self.amr2 { self.amr2 = n92; self.dirty[0] |= 0x600003806; }
-        if n93 != self.amr3 { self.amr3 = n93; self.dirty[0] |= 0x600003806; }
-        if n94 != self.txb0 { self.txb0 = n94; self.dirty[0] |= 0x600003807; }
-        if n95 != self.txb1 { self.txb1 = n95; self.dirty[0] |= 0x600003807; }
-        if n96 != self.txb2 { self.txb2 = n96; self.dirty[0] |= 0x600003807; }
-        if n97 != self.txb3 { self.txb3 = n97; self.dirty[0] |= 0x600003807; }
-        if n98 != self.txb4 { self.txb4 = n98; self.dirty[0] |= 0x600003807; }
-        if n99 != self.txb5 { self.txb5 = n99; self.dirty[0] |= 0x600003807; }
-        if n100 != self.txb6 { self.txb6 = n100; self.dirty[0] |= 0x600003807; }
-        if n101 != self.txb7 { self.txb7 = n101; self.dirty[0] |= 0x600003807; }
-        if n102 != self.txb8 { self.txb8 = n102; self.dirty[0] |= 0x600003807; }
-        if n103 != self.txb9 { self.txb9 = n103; self.dirty[0] |= 0x600003807; }
-        if n104 != self.txb10 { self.txb10 = n104; self.dirty[0] |= 0x600003807; }
-        if n105 != self.txb11 { self.txb11 = n105; self.dirty[0] |= 0x600003807; }
-        if n106 != self.txb12 { self.txb12 = n106; self.dirty[0] |= 0x600003807; }
-        if n107 != self.tx_pend { self.tx_pend = n107; self.dirty[0] |= 0x600003807; }
-        if n108 != self.tx_single { self.tx_single = n108; self.dirty[0] |= 0x1600000002; }
-        if n109 != self.tx_srr { self.tx_srr = n109; self.dirty[0] |= 0x600003802; }
-        if n110 != self.tx_abrt { self.tx_abrt = n110; self.dirty[0] |= 0x600001000; }
-        if n111 != self.tx_lb { self.tx_lb = n111; self.dirty[0] |= 0x600001007; }
-        if n112 != self.tcs_n { self.tcs_n = n112; self.dirty[0] |= 0x600000004; }
-        if n113 != self.dos { self.dos = n113; self.dirty[0] |= 0x600001000; }
-        if n114 != self.rbsa { self.rbsa = n114; self.dirty[0] |= 0x600001007; }
-        if n115 != self.used { self.used = n115; self.dirty[0] |= 0x600003802; }
-        if n116 != self.rmc { self.rmc = n116; self.dirty[0] |= 0x600001007; }
-        if n117 != self.wr_busy { self.wr_busy = n117; self.dirty[0] |= 0x600003806; }
-        if n118 != self.wr_src { self.wr_src = n118; self.dirty[0] |= 0x600003800; }
-        if n119 != self.wr_idx { self.wr_idx = n119; self.dirty[0] |= 0x600003806; }
-        if n120 != self.wr_len { self.wr_len = n120; self.dirty[0] |= 0x600001804; }
-        if n121 != self.fetch_q { self.fetch_q = n121; self.dirty[0] |= 0x1007; }
+        for w in 0..2 {
+            loop {
+                let m = self.pend[w];
+                if m == 0 {
+                    break;
+                }
+                let k = m.trailing_zeros() as usize;
+                self.pend[w] &= !(1u64 << k);
+                self.take(w * 64 + k);
+            }
+        }
         if n122 != self.fetch_a { self.fetch_a = n122; self.dirty[0] |= 0x1007; }
-        if n123 != self.cur_fi { self.cur_fi = n123; self.dirty[0] |= 0x1007; }
-        if n124 != self.es_q { self.es_q = n124; self.dirty[0] |= 0x600003000; }
-        if n125 != self.bs_q { self.bs_q = n125; self.dirty[0] |= 0x600003000; }
-        if n126 != self.pas_q { self.pas_q = n126; self.dirty[0] |= 0x600003000; }
-        if n127 != self.seen_ext { self.seen_ext = n127; self.dirty[0] |= 0x200003004; }
         if m0 != self.ram_read_data { self.ram_read_data = m0; self.dirty[0] |= 0x1007; }
+    }
+
+    /// Pending register `k` takes its input.
+    #[inline(never)]
+    fn take(&mut self, k: usize) {
+        match k {
+            0 => {
+                let n = self.core_sync_s1_n_d;
+                if n != self.core_sync_s1_n { self.core_sync_s1_n = n; self.dirty[0] |= 0x8008; }
+            }
+            1 => {
+                let n = self.core_sync_s2_n_d;
+                if n != self.core_sync_s2_n { self.core_sync_s2_n = n; self.dirty[0] |= 0x8; }
+            }
+            2 => {
+                let n = self.core_btl_c_brp_d;
+                if n != self.core_btl_c_brp { self.core_btl_c_brp = n; self.dirty[0] |= 0x6030000; }
+            }
+            3 => {
+                let n = self.core_btl_c_sp_d;
+                if n != self.core_btl_c_sp { self.core_btl_c_sp = n; self.dirty[0] |= 0x6010000; }
+            }
+            4 => {
+                let n = self.core_btl_c_ntq_d;
+                if n != self.core_btl_c_ntq { self.core_btl_c_ntq = n; self.dirty[0] |= 0x6010000; }
+            }
+            5 => {
+                let n = self.core_btl_c_sjw_d;
+                if n != self.core_btl_c_sjw { self.core_btl_c_sjw = n; self.dirty[0] |= 0x6010020; }
+            }
+            6 => {
+                let n = self.core_btl_c_triple_d;
+                if n != self.core_btl_c_triple { self.core_btl_c_triple = n; self.dirty[0] |= 0x2030000; }
+            }
+            7 => {
+                let n = self.core_btl_c_valid_d;
+                if n != self.core_btl_c_valid { self.core_btl_c_valid = n; self.dirty[0] |= 0x6030000; }
+            }
+            8 => {
+                let n = self.core_btl_c_bad_d;
+                if n != self.core_btl_c_bad { self.core_btl_c_bad = n; self.dirty[0] |= 0x1014006; }
+            }
+            9 => {
+                let n = self.core_btl_pre_d;
+                if n != self.core_btl_pre { self.core_btl_pre = n; self.dirty[0] |= 0x6030000; }
+            }
+            10 => {
+                let n = self.core_btl_cnt_d;
+                if n != self.core_btl_cnt { self.core_btl_cnt = n; self.dirty[0] |= 0x6000020; }
+            }
+            11 => {
+                let n = self.core_btl_spw_d;
+                if n != self.core_btl_spw { self.core_btl_spw = n; self.dirty[0] |= 0x6000020; }
+            }
+            12 => {
+                let n = self.core_btl_nbw_d;
+                if n != self.core_btl_nbw { self.core_btl_nbw = n; self.dirty[0] |= 0x6000020; }
+            }
+            13 => {
+                let n = self.core_btl_busmon_n_d;
+                if n != self.core_btl_busmon_n { self.core_btl_busmon_n = n; self.dirty[0] |= 0x6020010; }
+            }
+            14 => {
+                let n = self.core_btl_sync_dis_d;
+                if n != self.core_btl_sync_dis { self.core_btl_sync_dis = n; self.dirty[0] |= 0x6020000; }
+            }
+            15 => {
+                let n = self.core_btl_since_d;
+                if n != self.core_btl_since { self.core_btl_since = n; self.dirty[0] |= 0x6000020; }
+            }
+            16 => {
+                let n = self.core_btl_pending_d;
+                if n != self.core_btl_pending { self.core_btl_pending = n; self.dirty[0] |= 0x6000000; }
+            }
+            17 => {
+                let n = self.core_btl_tx_n_d;
+                if n != self.core_btl_tx_n { self.core_btl_tx_n = n; self.dirty[0] |= 0x2000010; }
+            }
+            18 => {
+                let n = self.core_btl_h1_n_d;
+                if n != self.core_btl_h1_n { self.core_btl_h1_n = n; self.dirty[0] |= 0x2030000; }
+            }
+            19 => {
+                let n = self.core_btl_h2_n_d;
+                if n != self.core_btl_h2_n { self.core_btl_h2_n = n; self.dirty[0] |= 0x2030000; }
+            }
+            20 => {
+                let n = self.core_btl_sample_r_d;
+                if n != self.core_btl_sample_r { self.core_btl_sample_r = n; self.dirty[0] |= 0x3ef81c0000; }
+            }
+            21 => {
+                let n = self.core_btl_hard_r_d;
+                self.core_btl_hard_r = n;
+            }
+            22 => {
+                let n = self.core_btl_resync_r_d;
+                self.core_btl_resync_r = n;
+            }
+            23 => {
+                let n = self.core_fsm_fld_d;
+                if n != self.core_fsm_fld { self.core_fsm_fld = n; self.dirty[0] |= 0x38181c0000; }
+            }
+            24 => {
+                let n = self.core_fsm_fpos_d;
+                if n != self.core_fsm_fpos { self.core_fsm_fpos = n; self.dirty[0] |= 0x38181c0080; }
+            }
+            25 => {
+                let n = self.core_fsm_pfld_d;
+                if n != self.core_fsm_pfld { self.core_fsm_pfld = n; self.dirty[0] |= 0x38181c0000; }
+            }
+            26 => {
+                let n = self.core_fsm_ppos_d;
+                if n != self.core_fsm_ppos { self.core_fsm_ppos = n; self.dirty[0] |= 0x1800140000; }
+            }
+            27 => {
+                let n = self.core_fsm_rtx_d;
+                if n != self.core_fsm_rtx { self.core_fsm_rtx = n; self.dirty[0] |= 0x3e181c0000; }
+            }
+            28 => {
+                let n = self.core_fsm_dom_d;
+                if n != self.core_fsm_dom { self.core_fsm_dom = n; self.dirty[0] |= 0x38181c0000; }
+            }
+            29 => {
+                let n = self.core_fsm_dstf_cnt_d;
+                if n != self.core_fsm_dstf_cnt { self.core_fsm_dstf_cnt = n; self.dirty[0] |= 0xe0200100; }
+            }
+            30 => {
+                let n = self.core_fsm_dstf_lvl_d;
+                if n != self.core_fsm_dstf_lvl { self.core_fsm_dstf_lvl = n; self.dirty[0] |= 0xe0200100; }
+            }
+            31 => {
+                let n = self.core_fsm_crcb_state_d;
+                if n != self.core_fsm_crcb_state { self.core_fsm_crcb_state = n; self.dirty[0] |= 0x100c00200; }
+            }
+            32 => {
+                let n = self.core_fsm_crcerr_d;
+                if n != self.core_fsm_crcerr { self.core_fsm_crcerr = n; self.dirty[0] |= 0x3800000000; }
+            }
+            33 => {
+                let n = self.core_fsm_tid_d;
+                if n != self.core_fsm_tid { self.core_fsm_tid = n; self.dirty[0] |= 0x3010180000; }
+            }
+            34 => {
+                let n = self.core_fsm_tdat_d;
+                if n != self.core_fsm_tdat { self.core_fsm_tdat = n; self.dirty[0] |= 0x3010180000; }
+            }
+            35 => {
+                let n = self.core_fsm_tdlc_d;
+                if n != self.core_fsm_tdlc { self.core_fsm_tdlc = n; self.dirty[0] |= 0x3010180000; }
+            }
+            36 => {
+                let n = self.core_fsm_tide_d;
+                if n != self.core_fsm_tide { self.core_fsm_tide = n; self.dirty[0] |= 0x3010180000; }
+            }
+            37 => {
+                let n = self.core_fsm_trtr_d;
+                if n != self.core_fsm_trtr { self.core_fsm_trtr = n; self.dirty[0] |= 0x3010180000; }
+            }
+            38 => {
+                let n = self.core_fsm_rid_d;
+                if n != self.core_fsm_rid { self.core_fsm_rid = n; self.dirty[0] |= 0x140000; }
+            }
+            39 => {
+                let n = self.core_fsm_rdat_d;
+                if n != self.core_fsm_rdat { self.core_fsm_rdat = n; self.dirty[0] |= 0x140000; }
+            }
+            40 => {
+                let n = self.core_fsm_rdlc_d;
+                if n != self.core_fsm_rdlc { self.core_fsm_rdlc = n; self.dirty[0] |= 0x3010140000; }
+            }
+            41 => {
+                let n = self.core_fsm_rrtr_d;
+                if n != self.core_fsm_rrtr { self.core_fsm_rrtr = n; self.dirty[0] |= 0x3018140000; }
+            }
+            42 => {
+                let n = self.core_fsm_rext_d;
+                if n != self.core_fsm_rext { self.core_fsm_rext = n; self.dirty[0] |= 0x3018140000; }
+            }
+            43 => {
+                let n = self.core_fsm_fdone_d;
+                if n != self.core_fsm_fdone { self.core_fsm_fdone = n; self.dirty[0] |= 0x3818100000; }
+            }
+            44 => {
+                let n = self.core_fsm_eqcnt_d;
+                if n != self.core_fsm_eqcnt { self.core_fsm_eqcnt = n; self.dirty[0] |= 0x3008100000; }
+            }
+            45 => {
+                let n = self.core_fsm_eqlast_d;
+                if n != self.core_fsm_eqlast { self.core_fsm_eqlast = n; self.dirty[0] |= 0x3008100000; }
+            }
+            46 => {
+                let n = self.core_fsm_dafc_d;
+                if n != self.core_fsm_dafc { self.core_fsm_dafc = n; self.dirty[0] |= 0x3000100000; }
+            }
+            47 => {
+                let n = self.core_fsm_dafany_d;
+                if n != self.core_fsm_dafany { self.core_fsm_dafany = n; self.dirty[0] |= 0x3000100000; }
+            }
+            48 => {
+                let n = self.core_fsm_exc1_d;
+                if n != self.core_fsm_exc1 { self.core_fsm_exc1 = n; self.dirty[0] |= 0x3008100000; }
+            }
+            49 => {
+                let n = self.core_fsm_tecr_d;
+                if n != self.core_fsm_tecr { self.core_fsm_tecr = n; self.dirty[0] |= 0x36181830c6; }
+            }
+            50 => {
+                let n = self.core_fsm_recr_d;
+                if n != self.core_fsm_recr { self.core_fsm_recr = n; self.dirty[0] |= 0x36181830c6; }
+            }
+            51 => {
+                let n = self.core_fsm_runr_d;
+                if n != self.core_fsm_runr { self.core_fsm_runr = n; self.dirty[0] |= 0x3618183000; }
+            }
+            52 => {
+                let n = self.core_fsm_rarmed_d;
+                if n != self.core_fsm_rarmed { self.core_fsm_rarmed = n; self.dirty[0] |= 0x3018180000; }
+            }
+            53 => {
+                let n = self.core_fsm_req_d;
+                if n != self.core_fsm_req { self.core_fsm_req = n; self.dirty[0] |= 0x3618180080; }
+            }
+            54 => {
+                let n = self.core_fsm_blocked_d;
+                if n != self.core_fsm_blocked { self.core_fsm_blocked = n; self.dirty[0] |= 0x1008000000; }
+            }
+            55 => {
+                let n = self.core_fsm_evr_d;
+                if n != self.core_fsm_evr { self.core_fsm_evr = n; self.dirty[0] |= 0x40; }
+            }
+            56 => {
+                let n = self.core_fsm_arbpos_r_d;
+                if n != self.core_fsm_arbpos_r { self.core_fsm_arbpos_r = n; self.dirty[0] |= 0x1000001004; }
+            }
+            57 => {
+                let n = self.core_fsm_errf_r_d;
+                if n != self.core_fsm_errf_r { self.core_fsm_errf_r = n; self.dirty[0] |= 0x800003004; }
+            }
+            58 => {
+                let n = self.core_fsm_errp_r_d;
+                if n != self.core_fsm_errp_r { self.core_fsm_errp_r = n; self.dirty[0] |= 0x800003004; }
+            }
+            59 => {
+                let n = self.core_fsm_errtx_r_d;
+                if n != self.core_fsm_errtx_r { self.core_fsm_errtx_r = n; self.dirty[0] |= 0xe00003004; }
+            }
+            60 => {
+                let n = self.core_fsm_rxide_r_d;
+                if n != self.core_fsm_rxide_r { self.core_fsm_rxide_r = n; self.dirty[0] |= 0x600043800; }
+            }
+            61 => {
+                let n = self.core_fsm_rxrtr_r_d;
+                if n != self.core_fsm_rxrtr_r { self.core_fsm_rxrtr_r = n; self.dirty[0] |= 0x600043800; }
+            }
+            62 => {
+                let n = self.core_fsm_rxid_r_d;
+                if n != self.core_fsm_rxid_r { self.core_fsm_rxid_r = n; self.dirty[0] |= 0x600043800; }
+            }
+            63 => {
+                let n = self.core_fsm_rxdlc_r_d;
+                if n != self.core_fsm_rxdlc_r { self.core_fsm_rxdlc_r = n; self.dirty[0] |= 0x600043800; }
+            }
+            64 => {
+                let n = self.core_fsm_rxdat_r_d;
+                if n != self.core_fsm_rxdat_r { self.core_fsm_rxdat_r = n; self.dirty[0] |= 0x600043800; }
+            }
+            65 => {
+                let n = self.ack_d;
+                if n != self.ack { self.ack = n; self.dirty[0] |= 0x600003007; }
+            }
+            66 => {
+                let n = self.rdat_d;
+                if n != self.rdat { self.rdat = n; self.dirty[0] |= 0x200000001; }
+            }
+            67 => {
+                let n = self.ramsel_d;
+                if n != self.ramsel { self.ramsel = n; self.dirty[0] |= 0x3; }
+            }
+            68 => {
+                let n = self.opm_d;
+                if n != self.opm { self.opm = n; self.dirty[0] |= 0x600003807; }
+            }
+            69 => {
+                let n = self.lom_d;
+                if n != self.lom { self.lom = n; self.dirty[0] |= 0x3e181c0082; }
+            }
+            70 => {
+                let n = self.stm_d;
+                if n != self.stm { self.stm = n; self.dirty[0] |= 0x3e08100002; }
+            }
+            71 => {
+                let n = self.afm_d;
+                if n != self.afm { self.afm = n; self.dirty[0] |= 0x600003802; }
+            }
+            72 => {
+                let n = self.sleep_d;
+                if n != self.sleep { self.sleep = n; self.dirty[0] |= 0x600001006; }
+            }
+            73 => {
+                let n = self.boff_d;
+                if n != self.boff { self.boff = n; self.dirty[0] |= 0x600003006; }
+            }
+            74 => {
+                let n = self.core_bs_d;
+                if n != self.core_bs { self.core_bs = n; self.dirty[0] |= 0x600003000; }
+            }
+            75 => {
+                let n = self.ier_d;
+                if n != self.ier { self.ier = n; self.dirty[0] |= 0x600000007; }
+            }
+            76 => {
+                let n = self.ir_d;
+                if n != self.ir { self.ir = n; self.dirty[0] |= 0x600000005; }
+            }
+            77 => {
+                let n = self.btr0_d;
+                if n != self.btr0 { self.btr0 = n; self.dirty[0] |= 0x600001005; }
+            }
+            78 => {
+                let n = self.btr1_d;
+                if n != self.btr1 { self.btr1 = n; self.dirty[0] |= 0x600001005; }
+            }
+            79 => {
+                let n = self.ocr_d;
+                if n != self.ocr { self.ocr = n; self.dirty[0] |= 0x600000002; }
+            }
+            80 => {
+                let n = self.ewl_d;
+                if n != self.ewl { self.ewl = n; self.dirty[0] |= 0x600003002; }
+            }
+            81 => {
+                let n = self.cdr_d;
+                if n != self.cdr { self.cdr = n; self.dirty[0] |= 0x600000002; }
+            }
+            82 => {
+                let n = self.alc_d;
+                if n != self.alc { self.alc = n; self.dirty[0] |= 0x600001000; }
+            }
+            83 => {
+                let n = self.alc_lock_d;
+                if n != self.alc_lock { self.alc_lock = n; self.dirty[0] |= 0x1000; }
+            }
+            84 => {
+                let n = self.ecc_d;
+                if n != self.ecc { self.ecc = n; self.dirty[0] |= 0x600001000; }
+            }
+            85 => {
+                let n = self.ecc_lock_d;
+                if n != self.ecc_lock { self.ecc_lock = n; self.dirty[0] |= 0x1000; }
+            }
+            86 => {
+                let n = self.acr0_d;
+                if n != self.acr0 { self.acr0 = n; self.dirty[0] |= 0x600003806; }
+            }
+            87 => {
+                let n = self.acr1_d;
+                if n != self.acr1 { self.acr1 = n; self.dirty[0] |= 0x600003806; }
+            }
+            88 => {
+                let n = self.acr2_d;
+                if n != self.acr2 { self.acr2 = n; self.dirty[0] |= 0x600003806; }
+            }
+            89 => {
+                let n = self.acr3_d;
+                if n != self.acr3 { self.acr3 = n; self.dirty[0] |= 0x600003806; }
+            }
+            90 => {
+                let n = self.amr0_d;
+                if n != self.amr0 { self.amr0 = n; self.dirty[0] |= 0x600003806; }
+            }
+            91 => {
+                let n = self.amr1_d;
+                if n != self.amr1 { self.amr1 = n; self.dirty[0] |= 0x600003806; }
+            }
+            92 => {
+                let n = self.amr2_d;
+                if n != self.amr2 { self.amr2 = n; self.dirty[0] |= 0x600003806; }
+            }
+            93 => {
+                let n = self.amr3_d;
+                if n != self.amr3 { self.amr3 = n; self.dirty[0] |= 0x600003806; }
+            }
+            94 => {
+                let n = self.txb0_d;
+                if n != self.txb0 { self.txb0 = n; self.dirty[0] |= 0x600003807; }
+            }
+            95 => {
+                let n = self.txb1_d;
+                if n != self.txb1 { self.txb1 = n; self.dirty[0] |= 0x600003807; }
+            }
+            96 => {
+                let n = self.txb2_d;
+                if n != self.txb2 { self.txb2 = n; self.dirty[0] |= 0x600003807; }
+            }
+            97 => {
+                let n = self.txb3_d;
+                if n != self.txb3 { self.txb3 = n; self.dirty[0] |= 0x600003807; }
+            }
+            98 => {
+                let n = self.txb4_d;
+                if n != self.txb4 { self.txb4 = n; self.dirty[0] |= 0x600003807; }
+            }
+            99 => {
+                let n = self.txb5_d;
+                if n != self.txb5 { self.txb5 = n; self.dirty[0] |= 0x600003807; }
+            }
+            100 => {
+                let n = self.txb6_d;
+                if n != self.txb6 { self.txb6 = n; self.dirty[0] |= 0x600003807; }
+            }
+            101 => {
+                let n = self.txb7_d;
+                if n != self.txb7 { self.txb7 = n; self.dirty[0] |= 0x600003807; }
+            }
+            102 => {
+                let n = self.txb8_d;
+                if n != self.txb8 { self.txb8 = n; self.dirty[0] |= 0x600003807; }
+            }
+            103 => {
+                let n = self.txb9_d;
+                if n != self.txb9 { self.txb9 = n; self.dirty[0] |= 0x600003807; }
+            }
+            104 => {
+                let n = self.txb10_d;
+                if n != self.txb10 { self.txb10 = n; self.dirty[0] |= 0x600003807; }
+            }
+            105 => {
+                let n = self.txb11_d;
+                if n != self.txb11 { self.txb11 = n; self.dirty[0] |= 0x600003807; }
+            }
+            106 => {
+                let n = self.txb12_d;
+                if n != self.txb12 { self.txb12 = n; self.dirty[0] |= 0x600003807; }
+            }
+            107 => {
+                let n = self.tx_pend_d;
+                if n != self.tx_pend { self.tx_pend = n; self.dirty[0] |= 0x600003807; }
+            }
+            108 => {
+                let n = self.tx_single_d;
+                if n != self.tx_single { self.tx_single = n; self.dirty[0] |= 0x1600000002; }
+            }
+            109 => {
+                let n = self.tx_srr_d;
+                if n != self.tx_srr { self.tx_srr = n; self.dirty[0] |= 0x600003802; }
+            }
+            110 => {
+                let n = self.tx_abrt_d;
+                if n != self.tx_abrt { self.tx_abrt = n; self.dirty[0] |= 0x600001000; }
+            }
+            111 => {
+                let n = self.tx_lb_d;
+                if n != self.tx_lb { self.tx_lb = n; self.dirty[0] |= 0x600001007; }
+            }
+            112 => {
+                let n = self.tcs_n_d;
+                if n != self.tcs_n { self.tcs_n = n; self.dirty[0] |= 0x600000004; }
+            }
+            113 => {
+                let n = self.dos_d;
+                if n != self.dos { self.dos = n; self.dirty[0] |= 0x600001000; }
+            }
+            114 => {
+                let n = self.rbsa_d;
+                if n != self.rbsa { self.rbsa = n; self.dirty[0] |= 0x600001007; }
+            }
+            115 => {
+                let n = self.used_d;
+                if n != self.used { self.used = n; self.dirty[0] |= 0x600003802; }
+            }
+            116 => {
+                let n = self.rmc_d;
+                if n != self.rmc { self.rmc = n; self.dirty[0] |= 0x600001007; }
+            }
+            117 => {
+                let n = self.wr_busy_d;
+                if n != self.wr_busy { self.wr_busy = n; self.dirty[0] |= 0x600003806; }
+            }
+            118 => {
+                let n = self.wr_src_d;
+                if n != self.wr_src { self.wr_src = n; self.dirty[0] |= 0x600003800; }
+            }
+            119 => {
+                let n = self.wr_idx_d;
+                if n != self.wr_idx { self.wr_idx = n; self.dirty[0] |= 0x600003806; }
+            }
+            120 => {
+                let n = self.wr_len_d;
+                if n != self.wr_len { self.wr_len = n; self.dirty[0] |= 0x600001804; }
+            }
+            121 => {
+                let n = self.fetch_q_d;
+                if n != self.fetch_q { self.fetch_q = n; self.dirty[0] |= 0x1007; }
+            }
+            122 => {
+                let n = self.cur_fi_d;
+                if n != self.cur_fi { self.cur_fi = n; self.dirty[0] |= 0x1007; }
+            }
+            123 => {
+                let n = self.es_q_d;
+                if n != self.es_q { self.es_q = n; self.dirty[0] |= 0x600003000; }
+            }
+            124 => {
+                let n = self.bs_q_d;
+                if n != self.bs_q { self.bs_q = n; self.dirty[0] |= 0x600003000; }
+            }
+            125 => {
+                let n = self.pas_q_d;
+                if n != self.pas_q { self.pas_q = n; self.dirty[0] |= 0x600003000; }
+            }
+            126 => {
+                let n = self.seen_ext_d;
+                if n != self.seen_ext { self.seen_ext = n; self.dirty[0] |= 0x200003004; }
+            }
+            _ => {}
+        }
     }
 
     /// `top` block, depth 0, state-only: wb_dat_r, wb_ack, int_n, core.brp, core.prop, core.ph1, ... (15 signals)
@@ -1944,7 +2222,7 @@ impl Sja1000 {
         if core_tx_id != self.core_tx_id { self.core_tx_id = core_tx_id; self.dirty[0] |= 0x3010180000; }
         if core_tx_dlc != self.core_tx_dlc { self.core_tx_dlc = core_tx_dlc; self.dirty[0] |= 0x3010180000; }
         if core_tx_data != self.core_tx_data { self.core_tx_data = core_tx_data; self.dirty[0] |= 0x3010180000; }
-        self.cur_fi_d = cur_fi_d;
+        if cur_fi_d != self.cur_fi_d { self.cur_fi_d = cur_fi_d; self.pend[1] |= 0x400000000000000; }
         if l_tx_ide != self.l_tx_ide { self.l_tx_ide = l_tx_ide; self.dirty[0] |= 0x3010180000; }
         if l_tx_rtr != self.l_tx_rtr { self.l_tx_rtr = l_tx_rtr; self.dirty[0] |= 0x3010180000; }
     }
@@ -2263,40 +2541,40 @@ impl Sja1000 {
         self.ram_read_address = ram_read_address;
         self.ram_write_address = ram_write_address;
         self.ram_write_enable = ram_write_enable;
-        self.ack_d = ack_d;
-        self.ramsel_d = ramsel_d;
-        self.lom_d = lom_d;
-        self.stm_d = stm_d;
-        self.afm_d = afm_d;
-        self.ier_d = ier_d;
-        self.ocr_d = ocr_d;
-        self.ewl_d = ewl_d;
-        self.cdr_d = cdr_d;
-        self.acr0_d = acr0_d;
-        self.acr1_d = acr1_d;
-        self.acr2_d = acr2_d;
-        self.acr3_d = acr3_d;
-        self.amr0_d = amr0_d;
-        self.amr1_d = amr1_d;
-        self.amr2_d = amr2_d;
-        self.amr3_d = amr3_d;
-        self.txb0_d = txb0_d;
-        self.txb1_d = txb1_d;
-        self.txb2_d = txb2_d;
-        self.txb3_d = txb3_d;
-        self.txb4_d = txb4_d;
-        self.txb5_d = txb5_d;
-        self.txb6_d = txb6_d;
-        self.txb7_d = txb7_d;
-        self.txb8_d = txb8_d;
-        self.txb9_d = txb9_d;
-        self.txb10_d = txb10_d;
-        self.txb11_d = txb11_d;
-        self.txb12_d = txb12_d;
-        self.tx_single_d = tx_single_d;
-        self.tx_srr_d = tx_srr_d;
-        self.rbsa_d = rbsa_d;
-        self.fetch_q_d = fetch_q_d;
+        if ack_d != self.ack_d { self.ack_d = ack_d; self.pend[1] |= 0x2; }
+        if ramsel_d != self.ramsel_d { self.ramsel_d = ramsel_d; self.pend[1] |= 0x8; }
+        if lom_d != self.lom_d { self.lom_d = lom_d; self.pend[1] |= 0x20; }
+        if stm_d != self.stm_d { self.stm_d = stm_d; self.pend[1] |= 0x40; }
+        if afm_d != self.afm_d { self.afm_d = afm_d; self.pend[1] |= 0x80; }
+        if ier_d != self.ier_d { self.ier_d = ier_d; self.pend[1] |= 0x800; }
+        if ocr_d != self.ocr_d { self.ocr_d = ocr_d; self.pend[1] |= 0x8000; }
+        if ewl_d != self.ewl_d { self.ewl_d = ewl_d; self.pend[1] |= 0x10000; }
+        if cdr_d != self.cdr_d { self.cdr_d = cdr_d; self.pend[1] |= 0x20000; }
+        if acr0_d != self.acr0_d { self.acr0_d = acr0_d; self.pend[1] |= 0x400000; }
+        if acr1_d != self.acr1_d { self.acr1_d = acr1_d; self.pend[1] |= 0x800000; }
+        if acr2_d != self.acr2_d { self.acr2_d = acr2_d; self.pend[1] |= 0x1000000; }
+        if acr3_d != self.acr3_d { self.acr3_d = acr3_d; self.pend[1] |= 0x2000000; }
+        if amr0_d != self.amr0_d { self.amr0_d = amr0_d; self.pend[1] |= 0x4000000; }
+        if amr1_d != self.amr1_d { self.amr1_d = amr1_d; self.pend[1] |= 0x8000000; }
+        if amr2_d != self.amr2_d { self.amr2_d = amr2_d; self.pend[1] |= 0x10000000; }
+        if amr3_d != self.amr3_d { self.amr3_d = amr3_d; self.pend[1] |= 0x20000000; }
+        if txb0_d != self.txb0_d { self.txb0_d = txb0_d; self.pend[1] |= 0x40000000; }
+        if txb1_d != self.txb1_d { self.txb1_d = txb1_d; self.pend[1] |= 0x80000000; }
+        if txb2_d != self.txb2_d { self.txb2_d = txb2_d; self.pend[1] |= 0x100000000; }
+        if txb3_d != self.txb3_d { self.txb3_d = txb3_d; self.pend[1] |= 0x200000000; }
+        if txb4_d != self.txb4_d { self.txb4_d = txb4_d; self.pend[1] |= 0x400000000; }
+        if txb5_d != self.txb5_d { self.txb5_d = txb5_d; self.pend[1] |= 0x800000000; }
+        if txb6_d != self.txb6_d { self.txb6_d = txb6_d; self.pend[1] |= 0x1000000000; }
+        if txb7_d != self.txb7_d { self.txb7_d = txb7_d; self.pend[1] |= 0x2000000000; }
+        if txb8_d != self.txb8_d { self.txb8_d = txb8_d; self.pend[1] |= 0x4000000000; }
+        if txb9_d != self.txb9_d { self.txb9_d = txb9_d; self.pend[1] |= 0x8000000000; }
+        if txb10_d != self.txb10_d { self.txb10_d = txb10_d; self.pend[1] |= 0x10000000000; }
+        if txb11_d != self.txb11_d { self.txb11_d = txb11_d; self.pend[1] |= 0x20000000000; }
+        if txb12_d != self.txb12_d { self.txb12_d = txb12_d; self.pend[1] |= 0x40000000000; }
+        if tx_single_d != self.tx_single_d { self.tx_single_d = tx_single_d; self.pend[1] |= 0x100000000000; }
+        if tx_srr_d != self.tx_srr_d { self.tx_srr_d = tx_srr_d; self.pend[1] |= 0x200000000000; }
+        if rbsa_d != self.rbsa_d { self.rbsa_d = rbsa_d; self.pend[1] |= 0x4000000000000; }
+        if fetch_q_d != self.fetch_q_d { self.fetch_q_d = fetch_q_d; self.pend[1] |= 0x200000000000000; }
     }
 
     /// `top` block, depth 0, probe-only: l_req, l_wr, l_rd, l_a, l_aoff, l_alcm1, ... (36 signals)
@@ -2814,9 +3092,9 @@ impl Sja1000 {
         }
         tx = self.core_btl_tx;
         self.tx = tx;
-        self.wr_src_d = wr_src_d;
-        self.wr_idx_d = wr_idx_d;
-        self.wr_len_d = wr_len_d;
+        if wr_src_d != self.wr_src_d { self.wr_src_d = wr_src_d; self.pend[1] |= 0x40000000000000; }
+        if wr_idx_d != self.wr_idx_d { self.wr_idx_d = wr_idx_d; self.pend[1] |= 0x80000000000000; }
+        if wr_len_d != self.wr_len_d { self.wr_len_d = wr_len_d; self.pend[1] |= 0x100000000000000; }
     }
 
     /// `top` block, depth 1, input-dependent: ram.write_data, opm.d, boff.d, core_bs.d, btr0.d, btr1.d, ... (19 signals)
@@ -3297,24 +3575,24 @@ impl Sja1000 {
             wr_busy_d = false;
         }
         self.ram_write_data = ram_write_data;
-        self.opm_d = opm_d;
-        self.boff_d = boff_d;
-        self.core_bs_d = core_bs_d;
-        self.btr0_d = btr0_d;
-        self.btr1_d = btr1_d;
-        self.alc_d = alc_d;
-        self.alc_lock_d = alc_lock_d;
-        self.ecc_d = ecc_d;
-        self.ecc_lock_d = ecc_lock_d;
-        self.tx_abrt_d = tx_abrt_d;
-        self.tx_lb_d = tx_lb_d;
-        self.dos_d = dos_d;
-        self.used_d = used_d;
-        self.rmc_d = rmc_d;
-        self.wr_busy_d = wr_busy_d;
-        self.es_q_d = es_q_d;
-        self.bs_q_d = bs_q_d;
-        self.pas_q_d = pas_q_d;
+        if opm_d != self.opm_d { self.opm_d = opm_d; self.pend[1] |= 0x10; }
+        if boff_d != self.boff_d { self.boff_d = boff_d; self.pend[1] |= 0x200; }
+        if core_bs_d != self.core_bs_d { self.core_bs_d = core_bs_d; self.pend[1] |= 0x400; }
+        if btr0_d != self.btr0_d { self.btr0_d = btr0_d; self.pend[1] |= 0x2000; }
+        if btr1_d != self.btr1_d { self.btr1_d = btr1_d; self.pend[1] |= 0x4000; }
+        if alc_d != self.alc_d { self.alc_d = alc_d; self.pend[1] |= 0x40000; }
+        if alc_lock_d != self.alc_lock_d { self.alc_lock_d = alc_lock_d; self.pend[1] |= 0x80000; }
+        if ecc_d != self.ecc_d { self.ecc_d = ecc_d; self.pend[1] |= 0x100000; }
+        if ecc_lock_d != self.ecc_lock_d { self.ecc_lock_d = ecc_lock_d; self.pend[1] |= 0x200000; }
+        if tx_abrt_d != self.tx_abrt_d { self.tx_abrt_d = tx_abrt_d; self.pend[1] |= 0x400000000000; }
+        if tx_lb_d != self.tx_lb_d { self.tx_lb_d = tx_lb_d; self.pend[1] |= 0x800000000000; }
+        if dos_d != self.dos_d { self.dos_d = dos_d; self.pend[1] |= 0x2000000000000; }
+        if used_d != self.used_d { self.used_d = used_d; self.pend[1] |= 0x8000000000000; }
+        if rmc_d != self.rmc_d { self.rmc_d = rmc_d; self.pend[1] |= 0x10000000000000; }
+        if wr_busy_d != self.wr_busy_d { self.wr_busy_d = wr_busy_d; self.pend[1] |= 0x20000000000000; }
+        if es_q_d != self.es_q_d { self.es_q_d = es_q_d; self.pend[1] |= 0x800000000000000; }
+        if bs_q_d != self.bs_q_d { self.bs_q_d = bs_q_d; self.pend[1] |= 0x1000000000000000; }
+        if pas_q_d != self.pas_q_d { self.pas_q_d = pas_q_d; self.pend[1] |= 0x2000000000000000; }
     }
 
     /// `top` block, depth 1, probe-only: l_tecv, l_recv, l_cbsr, l_cbs, l_es, l_pas, ... (27 signals)
@@ -3654,8 +3932,8 @@ impl Sja1000 {
             core_sync_s1_n_d = false;
             core_sync_s2_n_d = false;
         }
-        self.core_sync_s1_n_d = core_sync_s1_n_d;
-        self.core_sync_s2_n_d = core_sync_s2_n_d;
+        if core_sync_s1_n_d != self.core_sync_s1_n_d { self.core_sync_s1_n_d = core_sync_s1_n_d; self.pend[0] |= 0x1; }
+        if core_sync_s2_n_d != self.core_sync_s2_n_d { self.core_sync_s2_n_d = core_sync_s2_n_d; self.pend[0] |= 0x2; }
     }
 
     /// `core.btl` block, depth 1, input-dependent: core.btl.c_brp.d, core.btl.c_sp.d, core.btl.c_ntq.d, core.btl.c_sjw.d, core.btl.c_triple.d, core.btl.c_valid.d, ... (10 signals)
@@ -3719,16 +3997,16 @@ impl Sja1000 {
                 core_btl_h2_n_d = self.core_btl_h1_n;
             }
         }
-        self.core_btl_c_brp_d = core_btl_c_brp_d;
-        self.core_btl_c_sp_d = core_btl_c_sp_d;
-        self.core_btl_c_ntq_d = core_btl_c_ntq_d;
-        self.core_btl_c_sjw_d = core_btl_c_sjw_d;
-        self.core_btl_c_triple_d = core_btl_c_triple_d;
-        self.core_btl_c_valid_d = core_btl_c_valid_d;
-        self.core_btl_c_bad_d = core_btl_c_bad_d;
-        self.core_btl_pre_d = core_btl_pre_d;
-        self.core_btl_h1_n_d = core_btl_h1_n_d;
-        self.core_btl_h2_n_d = core_btl_h2_n_d;
+        if core_btl_c_brp_d != self.core_btl_c_brp_d { self.core_btl_c_brp_d = core_btl_c_brp_d; self.pend[0] |= 0x4; }
+        if core_btl_c_sp_d != self.core_btl_c_sp_d { self.core_btl_c_sp_d = core_btl_c_sp_d; self.pend[0] |= 0x8; }
+        if core_btl_c_ntq_d != self.core_btl_c_ntq_d { self.core_btl_c_ntq_d = core_btl_c_ntq_d; self.pend[0] |= 0x10; }
+        if core_btl_c_sjw_d != self.core_btl_c_sjw_d { self.core_btl_c_sjw_d = core_btl_c_sjw_d; self.pend[0] |= 0x20; }
+        if core_btl_c_triple_d != self.core_btl_c_triple_d { self.core_btl_c_triple_d = core_btl_c_triple_d; self.pend[0] |= 0x40; }
+        if core_btl_c_valid_d != self.core_btl_c_valid_d { self.core_btl_c_valid_d = core_btl_c_valid_d; self.pend[0] |= 0x80; }
+        if core_btl_c_bad_d != self.core_btl_c_bad_d { self.core_btl_c_bad_d = core_btl_c_bad_d; self.pend[0] |= 0x100; }
+        if core_btl_pre_d != self.core_btl_pre_d { self.core_btl_pre_d = core_btl_pre_d; self.pend[0] |= 0x200; }
+        if core_btl_h1_n_d != self.core_btl_h1_n_d { self.core_btl_h1_n_d = core_btl_h1_n_d; self.pend[0] |= 0x40000; }
+        if core_btl_h2_n_d != self.core_btl_h2_n_d { self.core_btl_h2_n_d = core_btl_h2_n_d; self.pend[0] |= 0x80000; }
     }
 
     /// `core.btl` block, depth 1, probe-only: core.btl.in_sp, core.btl.in_ph2, core.btl.in_ntq, core.btl.in_sjw, core.btl.in_bad, core.btl.tick, ... (8 signals)
@@ -4119,19 +4397,19 @@ impl Sja1000 {
         if core_fsm_drive != self.core_fsm_drive { self.core_fsm_drive = core_fsm_drive; self.dirty[0] |= 0x6000000; }
         if core_fsm_hs_en != self.core_fsm_hs_en { self.core_fsm_hs_en = core_fsm_hs_en; self.dirty[0] |= 0x6000000; }
         if core_fsm_field != self.core_fsm_field { self.core_fsm_field = core_fsm_field; self.dirty[0] |= 0x1000000; }
-        self.core_fsm_pfld_d = core_fsm_pfld_d;
-        self.core_fsm_ppos_d = core_fsm_ppos_d;
+        if core_fsm_pfld_d != self.core_fsm_pfld_d { self.core_fsm_pfld_d = core_fsm_pfld_d; self.pend[0] |= 0x2000000; }
+        if core_fsm_ppos_d != self.core_fsm_ppos_d { self.core_fsm_ppos_d = core_fsm_ppos_d; self.pend[0] |= 0x4000000; }
         if core_fsm_dstf_active != self.core_fsm_dstf_active { self.core_fsm_dstf_active = core_fsm_dstf_active; self.dirty[0] |= 0xe0000000; }
         if core_fsm_crcb_clear != self.core_fsm_crcb_clear { self.core_fsm_crcb_clear = core_fsm_crcb_clear; self.dirty[0] |= 0x100000000; }
         if core_fsm_crcb_en != self.core_fsm_crcb_en { self.core_fsm_crcb_en = core_fsm_crcb_en; self.dirty[0] |= 0x100000000; }
-        self.core_fsm_rid_d = core_fsm_rid_d;
-        self.core_fsm_rdat_d = core_fsm_rdat_d;
-        self.core_fsm_rdlc_d = core_fsm_rdlc_d;
-        self.core_fsm_rxide_r_d = core_fsm_rxide_r_d;
-        self.core_fsm_rxrtr_r_d = core_fsm_rxrtr_r_d;
-        self.core_fsm_rxid_r_d = core_fsm_rxid_r_d;
-        self.core_fsm_rxdlc_r_d = core_fsm_rxdlc_r_d;
-        self.core_fsm_rxdat_r_d = core_fsm_rxdat_r_d;
+        if core_fsm_rid_d != self.core_fsm_rid_d { self.core_fsm_rid_d = core_fsm_rid_d; self.pend[0] |= 0x4000000000; }
+        if core_fsm_rdat_d != self.core_fsm_rdat_d { self.core_fsm_rdat_d = core_fsm_rdat_d; self.pend[0] |= 0x8000000000; }
+        if core_fsm_rdlc_d != self.core_fsm_rdlc_d { self.core_fsm_rdlc_d = core_fsm_rdlc_d; self.pend[0] |= 0x10000000000; }
+        if core_fsm_rxide_r_d != self.core_fsm_rxide_r_d { self.core_fsm_rxide_r_d = core_fsm_rxide_r_d; self.pend[0] |= 0x1000000000000000; }
+        if core_fsm_rxrtr_r_d != self.core_fsm_rxrtr_r_d { self.core_fsm_rxrtr_r_d = core_fsm_rxrtr_r_d; self.pend[0] |= 0x2000000000000000; }
+        if core_fsm_rxid_r_d != self.core_fsm_rxid_r_d { self.core_fsm_rxid_r_d = core_fsm_rxid_r_d; self.pend[0] |= 0x4000000000000000; }
+        if core_fsm_rxdlc_r_d != self.core_fsm_rxdlc_r_d { self.core_fsm_rxdlc_r_d = core_fsm_rxdlc_r_d; self.pend[0] |= 0x8000000000000000; }
+        if core_fsm_rxdat_r_d != self.core_fsm_rxdat_r_d { self.core_fsm_rxdat_r_d = core_fsm_rxdat_r_d; self.pend[1] |= 0x1; }
     }
 
     /// `core.fsm` block, depth 1, input-dependent: core.fsm.tid.d, core.fsm.tdat.d, core.fsm.tdlc.d, core.fsm.tide.d, core.fsm.trtr.d
@@ -4367,11 +4645,11 @@ impl Sja1000 {
             core_fsm_tide_d = core_fsm_l_tide;
             core_fsm_trtr_d = core_fsm_l_trtr;
         }
-        self.core_fsm_tid_d = core_fsm_tid_d;
-        self.core_fsm_tdat_d = core_fsm_tdat_d;
-        self.core_fsm_tdlc_d = core_fsm_tdlc_d;
-        self.core_fsm_tide_d = core_fsm_tide_d;
-        self.core_fsm_trtr_d = core_fsm_trtr_d;
+        if core_fsm_tid_d != self.core_fsm_tid_d { self.core_fsm_tid_d = core_fsm_tid_d; self.pend[0] |= 0x200000000; }
+        if core_fsm_tdat_d != self.core_fsm_tdat_d { self.core_fsm_tdat_d = core_fsm_tdat_d; self.pend[0] |= 0x400000000; }
+        if core_fsm_tdlc_d != self.core_fsm_tdlc_d { self.core_fsm_tdlc_d = core_fsm_tdlc_d; self.pend[0] |= 0x800000000; }
+        if core_fsm_tide_d != self.core_fsm_tide_d { self.core_fsm_tide_d = core_fsm_tide_d; self.pend[0] |= 0x1000000000; }
+        if core_fsm_trtr_d != self.core_fsm_trtr_d { self.core_fsm_trtr_d = core_fsm_trtr_d; self.pend[0] |= 0x2000000000; }
     }
 
     /// `core.fsm` block, depth 1, probe-only: core.fsm.pos, core.fsm.l_sent, core.fsm.l_curstf, core.fsm.l_dfld, core.fsm.l_dpos, core.fsm.l_crcen, ... (38 signals)
@@ -5061,17 +5339,17 @@ impl Sja1000 {
                 }
             }
         }
-        self.core_btl_cnt_d = core_btl_cnt_d;
-        self.core_btl_spw_d = core_btl_spw_d;
-        self.core_btl_nbw_d = core_btl_nbw_d;
-        self.core_btl_busmon_n_d = core_btl_busmon_n_d;
-        self.core_btl_sync_dis_d = core_btl_sync_dis_d;
-        self.core_btl_since_d = core_btl_since_d;
-        self.core_btl_pending_d = core_btl_pending_d;
-        self.core_btl_tx_n_d = core_btl_tx_n_d;
-        self.core_btl_sample_r_d = core_btl_sample_r_d;
-        self.core_btl_hard_r_d = core_btl_hard_r_d;
-        self.core_btl_resync_r_d = core_btl_resync_r_d;
+        if core_btl_cnt_d != self.core_btl_cnt_d { self.core_btl_cnt_d = core_btl_cnt_d; self.pend[0] |= 0x400; }
+        if core_btl_spw_d != self.core_btl_spw_d { self.core_btl_spw_d = core_btl_spw_d; self.pend[0] |= 0x800; }
+        if core_btl_nbw_d != self.core_btl_nbw_d { self.core_btl_nbw_d = core_btl_nbw_d; self.pend[0] |= 0x1000; }
+        if core_btl_busmon_n_d != self.core_btl_busmon_n_d { self.core_btl_busmon_n_d = core_btl_busmon_n_d; self.pend[0] |= 0x2000; }
+        if core_btl_sync_dis_d != self.core_btl_sync_dis_d { self.core_btl_sync_dis_d = core_btl_sync_dis_d; self.pend[0] |= 0x4000; }
+        if core_btl_since_d != self.core_btl_since_d { self.core_btl_since_d = core_btl_since_d; self.pend[0] |= 0x8000; }
+        if core_btl_pending_d != self.core_btl_pending_d { self.core_btl_pending_d = core_btl_pending_d; self.pend[0] |= 0x10000; }
+        if core_btl_tx_n_d != self.core_btl_tx_n_d { self.core_btl_tx_n_d = core_btl_tx_n_d; self.pend[0] |= 0x20000; }
+        if core_btl_sample_r_d != self.core_btl_sample_r_d { self.core_btl_sample_r_d = core_btl_sample_r_d; self.pend[0] |= 0x100000; }
+        if core_btl_hard_r_d != self.core_btl_hard_r_d { self.core_btl_hard_r_d = core_btl_hard_r_d; self.pend[0] |= 0x200000; }
+        if core_btl_resync_r_d != self.core_btl_resync_r_d { self.core_btl_resync_r_d = core_btl_resync_r_d; self.pend[0] |= 0x400000; }
     }
 
     /// `core.btl` block, depth 2, probe-only: core.btl.bit_start, core.btl.do_hard, core.btl.do_resync, core.btl.restart, core.btl.sp_a, core.btl.nb_a, ... (13 signals)
@@ -5445,13 +5723,13 @@ impl Sja1000 {
                 core_fsm_rtx_d = false;
             }
         }
-        self.core_fsm_rtx_d = core_fsm_rtx_d;
-        self.core_fsm_rrtr_d = core_fsm_rrtr_d;
-        self.core_fsm_rext_d = core_fsm_rext_d;
-        self.core_fsm_eqcnt_d = core_fsm_eqcnt_d;
-        self.core_fsm_eqlast_d = core_fsm_eqlast_d;
-        self.core_fsm_exc1_d = core_fsm_exc1_d;
-        self.core_fsm_req_d = core_fsm_req_d;
+        if core_fsm_rtx_d != self.core_fsm_rtx_d { self.core_fsm_rtx_d = core_fsm_rtx_d; self.pend[0] |= 0x8000000; }
+        if core_fsm_rrtr_d != self.core_fsm_rrtr_d { self.core_fsm_rrtr_d = core_fsm_rrtr_d; self.pend[0] |= 0x20000000000; }
+        if core_fsm_rext_d != self.core_fsm_rext_d { self.core_fsm_rext_d = core_fsm_rext_d; self.pend[0] |= 0x40000000000; }
+        if core_fsm_eqcnt_d != self.core_fsm_eqcnt_d { self.core_fsm_eqcnt_d = core_fsm_eqcnt_d; self.pend[0] |= 0x100000000000; }
+        if core_fsm_eqlast_d != self.core_fsm_eqlast_d { self.core_fsm_eqlast_d = core_fsm_eqlast_d; self.pend[0] |= 0x200000000000; }
+        if core_fsm_exc1_d != self.core_fsm_exc1_d { self.core_fsm_exc1_d = core_fsm_exc1_d; self.pend[0] |= 0x1000000000000; }
+        if core_fsm_req_d != self.core_fsm_req_d { self.core_fsm_req_d = core_fsm_req_d; self.pend[0] |= 0x20000000000000; }
     }
 
     /// `core.fsm` block, depth 2, probe-only: core.fsm.l_txv
@@ -5902,8 +6180,8 @@ impl Sja1000 {
             core_fsm_dstf_cnt_d = 0u8;
             core_fsm_dstf_lvl_d = false;
         }
-        self.core_fsm_dstf_cnt_d = core_fsm_dstf_cnt_d;
-        self.core_fsm_dstf_lvl_d = core_fsm_dstf_lvl_d;
+        if core_fsm_dstf_cnt_d != self.core_fsm_dstf_cnt_d { self.core_fsm_dstf_cnt_d = core_fsm_dstf_cnt_d; self.pend[0] |= 0x20000000; }
+        if core_fsm_dstf_lvl_d != self.core_fsm_dstf_lvl_d { self.core_fsm_dstf_lvl_d = core_fsm_dstf_lvl_d; self.pend[0] |= 0x40000000; }
     }
 
     /// `core.fsm.dstf` block, depth 2, probe-only: core.fsm.dstf.stuff_bit, core.fsm.dstf.take
@@ -5939,7 +6217,7 @@ impl Sja1000 {
         if (self.core_l_hold | self.core_fsm_crcb_clear) {
             core_fsm_crcb_state_d = 0u16;
         }
-        self.core_fsm_crcb_state_d = core_fsm_crcb_state_d;
+        if core_fsm_crcb_state_d != self.core_fsm_crcb_state_d { self.core_fsm_crcb_state_d = core_fsm_crcb_state_d; self.pend[0] |= 0x80000000; }
     }
 
     /// `top` block, depth 3, input-dependent: rdat.d, sleep.d, ir.d, tx_pend.d, tcs_n.d, seen_ext.d
@@ -6353,12 +6631,12 @@ impl Sja1000 {
             tx_pend_d = false;
             tcs_n_d = false;
         }
-        self.rdat_d = rdat_d;
-        self.sleep_d = sleep_d;
-        self.ir_d = ir_d;
-        self.tx_pend_d = tx_pend_d;
-        self.tcs_n_d = tcs_n_d;
-        self.seen_ext_d = seen_ext_d;
+        if rdat_d != self.rdat_d { self.rdat_d = rdat_d; self.pend[1] |= 0x4; }
+        if sleep_d != self.sleep_d { self.sleep_d = sleep_d; self.pend[1] |= 0x100; }
+        if ir_d != self.ir_d { self.ir_d = ir_d; self.pend[1] |= 0x1000; }
+        if tx_pend_d != self.tx_pend_d { self.tx_pend_d = tx_pend_d; self.pend[1] |= 0x80000000000; }
+        if tcs_n_d != self.tcs_n_d { self.tcs_n_d = tcs_n_d; self.pend[1] |= 0x1000000000000; }
+        if seen_ext_d != self.seen_ext_d { self.seen_ext_d = seen_ext_d; self.pend[1] |= 0x4000000000000000; }
     }
 
     /// `top` block, depth 3, probe-only: l_rdv, l_sr, l_ev, l_wait, l_busy, l_txact, ... (8 signals)
@@ -7002,9 +7280,9 @@ impl Sja1000 {
                 core_fsm_errtx_r_d = self.core_fsm_rtx;
             }
         }
-        self.core_fsm_errf_r_d = core_fsm_errf_r_d;
-        self.core_fsm_errp_r_d = core_fsm_errp_r_d;
-        self.core_fsm_errtx_r_d = core_fsm_errtx_r_d;
+        if core_fsm_errf_r_d != self.core_fsm_errf_r_d { self.core_fsm_errf_r_d = core_fsm_errf_r_d; self.pend[0] |= 0x200000000000000; }
+        if core_fsm_errp_r_d != self.core_fsm_errp_r_d { self.core_fsm_errp_r_d = core_fsm_errp_r_d; self.pend[0] |= 0x400000000000000; }
+        if core_fsm_errtx_r_d != self.core_fsm_errtx_r_d { self.core_fsm_errtx_r_d = core_fsm_errtx_r_d; self.pend[0] |= 0x800000000000000; }
     }
 
     /// `core.fsm` block, depth 3, input-dependent: core.fsm.fld.d, core.fsm.fpos.d, core.fsm.dom.d, core.fsm.crcerr.d, core.fsm.fdone.d, core.fsm.dafc.d, ... (14 signals)
@@ -7854,20 +8132,20 @@ impl Sja1000 {
                 core_fsm_rarmed_d = false;
             }
         }
-        self.core_fsm_fld_d = core_fsm_fld_d;
-        self.core_fsm_fpos_d = core_fsm_fpos_d;
-        self.core_fsm_dom_d = core_fsm_dom_d;
-        self.core_fsm_crcerr_d = core_fsm_crcerr_d;
-        self.core_fsm_fdone_d = core_fsm_fdone_d;
-        self.core_fsm_dafc_d = core_fsm_dafc_d;
-        self.core_fsm_dafany_d = core_fsm_dafany_d;
-        self.core_fsm_tecr_d = core_fsm_tecr_d;
-        self.core_fsm_recr_d = core_fsm_recr_d;
-        self.core_fsm_runr_d = core_fsm_runr_d;
-        self.core_fsm_rarmed_d = core_fsm_rarmed_d;
-        self.core_fsm_blocked_d = core_fsm_blocked_d;
-        self.core_fsm_evr_d = core_fsm_evr_d;
-        self.core_fsm_arbpos_r_d = core_fsm_arbpos_r_d;
+        if core_fsm_fld_d != self.core_fsm_fld_d { self.core_fsm_fld_d = core_fsm_fld_d; self.pend[0] |= 0x800000; }
+        if core_fsm_fpos_d != self.core_fsm_fpos_d { self.core_fsm_fpos_d = core_fsm_fpos_d; self.pend[0] |= 0x1000000; }
+        if core_fsm_dom_d != self.core_fsm_dom_d { self.core_fsm_dom_d = core_fsm_dom_d; self.pend[0] |= 0x10000000; }
+        if core_fsm_crcerr_d != self.core_fsm_crcerr_d { self.core_fsm_crcerr_d = core_fsm_crcerr_d; self.pend[0] |= 0x100000000; }
+        if core_fsm_fdone_d != self.core_fsm_fdone_d { self.core_fsm_fdone_d = core_fsm_fdone_d; self.pend[0] |= 0x80000000000; }
+        if core_fsm_dafc_d != self.core_fsm_dafc_d { self.core_fsm_dafc_d = core_fsm_dafc_d; self.pend[0] |= 0x400000000000; }
+        if core_fsm_dafany_d != self.core_fsm_dafany_d { self.core_fsm_dafany_d = core_fsm_dafany_d; self.pend[0] |= 0x800000000000; }
+        if core_fsm_tecr_d != self.core_fsm_tecr_d { self.core_fsm_tecr_d = core_fsm_tecr_d; self.pend[0] |= 0x2000000000000; }
+        if core_fsm_recr_d != self.core_fsm_recr_d { self.core_fsm_recr_d = core_fsm_recr_d; self.pend[0] |= 0x4000000000000; }
+        if core_fsm_runr_d != self.core_fsm_runr_d { self.core_fsm_runr_d = core_fsm_runr_d; self.pend[0] |= 0x8000000000000; }
+        if core_fsm_rarmed_d != self.core_fsm_rarmed_d { self.core_fsm_rarmed_d = core_fsm_rarmed_d; self.pend[0] |= 0x10000000000000; }
+        if core_fsm_blocked_d != self.core_fsm_blocked_d { self.core_fsm_blocked_d = core_fsm_blocked_d; self.pend[0] |= 0x40000000000000; }
+        if core_fsm_evr_d != self.core_fsm_evr_d { self.core_fsm_evr_d = core_fsm_evr_d; self.pend[0] |= 0x80000000000000; }
+        if core_fsm_arbpos_r_d != self.core_fsm_arbpos_r_d { self.core_fsm_arbpos_r_d = core_fsm_arbpos_r_d; self.pend[0] |= 0x100000000000000; }
     }
 
     /// `core.fsm` block, depth 3, probe-only: core.fsm.l_nf, core.fsm.l_npos, core.fsm.l_ndom, core.fsm.l_err, core.fsm.l_errk, core.fsm.l_tinc, ... (16 signals)
@@ -9568,6 +9846,7 @@ impl rt::Model for Sja1000 {
             _ => return false,
         }
         self.dirty = [!0; 1];
+        self.pend = [!0; 2];
         true
     }
     fn set_mem(&mut self, r: usize, addr: usize, v: u128) {

@@ -30,6 +30,8 @@ pub struct Synchroniser {
     seen_d: bool,
     /// Groups to evaluate (one bit per group, see `run`).
     dirty: [u64; 1],
+    /// Registers whose input changed since they took it (see `edge`).
+    pend: [u64; 1],
     trace: bool,
 }
 
@@ -57,6 +59,7 @@ impl Synchroniser {
             seen_reset: false,
             seen_d: false,
             dirty: [!0; 1],
+            pend: [!0; 1],
             trace: false,
         };
         m.eval_all();
@@ -93,6 +96,7 @@ impl Synchroniser {
     /// Evaluate every group.
     fn eval_all(&mut self) {
         self.dirty = [!0; 1];
+        self.pend = [!0; 1];
         self.sense();
         self.run(&Self::ALL);
     }
@@ -112,6 +116,7 @@ impl Synchroniser {
         }
     }
 
+    #[inline(never)]
     fn group(&mut self, k: usize) {
         match k {
             0 => self.g0(),
@@ -128,10 +133,33 @@ impl Synchroniser {
 
     /// Rising edge: registers and memories take their inputs.
     fn edge(&mut self) {
-        let n0 = self.s1_n_d;
-        let n1 = self.s2_n_d;
-        if n0 != self.s1_n { self.s1_n = n0; self.dirty[0] |= 0x3; }
-        if n1 != self.s2_n { self.s2_n = n1; self.dirty[0] |= 0x1; }
+        for w in 0..1 {
+            loop {
+                let m = self.pend[w];
+                if m == 0 {
+                    break;
+                }
+                let k = m.trailing_zeros() as usize;
+                self.pend[w] &= !(1u64 << k);
+                self.take(w * 64 + k);
+            }
+        }
+    }
+
+    /// Pending register `k` takes its input.
+    #[inline(never)]
+    fn take(&mut self, k: usize) {
+        match k {
+            0 => {
+                let n = self.s1_n_d;
+                if n != self.s1_n { self.s1_n = n; self.dirty[0] |= 0x3; }
+            }
+            1 => {
+                let n = self.s2_n_d;
+                if n != self.s2_n { self.s2_n = n; self.dirty[0] |= 0x1; }
+            }
+            _ => {}
+        }
     }
 
     /// `top` block, depth 0, state-only: q
@@ -154,8 +182,8 @@ impl Synchroniser {
             s1_n_d = false;
             s2_n_d = false;
         }
-        self.s1_n_d = s1_n_d;
-        self.s2_n_d = s2_n_d;
+        if s1_n_d != self.s1_n_d { self.s1_n_d = s1_n_d; self.pend[0] |= 0x1; }
+        if s2_n_d != self.s2_n_d { self.s2_n_d = s2_n_d; self.pend[0] |= 0x2; }
     }
 
 }
@@ -234,6 +262,7 @@ impl rt::Model for Synchroniser {
             _ => return false,
         }
         self.dirty = [!0; 1];
+        self.pend = [!0; 1];
         true
     }
     fn set_mem(&mut self, r: usize, addr: usize, v: u128) {

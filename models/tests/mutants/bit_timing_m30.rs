@@ -189,6 +189,8 @@ pub struct BitTimingM30 {
     seen_hs_en: bool,
     /// Groups to evaluate (one bit per group, see `run`).
     dirty: [u64; 1],
+    /// Registers whose input changed since they took it (see `edge`).
+    pend: [u64; 1],
     trace: bool,
 }
 
@@ -299,6 +301,7 @@ impl BitTimingM30 {
             seen_drive: false,
             seen_hs_en: false,
             dirty: [!0; 1],
+            pend: [!0; 1],
             trace: false,
         };
         m.eval_all();
@@ -335,6 +338,7 @@ impl BitTimingM30 {
     /// Evaluate every group.
     fn eval_all(&mut self) {
         self.dirty = [!0; 1];
+        self.pend = [!0; 1];
         self.sense();
         self.run(&Self::ALL);
     }
@@ -354,6 +358,7 @@ impl BitTimingM30 {
         }
     }
 
+    #[inline(never)]
     fn group(&mut self, k: usize) {
         match k {
             0 => self.g0(),
@@ -379,48 +384,109 @@ impl BitTimingM30 {
 
     /// Rising edge: registers and memories take their inputs.
     fn edge(&mut self) {
-        let n0 = self.c_brp_d;
-        let n1 = self.c_sp_d;
-        let n2 = self.c_ntq_d;
-        let n3 = self.c_sjw_d;
-        let n4 = self.c_triple_d;
-        let n5 = self.c_valid_d;
-        let n6 = self.c_bad_d;
-        let n7 = self.pre_d;
-        let n8 = self.cnt_d;
-        let n9 = self.spw_d;
-        let n10 = self.nbw_d;
-        let n11 = self.busmon_n_d;
-        let n12 = self.sync_dis_d;
-        let n13 = self.since_d;
-        let n14 = self.pending_d;
-        let n15 = self.tx_n_d;
-        let n16 = self.h1_n_d;
-        let n17 = self.h2_n_d;
-        let n18 = self.sample_r_d;
-        let n19 = self.hard_r_d;
-        let n20 = self.resync_r_d;
-        if n0 != self.c_brp { self.c_brp = n0; self.dirty[0] |= 0xe; }
-        if n1 != self.c_sp { self.c_sp = n1; self.dirty[0] |= 0xa; }
-        if n2 != self.c_ntq { self.c_ntq = n2; self.dirty[0] |= 0xe; }
-        if n3 != self.c_sjw { self.c_sjw = n3; self.dirty[0] |= 0xe; }
-        if n4 != self.c_triple { self.c_triple = n4; self.dirty[0] |= 0xa; }
-        if n5 != self.c_valid { self.c_valid = n5; self.dirty[0] |= 0xe; }
-        if n6 != self.c_bad { self.c_bad = n6; self.dirty[0] |= 0x3; }
-        if n7 != self.pre { self.pre = n7; self.dirty[0] |= 0xe; }
-        if n8 != self.cnt { self.cnt = n8; self.dirty[0] |= 0xe; }
-        if n9 != self.spw { self.spw = n9; self.dirty[0] |= 0xe; }
-        if n10 != self.nbw { self.nbw = n10; self.dirty[0] |= 0xe; }
-        if n11 != self.busmon_n { self.busmon_n = n11; self.dirty[0] |= 0xf; }
-        if n12 != self.sync_dis { self.sync_dis = n12; self.dirty[0] |= 0xe; }
-        if n13 != self.since { self.since = n13; self.dirty[0] |= 0xe; }
-        if n14 != self.pending { self.pending = n14; self.dirty[0] |= 0xe; }
-        if n15 != self.tx_n { self.tx_n = n15; self.dirty[0] |= 0x3; }
-        if n16 != self.h1_n { self.h1_n = n16; self.dirty[0] |= 0xa; }
-        if n17 != self.h2_n { self.h2_n = n17; self.dirty[0] |= 0xa; }
-        if n18 != self.sample_r { self.sample_r = n18; self.dirty[0] |= 0x1; }
-        if n19 != self.hard_r { self.hard_r = n19; self.dirty[0] |= 0x1; }
-        if n20 != self.resync_r { self.resync_r = n20; self.dirty[0] |= 0x1; }
+        for w in 0..1 {
+            loop {
+                let m = self.pend[w];
+                if m == 0 {
+                    break;
+                }
+                let k = m.trailing_zeros() as usize;
+                self.pend[w] &= !(1u64 << k);
+                self.take(w * 64 + k);
+            }
+        }
+    }
+
+    /// Pending register `k` takes its input.
+    #[inline(never)]
+    fn take(&mut self, k: usize) {
+        match k {
+            0 => {
+                let n = self.c_brp_d;
+                if n != self.c_brp { self.c_brp = n; self.dirty[0] |= 0xe; }
+            }
+            1 => {
+                let n = self.c_sp_d;
+                if n != self.c_sp { self.c_sp = n; self.dirty[0] |= 0xa; }
+            }
+            2 => {
+                let n = self.c_ntq_d;
+                if n != self.c_ntq { self.c_ntq = n; self.dirty[0] |= 0xe; }
+            }
+            3 => {
+                let n = self.c_sjw_d;
+                if n != self.c_sjw { self.c_sjw = n; self.dirty[0] |= 0xe; }
+            }
+            4 => {
+                let n = self.c_triple_d;
+                if n != self.c_triple { self.c_triple = n; self.dirty[0] |= 0xa; }
+            }
+            5 => {
+                let n = self.c_valid_d;
+                if n != self.c_valid { self.c_valid = n; self.dirty[0] |= 0xe; }
+            }
+            6 => {
+                let n = self.c_bad_d;
+                if n != self.c_bad { self.c_bad = n; self.dirty[0] |= 0x3; }
+            }
+            7 => {
+                let n = self.pre_d;
+                if n != self.pre { self.pre = n; self.dirty[0] |= 0xe; }
+            }
+            8 => {
+                let n = self.cnt_d;
+                if n != self.cnt { self.cnt = n; self.dirty[0] |= 0xe; }
+            }
+            9 => {
+                let n = self.spw_d;
+                if n != self.spw { self.spw = n; self.dirty[0] |= 0xe; }
+            }
+            10 => {
+                let n = self.nbw_d;
+                if n != self.nbw { self.nbw = n; self.dirty[0] |= 0xe; }
+            }
+            11 => {
+                let n = self.busmon_n_d;
+                if n != self.busmon_n { self.busmon_n = n; self.dirty[0] |= 0xf; }
+            }
+            12 => {
+                let n = self.sync_dis_d;
+                if n != self.sync_dis { self.sync_dis = n; self.dirty[0] |= 0xe; }
+            }
+            13 => {
+                let n = self.since_d;
+                if n != self.since { self.since = n; self.dirty[0] |= 0xe; }
+            }
+            14 => {
+                let n = self.pending_d;
+                if n != self.pending { self.pending = n; self.dirty[0] |= 0xe; }
+            }
+            15 => {
+                let n = self.tx_n_d;
+                if n != self.tx_n { self.tx_n = n; self.dirty[0] |= 0x3; }
+            }
+            16 => {
+                let n = self.h1_n_d;
+                if n != self.h1_n { self.h1_n = n; self.dirty[0] |= 0xa; }
+            }
+            17 => {
+                let n = self.h2_n_d;
+                if n != self.h2_n { self.h2_n = n; self.dirty[0] |= 0xa; }
+            }
+            18 => {
+                let n = self.sample_r_d;
+                if n != self.sample_r { self.sample_r = n; self.dirty[0] |= 0x1; }
+            }
+            19 => {
+                let n = self.hard_r_d;
+                if n != self.hard_r { self.hard_r = n; self.dirty[0] |= 0x1; }
+            }
+            20 => {
+                let n = self.resync_r_d;
+                if n != self.resync_r { self.resync_r = n; self.dirty[0] |= 0x1; }
+            }
+            _ => {}
+        }
     }
 
     /// `top` block, depth 0, state-only: sample, busmon, tx, hard_sync, resync, cfg_err
@@ -629,27 +695,27 @@ impl BitTimingM30 {
                 h2_n_d = self.h1_n;
             }
         }
-        self.c_brp_d = c_brp_d;
-        self.c_sp_d = c_sp_d;
-        self.c_ntq_d = c_ntq_d;
-        self.c_sjw_d = c_sjw_d;
-        self.c_triple_d = c_triple_d;
-        self.c_valid_d = c_valid_d;
-        self.c_bad_d = c_bad_d;
-        self.pre_d = pre_d;
-        self.cnt_d = cnt_d;
-        self.spw_d = spw_d;
-        self.nbw_d = nbw_d;
-        self.busmon_n_d = busmon_n_d;
-        self.sync_dis_d = sync_dis_d;
-        self.since_d = since_d;
-        self.pending_d = pending_d;
-        self.tx_n_d = tx_n_d;
-        self.h1_n_d = h1_n_d;
-        self.h2_n_d = h2_n_d;
-        self.sample_r_d = sample_r_d;
-        self.hard_r_d = hard_r_d;
-        self.resync_r_d = resync_r_d;
+        if c_brp_d != self.c_brp_d { self.c_brp_d = c_brp_d; self.pend[0] |= 0x1; }
+        if c_sp_d != self.c_sp_d { self.c_sp_d = c_sp_d; self.pend[0] |= 0x2; }
+        if c_ntq_d != self.c_ntq_d { self.c_ntq_d = c_ntq_d; self.pend[0] |= 0x4; }
+        if c_sjw_d != self.c_sjw_d { self.c_sjw_d = c_sjw_d; self.pend[0] |= 0x8; }
+        if c_triple_d != self.c_triple_d { self.c_triple_d = c_triple_d; self.pend[0] |= 0x10; }
+        if c_valid_d != self.c_valid_d { self.c_valid_d = c_valid_d; self.pend[0] |= 0x20; }
+        if c_bad_d != self.c_bad_d { self.c_bad_d = c_bad_d; self.pend[0] |= 0x40; }
+        if pre_d != self.pre_d { self.pre_d = pre_d; self.pend[0] |= 0x80; }
+        if cnt_d != self.cnt_d { self.cnt_d = cnt_d; self.pend[0] |= 0x100; }
+        if spw_d != self.spw_d { self.spw_d = spw_d; self.pend[0] |= 0x200; }
+        if nbw_d != self.nbw_d { self.nbw_d = nbw_d; self.pend[0] |= 0x400; }
+        if busmon_n_d != self.busmon_n_d { self.busmon_n_d = busmon_n_d; self.pend[0] |= 0x800; }
+        if sync_dis_d != self.sync_dis_d { self.sync_dis_d = sync_dis_d; self.pend[0] |= 0x1000; }
+        if since_d != self.since_d { self.since_d = since_d; self.pend[0] |= 0x2000; }
+        if pending_d != self.pending_d { self.pending_d = pending_d; self.pend[0] |= 0x4000; }
+        if tx_n_d != self.tx_n_d { self.tx_n_d = tx_n_d; self.pend[0] |= 0x8000; }
+        if h1_n_d != self.h1_n_d { self.h1_n_d = h1_n_d; self.pend[0] |= 0x10000; }
+        if h2_n_d != self.h2_n_d { self.h2_n_d = h2_n_d; self.pend[0] |= 0x20000; }
+        if sample_r_d != self.sample_r_d { self.sample_r_d = sample_r_d; self.pend[0] |= 0x40000; }
+        if hard_r_d != self.hard_r_d { self.hard_r_d = hard_r_d; self.pend[0] |= 0x80000; }
+        if resync_r_d != self.resync_r_d { self.resync_r_d = resync_r_d; self.pend[0] |= 0x100000; }
     }
 
     /// `top` block, depth 0, input-dependent, output cone: tq, bit_start
@@ -1063,6 +1129,7 @@ impl rt::Model for BitTimingM30 {
             _ => return false,
         }
         self.dirty = [!0; 1];
+        self.pend = [!0; 1];
         true
     }
     fn set_mem(&mut self, r: usize, addr: usize, v: u128) {

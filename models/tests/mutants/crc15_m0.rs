@@ -40,6 +40,8 @@ pub struct Crc15M0 {
     seen_din: bool,
     /// Groups to evaluate (one bit per group, see `run`).
     dirty: [u64; 1],
+    /// Registers whose input changed since they took it (see `edge`).
+    pend: [u64; 1],
     trace: bool,
 }
 
@@ -73,6 +75,7 @@ impl Crc15M0 {
             seen_en: false,
             seen_din: false,
             dirty: [!0; 1],
+            pend: [!0; 1],
             trace: false,
         };
         m.eval_all();
@@ -109,6 +112,7 @@ impl Crc15M0 {
     /// Evaluate every group.
     fn eval_all(&mut self) {
         self.dirty = [!0; 1];
+        self.pend = [!0; 1];
         self.sense();
         self.run(&Self::ALL);
     }
@@ -128,6 +132,7 @@ impl Crc15M0 {
         }
     }
 
+    #[inline(never)]
     fn group(&mut self, k: usize) {
         match k {
             0 => self.g0(),
@@ -148,8 +153,29 @@ impl Crc15M0 {
 
     /// Rising edge: registers and memories take their inputs.
     fn edge(&mut self) {
-        let n0 = self.state_d;
-        if n0 != self.state { self.state = n0; self.dirty[0] |= 0xf; }
+        for w in 0..1 {
+            loop {
+                let m = self.pend[w];
+                if m == 0 {
+                    break;
+                }
+                let k = m.trailing_zeros() as usize;
+                self.pend[w] &= !(1u64 << k);
+                self.take(w * 64 + k);
+            }
+        }
+    }
+
+    /// Pending register `k` takes its input.
+    #[inline(never)]
+    fn take(&mut self, k: usize) {
+        match k {
+            0 => {
+                let n = self.state_d;
+                if n != self.state { self.state = n; self.dirty[0] |= 0xf; }
+            }
+            _ => {}
+        }
     }
 
     /// `top` block, depth 0, state-only: crc
@@ -178,7 +204,7 @@ impl Crc15M0 {
         if (self.reset | self.clear) {
             state_d = 0u16;
         }
-        self.state_d = state_d;
+        if state_d != self.state_d { self.state_d = state_d; self.pend[0] |= 0x1; }
     }
 
     /// `top` block, depth 0, input-dependent, output cone: crc_next
@@ -301,6 +327,7 @@ impl rt::Model for Crc15M0 {
             _ => return false,
         }
         self.dirty = [!0; 1];
+        self.pend = [!0; 1];
         true
     }
     fn set_mem(&mut self, r: usize, addr: usize, v: u128) {
