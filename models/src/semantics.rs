@@ -62,6 +62,10 @@ pub struct Ops {
     pub looped: Signal<Out, Bits<8>>,
     pub child_y: Signal<Out, Bits<8>>,
     pub chain: Signal<Out, Bits<8>>,
+    /// Reads an output of this block before the block assigns it (rust-hdl: the settled value).
+    pub early: Signal<Out, Bits<8>>,
+    /// Reads a child's input the block assigns (rust-hdl `In::val()`: the settled value).
+    pub echo: Signal<Out, Bits<8>>,
     pub ph: DFF<Phase>,
     cnt: DFF<Bits<4>>,
     pipe1: DFF<Bits<8>>,
@@ -97,6 +101,8 @@ impl Default for Ops {
             looped: Default::default(),
             child_y: Default::default(),
             chain: Default::default(),
+            early: Default::default(),
+            echo: Default::default(),
             ph: Default::default(),
             cnt: Default::default(),
             pipe1: Default::default(),
@@ -201,6 +207,7 @@ impl Logic for Ops {
             }
             false => {}
         }
+        self.early.next = self.looped.val() ^ 0x5a;
         // a loop
         self.m.next = 0.into();
         for i in 0..8 {
@@ -213,6 +220,7 @@ impl Logic for Ops {
         self.child.clock.next = self.clock.val();
         self.child.a.next = self.m.val() + self.a.val().get_bits::<8>(5);
         self.child_y.next = self.child.y.val() ^ self.child.r.val();
+        self.echo.next = self.child.a.val();
         self.pipe1.d.next = self.child.y.val();
         self.pipe2.d.next = self.pipe1.q.val();
         self.chain.next = self.pipe2.q.val();
