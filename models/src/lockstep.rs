@@ -160,7 +160,7 @@ impl RandomInputs {
         }
     }
     /// The next vector.
-    pub fn next(&mut self) -> &[u128] {
+    pub fn draw(&mut self) -> &[u128] {
         use rand::Rng;
         for i in 0..self.values.len() {
             if self.rng.gen_bool(self.probs[i]) {

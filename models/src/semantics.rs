@@ -115,6 +115,9 @@ impl Default for Ops {
     }
 }
 
+// The operators are written as rust-hdl users write them (the precedence and the
+// match on a bool are part of what is tested).
+#[allow(clippy::precedence, clippy::match_bool, clippy::single_match)]
 impl Logic for Ops {
     #[hdl_gen]
     fn update(&mut self) {

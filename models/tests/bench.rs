@@ -261,7 +261,8 @@ fn bench_verilator_files() {
         m.load(&canstar_controller::sja1000::Sja1000::with_reset_timing(SJA_BTR.0, SJA_BTR.1)).unwrap();
         m
     };
-    let work: Vec<(&str, Stim, Box<dyn Fn() -> (f64, u64)>, String)> = {
+    type Work = (&'static str, Stim, Box<dyn Fn() -> (f64, u64)>, String);
+    let work: Vec<Work> = {
         let can3 = record_can(3, 1_000_000);
         let sja = record_sja(2_000_000);
         let hub = record_hub(2_000_000);

@@ -18,7 +18,7 @@ fn run<H: Clocked, M: Model>(
     let mut l = Lockstep::new(hdl, make, set, get).unwrap_or_else(|m| panic!("{m}"));
     let mut stim = RandomInputs::new(&l.model, seed, prob);
     for c in 0..cycles {
-        l.step(stim.next()).unwrap_or_else(|m| panic!("{m}"));
+        l.step(stim.draw()).unwrap_or_else(|m| panic!("{m}"));
         if c % 100_000 == 99_999 {
             l.compare_all().unwrap_or_else(|m| panic!("{m}"));
         }

@@ -88,7 +88,7 @@ fn random_stimulus() {
     };
     let mut stim = RandomInputs::new(&n.model, 13, prob);
     for _ in 0..200_000 {
-        let v = stim.next().to_vec();
+        let v = stim.draw().to_vec();
         n.step(&v).unwrap_or_else(|m| panic!("{m}"));
     }
     n.compare_all().unwrap_or_else(|m| panic!("{m}"));

@@ -88,7 +88,7 @@ fn hub_core_random() {
         };
         let mut stim = RandomInputs::new(&l.model, seed, prob);
         for _ in 0..cycles {
-            let v = stim.next().to_vec();
+            let v = stim.draw().to_vec();
             l.step(&v).unwrap_or_else(|e| panic!("{e}"));
         }
         l.compare_all().unwrap_or_else(|e| panic!("{e}"));

@@ -32,7 +32,7 @@ fn first_mismatch<H: Clocked, M: Model>(
     };
     let mut stim = RandomInputs::new(&l.model, 99, |n| if n == "reset" || n == "clear" { 0.001 } else { 0.2 });
     for _ in 0..cycles {
-        if let Err(m) = l.step(stim.next()) {
+        if let Err(m) = l.step(stim.draw()) {
             return Some(m.to_string());
         }
     }
@@ -78,7 +78,7 @@ fn atom_comparison_catches_a_wrong_register() {
     let mut l = Lockstep::new(canstar_controller::core::CanCore::new(), g::can_core::CanCore::from_instance, g::can_core::hdl_set_inputs, g::can_core::hdl_outputs).unwrap();
     let mut stim = RandomInputs::new(&l.model, 5, |n| if n == "reset" { 0.0 } else { 0.05 });
     for _ in 0..2000 {
-        l.step(stim.next()).unwrap();
+        l.step(stim.draw()).unwrap();
     }
     l.compare_all().unwrap();
     let info = l.model.info();

@@ -228,14 +228,15 @@ pub fn emit(d: &Design, sch: &Schedule, o: &EmitOptions) -> String {
         let _ = writeln!(s, "    }}\n");
     }
     let _ = writeln!(s, "}}\n");
-    emit_model_impl(&mut s, d, &names, &mems, &top, o, act.words, act.reg_words);
+    emit_model_impl(&mut s, d, &names, &mems, &top, o, &act);
     if let Some(t) = o.hdl_type {
         emit_hdl_adapters(&mut s, d, t);
     }
     s
 }
 
-fn emit_model_impl(s: &mut String, d: &Design, names: &[String], mems: &[String], top: &Ctx, o: &EmitOptions, words: usize, reg_words: usize) {
+fn emit_model_impl(s: &mut String, d: &Design, names: &[String], mems: &[String], top: &Ctx, o: &EmitOptions, act: &Activity) {
+    let (words, reg_words) = (act.words, act.reg_words);
     let act_words = |_: &Design| words;
     let name = o.name;
     let _ = writeln!(s, "impl rt::Model for {name} {{");
@@ -267,8 +268,8 @@ fn emit_model_impl(s: &mut String, d: &Design, names: &[String], mems: &[String]
         let _ = writeln!(s, "            _ => panic!(\"no {f} port {{i}}\"),\n        }}\n    }}");
     }
     let _ = writeln!(s, "    fn atom(&self, a: usize) -> u128 {{\n        match a {{");
-    for x in 0..d.sigs.len() {
-        let v = match &d.sigs[x].role {
+    for (x, sig) in d.sigs.iter().enumerate() {
+        let v = match &sig.role {
             Role::Clock | Role::Undriven => "0".to_string(),
             _ if stored(d, x) => format!("self.{} as u128", names[x]),
             Role::Alias(e) => format!("{} as u128", top.ex(e)),
@@ -278,9 +279,9 @@ fn emit_model_impl(s: &mut String, d: &Design, names: &[String], mems: &[String]
     }
     let _ = writeln!(s, "            _ => panic!(\"no atom {{a}}\"),\n        }}\n    }}");
     let _ = writeln!(s, "    fn set_atom(&mut self, a: usize, v: u128) -> bool {{\n        match a {{");
-    for x in 0..d.sigs.len() {
-        if matches!(d.sigs[x].role, Role::Input | Role::Const | Role::Reg(_)) {
-            let _ = writeln!(s, "            {x} => self.{} = {},", names[x], from_u128("v", d.sigs[x].width));
+    for (x, sig) in d.sigs.iter().enumerate() {
+        if matches!(sig.role, Role::Input | Role::Const | Role::Reg(_)) {
+            let _ = writeln!(s, "            {x} => self.{} = {},", names[x], from_u128("v", sig.width));
         }
     }
     let _ = writeln!(s, "            _ => return false,\n        }}\n        self.dirty = [!0; {}];\n        self.pend = [!0; {}];\n        true\n    }}", act_words(d), reg_words);

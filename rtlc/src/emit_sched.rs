@@ -69,7 +69,7 @@ fn stmt_reads(stmts: &[Stmt], f: &mut dyn FnMut(SigId)) {
 pub fn field_reads(d: &Design, g: &Group) -> BTreeSet<SigId> {
     let mut out: BTreeSet<SigId> = g.init.clone();
     stmt_reads(&g.stmts, &mut |r| {
-        if !(g.locals.contains(&r) && !d.sigs[r].reads_settled) {
+        if !g.locals.contains(&r) || d.sigs[r].reads_settled {
             out.insert(r);
         }
     });

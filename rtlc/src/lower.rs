@@ -100,7 +100,7 @@ impl Lower<'_> {
             }
             S::If(c) => {
                 let test = self.expr(&c.test)?;
-                let test = self.to_bool(test, "if condition")?;
+                let test = self.fit_bool(test, "if condition")?;
                 let t = self.block(&c.then, depth + 1)?;
                 let e = match &c.otherwise {
                     VerilogBlockOrConditional::Block(b) => self.block(b, depth + 1)?,

@@ -82,7 +82,7 @@ impl Lower<'_> {
         Ok(t.e)
     }
 
-    pub(crate) fn to_bool(&mut self, t: Te, what: &str) -> Result<Expr> {
+    pub(crate) fn fit_bool(&mut self, t: Te, what: &str) -> Result<Expr> {
         self.fit(t, 1, what)
     }
 
@@ -211,7 +211,7 @@ impl Lower<'_> {
                 let v = self.expr(v);
                 self.index_mode = saved;
                 let v = v?;
-                let v = self.to_bool(v, "replace_bit value")?;
+                let v = self.fit_bool(v, "replace_bit value")?;
                 let w = a.w();
                 Te::fixed(Expr { w, k: Ek::Replace(Box::new(a.e), Box::new(i), Box::new(v)) })
             }
@@ -265,8 +265,8 @@ impl Lower<'_> {
             O::Ge => BinOp::Ge,
         };
         if matches!(op, O::LogicalAnd | O::LogicalOr) {
-            let a = self.to_bool(a, "&& / || operand")?;
-            let b = self.to_bool(b, "&& / || operand")?;
+            let a = self.fit_bool(a, "&& / || operand")?;
+            let b = self.fit_bool(b, "&& / || operand")?;
             return Ok(Te::fixed(bin(bop, a, b, 1)));
         }
         if a.flex && b.flex {

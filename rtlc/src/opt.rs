@@ -81,11 +81,11 @@ pub fn dead_stores(stmts: Vec<Stmt>) -> Vec<Stmt> {
     let mut dead = vec![false; n];
     for i in 0..n {
         let Stmt::Assign { s, .. } = &stmts[i] else { continue };
-        for j in i + 1..n {
-            if reads_of(&stmts[j], *s) {
+        for later in &stmts[i + 1..] {
+            if reads_of(later, *s) {
                 break;
             }
-            if matches!(&stmts[j], Stmt::Assign { s: t, .. } if t == s) {
+            if matches!(later, Stmt::Assign { s: t, .. } if t == s) {
                 dead[i] = true;
                 break;
             }

@@ -155,6 +155,7 @@ impl HubNet {
         &self.va
     }
 
+    #[allow(clippy::needless_range_loop)]
     /// The rest of the network after hub A's clock (`a_out`: A's new outputs).
     pub fn advance(&mut self, a_out: &[u128]) {
         self.b.set_inputs(&self.vb);
