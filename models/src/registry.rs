@@ -153,3 +153,60 @@ pub fn files() -> Result<Vec<(String, String)>, canstar_rtlc::Error> {
     out.push(("mod.rs".into(), mod_rs(&entries)));
     Ok(out)
 }
+
+/// Files that differ from what the compiler generates now.
+#[derive(Debug, Default)]
+pub struct Stale {
+    /// Generated files whose committed contents differ (or are missing).
+    pub changed: Vec<PathBuf>,
+    /// Files in the generated directories that no registry entry writes.
+    pub unregistered: Vec<PathBuf>,
+}
+
+impl Stale {
+    pub fn is_empty(&self) -> bool {
+        self.changed.is_empty() && self.unregistered.is_empty()
+    }
+}
+
+/// Compare every committed model and mutant with what the compiler generates from
+/// the current designs; with `bless`, rewrite the stale ones and remove unregistered
+/// files (what `CANSTAR_BLESS=1 cargo test -p canstar-models --test current` does,
+/// and what `canstar generate --check` can call).
+pub fn check(bless: bool) -> Result<Stale, Box<dyn std::error::Error>> {
+    check_dirs(&generated_dir(), &mutants_dir(), bless)
+}
+
+/// [`check`] on other directories.
+pub fn check_dirs(generated: &Path, mutants: &Path, bless: bool) -> Result<Stale, Box<dyn std::error::Error>> {
+    let mut stale = Stale::default();
+    let mut sync = |dir: PathBuf, files: Vec<(String, String)>, sweep: bool| -> std::io::Result<()> {
+        if bless {
+            std::fs::create_dir_all(&dir)?;
+        }
+        for (f, text) in &files {
+            let p = dir.join(f);
+            if std::fs::read_to_string(&p).ok().as_deref() != Some(text.as_str()) {
+                if bless {
+                    std::fs::write(&p, text)?;
+                }
+                stale.changed.push(p);
+            }
+        }
+        if sweep && dir.exists() {
+            for e in std::fs::read_dir(&dir)? {
+                let name = e?.file_name().to_string_lossy().into_owned();
+                if !files.iter().any(|(f, _)| *f == name) {
+                    if bless {
+                        std::fs::remove_file(dir.join(&name))?;
+                    }
+                    stale.unregistered.push(dir.join(name));
+                }
+            }
+        }
+        Ok(())
+    };
+    sync(generated.to_path_buf(), files()?, true)?;
+    sync(mutants.to_path_buf(), mutant_files()?.into_iter().map(|(f, t, _)| (f, t)).collect(), true)?;
+    Ok(stale)
+}

@@ -1,64 +1,50 @@
-//! The committed models are what the compiler generates from the current designs.
-//! `CANSTAR_BLESS=1 cargo test -p canstar-models --test current` rewrites them.
+//! The committed models (and mutants) are what the compiler generates from the
+//! current designs. `CANSTAR_BLESS=1 cargo test -p canstar-models --test current`
+//! rewrites them.
 
 use canstar_models::registry;
 
 #[test]
 fn committed_models_are_current() {
-    let files = registry::files().expect("every registered design compiles");
-    let dir = registry::generated_dir();
     let bless = std::env::var("CANSTAR_BLESS").is_ok_and(|v| v == "1");
-    let mut stale = vec![];
-    for (f, text) in &files {
-        let p = dir.join(f);
-        if std::fs::read_to_string(&p).ok().as_deref() != Some(text.as_str()) {
-            if bless {
-                std::fs::write(&p, text).unwrap();
-            }
-            stale.push(f.clone());
+    let stale = registry::check(bless).expect("every registered design compiles");
+    if bless {
+        if !stale.is_empty() {
+            eprintln!("rewrote {:?}, removed {:?}", stale.changed, stale.unregistered);
         }
-    }
-    let mut extra = vec![];
-    for e in std::fs::read_dir(&dir).unwrap() {
-        let name = e.unwrap().file_name().to_string_lossy().into_owned();
-        if !files.iter().any(|(f, _)| *f == name) {
-            if bless {
-                std::fs::remove_file(dir.join(&name)).unwrap();
-            }
-            extra.push(name);
-        }
-    }
-    if !bless {
+    } else {
         assert!(
-            stale.is_empty() && extra.is_empty(),
-            "stale generated models {stale:?}, unregistered files {extra:?}: regenerate with CANSTAR_BLESS=1 cargo test -p canstar-models --test current"
+            stale.is_empty(),
+            "stale generated models {:?}, unregistered files {:?}: regenerate with CANSTAR_BLESS=1 cargo test -p canstar-models --test current",
+            stale.changed,
+            stale.unregistered
         );
-    } else if !stale.is_empty() || !extra.is_empty() {
-        eprintln!("rewrote {stale:?}, removed {extra:?}");
     }
 }
 
-/// The committed mutants (see `tests/mutants.rs`) are current too.
+/// A changed and an unregistered file are reported, and blessing fixes both.
 #[test]
-fn committed_mutants_are_current() {
-    let dir = registry::mutants_dir();
-    let bless = std::env::var("CANSTAR_BLESS").is_ok_and(|v| v == "1");
-    if bless {
-        std::fs::create_dir_all(&dir).unwrap();
-    }
-    let mut stale = vec![];
-    for (f, text, what) in registry::mutant_files().expect("mutants compile") {
-        assert!(!what.is_empty());
-        let p = dir.join(&f);
-        if std::fs::read_to_string(&p).ok().as_deref() != Some(text.as_str()) {
-            if bless {
-                std::fs::write(&p, &text).unwrap();
-                eprintln!("mutant {f}: {what}");
-            }
-            stale.push(f);
+fn stale_and_unregistered_files_are_found_and_blessed() {
+    let tmp = std::env::temp_dir().join(format!("canstar-models-current-{}", std::process::id()));
+    let (gen, mutants) = (tmp.join("generated"), tmp.join("mutants"));
+    for (from, to) in [(registry::generated_dir(), &gen), (registry::mutants_dir(), &mutants)] {
+        std::fs::create_dir_all(to).unwrap();
+        for e in std::fs::read_dir(from).unwrap() {
+            let e = e.unwrap();
+            std::fs::copy(e.path(), to.join(e.file_name())).unwrap();
         }
     }
-    assert!(bless || stale.is_empty(), "stale mutants {stale:?}: regenerate with CANSTAR_BLESS=1 cargo test -p canstar-models --test current");
+    assert!(registry::check_dirs(&gen, &mutants, false).unwrap().is_empty());
+    let crc = gen.join("crc15.rs");
+    let text = std::fs::read_to_string(&crc).unwrap().replacen("wrapping_", "wrapping_ ", 1);
+    std::fs::write(&crc, text).unwrap();
+    std::fs::write(gen.join("old_model.rs"), "// gone").unwrap();
+    let s = registry::check_dirs(&gen, &mutants, false).unwrap();
+    assert_eq!(s.changed, vec![crc.clone()]);
+    assert_eq!(s.unregistered, vec![gen.join("old_model.rs")]);
+    registry::check_dirs(&gen, &mutants, true).unwrap();
+    assert!(registry::check_dirs(&gen, &mutants, false).unwrap().is_empty());
+    std::fs::remove_dir_all(&tmp).unwrap();
 }
 
 /// Figures of every compilation (diagnostic).

@@ -74,7 +74,8 @@ fn one_interlink_network() {
     assert!(frames > 100, "{frames} frames");
 }
 
-/// `HubCore` of every committed shape on random stimulus (the monitor inputs too).
+/// `HubCore` of every committed shape on random stimulus (the monitor inputs too):
+/// 1 M clocks of the reference shape, 150 000 of the others.
 #[test]
 fn hub_core_random() {
     fn run<M: Model>(cfg: HubConfig, make: fn(&dyn canstar_rtlc::rt::Block) -> Result<M, canstar_rtlc::Error>, set: fn(&mut HubCore, &[u128]), get: fn(&HubCore, &mut [u128]), cycles: u64, seed: u64) {
@@ -98,7 +99,7 @@ fn hub_core_random() {
         fault_injection: Some(FaultInjection { point: FaultPoint::Uplink(0), kind: FaultKind::StuckDominant, start_field: 3 }),
         ..HubConfig::default()
     };
-    run(with_hook(2), g::hub_core_n3_m2::HubCoreN3M2::from_instance, g::hub_core_n3_m2::hdl_set_inputs, g::hub_core_n3_m2::hdl_outputs, 300_000, 41);
+    run(with_hook(2), g::hub_core_n3_m2::HubCoreN3M2::from_instance, g::hub_core_n3_m2::hdl_set_inputs, g::hub_core_n3_m2::hdl_outputs, 1_000_000, 41);
     run(with_hook(0), g::hub_core_n3_m0::HubCoreN3M0::from_instance, g::hub_core_n3_m0::hdl_set_inputs, g::hub_core_n3_m0::hdl_outputs, 150_000, 42);
     run(HubConfig { sublinks: 1, ..HubConfig::default() }, g::hub_core_n3_m1::HubCoreN3M1::from_instance, g::hub_core_n3_m1::hdl_set_inputs, g::hub_core_n3_m1::hdl_outputs, 150_000, 43);
 }
