@@ -36,6 +36,7 @@ fn reset_rare(name: &str) -> f64 {
 }
 
 #[test]
+#[cfg_attr(debug_assertions, ignore = "long: run with cargo test --release")]
 fn synchroniser_both_depths() {
     for depth in [1, 2] {
         run(sync::Synchroniser::new(depth), g::synchroniser::Synchroniser::from_instance, g::synchroniser::hdl_set_inputs, g::synchroniser::hdl_outputs, 500_000, depth as u64, reset_rare);
@@ -43,22 +44,26 @@ fn synchroniser_both_depths() {
 }
 
 #[test]
+#[cfg_attr(debug_assertions, ignore = "long: run with cargo test --release")]
 fn edge_detector() {
     run(sync::EdgeDetector::default(), g::edge_detector::EdgeDetector::from_instance, g::edge_detector::hdl_set_inputs, g::edge_detector::hdl_outputs, 1_000_000, 3, reset_rare);
 }
 
 #[test]
+#[cfg_attr(debug_assertions, ignore = "long: run with cargo test --release")]
 fn crc15() {
     run(crc15::Crc15::default(), g::crc15::Crc15::from_instance, g::crc15::hdl_set_inputs, g::crc15::hdl_outputs, 1_000_000, 4, |n| if n == "clear" || n == "reset" { 0.002 } else { 0.4 });
 }
 
 #[test]
+#[cfg_attr(debug_assertions, ignore = "long: run with cargo test --release")]
 fn stuffer_and_destuffer() {
     run(stuff::BitStuffer::default(), g::bit_stuffer::BitStuffer::from_instance, g::bit_stuffer::hdl_set_inputs, g::bit_stuffer::hdl_outputs, 1_000_000, 5, reset_rare);
     run(stuff::BitDestuffer::default(), g::bit_destuffer::BitDestuffer::from_instance, g::bit_destuffer::hdl_set_inputs, g::bit_destuffer::hdl_outputs, 1_000_000, 6, reset_rare);
 }
 
 #[test]
+#[cfg_attr(debug_assertions, ignore = "long: run with cargo test --release")]
 fn bit_timing() {
     // timing fields change rarely (also to invalid values), RX at random
     let prob = |n: &str| match n {
@@ -74,6 +79,7 @@ fn bit_timing() {
 
 /// The operator-semantics design (`canstar_models::semantics`), all inputs random.
 #[test]
+#[cfg_attr(debug_assertions, ignore = "long: run with cargo test --release")]
 fn operator_semantics() {
     use canstar_models::semantics::Ops;
     run(Ops::default(), g::semantics::Ops::from_instance, g::semantics::hdl_set_inputs, g::semantics::hdl_outputs, 300_000, 8, |_| 0.5);

@@ -61,6 +61,7 @@ fn bus(depths: &[usize], timing: (u128, u128, u128, u128), triple: bool, cycles:
 /// 3 nodes (synchroniser depths 2, 2, 1), 10 clocks per bit, 350 000 clocks each
 /// (1.05 M node-cycles).
 #[test]
+#[cfg_attr(debug_assertions, ignore = "long: run with cargo test --release")]
 fn bus_traffic_three_nodes() {
     let (frames, errors) = bus(&[2, 2, 1], (0, 0, 3, 3), false, 350_000, 11);
     assert!(frames > 200, "only {frames} frames received");
@@ -69,6 +70,7 @@ fn bus_traffic_three_nodes() {
 
 /// Two nodes with another timing (2 clocks per TQ, triple sampling).
 #[test]
+#[cfg_attr(debug_assertions, ignore = "long: run with cargo test --release")]
 fn bus_traffic_triple_sampling() {
     let (frames, errors) = bus(&[2, 1], (1, 2, 2, 1), true, 150_000, 12);
     assert!(frames > 20, "only {frames} frames received");
@@ -77,6 +79,7 @@ fn bus_traffic_triple_sampling() {
 
 /// One node on random stimulus (timing and modes change rarely, RX often).
 #[test]
+#[cfg_attr(debug_assertions, ignore = "long: run with cargo test --release")]
 fn random_stimulus() {
     let mut n = node(2);
     let prob = |name: &str| match name {

@@ -40,6 +40,7 @@ fn start<M: Model>(cfg: &HubConfig, make: fn(&dyn canstar_rtlc::rt::Block) -> Re
 
 /// The reference ReCANcentrate hub (N = 3, M = 2), 1 M clocks.
 #[test]
+#[cfg_attr(debug_assertions, ignore = "long: run with cargo test --release")]
 fn recancentrate_network() {
     let cfg = HubConfig::default();
     let mut a = start(&cfg, g::hub_n3_m2::HubN3M2::from_instance, g::hub_n3_m2::hdl_set_inputs, g::hub_n3_m2::hdl_outputs);
@@ -51,6 +52,7 @@ fn recancentrate_network() {
 /// CANcentrate (M = 0) with reintegration, synchroniser depth 2 and a fault-injection
 /// hook (all runtime constants of the same model shape).
 #[test]
+#[cfg_attr(debug_assertions, ignore = "long: run with cargo test --release")]
 fn cancentrate_network_with_runtime_constants() {
     let cfg = HubConfig {
         sublinks: 0,
@@ -67,6 +69,7 @@ fn cancentrate_network_with_runtime_constants() {
 
 /// One interlink (M = 1), 300 000 clocks.
 #[test]
+#[cfg_attr(debug_assertions, ignore = "long: run with cargo test --release")]
 fn one_interlink_network() {
     let cfg = HubConfig { sublinks: 1, ..HubConfig::default() };
     let mut a = start(&cfg, g::hub_n3_m1::HubN3M1::from_instance, g::hub_n3_m1::hdl_set_inputs, g::hub_n3_m1::hdl_outputs);
@@ -77,6 +80,7 @@ fn one_interlink_network() {
 /// `HubCore` of every committed shape on random stimulus (the monitor inputs too):
 /// 1 M clocks of the reference shape, 150 000 of the others.
 #[test]
+#[cfg_attr(debug_assertions, ignore = "long: run with cargo test --release")]
 fn hub_core_random() {
     fn run<M: Model>(cfg: HubConfig, make: fn(&dyn canstar_rtlc::rt::Block) -> Result<M, canstar_rtlc::Error>, set: fn(&mut HubCore, &[u128]), get: fn(&HubCore, &mut [u128]), cycles: u64, seed: u64) {
         let mut l = Lockstep::new(HubCore::new(&cfg), make, set, get).unwrap_or_else(|e| panic!("{e}"));

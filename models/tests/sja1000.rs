@@ -50,6 +50,7 @@ fn net(nodes_n: usize, cycles: u64, seed: u64) -> u64 {
 
 /// Two controllers, 500 000 clocks each (1 M controller-cycles).
 #[test]
+#[cfg_attr(debug_assertions, ignore = "long: run with cargo test --release")]
 fn two_controllers_with_hosts() {
     let ints = net(2, 500_000, 21);
     assert!(ints > 1000, "interrupt line active for only {ints} clocks");

@@ -46,6 +46,7 @@ fn same(what: &str, a: &[u8], b: &[u8]) {
 }
 
 #[test]
+#[cfg_attr(debug_assertions, ignore = "long: run with cargo test --release")]
 fn can_core_vcd_is_byte_identical() {
     let p = common::Ports::of(&g::can_core::CanCore::new());
     let mut host = common::Host::new(&p, (0, 0, 3, 3), false);
@@ -61,6 +62,7 @@ fn can_core_vcd_is_byte_identical() {
 }
 
 #[test]
+#[cfg_attr(debug_assertions, ignore = "long: run with cargo test --release")]
 fn hub_vcd_is_byte_identical() {
     // the network around the hub advances with the hub's outputs of the previous clock
     let mut net = common::hubnet::HubNet::new(common::Ports::of(&g::hub_n3_m2::HubN3M2::new()), 2, 4);
@@ -76,6 +78,7 @@ fn hub_vcd_is_byte_identical() {
 }
 
 #[test]
+#[cfg_attr(debug_assertions, ignore = "long: run with cargo test --release")]
 fn sja1000_vcd_is_byte_identical() {
     let m0 = g::sja1000::Sja1000::new();
     let mut net = common::sjanet::SjaNet::new(&m0, 1, 5);
