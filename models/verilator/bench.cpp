@@ -5,7 +5,7 @@
 // the same replay without hashing. Rates are per second of this thread's CPU time.
 //
 // Built by run.sh with BENCH_TOP = the Verilated class and ports.h = the port adapters
-// written by `cargo test -p canstar-models --test bench -- --ignored bench_verilator_files`.
+// written by `cargo test -p canstar-models --test bench -- --ignored bench_print_verilator_files`.
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
