@@ -1,7 +1,7 @@
 //! Throughput of the compiled models against rust-hdl direct drive on the same
 //! stimulus (benchmarks: they print figures and assert only that the engines agree):
 //!
-//! `cargo test --release -p canstar-models --test bench -- --ignored --nocapture bench_print`
+//! `cargo test --release -p canstar-models --test bench -- --ignored --nocapture --exact bench_print`
 //!
 //! Workloads (recorded from a compiled-model run of the closed loop, then replayed
 //! into each engine, so every engine gets exactly the same inputs):

@@ -9,7 +9,7 @@ set -euo pipefail
 cd "$(dirname "$0")/../.."
 out=target/verilator-bench
 export CANSTAR_BENCH_DIR="$PWD/$out"
-cargo test --release -q -p canstar-models --test bench -- --ignored --nocapture bench_print_verilator_files
+cargo test --release -q -p canstar-models --test bench -- --ignored --nocapture --exact bench_print_verilator_files
 for spec in "can_core verilog-out/controller/canstar_can_core.v canstar_can_core" \
             "sja1000 verilog-out/controller/canstar_sja1000.v canstar_sja1000" \
             "hub verilog-out/hub/canstar_hub.v canstar_hub_core"; do
@@ -23,4 +23,4 @@ for spec in "can_core verilog-out/controller/canstar_can_core.v canstar_can_core
   make -s -C "$obj" -f Vtop.mk OPT_FAST="-O3" OPT_SLOW="-O1" >/dev/null
   "$obj/Vtop" "$out/$name/stim.bin" "$(cat "$out/$name/expect.txt")"
 done
-cargo test --release -q -p canstar-models --test bench -- --ignored --nocapture bench_print
+cargo test --release -q -p canstar-models --test bench -- --ignored --nocapture --exact bench_print
