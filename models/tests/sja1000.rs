@@ -8,6 +8,7 @@ mod common;
 use canstar_controller::sja1000::Sja1000;
 use canstar_models::generated::sja1000 as g;
 use canstar_models::lockstep::Lockstep;
+use canstar_rtlc::rt::Model;
 use common::sjanet::SjaNet;
 
 type Node = Lockstep<Sja1000, g::Sja1000>;
@@ -54,4 +55,37 @@ fn net(nodes_n: usize, cycles: u64, seed: u64) -> u64 {
 fn two_controllers_with_hosts() {
     let ints = net(2, 500_000, 21);
     assert!(ints > 1000, "interrupt line active for only {ints} clocks");
+}
+
+/// A model built from a running instance takes over its state (registers, FIFO memory
+/// contents, inputs) and continues in lock-step: what switching engines mid-run or
+/// starting from a checkpoint needs. Controller 0 runs in both engines, controller 1
+/// (compiled only) is its partner on the bus.
+#[test]
+#[cfg_attr(debug_assertions, ignore = "long: run with cargo test --release")]
+fn state_transfers_from_a_running_instance() {
+    let mut l: Node = Lockstep::new(Sja1000::new(), g::Sja1000::from_instance, g::hdl_set_inputs, g::hdl_outputs).unwrap();
+    let mut other = g::Sja1000::new();
+    let mut out1 = vec![0u128; other.info().outputs.len()];
+    let mut env = SjaNet::new(&l.model, 2, 22);
+    let tx = env.ix.tx;
+    let mut run = |l: &mut Node, cycles: u64| {
+        for _ in 0..cycles {
+            let v = env.inputs(0, l.outputs()).to_vec();
+            l.step(&v).unwrap_or_else(|m| panic!("{m}"));
+            let v = env.inputs(1, &out1).to_vec();
+            other.set_inputs(&v);
+            other.cycle();
+            other.outputs(&mut out1);
+            env.advance([l.outputs()[tx] != 0, out1[tx] != 0].into_iter());
+        }
+    };
+    run(&mut l, 150_000);
+    let fifo: Vec<u128> = (0..64).map(|a| l.model.mem(0, a)).collect();
+    assert!(fifo.iter().any(|&b| b != 0), "the FIFO memory holds received bytes");
+    // a fresh model from the running rust-hdl instance
+    let mut l2: Node = Lockstep::new(l.hdl, g::Sja1000::from_instance, g::hdl_set_inputs, g::hdl_outputs).unwrap();
+    assert_eq!((0..64).map(|a| l2.model.mem(0, a)).collect::<Vec<_>>(), fifo);
+    run(&mut l2, 50_000);
+    l2.compare_all().unwrap_or_else(|m| panic!("{m}"));
 }
