@@ -8,7 +8,7 @@ use std::collections::{BTreeSet, HashSet};
 use std::fmt::Write;
 
 use crate::collect::ValueType;
-use crate::emit_expr::{convert, lit, ty, Ctx};
+use crate::emit_expr::{lit, ty, Ctx};
 use crate::emit_sched::{emit_clock, sensed_inputs, store, Activity};
 use crate::ir::{Design, Role, SigId};
 use crate::sched::{Class, Schedule};
@@ -332,7 +332,6 @@ fn emit_model_impl(s: &mut String, d: &Design, names: &[String], mems: &[String]
         let _ = writeln!(s, "    {t},");
     }
     let _ = writeln!(s, "];");
-    let _ = mems;
 }
 
 /// Rust access path of a top-level port of the rust-hdl instance (`rx$0` -> `rx[0]`).
@@ -382,5 +381,4 @@ fn emit_hdl_adapters(s: &mut String, d: &Design, t: &str) {
         let _ = writeln!(s, "    o[{i}] = {val};");
     }
     let _ = writeln!(s, "}}");
-    let _ = convert;
 }

@@ -12,6 +12,29 @@
 //! Constant values (`Constant<T>`) and memory contents are runtime data of a model,
 //! so one model serves every value of them; everything else is the design's shape,
 //! identified by [`fingerprint()`].
+//!
+//! # Semantics
+//! The reference is rust-hdl's simulation of the `update()` code the AST comes from:
+//! `Bits<N>` operators wrap at N bits, literals take the width of what they meet,
+//! shifts fill with zeros (also by amounts at or beyond the width), `LiteralType <<
+//! Bits<M>` is 64 bits wide, `get_bits`/`bit_cast` truncate or zero-extend, enums are
+//! their variant index, a `match` takes the first arm. An `In` signal reads its settled
+//! value; an `Out` or `Local` signal the block assigns reads the value assigned so
+//! far, or its settled value before the first assignment (a dependency on the block's
+//! own result, which the scheduler orders or reports as a loop). Registers and
+//! memories update on the rising edge of the single top-level clock, all from the
+//! values before the edge; a memory reads before it writes.
+//!
+//! # Limits (refused with a message naming the module or signal)
+//! `Signed`, `LogicStruct` and tristate values, values wider than 128 bits, interface
+//! links (`LogicInterface`), black-box or wrapper Verilog, custom Verilog other than
+//! rust-hdl's `DFF` and `RAM`, modules without HDL, gated or derived clocks, more than
+//! one clock input, the clock read as data, and combinational loops (with the signals
+//! on the loop). Two readings are approximations, reported as warnings: a bit index or
+//! slice offset computed from signals is read as `usize` arithmetic (`x.index() + k`;
+//! the AST cannot tell it from `(x + k).index()`), and a signal not assigned on every
+//! path of its block (a latch) keeps its value between evaluations (rust-hdl's value
+//! there depends on the order of its settle passes; canstar's designs have none).
 
 pub mod collect;
 pub mod emit;
