@@ -61,7 +61,7 @@ pub struct RamMeta {
 #[derive(Debug)]
 pub struct ModelInfo {
     pub name: &'static str,
-    /// Shape fingerprint ([`crate::fingerprint`]).
+    /// Shape fingerprint ([`crate::fingerprint()`]).
     pub fingerprint: u64,
     pub inputs: &'static [Port],
     pub outputs: &'static [Port],
