@@ -1,4 +1,4 @@
-//! [`FaultConfinement`]: the error counters and the error state (§13).
+//! [`FaultConfinement`]: the error counters and the error state (can-protocol.md §13).
 //!
 //! On every `sample` the counters take the strobes of the bit: TEC +8
 //! (`tinc`) or -1 (`tdec`, not below 0); while REC < 128: REC +8 (`rinc8`),

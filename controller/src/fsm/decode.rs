@@ -1,4 +1,4 @@
-//! [`BitDecode`]: what the bit in progress is, from the sequencer's registers
+//! [`BitDecode`] (can-protocol.md): what the bit in progress is, from the sequencer's registers
 //! alone (combinational, independent of the sampled level and of `sample`).
 //!
 //! - `stuffed`: the bit lies in the stuffed area (Start_Of_Frame ..

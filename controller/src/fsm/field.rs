@@ -1,4 +1,4 @@
-//! [`Field`]: the FIELD of the bit in progress (§4.5), the state of the
+//! [`Field`]: the FIELD of the bit in progress (can-protocol.md §4.5), the state of the
 //! frame sequencer. Its code (declaration order) is the `field` output of
 //! [`super::CanFsm`] and the `err_field` payload; the table is in the
 //! [`super`] module documentation.

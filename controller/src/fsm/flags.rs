@@ -1,4 +1,4 @@
-//! [`FlagFields`]: the per-bit decision for error and overload frames (§10,
+//! [`FlagFields`]: the per-bit decision for error and overload frames (can-protocol.md §10,
 //! §11, §13): the flags, the dominant bits after a flag, and the
 //! delimiters.
 //!

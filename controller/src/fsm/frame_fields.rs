@@ -1,5 +1,5 @@
 //! [`FrameFields`]: the per-bit decision for the bits of a data or remote
-//! frame, Start_Of_Frame to End_Of_Frame (§4, §5, §6, §9).
+//! frame, Start_Of_Frame to End_Of_Frame (can-protocol.md §4, §5, §6, §9).
 //!
 //! Decided on the `sample` clock, combinationally from the bit just sampled
 //! (`rxbit`, with `sent` the level this node drove) and the registers; the
