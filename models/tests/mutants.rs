@@ -3,16 +3,15 @@
 //! `registry::MUTANTS`) runs against its rust-hdl design on the same seeded random
 //! stimulus as the real model, and a mismatch must be reported.
 
-#[path = "mutants/bit_stuffer_m2.rs"]
-mod bit_stuffer_m2;
-#[path = "mutants/bit_timing_m30.rs"]
-mod bit_timing_m30;
-#[path = "mutants/bit_timing_m7.rs"]
-mod bit_timing_m7;
-#[path = "mutants/crc15_m0.rs"]
-mod crc15_m0;
-#[path = "mutants/crc15_m2.rs"]
-mod crc15_m2;
+/// The committed mutant models (`tests/mutants/`, written by `registry::mutant_files`).
+mod mutants {
+    pub mod bit_stuffer_m2;
+    pub mod bit_timing_m30;
+    pub mod bit_timing_m7;
+    pub mod crc15_m0;
+    pub mod crc15_m2;
+}
+use mutants::*;
 
 use canstar_hdl::{btl, crc15, drive::Clocked, stuff};
 use canstar_models::lockstep::{Lockstep, RandomInputs};
