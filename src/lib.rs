@@ -11,6 +11,7 @@ pub mod bench;
 pub mod boards;
 pub mod config;
 pub mod designs;
+pub mod engine;
 pub mod generate;
 pub mod report;
 pub mod verilog;

@@ -132,39 +132,7 @@ pub struct CanCore {
     l_hold: Signal<Local, Bit>,
 }
 
-/// Host-side readers of the core's outputs (simulation: read between clocks).
-impl CanCore {
-    /// The received frame on the `rx_*` outputs (valid on the clock `rx_valid` is high).
-    pub fn rx_frame(&self) -> crate::frame::Frame {
-        crate::frame::Frame::from_native(
-            self.rx_ide.val(),
-            self.rx_rtr.val(),
-            self.rx_id.val().index() as u32,
-            self.rx_dlc.val().index() as u8,
-            self.rx_data.val().to_u64(),
-        )
-    }
-    /// Transmit error counter (256 and above: bus-off).
-    pub fn tec_value(&self) -> u32 {
-        self.tec.val().index() as u32
-    }
-    /// Receive error counter.
-    pub fn rec_value(&self) -> u32 {
-        self.rec.val().index() as u32
-    }
-    /// 0 error-active, 1 error-passive, 2 bus-off.
-    pub fn state_value(&self) -> u32 {
-        self.state.val().index() as u32
-    }
-    /// FIELD of the bit in progress (between sample points: of the next bit).
-    pub fn field(&self) -> crate::fsm::Field {
-        crate::fsm::Field::from_code(self.dbg_field.val().index() as u64).unwrap_or(crate::fsm::Field::Reset)
-    }
-    /// POSITION of the bit in progress.
-    pub fn pos(&self) -> u32 {
-        self.dbg_pos.val().index() as u32
-    }
-}
+// Host-side readers of the outputs: `crate::view::CoreView`.
 
 impl CanCore {
     /// A core with the default synchroniser depth ([`SYNC_DEPTH`]).

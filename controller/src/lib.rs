@@ -10,6 +10,8 @@
 //!   CRC-15, FIELD/POSITION of every bus bit, options for scripted
 //!   transmitters).
 //! - [`trace`]: per-bit trace lines (§18) from the debug bundle.
+//! - [`view`]: [`CoreView`], the core's outputs and debug bundle as integers, the
+//!   same for the rust-hdl block and the compiled model.
 //!
 //! The normative description is `can-protocol.md`.
 //!
@@ -33,8 +35,10 @@ pub mod core;
 pub mod frame;
 pub mod fsm;
 pub mod trace;
+pub mod view;
 
 pub use crate::core::CanCore;
 pub use frame::{BuildOptions, BusBit, Frame};
 pub use fsm::{CanFsm, Field};
+pub use view::CoreView;
 pub mod sja1000;

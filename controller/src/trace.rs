@@ -7,7 +7,7 @@
 //! on the next clock (event word with `EV_BIT`) it completes the record with
 //! the events and the counters after processing, and returns the line.
 
-use crate::core::CanCore;
+use crate::view::CoreView;
 use crate::frame::Frame;
 use crate::fsm::*;
 
@@ -43,16 +43,16 @@ impl BitTracer {
 
     /// Look at the core after a clock edge; returns the completed lines
     /// (a bit record and/or a `MSG` record).
-    pub fn clock(&mut self, t_ns: u64, c: &CanCore) -> Vec<String> {
+    pub fn clock(&mut self, t_ns: u64, c: &(impl CoreView + ?Sized)) -> Vec<String> {
         let mut out = Vec::new();
-        let ev = c.dbg_events.val().index() as u64;
+        let ev = c.dbg_events() as u64;
         let has = |b: usize| (ev >> b) & 1 == 1;
         if has(EV_BIT) {
             if let Some(p) = self.pending.take() {
-                let tec = c.tec.val().index() as u64;
-                let rec = c.rec.val().index() as u64;
-                let st = c.state.val().index() as u64;
-                let warn = c.err_warn.val();
+                let tec = c.tec() as u64;
+                let rec = c.rec() as u64;
+                let st = c.state() as u64;
+                let warn = c.err_warn();
                 let mut tok: Vec<String> = Vec::new();
                 let names = [
                     (EV_SOF, "SOF"),
@@ -89,7 +89,7 @@ impl BitTracer {
                 }
                 if has(EV_RUN) {
                     // the run counter is cleared by the recovery itself
-                    let k = if has(EV_RECOVERED) { 128 } else { c.dbg_runs.val().index() };
+                    let k = if has(EV_RECOVERED) { 128 } else { c.dbg_runs() };
                     tok.push(format!("RUN={k}"));
                 }
                 if has(EV_RECOVERED) {
@@ -120,19 +120,19 @@ impl BitTracer {
                 ));
             }
         }
-        if c.rx_valid.val() {
+        if c.rx_valid() {
             let f = c.rx_frame();
             out.push(msg_line(t_ns, &self.node, &f));
         }
-        if c.dbg_sample.val() {
+        if c.dbg_sample() {
             self.pending = Some(Pending {
                 t_ns,
-                field: Field::from_code(c.dbg_field.val().index() as u64).unwrap_or(Field::Reset),
-                pos: c.dbg_pos.val().index() as u64,
-                stuff: c.dbg_stuff.val(),
-                role_tx: c.dbg_role.val(),
-                smp: c.dbg_busmon.val(),
-                drv: c.tx.val(),
+                field: Field::from_code(c.dbg_field() as u64).unwrap_or(Field::Reset),
+                pos: c.dbg_pos() as u64,
+                stuff: c.dbg_stuff(),
+                role_tx: c.dbg_role(),
+                smp: c.dbg_busmon(),
+                drv: c.tx(),
             });
         }
         out

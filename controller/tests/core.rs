@@ -188,7 +188,7 @@ fn core_trace_lines() {
     for _ in 0..2000 {
         b.step();
         for i in 0..2 {
-            lines[i].extend(tr[i].clock(b.cycle as u64 * 100, &b.nodes[i]));
+            lines[i].extend(tr[i].clock(b.cycle as u64 * 100, &*b.nodes[i]));
         }
         if b.nodes[0].tx_done.val() {
             b.withdraw(0);

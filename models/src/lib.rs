@@ -36,16 +36,24 @@
 //! assert_eq!(any.output(any.output_index("tx").unwrap()), 1);
 //! ```
 //!
+//! [`engine`]: the engine choice ([`Engine`]: compiled by default, rust-hdl as the
+//! reference); [`core_sim::CoreSim`] and [`hub_sim::HubSim`] are the controller core
+//! and the hub on either engine, with the same readers (`CoreView`) and probe walk.
+//!
 //! [`lockstep`] runs a model next to its rust-hdl design and compares them;
 //! `models/verilator/run.sh` benchmarks rust-hdl, the models and Verilator on the
 //! same recorded stimulus.
 
+pub mod core_sim;
+pub mod engine;
 pub mod generated;
+pub mod hub_sim;
 pub mod lockstep;
 pub mod registry;
 pub mod semantics;
 
 pub use canstar_rtlc::rt::Model;
+pub use engine::Engine;
 
 /// A compiled model for a rust-hdl instance: the committed model whose shape
 /// fingerprint matches, loaded with the instance's constants, state and inputs.

@@ -112,11 +112,15 @@ pub struct Settings {
     pub reps: u32,
     /// Delay between the two faults of the `double-*` classes, in bit times.
     pub double_delay_bits: u32,
+    /// Simulation engine of the hubs and controllers (compiled models by default; not
+    /// recorded: both engines give the same results).
+    #[serde(skip)]
+    pub engine: canstar_models::Engine,
 }
 
 impl Default for Settings {
     fn default() -> Self {
-        Settings { seed: 1, reps: 100, double_delay_bits: classes::DEFAULT_DOUBLE_DELAY_BITS }
+        Settings { seed: 1, reps: 100, double_delay_bits: classes::DEFAULT_DOUBLE_DELAY_BITS, engine: Default::default() }
     }
 }
 

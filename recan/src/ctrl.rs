@@ -7,11 +7,12 @@
 
 use canstar_sim::{ClockSpec, Component, Io};
 use crate::spec::CtrlSpec;
-use canstar_controller::core::CanCore;
 use canstar_controller::frame::Frame;
 use canstar_controller::fsm::Field;
-use canstar_hdl::drive;
-use rust_hdl::prelude::*;
+use canstar_controller::view::CoreView;
+use canstar_models::core_sim::CoreSim;
+use canstar_models::Engine;
+use rust_hdl::prelude::Probe;
 
 /// Clocks the controller is held in reset after power-up.
 pub const RESET_CYCLES: u32 = 4;
@@ -31,8 +32,8 @@ pub enum CtrlEvent {
 pub struct Ctrl {
     name: String,
     clock: ClockSpec,
-    /// The controller RTL.
-    pub core: CanCore,
+    /// The controller RTL on its engine (outputs through [`CoreView`]).
+    pub core: CoreSim,
     spec: CtrlSpec,
     reset_left: u32,
     request: Option<Frame>,
@@ -48,9 +49,14 @@ pub struct Ctrl {
 }
 
 impl Ctrl {
+    /// A controller on the compiled model.
     pub fn new(name: &str, spec: &CtrlSpec, clock: ClockSpec) -> Self {
-        let mut core = CanCore::with_sync_depth(spec.sync_depth);
-        drive::init(&mut core);
+        Self::with_engine(name, spec, clock, Engine::default())
+    }
+
+    /// A controller on `engine`.
+    pub fn with_engine(name: &str, spec: &CtrlSpec, clock: ClockSpec, engine: Engine) -> Self {
+        let core = CoreSim::new(engine, spec.sync_depth);
         let mut c = Ctrl {
             name: name.to_string(),
             clock,
@@ -72,16 +78,17 @@ impl Ctrl {
 
     fn apply_config(&mut self) {
         let s = &self.spec;
-        let f = |v: u32| v.saturating_sub(1) as u64;
-        self.core.brp.next = f(s.timing.brp).into();
-        self.core.prop.next = f(s.timing.prop).into();
-        self.core.ph1.next = f(s.timing.ph1).into();
-        self.core.sjw.next = f(s.timing.sjw).into();
-        self.core.triple.next = false;
-        self.core.listen_only.next = false;
-        self.core.self_test.next = false;
-        self.core.single_shot.next = false;
-        self.core.host_recovery.next = false;
+        let f = |v: u32| v.saturating_sub(1) as u8;
+        let i = &mut self.core.inp;
+        i.brp = f(s.timing.brp);
+        i.prop = f(s.timing.prop);
+        i.ph1 = f(s.timing.ph1);
+        i.sjw = f(s.timing.sjw);
+        i.triple = false;
+        i.listen_only = false;
+        i.self_test = false;
+        i.single_shot = false;
+        i.host_recovery = false;
     }
 
     /// Request `f` (replaces a pending request; the controller retries until it is sent).
@@ -140,7 +147,7 @@ impl Ctrl {
     }
     /// Is the controller the transmitter of the frame in progress?
     pub fn transmitting(&self) -> bool {
-        self.core.dbg_role.val()
+        self.core.dbg_role()
     }
     pub fn cycles(&self) -> u64 {
         self.cycles
@@ -151,17 +158,17 @@ impl Ctrl {
 
     fn collect(&mut self, now: u64) {
         let c = &self.core;
-        if c.tx_done.val() {
+        if c.tx_done() {
             if let Some(f) = self.request.take().or_else(|| self.last.clone()) {
                 self.events.push((now, CtrlEvent::TxDone(f)));
             }
             self.gap = true;
         }
-        if c.error.val() {
+        if c.error() {
             self.errors += 1;
-            self.events.push((now, CtrlEvent::Error { tx: c.err_tx.val() }));
+            self.events.push((now, CtrlEvent::Error { tx: c.err_tx() }));
         }
-        if c.rx_valid.val() {
+        if c.rx_valid() {
             let f = c.rx_frame();
             self.events.push((now, CtrlEvent::Rx(f)));
         }
@@ -182,37 +189,40 @@ impl Component for Ctrl {
             return;
         }
         self.cycles += 1;
-        let core = &mut self.core;
-        core.rx.next = io.input(0);
+        let core = &mut self.core.inp;
+        core.rx = io.input(0);
         if self.reset_left > 0 {
             self.reset_left -= 1;
-            core.reset.next = true;
+            core.reset = true;
         } else {
-            core.reset.next = false;
+            core.reset = false;
         }
-        core.tx_abort.next = false;
+        core.tx_abort = false;
         if self.gap {
             // tx_req low for one clock after a success
-            core.tx_req.next = false;
+            core.tx_req = false;
             self.gap = false;
         } else if let Some(f) = &self.request {
-            core.tx_req.next = true;
-            core.tx_ide.next = f.ide;
-            core.tx_rtr.next = f.rtr;
-            core.tx_id.next = (f.id as u64).into();
-            core.tx_dlc.next = (f.dlc as u64).into();
-            core.tx_data.next = f.data_word().into();
+            core.tx_req = true;
+            core.tx_ide = f.ide;
+            core.tx_rtr = f.rtr;
+            core.tx_id = f.id;
+            core.tx_dlc = f.dlc;
+            core.tx_data = f.data_word();
         } else {
-            core.tx_req.next = false;
+            core.tx_req = false;
         }
         if self.reset_left > 0 {
             self.apply_config();
         }
-        drive::cycle(&mut self.core);
+        self.core.cycle();
         self.collect(io.now());
-        io.set_output(0, self.core.tx.val());
+        io.set_output(0, self.core.tx());
     }
     fn probe(&self, probe: &mut dyn Probe) {
         self.core.accept(&self.name, probe);
+    }
+    fn set_trace(&mut self, on: bool) {
+        self.core.set_trace(on);
     }
 }

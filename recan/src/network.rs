@@ -4,6 +4,7 @@
 use crate::ctrl::Ctrl;
 use crate::rtl_hub::RtlHub;
 use crate::spec::NetworkSpec;
+use canstar_models::Engine;
 use canstar_sim::star::{LinkSpec, PortSpec, TwoHubs};
 use canstar_sim::{ClockSpec, Handle, Sim};
 
@@ -20,6 +21,11 @@ impl Network {
     /// Build the network in `sim` (validates first). Clock phases left `None`
     /// in the spec are drawn from `sim.rng()`.
     pub fn build(sim: &mut Sim, spec: &NetworkSpec) -> Result<Network, String> {
+        Self::build_with(sim, spec, Engine::default())
+    }
+
+    /// [`Network::build`] with the hubs and controllers on `engine`.
+    pub fn build_with(sim: &mut Sim, spec: &NetworkSpec, engine: Engine) -> Result<Network, String> {
         spec.validate()?;
         let n = spec.hub.ports;
         let mut ports: [Vec<PortSpec>; 2] = [vec![PortSpec::default(); n], vec![PortSpec::default(); n]];
@@ -43,7 +49,7 @@ impl Network {
                 None => rand::Rng::gen_range(sim.rng(), 0..hp),
             };
             let clock = ClockSpec::new(hp).with_ppm(hc.ppm).with_phase(phase);
-            let hub = RtlHub::with_clock(&format!("hub{h}"), &spec.hub, clock);
+            let hub = RtlHub::with_engine(&format!("hub{h}"), &spec.hub, clock, engine);
             hub_handles.push(sim.add(hub, &links.hubs[h].hub_inputs(), &links.hubs[h].hub_outputs()));
         }
         let mut ctrls = Vec::new();
@@ -58,7 +64,7 @@ impl Network {
                 };
                 let clock = ClockSpec::new(p).with_ppm(cs.ppm).with_phase(phase);
                 let name = format!("{}.{}", node.name, ["a", "b"][c]);
-                let ctrl = Ctrl::new(&name, cs, clock);
+                let ctrl = Ctrl::with_engine(&name, cs, clock, engine);
                 let hp = &links.hubs[c];
                 pair.push(sim.add(ctrl, &[hp.node_rx(k)], &[hp.node_tx(k)]));
             }

@@ -1,6 +1,8 @@
 //! The generated hub RTL as a kernel component ([`RtlHub`]), with judge statistics
 //! and input recording for replay (co-simulation, benchmarks).
 
+use canstar_models::hub_sim::HubSim;
+use canstar_models::Engine;
 use canstar_sim::{ClockSpec, Component, Io};
 
 /// The generated hub RTL ([`canstar_hub::hub::Hub`], frame monitor included) as a
@@ -14,8 +16,8 @@ use canstar_sim::{ClockSpec, Component, Io};
 pub struct RtlHub {
     name: String,
     clock: ClockSpec,
-    /// The RTL (read status outputs such as `isolated[i].val()` between steps).
-    pub hub: canstar_hub::hub::Hub,
+    /// The RTL on its engine (read status outputs such as `isolated(i)` between steps).
+    pub hub: HubSim,
     n: usize,
     m: usize,
     cycles: u64,
@@ -72,14 +74,15 @@ impl RtlHub {
         Self::with_clock(name, cfg, ClockSpec::new(period))
     }
 
-    /// A hub with an explicit clock (ppm offset, phase).
+    /// A hub with an explicit clock (ppm offset, phase), on the compiled model.
     pub fn with_clock(name: &str, cfg: &canstar_hub::config::HubConfig, clock: ClockSpec) -> Self {
-        let mut hub = canstar_hub::hub::Hub::new(cfg);
-        for r in hub.rx.iter_mut().chain(hub.reh_rx.iter_mut()) {
-            r.next = true;
-        }
-        hub.rst_n.next = false;
-        canstar_hdl::drive::init(&mut hub);
+        Self::with_engine(name, cfg, clock, Engine::default())
+    }
+
+    /// A hub with an explicit clock on `engine` (rust-hdl with a warning when no
+    /// committed model has the configuration's shape).
+    pub fn with_engine(name: &str, cfg: &canstar_hub::config::HubConfig, clock: ClockSpec, engine: Engine) -> Self {
+        let hub = HubSim::new(engine, cfg);
         RtlHub {
             name: name.to_string(),
             clock,
@@ -155,22 +158,22 @@ impl RtlHub {
 
     /// Which node ports are isolated.
     pub fn isolated(&self) -> Vec<bool> {
-        self.hub.isolated.iter().map(|s| s.val()).collect()
+        (0..self.n).map(|i| self.hub.isolated(i)).collect()
     }
 
     /// Which node ports are reported silent.
     pub fn silent(&self) -> Vec<bool> {
-        self.hub.silent.iter().map(|s| s.val()).collect()
+        (0..self.n).map(|i| self.hub.silent(i)).collect()
     }
 
     /// Which incoming sublinks are isolated.
     pub fn sub_isolated(&self) -> Vec<bool> {
-        self.hub.sub_isolated.iter().map(|s| s.val()).collect()
+        (0..self.m).map(|j| self.hub.sub_isolated(j)).collect()
     }
 
     /// The 4-bit frame state output.
     pub fn frame_state(&self) -> u8 {
-        self.hub.frame_state.val().index() as u8
+        self.hub.frame_state()
     }
 
     /// Clock cycles simulated.
@@ -189,17 +192,11 @@ impl Component for RtlHub {
     fn tick(&mut self, io: &mut Io<'_>) {
         let now = io.now();
         let pressed = self.inject_button || self.presses.iter().any(|&(a, b)| now >= a && now < b);
-        let hub = &mut self.hub;
-        hub.rst_n.next = self.cycles >= Self::RESET_CYCLES;
-        hub.inject_fault.next = pressed;
-        for i in 0..self.n {
-            hub.rx[i].next = io.input(i);
-        }
-        for j in 0..self.m {
-            hub.reh_rx[j].next = io.input(self.n + j);
-        }
+        let rst_n = self.cycles >= Self::RESET_CYCLES;
+        let n = self.n;
+        self.hub.set_inputs(rst_n, pressed, |i| io.input(i), |j| io.input(n + j));
         if let Some(r) = self.record.as_mut() {
-            let mut w: HubInputWord = hub.rst_n.next as u64 | (pressed as u64) << 1;
+            let mut w: HubInputWord = rst_n as u64 | (pressed as u64) << 1;
             for i in 0..self.n {
                 w |= (io.input(i) as u64) << (2 + i);
             }
@@ -208,72 +205,72 @@ impl Component for RtlHub {
             }
             r.push(w);
         }
-        canstar_hdl::drive::cycle(hub);
+        let hub = &mut self.hub;
+        hub.cycle();
         for i in 0..self.n {
-            io.set_output(i, hub.tx[i].val());
+            io.set_output(i, hub.tx(i));
         }
         for j in 0..self.m {
-            io.set_output(self.n + j, hub.hub_tx[j].val());
+            io.set_output(self.n + j, hub.hub_tx(j));
         }
         self.cycles += 1;
         // judge activity
         let st = &mut self.stats;
-        let core = hub.core();
-        if core.blame_any() {
+        if hub.blame_any() {
             st.blames += 1;
-            let (f, p) = (core.mon_field.val().index() as u8, core.mon_pos.val().index() as u8);
+            let (f, p) = (hub.mon_field(), hub.mon_pos());
             for i in 0..self.n {
-                if core.port_judge(i).blame.val() {
+                if hub.port_blame(i) {
                     st.blame_log.push((now, i, f, p));
                 }
             }
             for k in 0..self.m {
-                if core.sublink_judge(k).blame.val() {
+                if hub.sub_blame(k) {
                     st.blame_log.push((now, self.n + k, f, p));
                 }
             }
         }
-        if hub.efg_active.val() {
+        if hub.efg_active() {
             st.efg_clocks += 1;
         }
-        if core.mon_sample.val() {
-            if core.mon_frame_ok.val() {
+        if hub.mon_sample() {
+            if hub.mon_frame_ok() {
                 st.frames_ok += 1;
             }
-            if core.mon_error.val() {
+            if hub.mon_error() {
                 st.monitor_errors += 1;
             }
-            if core.mon_field.val().index() as u64 == canstar_hub::frame_state::Field::Overload.code() {
+            if hub.mon_field() as u64 == canstar_hub::frame_state::Field::Overload.code() {
                 st.overload_bits += 1;
             }
             if let Some(s) = self.samples.as_mut() {
                 if self.n > 0 {
-                    s.push((now, hub.tx[0].val(), core.mon_field.val().index() as u8));
+                    s.push((now, hub.tx(0), hub.mon_field()));
                 }
             }
         }
         for i in 0..self.n {
-            let j = core.port_judge(i);
-            st.max_bic[i] = st.max_bic[i].max(j.bic.val().index() as u64);
-            st.max_dbc[i] = st.max_dbc[i].max(j.dbc.val().index() as u64);
-            if hub.isolated[i].val() && st.isolated_at[i].is_none() {
+            st.max_bic[i] = st.max_bic[i].max(hub.port_bic(i));
+            st.max_dbc[i] = st.max_dbc[i].max(hub.port_dbc(i));
+            if st.isolated_at[i].is_none() && hub.isolated(i) {
                 st.isolated_at[i] = Some(now);
             }
-            if hub.silent[i].val() && st.silent_at[i].is_none() {
+            if st.silent_at[i].is_none() && hub.silent(i) {
                 st.silent_at[i] = Some(now);
             }
         }
         for k in 0..self.m {
-            let j = core.sublink_judge(k);
-            st.max_sub_bic[k] = st.max_sub_bic[k].max(j.bic.val().index() as u64);
-            st.max_sub_dbc[k] = st.max_sub_dbc[k].max(j.dbc.val().index() as u64);
-            if hub.sub_isolated[k].val() && st.sub_isolated_at[k].is_none() {
+            st.max_sub_bic[k] = st.max_sub_bic[k].max(hub.sub_bic(k));
+            st.max_sub_dbc[k] = st.max_sub_dbc[k].max(hub.sub_dbc(k));
+            if st.sub_isolated_at[k].is_none() && hub.sub_isolated(k) {
                 st.sub_isolated_at[k] = Some(now);
             }
         }
     }
+    fn set_trace(&mut self, on: bool) {
+        self.hub.set_trace(on);
+    }
     fn probe(&self, probe: &mut dyn rust_hdl::prelude::Probe) {
-        use rust_hdl::prelude::Block;
         self.hub.accept(&self.name, probe);
     }
 }

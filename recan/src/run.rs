@@ -40,12 +40,14 @@ pub struct RunSpec {
     pub vcd: Option<PathBuf>,
     /// Record the driver's routine log in [`RunResult::trace`].
     pub trace: bool,
+    /// Simulation engine of the hubs and controllers (compiled models by default).
+    pub engine: canstar_models::Engine,
 }
 
 impl RunSpec {
     /// The reference network without faults.
     pub fn new(network: NetworkSpec, seed: u64, frames: u32) -> Self {
-        RunSpec { network, seed, faults: Vec::new(), frames, quiet_frames: None, max_time_ps: None, vcd: None, trace: false }
+        RunSpec { network, seed, faults: Vec::new(), frames, quiet_frames: None, max_time_ps: None, vcd: None, trace: false, engine: Default::default() }
     }
 }
 
@@ -182,7 +184,7 @@ struct Active {
 fn run_impl(spec: &RunSpec) -> RunResult {
     let mut res = RunResult { bit_time_ps: spec.network.bit_time_ps(), ..Default::default() };
     let mut sim = Sim::new(spec.seed);
-    let net = match Network::build(&mut sim, &spec.network) {
+    let net = match Network::build_with(&mut sim, &spec.network, spec.engine) {
         Ok(n) => n,
         Err(e) => {
             res.failures.push(format!("invalid network: {e}"));
@@ -316,15 +318,15 @@ fn run_impl(spec: &RunSpec) -> RunResult {
         // ---- isolation status
         for h in 0..2 {
             let hub = &sim.get(net.hubs[h]).hub;
-            for (i, s) in hub.isolated.iter().enumerate() {
+            for i in 0..hub.ports() {
                 let w = Isolated::Port { hub: h, port: i };
-                if s.val() && !seen_iso.contains(&w) {
+                if hub.isolated(i) && !seen_iso.contains(&w) {
                     seen_iso.push(w);
                 }
             }
-            for (j, s) in hub.sub_isolated.iter().enumerate() {
+            for j in 0..hub.sublinks() {
                 let w = Isolated::Sublink { hub: h, sublink: j };
-                if s.val() && !seen_iso.contains(&w) {
+                if hub.sub_isolated(j) && !seen_iso.contains(&w) {
                     seen_iso.push(w);
                 }
             }
@@ -426,7 +428,7 @@ fn run_impl(spec: &RunSpec) -> RunResult {
     res.sim_cycles = sim.total_cycles();
     res.fault_start_ps = fault_start.clone();
     res.tx_ctrl = drivers.iter().map(|d| d.tx).collect();
-    res.final_bic = net.hubs.iter().map(|&h| sim.get(h).hub.bic.iter().map(|b| b.val().index() as u32).collect()).collect();
+    res.final_bic = net.hubs.iter().map(|&h| { let hub = &sim.get(h).hub; (0..hub.ports()).map(|i| hub.port_bic(i) as u32).collect() }).collect();
     if let Some(base) = &healthy_errors_base {
         let now_err = all_errors(&sim, &net);
         let mut i = 0;

@@ -266,7 +266,7 @@ fn error_passive_node_one_hub() {
     }
     let mut flips = 0;
     while st.node(0).tec() < 160 && flips < 60 {
-        assert!(flip_bit_at(&mut st.sim, x, down0, F::Data, 9, 400, |n| n.core.dbg_role.val()));
+        assert!(flip_bit_at(&mut st.sim, x, down0, F::Data, 9, 400, |n| canstar_controller::view::CoreView::dbg_role(&n.core)));
         flips += 1;
         st.sim.run_for(20 * BIT);
     }

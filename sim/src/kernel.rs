@@ -74,6 +74,10 @@ pub trait Component: Any {
     /// VCD hook: present the component's signals to `probe` (rust-hdl
     /// blocks: `self.block.accept(self.name(), probe)`). Default: none.
     fn probe(&self, _probe: &mut dyn Probe) {}
+    /// VCD hook: the kernel turns tracing on before the first probe walk; a
+    /// component whose engine skips signals no output needs (compiled models)
+    /// evaluates all of them from then on. Default: nothing to do.
+    fn set_trace(&mut self, _on: bool) {}
 }
 
 /// Index of a component in its simulation.
@@ -448,6 +452,9 @@ impl Sim {
     /// hierarchical name matches one of the patterns (see [`crate::vcd`]).
     /// Add all components and nets first.
     pub fn start_vcd(&mut self, out: Box<dyn Write>, filter: Option<&[&str]>) -> std::io::Result<()> {
+        for s in self.slots.iter_mut() {
+            s.comp.set_trace(true);
+        }
         let st = VcdState::start(self, out, filter)?;
         self.vcd = Some(st);
         Ok(())

@@ -48,6 +48,8 @@ pub struct Args {
     /// List the scenario classes.
     #[arg(long)]
     list: bool,
+    #[command(flatten)]
+    engine: canstar::engine::EngineArg,
 }
 
 pub fn run(a: Args) -> Result<()> {
@@ -78,7 +80,7 @@ pub fn run(a: Args) -> Result<()> {
         anyhow::ensure!(m.ok(), "{} failing run(s)", m.runs.iter().filter(|r| !r.pass).count());
         return Ok(());
     }
-    let settings = Settings { seed: a.seed, reps: a.reps, double_delay_bits: a.double_delay_bits };
+    let settings = Settings { seed: a.seed, reps: a.reps, double_delay_bits: a.double_delay_bits, engine: a.engine.engine };
     if let Some(name) = &a.class {
         let class = campaign::class(name)?;
         let rep = a.rep.unwrap_or(0);

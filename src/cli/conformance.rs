@@ -16,11 +16,13 @@ pub struct Args {
     /// each divergence, and count them in the final line (`N passed, M failed, K divergences`).
     #[arg(long)]
     lockstep: bool,
+    #[command(flatten)]
+    engine: canstar::engine::EngineArg,
 }
 
 pub fn run(a: Args) -> Result<()> {
-    let (_, failed, divergences) =
-        canstar_verify::conformance::run_cli_with(a.program.as_deref(), a.vcd.as_deref(), a.lockstep, &mut std::io::stdout())?;
+    let opts = canstar_verify::conformance::RunOptions { vcd_dir: a.vcd, lockstep: a.lockstep, engine: a.engine.engine };
+    let (_, failed, divergences) = canstar_verify::conformance::run_cli_opts(a.program.as_deref(), &opts, &mut std::io::stdout())?;
     if failed > 0 || divergences > 0 {
         anyhow::bail!("{failed} conformance step(s) failed, {divergences} lock-step divergence(s)");
     }

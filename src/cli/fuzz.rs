@@ -29,10 +29,12 @@ pub struct Args {
     /// Stop after this many failing runs.
     #[arg(long, default_value_t = 5)]
     max_failures: usize,
+    #[command(flatten)]
+    engine: canstar::engine::EngineArg,
 }
 
 pub fn run(a: Args) -> Result<()> {
-    fuzz_cmd(a.frames, a.seed, a.per_run, a.jobs, a.run_seed, !a.no_disturb, a.vcd_dir, a.max_failures)
+    fuzz_cmd(a.frames, a.seed, a.per_run, a.jobs, a.run_seed, !a.no_disturb, a.vcd_dir, a.max_failures, a.engine.engine)
 }
 
 #[allow(clippy::too_many_arguments)]
@@ -45,9 +47,10 @@ fn fuzz_cmd(
     disturb: bool,
     vcd_dir: PathBuf,
     max_failures: usize,
+    engine: canstar::engine::Engine,
 ) -> Result<()> {
     use canstar_verify::fuzz::{self, RunOptions, RunReport};
-    let opts = RunOptions { frames: per_run, disturb, vcd_dir: Some(vcd_dir) };
+    let opts = RunOptions { frames: per_run, disturb, vcd_dir: Some(vcd_dir), engine };
     let show = |r: &RunReport| {
         println!(
             "run seed {} ({:#x}): {} nodes, {} frames, {} sent, {} errors, worst state {}",

@@ -23,16 +23,19 @@ pub struct Args {
     /// Write the frames each node saw as a candump log (node i is can<i>).
     #[arg(long)]
     log: Option<PathBuf>,
+    #[command(flatten)]
+    engine: canstar::engine::EngineArg,
 }
 
 pub fn run(a: Args) -> Result<()> {
-    let Args { scenario, ms, seed, vcd, trace, log } = a;
+    let Args { scenario, ms, seed, vcd, trace, log, engine } = a;
+    let engine = engine.engine;
     let text = std::fs::read_to_string(&scenario).with_context(|| format!("reading {}", scenario.display()))?;
     if canstar_recan::NetworkSpec::is_network_file(&text) {
-        return network(&scenario, &text, ms, seed, vcd, trace);
+        return network(&scenario, &text, ms, seed, vcd, trace, engine);
     }
     let sc = canstar_verify::scenario::Scenario::from_toml(&text).map_err(|e| anyhow::anyhow!("{}: {e}", scenario.display()))?;
-    let opts = canstar_verify::scenario::RunOptions { vcd: vcd.clone(), trace: trace.is_some() };
+    let opts = canstar_verify::scenario::RunOptions { vcd: vcd.clone(), trace: trace.is_some(), engine };
     let r = canstar_verify::scenario::run(&sc, &opts).map_err(|e| anyhow::anyhow!(e))?;
     if let Some(p) = &trace {
         std::fs::write(p, r.trace.join("\n") + "\n").with_context(|| format!("writing {}", p.display()))?;
@@ -57,13 +60,14 @@ pub fn run(a: Args) -> Result<()> {
 }
 
 /// `canstar sim` with a ReCANcentrate network file.
-fn network(path: &std::path::Path, text: &str, ms: f64, seed: u64, vcd: Option<PathBuf>, trace: Option<PathBuf>) -> Result<()> {
+fn network(path: &std::path::Path, text: &str, ms: f64, seed: u64, vcd: Option<PathBuf>, trace: Option<PathBuf>, engine: canstar::engine::Engine) -> Result<()> {
     use canstar_recan::{run, NetworkSpec, RunSpec};
     let net = NetworkSpec::from_toml(text).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
     let mut spec = RunSpec::new(net.clone(), seed, 0);
     spec.max_time_ps = Some((ms * 1e9).round() as u64);
     spec.vcd = vcd.clone();
     spec.trace = trace.is_some();
+    spec.engine = engine;
     let r = run(&spec);
     if let Some(p) = &trace {
         std::fs::write(p, r.trace.join("\n") + "\n").with_context(|| format!("writing {}", p.display()))?;

@@ -75,6 +75,7 @@ use std::fmt;
 use canstar_controller::fsm::{self as cfsm};
 use canstar_controller::trace::BitTracer;
 use canstar_hdl::btl::{BtlCycleModel, BtlInputs};
+use canstar_controller::view::CoreView;
 use rust_hdl::prelude::*;
 
 use canstar_golden::{self as golden, trace::trace_line, BitLabel, Event, FaultState, GoldenNode, StepOut};
@@ -329,14 +330,14 @@ impl LockstepNode {
 
     fn dut_label(&self) -> String {
         let c = &self.node.core;
-        let fld = cfsm::Field::from_code(c.dbg_field.val().index() as u64);
+        let fld = cfsm::Field::from_code(c.dbg_field() as u64);
         let f = fld.map(|f| f.name()).unwrap_or("?");
         format!(
             "{}{} {}{}",
-            if c.dbg_role.val() && fld.is_some_and(|f| f.has_role()) { "Tx_" } else { "" },
+            if c.dbg_role() && fld.is_some_and(|f| f.has_role()) { "Tx_" } else { "" },
             f,
-            c.dbg_pos.val().index(),
-            if c.dbg_stuff.val() { " (stuff)" } else { "" }
+            c.dbg_pos(),
+            if c.dbg_stuff() { " (stuff)" } else { "" }
         )
     }
 
@@ -380,19 +381,14 @@ impl LockstepNode {
     /// The frame on the DUT's request inputs.
     fn requested_frame(&self) -> golden::Frame {
         let c = &self.node.core;
-        let f = canstar_controller::frame::Frame::from_native(
-            c.tx_ide.val(),
-            c.tx_rtr.val(),
-            c.tx_id.val().index() as u32,
-            c.tx_dlc.val().index() as u8,
-            c.tx_data.val().to_u64(),
-        );
+        let i = &c.inp;
+        let f = canstar_controller::frame::Frame::from_native(i.tx_ide, i.tx_rtr, i.tx_id, i.tx_dlc, i.tx_data);
         to_golden_frame(&f)
     }
 
     /// Events of the DUT's event word as §18 tokens (for diagnostics).
     fn dut_event_mask(&self) -> u64 {
-        (self.node.core.dbg_events.val().index() as u64) & !(1u64 << cfsm::EV_INTEGRATED)
+        (self.node.core.dbg_events() as u64) & !(1u64 << cfsm::EV_INTEGRATED)
     }
 
     fn golden_event_mask(out: &StepOut) -> u64 {
@@ -428,7 +424,7 @@ impl LockstepNode {
 
     /// Everything after the DUT's clock edge at `now` with `rx_raw` the RX level it read.
     fn check(&mut self, now: u64, rx_raw: bool) {
-        let reset = self.node.core.reset.val();
+        let reset = self.node.core.inp.reset;
         let t_ns = now / 1000;
 
         // ---- golden bit timing: this clock's inputs, then the edge.
@@ -486,7 +482,7 @@ impl LockstepNode {
         }
 
         // ---- request alignment (§19.2).
-        let rqst = self.node.core.dbg_tx_rqst.val();
+        let rqst = self.node.core.dbg_tx_rqst();
         if rqst && !self.prev_rqst {
             let fr = self.requested_frame();
             self.golden.request(fr);
@@ -496,7 +492,7 @@ impl LockstepNode {
         self.prev_rqst = rqst;
 
         // ---- results of the previous golden step become visible.
-        let c_rx_valid = self.node.core.rx_valid.val();
+        let c_rx_valid = self.node.core.rx_valid();
         let dut_frame = c_rx_valid.then(|| {
             let c = &self.node.core;
             to_golden_frame(&c.rx_frame())
@@ -528,7 +524,7 @@ impl LockstepNode {
         }
 
         // ---- arming (§19.3): the DUT's first sampled dominant bit.
-        if !self.armed && !reset && self.node.core.dbg_sample.val() && !self.node.core.dbg_busmon.val() {
+        if !self.armed && !reset && self.node.core.dbg_sample() && !self.node.core.dbg_busmon() {
             self.armed = true;
         }
 
@@ -537,7 +533,7 @@ impl LockstepNode {
             self.stats.clocks += 1;
             let (d_sample, d_busmon, d_tx) = {
                 let c = &self.node.core;
-                (c.dbg_sample.val(), c.dbg_busmon.val(), c.tx.val())
+                (c.dbg_sample(), c.dbg_busmon(), c.tx())
             };
             if d_sample != p_sample {
                 self.fail(now, "sample", d_sample.to_string(), p_sample.to_string());
@@ -579,7 +575,7 @@ impl LockstepNode {
             }
             if self.armed && self.divergence.is_none() {
                 self.stats.bits += 1;
-                let d_tx = self.node.core.tx.val();
+                let d_tx = self.node.core.tx();
                 if d_tx != out.drove {
                     self.fail(now, "drove", (d_tx as u8).to_string(), (out.drove as u8).to_string());
                 }
@@ -622,5 +618,8 @@ impl Component for LockstepNode {
     }
     fn probe(&self, probe: &mut dyn Probe) {
         self.node.probe(probe);
+    }
+    fn set_trace(&mut self, on: bool) {
+        self.node.set_trace(on);
     }
 }

@@ -24,13 +24,14 @@
 //! controller integrates (11 recessive bits) before it may send.
 
 use canstar_sim::{ClockSpec, Component, Io};
-use canstar_controller::core::CanCore;
 use canstar_controller::frame::Frame;
+use canstar_controller::view::CoreView;
 use canstar_controller::fsm::{Field, ERRK_ACK, ERRK_BIT, ERRK_CRC, ERRK_FORM, ERRK_STUFF};
 use canstar_controller::trace::BitTracer;
-use canstar_hdl::drive;
 use canstar_hdl::timing::BtlConfig;
-use rust_hdl::prelude::*;
+use canstar_models::core_sim::CoreSim;
+pub use canstar_models::Engine;
+use rust_hdl::prelude::Probe;
 use std::collections::VecDeque;
 
 /// Clocks the controller is held in reset after power-up or [`CanNode::hard_reset`].
@@ -48,6 +49,8 @@ pub struct NodeConfig {
     pub host_recovery: bool,
     /// RX synchroniser depth (1 or 2).
     pub sync_depth: usize,
+    /// Simulation engine of the controller (compiled model by default).
+    pub engine: Engine,
 }
 
 impl NodeConfig {
@@ -61,12 +64,18 @@ impl NodeConfig {
             single_shot: false,
             host_recovery: false,
             sync_depth: canstar_controller::core::SYNC_DEPTH,
+            engine: Engine::default(),
         }
     }
     /// The same node with bit timing `brp` clocks per TQ, PROP, PH1, SJW in TQ
     /// (triple sampling unchanged).
     pub fn timing(mut self, brp: u32, prop: u32, ph1: u32, sjw: u32) -> Self {
         self.timing = BtlConfig { triple: self.timing.triple, ..BtlConfig::new(brp, prop, ph1, sjw) };
+        self
+    }
+    /// The same node on another simulation engine.
+    pub fn engine(mut self, engine: Engine) -> Self {
+        self.engine = engine;
         self
     }
 }
@@ -94,12 +103,13 @@ pub enum HostEvent {
     Rx(Frame),
 }
 
-/// A CAN node: [`CanCore`] plus host model. See the module documentation.
+/// A CAN node: the controller core ([`CoreSim`] on the configured engine) plus host model. See the module documentation.
 pub struct CanNode {
     name: String,
     clock: ClockSpec,
-    /// The controller RTL (read its signals with `.val()` between steps).
-    pub core: CanCore,
+    /// The controller RTL on its engine (read its outputs through
+    /// [`CoreView`] between steps).
+    pub core: CoreSim,
     cfg: NodeConfig,
     reset_left: u32,
     queue: VecDeque<Frame>,
@@ -115,8 +125,7 @@ pub struct CanNode {
 
 impl CanNode {
     pub fn new(cfg: NodeConfig, clock: ClockSpec) -> Self {
-        let mut core = CanCore::with_sync_depth(cfg.sync_depth);
-        drive::init(&mut core);
+        let core = CoreSim::new(cfg.engine, cfg.sync_depth);
         let mut n = CanNode {
             name: cfg.name.clone(),
             clock,
@@ -138,17 +147,18 @@ impl CanNode {
 
     fn apply_config(&mut self) {
         let c = &self.cfg;
-        let f = |v: u32| v.saturating_sub(1) as u64;
-        self.core.brp.next = f(c.timing.brp).into();
-        self.core.prop.next = f(c.timing.prop).into();
-        self.core.ph1.next = f(c.timing.ph1).into();
-        self.core.sjw.next = f(c.timing.sjw).into();
-        self.core.triple.next = c.timing.triple;
-        self.core.listen_only.next = c.listen_only;
-        self.core.self_test.next = c.self_test;
-        self.core.single_shot.next = c.single_shot;
-        self.core.host_recovery.next = c.host_recovery;
-        self.core.cnt_load.next = false;
+        let f = |v: u32| v.saturating_sub(1) as u8;
+        let i = &mut self.core.inp;
+        i.brp = f(c.timing.brp);
+        i.prop = f(c.timing.prop);
+        i.ph1 = f(c.timing.ph1);
+        i.sjw = f(c.timing.sjw);
+        i.triple = c.timing.triple;
+        i.listen_only = c.listen_only;
+        i.self_test = c.self_test;
+        i.single_shot = c.single_shot;
+        i.host_recovery = c.host_recovery;
+        i.cnt_load = false;
     }
 
     pub fn config(&self) -> &NodeConfig {
@@ -246,30 +256,31 @@ impl CanNode {
         }
         match (&self.current, self.gap) {
             (Some(f), false) => {
-                self.core.tx_req.next = true;
-                self.core.tx_ide.next = f.ide;
-                self.core.tx_rtr.next = f.rtr;
-                self.core.tx_id.next = (f.id as u64).into();
-                self.core.tx_dlc.next = (f.dlc as u64).into();
-                self.core.tx_data.next = f.data_word().into();
+                let i = &mut self.core.inp;
+                i.tx_req = true;
+                i.tx_ide = f.ide;
+                i.tx_rtr = f.rtr;
+                i.tx_id = f.id;
+                i.tx_dlc = f.dlc;
+                i.tx_data = f.data_word();
             }
-            _ => self.core.tx_req.next = false,
+            _ => self.core.inp.tx_req = false,
         }
     }
 
     fn collect(&mut self, now: u64) {
         let c = &self.core;
-        if c.tx_done.val() {
+        if c.tx_done() {
             if let Some(f) = self.current.take() {
                 self.log.push((now, HostEvent::TxDone(f)));
             }
             self.gap = true;
         }
-        if c.arb_lost.val() {
-            self.log.push((now, HostEvent::ArbLost(c.arb_lost_pos.val().index() as u32)));
+        if c.arb_lost() {
+            self.log.push((now, HostEvent::ArbLost(c.arb_lost_pos())));
         }
-        if c.error.val() {
-            let k = c.err_kind.val().index() as usize;
+        if c.error() {
+            let k = c.err_kind() as usize;
             let kinds = [(ERRK_BIT, ErrorKind::Bit), (ERRK_STUFF, ErrorKind::Stuff), (ERRK_CRC, ErrorKind::Crc), (ERRK_FORM, ErrorKind::Form), (ERRK_ACK, ErrorKind::Ack)]
                 .iter()
                 .filter(|(b, _)| (k >> b) & 1 == 1)
@@ -279,9 +290,9 @@ impl CanNode {
                 now,
                 HostEvent::Error {
                     kinds,
-                    field: Field::from_code(c.err_field.val().index() as u64).unwrap_or(Field::Reset),
-                    pos: c.err_pos.val().index() as u32,
-                    tx: c.err_tx.val(),
+                    field: Field::from_code(c.err_field() as u64).unwrap_or(Field::Reset),
+                    pos: c.err_pos(),
+                    tx: c.err_tx(),
                 },
             ));
             if self.cfg.single_shot {
@@ -289,7 +300,7 @@ impl CanNode {
                 self.gap = true;
             }
         }
-        if c.rx_valid.val() {
+        if c.rx_valid() {
             let f = c.rx_frame();
             self.log.push((now, HostEvent::Rx(f)));
         }
@@ -310,27 +321,30 @@ impl Component for CanNode {
     }
     fn tick(&mut self, io: &mut Io<'_>) {
         self.cycles += 1;
-        self.core.rx.next = io.input(0);
+        self.core.inp.rx = io.input(0);
         if self.reset_left > 0 {
             self.reset_left -= 1;
-            self.core.reset.next = true;
+            self.core.inp.reset = true;
             self.apply_config();
         } else {
-            self.core.reset.next = false;
+            self.core.inp.reset = false;
         }
         if self.gap {
             // tx_req was low for this clock: the next request may start.
-            self.core.tx_req.next = false;
+            self.core.inp.tx_req = false;
             self.gap = false;
         } else {
             self.drive_request();
         }
-        self.core.recover.next = std::mem::take(&mut self.recover_pulse);
-        drive::cycle(&mut self.core);
+        self.core.inp.recover = std::mem::take(&mut self.recover_pulse);
+        self.core.cycle();
         self.collect(io.now());
-        io.set_output(0, self.core.tx.val());
+        io.set_output(0, self.core.tx());
     }
     fn probe(&self, probe: &mut dyn Probe) {
         self.core.accept(&self.name, probe);
+    }
+    fn set_trace(&mut self, on: bool) {
+        self.core.set_trace(on);
     }
 }

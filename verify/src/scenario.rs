@@ -358,6 +358,7 @@ use canstar_sim::{Component, Handle, Sim};
 use canstar_sim::net::FaultMode;
 use crate::node::{CanNode, HostEvent, NodeConfig};
 use canstar_controller::frame::Frame;
+use canstar_controller::view::CoreView;
 
 /// What to record while running.
 #[derive(Debug, Clone, Default)]
@@ -366,6 +367,8 @@ pub struct RunOptions {
     pub vcd: Option<std::path::PathBuf>,
     /// Record the per-bit trace (can-protocol.md §18) of every node.
     pub trace: bool,
+    /// Simulation engine of the controllers (compiled models by default).
+    pub engine: crate::node::Engine,
 }
 
 /// Per-node outcome.
@@ -429,6 +432,7 @@ pub fn run(s: &Scenario, opts: &RunOptions) -> Result<RunResult, String> {
         cfg.listen_only = n.mode == NodeMode::ListenOnly;
         cfg.self_test = n.mode == NodeMode::SelfTest;
         cfg.single_shot = n.single_shot;
+        cfg.engine = opts.engine;
         let period = (1e6 / s.clock_mhz(i)).round() as u64;
         let clock = sim.random_phase_clock(period, n.ppm);
         tq_ps.push(period * bt.brp as u64);
@@ -494,13 +498,13 @@ pub fn run(s: &Scenario, opts: &RunOptions) -> Result<RunResult, String> {
             break;
         }
         for (i, h) in handles.iter().enumerate() {
-            if sim.get(*h).core.dbg_sample.val() {
+            if sim.get(*h).core.dbg_sample() {
                 last_sample[i] = t;
             }
         }
         for a in armed.iter_mut().filter(|a| a.left > 0) {
             let n = sim.get(handles[a.node]);
-            let on = n.field().name() == a.field && n.pos() == a.pos && !n.core.dbg_sample.val();
+            let on = n.field().name() == a.field && n.pos() == a.pos && !n.core.dbg_sample();
             if on && !a.was_on_target {
                 a.left -= 1;
                 if a.left == 0 {

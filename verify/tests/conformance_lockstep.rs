@@ -6,7 +6,7 @@
 use canstar_verify::conformance::{run_program_with, RunOptions};
 
 fn lockstep(program: &str) {
-    let run = run_program_with(program, &RunOptions { vcd_dir: None, lockstep: true }).expect("no such program");
+    let run = run_program_with(program, &RunOptions { vcd_dir: None, lockstep: true, ..Default::default() }).expect("no such program");
     let divs: Vec<String> = run.log.divergences.iter().map(|d| d.to_string()).collect();
     assert!(divs.is_empty(), "{program}: {} lock-step divergence(s):\n{}", divs.len(), divs.join("\n"));
     assert!(run.log.checked_bits > 100, "{program}: only {} sample points compared", run.log.checked_bits);

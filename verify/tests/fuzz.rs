@@ -3,7 +3,7 @@ use canstar_verify::fuzz::{fuzz, run_seed, RunOptions};
 
 #[test]
 fn fixed_seed_fuzz_has_no_divergence_or_violation() {
-    let opts = RunOptions { frames: 16, disturb: true, vcd_dir: Some(std::env::temp_dir()) };
+    let opts = RunOptions { frames: 16, disturb: true, vcd_dir: Some(std::env::temp_dir()), ..Default::default() };
     let s = fuzz(200, 20251121, &opts, 2, 3, |s, r| {
         eprintln!(
             "run {} seed {:#x}: {} nodes, {} frames, sent {}, errors {}, worst state {}, ok {}",
@@ -33,7 +33,7 @@ fn runs_are_reproducible_from_their_seed() {
 
 #[test]
 fn the_divergence_window_vcd_has_dut_and_golden_signals() {
-    let opts = RunOptions { frames: 2, disturb: false, vcd_dir: None };
+    let opts = RunOptions { frames: 2, disturb: false, vcd_dir: None, ..Default::default() };
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("w.vcd");
     canstar_verify::fuzz::write_window_vcd(5, &opts, &path, 300_000_000).unwrap();

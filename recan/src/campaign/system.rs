@@ -167,7 +167,8 @@ fn finish(mut g: Generic, nodes: usize) -> Generic {
 /// The scenario of `class` for run seed `seed`.
 pub fn build(class: &Class, seed: u64, settings: &Settings) -> Built {
     if let ClassKind::Published(n) = class.kind {
-        let (spec, e) = crate::published_scenario(n as usize, seed);
+        let (mut spec, e) = crate::published_scenario(n as usize, seed);
+        spec.engine = settings.engine;
         return Built { spec, expect: Expectation::Published(e), simultaneous: false };
     }
     let mut rng = ChaCha8Rng::seed_from_u64(seed ^ 0xca3a_1a7e);
@@ -313,6 +314,7 @@ pub fn build(class: &Class, seed: u64, settings: &Settings) -> Built {
     let mut spec = RunSpec::new(net, seed, FRAMES_AFTER_FAULT);
     spec.quiet_frames = Some(QUIET_FRAMES);
     spec.faults = faults;
+    spec.engine = settings.engine;
     Built { spec, expect: Expectation::Generic(g), simultaneous }
 }
 

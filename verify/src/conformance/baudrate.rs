@@ -2,6 +2,7 @@
 //! BRP 10 T10/6/4, N2 1118 ns BRP 1 T10/6/4, N3 442 ns BRP 1 T25 PROP 8
 //! PH1 8 SJW 4; bit times 11.00 / 11.18 / 11.05 µs), frames with many stuff
 //! bits, every loser losing arbitration right after a stuff bit.
+use canstar_controller::view::CoreView;
 use super::*;
 
 /// Bus-bit index where `a` loses against `b` (first differing bit), if it does.
@@ -62,7 +63,7 @@ fn round(b: &mut Bench, winner: usize) -> Result<(), String> {
     let marks: Vec<usize> = (0..3).map(|i| b.mark(i)).collect();
     let rx0: Vec<usize> = (0..3).map(|i| b.node(i).received().len()).collect();
     b.node_mut(0).request(fr[assign[0]].clone());
-    b.run_until(5, |b| b.node(0).core.dbg_tx_rqst.val())?;
+    b.run_until(5, |b| b.node(0).core.dbg_tx_rqst())?;
     b.node_mut(1).request(fr[assign[1]].clone());
     b.node_mut(2).request(fr[assign[2]].clone());
     b.run_until(3000, |b| (0..3).all(|i| !b.node(i).pending()))?;

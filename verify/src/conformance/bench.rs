@@ -2,6 +2,7 @@
 //! bus of the kernel, start-up, bit records, WAIT_FOR-style forcing, and the
 //! run log that collects lock-step divergences and simulation effort.
 
+use canstar_controller::view::CoreView;
 use super::*;
 
 thread_local! {
@@ -22,6 +23,21 @@ pub fn set_lockstep(on: bool) {
 /// Is lock-step mode on for benches built on this thread?
 pub fn lockstep_mode() -> bool {
     LOCKSTEP.with(|c| c.get())
+}
+
+thread_local! {
+    static ENGINE: Cell<Engine> = const { Cell::new(Engine::Compiled) };
+}
+
+/// Simulation engine of the RTL nodes of benches built on this thread from now on
+/// (overrides the engine of their configurations; compiled by default).
+pub fn set_engine(e: Engine) {
+    ENGINE.with(|c| c.set(e));
+}
+
+/// The engine benches built on this thread use.
+pub fn engine_mode() -> Engine {
+    ENGINE.with(|c| c.get())
 }
 
 /// What the benches of one program run did, collected when each bench is
@@ -124,6 +140,7 @@ impl Bench {
         let lockstep = lockstep_mode();
         for (i, mut c) in cfgs.into_iter().enumerate() {
             c.name = names[i].clone();
+            c.engine = engine_mode();
             let (rx, tx) = (bus.nodes[i].rx, bus.nodes[i].tx);
             nodes.push(if lockstep {
                 NodeHandle::Lockstep(sim.add(LockstepNode::new(c, clocks[i]), &[rx], &[tx]))
@@ -191,7 +208,7 @@ impl Bench {
     }
     /// Completed bus-off recovery runs of node `i`.
     pub fn runs(&self, i: usize) -> u32 {
-        self.node(i).core.dbg_runs.val().index() as u32
+        self.node(i).core.dbg_runs() as u32
     }
     /// (field, pos) of the bit node `i` has in progress.
     pub fn at(&self, i: usize) -> (Field, u32) {
@@ -254,7 +271,7 @@ impl Bench {
             }
             self.seen_cycles[i] = cy;
             let c = &nd.core;
-            let ev = c.dbg_events.val().index() as u32;
+            let ev = c.dbg_events() as u32;
             if (ev >> EV_BIT) & 1 == 1 {
                 if let Some(mut r) = self.pending[i].take() {
                     r.ev = ev;
@@ -265,15 +282,15 @@ impl Bench {
                     self.recs[i].push(r);
                 }
             }
-            if c.dbg_sample.val() {
+            if c.dbg_sample() {
                 self.pending[i] = Some(BitRec {
                     t: 0,
-                    field: Field::from_code(c.dbg_field.val().index() as u64).unwrap_or(Field::Reset),
-                    pos: c.dbg_pos.val().index() as u32,
-                    stuff: c.dbg_stuff.val(),
-                    tx_role: c.dbg_role.val(),
-                    level: c.dbg_busmon.val(),
-                    drove: c.tx.val(),
+                    field: Field::from_code(c.dbg_field() as u64).unwrap_or(Field::Reset),
+                    pos: c.dbg_pos() as u32,
+                    stuff: c.dbg_stuff(),
+                    tx_role: c.dbg_role(),
+                    level: c.dbg_busmon(),
+                    drove: c.tx(),
                     ev: 0,
                     tec: 0,
                     rec: 0,
@@ -339,7 +356,7 @@ impl Bench {
             if self.mark(i) != m {
                 m = self.mark(i);
                 let nd = self.node(i);
-                if nd.field() == field && nd.pos() == pos && nd.core.dbg_stuff.val() == stuff {
+                if nd.field() == field && nd.pos() == pos && nd.core.dbg_stuff() == stuff {
                     return Ok(());
                 }
             }

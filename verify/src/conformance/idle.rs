@@ -1,6 +1,7 @@
 //! idle (§9 of the plan): reset and bus-off recovery sequences of a single
 //! node (T10/8/1); every level N1 reads beyond its own TX comes from its
 //! override.
+use canstar_controller::view::CoreView;
 use super::*;
 
 const D: FaultMode = FaultMode::StuckDominant;
@@ -60,7 +61,7 @@ pub fn run(ctx: &mut Ctx) {
         let m = b.force_at(&[0], Field::Inter, 3, false, D, 1)?;
         let x = b.rec_at(0, m)?;
         ensure!(x.has(EV_SOF), "Intermission 3 forced D: no SOF at {x}");
-        ensure!(b.at(0) == (Field::Ident, 1) && b.node(0).core.dbg_role.val(), "after the SOF N1 is at {:?} (role tx {})", b.at(0), b.node(0).core.dbg_role.val());
+        ensure!(b.at(0) == (Field::Ident, 1) && b.node(0).core.dbg_role(), "after the SOF N1 is at {:?} (role tx {})", b.at(0), b.node(0).core.dbg_role());
         let y = b.since(0, m).get(1).copied();
         b.run_bits(1);
         let y = y.or_else(|| b.since(0, m).get(1).copied()).ok_or("no bit after the SOF")?;

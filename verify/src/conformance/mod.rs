@@ -76,7 +76,7 @@ use canstar_sim::bus::{Bus, NodeDelays};
 use canstar_sim::{ClockSpec, Component, Handle, Io, Sim};
 use crate::lockstep::{Divergence, LockstepNode};
 use canstar_sim::net::FaultMode;
-use crate::node::{CanNode, NodeConfig, RESET_CYCLES};
+use crate::node::{CanNode, Engine, NodeConfig, RESET_CYCLES};
 use std::cell::{Cell, RefCell};
 use canstar_controller::frame::{bus_bits, BuildOptions, BusBit, Frame};
 use canstar_controller::fsm::*;
@@ -180,6 +180,8 @@ pub struct RunOptions {
     pub vcd_dir: Option<PathBuf>,
     /// Run every node of every bench in lock step with its own golden model.
     pub lockstep: bool,
+    /// Simulation engine of the RTL nodes (compiled models by default).
+    pub engine: crate::node::Engine,
 }
 
 /// Everything one program run produced.
@@ -194,7 +196,7 @@ pub struct ProgramRun {
 
 /// Run program `name`; `None` if there is no such program.
 pub fn run_program(name: &str, vcd_dir: Option<&Path>) -> Option<Vec<StepResult>> {
-    run_program_with(name, &RunOptions { vcd_dir: vcd_dir.map(|d| d.to_path_buf()), lockstep: false }).map(|r| r.results)
+    run_program_with(name, &RunOptions { vcd_dir: vcd_dir.map(|d| d.to_path_buf()), ..Default::default() }).map(|r| r.results)
 }
 
 /// Run program `name` with `opts`; `None` if there is no such program.
@@ -207,12 +209,15 @@ pub fn run_program_with(name: &str, opts: &RunOptions) -> Option<ProgramRun> {
     let run = p.run;
     let was = lockstep_mode();
     set_lockstep(opts.lockstep);
+    let was_engine = engine_mode();
+    set_engine(opts.engine);
     let _ = take_run_log();
     NEW_DIVS.with(|d| d.borrow_mut().clear());
     let t0 = std::time::Instant::now();
     let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| run(&mut ctx)));
     let wall = t0.elapsed();
     set_lockstep(was);
+    set_engine(was_engine);
     if let Err(e) = r {
         let m = e.downcast_ref::<String>().cloned().or_else(|| e.downcast_ref::<&str>().map(|s| s.to_string())).unwrap_or_default();
         ctx.results.push(StepResult { name: format!("{name}_panic"), pass: false, msg: m });
@@ -233,6 +238,12 @@ pub fn run_cli(program: Option<&str>, vcd_dir: Option<&Path>, out: &mut dyn std:
 /// the simulation effort (clock cycles, simulated bit times, wall time and
 /// the rates). Returns (passed, failed, divergences).
 pub fn run_cli_with(program: Option<&str>, vcd_dir: Option<&Path>, lockstep: bool, out: &mut dyn std::io::Write) -> std::io::Result<(usize, usize, usize)> {
+    run_cli_opts(program, &RunOptions { vcd_dir: vcd_dir.map(|d| d.to_path_buf()), lockstep, ..Default::default() }, out)
+}
+
+/// [`run_cli_with`] with every option (engine included).
+pub fn run_cli_opts(program: Option<&str>, opts: &RunOptions, out: &mut dyn std::io::Write) -> std::io::Result<(usize, usize, usize)> {
+    let (vcd_dir, lockstep) = (opts.vcd_dir.as_deref(), opts.lockstep);
     let names: Vec<&'static str> = programs().iter().map(|p| p.name).collect();
     let chosen: Vec<&str> = match program {
         Some(p) => {
@@ -248,12 +259,11 @@ pub fn run_cli_with(program: Option<&str>, vcd_dir: Option<&Path>, lockstep: boo
     if let Some(d) = vcd_dir {
         std::fs::create_dir_all(d)?;
     }
-    let opts = RunOptions { vcd_dir: vcd_dir.map(|d| d.to_path_buf()), lockstep };
     let (mut tp, mut tf, mut td) = (0, 0, 0);
     let mut total = RunLog::default();
     let mut wall = std::time::Duration::ZERO;
     for p in chosen {
-        let run = run_program_with(p, &opts).expect("program exists");
+        let run = run_program_with(p, opts).expect("program exists");
         let res = &run.results;
         let pass = res.iter().filter(|r| r.pass).count();
         let fail = res.len() - pass;

@@ -2,6 +2,7 @@
 //! alone; every step uses a fresh frame, forces one bit at N1 and then
 //! withdraws the request. Derived totals after txarb_20: TEC 96, REC 5,
 //! error-active throughout.
+use canstar_controller::view::CoreView;
 use super::*;
 
 const D: FaultMode = FaultMode::StuckDominant;
@@ -130,7 +131,7 @@ pub fn run(ctx: &mut Ctx) {
         if k == last && r.is_ok() {
             r = (|| {
                 ensure!((b.tec(0), b.rec(0)) == (96, 5), "totals TEC {} REC {} (expected 96 / 5)", b.tec(0), b.rec(0));
-                ensure!(b.node(0).core.err_warn.val(), "error warning not set at TEC 96");
+                ensure!(b.node(0).core.err_warn(), "error warning not set at TEC 96");
                 Ok(())
             })();
         }

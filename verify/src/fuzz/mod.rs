@@ -101,11 +101,13 @@ pub struct RunOptions {
     pub disturb: bool,
     /// On a divergence, rerun the seed and write the window around it as a VCD into this directory.
     pub vcd_dir: Option<PathBuf>,
+    /// Simulation engine of the RTL nodes (compiled models by default).
+    pub engine: crate::node::Engine,
 }
 
 impl Default for RunOptions {
     fn default() -> Self {
-        RunOptions { frames: 16, disturb: true, vcd_dir: None }
+        RunOptions { frames: 16, disturb: true, vcd_dir: None, engine: Default::default() }
     }
 }
 

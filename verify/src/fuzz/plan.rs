@@ -90,7 +90,7 @@ pub(super) fn plan(seed: u64, opts: &RunOptions) -> Plan {
         let period = 100_000 / brp as u64;
         let ppm = rng.gen_range(-max_ppm..=max_ppm);
         let clock = ClockSpec::new(period).with_ppm(ppm).with_phase(rng.gen_range(0..period));
-        let cfg = NodeConfig::named(&format!("n{}", i + 1)).timing(brp, prop, ph1, sjw);
+        let cfg = NodeConfig::named(&format!("n{}", i + 1)).timing(brp, prop, ph1, sjw).engine(opts.engine);
         cfgs.push((cfg, clock));
         let d = rng.gen_range(0..=20_000 * prop as u64);
         delays.push(NodeDelays::symmetric(d / 2, d / 2));

@@ -1,0 +1,354 @@
+//! [`HubSim`]: the hub RTL ([`canstar_hub::hub::Hub`], frame monitor included) on
+//! either engine behind one interface: the ports by index, the status outputs and
+//! the judge units' signals the system simulation reads (blame, counters, the frame
+//! monitor's sample/field/position), the same probe walk (VCD) on both.
+//!
+//! The compiled engine is any committed model whose shape fits the configuration
+//! ([`crate::model_for`]); its signals are found by their rust-hdl path, so a
+//! regenerated model needs no change here.
+
+use std::cell::RefCell;
+use std::collections::HashMap;
+
+use canstar_hub::config::HubConfig;
+use canstar_hub::hub::Hub;
+use canstar_rtlc::rt::Op;
+use rust_hdl::prelude::*;
+
+use crate::engine::{fallback_warning, Engine};
+use crate::Model;
+
+/// Indices of the signals read from a compiled hub (ports: input/output index;
+/// internal signals: atom index).
+#[derive(Clone, Debug)]
+struct Map {
+    rst_n: usize,
+    inject: usize,
+    rx: Vec<usize>,
+    reh_rx: Vec<usize>,
+    tx: Vec<usize>,
+    hub_tx: Vec<usize>,
+    isolated: Vec<usize>,
+    silent: Vec<usize>,
+    sub_isolated: Vec<usize>,
+    frame_state: usize,
+    efg_active: usize,
+    // atoms
+    pj_blame: Vec<usize>,
+    sj_blame: Vec<usize>,
+    pj_bic: Vec<usize>,
+    pj_dbc: Vec<usize>,
+    sj_bic: Vec<usize>,
+    sj_dbc: Vec<usize>,
+    mon_sample: usize,
+    mon_field: usize,
+    mon_pos: usize,
+    mon_error: usize,
+    mon_frame_ok: usize,
+}
+
+/// Atom index of every dotted path below the top scope (`core.pj$0.blame`).
+fn atom_paths(m: &dyn Model) -> HashMap<String, usize> {
+    let info = m.info();
+    let mut path: Vec<&str> = vec![];
+    let mut out = HashMap::new();
+    for op in info.probe {
+        match *op {
+            Op::Scope(n) | Op::Namespace(n) => path.push(n),
+            Op::EndScope(_) | Op::EndNamespace(_) => {
+                path.pop();
+            }
+            Op::Atom(a) => {
+                let mut p: Vec<&str> = path.iter().skip(1).copied().collect();
+                p.push(info.atoms[a].name);
+                out.entry(p.join(".")).or_insert(a);
+            }
+        }
+    }
+    out
+}
+
+impl Map {
+    fn of(m: &dyn Model, n: usize, k: usize) -> Result<Map, String> {
+        let atoms = atom_paths(m);
+        let inp = |s: &str| m.input_index(s).ok_or_else(|| format!("no input `{s}`"));
+        let out = |s: &str| m.output_index(s).ok_or_else(|| format!("no output `{s}`"));
+        let atom = |s: &str| atoms.get(s).copied().ok_or_else(|| format!("no signal `{s}`"));
+        let each = |k: usize, f: &dyn Fn(usize) -> Result<usize, String>| (0..k).map(f).collect::<Result<Vec<_>, _>>();
+        Ok(Map {
+            rst_n: inp("rst_n")?,
+            inject: inp("inject_fault")?,
+            rx: each(n, &|i| inp(&format!("rx${i}")))?,
+            reh_rx: each(k, &|j| inp(&format!("reh_rx${j}")))?,
+            tx: each(n, &|i| out(&format!("tx${i}")))?,
+            hub_tx: each(k, &|j| out(&format!("hub_tx${j}")))?,
+            isolated: each(n, &|i| out(&format!("isolated${i}")))?,
+            silent: each(n, &|i| out(&format!("silent${i}")))?,
+            sub_isolated: each(k, &|j| out(&format!("sub_isolated${j}")))?,
+            frame_state: out("frame_state")?,
+            efg_active: out("efg_active")?,
+            pj_blame: each(n, &|i| atom(&format!("core.pj${i}.blame")))?,
+            sj_blame: each(k, &|j| atom(&format!("core.sj${j}.blame")))?,
+            pj_bic: each(n, &|i| atom(&format!("core.pj${i}.bic")))?,
+            pj_dbc: each(n, &|i| atom(&format!("core.pj${i}.dbc")))?,
+            sj_bic: each(k, &|j| atom(&format!("core.sj${j}.bic")))?,
+            sj_dbc: each(k, &|j| atom(&format!("core.sj${j}.dbc")))?,
+            mon_sample: atom("core.mon_sample")?,
+            mon_field: atom("core.mon_field")?,
+            mon_pos: atom("core.mon_pos")?,
+            mon_error: atom("core.mon_error")?,
+            mon_frame_ok: atom("core.mon_frame_ok")?,
+        })
+    }
+}
+
+enum Inner {
+    Hdl(Box<Hub>),
+    Model(Box<dyn Model>, Box<Map>),
+}
+
+/// A hub on the engine chosen at construction. Set the inputs, [`HubSim::cycle`],
+/// read the outputs.
+pub struct HubSim {
+    inner: Inner,
+    n: usize,
+    m: usize,
+}
+
+/// A powered-up compiled hub: the committed model index and its loaded state.
+struct Proto {
+    fingerprint: u64,
+    atoms: Vec<u128>,
+    mems: Vec<Vec<u128>>,
+    map: Map,
+}
+
+thread_local! {
+    /// Loaded state by configuration (loading reads the design's HDL, which costs
+    /// more than a short simulation).
+    static PROTO: RefCell<HashMap<String, Result<std::rc::Rc<Proto>, String>>> = RefCell::new(HashMap::new());
+}
+
+/// The rust-hdl hub as [`HubSim::new`] powers it up: inputs recessive, `rst_n` low.
+fn fresh_hdl(cfg: &HubConfig) -> Hub {
+    let mut hub = Hub::new(cfg);
+    for r in hub.rx.iter_mut().chain(hub.reh_rx.iter_mut()) {
+        r.next = true;
+    }
+    hub.rst_n.next = false;
+    canstar_hdl::drive::init(&mut hub);
+    hub
+}
+
+fn proto(cfg: &HubConfig) -> Result<std::rc::Rc<Proto>, String> {
+    let key = format!("{cfg:?}");
+    PROTO.with(|p| {
+        p.borrow_mut()
+            .entry(key)
+            .or_insert_with(|| {
+                let hub = fresh_hdl(cfg);
+                let m = crate::model_for(&hub).map_err(|e| e.to_string())?;
+                let map = Map::of(m.as_ref(), cfg.ports, cfg.sublinks)?;
+                let info = m.info();
+                let atoms = (0..info.atoms.len()).map(|a| m.atom(a)).collect();
+                let mems = info.rams.iter().enumerate().map(|(r, meta)| (0..meta.words).map(|x| m.mem(r, x)).collect()).collect();
+                Ok(std::rc::Rc::new(Proto { fingerprint: info.fingerprint, atoms, mems, map }))
+            })
+            .clone()
+    })
+}
+
+fn instantiate(p: &Proto) -> Box<dyn Model> {
+    let mut m = crate::generated::all().into_iter().find(|m| m.info().fingerprint == p.fingerprint).expect("committed model");
+    for (a, &v) in p.atoms.iter().enumerate() {
+        m.set_atom(a, v);
+    }
+    for (r, words) in p.mems.iter().enumerate() {
+        for (x, &v) in words.iter().enumerate() {
+            m.set_mem(r, x, v);
+        }
+    }
+    m.settle_all();
+    m
+}
+
+impl HubSim {
+    /// A hub of configuration `cfg`, powered up (inputs recessive, `rst_n` low), on
+    /// `engine` (rust-hdl with a warning when no committed model has the shape).
+    pub fn new(engine: Engine, cfg: &HubConfig) -> Self {
+        let inner = match engine {
+            Engine::RustHdl => Inner::Hdl(Box::new(fresh_hdl(cfg))),
+            Engine::Compiled => match proto(cfg) {
+                Ok(p) => Inner::Model(instantiate(&p), Box::new(p.map.clone())),
+                Err(e) => {
+                    fallback_warning(&format!("the hub with N = {}, M = {}", cfg.ports, cfg.sublinks), &e);
+                    Inner::Hdl(Box::new(fresh_hdl(cfg)))
+                }
+            },
+        };
+        HubSim { inner, n: cfg.ports, m: cfg.sublinks }
+    }
+
+    pub fn engine(&self) -> Engine {
+        match self.inner {
+            Inner::Hdl(_) => Engine::RustHdl,
+            Inner::Model(..) => Engine::Compiled,
+        }
+    }
+    /// Node ports N.
+    pub fn ports(&self) -> usize {
+        self.n
+    }
+    /// Sublinks M.
+    pub fn sublinks(&self) -> usize {
+        self.m
+    }
+    /// The rust-hdl block, when that is the engine.
+    pub fn hdl(&self) -> Option<&Hub> {
+        match &self.inner {
+            Inner::Hdl(h) => Some(h),
+            Inner::Model(..) => None,
+        }
+    }
+
+    /// Set the inputs for the next clock: `rst_n`, `inject_fault`, uplink `i` by
+    /// `rx(i)`, incoming sublink `j` by `reh_rx(j)`.
+    #[inline]
+    pub fn set_inputs(&mut self, rst_n: bool, inject: bool, rx: impl Fn(usize) -> bool, reh_rx: impl Fn(usize) -> bool) {
+        match &mut self.inner {
+            Inner::Hdl(h) => {
+                h.rst_n.next = rst_n;
+                h.inject_fault.next = inject;
+                for (i, r) in h.rx.iter_mut().enumerate() {
+                    r.next = rx(i);
+                }
+                for (j, r) in h.reh_rx.iter_mut().enumerate() {
+                    r.next = reh_rx(j);
+                }
+            }
+            Inner::Model(m, map) => {
+                m.set_input(map.rst_n, rst_n as u128);
+                m.set_input(map.inject, inject as u128);
+                for (i, &k) in map.rx.iter().enumerate() {
+                    m.set_input(k, rx(i) as u128);
+                }
+                for (j, &k) in map.reh_rx.iter().enumerate() {
+                    m.set_input(k, reh_rx(j) as u128);
+                }
+            }
+        }
+    }
+
+    /// One clock (`canstar_hdl::drive::cycle` semantics).
+    #[inline]
+    pub fn cycle(&mut self) {
+        match &mut self.inner {
+            Inner::Hdl(h) => canstar_hdl::drive::cycle(h.as_mut()),
+            Inner::Model(m, _) => m.cycle(),
+        }
+    }
+
+    /// Trace mode (VCD): see [`crate::core_sim::CoreSim::set_trace`].
+    pub fn set_trace(&mut self, on: bool) {
+        if let Inner::Model(m, _) = &mut self.inner {
+            m.set_trace(on);
+            if on {
+                m.settle_all();
+            }
+        }
+    }
+
+    /// Present the signals to `probe` as the rust-hdl block's `accept(name, probe)`.
+    pub fn accept(&self, name: &str, probe: &mut dyn Probe) {
+        match &self.inner {
+            Inner::Hdl(h) => h.accept(name, probe),
+            Inner::Model(m, _) => m.accept(name, probe),
+        }
+    }
+}
+
+macro_rules! readers {
+    ($($(#[$doc:meta])* $f:ident($($i:ident)?) -> $t:ty: |$h:ident| $hdl:expr, |$m:ident, $map:ident| $model:expr;)*) => {
+        impl HubSim {
+            $(
+                $(#[$doc])*
+                #[inline]
+                pub fn $f(&self $(, $i: usize)?) -> $t {
+                    match &self.inner {
+                        Inner::Hdl($h) => $hdl,
+                        Inner::Model($m, $map) => $model,
+                    }
+                }
+            )*
+        }
+    };
+}
+
+readers! {
+    /// Downlink `i`.
+    tx(i) -> bool: |h| h.tx[i].val(), |m, p| m.output(p.tx[i]) != 0;
+    /// Outgoing sublink `j`.
+    hub_tx(j) -> bool: |h| h.hub_tx[j].val(), |m, p| m.output(p.hub_tx[j]) != 0;
+    isolated(i) -> bool: |h| h.isolated[i].val(), |m, p| m.output(p.isolated[i]) != 0;
+    silent(i) -> bool: |h| h.silent[i].val(), |m, p| m.output(p.silent[i]) != 0;
+    sub_isolated(j) -> bool: |h| h.sub_isolated[j].val(), |m, p| m.output(p.sub_isolated[j]) != 0;
+    /// The 4-bit frame state output.
+    frame_state() -> u8: |h| h.frame_state.val().index() as u8, |m, p| m.output(p.frame_state) as u8;
+    efg_active() -> bool: |h| h.efg_active.val(), |m, p| m.output(p.efg_active) != 0;
+    /// Port judge `i` blames its port in this clock.
+    port_blame(i) -> bool: |h| h.core().port_judge(i).blame.val(), |m, p| m.atom(p.pj_blame[i]) != 0;
+    /// Sublink judge `j` blames its sublink in this clock.
+    sub_blame(j) -> bool: |h| h.core().sublink_judge(j).blame.val(), |m, p| m.atom(p.sj_blame[j]) != 0;
+    port_bic(i) -> u64: |h| h.core().port_judge(i).bic.val().index() as u64, |m, p| m.atom(p.pj_bic[i]) as u64;
+    port_dbc(i) -> u64: |h| h.core().port_judge(i).dbc.val().index() as u64, |m, p| m.atom(p.pj_dbc[i]) as u64;
+    sub_bic(j) -> u64: |h| h.core().sublink_judge(j).bic.val().index() as u64, |m, p| m.atom(p.sj_bic[j]) as u64;
+    sub_dbc(j) -> u64: |h| h.core().sublink_judge(j).dbc.val().index() as u64, |m, p| m.atom(p.sj_dbc[j]) as u64;
+    /// The frame monitor's sample point.
+    mon_sample() -> bool: |h| h.core().mon_sample.val(), |m, p| m.atom(p.mon_sample) != 0;
+    mon_field() -> u8: |h| h.core().mon_field.val().index() as u8, |m, p| m.atom(p.mon_field) as u8;
+    mon_pos() -> u8: |h| h.core().mon_pos.val().index() as u8, |m, p| m.atom(p.mon_pos) as u8;
+    mon_error() -> bool: |h| h.core().mon_error.val(), |m, p| m.atom(p.mon_error) != 0;
+    mon_frame_ok() -> bool: |h| h.core().mon_frame_ok.val(), |m, p| m.atom(p.mon_frame_ok) != 0;
+}
+
+impl HubSim {
+    /// Some judge unit blames its port or sublink in this clock.
+    pub fn blame_any(&self) -> bool {
+        (0..self.n).any(|i| self.port_blame(i)) || (0..self.m).any(|j| self.sub_blame(j))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Both engines agree on every reader, clock by clock, on a hub whose port 0
+    /// stays dominant (the judges count and isolate it).
+    #[test]
+    fn engines_agree() {
+        let cfg = HubConfig { ports: 3, sublinks: 2, ..HubConfig::default() };
+        let mut hubs = [HubSim::new(Engine::Compiled, &cfg), HubSim::new(Engine::RustHdl, &cfg)];
+        assert_eq!(hubs[0].engine(), Engine::Compiled);
+        let mut isolated = false;
+        for t in 0..30_000u32 {
+            for h in hubs.iter_mut() {
+                h.set_inputs(t >= 4, false, |i| !(i == 0 && t > 3000), |_| true);
+                h.cycle();
+            }
+            let r = |h: &HubSim| {
+                let mut v = vec![h.frame_state() as u64, h.efg_active() as u64, h.mon_sample() as u64, h.mon_field() as u64, h.mon_pos() as u64];
+                v.extend([h.mon_error() as u64, h.mon_frame_ok() as u64, h.blame_any() as u64]);
+                for i in 0..3 {
+                    v.extend([h.tx(i) as u64, h.isolated(i) as u64, h.silent(i) as u64, h.port_bic(i), h.port_dbc(i), h.port_blame(i) as u64]);
+                }
+                for j in 0..2 {
+                    v.extend([h.hub_tx(j) as u64, h.sub_isolated(j) as u64, h.sub_bic(j), h.sub_dbc(j), h.sub_blame(j) as u64]);
+                }
+                v
+            };
+            assert_eq!(r(&hubs[0]), r(&hubs[1]), "clock {t}");
+            isolated |= hubs[0].isolated(0);
+        }
+        assert!(isolated, "the stuck port was isolated");
+    }
+}
