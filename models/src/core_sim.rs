@@ -13,6 +13,7 @@ use rust_hdl::prelude::*;
 
 use crate::engine::{fallback_warning, Engine};
 use crate::generated::can_core::CanCore as ModelCore;
+use crate::stim::Stim;
 use crate::Model;
 
 /// The core's inputs (names of [`HdlCore`]'s ports; register encodings, i.e. the
@@ -43,6 +44,24 @@ pub struct CoreInputs {
     pub rec_in: u8,
 }
 
+impl CoreInputs {
+    /// Names of the inputs in [`CoreInputs::words`] order (the model's port order).
+    pub const NAMES: [&'static str; 22] = [
+        "reset", "rx", "brp", "prop", "ph1", "sjw", "triple", "listen_only", "self_test", "single_shot", "host_recovery", "recover",
+        "tx_req", "tx_ide", "tx_rtr", "tx_id", "tx_dlc", "tx_data", "tx_abort", "cnt_load", "tec_in", "rec_in",
+    ];
+    /// The inputs as integers in the model's port order.
+    pub fn words(&self) -> [u128; 22] {
+        let b = |x: bool| x as u128;
+        [
+            b(self.reset), b(self.rx), self.brp as u128, self.prop as u128, self.ph1 as u128, self.sjw as u128, b(self.triple),
+            b(self.listen_only), b(self.self_test), b(self.single_shot), b(self.host_recovery), b(self.recover), b(self.tx_req),
+            b(self.tx_ide), b(self.tx_rtr), self.tx_id as u128, self.tx_dlc as u128, self.tx_data as u128, b(self.tx_abort),
+            b(self.cnt_load), self.tec_in as u128, self.rec_in as u128,
+        ]
+    }
+}
+
 enum Inner {
     Hdl(Box<HdlCore>),
     Model(Box<ModelCore>),
@@ -53,6 +72,8 @@ pub struct CoreSim {
     /// Inputs for the next [`CoreSim::cycle`].
     pub inp: CoreInputs,
     inner: Inner,
+    sync_depth: usize,
+    record: Option<Stim>,
 }
 
 thread_local! {
@@ -61,7 +82,8 @@ thread_local! {
     static PROTO: RefCell<HashMap<usize, ModelCore>> = RefCell::new(HashMap::new());
 }
 
-fn fresh_hdl(sync_depth: usize) -> HdlCore {
+/// The rust-hdl core as [`CoreSim::new`] powers it up (`drive::init` done).
+pub fn fresh_hdl(sync_depth: usize) -> HdlCore {
     let mut c = HdlCore::with_sync_depth(sync_depth);
     drive::init(&mut c);
     c
@@ -92,7 +114,7 @@ impl CoreSim {
                 }
             }
         };
-        CoreSim { inp: CoreInputs { rx: true, ..Default::default() }, inner }
+        CoreSim { inp: CoreInputs { rx: true, ..Default::default() }, inner, sync_depth, record: None }
     }
 
     /// The engine actually simulating (rust-hdl after a fallback).
@@ -111,9 +133,29 @@ impl CoreSim {
         }
     }
 
+    /// RX synchroniser depth.
+    pub fn sync_depth(&self) -> usize {
+        self.sync_depth
+    }
+
+    /// Record the inputs of every clock from now on (a benchmark workload to replay
+    /// into any engine, see [`crate::stim`]).
+    pub fn start_recording(&mut self) {
+        self.record = Some(Stim::new(1, CoreInputs::NAMES.len()));
+    }
+
+    /// The recorded inputs (None if recording was never started).
+    pub fn take_recording(&mut self) -> Option<Stim> {
+        self.record.take()
+    }
+
     /// One clock with [`CoreSim::inp`] (`canstar_hdl::drive::cycle` semantics).
     #[inline]
     pub fn cycle(&mut self) {
+        if let Some(r) = self.record.as_mut() {
+            r.push(0, &self.inp.words());
+            r.next();
+        }
         let i = &self.inp;
         match &mut self.inner {
             Inner::Model(m) => {
@@ -232,6 +274,13 @@ impl CoreView for CoreSim {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn input_words_are_in_port_order() {
+        let m = ModelCore::new();
+        let names: Vec<&str> = m.info().inputs.iter().map(|p| p.name).collect();
+        assert_eq!(names, CoreInputs::NAMES);
+    }
 
     /// Both engines give the same outputs, clock by clock, for a node that idles
     /// then sees a dominant bit train (a check of the input mapping of `cycle`).

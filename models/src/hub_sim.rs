@@ -129,8 +129,9 @@ thread_local! {
     static PROTO: RefCell<HashMap<String, Result<std::rc::Rc<Proto>, String>>> = RefCell::new(HashMap::new());
 }
 
-/// The rust-hdl hub as [`HubSim::new`] powers it up: inputs recessive, `rst_n` low.
-fn fresh_hdl(cfg: &HubConfig) -> Hub {
+/// The rust-hdl hub as [`HubSim::new`] powers it up: inputs recessive, `rst_n` low
+/// (`drive::init` done).
+pub fn fresh_hdl(cfg: &HubConfig) -> Hub {
     let mut hub = Hub::new(cfg);
     for r in hub.rx.iter_mut().chain(hub.reh_rx.iter_mut()) {
         r.next = true;

@@ -51,6 +51,7 @@ pub mod hub_sim;
 pub mod lockstep;
 pub mod registry;
 pub mod semantics;
+pub mod stim;
 
 pub use canstar_rtlc::rt::Model;
 pub use engine::Engine;

@@ -140,7 +140,14 @@ pub struct RunResult {
 /// Run `spec`. Never panics on a valid network; an invalid network gives a
 /// result with `ok == false` and the validation error in `failures`.
 pub fn run(spec: &RunSpec) -> RunResult {
-    run_impl(spec)
+    run_impl(spec, &mut |_, _| {}, &mut |_, _| {})
+}
+
+/// [`run`] with hooks: `setup` sees the simulation right after the network is built
+/// (e.g. to start recording the components' inputs), `finish` at the end of the run
+/// (to take what was recorded). Neither is called for an invalid network.
+pub fn run_inspect(spec: &RunSpec, setup: &mut dyn FnMut(&mut Sim, &Network), finish: &mut dyn FnMut(&mut Sim, &Network)) -> RunResult {
+    run_impl(spec, setup, finish)
 }
 
 /// Field codes of the controller for a start field.
@@ -181,7 +188,7 @@ struct Active {
     unhealthy: Vec<(usize, usize)>,
 }
 
-fn run_impl(spec: &RunSpec) -> RunResult {
+fn run_impl(spec: &RunSpec, setup: &mut dyn FnMut(&mut Sim, &Network), finish: &mut dyn FnMut(&mut Sim, &Network)) -> RunResult {
     let mut res = RunResult { bit_time_ps: spec.network.bit_time_ps(), ..Default::default() };
     let mut sim = Sim::new(spec.seed);
     let net = match Network::build_with(&mut sim, &spec.network, spec.engine) {
@@ -191,6 +198,7 @@ fn run_impl(spec: &RunSpec) -> RunResult {
             return res;
         }
     };
+    setup(&mut sim, &net);
     if let Some(p) = &spec.vcd {
         if let Err(e) = sim.start_vcd_file(p, None) {
             res.failures.push(format!("cannot write VCD {}: {e}", p.display()));
@@ -484,6 +492,7 @@ fn run_impl(spec: &RunSpec) -> RunResult {
         }
     }
     res.ok = res.failures.is_empty();
+    finish(&mut sim, &net);
     res
 }
 

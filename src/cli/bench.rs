@@ -1,14 +1,28 @@
-//! `canstar bench`: simulation throughput, or waveforms of the benchmark bus.
+//! `canstar bench`: the simulation engines side by side (rust-hdl, compiled models,
+//! Verilator, the kernel), the kernel on bit-timing instances (`--btl`), or waveforms
+//! of the bit-timing benchmark bus (`--vcd`).
 
 use anyhow::Result;
 use std::path::PathBuf;
 
 #[derive(clap::Args)]
 pub struct Args {
-    /// Simulated clock cycles per measurement.
+    /// The kernel benchmark on bit-timing instances (--cycles, --nodes) instead of the engines.
+    #[arg(long)]
+    btl: bool,
+    /// Engines: skip the Verilator column.
+    #[arg(long)]
+    no_verilator: bool,
+    /// Engines: clock cycles per node of the CanCore bus workloads.
+    #[arg(long, default_value_t = 400_000)]
+    core_cycles: u64,
+    /// Engines: simulated time of the reference network, in ms.
+    #[arg(long, default_value_t = 20.0)]
+    network_ms: f64,
+    /// --btl: simulated clock cycles per measurement.
     #[arg(long, default_value_t = 2_000_000)]
     cycles: u64,
-    /// Node counts for the shared-bus measurement.
+    /// --btl: node counts for the shared-bus measurement.
     #[arg(long, value_delimiter = ',', default_value = "2,5,10")]
     nodes: Vec<usize>,
     /// Instead of measuring, write a VCD of the first node count's bus (all signals of every instance and every bus wire).
@@ -31,6 +45,18 @@ pub fn run(a: Args) -> Result<()> {
             println!("wrote {} ({n} bit-timing instances on a bus, {c} cycles each)", path.display());
             Ok(())
         }
-        None => canstar::bench::bench(a.cycles, &a.nodes),
+        None if a.btl => canstar::bench::bench(a.cycles, &a.nodes),
+        None => {
+            use canstar::bench::engines;
+            let o = engines::Options {
+                core_cycles: a.core_cycles,
+                network_ps: (a.network_ms * 1e9).round() as u64,
+                verilator: !a.no_verilator,
+                ..Default::default()
+            };
+            println!("canstar bench: the same recorded inputs replayed into each engine; kernel = canstar_sim::Sim closed loop on the compiled models");
+            print!("{}", engines::table(&engines::measure(&o)));
+            Ok(())
+        }
     }
 }

@@ -4,7 +4,7 @@
 
 pub mod hubnet;
 pub mod sjanet;
-pub mod stim;
+pub use canstar_models::stim;
 
 use canstar_rtlc::rt::Model;
 use rand::Rng;

@@ -1,4 +1,9 @@
-//! `canstar bench`: throughput of the simulation kernel on bit-timing instances.
+//! `canstar bench`: the engines side by side ([`engines`]: rust-hdl, compiled models,
+//! Verilator and the kernel on CanCore buses, the hub and the reference network), and
+//! `canstar bench --btl`: throughput of the simulation kernel on bit-timing instances.
+
+pub mod engines;
+mod verilator;
 
 use anyhow::Result;
 use canstar_hdl::btl;
