@@ -1,4 +1,4 @@
-//! The compiled models and the rust-hdl designs give byte-identical results: the §18
+//! The compiled models and the rust-hdl designs give byte-identical results: the can-protocol.md §18
 //! per-bit trace, the candump log and the VCD of a bus scenario, a fuzz run's report
 //! and a conformance program's step results.
 use canstar_verify::node::Engine;
@@ -21,7 +21,7 @@ fn bus_scenario_trace_log_and_vcd_are_identical_on_both_engines() {
     }
     let (a, b) = (&out[0], &out[1]);
     assert!(a.0.len() > 1000 && a.1.len() >= 5 && a.3.len() > 100_000, "the scenario ran: {} trace lines", a.0.len());
-    assert_eq!(a.0, b.0, "§18 trace");
+    assert_eq!(a.0, b.0, "can-protocol.md §18 trace");
     assert_eq!(a.1, b.1, "candump log");
     assert_eq!(a.2, b.2, "node summaries");
     assert!(a.3 == b.3, "VCD differs ({} vs {} bytes)", a.3.len(), b.3.len());
