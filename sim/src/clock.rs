@@ -55,6 +55,14 @@ impl ClockSpec {
     /// Nominal time of rising edge `n` (without jitter).
     #[inline]
     pub fn edge_time(&self, n: u64) -> u64 {
+        // phase + floor(n * period * (1e9 + ppb) / 1e9) = phase + a + floor(a * ppb / 1e9)
+        // with a = n * period; in 64 bits when that fits (the usual case), else 128
+        const G: u64 = 1_000_000_000;
+        if let Some(a) = n.checked_mul(self.period_ps) {
+            if let Some(m) = a.checked_mul(self.ppb.unsigned_abs()) {
+                return self.phase_ps + if self.ppb >= 0 { a + m / G } else { a - m.div_ceil(G) };
+            }
+        }
         let scaled = n as u128 * self.period_ps as u128 * (1_000_000_000i64 + self.ppb) as u128;
         self.phase_ps + (scaled / 1_000_000_000u128) as u64
     }
@@ -75,3 +83,21 @@ impl ClockSpec {
     }
 }
 
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The 64-bit path gives the exact 128-bit floor, for offsets of both signs.
+    #[test]
+    fn edge_time_is_the_exact_floor() {
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(5);
+        for _ in 0..100_000 {
+            let c = ClockSpec::new(rng.gen_range(1..200_000)).with_ppm(rng.gen_range(-500.0..500.0)).with_phase(rng.gen_range(0..1000));
+            let n = if rng.gen_bool(0.5) { rng.gen_range(0..1u64 << 20) } else { rng.gen_range(0..1u64 << 40) };
+            let exact = c.phase_ps + (n as u128 * c.period_ps as u128 * (1_000_000_000i64 + c.ppb) as u128 / 1_000_000_000) as u64;
+            assert_eq!(c.edge_time(n), exact, "{c:?} n {n}");
+        }
+    }
+}

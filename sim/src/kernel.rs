@@ -372,22 +372,22 @@ impl Sim {
         self.started = true;
         self.now = t;
         self.ticked.clear();
-        while let Some(&Reverse((tt, idx))) = self.heap.peek() {
+        // tick the components of the heap's top in place: the new edge time replaces
+        // the top and sinks once (instead of a pop and a push); (time, index) order as
+        // before, and order does not matter anyway (inputs are sampled before the edge)
+        while let Some(mut top) = self.heap.peek_mut() {
+            let Reverse((tt, idx)) = *top;
             if tt != t {
                 break;
             }
-            self.heap.pop();
-            self.ticked.push(idx);
-        }
-        for k in 0..self.ticked.len() {
-            let idx = self.ticked[k];
             let slot = &mut self.slots[idx];
             let mut io = Io { now: t, nets: &mut self.nets, inputs: &slot.inputs, outputs: &slot.outputs };
             slot.comp.tick(&mut io);
             slot.cycles += 1;
             slot.next_n += 1;
-            let nt = slot.edge(slot.next_n);
-            self.heap.push(Reverse((nt, idx)));
+            *top = Reverse((slot.edge(slot.next_n), idx));
+            drop(top);
+            self.ticked.push(idx);
         }
         if self.vcd.is_some() {
             self.vcd_dump(t, true);
