@@ -323,6 +323,15 @@ impl HubSim {
 mod tests {
     use super::*;
 
+    /// A shape without a committed model runs on rust-hdl (with a warning).
+    #[test]
+    fn uncommitted_shape_falls_back_to_rust_hdl() {
+        let cfg = HubConfig { ports: 4, sublinks: 0, ..HubConfig::default() };
+        let h = HubSim::new(Engine::Compiled, &cfg);
+        assert_eq!(h.engine(), Engine::RustHdl);
+        assert_eq!((h.ports(), h.sublinks()), (4, 0));
+    }
+
     /// Both engines agree on every reader, clock by clock, on a hub whose port 0
     /// stays dominant (the judges count and isolate it).
     #[test]
