@@ -1,6 +1,7 @@
 //! `canstar bench`: simulation throughput, or waveforms of the benchmark bus.
 
 use anyhow::Result;
+use canstar::output::OutputSet;
 use std::path::PathBuf;
 
 #[derive(clap::Args)]
@@ -23,14 +24,25 @@ pub struct Args {
 }
 
 pub fn run(a: Args) -> Result<()> {
+    anyhow::ensure!(a.cycles > 0, "--cycles must be positive");
+    anyhow::ensure!(
+        !a.nodes.is_empty() && a.nodes.iter().all(|&n| (1..=MAX_NODES).contains(&n)),
+        "--nodes: node counts must be 1..={MAX_NODES}"
+    );
     match &a.vcd {
         Some(path) => {
-            let n = a.nodes.first().copied().unwrap_or(2);
+            let mut set = OutputSet::new();
+            let tmp = set.file(path)?;
+            let n = a.nodes[0];
             let c = a.cycles.min(200_000);
-            canstar::bench::bench_vcd(path, n, c, a.signals.as_deref(), a.seed)?;
-            println!("wrote {} ({n} bit-timing instances on a bus, {c} cycles each)", path.display());
+            canstar::bench::bench_vcd(&tmp, n, c, a.signals.as_deref(), a.seed).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
+            set.commit()?;
+            outln!("wrote {} ({n} bit-timing instances on a bus, {c} cycles each)", path.display());
             Ok(())
         }
-        None => canstar::bench::bench(a.cycles, &a.nodes),
+        None => canstar::bench::bench(a.cycles, &a.nodes, &mut std::io::stdout()),
     }
 }
+
+/// Most bit-timing instances on the benchmark bus.
+const MAX_NODES: usize = 1000;
