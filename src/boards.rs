@@ -62,6 +62,9 @@ pub struct Board {
     /// different bitstream, so its pins may reuse the hub's.
     #[serde(default)]
     pub controller: Option<ControllerPins>,
+    /// The file the board was read from (for messages; not a key of the file).
+    #[serde(skip)]
+    pub source: Option<String>,
 }
 
 /// The controller's pinout on a board.
@@ -102,7 +105,9 @@ impl Board {
         }
         if name_or_path.ends_with(".toml") && Path::new(name_or_path).exists() {
             let text = crate::input::read_toml(Path::new(name_or_path))?;
-            return Self::from_toml(&text).map_err(|e| anyhow!("{name_or_path}: {e:#}"));
+            let mut b = Self::from_toml(&text).map_err(|e| anyhow!("{name_or_path}: {e:#}"))?;
+            b.source = Some(name_or_path.to_string());
+            return Ok(b);
         }
         let known: Vec<&str> = BUILTIN.iter().map(|(n, _)| *n).collect();
         bail!("unknown board `{name_or_path}` (known boards: {}; or give a path to a board .toml file)", known.join(", "))
@@ -160,10 +165,18 @@ impl Board {
         match which {
             Pinout::Hub => Ok((&self.pins, self.debug.pins.iter().collect())),
             Pinout::Controller => {
-                let c = self.controller.as_ref().ok_or_else(|| anyhow!("board {} has no controller pinout ([controller.pins])", self.name))?;
+                let c = self.controller.as_ref().ok_or_else(|| anyhow!("{} has no controller pinout ([controller.pins])", self.label()))?;
                 let used: BTreeSet<&String> = c.pins.values().collect();
                 Ok((&c.pins, self.debug.pins.iter().filter(|p| !used.contains(p)).collect()))
             }
+        }
+    }
+
+    /// `board <name>`, after the file it came from if any (for messages).
+    pub fn label(&self) -> String {
+        match &self.source {
+            Some(f) => format!("{f}: board {}", self.name),
+            None => format!("board {}", self.name),
         }
     }
 
@@ -281,7 +294,7 @@ pub fn pin_file(board: &Board, which: Pinout, design_name: &str, design: &Design
         }
         let pin = pins
             .get(role)
-            .ok_or_else(|| anyhow!("board {} has no pin for port bit `{role}` of design {design_name}", board.name))?;
+            .ok_or_else(|| anyhow!("{} has no pin for port bit `{role}` of design {design_name} (pins.\"{role}\")", board.label()))?;
         lines.push((role.clone(), pin.clone()));
     }
     let mut placed_debug = vec![];

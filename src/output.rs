@@ -178,16 +178,15 @@ impl OutputSet {
         OutputSet { id, files: vec![], dirs: vec![], done: false }
     }
 
-    fn note_temp(&self, t: &Path) {
-        if let Some(p) = registry().sets.get_mut(&self.id) {
+    /// Create a temporary and note it under the registry's lock (a Ctrl-C
+    /// sees both or neither, and no file appears after its rollback).
+    fn create_temp(&self, t: &Path, create: impl FnOnce() -> std::io::Result<()>) -> std::io::Result<()> {
+        let mut r = registry();
+        create()?;
+        if let Some(p) = r.sets.get_mut(&self.id) {
             p.temps.push(t.to_path_buf());
         }
-    }
-
-    fn note_created(&self, d: &Path) {
-        if let Some(p) = registry().sets.get_mut(&self.id) {
-            p.created.push(d.to_path_buf());
-        }
+        Ok(())
     }
 
     fn check_unique(&self, dest: &Path) -> Result<()> {
@@ -208,9 +207,13 @@ impl OutputSet {
         if let Some(p) = dir.parent() {
             self.create_dirs(p)?;
         }
+        // Created and noted under the registry's lock: a Ctrl-C sees both or neither.
+        let mut r = registry();
         match std::fs::create_dir(dir) {
             Ok(()) => {
-                self.note_created(dir);
+                if let Some(p) = r.sets.get_mut(&self.id) {
+                    p.created.push(dir.to_path_buf());
+                }
                 Ok(())
             }
             Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists && dir.is_dir() => Ok(()),
@@ -237,8 +240,7 @@ impl OutputSet {
             clean_stale(d);
         }
         let tmp = tmp_name(&real);
-        std::fs::write(&tmp, b"").with_context(|| format!("cannot write {}", dest.display()))?;
-        self.note_temp(&tmp);
+        self.create_temp(&tmp, || std::fs::write(&tmp, b"")).with_context(|| format!("cannot write {}", dest.display()))?;
         self.files.push((dest.to_path_buf(), tmp.clone(), Some(real)));
         Ok(tmp)
     }
@@ -275,8 +277,7 @@ impl OutputSet {
         self.check_unique(dest)?;
         self.root(dest)?;
         let stage = dest.join(format!(".canstar.{}{TMP_SUFFIX}", pid()));
-        std::fs::create_dir(&stage).with_context(|| format!("cannot write into {}", dest.display()))?;
-        self.note_temp(&stage);
+        self.create_temp(&stage, || std::fs::create_dir(&stage)).with_context(|| format!("cannot write into {}", dest.display()))?;
         self.dirs.push((dest.to_path_buf(), stage.clone()));
         Ok(stage)
     }
@@ -288,6 +289,7 @@ impl OutputSet {
         self.create_dirs(dest)?;
         clean_stale(dest);
         let probe = dest.join(format!(".probe.{}{TMP_SUFFIX}", pid()));
+        let _r = registry(); // no Ctrl-C between creating and removing it
         std::fs::write(&probe, b"").with_context(|| format!("cannot write into {}", dest.display()))?;
         let _ = std::fs::remove_file(&probe);
         Ok(())
@@ -301,6 +303,8 @@ impl OutputSet {
     /// Write the contents of the reserved output `dest`.
     pub fn write(&self, dest: &Path, contents: impl AsRef<[u8]>) -> Result<()> {
         let t = self.temp_of(dest).ok_or_else(|| anyhow!("{} was not reserved as an output", dest.display()))?;
+        // Under the registry's lock: after a Ctrl-C's rollback no temporary reappears.
+        let _r = registry();
         std::fs::write(t, contents).with_context(|| format!("writing {}", dest.display()))
     }
 
@@ -343,7 +347,11 @@ impl OutputSet {
             self.done = true;
             if let Some(p) = registry().sets.get_mut(&self.id) {
                 p.temps.clear();
-                p.created.clear();
+                // Directories created for outputs that were not produced (an
+                // empty constraints folder) are not left behind.
+                for d in p.created.drain(..).rev() {
+                    let _ = std::fs::remove_dir(&d);
+                }
             }
         }
         if interrupted {
@@ -452,6 +460,11 @@ mod tests {
         let written = s.commit().unwrap();
         assert_eq!(written.len(), 3);
         assert_eq!(listing(d.path()), ["a.txt", "sub", "sub/b.txt", "vcds", "vcds/x.vcd"]);
+        // A folder created for outputs that were not produced is removed.
+        let mut s = OutputSet::new();
+        s.root(&d.path().join("empty/deeper")).unwrap();
+        s.commit().unwrap();
+        assert!(!d.path().join("empty").exists());
         assert_eq!(std::fs::read_to_string(&b).unwrap(), "B");
     }
 

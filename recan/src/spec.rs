@@ -461,7 +461,7 @@ impl NetworkSpec {
                 let one_way = cs.up_ps + 2 * lat + sub + cs.down_ps;
                 if one_way as f64 > 0.5 * hub_bit {
                     return Err(format!(
-                        "{key}: {who}: the path through both hubs (up_ps, down_ps, interlinks) takes {:.1} ns, more than half a bit",
+                        "{key}: {who}: the path through both hubs (up_ps, down_ps, interlinks, hub.sync_depth) takes {:.1} ns, more than half a bit",
                         one_way as f64 / 1000.0
                     ));
                 }
