@@ -398,7 +398,7 @@ impl NetworkSpec {
         ] {
             let low_ok = if lo_open { v > 0.0 } else { v >= 0.0 };
             if !(v.is_finite() && low_ok && v <= hi) {
-                return Err(format!("{k}: {v} (must be finite, {} 0 and at most {hi})", if lo_open { ">" } else { ">=" }));
+                return Err(format!("{k}: {v:?} (must be finite, {} 0 and at most {hi})", if lo_open { ">" } else { ">=" }));
             }
         }
         if d.max_inconsists == 0 {
@@ -495,7 +495,7 @@ fn check_name(key: &str, name: &str, network: bool) -> Result<(), String> {
 
 fn check_ppm(key: &str, ppm: f64) -> Result<(), String> {
     if !(ppm.is_finite() && ppm.abs() < 10_000.0) {
-        return Err(format!("{key}: {ppm} out of range (finite, |ppm| < 10000)"));
+        return Err(format!("{key}: {ppm:?} out of range (finite, |ppm| < 10000)"));
     }
     Ok(())
 }

@@ -21,7 +21,7 @@ pub struct Args {
 }
 
 pub fn run(a: Args) -> Result<()> {
-    anyhow::ensure!(a.freq.is_finite() && a.freq > 0.0 && a.freq <= 1000.0, "--freq {}: must be a frequency in MHz above 0 and at most 1000", a.freq);
+    anyhow::ensure!(a.freq.is_finite() && a.freq > 0.0 && a.freq <= 1000.0, "--freq {:?}: must be a frequency in MHz above 0 and at most 1000", a.freq);
     let cfg = match &a.config {
         Some(p) => Config::load(p)?,
         None => Config::default(),

@@ -35,7 +35,7 @@ const MAX_MS: f64 = 3_600_000.0;
 /// `--ms` in picoseconds: finite, positive, at most [`MAX_MS`].
 fn ms_to_ps(ms: f64) -> Result<u64> {
     if !(ms.is_finite() && ms > 0.0 && ms <= MAX_MS) {
-        bail!("--ms {ms}: the simulated time must be a number of milliseconds above 0 and at most {MAX_MS}");
+        bail!("--ms {ms:?}: the simulated time must be a number of milliseconds above 0 and at most {MAX_MS}");
     }
     Ok(((ms * 1e9).round() as u64).max(1))
 }

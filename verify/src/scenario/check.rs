@@ -33,7 +33,7 @@ pub(super) fn validate(s: &Scenario) -> Result<(), String> {
     s.defaults.bit_timing.check().map_err(|e| format!("defaults.bit_timing: invalid bit timing: {e}"))?;
     let mhz = s.defaults.clock_mhz;
     if !(mhz > 0.1 && mhz <= 1000.0) {
-        return Err(format!("defaults.clock_mhz: {mhz} (must be in (0.1, 1000])"));
+        return Err(format!("defaults.clock_mhz: {mhz:?} (must be in (0.1, 1000])"));
     }
     for (i, n) in s.nodes.iter().enumerate() {
         let key = format!("node[{i}]");
@@ -43,10 +43,10 @@ pub(super) fn validate(s: &Scenario) -> Result<(), String> {
         }
         let mhz = s.clock_mhz(i);
         if !(mhz > 0.1 && mhz <= 1000.0) {
-            return Err(format!("{key}.clock_mhz: {mhz} (node {}; must be in (0.1, 1000])", n.name));
+            return Err(format!("{key}.clock_mhz: {mhz:?} (node {}; must be in (0.1, 1000])", n.name));
         }
         if !(n.ppm.is_finite() && n.ppm.abs() <= 10_000.0) {
-            return Err(format!("{key}.ppm: {} (node {}) is not an oscillator offset (finite, |ppm| <= 10000)", n.ppm, n.name));
+            return Err(format!("{key}.ppm: {:?} (node {}) is not an oscillator offset (finite, |ppm| <= 10000)", n.ppm, n.name));
         }
         for (k, v) in [("tx_delay_ns", n.tx_delay_ns), ("rx_delay_ns", n.rx_delay_ns)] {
             if v > MAX_DELAY_NS {
@@ -94,7 +94,7 @@ pub(super) fn validate(s: &Scenario) -> Result<(), String> {
             (None, None) => return Err(format!("{key}.at_us: give at_us or at = {{ field = ..., pos = ... }}")),
             (Some(t), None) => {
                 if !(t.is_finite() && *t >= 0.0 && *t < s.duration_us as f64) {
-                    return Err(format!("{key}.at_us: {t} (must be a time from 0 to before the end, duration_us = {})", s.duration_us));
+                    return Err(format!("{key}.at_us: {t:?} (must be a time from 0 to before the end, duration_us = {})", s.duration_us));
                 }
             }
             (None, Some(p)) => {
