@@ -341,3 +341,38 @@ fn network_summary_reports_maxima_and_plain_progress_off_a_terminal() {
     assert!(!r.err.contains('\r') && !r.err.contains('\u{1b}'), "no bar drawn into a pipe: {:?}", r.err);
     assert!(r.code == Some(0));
 }
+
+#[test]
+fn a_full_disk_during_the_run_is_an_error_not_a_panic() {
+    // The kernel used to panic ("VCD write failed") when a VCD write failed mid-run.
+    if !Path::new("/dev/full").exists() {
+        return;
+    }
+    let d = scratch();
+    let r = run(&["sim", &example("arbitration.toml"), "--ms", "0.05", "--vcd", "/dev/full", "--log", "a.log"], d.path());
+    assert!(!r.ok && r.err.contains("No space left"), "{}{}", r.out, r.err);
+    assert!(!d.path().join("a.log").exists(), "the other outputs are not kept");
+    let r = run(&["sim", &example("recancentrate.toml"), "--ms", "0.01", "--vcd", "/dev/full"], d.path());
+    assert!(!r.ok && r.err.contains("No space left"), "{}{}", r.out, r.err);
+}
+
+#[test]
+fn ctrl_c_during_a_run_removes_every_output() {
+    let d = scratch();
+    let mut child = Command::new(env!("CARGO_BIN_EXE_canstar"))
+        .args(["sim", &example("recancentrate.toml"), "--ms", "5", "--vcd", "n.vcd", "--trace", "n.trace"])
+        .current_dir(d.path())
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    // Wait until the run has reserved its outputs, then interrupt it.
+    let t0 = std::time::Instant::now();
+    while !tree(d.path()).iter().any(|p| p.contains("n.vcd.")) && t0.elapsed().as_secs() < 20 {
+        std::thread::sleep(std::time::Duration::from_millis(5));
+    }
+    let _ = Command::new("kill").args(["-INT", &child.id().to_string()]).status();
+    let status = child.wait().unwrap();
+    assert_eq!(status.code(), Some(130));
+    assert_eq!(tree(d.path()), ["adir", "afile"]);
+}
