@@ -189,8 +189,10 @@ impl OutputSet {
         Ok(())
     }
 
+    /// One output path given twice (`a.vcd` and `./a.vcd` too) is an error.
     fn check_unique(&self, dest: &Path) -> Result<()> {
-        if self.files.iter().any(|(d, _, _)| d == dest) || self.dirs.iter().any(|(d, _)| d == dest) {
+        let same = |d: &Path| d == dest || same_place(d, dest);
+        if self.files.iter().any(|(d, _, _)| same(d)) || self.dirs.iter().any(|(d, _)| same(d)) {
             bail!("{} is given for two outputs", dest.display());
         }
         Ok(())
@@ -368,6 +370,15 @@ impl OutputSet {
     }
 }
 
+/// Do two paths name one place (their folders resolved, the names equal)?
+fn same_place(a: &Path, b: &Path) -> bool {
+    let place = |p: &Path| {
+        let dir = p.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
+        Some((std::fs::canonicalize(dir).ok()?, p.file_name()?.to_os_string()))
+    };
+    matches!((place(a), place(b)), (Some(x), Some(y)) if x == y)
+}
+
 /// Rename every pair; on a failure undo the renames done (old files back,
 /// new files removed) and report it.
 fn apply(moves: &[(PathBuf, PathBuf)]) -> Result<()> {
@@ -499,8 +510,11 @@ mod tests {
         s.file(&d.path().join("a")).unwrap();
         let e = s.file(&d.path().join("a")).unwrap_err().to_string();
         assert!(e.contains("two outputs"), "{e}");
+        std::fs::create_dir(d.path().join("sub")).unwrap();
+        let e = s.file(&d.path().join("sub/../a")).unwrap_err().to_string();
+        assert!(e.contains("two outputs"), "{e}");
         drop(s);
-        assert_eq!(listing(d.path()), ["file"]);
+        assert_eq!(listing(d.path()), ["file", "sub"]);
     }
 
     #[test]

@@ -14,9 +14,10 @@ pub struct Args {
     /// earlier than the file's duration_us).
     #[arg(long, allow_negative_numbers = true)]
     ms: Option<f64>,
-    /// Network files: seed of the clock phases.
-    #[arg(long, default_value_t = 1)]
-    seed: u64,
+    /// Seed of the clock phases (network files: default 1; scenario files:
+    /// replaces the file's `seed`).
+    #[arg(long)]
+    seed: Option<u64>,
     /// Write a VCD of every signal and bus wire.
     #[arg(long)]
     vcd: Option<PathBuf>,
@@ -58,7 +59,10 @@ pub fn run(a: Args) -> Result<()> {
     if canstar_recan::NetworkSpec::is_network_file(&text) {
         return network(&a, &text, until_ps);
     }
-    let sc = canstar_verify::scenario::Scenario::from_toml(&text).map_err(|e| anyhow!("{}: {e}", a.scenario.display()))?;
+    let mut sc = canstar_verify::scenario::Scenario::from_toml(&text).map_err(|e| anyhow!("{}: {e}", a.scenario.display()))?;
+    if let Some(s) = a.seed {
+        sc.seed = s;
+    }
     let mut set = OutputSet::new();
     reserve(&mut set, &[&a.vcd, &a.trace, &a.log])?;
     let opts = canstar_verify::scenario::RunOptions { vcd: tmp(&set, &a.vcd), trace: a.trace.is_some(), until_ps };
@@ -103,7 +107,7 @@ fn network(a: &Args, text: &str, until_ps: Option<u64>) -> Result<()> {
     }
     let mut set = OutputSet::new();
     reserve(&mut set, &[&a.vcd, &a.trace])?;
-    let mut spec = RunSpec::new(net.clone(), a.seed, 0);
+    let mut spec = RunSpec::new(net.clone(), a.seed.unwrap_or(1), 0);
     spec.max_time_ps = Some(until_ps.unwrap_or(2_000_000_000));
     spec.vcd = tmp(&set, &a.vcd);
     spec.trace = a.trace.is_some();
