@@ -186,7 +186,7 @@ fn generate_killed_at_any_moment_leaves_the_old_or_the_new_set() {
         let _ = std::fs::remove_dir_all(d.path().join("v"));
         let r = run(&["generate", "blocks", "--config", "one.toml", "--out", "v"], d.path());
         assert!(r.ok);
-        let mut child = Command::new(env!("CARGO_BIN_EXE_canstar"))
+        let child = Command::new(env!("CARGO_BIN_EXE_canstar"))
             .args(["generate", "blocks", "--out", "v"])
             .current_dir(d.path())
             .stdout(Stdio::null())

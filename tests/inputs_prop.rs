@@ -437,7 +437,7 @@ fn command_line(cmd: u8, p: &[u8]) -> (Vec<String>, Vec<String>) {
     let ex = |n: &str| root().join("examples").join(n).display().to_string();
     let mut a: Vec<String> = vec![];
     let mut outs: Vec<String> = vec![];
-    let mut opt = |a: &mut Vec<String>, flag: &str, v: String, k: u8| {
+    let opt = |a: &mut Vec<String>, flag: &str, v: String, k: u8| {
         if k % 3 != 0 {
             if k % 5 == 0 {
                 a.push(format!("{flag}={v}"));
