@@ -62,6 +62,9 @@ pub struct Board {
     /// different bitstream, so its pins may reuse the hub's.
     #[serde(default)]
     pub controller: Option<ControllerPins>,
+    /// The file the board was read from (for messages; not a key of the file).
+    #[serde(skip)]
+    pub source: Option<String>,
 }
 
 /// The controller's pinout on a board.
@@ -101,17 +104,43 @@ impl Board {
             return Self::from_toml(text).with_context(|| format!("built-in board {name_or_path}"));
         }
         if name_or_path.ends_with(".toml") && Path::new(name_or_path).exists() {
-            let text = std::fs::read_to_string(name_or_path)?;
-            return Self::from_toml(&text).with_context(|| format!("in board file {name_or_path}"));
+            let text = crate::input::read_toml(Path::new(name_or_path))?;
+            let mut b = Self::from_toml(&text).map_err(|e| anyhow!("{name_or_path}: {e:#}"))?;
+            b.source = Some(name_or_path.to_string());
+            return Ok(b);
         }
         let known: Vec<&str> = BUILTIN.iter().map(|(n, _)| *n).collect();
         bail!("unknown board `{name_or_path}` (known boards: {}; or give a path to a board .toml file)", known.join(", "))
     }
 
-    /// No pin may serve two roles (functional, clock or debug).
+    /// Every value has a form the pin files can carry (the name becomes a
+    /// folder name, so it cannot leave `constraints/`), and no pin serves two
+    /// roles (functional, clock or debug).
     pub fn validate(&self) -> Result<()> {
-        if self.clock.hz == 0 {
-            bail!("board {}: clock frequency must be positive", self.name);
+        check_file_name("name", &self.name)?;
+        for (key, v) in [("description", &self.description), ("family", &self.family), ("part", &self.part)] {
+            check_text(key, v)?;
+        }
+        if let Some(p) = &self.package {
+            check_text("package", p)?;
+        }
+        if let Some(s) = &self.iostandard {
+            check_token("iostandard", s)?;
+        }
+        check_identifier("clock.port", &self.clock.port)?;
+        check_token("clock.pin", &self.clock.pin)?;
+        if !(1_000..=1_000_000_000).contains(&self.clock.hz) {
+            bail!("clock.hz: {} Hz (must be 1 kHz ..= 1 GHz)", self.clock.hz);
+        }
+        let pinouts = std::iter::once(("pins", &self.pins)).chain(self.controller.as_ref().map(|c| ("controller.pins", &c.pins)));
+        for (table, pins) in pinouts {
+            for (role, pin) in pins {
+                check_role(&format!("{table}.\"{role}\""), role)?;
+                check_token(&format!("{table}.\"{role}\""), pin)?;
+            }
+        }
+        for (i, pin) in self.debug.pins.iter().enumerate() {
+            check_token(&format!("debug.pins[{i}]"), pin)?;
         }
         let mut used: BTreeMap<&str, String> = BTreeMap::new();
         claim_pin(&mut used, &self.clock.pin, format!("clock port {}", self.clock.port))?;
@@ -136,10 +165,18 @@ impl Board {
         match which {
             Pinout::Hub => Ok((&self.pins, self.debug.pins.iter().collect())),
             Pinout::Controller => {
-                let c = self.controller.as_ref().ok_or_else(|| anyhow!("board {} has no controller pinout ([controller.pins])", self.name))?;
+                let c = self.controller.as_ref().ok_or_else(|| anyhow!("{} has no controller pinout ([controller.pins])", self.label()))?;
                 let used: BTreeSet<&String> = c.pins.values().collect();
                 Ok((&c.pins, self.debug.pins.iter().filter(|p| !used.contains(p)).collect()))
             }
+        }
+    }
+
+    /// `board <name>`, after the file it came from if any (for messages).
+    pub fn label(&self) -> String {
+        match &self.source {
+            Some(f) => format!("{f}: board {}", self.name),
+            None => format!("board {}", self.name),
         }
     }
 
@@ -147,6 +184,60 @@ impl Board {
     pub fn clock_period_ns(&self) -> f64 {
         1e9 / self.clock.hz as f64
     }
+}
+
+/// A board name: it names the folder of the board's pin files.
+fn check_file_name(key: &str, v: &str) -> Result<()> {
+    let ok = !v.is_empty()
+        && v.len() <= 64
+        && !v.starts_with(['.', '-'])
+        && v.chars().all(|c| c.is_ascii_alphanumeric() || matches!(c, '.' | '_' | '-'));
+    if !ok {
+        bail!("{key}: {v:?} must be 1 to 64 letters, digits, '.', '_' or '-', not starting with '.' or '-' (it names the folder of the pin files)");
+    }
+    Ok(())
+}
+
+/// Free text written into a pin file's comment: one line, no quotes.
+fn check_text(key: &str, v: &str) -> Result<()> {
+    if v.chars().any(|c| c.is_control() || c == '"') || v.len() > 200 {
+        bail!("{key}: {v:?} must be one line of at most 200 characters without quotes");
+    }
+    Ok(())
+}
+
+/// A pin name or an I/O standard: letters, digits and `_` (`H15`, `LVCMOS33`).
+fn check_token(key: &str, v: &str) -> Result<()> {
+    if v.is_empty() || v.len() > 32 || !v.chars().all(|c| c.is_ascii_alphanumeric() || c == '_') {
+        bail!("{key}: {v:?} must be 1 to 32 letters, digits or _");
+    }
+    Ok(())
+}
+
+/// A top-level port name.
+fn check_identifier(key: &str, v: &str) -> Result<()> {
+    let ok = v.chars().next().is_some_and(|c| c.is_ascii_alphabetic() || c == '_')
+        && v.len() <= 64
+        && v.chars().all(|c| c.is_ascii_alphanumeric() || c == '_');
+    if !ok {
+        bail!("{key}: {v:?} must be a port name (a letter or _, then letters, digits or _)");
+    }
+    Ok(())
+}
+
+/// A role: `name` or `name[i]`.
+fn check_role(key: &str, v: &str) -> Result<()> {
+    let (base, idx) = match v.strip_suffix(']').and_then(|s| s.split_once('[')) {
+        Some((b, i)) => (b, Some(i)),
+        None => (v, None),
+    };
+    check_identifier(key, base).map_err(|_| anyhow!("{key}: role {v:?} must be a port name or name[index]"))?;
+    if let Some(i) = idx {
+        if i.is_empty() || i.len() > 6 || !i.chars().all(|c| c.is_ascii_digit()) {
+            bail!("{key}: role {v:?} must be a port name or name[index]");
+        }
+    }
+    Ok(())
 }
 
 fn claim_pin<'a>(used: &mut BTreeMap<&'a str, String>, pin: &'a str, role: String) -> Result<()> {
@@ -203,7 +294,7 @@ pub fn pin_file(board: &Board, which: Pinout, design_name: &str, design: &Design
         }
         let pin = pins
             .get(role)
-            .ok_or_else(|| anyhow!("board {} has no pin for port bit `{role}` of design {design_name}", board.name))?;
+            .ok_or_else(|| anyhow!("{} has no pin for port bit `{role}` of design {design_name} (pins.\"{role}\")", board.label()))?;
         lines.push((role.clone(), pin.clone()));
     }
     let mut placed_debug = vec![];

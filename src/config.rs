@@ -1,7 +1,7 @@
 //! Generator configuration, read from TOML. Unknown keys are errors, and
 //! every value is checked before anything is generated.
 
-use anyhow::{bail, Context, Result};
+use anyhow::{bail, Result};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 
@@ -28,12 +28,12 @@ fn power_up_timing<'de, D: serde::Deserializer<'de>>(d: D) -> std::result::Resul
 /// (clocks per TQ = 2·(BRP+1), TSEG1 = PROP + PH1 <= 16).
 pub fn validate_power_up(t: &BtlConfig) -> Result<()> {
     if t.brp < 2 || t.brp > 128 || t.brp % 2 != 0 {
-        bail!("invalid bit timing: brp = {} clocks per TQ (the SJA1000 top has 2·(BRP+1): even, 2..=128)", t.brp);
+        bail!("bit_timing: invalid bit timing: brp = {} clocks per TQ (the SJA1000 top has 2·(BRP+1): even, 2..=128)", t.brp);
     }
+    t.check().map_err(|e| anyhow::anyhow!("bit_timing: invalid bit timing: {e}"))?;
     if t.prop + t.ph1 > 16 {
-        bail!("invalid bit timing: prop + ph1 = TSEG1 = {} TQ (must be <= 16)", t.prop + t.ph1);
+        bail!("bit_timing: invalid bit timing: prop + ph1 = TSEG1 = {} TQ (must be <= 16)", t.prop + t.ph1);
     }
-    t.check().map_err(|e| anyhow::anyhow!("invalid bit timing: {e}"))?;
     Ok(())
 }
 
@@ -101,16 +101,19 @@ impl Config {
         c.validate()?;
         Ok(c)
     }
+    /// Read a configuration file (bounded, see [`crate::input`]); every error
+    /// starts with the path and names the key.
     pub fn load(path: &Path) -> Result<Self> {
-        let text = std::fs::read_to_string(path).with_context(|| format!("reading config {}", path.display()))?;
-        Self::from_toml(&text).with_context(|| format!("in config {}", path.display()))
+        let text = crate::input::read_toml(path)?;
+        Self::from_toml(&text).map_err(|e| anyhow::anyhow!("{}: {e:#}", path.display()))
     }
+    /// Check every value (the one place for this format).
     pub fn validate(&self) -> Result<()> {
         validate_power_up(&self.bit_timing)?;
         if !(1..=2).contains(&self.rtl.sync_depth) {
-            bail!("invalid rtl.sync_depth = {} (must be 1 or 2)", self.rtl.sync_depth);
+            bail!("rtl.sync_depth: {} (must be 1 or 2)", self.rtl.sync_depth);
         }
-        self.hub.validate().map_err(|e| anyhow::anyhow!("invalid [hub] configuration: {e}"))?;
+        self.hub.validate().map_err(|e| anyhow::anyhow!("hub: invalid [hub] configuration: {e}"))?;
         Ok(())
     }
 }

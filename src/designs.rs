@@ -5,6 +5,7 @@ use crate::boards::{pin_file, Board, DesignPins, Format, Pinout, BUILTIN};
 use crate::verilog::{block, board_top, header, vector_wrapper, Artifact, Root};
 use rust_hdl::prelude::Block;
 use anyhow::Result;
+use std::io::Write as _;
 use canstar_hdl::{btl, crc15, stuff, sync};
 
 /// The shared RTL blocks as standalone modules (`verilog-out/blocks/`).
@@ -101,6 +102,22 @@ fn is_functional(port: &str) -> bool {
     matches!(port, "rst_n" | "inject_fault" | "rx" | "reh_rx" | "tx" | "hub_tx")
 }
 
+/// The functional port bits of a hub's top with `ports` node ports and
+/// `sublinks` interlinks (known before rendering, so that a board lacking a pin
+/// fails at once; the rendered ports are checked again by [`pin_file`]).
+pub fn hub_functional_roles(ports: usize, sublinks: usize) -> Vec<String> {
+    let mut v = vec!["rst_n".to_string(), "inject_fault".to_string()];
+    v.extend(DesignPins::port_roles("rx", ports));
+    if sublinks > 0 {
+        v.extend(DesignPins::port_roles("reh_rx", sublinks));
+    }
+    v.extend(DesignPins::port_roles("tx", ports));
+    if sublinks > 0 {
+        v.extend(DesignPins::port_roles("hub_tx", sublinks));
+    }
+    v
+}
+
 /// The reference ReCANcentrate hub (`[hub]` of the config, M interlinks) and a
 /// CANcentrate hub (the same with M = 0), each as `verilog-out/hub/<name>.v`
 /// (rust-hdl core plus a top with vector ports) and pin files per board.
@@ -109,16 +126,18 @@ pub fn hub(config: &Config, board: Option<&str>) -> Result<Vec<Artifact>> {
     let mut out = vec![];
     let rec = config.hub.clone();
     let cc = canstar_hub::config::HubConfig { sublinks: 0, ..config.hub.clone() };
+    for (name, cfg) in [("canstar_hub", &rec), ("canstar_cancentrate", &cc)] {
+        let need = DesignPins { functional: hub_functional_roles(cfg.ports, cfg.sublinks), debug: vec![] };
+        for b in &boards {
+            pin_file(b, Pinout::Hub, name, &need)?;
+        }
+    }
     for (name, cfg, what) in [
         ("canstar_hub", rec, "ReCANcentrate star hub"),
         ("canstar_cancentrate", cc, "CANcentrate star hub (no interlinks)"),
     ] {
-        cfg.validate().map_err(|e| anyhow::anyhow!("invalid [hub] configuration: {e}"))?;
-        let mut h = canstar_hub::hub::Hub::new(&cfg);
-        h.connect_all();
-        let core = format!("{name}_core");
-        let inner = canstar_hdl::flow::rename_top(&canstar_hdl::flow::emit(&h), &core);
-        let (wrapper, ports) = vector_wrapper(&inner, &core, name);
+        cfg.validate().map_err(|e| anyhow::anyhow!("hub: invalid [hub] configuration: {e}"))?;
+        let (inner, wrapper, ports) = hub_top(&cfg, name);
         let desc = format!(
             "{what}, N = {} ports, M = {} interlinks, {} Hz clock, coupling latency {} clocks",
             cfg.ports,
@@ -145,7 +164,9 @@ pub fn hub(config: &Config, board: Option<&str>) -> Result<Vec<Artifact>> {
         }
         for b in &boards {
             if b.clock.hz != cfg.clock_hz {
-                eprintln!(
+                // (a closed stderr is no reason to stop)
+                let _ = writeln!(
+                    std::io::stderr(),
                     "note: board {} clock is {} Hz, the hub is configured for {} Hz (bit timing counts clocks)",
                     b.name, b.clock.hz, cfg.clock_hz
                 );
@@ -155,6 +176,16 @@ pub fn hub(config: &Config, board: Option<&str>) -> Result<Vec<Artifact>> {
         }
     }
     Ok(out)
+}
+
+/// A hub's rust-hdl core (`<name>_core`), its top with vector ports and the top's ports.
+fn hub_top(cfg: &canstar_hub::config::HubConfig, name: &str) -> (String, String, Vec<(String, usize, bool)>) {
+    let mut h = canstar_hub::hub::Hub::new(cfg);
+    h.connect_all();
+    let core = format!("{name}_core");
+    let inner = canstar_hdl::flow::rename_top(&canstar_hdl::flow::emit(&h), &core);
+    let (wrapper, ports) = vector_wrapper(&inner, &core, name);
+    (inner, wrapper, ports)
 }
 
 /// The designs `canstar report` measures: (name, Verilog, top module).
@@ -170,3 +201,23 @@ pub fn report_designs(config: &Config) -> Result<Vec<(String, String, String)>> 
     Ok(v)
 }
 
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The port bits checked against a board before rendering are those the rendered top has.
+    #[test]
+    fn hub_functional_roles_match_the_rendered_top() {
+        for (ports, sublinks) in [(1, 0), (2, 1), (3, 2)] {
+            let cfg = canstar_hub::config::HubConfig { ports, sublinks, ..Default::default() };
+            let (_, _, top) = hub_top(&cfg, "t");
+            let mut rendered: Vec<String> =
+                top.iter().filter(|(p, _, _)| is_functional(p)).flat_map(|(p, bits, _)| DesignPins::port_roles(p, *bits)).collect();
+            let mut known = hub_functional_roles(ports, sublinks);
+            rendered.sort();
+            known.sort();
+            assert_eq!(rendered, known, "N = {ports}, M = {sublinks}");
+        }
+    }
+}

@@ -1,12 +1,14 @@
 //! `canstar generate`: render every requested design to Verilog (and pin
-//! files where a board is given) in memory first, then write all files, so
-//! that a bad configuration never leaves half-written output.
+//! files where a board is given) in memory first, then write all files as one
+//! [`OutputSet`], so that a bad configuration or an unwritable destination
+//! never leaves half-written output.
 
-use anyhow::{bail, Context, Result};
+use anyhow::{bail, Result};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 use crate::config::Config;
+use crate::output::OutputSet;
 pub use crate::verilog::{Artifact, Root};
 
 /// What `canstar generate` can produce.
@@ -58,29 +60,26 @@ fn dest(a: &Artifact, out: &Path, constraints: &Path) -> PathBuf {
     }
 }
 
-/// Write all artifacts. Every file is first written next to its destination
-/// under a temporary name; only when all are written are they renamed into place.
-pub fn write(artifacts: &[Artifact], out: &Path, constraints: &Path) -> Result<Vec<PathBuf>> {
-    let mut staged = vec![];
+/// Stage every artifact in `set` (each under a temporary name next to its
+/// destination, missing directories created); [`OutputSet::commit`] moves them
+/// into place together.
+pub fn stage(set: &mut OutputSet, artifacts: &[Artifact], out: &Path, constraints: &Path) -> Result<()> {
     for a in artifacts {
         let d = dest(a, out, constraints);
-        let dir = d.parent().unwrap_or(Path::new("."));
-        std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
-        let tmp = d.with_extension("canstar-tmp");
-        if let Err(e) = std::fs::write(&tmp, &a.contents) {
-            for (t, _) in &staged {
-                let _ = std::fs::remove_file(t);
-            }
-            return Err(e).with_context(|| format!("writing {}", tmp.display()));
-        }
-        staged.push((tmp, d));
+        set.file_creating_dirs(&d)?;
+        set.write(&d, &a.contents)?;
     }
-    let mut written = vec![];
-    for (tmp, d) in staged {
-        std::fs::rename(&tmp, &d).with_context(|| format!("renaming {} to {}", tmp.display(), d.display()))?;
-        written.push(d);
-    }
-    Ok(written)
+    Ok(())
+}
+
+/// Write all artifacts as one set: nothing changes on disk unless every file
+/// could be written.
+pub fn write(artifacts: &[Artifact], out: &Path, constraints: &Path) -> Result<Vec<PathBuf>> {
+    let mut set = OutputSet::new();
+    set.root(out)?;
+    set.root(constraints)?;
+    stage(&mut set, artifacts, out, constraints)?;
+    set.commit()
 }
 
 /// Compare artifacts with the files on disk; returns the paths that differ or are missing.

@@ -5,7 +5,9 @@
 //! (controller verification) and `canstar-recan` (ReCANcentrate system).
 //!
 //! Dependencies point one way: `generate` → `designs` → `verilog`, `boards`,
-//! `config`; `report` → `verilog`.
+//! `config`; `report` → `verilog`; `output` (the staged, all-or-nothing
+//! writing of a command's files) and `input` (bounded reads of input files)
+//! depend on nothing here.
 
 pub mod bench;
 pub mod boards;
@@ -13,5 +15,7 @@ pub mod config;
 pub mod designs;
 pub mod engine;
 pub mod generate;
+pub mod input;
+pub mod output;
 pub mod report;
 pub mod verilog;

@@ -10,8 +10,11 @@ fn main() -> ExitCode {
     let args = cli::Cli::parse();
     match cli::run(args) {
         Ok(()) => ExitCode::SUCCESS,
+        Err(e) if cli::print::is_broken_pipe(&e) => {
+            canstar::output::abandon_and_exit(cli::print::CLOSED_STDOUT)
+        }
         Err(e) => {
-            eprintln!("error: {e:#}");
+            cli::print::err(format_args!("error: {e:#}\n"));
             ExitCode::FAILURE
         }
     }

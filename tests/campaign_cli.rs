@@ -33,7 +33,7 @@ fn campaign_bad_input_fails_cleanly_and_writes_nothing() {
         (&["campaign", "--classes", "pub01", "--shard", "x", "--json", "out.json"], "malformed shard"),
         (&["campaign", "--merge", "bad.json", "--json", "out.json"], "bad.json: not a campaign report"),
         (&["campaign", "--merge", "empty.json"], "empty.json: not a campaign report"),
-        (&["campaign", "--merge", "missing.json", "--json", "out.json"], "reading missing.json"),
+        (&["campaign", "--merge", "missing.json", "--json", "out.json"], "missing.json: cannot read"),
         (&["campaign", "--class", "nope", "--plot", "p.svg", "--vcd", "v.vcd"], "unknown scenario class `nope`"),
         (&["campaign", "--class", "pub01", "--plot", "no/such/dir/p.svg"], "does not exist"),
         (&["campaign", "--classes", "pub01", "--json", "no/such/dir/o.json"], "does not exist"),

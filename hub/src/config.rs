@@ -114,6 +114,13 @@ impl Default for HubConfig {
     }
 }
 
+/// Most node ports of a hub (more than any CAN network has nodes; rust-hdl's
+/// Verilog writer takes time quadratic in the number of signals, about 3 s here).
+pub const MAX_PORTS: usize = 128;
+
+/// Most interlinks of a hub.
+pub const MAX_SUBLINKS: usize = 8;
+
 /// The reference hub's monitor timing: TQ = 2 clocks, PROP 3, PH1 2, PH2 2, SJW 1 TQ.
 pub const REFERENCE_TIMING: BtlConfig = BtlConfig::new(2, 3, 2, 1);
 
@@ -152,19 +159,29 @@ impl HubConfig {
             reintegration: self.reintegration,
         }
     }
-    /// Check the ranges; returns a description of the first problem.
+    /// Check the ranges; returns a description of the first problem, starting
+    /// with the key.
     pub fn validate(&self) -> Result<(), String> {
         if self.ports == 0 {
             return Err("ports must be >= 1".into());
+        }
+        if self.ports > MAX_PORTS {
+            return Err(format!("ports = {} (at most {MAX_PORTS})", self.ports));
+        }
+        if self.sublinks > MAX_SUBLINKS {
+            return Err(format!("sublinks = {} (at most {MAX_SUBLINKS})", self.sublinks));
+        }
+        if !(1_000..=1_000_000_000).contains(&self.clock_hz) {
+            return Err(format!("clock_hz = {} (must be 1 kHz ..= 1 GHz)", self.clock_hz));
         }
         if !(1..=2).contains(&self.sync_depth) {
             return Err("sync_depth must be 1 or 2".into());
         }
         let t = &self.timing;
         if t.brp > 32 || t.prop > 8 || t.triple {
-            return Err("bit timing out of range for the hub's monitor (at most 32 clocks per TQ, PROP <= 8 TQ, no triple sampling)".into());
+            return Err("timing: bit timing out of range for the hub's monitor (at most 32 clocks per TQ, PROP <= 8 TQ, no triple sampling)".into());
         }
-        t.check().map_err(|e| format!("bit timing: {e}"))?;
+        t.check().map_err(|e| format!("timing: bit timing: {e}"))?;
         for (n, v, hi) in [
             ("bic_threshold", self.bic_threshold, 31),
             ("sub_bic_threshold", self.sub_bic_threshold, 31),
@@ -190,10 +207,10 @@ impl HubConfig {
                 FaultPoint::Sublink(j) => j < self.sublinks,
             };
             if !ok {
-                return Err("fault-injection point out of range".into());
+                return Err("fault_injection.point: fault-injection point out of range".into());
             }
             if f.start_field > 15 {
-                return Err("start_field must be a 4-bit field code".into());
+                return Err("fault_injection.start_field must be a 4-bit field code".into());
             }
         }
         Ok(())

@@ -33,6 +33,8 @@ struct Map {
     sub_isolated: Vec<usize>,
     frame_state: usize,
     efg_active: usize,
+    /// `bic$i` debug outputs (empty without debug outputs).
+    bic: Vec<usize>,
     // atoms
     pj_blame: Vec<usize>,
     sj_blame: Vec<usize>,
@@ -87,6 +89,7 @@ impl Map {
             sub_isolated: each(k, &|j| out(&format!("sub_isolated${j}")))?,
             frame_state: out("frame_state")?,
             efg_active: out("efg_active")?,
+            bic: (0..n).map_while(|i| m.output_index(&format!("bic${i}"))).collect(),
             pj_blame: each(n, &|i| atom(&format!("core.pj${i}.blame")))?,
             sj_blame: each(k, &|j| atom(&format!("core.sj${j}.blame")))?,
             pj_bic: each(n, &|i| atom(&format!("core.pj${i}.bic")))?,
@@ -313,6 +316,21 @@ readers! {
 }
 
 impl HubSim {
+    /// Number of `bic` debug outputs (N with debug outputs, else 0).
+    pub fn debug_bic_len(&self) -> usize {
+        match &self.inner {
+            Inner::Hdl(h) => h.bic.len(),
+            Inner::Model(_, p) => p.bic.len(),
+        }
+    }
+    /// Debug output `bic[i]` (the blame counter of port `i`).
+    pub fn debug_bic(&self, i: usize) -> u64 {
+        match &self.inner {
+            Inner::Hdl(h) => h.bic[i].val().index() as u64,
+            Inner::Model(m, p) => m.output(p.bic[i]) as u64,
+        }
+    }
+
     /// Some judge unit blames its port or sublink in this clock.
     pub fn blame_any(&self) -> bool {
         (0..self.n).any(|i| self.port_blame(i)) || (0..self.m).any(|j| self.sub_blame(j))

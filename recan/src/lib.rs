@@ -53,6 +53,6 @@ pub mod scenarios;
 pub mod spec;
 
 pub use fault::{CtrlRef, Dir, FaultKind, FaultSpec, FaultStart, FaultTarget, StartField};
-pub use run::{run, run_inspect, CounterSample, IsolationEvent, Isolated, RunResult, RunSpec};
+pub use run::{run, run_inspect, run_observed, CounterSample, IsolationEvent, Isolated, RunResult, RunSpec};
 pub use scenarios::{check, published_scenario, Expected, SCENARIO_NAMES};
 pub use spec::{AppKind, CtrlSpec, DriverSpec, NetworkSpec, NodeSpec};

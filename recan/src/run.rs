@@ -133,21 +133,38 @@ pub struct RunResult {
     /// Final blame counter (BIC, counter units) of every port, per hub
     /// (empty without the hub's debug outputs).
     pub final_bic: Vec<Vec<u32>>,
+    /// Largest blame counter of every port during the run, per hub (sampled
+    /// every quarter bit; empty without the hub's debug outputs).
+    #[serde(default)]
+    pub max_bic: Vec<Vec<u32>>,
+    /// Largest (TEC, REC) of every controller during the run, `[node][c]`
+    /// (sampled every quarter bit, faulty controllers included).
+    #[serde(default)]
+    pub max_tec_rec: Vec<[(u32, u32); 2]>,
     /// Driver routine log (with `RunSpec::trace`).
     pub trace: Vec<String>,
+    /// The VCD could not be written (also in `failures`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub vcd_error: Option<String>,
 }
 
 /// Run `spec`. Never panics on a valid network; an invalid network gives a
 /// result with `ok == false` and the validation error in `failures`.
 pub fn run(spec: &RunSpec) -> RunResult {
-    run_impl(spec, &mut |_, _| {}, &mut |_, _| {})
+    run_impl(spec, &mut |_, _| {}, &mut |_, _| {}, &mut |_, _| {})
+}
+
+/// [`run`], calling `progress(now_ps, limit_ps)` after every quarter bit
+/// (`limit_ps`: the time limit of the run; it may stop earlier).
+pub fn run_observed(spec: &RunSpec, progress: &mut dyn FnMut(u64, u64)) -> RunResult {
+    run_impl(spec, progress, &mut |_, _| {}, &mut |_, _| {})
 }
 
 /// [`run`] with hooks: `setup` sees the simulation right after the network is built
 /// (e.g. to start recording the components' inputs), `finish` at the end of the run
 /// (to take what was recorded). Neither is called for an invalid network.
 pub fn run_inspect(spec: &RunSpec, setup: &mut dyn FnMut(&mut Sim, &Network), finish: &mut dyn FnMut(&mut Sim, &Network)) -> RunResult {
-    run_impl(spec, setup, finish)
+    run_impl(spec, &mut |_, _| {}, setup, finish)
 }
 
 /// Field codes of the controller for a start field.
@@ -188,7 +205,12 @@ struct Active {
     unhealthy: Vec<(usize, usize)>,
 }
 
-fn run_impl(spec: &RunSpec, setup: &mut dyn FnMut(&mut Sim, &Network), finish: &mut dyn FnMut(&mut Sim, &Network)) -> RunResult {
+fn run_impl(
+    spec: &RunSpec,
+    progress: &mut dyn FnMut(u64, u64),
+    setup: &mut dyn FnMut(&mut Sim, &Network),
+    finish: &mut dyn FnMut(&mut Sim, &Network),
+) -> RunResult {
     let mut res = RunResult { bit_time_ps: spec.network.bit_time_ps(), ..Default::default() };
     let mut sim = Sim::new(spec.seed);
     let net = match Network::build_with(&mut sim, &spec.network, spec.engine) {
@@ -201,7 +223,9 @@ fn run_impl(spec: &RunSpec, setup: &mut dyn FnMut(&mut Sim, &Network), finish: &
     setup(&mut sim, &net);
     if let Some(p) = &spec.vcd {
         if let Err(e) = sim.start_vcd_file(p, None) {
-            res.failures.push(format!("cannot write VCD {}: {e}", p.display()));
+            let m = format!("cannot write VCD {}: {e}", p.display());
+            res.failures.push(m.clone());
+            res.vcd_error = Some(m);
             return res;
         }
     }
@@ -231,6 +255,7 @@ fn run_impl(spec: &RunSpec, setup: &mut dyn FnMut(&mut Sim, &Network), finish: &
     let mut unhealthy: Vec<(usize, usize)> = Vec::new();
     let mut healthy_errors_base: Option<Vec<u64>> = None;
     res.delivered_per_node = vec![0; nn];
+    res.max_tec_rec = vec![[(0, 0); 2]; nn];
     let max_after = spec
         .faults
         .iter()
@@ -412,18 +437,26 @@ fn run_impl(spec: &RunSpec, setup: &mut dyn FnMut(&mut Sim, &Network), finish: &
             errors_seen = errs;
             last_disturb = res.delivered;
         }
-        // ---- healthy counters
+        // ---- counters: maxima of every controller, worst of the healthy ones, blames
         for (k, p) in net.ctrls.iter().enumerate() {
             for (c, &h) in p.iter().enumerate() {
-                if unhealthy.contains(&(k, c)) {
-                    continue;
-                }
                 let x = sim.get(h);
-                if !x.is_held() {
+                let m = &mut res.max_tec_rec[k][c];
+                *m = (m.0.max(x.tec()), m.1.max(x.rec()));
+                if !unhealthy.contains(&(k, c)) && !x.is_held() {
                     res.worst_healthy_tec_rec = res.worst_healthy_tec_rec.max(x.tec()).max(x.rec());
                 }
             }
         }
+        for (i, &h) in net.hubs.iter().enumerate() {
+            let hub = &sim.get(h).hub;
+            res.max_bic.resize(2, vec![]);
+            res.max_bic[i].resize(hub.debug_bic_len(), 0);
+            for (j, m) in res.max_bic[i].iter_mut().enumerate() {
+                *m = (*m).max(hub.debug_bic(j) as u32);
+            }
+        }
+        progress(sim.now(), limit);
     }
     // ---- results
     res.end_ps = sim.now();
@@ -436,7 +469,7 @@ fn run_impl(spec: &RunSpec, setup: &mut dyn FnMut(&mut Sim, &Network), finish: &
     res.sim_cycles = sim.total_cycles();
     res.fault_start_ps = fault_start.clone();
     res.tx_ctrl = drivers.iter().map(|d| d.tx).collect();
-    res.final_bic = net.hubs.iter().map(|&h| { let hub = &sim.get(h).hub; (0..hub.ports()).map(|i| hub.port_bic(i) as u32).collect() }).collect();
+    res.final_bic = net.hubs.iter().map(|&h| { let hub = &sim.get(h).hub; (0..hub.debug_bic_len()).map(|i| hub.debug_bic(i) as u32).collect() }).collect();
     if let Some(base) = &healthy_errors_base {
         let now_err = all_errors(&sim, &net);
         let mut i = 0;
@@ -489,6 +522,7 @@ fn run_impl(spec: &RunSpec, setup: &mut dyn FnMut(&mut Sim, &Network), finish: &
     if spec.vcd.is_some() {
         if let Err(e) = sim.finish_vcd() {
             res.failures.push(format!("VCD: {e}"));
+            res.vcd_error = Some(format!("VCD: {e}"));
         }
     }
     res.ok = res.failures.is_empty();

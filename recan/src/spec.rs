@@ -358,9 +358,13 @@ impl NetworkSpec {
         self.hub_period_ps() * self.hub.bit_clocks() as u64
     }
 
-    /// Check the spec; the error names the problem.
+    /// Check the spec (the one check of this format): every number finite
+    /// and in range (no zero clock period, no overflow in picoseconds), every
+    /// name usable as a VCD scope. The error starts with the key
+    /// (`nodes[2].a.ppm: ...`); the caller adds the file.
     pub fn validate(&self) -> Result<(), String> {
         self.hub.validate().map_err(|e| format!("hub: {e}"))?;
+        check_name("network.name", &self.network.name, true)?;
         if self.hubs.len() != 2 {
             return Err(format!("hubs: exactly 2 entries expected, found {}", self.hubs.len()));
         }
@@ -377,53 +381,76 @@ impl NetworkSpec {
         if self.nodes.len() > self.hub.ports {
             return Err(format!("nodes: {} nodes but hub.ports = {}", self.nodes.len(), self.hub.ports));
         }
+        let hub_period = self.hub_period_ps();
         for (i, h) in self.hubs.iter().enumerate() {
-            if !(h.ppm.is_finite() && h.ppm.abs() < 10_000.0) {
-                return Err(format!("hubs[{i}].ppm = {} out of range (|ppm| < 10000)", h.ppm));
-            }
+            check_ppm(&format!("hubs[{i}].ppm"), h.ppm)?;
+            check_phase(&format!("hubs[{i}].phase_ps"), h.phase_ps, hub_period)?;
+        }
+        for (i, l) in self.interlinks.iter().enumerate() {
+            check_delay(&format!("interlinks[{i}].h0_to_h1_ps"), l.h0_to_h1_ps)?;
+            check_delay(&format!("interlinks[{i}].h1_to_h0_ps"), l.h1_to_h0_ps)?;
         }
         let d = &self.driver;
-        if !(d.k_bits.is_finite() && d.k_bits > 0.0 && d.app_delay_bits.is_finite() && d.app_delay_bits >= 0.0 && d.irq_latency_ns.is_finite() && d.irq_latency_ns >= 0.0) {
-            return Err("driver: k_bits must be > 0, app_delay_bits and irq_latency_ns >= 0".into());
+        for (k, v, lo_open, hi) in [
+            ("driver.k_bits", d.k_bits, true, MAX_DRIVER_BITS),
+            ("driver.app_delay_bits", d.app_delay_bits, false, MAX_DRIVER_BITS),
+            ("driver.irq_latency_ns", d.irq_latency_ns, false, MAX_DELAY_PS as f64 / 1000.0),
+        ] {
+            let low_ok = if lo_open { v > 0.0 } else { v >= 0.0 };
+            if !(v.is_finite() && low_ok && v <= hi) {
+                return Err(format!("{k}: {v:?} (must be finite, {} 0 and at most {hi})", if lo_open { ">" } else { ">=" }));
+            }
         }
-        if d.max_inconsists == 0 || d.warning_limit == 0 || d.warning_limit > 255 {
-            return Err("driver: max_inconsists must be >= 1 and warning_limit in 1..=255".into());
+        if d.max_inconsists == 0 {
+            return Err("driver.max_inconsists: must be >= 1".into());
         }
-        if d.tx_timeout_ticks == 0 || d.timer_clock_hz == 0 {
-            return Err("driver: tx_timeout_ticks and timer_clock_hz must be > 0".into());
+        if d.warning_limit == 0 || d.warning_limit > 255 {
+            return Err(format!("driver.warning_limit: {} (must be in 1..=255)", d.warning_limit));
+        }
+        check_clock("driver.timer_clock_hz", d.timer_clock_hz)?;
+        if d.tx_timeout_ticks == 0 || d.tx_timeout_ps() > MAX_TIMEOUT_PS {
+            return Err(format!("driver.tx_timeout_ticks: {} (must be >= 1 and at most 1 s of the timer clock)", d.tx_timeout_ticks));
+        }
+        if d.start_bits > MAX_DRIVER_BITS as u32 {
+            return Err(format!("driver.start_bits: {} (at most {MAX_DRIVER_BITS})", d.start_bits));
         }
         let hub_bit = self.bit_time_ps() as f64;
         let mut ids = Vec::new();
         for (k, n) in self.nodes.iter().enumerate() {
-            let who = format!("nodes[{k}] ({})", n.name);
+            let key = format!("nodes[{k}]");
+            check_name(&format!("{key}.name"), &n.name, false)?;
+            if self.nodes[..k].iter().any(|m| m.name == n.name) {
+                return Err(format!("{key}.name: node name `{}` is used twice", n.name));
+            }
+            let who = format!("{key} ({})", n.name);
             if matches!(n.app, AppKind::Counter | AppKind::Blinker) {
                 if n.id > 0x7FF {
-                    return Err(format!("{who}: id {:#x} does not fit 11 bits", n.id));
+                    return Err(format!("{key}.id: {who}: id {:#x} does not fit 11 bits", n.id));
                 }
                 if ids.contains(&n.id) {
-                    return Err(format!("{who}: id {:#x} used by another sender", n.id));
+                    return Err(format!("{key}.id: {who}: id {:#x} used by another sender", n.id));
                 }
                 ids.push(n.id);
             }
             if n.initial_tx > 1 {
-                return Err(format!("{who}: initial_tx must be 0 (A) or 1 (B)"));
+                return Err(format!("{key}.initial_tx: {who}: initial_tx must be 0 (A) or 1 (B)"));
             }
             for (c, cs) in [(0, &n.a), (1, &n.b)] {
+                let key = format!("{key}.{}", ["a", "b"][c]);
                 let who = format!("{who} controller {}", ["a", "b"][c]);
-                if cs.clock_hz == 0 {
-                    return Err(format!("{who}: clock_hz must be > 0"));
-                }
-                cs.timing.check().map_err(|e| format!("{who}: bit timing: {e}"))?;
+                check_clock(&format!("{key}.clock_hz"), cs.clock_hz)?;
+                check_phase(&format!("{key}.phase_ps"), cs.phase_ps, cs.period_ps())?;
+                cs.timing.check().map_err(|e| format!("{key}: {who}: bit timing: {e}"))?;
                 if !(1..=2).contains(&cs.sync_depth) {
-                    return Err(format!("{who}: sync_depth must be 1 or 2"));
+                    return Err(format!("{key}.sync_depth: {who}: sync_depth must be 1 or 2"));
                 }
-                if !(cs.ppm.is_finite() && cs.ppm.abs() < 10_000.0) {
-                    return Err(format!("{who}: ppm {} out of range (|ppm| < 10000)", cs.ppm));
-                }
+                check_ppm(&format!("{key}.ppm"), cs.ppm)?;
+                check_delay(&format!("{key}.up_ps"), cs.up_ps)?;
+                check_delay(&format!("{key}.down_ps"), cs.down_ps)?;
                 let bt = cs.bit_time_ps() as f64;
                 if (bt - hub_bit).abs() > 0.01 * hub_bit {
                     return Err(format!(
-                        "{who}: bit time {:.1} ns differs from the hubs' {:.1} ns by more than 1 %",
+                        "{key}: {who}: bit time {:.1} ns (clock_hz, brp, prop, ph1) differs from the hubs' {:.1} ns (hub.clock_hz, hub.timing) by more than 1 %",
                         bt / 1000.0,
                         hub_bit / 1000.0
                     ));
@@ -434,7 +461,7 @@ impl NetworkSpec {
                 let one_way = cs.up_ps + 2 * lat + sub + cs.down_ps;
                 if one_way as f64 > 0.5 * hub_bit {
                     return Err(format!(
-                        "{who}: the path through both hubs takes {:.1} ns, more than half a bit",
+                        "{key}: {who}: the path through both hubs (up_ps, down_ps, interlinks, hub.sync_depth) takes {:.1} ns, more than half a bit",
                         one_way as f64 / 1000.0
                     ));
                 }
@@ -442,4 +469,55 @@ impl NetworkSpec {
         }
         Ok(())
     }
+}
+
+/// Longest link delay, in ps (1 ms: far beyond any bit time).
+pub const MAX_DELAY_PS: u64 = 1_000_000_000;
+
+/// Largest driver parameter counted in bit times.
+pub const MAX_DRIVER_BITS: f64 = 1_000_000.0;
+
+/// Longest transmission timeout, in ps (1 s).
+pub const MAX_TIMEOUT_PS: u64 = 1_000_000_000_000;
+
+/// A name that becomes a VCD scope and a component name (the network's name
+/// may also hold `-` and `.`).
+fn check_name(key: &str, name: &str, network: bool) -> Result<(), String> {
+    let ok = !name.is_empty()
+        && name.len() <= 64
+        && name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_' || (network && matches!(c, '-' | '.')));
+    if !ok {
+        let extra = if network { ", '-', '.'" } else { "" };
+        return Err(format!("{key}: name `{name}` must be 1 to 64 letters, digits, _{extra}"));
+    }
+    Ok(())
+}
+
+fn check_ppm(key: &str, ppm: f64) -> Result<(), String> {
+    if !(ppm.is_finite() && ppm.abs() < 10_000.0) {
+        return Err(format!("{key}: {ppm:?} out of range (finite, |ppm| < 10000)"));
+    }
+    Ok(())
+}
+
+/// Clocks from 1 kHz to 1 GHz: the period in ps is never 0.
+fn check_clock(key: &str, hz: u64) -> Result<(), String> {
+    if !(1_000..=1_000_000_000).contains(&hz) {
+        return Err(format!("{key}: {hz} (must be 1 kHz ..= 1 GHz)"));
+    }
+    Ok(())
+}
+
+fn check_phase(key: &str, phase: Option<u64>, period: u64) -> Result<(), String> {
+    match phase {
+        Some(p) if p >= period => Err(format!("{key}: {p} (the first clock edge comes within one period, {period} ps)")),
+        _ => Ok(()),
+    }
+}
+
+fn check_delay(key: &str, ps: u64) -> Result<(), String> {
+    if ps > MAX_DELAY_PS {
+        return Err(format!("{key}: {ps} (at most {MAX_DELAY_PS} ps)"));
+    }
+    Ok(())
 }

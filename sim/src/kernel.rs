@@ -137,6 +137,8 @@ pub struct Sim {
     next_prune: u64,
     ticked: Vec<usize>,
     pub(crate) vcd: Option<VcdState>,
+    /// A VCD write failed during the run: dumping stopped, [`Sim::finish_vcd`] reports it.
+    vcd_err: Option<std::io::Error>,
 }
 
 impl Sim {
@@ -156,6 +158,7 @@ impl Sim {
             next_prune: 0,
             ticked: Vec::new(),
             vcd: None,
+            vcd_err: None,
         }
     }
 
@@ -471,17 +474,24 @@ impl Sim {
         if self.vcd.is_some() {
             self.vcd_dump(self.now, false);
         }
+        if let Some(e) = self.vcd_err.take() {
+            return Err(e);
+        }
         match self.vcd.take() {
             Some(st) => st.finish(),
             None => Ok(()),
         }
     }
 
+    /// Write the changes at `t`; a write error (a full disk) stops the VCD
+    /// and is kept for [`Sim::finish_vcd`] instead of ending the run.
     fn vcd_dump(&mut self, t: u64, with_ticked: bool) {
-        let mut st = self.vcd.take().unwrap();
+        let Some(mut st) = self.vcd.take() else { return };
         let ticked: &[usize] = if with_ticked { &self.ticked } else { &[] };
-        st.dump(self, t, ticked).expect("VCD write failed");
-        self.vcd = Some(st);
+        match st.dump(self, t, ticked) {
+            Ok(()) => self.vcd = Some(st),
+            Err(e) => self.vcd_err = Some(e),
+        }
     }
 }
 

@@ -36,10 +36,10 @@ fn btl_node(i: usize, clock: canstar_sim::ClockSpec) -> HdlComponent<btl::BitTim
 
 /// `canstar bench`: simulated clock cycles per second of bit-timing
 /// instances, alone and sharing a bus (nodes spread over +-100 ppm).
-pub fn bench(cycles: u64, nodes: &[usize]) -> Result<()> {
+pub fn bench(cycles: u64, nodes: &[usize], out: &mut dyn std::io::Write) -> Result<()> {
     anyhow::ensure!(cycles > 0, "--cycles must be positive");
     anyhow::ensure!(nodes.iter().all(|&n| n >= 1), "node counts must be at least 1");
-    println!("canstar bench: bit timing logic (canstar_hdl::btl::BitTiming), 40 MHz clocks, 1 Mbit/s, direct-drive kernel");
+    writeln!(out, "canstar bench: bit timing logic (canstar_hdl::btl::BitTiming), 40 MHz clocks, 1 Mbit/s, direct-drive kernel")?;
     let mut first = true;
     for &n in nodes {
         let cfg = BenchConfig {
@@ -50,16 +50,18 @@ pub fn bench(cycles: u64, nodes: &[usize]) -> Result<()> {
         };
         let r = run_bench(&cfg, btl_node);
         if first {
-            println!(
+            writeln!(
+                out,
                 "1 instance alone:    {:>12.0} cycles/s ({} cycles in {:.2} s)",
                 r.single_cycles_per_sec, r.single_cycles, r.single_secs
-            );
+            )?;
             first = false;
         }
-        println!(
+        writeln!(
+            out,
             "{n:>2} instances on a bus: {:>12.0} cycles/s in total, {:>12.0} cycles/s per instance ({} cycles in {:.2} s)",
             r.bus_cycles_per_sec, r.bus_node_cycles_per_sec, r.bus_cycles, r.bus_secs
-        );
+        )?;
     }
     Ok(())
 }

@@ -3,6 +3,7 @@
 //! of the bit-timing benchmark bus (`--vcd`).
 
 use anyhow::Result;
+use canstar::output::OutputSet;
 use std::path::PathBuf;
 
 #[derive(clap::Args)]
@@ -37,15 +38,23 @@ pub struct Args {
 }
 
 pub fn run(a: Args) -> Result<()> {
+    anyhow::ensure!(a.cycles > 0, "--cycles must be positive");
+    anyhow::ensure!(
+        !a.nodes.is_empty() && a.nodes.iter().all(|&n| (1..=MAX_NODES).contains(&n)),
+        "--nodes: node counts must be 1..={MAX_NODES}"
+    );
     match &a.vcd {
         Some(path) => {
-            let n = a.nodes.first().copied().unwrap_or(2);
+            let mut set = OutputSet::new();
+            let tmp = set.file(path)?;
+            let n = a.nodes[0];
             let c = a.cycles.min(200_000);
-            canstar::bench::bench_vcd(path, n, c, a.signals.as_deref(), a.seed)?;
-            println!("wrote {} ({n} bit-timing instances on a bus, {c} cycles each)", path.display());
+            canstar::bench::bench_vcd(&tmp, n, c, a.signals.as_deref(), a.seed).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
+            set.commit()?;
+            outln!("wrote {} ({n} bit-timing instances on a bus, {c} cycles each)", path.display());
             Ok(())
         }
-        None if a.btl => canstar::bench::bench(a.cycles, &a.nodes),
+        None if a.btl => canstar::bench::bench(a.cycles, &a.nodes, &mut std::io::stdout()),
         None => {
             use canstar::bench::engines;
             let o = engines::Options {
@@ -54,9 +63,15 @@ pub fn run(a: Args) -> Result<()> {
                 verilator: !a.no_verilator,
                 ..Default::default()
             };
-            println!("canstar bench: the same recorded inputs replayed into each engine; kernel = canstar_sim::Sim closed loop on the compiled models");
-            print!("{}", engines::table(&engines::measure(&o)));
+            anyhow::ensure!(o.core_cycles >= 1000 && o.network_ps >= 100_000_000, "--core-cycles must be at least 1000 and --network-ms at least 0.1");
+            outln!("canstar bench: the same recorded inputs replayed into each engine; kernel = canstar_sim::Sim closed loop on the compiled models");
+            for l in engines::table(&engines::measure(&o)).lines() {
+                outln!("{l}");
+            }
             Ok(())
         }
     }
 }
+
+/// Most bit-timing instances on the benchmark bus.
+const MAX_NODES: usize = 1000;

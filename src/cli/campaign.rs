@@ -1,7 +1,8 @@
 //! `canstar campaign`: fault campaigns on the ReCANcentrate system.
 
-use super::output::check_output;
-use anyhow::{Context, Result};
+use super::progress::Progress;
+use anyhow::Result;
+use canstar::output::OutputSet;
 use std::path::PathBuf;
 
 #[derive(clap::Args)]
@@ -56,26 +57,34 @@ pub fn run(a: Args) -> Result<()> {
     use canstar_recan::campaign::{self, report::CampaignReport, system, Settings, Shard};
     if a.list {
         for c in campaign::classes::catalogue() {
-            println!("{}", c.name);
+            outln!("{}", c.name);
         }
         return Ok(());
     }
+    if a.class.is_none() {
+        for (flag, p) in [("--vcd", &a.vcd), ("--plot", &a.plot)] {
+            anyhow::ensure!(p.is_none(), "{flag} writes the details of one run: it needs --class");
+        }
+    }
+    // Every output is reserved before any work.
+    let mut set = OutputSet::new();
     for p in [&a.json, &a.vcd, &a.plot].into_iter().flatten() {
-        check_output(p)?;
+        set.file(p)?;
     }
     if !a.merge.is_empty() {
         let mut parts = vec![];
         for p in &a.merge {
-            let text = std::fs::read_to_string(p).with_context(|| format!("reading {}", p.display()))?;
+            let text = canstar::input::read_text(p, canstar::input::MAX_JSON_BYTES)?;
             parts.push(CampaignReport::from_json(&text, &p.display().to_string())?);
         }
         let m = CampaignReport::merge(&parts)?;
-        print!("{}", m.table());
-        if m.runs.len() != m.expected_runs() {
-            eprintln!("warning: {} of {} runs of the campaign present (shards missing)", m.runs.len(), m.expected_runs());
-        }
         if let Some(p) = &a.json {
-            std::fs::write(p, m.to_json()).with_context(|| format!("writing {}", p.display()))?;
+            set.write(p, m.to_json())?;
+        }
+        set.commit()?;
+        out!("{}", m.table());
+        if m.runs.len() != m.expected_runs() {
+            errln!("warning: {} of {} runs of the campaign present (shards missing)", m.runs.len(), m.expected_runs());
         }
         anyhow::ensure!(m.ok(), "{} failing run(s)", m.runs.iter().filter(|r| !r.pass).count());
         return Ok(());
@@ -85,19 +94,28 @@ pub fn run(a: Args) -> Result<()> {
         let class = campaign::class(name)?;
         let rep = a.rep.unwrap_or(0);
         let seed = a.run_seed.unwrap_or_else(|| campaign::run_seed(a.seed, &class.name, rep));
-        let d = system::run_detailed(&class, rep, seed, &settings, a.vcd.clone());
+        let vcd_tmp = a.vcd.as_deref().and_then(|p| set.temp_of(p)).map(|p| p.to_path_buf());
+        let d = system::run_detailed(&class, rep, seed, &settings, vcd_tmp);
+        if let Some(e) = &d.result.vcd_error {
+            anyhow::bail!("{e}");
+        }
+        if let Some(p) = &a.plot {
+            set.write(p, campaign::plot::svg(&d.plot))?;
+        }
+        // The outputs of a finished run are kept even when it fails its checks.
+        set.commit()?;
         let o = &d.outcome;
-        println!("{} seed {}: {}", o.class, o.seed, if o.pass { "PASS" } else { "FAIL" });
+        outln!("{} seed {}: {}", o.class, o.seed, if o.pass { "PASS" } else { "FAIL" });
         for f in &o.faults {
-            println!("  fault: {f}");
+            outln!("  fault: {f}");
         }
         for i in &o.isolations {
-            println!("  isolated: {i} (bit)");
+            outln!("  isolated: {i} (bit)");
         }
         for q in &o.quarantined {
-            println!("  quarantined: {q}");
+            outln!("  quarantined: {q}");
         }
-        println!(
+        outln!(
             "  worst healthy TEC/REC {} (sampled TEC {} REC {}), max retransmissions {}, duplicates {}, delivered {}, isolation latency {}",
             o.worst_healthy,
             o.worst_healthy_tec,
@@ -108,17 +126,16 @@ pub fn run(a: Args) -> Result<()> {
             o.isolation_latency_bits.map_or("-".into(), |l| format!("{l} bits"))
         );
         for n in &o.notes {
-            println!("  note: {n}");
+            outln!("  note: {n}");
         }
         for f in &o.failures {
-            println!("  FAILURE: {f}");
+            outln!("  FAILURE: {f}");
         }
         if let Some(p) = &a.vcd {
-            println!("wrote VCD {}", p.display());
+            outln!("wrote VCD {}", p.display());
         }
         if let Some(p) = &a.plot {
-            std::fs::write(p, campaign::plot::svg(&d.plot)).with_context(|| format!("writing {}", p.display()))?;
-            println!("wrote plot {}", p.display());
+            outln!("wrote plot {}", p.display());
         }
         anyhow::ensure!(o.pass, "run failed (rerun: canstar campaign --class {} --run-seed {})", o.class, o.seed);
         return Ok(());
@@ -127,45 +144,40 @@ pub fn run(a: Args) -> Result<()> {
     let classes = campaign::select(&a.classes)?;
     let shard = a.shard.as_deref().map(Shard::parse).transpose()?;
     anyhow::ensure!(a.reps > 0, "--reps must be at least 1");
+    anyhow::ensure!(a.jobs != Some(0), "--jobs must be at least 1");
     let plans = campaign::plan(&classes, &settings, shard);
     let jobs = a.jobs.unwrap_or_else(|| std::thread::available_parallelism().map(|n| n.get()).unwrap_or(1));
-    let bar = indicatif::ProgressBar::new(plans.len() as u64);
-    bar.set_style(
-        indicatif::ProgressStyle::with_template("{elapsed_precise} [{bar:40}] {pos}/{len} runs ({per_sec}, eta {eta}) {msg}")
-            .unwrap()
-            .progress_chars("=> "),
-    );
+    let mut bar = Progress::new(plans.len() as u64, "runs");
     let t0 = std::time::Instant::now();
-    let (mut done, mut failed, mut cycles) = (0usize, 0usize, 0u64);
+    let (mut failed, mut cycles) = (0usize, 0u64);
     let total = plans.len();
     let outcomes = campaign::execute(&plans, jobs, |p| system::run_plan(p, &settings), |o| {
-        done += 1;
         cycles += o.sim_cycles;
         if !o.pass {
             failed += 1;
-            bar.suspend(|| eprintln!("FAIL {} rep {} seed {}: {}", o.class, o.rep, o.seed, o.failures.join("; ")));
+            bar.suspend(|| errln!("FAIL {} rep {} seed {}: {}", o.class, o.rep, o.seed, o.failures.join("; ")));
         }
-        bar.inc(1);
         bar.set_message(format!("{failed} failed"));
-        if bar.is_hidden() && (done * 10 / total.max(1)) != ((done - 1) * 10 / total.max(1)) {
-            eprintln!("{:.0} s: {done}/{total} runs, {failed} failed", t0.elapsed().as_secs_f64());
-        }
+        bar.inc();
     });
-    bar.finish_and_clear();
+    bar.finish();
     let dt = t0.elapsed().as_secs_f64();
     let report = CampaignReport::new(settings, &classes, shard, outcomes);
-    print!("{}", report.table());
-    eprintln!(
+    if let Some(p) = &a.json {
+        set.write(p, report.to_json())?;
+    }
+    // The report of a finished campaign is kept even when runs failed.
+    set.commit()?;
+    out!("{}", report.table());
+    errln!(
         "{total} runs in {dt:.1} s ({:.2} runs/s, {:.0} simulated clock cycles/s, {jobs} jobs{})",
         total as f64 / dt.max(1e-9),
         cycles as f64 / dt.max(1e-9),
         shard.map_or(String::new(), |s| format!(", shard {s}"))
     );
     if let Some(p) = &a.json {
-        std::fs::write(p, report.to_json()).with_context(|| format!("writing {}", p.display()))?;
-        eprintln!("wrote {}", p.display());
+        errln!("wrote {}", p.display());
     }
     anyhow::ensure!(report.ok(), "{failed} failing run(s)");
     Ok(())
 }
-

@@ -1,6 +1,7 @@
 //! `canstar conformance`: the Bosch conformance programs on the kernel.
 
 use anyhow::Result;
+use canstar::output::OutputSet;
 use std::path::PathBuf;
 
 #[derive(clap::Args)]
@@ -21,10 +22,35 @@ pub struct Args {
 }
 
 pub fn run(a: Args) -> Result<()> {
-    let opts = canstar_verify::conformance::RunOptions { vcd_dir: a.vcd, lockstep: a.lockstep, engine: a.engine.engine };
-    let (_, failed, divergences) = canstar_verify::conformance::run_cli_opts(a.program.as_deref(), &opts, &mut std::io::stdout())?;
+    if let Some(p) = &a.program {
+        let names: Vec<&str> = canstar_verify::conformance::programs().iter().map(|p| p.name).collect();
+        anyhow::ensure!(names.contains(&p.as_str()), "unknown program `{p}` (programs: {})", names.join(", "));
+    }
+    // The VCDs are staged and moved into the --vcd directory when every program ran.
+    let mut set = OutputSet::new();
+    let stage = a.vcd.as_deref().map(|d| set.dir(d)).transpose()?;
+    let mut out = StdoutWriter;
+    let opts = canstar_verify::conformance::RunOptions { vcd_dir: stage, lockstep: a.lockstep, engine: a.engine.engine };
+    let (_, failed, divergences) = canstar_verify::conformance::run_cli_opts(a.program.as_deref(), &opts, &mut out)?;
+    set.commit()?;
     if failed > 0 || divergences > 0 {
         anyhow::bail!("{failed} conformance step(s) failed, {divergences} lock-step divergence(s)");
     }
     Ok(())
+}
+
+/// Standard output through [`outln!`]'s handling of a closed pipe.
+struct StdoutWriter;
+
+impl std::io::Write for StdoutWriter {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        let mut o = std::io::stdout().lock();
+        match o.write_all(buf).and_then(|()| o.flush()) {
+            Ok(()) => Ok(buf.len()),
+            Err(e) => super::print::closed(&e),
+        }
+    }
+    fn flush(&mut self) -> std::io::Result<()> {
+        Ok(())
+    }
 }

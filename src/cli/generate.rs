@@ -1,8 +1,9 @@
 //! `canstar generate`: Verilog and pin files.
 
-use anyhow::{Context, Result};
+use anyhow::Result;
 use canstar::config::Config;
 use canstar::generate::{self, Target};
+use canstar::output::OutputSet;
 use std::path::PathBuf;
 
 /// What to generate (the command-line spelling of [`Target`]).
@@ -69,19 +70,19 @@ pub fn run(a: Args) -> Result<()> {
             None => anyhow::bail!("no source checkout at {}", canstar_models::registry::generated_dir().display()),
             Some(st) if a.check && !st.is_empty() => {
                 for p in st.changed.iter().chain(&st.unregistered) {
-                    eprintln!("out of date: {}", p.display());
+                    errln!("out of date: {}", p.display());
                 }
                 anyhow::bail!("compiled models are stale; run `canstar generate models` and commit");
             }
             Some(st) => {
                 for p in st.changed.iter() {
-                    println!("{} {}", if a.check { "up to date:" } else { "wrote" }, p.display());
+                    outln!("{} {}", if a.check { "up to date:" } else { "wrote" }, p.display());
                 }
                 for p in st.unregistered.iter() {
-                    println!("removed {}", p.display());
+                    outln!("removed {}", p.display());
                 }
                 if st.is_empty() {
-                    println!("compiled models up to date");
+                    outln!("compiled models up to date");
                 }
             }
         }
@@ -91,31 +92,37 @@ pub fn run(a: Args) -> Result<()> {
         Some(p) => Config::load(p)?,
         None => Config::default(),
     };
+    // The output folders are checked (created if missing, writable) before rendering.
+    let mut set = OutputSet::new();
+    if !a.check {
+        set.root(&a.out)?;
+        set.root(&a.constraints)?;
+    }
     let arts = generate::render(a.target.into(), &cfg, a.board.as_deref())?;
     if a.check {
         let bad = generate::check(&arts, &a.out, &a.constraints);
         if !bad.is_empty() {
             for b in &bad {
-                eprintln!("out of date: {}", b.display());
+                errln!("out of date: {}", b.display());
             }
             anyhow::bail!("{} generated file(s) differ from `canstar generate` output; run it and commit", bad.len());
         }
-        println!("{} generated file(s) up to date", arts.len());
+        outln!("{} generated file(s) up to date", arts.len());
         if a.target == TargetArg::All {
             if let Some(st) = models(false)? {
                 if !st.is_empty() {
                     for p in st.changed.iter().chain(&st.unregistered) {
-                        eprintln!("out of date: {}", p.display());
+                        errln!("out of date: {}", p.display());
                     }
                     anyhow::bail!("compiled models are stale; run `canstar generate models` and commit");
                 }
-                println!("compiled models up to date");
+                outln!("compiled models up to date");
             }
         }
     } else {
-        let written = generate::write(&arts, &a.out, &a.constraints).context("writing generated files")?;
-        for w in &written {
-            println!("wrote {}", w.display());
+        generate::stage(&mut set, &arts, &a.out, &a.constraints)?;
+        for w in set.commit()? {
+            outln!("wrote {}", w.display());
         }
     }
     Ok(())

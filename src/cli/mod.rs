@@ -4,12 +4,29 @@
 use anyhow::Result;
 use clap::{Parser, Subcommand};
 
+/// `println!` that ends the command quietly when standard output is closed.
+macro_rules! outln {
+    () => { $crate::cli::print::out(format_args!("\n")) };
+    ($($t:tt)*) => { $crate::cli::print::out(format_args!("{}\n", format_args!($($t)*))) };
+}
+
+/// `print!` that ends the command quietly when standard output is closed.
+macro_rules! out {
+    ($($t:tt)*) => { $crate::cli::print::out(format_args!($($t)*)) };
+}
+
+/// `eprintln!` that ignores a closed standard error.
+macro_rules! errln {
+    ($($t:tt)*) => { $crate::cli::print::err(format_args!("{}\n", format_args!($($t)*))) };
+}
+
+pub mod print;
 mod bench;
 mod campaign;
 mod conformance;
 mod fuzz;
 mod generate;
-mod output;
+mod progress;
 mod report;
 mod sim;
 

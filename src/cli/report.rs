@@ -21,6 +21,7 @@ pub struct Args {
 }
 
 pub fn run(a: Args) -> Result<()> {
+    anyhow::ensure!(a.freq.is_finite() && a.freq > 0.0 && a.freq <= 1000.0, "--freq {:?}: must be a frequency in MHz above 0 and at most 1000", a.freq);
     let cfg = match &a.config {
         Some(p) => Config::load(p)?,
         None => Config::default(),
@@ -35,10 +36,10 @@ pub fn run(a: Args) -> Result<()> {
         if !a.design.is_empty() && !a.design.contains(&name) {
             continue;
         }
-        eprintln!("synthesising {name} ...");
+        errln!("synthesising {name} ...");
         rows.push(canstar::report::measure(&name, &verilog, &top, a.freq, a.pnr_timeout)?);
     }
-    println!("{}", canstar::report::table(&rows));
-    println!("\ntools: {}", canstar::report::tool_versions());
+    outln!("{}", canstar::report::table(&rows));
+    outln!("\ntools: {}", canstar::report::tool_versions());
     Ok(())
 }

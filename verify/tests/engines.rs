@@ -15,7 +15,7 @@ fn bus_scenario_trace_log_and_vcd_are_identical_on_both_engines() {
     let mut out = vec![];
     for e in Engine::ALL {
         let vcd = dir.path().join(format!("{e}.vcd"));
-        let r = run(&load("arbitration.toml"), &RunOptions { trace: true, vcd: Some(vcd.clone()), engine: e }).unwrap();
+        let r = run(&load("arbitration.toml"), &RunOptions { trace: true, vcd: Some(vcd.clone()), engine: e, ..Default::default() }).unwrap();
         let v = std::fs::read(&vcd).unwrap();
         out.push((r.trace, r.candump, format!("{:?}", r.nodes), v));
     }

@@ -1,5 +1,5 @@
 //! [`GoldenNode::step`]'s per-mode work: the stuffed part of a frame, its fixed-form tail
-//! (CRC delimiter to intermission) and error and overload flags.
+//! (CRC delimiter to intermission) and error and overload flags (can-protocol.md).
 
 use super::{FlagKind, FlagState, GoldenNode, Mode, D, R};
 use crate::{ErrorKind, Event, FaultState, Field, ReqStatus, Role};

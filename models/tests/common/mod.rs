@@ -4,6 +4,7 @@
 
 pub mod hubnet;
 pub mod sjanet;
+#[allow(unused_imports)]
 pub use canstar_models::stim;
 
 use canstar_rtlc::rt::Model;

@@ -63,6 +63,12 @@ pub struct RunLog {
     /// Diagnostic differences (can-protocol.md §19.7: labels, event words) the checkers
     /// noted, prefixed with the node name (at most 8 per node).
     pub warnings: Vec<String>,
+    /// VCD files that could not be written (path and error).
+    pub vcd_errors: Vec<String>,
+}
+
+fn note_vcd_error(p: &str, e: &std::io::Error) {
+    RUN_LOG.with(|l| l.borrow_mut().vcd_errors.push(format!("{p}: {e}")));
 }
 
 pub(crate) fn take_run_log() -> RunLog {
@@ -100,7 +106,7 @@ pub struct Bench {
     seen_cycles: Vec<u64>,
     /// Nominal bit time of N1 in ps.
     pub bit_ps: u64,
-    vcd: bool,
+    vcd: Option<String>,
 }
 
 impl Bench {
@@ -153,10 +159,11 @@ impl Bench {
         } else {
             None
         };
-        let mut vcd_on = false;
+        let mut vcd_on = None;
         if let Some(p) = vcd {
-            if sim.start_vcd_file(p, None).is_ok() {
-                vcd_on = true;
+            match sim.start_vcd_file(p, None) {
+                Ok(()) => vcd_on = Some(p.display().to_string()),
+                Err(e) => note_vcd_error(&p.display().to_string(), &e),
             }
         }
         let mut b = Bench { sim, bus, nodes, script, recs: vec![vec![]; n], pending: vec![None; n], div_seen: vec![false; n], seen_cycles: vec![0; n], bit_ps, vcd: vcd_on };
@@ -423,9 +430,10 @@ impl Bench {
 
     /// Finish the VCD file (if one is being written).
     pub fn finish(&mut self) {
-        if self.vcd {
-            let _ = self.sim.finish_vcd();
-            self.vcd = false;
+        if let Some(p) = self.vcd.take() {
+            if let Err(e) = self.sim.finish_vcd() {
+                note_vcd_error(&p, &e);
+            }
         }
     }
 }

@@ -294,6 +294,10 @@ pub fn run_cli_opts(program: Option<&str>, opts: &RunOptions, out: &mut dyn std:
         total.sim_ps += run.log.sim_ps;
         total.bit_times += run.log.bit_times;
         total.checked_bits += run.log.checked_bits;
+        total.vcd_errors.extend(run.log.vcd_errors);
+    }
+    if !total.vcd_errors.is_empty() {
+        return Err(std::io::Error::other(format!("cannot write VCD: {}", total.vcd_errors.join("; "))));
     }
     let w = wall.as_secs_f64().max(1e-9);
     writeln!(
