@@ -72,9 +72,11 @@ impl Logic for Crc15 {
     fn update(&mut self) {
         dff_setup!(self, clock, state);
         self.fb.next = self.din.val() ^ self.state.q.val().get_bit(14);
-        // Doubling is a shift left by one, truncated to 15 bits (cheaper in
-        // the Rust model than `<<`, which goes through a big integer).
-        self.shifted.next = self.state.q.val() + self.state.q.val();
+        // A shift left by one, truncated to 15 bits. Written as a shift, not as
+        // `q + q`: an adder with the same net on both operands becomes an iCE40
+        // carry chain that nextpnr-ice40's router can swap forever (the flow's
+        // `synth_check` refuses that pattern in every design).
+        self.shifted.next = self.state.q.val() << 1;
         self.nxt.next = self.shifted.val();
         if self.fb.val() {
             self.nxt.next = self.shifted.val() ^ self.poly.val();

@@ -3,7 +3,10 @@
 //! 1. emit Verilog with rust-hdl ([`emit`]),
 //! 2. `verilator --lint-only -Wall` with the documented waivers of
 //!    `verilator/waivers.vlt` ([`lint`]),
-//! 3. Yosys synthesis with no latch and no undriven wire ([`synth_check`]),
+//! 3. Yosys synthesis with no latch, no undriven wire and no adder whose two
+//!    operands are the same signal ([`synth_check`]; `x + x` becomes an iCE40
+//!    carry chain with one net on two interchangeable inputs, on which
+//!    nextpnr-ice40 0.4's router can livelock: write a shift),
 //! 4. co-simulation: the emitted Verilog runs in Icarus Verilog on the same
 //!    random stimulus as the Rust model and every output is compared on every
 //!    cycle ([`cosim`]).
@@ -164,18 +167,33 @@ pub fn synth_check(verilog: &str, top: &str, target: SynthTarget) -> Result<Synt
     };
     // Latches are looked for right after `proc`, before technology mapping
     // renames them, and again at the end.
+    let json = wd.path().join("rtl.json");
     let script = format!(
         "read_verilog {v}; hierarchy -check -top {top}; proc; flatten; \
          select -assert-none t:$dlatch t:$adlatch t:$dlatchsr t:$sr; \
+         opt_clean; write_json {json}; \
          {synth}; \
          select -assert-none t:$_DLATCH_* t:$_SR_* t:SB_DFF*_LATCH*; \
          check -assert; tee -o {stat} stat",
         v = vfile.display(),
+        json = json.display(),
         stat = wd.path().join("stat.txt").display(),
     );
     let (ok, log) = run(Command::new("yosys").arg("-q").arg("-p").arg(&script))?;
     if !ok {
         return Err(FlowError::Synth { top: top.into(), log });
+    }
+    let same = same_operand_adders(&std::fs::read_to_string(&json)?)
+        .map_err(|e| FlowError::Synth { top: top.into(), log: format!("reading Yosys JSON netlist: {e}") })?;
+    if !same.is_empty() {
+        return Err(FlowError::Synth {
+            top: top.into(),
+            log: format!(
+                "adder(s) with the same signal on both operands (write `x << 1`, not `x + x`: \
+                 nextpnr-ice40 can livelock routing such a carry chain): {}",
+                same.join(", ")
+            ),
+        });
     }
     let stat = std::fs::read_to_string(wd.path().join("stat.txt")).unwrap_or_default();
     let cells = stat
@@ -183,6 +201,32 @@ pub fn synth_check(verilog: &str, top: &str, target: SynthTarget) -> Result<Synt
         .find_map(|l| l.trim().strip_prefix("Number of cells:").map(|n| n.trim().parse().unwrap_or(0)))
         .unwrap_or(0);
     Ok(SynthReport { stat, cells })
+}
+
+/// The `$add` cells of a Yosys JSON netlist (after `proc; flatten; opt_clean`)
+/// whose A and B inputs are the same nets, named by their `src` attribute.
+pub fn same_operand_adders(json: &str) -> Result<Vec<String>, serde_json::Error> {
+    let v: serde_json::Value = serde_json::from_str(json)?;
+    let mut found = Vec::new();
+    let modules = v.get("modules").and_then(|m| m.as_object());
+    for (mname, m) in modules.into_iter().flatten() {
+        let cells = m.get("cells").and_then(|c| c.as_object());
+        for (cname, c) in cells.into_iter().flatten() {
+            if c.get("type").and_then(|t| t.as_str()) != Some("$add") {
+                continue;
+            }
+            let conn = |k: &str| c.get("connections").and_then(|x| x.get(k)).cloned();
+            let (Some(a), Some(b)) = (conn("A"), conn("B")) else { continue };
+            // Constant bits are strings ("0", "1"); only a net shared by both
+            // operands makes the router's two inputs interchangeable.
+            let has_net = a.as_array().map_or(false, |bits| bits.iter().any(|x| x.is_number()));
+            if a == b && has_net {
+                let src = c.get("attributes").and_then(|x| x.get("src")).and_then(|s| s.as_str()).unwrap_or(cname);
+                found.push(format!("{mname}: {src}"));
+            }
+        }
+    }
+    Ok(found)
 }
 
 /// One top-level port of a block, as seen by the co-simulation.

@@ -116,3 +116,35 @@ fn lint_rejects_a_real_warning() {
     let v = "module top(input wire a, output wire y);\n assign y = b;\nendmodule\n";
     assert!(flow::lint(v, "top").is_err());
 }
+
+#[test]
+#[ignore = "needs yosys: run scripts/test-all.sh"]
+fn synth_check_rejects_an_adder_with_one_signal_on_both_operands() {
+    let v = "module top(input wire clk, input wire [7:0] d, output reg [7:0] q);\n \
+             wire [7:0] twice = q + q;\n always @(posedge clk) q <= twice ^ d;\nendmodule\n";
+    let e = flow::synth_check(v, "top", flow::SynthTarget::Generic).expect_err("q + q must be rejected");
+    let msg = e.to_string();
+    assert!(msg.contains("same signal on both operands"), "{msg}");
+}
+
+#[test]
+#[ignore = "needs yosys: run scripts/test-all.sh"]
+fn synth_check_accepts_a_shift_and_an_adder_of_two_signals() {
+    let shift = "module top(input wire clk, input wire [7:0] d, output reg [7:0] q);\n \
+                 always @(posedge clk) q <= (q << 1) ^ d;\nendmodule\n";
+    flow::synth_check(shift, "top", flow::SynthTarget::Generic).expect("a shift is fine");
+    let add = "module top(input wire clk, input wire [7:0] d, output reg [7:0] q);\n \
+               always @(posedge clk) q <= q + d;\nendmodule\n";
+    flow::synth_check(add, "top", flow::SynthTarget::Generic).expect("an adder of two signals is fine");
+}
+
+#[test]
+fn same_operand_adders_reads_yosys_json() {
+    let json = r#"{"modules":{"top":{"cells":{
+        "$add$x.v:2$1":{"type":"$add","attributes":{"src":"x.v:2.15-2.20"},"connections":{"A":[2,3],"B":[2,3],"Y":[4,5]}},
+        "$add$x.v:3$2":{"type":"$add","attributes":{"src":"x.v:3.15-3.20"},"connections":{"A":[2,3],"B":[6,7],"Y":[8,9]}},
+        "$add$x.v:4$3":{"type":"$add","attributes":{},"connections":{"A":["0","1"],"B":["0","1"],"Y":[10,11]}},
+        "$xor$x.v:5$4":{"type":"$xor","attributes":{},"connections":{"A":[2,3],"B":[2,3],"Y":[12,13]}}}}}}"#;
+    assert_eq!(flow::same_operand_adders(json).unwrap(), vec!["top: x.v:2.15-2.20".to_string()]);
+    assert!(flow::same_operand_adders("not json").is_err());
+}

@@ -39,7 +39,7 @@ module canstar_crc15(clock,reset,clear,en,din,crc,crc_next);
         state$clock = clock;
         state$d = state$q;
         fb = din ^ state$q[32'he];
-        shifted = state$q + state$q;
+        shifted = state$q << 32'h1;
         nxt = shifted;
         if (fb) begin
             nxt = shifted ^ poly;

@@ -2153,7 +2153,7 @@ module canstar_can_core$fsm$crcb(clock,reset,clear,en,din,crc,crc_next);
         state$clock = clock;
         state$d = state$q;
         fb = din ^ state$q[32'he];
-        shifted = state$q + state$q;
+        shifted = state$q << 32'h1;
         nxt = shifted;
         if (fb) begin
             nxt = shifted ^ poly;

@@ -6125,7 +6125,7 @@ module canstar_cancentrate_core$monitor$fsm$crcb(clock,reset,clear,en,din,crc,cr
         state$clock = clock;
         state$d = state$q;
         fb = din ^ state$q[32'he];
-        shifted = state$q + state$q;
+        shifted = state$q << 32'h1;
         nxt = shifted;
         if (fb) begin
             nxt = shifted ^ poly;
