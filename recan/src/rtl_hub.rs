@@ -56,6 +56,12 @@ pub struct HubStats {
     pub overload_bits: u64,
     /// Every blame: (time ps, unit: port i or sublink N + j, field code, position).
     pub blame_log: Vec<(u64, usize, u8, u8)>,
+    /// Per input (ports, then sublinks): completed runs of equal input level shorter
+    /// than 32 clocks, counted by length (`short_runs[input][len]`), measured on the
+    /// inputs as the hub samples them (after reset).
+    pub short_runs: Vec<[u64; 32]>,
+    /// Per input: (level, clocks) of the run in progress.
+    run_now: Vec<(bool, u64)>,
 }
 
 /// One clock of an [`RtlHub`]'s input stimulus, packed: bit 0 `rst_n`, bit 1
@@ -97,6 +103,8 @@ impl RtlHub {
                 isolated_at: vec![None; cfg.ports],
                 sub_isolated_at: vec![None; cfg.sublinks],
                 silent_at: vec![None; cfg.ports],
+                short_runs: vec![[0; 32]; cfg.ports + cfg.sublinks],
+                run_now: vec![(true, 0); cfg.ports + cfg.sublinks],
                 ..Default::default()
             },
             record: None,
@@ -207,6 +215,21 @@ impl Component for RtlHub {
                 w |= (io.input(self.n + j) as u64) << (2 + self.n + j);
             }
             r.push(w);
+        }
+        if self.cycles >= Self::RESET_CYCLES {
+            let st = &mut self.stats;
+            for k in 0..self.n + self.m {
+                let v = io.input(k);
+                let r = &mut st.run_now[k];
+                if v == r.0 {
+                    r.1 += 1;
+                } else {
+                    if r.1 < 32 {
+                        st.short_runs[k][r.1 as usize] += 1;
+                    }
+                    *r = (v, 1);
+                }
+            }
         }
         canstar_hdl::drive::cycle(hub);
         for i in 0..self.n {

@@ -12,6 +12,7 @@ use canstar_sim::net::{FaultMode, NetId};
 use crate::app::{Receiver, Sender};
 use crate::ctrl::Ctrl;
 use crate::driver::{Driver, Notice, QuaReason};
+use crate::events::{EventRunner, NodeEvent, PowerChange};
 use crate::fault::{CtrlRef, Dir, FaultKind, FaultSpec, FaultStart, FaultTarget, StartField};
 use crate::network::Network;
 use crate::spec::{AppKind, NetworkSpec};
@@ -40,12 +41,15 @@ pub struct RunSpec {
     pub vcd: Option<PathBuf>,
     /// Record the driver's routine log in [`RunResult::trace`].
     pub trace: bool,
+    /// Legal events of healthy nodes (not faults: they change neither the frame
+    /// target nor which controllers count as healthy), see [`crate::events`].
+    pub events: Vec<NodeEvent>,
 }
 
 impl RunSpec {
     /// The reference network without faults.
     pub fn new(network: NetworkSpec, seed: u64, frames: u32) -> Self {
-        RunSpec { network, seed, faults: Vec::new(), frames, quiet_frames: None, max_time_ps: None, vcd: None, trace: false }
+        RunSpec { network, seed, faults: Vec::new(), frames, quiet_frames: None, max_time_ps: None, vcd: None, trace: false, events: Vec::new() }
     }
 }
 
@@ -131,6 +135,17 @@ pub struct RunResult {
     /// Final blame counter (BIC, counter units) of every port, per hub
     /// (empty without the hub's debug outputs).
     pub final_bic: Vec<Vec<u32>>,
+    /// Every blame of every hub's judge units: (hub, time ps, unit, field code,
+    /// position); unit = port i, or ports + j for incoming sublink j.
+    pub blames: Vec<(usize, u64, usize, u8, u8)>,
+    /// Every error event of every controller: (time ps, node, ctrl, transmitting,
+    /// controller FIELD code).
+    pub ctrl_errors: Vec<(u64, usize, usize, bool, u8)>,
+    /// Per hub, per input (ports, then sublinks): runs of equal level shorter than
+    /// 32 hub clocks, counted by length (see [`crate::rtl_hub::HubStats::short_runs`]).
+    pub short_runs: Vec<Vec<[u64; 32]>>,
+    /// The legal events applied ([`RunSpec::events`]).
+    pub events_applied: Vec<String>,
     /// Driver routine log (with `RunSpec::trace`).
     pub trace: Vec<String>,
 }
@@ -211,8 +226,12 @@ fn run_impl(spec: &RunSpec) -> RunResult {
     let start_at = ns.driver.start_bits as u64 * bit;
     // next request time per sender
     let mut next_req: Vec<Option<u64>> = senders.iter().map(|s| s.as_ref().map(|_| start_at)).collect();
-    let mut fault_start: Vec<Option<u64>> = vec![None; spec.faults.len()];
-    res.fault_resolved = vec![String::new(); spec.faults.len()];
+    // the faults, then the overload events as one-bit faults (not counted as faults)
+    let nf = spec.faults.len();
+    let faults: Vec<FaultSpec> = spec.faults.iter().copied().chain(spec.events.iter().filter_map(|e| e.as_fault(bit))).collect();
+    let mut events = EventRunner::new(&spec.events);
+    let mut fault_start: Vec<Option<u64>> = vec![None; faults.len()];
+    let mut fault_resolved = vec![String::new(); faults.len()];
     let mut delivered_at_last_fault: u64 = 0;
     let mut last_disturb: u64 = 0;
     let mut quiet_stop = false;
@@ -221,8 +240,7 @@ fn run_impl(spec: &RunSpec) -> RunResult {
     let mut unhealthy: Vec<(usize, usize)> = Vec::new();
     let mut healthy_errors_base: Option<Vec<u64>> = None;
     res.delivered_per_node = vec![0; nn];
-    let max_after = spec
-        .faults
+    let max_after = faults
         .iter()
         .map(|f| match f.start {
             FaultStart::Field { after_frames, .. } => after_frames as u64 * 200 * bit,
@@ -235,7 +253,7 @@ fn run_impl(spec: &RunSpec) -> RunResult {
     loop {
         let now = sim.now();
         // ---- faults waiting for their start
-        let all_started = fault_start.iter().all(|s| s.is_some());
+        let all_started = fault_start[..nf].iter().all(|s| s.is_some());
         if all_started && spec.frames > 0 && res.delivered >= delivered_at_last_fault + spec.frames as u64 {
             break;
         }
@@ -251,7 +269,7 @@ fn run_impl(spec: &RunSpec) -> RunResult {
         }
         let mut target = (now + slice).min(limit);
         let mut field_wait: Option<usize> = None;
-        for (i, f) in spec.faults.iter().enumerate() {
+        for (i, f) in faults.iter().enumerate() {
             if fault_start[i].is_some() {
                 continue;
             }
@@ -266,7 +284,7 @@ fn run_impl(spec: &RunSpec) -> RunResult {
         }
         let mut trigger: Option<(usize, u64)> = None;
         if let Some(i) = field_wait {
-            let FaultStart::Field { field, bit: fbit, of_node, delay_ns, .. } = spec.faults[i].start else { unreachable!() };
+            let FaultStart::Field { field, bit: fbit, of_node, delay_ns, .. } = faults[i].start else { unreachable!() };
             let want = ctrl_field(field);
             let cands: Vec<Handle<Ctrl>> = net
                 .ctrls
@@ -296,7 +314,7 @@ fn run_impl(spec: &RunSpec) -> RunResult {
         }
         let now = sim.now();
         // ---- start faults
-        for (i, f) in spec.faults.iter().enumerate() {
+        for (i, f) in faults.iter().enumerate() {
             if fault_start[i].is_some() {
                 continue;
             }
@@ -305,9 +323,13 @@ fn run_impl(spec: &RunSpec) -> RunResult {
                 (FaultStart::Field { .. }, Some((j, t))) if j == i => t,
                 _ => continue,
             };
-            let info = inject(&mut sim, &net, &drivers, f, t, bit, limit, &mut res.fault_resolved[i]);
-            unhealthy.extend(info.unhealthy.iter().copied());
+            let info = inject(&mut sim, &net, &drivers, f, t, bit, limit, &mut fault_resolved[i]);
             fault_start[i] = Some(t);
+            if i >= nf {
+                events.applied.push(spec.events.iter().filter(|e| e.as_fault(bit).is_some()).nth(i - nf).map_or(String::new(), |e| e.describe()));
+                continue;
+            }
+            unhealthy.extend(info.unhealthy.iter().copied());
             delivered_at_last_fault = res.delivered;
             if healthy_errors_base.is_none() {
                 healthy_errors_base = Some(all_errors(&sim, &net));
@@ -332,12 +354,30 @@ fn run_impl(spec: &RunSpec) -> RunResult {
         while res.isolated.len() < seen_iso.len() {
             last_disturb = res.delivered;
             let what = seen_iso[res.isolated.len()];
-            let first = fault_start.iter().flatten().min().copied();
+            let first = fault_start[..nf].iter().flatten().min().copied();
             let latency_bits = first.filter(|&f| f <= now).map(|f| (now - f) as f64 / bit as f64);
             res.isolated.push(IsolationEvent { what, t_ps: now, latency_bits });
         }
+        // ---- legal events
+        for ch in events.step(now, bit, &mut sim, &net) {
+            match ch {
+                PowerChange::Off(k) => {
+                    next_req[k] = None;
+                    receivers[k].rejoin();
+                }
+                PowerChange::On(k) => {
+                    drivers[k] = Driver::new(k, &ns.driver, bit, ns.nodes[k].initial_tx, spec.trace);
+                    if senders[k].is_some() {
+                        next_req[k] = Some(now + app_delay);
+                    }
+                }
+            }
+        }
         // ---- drivers and applications
         for k in 0..nn {
+            if events.is_off(k) {
+                continue;
+            }
             let mut cs = pair(&mut sim, net.ctrls[k]);
             let notices = drivers[k].step(now, &mut cs);
             let mut sample = false;
@@ -424,8 +464,23 @@ fn run_impl(spec: &RunSpec) -> RunResult {
         }
     }
     res.sim_cycles = sim.total_cycles();
+    fault_start.truncate(nf);
+    fault_resolved.truncate(nf);
     res.fault_start_ps = fault_start.clone();
+    res.fault_resolved = fault_resolved;
+    res.events_applied = events.applied.clone();
     res.tx_ctrl = drivers.iter().map(|d| d.tx).collect();
+    for (h, &hh) in net.hubs.iter().enumerate() {
+        res.blames.extend(sim.get(hh).stats.blame_log.iter().map(|&(t, u, f, p)| (h, t, u, f, p)));
+    }
+    res.blames.sort_by_key(|b| b.1);
+    res.short_runs = net.hubs.iter().map(|&h| sim.get(h).stats.short_runs.clone()).collect();
+    for (k, p) in net.ctrls.iter().enumerate() {
+        for (c, &h) in p.iter().enumerate() {
+            res.ctrl_errors.extend(sim.get(h).error_log.iter().map(|&(t, tx, f)| (t, k, c, tx, f)));
+        }
+    }
+    res.ctrl_errors.sort_by_key(|e| e.0);
     res.final_bic = net.hubs.iter().map(|&h| sim.get(h).hub.bic.iter().map(|b| b.val().index() as u32).collect()).collect();
     if let Some(base) = &healthy_errors_base {
         let now_err = all_errors(&sim, &net);

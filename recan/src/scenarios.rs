@@ -252,6 +252,7 @@ pub fn published_scenario(n: usize, seed: u64) -> (RunSpec, Expected) {
         max_time_ps: None,
         vcd: None,
         trace: false,
+        events: Vec::new(),
     };
     (spec, e)
 }

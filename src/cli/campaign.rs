@@ -18,7 +18,9 @@ pub struct Args {
     /// Worker threads (default: available parallelism).
     #[arg(long)]
     jobs: Option<usize>,
-    /// Run only shard i of n (1-based), e.g. `--shard 2/4`; merge the JSON files with --merge.
+    /// Run only shard i of n (1-based), e.g. `--shard 2/4`, or `auto` / `auto/n` in a Slurm or
+    /// LSF array job (index and count from SLURM_ARRAY_TASK_ID/COUNT or LSB_JOBINDEX); merge
+    /// the JSON files with --merge.
     #[arg(long)]
     shard: Option<String>,
     /// Write the per-run results as JSON.
@@ -42,6 +44,9 @@ pub struct Args {
     /// With --class: write an SVG of every controller's TEC/REC with isolations and quarantines.
     #[arg(long, requires = "class")]
     plot: Option<PathBuf>,
+    /// With --class: print every hub blame and every controller error of the run.
+    #[arg(long, requires = "class")]
+    events: bool,
     /// Combine JSON reports (shards of one campaign) and print the table.
     #[arg(long, num_args = 1.., conflicts_with_all = ["class", "shard", "classes"])]
     merge: Vec<PathBuf>,
@@ -51,7 +56,7 @@ pub struct Args {
 }
 
 pub fn run(a: Args) -> Result<()> {
-    use canstar_recan::campaign::{self, report::CampaignReport, system, Settings, Shard};
+    use canstar_recan::campaign::{self, report::CampaignReport, system, Settings};
     if a.list {
         for c in campaign::classes::catalogue() {
             println!("{}", c.name);
@@ -108,6 +113,9 @@ pub fn run(a: Args) -> Result<()> {
         for n in &o.notes {
             println!("  note: {n}");
         }
+        if a.events {
+            print_events(&d.result);
+        }
         for f in &o.failures {
             println!("  FAILURE: {f}");
         }
@@ -123,7 +131,7 @@ pub fn run(a: Args) -> Result<()> {
     }
     anyhow::ensure!(a.run_seed.is_none() && a.rep.is_none(), "--run-seed and --rep need --class");
     let classes = campaign::select(&a.classes)?;
-    let shard = a.shard.as_deref().map(Shard::parse).transpose()?;
+    let shard = parse_shard(a.shard.as_deref())?;
     anyhow::ensure!(a.reps > 0, "--reps must be at least 1");
     let plans = campaign::plan(&classes, &settings, shard);
     let jobs = a.jobs.unwrap_or_else(|| std::thread::available_parallelism().map(|n| n.get()).unwrap_or(1));
@@ -167,3 +175,30 @@ pub fn run(a: Args) -> Result<()> {
     Ok(())
 }
 
+
+/// The hub blames and controller errors of one run, in time order (bit times).
+fn print_events(r: &canstar_recan::RunResult) {
+    use canstar_controller::fsm::Field as CField;
+    use canstar_hub::frame_state::Field as HField;
+    let bit = r.bit_time_ps.max(1) as f64;
+    let mut lines: Vec<(u64, String)> = vec![];
+    for &(h, t, u, f, p) in &r.blames {
+        lines.push((t, format!("hub {h} blames unit {u} in {:?} bit {p}", HField::from_code(f as u64))));
+    }
+    for &(t, k, c, tx, f) in &r.ctrl_errors {
+        let field = CField::ALL.get(f as usize).map_or(format!("{f}"), |x| format!("{x:?}"));
+        lines.push((t, format!("node {k} ctrl {} error ({}) in {field}", "AB".as_bytes()[c] as char, if tx { "tx" } else { "rx" })));
+    }
+    for i in &r.isolated {
+        lines.push((i.t_ps, format!("isolated {:?}", i.what)));
+    }
+    lines.sort_by_key(|l| l.0);
+    for (t, l) in lines {
+        println!("  {:9.1} {l}", t as f64 / bit);
+    }
+}
+
+/// `--shard` of `campaign` and `soak`: `i/n`, `auto` or `auto/n` (scheduler array job).
+pub fn parse_shard(s: Option<&str>) -> Result<Option<canstar_recan::campaign::Shard>> {
+    Ok(s.map(canstar_recan::campaign::Shard::parse_auto).transpose()?)
+}
