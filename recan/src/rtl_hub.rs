@@ -54,14 +54,22 @@ pub struct HubStats {
     pub monitor_errors: u64,
     /// Bits the frame monitor sampled in an overload frame.
     pub overload_bits: u64,
-    /// Every blame: (time ps, unit: port i or sublink N + j, field code, position).
-    pub blame_log: Vec<(u64, usize, u8, u8)>,
+    /// Every blame: (time ps, unit: port i or sublink N + j, field code, position,
+    /// charged: not suppressed by another unit's glitch).
+    pub blame_log: Vec<(u64, usize, u8, u8, bool)>,
+    /// Every glitch: (time ps, unit).
+    pub glitch_log: Vec<(u64, usize)>,
     /// Per input (ports, then sublinks): completed runs of equal input level shorter
     /// than 32 clocks, counted by length (`short_runs[input][len]`), measured on the
     /// inputs as the hub samples them (after reset).
     pub short_runs: Vec<[u64; 32]>,
     /// Per input: (level, clocks) of the run in progress.
     run_now: Vec<(bool, u64)>,
+    /// Per input: edges counted by their phase, in clocks since the frame monitor's last
+    /// sample strobe: `edge_phase[input][min(phase, 31)]` for recessive-to-dominant
+    /// edges, `[32 + min(phase, 31)]` for dominant-to-recessive ones.
+    pub edge_phase: Vec<[u64; 64]>,
+    since_sample: u64,
 }
 
 /// One clock of an [`RtlHub`]'s input stimulus, packed: bit 0 `rst_n`, bit 1
@@ -105,6 +113,7 @@ impl RtlHub {
                 silent_at: vec![None; cfg.ports],
                 short_runs: vec![[0; 32]; cfg.ports + cfg.sublinks],
                 run_now: vec![(true, 0); cfg.ports + cfg.sublinks],
+                edge_phase: vec![[0; 64]; cfg.ports + cfg.sublinks],
                 ..Default::default()
             },
             record: None,
@@ -227,6 +236,7 @@ impl Component for RtlHub {
                     if r.1 < 32 {
                         st.short_runs[k][r.1 as usize] += 1;
                     }
+                    st.edge_phase[k][st.since_sample.min(31) as usize + if v { 32 } else { 0 }] += 1;
                     *r = (v, 1);
                 }
             }
@@ -247,19 +257,31 @@ impl Component for RtlHub {
             let (f, p) = (core.mon_field.val().index() as u8, core.mon_pos.val().index() as u8);
             for i in 0..self.n {
                 if core.port_judge(i).blame.val() {
-                    st.blame_log.push((now, i, f, p));
+                    st.blame_log.push((now, i, f, p, core.port_judge(i).charged.val()));
                 }
             }
             for k in 0..self.m {
                 if core.sublink_judge(k).blame.val() {
-                    st.blame_log.push((now, self.n + k, f, p));
+                    st.blame_log.push((now, self.n + k, f, p, core.sublink_judge(k).charged.val()));
                 }
+            }
+        }
+        for i in 0..self.n {
+            if core.port_judge(i).glitch.val() {
+                st.glitch_log.push((now, i));
+            }
+        }
+        for k in 0..self.m {
+            if core.sublink_judge(k).glitch.val() {
+                st.glitch_log.push((now, self.n + k));
             }
         }
         if hub.efg_active.val() {
             st.efg_clocks += 1;
         }
+        st.since_sample += 1;
         if core.mon_sample.val() {
+            st.since_sample = 0;
             if core.mon_frame_ok.val() {
                 st.frames_ok += 1;
             }

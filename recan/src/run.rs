@@ -136,14 +136,19 @@ pub struct RunResult {
     /// (empty without the hub's debug outputs).
     pub final_bic: Vec<Vec<u32>>,
     /// Every blame of every hub's judge units: (hub, time ps, unit, field code,
-    /// position); unit = port i, or ports + j for incoming sublink j.
-    pub blames: Vec<(usize, u64, usize, u8, u8)>,
+    /// position, charged); unit = port i, or ports + j for incoming sublink j.
+    pub blames: Vec<(usize, u64, usize, u8, u8, bool)>,
+    /// Every glitch seen by a judge unit: (hub, time ps, unit).
+    pub glitches: Vec<(usize, u64, usize)>,
     /// Every error event of every controller: (time ps, node, ctrl, transmitting,
     /// controller FIELD code).
     pub ctrl_errors: Vec<(u64, usize, usize, bool, u8)>,
     /// Per hub, per input (ports, then sublinks): runs of equal level shorter than
     /// 32 hub clocks, counted by length (see [`crate::rtl_hub::HubStats::short_runs`]).
     pub short_runs: Vec<Vec<[u64; 32]>>,
+    /// Per hub, per input: edges counted by phase (see [`crate::rtl_hub::HubStats::edge_phase`]).
+    #[serde(skip)]
+    pub edge_phase: Vec<Vec<[u64; 64]>>,
     /// The legal events applied ([`RunSpec::events`]).
     pub events_applied: Vec<String>,
     /// Driver routine log (with `RunSpec::trace`).
@@ -471,10 +476,13 @@ fn run_impl(spec: &RunSpec) -> RunResult {
     res.events_applied = events.applied.clone();
     res.tx_ctrl = drivers.iter().map(|d| d.tx).collect();
     for (h, &hh) in net.hubs.iter().enumerate() {
-        res.blames.extend(sim.get(hh).stats.blame_log.iter().map(|&(t, u, f, p)| (h, t, u, f, p)));
+        res.blames.extend(sim.get(hh).stats.blame_log.iter().map(|&(t, u, f, p, c)| (h, t, u, f, p, c)));
+        res.glitches.extend(sim.get(hh).stats.glitch_log.iter().map(|&(t, u)| (h, t, u)));
     }
     res.blames.sort_by_key(|b| b.1);
+    res.glitches.sort_by_key(|g| g.1);
     res.short_runs = net.hubs.iter().map(|&h| sim.get(h).stats.short_runs.clone()).collect();
+    res.edge_phase = net.hubs.iter().map(|&h| sim.get(h).stats.edge_phase.clone()).collect();
     for (k, p) in net.ctrls.iter().enumerate() {
         for (c, &h) in p.iter().enumerate() {
             res.ctrl_errors.extend(sim.get(h).error_log.iter().map(|&(t, tx, f)| (t, k, c, tx, f)));

@@ -90,6 +90,10 @@ pub struct ChunkOutcome {
     /// hub, in hub clocks (None: none shorter than 32).
     pub min_port_pulse: Option<u32>,
     pub min_sublink_pulse: Option<u32>,
+    /// Edges on the port inputs / sublink inputs of both hubs by phase (see
+    /// [`crate::rtl_hub::HubStats::edge_phase`]).
+    pub port_edge_phase: Vec<u64>,
+    pub sublink_edge_phase: Vec<u64>,
     /// The events applied (descriptions).
     pub events: Vec<String>,
     pub sim_cycles: u64,
@@ -147,6 +151,19 @@ fn min_pulse(r: &RunResult, np: usize, ports: bool) -> Option<u32> {
     best
 }
 
+fn edge_phases(r: &RunResult, np: usize, ports: bool) -> Vec<u64> {
+    let mut v = vec![0u64; 64];
+    for hub in &r.edge_phase {
+        let range = if ports { 0..np } else { np..hub.len() };
+        for k in range {
+            for (i, c) in hub[k].iter().enumerate() {
+                v[i] += c;
+            }
+        }
+    }
+    v
+}
+
 /// Run chunk `index`.
 pub fn run_chunk(s: &SoakSettings, index: u64) -> ChunkOutcome {
     let (spec, evs) = chunk_spec(s, index);
@@ -189,6 +206,8 @@ pub fn run_chunk(s: &SoakSettings, index: u64) -> ChunkOutcome {
         min_port_pulse: min_pulse(&r, spec.network.hub.ports, true),
         min_sublink_pulse: min_pulse(&r, spec.network.hub.ports, false),
         events: r.events_applied.clone(),
+        port_edge_phase: edge_phases(&r, spec.network.hub.ports, true),
+        sublink_edge_phase: edge_phases(&r, spec.network.hub.ports, false),
         sim_cycles: r.sim_cycles,
     }
 }
@@ -256,6 +275,17 @@ impl SoakReport {
             minp.map_or("none below 32".into(), |v| v.to_string()),
             mins.map_or("none below 32".into(), |v| v.to_string())
         );
+        for (name, get) in [("port", 0usize), ("sublink", 1)] {
+            let mut h = vec![0u64; 64];
+            for c in &self.chunks {
+                let src = if get == 0 { &c.port_edge_phase } else { &c.sublink_edge_phase };
+                for (i, x) in src.iter().enumerate() {
+                    h[i] += x;
+                }
+            }
+            let fmt = |r: &[u64]| r.iter().enumerate().filter(|(_, &x)| x > 0).map(|(i, x)| format!("{i}:{x}")).collect::<Vec<_>>().join(" ");
+            s += &format!("{name} edge phases (clocks after the monitor's sample strobe): falling {}; rising {}\n", fmt(&h[..32]), fmt(&h[32..]));
+        }
         for c in self.chunks.iter().filter(|c| !c.clean()) {
             s += &format!(
                 "chunk {} seed {}: blames {} isolations [{}] {}\n",

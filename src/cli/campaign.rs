@@ -113,6 +113,10 @@ pub fn run(a: Args) -> Result<()> {
         for n in &o.notes {
             println!("  note: {n}");
         }
+        println!(
+            "  shortest pulse on a healthy port input {:?}, on a sublink input {:?} (hub clocks)",
+            o.min_pulse_healthy_port, o.min_pulse_sublink
+        );
         if a.events {
             print_events(&d.result);
         }
@@ -182,8 +186,12 @@ fn print_events(r: &canstar_recan::RunResult) {
     use canstar_hub::frame_state::Field as HField;
     let bit = r.bit_time_ps.max(1) as f64;
     let mut lines: Vec<(u64, String)> = vec![];
-    for &(h, t, u, f, p) in &r.blames {
-        lines.push((t, format!("hub {h} blames unit {u} in {:?} bit {p}", HField::from_code(f as u64))));
+    for &(h, t, u, f, p, c) in &r.blames {
+        let how = if c { "blames" } else { "blames (suppressed)" };
+        lines.push((t, format!("hub {h} {how} unit {u} in {:?} bit {p}", HField::from_code(f as u64))));
+    }
+    for &(h, t, u) in &r.glitches {
+        lines.push((t, format!("hub {h} glitch on unit {u}")));
     }
     for &(t, k, c, tx, f) in &r.ctrl_errors {
         let field = CField::ALL.get(f as usize).map_or(format!("{f}"), |x| format!("{x:?}"));

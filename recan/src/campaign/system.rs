@@ -477,6 +477,24 @@ fn iso_name(i: Isolated) -> String {
     }
 }
 
+/// Shortest run of equal level on the inputs of both hubs: the ports of healthy
+/// controllers (`Some(unhealthy)`: port k of hub h is controller (k, h)) or the sublinks.
+fn min_pulse(r: &RunResult, np: usize, ports_except: Option<&[(usize, usize)]>) -> Option<u32> {
+    let mut best: Option<u32> = None;
+    for (h, hub) in r.short_runs.iter().enumerate() {
+        for (k, runs) in hub.iter().enumerate() {
+            let keep = match ports_except {
+                Some(u) => k < np && !u.contains(&(k, h)),
+                None => k >= np,
+            };
+            if let (true, Some(len)) = (keep, runs.iter().position(|&c| c > 0)) {
+                best = Some(best.map_or(len as u32, |b| b.min(len as u32)));
+            }
+        }
+    }
+    best
+}
+
 /// Run one plan (the runner of [`super::execute`]).
 pub fn run_plan(p: &RunPlan, settings: &Settings) -> RunOutcome {
     run_detailed(&p.class, p.rep, p.seed, settings, None).outcome
@@ -544,6 +562,8 @@ pub fn run_detailed(class: &Class, rep: u32, seed: u64, settings: &Settings, vcd
             })
             .collect(),
         notes,
+        min_pulse_healthy_port: min_pulse(&r, b.spec.network.hub.ports, Some(&unhealthy)),
+        min_pulse_sublink: min_pulse(&r, b.spec.network.hub.ports, None),
     };
     let plot = plot_data(class, seed, &b.spec, &r);
     Detailed { outcome, result: r, plot }
