@@ -29,7 +29,7 @@ echo "== tools: $(yosys -V | head -1); $(iverilog -V 2>&1 | head -1); $(verilato
 echo "== cargo test (all tests, Verilog flow included)"
 # Ignored tests named diag_*, long_* and bench_print are diagnostics and
 # benchmarks (they print figures, assert little): run them by name.
-cargo test --release --workspace -- --include-ignored --skip diag_ --skip long_ --skip bench_print
+cargo test --release --workspace --no-fail-fast -- --include-ignored --skip diag_ --skip long_ --skip bench_print
 
 echo "== generated files are up to date"
 cargo run --release -q -- generate all --check

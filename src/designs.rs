@@ -53,7 +53,7 @@ pub fn sja1000(config: &Config, board: Option<&str>) -> Result<Vec<Artifact>> {
     let (top, ports) = board_top(&inner, name, "rst", &board_name);
     let t = &config.bit_timing;
     let desc = format!(
-        "SJA1000 (PeliCAN) compatible CAN controller, Wishbone B4 classic slave, 8-bit (see controller/src/sja1000.rs); \
+        "SJA1000 (PeliCAN) compatible CAN controller, Wishbone B4 classic slave, 8-bit (see controller/src/sja1000/); \
          board top with active-low reset; BTR0/BTR1 after reset 0x{btr0:02X}/0x{btr1:02X} ({} clocks per TQ, {} TQ per bit, sample point {})",
         t.brp,
         t.ntq(),

@@ -2,8 +2,8 @@
 //!
 //! - [`fsm`]: the bit-stream processor, i.e. the complete frame state machine
 //!   with destuffing, CRC, arbitration, error detection and fault confinement
-//!   ([`fsm::CanFsm`], one rust-hdl block). Its FIELD encoding and event word
-//!   are documented there.
+//!   ([`fsm::CanFsm`], a composition of one sub-block per concern). Its FIELD
+//!   encoding and event word are documented there.
 //! - [`core`]: [`CanCore`], the top block: synchroniser, bit timing and the
 //!   frame state machine, with the native host interface and debug bundle.
 //! - [`frame`]: plain-Rust frames and the bit-level frame builder (stuffing,

@@ -14,8 +14,11 @@ pub enum TargetArg {
     Controller,
     /// The star hubs (ReCANcentrate reference hub and CANcentrate) with pin files.
     Hub,
-    /// Everything that exists.
+    /// Everything that exists (Verilog and pin files; with --check also the compiled models).
     All,
+    /// The compiled simulation models (`models/src/generated/`, Rust written by canstar-rtlc
+    /// from the RTL) of a source checkout: rewrites the stale ones.
+    Models,
 }
 
 impl From<TargetArg> for Target {
@@ -24,7 +27,7 @@ impl From<TargetArg> for Target {
             TargetArg::Blocks => Target::Blocks,
             TargetArg::Controller => Target::Controller,
             TargetArg::Hub => Target::Hub,
-            TargetArg::All => Target::All,
+            TargetArg::All | TargetArg::Models => Target::All,
         }
     }
 }
@@ -51,7 +54,39 @@ pub struct Args {
     check: bool,
 }
 
+/// The compiled models of the source tree this binary was built from, if it is there.
+fn models(bless: bool) -> Result<Option<canstar_models::registry::Stale>> {
+    if !canstar_models::registry::generated_dir().is_dir() {
+        return Ok(None);
+    }
+    canstar_models::registry::check(bless).map(Some).map_err(|e| anyhow::anyhow!("compiled models: {e}"))
+}
+
 pub fn run(a: Args) -> Result<()> {
+    if a.target == TargetArg::Models {
+        anyhow::ensure!(a.config.is_none() && a.board.is_none(), "`generate models` takes no --config or --board (the models serve every configuration of a shape)");
+        match models(!a.check)? {
+            None => anyhow::bail!("no source checkout at {}", canstar_models::registry::generated_dir().display()),
+            Some(st) if a.check && !st.is_empty() => {
+                for p in st.changed.iter().chain(&st.unregistered) {
+                    eprintln!("out of date: {}", p.display());
+                }
+                anyhow::bail!("compiled models are stale; run `canstar generate models` and commit");
+            }
+            Some(st) => {
+                for p in st.changed.iter() {
+                    println!("{} {}", if a.check { "up to date:" } else { "wrote" }, p.display());
+                }
+                for p in st.unregistered.iter() {
+                    println!("removed {}", p.display());
+                }
+                if st.is_empty() {
+                    println!("compiled models up to date");
+                }
+            }
+        }
+        return Ok(());
+    }
     let cfg = match &a.config {
         Some(p) => Config::load(p)?,
         None => Config::default(),
@@ -66,6 +101,17 @@ pub fn run(a: Args) -> Result<()> {
             anyhow::bail!("{} generated file(s) differ from `canstar generate` output; run it and commit", bad.len());
         }
         println!("{} generated file(s) up to date", arts.len());
+        if a.target == TargetArg::All {
+            if let Some(st) = models(false)? {
+                if !st.is_empty() {
+                    for p in st.changed.iter().chain(&st.unregistered) {
+                        eprintln!("out of date: {}", p.display());
+                    }
+                    anyhow::bail!("compiled models are stale; run `canstar generate models` and commit");
+                }
+                println!("compiled models up to date");
+            }
+        }
     } else {
         let written = generate::write(&arts, &a.out, &a.constraints).context("writing generated files")?;
         for w in &written {

@@ -5247,33 +5247,6 @@ module canstar_cancentrate_core$monitor(clock,reset,rx,brp,prop,ph1,sjw,triple,l
     output reg  dbg_hard_sync;
     output reg  dbg_resync;
     
-    // Enums
-    localparam Field$Reset = 0;
-    localparam Field$WaitIdle = 1;
-    localparam Field$Idle = 2;
-    localparam Field$BusOff = 3;
-    localparam Field$Sof = 4;
-    localparam Field$Ident = 5;
-    localparam Field$Srr = 6;
-    localparam Field$Ide = 7;
-    localparam Field$Rtr = 8;
-    localparam Field$ExIdent = 9;
-    localparam Field$Resv = 10;
-    localparam Field$Dlc = 11;
-    localparam Field$Data = 12;
-    localparam Field$Crc = 13;
-    localparam Field$CrcDel = 14;
-    localparam Field$AckSlot = 15;
-    localparam Field$AckDel = 16;
-    localparam Field$Eof = 17;
-    localparam Field$ActFlag = 18;
-    localparam Field$PasFlag = 19;
-    localparam Field$OvlFlag = 20;
-    localparam Field$ErrDel = 21;
-    localparam Field$OvlDel = 22;
-    localparam Field$Inter = 23;
-    localparam Field$Suspend = 24;
-    
     // Stub signals
     reg  sync$clock;
     reg  sync$reset;
@@ -6376,24 +6349,6 @@ module canstar_cancentrate_core$monitor$fsm(clock,reset,sample,busmon,listen_onl
     localparam Field$Suspend = 24;
     
     // Stub signals
-    reg  [4:0] fld$d;
-    wire  [4:0] fld$q;
-    reg  fld$clock;
-    reg  [7:0] fpos$d;
-    wire  [7:0] fpos$q;
-    reg  fpos$clock;
-    reg  [4:0] pfld$d;
-    wire  [4:0] pfld$q;
-    reg  pfld$clock;
-    reg  [7:0] ppos$d;
-    wire  [7:0] ppos$q;
-    reg  ppos$clock;
-    reg  rtx$d;
-    wire  rtx$q;
-    reg  rtx$clock;
-    reg  dom$d;
-    wire  dom$q;
-    reg  dom$clock;
     reg  dstf$clock;
     reg  dstf$reset;
     reg  dstf$en;
@@ -6410,197 +6365,247 @@ module canstar_cancentrate_core$monitor$fsm(clock,reset,sample,busmon,listen_onl
     reg  crcb$din;
     wire  [14:0] crcb$crc;
     wire  [14:0] crcb$crc_next;
-    reg  crcerr$d;
-    wire  crcerr$q;
-    reg  crcerr$clock;
-    reg  [28:0] tid$d;
-    wire  [28:0] tid$q;
-    reg  tid$clock;
-    reg  [63:0] tdat$d;
-    wire  [63:0] tdat$q;
-    reg  tdat$clock;
-    reg  [3:0] tdlc$d;
-    wire  [3:0] tdlc$q;
-    reg  tdlc$clock;
-    reg  tide$d;
-    wire  tide$q;
-    reg  tide$clock;
-    reg  trtr$d;
-    wire  trtr$q;
-    reg  trtr$clock;
-    reg  [28:0] rid$d;
-    wire  [28:0] rid$q;
-    reg  rid$clock;
-    reg  [63:0] rdat$d;
-    wire  [63:0] rdat$q;
-    reg  rdat$clock;
-    reg  [3:0] rdlc$d;
-    wire  [3:0] rdlc$q;
-    reg  rdlc$clock;
-    reg  rrtr$d;
-    wire  rrtr$q;
-    reg  rrtr$clock;
-    reg  rext$d;
-    wire  rext$q;
-    reg  rext$clock;
-    reg  fdone$d;
-    wire  fdone$q;
-    reg  fdone$clock;
-    reg  [2:0] eqcnt$d;
-    wire  [2:0] eqcnt$q;
-    reg  eqcnt$clock;
-    reg  eqlast$d;
-    wire  eqlast$q;
-    reg  eqlast$clock;
-    reg  [2:0] dafc$d;
-    wire  [2:0] dafc$q;
-    reg  dafc$clock;
-    reg  dafany$d;
-    wire  dafany$q;
-    reg  dafany$clock;
-    reg  exc1$d;
-    wire  exc1$q;
-    reg  exc1$clock;
-    reg  [8:0] tecr$d;
-    wire  [8:0] tecr$q;
-    reg  tecr$clock;
-    reg  [7:0] recr$d;
-    wire  [7:0] recr$q;
-    reg  recr$clock;
-    reg  [7:0] runr$d;
-    wire  [7:0] runr$q;
-    reg  runr$clock;
-    reg  rarmed$d;
-    wire  rarmed$q;
-    reg  rarmed$clock;
-    reg  req$d;
-    wire  req$q;
-    reg  req$clock;
-    reg  blocked$d;
-    wire  blocked$q;
-    reg  blocked$clock;
-    reg  [19:0] evr$d;
-    wire  [19:0] evr$q;
-    reg  evr$clock;
-    reg  [5:0] arbpos_r$d;
-    wire  [5:0] arbpos_r$q;
-    reg  arbpos_r$clock;
-    reg  [4:0] errf_r$d;
-    wire  [4:0] errf_r$q;
-    reg  errf_r$clock;
-    reg  [7:0] errp_r$d;
-    wire  [7:0] errp_r$q;
-    reg  errp_r$clock;
-    reg  errtx_r$d;
-    wire  errtx_r$q;
-    reg  errtx_r$clock;
-    reg  rxide_r$d;
-    wire  rxide_r$q;
-    reg  rxide_r$clock;
-    reg  rxrtr_r$d;
-    wire  rxrtr_r$q;
-    reg  rxrtr_r$clock;
-    reg  [28:0] rxid_r$d;
-    wire  [28:0] rxid_r$q;
-    reg  rxid_r$clock;
-    reg  [3:0] rxdlc_r$d;
-    wire  [3:0] rxdlc_r$q;
-    reg  rxdlc_r$clock;
-    reg  [63:0] rxdat_r$d;
-    wire  [63:0] rxdat_r$q;
-    reg  rxdat_r$clock;
-    
-    // Local signals
-    reg  l_bit;
-    reg  l_sent;
-    reg  l_active;
-    reg  l_cantx;
-    reg  [4:0] l_nf;
-    reg  [7:0] l_npos;
-    reg  [7:0] l_posinc;
-    reg  l_curstf;
-    reg  [4:0] l_dfld;
-    reg  [7:0] l_dpos;
-    reg  l_crcen;
-    reg  l_ndom;
-    reg  l_usetx;
-    reg  l_txv;
-    reg  l_role;
-    reg  l_instf;
-    reg  l_arbf;
-    reg  l_arbstuff;
-    reg  l_adv;
-    reg  l_err;
-    reg  [4:0] l_errk;
-    reg  l_ovl;
-    reg  l_start;
-    reg  l_sofinit;
-    reg  l_txsof;
-    reg  l_tinc;
-    reg  l_tdec;
-    reg  l_rinc1;
-    reg  l_rinc8;
-    reg  l_rok;
-    reg  l_clear;
-    reg  l_deliver;
-    reg  l_crcerr;
-    reg  [28:0] l_tid;
-    reg  [63:0] l_tdat;
-    reg  [3:0] l_tdlc;
-    reg  l_tide;
-    reg  l_trtr;
-    reg  [28:0] l_rid;
-    reg  [63:0] l_rdat;
-    reg  [3:0] l_rdlc;
-    reg  l_rrtr;
-    reg  l_rext;
-    reg  [3:0] l_nbytes;
-    reg  [7:0] l_nbits;
-    reg  l_fdone;
-    reg  [2:0] l_eqcnt;
-    reg  l_eqlast;
-    reg  [2:0] l_dafc;
-    reg  l_dafany;
-    reg  l_exc1;
-    reg  [19:0] l_ev;
-    reg  [8:0] l_tec;
-    reg  [7:0] l_rec;
-    reg  [7:0] l_runs;
-    reg  l_rarmed;
-    reg  [5:0] l_shamt;
-    reg  [5:0] l_arbpos;
+    reg  [4:0] dec$fld;
+    reg  [7:0] dec$fpos;
+    reg  [4:0] dec$pfld;
+    reg  [7:0] dec$ppos;
+    reg  dec$ext;
+    reg  dec$tx_role;
+    reg  dec$dom;
+    reg  dec$listen_only;
+    reg  dec$next_is_stuff;
+    reg  dec$stuff_level;
+    wire  dec$stuffed;
+    wire  dec$stuff;
+    wire  [4:0] dec$code;
+    wire  [7:0] dec$pos;
+    wire  dec$hs_en;
+    wire  dec$arb;
+    wire  dec$arb_stuff;
+    wire  [5:0] dec$arb_pos;
+    wire  dec$drive;
+    reg  seq$clock;
+    reg  seq$reset;
+    reg  seq$sample;
+    reg  seq$rxbit;
+    reg  seq$listen_only;
+    reg  seq$host_recovery;
+    reg  seq$cnt_load;
+    reg  [8:0] seq$tec_in;
+    reg  seq$stuff;
+    reg  seq$req;
+    reg  seq$active;
+    reg  seq$armed;
+    reg  seq$last_run;
+    reg  seq$busoff;
+    reg  seq$level;
+    reg  seq$f_own;
+    reg  [4:0] seq$f_nf;
+    reg  [7:0] seq$f_npos;
+    reg  seq$f_ndom;
+    reg  seq$f_usetx;
+    reg  seq$f_lost;
+    reg  seq$f_err;
+    reg  seq$f_ovl;
+    reg  seq$f_sof;
+    reg  seq$g_own;
+    reg  [4:0] seq$g_nf;
+    reg  [7:0] seq$g_npos;
+    reg  seq$g_ndom;
+    reg  seq$g_err;
+    reg  seq$g_ovl;
+    wire  [4:0] seq$fld;
+    wire  [7:0] seq$fpos;
+    wire  [4:0] seq$pfld;
+    wire  [7:0] seq$ppos;
+    wire  seq$tx_role;
+    wire  seq$dom;
+    wire  seq$in_busoff;
+    wire  [4:0] seq$nf_tx;
+    wire  seq$err;
+    wire  seq$flag_start;
+    wire  seq$sofinit;
+    wire  seq$txsof;
+    wire  seq$ev_aef;
+    wire  seq$ev_pef;
+    wire  seq$ev_olf;
+    wire  seq$ev_ovl;
+    wire  seq$ev_integrated;
+    wire  seq$ev_run;
+    wire  seq$ev_recovered;
+    reg  frame$clock;
+    reg  frame$reset;
+    reg  frame$sample;
+    reg  frame$rxbit;
+    reg  frame$sent;
+    reg  [4:0] frame$fld;
+    reg  [7:0] frame$fpos;
+    reg  frame$tx_role;
+    reg  frame$dom;
+    reg  frame$listen_only;
+    reg  frame$self_test;
+    reg  frame$active;
+    reg  frame$stuffed;
+    reg  frame$stuff;
+    reg  frame$arb;
+    reg  frame$arb_stuff;
+    reg  frame$stuff_error;
+    reg  frame$crc_rem;
+    reg  frame$ext;
+    reg  frame$rtr;
+    reg  frame$dlc_lo_zero;
+    reg  [7:0] frame$data_bits;
+    reg  frame$tx_ide;
+    reg  frame$sofinit;
+    reg  frame$err_now;
+    wire  frame$own;
+    wire  [4:0] frame$nf;
+    wire  [7:0] frame$npos;
+    wire  frame$ndom;
+    wire  frame$usetx;
+    wire  frame$lost;
+    wire  frame$err;
+    wire  frame$err_bit;
+    wire  frame$err_stuff;
+    wire  frame$err_crc;
+    wire  frame$err_form;
+    wire  frame$err_ack;
+    wire  frame$tinc;
+    wire  frame$rinc1;
+    wire  frame$rok;
+    wire  frame$ovl;
+    wire  frame$exc1;
+    wire  frame$exc2;
+    wire  frame$tx_ok;
+    wire  frame$rx_ok;
+    wire  frame$sof;
+    wire  frame$adv;
+    reg  flags$clock;
+    reg  flags$reset;
+    reg  flags$sample;
+    reg  flags$rxbit;
+    reg  flags$sent;
+    reg  [4:0] flags$fld;
+    reg  [7:0] flags$fpos;
+    reg  flags$tx_role;
+    reg  flags$flag_start;
+    reg  flags$exc1_set;
+    wire  flags$own;
+    wire  [4:0] flags$nf;
+    wire  [7:0] flags$npos;
+    wire  flags$ndom;
+    wire  flags$err;
+    wire  flags$err_bit;
+    wire  flags$err_form;
+    wire  flags$tinc;
+    wire  flags$rinc1;
+    wire  flags$rinc8;
+    wire  flags$ovl;
+    wire  flags$daf;
+    wire  flags$exc1_met;
+    reg  conf$clock;
+    reg  conf$reset;
+    reg  conf$sample;
+    reg  conf$listen_only;
+    reg  conf$recover;
+    reg  conf$tinc;
+    reg  conf$tdec;
+    reg  conf$rinc1;
+    reg  conf$rinc8;
+    reg  conf$rok;
+    reg  conf$run;
+    reg  conf$in_busoff;
+    reg  conf$cnt_load;
+    reg  [8:0] conf$tec_in;
+    reg  [7:0] conf$rec_in;
+    wire  [8:0] conf$tec;
+    wire  [7:0] conf$rec;
+    wire  [1:0] conf$state;
+    wire  conf$err_warn;
+    wire  conf$active;
+    wire  [7:0] conf$runs;
+    wire  conf$last_run;
+    wire  conf$armed;
+    wire  conf$busoff;
+    reg  txq$clock;
+    reg  txq$reset;
+    reg  txq$sample;
+    reg  txq$tx_req;
+    reg  txq$tx_abort;
+    reg  txq$single_shot;
+    reg  txq$tx_ide;
+    reg  txq$tx_rtr;
+    reg  [28:0] txq$tx_id;
+    reg  [3:0] txq$tx_dlc;
+    reg  [63:0] txq$tx_data;
+    reg  txq$load;
+    reg  txq$adv;
+    reg  [4:0] txq$fld;
+    reg  [4:0] txq$nf;
+    reg  txq$crc_bit;
+    reg  txq$lost;
+    reg  txq$done;
+    reg  txq$err_now;
+    reg  txq$tx_role;
+    wire  txq$req;
+    wire  txq$ide;
+    wire  txq$level;
+    reg  rxf$clock;
+    reg  rxf$reset;
+    reg  rxf$sample;
+    reg  rxf$rxbit;
+    reg  rxf$adv;
+    reg  [4:0] rxf$fld;
+    reg  rxf$sofinit;
+    reg  rxf$deliver;
+    wire  rxf$ext;
+    wire  rxf$rtr;
+    wire  rxf$dlc_lo_zero;
+    wire  [7:0] rxf$data_bits;
+    wire  rxf$rx_ide;
+    wire  rxf$rx_rtr;
+    wire  [28:0] rxf$rx_id;
+    wire  [3:0] rxf$rx_dlc;
+    wire  [63:0] rxf$rx_data;
+    reg  rpt$clock;
+    reg  rpt$reset;
+    reg  rpt$sample;
+    reg  rpt$ev_sof;
+    reg  rpt$ev_arb_lost;
+    reg  rpt$ev_bit_err;
+    reg  rpt$ev_stuff_err;
+    reg  rpt$ev_crc_err;
+    reg  rpt$ev_form_err;
+    reg  rpt$ev_ack_err;
+    reg  rpt$ev_aef;
+    reg  rpt$ev_pef;
+    reg  rpt$ev_olf;
+    reg  rpt$ev_ovl;
+    reg  rpt$ev_daf;
+    reg  rpt$ev_tx_ok;
+    reg  rpt$ev_rx_ok;
+    reg  rpt$ev_exc1;
+    reg  rpt$ev_exc2;
+    reg  rpt$ev_run;
+    reg  rpt$ev_recovered;
+    reg  rpt$ev_integrated;
+    reg  rpt$err_now;
+    reg  [4:0] rpt$code;
+    reg  [7:0] rpt$pos;
+    reg  rpt$tx_role;
+    reg  [5:0] rpt$arb_pos;
+    wire  [19:0] rpt$events;
+    wire  rpt$tx_done;
+    wire  rpt$arb_lost;
+    wire  [5:0] rpt$arb_lost_pos;
+    wire  rpt$error;
+    wire  [4:0] rpt$err_kind;
+    wire  [4:0] rpt$err_field;
+    wire  [7:0] rpt$err_pos;
+    wire  rpt$err_tx;
+    wire  rpt$rx_valid;
     
     // Sub module instances
-    canstar_cancentrate_core$monitor$fsm$fld fld(
-        .d(fld$d),
-        .q(fld$q),
-        .clock(fld$clock)
-    );
-    canstar_cancentrate_core$monitor$fsm$fpos fpos(
-        .d(fpos$d),
-        .q(fpos$q),
-        .clock(fpos$clock)
-    );
-    canstar_cancentrate_core$monitor$fsm$pfld pfld(
-        .d(pfld$d),
-        .q(pfld$q),
-        .clock(pfld$clock)
-    );
-    canstar_cancentrate_core$monitor$fsm$ppos ppos(
-        .d(ppos$d),
-        .q(ppos$q),
-        .clock(ppos$clock)
-    );
-    canstar_cancentrate_core$monitor$fsm$rtx rtx(
-        .d(rtx$d),
-        .q(rtx$q),
-        .clock(rtx$clock)
-    );
-    canstar_cancentrate_core$monitor$fsm$dom dom(
-        .d(dom$d),
-        .q(dom$q),
-        .clock(dom$clock)
-    );
     canstar_cancentrate_core$monitor$fsm$dstf dstf(
         .clock(dstf$clock),
         .reset(dstf$reset),
@@ -6621,1433 +6626,608 @@ module canstar_cancentrate_core$monitor$fsm(clock,reset,sample,busmon,listen_onl
         .crc(crcb$crc),
         .crc_next(crcb$crc_next)
     );
-    canstar_cancentrate_core$monitor$fsm$crcerr crcerr(
-        .d(crcerr$d),
-        .q(crcerr$q),
-        .clock(crcerr$clock)
+    canstar_cancentrate_core$monitor$fsm$dec dec(
+        .fld(dec$fld),
+        .fpos(dec$fpos),
+        .pfld(dec$pfld),
+        .ppos(dec$ppos),
+        .ext(dec$ext),
+        .tx_role(dec$tx_role),
+        .dom(dec$dom),
+        .listen_only(dec$listen_only),
+        .next_is_stuff(dec$next_is_stuff),
+        .stuff_level(dec$stuff_level),
+        .stuffed(dec$stuffed),
+        .stuff(dec$stuff),
+        .code(dec$code),
+        .pos(dec$pos),
+        .hs_en(dec$hs_en),
+        .arb(dec$arb),
+        .arb_stuff(dec$arb_stuff),
+        .arb_pos(dec$arb_pos),
+        .drive(dec$drive)
     );
-    canstar_cancentrate_core$monitor$fsm$tid tid(
-        .d(tid$d),
-        .q(tid$q),
-        .clock(tid$clock)
+    canstar_cancentrate_core$monitor$fsm$seq seq(
+        .clock(seq$clock),
+        .reset(seq$reset),
+        .sample(seq$sample),
+        .rxbit(seq$rxbit),
+        .listen_only(seq$listen_only),
+        .host_recovery(seq$host_recovery),
+        .cnt_load(seq$cnt_load),
+        .tec_in(seq$tec_in),
+        .stuff(seq$stuff),
+        .req(seq$req),
+        .active(seq$active),
+        .armed(seq$armed),
+        .last_run(seq$last_run),
+        .busoff(seq$busoff),
+        .level(seq$level),
+        .f_own(seq$f_own),
+        .f_nf(seq$f_nf),
+        .f_npos(seq$f_npos),
+        .f_ndom(seq$f_ndom),
+        .f_usetx(seq$f_usetx),
+        .f_lost(seq$f_lost),
+        .f_err(seq$f_err),
+        .f_ovl(seq$f_ovl),
+        .f_sof(seq$f_sof),
+        .g_own(seq$g_own),
+        .g_nf(seq$g_nf),
+        .g_npos(seq$g_npos),
+        .g_ndom(seq$g_ndom),
+        .g_err(seq$g_err),
+        .g_ovl(seq$g_ovl),
+        .fld(seq$fld),
+        .fpos(seq$fpos),
+        .pfld(seq$pfld),
+        .ppos(seq$ppos),
+        .tx_role(seq$tx_role),
+        .dom(seq$dom),
+        .in_busoff(seq$in_busoff),
+        .nf_tx(seq$nf_tx),
+        .err(seq$err),
+        .flag_start(seq$flag_start),
+        .sofinit(seq$sofinit),
+        .txsof(seq$txsof),
+        .ev_aef(seq$ev_aef),
+        .ev_pef(seq$ev_pef),
+        .ev_olf(seq$ev_olf),
+        .ev_ovl(seq$ev_ovl),
+        .ev_integrated(seq$ev_integrated),
+        .ev_run(seq$ev_run),
+        .ev_recovered(seq$ev_recovered)
     );
-    canstar_cancentrate_core$monitor$fsm$tdat tdat(
-        .d(tdat$d),
-        .q(tdat$q),
-        .clock(tdat$clock)
+    canstar_cancentrate_core$monitor$fsm$frame frame(
+        .clock(frame$clock),
+        .reset(frame$reset),
+        .sample(frame$sample),
+        .rxbit(frame$rxbit),
+        .sent(frame$sent),
+        .fld(frame$fld),
+        .fpos(frame$fpos),
+        .tx_role(frame$tx_role),
+        .dom(frame$dom),
+        .listen_only(frame$listen_only),
+        .self_test(frame$self_test),
+        .active(frame$active),
+        .stuffed(frame$stuffed),
+        .stuff(frame$stuff),
+        .arb(frame$arb),
+        .arb_stuff(frame$arb_stuff),
+        .stuff_error(frame$stuff_error),
+        .crc_rem(frame$crc_rem),
+        .ext(frame$ext),
+        .rtr(frame$rtr),
+        .dlc_lo_zero(frame$dlc_lo_zero),
+        .data_bits(frame$data_bits),
+        .tx_ide(frame$tx_ide),
+        .sofinit(frame$sofinit),
+        .err_now(frame$err_now),
+        .own(frame$own),
+        .nf(frame$nf),
+        .npos(frame$npos),
+        .ndom(frame$ndom),
+        .usetx(frame$usetx),
+        .lost(frame$lost),
+        .err(frame$err),
+        .err_bit(frame$err_bit),
+        .err_stuff(frame$err_stuff),
+        .err_crc(frame$err_crc),
+        .err_form(frame$err_form),
+        .err_ack(frame$err_ack),
+        .tinc(frame$tinc),
+        .rinc1(frame$rinc1),
+        .rok(frame$rok),
+        .ovl(frame$ovl),
+        .exc1(frame$exc1),
+        .exc2(frame$exc2),
+        .tx_ok(frame$tx_ok),
+        .rx_ok(frame$rx_ok),
+        .sof(frame$sof),
+        .adv(frame$adv)
     );
-    canstar_cancentrate_core$monitor$fsm$tdlc tdlc(
-        .d(tdlc$d),
-        .q(tdlc$q),
-        .clock(tdlc$clock)
+    canstar_cancentrate_core$monitor$fsm$flags flags(
+        .clock(flags$clock),
+        .reset(flags$reset),
+        .sample(flags$sample),
+        .rxbit(flags$rxbit),
+        .sent(flags$sent),
+        .fld(flags$fld),
+        .fpos(flags$fpos),
+        .tx_role(flags$tx_role),
+        .flag_start(flags$flag_start),
+        .exc1_set(flags$exc1_set),
+        .own(flags$own),
+        .nf(flags$nf),
+        .npos(flags$npos),
+        .ndom(flags$ndom),
+        .err(flags$err),
+        .err_bit(flags$err_bit),
+        .err_form(flags$err_form),
+        .tinc(flags$tinc),
+        .rinc1(flags$rinc1),
+        .rinc8(flags$rinc8),
+        .ovl(flags$ovl),
+        .daf(flags$daf),
+        .exc1_met(flags$exc1_met)
     );
-    canstar_cancentrate_core$monitor$fsm$tide tide(
-        .d(tide$d),
-        .q(tide$q),
-        .clock(tide$clock)
+    canstar_cancentrate_core$monitor$fsm$conf conf(
+        .clock(conf$clock),
+        .reset(conf$reset),
+        .sample(conf$sample),
+        .listen_only(conf$listen_only),
+        .recover(conf$recover),
+        .tinc(conf$tinc),
+        .tdec(conf$tdec),
+        .rinc1(conf$rinc1),
+        .rinc8(conf$rinc8),
+        .rok(conf$rok),
+        .run(conf$run),
+        .in_busoff(conf$in_busoff),
+        .cnt_load(conf$cnt_load),
+        .tec_in(conf$tec_in),
+        .rec_in(conf$rec_in),
+        .tec(conf$tec),
+        .rec(conf$rec),
+        .state(conf$state),
+        .err_warn(conf$err_warn),
+        .active(conf$active),
+        .runs(conf$runs),
+        .last_run(conf$last_run),
+        .armed(conf$armed),
+        .busoff(conf$busoff)
     );
-    canstar_cancentrate_core$monitor$fsm$trtr trtr(
-        .d(trtr$d),
-        .q(trtr$q),
-        .clock(trtr$clock)
+    canstar_cancentrate_core$monitor$fsm$txq txq(
+        .clock(txq$clock),
+        .reset(txq$reset),
+        .sample(txq$sample),
+        .tx_req(txq$tx_req),
+        .tx_abort(txq$tx_abort),
+        .single_shot(txq$single_shot),
+        .tx_ide(txq$tx_ide),
+        .tx_rtr(txq$tx_rtr),
+        .tx_id(txq$tx_id),
+        .tx_dlc(txq$tx_dlc),
+        .tx_data(txq$tx_data),
+        .load(txq$load),
+        .adv(txq$adv),
+        .fld(txq$fld),
+        .nf(txq$nf),
+        .crc_bit(txq$crc_bit),
+        .lost(txq$lost),
+        .done(txq$done),
+        .err_now(txq$err_now),
+        .tx_role(txq$tx_role),
+        .req(txq$req),
+        .ide(txq$ide),
+        .level(txq$level)
     );
-    canstar_cancentrate_core$monitor$fsm$rid rid(
-        .d(rid$d),
-        .q(rid$q),
-        .clock(rid$clock)
+    canstar_cancentrate_core$monitor$fsm$rxf rxf(
+        .clock(rxf$clock),
+        .reset(rxf$reset),
+        .sample(rxf$sample),
+        .rxbit(rxf$rxbit),
+        .adv(rxf$adv),
+        .fld(rxf$fld),
+        .sofinit(rxf$sofinit),
+        .deliver(rxf$deliver),
+        .ext(rxf$ext),
+        .rtr(rxf$rtr),
+        .dlc_lo_zero(rxf$dlc_lo_zero),
+        .data_bits(rxf$data_bits),
+        .rx_ide(rxf$rx_ide),
+        .rx_rtr(rxf$rx_rtr),
+        .rx_id(rxf$rx_id),
+        .rx_dlc(rxf$rx_dlc),
+        .rx_data(rxf$rx_data)
     );
-    canstar_cancentrate_core$monitor$fsm$rdat rdat(
-        .d(rdat$d),
-        .q(rdat$q),
-        .clock(rdat$clock)
-    );
-    canstar_cancentrate_core$monitor$fsm$rdlc rdlc(
-        .d(rdlc$d),
-        .q(rdlc$q),
-        .clock(rdlc$clock)
-    );
-    canstar_cancentrate_core$monitor$fsm$rrtr rrtr(
-        .d(rrtr$d),
-        .q(rrtr$q),
-        .clock(rrtr$clock)
-    );
-    canstar_cancentrate_core$monitor$fsm$rext rext(
-        .d(rext$d),
-        .q(rext$q),
-        .clock(rext$clock)
-    );
-    canstar_cancentrate_core$monitor$fsm$fdone fdone(
-        .d(fdone$d),
-        .q(fdone$q),
-        .clock(fdone$clock)
-    );
-    canstar_cancentrate_core$monitor$fsm$eqcnt eqcnt(
-        .d(eqcnt$d),
-        .q(eqcnt$q),
-        .clock(eqcnt$clock)
-    );
-    canstar_cancentrate_core$monitor$fsm$eqlast eqlast(
-        .d(eqlast$d),
-        .q(eqlast$q),
-        .clock(eqlast$clock)
-    );
-    canstar_cancentrate_core$monitor$fsm$dafc dafc(
-        .d(dafc$d),
-        .q(dafc$q),
-        .clock(dafc$clock)
-    );
-    canstar_cancentrate_core$monitor$fsm$dafany dafany(
-        .d(dafany$d),
-        .q(dafany$q),
-        .clock(dafany$clock)
-    );
-    canstar_cancentrate_core$monitor$fsm$exc1 exc1(
-        .d(exc1$d),
-        .q(exc1$q),
-        .clock(exc1$clock)
-    );
-    canstar_cancentrate_core$monitor$fsm$tecr tecr(
-        .d(tecr$d),
-        .q(tecr$q),
-        .clock(tecr$clock)
-    );
-    canstar_cancentrate_core$monitor$fsm$recr recr(
-        .d(recr$d),
-        .q(recr$q),
-        .clock(recr$clock)
-    );
-    canstar_cancentrate_core$monitor$fsm$runr runr(
-        .d(runr$d),
-        .q(runr$q),
-        .clock(runr$clock)
-    );
-    canstar_cancentrate_core$monitor$fsm$rarmed rarmed(
-        .d(rarmed$d),
-        .q(rarmed$q),
-        .clock(rarmed$clock)
-    );
-    canstar_cancentrate_core$monitor$fsm$req req(
-        .d(req$d),
-        .q(req$q),
-        .clock(req$clock)
-    );
-    canstar_cancentrate_core$monitor$fsm$blocked blocked(
-        .d(blocked$d),
-        .q(blocked$q),
-        .clock(blocked$clock)
-    );
-    canstar_cancentrate_core$monitor$fsm$evr evr(
-        .d(evr$d),
-        .q(evr$q),
-        .clock(evr$clock)
-    );
-    canstar_cancentrate_core$monitor$fsm$arbpos_r arbpos_r(
-        .d(arbpos_r$d),
-        .q(arbpos_r$q),
-        .clock(arbpos_r$clock)
-    );
-    canstar_cancentrate_core$monitor$fsm$errf_r errf_r(
-        .d(errf_r$d),
-        .q(errf_r$q),
-        .clock(errf_r$clock)
-    );
-    canstar_cancentrate_core$monitor$fsm$errp_r errp_r(
-        .d(errp_r$d),
-        .q(errp_r$q),
-        .clock(errp_r$clock)
-    );
-    canstar_cancentrate_core$monitor$fsm$errtx_r errtx_r(
-        .d(errtx_r$d),
-        .q(errtx_r$q),
-        .clock(errtx_r$clock)
-    );
-    canstar_cancentrate_core$monitor$fsm$rxide_r rxide_r(
-        .d(rxide_r$d),
-        .q(rxide_r$q),
-        .clock(rxide_r$clock)
-    );
-    canstar_cancentrate_core$monitor$fsm$rxrtr_r rxrtr_r(
-        .d(rxrtr_r$d),
-        .q(rxrtr_r$q),
-        .clock(rxrtr_r$clock)
-    );
-    canstar_cancentrate_core$monitor$fsm$rxid_r rxid_r(
-        .d(rxid_r$d),
-        .q(rxid_r$q),
-        .clock(rxid_r$clock)
-    );
-    canstar_cancentrate_core$monitor$fsm$rxdlc_r rxdlc_r(
-        .d(rxdlc_r$d),
-        .q(rxdlc_r$q),
-        .clock(rxdlc_r$clock)
-    );
-    canstar_cancentrate_core$monitor$fsm$rxdat_r rxdat_r(
-        .d(rxdat_r$d),
-        .q(rxdat_r$q),
-        .clock(rxdat_r$clock)
+    canstar_cancentrate_core$monitor$fsm$rpt rpt(
+        .clock(rpt$clock),
+        .reset(rpt$reset),
+        .sample(rpt$sample),
+        .ev_sof(rpt$ev_sof),
+        .ev_arb_lost(rpt$ev_arb_lost),
+        .ev_bit_err(rpt$ev_bit_err),
+        .ev_stuff_err(rpt$ev_stuff_err),
+        .ev_crc_err(rpt$ev_crc_err),
+        .ev_form_err(rpt$ev_form_err),
+        .ev_ack_err(rpt$ev_ack_err),
+        .ev_aef(rpt$ev_aef),
+        .ev_pef(rpt$ev_pef),
+        .ev_olf(rpt$ev_olf),
+        .ev_ovl(rpt$ev_ovl),
+        .ev_daf(rpt$ev_daf),
+        .ev_tx_ok(rpt$ev_tx_ok),
+        .ev_rx_ok(rpt$ev_rx_ok),
+        .ev_exc1(rpt$ev_exc1),
+        .ev_exc2(rpt$ev_exc2),
+        .ev_run(rpt$ev_run),
+        .ev_recovered(rpt$ev_recovered),
+        .ev_integrated(rpt$ev_integrated),
+        .err_now(rpt$err_now),
+        .code(rpt$code),
+        .pos(rpt$pos),
+        .tx_role(rpt$tx_role),
+        .arb_pos(rpt$arb_pos),
+        .events(rpt$events),
+        .tx_done(rpt$tx_done),
+        .arb_lost(rpt$arb_lost),
+        .arb_lost_pos(rpt$arb_lost_pos),
+        .error(rpt$error),
+        .err_kind(rpt$err_kind),
+        .err_field(rpt$err_field),
+        .err_pos(rpt$err_pos),
+        .err_tx(rpt$err_tx),
+        .rx_valid(rpt$rx_valid)
     );
     
     // Update code
     always @(*) begin
-        fld$clock = clock;
-        fpos$clock = clock;
-        pfld$clock = clock;
-        ppos$clock = clock;
-        rtx$clock = clock;
-        dom$clock = clock;
-        crcerr$clock = clock;
-        tid$clock = clock;
-        tdat$clock = clock;
-        tdlc$clock = clock;
-        tide$clock = clock;
-        trtr$clock = clock;
-        rid$clock = clock;
-        rdat$clock = clock;
-        rdlc$clock = clock;
-        rrtr$clock = clock;
-        rext$clock = clock;
-        fdone$clock = clock;
-        eqcnt$clock = clock;
-        eqlast$clock = clock;
-        dafc$clock = clock;
-        dafany$clock = clock;
-        exc1$clock = clock;
-        tecr$clock = clock;
-        recr$clock = clock;
-        runr$clock = clock;
-        rarmed$clock = clock;
-        req$clock = clock;
-        blocked$clock = clock;
-        evr$clock = clock;
-        arbpos_r$clock = clock;
-        errf_r$clock = clock;
-        errp_r$clock = clock;
-        errtx_r$clock = clock;
-        rxide_r$clock = clock;
-        rxrtr_r$clock = clock;
-        rxid_r$clock = clock;
-        rxdlc_r$clock = clock;
-        rxdat_r$clock = clock;
-        fld$d = fld$q;
-        fpos$d = fpos$q;
-        pfld$d = pfld$q;
-        ppos$d = ppos$q;
-        rtx$d = rtx$q;
-        dom$d = dom$q;
-        crcerr$d = crcerr$q;
-        tid$d = tid$q;
-        tdat$d = tdat$q;
-        tdlc$d = tdlc$q;
-        tide$d = tide$q;
-        trtr$d = trtr$q;
-        rid$d = rid$q;
-        rdat$d = rdat$q;
-        rdlc$d = rdlc$q;
-        rrtr$d = rrtr$q;
-        rext$d = rext$q;
-        fdone$d = fdone$q;
-        eqcnt$d = eqcnt$q;
-        eqlast$d = eqlast$q;
-        dafc$d = dafc$q;
-        dafany$d = dafany$q;
-        exc1$d = exc1$q;
-        tecr$d = tecr$q;
-        recr$d = recr$q;
-        runr$d = runr$q;
-        rarmed$d = rarmed$q;
-        req$d = req$q;
-        blocked$d = blocked$q;
-        evr$d = evr$q;
-        arbpos_r$d = arbpos_r$q;
-        errf_r$d = errf_r$q;
-        errp_r$d = errp_r$q;
-        errtx_r$d = errtx_r$q;
-        rxide_r$d = rxide_r$q;
-        rxrtr_r$d = rxrtr_r$q;
-        rxid_r$d = rxid_r$q;
-        rxdlc_r$d = rxdlc_r$q;
-        rxdat_r$d = rxdat_r$q;
-        l_bit = busmon;
-        l_sent = ~dom$q;
-        l_active = (tecr$q < 32'h80) & (recr$q < 32'h80);
-        l_cantx = req$q & ~listen_only;
-        l_nf = fld$q;
-        l_npos = fpos$q;
-        l_posinc = fpos$q + 32'h1;
-        if (fpos$q == 32'hff) begin
-            l_posinc = fpos$q;
-        end
-        l_ndom = 1'b0;
-        l_usetx = 1'b0;
-        l_txv = 1'b1;
-        l_role = rtx$q;
-        l_instf = 1'b0;
-        l_arbf = 1'b0;
-        l_arbstuff = 1'b0;
-        l_adv = 1'b0;
-        l_err = 1'b0;
-        l_errk = 32'h0;
-        l_ovl = 1'b0;
-        l_start = 1'b0;
-        l_sofinit = 1'b0;
-        l_txsof = 1'b0;
-        l_tinc = 1'b0;
-        l_tdec = 1'b0;
-        l_rinc1 = 1'b0;
-        l_rinc8 = 1'b0;
-        l_rok = 1'b0;
-        l_clear = 1'b0;
-        l_deliver = 1'b0;
-        l_crcen = 1'b0;
-        l_crcerr = crcerr$q;
-        l_tid = tid$q;
-        l_tdat = tdat$q;
-        l_tdlc = tdlc$q;
-        l_tide = tide$q;
-        l_trtr = trtr$q;
-        l_rid = rid$q;
-        l_rdat = rdat$q;
-        l_rdlc = rdlc$q;
-        l_rrtr = rrtr$q;
-        l_rext = rext$q;
-        l_fdone = fdone$q;
-        l_eqcnt = eqcnt$q;
-        l_eqlast = eqlast$q;
-        l_dafc = dafc$q;
-        l_dafany = dafany$q;
-        l_exc1 = exc1$q;
-        l_ev = 32'h0;
-        l_tec = tecr$q;
-        l_rec = recr$q;
-        l_runs = runr$q;
-        l_rarmed = rarmed$q | recover;
-        l_nbytes = rdlc$q;
-        l_nbits = 32'h0;
-        l_shamt = 32'h0;
-        l_arbpos = 32'h0;
-        fld$d = fld$q;
-        fpos$d = fpos$q;
-        pfld$d = pfld$q;
-        ppos$d = ppos$q;
-        rtx$d = rtx$q;
-        dom$d = dom$q;
-        crcerr$d = crcerr$q;
-        tid$d = tid$q;
-        tdat$d = tdat$q;
-        tdlc$d = tdlc$q;
-        tide$d = tide$q;
-        trtr$d = trtr$q;
-        rid$d = rid$q;
-        rdat$d = rdat$q;
-        rdlc$d = rdlc$q;
-        rrtr$d = rrtr$q;
-        rext$d = rext$q;
-        fdone$d = fdone$q;
-        eqcnt$d = eqcnt$q;
-        eqlast$d = eqlast$q;
-        dafc$d = dafc$q;
-        dafany$d = dafany$q;
-        exc1$d = exc1$q;
-        tecr$d = tecr$q;
-        recr$d = recr$q;
-        runr$d = runr$q;
-        rarmed$d = rarmed$q | recover;
-        evr$d = 32'h0;
-        arbpos_r$d = arbpos_r$q;
-        errf_r$d = errf_r$q;
-        errp_r$d = errp_r$q;
-        errtx_r$d = errtx_r$q;
-        rxide_r$d = rxide_r$q;
-        rxrtr_r$d = rxrtr_r$q;
-        rxid_r$d = rxid_r$q;
-        rxdlc_r$d = rxdlc_r$q;
-        rxdat_r$d = rxdat_r$q;
-        blocked$d = blocked$q;
-        if (tx_abort) begin
-            blocked$d = 1'b1;
-        end
-        if (~tx_req) begin
-            blocked$d = 1'b0;
-        end
-        req$d = tx_req & ~blocked$q & ~tx_abort;
-        if (l_rdlc[32'h3]) begin
-            l_nbytes = 32'h8;
-        end
-        case (fld$q)
-            Field$Sof:
-                begin
-                    l_instf = 1'b1;
-                end
-            Field$Ident:
-                begin
-                    l_instf = 1'b1;
-                end
-            Field$Srr:
-                begin
-                    l_instf = 1'b1;
-                end
-            Field$Ide:
-                begin
-                    l_instf = 1'b1;
-                end
-            Field$Rtr:
-                begin
-                    l_instf = 1'b1;
-                end
-            Field$ExIdent:
-                begin
-                    l_instf = 1'b1;
-                end
-            Field$Resv:
-                begin
-                    l_instf = 1'b1;
-                end
-            Field$Dlc:
-                begin
-                    l_instf = 1'b1;
-                end
-            Field$Data:
-                begin
-                    l_instf = 1'b1;
-                end
-            Field$Crc:
-                begin
-                    l_instf = 1'b1;
-                end
-            default:
-                begin
-                end
-        endcase
-        l_curstf = dstf$next_is_stuff & (l_instf | (fld$q == Field$CrcDel));
-        l_instf = l_instf | l_curstf;
-        l_dfld = fld$q;
-        l_dpos = fpos$q;
-        if (l_curstf) begin
-            l_dfld = pfld$q;
-            l_dpos = ppos$q;
-        end
-        drive = ~dom$q;
-        if (l_curstf) begin
-            drive = ~rtx$q | dstf$stuff_level;
-        end
-        if (listen_only) begin
-            drive = 1'b1;
-        end
-        l_sent = drive;
-        hs_en = 1'b0;
-        field = 32'h0;
-        case (l_dfld)
-            Field$Reset:
-                begin
-                    field = 32'h0;
-                    hs_en = 1'b1;
-                end
-            Field$WaitIdle:
-                begin
-                    field = 32'h1;
-                    hs_en = 1'b1;
-                end
-            Field$Idle:
-                begin
-                    field = 32'h2;
-                    hs_en = 1'b1;
-                end
-            Field$BusOff:
-                begin
-                    field = 32'h3;
-                    hs_en = 1'b1;
-                end
-            Field$Sof:
-                begin
-                    field = 32'h4;
-                    hs_en = 1'b1;
-                end
-            Field$Ident:
-                begin
-                    field = 32'h5;
-                end
-            Field$Srr:
-                begin
-                    field = 32'h6;
-                end
-            Field$Ide:
-                begin
-                    field = 32'h7;
-                end
-            Field$Rtr:
-                begin
-                    field = 32'h8;
-                end
-            Field$ExIdent:
-                begin
-                    field = 32'h9;
-                end
-            Field$Resv:
-                begin
-                    field = 32'ha;
-                end
-            Field$Dlc:
-                begin
-                    field = 32'hb;
-                end
-            Field$Data:
-                begin
-                    field = 32'hc;
-                end
-            Field$Crc:
-                begin
-                    field = 32'hd;
-                end
-            Field$CrcDel:
-                begin
-                    field = 32'he;
-                end
-            Field$AckSlot:
-                begin
-                    field = 32'hf;
-                end
-            Field$AckDel:
-                begin
-                    field = 32'h10;
-                end
-            Field$Eof:
-                begin
-                    field = 32'h11;
-                end
-            Field$ActFlag:
-                begin
-                    field = 32'h12;
-                end
-            Field$PasFlag:
-                begin
-                    field = 32'h13;
-                end
-            Field$OvlFlag:
-                begin
-                    field = 32'h14;
-                end
-            Field$ErrDel:
-                begin
-                    field = 32'h15;
-                end
-            Field$OvlDel:
-                begin
-                    field = 32'h16;
-                end
-            Field$Inter:
-                begin
-                    field = 32'h17;
-                    hs_en = fpos$q == 32'h3;
-                end
-            Field$Suspend:
-                begin
-                    field = 32'h18;
-                    hs_en = 1'b1;
-                end
-            default:
-                begin
-                end
-        endcase
-        case (l_dfld)
-            Field$Ident:
-                begin
-                    l_arbf = 1'b1;
-                    l_arbstuff = 1'b1;
-                    l_arbpos = ((l_dpos) & 6'h3f);
-                end
-            Field$Srr:
-                begin
-                    l_arbf = 1'b1;
-                    l_arbstuff = 1'b1;
-                    l_arbpos = 32'hc;
-                end
-            Field$Ide:
-                begin
-                    l_arbf = 1'b1;
-                    l_arbstuff = rext$q;
-                    l_arbpos = 32'hd;
-                end
-            Field$Rtr:
-                begin
-                    l_arbf = 1'b1;
-                    l_arbstuff = ~rext$q;
-                    l_arbpos = 32'hc;
-                    if (rext$q) begin
-                        l_arbpos = 32'h20;
-                    end
-                end
-            Field$ExIdent:
-                begin
-                    l_arbf = 1'b1;
-                    l_arbstuff = 1'b1;
-                    l_arbpos = ((l_dpos) & 6'h3f) + 32'hd;
-                end
-            default:
-                begin
-                end
-        endcase
-        if (sample) begin
-            l_ev = (l_ev & ~(1 << (32'h13)) | ((1'b1) << (32'h13)));
-            if (l_instf) begin
-                if (l_curstf) begin
-                    l_ndom = dom$q;
-                    if (dstf$stuff_error) begin
-                        l_err = 1'b1;
-                        if (rtx$q) begin
-                            if (l_bit & ~l_sent) begin
-                                l_errk = (l_errk & ~(1 << (32'h0)) | ((1'b1) << (32'h0)));
-                                l_tinc = 1'b1;
-                            end
-                            else begin
-                                l_errk = (l_errk & ~(1 << (32'h1)) | ((1'b1) << (32'h1)));
-                                if (l_arbstuff) begin
-                                    l_ev = (l_ev & ~(1 << (32'hf)) | ((1'b1) << (32'hf)));
-                                end
-                                else begin
-                                    l_tinc = 1'b1;
-                                end
-                            end
-                        end
-                        else begin
-                            l_errk = (l_errk & ~(1 << (32'h1)) | ((1'b1) << (32'h1)));
-                            l_rinc1 = 1'b1;
-                        end
-                    end
-                end
-                else begin
-                    if (rtx$q & (l_bit != l_sent)) begin
-                        if (l_arbf & l_sent) begin
-                            l_role = 1'b0;
-                            l_ev = (l_ev & ~(1 << (32'h1)) | ((1'b1) << (32'h1)));
-                            if (single_shot) begin
-                                blocked$d = 1'b1;
-                            end
-                        end
-                        else begin
-                            l_err = 1'b1;
-                            l_errk = (l_errk & ~(1 << (32'h0)) | ((1'b1) << (32'h0)));
-                            l_tinc = 1'b1;
-                        end
-                    end
-                    if (~l_err) begin
-                        l_crcen = 1'b1;
-                        case (fld$q)
-                            Field$Sof:
-                                begin
-                                    l_sofinit = 1'b1;
-                                end
-                            Field$Ident:
-                                begin
-                                    l_rid = rid$q << 32'h1;
-                                    if (l_bit) begin
-                                        l_rid = l_rid | 32'h1;
-                                    end
-                                    l_tid = tid$q << 32'h1;
-                                end
-                            Field$ExIdent:
-                                begin
-                                    l_rid = rid$q << 32'h1;
-                                    if (l_bit) begin
-                                        l_rid = l_rid | 32'h1;
-                                    end
-                                    l_tid = tid$q << 32'h1;
-                                end
-                            Field$Srr:
-                                begin
-                                    l_rrtr = l_bit;
-                                end
-                            Field$Rtr:
-                                begin
-                                    l_rrtr = l_bit;
-                                end
-                            Field$Ide:
-                                begin
-                                    l_rext = l_bit;
-                                end
-                            Field$Dlc:
-                                begin
-                                    l_rdlc = rdlc$q << 32'h1;
-                                    if (l_bit) begin
-                                        l_rdlc = l_rdlc | 32'h1;
-                                    end
-                                    l_tdlc = tdlc$q << 32'h1;
-                                end
-                            Field$Data:
-                                begin
-                                    l_rdat = rdat$q << 32'h1;
-                                    if (l_bit) begin
-                                        l_rdat = l_rdat | 32'h1;
-                                    end
-                                    l_tdat = tdat$q << 32'h1;
-                                end
-                            Field$Crc:
-                                begin
-                                    if ((fpos$q == 32'hf) & |crcb$crc_next) begin
-                                        l_crcerr = 1'b1;
-                                    end
-                                end
-                            default:
-                                begin
-                                end
-                        endcase
-                        l_adv = 1'b1;
-                    end
-                end
-            end
-            else begin
-                case (fld$q)
-                    Field$Reset:
-                        begin
-                            l_nf = Field$WaitIdle;
-                            l_npos = 32'h1;
-                        end
-                    Field$WaitIdle:
-                        begin
-                            if (~l_bit) begin
-                                l_npos = 32'h1;
-                            end
-                            else if (fpos$q == 32'hb) begin
-                                l_ev = (l_ev & ~(1 << (32'h12)) | ((1'b1) << (32'h12)));
-                                l_start = 1'b1;
-                            end
-                            else begin
-                                l_npos = l_posinc;
-                            end
-                        end
-                    Field$Idle:
-                        begin
-                            if (~l_bit) begin
-                                l_sofinit = 1'b1;
-                                l_role = 1'b0;
-                            end
-                            else begin
-                                l_start = 1'b1;
-                            end
-                        end
-                    Field$BusOff:
-                        begin
-                            if ((host_recovery & ~(rarmed$q | recover)) | ~l_bit) begin
-                                l_npos = 32'h1;
-                            end
-                            else if (fpos$q == 32'hb) begin
-                                l_ev = (l_ev & ~(1 << (32'h10)) | ((1'b1) << (32'h10)));
-                                l_npos = 32'h1;
-                                l_runs = runr$q + 32'h1;
-                                if (runr$q == 32'h7f) begin
-                                    l_ev = (l_ev & ~(1 << (32'h11)) | ((1'b1) << (32'h11)));
-                                    l_clear = 1'b1;
-                                    l_runs = 32'h0;
-                                    l_rarmed = 1'b0;
-                                    l_start = 1'b1;
-                                end
-                            end
-                            else begin
-                                l_npos = l_posinc;
-                            end
-                        end
-                    Field$CrcDel:
-                        begin
-                            if (~l_bit) begin
-                                l_err = 1'b1;
-                                l_errk = (l_errk & ~(1 << (32'h3)) | ((1'b1) << (32'h3)));
-                                l_tinc = rtx$q;
-                                l_rinc1 = ~rtx$q;
-                            end
-                            else begin
-                                l_nf = Field$AckSlot;
-                                l_npos = 32'h1;
-                                l_ndom = ~rtx$q & ~crcerr$q & ~listen_only;
-                            end
-                        end
-                    Field$AckSlot:
-                        begin
-                            l_nf = Field$AckDel;
-                            l_npos = 32'h1;
-                            if (l_bit) begin
-                                if (rtx$q) begin
-                                    if (~self_test) begin
-                                        l_err = 1'b1;
-                                        l_errk = (l_errk & ~(1 << (32'h4)) | ((1'b1) << (32'h4)));
-                                        if (l_active) begin
-                                            l_tinc = 1'b1;
-                                        end
-                                        else begin
-                                            l_exc1 = 1'b1;
-                                        end
-                                    end
-                                end
-                                else if (dom$q) begin
-                                    l_err = 1'b1;
-                                    l_errk = (l_errk & ~(1 << (32'h0)) | ((1'b1) << (32'h0)));
-                                    l_rinc1 = 1'b1;
-                                end
-                            end
-                        end
-                    Field$AckDel:
-                        begin
-                            if (~l_bit) begin
-                                l_err = 1'b1;
-                                l_errk = (l_errk & ~(1 << (32'h3)) | ((1'b1) << (32'h3)));
-                                l_tinc = rtx$q;
-                                l_rinc1 = ~rtx$q;
-                            end
-                            if (~rtx$q & crcerr$q) begin
-                                l_err = 1'b1;
-                                l_errk = 32'h0;
-                                l_errk = (l_errk & ~(1 << (32'h2)) | ((1'b1) << (32'h2)));
-                                l_rinc1 = 1'b1;
-                            end
-                            l_nf = Field$Eof;
-                            l_npos = 32'h1;
-                        end
-                    Field$Eof:
-                        begin
-                            l_npos = l_posinc;
-                            if (fpos$q == 32'h7) begin
-                                l_nf = Field$Inter;
-                                l_npos = 32'h1;
-                                if (rtx$q) begin
-                                    if (~l_bit) begin
-                                        l_err = 1'b1;
-                                        l_errk = (l_errk & ~(1 << (32'h3)) | ((1'b1) << (32'h3)));
-                                        l_tinc = 1'b1;
-                                    end
-                                    else begin
-                                        l_tdec = 1'b1;
-                                        l_ev = (l_ev & ~(1 << (32'hc)) | ((1'b1) << (32'hc)));
-                                        blocked$d = 1'b1;
-                                    end
-                                end
-                                else begin
-                                    l_deliver = 1'b1;
-                                    l_ev = (l_ev & ~(1 << (32'hd)) | ((1'b1) << (32'hd)));
-                                    if (~l_bit) begin
-                                        l_ovl = 1'b1;
-                                    end
-                                    else begin
-                                        l_rok = 1'b1;
-                                    end
-                                end
-                            end
-                            else if (~l_bit) begin
-                                l_err = 1'b1;
-                                l_errk = (l_errk & ~(1 << (32'h3)) | ((1'b1) << (32'h3)));
-                                l_tinc = rtx$q;
-                                l_rinc1 = ~rtx$q;
-                            end
-                        end
-                    Field$ActFlag:
-                        begin
-                            if (~fdone$q) begin
-                                if (l_bit & ~l_sent) begin
-                                    l_err = 1'b1;
-                                    l_errk = (l_errk & ~(1 << (32'h0)) | ((1'b1) << (32'h0)));
-                                    l_tinc = rtx$q;
-                                    l_rinc8 = ~rtx$q;
-                                end
-                                else begin
-                                    l_npos = l_posinc;
-                                    l_ndom = 1'b1;
-                                    if (fpos$q == 32'h6) begin
-                                        l_fdone = 1'b1;
-                                        l_ndom = 1'b0;
-                                        l_dafc = 32'h0;
-                                        l_dafany = 1'b0;
-                                    end
-                                end
-                            end
-                            else if (l_bit) begin
-                                l_nf = Field$ErrDel;
-                                l_npos = 32'h2;
-                            end
-                            else begin
-                                l_npos = l_posinc;
-                                l_ev = (l_ev & ~(1 << (32'hb)) | ((1'b1) << (32'hb)));
-                                l_dafany = 1'b1;
-                                l_dafc = dafc$q + 32'h1;
-                                if (~dafany$q & ~rtx$q) begin
-                                    l_rinc8 = 1'b1;
-                                end
-                                if (dafc$q == 32'h7) begin
-                                    l_tinc = rtx$q;
-                                    l_rinc8 = ~rtx$q;
-                                end
-                            end
-                        end
-                    Field$OvlFlag:
-                        begin
-                            if (~fdone$q) begin
-                                if (l_bit & ~l_sent) begin
-                                    l_err = 1'b1;
-                                    l_errk = (l_errk & ~(1 << (32'h0)) | ((1'b1) << (32'h0)));
-                                    l_tinc = rtx$q;
-                                    l_rinc8 = ~rtx$q;
-                                end
-                                else begin
-                                    l_npos = l_posinc;
-                                    l_ndom = 1'b1;
-                                    if (fpos$q == 32'h6) begin
-                                        l_fdone = 1'b1;
-                                        l_ndom = 1'b0;
-                                        l_dafc = 32'h0;
-                                        l_dafany = 1'b0;
-                                    end
-                                end
-                            end
-                            else if (l_bit) begin
-                                l_nf = Field$OvlDel;
-                                l_npos = 32'h2;
-                            end
-                            else begin
-                                l_npos = l_posinc;
-                                l_ev = (l_ev & ~(1 << (32'hb)) | ((1'b1) << (32'hb)));
-                                l_dafany = 1'b1;
-                                l_dafc = dafc$q + 32'h1;
-                                if (dafc$q == 32'h7) begin
-                                    l_tinc = rtx$q;
-                                    l_rinc8 = ~rtx$q;
-                                end
-                            end
-                        end
-                    Field$PasFlag:
-                        begin
-                            if (~fdone$q) begin
-                                l_npos = l_posinc;
-                                if (fpos$q == 32'h1) begin
-                                    l_eqcnt = 32'h1;
-                                    l_eqlast = l_bit;
-                                end
-                                else if (l_bit == eqlast$q) begin
-                                    l_eqcnt = eqcnt$q + 32'h1;
-                                end
-                                else begin
-                                    l_eqcnt = 32'h1;
-                                    l_eqlast = l_bit;
-                                end
-                                if (exc1$q & ~l_bit) begin
-                                    l_exc1 = 1'b0;
-                                    l_tinc = 1'b1;
-                                end
-                                if (l_eqcnt == 32'h6) begin
-                                    l_fdone = 1'b1;
-                                    l_dafc = 32'h0;
-                                    l_dafany = 1'b0;
-                                    if (l_exc1) begin
-                                        l_ev = (l_ev & ~(1 << (32'he)) | ((1'b1) << (32'he)));
-                                    end
-                                    l_exc1 = 1'b0;
-                                end
-                            end
-                            else if (l_bit) begin
-                                l_nf = Field$ErrDel;
-                                l_npos = 32'h2;
-                            end
-                            else begin
-                                l_npos = l_posinc;
-                                l_ev = (l_ev & ~(1 << (32'hb)) | ((1'b1) << (32'hb)));
-                                l_dafany = 1'b1;
-                                l_dafc = dafc$q + 32'h1;
-                                if (~dafany$q & ~rtx$q) begin
-                                    l_rinc8 = 1'b1;
-                                end
-                                if (dafc$q == 32'h7) begin
-                                    l_tinc = rtx$q;
-                                    l_rinc8 = ~rtx$q;
-                                end
-                            end
-                        end
-                    Field$ErrDel:
-                        begin
-                            l_npos = l_posinc;
-                            if (fpos$q == 32'h8) begin
-                                l_nf = Field$Inter;
-                                l_npos = 32'h1;
-                                if (~l_bit) begin
-                                    l_ovl = 1'b1;
-                                end
-                            end
-                            else if (~l_bit) begin
-                                l_err = 1'b1;
-                                l_errk = (l_errk & ~(1 << (32'h3)) | ((1'b1) << (32'h3)));
-                                l_tinc = rtx$q;
-                                l_rinc1 = ~rtx$q;
-                            end
-                        end
-                    Field$OvlDel:
-                        begin
-                            l_npos = l_posinc;
-                            if (fpos$q == 32'h8) begin
-                                l_nf = Field$Inter;
-                                l_npos = 32'h1;
-                                if (~l_bit) begin
-                                    l_ovl = 1'b1;
-                                end
-                            end
-                            else if (~l_bit) begin
-                                l_err = 1'b1;
-                                l_errk = (l_errk & ~(1 << (32'h3)) | ((1'b1) << (32'h3)));
-                                l_tinc = rtx$q;
-                                l_rinc1 = ~rtx$q;
-                            end
-                        end
-                    Field$Inter:
-                        begin
-                            l_npos = l_posinc;
-                            if (fpos$q == 32'h3) begin
-                                if (~l_bit) begin
-                                    l_sofinit = 1'b1;
-                                    if (l_cantx & ~(rtx$q & ~l_active)) begin
-                                        l_role = 1'b1;
-                                        l_txsof = 1'b1;
-                                    end
-                                    else begin
-                                        l_role = 1'b0;
-                                    end
-                                end
-                                else if (rtx$q & ~l_active) begin
-                                    l_nf = Field$Suspend;
-                                    l_npos = 32'h1;
-                                end
-                                else begin
-                                    l_start = 1'b1;
-                                end
-                            end
-                            else if (~l_bit) begin
-                                l_ovl = 1'b1;
-                            end
-                        end
-                    Field$Suspend:
-                        begin
-                            l_npos = l_posinc;
-                            if (~l_bit) begin
-                                l_sofinit = 1'b1;
-                                l_role = 1'b0;
-                            end
-                            else if (fpos$q == 32'h8) begin
-                                l_start = 1'b1;
-                            end
-                        end
-                    default:
-                        begin
-                        end
-                endcase
-            end
-            if (l_adv) begin
-                l_usetx = 1'b1;
-                l_npos = l_posinc;
-                if (l_rdlc[32'h3]) begin
-                    l_nbytes = 32'h8;
-                end
-                else begin
-                    l_nbytes = l_rdlc;
-                end
-                l_nbits = ((l_nbytes) & 8'hff) << 32'h3;
-                case (fld$q)
-                    Field$Sof:
-                        begin
-                            l_nf = Field$Ident;
-                            l_npos = 32'h1;
-                        end
-                    Field$Ident:
-                        begin
-                            if (fpos$q == 32'hb) begin
-                                l_npos = 32'h1;
-                                if (l_role & tide$q) begin
-                                    l_nf = Field$Srr;
-                                end
-                                else begin
-                                    l_nf = Field$Rtr;
-                                end
-                            end
-                        end
-                    Field$Srr:
-                        begin
-                            l_nf = Field$Ide;
-                            l_npos = 32'h1;
-                        end
-                    Field$Rtr:
-                        begin
-                            l_npos = 32'h1;
-                            if (rext$q) begin
-                                l_nf = Field$Resv;
-                            end
-                            else begin
-                                l_nf = Field$Ide;
-                            end
-                        end
-                    Field$Ide:
-                        begin
-                            l_npos = 32'h1;
-                            if (l_rext) begin
-                                l_nf = Field$ExIdent;
-                            end
-                            else begin
-                                l_nf = Field$Resv;
-                            end
-                        end
-                    Field$ExIdent:
-                        begin
-                            if (fpos$q == 32'h12) begin
-                                l_nf = Field$Rtr;
-                                l_npos = 32'h1;
-                            end
-                        end
-                    Field$Resv:
-                        begin
-                            if (~(rext$q & (fpos$q == 32'h1))) begin
-                                l_nf = Field$Dlc;
-                                l_npos = 32'h1;
-                            end
-                        end
-                    Field$Dlc:
-                        begin
-                            if (fpos$q == 32'h4) begin
-                                l_npos = 32'h1;
-                                if (l_rrtr | (l_nbytes == 32'h0)) begin
-                                    l_nf = Field$Crc;
-                                end
-                                else begin
-                                    l_nf = Field$Data;
-                                end
-                            end
-                        end
-                    Field$Data:
-                        begin
-                            if (fpos$q == l_nbits) begin
-                                l_nf = Field$Crc;
-                                l_npos = 32'h1;
-                            end
-                        end
-                    Field$Crc:
-                        begin
-                            if (fpos$q == 32'hf) begin
-                                l_nf = Field$CrcDel;
-                                l_npos = 32'h1;
-                                l_usetx = 1'b0;
-                            end
-                        end
-                    default:
-                        begin
-                        end
-                endcase
-            end
-            if (l_sofinit) begin
-                l_ev = (l_ev & ~(1 << (32'h0)) | ((1'b1) << (32'h0)));
-                l_crcerr = 1'b0;
-                l_rid = 32'h0;
-                l_rdat = 32'h0;
-                l_rdlc = 32'h0;
-                l_rrtr = 1'b0;
-                l_rext = 1'b0;
-                l_nf = Field$Ident;
-                l_npos = 32'h1;
-                l_usetx = 1'b1;
-            end
-            if (l_start) begin
-                if (l_cantx) begin
-                    l_nf = Field$Sof;
-                    l_npos = 32'h1;
-                    l_role = 1'b1;
-                    l_txsof = 1'b1;
-                    l_usetx = 1'b1;
-                end
-                else begin
-                    l_nf = Field$Idle;
-                    l_npos = 32'h1;
-                    if (fld$q == Field$Idle) begin
-                        l_npos = l_posinc;
-                    end
-                end
-            end
-            if (l_txsof) begin
-                l_tide = tx_ide;
-                l_trtr = tx_rtr;
-                if (tx_ide) begin
-                    l_tid = tx_id;
-                end
-                else begin
-                    l_tid = tx_id << 32'h12;
-                end
-                l_tdlc = tx_dlc;
-                l_tdat = tx_data;
-            end
-            if (l_usetx) begin
-                case (l_nf)
-                    Field$Sof:
-                        begin
-                            l_txv = 1'b0;
-                        end
-                    Field$Ident:
-                        begin
-                            l_txv = l_tid[32'h1c];
-                        end
-                    Field$ExIdent:
-                        begin
-                            l_txv = l_tid[32'h1c];
-                        end
-                    Field$Srr:
-                        begin
-                            l_txv = 1'b1;
-                        end
-                    Field$Ide:
-                        begin
-                            l_txv = l_tide;
-                        end
-                    Field$Rtr:
-                        begin
-                            l_txv = l_trtr;
-                        end
-                    Field$Resv:
-                        begin
-                            l_txv = 1'b0;
-                        end
-                    Field$Dlc:
-                        begin
-                            l_txv = l_tdlc[32'h3];
-                        end
-                    Field$Data:
-                        begin
-                            l_txv = l_tdat[32'h3f];
-                        end
-                    Field$Crc:
-                        begin
-                            l_txv = crcb$crc_next[32'he];
-                        end
-                    default:
-                        begin
-                            l_txv = 1'b1;
-                        end
-                endcase
-                l_ndom = l_role & ~l_txv;
-            end
-            if (l_err) begin
-                l_npos = 32'h1;
-                l_fdone = 1'b0;
-                l_crcerr = 1'b0;
-                l_dafc = 32'h0;
-                l_dafany = 1'b0;
-                l_ev = l_ev | (((l_errk) & 20'hfffff) << 32'h2);
-                if (l_active) begin
-                    l_nf = Field$ActFlag;
-                    l_ndom = 1'b1;
-                    l_ev = (l_ev & ~(1 << (32'h7)) | ((1'b1) << (32'h7)));
-                end
-                else begin
-                    l_nf = Field$PasFlag;
-                    l_ndom = 1'b0;
-                    l_ev = (l_ev & ~(1 << (32'h8)) | ((1'b1) << (32'h8)));
-                end
-                if (rtx$q & single_shot) begin
-                    blocked$d = 1'b1;
-                end
-                errf_r$d = field;
-                errp_r$d = l_dpos;
-                errtx_r$d = rtx$q;
-            end
-            else if (l_ovl) begin
-                l_nf = Field$OvlFlag;
-                l_npos = 32'h1;
-                l_ndom = 1'b1;
-                l_fdone = 1'b0;
-                l_dafc = 32'h0;
-                l_dafany = 1'b0;
-                l_ev = (l_ev & ~(1 << (32'ha)) | ((1'b1) << (32'ha)));
-                l_ev = (l_ev & ~(1 << (32'h9)) | ((1'b1) << (32'h9)));
-            end
-            if (listen_only) begin
-                l_tec = tecr$q;
-                l_rec = recr$q;
-            end
-            else if (l_clear) begin
-                l_tec = 32'h0;
-                l_rec = 32'h0;
-            end
-            else begin
-                if (l_tinc) begin
-                    l_tec = tecr$q + 32'h8;
-                end
-                else if (l_tdec & (tecr$q != 32'h0)) begin
-                    l_tec = tecr$q - 32'h1;
-                end
-                if (recr$q < 32'h80) begin
-                    if (l_rinc8) begin
-                        l_rec = recr$q + 32'h8;
-                    end
-                    else if (l_rinc1) begin
-                        l_rec = recr$q + 32'h1;
-                    end
-                    else if (l_rok & (recr$q != 32'h0)) begin
-                        l_rec = recr$q - 32'h1;
-                    end
-                end
-                else if (l_rok) begin
-                    l_rec = 32'h7f;
-                end
-            end
-            if (l_tec[32'h8] & (fld$q != Field$BusOff)) begin
-                l_ev = (l_ev & ~(1 << (32'h7)) | ((1'b0) << (32'h7)));
-                l_ev = (l_ev & ~(1 << (32'h8)) | ((1'b0) << (32'h8)));
-                l_ev = (l_ev & ~(1 << (32'h9)) | ((1'b0) << (32'h9)));
-                l_nf = Field$BusOff;
-                l_npos = 32'h1;
-                l_ndom = 1'b0;
-                l_runs = 32'h0;
-                l_rarmed = 1'b0;
-            end
-            if (l_deliver) begin
-                rxide_r$d = rext$q;
-                rxrtr_r$d = rrtr$q;
-                rxid_r$d = rid$q;
-                rxdlc_r$d = rdlc$q;
-                l_shamt = ((l_nbytes) & 6'h3f) << 32'h3;
-                l_shamt = (~l_shamt) + 32'h1;
-                if (rrtr$q | (l_nbytes == 32'h0)) begin
-                    rxdat_r$d = 32'h0;
-                end
-                else begin
-                    rxdat_r$d = rdat$q << l_shamt;
-                end
-            end
-            if (l_ev[32'h1]) begin
-                arbpos_r$d = l_arbpos;
-            end
-            if (~l_curstf) begin
-                pfld$d = fld$q;
-                ppos$d = fpos$q;
-            end
-            fld$d = l_nf;
-            fpos$d = l_npos;
-            rtx$d = l_role;
-            dom$d = l_ndom;
-            crcerr$d = l_crcerr;
-            tid$d = l_tid;
-            tdat$d = l_tdat;
-            tdlc$d = l_tdlc;
-            tide$d = l_tide;
-            trtr$d = l_trtr;
-            rid$d = l_rid;
-            rdat$d = l_rdat;
-            rdlc$d = l_rdlc;
-            rrtr$d = l_rrtr;
-            rext$d = l_rext;
-            fdone$d = l_fdone;
-            eqcnt$d = l_eqcnt;
-            eqlast$d = l_eqlast;
-            dafc$d = l_dafc;
-            dafany$d = l_dafany;
-            exc1$d = l_exc1;
-            tecr$d = l_tec;
-            recr$d = l_rec;
-            runr$d = l_runs;
-            rarmed$d = l_rarmed;
-            evr$d = l_ev;
-        end
         dstf$clock = clock;
         dstf$reset = reset;
         dstf$en = sample;
         dstf$din = busmon;
-        dstf$active = l_instf | l_sofinit;
+        dstf$active = dec$stuffed | seq$sofinit;
         crcb$clock = clock;
         crcb$reset = reset;
         crcb$din = busmon;
-        crcb$en = sample & l_crcen;
-        crcb$clear = sample & l_sofinit;
+        crcb$en = sample & frame$adv;
+        crcb$clear = sample & seq$sofinit;
+        dec$fld = seq$fld;
+        dec$fpos = seq$fpos;
+        dec$pfld = seq$pfld;
+        dec$ppos = seq$ppos;
+        dec$ext = rxf$ext;
+        dec$tx_role = seq$tx_role;
+        dec$dom = seq$dom;
+        dec$listen_only = listen_only;
+        dec$next_is_stuff = dstf$next_is_stuff;
+        dec$stuff_level = dstf$stuff_level;
+        frame$clock = clock;
+        frame$reset = reset;
+        frame$sample = sample;
+        frame$rxbit = busmon;
+        frame$sent = dec$drive;
+        frame$fld = seq$fld;
+        frame$fpos = seq$fpos;
+        frame$tx_role = seq$tx_role;
+        frame$dom = seq$dom;
+        frame$listen_only = listen_only;
+        frame$self_test = self_test;
+        frame$active = conf$active;
+        frame$stuffed = dec$stuffed;
+        frame$stuff = dec$stuff;
+        frame$arb = dec$arb;
+        frame$arb_stuff = dec$arb_stuff;
+        frame$stuff_error = dstf$stuff_error;
+        frame$crc_rem = |crcb$crc_next;
+        frame$ext = rxf$ext;
+        frame$rtr = rxf$rtr;
+        frame$dlc_lo_zero = rxf$dlc_lo_zero;
+        frame$data_bits = rxf$data_bits;
+        frame$tx_ide = txq$ide;
+        frame$sofinit = seq$sofinit;
+        frame$err_now = seq$err;
+        flags$clock = clock;
+        flags$reset = reset;
+        flags$sample = sample;
+        flags$rxbit = busmon;
+        flags$sent = dec$drive;
+        flags$fld = seq$fld;
+        flags$fpos = seq$fpos;
+        flags$tx_role = seq$tx_role;
+        flags$flag_start = seq$flag_start;
+        flags$exc1_set = frame$exc1;
+        seq$clock = clock;
+        seq$reset = reset;
+        seq$sample = sample;
+        seq$rxbit = busmon;
+        seq$listen_only = listen_only;
+        seq$host_recovery = host_recovery;
+        seq$cnt_load = cnt_load;
+        seq$tec_in = tec_in;
+        seq$stuff = dec$stuff;
+        seq$req = txq$req;
+        seq$active = conf$active;
+        seq$armed = conf$armed;
+        seq$last_run = conf$last_run;
+        seq$busoff = conf$busoff;
+        seq$level = txq$level;
+        seq$f_own = frame$own;
+        seq$f_nf = frame$nf;
+        seq$f_npos = frame$npos;
+        seq$f_ndom = frame$ndom;
+        seq$f_usetx = frame$usetx;
+        seq$f_lost = frame$lost;
+        seq$f_err = frame$err;
+        seq$f_ovl = frame$ovl;
+        seq$f_sof = frame$sof;
+        seq$g_own = flags$own;
+        seq$g_nf = flags$nf;
+        seq$g_npos = flags$npos;
+        seq$g_ndom = flags$ndom;
+        seq$g_err = flags$err;
+        seq$g_ovl = flags$ovl;
+        conf$clock = clock;
+        conf$reset = reset;
+        conf$sample = sample;
+        conf$listen_only = listen_only;
+        conf$recover = recover;
+        conf$tinc = frame$tinc | flags$tinc;
+        conf$tdec = frame$tx_ok;
+        conf$rinc1 = frame$rinc1 | flags$rinc1;
+        conf$rinc8 = flags$rinc8;
+        conf$rok = frame$rok;
+        conf$run = seq$ev_run;
+        conf$in_busoff = seq$in_busoff;
+        conf$cnt_load = cnt_load;
+        conf$tec_in = tec_in;
+        conf$rec_in = rec_in;
+        txq$clock = clock;
+        txq$reset = reset;
+        txq$sample = sample;
+        txq$tx_req = tx_req;
+        txq$tx_abort = tx_abort;
+        txq$single_shot = single_shot;
+        txq$tx_ide = tx_ide;
+        txq$tx_rtr = tx_rtr;
+        txq$tx_id = tx_id;
+        txq$tx_dlc = tx_dlc;
+        txq$tx_data = tx_data;
+        txq$load = seq$txsof;
+        txq$adv = frame$adv;
+        txq$fld = seq$fld;
+        txq$nf = seq$nf_tx;
+        txq$crc_bit = crcb$crc_next[32'he];
+        txq$lost = frame$lost;
+        txq$done = frame$tx_ok;
+        txq$err_now = seq$err;
+        txq$tx_role = seq$tx_role;
+        rxf$clock = clock;
+        rxf$reset = reset;
+        rxf$sample = sample;
+        rxf$rxbit = busmon;
+        rxf$adv = frame$adv;
+        rxf$fld = seq$fld;
+        rxf$sofinit = seq$sofinit;
+        rxf$deliver = frame$rx_ok;
+        rpt$clock = clock;
+        rpt$reset = reset;
+        rpt$sample = sample;
+        rpt$ev_sof = seq$sofinit;
+        rpt$ev_arb_lost = frame$lost;
+        rpt$ev_bit_err = frame$err_bit | flags$err_bit;
+        rpt$ev_stuff_err = frame$err_stuff;
+        rpt$ev_crc_err = frame$err_crc;
+        rpt$ev_form_err = frame$err_form | flags$err_form;
+        rpt$ev_ack_err = frame$err_ack;
+        rpt$ev_aef = seq$ev_aef;
+        rpt$ev_pef = seq$ev_pef;
+        rpt$ev_olf = seq$ev_olf;
+        rpt$ev_ovl = seq$ev_ovl;
+        rpt$ev_daf = flags$daf;
+        rpt$ev_tx_ok = frame$tx_ok;
+        rpt$ev_rx_ok = frame$rx_ok;
+        rpt$ev_exc1 = flags$exc1_met;
+        rpt$ev_exc2 = frame$exc2;
+        rpt$ev_run = seq$ev_run;
+        rpt$ev_recovered = seq$ev_recovered;
+        rpt$ev_integrated = seq$ev_integrated;
+        rpt$err_now = seq$err;
+        rpt$code = dec$code;
+        rpt$pos = dec$pos;
+        rpt$tx_role = seq$tx_role;
+        rpt$arb_pos = dec$arb_pos;
+        drive = dec$drive;
+        hs_en = dec$hs_en;
+        tx_done = rpt$tx_done;
+        arb_lost = rpt$arb_lost;
+        arb_lost_pos = rpt$arb_lost_pos;
+        error = rpt$error;
+        err_kind = rpt$err_kind;
+        err_field = rpt$err_field;
+        err_pos = rpt$err_pos;
+        err_tx = rpt$err_tx;
+        rx_valid = rpt$rx_valid;
+        rx_ide = rxf$rx_ide;
+        rx_rtr = rxf$rx_rtr;
+        rx_id = rxf$rx_id;
+        rx_dlc = rxf$rx_dlc;
+        rx_data = rxf$rx_data;
+        tec = conf$tec;
+        rec = conf$rec;
+        state = conf$state;
+        err_warn = conf$err_warn;
+        tx_rqst = txq$req;
+        field = dec$code;
+        pos = dec$pos;
+        stuff = dec$stuff;
+        role = seq$tx_role;
+        events = rpt$events;
+        runs = conf$runs;
+    end
+    
+endmodule // canstar_cancentrate_core$monitor$fsm
+
+
+module canstar_cancentrate_core$monitor$fsm$conf(clock,reset,sample,listen_only,recover,tinc,tdec,rinc1,rinc8,rok,run,in_busoff,cnt_load,tec_in,rec_in,tec,rec,state,err_warn,active,runs,last_run,armed,busoff);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  reset;
+    input wire  sample;
+    input wire  listen_only;
+    input wire  recover;
+    input wire  tinc;
+    input wire  tdec;
+    input wire  rinc1;
+    input wire  rinc8;
+    input wire  rok;
+    input wire  run;
+    input wire  in_busoff;
+    input wire  cnt_load;
+    input wire  [8:0] tec_in;
+    input wire  [7:0] rec_in;
+    output reg  [8:0] tec;
+    output reg  [7:0] rec;
+    output reg  [1:0] state;
+    output reg  err_warn;
+    output reg  active;
+    output reg  [7:0] runs;
+    output reg  last_run;
+    output reg  armed;
+    output reg  busoff;
+    
+    // Stub signals
+    reg  [8:0] tecr$d;
+    wire  [8:0] tecr$q;
+    reg  tecr$clock;
+    reg  [7:0] recr$d;
+    wire  [7:0] recr$q;
+    reg  recr$clock;
+    reg  [7:0] runr$d;
+    wire  [7:0] runr$q;
+    reg  runr$clock;
+    reg  rarmed$d;
+    wire  rarmed$q;
+    reg  rarmed$clock;
+    
+    // Local signals
+    reg  [8:0] l_tec;
+    reg  [7:0] l_rec;
+    reg  l_clear;
+    
+    // Sub module instances
+    canstar_cancentrate_core$monitor$fsm$conf$tecr tecr(
+        .d(tecr$d),
+        .q(tecr$q),
+        .clock(tecr$clock)
+    );
+    canstar_cancentrate_core$monitor$fsm$conf$recr recr(
+        .d(recr$d),
+        .q(recr$q),
+        .clock(recr$clock)
+    );
+    canstar_cancentrate_core$monitor$fsm$conf$runr runr(
+        .d(runr$d),
+        .q(runr$q),
+        .clock(runr$clock)
+    );
+    canstar_cancentrate_core$monitor$fsm$conf$rarmed rarmed(
+        .d(rarmed$d),
+        .q(rarmed$q),
+        .clock(rarmed$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        tecr$clock = clock;
+        recr$clock = clock;
+        runr$clock = clock;
+        rarmed$clock = clock;
+        tecr$d = tecr$q;
+        recr$d = recr$q;
+        runr$d = runr$q;
+        rarmed$d = rarmed$q;
+        l_clear = run & (runr$q == 32'h7f);
+        l_tec = tecr$q;
+        l_rec = recr$q;
+        if (sample & ~listen_only) begin
+            if (l_clear) begin
+                l_tec = 32'h0;
+                l_rec = 32'h0;
+            end
+            else begin
+                if (tinc) begin
+                    l_tec = tecr$q + 32'h8;
+                end
+                else if (tdec & (tecr$q != 32'h0)) begin
+                    l_tec = tecr$q - 32'h1;
+                end
+                if (recr$q < 32'h80) begin
+                    if (rinc8) begin
+                        l_rec = recr$q + 32'h8;
+                    end
+                    else if (rinc1) begin
+                        l_rec = recr$q + 32'h1;
+                    end
+                    else if (rok & (recr$q != 32'h0)) begin
+                        l_rec = recr$q - 32'h1;
+                    end
+                end
+                else if (rok) begin
+                    l_rec = 32'h7f;
+                end
+            end
+        end
+        busoff = sample & (l_tec >= 32'h100) & ~in_busoff;
+        rarmed$d = rarmed$q | recover;
+        if (sample) begin
+            tecr$d = l_tec;
+            recr$d = l_rec;
+            if (run) begin
+                runr$d = runr$q + 32'h1;
+            end
+            if (l_clear | busoff) begin
+                runr$d = 32'h0;
+                rarmed$d = 1'b0;
+            end
+        end
         if (reset) begin
-            fld$d = Field$WaitIdle;
-            fpos$d = 32'h1;
-            rtx$d = 1'b0;
-            dom$d = 1'b0;
-            crcerr$d = 1'b0;
-            fdone$d = 1'b0;
-            eqcnt$d = 32'h0;
-            eqlast$d = 1'b0;
-            dafc$d = 32'h0;
-            dafany$d = 1'b0;
-            exc1$d = 1'b0;
             tecr$d = 32'h0;
             recr$d = 32'h0;
             runr$d = 32'h0;
             rarmed$d = 1'b0;
-            req$d = 1'b0;
-            blocked$d = 1'b0;
-            evr$d = 32'h0;
-            rext$d = 1'b0;
-            rrtr$d = 1'b0;
         end
         if (cnt_load) begin
             tecr$d = tec_in;
             recr$d = rec_in;
-            if (tec_in[32'h8]) begin
-                fld$d = Field$BusOff;
-                fpos$d = 32'h1;
-                rtx$d = 1'b0;
-                dom$d = 1'b0;
-                runr$d = 32'h0;
-                rarmed$d = 1'b0;
-            end
-            else if (fld$q == Field$BusOff) begin
-                fld$d = Field$WaitIdle;
-                fpos$d = 32'h1;
-                dom$d = 1'b0;
+            if ((tec_in >= 32'h100) | in_busoff) begin
                 runr$d = 32'h0;
                 rarmed$d = 1'b0;
             end
         end
-        pos = l_dpos;
-        stuff = l_curstf;
-        role = rtx$q;
-        events = evr$q;
-        tx_done = evr$q[32'hc];
-        arb_lost = evr$q[32'h1];
-        arb_lost_pos = arbpos_r$q;
-        error = |(evr$q[(32'h2)+:(5)]);
-        err_kind = evr$q[(32'h2)+:(5)];
-        err_field = errf_r$q;
-        err_pos = errp_r$q;
-        err_tx = errtx_r$q;
-        rx_valid = evr$q[32'hd];
-        rx_ide = rxide_r$q;
-        rx_rtr = rxrtr_r$q;
-        rx_id = rxid_r$q;
-        rx_dlc = rxdlc_r$q;
-        rx_data = rxdat_r$q;
         tec = tecr$q;
         rec = recr$q;
         state = 32'h0;
-        if (tecr$q[32'h8]) begin
+        if (tecr$q >= 32'h100) begin
             state = 32'h2;
         end
         else if ((tecr$q >= 32'h80) | (recr$q >= 32'h80)) begin
             state = 32'h1;
         end
         err_warn = (tecr$q >= 32'h60) | (recr$q >= 32'h60);
-        tx_rqst = req$q;
+        active = (tecr$q < 32'h80) & (recr$q < 32'h80);
         runs = runr$q;
+        last_run = runr$q == 32'h7f;
+        armed = rarmed$q | recover;
     end
     
-endmodule // canstar_cancentrate_core$monitor$fsm
+endmodule // canstar_cancentrate_core$monitor$fsm$conf
 
 
-module canstar_cancentrate_core$monitor$fsm$arbpos_r(d,q,clock);
-    
-    // Module arguments
-    input wire  [5:0] d;
-    output reg  [5:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 6'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_cancentrate_core$monitor$fsm$arbpos_r
-
-
-module canstar_cancentrate_core$monitor$fsm$blocked(d,q,clock);
+module canstar_cancentrate_core$monitor$fsm$conf$rarmed(d,q,clock);
     
     // Module arguments
     input wire  d;
@@ -8063,7 +7243,64 @@ module canstar_cancentrate_core$monitor$fsm$blocked(d,q,clock);
        q <= d;
     end
           
-endmodule // canstar_cancentrate_core$monitor$fsm$blocked
+endmodule // canstar_cancentrate_core$monitor$fsm$conf$rarmed
+
+
+module canstar_cancentrate_core$monitor$fsm$conf$recr(d,q,clock);
+    
+    // Module arguments
+    input wire  [7:0] d;
+    output reg  [7:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 8'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$monitor$fsm$conf$recr
+
+
+module canstar_cancentrate_core$monitor$fsm$conf$runr(d,q,clock);
+    
+    // Module arguments
+    input wire  [7:0] d;
+    output reg  [7:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 8'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$monitor$fsm$conf$runr
+
+
+module canstar_cancentrate_core$monitor$fsm$conf$tecr(d,q,clock);
+    
+    // Module arguments
+    input wire  [8:0] d;
+    output reg  [8:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 9'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$monitor$fsm$conf$tecr
 
 
 module canstar_cancentrate_core$monitor$fsm$crcb(clock,reset,clear,en,din,crc,crc_next);
@@ -8139,80 +7376,122 @@ module canstar_cancentrate_core$monitor$fsm$crcb$state(d,q,clock);
 endmodule // canstar_cancentrate_core$monitor$fsm$crcb$state
 
 
-module canstar_cancentrate_core$monitor$fsm$crcerr(d,q,clock);
+module canstar_cancentrate_core$monitor$fsm$dec(fld,fpos,pfld,ppos,ext,tx_role,dom,listen_only,next_is_stuff,stuff_level,stuffed,stuff,code,pos,hs_en,arb,arb_stuff,arb_pos,drive);
     
     // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
+    input wire  [4:0] fld;
+    input wire  [7:0] fpos;
+    input wire  [4:0] pfld;
+    input wire  [7:0] ppos;
+    input wire  ext;
+    input wire  tx_role;
+    input wire  dom;
+    input wire  listen_only;
+    input wire  next_is_stuff;
+    input wire  stuff_level;
+    output reg  stuffed;
+    output reg  stuff;
+    output reg  [4:0] code;
+    output reg  [7:0] pos;
+    output reg  hs_en;
+    output reg  arb;
+    output reg  arb_stuff;
+    output reg  [5:0] arb_pos;
+    output reg  drive;
     
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
+    // Enums
+    localparam Field$Reset = 0;
+    localparam Field$WaitIdle = 1;
+    localparam Field$Idle = 2;
+    localparam Field$BusOff = 3;
+    localparam Field$Sof = 4;
+    localparam Field$Ident = 5;
+    localparam Field$Srr = 6;
+    localparam Field$Ide = 7;
+    localparam Field$Rtr = 8;
+    localparam Field$ExIdent = 9;
+    localparam Field$Resv = 10;
+    localparam Field$Dlc = 11;
+    localparam Field$Data = 12;
+    localparam Field$Crc = 13;
+    localparam Field$CrcDel = 14;
+    localparam Field$AckSlot = 15;
+    localparam Field$AckDel = 16;
+    localparam Field$Eof = 17;
+    localparam Field$ActFlag = 18;
+    localparam Field$PasFlag = 19;
+    localparam Field$OvlFlag = 20;
+    localparam Field$ErrDel = 21;
+    localparam Field$OvlDel = 22;
+    localparam Field$Inter = 23;
+    localparam Field$Suspend = 24;
+    
+    // Local signals
+    reg  l_area;
+    reg  [4:0] l_dfld;
+    
+    // Update code
+    always @(*) begin
+        l_area = (fld == Field$Sof) | (fld == Field$Ident) | (fld == Field$Srr) | (fld == Field$Ide) | (fld == Field$Rtr) | (fld == Field$ExIdent) | (fld == Field$Resv) | (fld == Field$Dlc) | (fld == Field$Data) | (fld == Field$Crc);
+        stuff = next_is_stuff & (l_area | (fld == Field$CrcDel));
+        l_dfld = fld;
+        pos = fpos;
+        drive = ~dom;
+        if (stuff) begin
+            l_dfld = pfld;
+            pos = ppos;
+            drive = ~tx_role | stuff_level;
+        end
+        if (listen_only) begin
+            drive = 1'b1;
+        end
+        arb = 1'b0;
+        arb_stuff = 1'b0;
+        arb_pos = 32'h0;
+        case (l_dfld)
+            Field$Ident:
+                begin
+                    arb = 1'b1;
+                    arb_stuff = 1'b1;
+                    arb_pos = ((pos) & 6'h3f);
+                end
+            Field$Srr:
+                begin
+                    arb = 1'b1;
+                    arb_stuff = 1'b1;
+                    arb_pos = 32'hc;
+                end
+            Field$Ide:
+                begin
+                    arb = 1'b1;
+                    arb_stuff = ext;
+                    arb_pos = 32'hd;
+                end
+            Field$Rtr:
+                begin
+                    arb = 1'b1;
+                    arb_stuff = ~ext;
+                    arb_pos = 32'hc;
+                    if (ext) begin
+                        arb_pos = 32'h20;
+                    end
+                end
+            Field$ExIdent:
+                begin
+                    arb = 1'b1;
+                    arb_stuff = 1'b1;
+                    arb_pos = ((pos) & 6'h3f) + 32'hd;
+                end
+            default:
+                begin
+                end
+        endcase
+        stuffed = l_area | stuff;
+        code = l_dfld;
+        hs_en = (l_dfld == Field$Reset) | (l_dfld == Field$WaitIdle) | (l_dfld == Field$Idle) | (l_dfld == Field$BusOff) | (l_dfld == Field$Sof) | (l_dfld == Field$Suspend) | ((l_dfld == Field$Inter) & (fpos == 32'h3));
     end
     
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_cancentrate_core$monitor$fsm$crcerr
-
-
-module canstar_cancentrate_core$monitor$fsm$dafany(d,q,clock);
-    
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_cancentrate_core$monitor$fsm$dafany
-
-
-module canstar_cancentrate_core$monitor$fsm$dafc(d,q,clock);
-    
-    // Module arguments
-    input wire  [2:0] d;
-    output reg  [2:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 3'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_cancentrate_core$monitor$fsm$dafc
-
-
-module canstar_cancentrate_core$monitor$fsm$dom(d,q,clock);
-    
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_cancentrate_core$monitor$fsm$dom
+endmodule // canstar_cancentrate_core$monitor$fsm$dec
 
 
 module canstar_cancentrate_core$monitor$fsm$dstf(clock,reset,en,din,active,stuff_bit,stuff_error,next_is_stuff,stuff_level);
@@ -8329,7 +7608,288 @@ module canstar_cancentrate_core$monitor$fsm$dstf$lvl(d,q,clock);
 endmodule // canstar_cancentrate_core$monitor$fsm$dstf$lvl
 
 
-module canstar_cancentrate_core$monitor$fsm$eqcnt(d,q,clock);
+module canstar_cancentrate_core$monitor$fsm$flags(clock,reset,sample,rxbit,sent,fld,fpos,tx_role,flag_start,exc1_set,own,nf,npos,ndom,err,err_bit,err_form,tinc,rinc1,rinc8,ovl,daf,exc1_met);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  reset;
+    input wire  sample;
+    input wire  rxbit;
+    input wire  sent;
+    input wire  [4:0] fld;
+    input wire  [7:0] fpos;
+    input wire  tx_role;
+    input wire  flag_start;
+    input wire  exc1_set;
+    output reg  own;
+    output reg  [4:0] nf;
+    output reg  [7:0] npos;
+    output reg  ndom;
+    output reg  err;
+    output reg  err_bit;
+    output reg  err_form;
+    output reg  tinc;
+    output reg  rinc1;
+    output reg  rinc8;
+    output reg  ovl;
+    output reg  daf;
+    output reg  exc1_met;
+    
+    // Enums
+    localparam Field$Reset = 0;
+    localparam Field$WaitIdle = 1;
+    localparam Field$Idle = 2;
+    localparam Field$BusOff = 3;
+    localparam Field$Sof = 4;
+    localparam Field$Ident = 5;
+    localparam Field$Srr = 6;
+    localparam Field$Ide = 7;
+    localparam Field$Rtr = 8;
+    localparam Field$ExIdent = 9;
+    localparam Field$Resv = 10;
+    localparam Field$Dlc = 11;
+    localparam Field$Data = 12;
+    localparam Field$Crc = 13;
+    localparam Field$CrcDel = 14;
+    localparam Field$AckSlot = 15;
+    localparam Field$AckDel = 16;
+    localparam Field$Eof = 17;
+    localparam Field$ActFlag = 18;
+    localparam Field$PasFlag = 19;
+    localparam Field$OvlFlag = 20;
+    localparam Field$ErrDel = 21;
+    localparam Field$OvlDel = 22;
+    localparam Field$Inter = 23;
+    localparam Field$Suspend = 24;
+    
+    // Stub signals
+    reg  fdone$d;
+    wire  fdone$q;
+    reg  fdone$clock;
+    reg  [2:0] eqcnt$d;
+    wire  [2:0] eqcnt$q;
+    reg  eqcnt$clock;
+    reg  eqlast$d;
+    wire  eqlast$q;
+    reg  eqlast$clock;
+    reg  [2:0] dafc$d;
+    wire  [2:0] dafc$q;
+    reg  dafc$clock;
+    reg  dafany$d;
+    wire  dafany$q;
+    reg  dafany$clock;
+    reg  exc1$d;
+    wire  exc1$q;
+    reg  exc1$clock;
+    
+    // Local signals
+    reg  [7:0] l_posinc;
+    reg  l_flag;
+    reg  l_delim;
+    reg  l_errflag;
+    reg  l_fdone;
+    reg  [2:0] l_eqcnt;
+    reg  l_eqlast;
+    reg  [2:0] l_dafc;
+    reg  l_dafany;
+    reg  l_exc1;
+    
+    // Sub module instances
+    canstar_cancentrate_core$monitor$fsm$flags$fdone fdone(
+        .d(fdone$d),
+        .q(fdone$q),
+        .clock(fdone$clock)
+    );
+    canstar_cancentrate_core$monitor$fsm$flags$eqcnt eqcnt(
+        .d(eqcnt$d),
+        .q(eqcnt$q),
+        .clock(eqcnt$clock)
+    );
+    canstar_cancentrate_core$monitor$fsm$flags$eqlast eqlast(
+        .d(eqlast$d),
+        .q(eqlast$q),
+        .clock(eqlast$clock)
+    );
+    canstar_cancentrate_core$monitor$fsm$flags$dafc dafc(
+        .d(dafc$d),
+        .q(dafc$q),
+        .clock(dafc$clock)
+    );
+    canstar_cancentrate_core$monitor$fsm$flags$dafany dafany(
+        .d(dafany$d),
+        .q(dafany$q),
+        .clock(dafany$clock)
+    );
+    canstar_cancentrate_core$monitor$fsm$flags$exc1 exc1(
+        .d(exc1$d),
+        .q(exc1$q),
+        .clock(exc1$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        fdone$clock = clock;
+        eqcnt$clock = clock;
+        eqlast$clock = clock;
+        dafc$clock = clock;
+        dafany$clock = clock;
+        exc1$clock = clock;
+        fdone$d = fdone$q;
+        eqcnt$d = eqcnt$q;
+        eqlast$d = eqlast$q;
+        dafc$d = dafc$q;
+        dafany$d = dafany$q;
+        exc1$d = exc1$q;
+        l_posinc = fpos + 32'h1;
+        if (fpos == 32'hff) begin
+            l_posinc = fpos;
+        end
+        l_errflag = (fld == Field$ActFlag) | (fld == Field$PasFlag);
+        l_flag = sample & (l_errflag | (fld == Field$OvlFlag));
+        l_delim = sample & ((fld == Field$ErrDel) | (fld == Field$OvlDel));
+        own = l_flag | l_delim;
+        nf = fld;
+        npos = fpos;
+        ndom = 1'b0;
+        err = 1'b0;
+        err_bit = 1'b0;
+        err_form = 1'b0;
+        tinc = 1'b0;
+        rinc1 = 1'b0;
+        rinc8 = 1'b0;
+        ovl = 1'b0;
+        daf = 1'b0;
+        exc1_met = 1'b0;
+        l_fdone = fdone$q;
+        l_eqcnt = eqcnt$q;
+        l_eqlast = eqlast$q;
+        l_dafc = dafc$q;
+        l_dafany = dafany$q;
+        l_exc1 = exc1$q | exc1_set;
+        if (l_flag) begin
+            if (~fdone$q) begin
+                npos = l_posinc;
+                if (fld == Field$PasFlag) begin
+                    if (fpos == 32'h1) begin
+                        l_eqcnt = 32'h1;
+                        l_eqlast = rxbit;
+                    end
+                    else if (rxbit == eqlast$q) begin
+                        l_eqcnt = eqcnt$q + 32'h1;
+                    end
+                    else begin
+                        l_eqcnt = 32'h1;
+                        l_eqlast = rxbit;
+                    end
+                    if (exc1$q & ~rxbit) begin
+                        l_exc1 = 1'b0;
+                        tinc = 1'b1;
+                    end
+                    if (l_eqcnt == 32'h6) begin
+                        l_fdone = 1'b1;
+                        exc1_met = l_exc1;
+                        l_exc1 = 1'b0;
+                    end
+                end
+                else if (rxbit & ~sent) begin
+                    err = 1'b1;
+                    err_bit = 1'b1;
+                    tinc = tx_role;
+                    rinc8 = ~tx_role;
+                end
+                else begin
+                    ndom = 1'b1;
+                    if (fpos == 32'h6) begin
+                        l_fdone = 1'b1;
+                        ndom = 1'b0;
+                    end
+                end
+                if (l_fdone) begin
+                    l_dafc = 32'h0;
+                    l_dafany = 1'b0;
+                end
+            end
+            else if (rxbit) begin
+                npos = 32'h2;
+                if (fld == Field$OvlFlag) begin
+                    nf = Field$OvlDel;
+                end
+                else begin
+                    nf = Field$ErrDel;
+                end
+            end
+            else begin
+                npos = l_posinc;
+                daf = 1'b1;
+                l_dafany = 1'b1;
+                l_dafc = dafc$q + 32'h1;
+                if (l_errflag & ~dafany$q & ~tx_role) begin
+                    rinc8 = 1'b1;
+                end
+                if (dafc$q == 32'h7) begin
+                    tinc = tx_role;
+                    rinc8 = ~tx_role;
+                end
+            end
+        end
+        if (l_delim) begin
+            npos = l_posinc;
+            if (fpos == 32'h8) begin
+                nf = Field$Inter;
+                npos = 32'h1;
+                ovl = ~rxbit;
+            end
+            else if (~rxbit) begin
+                err = 1'b1;
+                err_form = 1'b1;
+                tinc = tx_role;
+                rinc1 = ~tx_role;
+            end
+        end
+        if (sample) begin
+            fdone$d = l_fdone & ~flag_start;
+            eqcnt$d = l_eqcnt;
+            eqlast$d = l_eqlast;
+            dafc$d = l_dafc;
+            dafany$d = l_dafany & ~flag_start;
+            if (flag_start) begin
+                dafc$d = 32'h0;
+            end
+            exc1$d = l_exc1;
+        end
+        if (reset) begin
+            fdone$d = 1'b0;
+            eqcnt$d = 32'h0;
+            eqlast$d = 1'b0;
+            dafc$d = 32'h0;
+            dafany$d = 1'b0;
+            exc1$d = 1'b0;
+        end
+    end
+    
+endmodule // canstar_cancentrate_core$monitor$fsm$flags
+
+
+module canstar_cancentrate_core$monitor$fsm$flags$dafany(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$monitor$fsm$flags$dafany
+
+
+module canstar_cancentrate_core$monitor$fsm$flags$dafc(d,q,clock);
     
     // Module arguments
     input wire  [2:0] d;
@@ -8345,10 +7905,29 @@ module canstar_cancentrate_core$monitor$fsm$eqcnt(d,q,clock);
        q <= d;
     end
           
-endmodule // canstar_cancentrate_core$monitor$fsm$eqcnt
+endmodule // canstar_cancentrate_core$monitor$fsm$flags$dafc
 
 
-module canstar_cancentrate_core$monitor$fsm$eqlast(d,q,clock);
+module canstar_cancentrate_core$monitor$fsm$flags$eqcnt(d,q,clock);
+    
+    // Module arguments
+    input wire  [2:0] d;
+    output reg  [2:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 3'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$monitor$fsm$flags$eqcnt
+
+
+module canstar_cancentrate_core$monitor$fsm$flags$eqlast(d,q,clock);
     
     // Module arguments
     input wire  d;
@@ -8364,10 +7943,619 @@ module canstar_cancentrate_core$monitor$fsm$eqlast(d,q,clock);
        q <= d;
     end
           
-endmodule // canstar_cancentrate_core$monitor$fsm$eqlast
+endmodule // canstar_cancentrate_core$monitor$fsm$flags$eqlast
 
 
-module canstar_cancentrate_core$monitor$fsm$errf_r(d,q,clock);
+module canstar_cancentrate_core$monitor$fsm$flags$exc1(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$monitor$fsm$flags$exc1
+
+
+module canstar_cancentrate_core$monitor$fsm$flags$fdone(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$monitor$fsm$flags$fdone
+
+
+module canstar_cancentrate_core$monitor$fsm$frame(clock,reset,sample,rxbit,sent,fld,fpos,tx_role,dom,listen_only,self_test,active,stuffed,stuff,arb,arb_stuff,stuff_error,crc_rem,ext,rtr,dlc_lo_zero,data_bits,tx_ide,sofinit,err_now,own,nf,npos,ndom,usetx,lost,err,err_bit,err_stuff,err_crc,err_form,err_ack,tinc,rinc1,rok,ovl,exc1,exc2,tx_ok,rx_ok,sof,adv);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  reset;
+    input wire  sample;
+    input wire  rxbit;
+    input wire  sent;
+    input wire  [4:0] fld;
+    input wire  [7:0] fpos;
+    input wire  tx_role;
+    input wire  dom;
+    input wire  listen_only;
+    input wire  self_test;
+    input wire  active;
+    input wire  stuffed;
+    input wire  stuff;
+    input wire  arb;
+    input wire  arb_stuff;
+    input wire  stuff_error;
+    input wire  crc_rem;
+    input wire  ext;
+    input wire  rtr;
+    input wire  dlc_lo_zero;
+    input wire  [7:0] data_bits;
+    input wire  tx_ide;
+    input wire  sofinit;
+    input wire  err_now;
+    output reg  own;
+    output reg  [4:0] nf;
+    output reg  [7:0] npos;
+    output reg  ndom;
+    output reg  usetx;
+    output reg  lost;
+    output reg  err;
+    output reg  err_bit;
+    output reg  err_stuff;
+    output reg  err_crc;
+    output reg  err_form;
+    output reg  err_ack;
+    output reg  tinc;
+    output reg  rinc1;
+    output reg  rok;
+    output reg  ovl;
+    output reg  exc1;
+    output reg  exc2;
+    output reg  tx_ok;
+    output reg  rx_ok;
+    output reg  sof;
+    output reg  adv;
+    
+    // Enums
+    localparam Field$Reset = 0;
+    localparam Field$WaitIdle = 1;
+    localparam Field$Idle = 2;
+    localparam Field$BusOff = 3;
+    localparam Field$Sof = 4;
+    localparam Field$Ident = 5;
+    localparam Field$Srr = 6;
+    localparam Field$Ide = 7;
+    localparam Field$Rtr = 8;
+    localparam Field$ExIdent = 9;
+    localparam Field$Resv = 10;
+    localparam Field$Dlc = 11;
+    localparam Field$Data = 12;
+    localparam Field$Crc = 13;
+    localparam Field$CrcDel = 14;
+    localparam Field$AckSlot = 15;
+    localparam Field$AckDel = 16;
+    localparam Field$Eof = 17;
+    localparam Field$ActFlag = 18;
+    localparam Field$PasFlag = 19;
+    localparam Field$OvlFlag = 20;
+    localparam Field$ErrDel = 21;
+    localparam Field$OvlDel = 22;
+    localparam Field$Inter = 23;
+    localparam Field$Suspend = 24;
+    
+    // Stub signals
+    reg  crcerr$d;
+    wire  crcerr$q;
+    reg  crcerr$clock;
+    
+    // Local signals
+    reg  [7:0] l_posinc;
+    reg  l_role;
+    reg  l_form;
+    reg  l_crcset;
+    
+    // Sub module instances
+    canstar_cancentrate_core$monitor$fsm$frame$crcerr crcerr(
+        .d(crcerr$d),
+        .q(crcerr$q),
+        .clock(crcerr$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        crcerr$clock = clock;
+        crcerr$d = crcerr$q;
+        l_posinc = fpos + 32'h1;
+        if (fpos == 32'hff) begin
+            l_posinc = fpos;
+        end
+        own = sample & (stuffed | (fld == Field$CrcDel) | (fld == Field$AckSlot) | (fld == Field$AckDel) | (fld == Field$Eof));
+        nf = fld;
+        npos = fpos;
+        ndom = 1'b0;
+        usetx = 1'b0;
+        l_role = tx_role;
+        err = 1'b0;
+        err_bit = 1'b0;
+        err_stuff = 1'b0;
+        err_crc = 1'b0;
+        err_form = 1'b0;
+        err_ack = 1'b0;
+        l_form = 1'b0;
+        tinc = 1'b0;
+        rinc1 = 1'b0;
+        rok = 1'b0;
+        ovl = 1'b0;
+        exc1 = 1'b0;
+        exc2 = 1'b0;
+        tx_ok = 1'b0;
+        rx_ok = 1'b0;
+        adv = 1'b0;
+        l_crcset = 1'b0;
+        if (own) begin
+            if (stuffed) begin
+                if (stuff) begin
+                    ndom = dom;
+                    if (stuff_error) begin
+                        err = 1'b1;
+                        if (tx_role & rxbit & ~sent) begin
+                            err_bit = 1'b1;
+                            tinc = 1'b1;
+                        end
+                        else begin
+                            err_stuff = 1'b1;
+                            if (~tx_role) begin
+                                rinc1 = 1'b1;
+                            end
+                            else if (arb_stuff) begin
+                                exc2 = 1'b1;
+                            end
+                            else begin
+                                tinc = 1'b1;
+                            end
+                        end
+                    end
+                end
+                else begin
+                    if (tx_role & (rxbit != sent)) begin
+                        if (arb & sent) begin
+                            l_role = 1'b0;
+                        end
+                        else begin
+                            err = 1'b1;
+                            err_bit = 1'b1;
+                            tinc = 1'b1;
+                        end
+                    end
+                    if (~err) begin
+                        adv = 1'b1;
+                        usetx = 1'b1;
+                        npos = l_posinc;
+                        case (fld)
+                            Field$Sof:
+                                begin
+                                    nf = Field$Ident;
+                                    npos = 32'h1;
+                                end
+                            Field$Ident:
+                                begin
+                                    if (fpos == 32'hb) begin
+                                        npos = 32'h1;
+                                        if (l_role & tx_ide) begin
+                                            nf = Field$Srr;
+                                        end
+                                        else begin
+                                            nf = Field$Rtr;
+                                        end
+                                    end
+                                end
+                            Field$Srr:
+                                begin
+                                    nf = Field$Ide;
+                                    npos = 32'h1;
+                                end
+                            Field$Rtr:
+                                begin
+                                    npos = 32'h1;
+                                    if (ext) begin
+                                        nf = Field$Resv;
+                                    end
+                                    else begin
+                                        nf = Field$Ide;
+                                    end
+                                end
+                            Field$Ide:
+                                begin
+                                    npos = 32'h1;
+                                    if (rxbit) begin
+                                        nf = Field$ExIdent;
+                                    end
+                                    else begin
+                                        nf = Field$Resv;
+                                    end
+                                end
+                            Field$ExIdent:
+                                begin
+                                    if (fpos == 32'h12) begin
+                                        nf = Field$Rtr;
+                                        npos = 32'h1;
+                                    end
+                                end
+                            Field$Resv:
+                                begin
+                                    if (~(ext & (fpos == 32'h1))) begin
+                                        nf = Field$Dlc;
+                                        npos = 32'h1;
+                                    end
+                                end
+                            Field$Dlc:
+                                begin
+                                    if (fpos == 32'h4) begin
+                                        npos = 32'h1;
+                                        if (rtr | (dlc_lo_zero & ~rxbit)) begin
+                                            nf = Field$Crc;
+                                        end
+                                        else begin
+                                            nf = Field$Data;
+                                        end
+                                    end
+                                end
+                            Field$Data:
+                                begin
+                                    if (fpos == data_bits) begin
+                                        nf = Field$Crc;
+                                        npos = 32'h1;
+                                    end
+                                end
+                            Field$Crc:
+                                begin
+                                    if (fpos == 32'hf) begin
+                                        nf = Field$CrcDel;
+                                        npos = 32'h1;
+                                        usetx = 1'b0;
+                                        l_crcset = crc_rem;
+                                    end
+                                end
+                            default:
+                                begin
+                                end
+                        endcase
+                    end
+                end
+            end
+            else begin
+                case (fld)
+                    Field$CrcDel:
+                        begin
+                            if (~rxbit) begin
+                                l_form = 1'b1;
+                            end
+                            else begin
+                                nf = Field$AckSlot;
+                                npos = 32'h1;
+                                ndom = ~tx_role & ~crcerr$q & ~listen_only;
+                            end
+                        end
+                    Field$AckSlot:
+                        begin
+                            nf = Field$AckDel;
+                            npos = 32'h1;
+                            if (rxbit) begin
+                                if (tx_role) begin
+                                    if (~self_test) begin
+                                        err = 1'b1;
+                                        err_ack = 1'b1;
+                                        if (active) begin
+                                            tinc = 1'b1;
+                                        end
+                                        else begin
+                                            exc1 = 1'b1;
+                                        end
+                                    end
+                                end
+                                else if (dom) begin
+                                    err = 1'b1;
+                                    err_bit = 1'b1;
+                                    rinc1 = 1'b1;
+                                end
+                            end
+                        end
+                    Field$AckDel:
+                        begin
+                            l_form = ~rxbit;
+                            nf = Field$Eof;
+                            npos = 32'h1;
+                        end
+                    Field$Eof:
+                        begin
+                            npos = l_posinc;
+                            if (fpos == 32'h7) begin
+                                nf = Field$Inter;
+                                npos = 32'h1;
+                                if (tx_role) begin
+                                    if (~rxbit) begin
+                                        l_form = 1'b1;
+                                    end
+                                    else begin
+                                        tx_ok = 1'b1;
+                                    end
+                                end
+                                else begin
+                                    rx_ok = 1'b1;
+                                    if (~rxbit) begin
+                                        ovl = 1'b1;
+                                    end
+                                    else begin
+                                        rok = 1'b1;
+                                    end
+                                end
+                            end
+                            else begin
+                                l_form = ~rxbit;
+                            end
+                        end
+                    default:
+                        begin
+                        end
+                endcase
+                if (l_form) begin
+                    err = 1'b1;
+                    err_form = 1'b1;
+                    tinc = tx_role;
+                    rinc1 = ~tx_role;
+                end
+                if ((fld == Field$AckDel) & ~tx_role & crcerr$q) begin
+                    err = 1'b1;
+                    err_form = 1'b0;
+                    err_crc = 1'b1;
+                    rinc1 = 1'b1;
+                end
+            end
+        end
+        if (sample) begin
+            crcerr$d = (crcerr$q | l_crcset) & ~sofinit & ~err_now;
+        end
+        if (reset) begin
+            crcerr$d = 1'b0;
+        end
+        sof = adv & (fld == Field$Sof);
+        lost = tx_role & ~l_role;
+    end
+    
+endmodule // canstar_cancentrate_core$monitor$fsm$frame
+
+
+module canstar_cancentrate_core$monitor$fsm$frame$crcerr(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$monitor$fsm$frame$crcerr
+
+
+module canstar_cancentrate_core$monitor$fsm$rpt(clock,reset,sample,ev_sof,ev_arb_lost,ev_bit_err,ev_stuff_err,ev_crc_err,ev_form_err,ev_ack_err,ev_aef,ev_pef,ev_olf,ev_ovl,ev_daf,ev_tx_ok,ev_rx_ok,ev_exc1,ev_exc2,ev_run,ev_recovered,ev_integrated,err_now,code,pos,tx_role,arb_pos,events,tx_done,arb_lost,arb_lost_pos,error,err_kind,err_field,err_pos,err_tx,rx_valid);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  reset;
+    input wire  sample;
+    input wire  ev_sof;
+    input wire  ev_arb_lost;
+    input wire  ev_bit_err;
+    input wire  ev_stuff_err;
+    input wire  ev_crc_err;
+    input wire  ev_form_err;
+    input wire  ev_ack_err;
+    input wire  ev_aef;
+    input wire  ev_pef;
+    input wire  ev_olf;
+    input wire  ev_ovl;
+    input wire  ev_daf;
+    input wire  ev_tx_ok;
+    input wire  ev_rx_ok;
+    input wire  ev_exc1;
+    input wire  ev_exc2;
+    input wire  ev_run;
+    input wire  ev_recovered;
+    input wire  ev_integrated;
+    input wire  err_now;
+    input wire  [4:0] code;
+    input wire  [7:0] pos;
+    input wire  tx_role;
+    input wire  [5:0] arb_pos;
+    output reg  [19:0] events;
+    output reg  tx_done;
+    output reg  arb_lost;
+    output reg  [5:0] arb_lost_pos;
+    output reg  error;
+    output reg  [4:0] err_kind;
+    output reg  [4:0] err_field;
+    output reg  [7:0] err_pos;
+    output reg  err_tx;
+    output reg  rx_valid;
+    
+    // Constant declarations
+    localparam  k_sof = 5'b0;
+    localparam  k_arb_lost = 5'b1;
+    localparam  k_bit_err = 5'b10;
+    localparam  k_stuff_err = 5'b11;
+    localparam  k_crc_err = 5'b100;
+    localparam  k_form_err = 5'b101;
+    localparam  k_ack_err = 5'b110;
+    localparam  k_aef = 5'b111;
+    localparam  k_pef = 5'b1000;
+    localparam  k_olf = 5'b1001;
+    localparam  k_ovl = 5'b1010;
+    localparam  k_daf = 5'b1011;
+    localparam  k_tx_ok = 5'b1100;
+    localparam  k_rx_ok = 5'b1101;
+    localparam  k_exc1 = 5'b1110;
+    localparam  k_exc2 = 5'b1111;
+    localparam  k_run = 5'b10000;
+    localparam  k_recovered = 5'b10001;
+    localparam  k_integrated = 5'b10010;
+    localparam  k_bit = 5'b10011;
+    
+    // Stub signals
+    reg  [19:0] evr$d;
+    wire  [19:0] evr$q;
+    reg  evr$clock;
+    reg  [5:0] arbpos_r$d;
+    wire  [5:0] arbpos_r$q;
+    reg  arbpos_r$clock;
+    reg  [4:0] errf_r$d;
+    wire  [4:0] errf_r$q;
+    reg  errf_r$clock;
+    reg  [7:0] errp_r$d;
+    wire  [7:0] errp_r$q;
+    reg  errp_r$clock;
+    reg  errtx_r$d;
+    wire  errtx_r$q;
+    reg  errtx_r$clock;
+    
+    // Local signals
+    reg  [19:0] l_ev;
+    
+    // Sub module instances
+    canstar_cancentrate_core$monitor$fsm$rpt$evr evr(
+        .d(evr$d),
+        .q(evr$q),
+        .clock(evr$clock)
+    );
+    canstar_cancentrate_core$monitor$fsm$rpt$arbpos_r arbpos_r(
+        .d(arbpos_r$d),
+        .q(arbpos_r$q),
+        .clock(arbpos_r$clock)
+    );
+    canstar_cancentrate_core$monitor$fsm$rpt$errf_r errf_r(
+        .d(errf_r$d),
+        .q(errf_r$q),
+        .clock(errf_r$clock)
+    );
+    canstar_cancentrate_core$monitor$fsm$rpt$errp_r errp_r(
+        .d(errp_r$d),
+        .q(errp_r$q),
+        .clock(errp_r$clock)
+    );
+    canstar_cancentrate_core$monitor$fsm$rpt$errtx_r errtx_r(
+        .d(errtx_r$d),
+        .q(errtx_r$q),
+        .clock(errtx_r$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        evr$clock = clock;
+        arbpos_r$clock = clock;
+        errf_r$clock = clock;
+        errp_r$clock = clock;
+        errtx_r$clock = clock;
+        evr$d = evr$q;
+        arbpos_r$d = arbpos_r$q;
+        errf_r$d = errf_r$q;
+        errp_r$d = errp_r$q;
+        errtx_r$d = errtx_r$q;
+        evr$d = 32'h0;
+        l_ev = 32'h0;
+        if (sample) begin
+            l_ev = (l_ev & ~(1 << (k_sof)) | ((ev_sof) << (k_sof)));
+            l_ev = (l_ev & ~(1 << (k_arb_lost)) | ((ev_arb_lost) << (k_arb_lost)));
+            l_ev = (l_ev & ~(1 << (k_bit_err)) | ((ev_bit_err) << (k_bit_err)));
+            l_ev = (l_ev & ~(1 << (k_stuff_err)) | ((ev_stuff_err) << (k_stuff_err)));
+            l_ev = (l_ev & ~(1 << (k_crc_err)) | ((ev_crc_err) << (k_crc_err)));
+            l_ev = (l_ev & ~(1 << (k_form_err)) | ((ev_form_err) << (k_form_err)));
+            l_ev = (l_ev & ~(1 << (k_ack_err)) | ((ev_ack_err) << (k_ack_err)));
+            l_ev = (l_ev & ~(1 << (k_aef)) | ((ev_aef) << (k_aef)));
+            l_ev = (l_ev & ~(1 << (k_pef)) | ((ev_pef) << (k_pef)));
+            l_ev = (l_ev & ~(1 << (k_olf)) | ((ev_olf) << (k_olf)));
+            l_ev = (l_ev & ~(1 << (k_ovl)) | ((ev_ovl) << (k_ovl)));
+            l_ev = (l_ev & ~(1 << (k_daf)) | ((ev_daf) << (k_daf)));
+            l_ev = (l_ev & ~(1 << (k_tx_ok)) | ((ev_tx_ok) << (k_tx_ok)));
+            l_ev = (l_ev & ~(1 << (k_rx_ok)) | ((ev_rx_ok) << (k_rx_ok)));
+            l_ev = (l_ev & ~(1 << (k_exc1)) | ((ev_exc1) << (k_exc1)));
+            l_ev = (l_ev & ~(1 << (k_exc2)) | ((ev_exc2) << (k_exc2)));
+            l_ev = (l_ev & ~(1 << (k_run)) | ((ev_run) << (k_run)));
+            l_ev = (l_ev & ~(1 << (k_recovered)) | ((ev_recovered) << (k_recovered)));
+            l_ev = (l_ev & ~(1 << (k_integrated)) | ((ev_integrated) << (k_integrated)));
+            l_ev = (l_ev & ~(1 << (k_bit)) | ((1'b1) << (k_bit)));
+            evr$d = l_ev;
+            if (ev_arb_lost) begin
+                arbpos_r$d = arb_pos;
+            end
+            if (err_now) begin
+                errf_r$d = code;
+                errp_r$d = pos;
+                errtx_r$d = tx_role;
+            end
+        end
+        if (reset) begin
+            evr$d = 32'h0;
+        end
+        err_kind = evr$q[(k_bit_err)+:(5)];
+        events = evr$q;
+        tx_done = evr$q[k_tx_ok];
+        arb_lost = evr$q[k_arb_lost];
+        arb_lost_pos = arbpos_r$q;
+        error = |err_kind;
+        err_field = errf_r$q;
+        err_pos = errp_r$q;
+        err_tx = errtx_r$q;
+        rx_valid = evr$q[k_rx_ok];
+    end
+    
+endmodule // canstar_cancentrate_core$monitor$fsm$rpt
+
+
+module canstar_cancentrate_core$monitor$fsm$rpt$arbpos_r(d,q,clock);
+    
+    // Module arguments
+    input wire  [5:0] d;
+    output reg  [5:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 6'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$monitor$fsm$rpt$arbpos_r
+
+
+module canstar_cancentrate_core$monitor$fsm$rpt$errf_r(d,q,clock);
     
     // Module arguments
     input wire  [4:0] d;
@@ -8383,10 +8571,10 @@ module canstar_cancentrate_core$monitor$fsm$errf_r(d,q,clock);
        q <= d;
     end
           
-endmodule // canstar_cancentrate_core$monitor$fsm$errf_r
+endmodule // canstar_cancentrate_core$monitor$fsm$rpt$errf_r
 
 
-module canstar_cancentrate_core$monitor$fsm$errp_r(d,q,clock);
+module canstar_cancentrate_core$monitor$fsm$rpt$errp_r(d,q,clock);
     
     // Module arguments
     input wire  [7:0] d;
@@ -8402,10 +8590,10 @@ module canstar_cancentrate_core$monitor$fsm$errp_r(d,q,clock);
        q <= d;
     end
           
-endmodule // canstar_cancentrate_core$monitor$fsm$errp_r
+endmodule // canstar_cancentrate_core$monitor$fsm$rpt$errp_r
 
 
-module canstar_cancentrate_core$monitor$fsm$errtx_r(d,q,clock);
+module canstar_cancentrate_core$monitor$fsm$rpt$errtx_r(d,q,clock);
     
     // Module arguments
     input wire  d;
@@ -8421,10 +8609,10 @@ module canstar_cancentrate_core$monitor$fsm$errtx_r(d,q,clock);
        q <= d;
     end
           
-endmodule // canstar_cancentrate_core$monitor$fsm$errtx_r
+endmodule // canstar_cancentrate_core$monitor$fsm$rpt$errtx_r
 
 
-module canstar_cancentrate_core$monitor$fsm$evr(d,q,clock);
+module canstar_cancentrate_core$monitor$fsm$rpt$evr(d,q,clock);
     
     // Module arguments
     input wire  [19:0] d;
@@ -8440,10 +8628,313 @@ module canstar_cancentrate_core$monitor$fsm$evr(d,q,clock);
        q <= d;
     end
           
-endmodule // canstar_cancentrate_core$monitor$fsm$evr
+endmodule // canstar_cancentrate_core$monitor$fsm$rpt$evr
 
 
-module canstar_cancentrate_core$monitor$fsm$exc1(d,q,clock);
+module canstar_cancentrate_core$monitor$fsm$rxf(clock,reset,sample,rxbit,adv,fld,sofinit,deliver,ext,rtr,dlc_lo_zero,data_bits,rx_ide,rx_rtr,rx_id,rx_dlc,rx_data);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  reset;
+    input wire  sample;
+    input wire  rxbit;
+    input wire  adv;
+    input wire  [4:0] fld;
+    input wire  sofinit;
+    input wire  deliver;
+    output reg  ext;
+    output reg  rtr;
+    output reg  dlc_lo_zero;
+    output reg  [7:0] data_bits;
+    output reg  rx_ide;
+    output reg  rx_rtr;
+    output reg  [28:0] rx_id;
+    output reg  [3:0] rx_dlc;
+    output reg  [63:0] rx_data;
+    
+    // Enums
+    localparam Field$Reset = 0;
+    localparam Field$WaitIdle = 1;
+    localparam Field$Idle = 2;
+    localparam Field$BusOff = 3;
+    localparam Field$Sof = 4;
+    localparam Field$Ident = 5;
+    localparam Field$Srr = 6;
+    localparam Field$Ide = 7;
+    localparam Field$Rtr = 8;
+    localparam Field$ExIdent = 9;
+    localparam Field$Resv = 10;
+    localparam Field$Dlc = 11;
+    localparam Field$Data = 12;
+    localparam Field$Crc = 13;
+    localparam Field$CrcDel = 14;
+    localparam Field$AckSlot = 15;
+    localparam Field$AckDel = 16;
+    localparam Field$Eof = 17;
+    localparam Field$ActFlag = 18;
+    localparam Field$PasFlag = 19;
+    localparam Field$OvlFlag = 20;
+    localparam Field$ErrDel = 21;
+    localparam Field$OvlDel = 22;
+    localparam Field$Inter = 23;
+    localparam Field$Suspend = 24;
+    
+    // Stub signals
+    reg  [28:0] rid$d;
+    wire  [28:0] rid$q;
+    reg  rid$clock;
+    reg  [63:0] rdat$d;
+    wire  [63:0] rdat$q;
+    reg  rdat$clock;
+    reg  [3:0] rdlc$d;
+    wire  [3:0] rdlc$q;
+    reg  rdlc$clock;
+    reg  rrtr$d;
+    wire  rrtr$q;
+    reg  rrtr$clock;
+    reg  rext$d;
+    wire  rext$q;
+    reg  rext$clock;
+    reg  rxide_r$d;
+    wire  rxide_r$q;
+    reg  rxide_r$clock;
+    reg  rxrtr_r$d;
+    wire  rxrtr_r$q;
+    reg  rxrtr_r$clock;
+    reg  [28:0] rxid_r$d;
+    wire  [28:0] rxid_r$q;
+    reg  rxid_r$clock;
+    reg  [3:0] rxdlc_r$d;
+    wire  [3:0] rxdlc_r$q;
+    reg  rxdlc_r$clock;
+    reg  [63:0] rxdat_r$d;
+    wire  [63:0] rxdat_r$q;
+    reg  rxdat_r$clock;
+    
+    // Local signals
+    reg  [28:0] l_rid;
+    reg  [63:0] l_rdat;
+    reg  [3:0] l_rdlc;
+    reg  l_rrtr;
+    reg  l_rext;
+    reg  [3:0] l_nbytes;
+    reg  [5:0] l_shamt;
+    
+    // Sub module instances
+    canstar_cancentrate_core$monitor$fsm$rxf$rid rid(
+        .d(rid$d),
+        .q(rid$q),
+        .clock(rid$clock)
+    );
+    canstar_cancentrate_core$monitor$fsm$rxf$rdat rdat(
+        .d(rdat$d),
+        .q(rdat$q),
+        .clock(rdat$clock)
+    );
+    canstar_cancentrate_core$monitor$fsm$rxf$rdlc rdlc(
+        .d(rdlc$d),
+        .q(rdlc$q),
+        .clock(rdlc$clock)
+    );
+    canstar_cancentrate_core$monitor$fsm$rxf$rrtr rrtr(
+        .d(rrtr$d),
+        .q(rrtr$q),
+        .clock(rrtr$clock)
+    );
+    canstar_cancentrate_core$monitor$fsm$rxf$rext rext(
+        .d(rext$d),
+        .q(rext$q),
+        .clock(rext$clock)
+    );
+    canstar_cancentrate_core$monitor$fsm$rxf$rxide_r rxide_r(
+        .d(rxide_r$d),
+        .q(rxide_r$q),
+        .clock(rxide_r$clock)
+    );
+    canstar_cancentrate_core$monitor$fsm$rxf$rxrtr_r rxrtr_r(
+        .d(rxrtr_r$d),
+        .q(rxrtr_r$q),
+        .clock(rxrtr_r$clock)
+    );
+    canstar_cancentrate_core$monitor$fsm$rxf$rxid_r rxid_r(
+        .d(rxid_r$d),
+        .q(rxid_r$q),
+        .clock(rxid_r$clock)
+    );
+    canstar_cancentrate_core$monitor$fsm$rxf$rxdlc_r rxdlc_r(
+        .d(rxdlc_r$d),
+        .q(rxdlc_r$q),
+        .clock(rxdlc_r$clock)
+    );
+    canstar_cancentrate_core$monitor$fsm$rxf$rxdat_r rxdat_r(
+        .d(rxdat_r$d),
+        .q(rxdat_r$q),
+        .clock(rxdat_r$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        rid$clock = clock;
+        rdat$clock = clock;
+        rdlc$clock = clock;
+        rrtr$clock = clock;
+        rext$clock = clock;
+        rxide_r$clock = clock;
+        rxrtr_r$clock = clock;
+        rxid_r$clock = clock;
+        rxdlc_r$clock = clock;
+        rxdat_r$clock = clock;
+        rid$d = rid$q;
+        rdat$d = rdat$q;
+        rdlc$d = rdlc$q;
+        rrtr$d = rrtr$q;
+        rext$d = rext$q;
+        rxide_r$d = rxide_r$q;
+        rxrtr_r$d = rxrtr_r$q;
+        rxid_r$d = rxid_r$q;
+        rxdlc_r$d = rxdlc_r$q;
+        rxdat_r$d = rxdat_r$q;
+        l_nbytes = rdlc$q;
+        if (rdlc$q >= 32'h8) begin
+            l_nbytes = 32'h8;
+        end
+        l_shamt = ((l_nbytes) & 6'h3f) << 32'h3;
+        l_shamt = (~l_shamt) + 32'h1;
+        l_rid = rid$q;
+        l_rdat = rdat$q;
+        l_rdlc = rdlc$q;
+        l_rrtr = rrtr$q;
+        l_rext = rext$q;
+        if (sample) begin
+            if (adv) begin
+                case (fld)
+                    Field$Ident:
+                        begin
+                            l_rid = rid$q << 32'h1;
+                            if (rxbit) begin
+                                l_rid = l_rid | 32'h1;
+                            end
+                        end
+                    Field$ExIdent:
+                        begin
+                            l_rid = rid$q << 32'h1;
+                            if (rxbit) begin
+                                l_rid = l_rid | 32'h1;
+                            end
+                        end
+                    Field$Srr:
+                        begin
+                            l_rrtr = rxbit;
+                        end
+                    Field$Rtr:
+                        begin
+                            l_rrtr = rxbit;
+                        end
+                    Field$Ide:
+                        begin
+                            l_rext = rxbit;
+                        end
+                    Field$Dlc:
+                        begin
+                            l_rdlc = rdlc$q << 32'h1;
+                            if (rxbit) begin
+                                l_rdlc = l_rdlc | 32'h1;
+                            end
+                        end
+                    Field$Data:
+                        begin
+                            l_rdat = rdat$q << 32'h1;
+                            if (rxbit) begin
+                                l_rdat = l_rdat | 32'h1;
+                            end
+                        end
+                    default:
+                        begin
+                        end
+                endcase
+            end
+            if (sofinit) begin
+                l_rid = 32'h0;
+                l_rdat = 32'h0;
+                l_rdlc = 32'h0;
+                l_rrtr = 1'b0;
+                l_rext = 1'b0;
+            end
+            rid$d = l_rid;
+            rdat$d = l_rdat;
+            rdlc$d = l_rdlc;
+            rrtr$d = l_rrtr;
+            rext$d = l_rext;
+            if (deliver) begin
+                rxide_r$d = rext$q;
+                rxrtr_r$d = rrtr$q;
+                rxid_r$d = rid$q;
+                rxdlc_r$d = rdlc$q;
+                if (rrtr$q | (l_nbytes == 32'h0)) begin
+                    rxdat_r$d = 32'h0;
+                end
+                else begin
+                    rxdat_r$d = rdat$q << l_shamt;
+                end
+            end
+        end
+        if (reset) begin
+            rrtr$d = 1'b0;
+            rext$d = 1'b0;
+        end
+        ext = rext$q;
+        rtr = rrtr$q;
+        dlc_lo_zero = rdlc$q[(32'h0)+:(3)] == 32'h0;
+        data_bits = ((l_nbytes) & 8'hff) << 32'h3;
+        rx_ide = rxide_r$q;
+        rx_rtr = rxrtr_r$q;
+        rx_id = rxid_r$q;
+        rx_dlc = rxdlc_r$q;
+        rx_data = rxdat_r$q;
+    end
+    
+endmodule // canstar_cancentrate_core$monitor$fsm$rxf
+
+
+module canstar_cancentrate_core$monitor$fsm$rxf$rdat(d,q,clock);
+    
+    // Module arguments
+    input wire  [63:0] d;
+    output reg  [63:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 64'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$monitor$fsm$rxf$rdat
+
+
+module canstar_cancentrate_core$monitor$fsm$rxf$rdlc(d,q,clock);
+    
+    // Module arguments
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 4'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$monitor$fsm$rxf$rdlc
+
+
+module canstar_cancentrate_core$monitor$fsm$rxf$rext(d,q,clock);
     
     // Module arguments
     input wire  d;
@@ -8459,10 +8950,29 @@ module canstar_cancentrate_core$monitor$fsm$exc1(d,q,clock);
        q <= d;
     end
           
-endmodule // canstar_cancentrate_core$monitor$fsm$exc1
+endmodule // canstar_cancentrate_core$monitor$fsm$rxf$rext
 
 
-module canstar_cancentrate_core$monitor$fsm$fdone(d,q,clock);
+module canstar_cancentrate_core$monitor$fsm$rxf$rid(d,q,clock);
+    
+    // Module arguments
+    input wire  [28:0] d;
+    output reg  [28:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 29'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$monitor$fsm$rxf$rid
+
+
+module canstar_cancentrate_core$monitor$fsm$rxf$rrtr(d,q,clock);
     
     // Module arguments
     input wire  d;
@@ -8478,10 +8988,505 @@ module canstar_cancentrate_core$monitor$fsm$fdone(d,q,clock);
        q <= d;
     end
           
-endmodule // canstar_cancentrate_core$monitor$fsm$fdone
+endmodule // canstar_cancentrate_core$monitor$fsm$rxf$rrtr
 
 
-module canstar_cancentrate_core$monitor$fsm$fld(d,q,clock);
+module canstar_cancentrate_core$monitor$fsm$rxf$rxdat_r(d,q,clock);
+    
+    // Module arguments
+    input wire  [63:0] d;
+    output reg  [63:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 64'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$monitor$fsm$rxf$rxdat_r
+
+
+module canstar_cancentrate_core$monitor$fsm$rxf$rxdlc_r(d,q,clock);
+    
+    // Module arguments
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 4'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$monitor$fsm$rxf$rxdlc_r
+
+
+module canstar_cancentrate_core$monitor$fsm$rxf$rxid_r(d,q,clock);
+    
+    // Module arguments
+    input wire  [28:0] d;
+    output reg  [28:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 29'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$monitor$fsm$rxf$rxid_r
+
+
+module canstar_cancentrate_core$monitor$fsm$rxf$rxide_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$monitor$fsm$rxf$rxide_r
+
+
+module canstar_cancentrate_core$monitor$fsm$rxf$rxrtr_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$monitor$fsm$rxf$rxrtr_r
+
+
+module canstar_cancentrate_core$monitor$fsm$seq(clock,reset,sample,rxbit,listen_only,host_recovery,cnt_load,tec_in,stuff,req,active,armed,last_run,busoff,level,f_own,f_nf,f_npos,f_ndom,f_usetx,f_lost,f_err,f_ovl,f_sof,g_own,g_nf,g_npos,g_ndom,g_err,g_ovl,fld,fpos,pfld,ppos,tx_role,dom,in_busoff,nf_tx,err,flag_start,sofinit,txsof,ev_aef,ev_pef,ev_olf,ev_ovl,ev_integrated,ev_run,ev_recovered);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  reset;
+    input wire  sample;
+    input wire  rxbit;
+    input wire  listen_only;
+    input wire  host_recovery;
+    input wire  cnt_load;
+    input wire  [8:0] tec_in;
+    input wire  stuff;
+    input wire  req;
+    input wire  active;
+    input wire  armed;
+    input wire  last_run;
+    input wire  busoff;
+    input wire  level;
+    input wire  f_own;
+    input wire  [4:0] f_nf;
+    input wire  [7:0] f_npos;
+    input wire  f_ndom;
+    input wire  f_usetx;
+    input wire  f_lost;
+    input wire  f_err;
+    input wire  f_ovl;
+    input wire  f_sof;
+    input wire  g_own;
+    input wire  [4:0] g_nf;
+    input wire  [7:0] g_npos;
+    input wire  g_ndom;
+    input wire  g_err;
+    input wire  g_ovl;
+    output reg  [4:0] fld;
+    output reg  [7:0] fpos;
+    output reg  [4:0] pfld;
+    output reg  [7:0] ppos;
+    output reg  tx_role;
+    output reg  dom;
+    output reg  in_busoff;
+    output reg  [4:0] nf_tx;
+    output reg  err;
+    output reg  flag_start;
+    output reg  sofinit;
+    output reg  txsof;
+    output reg  ev_aef;
+    output reg  ev_pef;
+    output reg  ev_olf;
+    output reg  ev_ovl;
+    output reg  ev_integrated;
+    output reg  ev_run;
+    output reg  ev_recovered;
+    
+    // Enums
+    localparam Field$Reset = 0;
+    localparam Field$WaitIdle = 1;
+    localparam Field$Idle = 2;
+    localparam Field$BusOff = 3;
+    localparam Field$Sof = 4;
+    localparam Field$Ident = 5;
+    localparam Field$Srr = 6;
+    localparam Field$Ide = 7;
+    localparam Field$Rtr = 8;
+    localparam Field$ExIdent = 9;
+    localparam Field$Resv = 10;
+    localparam Field$Dlc = 11;
+    localparam Field$Data = 12;
+    localparam Field$Crc = 13;
+    localparam Field$CrcDel = 14;
+    localparam Field$AckSlot = 15;
+    localparam Field$AckDel = 16;
+    localparam Field$Eof = 17;
+    localparam Field$ActFlag = 18;
+    localparam Field$PasFlag = 19;
+    localparam Field$OvlFlag = 20;
+    localparam Field$ErrDel = 21;
+    localparam Field$OvlDel = 22;
+    localparam Field$Inter = 23;
+    localparam Field$Suspend = 24;
+    
+    // Stub signals
+    reg  [4:0] rfld$d;
+    wire  [4:0] rfld$q;
+    reg  rfld$clock;
+    reg  [7:0] rpos$d;
+    wire  [7:0] rpos$q;
+    reg  rpos$clock;
+    reg  [4:0] rpfld$d;
+    wire  [4:0] rpfld$q;
+    reg  rpfld$clock;
+    reg  [7:0] rppos$d;
+    wire  [7:0] rppos$q;
+    reg  rppos$clock;
+    reg  rtx$d;
+    wire  rtx$q;
+    reg  rtx$clock;
+    reg  rdom$d;
+    wire  rdom$q;
+    reg  rdom$clock;
+    
+    // Local signals
+    reg  [7:0] l_posinc;
+    reg  l_cantx;
+    reg  [4:0] l_nf;
+    reg  [7:0] l_npos;
+    reg  l_ndom;
+    reg  l_usetx;
+    reg  l_role;
+    reg  l_start;
+    reg  l_ovl;
+    
+    // Sub module instances
+    canstar_cancentrate_core$monitor$fsm$seq$rfld rfld(
+        .d(rfld$d),
+        .q(rfld$q),
+        .clock(rfld$clock)
+    );
+    canstar_cancentrate_core$monitor$fsm$seq$rpos rpos(
+        .d(rpos$d),
+        .q(rpos$q),
+        .clock(rpos$clock)
+    );
+    canstar_cancentrate_core$monitor$fsm$seq$rpfld rpfld(
+        .d(rpfld$d),
+        .q(rpfld$q),
+        .clock(rpfld$clock)
+    );
+    canstar_cancentrate_core$monitor$fsm$seq$rppos rppos(
+        .d(rppos$d),
+        .q(rppos$q),
+        .clock(rppos$clock)
+    );
+    canstar_cancentrate_core$monitor$fsm$seq$rtx rtx(
+        .d(rtx$d),
+        .q(rtx$q),
+        .clock(rtx$clock)
+    );
+    canstar_cancentrate_core$monitor$fsm$seq$rdom rdom(
+        .d(rdom$d),
+        .q(rdom$q),
+        .clock(rdom$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        rfld$clock = clock;
+        rpos$clock = clock;
+        rpfld$clock = clock;
+        rppos$clock = clock;
+        rtx$clock = clock;
+        rdom$clock = clock;
+        rfld$d = rfld$q;
+        rpos$d = rpos$q;
+        rpfld$d = rpfld$q;
+        rppos$d = rppos$q;
+        rtx$d = rtx$q;
+        rdom$d = rdom$q;
+        l_posinc = rpos$q + 32'h1;
+        if (rpos$q == 32'hff) begin
+            l_posinc = rpos$q;
+        end
+        l_cantx = req & ~listen_only;
+        l_nf = rfld$q;
+        l_npos = rpos$q;
+        l_ndom = 1'b0;
+        l_usetx = 1'b0;
+        l_role = rtx$q;
+        l_start = 1'b0;
+        l_ovl = 1'b0;
+        sofinit = 1'b0;
+        txsof = 1'b0;
+        err = 1'b0;
+        ev_integrated = 1'b0;
+        ev_run = 1'b0;
+        ev_recovered = 1'b0;
+        if (sample) begin
+            if (f_own) begin
+                l_nf = f_nf;
+                l_npos = f_npos;
+                l_ndom = f_ndom;
+                l_usetx = f_usetx;
+                l_role = rtx$q & ~f_lost;
+                sofinit = f_sof;
+                err = f_err;
+                l_ovl = f_ovl;
+            end
+            else if (g_own) begin
+                l_nf = g_nf;
+                l_npos = g_npos;
+                l_ndom = g_ndom;
+                err = g_err;
+                l_ovl = g_ovl;
+            end
+            else begin
+                case (rfld$q)
+                    Field$Reset:
+                        begin
+                            l_nf = Field$WaitIdle;
+                            l_npos = 32'h1;
+                        end
+                    Field$WaitIdle:
+                        begin
+                            if (~rxbit) begin
+                                l_npos = 32'h1;
+                            end
+                            else if (rpos$q == 32'hb) begin
+                                ev_integrated = 1'b1;
+                                l_start = 1'b1;
+                            end
+                            else begin
+                                l_npos = l_posinc;
+                            end
+                        end
+                    Field$Idle:
+                        begin
+                            if (~rxbit) begin
+                                sofinit = 1'b1;
+                                l_role = 1'b0;
+                            end
+                            else begin
+                                l_start = 1'b1;
+                            end
+                        end
+                    Field$BusOff:
+                        begin
+                            if ((host_recovery & ~armed) | ~rxbit) begin
+                                l_npos = 32'h1;
+                            end
+                            else if (rpos$q == 32'hb) begin
+                                ev_run = 1'b1;
+                                l_npos = 32'h1;
+                                if (last_run) begin
+                                    ev_recovered = 1'b1;
+                                    l_start = 1'b1;
+                                end
+                            end
+                            else begin
+                                l_npos = l_posinc;
+                            end
+                        end
+                    Field$Inter:
+                        begin
+                            l_npos = l_posinc;
+                            if (rpos$q == 32'h3) begin
+                                if (~rxbit) begin
+                                    sofinit = 1'b1;
+                                    if (l_cantx & ~(rtx$q & ~active)) begin
+                                        l_role = 1'b1;
+                                        txsof = 1'b1;
+                                    end
+                                    else begin
+                                        l_role = 1'b0;
+                                    end
+                                end
+                                else if (rtx$q & ~active) begin
+                                    l_nf = Field$Suspend;
+                                    l_npos = 32'h1;
+                                end
+                                else begin
+                                    l_start = 1'b1;
+                                end
+                            end
+                            else if (~rxbit) begin
+                                l_ovl = 1'b1;
+                            end
+                        end
+                    Field$Suspend:
+                        begin
+                            l_npos = l_posinc;
+                            if (~rxbit) begin
+                                sofinit = 1'b1;
+                                l_role = 1'b0;
+                            end
+                            else if (rpos$q == 32'h8) begin
+                                l_start = 1'b1;
+                            end
+                        end
+                    default:
+                        begin
+                        end
+                endcase
+            end
+            if (sofinit) begin
+                l_nf = Field$Ident;
+                l_npos = 32'h1;
+                l_usetx = 1'b1;
+            end
+            if (l_start) begin
+                if (l_cantx) begin
+                    l_nf = Field$Sof;
+                    l_npos = 32'h1;
+                    l_role = 1'b1;
+                    txsof = 1'b1;
+                    l_usetx = 1'b1;
+                end
+                else begin
+                    l_nf = Field$Idle;
+                    l_npos = 32'h1;
+                    if (rfld$q == Field$Idle) begin
+                        l_npos = l_posinc;
+                    end
+                end
+            end
+        end
+        nf_tx = l_nf;
+        if (l_usetx) begin
+            l_ndom = l_role & ~level;
+        end
+        ev_aef = 1'b0;
+        ev_pef = 1'b0;
+        ev_olf = 1'b0;
+        if (err) begin
+            l_npos = 32'h1;
+            if (active) begin
+                l_nf = Field$ActFlag;
+                l_ndom = 1'b1;
+                ev_aef = 1'b1;
+            end
+            else begin
+                l_nf = Field$PasFlag;
+                l_ndom = 1'b0;
+                ev_pef = 1'b1;
+            end
+        end
+        else if (l_ovl) begin
+            l_nf = Field$OvlFlag;
+            l_npos = 32'h1;
+            l_ndom = 1'b1;
+            ev_olf = 1'b1;
+        end
+        if (busoff) begin
+            ev_aef = 1'b0;
+            ev_pef = 1'b0;
+            ev_olf = 1'b0;
+            l_nf = Field$BusOff;
+            l_npos = 32'h1;
+            l_ndom = 1'b0;
+        end
+        flag_start = err | l_ovl;
+        ev_ovl = l_ovl & ~err;
+        if (sample) begin
+            if (~stuff) begin
+                rpfld$d = rfld$q;
+                rppos$d = rpos$q;
+            end
+            rfld$d = l_nf;
+            rpos$d = l_npos;
+            rtx$d = l_role;
+            rdom$d = l_ndom;
+        end
+        if (reset) begin
+            rfld$d = Field$WaitIdle;
+            rpos$d = 32'h1;
+            rtx$d = 1'b0;
+            rdom$d = 1'b0;
+        end
+        if (cnt_load) begin
+            if (tec_in >= 32'h100) begin
+                rfld$d = Field$BusOff;
+                rpos$d = 32'h1;
+                rtx$d = 1'b0;
+                rdom$d = 1'b0;
+            end
+            else if (rfld$q == Field$BusOff) begin
+                rfld$d = Field$WaitIdle;
+                rpos$d = 32'h1;
+                rdom$d = 1'b0;
+            end
+        end
+        fld = rfld$q;
+        fpos = rpos$q;
+        pfld = rpfld$q;
+        ppos = rppos$q;
+        tx_role = rtx$q;
+        dom = rdom$q;
+        in_busoff = rfld$q == Field$BusOff;
+    end
+    
+endmodule // canstar_cancentrate_core$monitor$fsm$seq
+
+
+module canstar_cancentrate_core$monitor$fsm$seq$rdom(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$monitor$fsm$seq$rdom
+
+
+module canstar_cancentrate_core$monitor$fsm$seq$rfld(d,q,clock);
     
     // Module arguments
     input wire  [4:0] d;
@@ -8524,29 +9529,10 @@ module canstar_cancentrate_core$monitor$fsm$fld(d,q,clock);
        q <= d;
     end
           
-endmodule // canstar_cancentrate_core$monitor$fsm$fld
+endmodule // canstar_cancentrate_core$monitor$fsm$seq$rfld
 
 
-module canstar_cancentrate_core$monitor$fsm$fpos(d,q,clock);
-    
-    // Module arguments
-    input wire  [7:0] d;
-    output reg  [7:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 8'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_cancentrate_core$monitor$fsm$fpos
-
-
-module canstar_cancentrate_core$monitor$fsm$pfld(d,q,clock);
+module canstar_cancentrate_core$monitor$fsm$seq$rpfld(d,q,clock);
     
     // Module arguments
     input wire  [4:0] d;
@@ -8589,10 +9575,10 @@ module canstar_cancentrate_core$monitor$fsm$pfld(d,q,clock);
        q <= d;
     end
           
-endmodule // canstar_cancentrate_core$monitor$fsm$pfld
+endmodule // canstar_cancentrate_core$monitor$fsm$seq$rpfld
 
 
-module canstar_cancentrate_core$monitor$fsm$ppos(d,q,clock);
+module canstar_cancentrate_core$monitor$fsm$seq$rpos(d,q,clock);
     
     // Module arguments
     input wire  [7:0] d;
@@ -8608,67 +9594,10 @@ module canstar_cancentrate_core$monitor$fsm$ppos(d,q,clock);
        q <= d;
     end
           
-endmodule // canstar_cancentrate_core$monitor$fsm$ppos
+endmodule // canstar_cancentrate_core$monitor$fsm$seq$rpos
 
 
-module canstar_cancentrate_core$monitor$fsm$rarmed(d,q,clock);
-    
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_cancentrate_core$monitor$fsm$rarmed
-
-
-module canstar_cancentrate_core$monitor$fsm$rdat(d,q,clock);
-    
-    // Module arguments
-    input wire  [63:0] d;
-    output reg  [63:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 64'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_cancentrate_core$monitor$fsm$rdat
-
-
-module canstar_cancentrate_core$monitor$fsm$rdlc(d,q,clock);
-    
-    // Module arguments
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 4'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_cancentrate_core$monitor$fsm$rdlc
-
-
-module canstar_cancentrate_core$monitor$fsm$recr(d,q,clock);
+module canstar_cancentrate_core$monitor$fsm$seq$rppos(d,q,clock);
     
     // Module arguments
     input wire  [7:0] d;
@@ -8684,10 +9613,10 @@ module canstar_cancentrate_core$monitor$fsm$recr(d,q,clock);
        q <= d;
     end
           
-endmodule // canstar_cancentrate_core$monitor$fsm$recr
+endmodule // canstar_cancentrate_core$monitor$fsm$seq$rppos
 
 
-module canstar_cancentrate_core$monitor$fsm$req(d,q,clock);
+module canstar_cancentrate_core$monitor$fsm$seq$rtx(d,q,clock);
     
     // Module arguments
     input wire  d;
@@ -8703,10 +9632,255 @@ module canstar_cancentrate_core$monitor$fsm$req(d,q,clock);
        q <= d;
     end
           
-endmodule // canstar_cancentrate_core$monitor$fsm$req
+endmodule // canstar_cancentrate_core$monitor$fsm$seq$rtx
 
 
-module canstar_cancentrate_core$monitor$fsm$rext(d,q,clock);
+module canstar_cancentrate_core$monitor$fsm$txq(clock,reset,sample,tx_req,tx_abort,single_shot,tx_ide,tx_rtr,tx_id,tx_dlc,tx_data,load,adv,fld,nf,crc_bit,lost,done,err_now,tx_role,req,ide,level);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  reset;
+    input wire  sample;
+    input wire  tx_req;
+    input wire  tx_abort;
+    input wire  single_shot;
+    input wire  tx_ide;
+    input wire  tx_rtr;
+    input wire  [28:0] tx_id;
+    input wire  [3:0] tx_dlc;
+    input wire  [63:0] tx_data;
+    input wire  load;
+    input wire  adv;
+    input wire  [4:0] fld;
+    input wire  [4:0] nf;
+    input wire  crc_bit;
+    input wire  lost;
+    input wire  done;
+    input wire  err_now;
+    input wire  tx_role;
+    output reg  req;
+    output reg  ide;
+    output reg  level;
+    
+    // Enums
+    localparam Field$Reset = 0;
+    localparam Field$WaitIdle = 1;
+    localparam Field$Idle = 2;
+    localparam Field$BusOff = 3;
+    localparam Field$Sof = 4;
+    localparam Field$Ident = 5;
+    localparam Field$Srr = 6;
+    localparam Field$Ide = 7;
+    localparam Field$Rtr = 8;
+    localparam Field$ExIdent = 9;
+    localparam Field$Resv = 10;
+    localparam Field$Dlc = 11;
+    localparam Field$Data = 12;
+    localparam Field$Crc = 13;
+    localparam Field$CrcDel = 14;
+    localparam Field$AckSlot = 15;
+    localparam Field$AckDel = 16;
+    localparam Field$Eof = 17;
+    localparam Field$ActFlag = 18;
+    localparam Field$PasFlag = 19;
+    localparam Field$OvlFlag = 20;
+    localparam Field$ErrDel = 21;
+    localparam Field$OvlDel = 22;
+    localparam Field$Inter = 23;
+    localparam Field$Suspend = 24;
+    
+    // Stub signals
+    reg  rq$d;
+    wire  rq$q;
+    reg  rq$clock;
+    reg  blocked$d;
+    wire  blocked$q;
+    reg  blocked$clock;
+    reg  [28:0] tid$d;
+    wire  [28:0] tid$q;
+    reg  tid$clock;
+    reg  [63:0] tdat$d;
+    wire  [63:0] tdat$q;
+    reg  tdat$clock;
+    reg  [3:0] tdlc$d;
+    wire  [3:0] tdlc$q;
+    reg  tdlc$clock;
+    reg  tide$d;
+    wire  tide$q;
+    reg  tide$clock;
+    reg  trtr$d;
+    wire  trtr$q;
+    reg  trtr$clock;
+    
+    // Local signals
+    reg  [28:0] l_tid;
+    reg  [63:0] l_tdat;
+    reg  [3:0] l_tdlc;
+    reg  l_tide;
+    reg  l_trtr;
+    
+    // Sub module instances
+    canstar_cancentrate_core$monitor$fsm$txq$rq rq(
+        .d(rq$d),
+        .q(rq$q),
+        .clock(rq$clock)
+    );
+    canstar_cancentrate_core$monitor$fsm$txq$blocked blocked(
+        .d(blocked$d),
+        .q(blocked$q),
+        .clock(blocked$clock)
+    );
+    canstar_cancentrate_core$monitor$fsm$txq$tid tid(
+        .d(tid$d),
+        .q(tid$q),
+        .clock(tid$clock)
+    );
+    canstar_cancentrate_core$monitor$fsm$txq$tdat tdat(
+        .d(tdat$d),
+        .q(tdat$q),
+        .clock(tdat$clock)
+    );
+    canstar_cancentrate_core$monitor$fsm$txq$tdlc tdlc(
+        .d(tdlc$d),
+        .q(tdlc$q),
+        .clock(tdlc$clock)
+    );
+    canstar_cancentrate_core$monitor$fsm$txq$tide tide(
+        .d(tide$d),
+        .q(tide$q),
+        .clock(tide$clock)
+    );
+    canstar_cancentrate_core$monitor$fsm$txq$trtr trtr(
+        .d(trtr$d),
+        .q(trtr$q),
+        .clock(trtr$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        rq$clock = clock;
+        blocked$clock = clock;
+        tid$clock = clock;
+        tdat$clock = clock;
+        tdlc$clock = clock;
+        tide$clock = clock;
+        trtr$clock = clock;
+        rq$d = rq$q;
+        blocked$d = blocked$q;
+        tid$d = tid$q;
+        tdat$d = tdat$q;
+        tdlc$d = tdlc$q;
+        tide$d = tide$q;
+        trtr$d = trtr$q;
+        blocked$d = blocked$q | tx_abort;
+        if (~tx_req) begin
+            blocked$d = 1'b0;
+        end
+        if (sample & (done | (single_shot & (lost | (err_now & tx_role))))) begin
+            blocked$d = 1'b1;
+        end
+        rq$d = tx_req & ~blocked$q & ~tx_abort;
+        if (reset) begin
+            rq$d = 1'b0;
+            blocked$d = 1'b0;
+        end
+        l_tid = tid$q;
+        l_tdat = tdat$q;
+        l_tdlc = tdlc$q;
+        l_tide = tide$q;
+        l_trtr = trtr$q;
+        level = 1'b1;
+        if (sample) begin
+            if (adv) begin
+                case (fld)
+                    Field$Ident:
+                        begin
+                            l_tid = tid$q << 32'h1;
+                        end
+                    Field$ExIdent:
+                        begin
+                            l_tid = tid$q << 32'h1;
+                        end
+                    Field$Dlc:
+                        begin
+                            l_tdlc = tdlc$q << 32'h1;
+                        end
+                    Field$Data:
+                        begin
+                            l_tdat = tdat$q << 32'h1;
+                        end
+                    default:
+                        begin
+                        end
+                endcase
+            end
+            if (load) begin
+                l_tide = tx_ide;
+                l_trtr = tx_rtr;
+                if (tx_ide) begin
+                    l_tid = tx_id;
+                end
+                else begin
+                    l_tid = tx_id << 32'h12;
+                end
+                l_tdlc = tx_dlc;
+                l_tdat = tx_data;
+            end
+            tid$d = l_tid;
+            tdat$d = l_tdat;
+            tdlc$d = l_tdlc;
+            tide$d = l_tide;
+            trtr$d = l_trtr;
+            case (nf)
+                Field$Sof:
+                    begin
+                        level = 1'b0;
+                    end
+                Field$Ident:
+                    begin
+                        level = l_tid[32'h1c];
+                    end
+                Field$ExIdent:
+                    begin
+                        level = l_tid[32'h1c];
+                    end
+                Field$Ide:
+                    begin
+                        level = l_tide;
+                    end
+                Field$Rtr:
+                    begin
+                        level = l_trtr;
+                    end
+                Field$Resv:
+                    begin
+                        level = 1'b0;
+                    end
+                Field$Dlc:
+                    begin
+                        level = l_tdlc[32'h3];
+                    end
+                Field$Data:
+                    begin
+                        level = l_tdat[32'h3f];
+                    end
+                Field$Crc:
+                    begin
+                        level = crc_bit;
+                    end
+                default:
+                    begin
+                    end
+            endcase
+        end
+        req = rq$q;
+        ide = tide$q;
+    end
+    
+endmodule // canstar_cancentrate_core$monitor$fsm$txq
+
+
+module canstar_cancentrate_core$monitor$fsm$txq$blocked(d,q,clock);
     
     // Module arguments
     input wire  d;
@@ -8722,29 +9896,10 @@ module canstar_cancentrate_core$monitor$fsm$rext(d,q,clock);
        q <= d;
     end
           
-endmodule // canstar_cancentrate_core$monitor$fsm$rext
+endmodule // canstar_cancentrate_core$monitor$fsm$txq$blocked
 
 
-module canstar_cancentrate_core$monitor$fsm$rid(d,q,clock);
-    
-    // Module arguments
-    input wire  [28:0] d;
-    output reg  [28:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 29'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_cancentrate_core$monitor$fsm$rid
-
-
-module canstar_cancentrate_core$monitor$fsm$rrtr(d,q,clock);
+module canstar_cancentrate_core$monitor$fsm$txq$rq(d,q,clock);
     
     // Module arguments
     input wire  d;
@@ -8760,48 +9915,10 @@ module canstar_cancentrate_core$monitor$fsm$rrtr(d,q,clock);
        q <= d;
     end
           
-endmodule // canstar_cancentrate_core$monitor$fsm$rrtr
+endmodule // canstar_cancentrate_core$monitor$fsm$txq$rq
 
 
-module canstar_cancentrate_core$monitor$fsm$rtx(d,q,clock);
-    
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_cancentrate_core$monitor$fsm$rtx
-
-
-module canstar_cancentrate_core$monitor$fsm$runr(d,q,clock);
-    
-    // Module arguments
-    input wire  [7:0] d;
-    output reg  [7:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 8'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_cancentrate_core$monitor$fsm$runr
-
-
-module canstar_cancentrate_core$monitor$fsm$rxdat_r(d,q,clock);
+module canstar_cancentrate_core$monitor$fsm$txq$tdat(d,q,clock);
     
     // Module arguments
     input wire  [63:0] d;
@@ -8817,10 +9934,10 @@ module canstar_cancentrate_core$monitor$fsm$rxdat_r(d,q,clock);
        q <= d;
     end
           
-endmodule // canstar_cancentrate_core$monitor$fsm$rxdat_r
+endmodule // canstar_cancentrate_core$monitor$fsm$txq$tdat
 
 
-module canstar_cancentrate_core$monitor$fsm$rxdlc_r(d,q,clock);
+module canstar_cancentrate_core$monitor$fsm$txq$tdlc(d,q,clock);
     
     // Module arguments
     input wire  [3:0] d;
@@ -8836,10 +9953,10 @@ module canstar_cancentrate_core$monitor$fsm$rxdlc_r(d,q,clock);
        q <= d;
     end
           
-endmodule // canstar_cancentrate_core$monitor$fsm$rxdlc_r
+endmodule // canstar_cancentrate_core$monitor$fsm$txq$tdlc
 
 
-module canstar_cancentrate_core$monitor$fsm$rxid_r(d,q,clock);
+module canstar_cancentrate_core$monitor$fsm$txq$tid(d,q,clock);
     
     // Module arguments
     input wire  [28:0] d;
@@ -8855,10 +9972,10 @@ module canstar_cancentrate_core$monitor$fsm$rxid_r(d,q,clock);
        q <= d;
     end
           
-endmodule // canstar_cancentrate_core$monitor$fsm$rxid_r
+endmodule // canstar_cancentrate_core$monitor$fsm$txq$tid
 
 
-module canstar_cancentrate_core$monitor$fsm$rxide_r(d,q,clock);
+module canstar_cancentrate_core$monitor$fsm$txq$tide(d,q,clock);
     
     // Module arguments
     input wire  d;
@@ -8874,10 +9991,10 @@ module canstar_cancentrate_core$monitor$fsm$rxide_r(d,q,clock);
        q <= d;
     end
           
-endmodule // canstar_cancentrate_core$monitor$fsm$rxide_r
+endmodule // canstar_cancentrate_core$monitor$fsm$txq$tide
 
 
-module canstar_cancentrate_core$monitor$fsm$rxrtr_r(d,q,clock);
+module canstar_cancentrate_core$monitor$fsm$txq$trtr(d,q,clock);
     
     // Module arguments
     input wire  d;
@@ -8893,121 +10010,7 @@ module canstar_cancentrate_core$monitor$fsm$rxrtr_r(d,q,clock);
        q <= d;
     end
           
-endmodule // canstar_cancentrate_core$monitor$fsm$rxrtr_r
-
-
-module canstar_cancentrate_core$monitor$fsm$tdat(d,q,clock);
-    
-    // Module arguments
-    input wire  [63:0] d;
-    output reg  [63:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 64'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_cancentrate_core$monitor$fsm$tdat
-
-
-module canstar_cancentrate_core$monitor$fsm$tdlc(d,q,clock);
-    
-    // Module arguments
-    input wire  [3:0] d;
-    output reg  [3:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 4'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_cancentrate_core$monitor$fsm$tdlc
-
-
-module canstar_cancentrate_core$monitor$fsm$tecr(d,q,clock);
-    
-    // Module arguments
-    input wire  [8:0] d;
-    output reg  [8:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 9'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_cancentrate_core$monitor$fsm$tecr
-
-
-module canstar_cancentrate_core$monitor$fsm$tid(d,q,clock);
-    
-    // Module arguments
-    input wire  [28:0] d;
-    output reg  [28:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 29'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_cancentrate_core$monitor$fsm$tid
-
-
-module canstar_cancentrate_core$monitor$fsm$tide(d,q,clock);
-    
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_cancentrate_core$monitor$fsm$tide
-
-
-module canstar_cancentrate_core$monitor$fsm$trtr(d,q,clock);
-    
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_cancentrate_core$monitor$fsm$trtr
+endmodule // canstar_cancentrate_core$monitor$fsm$txq$trtr
 
 
 module canstar_cancentrate_core$monitor$sync(clock,reset,d,q);

@@ -1,0 +1,338 @@
+//! [`Sequencer`]: the bit-level frame sequencer: FIELD, POSITION and role
+//! of the bit in progress, and the level to drive in the next bit.
+//!
+//! For the bit just sampled it takes the decision of the field group that
+//! owns the current field ([`super::frame_fields::FrameFields`] for
+//! Start_Of_Frame .. End_Of_Frame, [`super::flags::FlagFields`] for flags
+//! and delimiters) and decides itself for the fields between frames:
+//! - Reset, then Wait_For_Bus_Idle until 11 recessive bits (integration);
+//! - Bus_Idle; a dominant bit there is a SOF received;
+//! - Bus_Off: runs of 11 recessive bits (waiting for a `recover` strobe
+//!   with `host_recovery`), the 128th ends the recovery;
+//! - Intermission: a dominant bit 1 or 2 is an overload condition, a
+//!   dominant bit 3 a SOF (a node with a pending request continues as
+//!   transmitter at Identifier 1, except an error-passive former
+//!   transmitter, C15); after it an error-passive former transmitter
+//!   suspends transmission for 8 bits (a dominant bit there is a SOF).
+//!
+//! Then, in this order: a SOF sampled starts a frame (Identifier 1 next); a
+//! free bus (11 recessive bits after reset or recovery, recessive Bus_Idle,
+//! Intermission bit 3 or Suspend_Transmission bit 8) starts an own frame if
+//! one is pending (`req`, not in listen-only mode), else Bus_Idle; while
+//! the next bit is an own frame bit its level comes from the transmit
+//! register (`nf_tx` out, `level` in); an error starts an active or passive
+//! error flag, otherwise an overload condition an overload flag; a TEC above
+//! 255 (`busoff` from fault confinement) makes it Bus_Off instead, with no
+//! flag. The registers take the result on `sample`.
+//!
+//! State: `fld`, `fpos` (FIELD and POSITION of the next non-stuff bit;
+//! positions saturate at 255); `pfld`, `ppos` (those of the last non-stuff
+//! bit, shown while a stuff bit is in progress; not reset); `rtx` (the node
+//! is the transmitter of the frame in progress); `dom` (drive the next bit
+//! dominant). `reset` gives Wait_For_Bus_Idle 1, receiver, recessive; a
+//! counter load (`cnt_load`, priority over `reset`) with `tec_in` ≥ 256
+//! gives Bus_Off 1, one with `tec_in` < 256 while in Bus_Off gives
+//! Wait_For_Bus_Idle 1.
+
+use super::field::Field;
+use rust_hdl::prelude::*;
+
+#[derive(LogicBlock, Default)]
+pub struct Sequencer {
+    pub clock: Signal<In, Clock>,
+    pub reset: Signal<In, Bit>,
+    pub sample: Signal<In, Bit>,
+    pub rxbit: Signal<In, Bit>,
+    pub listen_only: Signal<In, Bit>,
+    pub host_recovery: Signal<In, Bit>,
+    pub cnt_load: Signal<In, Bit>,
+    pub tec_in: Signal<In, Bits<9>>,
+    /// The bit in progress is a stuff bit.
+    pub stuff: Signal<In, Bit>,
+    /// A transmission is requested.
+    pub req: Signal<In, Bit>,
+    /// From fault confinement: error-active, recovery armed, the next run is
+    /// the last, this bit takes the node to Bus_Off.
+    pub active: Signal<In, Bit>,
+    pub armed: Signal<In, Bit>,
+    pub last_run: Signal<In, Bit>,
+    pub busoff: Signal<In, Bit>,
+    /// Level of the next own frame bit (for field `nf_tx`).
+    pub level: Signal<In, Bit>,
+    /// The decision of [`super::frame_fields::FrameFields`].
+    pub f_own: Signal<In, Bit>,
+    pub f_nf: Signal<In, Field>,
+    pub f_npos: Signal<In, Bits<8>>,
+    pub f_ndom: Signal<In, Bit>,
+    pub f_usetx: Signal<In, Bit>,
+    pub f_lost: Signal<In, Bit>,
+    pub f_err: Signal<In, Bit>,
+    pub f_ovl: Signal<In, Bit>,
+    pub f_sof: Signal<In, Bit>,
+    /// The decision of [`super::flags::FlagFields`].
+    pub g_own: Signal<In, Bit>,
+    pub g_nf: Signal<In, Field>,
+    pub g_npos: Signal<In, Bits<8>>,
+    pub g_ndom: Signal<In, Bit>,
+    pub g_err: Signal<In, Bit>,
+    pub g_ovl: Signal<In, Bit>,
+
+    pub fld: Signal<Out, Field>,
+    pub fpos: Signal<Out, Bits<8>>,
+    pub pfld: Signal<Out, Field>,
+    pub ppos: Signal<Out, Bits<8>>,
+    pub tx_role: Signal<Out, Bit>,
+    pub dom: Signal<Out, Bit>,
+    pub in_busoff: Signal<Out, Bit>,
+    /// The field of the next bit, before error and overload flags.
+    pub nf_tx: Signal<Out, Field>,
+    /// This bit's outcome: an error flag starts; an error or overload flag
+    /// starts; a frame starts (SOF sampled); an own frame starts.
+    pub err: Signal<Out, Bit>,
+    pub flag_start: Signal<Out, Bit>,
+    pub sofinit: Signal<Out, Bit>,
+    pub txsof: Signal<Out, Bit>,
+    /// Events (`EV_*`) decided here.
+    pub ev_aef: Signal<Out, Bit>,
+    pub ev_pef: Signal<Out, Bit>,
+    pub ev_olf: Signal<Out, Bit>,
+    pub ev_ovl: Signal<Out, Bit>,
+    pub ev_integrated: Signal<Out, Bit>,
+    pub ev_run: Signal<Out, Bit>,
+    pub ev_recovered: Signal<Out, Bit>,
+
+    rfld: DFF<Field>,
+    rpos: DFF<Bits<8>>,
+    rpfld: DFF<Field>,
+    rppos: DFF<Bits<8>>,
+    rtx: DFF<Bit>,
+    rdom: DFF<Bit>,
+
+    l_posinc: Signal<Local, Bits<8>>,
+    l_cantx: Signal<Local, Bit>,
+    l_nf: Signal<Local, Field>,
+    l_npos: Signal<Local, Bits<8>>,
+    l_ndom: Signal<Local, Bit>,
+    l_usetx: Signal<Local, Bit>,
+    l_role: Signal<Local, Bit>,
+    l_start: Signal<Local, Bit>,
+    l_ovl: Signal<Local, Bit>,
+}
+
+impl Logic for Sequencer {
+    #[hdl_gen]
+    fn update(&mut self) {
+        dff_setup!(self, clock, rfld, rpos, rpfld, rppos, rtx, rdom);
+        self.l_posinc.next = self.rpos.q.val() + 1;
+        if self.rpos.q.val() == 255 {
+            self.l_posinc.next = self.rpos.q.val();
+        }
+        self.l_cantx.next = self.req.val() & !self.listen_only.val();
+        self.l_nf.next = self.rfld.q.val();
+        self.l_npos.next = self.rpos.q.val();
+        self.l_ndom.next = false;
+        self.l_usetx.next = false;
+        self.l_role.next = self.rtx.q.val();
+        self.l_start.next = false;
+        self.l_ovl.next = false;
+        self.sofinit.next = false;
+        self.txsof.next = false;
+        self.err.next = false;
+        self.ev_integrated.next = false;
+        self.ev_run.next = false;
+        self.ev_recovered.next = false;
+
+        // Decided on `sample` only (the outputs below are 0 between sample
+        // strobes).
+        if self.sample.val() {
+            if self.f_own.val() {
+                self.l_nf.next = self.f_nf.val();
+                self.l_npos.next = self.f_npos.val();
+                self.l_ndom.next = self.f_ndom.val();
+                self.l_usetx.next = self.f_usetx.val();
+                self.l_role.next = self.rtx.q.val() & !self.f_lost.val();
+                self.sofinit.next = self.f_sof.val();
+                self.err.next = self.f_err.val();
+                self.l_ovl.next = self.f_ovl.val();
+            } else if self.g_own.val() {
+                self.l_nf.next = self.g_nf.val();
+                self.l_npos.next = self.g_npos.val();
+                self.l_ndom.next = self.g_ndom.val();
+                self.err.next = self.g_err.val();
+                self.l_ovl.next = self.g_ovl.val();
+            } else {
+                match self.rfld.q.val() {
+                    Field::Reset => {
+                        self.l_nf.next = Field::WaitIdle;
+                        self.l_npos.next = 1.into();
+                    }
+                    Field::WaitIdle => {
+                        if !self.rxbit.val() {
+                            self.l_npos.next = 1.into();
+                        } else if self.rpos.q.val() == 11 {
+                            self.ev_integrated.next = true;
+                            self.l_start.next = true;
+                        } else {
+                            self.l_npos.next = self.l_posinc.val();
+                        }
+                    }
+                    Field::Idle => {
+                        if !self.rxbit.val() {
+                            self.sofinit.next = true;
+                            self.l_role.next = false;
+                        } else {
+                            self.l_start.next = true;
+                        }
+                    }
+                    Field::BusOff => {
+                        if (self.host_recovery.val() & !self.armed.val()) | !self.rxbit.val() {
+                            // waiting for the host, or a dominant bit restarts the run
+                            self.l_npos.next = 1.into();
+                        } else if self.rpos.q.val() == 11 {
+                            self.ev_run.next = true;
+                            self.l_npos.next = 1.into();
+                            if self.last_run.val() {
+                                self.ev_recovered.next = true;
+                                self.l_start.next = true;
+                            }
+                        } else {
+                            self.l_npos.next = self.l_posinc.val();
+                        }
+                    }
+                    Field::Inter => {
+                        self.l_npos.next = self.l_posinc.val();
+                        if self.rpos.q.val() == 3 {
+                            if !self.rxbit.val() {
+                                // a dominant third intermission bit is a SOF
+                                self.sofinit.next = true;
+                                if self.l_cantx.val() & !(self.rtx.q.val() & !self.active.val()) {
+                                    self.l_role.next = true;
+                                    self.txsof.next = true;
+                                } else {
+                                    self.l_role.next = false;
+                                }
+                            } else if self.rtx.q.val() & !self.active.val() {
+                                self.l_nf.next = Field::Suspend;
+                                self.l_npos.next = 1.into();
+                            } else {
+                                self.l_start.next = true;
+                            }
+                        } else if !self.rxbit.val() {
+                            self.l_ovl.next = true;
+                        }
+                    }
+                    Field::Suspend => {
+                        self.l_npos.next = self.l_posinc.val();
+                        if !self.rxbit.val() {
+                            self.sofinit.next = true;
+                            self.l_role.next = false;
+                        } else if self.rpos.q.val() == 8 {
+                            self.l_start.next = true;
+                        }
+                    }
+                    _ => {}
+                }
+            }
+
+            // A SOF was sampled: the frame starts (Identifier 1 next).
+            if self.sofinit.val() {
+                self.l_nf.next = Field::Ident;
+                self.l_npos.next = 1.into();
+                self.l_usetx.next = true;
+            }
+            // The bus is free: start a frame if one is pending.
+            if self.l_start.val() {
+                if self.l_cantx.val() {
+                    self.l_nf.next = Field::Sof;
+                    self.l_npos.next = 1.into();
+                    self.l_role.next = true;
+                    self.txsof.next = true;
+                    self.l_usetx.next = true;
+                } else {
+                    self.l_nf.next = Field::Idle;
+                    self.l_npos.next = 1.into();
+                    if self.rfld.q.val() == Field::Idle {
+                        self.l_npos.next = self.l_posinc.val();
+                    }
+                }
+            }
+        }
+        // The level of an own frame bit.
+        self.nf_tx.next = self.l_nf.val();
+        if self.l_usetx.val() {
+            self.l_ndom.next = self.l_role.val() & !self.level.val();
+        }
+        // Error and overload flags.
+        self.ev_aef.next = false;
+        self.ev_pef.next = false;
+        self.ev_olf.next = false;
+        if self.err.val() {
+            self.l_npos.next = 1.into();
+            if self.active.val() {
+                self.l_nf.next = Field::ActFlag;
+                self.l_ndom.next = true;
+                self.ev_aef.next = true;
+            } else {
+                self.l_nf.next = Field::PasFlag;
+                self.l_ndom.next = false;
+                self.ev_pef.next = true;
+            }
+        } else if self.l_ovl.val() {
+            self.l_nf.next = Field::OvlFlag;
+            self.l_npos.next = 1.into();
+            self.l_ndom.next = true;
+            self.ev_olf.next = true;
+        }
+        // Bus-off as soon as TEC exceeds 255: no flag is started after all.
+        if self.busoff.val() {
+            self.ev_aef.next = false;
+            self.ev_pef.next = false;
+            self.ev_olf.next = false;
+            self.l_nf.next = Field::BusOff;
+            self.l_npos.next = 1.into();
+            self.l_ndom.next = false;
+        }
+        self.flag_start.next = self.err.val() | self.l_ovl.val();
+        self.ev_ovl.next = self.l_ovl.val() & !self.err.val();
+
+        if self.sample.val() {
+            if !self.stuff.val() {
+                self.rpfld.d.next = self.rfld.q.val();
+                self.rppos.d.next = self.rpos.q.val();
+            }
+            self.rfld.d.next = self.l_nf.val();
+            self.rpos.d.next = self.l_npos.val();
+            self.rtx.d.next = self.l_role.val();
+            self.rdom.d.next = self.l_ndom.val();
+        }
+        if self.reset.val() {
+            self.rfld.d.next = Field::WaitIdle;
+            self.rpos.d.next = 1.into();
+            self.rtx.d.next = false;
+            self.rdom.d.next = false;
+        }
+        // Counter load (priority over reset and the protocol).
+        if self.cnt_load.val() {
+            if self.tec_in.val() >= 256 {
+                self.rfld.d.next = Field::BusOff;
+                self.rpos.d.next = 1.into();
+                self.rtx.d.next = false;
+                self.rdom.d.next = false;
+            } else if self.rfld.q.val() == Field::BusOff {
+                self.rfld.d.next = Field::WaitIdle;
+                self.rpos.d.next = 1.into();
+                self.rdom.d.next = false;
+            }
+        }
+
+        self.fld.next = self.rfld.q.val();
+        self.fpos.next = self.rpos.q.val();
+        self.pfld.next = self.rpfld.q.val();
+        self.ppos.next = self.rppos.q.val();
+        self.tx_role.next = self.rtx.q.val();
+        self.dom.next = self.rdom.q.val();
+        self.in_busoff.next = self.rfld.q.val() == Field::BusOff;
+    }
+}
+
+canstar_hdl::impl_clocked!(Sequencer);

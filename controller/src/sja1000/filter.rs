@@ -1,0 +1,273 @@
+//! [`AcceptanceFilter`]: the acceptance code and mask registers (ACR0..3,
+//! AMR0..3) and the single and dual filters of the data sheet.
+//!
+//! The code and mask form 32-bit words, ACR0/AMR0 in bits 31..24; a mask
+//! bit 1 means "don't care". Single filter, standard frame: ID 10..0 and
+//! RTR against bits 31..20, data bytes 0 and 1 against bits 15..0 (bits
+//! 19..16 unused); extended frame: ID 28..0 and RTR against bits 31..2
+//! (bits 1..0 unused). Dual filter, standard frame: filter 1 is ID, RTR and
+//! data byte 0 against bits 31..20 and 19..16 + 3..0, filter 2 is ID and
+//! RTR against bits 15..4; extended frame: ID 28..13 against bits 31..16
+//! (filter 1) or 15..0 (filter 2). Data bytes that the frame does not carry
+//! (`n` bytes: remote frames and DLC < 2) match any code.
+//!
+//! The filter is combinational in the frame (`accept`); the registers are
+//! written on `we` at index `idx` (0..3 ACR0..3, 4..7 AMR0..3), read on
+//! `rdata`.
+//!
+//! State: `acr0`..`acr3` (not reset), `amr0`..`amr3` (reset to the table's
+//! AMR value, 0xFF: accept all).
+
+use super::regs;
+use rust_hdl::prelude::*;
+
+#[derive(LogicBlock)]
+pub struct AcceptanceFilter {
+    pub clock: Signal<In, Clock>,
+    pub rst: Signal<In, Bit>,
+    pub we: Signal<In, Bit>,
+    pub idx: Signal<In, Bits<3>>,
+    pub wdata: Signal<In, Bits<8>>,
+    pub rdata: Signal<Out, Bits<8>>,
+    /// Single filter mode (MOD.AFM).
+    pub single: Signal<In, Bit>,
+    /// The frame: IDE, RTR, identifier, data bytes carried, data bytes 0
+    /// (bits 15..8) and 1.
+    pub ide: Signal<In, Bit>,
+    pub rtr: Signal<In, Bit>,
+    pub id: Signal<In, Bits<29>>,
+    pub n: Signal<In, Bits<4>>,
+    pub d01: Signal<In, Bits<16>>,
+    pub accept: Signal<Out, Bit>,
+
+    acr0: DFF<Bits<8>>,
+    acr1: DFF<Bits<8>>,
+    acr2: DFF<Bits<8>>,
+    acr3: DFF<Bits<8>>,
+    amr0: DFF<Bits<8>>,
+    amr1: DFF<Bits<8>>,
+    amr2: DFF<Bits<8>>,
+    amr3: DFF<Bits<8>>,
+    amr_reset: Constant<Bits<8>>,
+
+    l_acr: Signal<Local, Bits<32>>,
+    l_amr: Signal<Local, Bits<32>>,
+    l_v1: Signal<Local, Bits<32>>,
+    l_v2: Signal<Local, Bits<32>>,
+    l_m1: Signal<Local, Bits<32>>,
+    l_m2: Signal<Local, Bits<32>>,
+}
+
+impl Default for AcceptanceFilter {
+    fn default() -> Self {
+        Self {
+            clock: Default::default(),
+            rst: Default::default(),
+            we: Default::default(),
+            idx: Default::default(),
+            wdata: Default::default(),
+            rdata: Default::default(),
+            single: Default::default(),
+            ide: Default::default(),
+            rtr: Default::default(),
+            id: Default::default(),
+            n: Default::default(),
+            d01: Default::default(),
+            accept: Default::default(),
+            acr0: Default::default(),
+            acr1: Default::default(),
+            acr2: Default::default(),
+            acr3: Default::default(),
+            amr0: Default::default(),
+            amr1: Default::default(),
+            amr2: Default::default(),
+            amr3: Default::default(),
+            amr_reset: Constant::new((regs::AMR.reset.unwrap() as u64).into()),
+            l_acr: Default::default(),
+            l_amr: Default::default(),
+            l_v1: Default::default(),
+            l_v2: Default::default(),
+            l_m1: Default::default(),
+            l_m2: Default::default(),
+        }
+    }
+}
+
+impl Logic for AcceptanceFilter {
+    #[hdl_gen]
+    fn update(&mut self) {
+        dff_setup!(self, clock, acr0, acr1, acr2, acr3, amr0, amr1, amr2, amr3);
+        self.rdata.next = 0.into();
+        match self.idx.val().index() {
+            0 => {
+                self.rdata.next = self.acr0.q.val();
+                if self.we.val() {
+                    self.acr0.d.next = self.wdata.val();
+                }
+            }
+            1 => {
+                self.rdata.next = self.acr1.q.val();
+                if self.we.val() {
+                    self.acr1.d.next = self.wdata.val();
+                }
+            }
+            2 => {
+                self.rdata.next = self.acr2.q.val();
+                if self.we.val() {
+                    self.acr2.d.next = self.wdata.val();
+                }
+            }
+            3 => {
+                self.rdata.next = self.acr3.q.val();
+                if self.we.val() {
+                    self.acr3.d.next = self.wdata.val();
+                }
+            }
+            4 => {
+                self.rdata.next = self.amr0.q.val();
+                if self.we.val() {
+                    self.amr0.d.next = self.wdata.val();
+                }
+            }
+            5 => {
+                self.rdata.next = self.amr1.q.val();
+                if self.we.val() {
+                    self.amr1.d.next = self.wdata.val();
+                }
+            }
+            6 => {
+                self.rdata.next = self.amr2.q.val();
+                if self.we.val() {
+                    self.amr2.d.next = self.wdata.val();
+                }
+            }
+            7 => {
+                self.rdata.next = self.amr3.q.val();
+                if self.we.val() {
+                    self.amr3.d.next = self.wdata.val();
+                }
+            }
+            _ => {}
+        }
+        if self.rst.val() {
+            self.amr0.d.next = self.amr_reset.val();
+            self.amr1.d.next = self.amr_reset.val();
+            self.amr2.d.next = self.amr_reset.val();
+            self.amr3.d.next = self.amr_reset.val();
+        }
+
+        self.l_acr.next = (bit_cast::<32, 8>(self.acr0.q.val()) << 24)
+            | (bit_cast::<32, 8>(self.acr1.q.val()) << 16)
+            | (bit_cast::<32, 8>(self.acr2.q.val()) << 8)
+            | bit_cast::<32, 8>(self.acr3.q.val());
+        self.l_amr.next = (bit_cast::<32, 8>(self.amr0.q.val()) << 24)
+            | (bit_cast::<32, 8>(self.amr1.q.val()) << 16)
+            | (bit_cast::<32, 8>(self.amr2.q.val()) << 8)
+            | bit_cast::<32, 8>(self.amr3.q.val());
+        if self.single.val() {
+            if self.ide.val() {
+                self.l_v1.next = bit_cast::<32, 29>(self.id.val()) << 3;
+                self.l_v1.next = self.l_v1.val().replace_bit(2, self.rtr.val());
+                self.l_m1.next = self.l_amr.val() | 3;
+            } else {
+                self.l_v1.next =
+                    (bit_cast::<32, 11>(self.id.val().get_bits::<11>(0)) << 21) | bit_cast::<32, 16>(self.d01.val());
+                self.l_v1.next = self.l_v1.val().replace_bit(20, self.rtr.val());
+                self.l_m1.next = self.l_amr.val() | 0x000F_0000;
+                if self.n.val() < 2 {
+                    self.l_m1.next = self.l_m1.val() | 0xFF;
+                }
+                if self.n.val() < 1 {
+                    self.l_m1.next = self.l_m1.val() | 0xFF00;
+                }
+            }
+            self.l_v2.next = 0.into();
+            self.l_m2.next = 0.into();
+            self.accept.next = ((self.l_v1.val() ^ self.l_acr.val()) & !self.l_m1.val()) == 0;
+        } else {
+            if self.ide.val() {
+                self.l_v1.next = bit_cast::<32, 16>(self.id.val().get_bits::<16>(13)) << 16;
+                self.l_m1.next = self.l_amr.val() | 0xFFFF;
+                self.l_v2.next = bit_cast::<32, 16>(self.id.val().get_bits::<16>(13));
+                self.l_m2.next = self.l_amr.val() | 0xFFFF_0000_u64;
+            } else {
+                self.l_v1.next = (bit_cast::<32, 11>(self.id.val().get_bits::<11>(0)) << 21)
+                    | (bit_cast::<32, 4>(self.d01.val().get_bits::<4>(12)) << 16)
+                    | bit_cast::<32, 4>(self.d01.val().get_bits::<4>(8));
+                self.l_v1.next = self.l_v1.val().replace_bit(20, self.rtr.val());
+                self.l_m1.next = self.l_amr.val() | 0xFFF0;
+                if self.n.val() < 1 {
+                    self.l_m1.next = self.l_m1.val() | 0x000F_000F;
+                }
+                self.l_v2.next = bit_cast::<32, 11>(self.id.val().get_bits::<11>(0)) << 5;
+                self.l_v2.next = self.l_v2.val().replace_bit(4, self.rtr.val());
+                self.l_m2.next = self.l_amr.val() | 0xFFFF_000F_u64;
+            }
+            self.accept.next = (((self.l_v1.val() ^ self.l_acr.val()) & !self.l_m1.val()) == 0)
+                | (((self.l_v2.val() ^ self.l_acr.val()) & !self.l_m2.val()) == 0);
+        }
+    }
+}
+
+canstar_hdl::impl_clocked!(AcceptanceFilter);
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use canstar_hdl::drive;
+
+    fn filter(single: bool, acr: [u8; 4], amr: [u8; 4]) -> AcceptanceFilter {
+        let mut u = AcceptanceFilter::default();
+        drive::init(&mut u);
+        for (k, v) in acr.iter().chain(amr.iter()).enumerate() {
+            u.we.next = true;
+            u.idx.next = (k as u64).into();
+            u.wdata.next = (*v as u64).into();
+            drive::cycle(&mut u);
+        }
+        u.we.next = false;
+        u.single.next = single;
+        u
+    }
+
+    fn accepts(u: &mut AcceptanceFilter, ide: bool, rtr: bool, id: u32, data: &[u8]) -> bool {
+        u.ide.next = ide;
+        u.rtr.next = rtr;
+        u.id.next = (id as u64).into();
+        u.n.next = (data.len() as u64).into();
+        let d0 = *data.first().unwrap_or(&0) as u64;
+        let d1 = *data.get(1).unwrap_or(&0) as u64;
+        u.d01.next = ((d0 << 8) | d1).into();
+        drive::settle(u);
+        u.accept.val()
+    }
+
+    #[test]
+    fn single_filter_standard_frames_with_data_bytes() {
+        // ID 0x123 (ID1 = 0x24, ID2 = 0x60 | RTR 0x10), data 0xAB 0xCD; AMR3 don't care
+        let mut u = filter(true, [0x24, 0x60, 0xAB, 0x00], [0x00, 0x0F, 0x00, 0xFF]);
+        assert!(accepts(&mut u, false, false, 0x123, &[0xAB, 0x11]));
+        assert!(!accepts(&mut u, false, false, 0x123, &[0xAC]), "data byte 0 compared");
+        assert!(!accepts(&mut u, false, true, 0x123, &[]), "RTR compared");
+        assert!(!accepts(&mut u, false, false, 0x122, &[0xAB]));
+        // bytes the frame does not carry match any code
+        assert!(accepts(&mut u, false, false, 0x123, &[]));
+    }
+
+    #[test]
+    fn dual_filter_extended_frames_and_reset_mask() {
+        // filter 1: ID 28..13 = 0x1234 >> ..., filter 2 matches anything
+        let id: u32 = 0x0246_8ACE;
+        let hi = (id >> 13) as u16;
+        let mut u = filter(false, [(hi >> 8) as u8, hi as u8, 0x00, 0x00], [0x00, 0x00, 0x00, 0x00]);
+        assert!(accepts(&mut u, true, false, id, &[]));
+        assert!(accepts(&mut u, true, true, id ^ 0x1FFF, &[]), "ID 12..0 and RTR not compared");
+        assert!(!accepts(&mut u, true, false, id ^ (1 << 20), &[]));
+        // a hardware reset sets AMR to the table's value: accept all
+        u.rst.next = true;
+        drive::cycle(&mut u);
+        u.rst.next = false;
+        assert!(accepts(&mut u, true, false, id ^ (1 << 20), &[]));
+        assert_eq!(regs::AMR.reset, Some(0xFF));
+    }
+}
