@@ -12,7 +12,9 @@
 //! - [`report::CampaignReport`] aggregates per class (runs, passes, worst healthy
 //!   TEC/REC, isolation latency, failures with their seeds), renders the table, and
 //!   round-trips through JSON so shards can be merged,
-//! - [`plot`] draws the TEC/REC of every controller of one run as SVG.
+//! - [`plot`] draws the TEC/REC of every controller of one run as SVG,
+//! - [`sweep`] builds the sweep classes and draws their isolation latency and worst
+//!   healthy TEC/REC against the disturbance interval as SVG.
 //!
 //! The system model itself (network, nodes, applications, faults) is
 //! [`crate::recan`]; [`classes`] turns a (class, seed) pair into its run
@@ -21,6 +23,7 @@
 pub mod classes;
 pub mod plot;
 pub mod report;
+pub mod sweep;
 pub mod system;
 
 use std::fmt;

@@ -180,7 +180,7 @@ fn mode_of(k: FaultKind) -> FaultMode {
         FaultKind::Sad => FaultMode::StuckDominant,
         FaultKind::Sar => FaultMode::StuckRecessive,
         FaultKind::Invert => FaultMode::Invert,
-        FaultKind::BitFlip { .. } => FaultMode::None,
+        FaultKind::BitFlip { .. } | FaultKind::Force { .. } | FaultKind::Burst { .. } => FaultMode::None,
     }
 }
 
@@ -604,20 +604,10 @@ fn inject(sim: &mut Sim, net: &Network, drivers: &[Driver], f: &FaultSpec, t: u6
     }
     let end = f.duration_ps.map(|d| t + d);
     for &id in &nets {
-        match f.kind {
-            FaultKind::BitFlip { every_bits, width_ns, offset_ns } => {
-                let every = ((every_bits * bit as f64).round() as u64).max(1);
-                let width = ((width_ns * 1000.0).round() as u64).max(1);
-                let s = t + (offset_ns * 1000.0).round() as u64;
-                let stop = end.unwrap_or(limit + bit).max(s);
-                let count = ((stop - s) / every + 1) as usize;
-                sim.add_flip_pattern(id, s, width, every, count);
-            }
-            k => {
-                sim.schedule_fault(id, t, mode_of(k));
-                if let Some(e) = end {
-                    sim.schedule_fault(id, e, FaultMode::None);
-                }
+        if !crate::fault::schedule_pattern(sim, id, f.kind, t, end.unwrap_or(limit + bit), bit) {
+            sim.schedule_fault(id, t, mode_of(f.kind));
+            if let Some(e) = end {
+                sim.schedule_fault(id, e, FaultMode::None);
             }
         }
     }

@@ -53,6 +53,23 @@ pub struct Args {
     /// List the scenario classes.
     #[arg(long)]
     list: bool,
+    /// Draw the sweep classes' isolation latency and worst healthy TEC/REC against the
+    /// disturbance interval as SVG (with a campaign that ran `sweep-*` classes, or --merge).
+    #[arg(long, conflicts_with = "class")]
+    plot_sweep: Option<PathBuf>,
+}
+
+/// The sweep table and `--plot-sweep` of a finished campaign.
+fn sweep_outputs(runs: &[canstar_recan::campaign::RunOutcome], plot: Option<&PathBuf>, title: &str) -> Result<()> {
+    use canstar_recan::campaign::sweep;
+    if runs.iter().any(|r| r.class.starts_with("sweep-")) {
+        print!("{}", sweep::table(runs));
+    }
+    if let Some(p) = plot {
+        std::fs::write(p, sweep::svg(runs, title)).with_context(|| format!("writing {}", p.display()))?;
+        eprintln!("wrote sweep plot {}", p.display());
+    }
+    Ok(())
 }
 
 pub fn run(a: Args) -> Result<()> {
@@ -63,7 +80,7 @@ pub fn run(a: Args) -> Result<()> {
         }
         return Ok(());
     }
-    for p in [&a.json, &a.vcd, &a.plot].into_iter().flatten() {
+    for p in [&a.json, &a.vcd, &a.plot, &a.plot_sweep].into_iter().flatten() {
         check_output(p)?;
     }
     if !a.merge.is_empty() {
@@ -74,6 +91,7 @@ pub fn run(a: Args) -> Result<()> {
         }
         let m = CampaignReport::merge(&parts)?;
         print!("{}", m.table());
+        sweep_outputs(&m.runs, a.plot_sweep.as_ref(), &format!("canstar sweep campaign, {} runs (merged)", m.runs.len()))?;
         if m.runs.len() != m.expected_runs() {
             eprintln!("warning: {} of {} runs of the campaign present (shards missing)", m.runs.len(), m.expected_runs());
         }
@@ -165,6 +183,7 @@ pub fn run(a: Args) -> Result<()> {
     let dt = t0.elapsed().as_secs_f64();
     let report = CampaignReport::new(settings, &classes, shard, outcomes);
     print!("{}", report.table());
+    sweep_outputs(&report.runs, a.plot_sweep.as_ref(), &format!("canstar sweep campaign, {} reps per class, seed {}", a.reps, a.seed))?;
     eprintln!(
         "{total} runs in {dt:.1} s ({:.2} runs/s, {:.0} simulated clock cycles/s, {jobs} jobs{})",
         total as f64 / dt.max(1e-9),

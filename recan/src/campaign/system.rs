@@ -85,7 +85,7 @@ fn randomise(net: &mut NetworkSpec, rng: &mut ChaCha8Rng) {
 
 /// A random injection instant: a random bit of a random field of a frame (of a random
 /// sender) after 2..8 frames, or a random time 100..600 bit times after start.
-fn rand_start(rng: &mut ChaCha8Rng, net: &NetworkSpec) -> FaultStart {
+pub(super) fn rand_start(rng: &mut ChaCha8Rng, net: &NetworkSpec) -> FaultStart {
     if rng.gen_bool(0.5) {
         use StartField::*;
         let (field, len) = [(Sof, 1), (Ident, 11), (Dlc, 4), (Data, 8), (Crc, 15), (AckSlot, 1), (Eof, 7), (Inter, 3)][rng.gen_range(0..8)];
@@ -125,7 +125,7 @@ fn ctrl_of(net: &NetworkSpec, node: usize, role: Role) -> usize {
     }
 }
 
-fn cref(c: usize) -> CtrlRef {
+pub(super) fn cref(c: usize) -> CtrlRef {
     if c == 0 {
         CtrlRef::A
     } else {
@@ -135,7 +135,7 @@ fn cref(c: usize) -> CtrlRef {
 
 
 /// Add the criteria of one node-link fault.
-fn link_expect(g: &mut Generic, node: usize, c: usize, dir: Dir, kind: Fault) {
+pub(super) fn link_expect(g: &mut Generic, node: usize, c: usize, dir: Dir, kind: Fault) {
     g.unhealthy.push((node, c));
     let port = Isolated::Port { hub: c, port: node };
     // the faulty path may always be cut; a hub must cut it when it sees it stuck dominant
@@ -145,12 +145,25 @@ fn link_expect(g: &mut Generic, node: usize, c: usize, dir: Dir, kind: Fault) {
     }
 }
 
-fn sublink_expect(g: &mut Generic, interlink: usize, from_hub: usize, kind: Fault) {
+pub(super) fn sublink_expect(g: &mut Generic, interlink: usize, from_hub: usize, kind: Fault) {
     let s = Isolated::Sublink { hub: 1 - from_hub, sublink: interlink };
     g.may_isolate.push(s);
     if kind == Fault::Sad {
         g.must_isolate.push(s);
     }
+}
+
+/// Add the criteria of a fault of hub `h`'s whole output.
+pub(super) fn hub_expect(g: &mut Generic, h: usize, nodes: usize, f: Fault) {
+    for k in 0..nodes {
+        g.unhealthy.push((k, h));
+        g.may_isolate.push(Isolated::Port { hub: h, port: k });
+    }
+    for i in 0..2 {
+        g.may_isolate.push(Isolated::Sublink { hub: h, sublink: i });
+        sublink_expect(g, i, h, f);
+    }
+    // the nodes keep their other controller: nobody is excused
 }
 
 fn finish(mut g: Generic, nodes: usize) -> Generic {
@@ -206,15 +219,10 @@ pub fn build(class: &Class, seed: u64, settings: &Settings) -> Built {
             let h = rng.gen_range(0..2);
             let kind = kind_of(f, &mut rng, &net);
             faults.push(FaultSpec::new(FaultTarget::Hub { hub: h }, kind, rand_start(&mut rng, &net)));
-            for k in 0..nn {
-                g.unhealthy.push((k, h));
-                g.may_isolate.push(Isolated::Port { hub: h, port: k });
-            }
-            for i in 0..2 {
-                g.may_isolate.push(Isolated::Sublink { hub: h, sublink: i });
-                sublink_expect(&mut g, i, h, f);
-            }
-            // the nodes keep their other controller: nobody is excused
+            hub_expect(&mut g, h, nn, f);
+        }
+        ClassKind::Sweep { point, shape, every } => {
+            faults.push(super::sweep::build(point, shape, every, &mut rng, &net, &mut g));
         }
         ClassKind::Crash { node, role } => {
             let k = node_idx(node);
