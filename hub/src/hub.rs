@@ -99,6 +99,9 @@ pub struct HubCore {
     err_start_r: DFF<Bit>,
     sub_bl_r: DFF<Bit>,
     any_sub_blame: Signal<Local, Bit>,
+    sub_all_an: Signal<Local, Bit>,
+    sub_one: Signal<Local, Bit>,
+    sub_two: Signal<Local, Bit>,
     decode: FrameDecode,
     injector: Injector,
     pj: Vec<JudgeUnit>,
@@ -177,6 +180,9 @@ impl HubCore {
             err_start_r: Default::default(),
             sub_bl_r: Default::default(),
             any_sub_blame: Default::default(),
+            sub_all_an: Default::default(),
+            sub_one: Default::default(),
+            sub_two: Default::default(),
             decode: Default::default(),
             injector: Injector::new(start),
             pj: (0..n).map(|_| JudgeUnit::port(cfg.port_params())).collect(),
@@ -267,8 +273,18 @@ impl Logic for HubCore {
         for i in 0..self._n {
             self.any_an.next = self.any_an.val() | self.pj[i].anomaly.val();
         }
+        // every enabled replica sublink (at least two) glitched recently: a glitch of
+        // the peer's contribution, not counted against the sublinks (§5.8)
+        self.sub_all_an.next = true;
+        self.sub_one.next = false;
+        self.sub_two.next = false;
         for j in 0..self._m {
             self.any_an.next = self.any_an.val() | self.sj[j].anomaly.val();
+            if !self.sj[j].dis.val() {
+                self.sub_all_an.next = self.sub_all_an.val() & self.sj[j].anomaly.val();
+                self.sub_two.next = self.sub_two.val() | self.sub_one.val();
+                self.sub_one.next = true;
+            }
         }
         // fault injection controller
         self.injector.clock.next = self.clock.val();
@@ -341,6 +357,7 @@ impl Logic for HubCore {
             self.pj[i].rep_dom.next = false;
             self.pj[i].rep_glitched.next = false;
             self.pj[i].rep_blamed.next = false;
+            self.pj[i].common.next = false;
             self.pj[i].bit_start.next = self.mon_bit_start.val();
             self.pj[i].bs_cnt.next = self.bs_r.q.val();
             self.pj[i].delim.next = self.delim_z.val();
@@ -388,6 +405,7 @@ impl Logic for HubCore {
         for j in 0..self._m {
             self.sj[j].err_start.next = self.err_start_r.q.val();
             self.sj[j].rep_blamed.next = self.sub_bl_r.q.val();
+            self.sj[j].common.next = self.sub_all_an.val() & self.sub_two.val();
         }
         self.efgen.clock.next = self.clock.val();
         self.efgen.reset.next = self.reset.val();

@@ -240,6 +240,13 @@ fn glitches_isolate_and_decay() {
     drive::cycle(&mut j);
     assert!(j.dis.val(), "three glitches isolate");
     assert_eq!(j.life.val().index(), 4, "every glitch counts in the lifetime counter");
+    // a glitch that every replica sublink saw (`common`) is the peer's: not counted
+    let mut j = unit(params());
+    j.common.next = true;
+    assert_eq!(pulse_bit(&mut j, 1, 4, false).1, 1);
+    assert_eq!(j.gc.val().index(), 0);
+    assert_eq!(j.life.val().index(), 0);
+    j.common.next = false;
     // a bit shortened by SJW (14 clocks) and a normal bit are no glitch
     let mut j = unit(params());
     assert_eq!(pulse_bit(&mut j, 2, 14, false).1, 0);
@@ -477,6 +484,7 @@ fn judge_stim(j: &mut JudgeUnit, rng: &mut rand_chacha::ChaCha8Rng, c: usize) {
         j.suppress.next = rng.gen_ratio(1, 8);
         j.rep_glitched.next = rng.gen_ratio(1, 4);
         j.rep_blamed.next = rng.gen_ratio(1, 6);
+        j.common.next = rng.gen_ratio(1, 5);
     }
     // bit-start estimate and its counter; an occasional mid-bit level change (a glitch)
     j.bit_start.next = k == 0;

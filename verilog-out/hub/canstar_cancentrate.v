@@ -758,6 +758,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
     reg  pj$0$suppress;
     reg  pj$0$rep_glitched;
     reg  pj$0$rep_blamed;
+    reg  pj$0$common;
     wire  pj$0$dis;
     wire  pj$0$blame;
     wire  pj$0$charged;
@@ -797,6 +798,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
     reg  pj$1$suppress;
     reg  pj$1$rep_glitched;
     reg  pj$1$rep_blamed;
+    reg  pj$1$common;
     wire  pj$1$dis;
     wire  pj$1$blame;
     wire  pj$1$charged;
@@ -836,6 +838,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
     reg  pj$2$suppress;
     reg  pj$2$rep_glitched;
     reg  pj$2$rep_blamed;
+    reg  pj$2$common;
     wire  pj$2$dis;
     wire  pj$2$blame;
     wire  pj$2$charged;
@@ -865,6 +868,9 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
     
     // Local signals
     reg  any_sub_blame;
+    reg  sub_all_an;
+    reg  sub_one;
+    reg  sub_two;
     reg  reset;
     reg  err_phase;
     reg  delim_z;
@@ -972,6 +978,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         .suppress(pj$0$suppress),
         .rep_glitched(pj$0$rep_glitched),
         .rep_blamed(pj$0$rep_blamed),
+        .common(pj$0$common),
         .dis(pj$0$dis),
         .blame(pj$0$blame),
         .charged(pj$0$charged),
@@ -1013,6 +1020,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         .suppress(pj$1$suppress),
         .rep_glitched(pj$1$rep_glitched),
         .rep_blamed(pj$1$rep_blamed),
+        .common(pj$1$common),
         .dis(pj$1$dis),
         .blame(pj$1$blame),
         .charged(pj$1$charged),
@@ -1054,6 +1062,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         .suppress(pj$2$suppress),
         .rep_glitched(pj$2$rep_glitched),
         .rep_blamed(pj$2$rep_blamed),
+        .common(pj$2$common),
         .dis(pj$2$dis),
         .blame(pj$2$blame),
         .charged(pj$2$charged),
@@ -1124,6 +1133,9 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         any_an = any_an | pj$0$anomaly;
         any_an = any_an | pj$1$anomaly;
         any_an = any_an | pj$2$anomaly;
+        sub_all_an = 1'b1;
+        sub_one = 1'b0;
+        sub_two = 1'b0;
         injector$clock = clock;
         injector$reset = reset;
         injector$button = inject_fault;
@@ -1175,6 +1187,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         pj$0$rep_dom = 1'b0;
         pj$0$rep_glitched = 1'b0;
         pj$0$rep_blamed = 1'b0;
+        pj$0$common = 1'b0;
         pj$0$bit_start = mon_bit_start;
         pj$0$bs_cnt = bs_r$q;
         pj$0$delim = delim_z;
@@ -1215,6 +1228,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         pj$1$rep_dom = 1'b0;
         pj$1$rep_glitched = 1'b0;
         pj$1$rep_blamed = 1'b0;
+        pj$1$common = 1'b0;
         pj$1$bit_start = mon_bit_start;
         pj$1$bs_cnt = bs_r$q;
         pj$1$delim = delim_z;
@@ -1255,6 +1269,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         pj$2$rep_dom = 1'b0;
         pj$2$rep_glitched = 1'b0;
         pj$2$rep_blamed = 1'b0;
+        pj$2$common = 1'b0;
         pj$2$bit_start = mon_bit_start;
         pj$2$bs_cnt = bs_r$q;
         pj$2$delim = delim_z;
@@ -2219,7 +2234,7 @@ module canstar_cancentrate_core$core$injector$state(d,q,clock);
 endmodule // canstar_cancentrate_core$core$injector$state
 
 
-module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,rep_glitched,rep_blamed,dis,blame,charged,tx_error,glitch,anomaly,bic,life,dbc,nack,rep_cnt,gc,silent,contender);
+module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,rep_glitched,rep_blamed,common,dis,blame,charged,tx_error,glitch,anomaly,bic,life,dbc,nack,rep_cnt,gc,silent,contender);
     
     // Module arguments
     input wire  clock;
@@ -2247,6 +2262,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
     input wire  suppress;
     input wire  rep_glitched;
     input wire  rep_blamed;
+    input wire  common;
     output reg  dis;
     output reg  blame;
     output reg  charged;
@@ -2345,6 +2361,9 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
     reg  bl_dm_r$d;
     wire  bl_dm_r$q;
     reg  bl_dm_r$clock;
+    reg  gpend$d;
+    wire  gpend$q;
+    reg  gpend$clock;
     
     // Local signals
     reg  dom;
@@ -2354,6 +2373,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
     reg  charge;
     reg  g;
     reg  rep_ok;
+    reg  gcount;
     
     // Sub module instances
     canstar_cancentrate_core$core$pj$0$pulse pulse(
@@ -2467,6 +2487,11 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         .q(bl_dm_r$q),
         .clock(bl_dm_r$clock)
     );
+    canstar_cancentrate_core$core$pj$0$gpend gpend(
+        .d(gpend$d),
+        .q(gpend$q),
+        .clock(gpend$clock)
+    );
     
     // Update code
     always @(*) begin
@@ -2491,6 +2516,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         an_r$clock = clock;
         bl_r$clock = clock;
         bl_dm_r$clock = clock;
+        gpend$clock = clock;
         dis_r$d = dis_r$q;
         bic_r$d = bic_r$q;
         life_r$d = life_r$q;
@@ -2512,6 +2538,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         an_r$d = an_r$q;
         bl_r$d = bl_r$q;
         bl_dm_r$d = bl_dm_r$q;
+        gpend$d = gpend$q;
         pulse$clock = clock;
         pulse$reset = reset;
         pulse$c = c;
@@ -2598,15 +2625,22 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
                 bad$d = 1'b1;
             end
         end
+        gcount = sample & (gpend$q | g) & ~common & enabled;
+        if (sample) begin
+            gpend$d = 1'b0;
+        end
+        else if (g) begin
+            gpend$d = 1'b1;
+        end
         if (g) begin
             an_r$d = 32'h3;
             bad$d = 1'b1;
         end
-        if (g & enabled & (gc_r$q != 32'h7)) begin
+        if (gcount & (gc_r$q != 32'h7)) begin
             gc_r$d = gc_r$q + 32'h1;
             gdec_r$d = 32'h0;
         end
-        if (((g & enabled) | charge) & (life_r$q != 32'h7f)) begin
+        if ((gcount | charge) & (life_r$q != 32'h7f)) begin
             life_r$d = life_r$q + 32'h1;
         end
         if (dbc_r$q >= dbc_thr) begin
@@ -2669,6 +2703,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
             rep_first_dom$d = 1'b0;
             bl_r$d = 1'b0;
             bl_dm_r$d = 1'b0;
+            gpend$d = 1'b0;
             ok_r$d = 32'h0;
             acked$d = 1'b0;
             bad$d = 1'b0;
@@ -2960,6 +2995,25 @@ module canstar_cancentrate_core$core$pj$0$gdec_r(d,q,clock);
 endmodule // canstar_cancentrate_core$core$pj$0$gdec_r
 
 
+module canstar_cancentrate_core$core$pj$0$gpend(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$0$gpend
+
+
 module canstar_cancentrate_core$core$pj$0$life_r(d,q,clock);
     
     // Module arguments
@@ -3190,7 +3244,7 @@ module canstar_cancentrate_core$core$pj$0$seen_dom(d,q,clock);
 endmodule // canstar_cancentrate_core$core$pj$0$seen_dom
 
 
-module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,rep_glitched,rep_blamed,dis,blame,charged,tx_error,glitch,anomaly,bic,life,dbc,nack,rep_cnt,gc,silent,contender);
+module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,rep_glitched,rep_blamed,common,dis,blame,charged,tx_error,glitch,anomaly,bic,life,dbc,nack,rep_cnt,gc,silent,contender);
     
     // Module arguments
     input wire  clock;
@@ -3218,6 +3272,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
     input wire  suppress;
     input wire  rep_glitched;
     input wire  rep_blamed;
+    input wire  common;
     output reg  dis;
     output reg  blame;
     output reg  charged;
@@ -3316,6 +3371,9 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
     reg  bl_dm_r$d;
     wire  bl_dm_r$q;
     reg  bl_dm_r$clock;
+    reg  gpend$d;
+    wire  gpend$q;
+    reg  gpend$clock;
     
     // Local signals
     reg  dom;
@@ -3325,6 +3383,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
     reg  charge;
     reg  g;
     reg  rep_ok;
+    reg  gcount;
     
     // Sub module instances
     canstar_cancentrate_core$core$pj$1$pulse pulse(
@@ -3438,6 +3497,11 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         .q(bl_dm_r$q),
         .clock(bl_dm_r$clock)
     );
+    canstar_cancentrate_core$core$pj$1$gpend gpend(
+        .d(gpend$d),
+        .q(gpend$q),
+        .clock(gpend$clock)
+    );
     
     // Update code
     always @(*) begin
@@ -3462,6 +3526,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         an_r$clock = clock;
         bl_r$clock = clock;
         bl_dm_r$clock = clock;
+        gpend$clock = clock;
         dis_r$d = dis_r$q;
         bic_r$d = bic_r$q;
         life_r$d = life_r$q;
@@ -3483,6 +3548,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         an_r$d = an_r$q;
         bl_r$d = bl_r$q;
         bl_dm_r$d = bl_dm_r$q;
+        gpend$d = gpend$q;
         pulse$clock = clock;
         pulse$reset = reset;
         pulse$c = c;
@@ -3569,15 +3635,22 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
                 bad$d = 1'b1;
             end
         end
+        gcount = sample & (gpend$q | g) & ~common & enabled;
+        if (sample) begin
+            gpend$d = 1'b0;
+        end
+        else if (g) begin
+            gpend$d = 1'b1;
+        end
         if (g) begin
             an_r$d = 32'h3;
             bad$d = 1'b1;
         end
-        if (g & enabled & (gc_r$q != 32'h7)) begin
+        if (gcount & (gc_r$q != 32'h7)) begin
             gc_r$d = gc_r$q + 32'h1;
             gdec_r$d = 32'h0;
         end
-        if (((g & enabled) | charge) & (life_r$q != 32'h7f)) begin
+        if ((gcount | charge) & (life_r$q != 32'h7f)) begin
             life_r$d = life_r$q + 32'h1;
         end
         if (dbc_r$q >= dbc_thr) begin
@@ -3640,6 +3713,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
             rep_first_dom$d = 1'b0;
             bl_r$d = 1'b0;
             bl_dm_r$d = 1'b0;
+            gpend$d = 1'b0;
             ok_r$d = 32'h0;
             acked$d = 1'b0;
             bad$d = 1'b0;
@@ -3931,6 +4005,25 @@ module canstar_cancentrate_core$core$pj$1$gdec_r(d,q,clock);
 endmodule // canstar_cancentrate_core$core$pj$1$gdec_r
 
 
+module canstar_cancentrate_core$core$pj$1$gpend(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$1$gpend
+
+
 module canstar_cancentrate_core$core$pj$1$life_r(d,q,clock);
     
     // Module arguments
@@ -4161,7 +4254,7 @@ module canstar_cancentrate_core$core$pj$1$seen_dom(d,q,clock);
 endmodule // canstar_cancentrate_core$core$pj$1$seen_dom
 
 
-module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,rep_glitched,rep_blamed,dis,blame,charged,tx_error,glitch,anomaly,bic,life,dbc,nack,rep_cnt,gc,silent,contender);
+module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,rep_glitched,rep_blamed,common,dis,blame,charged,tx_error,glitch,anomaly,bic,life,dbc,nack,rep_cnt,gc,silent,contender);
     
     // Module arguments
     input wire  clock;
@@ -4189,6 +4282,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
     input wire  suppress;
     input wire  rep_glitched;
     input wire  rep_blamed;
+    input wire  common;
     output reg  dis;
     output reg  blame;
     output reg  charged;
@@ -4287,6 +4381,9 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
     reg  bl_dm_r$d;
     wire  bl_dm_r$q;
     reg  bl_dm_r$clock;
+    reg  gpend$d;
+    wire  gpend$q;
+    reg  gpend$clock;
     
     // Local signals
     reg  dom;
@@ -4296,6 +4393,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
     reg  charge;
     reg  g;
     reg  rep_ok;
+    reg  gcount;
     
     // Sub module instances
     canstar_cancentrate_core$core$pj$2$pulse pulse(
@@ -4409,6 +4507,11 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         .q(bl_dm_r$q),
         .clock(bl_dm_r$clock)
     );
+    canstar_cancentrate_core$core$pj$2$gpend gpend(
+        .d(gpend$d),
+        .q(gpend$q),
+        .clock(gpend$clock)
+    );
     
     // Update code
     always @(*) begin
@@ -4433,6 +4536,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         an_r$clock = clock;
         bl_r$clock = clock;
         bl_dm_r$clock = clock;
+        gpend$clock = clock;
         dis_r$d = dis_r$q;
         bic_r$d = bic_r$q;
         life_r$d = life_r$q;
@@ -4454,6 +4558,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         an_r$d = an_r$q;
         bl_r$d = bl_r$q;
         bl_dm_r$d = bl_dm_r$q;
+        gpend$d = gpend$q;
         pulse$clock = clock;
         pulse$reset = reset;
         pulse$c = c;
@@ -4540,15 +4645,22 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
                 bad$d = 1'b1;
             end
         end
+        gcount = sample & (gpend$q | g) & ~common & enabled;
+        if (sample) begin
+            gpend$d = 1'b0;
+        end
+        else if (g) begin
+            gpend$d = 1'b1;
+        end
         if (g) begin
             an_r$d = 32'h3;
             bad$d = 1'b1;
         end
-        if (g & enabled & (gc_r$q != 32'h7)) begin
+        if (gcount & (gc_r$q != 32'h7)) begin
             gc_r$d = gc_r$q + 32'h1;
             gdec_r$d = 32'h0;
         end
-        if (((g & enabled) | charge) & (life_r$q != 32'h7f)) begin
+        if ((gcount | charge) & (life_r$q != 32'h7f)) begin
             life_r$d = life_r$q + 32'h1;
         end
         if (dbc_r$q >= dbc_thr) begin
@@ -4611,6 +4723,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
             rep_first_dom$d = 1'b0;
             bl_r$d = 1'b0;
             bl_dm_r$d = 1'b0;
+            gpend$d = 1'b0;
             ok_r$d = 32'h0;
             acked$d = 1'b0;
             bad$d = 1'b0;
@@ -4900,6 +5013,25 @@ module canstar_cancentrate_core$core$pj$2$gdec_r(d,q,clock);
     end
           
 endmodule // canstar_cancentrate_core$core$pj$2$gdec_r
+
+
+module canstar_cancentrate_core$core$pj$2$gpend(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$2$gpend
 
 
 module canstar_cancentrate_core$core$pj$2$life_r(d,q,clock);

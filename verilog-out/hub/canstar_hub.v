@@ -830,6 +830,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     reg  pj$0$suppress;
     reg  pj$0$rep_glitched;
     reg  pj$0$rep_blamed;
+    reg  pj$0$common;
     wire  pj$0$dis;
     wire  pj$0$blame;
     wire  pj$0$charged;
@@ -869,6 +870,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     reg  pj$1$suppress;
     reg  pj$1$rep_glitched;
     reg  pj$1$rep_blamed;
+    reg  pj$1$common;
     wire  pj$1$dis;
     wire  pj$1$blame;
     wire  pj$1$charged;
@@ -908,6 +910,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     reg  pj$2$suppress;
     reg  pj$2$rep_glitched;
     reg  pj$2$rep_blamed;
+    reg  pj$2$common;
     wire  pj$2$dis;
     wire  pj$2$blame;
     wire  pj$2$charged;
@@ -947,6 +950,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     reg  sj$0$suppress;
     reg  sj$0$rep_glitched;
     reg  sj$0$rep_blamed;
+    reg  sj$0$common;
     wire  sj$0$dis;
     wire  sj$0$blame;
     wire  sj$0$charged;
@@ -986,6 +990,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     reg  sj$1$suppress;
     reg  sj$1$rep_glitched;
     reg  sj$1$rep_blamed;
+    reg  sj$1$common;
     wire  sj$1$dis;
     wire  sj$1$blame;
     wire  sj$1$charged;
@@ -1015,6 +1020,9 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     
     // Local signals
     reg  any_sub_blame;
+    reg  sub_all_an;
+    reg  sub_one;
+    reg  sub_two;
     reg  reset;
     reg  err_phase;
     reg  delim_z;
@@ -1132,6 +1140,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .suppress(pj$0$suppress),
         .rep_glitched(pj$0$rep_glitched),
         .rep_blamed(pj$0$rep_blamed),
+        .common(pj$0$common),
         .dis(pj$0$dis),
         .blame(pj$0$blame),
         .charged(pj$0$charged),
@@ -1173,6 +1182,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .suppress(pj$1$suppress),
         .rep_glitched(pj$1$rep_glitched),
         .rep_blamed(pj$1$rep_blamed),
+        .common(pj$1$common),
         .dis(pj$1$dis),
         .blame(pj$1$blame),
         .charged(pj$1$charged),
@@ -1214,6 +1224,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .suppress(pj$2$suppress),
         .rep_glitched(pj$2$rep_glitched),
         .rep_blamed(pj$2$rep_blamed),
+        .common(pj$2$common),
         .dis(pj$2$dis),
         .blame(pj$2$blame),
         .charged(pj$2$charged),
@@ -1255,6 +1266,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .suppress(sj$0$suppress),
         .rep_glitched(sj$0$rep_glitched),
         .rep_blamed(sj$0$rep_blamed),
+        .common(sj$0$common),
         .dis(sj$0$dis),
         .blame(sj$0$blame),
         .charged(sj$0$charged),
@@ -1296,6 +1308,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .suppress(sj$1$suppress),
         .rep_glitched(sj$1$rep_glitched),
         .rep_blamed(sj$1$rep_blamed),
+        .common(sj$1$common),
         .dis(sj$1$dis),
         .blame(sj$1$blame),
         .charged(sj$1$charged),
@@ -1366,8 +1379,21 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         any_an = any_an | pj$0$anomaly;
         any_an = any_an | pj$1$anomaly;
         any_an = any_an | pj$2$anomaly;
+        sub_all_an = 1'b1;
+        sub_one = 1'b0;
+        sub_two = 1'b0;
         any_an = any_an | sj$0$anomaly;
+        if (~sj$0$dis) begin
+            sub_all_an = sub_all_an & sj$0$anomaly;
+            sub_two = sub_two | sub_one;
+            sub_one = 1'b1;
+        end
         any_an = any_an | sj$1$anomaly;
+        if (~sj$1$dis) begin
+            sub_all_an = sub_all_an & sj$1$anomaly;
+            sub_two = sub_two | sub_one;
+            sub_one = 1'b1;
+        end
         injector$clock = clock;
         injector$reset = reset;
         injector$button = inject_fault;
@@ -1449,6 +1475,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         pj$0$rep_dom = 1'b0;
         pj$0$rep_glitched = 1'b0;
         pj$0$rep_blamed = 1'b0;
+        pj$0$common = 1'b0;
         pj$0$bit_start = mon_bit_start;
         pj$0$bs_cnt = bs_r$q;
         pj$0$delim = delim_z;
@@ -1489,6 +1516,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         pj$1$rep_dom = 1'b0;
         pj$1$rep_glitched = 1'b0;
         pj$1$rep_blamed = 1'b0;
+        pj$1$common = 1'b0;
         pj$1$bit_start = mon_bit_start;
         pj$1$bs_cnt = bs_r$q;
         pj$1$delim = delim_z;
@@ -1529,6 +1557,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         pj$2$rep_dom = 1'b0;
         pj$2$rep_glitched = 1'b0;
         pj$2$rep_blamed = 1'b0;
+        pj$2$common = 1'b0;
         pj$2$bit_start = mon_bit_start;
         pj$2$bs_cnt = bs_r$q;
         pj$2$delim = delim_z;
@@ -1594,8 +1623,10 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         sub_bl_r$d = any_sub_blame;
         sj$0$err_start = err_start_r$q;
         sj$0$rep_blamed = sub_bl_r$q;
+        sj$0$common = sub_all_an & sub_two;
         sj$1$err_start = err_start_r$q;
         sj$1$rep_blamed = sub_bl_r$q;
+        sj$1$common = sub_all_an & sub_two;
         efgen$clock = clock;
         efgen$reset = reset;
         efgen$trigger = trigger;
@@ -2867,7 +2898,7 @@ module canstar_hub_core$core$injector$state(d,q,clock);
 endmodule // canstar_hub_core$core$injector$state
 
 
-module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,rep_glitched,rep_blamed,dis,blame,charged,tx_error,glitch,anomaly,bic,life,dbc,nack,rep_cnt,gc,silent,contender);
+module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,rep_glitched,rep_blamed,common,dis,blame,charged,tx_error,glitch,anomaly,bic,life,dbc,nack,rep_cnt,gc,silent,contender);
     
     // Module arguments
     input wire  clock;
@@ -2895,6 +2926,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     input wire  suppress;
     input wire  rep_glitched;
     input wire  rep_blamed;
+    input wire  common;
     output reg  dis;
     output reg  blame;
     output reg  charged;
@@ -2993,6 +3025,9 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  bl_dm_r$d;
     wire  bl_dm_r$q;
     reg  bl_dm_r$clock;
+    reg  gpend$d;
+    wire  gpend$q;
+    reg  gpend$clock;
     
     // Local signals
     reg  dom;
@@ -3002,6 +3037,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  charge;
     reg  g;
     reg  rep_ok;
+    reg  gcount;
     
     // Sub module instances
     canstar_hub_core$core$pj$0$pulse pulse(
@@ -3115,6 +3151,11 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .q(bl_dm_r$q),
         .clock(bl_dm_r$clock)
     );
+    canstar_hub_core$core$pj$0$gpend gpend(
+        .d(gpend$d),
+        .q(gpend$q),
+        .clock(gpend$clock)
+    );
     
     // Update code
     always @(*) begin
@@ -3139,6 +3180,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         an_r$clock = clock;
         bl_r$clock = clock;
         bl_dm_r$clock = clock;
+        gpend$clock = clock;
         dis_r$d = dis_r$q;
         bic_r$d = bic_r$q;
         life_r$d = life_r$q;
@@ -3160,6 +3202,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         an_r$d = an_r$q;
         bl_r$d = bl_r$q;
         bl_dm_r$d = bl_dm_r$q;
+        gpend$d = gpend$q;
         pulse$clock = clock;
         pulse$reset = reset;
         pulse$c = c;
@@ -3246,15 +3289,22 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                 bad$d = 1'b1;
             end
         end
+        gcount = sample & (gpend$q | g) & ~common & enabled;
+        if (sample) begin
+            gpend$d = 1'b0;
+        end
+        else if (g) begin
+            gpend$d = 1'b1;
+        end
         if (g) begin
             an_r$d = 32'h3;
             bad$d = 1'b1;
         end
-        if (g & enabled & (gc_r$q != 32'h7)) begin
+        if (gcount & (gc_r$q != 32'h7)) begin
             gc_r$d = gc_r$q + 32'h1;
             gdec_r$d = 32'h0;
         end
-        if (((g & enabled) | charge) & (life_r$q != 32'h7f)) begin
+        if ((gcount | charge) & (life_r$q != 32'h7f)) begin
             life_r$d = life_r$q + 32'h1;
         end
         if (dbc_r$q >= dbc_thr) begin
@@ -3317,6 +3367,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             rep_first_dom$d = 1'b0;
             bl_r$d = 1'b0;
             bl_dm_r$d = 1'b0;
+            gpend$d = 1'b0;
             ok_r$d = 32'h0;
             acked$d = 1'b0;
             bad$d = 1'b0;
@@ -3608,6 +3659,25 @@ module canstar_hub_core$core$pj$0$gdec_r(d,q,clock);
 endmodule // canstar_hub_core$core$pj$0$gdec_r
 
 
+module canstar_hub_core$core$pj$0$gpend(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$0$gpend
+
+
 module canstar_hub_core$core$pj$0$life_r(d,q,clock);
     
     // Module arguments
@@ -3838,7 +3908,7 @@ module canstar_hub_core$core$pj$0$seen_dom(d,q,clock);
 endmodule // canstar_hub_core$core$pj$0$seen_dom
 
 
-module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,rep_glitched,rep_blamed,dis,blame,charged,tx_error,glitch,anomaly,bic,life,dbc,nack,rep_cnt,gc,silent,contender);
+module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,rep_glitched,rep_blamed,common,dis,blame,charged,tx_error,glitch,anomaly,bic,life,dbc,nack,rep_cnt,gc,silent,contender);
     
     // Module arguments
     input wire  clock;
@@ -3866,6 +3936,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     input wire  suppress;
     input wire  rep_glitched;
     input wire  rep_blamed;
+    input wire  common;
     output reg  dis;
     output reg  blame;
     output reg  charged;
@@ -3964,6 +4035,9 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  bl_dm_r$d;
     wire  bl_dm_r$q;
     reg  bl_dm_r$clock;
+    reg  gpend$d;
+    wire  gpend$q;
+    reg  gpend$clock;
     
     // Local signals
     reg  dom;
@@ -3973,6 +4047,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  charge;
     reg  g;
     reg  rep_ok;
+    reg  gcount;
     
     // Sub module instances
     canstar_hub_core$core$pj$1$pulse pulse(
@@ -4086,6 +4161,11 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .q(bl_dm_r$q),
         .clock(bl_dm_r$clock)
     );
+    canstar_hub_core$core$pj$1$gpend gpend(
+        .d(gpend$d),
+        .q(gpend$q),
+        .clock(gpend$clock)
+    );
     
     // Update code
     always @(*) begin
@@ -4110,6 +4190,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         an_r$clock = clock;
         bl_r$clock = clock;
         bl_dm_r$clock = clock;
+        gpend$clock = clock;
         dis_r$d = dis_r$q;
         bic_r$d = bic_r$q;
         life_r$d = life_r$q;
@@ -4131,6 +4212,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         an_r$d = an_r$q;
         bl_r$d = bl_r$q;
         bl_dm_r$d = bl_dm_r$q;
+        gpend$d = gpend$q;
         pulse$clock = clock;
         pulse$reset = reset;
         pulse$c = c;
@@ -4217,15 +4299,22 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                 bad$d = 1'b1;
             end
         end
+        gcount = sample & (gpend$q | g) & ~common & enabled;
+        if (sample) begin
+            gpend$d = 1'b0;
+        end
+        else if (g) begin
+            gpend$d = 1'b1;
+        end
         if (g) begin
             an_r$d = 32'h3;
             bad$d = 1'b1;
         end
-        if (g & enabled & (gc_r$q != 32'h7)) begin
+        if (gcount & (gc_r$q != 32'h7)) begin
             gc_r$d = gc_r$q + 32'h1;
             gdec_r$d = 32'h0;
         end
-        if (((g & enabled) | charge) & (life_r$q != 32'h7f)) begin
+        if ((gcount | charge) & (life_r$q != 32'h7f)) begin
             life_r$d = life_r$q + 32'h1;
         end
         if (dbc_r$q >= dbc_thr) begin
@@ -4288,6 +4377,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             rep_first_dom$d = 1'b0;
             bl_r$d = 1'b0;
             bl_dm_r$d = 1'b0;
+            gpend$d = 1'b0;
             ok_r$d = 32'h0;
             acked$d = 1'b0;
             bad$d = 1'b0;
@@ -4579,6 +4669,25 @@ module canstar_hub_core$core$pj$1$gdec_r(d,q,clock);
 endmodule // canstar_hub_core$core$pj$1$gdec_r
 
 
+module canstar_hub_core$core$pj$1$gpend(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$1$gpend
+
+
 module canstar_hub_core$core$pj$1$life_r(d,q,clock);
     
     // Module arguments
@@ -4809,7 +4918,7 @@ module canstar_hub_core$core$pj$1$seen_dom(d,q,clock);
 endmodule // canstar_hub_core$core$pj$1$seen_dom
 
 
-module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,rep_glitched,rep_blamed,dis,blame,charged,tx_error,glitch,anomaly,bic,life,dbc,nack,rep_cnt,gc,silent,contender);
+module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,rep_glitched,rep_blamed,common,dis,blame,charged,tx_error,glitch,anomaly,bic,life,dbc,nack,rep_cnt,gc,silent,contender);
     
     // Module arguments
     input wire  clock;
@@ -4837,6 +4946,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     input wire  suppress;
     input wire  rep_glitched;
     input wire  rep_blamed;
+    input wire  common;
     output reg  dis;
     output reg  blame;
     output reg  charged;
@@ -4935,6 +5045,9 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  bl_dm_r$d;
     wire  bl_dm_r$q;
     reg  bl_dm_r$clock;
+    reg  gpend$d;
+    wire  gpend$q;
+    reg  gpend$clock;
     
     // Local signals
     reg  dom;
@@ -4944,6 +5057,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  charge;
     reg  g;
     reg  rep_ok;
+    reg  gcount;
     
     // Sub module instances
     canstar_hub_core$core$pj$2$pulse pulse(
@@ -5057,6 +5171,11 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .q(bl_dm_r$q),
         .clock(bl_dm_r$clock)
     );
+    canstar_hub_core$core$pj$2$gpend gpend(
+        .d(gpend$d),
+        .q(gpend$q),
+        .clock(gpend$clock)
+    );
     
     // Update code
     always @(*) begin
@@ -5081,6 +5200,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         an_r$clock = clock;
         bl_r$clock = clock;
         bl_dm_r$clock = clock;
+        gpend$clock = clock;
         dis_r$d = dis_r$q;
         bic_r$d = bic_r$q;
         life_r$d = life_r$q;
@@ -5102,6 +5222,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         an_r$d = an_r$q;
         bl_r$d = bl_r$q;
         bl_dm_r$d = bl_dm_r$q;
+        gpend$d = gpend$q;
         pulse$clock = clock;
         pulse$reset = reset;
         pulse$c = c;
@@ -5188,15 +5309,22 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                 bad$d = 1'b1;
             end
         end
+        gcount = sample & (gpend$q | g) & ~common & enabled;
+        if (sample) begin
+            gpend$d = 1'b0;
+        end
+        else if (g) begin
+            gpend$d = 1'b1;
+        end
         if (g) begin
             an_r$d = 32'h3;
             bad$d = 1'b1;
         end
-        if (g & enabled & (gc_r$q != 32'h7)) begin
+        if (gcount & (gc_r$q != 32'h7)) begin
             gc_r$d = gc_r$q + 32'h1;
             gdec_r$d = 32'h0;
         end
-        if (((g & enabled) | charge) & (life_r$q != 32'h7f)) begin
+        if ((gcount | charge) & (life_r$q != 32'h7f)) begin
             life_r$d = life_r$q + 32'h1;
         end
         if (dbc_r$q >= dbc_thr) begin
@@ -5259,6 +5387,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             rep_first_dom$d = 1'b0;
             bl_r$d = 1'b0;
             bl_dm_r$d = 1'b0;
+            gpend$d = 1'b0;
             ok_r$d = 32'h0;
             acked$d = 1'b0;
             bad$d = 1'b0;
@@ -5550,6 +5679,25 @@ module canstar_hub_core$core$pj$2$gdec_r(d,q,clock);
 endmodule // canstar_hub_core$core$pj$2$gdec_r
 
 
+module canstar_hub_core$core$pj$2$gpend(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$2$gpend
+
+
 module canstar_hub_core$core$pj$2$life_r(d,q,clock);
     
     // Module arguments
@@ -5818,7 +5966,7 @@ module canstar_hub_core$core$rst_s2(d,q,clock);
 endmodule // canstar_hub_core$core$rst_s2
 
 
-module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,rep_glitched,rep_blamed,dis,blame,charged,tx_error,glitch,anomaly,bic,life,dbc,nack,rep_cnt,gc,silent,contender);
+module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,rep_glitched,rep_blamed,common,dis,blame,charged,tx_error,glitch,anomaly,bic,life,dbc,nack,rep_cnt,gc,silent,contender);
     
     // Module arguments
     input wire  clock;
@@ -5846,6 +5994,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     input wire  suppress;
     input wire  rep_glitched;
     input wire  rep_blamed;
+    input wire  common;
     output reg  dis;
     output reg  blame;
     output reg  charged;
@@ -5944,6 +6093,9 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  bl_dm_r$d;
     wire  bl_dm_r$q;
     reg  bl_dm_r$clock;
+    reg  gpend$d;
+    wire  gpend$q;
+    reg  gpend$clock;
     
     // Local signals
     reg  dom;
@@ -5953,6 +6105,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  charge;
     reg  g;
     reg  rep_ok;
+    reg  gcount;
     
     // Sub module instances
     canstar_hub_core$core$sj$0$pulse pulse(
@@ -6066,6 +6219,11 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .q(bl_dm_r$q),
         .clock(bl_dm_r$clock)
     );
+    canstar_hub_core$core$sj$0$gpend gpend(
+        .d(gpend$d),
+        .q(gpend$q),
+        .clock(gpend$clock)
+    );
     
     // Update code
     always @(*) begin
@@ -6090,6 +6248,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         an_r$clock = clock;
         bl_r$clock = clock;
         bl_dm_r$clock = clock;
+        gpend$clock = clock;
         dis_r$d = dis_r$q;
         bic_r$d = bic_r$q;
         life_r$d = life_r$q;
@@ -6111,6 +6270,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         an_r$d = an_r$q;
         bl_r$d = bl_r$q;
         bl_dm_r$d = bl_dm_r$q;
+        gpend$d = gpend$q;
         pulse$clock = clock;
         pulse$reset = reset;
         pulse$c = c;
@@ -6197,15 +6357,22 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                 bad$d = 1'b1;
             end
         end
+        gcount = sample & (gpend$q | g) & ~common & enabled;
+        if (sample) begin
+            gpend$d = 1'b0;
+        end
+        else if (g) begin
+            gpend$d = 1'b1;
+        end
         if (g) begin
             an_r$d = 32'h3;
             bad$d = 1'b1;
         end
-        if (g & enabled & (gc_r$q != 32'h7)) begin
+        if (gcount & (gc_r$q != 32'h7)) begin
             gc_r$d = gc_r$q + 32'h1;
             gdec_r$d = 32'h0;
         end
-        if (((g & enabled) | charge) & (life_r$q != 32'h7f)) begin
+        if ((gcount | charge) & (life_r$q != 32'h7f)) begin
             life_r$d = life_r$q + 32'h1;
         end
         if (dbc_r$q >= dbc_thr) begin
@@ -6268,6 +6435,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             rep_first_dom$d = 1'b0;
             bl_r$d = 1'b0;
             bl_dm_r$d = 1'b0;
+            gpend$d = 1'b0;
             ok_r$d = 32'h0;
             acked$d = 1'b0;
             bad$d = 1'b0;
@@ -6559,6 +6727,25 @@ module canstar_hub_core$core$sj$0$gdec_r(d,q,clock);
 endmodule // canstar_hub_core$core$sj$0$gdec_r
 
 
+module canstar_hub_core$core$sj$0$gpend(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$sj$0$gpend
+
+
 module canstar_hub_core$core$sj$0$life_r(d,q,clock);
     
     // Module arguments
@@ -6789,7 +6976,7 @@ module canstar_hub_core$core$sj$0$seen_dom(d,q,clock);
 endmodule // canstar_hub_core$core$sj$0$seen_dom
 
 
-module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,rep_glitched,rep_blamed,dis,blame,charged,tx_error,glitch,anomaly,bic,life,dbc,nack,rep_cnt,gc,silent,contender);
+module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,rep_glitched,rep_blamed,common,dis,blame,charged,tx_error,glitch,anomaly,bic,life,dbc,nack,rep_cnt,gc,silent,contender);
     
     // Module arguments
     input wire  clock;
@@ -6817,6 +7004,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     input wire  suppress;
     input wire  rep_glitched;
     input wire  rep_blamed;
+    input wire  common;
     output reg  dis;
     output reg  blame;
     output reg  charged;
@@ -6915,6 +7103,9 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  bl_dm_r$d;
     wire  bl_dm_r$q;
     reg  bl_dm_r$clock;
+    reg  gpend$d;
+    wire  gpend$q;
+    reg  gpend$clock;
     
     // Local signals
     reg  dom;
@@ -6924,6 +7115,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  charge;
     reg  g;
     reg  rep_ok;
+    reg  gcount;
     
     // Sub module instances
     canstar_hub_core$core$sj$1$pulse pulse(
@@ -7037,6 +7229,11 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .q(bl_dm_r$q),
         .clock(bl_dm_r$clock)
     );
+    canstar_hub_core$core$sj$1$gpend gpend(
+        .d(gpend$d),
+        .q(gpend$q),
+        .clock(gpend$clock)
+    );
     
     // Update code
     always @(*) begin
@@ -7061,6 +7258,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         an_r$clock = clock;
         bl_r$clock = clock;
         bl_dm_r$clock = clock;
+        gpend$clock = clock;
         dis_r$d = dis_r$q;
         bic_r$d = bic_r$q;
         life_r$d = life_r$q;
@@ -7082,6 +7280,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         an_r$d = an_r$q;
         bl_r$d = bl_r$q;
         bl_dm_r$d = bl_dm_r$q;
+        gpend$d = gpend$q;
         pulse$clock = clock;
         pulse$reset = reset;
         pulse$c = c;
@@ -7168,15 +7367,22 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                 bad$d = 1'b1;
             end
         end
+        gcount = sample & (gpend$q | g) & ~common & enabled;
+        if (sample) begin
+            gpend$d = 1'b0;
+        end
+        else if (g) begin
+            gpend$d = 1'b1;
+        end
         if (g) begin
             an_r$d = 32'h3;
             bad$d = 1'b1;
         end
-        if (g & enabled & (gc_r$q != 32'h7)) begin
+        if (gcount & (gc_r$q != 32'h7)) begin
             gc_r$d = gc_r$q + 32'h1;
             gdec_r$d = 32'h0;
         end
-        if (((g & enabled) | charge) & (life_r$q != 32'h7f)) begin
+        if ((gcount | charge) & (life_r$q != 32'h7f)) begin
             life_r$d = life_r$q + 32'h1;
         end
         if (dbc_r$q >= dbc_thr) begin
@@ -7239,6 +7445,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             rep_first_dom$d = 1'b0;
             bl_r$d = 1'b0;
             bl_dm_r$d = 1'b0;
+            gpend$d = 1'b0;
             ok_r$d = 32'h0;
             acked$d = 1'b0;
             bad$d = 1'b0;
@@ -7528,6 +7735,25 @@ module canstar_hub_core$core$sj$1$gdec_r(d,q,clock);
     end
           
 endmodule // canstar_hub_core$core$sj$1$gdec_r
+
+
+module canstar_hub_core$core$sj$1$gpend(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$sj$1$gpend
 
 
 module canstar_hub_core$core$sj$1$life_r(d,q,clock);
