@@ -274,7 +274,7 @@ impl Logic for HubCore {
             self.any_an.next = self.any_an.val() | self.pj[i].anomaly.val();
         }
         // every enabled replica sublink (at least two) glitched recently: a glitch of
-        // the peer's contribution, not counted against the sublinks (§5.8)
+        // the peer's contribution, not counted against the sublinks (hub.md §5.8)
         self.sub_all_an.next = true;
         self.sub_one.next = false;
         self.sub_two.next = false;

@@ -85,7 +85,7 @@ fn randomise(net: &mut NetworkSpec, rng: &mut ChaCha8Rng) {
 
 /// A random injection instant: a random bit of a random field of a frame (of a random
 /// sender) after 2..8 frames, or a random time 100..600 bit times after start.
-pub(super) fn rand_start(rng: &mut ChaCha8Rng, net: &NetworkSpec) -> FaultStart {
+fn rand_start(rng: &mut ChaCha8Rng, net: &NetworkSpec) -> FaultStart {
     if rng.gen_bool(0.5) {
         use StartField::*;
         let (field, len) = [(Sof, 1), (Ident, 11), (Dlc, 4), (Data, 8), (Crc, 15), (AckSlot, 1), (Eof, 7), (Inter, 3)][rng.gen_range(0..8)];
@@ -125,7 +125,7 @@ fn ctrl_of(net: &NetworkSpec, node: usize, role: Role) -> usize {
     }
 }
 
-pub(super) fn cref(c: usize) -> CtrlRef {
+fn cref(c: usize) -> CtrlRef {
     if c == 0 {
         CtrlRef::A
     } else {
@@ -135,7 +135,7 @@ pub(super) fn cref(c: usize) -> CtrlRef {
 
 
 /// Add the criteria of one node-link fault.
-pub(super) fn link_expect(g: &mut Generic, node: usize, c: usize, dir: Dir, kind: Fault) {
+fn link_expect(g: &mut Generic, node: usize, c: usize, dir: Dir, kind: Fault) {
     g.unhealthy.push((node, c));
     let port = Isolated::Port { hub: c, port: node };
     // the faulty path may always be cut; a hub must cut it when it sees it stuck dominant
@@ -145,7 +145,7 @@ pub(super) fn link_expect(g: &mut Generic, node: usize, c: usize, dir: Dir, kind
     }
 }
 
-pub(super) fn sublink_expect(g: &mut Generic, interlink: usize, from_hub: usize, kind: Fault) {
+fn sublink_expect(g: &mut Generic, interlink: usize, from_hub: usize, kind: Fault) {
     let s = Isolated::Sublink { hub: 1 - from_hub, sublink: interlink };
     g.may_isolate.push(s);
     if kind == Fault::Sad {
@@ -154,7 +154,7 @@ pub(super) fn sublink_expect(g: &mut Generic, interlink: usize, from_hub: usize,
 }
 
 /// Add the criteria of a fault of hub `h`'s whole output.
-pub(super) fn hub_expect(g: &mut Generic, h: usize, nodes: usize, f: Fault) {
+fn hub_expect(g: &mut Generic, h: usize, nodes: usize, f: Fault) {
     for k in 0..nodes {
         g.unhealthy.push((k, h));
         g.may_isolate.push(Isolated::Port { hub: h, port: k });
@@ -222,7 +222,20 @@ pub fn build(class: &Class, seed: u64, settings: &Settings) -> Built {
             hub_expect(&mut g, h, nn, f);
         }
         ClassKind::Sweep { point, shape, every } => {
-            faults.push(super::sweep::build(point, shape, every, &mut rng, &net, &mut g));
+            let start = rand_start(&mut rng, &net);
+            let kind = super::sweep::kind(shape, every, &mut rng, &net);
+            let target = super::sweep::target(point, &mut rng);
+            match target {
+                FaultTarget::Link { node, ctrl, dir } => link_expect(&mut g, node, (ctrl == CtrlRef::B) as usize, dir, Fault::Flip),
+                FaultTarget::Sublink { interlink, from_hub } => sublink_expect(&mut g, interlink, from_hub, Fault::Flip),
+                FaultTarget::Interlink { interlink } => {
+                    sublink_expect(&mut g, interlink, 0, Fault::Flip);
+                    sublink_expect(&mut g, interlink, 1, Fault::Flip);
+                }
+                FaultTarget::Hub { hub } => hub_expect(&mut g, hub, nn, Fault::Flip),
+                FaultTarget::Crash { .. } => unreachable!("sweep targets are links and hubs"),
+            }
+            faults.push(FaultSpec::new(target, kind, start));
         }
         ClassKind::Crash { node, role } => {
             let k = node_idx(node);
