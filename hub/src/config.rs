@@ -83,6 +83,23 @@ pub struct HubConfig {
     pub sub_dbc_threshold: u64,
     /// Replica disagreement limit, 1..=7.
     pub replica_limit: u64,
+    /// Glitch rule (hub.md §5.8): a run of equal level of at most this many clocks on an
+    /// input is a glitch (None: one bit minus SJW minus 3 clocks, 11 with the reference
+    /// timing), 1..=30.
+    pub glitch_max: Option<u64>,
+    /// Shortest run that counts as a glitch on a sublink (shorter slivers occur when the
+    /// peer isolates a port or starts its error flag inside a bit), 1..=30.
+    pub sub_glitch_min: u64,
+    /// Glitches that isolate a port / a sublink (decaying counter), 1..=7.
+    pub glitch_limit: u64,
+    pub sub_glitch_limit: u64,
+    /// Frames completed without error that take one glitch off the counter, 1..=31.
+    pub glitch_decay: u64,
+    /// Window rule (hub.md §5.2): clocks after the estimated bit start from which a
+    /// dominant level at any clock up to the sample point counts as the bit's value for
+    /// the unjustified-dominant rules (ports, sublinks), 0..=31.
+    pub window_lag: u64,
+    pub sub_window_lag: u64,
     /// Reintegration window W in frames (None = isolation latched until reset).
     pub reintegration: Option<u64>,
     /// Fault-injection hook (None = no hooks).
@@ -104,9 +121,16 @@ impl Default for HubConfig {
             sub_life_threshold: 64,
             nack_threshold: 7,
             dbc_threshold: 13,
-            sub_bic_threshold: 16,
+            sub_bic_threshold: 10,
             sub_dbc_threshold: 28,
             replica_limit: 3,
+            glitch_max: None,
+            sub_glitch_min: 3,
+            glitch_limit: 3,
+            sub_glitch_limit: 6,
+            glitch_decay: 16,
+            window_lag: 7,
+            sub_window_lag: 8,
             reintegration: None,
             fault_injection: None,
             debug: true,
@@ -146,7 +170,21 @@ impl HubConfig {
             nack_threshold: self.nack_threshold,
             replica_limit: self.replica_limit,
             reintegration: self.reintegration,
+            glitch_min: 1,
+            glitch_max: self.glitch_max_clocks(),
+            glitch_limit: self.glitch_limit,
+            glitch_decay: self.glitch_decay,
+            window_lag: self.window_lag,
         }
+    }
+    /// Longest glitch in clocks: [`HubConfig::glitch_max`], or one bit minus SJW minus
+    /// 3 clocks (the shortest bit a controller sends, less a margin for sampling and for
+    /// asymmetric transceiver delays), at least 1.
+    pub fn glitch_max_clocks(&self) -> u64 {
+        self.glitch_max.unwrap_or_else(|| {
+            let t = &self.timing;
+            ((t.ntq() - t.sjw) * t.brp).saturating_sub(3).clamp(1, 30) as u64
+        })
     }
     /// Parameters of the sublink judge units.
     pub fn sublink_params(&self) -> JudgeParams {
@@ -157,6 +195,11 @@ impl HubConfig {
             nack_threshold: self.nack_threshold,
             replica_limit: self.replica_limit,
             reintegration: self.reintegration,
+            glitch_min: self.sub_glitch_min,
+            glitch_max: self.glitch_max_clocks(),
+            glitch_limit: self.sub_glitch_limit,
+            glitch_decay: self.glitch_decay,
+            window_lag: self.sub_window_lag,
         }
     }
     /// Check the ranges; returns a description of the first problem, starting
@@ -191,10 +234,21 @@ impl HubConfig {
             ("replica_limit", self.replica_limit, 7),
             ("life_threshold", self.life_threshold, 127),
             ("sub_life_threshold", self.sub_life_threshold, 127),
+            ("glitch_limit", self.glitch_limit, 7),
+            ("sub_glitch_limit", self.sub_glitch_limit, 7),
+            ("glitch_decay", self.glitch_decay, 31),
+            ("sub_glitch_min", self.sub_glitch_min, 30),
+            ("glitch_max", self.glitch_max.unwrap_or(1), 30),
         ] {
             if v == 0 || v > hi {
                 return Err(format!("{n} must be in 1..={hi}"));
             }
+        }
+        if self.window_lag > 31 || self.sub_window_lag > 31 {
+            return Err("window_lag and sub_window_lag must be in 0..=31".into());
+        }
+        if self.sub_glitch_min > self.glitch_max_clocks() {
+            return Err("sub_glitch_min must not exceed the glitch maximum".into());
         }
         if let Some(w) = self.reintegration {
             if w == 0 || w > 255 {

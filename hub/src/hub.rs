@@ -97,6 +97,11 @@ pub struct HubCore {
     coupler: Coupler,
     efgen: ErrorFlagGen,
     err_start_r: DFF<Bit>,
+    sub_bl_r: DFF<Bit>,
+    any_sub_blame: Signal<Local, Bit>,
+    sub_all_an: Signal<Local, Bit>,
+    sub_one: Signal<Local, Bit>,
+    sub_two: Signal<Local, Bit>,
     decode: FrameDecode,
     injector: Injector,
     pj: Vec<JudgeUnit>,
@@ -108,11 +113,16 @@ pub struct HubCore {
     rst_s1: DFF<Bit>,
     rst_s2: DFF<Bit>,
     err_phase: Signal<Local, Bit>,
+    bs_r: DFF<Bits<5>>,
+    delim_r: DFF<Bit>,
+    delim_z: Signal<Local, Bit>,
+    any_an: Signal<Local, Bit>,
     any_blame: Signal<Local, Bit>,
     any_tx_error: Signal<Local, Bit>,
     trigger: Signal<Local, Bit>,
     rep_rec: Signal<Local, Bit>,
     rep_dom: Signal<Local, Bit>,
+    rep_gl: Signal<Local, Bit>,
     _n: usize,
     _m: usize,
     _dn: usize,
@@ -168,6 +178,11 @@ impl HubCore {
             coupler: Coupler::new(n, m, cfg.sync_depth),
             efgen: Default::default(),
             err_start_r: Default::default(),
+            sub_bl_r: Default::default(),
+            any_sub_blame: Default::default(),
+            sub_all_an: Default::default(),
+            sub_one: Default::default(),
+            sub_two: Default::default(),
             decode: Default::default(),
             injector: Injector::new(start),
             pj: (0..n).map(|_| JudgeUnit::port(cfg.port_params())).collect(),
@@ -179,11 +194,16 @@ impl HubCore {
             rst_s1: Default::default(),
             rst_s2: Default::default(),
             err_phase: Default::default(),
+            bs_r: Default::default(),
+            delim_r: Default::default(),
+            delim_z: Default::default(),
+            any_an: Default::default(),
             any_blame: Default::default(),
             any_tx_error: Default::default(),
             trigger: Default::default(),
             rep_rec: Default::default(),
             rep_dom: Default::default(),
+            rep_gl: Default::default(),
             _n: n,
             _m: m,
             _dn: dn,
@@ -227,6 +247,45 @@ impl Logic for HubCore {
         self.decode.pos.next = self.mon_pos.val();
         self.frame_state.next = self.mon_field.val();
         self.err_phase.next = self.decode.err_phase.val() | self.efgen.busy.val();
+        // clocks since the estimated bit start (window rule)
+        self.bs_r.clock.next = self.clock.val();
+        self.bs_r.d.next = self.bs_r.q.val();
+        if self.mon_bit_start.val() {
+            self.bs_r.d.next = 0.into();
+        } else if self.bs_r.q.val() != 31 {
+            self.bs_r.d.next = self.bs_r.q.val() + 1;
+        }
+        // error / overload delimiter after BT went recessive: bits 2..7 must be recessive
+        // (the last delimiter bit may be dominant: an overload condition)
+        self.delim_r.clock.next = self.clock.val();
+        self.delim_r.d.next = self.delim_r.q.val();
+        if self.mon_sample.val() {
+            self.delim_r.d.next = self.err_phase.val() & self.coupler.bt.val();
+        }
+        self.delim_z.next = self.err_phase.val()
+            & self.delim_r.q.val()
+            & !(((self.mon_field.val() == 14) | (self.mon_field.val() == 15)) & (self.mon_pos.val() == 7));
+        if self.reset.val() {
+            self.delim_r.d.next = false;
+        }
+        // some unit glitched recently: the other units' blames are not charged
+        self.any_an.next = false;
+        for i in 0..self._n {
+            self.any_an.next = self.any_an.val() | self.pj[i].anomaly.val();
+        }
+        // every enabled replica sublink (at least two) glitched recently: a glitch of
+        // the peer's contribution, not counted against the sublinks (hub.md §5.8)
+        self.sub_all_an.next = true;
+        self.sub_one.next = false;
+        self.sub_two.next = false;
+        for j in 0..self._m {
+            self.any_an.next = self.any_an.val() | self.sj[j].anomaly.val();
+            if !self.sj[j].dis.val() {
+                self.sub_all_an.next = self.sub_all_an.val() & self.sj[j].anomaly.val();
+                self.sub_two.next = self.sub_two.val() | self.sub_one.val();
+                self.sub_one.next = true;
+            }
+        }
         // fault injection controller
         self.injector.clock.next = self.clock.val();
         self.injector.reset.next = self.reset.val();
@@ -243,6 +302,7 @@ impl Logic for HubCore {
         // replica summary for the sublink judges
         self.rep_rec.next = false;
         self.rep_dom.next = false;
+        self.rep_gl.next = false;
         for j in 0..self._m {
             self.coupler.reh_rx[j].next = self.reh_rx[j].val();
             self.hub_tx[j].next = self.coupler.hub_tx[j].val();
@@ -256,10 +316,12 @@ impl Logic for HubCore {
             if !self.sj[j].dis.val() {
                 self.rep_rec.next = self.rep_rec.val() | self.coupler.s[j].val();
                 self.rep_dom.next = self.rep_dom.val() | !self.coupler.s[j].val();
+                self.rep_gl.next = self.rep_gl.val() | (self.sj[j].gc.val() != 0);
             }
         }
         // port judges
         self.any_blame.next = false;
+        self.any_sub_blame.next = false;
         self.any_tx_error.next = false;
         for i in 0..self._n {
             self.coupler.rx[i].next = self.rx[i].val();
@@ -293,6 +355,13 @@ impl Logic for HubCore {
             self.pj[i].err_start.next = false;
             self.pj[i].rep_rec.next = false;
             self.pj[i].rep_dom.next = false;
+            self.pj[i].rep_glitched.next = false;
+            self.pj[i].rep_blamed.next = false;
+            self.pj[i].common.next = false;
+            self.pj[i].bit_start.next = self.mon_bit_start.val();
+            self.pj[i].bs_cnt.next = self.bs_r.q.val();
+            self.pj[i].delim.next = self.delim_z.val();
+            self.pj[i].suppress.next = self.any_an.val() & !self.pj[i].anomaly.val();
             self.any_blame.next = self.any_blame.val() | self.pj[i].blame.val();
             self.any_tx_error.next = self.any_tx_error.val() | self.pj[i].tx_error.val();
         }
@@ -315,7 +384,13 @@ impl Logic for HubCore {
             self.sj[j].frame_ok.next = self.mon_frame_ok.val();
             self.sj[j].rep_rec.next = self.rep_rec.val();
             self.sj[j].rep_dom.next = self.rep_dom.val();
+            self.sj[j].rep_glitched.next = self.rep_gl.val();
+            self.sj[j].bit_start.next = self.mon_bit_start.val();
+            self.sj[j].bs_cnt.next = self.bs_r.q.val();
+            self.sj[j].delim.next = self.delim_z.val();
+            self.sj[j].suppress.next = self.any_an.val() & !self.sj[j].anomaly.val();
             self.any_blame.next = self.any_blame.val() | self.sj[j].blame.val();
+            self.any_sub_blame.next = self.any_sub_blame.val() | self.sj[j].blame.val();
             self.any_tx_error.next = self.any_tx_error.val() | self.sj[j].tx_error.val();
         }
         // error flag (H6)
@@ -324,8 +399,13 @@ impl Logic for HubCore {
         // that the replica evaluation does not depend combinationally on the blames
         self.err_start_r.clock.next = self.clock.val();
         self.err_start_r.d.next = self.trigger.val() & !self.efgen.busy.val();
+        // some sublink was blamed at the sample that started the episode (replica rule)
+        self.sub_bl_r.clock.next = self.clock.val();
+        self.sub_bl_r.d.next = self.any_sub_blame.val();
         for j in 0..self._m {
             self.sj[j].err_start.next = self.err_start_r.q.val();
+            self.sj[j].rep_blamed.next = self.sub_bl_r.q.val();
+            self.sj[j].common.next = self.sub_all_an.val() & self.sub_two.val();
         }
         self.efgen.clock.next = self.clock.val();
         self.efgen.reset.next = self.reset.val();

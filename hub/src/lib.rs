@@ -107,3 +107,4 @@ pub mod frame_state;
 pub mod hub;
 pub mod inject;
 pub mod judge;
+pub mod pulse;

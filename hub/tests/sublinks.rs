@@ -109,9 +109,9 @@ fn inverted_sublink_isolated_alone<T: Dut>() {
 }
 
 /// Unjustified dominant bits from the whole interlink (both replicas dominant in the
-/// CRC delimiter of every frame): blamed +8 per episode, isolated at twice the port
-/// threshold (16 episodes = 128), both replicas; ports never blamed.
-fn unjustified_dominant_on_interlink_isolates_both_at_double_threshold<T: Dut>() {
+/// CRC delimiter of every frame): blamed +8 per episode, isolated at the sublink
+/// threshold (10 episodes = 80, hub.md §5.7), both replicas; ports never blamed.
+fn unjustified_dominant_on_interlink_isolates_both_at_sublink_threshold<T: Dut>() {
     let mut net = Net::<T>::new(&recancentrate(), traffic(40));
     net.stim.sublink = Box::new(|_, _, pins, t| {
         let (f, _) = t.classify(true);
@@ -129,7 +129,7 @@ fn unjustified_dominant_on_interlink_isolates_both_at_double_threshold<T: Dut>()
             break;
         }
     }
-    assert_eq!(episodes_at_isolation, Some(16));
+    assert_eq!(episodes_at_isolation, Some(10));
     assert_eq!(net.sub_isolated(), vec![true, true]);
     assert_eq!(net.max_bic, vec![0, 0, 0], "ports not blamed");
     net.run_until_idle(60_000);
@@ -172,4 +172,4 @@ macro_rules! both {
     };
 }
 
-both!(transmitter_bit_error_from_peer_not_blamed_on_port, healthy_peer_never_blamed, stuck_recessive_sublink_isolated_not_its_replica, stuck_dominant_sublink_isolated_alone, dominant_run_isolates_single_sublink, inverted_sublink_isolated_alone, unjustified_dominant_on_interlink_isolates_both_at_double_threshold);
+both!(transmitter_bit_error_from_peer_not_blamed_on_port, healthy_peer_never_blamed, stuck_recessive_sublink_isolated_not_its_replica, stuck_dominant_sublink_isolated_alone, dominant_run_isolates_single_sublink, inverted_sublink_isolated_alone, unjustified_dominant_on_interlink_isolates_both_at_sublink_threshold);

@@ -38,6 +38,10 @@ struct Map {
     // atoms
     pj_blame: Vec<usize>,
     sj_blame: Vec<usize>,
+    pj_charged: Vec<usize>,
+    sj_charged: Vec<usize>,
+    pj_glitch: Vec<usize>,
+    sj_glitch: Vec<usize>,
     pj_bic: Vec<usize>,
     pj_dbc: Vec<usize>,
     sj_bic: Vec<usize>,
@@ -92,6 +96,10 @@ impl Map {
             bic: (0..n).map_while(|i| m.output_index(&format!("bic${i}"))).collect(),
             pj_blame: each(n, &|i| atom(&format!("core.pj${i}.blame")))?,
             sj_blame: each(k, &|j| atom(&format!("core.sj${j}.blame")))?,
+            pj_charged: each(n, &|i| atom(&format!("core.pj${i}.charged")))?,
+            sj_charged: each(k, &|j| atom(&format!("core.sj${j}.charged")))?,
+            pj_glitch: each(n, &|i| atom(&format!("core.pj${i}.glitch")))?,
+            sj_glitch: each(k, &|j| atom(&format!("core.sj${j}.glitch")))?,
             pj_bic: each(n, &|i| atom(&format!("core.pj${i}.bic")))?,
             pj_dbc: each(n, &|i| atom(&format!("core.pj${i}.dbc")))?,
             sj_bic: each(k, &|j| atom(&format!("core.sj${j}.bic")))?,
@@ -303,6 +311,14 @@ readers! {
     port_blame(i) -> bool: |h| h.core().port_judge(i).blame.val(), |m, p| m.atom(p.pj_blame[i]) != 0;
     /// Sublink judge `j` blames its sublink in this clock.
     sub_blame(j) -> bool: |h| h.core().sublink_judge(j).blame.val(), |m, p| m.atom(p.sj_blame[j]) != 0;
+    /// Port judge `i`'s blame in this clock is charged to its counter.
+    port_charged(i) -> bool: |h| h.core().port_judge(i).charged.val(), |m, p| m.atom(p.pj_charged[i]) != 0;
+    /// Sublink judge `j`'s blame in this clock is charged to its counter.
+    sub_charged(j) -> bool: |h| h.core().sublink_judge(j).charged.val(), |m, p| m.atom(p.sj_charged[j]) != 0;
+    /// Port judge `i` sees a glitch (a pulse shorter than a bit) in this clock.
+    port_glitch(i) -> bool: |h| h.core().port_judge(i).glitch.val(), |m, p| m.atom(p.pj_glitch[i]) != 0;
+    /// Sublink judge `j` sees a glitch in this clock.
+    sub_glitch(j) -> bool: |h| h.core().sublink_judge(j).glitch.val(), |m, p| m.atom(p.sj_glitch[j]) != 0;
     port_bic(i) -> u64: |h| h.core().port_judge(i).bic.val().index() as u64, |m, p| m.atom(p.pj_bic[i]) as u64;
     port_dbc(i) -> u64: |h| h.core().port_judge(i).dbc.val().index() as u64, |m, p| m.atom(p.pj_dbc[i]) as u64;
     sub_bic(j) -> u64: |h| h.core().sublink_judge(j).bic.val().index() as u64, |m, p| m.atom(p.sj_bic[j]) as u64;
@@ -357,10 +373,11 @@ mod tests {
         let cfg = HubConfig { ports: 3, sublinks: 2, ..HubConfig::default() };
         let mut hubs = [HubSim::new(Engine::Compiled, &cfg), HubSim::new(Engine::RustHdl, &cfg)];
         assert_eq!(hubs[0].engine(), Engine::Compiled);
-        let mut isolated = false;
+        let (mut isolated, mut glitches) = (false, false);
         for t in 0..30_000u32 {
             for h in hubs.iter_mut() {
-                h.set_inputs(t >= 4, false, |i| !(i == 0 && t > 3000), |_| true);
+                // port 0 stuck dominant from clock 3000; port 1 with 2-clock glitches
+                h.set_inputs(t >= 4, false, |i| !(i == 0 && t > 3000) && !(i == 1 && t > 1000 && t % 701 < 2), |_| true);
                 h.cycle();
             }
             let r = |h: &HubSim| {
@@ -368,15 +385,19 @@ mod tests {
                 v.extend([h.mon_error() as u64, h.mon_frame_ok() as u64, h.blame_any() as u64]);
                 for i in 0..3 {
                     v.extend([h.tx(i) as u64, h.isolated(i) as u64, h.silent(i) as u64, h.port_bic(i), h.port_dbc(i), h.port_blame(i) as u64]);
+                    v.extend([h.port_charged(i) as u64, h.port_glitch(i) as u64]);
                 }
                 for j in 0..2 {
                     v.extend([h.hub_tx(j) as u64, h.sub_isolated(j) as u64, h.sub_bic(j), h.sub_dbc(j), h.sub_blame(j) as u64]);
+                    v.extend([h.sub_charged(j) as u64, h.sub_glitch(j) as u64]);
                 }
                 v
             };
             assert_eq!(r(&hubs[0]), r(&hubs[1]), "clock {t}");
             isolated |= hubs[0].isolated(0);
+            glitches |= hubs[0].port_glitch(1);
         }
         assert!(isolated, "the stuck port was isolated");
+        assert!(glitches, "the glitching port's glitches were seen");
     }
 }

@@ -51,12 +51,26 @@ pub struct Receiver {
     pub duplicates: u64,
     /// (sender id, first missed value, last missed value).
     pub misses: Vec<(u32, u8, u8)>,
+    /// After [`Receiver::rejoin`]: the next value of every sender is taken as it comes.
+    rejoined: bool,
 }
 
 impl Receiver {
+    /// The node was switched off and on again: what it missed while off is no loss, so
+    /// the first value of each sender after this call starts a new sequence.
+    pub fn rejoin(&mut self) {
+        self.rejoined = true;
+        self.last.clear();
+    }
+
     /// Classify a delivered frame (frames without data are ignored).
     pub fn deliver(&mut self, f: &Frame) -> Option<Class> {
         let v = *f.data.first()?;
+        if self.rejoined && !self.last.contains_key(&f.id) {
+            self.last.insert(f.id, v);
+            self.next += 1;
+            return Some(Class::Next);
+        }
         let last = self.last.get(&f.id).copied().unwrap_or(255);
         let class = if v == last.wrapping_add(1) {
             Class::Next

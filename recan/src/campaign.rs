@@ -12,7 +12,9 @@
 //! - [`report::CampaignReport`] aggregates per class (runs, passes, worst healthy
 //!   TEC/REC, isolation latency, failures with their seeds), renders the table, and
 //!   round-trips through JSON so shards can be merged,
-//! - [`plot`] draws the TEC/REC of every controller of one run as SVG.
+//! - [`plot`] draws the TEC/REC of every controller of one run as SVG,
+//! - [`sweep`] builds the sweep classes and draws their isolation latency and worst
+//!   healthy TEC/REC against the disturbance interval as SVG.
 //!
 //! The system model itself (network, nodes, applications, faults) is
 //! [`crate::recan`]; [`classes`] turns a (class, seed) pair into its run
@@ -21,6 +23,7 @@
 pub mod classes;
 pub mod plot;
 pub mod report;
+pub mod sweep;
 pub mod system;
 
 use std::fmt;
@@ -33,8 +36,10 @@ pub use report::{CampaignReport, ClassSummary, RunOutcome};
 pub enum CampaignError {
     #[error("unknown scenario class `{0}` (see `canstar campaign --list`)")]
     UnknownClass(String),
-    #[error("malformed shard `{0}`: expected i/n with 1 <= i <= n (e.g. 2/4)")]
+    #[error("malformed shard `{0}`: expected i/n with 1 <= i <= n (e.g. 2/4), `auto` or `auto/n`")]
     BadShard(String),
+    #[error("--shard auto: {0}")]
+    NoScheduler(String),
     #[error("{0}")]
     BadReport(String),
 }
@@ -81,6 +86,56 @@ impl Shard {
             return Err(bad());
         }
         Ok(Shard { index, count })
+    }
+
+    /// `i/n`, or `auto` / `auto/n`: the shard of this array task of a batch scheduler,
+    /// read with `env` (the process environment in the CLI):
+    /// - Slurm: index from `SLURM_ARRAY_TASK_ID` (relative to `SLURM_ARRAY_TASK_MIN`,
+    ///   divided by `SLURM_ARRAY_TASK_STEP`), count from `SLURM_ARRAY_TASK_COUNT`;
+    /// - LSF: index from `LSB_JOBINDEX` (arrays `[1-n]`), count from `auto/n`, else from
+    ///   `LSB_JOBINDEX_END`;
+    /// - `auto/n` overrides the scheduler's count.
+    pub fn parse_with_env(s: &str, env: impl Fn(&str) -> Option<String>) -> Result<Shard, CampaignError> {
+        let t = s.trim();
+        let Some(rest) = t.strip_prefix("auto") else { return Shard::parse(t) };
+        let given: Option<u32> = match rest.strip_prefix('/') {
+            Some(n) => Some(n.trim().parse().map_err(|_| CampaignError::BadShard(s.to_string()))?),
+            None if rest.is_empty() => None,
+            None => return Err(CampaignError::BadShard(s.to_string())),
+        };
+        let num = |k: &str| -> Result<Option<u64>, CampaignError> {
+            match env(k) {
+                None => Ok(None),
+                Some(v) => v.trim().parse::<u64>().map(Some).map_err(|_| CampaignError::NoScheduler(format!("{k}={v} is not a number"))),
+            }
+        };
+        let (index, count) = if let Some(id) = num("SLURM_ARRAY_TASK_ID")? {
+            let min = num("SLURM_ARRAY_TASK_MIN")?.unwrap_or(0);
+            let step = num("SLURM_ARRAY_TASK_STEP")?.unwrap_or(1).max(1);
+            let count = given.map(u64::from).or(num("SLURM_ARRAY_TASK_COUNT")?);
+            let count = count.ok_or_else(|| CampaignError::NoScheduler("SLURM_ARRAY_TASK_COUNT not set (use auto/n)".into()))?;
+            if id < min {
+                return Err(CampaignError::NoScheduler(format!("SLURM_ARRAY_TASK_ID {id} below SLURM_ARRAY_TASK_MIN {min}")));
+            }
+            ((id - min) / step + 1, count)
+        } else if let Some(idx) = num("LSB_JOBINDEX")?.filter(|&i| i > 0) {
+            let count = given.map(u64::from).or(num("LSB_JOBINDEX_END")?);
+            let count = count.ok_or_else(|| CampaignError::NoScheduler("LSF sets no array size: use --shard auto/n".into()))?;
+            (idx, count)
+        } else {
+            return Err(CampaignError::NoScheduler(
+                "not an array task (neither SLURM_ARRAY_TASK_ID nor LSB_JOBINDEX is set)".into(),
+            ));
+        };
+        if count == 0 || index == 0 || index > count || count > u32::MAX as u64 {
+            return Err(CampaignError::NoScheduler(format!("array task {index} of {count} is not a shard")));
+        }
+        Ok(Shard { index: index as u32, count: count as u32 })
+    }
+
+    /// [`Shard::parse_with_env`] with the process environment.
+    pub fn parse_auto(s: &str) -> Result<Shard, CampaignError> {
+        Shard::parse_with_env(s, |k| std::env::var(k).ok())
     }
 
     /// Whether the run at position `k` of the full plan belongs to this shard.
@@ -245,6 +300,27 @@ mod tests {
         for bad in ["3/2", "0/2", "1/0", "1", "a/b", "1/2/3", "", "-1/2"] {
             assert!(Shard::parse(bad).is_err(), "{bad}");
         }
+    }
+
+    #[test]
+    fn shards_from_scheduler_variables() {
+        let env = |vars: &'static [(&'static str, &'static str)]| move |k: &str| vars.iter().find(|v| v.0 == k).map(|v| v.1.to_string());
+        // Slurm --array=0-9: task 0 is shard 1/10
+        let slurm = env(&[("SLURM_ARRAY_TASK_ID", "0"), ("SLURM_ARRAY_TASK_MIN", "0"), ("SLURM_ARRAY_TASK_COUNT", "10")]);
+        assert_eq!(Shard::parse_with_env("auto", slurm), Ok(Shard { index: 1, count: 10 }));
+        // --array=1-20:2 (10 tasks), task 7 is the 4th
+        let step = env(&[("SLURM_ARRAY_TASK_ID", "7"), ("SLURM_ARRAY_TASK_MIN", "1"), ("SLURM_ARRAY_TASK_STEP", "2"), ("SLURM_ARRAY_TASK_COUNT", "10")]);
+        assert_eq!(Shard::parse_with_env("auto", step), Ok(Shard { index: 4, count: 10 }));
+        // LSF [1-8]: the count comes from auto/n
+        let lsf = env(&[("LSB_JOBINDEX", "8")]);
+        assert_eq!(Shard::parse_with_env("auto/8", lsf), Ok(Shard { index: 8, count: 8 }));
+        assert!(matches!(Shard::parse_with_env("auto", lsf), Err(CampaignError::NoScheduler(_))));
+        assert!(matches!(Shard::parse_with_env("auto/4", lsf), Err(CampaignError::NoScheduler(_))), "index 8 of 4");
+        // LSB_JOBINDEX 0 = not an array job
+        assert!(Shard::parse_with_env("auto/4", env(&[("LSB_JOBINDEX", "0")])).is_err());
+        assert!(Shard::parse_with_env("auto", env(&[])).is_err());
+        assert!(Shard::parse_with_env("autox", env(&[])).is_err());
+        assert_eq!(Shard::parse_with_env("2/3", env(&[])), Ok(Shard { index: 2, count: 3 }));
     }
 
     #[test]

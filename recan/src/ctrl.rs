@@ -46,6 +46,10 @@ pub struct Ctrl {
     cycles: u64,
     /// Error events seen so far (also while inactive: none are produced then).
     pub errors: u64,
+    /// Every error event: (time ps, transmitting, FIELD code at the error).
+    pub error_log: Vec<(u64, bool, u8)>,
+    /// TEC/REC to load at the next clock ([`Ctrl::load_counters`]).
+    load: Option<(u32, u32)>,
 }
 
 impl Ctrl {
@@ -71,6 +75,8 @@ impl Ctrl {
             events: Vec::new(),
             cycles: 0,
             errors: 0,
+            error_log: Vec::new(),
+            load: None,
         };
         c.apply_config();
         c
@@ -113,6 +119,22 @@ impl Ctrl {
     pub fn crash(&mut self) {
         self.crashed = true;
         self.request = None;
+    }
+    /// Power on again after [`Ctrl::crash`] (a node switched off and on): the
+    /// controller is reset (counters cleared) and integrates into the bus like a node
+    /// at power-up; nothing is requested.
+    pub fn power_on(&mut self) {
+        self.crashed = false;
+        self.held = false;
+        self.request = None;
+        self.last = None;
+        self.gap = false;
+        self.reset_left = RESET_CYCLES;
+    }
+    /// Load TEC and REC at the next clock (a host setting the error counters, e.g. to
+    /// make the controller error-passive with TEC >= 128).
+    pub fn load_counters(&mut self, tec: u32, rec: u32) {
+        self.load = Some((tec, rec));
     }
     pub fn is_held(&self) -> bool {
         self.held
@@ -166,6 +188,7 @@ impl Ctrl {
         }
         if c.error() {
             self.errors += 1;
+            self.error_log.push((now, c.err_tx(), c.field() as u8));
             self.events.push((now, CtrlEvent::Error { tx: c.err_tx() }));
         }
         if c.rx_valid() {
@@ -198,6 +221,13 @@ impl Component for Ctrl {
             core.reset = false;
         }
         core.tx_abort = false;
+        if let Some((t, r)) = self.load.take() {
+            core.cnt_load = true;
+            core.tec_in = t as u16;
+            core.rec_in = r as u8;
+        } else {
+            core.cnt_load = false;
+        }
         if self.gap {
             // tx_req low for one clock after a success
             core.tx_req = false;

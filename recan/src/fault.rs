@@ -72,6 +72,57 @@ pub enum FaultKind {
     /// One inversion window of `width_ns` every `every_bits` bit times,
     /// starting `offset_ns` after the fault start (a flipped bit every so often).
     BitFlip { every_bits: f64, width_ns: f64, offset_ns: f64 },
+    /// The signal forced to one level for `width_ns` every `every_bits` bit times,
+    /// starting `offset_ns` after the fault start: `dominant` flips recessive bits to
+    /// dominant only, otherwise dominant bits to recessive only.
+    Force { every_bits: f64, width_ns: f64, offset_ns: f64, dominant: bool },
+    /// Bursts: every `every_bits` bit times, `flips` inversion windows of random width
+    /// (0.1 to 1 bit time) at random instants within `len_bits` bit times, drawn from
+    /// `seed`.
+    Burst { every_bits: f64, len_bits: f64, flips: u32, seed: u64 },
+}
+
+/// Schedule the windows of a pattern fault (`BitFlip`, `Force`, `Burst`) on `id` from
+/// `start` to `stop` (ps; `bit` = one bit time in ps). Returns false for the other
+/// kinds (a level held from the start), which the caller schedules itself.
+pub(crate) fn schedule_pattern(sim: &mut canstar_sim::Sim, id: canstar_sim::NetId, kind: FaultKind, start: u64, stop: u64, bit: u64) -> bool {
+    use rand::{Rng, SeedableRng};
+    let ps = |ns: f64| (ns * 1000.0).round() as u64;
+    match kind {
+        FaultKind::BitFlip { every_bits, width_ns, offset_ns } => {
+            let every = ((every_bits * bit as f64).round() as u64).max(1);
+            let s = start + ps(offset_ns);
+            let count = ((stop.max(s) - s) / every + 1) as usize;
+            sim.add_flip_pattern(id, s, ps(width_ns).max(1), every, count);
+        }
+        FaultKind::Force { every_bits, width_ns, offset_ns, dominant } => {
+            let every = ((every_bits * bit as f64).round() as u64).max(1);
+            let width = ps(width_ns).clamp(1, every.saturating_sub(1).max(1));
+            let mode = if dominant { canstar_sim::FaultMode::StuckDominant } else { canstar_sim::FaultMode::StuckRecessive };
+            let mut t = start + ps(offset_ns);
+            while t <= stop {
+                sim.schedule_fault(id, t, mode);
+                sim.schedule_fault(id, t + width, canstar_sim::FaultMode::None);
+                t += every;
+            }
+        }
+        FaultKind::Burst { every_bits, len_bits, flips, seed } => {
+            let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+            let every = ((every_bits * bit as f64).round() as u64).max(1);
+            let len = ((len_bits * bit as f64).round() as u64).max(1);
+            let mut t = start;
+            while t <= stop {
+                for _ in 0..flips {
+                    let at = t + rng.gen_range(0..len);
+                    let w = rng.gen_range(bit / 10..=bit).max(1);
+                    sim.add_flip_window(id, at, at + w);
+                }
+                t += every;
+            }
+        }
+        _ => return false,
+    }
+    true
 }
 
 /// A frame field at which a fault may start (observed on the bus through

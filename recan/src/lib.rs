@@ -16,6 +16,9 @@
 //!   (deterministic: the same spec and seed give the same result).
 //! - [`rtl_hub`]: [`rtl_hub::RtlHub`], the generated hub RTL (frame monitor
 //!   included) as a kernel component.
+//! - [`events`]: legal events of healthy nodes (error-passive controllers,
+//!   overload frames, late joiners, power cycles); [`soak`]: the fault-free soak
+//!   (`canstar soak`).
 //! - [`campaign`]: randomised fault campaigns over classes of faults
 //!   (`canstar campaign`).
 //! - [`scenarios`]: [`published_scenario`] (the 21 rows of recancentrate.md §5,
@@ -45,11 +48,13 @@ pub mod app;
 pub mod campaign;
 pub mod ctrl;
 pub mod driver;
+pub mod events;
 pub mod fault;
 pub mod network;
 pub mod rtl_hub;
 pub mod run;
 pub mod scenarios;
+pub mod soak;
 pub mod spec;
 
 pub use fault::{CtrlRef, Dir, FaultKind, FaultSpec, FaultStart, FaultTarget, StartField};

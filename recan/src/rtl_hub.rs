@@ -56,8 +56,22 @@ pub struct HubStats {
     pub monitor_errors: u64,
     /// Bits the frame monitor sampled in an overload frame.
     pub overload_bits: u64,
-    /// Every blame: (time ps, unit: port i or sublink N + j, field code, position).
-    pub blame_log: Vec<(u64, usize, u8, u8)>,
+    /// Every blame: (time ps, unit: port i or sublink N + j, field code, position,
+    /// charged: not suppressed by another unit's glitch).
+    pub blame_log: Vec<(u64, usize, u8, u8, bool)>,
+    /// Every glitch: (time ps, unit).
+    pub glitch_log: Vec<(u64, usize)>,
+    /// Per input (ports, then sublinks): completed runs of equal input level shorter
+    /// than 32 clocks, counted by length (`short_runs[input][len]`), measured on the
+    /// inputs as the hub samples them (after reset).
+    pub short_runs: Vec<[u64; 32]>,
+    /// Per input: (level, clocks) of the run in progress.
+    run_now: Vec<(bool, u64)>,
+    /// Per input: edges counted by their phase, in clocks since the frame monitor's last
+    /// sample strobe: `edge_phase[input][min(phase, 31)]` for recessive-to-dominant
+    /// edges, `[32 + min(phase, 31)]` for dominant-to-recessive ones.
+    pub edge_phase: Vec<[u64; 64]>,
+    since_sample: u64,
 }
 
 /// One clock of an [`RtlHub`]'s input stimulus, packed: bit 0 `rst_n`, bit 1
@@ -100,6 +114,9 @@ impl RtlHub {
                 isolated_at: vec![None; cfg.ports],
                 sub_isolated_at: vec![None; cfg.sublinks],
                 silent_at: vec![None; cfg.ports],
+                short_runs: vec![[0; 32]; cfg.ports + cfg.sublinks],
+                run_now: vec![(true, 0); cfg.ports + cfg.sublinks],
+                edge_phase: vec![[0; 64]; cfg.ports + cfg.sublinks],
                 ..Default::default()
             },
             record: None,
@@ -205,6 +222,22 @@ impl Component for RtlHub {
             }
             r.push(w);
         }
+        if self.cycles >= Self::RESET_CYCLES {
+            let st = &mut self.stats;
+            for k in 0..self.n + self.m {
+                let v = io.input(k);
+                let r = &mut st.run_now[k];
+                if v == r.0 {
+                    r.1 += 1;
+                } else {
+                    if r.1 < 32 {
+                        st.short_runs[k][r.1 as usize] += 1;
+                    }
+                    st.edge_phase[k][st.since_sample.min(31) as usize + if v { 32 } else { 0 }] += 1;
+                    *r = (v, 1);
+                }
+            }
+        }
         let hub = &mut self.hub;
         hub.cycle();
         for i in 0..self.n {
@@ -221,19 +254,31 @@ impl Component for RtlHub {
             let (f, p) = (hub.mon_field(), hub.mon_pos());
             for i in 0..self.n {
                 if hub.port_blame(i) {
-                    st.blame_log.push((now, i, f, p));
+                    st.blame_log.push((now, i, f, p, hub.port_charged(i)));
                 }
             }
             for k in 0..self.m {
                 if hub.sub_blame(k) {
-                    st.blame_log.push((now, self.n + k, f, p));
+                    st.blame_log.push((now, self.n + k, f, p, hub.sub_charged(k)));
                 }
+            }
+        }
+        for i in 0..self.n {
+            if hub.port_glitch(i) {
+                st.glitch_log.push((now, i));
+            }
+        }
+        for k in 0..self.m {
+            if hub.sub_glitch(k) {
+                st.glitch_log.push((now, self.n + k));
             }
         }
         if hub.efg_active() {
             st.efg_clocks += 1;
         }
+        st.since_sample += 1;
         if hub.mon_sample() {
+            st.since_sample = 0;
             if hub.mon_frame_ok() {
                 st.frames_ok += 1;
             }

@@ -12,6 +12,7 @@ use canstar_sim::net::{FaultMode, NetId};
 use crate::app::{Receiver, Sender};
 use crate::ctrl::Ctrl;
 use crate::driver::{Driver, Notice, QuaReason};
+use crate::events::{EventRunner, NodeEvent, PowerChange};
 use crate::fault::{CtrlRef, Dir, FaultKind, FaultSpec, FaultStart, FaultTarget, StartField};
 use crate::network::Network;
 use crate::spec::{AppKind, NetworkSpec};
@@ -42,12 +43,15 @@ pub struct RunSpec {
     pub trace: bool,
     /// Simulation engine of the hubs and controllers (compiled models by default).
     pub engine: canstar_models::Engine,
+    /// Legal events of healthy nodes (not faults: they change neither the frame
+    /// target nor which controllers count as healthy), see [`crate::events`].
+    pub events: Vec<NodeEvent>,
 }
 
 impl RunSpec {
     /// The reference network without faults.
     pub fn new(network: NetworkSpec, seed: u64, frames: u32) -> Self {
-        RunSpec { network, seed, faults: Vec::new(), frames, quiet_frames: None, max_time_ps: None, vcd: None, trace: false, engine: Default::default() }
+        RunSpec { network, seed, faults: Vec::new(), frames, quiet_frames: None, max_time_ps: None, vcd: None, trace: false, engine: Default::default(), events: Vec::new() }
     }
 }
 
@@ -141,6 +145,22 @@ pub struct RunResult {
     /// (sampled every quarter bit, faulty controllers included).
     #[serde(default)]
     pub max_tec_rec: Vec<[(u32, u32); 2]>,
+    /// Every blame of every hub's judge units: (hub, time ps, unit, field code,
+    /// position, charged); unit = port i, or ports + j for incoming sublink j.
+    pub blames: Vec<(usize, u64, usize, u8, u8, bool)>,
+    /// Every glitch seen by a judge unit: (hub, time ps, unit).
+    pub glitches: Vec<(usize, u64, usize)>,
+    /// Every error event of every controller: (time ps, node, ctrl, transmitting,
+    /// controller FIELD code).
+    pub ctrl_errors: Vec<(u64, usize, usize, bool, u8)>,
+    /// Per hub, per input (ports, then sublinks): runs of equal level shorter than
+    /// 32 hub clocks, counted by length (see [`crate::rtl_hub::HubStats::short_runs`]).
+    pub short_runs: Vec<Vec<[u64; 32]>>,
+    /// Per hub, per input: edges counted by phase (see [`crate::rtl_hub::HubStats::edge_phase`]).
+    #[serde(skip)]
+    pub edge_phase: Vec<Vec<[u64; 64]>>,
+    /// The legal events applied ([`RunSpec::events`]).
+    pub events_applied: Vec<String>,
     /// Driver routine log (with `RunSpec::trace`).
     pub trace: Vec<String>,
     /// The VCD could not be written (also in `failures`).
@@ -186,7 +206,7 @@ fn mode_of(k: FaultKind) -> FaultMode {
         FaultKind::Sad => FaultMode::StuckDominant,
         FaultKind::Sar => FaultMode::StuckRecessive,
         FaultKind::Invert => FaultMode::Invert,
-        FaultKind::BitFlip { .. } => FaultMode::None,
+        FaultKind::BitFlip { .. } | FaultKind::Force { .. } | FaultKind::Burst { .. } => FaultMode::None,
     }
 }
 
@@ -245,8 +265,12 @@ fn run_impl(
     let start_at = ns.driver.start_bits as u64 * bit;
     // next request time per sender
     let mut next_req: Vec<Option<u64>> = senders.iter().map(|s| s.as_ref().map(|_| start_at)).collect();
-    let mut fault_start: Vec<Option<u64>> = vec![None; spec.faults.len()];
-    res.fault_resolved = vec![String::new(); spec.faults.len()];
+    // the faults, then the overload events as one-bit faults (not counted as faults)
+    let nf = spec.faults.len();
+    let faults: Vec<FaultSpec> = spec.faults.iter().copied().chain(spec.events.iter().filter_map(|e| e.as_fault(bit))).collect();
+    let mut events = EventRunner::new(&spec.events);
+    let mut fault_start: Vec<Option<u64>> = vec![None; faults.len()];
+    let mut fault_resolved = vec![String::new(); faults.len()];
     let mut delivered_at_last_fault: u64 = 0;
     let mut last_disturb: u64 = 0;
     let mut quiet_stop = false;
@@ -256,8 +280,7 @@ fn run_impl(
     let mut healthy_errors_base: Option<Vec<u64>> = None;
     res.delivered_per_node = vec![0; nn];
     res.max_tec_rec = vec![[(0, 0); 2]; nn];
-    let max_after = spec
-        .faults
+    let max_after = faults
         .iter()
         .map(|f| match f.start {
             FaultStart::Field { after_frames, .. } => after_frames as u64 * 200 * bit,
@@ -270,7 +293,7 @@ fn run_impl(
     loop {
         let now = sim.now();
         // ---- faults waiting for their start
-        let all_started = fault_start.iter().all(|s| s.is_some());
+        let all_started = fault_start[..nf].iter().all(|s| s.is_some());
         if all_started && spec.frames > 0 && res.delivered >= delivered_at_last_fault + spec.frames as u64 {
             break;
         }
@@ -286,7 +309,7 @@ fn run_impl(
         }
         let mut target = (now + slice).min(limit);
         let mut field_wait: Option<usize> = None;
-        for (i, f) in spec.faults.iter().enumerate() {
+        for (i, f) in faults.iter().enumerate() {
             if fault_start[i].is_some() {
                 continue;
             }
@@ -301,7 +324,7 @@ fn run_impl(
         }
         let mut trigger: Option<(usize, u64)> = None;
         if let Some(i) = field_wait {
-            let FaultStart::Field { field, bit: fbit, of_node, delay_ns, .. } = spec.faults[i].start else { unreachable!() };
+            let FaultStart::Field { field, bit: fbit, of_node, delay_ns, .. } = faults[i].start else { unreachable!() };
             let want = ctrl_field(field);
             let cands: Vec<Handle<Ctrl>> = net
                 .ctrls
@@ -331,7 +354,7 @@ fn run_impl(
         }
         let now = sim.now();
         // ---- start faults
-        for (i, f) in spec.faults.iter().enumerate() {
+        for (i, f) in faults.iter().enumerate() {
             if fault_start[i].is_some() {
                 continue;
             }
@@ -340,9 +363,13 @@ fn run_impl(
                 (FaultStart::Field { .. }, Some((j, t))) if j == i => t,
                 _ => continue,
             };
-            let info = inject(&mut sim, &net, &drivers, f, t, bit, limit, &mut res.fault_resolved[i]);
-            unhealthy.extend(info.unhealthy.iter().copied());
+            let info = inject(&mut sim, &net, &drivers, f, t, bit, limit, &mut fault_resolved[i]);
             fault_start[i] = Some(t);
+            if i >= nf {
+                events.applied.push(spec.events.iter().filter(|e| e.as_fault(bit).is_some()).nth(i - nf).map_or(String::new(), |e| e.describe()));
+                continue;
+            }
+            unhealthy.extend(info.unhealthy.iter().copied());
             delivered_at_last_fault = res.delivered;
             if healthy_errors_base.is_none() {
                 healthy_errors_base = Some(all_errors(&sim, &net));
@@ -367,12 +394,30 @@ fn run_impl(
         while res.isolated.len() < seen_iso.len() {
             last_disturb = res.delivered;
             let what = seen_iso[res.isolated.len()];
-            let first = fault_start.iter().flatten().min().copied();
+            let first = fault_start[..nf].iter().flatten().min().copied();
             let latency_bits = first.filter(|&f| f <= now).map(|f| (now - f) as f64 / bit as f64);
             res.isolated.push(IsolationEvent { what, t_ps: now, latency_bits });
         }
+        // ---- legal events
+        for ch in events.step(now, bit, &mut sim, &net) {
+            match ch {
+                PowerChange::Off(k) => {
+                    next_req[k] = None;
+                    receivers[k].rejoin();
+                }
+                PowerChange::On(k) => {
+                    drivers[k] = Driver::new(k, &ns.driver, bit, ns.nodes[k].initial_tx, spec.trace);
+                    if senders[k].is_some() {
+                        next_req[k] = Some(now + app_delay);
+                    }
+                }
+            }
+        }
         // ---- drivers and applications
         for k in 0..nn {
+            if events.is_off(k) {
+                continue;
+            }
             let mut cs = pair(&mut sim, net.ctrls[k]);
             let notices = drivers[k].step(now, &mut cs);
             let mut sample = false;
@@ -467,8 +512,26 @@ fn run_impl(
         }
     }
     res.sim_cycles = sim.total_cycles();
+    fault_start.truncate(nf);
+    fault_resolved.truncate(nf);
     res.fault_start_ps = fault_start.clone();
+    res.fault_resolved = fault_resolved;
+    res.events_applied = events.applied.clone();
     res.tx_ctrl = drivers.iter().map(|d| d.tx).collect();
+    for (h, &hh) in net.hubs.iter().enumerate() {
+        res.blames.extend(sim.get(hh).stats.blame_log.iter().map(|&(t, u, f, p, c)| (h, t, u, f, p, c)));
+        res.glitches.extend(sim.get(hh).stats.glitch_log.iter().map(|&(t, u)| (h, t, u)));
+    }
+    res.blames.sort_by_key(|b| b.1);
+    res.glitches.sort_by_key(|g| g.1);
+    res.short_runs = net.hubs.iter().map(|&h| sim.get(h).stats.short_runs.clone()).collect();
+    res.edge_phase = net.hubs.iter().map(|&h| sim.get(h).stats.edge_phase.clone()).collect();
+    for (k, p) in net.ctrls.iter().enumerate() {
+        for (c, &h) in p.iter().enumerate() {
+            res.ctrl_errors.extend(sim.get(h).error_log.iter().map(|&(t, tx, f)| (t, k, c, tx, f)));
+        }
+    }
+    res.ctrl_errors.sort_by_key(|e| e.0);
     res.final_bic = net.hubs.iter().map(|&h| { let hub = &sim.get(h).hub; (0..hub.debug_bic_len()).map(|i| hub.debug_bic(i) as u32).collect() }).collect();
     if let Some(base) = &healthy_errors_base {
         let now_err = all_errors(&sim, &net);
@@ -586,20 +649,10 @@ fn inject(sim: &mut Sim, net: &Network, drivers: &[Driver], f: &FaultSpec, t: u6
     }
     let end = f.duration_ps.map(|d| t + d);
     for &id in &nets {
-        match f.kind {
-            FaultKind::BitFlip { every_bits, width_ns, offset_ns } => {
-                let every = ((every_bits * bit as f64).round() as u64).max(1);
-                let width = ((width_ns * 1000.0).round() as u64).max(1);
-                let s = t + (offset_ns * 1000.0).round() as u64;
-                let stop = end.unwrap_or(limit + bit).max(s);
-                let count = ((stop - s) / every + 1) as usize;
-                sim.add_flip_pattern(id, s, width, every, count);
-            }
-            k => {
-                sim.schedule_fault(id, t, mode_of(k));
-                if let Some(e) = end {
-                    sim.schedule_fault(id, e, FaultMode::None);
-                }
+        if !crate::fault::schedule_pattern(sim, id, f.kind, t, end.unwrap_or(limit + bit), bit) {
+            sim.schedule_fault(id, t, mode_of(f.kind));
+            if let Some(e) = end {
+                sim.schedule_fault(id, e, FaultMode::None);
             }
         }
     }

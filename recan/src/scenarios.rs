@@ -253,6 +253,7 @@ pub fn published_scenario(n: usize, seed: u64) -> (RunSpec, Expected) {
         vcd: None,
         trace: false,
         engine: Default::default(),
+        events: Vec::new(),
     };
     (spec, e)
 }

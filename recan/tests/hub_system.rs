@@ -301,8 +301,21 @@ fn overload_frames_one_hub() {
         let sent = load(&mut st.sim, &nodes[..2], 6, 55);
         let n2 = st.nodes[2];
         let link = if on_uplink { st.ports.uplinks[2] } else { st.ports.downlinks[2] };
+        // on the uplink a whole bit time (a sub-bit pulse on an uplink is a glitch,
+        // hub.md §5.8, and three of them isolate the port: a legal overload flag is never
+        // that short)
         for _ in 0..3 {
-            assert!(flip_bit_at(&mut st.sim, n2, link, F::Eof, 7, 400, |_| true));
+            if on_uplink {
+                // the uplink forced dominant for one bit time (an inversion would cut the
+                // node's own overload flag into glitches)
+                let deadline = st.sim.now() + 400 * BIT;
+                assert!(st.sim.run_until_cond(deadline, |s| s.get(n2).field() == F::Eof && s.get(n2).pos() == 7));
+                let t = st.sim.now();
+                link.schedule_fault(&mut st.sim, t + BIT / 2, FaultMode::StuckDominant);
+                link.schedule_fault(&mut st.sim, t + BIT * 3 / 2, FaultMode::None);
+            } else {
+                assert!(flip_bit_at(&mut st.sim, n2, link, F::Eof, 7, 400, |_| true));
+            }
             st.sim.run_for(40 * BIT);
         }
         assert!(st.run_until_drained(3000));
@@ -423,9 +436,17 @@ fn slow_bit_flipping_uplink_isolated_by_lifetime_counter() {
     assert!(s.max_bic[0] <= 16, "the decaying counter alone would not isolate: {:?}", s.max_bic);
     assert_eq!(st.rtl().isolated(), vec![true, false, false]);
     assert!(tec < 96 && rec < 96);
-    // without the lifetime counter (threshold at its maximum) the same run is not isolated
+    // without the lifetime counter (threshold at its maximum) the glitch counter (§5.8)
+    // isolates the same uplink: each half-bit inversion is a glitch, and one per 1201
+    // bits comes faster than one per 16 good frames decays
     let cfg = canstar_hub::config::HubConfig { life_threshold: 127, ..hub_cfg(3, 0) };
     let (st, iso, _, _) = bit_flipping_uplink(&cfg, 26, 1201, 40, 9_000);
+    let s = &st.rtl().stats;
+    assert!(iso.is_finite(), "isolated by the glitch counter: {s:?}");
+    assert!(s.max_bic[0] <= 16 && s.glitch_log.len() >= 3, "{s:?}");
+    // with neither (glitch limit at its maximum, 4 inversions) it is not isolated
+    let cfg = canstar_hub::config::HubConfig { life_threshold: 127, glitch_limit: 7, ..hub_cfg(3, 0) };
+    let (st, iso, _, _) = bit_flipping_uplink(&cfg, 26, 1201, 40, 5_000);
     assert!(iso.is_infinite(), "decay alone isolates after {iso} bits? {:?}", st.rtl().stats);
 }
 

@@ -19,7 +19,9 @@ pub struct Args {
     /// Worker threads (default: available parallelism).
     #[arg(long)]
     jobs: Option<usize>,
-    /// Run only shard i of n (1-based), e.g. `--shard 2/4`; merge the JSON files with --merge.
+    /// Run only shard i of n (1-based), e.g. `--shard 2/4`, or `auto` / `auto/n` in a Slurm or
+    /// LSF array job (index and count from SLURM_ARRAY_TASK_ID/COUNT or LSB_JOBINDEX); merge
+    /// the JSON files with --merge.
     #[arg(long)]
     shard: Option<String>,
     /// Write the per-run results as JSON.
@@ -43,6 +45,9 @@ pub struct Args {
     /// With --class: write an SVG of every controller's TEC/REC with isolations and quarantines.
     #[arg(long, requires = "class")]
     plot: Option<PathBuf>,
+    /// With --class: print every hub blame and every controller error of the run.
+    #[arg(long, requires = "class")]
+    events: bool,
     /// Combine JSON reports (shards of one campaign) and print the table.
     #[arg(long, num_args = 1.., conflicts_with_all = ["class", "shard", "classes"])]
     merge: Vec<PathBuf>,
@@ -51,10 +56,24 @@ pub struct Args {
     list: bool,
     #[command(flatten)]
     engine: canstar::engine::EngineArg,
+    /// Draw the sweep classes' isolation latency and worst healthy TEC/REC against the
+    /// disturbance interval as SVG (with a campaign that ran `sweep-*` classes, or --merge).
+    #[arg(long, conflicts_with = "class")]
+    plot_sweep: Option<PathBuf>,
+}
+
+/// The sweep table of a finished campaign (empty without `sweep-*` runs); stages
+/// its `--plot-sweep` SVG in `set`.
+fn sweep_outputs(set: &OutputSet, runs: &[canstar_recan::campaign::RunOutcome], plot: Option<&PathBuf>, title: &str) -> Result<String> {
+    use canstar_recan::campaign::sweep;
+    if let Some(p) = plot {
+        set.write(p, sweep::svg(runs, title))?;
+    }
+    Ok(if runs.iter().any(|r| r.class.starts_with("sweep-")) { sweep::table(runs) } else { String::new() })
 }
 
 pub fn run(a: Args) -> Result<()> {
-    use canstar_recan::campaign::{self, report::CampaignReport, system, Settings, Shard};
+    use canstar_recan::campaign::{self, report::CampaignReport, system, Settings};
     if a.list {
         for c in campaign::classes::catalogue() {
             outln!("{}", c.name);
@@ -68,7 +87,7 @@ pub fn run(a: Args) -> Result<()> {
     }
     // Every output is reserved before any work.
     let mut set = OutputSet::new();
-    for p in [&a.json, &a.vcd, &a.plot].into_iter().flatten() {
+    for p in [&a.json, &a.vcd, &a.plot, &a.plot_sweep].into_iter().flatten() {
         set.file(p)?;
     }
     if !a.merge.is_empty() {
@@ -78,11 +97,13 @@ pub fn run(a: Args) -> Result<()> {
             parts.push(CampaignReport::from_json(&text, &p.display().to_string())?);
         }
         let m = CampaignReport::merge(&parts)?;
+        let sweep_table = sweep_outputs(&set, &m.runs, a.plot_sweep.as_ref(), &format!("canstar sweep campaign, {} runs (merged)", m.runs.len()))?;
         if let Some(p) = &a.json {
             set.write(p, m.to_json())?;
         }
         set.commit()?;
         out!("{}", m.table());
+        out!("{sweep_table}");
         if m.runs.len() != m.expected_runs() {
             errln!("warning: {} of {} runs of the campaign present (shards missing)", m.runs.len(), m.expected_runs());
         }
@@ -128,6 +149,13 @@ pub fn run(a: Args) -> Result<()> {
         for n in &o.notes {
             outln!("  note: {n}");
         }
+        outln!(
+            "  shortest pulse on a healthy port input {:?}, on a sublink input {:?} (hub clocks)",
+            o.min_pulse_healthy_port, o.min_pulse_sublink
+        );
+        if a.events {
+            print_events(&d.result);
+        }
         for f in &o.failures {
             outln!("  FAILURE: {f}");
         }
@@ -142,7 +170,7 @@ pub fn run(a: Args) -> Result<()> {
     }
     anyhow::ensure!(a.run_seed.is_none() && a.rep.is_none(), "--run-seed and --rep need --class");
     let classes = campaign::select(&a.classes)?;
-    let shard = a.shard.as_deref().map(Shard::parse).transpose()?;
+    let shard = parse_shard(a.shard.as_deref())?;
     anyhow::ensure!(a.reps > 0, "--reps must be at least 1");
     anyhow::ensure!(a.jobs != Some(0), "--jobs must be at least 1");
     let plans = campaign::plan(&classes, &settings, shard);
@@ -166,9 +194,11 @@ pub fn run(a: Args) -> Result<()> {
     if let Some(p) = &a.json {
         set.write(p, report.to_json())?;
     }
+    let sweep_table = sweep_outputs(&set, &report.runs, a.plot_sweep.as_ref(), &format!("canstar sweep campaign, {} reps per class, seed {}", a.reps, a.seed))?;
     // The report of a finished campaign is kept even when runs failed.
     set.commit()?;
     out!("{}", report.table());
+    out!("{sweep_table}");
     errln!(
         "{total} runs in {dt:.1} s ({:.2} runs/s, {:.0} simulated clock cycles/s, {jobs} jobs{})",
         total as f64 / dt.max(1e-9),
@@ -180,4 +210,36 @@ pub fn run(a: Args) -> Result<()> {
     }
     anyhow::ensure!(report.ok(), "{failed} failing run(s)");
     Ok(())
+}
+
+
+/// The hub blames and controller errors of one run, in time order (bit times).
+fn print_events(r: &canstar_recan::RunResult) {
+    use canstar_controller::fsm::Field as CField;
+    use canstar_hub::frame_state::Field as HField;
+    let bit = r.bit_time_ps.max(1) as f64;
+    let mut lines: Vec<(u64, String)> = vec![];
+    for &(h, t, u, f, p, c) in &r.blames {
+        let how = if c { "blames" } else { "blames (suppressed)" };
+        lines.push((t, format!("hub {h} {how} unit {u} in {:?} bit {p}", HField::from_code(f as u64))));
+    }
+    for &(h, t, u) in &r.glitches {
+        lines.push((t, format!("hub {h} glitch on unit {u}")));
+    }
+    for &(t, k, c, tx, f) in &r.ctrl_errors {
+        let field = CField::ALL.get(f as usize).map_or(format!("{f}"), |x| format!("{x:?}"));
+        lines.push((t, format!("node {k} ctrl {} error ({}) in {field}", "AB".as_bytes()[c] as char, if tx { "tx" } else { "rx" })));
+    }
+    for i in &r.isolated {
+        lines.push((i.t_ps, format!("isolated {:?}", i.what)));
+    }
+    lines.sort_by_key(|l| l.0);
+    for (t, l) in lines {
+        outln!("  {:9.1} {l}", t as f64 / bit);
+    }
+}
+
+/// `--shard` of `campaign` and `soak`: `i/n`, `auto` or `auto/n` (scheduler array job).
+pub fn parse_shard(s: Option<&str>) -> Result<Option<canstar_recan::campaign::Shard>> {
+    Ok(s.map(canstar_recan::campaign::Shard::parse_auto).transpose()?)
 }

@@ -29,6 +29,7 @@ mod generate;
 mod progress;
 mod report;
 mod sim;
+mod soak;
 
 #[derive(Parser)]
 #[command(name = "canstar", version, about = "CAN controller and CAN star hub RTL generator with a cycle simulator")]
@@ -61,6 +62,10 @@ enum Cmd {
     /// with random injection instants, traffic phases and oscillator offsets; prints per class
     /// runs, passes, worst healthy TEC/REC, isolation latency and every failure with its seed.
     Campaign(campaign::Args),
+    /// Fault-free soak of the reference two-hub network at full load with every oscillator at
+    /// the tolerance limit (optionally with the legal events of healthy nodes); prints frames,
+    /// blames, isolations and the worst TEC/REC.
+    Soak(soak::Args),
 }
 
 /// Run the parsed command.
@@ -73,5 +78,6 @@ pub fn run(cli: Cli) -> Result<()> {
         Cmd::Fuzz(a) => fuzz::run(a),
         Cmd::Conformance(a) => conformance::run(a),
         Cmd::Campaign(a) => campaign::run(a),
+        Cmd::Soak(a) => soak::run(a),
     }
 }

@@ -781,6 +781,9 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     reg  err_start_r$d;
     wire  err_start_r$q;
     reg  err_start_r$clock;
+    reg  sub_bl_r$d;
+    wire  sub_bl_r$q;
+    reg  sub_bl_r$clock;
     reg  decode$clock;
     reg  [3:0] decode$field;
     reg  [3:0] decode$pos;
@@ -821,14 +824,25 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     reg  pj$0$err_start;
     reg  pj$0$rep_rec;
     reg  pj$0$rep_dom;
+    reg  pj$0$bit_start;
+    reg  [4:0] pj$0$bs_cnt;
+    reg  pj$0$delim;
+    reg  pj$0$suppress;
+    reg  pj$0$rep_glitched;
+    reg  pj$0$rep_blamed;
+    reg  pj$0$common;
     wire  pj$0$dis;
     wire  pj$0$blame;
+    wire  pj$0$charged;
     wire  pj$0$tx_error;
+    wire  pj$0$glitch;
+    wire  pj$0$anomaly;
     wire  [7:0] pj$0$bic;
     wire  [6:0] pj$0$life;
     wire  [4:0] pj$0$dbc;
     wire  [2:0] pj$0$nack;
     wire  [2:0] pj$0$rep_cnt;
+    wire  [2:0] pj$0$gc;
     wire  pj$0$silent;
     wire  pj$0$contender;
     reg  pj$1$clock;
@@ -850,14 +864,25 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     reg  pj$1$err_start;
     reg  pj$1$rep_rec;
     reg  pj$1$rep_dom;
+    reg  pj$1$bit_start;
+    reg  [4:0] pj$1$bs_cnt;
+    reg  pj$1$delim;
+    reg  pj$1$suppress;
+    reg  pj$1$rep_glitched;
+    reg  pj$1$rep_blamed;
+    reg  pj$1$common;
     wire  pj$1$dis;
     wire  pj$1$blame;
+    wire  pj$1$charged;
     wire  pj$1$tx_error;
+    wire  pj$1$glitch;
+    wire  pj$1$anomaly;
     wire  [7:0] pj$1$bic;
     wire  [6:0] pj$1$life;
     wire  [4:0] pj$1$dbc;
     wire  [2:0] pj$1$nack;
     wire  [2:0] pj$1$rep_cnt;
+    wire  [2:0] pj$1$gc;
     wire  pj$1$silent;
     wire  pj$1$contender;
     reg  pj$2$clock;
@@ -879,14 +904,25 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     reg  pj$2$err_start;
     reg  pj$2$rep_rec;
     reg  pj$2$rep_dom;
+    reg  pj$2$bit_start;
+    reg  [4:0] pj$2$bs_cnt;
+    reg  pj$2$delim;
+    reg  pj$2$suppress;
+    reg  pj$2$rep_glitched;
+    reg  pj$2$rep_blamed;
+    reg  pj$2$common;
     wire  pj$2$dis;
     wire  pj$2$blame;
+    wire  pj$2$charged;
     wire  pj$2$tx_error;
+    wire  pj$2$glitch;
+    wire  pj$2$anomaly;
     wire  [7:0] pj$2$bic;
     wire  [6:0] pj$2$life;
     wire  [4:0] pj$2$dbc;
     wire  [2:0] pj$2$nack;
     wire  [2:0] pj$2$rep_cnt;
+    wire  [2:0] pj$2$gc;
     wire  pj$2$silent;
     wire  pj$2$contender;
     reg  sj$0$clock;
@@ -908,14 +944,25 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     reg  sj$0$err_start;
     reg  sj$0$rep_rec;
     reg  sj$0$rep_dom;
+    reg  sj$0$bit_start;
+    reg  [4:0] sj$0$bs_cnt;
+    reg  sj$0$delim;
+    reg  sj$0$suppress;
+    reg  sj$0$rep_glitched;
+    reg  sj$0$rep_blamed;
+    reg  sj$0$common;
     wire  sj$0$dis;
     wire  sj$0$blame;
+    wire  sj$0$charged;
     wire  sj$0$tx_error;
+    wire  sj$0$glitch;
+    wire  sj$0$anomaly;
     wire  [7:0] sj$0$bic;
     wire  [6:0] sj$0$life;
     wire  [4:0] sj$0$dbc;
     wire  [2:0] sj$0$nack;
     wire  [2:0] sj$0$rep_cnt;
+    wire  [2:0] sj$0$gc;
     wire  sj$0$silent;
     wire  sj$0$contender;
     reg  sj$1$clock;
@@ -937,14 +984,25 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     reg  sj$1$err_start;
     reg  sj$1$rep_rec;
     reg  sj$1$rep_dom;
+    reg  sj$1$bit_start;
+    reg  [4:0] sj$1$bs_cnt;
+    reg  sj$1$delim;
+    reg  sj$1$suppress;
+    reg  sj$1$rep_glitched;
+    reg  sj$1$rep_blamed;
+    reg  sj$1$common;
     wire  sj$1$dis;
     wire  sj$1$blame;
+    wire  sj$1$charged;
     wire  sj$1$tx_error;
+    wire  sj$1$glitch;
+    wire  sj$1$anomaly;
     wire  [7:0] sj$1$bic;
     wire  [6:0] sj$1$life;
     wire  [4:0] sj$1$dbc;
     wire  [2:0] sj$1$nack;
     wire  [2:0] sj$1$rep_cnt;
+    wire  [2:0] sj$1$gc;
     wire  sj$1$silent;
     wire  sj$1$contender;
     reg  rst_s1$d;
@@ -953,15 +1011,28 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     reg  rst_s2$d;
     wire  rst_s2$q;
     reg  rst_s2$clock;
+    reg  [4:0] bs_r$d;
+    wire  [4:0] bs_r$q;
+    reg  bs_r$clock;
+    reg  delim_r$d;
+    wire  delim_r$q;
+    reg  delim_r$clock;
     
     // Local signals
+    reg  any_sub_blame;
+    reg  sub_all_an;
+    reg  sub_one;
+    reg  sub_two;
     reg  reset;
     reg  err_phase;
+    reg  delim_z;
+    reg  any_an;
     reg  any_blame;
     reg  any_tx_error;
     reg  trigger;
     reg  rep_rec;
     reg  rep_dom;
+    reg  rep_gl;
     
     // Sub module instances
     canstar_hub_core$core$coupler coupler(
@@ -1013,6 +1084,11 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .q(err_start_r$q),
         .clock(err_start_r$clock)
     );
+    canstar_hub_core$core$sub_bl_r sub_bl_r(
+        .d(sub_bl_r$d),
+        .q(sub_bl_r$q),
+        .clock(sub_bl_r$clock)
+    );
     canstar_hub_core$core$decode decode(
         .clock(decode$clock),
         .field(decode$field),
@@ -1058,14 +1134,25 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .err_start(pj$0$err_start),
         .rep_rec(pj$0$rep_rec),
         .rep_dom(pj$0$rep_dom),
+        .bit_start(pj$0$bit_start),
+        .bs_cnt(pj$0$bs_cnt),
+        .delim(pj$0$delim),
+        .suppress(pj$0$suppress),
+        .rep_glitched(pj$0$rep_glitched),
+        .rep_blamed(pj$0$rep_blamed),
+        .common(pj$0$common),
         .dis(pj$0$dis),
         .blame(pj$0$blame),
+        .charged(pj$0$charged),
         .tx_error(pj$0$tx_error),
+        .glitch(pj$0$glitch),
+        .anomaly(pj$0$anomaly),
         .bic(pj$0$bic),
         .life(pj$0$life),
         .dbc(pj$0$dbc),
         .nack(pj$0$nack),
         .rep_cnt(pj$0$rep_cnt),
+        .gc(pj$0$gc),
         .silent(pj$0$silent),
         .contender(pj$0$contender)
     );
@@ -1089,14 +1176,25 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .err_start(pj$1$err_start),
         .rep_rec(pj$1$rep_rec),
         .rep_dom(pj$1$rep_dom),
+        .bit_start(pj$1$bit_start),
+        .bs_cnt(pj$1$bs_cnt),
+        .delim(pj$1$delim),
+        .suppress(pj$1$suppress),
+        .rep_glitched(pj$1$rep_glitched),
+        .rep_blamed(pj$1$rep_blamed),
+        .common(pj$1$common),
         .dis(pj$1$dis),
         .blame(pj$1$blame),
+        .charged(pj$1$charged),
         .tx_error(pj$1$tx_error),
+        .glitch(pj$1$glitch),
+        .anomaly(pj$1$anomaly),
         .bic(pj$1$bic),
         .life(pj$1$life),
         .dbc(pj$1$dbc),
         .nack(pj$1$nack),
         .rep_cnt(pj$1$rep_cnt),
+        .gc(pj$1$gc),
         .silent(pj$1$silent),
         .contender(pj$1$contender)
     );
@@ -1120,14 +1218,25 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .err_start(pj$2$err_start),
         .rep_rec(pj$2$rep_rec),
         .rep_dom(pj$2$rep_dom),
+        .bit_start(pj$2$bit_start),
+        .bs_cnt(pj$2$bs_cnt),
+        .delim(pj$2$delim),
+        .suppress(pj$2$suppress),
+        .rep_glitched(pj$2$rep_glitched),
+        .rep_blamed(pj$2$rep_blamed),
+        .common(pj$2$common),
         .dis(pj$2$dis),
         .blame(pj$2$blame),
+        .charged(pj$2$charged),
         .tx_error(pj$2$tx_error),
+        .glitch(pj$2$glitch),
+        .anomaly(pj$2$anomaly),
         .bic(pj$2$bic),
         .life(pj$2$life),
         .dbc(pj$2$dbc),
         .nack(pj$2$nack),
         .rep_cnt(pj$2$rep_cnt),
+        .gc(pj$2$gc),
         .silent(pj$2$silent),
         .contender(pj$2$contender)
     );
@@ -1151,14 +1260,25 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .err_start(sj$0$err_start),
         .rep_rec(sj$0$rep_rec),
         .rep_dom(sj$0$rep_dom),
+        .bit_start(sj$0$bit_start),
+        .bs_cnt(sj$0$bs_cnt),
+        .delim(sj$0$delim),
+        .suppress(sj$0$suppress),
+        .rep_glitched(sj$0$rep_glitched),
+        .rep_blamed(sj$0$rep_blamed),
+        .common(sj$0$common),
         .dis(sj$0$dis),
         .blame(sj$0$blame),
+        .charged(sj$0$charged),
         .tx_error(sj$0$tx_error),
+        .glitch(sj$0$glitch),
+        .anomaly(sj$0$anomaly),
         .bic(sj$0$bic),
         .life(sj$0$life),
         .dbc(sj$0$dbc),
         .nack(sj$0$nack),
         .rep_cnt(sj$0$rep_cnt),
+        .gc(sj$0$gc),
         .silent(sj$0$silent),
         .contender(sj$0$contender)
     );
@@ -1182,14 +1302,25 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .err_start(sj$1$err_start),
         .rep_rec(sj$1$rep_rec),
         .rep_dom(sj$1$rep_dom),
+        .bit_start(sj$1$bit_start),
+        .bs_cnt(sj$1$bs_cnt),
+        .delim(sj$1$delim),
+        .suppress(sj$1$suppress),
+        .rep_glitched(sj$1$rep_glitched),
+        .rep_blamed(sj$1$rep_blamed),
+        .common(sj$1$common),
         .dis(sj$1$dis),
         .blame(sj$1$blame),
+        .charged(sj$1$charged),
         .tx_error(sj$1$tx_error),
+        .glitch(sj$1$glitch),
+        .anomaly(sj$1$anomaly),
         .bic(sj$1$bic),
         .life(sj$1$life),
         .dbc(sj$1$dbc),
         .nack(sj$1$nack),
         .rep_cnt(sj$1$rep_cnt),
+        .gc(sj$1$gc),
         .silent(sj$1$silent),
         .contender(sj$1$contender)
     );
@@ -1202,6 +1333,16 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .d(rst_s2$d),
         .q(rst_s2$q),
         .clock(rst_s2$clock)
+    );
+    canstar_hub_core$core$bs_r bs_r(
+        .d(bs_r$d),
+        .q(bs_r$q),
+        .clock(bs_r$clock)
+    );
+    canstar_hub_core$core$delim_r delim_r(
+        .d(delim_r$d),
+        .q(delim_r$q),
+        .clock(delim_r$clock)
     );
     
     // Update code
@@ -1217,6 +1358,42 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         decode$pos = mon_pos;
         frame_state = mon_field;
         err_phase = decode$err_phase | efgen$busy;
+        bs_r$clock = clock;
+        bs_r$d = bs_r$q;
+        if (mon_bit_start) begin
+            bs_r$d = 32'h0;
+        end
+        else if (bs_r$q != 32'h1f) begin
+            bs_r$d = bs_r$q + 32'h1;
+        end
+        delim_r$clock = clock;
+        delim_r$d = delim_r$q;
+        if (mon_sample) begin
+            delim_r$d = err_phase & coupler$bt;
+        end
+        delim_z = err_phase & delim_r$q & ~(((mon_field == 32'he) | (mon_field == 32'hf)) & (mon_pos == 32'h7));
+        if (reset) begin
+            delim_r$d = 1'b0;
+        end
+        any_an = 1'b0;
+        any_an = any_an | pj$0$anomaly;
+        any_an = any_an | pj$1$anomaly;
+        any_an = any_an | pj$2$anomaly;
+        sub_all_an = 1'b1;
+        sub_one = 1'b0;
+        sub_two = 1'b0;
+        any_an = any_an | sj$0$anomaly;
+        if (~sj$0$dis) begin
+            sub_all_an = sub_all_an & sj$0$anomaly;
+            sub_two = sub_two | sub_one;
+            sub_one = 1'b1;
+        end
+        any_an = any_an | sj$1$anomaly;
+        if (~sj$1$dis) begin
+            sub_all_an = sub_all_an & sj$1$anomaly;
+            sub_two = sub_two | sub_one;
+            sub_one = 1'b1;
+        end
         injector$clock = clock;
         injector$reset = reset;
         injector$button = inject_fault;
@@ -1230,6 +1407,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         bt = coupler$bt;
         rep_rec = 1'b0;
         rep_dom = 1'b0;
+        rep_gl = 1'b0;
         coupler$reh_rx$0 = reh_rx$0;
         hub_tx$0 = coupler$hub_tx$0;
         coupler$hdis$0 = sj$0$dis;
@@ -1243,6 +1421,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         if (~sj$0$dis) begin
             rep_rec = rep_rec | coupler$s$0;
             rep_dom = rep_dom | ~coupler$s$0;
+            rep_gl = rep_gl | (sj$0$gc != 32'h0);
         end
         coupler$reh_rx$1 = reh_rx$1;
         hub_tx$1 = coupler$hub_tx$1;
@@ -1257,8 +1436,10 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         if (~sj$1$dis) begin
             rep_rec = rep_rec | coupler$s$1;
             rep_dom = rep_dom | ~coupler$s$1;
+            rep_gl = rep_gl | (sj$1$gc != 32'h0);
         end
         any_blame = 1'b0;
+        any_sub_blame = 1'b0;
         any_tx_error = 1'b0;
         coupler$rx$0 = rx$0;
         tx$0 = coupler$tx$0;
@@ -1292,6 +1473,13 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         pj$0$err_start = 1'b0;
         pj$0$rep_rec = 1'b0;
         pj$0$rep_dom = 1'b0;
+        pj$0$rep_glitched = 1'b0;
+        pj$0$rep_blamed = 1'b0;
+        pj$0$common = 1'b0;
+        pj$0$bit_start = mon_bit_start;
+        pj$0$bs_cnt = bs_r$q;
+        pj$0$delim = delim_z;
+        pj$0$suppress = any_an & ~pj$0$anomaly;
         any_blame = any_blame | pj$0$blame;
         any_tx_error = any_tx_error | pj$0$tx_error;
         coupler$rx$1 = rx$1;
@@ -1326,6 +1514,13 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         pj$1$err_start = 1'b0;
         pj$1$rep_rec = 1'b0;
         pj$1$rep_dom = 1'b0;
+        pj$1$rep_glitched = 1'b0;
+        pj$1$rep_blamed = 1'b0;
+        pj$1$common = 1'b0;
+        pj$1$bit_start = mon_bit_start;
+        pj$1$bs_cnt = bs_r$q;
+        pj$1$delim = delim_z;
+        pj$1$suppress = any_an & ~pj$1$anomaly;
         any_blame = any_blame | pj$1$blame;
         any_tx_error = any_tx_error | pj$1$tx_error;
         coupler$rx$2 = rx$2;
@@ -1360,6 +1555,13 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         pj$2$err_start = 1'b0;
         pj$2$rep_rec = 1'b0;
         pj$2$rep_dom = 1'b0;
+        pj$2$rep_glitched = 1'b0;
+        pj$2$rep_blamed = 1'b0;
+        pj$2$common = 1'b0;
+        pj$2$bit_start = mon_bit_start;
+        pj$2$bs_cnt = bs_r$q;
+        pj$2$delim = delim_z;
+        pj$2$suppress = any_an & ~pj$2$anomaly;
         any_blame = any_blame | pj$2$blame;
         any_tx_error = any_tx_error | pj$2$tx_error;
         sj$0$clock = clock;
@@ -1380,7 +1582,13 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         sj$0$frame_ok = mon_frame_ok;
         sj$0$rep_rec = rep_rec;
         sj$0$rep_dom = rep_dom;
+        sj$0$rep_glitched = rep_gl;
+        sj$0$bit_start = mon_bit_start;
+        sj$0$bs_cnt = bs_r$q;
+        sj$0$delim = delim_z;
+        sj$0$suppress = any_an & ~sj$0$anomaly;
         any_blame = any_blame | sj$0$blame;
+        any_sub_blame = any_sub_blame | sj$0$blame;
         any_tx_error = any_tx_error | sj$0$tx_error;
         sj$1$clock = clock;
         sj$1$reset = reset;
@@ -1400,13 +1608,25 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         sj$1$frame_ok = mon_frame_ok;
         sj$1$rep_rec = rep_rec;
         sj$1$rep_dom = rep_dom;
+        sj$1$rep_glitched = rep_gl;
+        sj$1$bit_start = mon_bit_start;
+        sj$1$bs_cnt = bs_r$q;
+        sj$1$delim = delim_z;
+        sj$1$suppress = any_an & ~sj$1$anomaly;
         any_blame = any_blame | sj$1$blame;
+        any_sub_blame = any_sub_blame | sj$1$blame;
         any_tx_error = any_tx_error | sj$1$tx_error;
         trigger = mon_sample & (mon_error | any_blame | any_tx_error);
         err_start_r$clock = clock;
         err_start_r$d = trigger & ~efgen$busy;
+        sub_bl_r$clock = clock;
+        sub_bl_r$d = any_sub_blame;
         sj$0$err_start = err_start_r$q;
+        sj$0$rep_blamed = sub_bl_r$q;
+        sj$0$common = sub_all_an & sub_two;
         sj$1$err_start = err_start_r$q;
+        sj$1$rep_blamed = sub_bl_r$q;
+        sj$1$common = sub_all_an & sub_two;
         efgen$clock = clock;
         efgen$reset = reset;
         efgen$trigger = trigger;
@@ -1430,6 +1650,25 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     end
     
 endmodule // canstar_hub_core$core
+
+
+module canstar_hub_core$core$bs_r(d,q,clock);
+    
+    // Module arguments
+    input wire  [4:0] d;
+    output reg  [4:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 5'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$bs_r
 
 
 module canstar_hub_core$core$coupler(clock,reset,rx$0,rx$1,rx$2,reh_rx$0,reh_rx$1,dis$0,dis$1,dis$2,hdis$0,hdis$1,efg,up_fault$0,up_fault$1,up_fault$2,down_fault$0,down_fault$1,down_fault$2,hub_fault$0,hub_fault$1,tx$0,tx$1,tx$2,hub_tx$0,hub_tx$1,u$0,u$1,u$2,s$0,s$1,andc,bt);
@@ -2316,6 +2555,25 @@ module canstar_hub_core$core$decode(clock,field,pos,sof,tx_region,arb,crc_delim,
 endmodule // canstar_hub_core$core$decode
 
 
+module canstar_hub_core$core$delim_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$delim_r
+
+
 module canstar_hub_core$core$efgen(clock,reset,trigger,bit_start,efg,busy,active);
     
     // Module arguments
@@ -2640,7 +2898,7 @@ module canstar_hub_core$core$injector$state(d,q,clock);
 endmodule // canstar_hub_core$core$injector$state
 
 
-module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,dis,blame,tx_error,bic,life,dbc,nack,rep_cnt,silent,contender);
+module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,rep_glitched,rep_blamed,common,dis,blame,charged,tx_error,glitch,anomaly,bic,life,dbc,nack,rep_cnt,gc,silent,contender);
     
     // Module arguments
     input wire  clock;
@@ -2662,14 +2920,25 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     input wire  err_start;
     input wire  rep_rec;
     input wire  rep_dom;
+    input wire  bit_start;
+    input wire  [4:0] bs_cnt;
+    input wire  delim;
+    input wire  suppress;
+    input wire  rep_glitched;
+    input wire  rep_blamed;
+    input wire  common;
     output reg  dis;
     output reg  blame;
+    output reg  charged;
     output reg  tx_error;
+    output reg  glitch;
+    output reg  anomaly;
     output reg  [7:0] bic;
     output reg  [6:0] life;
     output reg  [4:0] dbc;
     output reg  [2:0] nack;
     output reg  [2:0] rep_cnt;
+    output reg  [2:0] gc;
     output reg  silent;
     output reg  contender;
     
@@ -2679,6 +2948,9 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     localparam  dbc_thr = 5'b1101;
     localparam  nack_thr = 3'b111;
     localparam  rep_limit = 3'b11;
+    localparam  glitch_limit = 3'b11;
+    localparam  glitch_decay = 5'b10000;
+    localparam  win_lag = 5'b111;
     localparam  ack_rule = 1'b1;
     localparam  nack_on = 1'b1;
     localparam  rep_on = 1'b0;
@@ -2686,6 +2958,10 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     localparam  reint_w = 8'h1;
     
     // Stub signals
+    reg  pulse$clock;
+    reg  pulse$reset;
+    reg  pulse$c;
+    wire  pulse$glitch;
     reg  dis_r$d;
     wire  dis_r$q;
     reg  dis_r$clock;
@@ -2731,13 +3007,45 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  ack_rx$d;
     wire  ack_rx$q;
     reg  ack_rx$clock;
+    reg  seen_dom$d;
+    wire  seen_dom$q;
+    reg  seen_dom$clock;
+    reg  [2:0] gc_r$d;
+    wire  [2:0] gc_r$q;
+    reg  gc_r$clock;
+    reg  [4:0] gdec_r$d;
+    wire  [4:0] gdec_r$q;
+    reg  gdec_r$clock;
+    reg  [1:0] an_r$d;
+    wire  [1:0] an_r$q;
+    reg  an_r$clock;
+    reg  bl_r$d;
+    wire  bl_r$q;
+    reg  bl_r$clock;
+    reg  bl_dm_r$d;
+    wire  bl_dm_r$q;
+    reg  bl_dm_r$clock;
+    reg  gpend$d;
+    wire  gpend$q;
+    reg  gpend$clock;
     
     // Local signals
     reg  dom;
+    reg  domw;
     reg  unj;
     reg  enabled;
+    reg  charge;
+    reg  g;
+    reg  rep_ok;
+    reg  gcount;
     
     // Sub module instances
+    canstar_hub_core$core$pj$0$pulse pulse(
+        .clock(pulse$clock),
+        .reset(pulse$reset),
+        .c(pulse$c),
+        .glitch(pulse$glitch)
+    );
     canstar_hub_core$core$pj$0$dis_r dis_r(
         .d(dis_r$d),
         .q(dis_r$q),
@@ -2813,6 +3121,41 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .q(ack_rx$q),
         .clock(ack_rx$clock)
     );
+    canstar_hub_core$core$pj$0$seen_dom seen_dom(
+        .d(seen_dom$d),
+        .q(seen_dom$q),
+        .clock(seen_dom$clock)
+    );
+    canstar_hub_core$core$pj$0$gc_r gc_r(
+        .d(gc_r$d),
+        .q(gc_r$q),
+        .clock(gc_r$clock)
+    );
+    canstar_hub_core$core$pj$0$gdec_r gdec_r(
+        .d(gdec_r$d),
+        .q(gdec_r$q),
+        .clock(gdec_r$clock)
+    );
+    canstar_hub_core$core$pj$0$an_r an_r(
+        .d(an_r$d),
+        .q(an_r$q),
+        .clock(an_r$clock)
+    );
+    canstar_hub_core$core$pj$0$bl_r bl_r(
+        .d(bl_r$d),
+        .q(bl_r$q),
+        .clock(bl_r$clock)
+    );
+    canstar_hub_core$core$pj$0$bl_dm_r bl_dm_r(
+        .d(bl_dm_r$d),
+        .q(bl_dm_r$q),
+        .clock(bl_dm_r$clock)
+    );
+    canstar_hub_core$core$pj$0$gpend gpend(
+        .d(gpend$d),
+        .q(gpend$q),
+        .clock(gpend$clock)
+    );
     
     // Update code
     always @(*) begin
@@ -2831,6 +3174,13 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         ack_missing$clock = clock;
         ack_c$clock = clock;
         ack_rx$clock = clock;
+        seen_dom$clock = clock;
+        gc_r$clock = clock;
+        gdec_r$clock = clock;
+        an_r$clock = clock;
+        bl_r$clock = clock;
+        bl_dm_r$clock = clock;
+        gpend$clock = clock;
         dis_r$d = dis_r$q;
         bic_r$d = bic_r$q;
         life_r$d = life_r$q;
@@ -2846,10 +3196,32 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         ack_missing$d = ack_missing$q;
         ack_c$d = ack_c$q;
         ack_rx$d = ack_rx$q;
+        seen_dom$d = seen_dom$q;
+        gc_r$d = gc_r$q;
+        gdec_r$d = gdec_r$q;
+        an_r$d = an_r$q;
+        bl_r$d = bl_r$q;
+        bl_dm_r$d = bl_dm_r$q;
+        gpend$d = gpend$q;
+        pulse$clock = clock;
+        pulse$reset = reset;
+        pulse$c = c;
+        g = pulse$glitch;
+        glitch = pulse$glitch;
+        anomaly = pulse$glitch | (an_r$q != 32'h0);
         dom = ~c;
         enabled = ~dis_r$q;
-        unj = dom & ~err_phase & ((tx_region & ~arb & ~cont_r$q) | crc_delim | (ack_delim & ~ack_missing$q) | eof_1_6 | im_2 | (ack_slot & cont_r$q & ack_rule));
+        domw = dom | seen_dom$q;
+        if (bit_start) begin
+            seen_dom$d = 1'b0;
+        end
+        else if (dom & (bs_cnt >= win_lag)) begin
+            seen_dom$d = 1'b1;
+        end
+        unj = domw & ((~err_phase & ((tx_region & ~cont_r$q) | crc_delim | (ack_delim & ~ack_missing$q) | eof_1_6 | im_2 | (ack_slot & cont_r$q & ack_rule))) | delim);
         blame = sample & unj & enabled;
+        charge = sample & unj & enabled & ~suppress;
+        charged = sample & unj & enabled & ~suppress;
         tx_error = sample & nack_on & enabled & cont_r$q & tx_region & ~arb & c & ~bt & ~err_phase;
         if (sample) begin
             if (ack_slot) begin
@@ -2860,9 +3232,6 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             end
             else if (tx_region & c & ~bt) begin
                 cont_r$d = 1'b0;
-            end
-            else if (arb & dom) begin
-                cont_r$d = 1'b1;
             end
             if (dom) begin
                 if (dbc_r$q != 32'h1f) begin
@@ -2875,16 +3244,25 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             if (frame_ok & enabled & (bic_r$q != 32'h0)) begin
                 bic_r$d = bic_r$q - 32'h1;
             end
-            if (blame & (life_r$q != 32'h7f)) begin
-                life_r$d = life_r$q + 32'h1;
-            end
-            if (blame) begin
+            if (charge) begin
                 if (bic_r$q > 32'hf7) begin
                     bic_r$d = 32'hff;
                 end
                 else begin
                     bic_r$d = bic_r$q + 32'h8;
                 end
+            end
+            if (frame_ok & enabled & (gc_r$q != 32'h0)) begin
+                if ((gdec_r$q + 32'h1) >= glitch_decay) begin
+                    gdec_r$d = 32'h0;
+                    gc_r$d = gc_r$q - 32'h1;
+                end
+                else begin
+                    gdec_r$d = gdec_r$q + 32'h1;
+                end
+            end
+            if (an_r$q != 32'h0) begin
+                an_r$d = an_r$q - 32'h1;
             end
             if (ack_slot) begin
                 ack_c$d = c;
@@ -2911,22 +3289,43 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                 bad$d = 1'b1;
             end
         end
+        gcount = sample & (gpend$q | g) & ~common & enabled;
+        if (sample) begin
+            gpend$d = 1'b0;
+        end
+        else if (g) begin
+            gpend$d = 1'b1;
+        end
+        if (g) begin
+            an_r$d = 32'h3;
+            bad$d = 1'b1;
+        end
+        if (gcount & (gc_r$q != 32'h7)) begin
+            gc_r$d = gc_r$q + 32'h1;
+            gdec_r$d = 32'h0;
+        end
+        if ((gcount | charge) & (life_r$q != 32'h7f)) begin
+            life_r$d = life_r$q + 32'h1;
+        end
         if (dbc_r$q >= dbc_thr) begin
             bad$d = 1'b1;
         end
+        rep_ok = (rep_r$q != 32'h7) & ~(rep_glitched & (gc_r$q == 32'h0));
+        bl_r$d = blame;
+        bl_dm_r$d = blame & rep_rec;
         if (err_start) begin
             rep_seen$d = 1'b0;
-            if (rep_seen$q & rep_first_dom$q & (rep_r$q != 32'h7)) begin
+            if (((rep_seen$q & rep_first_dom$q & rep_ok & ~(rep_blamed & ~bl_r$q)) | bl_dm_r$q) & (rep_r$q != 32'h7)) begin
                 rep_r$d = rep_r$q + 32'h1;
             end
         end
         else if (sample & frame_ok) begin
             rep_seen$d = 1'b0;
-            if (rep_seen$q & ~rep_first_dom$q & (rep_r$q != 32'h7)) begin
+            if (rep_seen$q & ~rep_first_dom$q & rep_ok) begin
                 rep_r$d = rep_r$q + 32'h1;
             end
         end
-        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (rep_on & (rep_r$q >= rep_limit)))) begin
+        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (rep_on & (rep_r$q >= rep_limit)))) begin
             dis_r$d = 1'b1;
         end
         if (enabled) begin
@@ -2948,6 +3347,8 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                     rep_r$d = 32'h0;
                     rep_seen$d = 1'b0;
                     ok_r$d = 32'h0;
+                    gc_r$d = 32'h0;
+                    gdec_r$d = 32'h0;
                 end
             end
             else begin
@@ -2964,12 +3365,19 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             rep_r$d = 32'h0;
             rep_seen$d = 1'b0;
             rep_first_dom$d = 1'b0;
+            bl_r$d = 1'b0;
+            bl_dm_r$d = 1'b0;
+            gpend$d = 1'b0;
             ok_r$d = 32'h0;
             acked$d = 1'b0;
             bad$d = 1'b0;
             ack_missing$d = 1'b0;
             ack_c$d = 1'b0;
             ack_rx$d = 1'b0;
+            seen_dom$d = 1'b0;
+            gc_r$d = 32'h0;
+            gdec_r$d = 32'h0;
+            an_r$d = 32'h0;
         end
         dis = dis_r$q;
         bic = bic_r$q;
@@ -2977,6 +3385,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         dbc = dbc_r$q;
         nack = nack_r$q;
         rep_cnt = rep_r$q;
+        gc = gc_r$q;
         silent = nack_r$q >= nack_thr;
         contender = cont_r$q;
     end
@@ -3060,6 +3469,25 @@ module canstar_hub_core$core$pj$0$acked(d,q,clock);
 endmodule // canstar_hub_core$core$pj$0$acked
 
 
+module canstar_hub_core$core$pj$0$an_r(d,q,clock);
+    
+    // Module arguments
+    input wire  [1:0] d;
+    output reg  [1:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 2'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$0$an_r
+
+
 module canstar_hub_core$core$pj$0$bad(d,q,clock);
     
     // Module arguments
@@ -3096,6 +3524,44 @@ module canstar_hub_core$core$pj$0$bic_r(d,q,clock);
     end
           
 endmodule // canstar_hub_core$core$pj$0$bic_r
+
+
+module canstar_hub_core$core$pj$0$bl_dm_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$0$bl_dm_r
+
+
+module canstar_hub_core$core$pj$0$bl_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$0$bl_r
 
 
 module canstar_hub_core$core$pj$0$cont_r(d,q,clock);
@@ -3155,6 +3621,63 @@ module canstar_hub_core$core$pj$0$dis_r(d,q,clock);
 endmodule // canstar_hub_core$core$pj$0$dis_r
 
 
+module canstar_hub_core$core$pj$0$gc_r(d,q,clock);
+    
+    // Module arguments
+    input wire  [2:0] d;
+    output reg  [2:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 3'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$0$gc_r
+
+
+module canstar_hub_core$core$pj$0$gdec_r(d,q,clock);
+    
+    // Module arguments
+    input wire  [4:0] d;
+    output reg  [4:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 5'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$0$gdec_r
+
+
+module canstar_hub_core$core$pj$0$gpend(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$0$gpend
+
+
 module canstar_hub_core$core$pj$0$life_r(d,q,clock);
     
     // Module arguments
@@ -3210,6 +3733,103 @@ module canstar_hub_core$core$pj$0$ok_r(d,q,clock);
     end
           
 endmodule // canstar_hub_core$core$pj$0$ok_r
+
+
+module canstar_hub_core$core$pj$0$pulse(clock,reset,c,glitch);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  reset;
+    input wire  c;
+    output reg  glitch;
+    
+    // Constant declarations
+    localparam  min = 5'b1;
+    localparam  max = 5'b1011;
+    
+    // Stub signals
+    reg  prev$d;
+    wire  prev$q;
+    reg  prev$clock;
+    reg  [4:0] run$d;
+    wire  [4:0] run$q;
+    reg  run$clock;
+    
+    // Local signals
+    reg  chg;
+    
+    // Sub module instances
+    canstar_hub_core$core$pj$0$pulse$prev prev(
+        .d(prev$d),
+        .q(prev$q),
+        .clock(prev$clock)
+    );
+    canstar_hub_core$core$pj$0$pulse$run run(
+        .d(run$d),
+        .q(run$q),
+        .clock(run$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        prev$clock = clock;
+        run$clock = clock;
+        prev$d = prev$q;
+        run$d = run$q;
+        chg = c != prev$q;
+        glitch = chg & (run$q >= min) & (run$q <= max);
+        prev$d = c;
+        if (chg) begin
+            run$d = 32'h1;
+        end
+        else if (run$q != 32'h1f) begin
+            run$d = run$q + 32'h1;
+        end
+        if (reset) begin
+            prev$d = 1'b1;
+            run$d = 32'h1f;
+        end
+    end
+    
+endmodule // canstar_hub_core$core$pj$0$pulse
+
+
+module canstar_hub_core$core$pj$0$pulse$prev(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$0$pulse$prev
+
+
+module canstar_hub_core$core$pj$0$pulse$run(d,q,clock);
+    
+    // Module arguments
+    input wire  [4:0] d;
+    output reg  [4:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 5'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$0$pulse$run
 
 
 module canstar_hub_core$core$pj$0$rep_first_dom(d,q,clock);
@@ -3269,7 +3889,26 @@ module canstar_hub_core$core$pj$0$rep_seen(d,q,clock);
 endmodule // canstar_hub_core$core$pj$0$rep_seen
 
 
-module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,dis,blame,tx_error,bic,life,dbc,nack,rep_cnt,silent,contender);
+module canstar_hub_core$core$pj$0$seen_dom(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$0$seen_dom
+
+
+module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,rep_glitched,rep_blamed,common,dis,blame,charged,tx_error,glitch,anomaly,bic,life,dbc,nack,rep_cnt,gc,silent,contender);
     
     // Module arguments
     input wire  clock;
@@ -3291,14 +3930,25 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     input wire  err_start;
     input wire  rep_rec;
     input wire  rep_dom;
+    input wire  bit_start;
+    input wire  [4:0] bs_cnt;
+    input wire  delim;
+    input wire  suppress;
+    input wire  rep_glitched;
+    input wire  rep_blamed;
+    input wire  common;
     output reg  dis;
     output reg  blame;
+    output reg  charged;
     output reg  tx_error;
+    output reg  glitch;
+    output reg  anomaly;
     output reg  [7:0] bic;
     output reg  [6:0] life;
     output reg  [4:0] dbc;
     output reg  [2:0] nack;
     output reg  [2:0] rep_cnt;
+    output reg  [2:0] gc;
     output reg  silent;
     output reg  contender;
     
@@ -3308,6 +3958,9 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     localparam  dbc_thr = 5'b1101;
     localparam  nack_thr = 3'b111;
     localparam  rep_limit = 3'b11;
+    localparam  glitch_limit = 3'b11;
+    localparam  glitch_decay = 5'b10000;
+    localparam  win_lag = 5'b111;
     localparam  ack_rule = 1'b1;
     localparam  nack_on = 1'b1;
     localparam  rep_on = 1'b0;
@@ -3315,6 +3968,10 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     localparam  reint_w = 8'h1;
     
     // Stub signals
+    reg  pulse$clock;
+    reg  pulse$reset;
+    reg  pulse$c;
+    wire  pulse$glitch;
     reg  dis_r$d;
     wire  dis_r$q;
     reg  dis_r$clock;
@@ -3360,13 +4017,45 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  ack_rx$d;
     wire  ack_rx$q;
     reg  ack_rx$clock;
+    reg  seen_dom$d;
+    wire  seen_dom$q;
+    reg  seen_dom$clock;
+    reg  [2:0] gc_r$d;
+    wire  [2:0] gc_r$q;
+    reg  gc_r$clock;
+    reg  [4:0] gdec_r$d;
+    wire  [4:0] gdec_r$q;
+    reg  gdec_r$clock;
+    reg  [1:0] an_r$d;
+    wire  [1:0] an_r$q;
+    reg  an_r$clock;
+    reg  bl_r$d;
+    wire  bl_r$q;
+    reg  bl_r$clock;
+    reg  bl_dm_r$d;
+    wire  bl_dm_r$q;
+    reg  bl_dm_r$clock;
+    reg  gpend$d;
+    wire  gpend$q;
+    reg  gpend$clock;
     
     // Local signals
     reg  dom;
+    reg  domw;
     reg  unj;
     reg  enabled;
+    reg  charge;
+    reg  g;
+    reg  rep_ok;
+    reg  gcount;
     
     // Sub module instances
+    canstar_hub_core$core$pj$1$pulse pulse(
+        .clock(pulse$clock),
+        .reset(pulse$reset),
+        .c(pulse$c),
+        .glitch(pulse$glitch)
+    );
     canstar_hub_core$core$pj$1$dis_r dis_r(
         .d(dis_r$d),
         .q(dis_r$q),
@@ -3442,6 +4131,41 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .q(ack_rx$q),
         .clock(ack_rx$clock)
     );
+    canstar_hub_core$core$pj$1$seen_dom seen_dom(
+        .d(seen_dom$d),
+        .q(seen_dom$q),
+        .clock(seen_dom$clock)
+    );
+    canstar_hub_core$core$pj$1$gc_r gc_r(
+        .d(gc_r$d),
+        .q(gc_r$q),
+        .clock(gc_r$clock)
+    );
+    canstar_hub_core$core$pj$1$gdec_r gdec_r(
+        .d(gdec_r$d),
+        .q(gdec_r$q),
+        .clock(gdec_r$clock)
+    );
+    canstar_hub_core$core$pj$1$an_r an_r(
+        .d(an_r$d),
+        .q(an_r$q),
+        .clock(an_r$clock)
+    );
+    canstar_hub_core$core$pj$1$bl_r bl_r(
+        .d(bl_r$d),
+        .q(bl_r$q),
+        .clock(bl_r$clock)
+    );
+    canstar_hub_core$core$pj$1$bl_dm_r bl_dm_r(
+        .d(bl_dm_r$d),
+        .q(bl_dm_r$q),
+        .clock(bl_dm_r$clock)
+    );
+    canstar_hub_core$core$pj$1$gpend gpend(
+        .d(gpend$d),
+        .q(gpend$q),
+        .clock(gpend$clock)
+    );
     
     // Update code
     always @(*) begin
@@ -3460,6 +4184,13 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         ack_missing$clock = clock;
         ack_c$clock = clock;
         ack_rx$clock = clock;
+        seen_dom$clock = clock;
+        gc_r$clock = clock;
+        gdec_r$clock = clock;
+        an_r$clock = clock;
+        bl_r$clock = clock;
+        bl_dm_r$clock = clock;
+        gpend$clock = clock;
         dis_r$d = dis_r$q;
         bic_r$d = bic_r$q;
         life_r$d = life_r$q;
@@ -3475,10 +4206,32 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         ack_missing$d = ack_missing$q;
         ack_c$d = ack_c$q;
         ack_rx$d = ack_rx$q;
+        seen_dom$d = seen_dom$q;
+        gc_r$d = gc_r$q;
+        gdec_r$d = gdec_r$q;
+        an_r$d = an_r$q;
+        bl_r$d = bl_r$q;
+        bl_dm_r$d = bl_dm_r$q;
+        gpend$d = gpend$q;
+        pulse$clock = clock;
+        pulse$reset = reset;
+        pulse$c = c;
+        g = pulse$glitch;
+        glitch = pulse$glitch;
+        anomaly = pulse$glitch | (an_r$q != 32'h0);
         dom = ~c;
         enabled = ~dis_r$q;
-        unj = dom & ~err_phase & ((tx_region & ~arb & ~cont_r$q) | crc_delim | (ack_delim & ~ack_missing$q) | eof_1_6 | im_2 | (ack_slot & cont_r$q & ack_rule));
+        domw = dom | seen_dom$q;
+        if (bit_start) begin
+            seen_dom$d = 1'b0;
+        end
+        else if (dom & (bs_cnt >= win_lag)) begin
+            seen_dom$d = 1'b1;
+        end
+        unj = domw & ((~err_phase & ((tx_region & ~cont_r$q) | crc_delim | (ack_delim & ~ack_missing$q) | eof_1_6 | im_2 | (ack_slot & cont_r$q & ack_rule))) | delim);
         blame = sample & unj & enabled;
+        charge = sample & unj & enabled & ~suppress;
+        charged = sample & unj & enabled & ~suppress;
         tx_error = sample & nack_on & enabled & cont_r$q & tx_region & ~arb & c & ~bt & ~err_phase;
         if (sample) begin
             if (ack_slot) begin
@@ -3489,9 +4242,6 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             end
             else if (tx_region & c & ~bt) begin
                 cont_r$d = 1'b0;
-            end
-            else if (arb & dom) begin
-                cont_r$d = 1'b1;
             end
             if (dom) begin
                 if (dbc_r$q != 32'h1f) begin
@@ -3504,16 +4254,25 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             if (frame_ok & enabled & (bic_r$q != 32'h0)) begin
                 bic_r$d = bic_r$q - 32'h1;
             end
-            if (blame & (life_r$q != 32'h7f)) begin
-                life_r$d = life_r$q + 32'h1;
-            end
-            if (blame) begin
+            if (charge) begin
                 if (bic_r$q > 32'hf7) begin
                     bic_r$d = 32'hff;
                 end
                 else begin
                     bic_r$d = bic_r$q + 32'h8;
                 end
+            end
+            if (frame_ok & enabled & (gc_r$q != 32'h0)) begin
+                if ((gdec_r$q + 32'h1) >= glitch_decay) begin
+                    gdec_r$d = 32'h0;
+                    gc_r$d = gc_r$q - 32'h1;
+                end
+                else begin
+                    gdec_r$d = gdec_r$q + 32'h1;
+                end
+            end
+            if (an_r$q != 32'h0) begin
+                an_r$d = an_r$q - 32'h1;
             end
             if (ack_slot) begin
                 ack_c$d = c;
@@ -3540,22 +4299,43 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                 bad$d = 1'b1;
             end
         end
+        gcount = sample & (gpend$q | g) & ~common & enabled;
+        if (sample) begin
+            gpend$d = 1'b0;
+        end
+        else if (g) begin
+            gpend$d = 1'b1;
+        end
+        if (g) begin
+            an_r$d = 32'h3;
+            bad$d = 1'b1;
+        end
+        if (gcount & (gc_r$q != 32'h7)) begin
+            gc_r$d = gc_r$q + 32'h1;
+            gdec_r$d = 32'h0;
+        end
+        if ((gcount | charge) & (life_r$q != 32'h7f)) begin
+            life_r$d = life_r$q + 32'h1;
+        end
         if (dbc_r$q >= dbc_thr) begin
             bad$d = 1'b1;
         end
+        rep_ok = (rep_r$q != 32'h7) & ~(rep_glitched & (gc_r$q == 32'h0));
+        bl_r$d = blame;
+        bl_dm_r$d = blame & rep_rec;
         if (err_start) begin
             rep_seen$d = 1'b0;
-            if (rep_seen$q & rep_first_dom$q & (rep_r$q != 32'h7)) begin
+            if (((rep_seen$q & rep_first_dom$q & rep_ok & ~(rep_blamed & ~bl_r$q)) | bl_dm_r$q) & (rep_r$q != 32'h7)) begin
                 rep_r$d = rep_r$q + 32'h1;
             end
         end
         else if (sample & frame_ok) begin
             rep_seen$d = 1'b0;
-            if (rep_seen$q & ~rep_first_dom$q & (rep_r$q != 32'h7)) begin
+            if (rep_seen$q & ~rep_first_dom$q & rep_ok) begin
                 rep_r$d = rep_r$q + 32'h1;
             end
         end
-        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (rep_on & (rep_r$q >= rep_limit)))) begin
+        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (rep_on & (rep_r$q >= rep_limit)))) begin
             dis_r$d = 1'b1;
         end
         if (enabled) begin
@@ -3577,6 +4357,8 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                     rep_r$d = 32'h0;
                     rep_seen$d = 1'b0;
                     ok_r$d = 32'h0;
+                    gc_r$d = 32'h0;
+                    gdec_r$d = 32'h0;
                 end
             end
             else begin
@@ -3593,12 +4375,19 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             rep_r$d = 32'h0;
             rep_seen$d = 1'b0;
             rep_first_dom$d = 1'b0;
+            bl_r$d = 1'b0;
+            bl_dm_r$d = 1'b0;
+            gpend$d = 1'b0;
             ok_r$d = 32'h0;
             acked$d = 1'b0;
             bad$d = 1'b0;
             ack_missing$d = 1'b0;
             ack_c$d = 1'b0;
             ack_rx$d = 1'b0;
+            seen_dom$d = 1'b0;
+            gc_r$d = 32'h0;
+            gdec_r$d = 32'h0;
+            an_r$d = 32'h0;
         end
         dis = dis_r$q;
         bic = bic_r$q;
@@ -3606,6 +4395,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         dbc = dbc_r$q;
         nack = nack_r$q;
         rep_cnt = rep_r$q;
+        gc = gc_r$q;
         silent = nack_r$q >= nack_thr;
         contender = cont_r$q;
     end
@@ -3689,6 +4479,25 @@ module canstar_hub_core$core$pj$1$acked(d,q,clock);
 endmodule // canstar_hub_core$core$pj$1$acked
 
 
+module canstar_hub_core$core$pj$1$an_r(d,q,clock);
+    
+    // Module arguments
+    input wire  [1:0] d;
+    output reg  [1:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 2'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$1$an_r
+
+
 module canstar_hub_core$core$pj$1$bad(d,q,clock);
     
     // Module arguments
@@ -3725,6 +4534,44 @@ module canstar_hub_core$core$pj$1$bic_r(d,q,clock);
     end
           
 endmodule // canstar_hub_core$core$pj$1$bic_r
+
+
+module canstar_hub_core$core$pj$1$bl_dm_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$1$bl_dm_r
+
+
+module canstar_hub_core$core$pj$1$bl_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$1$bl_r
 
 
 module canstar_hub_core$core$pj$1$cont_r(d,q,clock);
@@ -3784,6 +4631,63 @@ module canstar_hub_core$core$pj$1$dis_r(d,q,clock);
 endmodule // canstar_hub_core$core$pj$1$dis_r
 
 
+module canstar_hub_core$core$pj$1$gc_r(d,q,clock);
+    
+    // Module arguments
+    input wire  [2:0] d;
+    output reg  [2:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 3'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$1$gc_r
+
+
+module canstar_hub_core$core$pj$1$gdec_r(d,q,clock);
+    
+    // Module arguments
+    input wire  [4:0] d;
+    output reg  [4:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 5'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$1$gdec_r
+
+
+module canstar_hub_core$core$pj$1$gpend(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$1$gpend
+
+
 module canstar_hub_core$core$pj$1$life_r(d,q,clock);
     
     // Module arguments
@@ -3839,6 +4743,103 @@ module canstar_hub_core$core$pj$1$ok_r(d,q,clock);
     end
           
 endmodule // canstar_hub_core$core$pj$1$ok_r
+
+
+module canstar_hub_core$core$pj$1$pulse(clock,reset,c,glitch);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  reset;
+    input wire  c;
+    output reg  glitch;
+    
+    // Constant declarations
+    localparam  min = 5'b1;
+    localparam  max = 5'b1011;
+    
+    // Stub signals
+    reg  prev$d;
+    wire  prev$q;
+    reg  prev$clock;
+    reg  [4:0] run$d;
+    wire  [4:0] run$q;
+    reg  run$clock;
+    
+    // Local signals
+    reg  chg;
+    
+    // Sub module instances
+    canstar_hub_core$core$pj$1$pulse$prev prev(
+        .d(prev$d),
+        .q(prev$q),
+        .clock(prev$clock)
+    );
+    canstar_hub_core$core$pj$1$pulse$run run(
+        .d(run$d),
+        .q(run$q),
+        .clock(run$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        prev$clock = clock;
+        run$clock = clock;
+        prev$d = prev$q;
+        run$d = run$q;
+        chg = c != prev$q;
+        glitch = chg & (run$q >= min) & (run$q <= max);
+        prev$d = c;
+        if (chg) begin
+            run$d = 32'h1;
+        end
+        else if (run$q != 32'h1f) begin
+            run$d = run$q + 32'h1;
+        end
+        if (reset) begin
+            prev$d = 1'b1;
+            run$d = 32'h1f;
+        end
+    end
+    
+endmodule // canstar_hub_core$core$pj$1$pulse
+
+
+module canstar_hub_core$core$pj$1$pulse$prev(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$1$pulse$prev
+
+
+module canstar_hub_core$core$pj$1$pulse$run(d,q,clock);
+    
+    // Module arguments
+    input wire  [4:0] d;
+    output reg  [4:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 5'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$1$pulse$run
 
 
 module canstar_hub_core$core$pj$1$rep_first_dom(d,q,clock);
@@ -3898,7 +4899,26 @@ module canstar_hub_core$core$pj$1$rep_seen(d,q,clock);
 endmodule // canstar_hub_core$core$pj$1$rep_seen
 
 
-module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,dis,blame,tx_error,bic,life,dbc,nack,rep_cnt,silent,contender);
+module canstar_hub_core$core$pj$1$seen_dom(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$1$seen_dom
+
+
+module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,rep_glitched,rep_blamed,common,dis,blame,charged,tx_error,glitch,anomaly,bic,life,dbc,nack,rep_cnt,gc,silent,contender);
     
     // Module arguments
     input wire  clock;
@@ -3920,14 +4940,25 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     input wire  err_start;
     input wire  rep_rec;
     input wire  rep_dom;
+    input wire  bit_start;
+    input wire  [4:0] bs_cnt;
+    input wire  delim;
+    input wire  suppress;
+    input wire  rep_glitched;
+    input wire  rep_blamed;
+    input wire  common;
     output reg  dis;
     output reg  blame;
+    output reg  charged;
     output reg  tx_error;
+    output reg  glitch;
+    output reg  anomaly;
     output reg  [7:0] bic;
     output reg  [6:0] life;
     output reg  [4:0] dbc;
     output reg  [2:0] nack;
     output reg  [2:0] rep_cnt;
+    output reg  [2:0] gc;
     output reg  silent;
     output reg  contender;
     
@@ -3937,6 +4968,9 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     localparam  dbc_thr = 5'b1101;
     localparam  nack_thr = 3'b111;
     localparam  rep_limit = 3'b11;
+    localparam  glitch_limit = 3'b11;
+    localparam  glitch_decay = 5'b10000;
+    localparam  win_lag = 5'b111;
     localparam  ack_rule = 1'b1;
     localparam  nack_on = 1'b1;
     localparam  rep_on = 1'b0;
@@ -3944,6 +4978,10 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     localparam  reint_w = 8'h1;
     
     // Stub signals
+    reg  pulse$clock;
+    reg  pulse$reset;
+    reg  pulse$c;
+    wire  pulse$glitch;
     reg  dis_r$d;
     wire  dis_r$q;
     reg  dis_r$clock;
@@ -3989,13 +5027,45 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  ack_rx$d;
     wire  ack_rx$q;
     reg  ack_rx$clock;
+    reg  seen_dom$d;
+    wire  seen_dom$q;
+    reg  seen_dom$clock;
+    reg  [2:0] gc_r$d;
+    wire  [2:0] gc_r$q;
+    reg  gc_r$clock;
+    reg  [4:0] gdec_r$d;
+    wire  [4:0] gdec_r$q;
+    reg  gdec_r$clock;
+    reg  [1:0] an_r$d;
+    wire  [1:0] an_r$q;
+    reg  an_r$clock;
+    reg  bl_r$d;
+    wire  bl_r$q;
+    reg  bl_r$clock;
+    reg  bl_dm_r$d;
+    wire  bl_dm_r$q;
+    reg  bl_dm_r$clock;
+    reg  gpend$d;
+    wire  gpend$q;
+    reg  gpend$clock;
     
     // Local signals
     reg  dom;
+    reg  domw;
     reg  unj;
     reg  enabled;
+    reg  charge;
+    reg  g;
+    reg  rep_ok;
+    reg  gcount;
     
     // Sub module instances
+    canstar_hub_core$core$pj$2$pulse pulse(
+        .clock(pulse$clock),
+        .reset(pulse$reset),
+        .c(pulse$c),
+        .glitch(pulse$glitch)
+    );
     canstar_hub_core$core$pj$2$dis_r dis_r(
         .d(dis_r$d),
         .q(dis_r$q),
@@ -4071,6 +5141,41 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .q(ack_rx$q),
         .clock(ack_rx$clock)
     );
+    canstar_hub_core$core$pj$2$seen_dom seen_dom(
+        .d(seen_dom$d),
+        .q(seen_dom$q),
+        .clock(seen_dom$clock)
+    );
+    canstar_hub_core$core$pj$2$gc_r gc_r(
+        .d(gc_r$d),
+        .q(gc_r$q),
+        .clock(gc_r$clock)
+    );
+    canstar_hub_core$core$pj$2$gdec_r gdec_r(
+        .d(gdec_r$d),
+        .q(gdec_r$q),
+        .clock(gdec_r$clock)
+    );
+    canstar_hub_core$core$pj$2$an_r an_r(
+        .d(an_r$d),
+        .q(an_r$q),
+        .clock(an_r$clock)
+    );
+    canstar_hub_core$core$pj$2$bl_r bl_r(
+        .d(bl_r$d),
+        .q(bl_r$q),
+        .clock(bl_r$clock)
+    );
+    canstar_hub_core$core$pj$2$bl_dm_r bl_dm_r(
+        .d(bl_dm_r$d),
+        .q(bl_dm_r$q),
+        .clock(bl_dm_r$clock)
+    );
+    canstar_hub_core$core$pj$2$gpend gpend(
+        .d(gpend$d),
+        .q(gpend$q),
+        .clock(gpend$clock)
+    );
     
     // Update code
     always @(*) begin
@@ -4089,6 +5194,13 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         ack_missing$clock = clock;
         ack_c$clock = clock;
         ack_rx$clock = clock;
+        seen_dom$clock = clock;
+        gc_r$clock = clock;
+        gdec_r$clock = clock;
+        an_r$clock = clock;
+        bl_r$clock = clock;
+        bl_dm_r$clock = clock;
+        gpend$clock = clock;
         dis_r$d = dis_r$q;
         bic_r$d = bic_r$q;
         life_r$d = life_r$q;
@@ -4104,10 +5216,32 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         ack_missing$d = ack_missing$q;
         ack_c$d = ack_c$q;
         ack_rx$d = ack_rx$q;
+        seen_dom$d = seen_dom$q;
+        gc_r$d = gc_r$q;
+        gdec_r$d = gdec_r$q;
+        an_r$d = an_r$q;
+        bl_r$d = bl_r$q;
+        bl_dm_r$d = bl_dm_r$q;
+        gpend$d = gpend$q;
+        pulse$clock = clock;
+        pulse$reset = reset;
+        pulse$c = c;
+        g = pulse$glitch;
+        glitch = pulse$glitch;
+        anomaly = pulse$glitch | (an_r$q != 32'h0);
         dom = ~c;
         enabled = ~dis_r$q;
-        unj = dom & ~err_phase & ((tx_region & ~arb & ~cont_r$q) | crc_delim | (ack_delim & ~ack_missing$q) | eof_1_6 | im_2 | (ack_slot & cont_r$q & ack_rule));
+        domw = dom | seen_dom$q;
+        if (bit_start) begin
+            seen_dom$d = 1'b0;
+        end
+        else if (dom & (bs_cnt >= win_lag)) begin
+            seen_dom$d = 1'b1;
+        end
+        unj = domw & ((~err_phase & ((tx_region & ~cont_r$q) | crc_delim | (ack_delim & ~ack_missing$q) | eof_1_6 | im_2 | (ack_slot & cont_r$q & ack_rule))) | delim);
         blame = sample & unj & enabled;
+        charge = sample & unj & enabled & ~suppress;
+        charged = sample & unj & enabled & ~suppress;
         tx_error = sample & nack_on & enabled & cont_r$q & tx_region & ~arb & c & ~bt & ~err_phase;
         if (sample) begin
             if (ack_slot) begin
@@ -4118,9 +5252,6 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             end
             else if (tx_region & c & ~bt) begin
                 cont_r$d = 1'b0;
-            end
-            else if (arb & dom) begin
-                cont_r$d = 1'b1;
             end
             if (dom) begin
                 if (dbc_r$q != 32'h1f) begin
@@ -4133,16 +5264,25 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             if (frame_ok & enabled & (bic_r$q != 32'h0)) begin
                 bic_r$d = bic_r$q - 32'h1;
             end
-            if (blame & (life_r$q != 32'h7f)) begin
-                life_r$d = life_r$q + 32'h1;
-            end
-            if (blame) begin
+            if (charge) begin
                 if (bic_r$q > 32'hf7) begin
                     bic_r$d = 32'hff;
                 end
                 else begin
                     bic_r$d = bic_r$q + 32'h8;
                 end
+            end
+            if (frame_ok & enabled & (gc_r$q != 32'h0)) begin
+                if ((gdec_r$q + 32'h1) >= glitch_decay) begin
+                    gdec_r$d = 32'h0;
+                    gc_r$d = gc_r$q - 32'h1;
+                end
+                else begin
+                    gdec_r$d = gdec_r$q + 32'h1;
+                end
+            end
+            if (an_r$q != 32'h0) begin
+                an_r$d = an_r$q - 32'h1;
             end
             if (ack_slot) begin
                 ack_c$d = c;
@@ -4169,22 +5309,43 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                 bad$d = 1'b1;
             end
         end
+        gcount = sample & (gpend$q | g) & ~common & enabled;
+        if (sample) begin
+            gpend$d = 1'b0;
+        end
+        else if (g) begin
+            gpend$d = 1'b1;
+        end
+        if (g) begin
+            an_r$d = 32'h3;
+            bad$d = 1'b1;
+        end
+        if (gcount & (gc_r$q != 32'h7)) begin
+            gc_r$d = gc_r$q + 32'h1;
+            gdec_r$d = 32'h0;
+        end
+        if ((gcount | charge) & (life_r$q != 32'h7f)) begin
+            life_r$d = life_r$q + 32'h1;
+        end
         if (dbc_r$q >= dbc_thr) begin
             bad$d = 1'b1;
         end
+        rep_ok = (rep_r$q != 32'h7) & ~(rep_glitched & (gc_r$q == 32'h0));
+        bl_r$d = blame;
+        bl_dm_r$d = blame & rep_rec;
         if (err_start) begin
             rep_seen$d = 1'b0;
-            if (rep_seen$q & rep_first_dom$q & (rep_r$q != 32'h7)) begin
+            if (((rep_seen$q & rep_first_dom$q & rep_ok & ~(rep_blamed & ~bl_r$q)) | bl_dm_r$q) & (rep_r$q != 32'h7)) begin
                 rep_r$d = rep_r$q + 32'h1;
             end
         end
         else if (sample & frame_ok) begin
             rep_seen$d = 1'b0;
-            if (rep_seen$q & ~rep_first_dom$q & (rep_r$q != 32'h7)) begin
+            if (rep_seen$q & ~rep_first_dom$q & rep_ok) begin
                 rep_r$d = rep_r$q + 32'h1;
             end
         end
-        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (rep_on & (rep_r$q >= rep_limit)))) begin
+        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (rep_on & (rep_r$q >= rep_limit)))) begin
             dis_r$d = 1'b1;
         end
         if (enabled) begin
@@ -4206,6 +5367,8 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                     rep_r$d = 32'h0;
                     rep_seen$d = 1'b0;
                     ok_r$d = 32'h0;
+                    gc_r$d = 32'h0;
+                    gdec_r$d = 32'h0;
                 end
             end
             else begin
@@ -4222,12 +5385,19 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             rep_r$d = 32'h0;
             rep_seen$d = 1'b0;
             rep_first_dom$d = 1'b0;
+            bl_r$d = 1'b0;
+            bl_dm_r$d = 1'b0;
+            gpend$d = 1'b0;
             ok_r$d = 32'h0;
             acked$d = 1'b0;
             bad$d = 1'b0;
             ack_missing$d = 1'b0;
             ack_c$d = 1'b0;
             ack_rx$d = 1'b0;
+            seen_dom$d = 1'b0;
+            gc_r$d = 32'h0;
+            gdec_r$d = 32'h0;
+            an_r$d = 32'h0;
         end
         dis = dis_r$q;
         bic = bic_r$q;
@@ -4235,6 +5405,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         dbc = dbc_r$q;
         nack = nack_r$q;
         rep_cnt = rep_r$q;
+        gc = gc_r$q;
         silent = nack_r$q >= nack_thr;
         contender = cont_r$q;
     end
@@ -4318,6 +5489,25 @@ module canstar_hub_core$core$pj$2$acked(d,q,clock);
 endmodule // canstar_hub_core$core$pj$2$acked
 
 
+module canstar_hub_core$core$pj$2$an_r(d,q,clock);
+    
+    // Module arguments
+    input wire  [1:0] d;
+    output reg  [1:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 2'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$2$an_r
+
+
 module canstar_hub_core$core$pj$2$bad(d,q,clock);
     
     // Module arguments
@@ -4354,6 +5544,44 @@ module canstar_hub_core$core$pj$2$bic_r(d,q,clock);
     end
           
 endmodule // canstar_hub_core$core$pj$2$bic_r
+
+
+module canstar_hub_core$core$pj$2$bl_dm_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$2$bl_dm_r
+
+
+module canstar_hub_core$core$pj$2$bl_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$2$bl_r
 
 
 module canstar_hub_core$core$pj$2$cont_r(d,q,clock);
@@ -4413,6 +5641,63 @@ module canstar_hub_core$core$pj$2$dis_r(d,q,clock);
 endmodule // canstar_hub_core$core$pj$2$dis_r
 
 
+module canstar_hub_core$core$pj$2$gc_r(d,q,clock);
+    
+    // Module arguments
+    input wire  [2:0] d;
+    output reg  [2:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 3'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$2$gc_r
+
+
+module canstar_hub_core$core$pj$2$gdec_r(d,q,clock);
+    
+    // Module arguments
+    input wire  [4:0] d;
+    output reg  [4:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 5'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$2$gdec_r
+
+
+module canstar_hub_core$core$pj$2$gpend(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$2$gpend
+
+
 module canstar_hub_core$core$pj$2$life_r(d,q,clock);
     
     // Module arguments
@@ -4468,6 +5753,103 @@ module canstar_hub_core$core$pj$2$ok_r(d,q,clock);
     end
           
 endmodule // canstar_hub_core$core$pj$2$ok_r
+
+
+module canstar_hub_core$core$pj$2$pulse(clock,reset,c,glitch);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  reset;
+    input wire  c;
+    output reg  glitch;
+    
+    // Constant declarations
+    localparam  min = 5'b1;
+    localparam  max = 5'b1011;
+    
+    // Stub signals
+    reg  prev$d;
+    wire  prev$q;
+    reg  prev$clock;
+    reg  [4:0] run$d;
+    wire  [4:0] run$q;
+    reg  run$clock;
+    
+    // Local signals
+    reg  chg;
+    
+    // Sub module instances
+    canstar_hub_core$core$pj$2$pulse$prev prev(
+        .d(prev$d),
+        .q(prev$q),
+        .clock(prev$clock)
+    );
+    canstar_hub_core$core$pj$2$pulse$run run(
+        .d(run$d),
+        .q(run$q),
+        .clock(run$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        prev$clock = clock;
+        run$clock = clock;
+        prev$d = prev$q;
+        run$d = run$q;
+        chg = c != prev$q;
+        glitch = chg & (run$q >= min) & (run$q <= max);
+        prev$d = c;
+        if (chg) begin
+            run$d = 32'h1;
+        end
+        else if (run$q != 32'h1f) begin
+            run$d = run$q + 32'h1;
+        end
+        if (reset) begin
+            prev$d = 1'b1;
+            run$d = 32'h1f;
+        end
+    end
+    
+endmodule // canstar_hub_core$core$pj$2$pulse
+
+
+module canstar_hub_core$core$pj$2$pulse$prev(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$2$pulse$prev
+
+
+module canstar_hub_core$core$pj$2$pulse$run(d,q,clock);
+    
+    // Module arguments
+    input wire  [4:0] d;
+    output reg  [4:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 5'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$2$pulse$run
 
 
 module canstar_hub_core$core$pj$2$rep_first_dom(d,q,clock);
@@ -4527,6 +5909,25 @@ module canstar_hub_core$core$pj$2$rep_seen(d,q,clock);
 endmodule // canstar_hub_core$core$pj$2$rep_seen
 
 
+module canstar_hub_core$core$pj$2$seen_dom(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$2$seen_dom
+
+
 module canstar_hub_core$core$rst_s1(d,q,clock);
     
     // Module arguments
@@ -4565,7 +5966,7 @@ module canstar_hub_core$core$rst_s2(d,q,clock);
 endmodule // canstar_hub_core$core$rst_s2
 
 
-module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,dis,blame,tx_error,bic,life,dbc,nack,rep_cnt,silent,contender);
+module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,rep_glitched,rep_blamed,common,dis,blame,charged,tx_error,glitch,anomaly,bic,life,dbc,nack,rep_cnt,gc,silent,contender);
     
     // Module arguments
     input wire  clock;
@@ -4587,23 +5988,37 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     input wire  err_start;
     input wire  rep_rec;
     input wire  rep_dom;
+    input wire  bit_start;
+    input wire  [4:0] bs_cnt;
+    input wire  delim;
+    input wire  suppress;
+    input wire  rep_glitched;
+    input wire  rep_blamed;
+    input wire  common;
     output reg  dis;
     output reg  blame;
+    output reg  charged;
     output reg  tx_error;
+    output reg  glitch;
+    output reg  anomaly;
     output reg  [7:0] bic;
     output reg  [6:0] life;
     output reg  [4:0] dbc;
     output reg  [2:0] nack;
     output reg  [2:0] rep_cnt;
+    output reg  [2:0] gc;
     output reg  silent;
     output reg  contender;
     
     // Constant declarations
-    localparam  bic_limit = 8'h80;
+    localparam  bic_limit = 8'h50;
     localparam  life_limit = 7'b1000000;
     localparam  dbc_thr = 5'b11100;
     localparam  nack_thr = 3'b111;
     localparam  rep_limit = 3'b11;
+    localparam  glitch_limit = 3'b110;
+    localparam  glitch_decay = 5'b10000;
+    localparam  win_lag = 5'b1000;
     localparam  ack_rule = 1'b0;
     localparam  nack_on = 1'b0;
     localparam  rep_on = 1'b1;
@@ -4611,6 +6026,10 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     localparam  reint_w = 8'h1;
     
     // Stub signals
+    reg  pulse$clock;
+    reg  pulse$reset;
+    reg  pulse$c;
+    wire  pulse$glitch;
     reg  dis_r$d;
     wire  dis_r$q;
     reg  dis_r$clock;
@@ -4656,13 +6075,45 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  ack_rx$d;
     wire  ack_rx$q;
     reg  ack_rx$clock;
+    reg  seen_dom$d;
+    wire  seen_dom$q;
+    reg  seen_dom$clock;
+    reg  [2:0] gc_r$d;
+    wire  [2:0] gc_r$q;
+    reg  gc_r$clock;
+    reg  [4:0] gdec_r$d;
+    wire  [4:0] gdec_r$q;
+    reg  gdec_r$clock;
+    reg  [1:0] an_r$d;
+    wire  [1:0] an_r$q;
+    reg  an_r$clock;
+    reg  bl_r$d;
+    wire  bl_r$q;
+    reg  bl_r$clock;
+    reg  bl_dm_r$d;
+    wire  bl_dm_r$q;
+    reg  bl_dm_r$clock;
+    reg  gpend$d;
+    wire  gpend$q;
+    reg  gpend$clock;
     
     // Local signals
     reg  dom;
+    reg  domw;
     reg  unj;
     reg  enabled;
+    reg  charge;
+    reg  g;
+    reg  rep_ok;
+    reg  gcount;
     
     // Sub module instances
+    canstar_hub_core$core$sj$0$pulse pulse(
+        .clock(pulse$clock),
+        .reset(pulse$reset),
+        .c(pulse$c),
+        .glitch(pulse$glitch)
+    );
     canstar_hub_core$core$sj$0$dis_r dis_r(
         .d(dis_r$d),
         .q(dis_r$q),
@@ -4738,6 +6189,41 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .q(ack_rx$q),
         .clock(ack_rx$clock)
     );
+    canstar_hub_core$core$sj$0$seen_dom seen_dom(
+        .d(seen_dom$d),
+        .q(seen_dom$q),
+        .clock(seen_dom$clock)
+    );
+    canstar_hub_core$core$sj$0$gc_r gc_r(
+        .d(gc_r$d),
+        .q(gc_r$q),
+        .clock(gc_r$clock)
+    );
+    canstar_hub_core$core$sj$0$gdec_r gdec_r(
+        .d(gdec_r$d),
+        .q(gdec_r$q),
+        .clock(gdec_r$clock)
+    );
+    canstar_hub_core$core$sj$0$an_r an_r(
+        .d(an_r$d),
+        .q(an_r$q),
+        .clock(an_r$clock)
+    );
+    canstar_hub_core$core$sj$0$bl_r bl_r(
+        .d(bl_r$d),
+        .q(bl_r$q),
+        .clock(bl_r$clock)
+    );
+    canstar_hub_core$core$sj$0$bl_dm_r bl_dm_r(
+        .d(bl_dm_r$d),
+        .q(bl_dm_r$q),
+        .clock(bl_dm_r$clock)
+    );
+    canstar_hub_core$core$sj$0$gpend gpend(
+        .d(gpend$d),
+        .q(gpend$q),
+        .clock(gpend$clock)
+    );
     
     // Update code
     always @(*) begin
@@ -4756,6 +6242,13 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         ack_missing$clock = clock;
         ack_c$clock = clock;
         ack_rx$clock = clock;
+        seen_dom$clock = clock;
+        gc_r$clock = clock;
+        gdec_r$clock = clock;
+        an_r$clock = clock;
+        bl_r$clock = clock;
+        bl_dm_r$clock = clock;
+        gpend$clock = clock;
         dis_r$d = dis_r$q;
         bic_r$d = bic_r$q;
         life_r$d = life_r$q;
@@ -4771,10 +6264,32 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         ack_missing$d = ack_missing$q;
         ack_c$d = ack_c$q;
         ack_rx$d = ack_rx$q;
+        seen_dom$d = seen_dom$q;
+        gc_r$d = gc_r$q;
+        gdec_r$d = gdec_r$q;
+        an_r$d = an_r$q;
+        bl_r$d = bl_r$q;
+        bl_dm_r$d = bl_dm_r$q;
+        gpend$d = gpend$q;
+        pulse$clock = clock;
+        pulse$reset = reset;
+        pulse$c = c;
+        g = pulse$glitch;
+        glitch = pulse$glitch;
+        anomaly = pulse$glitch | (an_r$q != 32'h0);
         dom = ~c;
         enabled = ~dis_r$q;
-        unj = dom & ~err_phase & ((tx_region & ~arb & ~cont_r$q) | crc_delim | (ack_delim & ~ack_missing$q) | eof_1_6 | im_2 | (ack_slot & cont_r$q & ack_rule));
+        domw = dom | seen_dom$q;
+        if (bit_start) begin
+            seen_dom$d = 1'b0;
+        end
+        else if (dom & (bs_cnt >= win_lag)) begin
+            seen_dom$d = 1'b1;
+        end
+        unj = domw & ((~err_phase & ((tx_region & ~cont_r$q) | crc_delim | (ack_delim & ~ack_missing$q) | eof_1_6 | im_2 | (ack_slot & cont_r$q & ack_rule))) | delim);
         blame = sample & unj & enabled;
+        charge = sample & unj & enabled & ~suppress;
+        charged = sample & unj & enabled & ~suppress;
         tx_error = sample & nack_on & enabled & cont_r$q & tx_region & ~arb & c & ~bt & ~err_phase;
         if (sample) begin
             if (ack_slot) begin
@@ -4785,9 +6300,6 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             end
             else if (tx_region & c & ~bt) begin
                 cont_r$d = 1'b0;
-            end
-            else if (arb & dom) begin
-                cont_r$d = 1'b1;
             end
             if (dom) begin
                 if (dbc_r$q != 32'h1f) begin
@@ -4800,16 +6312,25 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             if (frame_ok & enabled & (bic_r$q != 32'h0)) begin
                 bic_r$d = bic_r$q - 32'h1;
             end
-            if (blame & (life_r$q != 32'h7f)) begin
-                life_r$d = life_r$q + 32'h1;
-            end
-            if (blame) begin
+            if (charge) begin
                 if (bic_r$q > 32'hf7) begin
                     bic_r$d = 32'hff;
                 end
                 else begin
                     bic_r$d = bic_r$q + 32'h8;
                 end
+            end
+            if (frame_ok & enabled & (gc_r$q != 32'h0)) begin
+                if ((gdec_r$q + 32'h1) >= glitch_decay) begin
+                    gdec_r$d = 32'h0;
+                    gc_r$d = gc_r$q - 32'h1;
+                end
+                else begin
+                    gdec_r$d = gdec_r$q + 32'h1;
+                end
+            end
+            if (an_r$q != 32'h0) begin
+                an_r$d = an_r$q - 32'h1;
             end
             if (ack_slot) begin
                 ack_c$d = c;
@@ -4836,22 +6357,43 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                 bad$d = 1'b1;
             end
         end
+        gcount = sample & (gpend$q | g) & ~common & enabled;
+        if (sample) begin
+            gpend$d = 1'b0;
+        end
+        else if (g) begin
+            gpend$d = 1'b1;
+        end
+        if (g) begin
+            an_r$d = 32'h3;
+            bad$d = 1'b1;
+        end
+        if (gcount & (gc_r$q != 32'h7)) begin
+            gc_r$d = gc_r$q + 32'h1;
+            gdec_r$d = 32'h0;
+        end
+        if ((gcount | charge) & (life_r$q != 32'h7f)) begin
+            life_r$d = life_r$q + 32'h1;
+        end
         if (dbc_r$q >= dbc_thr) begin
             bad$d = 1'b1;
         end
+        rep_ok = (rep_r$q != 32'h7) & ~(rep_glitched & (gc_r$q == 32'h0));
+        bl_r$d = blame;
+        bl_dm_r$d = blame & rep_rec;
         if (err_start) begin
             rep_seen$d = 1'b0;
-            if (rep_seen$q & rep_first_dom$q & (rep_r$q != 32'h7)) begin
+            if (((rep_seen$q & rep_first_dom$q & rep_ok & ~(rep_blamed & ~bl_r$q)) | bl_dm_r$q) & (rep_r$q != 32'h7)) begin
                 rep_r$d = rep_r$q + 32'h1;
             end
         end
         else if (sample & frame_ok) begin
             rep_seen$d = 1'b0;
-            if (rep_seen$q & ~rep_first_dom$q & (rep_r$q != 32'h7)) begin
+            if (rep_seen$q & ~rep_first_dom$q & rep_ok) begin
                 rep_r$d = rep_r$q + 32'h1;
             end
         end
-        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (rep_on & (rep_r$q >= rep_limit)))) begin
+        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (rep_on & (rep_r$q >= rep_limit)))) begin
             dis_r$d = 1'b1;
         end
         if (enabled) begin
@@ -4873,6 +6415,8 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                     rep_r$d = 32'h0;
                     rep_seen$d = 1'b0;
                     ok_r$d = 32'h0;
+                    gc_r$d = 32'h0;
+                    gdec_r$d = 32'h0;
                 end
             end
             else begin
@@ -4889,12 +6433,19 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             rep_r$d = 32'h0;
             rep_seen$d = 1'b0;
             rep_first_dom$d = 1'b0;
+            bl_r$d = 1'b0;
+            bl_dm_r$d = 1'b0;
+            gpend$d = 1'b0;
             ok_r$d = 32'h0;
             acked$d = 1'b0;
             bad$d = 1'b0;
             ack_missing$d = 1'b0;
             ack_c$d = 1'b0;
             ack_rx$d = 1'b0;
+            seen_dom$d = 1'b0;
+            gc_r$d = 32'h0;
+            gdec_r$d = 32'h0;
+            an_r$d = 32'h0;
         end
         dis = dis_r$q;
         bic = bic_r$q;
@@ -4902,6 +6453,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         dbc = dbc_r$q;
         nack = nack_r$q;
         rep_cnt = rep_r$q;
+        gc = gc_r$q;
         silent = nack_r$q >= nack_thr;
         contender = cont_r$q;
     end
@@ -4985,6 +6537,25 @@ module canstar_hub_core$core$sj$0$acked(d,q,clock);
 endmodule // canstar_hub_core$core$sj$0$acked
 
 
+module canstar_hub_core$core$sj$0$an_r(d,q,clock);
+    
+    // Module arguments
+    input wire  [1:0] d;
+    output reg  [1:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 2'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$sj$0$an_r
+
+
 module canstar_hub_core$core$sj$0$bad(d,q,clock);
     
     // Module arguments
@@ -5021,6 +6592,44 @@ module canstar_hub_core$core$sj$0$bic_r(d,q,clock);
     end
           
 endmodule // canstar_hub_core$core$sj$0$bic_r
+
+
+module canstar_hub_core$core$sj$0$bl_dm_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$sj$0$bl_dm_r
+
+
+module canstar_hub_core$core$sj$0$bl_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$sj$0$bl_r
 
 
 module canstar_hub_core$core$sj$0$cont_r(d,q,clock);
@@ -5080,6 +6689,63 @@ module canstar_hub_core$core$sj$0$dis_r(d,q,clock);
 endmodule // canstar_hub_core$core$sj$0$dis_r
 
 
+module canstar_hub_core$core$sj$0$gc_r(d,q,clock);
+    
+    // Module arguments
+    input wire  [2:0] d;
+    output reg  [2:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 3'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$sj$0$gc_r
+
+
+module canstar_hub_core$core$sj$0$gdec_r(d,q,clock);
+    
+    // Module arguments
+    input wire  [4:0] d;
+    output reg  [4:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 5'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$sj$0$gdec_r
+
+
+module canstar_hub_core$core$sj$0$gpend(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$sj$0$gpend
+
+
 module canstar_hub_core$core$sj$0$life_r(d,q,clock);
     
     // Module arguments
@@ -5135,6 +6801,103 @@ module canstar_hub_core$core$sj$0$ok_r(d,q,clock);
     end
           
 endmodule // canstar_hub_core$core$sj$0$ok_r
+
+
+module canstar_hub_core$core$sj$0$pulse(clock,reset,c,glitch);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  reset;
+    input wire  c;
+    output reg  glitch;
+    
+    // Constant declarations
+    localparam  min = 5'b11;
+    localparam  max = 5'b1011;
+    
+    // Stub signals
+    reg  prev$d;
+    wire  prev$q;
+    reg  prev$clock;
+    reg  [4:0] run$d;
+    wire  [4:0] run$q;
+    reg  run$clock;
+    
+    // Local signals
+    reg  chg;
+    
+    // Sub module instances
+    canstar_hub_core$core$sj$0$pulse$prev prev(
+        .d(prev$d),
+        .q(prev$q),
+        .clock(prev$clock)
+    );
+    canstar_hub_core$core$sj$0$pulse$run run(
+        .d(run$d),
+        .q(run$q),
+        .clock(run$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        prev$clock = clock;
+        run$clock = clock;
+        prev$d = prev$q;
+        run$d = run$q;
+        chg = c != prev$q;
+        glitch = chg & (run$q >= min) & (run$q <= max);
+        prev$d = c;
+        if (chg) begin
+            run$d = 32'h1;
+        end
+        else if (run$q != 32'h1f) begin
+            run$d = run$q + 32'h1;
+        end
+        if (reset) begin
+            prev$d = 1'b1;
+            run$d = 32'h1f;
+        end
+    end
+    
+endmodule // canstar_hub_core$core$sj$0$pulse
+
+
+module canstar_hub_core$core$sj$0$pulse$prev(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$sj$0$pulse$prev
+
+
+module canstar_hub_core$core$sj$0$pulse$run(d,q,clock);
+    
+    // Module arguments
+    input wire  [4:0] d;
+    output reg  [4:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 5'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$sj$0$pulse$run
 
 
 module canstar_hub_core$core$sj$0$rep_first_dom(d,q,clock);
@@ -5194,7 +6957,26 @@ module canstar_hub_core$core$sj$0$rep_seen(d,q,clock);
 endmodule // canstar_hub_core$core$sj$0$rep_seen
 
 
-module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,dis,blame,tx_error,bic,life,dbc,nack,rep_cnt,silent,contender);
+module canstar_hub_core$core$sj$0$seen_dom(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$sj$0$seen_dom
+
+
+module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,rep_glitched,rep_blamed,common,dis,blame,charged,tx_error,glitch,anomaly,bic,life,dbc,nack,rep_cnt,gc,silent,contender);
     
     // Module arguments
     input wire  clock;
@@ -5216,23 +6998,37 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     input wire  err_start;
     input wire  rep_rec;
     input wire  rep_dom;
+    input wire  bit_start;
+    input wire  [4:0] bs_cnt;
+    input wire  delim;
+    input wire  suppress;
+    input wire  rep_glitched;
+    input wire  rep_blamed;
+    input wire  common;
     output reg  dis;
     output reg  blame;
+    output reg  charged;
     output reg  tx_error;
+    output reg  glitch;
+    output reg  anomaly;
     output reg  [7:0] bic;
     output reg  [6:0] life;
     output reg  [4:0] dbc;
     output reg  [2:0] nack;
     output reg  [2:0] rep_cnt;
+    output reg  [2:0] gc;
     output reg  silent;
     output reg  contender;
     
     // Constant declarations
-    localparam  bic_limit = 8'h80;
+    localparam  bic_limit = 8'h50;
     localparam  life_limit = 7'b1000000;
     localparam  dbc_thr = 5'b11100;
     localparam  nack_thr = 3'b111;
     localparam  rep_limit = 3'b11;
+    localparam  glitch_limit = 3'b110;
+    localparam  glitch_decay = 5'b10000;
+    localparam  win_lag = 5'b1000;
     localparam  ack_rule = 1'b0;
     localparam  nack_on = 1'b0;
     localparam  rep_on = 1'b1;
@@ -5240,6 +7036,10 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     localparam  reint_w = 8'h1;
     
     // Stub signals
+    reg  pulse$clock;
+    reg  pulse$reset;
+    reg  pulse$c;
+    wire  pulse$glitch;
     reg  dis_r$d;
     wire  dis_r$q;
     reg  dis_r$clock;
@@ -5285,13 +7085,45 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  ack_rx$d;
     wire  ack_rx$q;
     reg  ack_rx$clock;
+    reg  seen_dom$d;
+    wire  seen_dom$q;
+    reg  seen_dom$clock;
+    reg  [2:0] gc_r$d;
+    wire  [2:0] gc_r$q;
+    reg  gc_r$clock;
+    reg  [4:0] gdec_r$d;
+    wire  [4:0] gdec_r$q;
+    reg  gdec_r$clock;
+    reg  [1:0] an_r$d;
+    wire  [1:0] an_r$q;
+    reg  an_r$clock;
+    reg  bl_r$d;
+    wire  bl_r$q;
+    reg  bl_r$clock;
+    reg  bl_dm_r$d;
+    wire  bl_dm_r$q;
+    reg  bl_dm_r$clock;
+    reg  gpend$d;
+    wire  gpend$q;
+    reg  gpend$clock;
     
     // Local signals
     reg  dom;
+    reg  domw;
     reg  unj;
     reg  enabled;
+    reg  charge;
+    reg  g;
+    reg  rep_ok;
+    reg  gcount;
     
     // Sub module instances
+    canstar_hub_core$core$sj$1$pulse pulse(
+        .clock(pulse$clock),
+        .reset(pulse$reset),
+        .c(pulse$c),
+        .glitch(pulse$glitch)
+    );
     canstar_hub_core$core$sj$1$dis_r dis_r(
         .d(dis_r$d),
         .q(dis_r$q),
@@ -5367,6 +7199,41 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .q(ack_rx$q),
         .clock(ack_rx$clock)
     );
+    canstar_hub_core$core$sj$1$seen_dom seen_dom(
+        .d(seen_dom$d),
+        .q(seen_dom$q),
+        .clock(seen_dom$clock)
+    );
+    canstar_hub_core$core$sj$1$gc_r gc_r(
+        .d(gc_r$d),
+        .q(gc_r$q),
+        .clock(gc_r$clock)
+    );
+    canstar_hub_core$core$sj$1$gdec_r gdec_r(
+        .d(gdec_r$d),
+        .q(gdec_r$q),
+        .clock(gdec_r$clock)
+    );
+    canstar_hub_core$core$sj$1$an_r an_r(
+        .d(an_r$d),
+        .q(an_r$q),
+        .clock(an_r$clock)
+    );
+    canstar_hub_core$core$sj$1$bl_r bl_r(
+        .d(bl_r$d),
+        .q(bl_r$q),
+        .clock(bl_r$clock)
+    );
+    canstar_hub_core$core$sj$1$bl_dm_r bl_dm_r(
+        .d(bl_dm_r$d),
+        .q(bl_dm_r$q),
+        .clock(bl_dm_r$clock)
+    );
+    canstar_hub_core$core$sj$1$gpend gpend(
+        .d(gpend$d),
+        .q(gpend$q),
+        .clock(gpend$clock)
+    );
     
     // Update code
     always @(*) begin
@@ -5385,6 +7252,13 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         ack_missing$clock = clock;
         ack_c$clock = clock;
         ack_rx$clock = clock;
+        seen_dom$clock = clock;
+        gc_r$clock = clock;
+        gdec_r$clock = clock;
+        an_r$clock = clock;
+        bl_r$clock = clock;
+        bl_dm_r$clock = clock;
+        gpend$clock = clock;
         dis_r$d = dis_r$q;
         bic_r$d = bic_r$q;
         life_r$d = life_r$q;
@@ -5400,10 +7274,32 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         ack_missing$d = ack_missing$q;
         ack_c$d = ack_c$q;
         ack_rx$d = ack_rx$q;
+        seen_dom$d = seen_dom$q;
+        gc_r$d = gc_r$q;
+        gdec_r$d = gdec_r$q;
+        an_r$d = an_r$q;
+        bl_r$d = bl_r$q;
+        bl_dm_r$d = bl_dm_r$q;
+        gpend$d = gpend$q;
+        pulse$clock = clock;
+        pulse$reset = reset;
+        pulse$c = c;
+        g = pulse$glitch;
+        glitch = pulse$glitch;
+        anomaly = pulse$glitch | (an_r$q != 32'h0);
         dom = ~c;
         enabled = ~dis_r$q;
-        unj = dom & ~err_phase & ((tx_region & ~arb & ~cont_r$q) | crc_delim | (ack_delim & ~ack_missing$q) | eof_1_6 | im_2 | (ack_slot & cont_r$q & ack_rule));
+        domw = dom | seen_dom$q;
+        if (bit_start) begin
+            seen_dom$d = 1'b0;
+        end
+        else if (dom & (bs_cnt >= win_lag)) begin
+            seen_dom$d = 1'b1;
+        end
+        unj = domw & ((~err_phase & ((tx_region & ~cont_r$q) | crc_delim | (ack_delim & ~ack_missing$q) | eof_1_6 | im_2 | (ack_slot & cont_r$q & ack_rule))) | delim);
         blame = sample & unj & enabled;
+        charge = sample & unj & enabled & ~suppress;
+        charged = sample & unj & enabled & ~suppress;
         tx_error = sample & nack_on & enabled & cont_r$q & tx_region & ~arb & c & ~bt & ~err_phase;
         if (sample) begin
             if (ack_slot) begin
@@ -5414,9 +7310,6 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             end
             else if (tx_region & c & ~bt) begin
                 cont_r$d = 1'b0;
-            end
-            else if (arb & dom) begin
-                cont_r$d = 1'b1;
             end
             if (dom) begin
                 if (dbc_r$q != 32'h1f) begin
@@ -5429,16 +7322,25 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             if (frame_ok & enabled & (bic_r$q != 32'h0)) begin
                 bic_r$d = bic_r$q - 32'h1;
             end
-            if (blame & (life_r$q != 32'h7f)) begin
-                life_r$d = life_r$q + 32'h1;
-            end
-            if (blame) begin
+            if (charge) begin
                 if (bic_r$q > 32'hf7) begin
                     bic_r$d = 32'hff;
                 end
                 else begin
                     bic_r$d = bic_r$q + 32'h8;
                 end
+            end
+            if (frame_ok & enabled & (gc_r$q != 32'h0)) begin
+                if ((gdec_r$q + 32'h1) >= glitch_decay) begin
+                    gdec_r$d = 32'h0;
+                    gc_r$d = gc_r$q - 32'h1;
+                end
+                else begin
+                    gdec_r$d = gdec_r$q + 32'h1;
+                end
+            end
+            if (an_r$q != 32'h0) begin
+                an_r$d = an_r$q - 32'h1;
             end
             if (ack_slot) begin
                 ack_c$d = c;
@@ -5465,22 +7367,43 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                 bad$d = 1'b1;
             end
         end
+        gcount = sample & (gpend$q | g) & ~common & enabled;
+        if (sample) begin
+            gpend$d = 1'b0;
+        end
+        else if (g) begin
+            gpend$d = 1'b1;
+        end
+        if (g) begin
+            an_r$d = 32'h3;
+            bad$d = 1'b1;
+        end
+        if (gcount & (gc_r$q != 32'h7)) begin
+            gc_r$d = gc_r$q + 32'h1;
+            gdec_r$d = 32'h0;
+        end
+        if ((gcount | charge) & (life_r$q != 32'h7f)) begin
+            life_r$d = life_r$q + 32'h1;
+        end
         if (dbc_r$q >= dbc_thr) begin
             bad$d = 1'b1;
         end
+        rep_ok = (rep_r$q != 32'h7) & ~(rep_glitched & (gc_r$q == 32'h0));
+        bl_r$d = blame;
+        bl_dm_r$d = blame & rep_rec;
         if (err_start) begin
             rep_seen$d = 1'b0;
-            if (rep_seen$q & rep_first_dom$q & (rep_r$q != 32'h7)) begin
+            if (((rep_seen$q & rep_first_dom$q & rep_ok & ~(rep_blamed & ~bl_r$q)) | bl_dm_r$q) & (rep_r$q != 32'h7)) begin
                 rep_r$d = rep_r$q + 32'h1;
             end
         end
         else if (sample & frame_ok) begin
             rep_seen$d = 1'b0;
-            if (rep_seen$q & ~rep_first_dom$q & (rep_r$q != 32'h7)) begin
+            if (rep_seen$q & ~rep_first_dom$q & rep_ok) begin
                 rep_r$d = rep_r$q + 32'h1;
             end
         end
-        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (rep_on & (rep_r$q >= rep_limit)))) begin
+        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (rep_on & (rep_r$q >= rep_limit)))) begin
             dis_r$d = 1'b1;
         end
         if (enabled) begin
@@ -5502,6 +7425,8 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                     rep_r$d = 32'h0;
                     rep_seen$d = 1'b0;
                     ok_r$d = 32'h0;
+                    gc_r$d = 32'h0;
+                    gdec_r$d = 32'h0;
                 end
             end
             else begin
@@ -5518,12 +7443,19 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             rep_r$d = 32'h0;
             rep_seen$d = 1'b0;
             rep_first_dom$d = 1'b0;
+            bl_r$d = 1'b0;
+            bl_dm_r$d = 1'b0;
+            gpend$d = 1'b0;
             ok_r$d = 32'h0;
             acked$d = 1'b0;
             bad$d = 1'b0;
             ack_missing$d = 1'b0;
             ack_c$d = 1'b0;
             ack_rx$d = 1'b0;
+            seen_dom$d = 1'b0;
+            gc_r$d = 32'h0;
+            gdec_r$d = 32'h0;
+            an_r$d = 32'h0;
         end
         dis = dis_r$q;
         bic = bic_r$q;
@@ -5531,6 +7463,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         dbc = dbc_r$q;
         nack = nack_r$q;
         rep_cnt = rep_r$q;
+        gc = gc_r$q;
         silent = nack_r$q >= nack_thr;
         contender = cont_r$q;
     end
@@ -5614,6 +7547,25 @@ module canstar_hub_core$core$sj$1$acked(d,q,clock);
 endmodule // canstar_hub_core$core$sj$1$acked
 
 
+module canstar_hub_core$core$sj$1$an_r(d,q,clock);
+    
+    // Module arguments
+    input wire  [1:0] d;
+    output reg  [1:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 2'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$sj$1$an_r
+
+
 module canstar_hub_core$core$sj$1$bad(d,q,clock);
     
     // Module arguments
@@ -5650,6 +7602,44 @@ module canstar_hub_core$core$sj$1$bic_r(d,q,clock);
     end
           
 endmodule // canstar_hub_core$core$sj$1$bic_r
+
+
+module canstar_hub_core$core$sj$1$bl_dm_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$sj$1$bl_dm_r
+
+
+module canstar_hub_core$core$sj$1$bl_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$sj$1$bl_r
 
 
 module canstar_hub_core$core$sj$1$cont_r(d,q,clock);
@@ -5709,6 +7699,63 @@ module canstar_hub_core$core$sj$1$dis_r(d,q,clock);
 endmodule // canstar_hub_core$core$sj$1$dis_r
 
 
+module canstar_hub_core$core$sj$1$gc_r(d,q,clock);
+    
+    // Module arguments
+    input wire  [2:0] d;
+    output reg  [2:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 3'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$sj$1$gc_r
+
+
+module canstar_hub_core$core$sj$1$gdec_r(d,q,clock);
+    
+    // Module arguments
+    input wire  [4:0] d;
+    output reg  [4:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 5'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$sj$1$gdec_r
+
+
+module canstar_hub_core$core$sj$1$gpend(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$sj$1$gpend
+
+
 module canstar_hub_core$core$sj$1$life_r(d,q,clock);
     
     // Module arguments
@@ -5766,6 +7813,103 @@ module canstar_hub_core$core$sj$1$ok_r(d,q,clock);
 endmodule // canstar_hub_core$core$sj$1$ok_r
 
 
+module canstar_hub_core$core$sj$1$pulse(clock,reset,c,glitch);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  reset;
+    input wire  c;
+    output reg  glitch;
+    
+    // Constant declarations
+    localparam  min = 5'b11;
+    localparam  max = 5'b1011;
+    
+    // Stub signals
+    reg  prev$d;
+    wire  prev$q;
+    reg  prev$clock;
+    reg  [4:0] run$d;
+    wire  [4:0] run$q;
+    reg  run$clock;
+    
+    // Local signals
+    reg  chg;
+    
+    // Sub module instances
+    canstar_hub_core$core$sj$1$pulse$prev prev(
+        .d(prev$d),
+        .q(prev$q),
+        .clock(prev$clock)
+    );
+    canstar_hub_core$core$sj$1$pulse$run run(
+        .d(run$d),
+        .q(run$q),
+        .clock(run$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        prev$clock = clock;
+        run$clock = clock;
+        prev$d = prev$q;
+        run$d = run$q;
+        chg = c != prev$q;
+        glitch = chg & (run$q >= min) & (run$q <= max);
+        prev$d = c;
+        if (chg) begin
+            run$d = 32'h1;
+        end
+        else if (run$q != 32'h1f) begin
+            run$d = run$q + 32'h1;
+        end
+        if (reset) begin
+            prev$d = 1'b1;
+            run$d = 32'h1f;
+        end
+    end
+    
+endmodule // canstar_hub_core$core$sj$1$pulse
+
+
+module canstar_hub_core$core$sj$1$pulse$prev(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$sj$1$pulse$prev
+
+
+module canstar_hub_core$core$sj$1$pulse$run(d,q,clock);
+    
+    // Module arguments
+    input wire  [4:0] d;
+    output reg  [4:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 5'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$sj$1$pulse$run
+
+
 module canstar_hub_core$core$sj$1$rep_first_dom(d,q,clock);
     
     // Module arguments
@@ -5821,6 +7965,44 @@ module canstar_hub_core$core$sj$1$rep_seen(d,q,clock);
     end
           
 endmodule // canstar_hub_core$core$sj$1$rep_seen
+
+
+module canstar_hub_core$core$sj$1$seen_dom(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$sj$1$seen_dom
+
+
+module canstar_hub_core$core$sub_bl_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$sub_bl_r
 
 
 module canstar_hub_core$monitor(clock,reset,rx,brp,prop,ph1,sjw,triple,listen_only,self_test,single_shot,host_recovery,recover,tx_req,tx_ide,tx_rtr,tx_id,tx_dlc,tx_data,tx_abort,cnt_load,tec_in,rec_in,tx,tx_done,arb_lost,arb_lost_pos,error,err_kind,err_field,err_pos,err_tx,rx_valid,rx_ide,rx_rtr,rx_id,rx_dlc,rx_data,tec,rec,state,err_warn,cfg_err,dbg_busmon,dbg_sample,dbg_tx_rqst,dbg_field,dbg_pos,dbg_stuff,dbg_role,dbg_events,dbg_runs,dbg_hard_sync,dbg_resync);

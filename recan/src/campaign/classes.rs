@@ -10,6 +10,7 @@
 //! | `crash-{counter,blinker,receiver}-{tx,nontx}` | a controller stops at a random instant (its uplink goes recessive) |
 //! | `double-*` | two faults, the second `--double-delay-bits` after the first |
 //! | `eof-{last,penult}-*` | a one-bit disturbance at the last / penultimate EOF bit seen by a subset of controllers |
+//! | `sweep-{up,down,sublink,interlink,hub}-{flip,d2r,r2d,g2,g6,g10,burst}-e{2,10,100,1000,10000}` | one disturbance every N bit times at one injection point: flips of 0.3-1.2 bits, recessive-to-dominant or dominant-to-recessive only, glitches of 2/6/10 hub clocks, or bursts of 8 random flips within 20 bits (N >= 100) ([`super::sweep`]) |
 //!
 //! Every class except the published ones is judged by the generic criteria of §5/§6:
 //! no frame of a node that keeps a fault-free controller path is lost at the
@@ -184,7 +185,62 @@ pub enum ClassKind {
     Crash { node: Node, role: Role },
     Double(Double),
     Eof { bit: EofBit, subset: EofSubset },
+    /// One disturbance of `shape` every `every` bit times at `point`.
+    Sweep { point: Point, shape: Shape, every: u32 },
 }
+
+/// Injection points of the sweep classes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub enum Point {
+    /// A random node's (Blinker or Receiver) random controller's uplink.
+    Up,
+    /// Its downlink.
+    Down,
+    /// One sublink (random interlink and direction).
+    Sublink,
+    /// Both sublinks of one interlink.
+    Interlink,
+    /// A whole hub's output.
+    Hub,
+}
+
+impl Point {
+    pub const ALL: [Point; 5] = [Point::Up, Point::Down, Point::Sublink, Point::Interlink, Point::Hub];
+    pub fn name(self) -> &'static str {
+        ["up", "down", "sublink", "interlink", "hub"][self as usize]
+    }
+}
+
+/// Disturbance shapes of the sweep classes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub enum Shape {
+    /// Inversion of 0.3 to 1.2 bit times.
+    Flip,
+    /// Forced recessive for 0.3 to 1.2 bit times (dominant-to-recessive flips only).
+    D2r,
+    /// Forced dominant (recessive-to-dominant flips only).
+    R2d,
+    /// Inversion of this many hub clocks (a sub-bit glitch).
+    Glitch(u32),
+    /// 8 inversions of 0.1 to 1 bit time within 20 bit times.
+    Burst,
+}
+
+impl Shape {
+    pub const ALL: [Shape; 7] = [Shape::Flip, Shape::D2r, Shape::R2d, Shape::Glitch(2), Shape::Glitch(6), Shape::Glitch(10), Shape::Burst];
+    pub fn name(self) -> String {
+        match self {
+            Shape::Flip => "flip".into(),
+            Shape::D2r => "d2r".into(),
+            Shape::R2d => "r2d".into(),
+            Shape::Glitch(w) => format!("g{w}"),
+            Shape::Burst => "burst".into(),
+        }
+    }
+}
+
+/// Disturbance intervals of the sweep classes, in bit times.
+pub const SWEEP_EVERY: [u32; 5] = [2, 10, 100, 1000, 10000];
 
 /// A named scenario class.
 #[derive(Clone, Debug, PartialEq, Eq, Hash)]
@@ -235,6 +291,16 @@ pub fn catalogue() -> Vec<Class> {
     for (bit, bn) in [(EofBit::Last, "last"), (EofBit::Penultimate, "penult")] {
         for subset in EofSubset::ALL {
             add(format!("eof-{bn}-{}", subset.name()), ClassKind::Eof { bit, subset });
+        }
+    }
+    for point in Point::ALL {
+        for shape in Shape::ALL {
+            for every in SWEEP_EVERY {
+                // a burst lasts 20 bit times: only at intervals of 100 and more
+                if shape != Shape::Burst || every >= 100 {
+                    add(format!("sweep-{}-{}-e{every}", point.name(), shape.name()), ClassKind::Sweep { point, shape, every });
+                }
+            }
         }
     }
     v

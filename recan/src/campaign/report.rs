@@ -40,6 +40,12 @@ pub struct RunOutcome {
     pub faults: Vec<String>,
     /// Remarks that are not failures (losses of excused nodes, known deviations).
     pub notes: Vec<String>,
+    /// Shortest pulse (hub clocks) seen on a healthy port's input / on any sublink input
+    /// of either hub (None: none shorter than 32).
+    #[serde(default)]
+    pub min_pulse_healthy_port: Option<u32>,
+    #[serde(default)]
+    pub min_pulse_sublink: Option<u32>,
 }
 
 /// Per-class aggregate.

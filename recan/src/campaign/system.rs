@@ -153,6 +153,19 @@ fn sublink_expect(g: &mut Generic, interlink: usize, from_hub: usize, kind: Faul
     }
 }
 
+/// Add the criteria of a fault of hub `h`'s whole output.
+fn hub_expect(g: &mut Generic, h: usize, nodes: usize, f: Fault) {
+    for k in 0..nodes {
+        g.unhealthy.push((k, h));
+        g.may_isolate.push(Isolated::Port { hub: h, port: k });
+    }
+    for i in 0..2 {
+        g.may_isolate.push(Isolated::Sublink { hub: h, sublink: i });
+        sublink_expect(g, i, h, f);
+    }
+    // the nodes keep their other controller: nobody is excused
+}
+
 fn finish(mut g: Generic, nodes: usize) -> Generic {
     g.unhealthy.sort();
     g.unhealthy.dedup();
@@ -207,15 +220,23 @@ pub fn build(class: &Class, seed: u64, settings: &Settings) -> Built {
             let h = rng.gen_range(0..2);
             let kind = kind_of(f, &mut rng, &net);
             faults.push(FaultSpec::new(FaultTarget::Hub { hub: h }, kind, rand_start(&mut rng, &net)));
-            for k in 0..nn {
-                g.unhealthy.push((k, h));
-                g.may_isolate.push(Isolated::Port { hub: h, port: k });
+            hub_expect(&mut g, h, nn, f);
+        }
+        ClassKind::Sweep { point, shape, every } => {
+            let start = rand_start(&mut rng, &net);
+            let kind = super::sweep::kind(shape, every, &mut rng, &net);
+            let target = super::sweep::target(point, &mut rng);
+            match target {
+                FaultTarget::Link { node, ctrl, dir } => link_expect(&mut g, node, (ctrl == CtrlRef::B) as usize, dir, Fault::Flip),
+                FaultTarget::Sublink { interlink, from_hub } => sublink_expect(&mut g, interlink, from_hub, Fault::Flip),
+                FaultTarget::Interlink { interlink } => {
+                    sublink_expect(&mut g, interlink, 0, Fault::Flip);
+                    sublink_expect(&mut g, interlink, 1, Fault::Flip);
+                }
+                FaultTarget::Hub { hub } => hub_expect(&mut g, hub, nn, Fault::Flip),
+                FaultTarget::Crash { .. } => unreachable!("sweep targets are links and hubs"),
             }
-            for i in 0..2 {
-                g.may_isolate.push(Isolated::Sublink { hub: h, sublink: i });
-                sublink_expect(&mut g, i, h, f);
-            }
-            // the nodes keep their other controller: nobody is excused
+            faults.push(FaultSpec::new(target, kind, start));
         }
         ClassKind::Crash { node, role } => {
             let k = node_idx(node);
@@ -479,6 +500,24 @@ fn iso_name(i: Isolated) -> String {
     }
 }
 
+/// Shortest run of equal level on the inputs of both hubs: the ports of healthy
+/// controllers (`Some(unhealthy)`: port k of hub h is controller (k, h)) or the sublinks.
+fn min_pulse(r: &RunResult, np: usize, ports_except: Option<&[(usize, usize)]>) -> Option<u32> {
+    let mut best: Option<u32> = None;
+    for (h, hub) in r.short_runs.iter().enumerate() {
+        for (k, runs) in hub.iter().enumerate() {
+            let keep = match ports_except {
+                Some(u) => k < np && !u.contains(&(k, h)),
+                None => k >= np,
+            };
+            if let (true, Some(len)) = (keep, runs.iter().position(|&c| c > 0)) {
+                best = Some(best.map_or(len as u32, |b| b.min(len as u32)));
+            }
+        }
+    }
+    best
+}
+
 /// Run one plan (the runner of [`super::execute`]).
 pub fn run_plan(p: &RunPlan, settings: &Settings) -> RunOutcome {
     run_detailed(&p.class, p.rep, p.seed, settings, None).outcome
@@ -546,6 +585,8 @@ pub fn run_detailed(class: &Class, rep: u32, seed: u64, settings: &Settings, vcd
             })
             .collect(),
         notes,
+        min_pulse_healthy_port: min_pulse(&r, b.spec.network.hub.ports, Some(&unhealthy)),
+        min_pulse_sublink: min_pulse(&r, b.spec.network.hub.ports, None),
     };
     let plot = plot_data(class, seed, &b.spec, &r);
     Detailed { outcome, result: r, plot }
