@@ -251,6 +251,14 @@ impl HubSim {
         }
     }
 
+    /// Evaluate every signal of a compiled model, also those only probes need
+    /// (`charged` is such a signal); nothing to do on rust-hdl.
+    pub fn settle_all(&mut self) {
+        if let Inner::Model(m, _) = &mut self.inner {
+            m.settle_all();
+        }
+    }
+
     /// One clock (`canstar_hdl::drive::cycle` semantics).
     #[inline]
     pub fn cycle(&mut self) {
@@ -311,7 +319,8 @@ readers! {
     port_blame(i) -> bool: |h| h.core().port_judge(i).blame.val(), |m, p| m.atom(p.pj_blame[i]) != 0;
     /// Sublink judge `j` blames its sublink in this clock.
     sub_blame(j) -> bool: |h| h.core().sublink_judge(j).blame.val(), |m, p| m.atom(p.sj_blame[j]) != 0;
-    /// Port judge `i`'s blame in this clock is charged to its counter.
+    /// Port judge `i`'s blame in this clock is charged to its counter (a
+    /// compiled model computes it only in trace mode or after [`HubSim::settle_all`]).
     port_charged(i) -> bool: |h| h.core().port_judge(i).charged.val(), |m, p| m.atom(p.pj_charged[i]) != 0;
     /// Sublink judge `j`'s blame in this clock is charged to its counter.
     sub_charged(j) -> bool: |h| h.core().sublink_judge(j).charged.val(), |m, p| m.atom(p.sj_charged[j]) != 0;
@@ -379,6 +388,7 @@ mod tests {
                 // port 0 stuck dominant from clock 3000; port 1 with 2-clock glitches
                 h.set_inputs(t >= 4, false, |i| !(i == 0 && t > 3000) && !(i == 1 && t > 1000 && t % 701 < 2), |_| true);
                 h.cycle();
+                h.settle_all();
             }
             let r = |h: &HubSim| {
                 let mut v = vec![h.frame_state() as u64, h.efg_active() as u64, h.mon_sample() as u64, h.mon_field() as u64, h.mon_pos() as u64];
