@@ -222,7 +222,7 @@ impl Component for RtlHub {
             }
             r.push(w);
         }
-        if self.cycles >= Self::RESET_CYCLES {
+        if rst_n {
             let st = &mut self.stats;
             for k in 0..self.n + self.m {
                 let v = io.input(k);

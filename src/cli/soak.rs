@@ -99,9 +99,8 @@ pub fn run(a: Args) -> Result<()> {
     let target: u64 = plan.len() as u64 * settings.chunk_frames as u64;
     let mut bar = Progress::new(target, "frames");
     let t0 = std::time::Instant::now();
-    let (mut blames, mut isolations, mut frames, mut done) = (0u64, 0usize, 0u64, 0usize);
+    let (mut blames, mut isolations, mut done) = (0u64, 0usize, 0usize);
     let chunks = soak::execute(&settings, &plan, jobs, |c| {
-        frames += c.frames;
         blames += c.blames;
         isolations += c.isolations.len();
         done += 1;
