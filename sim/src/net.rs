@@ -320,6 +320,12 @@ impl Nets {
         assert!(start < end, "empty flip window");
         match &mut self.nodes[id.index()] {
             Node::Fault { windows, .. } => {
+                // campaigns add windows in time order, thousands per run: append
+                // without rebuilding when the new window starts after the last one
+                if windows.back().is_none_or(|w| w.1 < start) {
+                    windows.push_back((start, end));
+                    return;
+                }
                 let (mut s, mut e) = (start, end);
                 let mut kept = VecDeque::with_capacity(windows.len() + 1);
                 for &(ws, we) in windows.iter() {
