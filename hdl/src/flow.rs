@@ -7,9 +7,10 @@
 //!    operands are the same signal ([`synth_check`]; `x + x` becomes an iCE40
 //!    carry chain with one net on two interchangeable inputs, on which
 //!    nextpnr-ice40 0.4's router can livelock: write a shift),
-//! 4. co-simulation: the emitted Verilog runs in Icarus Verilog on the same
-//!    random stimulus as the Rust model and every output is compared on every
-//!    cycle ([`cosim`]).
+//! 4. co-simulation: the emitted Verilog runs on the same random stimulus as
+//!    the Rust model and every output is compared on every cycle ([`cosim`]):
+//!    Icarus Verilog (4-state) on the first cycles, Verilator on all of them
+//!    when the run is long for the design's size ([`iverilog_cycles`]).
 //!
 //! rust-hdl prints binary operators without parentheses, so Verilog operator
 //! precedence can silently change the meaning of an expression; step 4 is what
@@ -23,7 +24,6 @@ use crate::drive::{self, Clocked};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rust_hdl::prelude::*;
-use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -229,236 +229,8 @@ pub fn same_operand_adders(json: &str) -> Result<Vec<String>, serde_json::Error>
     Ok(found)
 }
 
-/// One top-level port of a block, as seen by the co-simulation.
-#[derive(Debug, Clone)]
-pub struct Port {
-    pub name: String,
-    pub bits: usize,
-    pub output: bool,
-}
-
-struct PortCollector {
-    depth: usize,
-    ports: Vec<Port>,
-    values: Vec<String>,
-    collect_values: bool,
-}
-
-fn vcd_to_bits(v: &VCDValue, bits: usize) -> String {
-    let ch = |x: &vcd::Value| match x {
-        vcd::Value::V0 => '0',
-        vcd::Value::V1 => '1',
-        vcd::Value::X => 'x',
-        vcd::Value::Z => 'z',
-    };
-    match v {
-        VCDValue::Single(x) => ch(x).to_string(),
-        VCDValue::Vector(xs) => xs.iter().map(ch).collect(),
-        _ => "0".repeat(bits),
-    }
-}
-
-impl Probe for PortCollector {
-    fn visit_start_scope(&mut self, _name: &str, _node: &dyn Block) {
-        self.depth += 1;
-    }
-    fn visit_end_scope(&mut self, _name: &str, _node: &dyn Block) {
-        self.depth -= 1;
-    }
-    fn visit_atom(&mut self, name: &str, signal: &dyn Atom) {
-        if self.depth != 1 {
-            return;
-        }
-        let kind = signal.kind();
-        let is_clock = signal.descriptor().name == "clock";
-        let output = match kind {
-            AtomKind::InputParameter => false,
-            AtomKind::OutputParameter => true,
-            _ => return,
-        };
-        if is_clock {
-            return;
-        }
-        if self.collect_values {
-            self.values.push(vcd_to_bits(&signal.vcd(), signal.bits()));
-        } else {
-            self.ports.push(Port { name: name.to_string(), bits: signal.bits(), output });
-        }
-    }
-}
-
-/// The non-clock top-level ports of a block, in declaration order.
-pub fn ports<B: Block>(uut: &B) -> Vec<Port> {
-    let mut c = PortCollector { depth: 0, ports: vec![], values: vec![], collect_values: false };
-    uut.accept("top", &mut c);
-    c.ports
-}
-
-fn port_values<B: Block>(uut: &B) -> Vec<String> {
-    let mut c = PortCollector { depth: 0, ports: vec![], values: vec![], collect_values: true };
-    uut.accept("top", &mut c);
-    c.values
-}
-
-/// Summary of a passing co-simulation.
-#[derive(Debug, Clone)]
-pub struct CosimReport {
-    pub cycles: usize,
-    pub outputs_compared: usize,
-}
-
-fn bits_to_hex(bits: &str) -> String {
-    // Pad to a multiple of 4 and convert.
-    let pad = (4 - bits.len() % 4) % 4;
-    let padded: String = "0".repeat(pad) + bits;
-    padded
-        .as_bytes()
-        .chunks(4)
-        .map(|c| {
-            let v = c.iter().fold(0u8, |a, b| (a << 1) | (*b == b'1') as u8);
-            char::from_digit(v as u32, 16).unwrap()
-        })
-        .collect()
-}
-
-/// Co-simulate a block against its own emitted Verilog.
-///
-/// The block is initialised, then for `cycles` cycles `stimulus` sets its
-/// inputs (through `.next`) from the seeded random generator; the Rust model
-/// settles and its outputs are recorded before the rising edge. The same
-/// input vectors drive the Verilog in Icarus Verilog, which checks every
-/// output at the same point of every cycle. The first mismatches are
-/// reported with cycle number, port and both values.
-pub fn cosim<B, F>(uut: &mut B, top: &str, cycles: usize, seed: u64, mut stimulus: F) -> Result<CosimReport, FlowError>
-where
-    B: Clocked,
-    F: FnMut(&mut B, &mut ChaCha8Rng, usize),
-{
-    drive::init(uut);
-    let verilog = emit(uut);
-    cosim_with_verilog(uut, &verilog, top, cycles, seed, &mut stimulus)
-}
-
-/// As [`cosim`], with the Verilog under test given explicitly (it must have
-/// a module `top` with the block's ports). Used by the test that shows the
-/// flow catches a Verilog that differs from the model.
-pub fn cosim_with_verilog<B, F>(
-    uut: &mut B,
-    verilog: &str,
-    top: &str,
-    cycles: usize,
-    seed: u64,
-    stimulus: &mut F,
-) -> Result<CosimReport, FlowError>
-where
-    B: Clocked,
-    F: FnMut(&mut B, &mut ChaCha8Rng, usize),
-{
-    require("iverilog")?;
-    require("vvp")?;
-    let ports = ports(uut);
-    let inputs: Vec<&Port> = ports.iter().filter(|p| !p.output).collect();
-    let outputs: Vec<&Port> = ports.iter().filter(|p| p.output).collect();
-    let in_bits: usize = inputs.iter().map(|p| p.bits).sum();
-    let out_bits: usize = outputs.iter().map(|p| p.bits).sum();
-    let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    let mut in_mem = String::with_capacity(cycles * (in_bits / 4 + 2));
-    let mut out_mem = String::with_capacity(cycles * (out_bits / 4 + 2));
-    for i in 0..cycles {
-        stimulus(uut, &mut rng, i);
-        drive::settle(uut);
-        let vals = port_values(uut);
-        let (mut ib, mut ob) = (String::new(), String::new());
-        for (p, v) in ports.iter().zip(vals.iter()) {
-            if p.output {
-                ob.push_str(v);
-            } else {
-                ib.push_str(v);
-            }
-        }
-        if in_bits > 0 {
-            in_mem.push_str(&bits_to_hex(&ib));
-            in_mem.push('\n');
-        }
-        out_mem.push_str(&bits_to_hex(&ob));
-        out_mem.push('\n');
-        drive::rising_edge(uut);
-        drive::falling_edge(uut);
-    }
-    let wd = WorkDir::new("cosim")?;
-    std::fs::write(wd.path().join("dut.v"), verilog)?;
-    std::fs::write(wd.path().join("in.hex"), &in_mem)?;
-    std::fs::write(wd.path().join("out.hex"), &out_mem)?;
-    let tb = testbench(&inputs, &outputs, in_bits, out_bits, cycles);
-    std::fs::write(wd.path().join("tb.v"), &tb)?;
-    let (ok, log) = run(Command::new("iverilog")
-        .current_dir(wd.path())
-        .args(["-g2012", "-o", "sim.vvp", "-s", "tb", "tb.v", "dut.v"]))?;
-    if !ok {
-        return Err(FlowError::Cosim { top: top.into(), detail: format!("iverilog failed:\n{log}") });
-    }
-    let (ok, log) = run(Command::new("vvp").current_dir(wd.path()).args(["-n", "sim.vvp"]))?;
-    let passed = log.lines().any(|l| l.trim() == format!("COSIM PASS {cycles}"));
-    if !ok || !passed {
-        let excerpt: String = log.lines().filter(|l| !l.starts_with("VCD")).take(40).collect::<Vec<_>>().join("\n");
-        return Err(FlowError::Cosim { top: top.into(), detail: excerpt });
-    }
-    Ok(CosimReport { cycles, outputs_compared: outputs.len() })
-}
-
-fn testbench(inputs: &[&Port], outputs: &[&Port], in_bits: usize, out_bits: usize, cycles: usize) -> String {
-    let mut s = String::new();
-    let w = |n: usize| if n > 1 { format!("[{}:0] ", n - 1) } else { String::new() };
-    writeln!(s, "`timescale 1ns/1ps\nmodule tb;").unwrap();
-    writeln!(s, "  reg clock = 1'b0;").unwrap();
-    for p in inputs {
-        writeln!(s, "  reg {}{} ;", w(p.bits), p.name).unwrap();
-    }
-    for p in outputs {
-        writeln!(s, "  wire {}{} ;", w(p.bits), p.name).unwrap();
-    }
-    if in_bits > 0 {
-        writeln!(s, "  reg [{}:0] in_mem [0:{}];", in_bits - 1, cycles - 1).unwrap();
-    }
-    writeln!(s, "  reg [{}:0] out_mem [0:{}];", out_bits.max(1) - 1, cycles - 1).unwrap();
-    writeln!(s, "  reg [{}:0] exp;", out_bits.max(1) - 1).unwrap();
-    writeln!(s, "  integer i; integer errors;").unwrap();
-    let conns: Vec<String> = std::iter::once(".clock(clock)".to_string())
-        .chain(inputs.iter().chain(outputs.iter()).map(|p| format!(".{0}({0})", p.name)))
-        .collect();
-    writeln!(s, "  top dut({});", conns.join(", ")).unwrap();
-    writeln!(s, "  initial begin").unwrap();
-    if in_bits > 0 {
-        writeln!(s, "    $readmemh(\"in.hex\", in_mem);").unwrap();
-    }
-    writeln!(s, "    $readmemh(\"out.hex\", out_mem);").unwrap();
-    writeln!(s, "    errors = 0;").unwrap();
-    writeln!(s, "    for (i = 0; i < {cycles}; i = i + 1) begin").unwrap();
-    if in_bits > 0 {
-        let names: Vec<&str> = inputs.iter().map(|p| p.name.as_str()).collect();
-        writeln!(s, "      {{{}}} = in_mem[i];", names.join(", ")).unwrap();
-    }
-    writeln!(s, "      #5;").unwrap();
-    writeln!(s, "      exp = out_mem[i];").unwrap();
-    let mut hi = out_bits;
-    for p in outputs {
-        let lo = hi - p.bits;
-        let slice = if p.bits == 1 { format!("exp[{lo}]") } else { format!("exp[{}:{}]", hi - 1, lo) };
-        writeln!(
-            s,
-            "      if ({n} !== {slice}) begin errors = errors + 1; $display(\"MISMATCH cycle %0d port {n}: verilog %h rust %h\", i, {n}, {slice}); end",
-            n = p.name
-        )
-        .unwrap();
-        hi = lo;
-    }
-    writeln!(s, "      if (errors > 10) begin $display(\"COSIM FAIL\"); $finish; end").unwrap();
-    writeln!(s, "      #5 clock = 1'b1;\n      #5 clock = 1'b0;").unwrap();
-    writeln!(s, "    end").unwrap();
-    writeln!(s, "    if (errors == 0) $display(\"COSIM PASS {cycles}\"); else $display(\"COSIM FAIL\");").unwrap();
-    writeln!(s, "    $finish;\n  end\nendmodule").unwrap();
-    s
-}
+mod cosim;
+pub use cosim::{cosim, cosim_split, cosim_with_verilog, iverilog_cycles, ports, CosimReport, Port};
 
 /// Run the whole flow (lint, synthesis, co-simulation) on one block.
 pub fn full_check<B, F>(uut: &mut B, top: &str, cycles: usize, seed: u64, stimulus: F) -> Result<(SynthReport, CosimReport), FlowError>

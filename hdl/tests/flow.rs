@@ -101,6 +101,38 @@ fn cosim_catches_unparenthesised_precedence() {
     assert!(msg.contains("MISMATCH") && msg.contains("port y"), "{msg}");
 }
 
+/// A difference that shows only after Icarus' share of a long co-simulation
+/// (here the first 10 000 cycles) is caught by Verilator: the careless block agrees with its model while a = b = 0
+/// and c = 1, which the stimulus holds for the first 12 000 cycles.
+#[test]
+#[ignore = "needs iverilog and verilator: run scripts/test-all.sh"]
+fn cosim_catches_a_late_difference_in_verilator() {
+    let mut u = Careless::default();
+    drive::init(&mut u);
+    let v = flow::emit(&u);
+    let mut random = stim(|u: &mut Careless| [&mut u.a, &mut u.b, &mut u.c]);
+    let mut late = |u: &mut Careless, rng: &mut rand_chacha::ChaCha8Rng, i: usize| {
+        if i < 12_000 {
+            u.a.next = 0.into();
+            u.b.next = 0.into();
+            u.c.next = 1.into();
+        } else {
+            random(u, rng, i);
+        }
+    };
+    let err = flow::cosim_split(&mut u, &v, "careless", 20_000, 7, &mut late, 10_000).expect_err("Verilator must catch the late difference");
+    let msg = err.to_string();
+    assert!(msg.contains("Verilator") && msg.contains("MISMATCH") && msg.contains("port y"), "{msg}");
+    // the same Verilog passes when the run ends before the difference
+    let mut early = |u: &mut Careless, _: &mut rand_chacha::ChaCha8Rng, _: usize| {
+        u.a.next = 0.into();
+        u.b.next = 0.into();
+        u.c.next = 1.into();
+    };
+    let rep = flow::cosim_split(&mut u, &v, "careless", 11_000, 7, &mut early, 10_000).expect("agreeing stimulus passes");
+    assert_eq!((rep.cycles, rep.iverilog_cycles, rep.verilator_cycles), (11_000, 10_000, 11_000));
+}
+
 #[test]
 #[ignore = "needs yosys: run scripts/test-all.sh"]
 fn synth_check_rejects_a_latch() {
