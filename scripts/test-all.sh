@@ -26,10 +26,22 @@ if ! python3 -c "import can" >/dev/null 2>&1; then
 fi
 echo "== tools: $(yosys -V | head -1); $(iverilog -V 2>&1 | head -1); $(verilator --version)"
 
-echo "== cargo test (all tests, Verilog flow included)"
 # Ignored tests named diag_*, long_* and bench_print are diagnostics and
 # benchmarks (they print figures, assert little): run them by name.
-cargo test --release --workspace --no-fail-fast -- --include-ignored --skip diag_ --skip long_ --skip bench_print
+if cargo nextest --version >/dev/null 2>&1; then
+  # cargo-nextest runs the tests of all binaries side by side (cargo test runs one
+  # binary after the other, and a few long Verilog and equivalence tests would
+  # keep one core idle); each test gets its own process
+  echo "== cargo nextest (all tests, Verilog flow included)"
+  cargo nextest run --release --workspace --no-fail-fast --run-ignored all \
+    --final-status-level slow --status-level fail \
+    -E 'not (test(diag_) | test(long_) | test(bench_print))'
+  echo "== doc tests"
+  cargo test --release --workspace --doc -q
+else
+  echo "== cargo test (all tests, Verilog flow included; cargo-nextest not found)"
+  cargo test --release --workspace --no-fail-fast -- --include-ignored --skip diag_ --skip long_ --skip bench_print
+fi
 
 echo "== generated files are up to date"
 cargo run --release -q -- generate all --check
