@@ -74,12 +74,33 @@ fn atom_paths(m: &dyn Model) -> HashMap<String, usize> {
     out
 }
 
+/// The hub core's internal signals [`HubSim`]'s readers use, as paths below the
+/// core (`pj$0.charged`); the committed hub models are compiled with them kept
+/// (evaluated every clock, `canstar_rtlc::Options::keep`), and [`Map::of`] refuses
+/// a model in which one of them is probe-only.
+pub fn core_reader_signals(n: usize, k: usize) -> Vec<String> {
+    let mut v = vec![];
+    for what in ["blame", "charged", "glitch", "bic", "dbc"] {
+        v.extend((0..n).map(|i| format!("pj${i}.{what}")));
+        v.extend((0..k).map(|j| format!("sj${j}.{what}")));
+    }
+    v.extend(["mon_sample", "mon_field", "mon_pos", "mon_error", "mon_frame_ok"].map(String::from));
+    v
+}
+
 impl Map {
     fn of(m: &dyn Model, n: usize, k: usize) -> Result<Map, String> {
         let atoms = atom_paths(m);
         let inp = |s: &str| m.input_index(s).ok_or_else(|| format!("no input `{s}`"));
         let out = |s: &str| m.output_index(s).ok_or_else(|| format!("no output `{s}`"));
-        let atom = |s: &str| atoms.get(s).copied().ok_or_else(|| format!("no signal `{s}`"));
+        let probe_only = m.info().probe_only;
+        let atom = |s: &str| {
+            let a = atoms.get(s).copied().ok_or_else(|| format!("no signal `{s}`"))?;
+            if probe_only.contains(&a) {
+                return Err(format!("signal `{s}` is probe-only in model {} (stale between clocks): add it to core_reader_signals", m.info().name));
+            }
+            Ok(a)
+        };
         let each = |k: usize, f: &dyn Fn(usize) -> Result<usize, String>| (0..k).map(f).collect::<Result<Vec<_>, _>>();
         Ok(Map {
             rst_n: inp("rst_n")?,
@@ -251,14 +272,6 @@ impl HubSim {
         }
     }
 
-    /// Evaluate every signal of a compiled model, also those only probes need
-    /// (`charged` is such a signal); nothing to do on rust-hdl.
-    pub fn settle_all(&mut self) {
-        if let Inner::Model(m, _) = &mut self.inner {
-            m.settle_all();
-        }
-    }
-
     /// One clock (`canstar_hdl::drive::cycle` semantics).
     #[inline]
     pub fn cycle(&mut self) {
@@ -319,8 +332,7 @@ readers! {
     port_blame(i) -> bool: |h| h.core().port_judge(i).blame.val(), |m, p| m.atom(p.pj_blame[i]) != 0;
     /// Sublink judge `j` blames its sublink in this clock.
     sub_blame(j) -> bool: |h| h.core().sublink_judge(j).blame.val(), |m, p| m.atom(p.sj_blame[j]) != 0;
-    /// Port judge `i`'s blame in this clock is charged to its counter (a
-    /// compiled model computes it only in trace mode or after [`HubSim::settle_all`]).
+    /// Port judge `i`'s blame in this clock is charged to its counter.
     port_charged(i) -> bool: |h| h.core().port_judge(i).charged.val(), |m, p| m.atom(p.pj_charged[i]) != 0;
     /// Sublink judge `j`'s blame in this clock is charged to its counter.
     sub_charged(j) -> bool: |h| h.core().sublink_judge(j).charged.val(), |m, p| m.atom(p.sj_charged[j]) != 0;
@@ -366,6 +378,71 @@ impl HubSim {
 mod tests {
     use super::*;
 
+    /// A committed hub model whose info marks every atom probe-only.
+    struct Stale(Box<dyn Model>, &'static canstar_rtlc::rt::ModelInfo);
+    impl Model for Stale {
+        fn info(&self) -> &'static canstar_rtlc::rt::ModelInfo {
+            self.1
+        }
+        fn cycle(&mut self) {
+            self.0.cycle()
+        }
+        fn settle(&mut self) {
+            self.0.settle()
+        }
+        fn settle_all(&mut self) {
+            self.0.settle_all()
+        }
+        fn set_trace(&mut self, on: bool) {
+            self.0.set_trace(on)
+        }
+        fn set_input(&mut self, i: usize, v: u128) {
+            self.0.set_input(i, v)
+        }
+        fn input(&self, i: usize) -> u128 {
+            self.0.input(i)
+        }
+        fn output(&self, i: usize) -> u128 {
+            self.0.output(i)
+        }
+        fn atom(&self, a: usize) -> u128 {
+            self.0.atom(a)
+        }
+        fn set_atom(&mut self, a: usize, v: u128) -> bool {
+            self.0.set_atom(a, v)
+        }
+        fn set_mem(&mut self, r: usize, addr: usize, v: u128) {
+            self.0.set_mem(r, addr, v)
+        }
+        fn mem(&self, r: usize, addr: usize) -> u128 {
+            self.0.mem(r, addr)
+        }
+    }
+
+    /// The committed hub models keep every signal the readers use, and a model in
+    /// which a reader's signal is probe-only (stale between clocks) is refused.
+    #[test]
+    fn reader_signals_are_never_probe_only() {
+        let cfg = HubConfig::default();
+        let m = crate::model_for(&fresh_hdl(&cfg)).expect("committed model");
+        let i = m.info();
+        assert!(Map::of(m.as_ref(), cfg.ports, cfg.sublinks).is_ok());
+        let all: &'static [usize] = Box::leak((0..i.atoms.len()).collect::<Vec<_>>().into_boxed_slice());
+        let info = Box::leak(Box::new(canstar_rtlc::rt::ModelInfo {
+            name: i.name,
+            fingerprint: i.fingerprint,
+            inputs: i.inputs,
+            outputs: i.outputs,
+            atoms: i.atoms,
+            probe: i.probe,
+            rams: i.rams,
+            probe_only: all,
+        }));
+        let stale = Stale(m, info);
+        let err = Map::of(&stale, cfg.ports, cfg.sublinks).unwrap_err();
+        assert!(err.contains("is probe-only"), "{err}");
+    }
+
     /// A shape without a committed model runs on rust-hdl (with a warning).
     #[test]
     fn uncommitted_shape_falls_back_to_rust_hdl() {
@@ -388,7 +465,6 @@ mod tests {
                 // port 0 stuck dominant from clock 3000; port 1 with 2-clock glitches
                 h.set_inputs(t >= 4, false, |i| !(i == 0 && t > 3000) && !(i == 1 && t > 1000 && t % 701 < 2), |_| true);
                 h.cycle();
-                h.settle_all();
             }
             let r = |h: &HubSim| {
                 let mut v = vec![h.frame_state() as u64, h.efg_active() as u64, h.mon_sample() as u64, h.mon_field() as u64, h.mon_pos() as u64];

@@ -24,10 +24,13 @@ pub struct Entry {
     pub description: String,
     /// Builds the instance the model is generated from.
     pub build: Box<dyn Fn() -> Box<dyn Block>>,
+    /// Internal signals evaluated every clock because a reader uses them
+    /// (`canstar_rtlc::Options::keep`).
+    pub keep: Vec<String>,
 }
 
 fn entry(module: &'static str, name: &'static str, hdl_type: &'static str, description: &str, build: impl Fn() -> Box<dyn Block> + 'static) -> Entry {
-    Entry { module, name, hdl_type, description: description.to_string(), build: Box::new(build) }
+    Entry { module, name, hdl_type, description: description.to_string(), build: Box::new(build), keep: vec![] }
 }
 
 /// Hub configurations with a committed model: (module suffix, struct suffix, ports, sublinks).
@@ -80,21 +83,25 @@ pub fn entries() -> Vec<Entry> {
     for (suffix, name_suffix, n, m) in HUB_SHAPES {
         let module: &'static str = Box::leak(format!("hub_core_{suffix}").into_boxed_str());
         let name: &'static str = Box::leak(format!("HubCore{name_suffix}").into_boxed_str());
-        v.push(entry(module, name, "canstar_hub::hub::HubCore", &format!("hub core (`canstar_hub::hub::HubCore`), N = {n} ports, M = {m} sublinks, debug outputs"), move || {
+        let mut e = entry(module, name, "canstar_hub::hub::HubCore", &format!("hub core (`canstar_hub::hub::HubCore`), N = {n} ports, M = {m} sublinks, debug outputs"), move || {
             Box::new(HubCore::new(&hub_cfg(n, m)))
-        }));
+        });
+        e.keep = crate::hub_sim::core_reader_signals(n, m);
+        v.push(e);
         let module: &'static str = Box::leak(format!("hub_{suffix}").into_boxed_str());
         let name: &'static str = Box::leak(format!("Hub{name_suffix}").into_boxed_str());
-        v.push(entry(module, name, "canstar_hub::hub::Hub", &format!("complete hub with frame monitor (`canstar_hub::hub::Hub`), N = {n} ports, M = {m} sublinks, debug outputs"), move || {
+        let mut e = entry(module, name, "canstar_hub::hub::Hub", &format!("complete hub with frame monitor (`canstar_hub::hub::Hub`), N = {n} ports, M = {m} sublinks, debug outputs"), move || {
             Box::new(Hub::new(&hub_cfg(n, m)))
-        }));
+        });
+        e.keep = crate::hub_sim::core_reader_signals(n, m).into_iter().map(|p| format!("core.{p}")).collect();
+        v.push(e);
     }
     v
 }
 
 /// Options for compiling an entry.
 pub fn options(e: &Entry) -> canstar_rtlc::Options {
-    canstar_rtlc::Options { name: e.name.into(), description: e.description.clone(), hdl_type: Some(e.hdl_type.into()), mutate: None }
+    canstar_rtlc::Options { name: e.name.into(), description: e.description.clone(), hdl_type: Some(e.hdl_type.into()), mutate: None, keep: e.keep.clone() }
 }
 
 /// The `generated/mod.rs` listing.

@@ -250,8 +250,6 @@ impl Component for RtlHub {
         // judge activity
         let st = &mut self.stats;
         if hub.blame_any() {
-            // `charged` is a probe-only signal of the compiled model: evaluate it.
-            hub.settle_all();
             st.blames += 1;
             let (f, p) = (hub.mon_field(), hub.mon_pos());
             for i in 0..self.n {

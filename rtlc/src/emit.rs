@@ -62,6 +62,30 @@ pub fn field_names(d: &Design) -> (Vec<String>, Vec<String>) {
     (names, mems)
 }
 
+/// Signals whose value only trace mode keeps current: the targets of probe-only
+/// groups, and aliases that read one.
+pub fn probe_only(d: &Design, sch: &Schedule) -> Vec<SigId> {
+    let mut stale = vec![false; d.sigs.len()];
+    for g in sch.groups.iter().filter(|g| g.class == Class::ProbeOnly) {
+        for &t in &g.targets {
+            stale[t] = true;
+        }
+    }
+    (0..d.sigs.len())
+        .filter(|&x| {
+            stale[x]
+                || match &d.sigs[x].role {
+                    Role::Alias(e) => {
+                        let mut any = false;
+                        e.reads(&mut |r| any |= stale[r]);
+                        any
+                    }
+                    _ => false,
+                }
+        })
+        .collect()
+}
+
 /// Does signal `s` have a field?
 pub fn stored(d: &Design, s: SigId) -> bool {
     match d.sigs[s].role {
@@ -228,14 +252,15 @@ pub fn emit(d: &Design, sch: &Schedule, o: &EmitOptions) -> String {
         let _ = writeln!(s, "    }}\n");
     }
     let _ = writeln!(s, "}}\n");
-    emit_model_impl(&mut s, d, &names, &mems, &top, o, &act);
+    emit_model_impl(&mut s, d, &names, &mems, &top, o, &act, &probe_only(d, sch));
     if let Some(t) = o.hdl_type {
         emit_hdl_adapters(&mut s, d, t);
     }
     s
 }
 
-fn emit_model_impl(s: &mut String, d: &Design, names: &[String], mems: &[String], top: &Ctx, o: &EmitOptions, act: &Activity) {
+#[allow(clippy::too_many_arguments)]
+fn emit_model_impl(s: &mut String, d: &Design, names: &[String], mems: &[String], top: &Ctx, o: &EmitOptions, act: &Activity, stale: &[SigId]) {
     let (words, reg_words) = (act.words, act.reg_words);
     let act_words = |_: &Design| words;
     let name = o.name;
@@ -304,7 +329,9 @@ fn emit_model_impl(s: &mut String, d: &Design, names: &[String], mems: &[String]
     let _ = writeln!(s, "    outputs: &[{}],", d.outputs.iter().map(|&x| port(x)).collect::<Vec<_>>().join(", "));
     let _ = writeln!(s, "    atoms: &ATOMS,\n    probe: &PROBE,");
     let rams: Vec<String> = d.rams.iter().map(|r| format!("rt::RamMeta {{ module: {}, words: {}, width: {} }}", r.module, 1usize << r.aw, r.dw)).collect();
-    let _ = writeln!(s, "    rams: &[{}],\n}};\n", rams.join(", "));
+    let _ = writeln!(s, "    rams: &[{}],", rams.join(", "));
+    let po: Vec<String> = stale.iter().map(|x| x.to_string()).collect();
+    let _ = writeln!(s, "    probe_only: &[{}],\n}};\n", po.join(", "));
     let _ = writeln!(s, "static ATOMS: [rt::AtomMeta; {}] = [", d.hier.atoms.len());
     for a in &d.hier.atoms {
         let vt = match &a.ty {

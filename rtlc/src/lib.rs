@@ -69,6 +69,11 @@ pub struct Options {
     pub hdl_type: Option<String>,
     /// Debug hook: swap the n-th binary operator (see [`mutate`]).
     pub mutate: Option<usize>,
+    /// Dotted paths of signals (`core.pj$0.charged`) to evaluate every clock although
+    /// nothing but probes needs them: the internal signals a caller reads between
+    /// clocks without trace mode (see [`rt::ModelInfo::probe_only`]). A path that
+    /// names no signal is an error.
+    pub keep: Vec<String>,
 }
 
 /// Figures of a compilation.
@@ -110,7 +115,12 @@ pub fn compile(top: &dyn Block, opts: &Options) -> Result<Compiled> {
         Some(n) => Some(mutate::swap_operator(&mut d, n).ok_or_else(|| Error::Unsupported(format!("no operator number {n} to swap")))?),
         None => None,
     };
-    let sch = sched::schedule(&d)?;
+    let keep = opts
+        .keep
+        .iter()
+        .map(|k| d.sigs.iter().position(|s| &s.path == k).ok_or_else(|| Error::Unsupported(format!("keep: no signal `{k}` in the design"))))
+        .collect::<Result<Vec<_>>>()?;
+    let sch = sched::schedule(&d, &keep)?;
     let eo = emit::EmitOptions { name: &opts.name, description: &opts.description, hdl_type: opts.hdl_type.as_deref(), fingerprint: fp };
     let source = emit::emit(&d, &sch, &eo);
     let stats = Stats {

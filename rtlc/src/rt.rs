@@ -68,6 +68,11 @@ pub struct ModelInfo {
     pub atoms: &'static [AtomMeta],
     pub probe: &'static [Op],
     pub rams: &'static [RamMeta],
+    /// Atoms ([`Model::atom`] indices) that nothing but probes needs: the model
+    /// evaluates them only in trace mode or in [`Model::settle_all`], so a reader
+    /// of one sees a stale value otherwise (compile with `Options::keep` to have
+    /// them evaluated every clock).
+    pub probe_only: &'static [usize],
 }
 
 /// The interface of every compiled model.

@@ -257,7 +257,8 @@ struct Slice {
 }
 
 /// Cut, order and group the design's combinational logic.
-pub fn schedule(d: &Design) -> Result<Schedule> {
+/// `keep`: signals to evaluate every clock even when nothing but probes needs them.
+pub fn schedule(d: &Design, keep: &[SigId]) -> Result<Schedule> {
     let mut slices: Vec<Slice> = vec![];
     let mut owner: HashMap<SigId, usize> = HashMap::new();
     let mut block_defs: Vec<Vec<Def>> = vec![];
@@ -374,6 +375,7 @@ pub fn schedule(d: &Design) -> Result<Schedule> {
             sinks.extend([r.write_address, r.write_data, r.write_enable]);
         }
     }
+    sinks.extend(keep.iter().copied());
     let latches: Vec<usize> = (0..n).filter(|&i| slices[i].latch).collect();
     let mut sinks = sink_slices(sinks);
     sinks.extend(latches.iter().copied());

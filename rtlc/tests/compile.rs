@@ -291,3 +291,42 @@ fn the_mutation_hook_swaps_one_operator() {
     assert_ne!(base.source, m.source);
     assert!(compile(&Chain::new(3), &Options { mutate: Some(1000), ..Default::default() }).is_err());
 }
+
+/// A block with a signal nothing but probes reads (`seen`).
+#[derive(LogicBlock, Default)]
+struct Watched {
+    clock: Signal<In, Clock>,
+    a: Signal<In, Bits<4>>,
+    y: Signal<Out, Bits<4>>,
+    r: DFF<Bits<4>>,
+    seen: Signal<Local, Bit>,
+}
+
+impl Logic for Watched {
+    #[hdl_gen]
+    fn update(&mut self) {
+        dff_setup!(self, clock, r);
+        self.r.d.next = self.a.val();
+        self.y.next = self.r.q.val();
+        self.seen.next = self.a.val() == self.r.q.val();
+    }
+}
+
+/// The `probe_only: &[...]` list of a generated model, as signal indices.
+fn probe_only_list(source: &str) -> Vec<usize> {
+    let line = source.lines().find(|l| l.trim_start().starts_with("probe_only:")).expect("probe_only in the model info");
+    let inner = line.split('[').nth(1).unwrap().split(']').next().unwrap();
+    inner.split(',').filter(|x| !x.trim().is_empty()).map(|x| x.trim().parse().unwrap()).collect()
+}
+
+#[test]
+fn keep_evaluates_a_probe_only_signal_every_clock() {
+    let (d, _) = analyse(&Watched::default()).unwrap();
+    let seen = d.sigs.iter().position(|s| s.path == "seen").expect("signal `seen`");
+    let plain = compile(&Watched::default(), &Options::default()).unwrap();
+    assert_eq!(probe_only_list(&plain.source), vec![seen], "only `seen` is probe-only");
+    let kept = compile(&Watched::default(), &Options { keep: vec!["seen".into()], ..Default::default() }).unwrap();
+    assert!(probe_only_list(&kept.source).is_empty(), "kept: evaluated every clock");
+    let err = compile(&Watched::default(), &Options { keep: vec!["nowhere".into()], ..Default::default() }).unwrap_err();
+    assert!(err.to_string().contains("keep: no signal `nowhere`"), "{err}");
+}

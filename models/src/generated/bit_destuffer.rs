@@ -383,6 +383,7 @@ static INFO: rt::ModelInfo = rt::ModelInfo {
     atoms: &ATOMS,
     probe: &PROBE,
     rams: &[],
+    probe_only: &[15, 16, 17],
 };
 
 static ATOMS: [rt::AtomMeta; 18] = [

@@ -383,6 +383,7 @@ static INFO: rt::ModelInfo = rt::ModelInfo {
     atoms: &ATOMS,
     probe: &PROBE,
     rams: &[],
+    probe_only: &[14, 15, 16],
 };
 
 static ATOMS: [rt::AtomMeta; 17] = [

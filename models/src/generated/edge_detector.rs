@@ -282,6 +282,7 @@ static INFO: rt::ModelInfo = rt::ModelInfo {
     atoms: &ATOMS,
     probe: &PROBE,
     rams: &[],
+    probe_only: &[],
 };
 
 static ATOMS: [rt::AtomMeta; 9] = [

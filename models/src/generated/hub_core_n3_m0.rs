@@ -3362,8 +3362,9 @@ impl HubCoreN3M0 {
         if efgen_pending_d != self.efgen_pending_d { self.efgen_pending_d = efgen_pending_d; self.pend[0] |= 0x200; }
     }
 
-    /// `pj$0` block, depth 6, input-dependent: pj$0.bic_r.d, pj$0.life_r.d
+    /// `pj$0` block, depth 6, input-dependent: pj$0.charged, pj$0.bic_r.d, pj$0.life_r.d
     fn g61(&mut self) {
+        let mut pj_0_charged: bool = false;
         let mut pj_0_bic_r_d: u8 = 0u8;
         let mut pj_0_life_r_d: u8 = 0u8;
         let mut pj_0_dom: bool = false;
@@ -3379,6 +3380,7 @@ impl HubCoreN3M0 {
         pj_0_domw = (pj_0_dom | self.pj_0_seen_dom);
         pj_0_unj = (pj_0_domw & (((!self.err_phase) & ((((((self.decode_tx_region & (!self.pj_0_cont_r)) | self.decode_crc_delim) | (self.decode_ack_delim & (!self.pj_0_ack_missing))) | self.decode_eof_1_6) | self.decode_im_2) | ((self.decode_ack_slot & self.pj_0_cont_r) & self.pj_0_ack_rule))) | self.delim_z));
         pj_0_charge = (((self.mon_sample & pj_0_unj) & pj_0_enabled) & (!self.pj_0_suppress));
+        pj_0_charged = (((self.mon_sample & pj_0_unj) & pj_0_enabled) & (!self.pj_0_suppress));
         if self.mon_sample {
             if ((self.mon_frame_ok & pj_0_enabled) & (self.pj_0_bic_r != 0u8)) {
                 pj_0_bic_r_d = self.pj_0_bic_r.wrapping_sub(1u8);
@@ -3409,13 +3411,13 @@ impl HubCoreN3M0 {
             pj_0_bic_r_d = 0u8;
             pj_0_life_r_d = 0u8;
         }
+        self.pj_0_charged = pj_0_charged;
         if pj_0_bic_r_d != self.pj_0_bic_r_d { self.pj_0_bic_r_d = pj_0_bic_r_d; self.pend[0] |= 0x100000; }
         if pj_0_life_r_d != self.pj_0_life_r_d { self.pj_0_life_r_d = pj_0_life_r_d; self.pend[0] |= 0x200000; }
     }
 
-    /// `pj$0` block, depth 6, probe-only: pj$0.charged, pj$0.charge
+    /// `pj$0` block, depth 6, probe-only: pj$0.charge
     fn g62(&mut self) {
-        let mut pj_0_charged: bool = false;
         let mut pj_0_dom: bool = false;
         let mut pj_0_domw: bool = false;
         let mut pj_0_unj: bool = false;
@@ -3426,13 +3428,12 @@ impl HubCoreN3M0 {
         pj_0_domw = (pj_0_dom | self.pj_0_seen_dom);
         pj_0_unj = (pj_0_domw & (((!self.err_phase) & ((((((self.decode_tx_region & (!self.pj_0_cont_r)) | self.decode_crc_delim) | (self.decode_ack_delim & (!self.pj_0_ack_missing))) | self.decode_eof_1_6) | self.decode_im_2) | ((self.decode_ack_slot & self.pj_0_cont_r) & self.pj_0_ack_rule))) | self.delim_z));
         pj_0_charge = (((self.mon_sample & pj_0_unj) & pj_0_enabled) & (!self.pj_0_suppress));
-        pj_0_charged = (((self.mon_sample & pj_0_unj) & pj_0_enabled) & (!self.pj_0_suppress));
-        self.pj_0_charged = pj_0_charged;
         self.pj_0_charge = pj_0_charge;
     }
 
-    /// `pj$1` block, depth 6, input-dependent: pj$1.bic_r.d, pj$1.life_r.d
+    /// `pj$1` block, depth 6, input-dependent: pj$1.charged, pj$1.bic_r.d, pj$1.life_r.d
     fn g63(&mut self) {
+        let mut pj_1_charged: bool = false;
         let mut pj_1_bic_r_d: u8 = 0u8;
         let mut pj_1_life_r_d: u8 = 0u8;
         let mut pj_1_dom: bool = false;
@@ -3448,6 +3449,7 @@ impl HubCoreN3M0 {
         pj_1_domw = (pj_1_dom | self.pj_1_seen_dom);
         pj_1_unj = (pj_1_domw & (((!self.err_phase) & ((((((self.decode_tx_region & (!self.pj_1_cont_r)) | self.decode_crc_delim) | (self.decode_ack_delim & (!self.pj_1_ack_missing))) | self.decode_eof_1_6) | self.decode_im_2) | ((self.decode_ack_slot & self.pj_1_cont_r) & self.pj_1_ack_rule))) | self.delim_z));
         pj_1_charge = (((self.mon_sample & pj_1_unj) & pj_1_enabled) & (!self.pj_1_suppress));
+        pj_1_charged = (((self.mon_sample & pj_1_unj) & pj_1_enabled) & (!self.pj_1_suppress));
         if self.mon_sample {
             if ((self.mon_frame_ok & pj_1_enabled) & (self.pj_1_bic_r != 0u8)) {
                 pj_1_bic_r_d = self.pj_1_bic_r.wrapping_sub(1u8);
@@ -3478,13 +3480,13 @@ impl HubCoreN3M0 {
             pj_1_bic_r_d = 0u8;
             pj_1_life_r_d = 0u8;
         }
+        self.pj_1_charged = pj_1_charged;
         if pj_1_bic_r_d != self.pj_1_bic_r_d { self.pj_1_bic_r_d = pj_1_bic_r_d; self.pend[0] |= 0x100000000000; }
         if pj_1_life_r_d != self.pj_1_life_r_d { self.pj_1_life_r_d = pj_1_life_r_d; self.pend[0] |= 0x200000000000; }
     }
 
-    /// `pj$1` block, depth 6, probe-only: pj$1.charged, pj$1.charge
+    /// `pj$1` block, depth 6, probe-only: pj$1.charge
     fn g64(&mut self) {
-        let mut pj_1_charged: bool = false;
         let mut pj_1_dom: bool = false;
         let mut pj_1_domw: bool = false;
         let mut pj_1_unj: bool = false;
@@ -3495,13 +3497,12 @@ impl HubCoreN3M0 {
         pj_1_domw = (pj_1_dom | self.pj_1_seen_dom);
         pj_1_unj = (pj_1_domw & (((!self.err_phase) & ((((((self.decode_tx_region & (!self.pj_1_cont_r)) | self.decode_crc_delim) | (self.decode_ack_delim & (!self.pj_1_ack_missing))) | self.decode_eof_1_6) | self.decode_im_2) | ((self.decode_ack_slot & self.pj_1_cont_r) & self.pj_1_ack_rule))) | self.delim_z));
         pj_1_charge = (((self.mon_sample & pj_1_unj) & pj_1_enabled) & (!self.pj_1_suppress));
-        pj_1_charged = (((self.mon_sample & pj_1_unj) & pj_1_enabled) & (!self.pj_1_suppress));
-        self.pj_1_charged = pj_1_charged;
         self.pj_1_charge = pj_1_charge;
     }
 
-    /// `pj$2` block, depth 6, input-dependent: pj$2.bic_r.d, pj$2.life_r.d
+    /// `pj$2` block, depth 6, input-dependent: pj$2.charged, pj$2.bic_r.d, pj$2.life_r.d
     fn g65(&mut self) {
+        let mut pj_2_charged: bool = false;
         let mut pj_2_bic_r_d: u8 = 0u8;
         let mut pj_2_life_r_d: u8 = 0u8;
         let mut pj_2_dom: bool = false;
@@ -3517,6 +3518,7 @@ impl HubCoreN3M0 {
         pj_2_domw = (pj_2_dom | self.pj_2_seen_dom);
         pj_2_unj = (pj_2_domw & (((!self.err_phase) & ((((((self.decode_tx_region & (!self.pj_2_cont_r)) | self.decode_crc_delim) | (self.decode_ack_delim & (!self.pj_2_ack_missing))) | self.decode_eof_1_6) | self.decode_im_2) | ((self.decode_ack_slot & self.pj_2_cont_r) & self.pj_2_ack_rule))) | self.delim_z));
         pj_2_charge = (((self.mon_sample & pj_2_unj) & pj_2_enabled) & (!self.pj_2_suppress));
+        pj_2_charged = (((self.mon_sample & pj_2_unj) & pj_2_enabled) & (!self.pj_2_suppress));
         if self.mon_sample {
             if ((self.mon_frame_ok & pj_2_enabled) & (self.pj_2_bic_r != 0u8)) {
                 pj_2_bic_r_d = self.pj_2_bic_r.wrapping_sub(1u8);
@@ -3547,13 +3549,13 @@ impl HubCoreN3M0 {
             pj_2_bic_r_d = 0u8;
             pj_2_life_r_d = 0u8;
         }
+        self.pj_2_charged = pj_2_charged;
         if pj_2_bic_r_d != self.pj_2_bic_r_d { self.pj_2_bic_r_d = pj_2_bic_r_d; self.pend[1] |= 0x10; }
         if pj_2_life_r_d != self.pj_2_life_r_d { self.pj_2_life_r_d = pj_2_life_r_d; self.pend[1] |= 0x20; }
     }
 
-    /// `pj$2` block, depth 6, probe-only: pj$2.charged, pj$2.charge
+    /// `pj$2` block, depth 6, probe-only: pj$2.charge
     fn g66(&mut self) {
-        let mut pj_2_charged: bool = false;
         let mut pj_2_dom: bool = false;
         let mut pj_2_domw: bool = false;
         let mut pj_2_unj: bool = false;
@@ -3564,8 +3566,6 @@ impl HubCoreN3M0 {
         pj_2_domw = (pj_2_dom | self.pj_2_seen_dom);
         pj_2_unj = (pj_2_domw & (((!self.err_phase) & ((((((self.decode_tx_region & (!self.pj_2_cont_r)) | self.decode_crc_delim) | (self.decode_ack_delim & (!self.pj_2_ack_missing))) | self.decode_eof_1_6) | self.decode_im_2) | ((self.decode_ack_slot & self.pj_2_cont_r) & self.pj_2_ack_rule))) | self.delim_z));
         pj_2_charge = (((self.mon_sample & pj_2_unj) & pj_2_enabled) & (!self.pj_2_suppress));
-        pj_2_charged = (((self.mon_sample & pj_2_unj) & pj_2_enabled) & (!self.pj_2_suppress));
-        self.pj_2_charged = pj_2_charged;
         self.pj_2_charge = pj_2_charge;
     }
 
@@ -4501,6 +4501,7 @@ static INFO: rt::ModelInfo = rt::ModelInfo {
     atoms: &ATOMS,
     probe: &PROBE,
     rams: &[],
+    probe_only: &[57, 101, 102, 103, 104, 105, 106, 107, 155, 166, 219, 290, 291, 292, 293, 294, 296, 306, 359, 430, 431, 432, 433, 434, 436, 446, 499, 570, 571, 572, 573, 574, 576, 586, 608, 609, 610],
 };
 
 static ATOMS: [rt::AtomMeta; 615] = [

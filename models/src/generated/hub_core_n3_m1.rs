@@ -4359,8 +4359,9 @@ impl HubCoreN3M1 {
         if efgen_pending_d != self.efgen_pending_d { self.efgen_pending_d = efgen_pending_d; self.pend[0] |= 0x1000; }
     }
 
-    /// `pj$0` block, depth 6, input-dependent: pj$0.bic_r.d, pj$0.life_r.d
+    /// `pj$0` block, depth 6, input-dependent: pj$0.charged, pj$0.bic_r.d, pj$0.life_r.d
     fn g78(&mut self) {
+        let mut pj_0_charged: bool = false;
         let mut pj_0_bic_r_d: u8 = 0u8;
         let mut pj_0_life_r_d: u8 = 0u8;
         let mut pj_0_dom: bool = false;
@@ -4376,6 +4377,7 @@ impl HubCoreN3M1 {
         pj_0_domw = (pj_0_dom | self.pj_0_seen_dom);
         pj_0_unj = (pj_0_domw & (((!self.err_phase) & ((((((self.decode_tx_region & (!self.pj_0_cont_r)) | self.decode_crc_delim) | (self.decode_ack_delim & (!self.pj_0_ack_missing))) | self.decode_eof_1_6) | self.decode_im_2) | ((self.decode_ack_slot & self.pj_0_cont_r) & self.pj_0_ack_rule))) | self.delim_z));
         pj_0_charge = (((self.mon_sample & pj_0_unj) & pj_0_enabled) & (!self.pj_0_suppress));
+        pj_0_charged = (((self.mon_sample & pj_0_unj) & pj_0_enabled) & (!self.pj_0_suppress));
         if self.mon_sample {
             if ((self.mon_frame_ok & pj_0_enabled) & (self.pj_0_bic_r != 0u8)) {
                 pj_0_bic_r_d = self.pj_0_bic_r.wrapping_sub(1u8);
@@ -4406,13 +4408,13 @@ impl HubCoreN3M1 {
             pj_0_bic_r_d = 0u8;
             pj_0_life_r_d = 0u8;
         }
+        self.pj_0_charged = pj_0_charged;
         if pj_0_bic_r_d != self.pj_0_bic_r_d { self.pj_0_bic_r_d = pj_0_bic_r_d; self.pend[0] |= 0x800000; }
         if pj_0_life_r_d != self.pj_0_life_r_d { self.pj_0_life_r_d = pj_0_life_r_d; self.pend[0] |= 0x1000000; }
     }
 
-    /// `pj$0` block, depth 6, probe-only: pj$0.charged, pj$0.charge
+    /// `pj$0` block, depth 6, probe-only: pj$0.charge
     fn g79(&mut self) {
-        let mut pj_0_charged: bool = false;
         let mut pj_0_dom: bool = false;
         let mut pj_0_domw: bool = false;
         let mut pj_0_unj: bool = false;
@@ -4423,13 +4425,12 @@ impl HubCoreN3M1 {
         pj_0_domw = (pj_0_dom | self.pj_0_seen_dom);
         pj_0_unj = (pj_0_domw & (((!self.err_phase) & ((((((self.decode_tx_region & (!self.pj_0_cont_r)) | self.decode_crc_delim) | (self.decode_ack_delim & (!self.pj_0_ack_missing))) | self.decode_eof_1_6) | self.decode_im_2) | ((self.decode_ack_slot & self.pj_0_cont_r) & self.pj_0_ack_rule))) | self.delim_z));
         pj_0_charge = (((self.mon_sample & pj_0_unj) & pj_0_enabled) & (!self.pj_0_suppress));
-        pj_0_charged = (((self.mon_sample & pj_0_unj) & pj_0_enabled) & (!self.pj_0_suppress));
-        self.pj_0_charged = pj_0_charged;
         self.pj_0_charge = pj_0_charge;
     }
 
-    /// `pj$1` block, depth 6, input-dependent: pj$1.bic_r.d, pj$1.life_r.d
+    /// `pj$1` block, depth 6, input-dependent: pj$1.charged, pj$1.bic_r.d, pj$1.life_r.d
     fn g80(&mut self) {
+        let mut pj_1_charged: bool = false;
         let mut pj_1_bic_r_d: u8 = 0u8;
         let mut pj_1_life_r_d: u8 = 0u8;
         let mut pj_1_dom: bool = false;
@@ -4445,6 +4446,7 @@ impl HubCoreN3M1 {
         pj_1_domw = (pj_1_dom | self.pj_1_seen_dom);
         pj_1_unj = (pj_1_domw & (((!self.err_phase) & ((((((self.decode_tx_region & (!self.pj_1_cont_r)) | self.decode_crc_delim) | (self.decode_ack_delim & (!self.pj_1_ack_missing))) | self.decode_eof_1_6) | self.decode_im_2) | ((self.decode_ack_slot & self.pj_1_cont_r) & self.pj_1_ack_rule))) | self.delim_z));
         pj_1_charge = (((self.mon_sample & pj_1_unj) & pj_1_enabled) & (!self.pj_1_suppress));
+        pj_1_charged = (((self.mon_sample & pj_1_unj) & pj_1_enabled) & (!self.pj_1_suppress));
         if self.mon_sample {
             if ((self.mon_frame_ok & pj_1_enabled) & (self.pj_1_bic_r != 0u8)) {
                 pj_1_bic_r_d = self.pj_1_bic_r.wrapping_sub(1u8);
@@ -4475,13 +4477,13 @@ impl HubCoreN3M1 {
             pj_1_bic_r_d = 0u8;
             pj_1_life_r_d = 0u8;
         }
+        self.pj_1_charged = pj_1_charged;
         if pj_1_bic_r_d != self.pj_1_bic_r_d { self.pj_1_bic_r_d = pj_1_bic_r_d; self.pend[0] |= 0x800000000000; }
         if pj_1_life_r_d != self.pj_1_life_r_d { self.pj_1_life_r_d = pj_1_life_r_d; self.pend[0] |= 0x1000000000000; }
     }
 
-    /// `pj$1` block, depth 6, probe-only: pj$1.charged, pj$1.charge
+    /// `pj$1` block, depth 6, probe-only: pj$1.charge
     fn g81(&mut self) {
-        let mut pj_1_charged: bool = false;
         let mut pj_1_dom: bool = false;
         let mut pj_1_domw: bool = false;
         let mut pj_1_unj: bool = false;
@@ -4492,13 +4494,12 @@ impl HubCoreN3M1 {
         pj_1_domw = (pj_1_dom | self.pj_1_seen_dom);
         pj_1_unj = (pj_1_domw & (((!self.err_phase) & ((((((self.decode_tx_region & (!self.pj_1_cont_r)) | self.decode_crc_delim) | (self.decode_ack_delim & (!self.pj_1_ack_missing))) | self.decode_eof_1_6) | self.decode_im_2) | ((self.decode_ack_slot & self.pj_1_cont_r) & self.pj_1_ack_rule))) | self.delim_z));
         pj_1_charge = (((self.mon_sample & pj_1_unj) & pj_1_enabled) & (!self.pj_1_suppress));
-        pj_1_charged = (((self.mon_sample & pj_1_unj) & pj_1_enabled) & (!self.pj_1_suppress));
-        self.pj_1_charged = pj_1_charged;
         self.pj_1_charge = pj_1_charge;
     }
 
-    /// `pj$2` block, depth 6, input-dependent: pj$2.bic_r.d, pj$2.life_r.d
+    /// `pj$2` block, depth 6, input-dependent: pj$2.charged, pj$2.bic_r.d, pj$2.life_r.d
     fn g82(&mut self) {
+        let mut pj_2_charged: bool = false;
         let mut pj_2_bic_r_d: u8 = 0u8;
         let mut pj_2_life_r_d: u8 = 0u8;
         let mut pj_2_dom: bool = false;
@@ -4514,6 +4515,7 @@ impl HubCoreN3M1 {
         pj_2_domw = (pj_2_dom | self.pj_2_seen_dom);
         pj_2_unj = (pj_2_domw & (((!self.err_phase) & ((((((self.decode_tx_region & (!self.pj_2_cont_r)) | self.decode_crc_delim) | (self.decode_ack_delim & (!self.pj_2_ack_missing))) | self.decode_eof_1_6) | self.decode_im_2) | ((self.decode_ack_slot & self.pj_2_cont_r) & self.pj_2_ack_rule))) | self.delim_z));
         pj_2_charge = (((self.mon_sample & pj_2_unj) & pj_2_enabled) & (!self.pj_2_suppress));
+        pj_2_charged = (((self.mon_sample & pj_2_unj) & pj_2_enabled) & (!self.pj_2_suppress));
         if self.mon_sample {
             if ((self.mon_frame_ok & pj_2_enabled) & (self.pj_2_bic_r != 0u8)) {
                 pj_2_bic_r_d = self.pj_2_bic_r.wrapping_sub(1u8);
@@ -4544,13 +4546,13 @@ impl HubCoreN3M1 {
             pj_2_bic_r_d = 0u8;
             pj_2_life_r_d = 0u8;
         }
+        self.pj_2_charged = pj_2_charged;
         if pj_2_bic_r_d != self.pj_2_bic_r_d { self.pj_2_bic_r_d = pj_2_bic_r_d; self.pend[1] |= 0x80; }
         if pj_2_life_r_d != self.pj_2_life_r_d { self.pj_2_life_r_d = pj_2_life_r_d; self.pend[1] |= 0x100; }
     }
 
-    /// `pj$2` block, depth 6, probe-only: pj$2.charged, pj$2.charge
+    /// `pj$2` block, depth 6, probe-only: pj$2.charge
     fn g83(&mut self) {
-        let mut pj_2_charged: bool = false;
         let mut pj_2_dom: bool = false;
         let mut pj_2_domw: bool = false;
         let mut pj_2_unj: bool = false;
@@ -4561,13 +4563,12 @@ impl HubCoreN3M1 {
         pj_2_domw = (pj_2_dom | self.pj_2_seen_dom);
         pj_2_unj = (pj_2_domw & (((!self.err_phase) & ((((((self.decode_tx_region & (!self.pj_2_cont_r)) | self.decode_crc_delim) | (self.decode_ack_delim & (!self.pj_2_ack_missing))) | self.decode_eof_1_6) | self.decode_im_2) | ((self.decode_ack_slot & self.pj_2_cont_r) & self.pj_2_ack_rule))) | self.delim_z));
         pj_2_charge = (((self.mon_sample & pj_2_unj) & pj_2_enabled) & (!self.pj_2_suppress));
-        pj_2_charged = (((self.mon_sample & pj_2_unj) & pj_2_enabled) & (!self.pj_2_suppress));
-        self.pj_2_charged = pj_2_charged;
         self.pj_2_charge = pj_2_charge;
     }
 
-    /// `sj$0` block, depth 6, input-dependent: sj$0.bic_r.d, sj$0.life_r.d
+    /// `sj$0` block, depth 6, input-dependent: sj$0.charged, sj$0.bic_r.d, sj$0.life_r.d
     fn g84(&mut self) {
+        let mut sj_0_charged: bool = false;
         let mut sj_0_bic_r_d: u8 = 0u8;
         let mut sj_0_life_r_d: u8 = 0u8;
         let mut sj_0_dom: bool = false;
@@ -4583,6 +4584,7 @@ impl HubCoreN3M1 {
         sj_0_domw = (sj_0_dom | self.sj_0_seen_dom);
         sj_0_unj = (sj_0_domw & (((!self.err_phase) & ((((((self.decode_tx_region & (!self.sj_0_cont_r)) | self.decode_crc_delim) | (self.decode_ack_delim & (!self.sj_0_ack_missing))) | self.decode_eof_1_6) | self.decode_im_2) | ((self.decode_ack_slot & self.sj_0_cont_r) & self.sj_0_ack_rule))) | self.delim_z));
         sj_0_charge = (((self.mon_sample & sj_0_unj) & sj_0_enabled) & (!self.sj_0_suppress));
+        sj_0_charged = (((self.mon_sample & sj_0_unj) & sj_0_enabled) & (!self.sj_0_suppress));
         if self.mon_sample {
             if ((self.mon_frame_ok & sj_0_enabled) & (self.sj_0_bic_r != 0u8)) {
                 sj_0_bic_r_d = self.sj_0_bic_r.wrapping_sub(1u8);
@@ -4613,13 +4615,13 @@ impl HubCoreN3M1 {
             sj_0_bic_r_d = 0u8;
             sj_0_life_r_d = 0u8;
         }
+        self.sj_0_charged = sj_0_charged;
         if sj_0_bic_r_d != self.sj_0_bic_r_d { self.sj_0_bic_r_d = sj_0_bic_r_d; self.pend[1] |= 0x80000000; }
         if sj_0_life_r_d != self.sj_0_life_r_d { self.sj_0_life_r_d = sj_0_life_r_d; self.pend[1] |= 0x100000000; }
     }
 
-    /// `sj$0` block, depth 6, probe-only: sj$0.charged, sj$0.charge
+    /// `sj$0` block, depth 6, probe-only: sj$0.charge
     fn g85(&mut self) {
-        let mut sj_0_charged: bool = false;
         let mut sj_0_dom: bool = false;
         let mut sj_0_domw: bool = false;
         let mut sj_0_unj: bool = false;
@@ -4630,8 +4632,6 @@ impl HubCoreN3M1 {
         sj_0_domw = (sj_0_dom | self.sj_0_seen_dom);
         sj_0_unj = (sj_0_domw & (((!self.err_phase) & ((((((self.decode_tx_region & (!self.sj_0_cont_r)) | self.decode_crc_delim) | (self.decode_ack_delim & (!self.sj_0_ack_missing))) | self.decode_eof_1_6) | self.decode_im_2) | ((self.decode_ack_slot & self.sj_0_cont_r) & self.sj_0_ack_rule))) | self.delim_z));
         sj_0_charge = (((self.mon_sample & sj_0_unj) & sj_0_enabled) & (!self.sj_0_suppress));
-        sj_0_charged = (((self.mon_sample & sj_0_unj) & sj_0_enabled) & (!self.sj_0_suppress));
-        self.sj_0_charged = sj_0_charged;
         self.sj_0_charge = sj_0_charge;
     }
 
@@ -5792,6 +5792,7 @@ static INFO: rt::ModelInfo = rt::ModelInfo {
     atoms: &ATOMS,
     probe: &PROBE,
     rams: &[],
+    probe_only: &[68, 126, 127, 128, 129, 130, 131, 132, 133, 134, 157, 158, 159, 160, 181, 192, 245, 316, 317, 318, 319, 320, 322, 332, 385, 456, 457, 458, 459, 460, 462, 472, 525, 596, 597, 598, 599, 600, 602, 612, 651, 665, 736, 737, 738, 739, 740, 742, 752, 775, 776, 777, 779, 780, 781],
 };
 
 static ATOMS: [rt::AtomMeta; 782] = [

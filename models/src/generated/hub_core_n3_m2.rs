@@ -5274,8 +5274,9 @@ impl HubCoreN3M2 {
         if efgen_pending_d != self.efgen_pending_d { self.efgen_pending_d = efgen_pending_d; self.pend[0] |= 0x8000; }
     }
 
-    /// `pj$0` block, depth 6, input-dependent: pj$0.bic_r.d, pj$0.life_r.d
+    /// `pj$0` block, depth 6, input-dependent: pj$0.charged, pj$0.bic_r.d, pj$0.life_r.d
     fn g92(&mut self) {
+        let mut pj_0_charged: bool = false;
         let mut pj_0_bic_r_d: u8 = 0u8;
         let mut pj_0_life_r_d: u8 = 0u8;
         let mut pj_0_dom: bool = false;
@@ -5291,6 +5292,7 @@ impl HubCoreN3M2 {
         pj_0_domw = (pj_0_dom | self.pj_0_seen_dom);
         pj_0_unj = (pj_0_domw & (((!self.err_phase) & ((((((self.decode_tx_region & (!self.pj_0_cont_r)) | self.decode_crc_delim) | (self.decode_ack_delim & (!self.pj_0_ack_missing))) | self.decode_eof_1_6) | self.decode_im_2) | ((self.decode_ack_slot & self.pj_0_cont_r) & self.pj_0_ack_rule))) | self.delim_z));
         pj_0_charge = (((self.mon_sample & pj_0_unj) & pj_0_enabled) & (!self.pj_0_suppress));
+        pj_0_charged = (((self.mon_sample & pj_0_unj) & pj_0_enabled) & (!self.pj_0_suppress));
         if self.mon_sample {
             if ((self.mon_frame_ok & pj_0_enabled) & (self.pj_0_bic_r != 0u8)) {
                 pj_0_bic_r_d = self.pj_0_bic_r.wrapping_sub(1u8);
@@ -5321,13 +5323,13 @@ impl HubCoreN3M2 {
             pj_0_bic_r_d = 0u8;
             pj_0_life_r_d = 0u8;
         }
+        self.pj_0_charged = pj_0_charged;
         if pj_0_bic_r_d != self.pj_0_bic_r_d { self.pj_0_bic_r_d = pj_0_bic_r_d; self.pend[0] |= 0x4000000; }
         if pj_0_life_r_d != self.pj_0_life_r_d { self.pj_0_life_r_d = pj_0_life_r_d; self.pend[0] |= 0x8000000; }
     }
 
-    /// `pj$0` block, depth 6, probe-only: pj$0.charged, pj$0.charge
+    /// `pj$0` block, depth 6, probe-only: pj$0.charge
     fn g93(&mut self) {
-        let mut pj_0_charged: bool = false;
         let mut pj_0_dom: bool = false;
         let mut pj_0_domw: bool = false;
         let mut pj_0_unj: bool = false;
@@ -5338,13 +5340,12 @@ impl HubCoreN3M2 {
         pj_0_domw = (pj_0_dom | self.pj_0_seen_dom);
         pj_0_unj = (pj_0_domw & (((!self.err_phase) & ((((((self.decode_tx_region & (!self.pj_0_cont_r)) | self.decode_crc_delim) | (self.decode_ack_delim & (!self.pj_0_ack_missing))) | self.decode_eof_1_6) | self.decode_im_2) | ((self.decode_ack_slot & self.pj_0_cont_r) & self.pj_0_ack_rule))) | self.delim_z));
         pj_0_charge = (((self.mon_sample & pj_0_unj) & pj_0_enabled) & (!self.pj_0_suppress));
-        pj_0_charged = (((self.mon_sample & pj_0_unj) & pj_0_enabled) & (!self.pj_0_suppress));
-        self.pj_0_charged = pj_0_charged;
         self.pj_0_charge = pj_0_charge;
     }
 
-    /// `pj$1` block, depth 6, input-dependent: pj$1.bic_r.d, pj$1.life_r.d
+    /// `pj$1` block, depth 6, input-dependent: pj$1.charged, pj$1.bic_r.d, pj$1.life_r.d
     fn g94(&mut self) {
+        let mut pj_1_charged: bool = false;
         let mut pj_1_bic_r_d: u8 = 0u8;
         let mut pj_1_life_r_d: u8 = 0u8;
         let mut pj_1_dom: bool = false;
@@ -5360,6 +5361,7 @@ impl HubCoreN3M2 {
         pj_1_domw = (pj_1_dom | self.pj_1_seen_dom);
         pj_1_unj = (pj_1_domw & (((!self.err_phase) & ((((((self.decode_tx_region & (!self.pj_1_cont_r)) | self.decode_crc_delim) | (self.decode_ack_delim & (!self.pj_1_ack_missing))) | self.decode_eof_1_6) | self.decode_im_2) | ((self.decode_ack_slot & self.pj_1_cont_r) & self.pj_1_ack_rule))) | self.delim_z));
         pj_1_charge = (((self.mon_sample & pj_1_unj) & pj_1_enabled) & (!self.pj_1_suppress));
+        pj_1_charged = (((self.mon_sample & pj_1_unj) & pj_1_enabled) & (!self.pj_1_suppress));
         if self.mon_sample {
             if ((self.mon_frame_ok & pj_1_enabled) & (self.pj_1_bic_r != 0u8)) {
                 pj_1_bic_r_d = self.pj_1_bic_r.wrapping_sub(1u8);
@@ -5390,13 +5392,13 @@ impl HubCoreN3M2 {
             pj_1_bic_r_d = 0u8;
             pj_1_life_r_d = 0u8;
         }
+        self.pj_1_charged = pj_1_charged;
         if pj_1_bic_r_d != self.pj_1_bic_r_d { self.pj_1_bic_r_d = pj_1_bic_r_d; self.pend[0] |= 0x4000000000000; }
         if pj_1_life_r_d != self.pj_1_life_r_d { self.pj_1_life_r_d = pj_1_life_r_d; self.pend[0] |= 0x8000000000000; }
     }
 
-    /// `pj$1` block, depth 6, probe-only: pj$1.charged, pj$1.charge
+    /// `pj$1` block, depth 6, probe-only: pj$1.charge
     fn g95(&mut self) {
-        let mut pj_1_charged: bool = false;
         let mut pj_1_dom: bool = false;
         let mut pj_1_domw: bool = false;
         let mut pj_1_unj: bool = false;
@@ -5407,13 +5409,12 @@ impl HubCoreN3M2 {
         pj_1_domw = (pj_1_dom | self.pj_1_seen_dom);
         pj_1_unj = (pj_1_domw & (((!self.err_phase) & ((((((self.decode_tx_region & (!self.pj_1_cont_r)) | self.decode_crc_delim) | (self.decode_ack_delim & (!self.pj_1_ack_missing))) | self.decode_eof_1_6) | self.decode_im_2) | ((self.decode_ack_slot & self.pj_1_cont_r) & self.pj_1_ack_rule))) | self.delim_z));
         pj_1_charge = (((self.mon_sample & pj_1_unj) & pj_1_enabled) & (!self.pj_1_suppress));
-        pj_1_charged = (((self.mon_sample & pj_1_unj) & pj_1_enabled) & (!self.pj_1_suppress));
-        self.pj_1_charged = pj_1_charged;
         self.pj_1_charge = pj_1_charge;
     }
 
-    /// `pj$2` block, depth 6, input-dependent: pj$2.bic_r.d, pj$2.life_r.d
+    /// `pj$2` block, depth 6, input-dependent: pj$2.charged, pj$2.bic_r.d, pj$2.life_r.d
     fn g96(&mut self) {
+        let mut pj_2_charged: bool = false;
         let mut pj_2_bic_r_d: u8 = 0u8;
         let mut pj_2_life_r_d: u8 = 0u8;
         let mut pj_2_dom: bool = false;
@@ -5429,6 +5430,7 @@ impl HubCoreN3M2 {
         pj_2_domw = (pj_2_dom | self.pj_2_seen_dom);
         pj_2_unj = (pj_2_domw & (((!self.err_phase) & ((((((self.decode_tx_region & (!self.pj_2_cont_r)) | self.decode_crc_delim) | (self.decode_ack_delim & (!self.pj_2_ack_missing))) | self.decode_eof_1_6) | self.decode_im_2) | ((self.decode_ack_slot & self.pj_2_cont_r) & self.pj_2_ack_rule))) | self.delim_z));
         pj_2_charge = (((self.mon_sample & pj_2_unj) & pj_2_enabled) & (!self.pj_2_suppress));
+        pj_2_charged = (((self.mon_sample & pj_2_unj) & pj_2_enabled) & (!self.pj_2_suppress));
         if self.mon_sample {
             if ((self.mon_frame_ok & pj_2_enabled) & (self.pj_2_bic_r != 0u8)) {
                 pj_2_bic_r_d = self.pj_2_bic_r.wrapping_sub(1u8);
@@ -5459,13 +5461,13 @@ impl HubCoreN3M2 {
             pj_2_bic_r_d = 0u8;
             pj_2_life_r_d = 0u8;
         }
+        self.pj_2_charged = pj_2_charged;
         if pj_2_bic_r_d != self.pj_2_bic_r_d { self.pj_2_bic_r_d = pj_2_bic_r_d; self.pend[1] |= 0x400; }
         if pj_2_life_r_d != self.pj_2_life_r_d { self.pj_2_life_r_d = pj_2_life_r_d; self.pend[1] |= 0x800; }
     }
 
-    /// `pj$2` block, depth 6, probe-only: pj$2.charged, pj$2.charge
+    /// `pj$2` block, depth 6, probe-only: pj$2.charge
     fn g97(&mut self) {
-        let mut pj_2_charged: bool = false;
         let mut pj_2_dom: bool = false;
         let mut pj_2_domw: bool = false;
         let mut pj_2_unj: bool = false;
@@ -5476,13 +5478,12 @@ impl HubCoreN3M2 {
         pj_2_domw = (pj_2_dom | self.pj_2_seen_dom);
         pj_2_unj = (pj_2_domw & (((!self.err_phase) & ((((((self.decode_tx_region & (!self.pj_2_cont_r)) | self.decode_crc_delim) | (self.decode_ack_delim & (!self.pj_2_ack_missing))) | self.decode_eof_1_6) | self.decode_im_2) | ((self.decode_ack_slot & self.pj_2_cont_r) & self.pj_2_ack_rule))) | self.delim_z));
         pj_2_charge = (((self.mon_sample & pj_2_unj) & pj_2_enabled) & (!self.pj_2_suppress));
-        pj_2_charged = (((self.mon_sample & pj_2_unj) & pj_2_enabled) & (!self.pj_2_suppress));
-        self.pj_2_charged = pj_2_charged;
         self.pj_2_charge = pj_2_charge;
     }
 
-    /// `sj$0` block, depth 6, input-dependent: sj$0.bic_r.d, sj$0.life_r.d
+    /// `sj$0` block, depth 6, input-dependent: sj$0.charged, sj$0.bic_r.d, sj$0.life_r.d
     fn g98(&mut self) {
+        let mut sj_0_charged: bool = false;
         let mut sj_0_bic_r_d: u8 = 0u8;
         let mut sj_0_life_r_d: u8 = 0u8;
         let mut sj_0_dom: bool = false;
@@ -5498,6 +5499,7 @@ impl HubCoreN3M2 {
         sj_0_domw = (sj_0_dom | self.sj_0_seen_dom);
         sj_0_unj = (sj_0_domw & (((!self.err_phase) & ((((((self.decode_tx_region & (!self.sj_0_cont_r)) | self.decode_crc_delim) | (self.decode_ack_delim & (!self.sj_0_ack_missing))) | self.decode_eof_1_6) | self.decode_im_2) | ((self.decode_ack_slot & self.sj_0_cont_r) & self.sj_0_ack_rule))) | self.delim_z));
         sj_0_charge = (((self.mon_sample & sj_0_unj) & sj_0_enabled) & (!self.sj_0_suppress));
+        sj_0_charged = (((self.mon_sample & sj_0_unj) & sj_0_enabled) & (!self.sj_0_suppress));
         if self.mon_sample {
             if ((self.mon_frame_ok & sj_0_enabled) & (self.sj_0_bic_r != 0u8)) {
                 sj_0_bic_r_d = self.sj_0_bic_r.wrapping_sub(1u8);
@@ -5528,13 +5530,13 @@ impl HubCoreN3M2 {
             sj_0_bic_r_d = 0u8;
             sj_0_life_r_d = 0u8;
         }
+        self.sj_0_charged = sj_0_charged;
         if sj_0_bic_r_d != self.sj_0_bic_r_d { self.sj_0_bic_r_d = sj_0_bic_r_d; self.pend[1] |= 0x400000000; }
         if sj_0_life_r_d != self.sj_0_life_r_d { self.sj_0_life_r_d = sj_0_life_r_d; self.pend[1] |= 0x800000000; }
     }
 
-    /// `sj$0` block, depth 6, probe-only: sj$0.charged, sj$0.charge
+    /// `sj$0` block, depth 6, probe-only: sj$0.charge
     fn g99(&mut self) {
-        let mut sj_0_charged: bool = false;
         let mut sj_0_dom: bool = false;
         let mut sj_0_domw: bool = false;
         let mut sj_0_unj: bool = false;
@@ -5545,13 +5547,12 @@ impl HubCoreN3M2 {
         sj_0_domw = (sj_0_dom | self.sj_0_seen_dom);
         sj_0_unj = (sj_0_domw & (((!self.err_phase) & ((((((self.decode_tx_region & (!self.sj_0_cont_r)) | self.decode_crc_delim) | (self.decode_ack_delim & (!self.sj_0_ack_missing))) | self.decode_eof_1_6) | self.decode_im_2) | ((self.decode_ack_slot & self.sj_0_cont_r) & self.sj_0_ack_rule))) | self.delim_z));
         sj_0_charge = (((self.mon_sample & sj_0_unj) & sj_0_enabled) & (!self.sj_0_suppress));
-        sj_0_charged = (((self.mon_sample & sj_0_unj) & sj_0_enabled) & (!self.sj_0_suppress));
-        self.sj_0_charged = sj_0_charged;
         self.sj_0_charge = sj_0_charge;
     }
 
-    /// `sj$1` block, depth 6, input-dependent: sj$1.bic_r.d, sj$1.life_r.d
+    /// `sj$1` block, depth 6, input-dependent: sj$1.charged, sj$1.bic_r.d, sj$1.life_r.d
     fn g100(&mut self) {
+        let mut sj_1_charged: bool = false;
         let mut sj_1_bic_r_d: u8 = 0u8;
         let mut sj_1_life_r_d: u8 = 0u8;
         let mut sj_1_dom: bool = false;
@@ -5567,6 +5568,7 @@ impl HubCoreN3M2 {
         sj_1_domw = (sj_1_dom | self.sj_1_seen_dom);
         sj_1_unj = (sj_1_domw & (((!self.err_phase) & ((((((self.decode_tx_region & (!self.sj_1_cont_r)) | self.decode_crc_delim) | (self.decode_ack_delim & (!self.sj_1_ack_missing))) | self.decode_eof_1_6) | self.decode_im_2) | ((self.decode_ack_slot & self.sj_1_cont_r) & self.sj_1_ack_rule))) | self.delim_z));
         sj_1_charge = (((self.mon_sample & sj_1_unj) & sj_1_enabled) & (!self.sj_1_suppress));
+        sj_1_charged = (((self.mon_sample & sj_1_unj) & sj_1_enabled) & (!self.sj_1_suppress));
         if self.mon_sample {
             if ((self.mon_frame_ok & sj_1_enabled) & (self.sj_1_bic_r != 0u8)) {
                 sj_1_bic_r_d = self.sj_1_bic_r.wrapping_sub(1u8);
@@ -5597,13 +5599,13 @@ impl HubCoreN3M2 {
             sj_1_bic_r_d = 0u8;
             sj_1_life_r_d = 0u8;
         }
+        self.sj_1_charged = sj_1_charged;
         if sj_1_bic_r_d != self.sj_1_bic_r_d { self.sj_1_bic_r_d = sj_1_bic_r_d; self.pend[1] |= 0x400000000000000; }
         if sj_1_life_r_d != self.sj_1_life_r_d { self.sj_1_life_r_d = sj_1_life_r_d; self.pend[1] |= 0x800000000000000; }
     }
 
-    /// `sj$1` block, depth 6, probe-only: sj$1.charged, sj$1.charge
+    /// `sj$1` block, depth 6, probe-only: sj$1.charge
     fn g101(&mut self) {
-        let mut sj_1_charged: bool = false;
         let mut sj_1_dom: bool = false;
         let mut sj_1_domw: bool = false;
         let mut sj_1_unj: bool = false;
@@ -5614,8 +5616,6 @@ impl HubCoreN3M2 {
         sj_1_domw = (sj_1_dom | self.sj_1_seen_dom);
         sj_1_unj = (sj_1_domw & (((!self.err_phase) & ((((((self.decode_tx_region & (!self.sj_1_cont_r)) | self.decode_crc_delim) | (self.decode_ack_delim & (!self.sj_1_ack_missing))) | self.decode_eof_1_6) | self.decode_im_2) | ((self.decode_ack_slot & self.sj_1_cont_r) & self.sj_1_ack_rule))) | self.delim_z));
         sj_1_charge = (((self.mon_sample & sj_1_unj) & sj_1_enabled) & (!self.sj_1_suppress));
-        sj_1_charged = (((self.mon_sample & sj_1_unj) & sj_1_enabled) & (!self.sj_1_suppress));
-        self.sj_1_charged = sj_1_charged;
         self.sj_1_charge = sj_1_charge;
     }
 
@@ -7001,6 +7001,7 @@ static INFO: rt::ModelInfo = rt::ModelInfo {
     atoms: &ATOMS,
     probe: &PROBE,
     rams: &[],
+    probe_only: &[79, 151, 152, 153, 154, 155, 156, 157, 158, 159, 160, 183, 184, 185, 186, 207, 218, 271, 342, 343, 344, 345, 346, 348, 358, 411, 482, 483, 484, 485, 486, 488, 498, 551, 622, 623, 624, 625, 626, 628, 638, 677, 691, 762, 763, 764, 765, 766, 768, 778, 817, 831, 902, 903, 904, 905, 906, 908, 918, 942, 943, 944, 946, 947, 948],
 };
 
 static ATOMS: [rt::AtomMeta; 949] = [

@@ -6854,8 +6854,9 @@ impl HubN3M0 {
         if monitor_fsm_crcb_state_d != self.monitor_fsm_crcb_state_d { self.monitor_fsm_crcb_state_d = monitor_fsm_crcb_state_d; self.pend[1] |= 0x20000000000000; }
     }
 
-    /// `core.pj$0` block, depth 6, state-only: core.pj$0.bic_r.d, core.pj$0.life_r.d
+    /// `core.pj$0` block, depth 6, state-only: core.pj$0.charged, core.pj$0.bic_r.d, core.pj$0.life_r.d
     fn g119(&mut self) {
+        let mut core_pj_0_charged: bool = false;
         let mut core_pj_0_bic_r_d: u8 = 0u8;
         let mut core_pj_0_life_r_d: u8 = 0u8;
         let mut core_pj_0_dom: bool = false;
@@ -6871,6 +6872,7 @@ impl HubN3M0 {
         core_pj_0_domw = (core_pj_0_dom | self.core_pj_0_seen_dom);
         core_pj_0_unj = (core_pj_0_domw & (((!self.core_err_phase) & ((((((self.core_decode_tx_region & (!self.core_pj_0_cont_r)) | self.core_decode_crc_delim) | (self.core_decode_ack_delim & (!self.core_pj_0_ack_missing))) | self.core_decode_eof_1_6) | self.core_decode_im_2) | ((self.core_decode_ack_slot & self.core_pj_0_cont_r) & self.core_pj_0_ack_rule))) | self.core_delim_z));
         core_pj_0_charge = (((self.adapter_s_r & core_pj_0_unj) & core_pj_0_enabled) & (!self.core_pj_0_suppress));
+        core_pj_0_charged = (((self.adapter_s_r & core_pj_0_unj) & core_pj_0_enabled) & (!self.core_pj_0_suppress));
         if self.adapter_s_r {
             if ((self.adapter_mon_frame_ok & core_pj_0_enabled) & (self.core_pj_0_bic_r != 0u8)) {
                 core_pj_0_bic_r_d = self.core_pj_0_bic_r.wrapping_sub(1u8);
@@ -6901,13 +6903,13 @@ impl HubN3M0 {
             core_pj_0_bic_r_d = 0u8;
             core_pj_0_life_r_d = 0u8;
         }
+        self.core_pj_0_charged = core_pj_0_charged;
         if core_pj_0_bic_r_d != self.core_pj_0_bic_r_d { self.core_pj_0_bic_r_d = core_pj_0_bic_r_d; self.pend[0] |= 0x100000; }
         if core_pj_0_life_r_d != self.core_pj_0_life_r_d { self.core_pj_0_life_r_d = core_pj_0_life_r_d; self.pend[0] |= 0x200000; }
     }
 
-    /// `core.pj$0` block, depth 6, probe-only: core.pj$0.charged, core.pj$0.charge
+    /// `core.pj$0` block, depth 6, probe-only: core.pj$0.charge
     fn g120(&mut self) {
-        let mut core_pj_0_charged: bool = false;
         let mut core_pj_0_dom: bool = false;
         let mut core_pj_0_domw: bool = false;
         let mut core_pj_0_unj: bool = false;
@@ -6918,13 +6920,12 @@ impl HubN3M0 {
         core_pj_0_domw = (core_pj_0_dom | self.core_pj_0_seen_dom);
         core_pj_0_unj = (core_pj_0_domw & (((!self.core_err_phase) & ((((((self.core_decode_tx_region & (!self.core_pj_0_cont_r)) | self.core_decode_crc_delim) | (self.core_decode_ack_delim & (!self.core_pj_0_ack_missing))) | self.core_decode_eof_1_6) | self.core_decode_im_2) | ((self.core_decode_ack_slot & self.core_pj_0_cont_r) & self.core_pj_0_ack_rule))) | self.core_delim_z));
         core_pj_0_charge = (((self.adapter_s_r & core_pj_0_unj) & core_pj_0_enabled) & (!self.core_pj_0_suppress));
-        core_pj_0_charged = (((self.adapter_s_r & core_pj_0_unj) & core_pj_0_enabled) & (!self.core_pj_0_suppress));
-        self.core_pj_0_charged = core_pj_0_charged;
         self.core_pj_0_charge = core_pj_0_charge;
     }
 
-    /// `core.pj$1` block, depth 6, state-only: core.pj$1.bic_r.d, core.pj$1.life_r.d
+    /// `core.pj$1` block, depth 6, state-only: core.pj$1.charged, core.pj$1.bic_r.d, core.pj$1.life_r.d
     fn g121(&mut self) {
+        let mut core_pj_1_charged: bool = false;
         let mut core_pj_1_bic_r_d: u8 = 0u8;
         let mut core_pj_1_life_r_d: u8 = 0u8;
         let mut core_pj_1_dom: bool = false;
@@ -6940,6 +6941,7 @@ impl HubN3M0 {
         core_pj_1_domw = (core_pj_1_dom | self.core_pj_1_seen_dom);
         core_pj_1_unj = (core_pj_1_domw & (((!self.core_err_phase) & ((((((self.core_decode_tx_region & (!self.core_pj_1_cont_r)) | self.core_decode_crc_delim) | (self.core_decode_ack_delim & (!self.core_pj_1_ack_missing))) | self.core_decode_eof_1_6) | self.core_decode_im_2) | ((self.core_decode_ack_slot & self.core_pj_1_cont_r) & self.core_pj_1_ack_rule))) | self.core_delim_z));
         core_pj_1_charge = (((self.adapter_s_r & core_pj_1_unj) & core_pj_1_enabled) & (!self.core_pj_1_suppress));
+        core_pj_1_charged = (((self.adapter_s_r & core_pj_1_unj) & core_pj_1_enabled) & (!self.core_pj_1_suppress));
         if self.adapter_s_r {
             if ((self.adapter_mon_frame_ok & core_pj_1_enabled) & (self.core_pj_1_bic_r != 0u8)) {
                 core_pj_1_bic_r_d = self.core_pj_1_bic_r.wrapping_sub(1u8);
@@ -6970,13 +6972,13 @@ impl HubN3M0 {
             core_pj_1_bic_r_d = 0u8;
             core_pj_1_life_r_d = 0u8;
         }
+        self.core_pj_1_charged = core_pj_1_charged;
         if core_pj_1_bic_r_d != self.core_pj_1_bic_r_d { self.core_pj_1_bic_r_d = core_pj_1_bic_r_d; self.pend[0] |= 0x100000000000; }
         if core_pj_1_life_r_d != self.core_pj_1_life_r_d { self.core_pj_1_life_r_d = core_pj_1_life_r_d; self.pend[0] |= 0x200000000000; }
     }
 
-    /// `core.pj$1` block, depth 6, probe-only: core.pj$1.charged, core.pj$1.charge
+    /// `core.pj$1` block, depth 6, probe-only: core.pj$1.charge
     fn g122(&mut self) {
-        let mut core_pj_1_charged: bool = false;
         let mut core_pj_1_dom: bool = false;
         let mut core_pj_1_domw: bool = false;
         let mut core_pj_1_unj: bool = false;
@@ -6987,13 +6989,12 @@ impl HubN3M0 {
         core_pj_1_domw = (core_pj_1_dom | self.core_pj_1_seen_dom);
         core_pj_1_unj = (core_pj_1_domw & (((!self.core_err_phase) & ((((((self.core_decode_tx_region & (!self.core_pj_1_cont_r)) | self.core_decode_crc_delim) | (self.core_decode_ack_delim & (!self.core_pj_1_ack_missing))) | self.core_decode_eof_1_6) | self.core_decode_im_2) | ((self.core_decode_ack_slot & self.core_pj_1_cont_r) & self.core_pj_1_ack_rule))) | self.core_delim_z));
         core_pj_1_charge = (((self.adapter_s_r & core_pj_1_unj) & core_pj_1_enabled) & (!self.core_pj_1_suppress));
-        core_pj_1_charged = (((self.adapter_s_r & core_pj_1_unj) & core_pj_1_enabled) & (!self.core_pj_1_suppress));
-        self.core_pj_1_charged = core_pj_1_charged;
         self.core_pj_1_charge = core_pj_1_charge;
     }
 
-    /// `core.pj$2` block, depth 6, state-only: core.pj$2.bic_r.d, core.pj$2.life_r.d
+    /// `core.pj$2` block, depth 6, state-only: core.pj$2.charged, core.pj$2.bic_r.d, core.pj$2.life_r.d
     fn g123(&mut self) {
+        let mut core_pj_2_charged: bool = false;
         let mut core_pj_2_bic_r_d: u8 = 0u8;
         let mut core_pj_2_life_r_d: u8 = 0u8;
         let mut core_pj_2_dom: bool = false;
@@ -7009,6 +7010,7 @@ impl HubN3M0 {
         core_pj_2_domw = (core_pj_2_dom | self.core_pj_2_seen_dom);
         core_pj_2_unj = (core_pj_2_domw & (((!self.core_err_phase) & ((((((self.core_decode_tx_region & (!self.core_pj_2_cont_r)) | self.core_decode_crc_delim) | (self.core_decode_ack_delim & (!self.core_pj_2_ack_missing))) | self.core_decode_eof_1_6) | self.core_decode_im_2) | ((self.core_decode_ack_slot & self.core_pj_2_cont_r) & self.core_pj_2_ack_rule))) | self.core_delim_z));
         core_pj_2_charge = (((self.adapter_s_r & core_pj_2_unj) & core_pj_2_enabled) & (!self.core_pj_2_suppress));
+        core_pj_2_charged = (((self.adapter_s_r & core_pj_2_unj) & core_pj_2_enabled) & (!self.core_pj_2_suppress));
         if self.adapter_s_r {
             if ((self.adapter_mon_frame_ok & core_pj_2_enabled) & (self.core_pj_2_bic_r != 0u8)) {
                 core_pj_2_bic_r_d = self.core_pj_2_bic_r.wrapping_sub(1u8);
@@ -7039,13 +7041,13 @@ impl HubN3M0 {
             core_pj_2_bic_r_d = 0u8;
             core_pj_2_life_r_d = 0u8;
         }
+        self.core_pj_2_charged = core_pj_2_charged;
         if core_pj_2_bic_r_d != self.core_pj_2_bic_r_d { self.core_pj_2_bic_r_d = core_pj_2_bic_r_d; self.pend[1] |= 0x10; }
         if core_pj_2_life_r_d != self.core_pj_2_life_r_d { self.core_pj_2_life_r_d = core_pj_2_life_r_d; self.pend[1] |= 0x20; }
     }
 
-    /// `core.pj$2` block, depth 6, probe-only: core.pj$2.charged, core.pj$2.charge
+    /// `core.pj$2` block, depth 6, probe-only: core.pj$2.charge
     fn g124(&mut self) {
-        let mut core_pj_2_charged: bool = false;
         let mut core_pj_2_dom: bool = false;
         let mut core_pj_2_domw: bool = false;
         let mut core_pj_2_unj: bool = false;
@@ -7056,8 +7058,6 @@ impl HubN3M0 {
         core_pj_2_domw = (core_pj_2_dom | self.core_pj_2_seen_dom);
         core_pj_2_unj = (core_pj_2_domw & (((!self.core_err_phase) & ((((((self.core_decode_tx_region & (!self.core_pj_2_cont_r)) | self.core_decode_crc_delim) | (self.core_decode_ack_delim & (!self.core_pj_2_ack_missing))) | self.core_decode_eof_1_6) | self.core_decode_im_2) | ((self.core_decode_ack_slot & self.core_pj_2_cont_r) & self.core_pj_2_ack_rule))) | self.core_delim_z));
         core_pj_2_charge = (((self.adapter_s_r & core_pj_2_unj) & core_pj_2_enabled) & (!self.core_pj_2_suppress));
-        core_pj_2_charged = (((self.adapter_s_r & core_pj_2_unj) & core_pj_2_enabled) & (!self.core_pj_2_suppress));
-        self.core_pj_2_charged = core_pj_2_charged;
         self.core_pj_2_charge = core_pj_2_charge;
     }
 
@@ -9501,6 +9501,7 @@ static INFO: rt::ModelInfo = rt::ModelInfo {
     atoms: &ATOMS,
     probe: &PROBE,
     rams: &[],
+    probe_only: &[84, 128, 129, 130, 131, 132, 133, 134, 182, 193, 246, 317, 318, 319, 320, 321, 323, 333, 386, 457, 458, 459, 460, 461, 463, 473, 526, 597, 598, 599, 600, 601, 603, 613, 635, 636, 637, 665, 666, 667, 669, 670, 674, 682, 683, 717, 720, 721, 788, 789, 790, 791, 792, 793, 794, 795, 796, 797, 798, 799, 800, 801, 802, 803, 804, 805, 806, 807, 808, 809, 810, 811, 812, 834, 835, 837, 838, 842, 850, 851, 864, 867, 875, 876, 888, 889, 890, 900, 910, 911, 979, 981, 982, 983, 984, 985, 986, 987, 1025, 1026, 1027, 1038, 1039, 1040, 1041, 1059, 1060, 1061, 1083, 1084, 1085, 1086, 1087, 1088, 1089, 1090, 1091, 1092, 1098, 1100, 1101, 1102, 1110, 1111, 1131, 1176, 1177, 1178, 1228, 1229, 1230, 1231, 1232, 1233, 1234, 1263, 1264, 1266, 1267, 1271, 1307, 1341],
 };
 
 static ATOMS: [rt::AtomMeta; 1346] = [

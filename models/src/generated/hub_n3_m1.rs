@@ -7842,8 +7842,9 @@ impl HubN3M1 {
         if monitor_fsm_crcb_state_d != self.monitor_fsm_crcb_state_d { self.monitor_fsm_crcb_state_d = monitor_fsm_crcb_state_d; self.pend[2] |= 0x10000; }
     }
 
-    /// `core.pj$0` block, depth 6, state-only: core.pj$0.bic_r.d, core.pj$0.life_r.d
+    /// `core.pj$0` block, depth 6, state-only: core.pj$0.charged, core.pj$0.bic_r.d, core.pj$0.life_r.d
     fn g135(&mut self) {
+        let mut core_pj_0_charged: bool = false;
         let mut core_pj_0_bic_r_d: u8 = 0u8;
         let mut core_pj_0_life_r_d: u8 = 0u8;
         let mut core_pj_0_dom: bool = false;
@@ -7859,6 +7860,7 @@ impl HubN3M1 {
         core_pj_0_domw = (core_pj_0_dom | self.core_pj_0_seen_dom);
         core_pj_0_unj = (core_pj_0_domw & (((!self.core_err_phase) & ((((((self.core_decode_tx_region & (!self.core_pj_0_cont_r)) | self.core_decode_crc_delim) | (self.core_decode_ack_delim & (!self.core_pj_0_ack_missing))) | self.core_decode_eof_1_6) | self.core_decode_im_2) | ((self.core_decode_ack_slot & self.core_pj_0_cont_r) & self.core_pj_0_ack_rule))) | self.core_delim_z));
         core_pj_0_charge = (((self.adapter_s_r & core_pj_0_unj) & core_pj_0_enabled) & (!self.core_pj_0_suppress));
+        core_pj_0_charged = (((self.adapter_s_r & core_pj_0_unj) & core_pj_0_enabled) & (!self.core_pj_0_suppress));
         if self.adapter_s_r {
             if ((self.adapter_mon_frame_ok & core_pj_0_enabled) & (self.core_pj_0_bic_r != 0u8)) {
                 core_pj_0_bic_r_d = self.core_pj_0_bic_r.wrapping_sub(1u8);
@@ -7889,13 +7891,13 @@ impl HubN3M1 {
             core_pj_0_bic_r_d = 0u8;
             core_pj_0_life_r_d = 0u8;
         }
+        self.core_pj_0_charged = core_pj_0_charged;
         if core_pj_0_bic_r_d != self.core_pj_0_bic_r_d { self.core_pj_0_bic_r_d = core_pj_0_bic_r_d; self.pend[0] |= 0x800000; }
         if core_pj_0_life_r_d != self.core_pj_0_life_r_d { self.core_pj_0_life_r_d = core_pj_0_life_r_d; self.pend[0] |= 0x1000000; }
     }
 
-    /// `core.pj$0` block, depth 6, probe-only: core.pj$0.charged, core.pj$0.charge
+    /// `core.pj$0` block, depth 6, probe-only: core.pj$0.charge
     fn g136(&mut self) {
-        let mut core_pj_0_charged: bool = false;
         let mut core_pj_0_dom: bool = false;
         let mut core_pj_0_domw: bool = false;
         let mut core_pj_0_unj: bool = false;
@@ -7906,13 +7908,12 @@ impl HubN3M1 {
         core_pj_0_domw = (core_pj_0_dom | self.core_pj_0_seen_dom);
         core_pj_0_unj = (core_pj_0_domw & (((!self.core_err_phase) & ((((((self.core_decode_tx_region & (!self.core_pj_0_cont_r)) | self.core_decode_crc_delim) | (self.core_decode_ack_delim & (!self.core_pj_0_ack_missing))) | self.core_decode_eof_1_6) | self.core_decode_im_2) | ((self.core_decode_ack_slot & self.core_pj_0_cont_r) & self.core_pj_0_ack_rule))) | self.core_delim_z));
         core_pj_0_charge = (((self.adapter_s_r & core_pj_0_unj) & core_pj_0_enabled) & (!self.core_pj_0_suppress));
-        core_pj_0_charged = (((self.adapter_s_r & core_pj_0_unj) & core_pj_0_enabled) & (!self.core_pj_0_suppress));
-        self.core_pj_0_charged = core_pj_0_charged;
         self.core_pj_0_charge = core_pj_0_charge;
     }
 
-    /// `core.pj$1` block, depth 6, state-only: core.pj$1.bic_r.d, core.pj$1.life_r.d
+    /// `core.pj$1` block, depth 6, state-only: core.pj$1.charged, core.pj$1.bic_r.d, core.pj$1.life_r.d
     fn g137(&mut self) {
+        let mut core_pj_1_charged: bool = false;
         let mut core_pj_1_bic_r_d: u8 = 0u8;
         let mut core_pj_1_life_r_d: u8 = 0u8;
         let mut core_pj_1_dom: bool = false;
@@ -7928,6 +7929,7 @@ impl HubN3M1 {
         core_pj_1_domw = (core_pj_1_dom | self.core_pj_1_seen_dom);
         core_pj_1_unj = (core_pj_1_domw & (((!self.core_err_phase) & ((((((self.core_decode_tx_region & (!self.core_pj_1_cont_r)) | self.core_decode_crc_delim) | (self.core_decode_ack_delim & (!self.core_pj_1_ack_missing))) | self.core_decode_eof_1_6) | self.core_decode_im_2) | ((self.core_decode_ack_slot & self.core_pj_1_cont_r) & self.core_pj_1_ack_rule))) | self.core_delim_z));
         core_pj_1_charge = (((self.adapter_s_r & core_pj_1_unj) & core_pj_1_enabled) & (!self.core_pj_1_suppress));
+        core_pj_1_charged = (((self.adapter_s_r & core_pj_1_unj) & core_pj_1_enabled) & (!self.core_pj_1_suppress));
         if self.adapter_s_r {
             if ((self.adapter_mon_frame_ok & core_pj_1_enabled) & (self.core_pj_1_bic_r != 0u8)) {
                 core_pj_1_bic_r_d = self.core_pj_1_bic_r.wrapping_sub(1u8);
@@ -7958,13 +7960,13 @@ impl HubN3M1 {
             core_pj_1_bic_r_d = 0u8;
             core_pj_1_life_r_d = 0u8;
         }
+        self.core_pj_1_charged = core_pj_1_charged;
         if core_pj_1_bic_r_d != self.core_pj_1_bic_r_d { self.core_pj_1_bic_r_d = core_pj_1_bic_r_d; self.pend[0] |= 0x800000000000; }
         if core_pj_1_life_r_d != self.core_pj_1_life_r_d { self.core_pj_1_life_r_d = core_pj_1_life_r_d; self.pend[0] |= 0x1000000000000; }
     }
 
-    /// `core.pj$1` block, depth 6, probe-only: core.pj$1.charged, core.pj$1.charge
+    /// `core.pj$1` block, depth 6, probe-only: core.pj$1.charge
     fn g138(&mut self) {
-        let mut core_pj_1_charged: bool = false;
         let mut core_pj_1_dom: bool = false;
         let mut core_pj_1_domw: bool = false;
         let mut core_pj_1_unj: bool = false;
@@ -7975,13 +7977,12 @@ impl HubN3M1 {
         core_pj_1_domw = (core_pj_1_dom | self.core_pj_1_seen_dom);
         core_pj_1_unj = (core_pj_1_domw & (((!self.core_err_phase) & ((((((self.core_decode_tx_region & (!self.core_pj_1_cont_r)) | self.core_decode_crc_delim) | (self.core_decode_ack_delim & (!self.core_pj_1_ack_missing))) | self.core_decode_eof_1_6) | self.core_decode_im_2) | ((self.core_decode_ack_slot & self.core_pj_1_cont_r) & self.core_pj_1_ack_rule))) | self.core_delim_z));
         core_pj_1_charge = (((self.adapter_s_r & core_pj_1_unj) & core_pj_1_enabled) & (!self.core_pj_1_suppress));
-        core_pj_1_charged = (((self.adapter_s_r & core_pj_1_unj) & core_pj_1_enabled) & (!self.core_pj_1_suppress));
-        self.core_pj_1_charged = core_pj_1_charged;
         self.core_pj_1_charge = core_pj_1_charge;
     }
 
-    /// `core.pj$2` block, depth 6, state-only: core.pj$2.bic_r.d, core.pj$2.life_r.d
+    /// `core.pj$2` block, depth 6, state-only: core.pj$2.charged, core.pj$2.bic_r.d, core.pj$2.life_r.d
     fn g139(&mut self) {
+        let mut core_pj_2_charged: bool = false;
         let mut core_pj_2_bic_r_d: u8 = 0u8;
         let mut core_pj_2_life_r_d: u8 = 0u8;
         let mut core_pj_2_dom: bool = false;
@@ -7997,6 +7998,7 @@ impl HubN3M1 {
         core_pj_2_domw = (core_pj_2_dom | self.core_pj_2_seen_dom);
         core_pj_2_unj = (core_pj_2_domw & (((!self.core_err_phase) & ((((((self.core_decode_tx_region & (!self.core_pj_2_cont_r)) | self.core_decode_crc_delim) | (self.core_decode_ack_delim & (!self.core_pj_2_ack_missing))) | self.core_decode_eof_1_6) | self.core_decode_im_2) | ((self.core_decode_ack_slot & self.core_pj_2_cont_r) & self.core_pj_2_ack_rule))) | self.core_delim_z));
         core_pj_2_charge = (((self.adapter_s_r & core_pj_2_unj) & core_pj_2_enabled) & (!self.core_pj_2_suppress));
+        core_pj_2_charged = (((self.adapter_s_r & core_pj_2_unj) & core_pj_2_enabled) & (!self.core_pj_2_suppress));
         if self.adapter_s_r {
             if ((self.adapter_mon_frame_ok & core_pj_2_enabled) & (self.core_pj_2_bic_r != 0u8)) {
                 core_pj_2_bic_r_d = self.core_pj_2_bic_r.wrapping_sub(1u8);
@@ -8027,13 +8029,13 @@ impl HubN3M1 {
             core_pj_2_bic_r_d = 0u8;
             core_pj_2_life_r_d = 0u8;
         }
+        self.core_pj_2_charged = core_pj_2_charged;
         if core_pj_2_bic_r_d != self.core_pj_2_bic_r_d { self.core_pj_2_bic_r_d = core_pj_2_bic_r_d; self.pend[1] |= 0x80; }
         if core_pj_2_life_r_d != self.core_pj_2_life_r_d { self.core_pj_2_life_r_d = core_pj_2_life_r_d; self.pend[1] |= 0x100; }
     }
 
-    /// `core.pj$2` block, depth 6, probe-only: core.pj$2.charged, core.pj$2.charge
+    /// `core.pj$2` block, depth 6, probe-only: core.pj$2.charge
     fn g140(&mut self) {
-        let mut core_pj_2_charged: bool = false;
         let mut core_pj_2_dom: bool = false;
         let mut core_pj_2_domw: bool = false;
         let mut core_pj_2_unj: bool = false;
@@ -8044,13 +8046,12 @@ impl HubN3M1 {
         core_pj_2_domw = (core_pj_2_dom | self.core_pj_2_seen_dom);
         core_pj_2_unj = (core_pj_2_domw & (((!self.core_err_phase) & ((((((self.core_decode_tx_region & (!self.core_pj_2_cont_r)) | self.core_decode_crc_delim) | (self.core_decode_ack_delim & (!self.core_pj_2_ack_missing))) | self.core_decode_eof_1_6) | self.core_decode_im_2) | ((self.core_decode_ack_slot & self.core_pj_2_cont_r) & self.core_pj_2_ack_rule))) | self.core_delim_z));
         core_pj_2_charge = (((self.adapter_s_r & core_pj_2_unj) & core_pj_2_enabled) & (!self.core_pj_2_suppress));
-        core_pj_2_charged = (((self.adapter_s_r & core_pj_2_unj) & core_pj_2_enabled) & (!self.core_pj_2_suppress));
-        self.core_pj_2_charged = core_pj_2_charged;
         self.core_pj_2_charge = core_pj_2_charge;
     }
 
-    /// `core.sj$0` block, depth 6, state-only: core.sj$0.bic_r.d, core.sj$0.life_r.d
+    /// `core.sj$0` block, depth 6, state-only: core.sj$0.charged, core.sj$0.bic_r.d, core.sj$0.life_r.d
     fn g141(&mut self) {
+        let mut core_sj_0_charged: bool = false;
         let mut core_sj_0_bic_r_d: u8 = 0u8;
         let mut core_sj_0_life_r_d: u8 = 0u8;
         let mut core_sj_0_dom: bool = false;
@@ -8066,6 +8067,7 @@ impl HubN3M1 {
         core_sj_0_domw = (core_sj_0_dom | self.core_sj_0_seen_dom);
         core_sj_0_unj = (core_sj_0_domw & (((!self.core_err_phase) & ((((((self.core_decode_tx_region & (!self.core_sj_0_cont_r)) | self.core_decode_crc_delim) | (self.core_decode_ack_delim & (!self.core_sj_0_ack_missing))) | self.core_decode_eof_1_6) | self.core_decode_im_2) | ((self.core_decode_ack_slot & self.core_sj_0_cont_r) & self.core_sj_0_ack_rule))) | self.core_delim_z));
         core_sj_0_charge = (((self.adapter_s_r & core_sj_0_unj) & core_sj_0_enabled) & (!self.core_sj_0_suppress));
+        core_sj_0_charged = (((self.adapter_s_r & core_sj_0_unj) & core_sj_0_enabled) & (!self.core_sj_0_suppress));
         if self.adapter_s_r {
             if ((self.adapter_mon_frame_ok & core_sj_0_enabled) & (self.core_sj_0_bic_r != 0u8)) {
                 core_sj_0_bic_r_d = self.core_sj_0_bic_r.wrapping_sub(1u8);
@@ -8096,13 +8098,13 @@ impl HubN3M1 {
             core_sj_0_bic_r_d = 0u8;
             core_sj_0_life_r_d = 0u8;
         }
+        self.core_sj_0_charged = core_sj_0_charged;
         if core_sj_0_bic_r_d != self.core_sj_0_bic_r_d { self.core_sj_0_bic_r_d = core_sj_0_bic_r_d; self.pend[1] |= 0x80000000; }
         if core_sj_0_life_r_d != self.core_sj_0_life_r_d { self.core_sj_0_life_r_d = core_sj_0_life_r_d; self.pend[1] |= 0x100000000; }
     }
 
-    /// `core.sj$0` block, depth 6, probe-only: core.sj$0.charged, core.sj$0.charge
+    /// `core.sj$0` block, depth 6, probe-only: core.sj$0.charge
     fn g142(&mut self) {
-        let mut core_sj_0_charged: bool = false;
         let mut core_sj_0_dom: bool = false;
         let mut core_sj_0_domw: bool = false;
         let mut core_sj_0_unj: bool = false;
@@ -8113,8 +8115,6 @@ impl HubN3M1 {
         core_sj_0_domw = (core_sj_0_dom | self.core_sj_0_seen_dom);
         core_sj_0_unj = (core_sj_0_domw & (((!self.core_err_phase) & ((((((self.core_decode_tx_region & (!self.core_sj_0_cont_r)) | self.core_decode_crc_delim) | (self.core_decode_ack_delim & (!self.core_sj_0_ack_missing))) | self.core_decode_eof_1_6) | self.core_decode_im_2) | ((self.core_decode_ack_slot & self.core_sj_0_cont_r) & self.core_sj_0_ack_rule))) | self.core_delim_z));
         core_sj_0_charge = (((self.adapter_s_r & core_sj_0_unj) & core_sj_0_enabled) & (!self.core_sj_0_suppress));
-        core_sj_0_charged = (((self.adapter_s_r & core_sj_0_unj) & core_sj_0_enabled) & (!self.core_sj_0_suppress));
-        self.core_sj_0_charged = core_sj_0_charged;
         self.core_sj_0_charge = core_sj_0_charge;
     }
 
@@ -10789,6 +10789,7 @@ static INFO: rt::ModelInfo = rt::ModelInfo {
     atoms: &ATOMS,
     probe: &PROBE,
     rams: &[],
+    probe_only: &[101, 159, 160, 161, 162, 163, 164, 165, 166, 167, 190, 191, 192, 193, 214, 225, 278, 349, 350, 351, 352, 353, 355, 365, 418, 489, 490, 491, 492, 493, 495, 505, 558, 629, 630, 631, 632, 633, 635, 645, 684, 698, 769, 770, 771, 772, 773, 775, 785, 808, 809, 810, 812, 813, 814, 838, 839, 840, 842, 843, 847, 855, 856, 890, 893, 894, 961, 962, 963, 964, 965, 966, 967, 968, 969, 970, 971, 972, 973, 974, 975, 976, 977, 978, 979, 980, 981, 982, 983, 984, 985, 1007, 1008, 1010, 1011, 1015, 1023, 1024, 1037, 1040, 1048, 1049, 1061, 1062, 1063, 1073, 1083, 1084, 1152, 1154, 1155, 1156, 1157, 1158, 1159, 1160, 1198, 1199, 1200, 1211, 1212, 1213, 1214, 1232, 1233, 1234, 1256, 1257, 1258, 1259, 1260, 1261, 1262, 1263, 1264, 1265, 1271, 1273, 1274, 1275, 1283, 1284, 1304, 1349, 1350, 1351, 1401, 1402, 1403, 1404, 1405, 1406, 1407, 1436, 1437, 1439, 1440, 1444, 1480, 1514],
 };
 
 static ATOMS: [rt::AtomMeta; 1519] = [

@@ -8743,8 +8743,9 @@ impl HubN3M2 {
         if monitor_fsm_crcb_state_d != self.monitor_fsm_crcb_state_d { self.monitor_fsm_crcb_state_d = monitor_fsm_crcb_state_d; self.pend[2] |= 0x80000000000; }
     }
 
-    /// `core.pj$0` block, depth 6, state-only: core.pj$0.bic_r.d, core.pj$0.life_r.d
+    /// `core.pj$0` block, depth 6, state-only: core.pj$0.charged, core.pj$0.bic_r.d, core.pj$0.life_r.d
     fn g147(&mut self) {
+        let mut core_pj_0_charged: bool = false;
         let mut core_pj_0_bic_r_d: u8 = 0u8;
         let mut core_pj_0_life_r_d: u8 = 0u8;
         let mut core_pj_0_dom: bool = false;
@@ -8760,6 +8761,7 @@ impl HubN3M2 {
         core_pj_0_domw = (core_pj_0_dom | self.core_pj_0_seen_dom);
         core_pj_0_unj = (core_pj_0_domw & (((!self.core_err_phase) & ((((((self.core_decode_tx_region & (!self.core_pj_0_cont_r)) | self.core_decode_crc_delim) | (self.core_decode_ack_delim & (!self.core_pj_0_ack_missing))) | self.core_decode_eof_1_6) | self.core_decode_im_2) | ((self.core_decode_ack_slot & self.core_pj_0_cont_r) & self.core_pj_0_ack_rule))) | self.core_delim_z));
         core_pj_0_charge = (((self.adapter_s_r & core_pj_0_unj) & core_pj_0_enabled) & (!self.core_pj_0_suppress));
+        core_pj_0_charged = (((self.adapter_s_r & core_pj_0_unj) & core_pj_0_enabled) & (!self.core_pj_0_suppress));
         if self.adapter_s_r {
             if ((self.adapter_mon_frame_ok & core_pj_0_enabled) & (self.core_pj_0_bic_r != 0u8)) {
                 core_pj_0_bic_r_d = self.core_pj_0_bic_r.wrapping_sub(1u8);
@@ -8790,13 +8792,13 @@ impl HubN3M2 {
             core_pj_0_bic_r_d = 0u8;
             core_pj_0_life_r_d = 0u8;
         }
+        self.core_pj_0_charged = core_pj_0_charged;
         if core_pj_0_bic_r_d != self.core_pj_0_bic_r_d { self.core_pj_0_bic_r_d = core_pj_0_bic_r_d; self.pend[0] |= 0x4000000; }
         if core_pj_0_life_r_d != self.core_pj_0_life_r_d { self.core_pj_0_life_r_d = core_pj_0_life_r_d; self.pend[0] |= 0x8000000; }
     }
 
-    /// `core.pj$0` block, depth 6, probe-only: core.pj$0.charged, core.pj$0.charge
+    /// `core.pj$0` block, depth 6, probe-only: core.pj$0.charge
     fn g148(&mut self) {
-        let mut core_pj_0_charged: bool = false;
         let mut core_pj_0_dom: bool = false;
         let mut core_pj_0_domw: bool = false;
         let mut core_pj_0_unj: bool = false;
@@ -8807,13 +8809,12 @@ impl HubN3M2 {
         core_pj_0_domw = (core_pj_0_dom | self.core_pj_0_seen_dom);
         core_pj_0_unj = (core_pj_0_domw & (((!self.core_err_phase) & ((((((self.core_decode_tx_region & (!self.core_pj_0_cont_r)) | self.core_decode_crc_delim) | (self.core_decode_ack_delim & (!self.core_pj_0_ack_missing))) | self.core_decode_eof_1_6) | self.core_decode_im_2) | ((self.core_decode_ack_slot & self.core_pj_0_cont_r) & self.core_pj_0_ack_rule))) | self.core_delim_z));
         core_pj_0_charge = (((self.adapter_s_r & core_pj_0_unj) & core_pj_0_enabled) & (!self.core_pj_0_suppress));
-        core_pj_0_charged = (((self.adapter_s_r & core_pj_0_unj) & core_pj_0_enabled) & (!self.core_pj_0_suppress));
-        self.core_pj_0_charged = core_pj_0_charged;
         self.core_pj_0_charge = core_pj_0_charge;
     }
 
-    /// `core.pj$1` block, depth 6, state-only: core.pj$1.bic_r.d, core.pj$1.life_r.d
+    /// `core.pj$1` block, depth 6, state-only: core.pj$1.charged, core.pj$1.bic_r.d, core.pj$1.life_r.d
     fn g149(&mut self) {
+        let mut core_pj_1_charged: bool = false;
         let mut core_pj_1_bic_r_d: u8 = 0u8;
         let mut core_pj_1_life_r_d: u8 = 0u8;
         let mut core_pj_1_dom: bool = false;
@@ -8829,6 +8830,7 @@ impl HubN3M2 {
         core_pj_1_domw = (core_pj_1_dom | self.core_pj_1_seen_dom);
         core_pj_1_unj = (core_pj_1_domw & (((!self.core_err_phase) & ((((((self.core_decode_tx_region & (!self.core_pj_1_cont_r)) | self.core_decode_crc_delim) | (self.core_decode_ack_delim & (!self.core_pj_1_ack_missing))) | self.core_decode_eof_1_6) | self.core_decode_im_2) | ((self.core_decode_ack_slot & self.core_pj_1_cont_r) & self.core_pj_1_ack_rule))) | self.core_delim_z));
         core_pj_1_charge = (((self.adapter_s_r & core_pj_1_unj) & core_pj_1_enabled) & (!self.core_pj_1_suppress));
+        core_pj_1_charged = (((self.adapter_s_r & core_pj_1_unj) & core_pj_1_enabled) & (!self.core_pj_1_suppress));
         if self.adapter_s_r {
             if ((self.adapter_mon_frame_ok & core_pj_1_enabled) & (self.core_pj_1_bic_r != 0u8)) {
                 core_pj_1_bic_r_d = self.core_pj_1_bic_r.wrapping_sub(1u8);
@@ -8859,13 +8861,13 @@ impl HubN3M2 {
             core_pj_1_bic_r_d = 0u8;
             core_pj_1_life_r_d = 0u8;
         }
+        self.core_pj_1_charged = core_pj_1_charged;
         if core_pj_1_bic_r_d != self.core_pj_1_bic_r_d { self.core_pj_1_bic_r_d = core_pj_1_bic_r_d; self.pend[0] |= 0x4000000000000; }
         if core_pj_1_life_r_d != self.core_pj_1_life_r_d { self.core_pj_1_life_r_d = core_pj_1_life_r_d; self.pend[0] |= 0x8000000000000; }
     }
 
-    /// `core.pj$1` block, depth 6, probe-only: core.pj$1.charged, core.pj$1.charge
+    /// `core.pj$1` block, depth 6, probe-only: core.pj$1.charge
     fn g150(&mut self) {
-        let mut core_pj_1_charged: bool = false;
         let mut core_pj_1_dom: bool = false;
         let mut core_pj_1_domw: bool = false;
         let mut core_pj_1_unj: bool = false;
@@ -8876,13 +8878,12 @@ impl HubN3M2 {
         core_pj_1_domw = (core_pj_1_dom | self.core_pj_1_seen_dom);
         core_pj_1_unj = (core_pj_1_domw & (((!self.core_err_phase) & ((((((self.core_decode_tx_region & (!self.core_pj_1_cont_r)) | self.core_decode_crc_delim) | (self.core_decode_ack_delim & (!self.core_pj_1_ack_missing))) | self.core_decode_eof_1_6) | self.core_decode_im_2) | ((self.core_decode_ack_slot & self.core_pj_1_cont_r) & self.core_pj_1_ack_rule))) | self.core_delim_z));
         core_pj_1_charge = (((self.adapter_s_r & core_pj_1_unj) & core_pj_1_enabled) & (!self.core_pj_1_suppress));
-        core_pj_1_charged = (((self.adapter_s_r & core_pj_1_unj) & core_pj_1_enabled) & (!self.core_pj_1_suppress));
-        self.core_pj_1_charged = core_pj_1_charged;
         self.core_pj_1_charge = core_pj_1_charge;
     }
 
-    /// `core.pj$2` block, depth 6, state-only: core.pj$2.bic_r.d, core.pj$2.life_r.d
+    /// `core.pj$2` block, depth 6, state-only: core.pj$2.charged, core.pj$2.bic_r.d, core.pj$2.life_r.d
     fn g151(&mut self) {
+        let mut core_pj_2_charged: bool = false;
         let mut core_pj_2_bic_r_d: u8 = 0u8;
         let mut core_pj_2_life_r_d: u8 = 0u8;
         let mut core_pj_2_dom: bool = false;
@@ -8898,6 +8899,7 @@ impl HubN3M2 {
         core_pj_2_domw = (core_pj_2_dom | self.core_pj_2_seen_dom);
         core_pj_2_unj = (core_pj_2_domw & (((!self.core_err_phase) & ((((((self.core_decode_tx_region & (!self.core_pj_2_cont_r)) | self.core_decode_crc_delim) | (self.core_decode_ack_delim & (!self.core_pj_2_ack_missing))) | self.core_decode_eof_1_6) | self.core_decode_im_2) | ((self.core_decode_ack_slot & self.core_pj_2_cont_r) & self.core_pj_2_ack_rule))) | self.core_delim_z));
         core_pj_2_charge = (((self.adapter_s_r & core_pj_2_unj) & core_pj_2_enabled) & (!self.core_pj_2_suppress));
+        core_pj_2_charged = (((self.adapter_s_r & core_pj_2_unj) & core_pj_2_enabled) & (!self.core_pj_2_suppress));
         if self.adapter_s_r {
             if ((self.adapter_mon_frame_ok & core_pj_2_enabled) & (self.core_pj_2_bic_r != 0u8)) {
                 core_pj_2_bic_r_d = self.core_pj_2_bic_r.wrapping_sub(1u8);
@@ -8928,13 +8930,13 @@ impl HubN3M2 {
             core_pj_2_bic_r_d = 0u8;
             core_pj_2_life_r_d = 0u8;
         }
+        self.core_pj_2_charged = core_pj_2_charged;
         if core_pj_2_bic_r_d != self.core_pj_2_bic_r_d { self.core_pj_2_bic_r_d = core_pj_2_bic_r_d; self.pend[1] |= 0x400; }
         if core_pj_2_life_r_d != self.core_pj_2_life_r_d { self.core_pj_2_life_r_d = core_pj_2_life_r_d; self.pend[1] |= 0x800; }
     }
 
-    /// `core.pj$2` block, depth 6, probe-only: core.pj$2.charged, core.pj$2.charge
+    /// `core.pj$2` block, depth 6, probe-only: core.pj$2.charge
     fn g152(&mut self) {
-        let mut core_pj_2_charged: bool = false;
         let mut core_pj_2_dom: bool = false;
         let mut core_pj_2_domw: bool = false;
         let mut core_pj_2_unj: bool = false;
@@ -8945,13 +8947,12 @@ impl HubN3M2 {
         core_pj_2_domw = (core_pj_2_dom | self.core_pj_2_seen_dom);
         core_pj_2_unj = (core_pj_2_domw & (((!self.core_err_phase) & ((((((self.core_decode_tx_region & (!self.core_pj_2_cont_r)) | self.core_decode_crc_delim) | (self.core_decode_ack_delim & (!self.core_pj_2_ack_missing))) | self.core_decode_eof_1_6) | self.core_decode_im_2) | ((self.core_decode_ack_slot & self.core_pj_2_cont_r) & self.core_pj_2_ack_rule))) | self.core_delim_z));
         core_pj_2_charge = (((self.adapter_s_r & core_pj_2_unj) & core_pj_2_enabled) & (!self.core_pj_2_suppress));
-        core_pj_2_charged = (((self.adapter_s_r & core_pj_2_unj) & core_pj_2_enabled) & (!self.core_pj_2_suppress));
-        self.core_pj_2_charged = core_pj_2_charged;
         self.core_pj_2_charge = core_pj_2_charge;
     }
 
-    /// `core.sj$0` block, depth 6, state-only: core.sj$0.bic_r.d, core.sj$0.life_r.d
+    /// `core.sj$0` block, depth 6, state-only: core.sj$0.charged, core.sj$0.bic_r.d, core.sj$0.life_r.d
     fn g153(&mut self) {
+        let mut core_sj_0_charged: bool = false;
         let mut core_sj_0_bic_r_d: u8 = 0u8;
         let mut core_sj_0_life_r_d: u8 = 0u8;
         let mut core_sj_0_dom: bool = false;
@@ -8967,6 +8968,7 @@ impl HubN3M2 {
         core_sj_0_domw = (core_sj_0_dom | self.core_sj_0_seen_dom);
         core_sj_0_unj = (core_sj_0_domw & (((!self.core_err_phase) & ((((((self.core_decode_tx_region & (!self.core_sj_0_cont_r)) | self.core_decode_crc_delim) | (self.core_decode_ack_delim & (!self.core_sj_0_ack_missing))) | self.core_decode_eof_1_6) | self.core_decode_im_2) | ((self.core_decode_ack_slot & self.core_sj_0_cont_r) & self.core_sj_0_ack_rule))) | self.core_delim_z));
         core_sj_0_charge = (((self.adapter_s_r & core_sj_0_unj) & core_sj_0_enabled) & (!self.core_sj_0_suppress));
+        core_sj_0_charged = (((self.adapter_s_r & core_sj_0_unj) & core_sj_0_enabled) & (!self.core_sj_0_suppress));
         if self.adapter_s_r {
             if ((self.adapter_mon_frame_ok & core_sj_0_enabled) & (self.core_sj_0_bic_r != 0u8)) {
                 core_sj_0_bic_r_d = self.core_sj_0_bic_r.wrapping_sub(1u8);
@@ -8997,13 +8999,13 @@ impl HubN3M2 {
             core_sj_0_bic_r_d = 0u8;
             core_sj_0_life_r_d = 0u8;
         }
+        self.core_sj_0_charged = core_sj_0_charged;
         if core_sj_0_bic_r_d != self.core_sj_0_bic_r_d { self.core_sj_0_bic_r_d = core_sj_0_bic_r_d; self.pend[1] |= 0x400000000; }
         if core_sj_0_life_r_d != self.core_sj_0_life_r_d { self.core_sj_0_life_r_d = core_sj_0_life_r_d; self.pend[1] |= 0x800000000; }
     }
 
-    /// `core.sj$0` block, depth 6, probe-only: core.sj$0.charged, core.sj$0.charge
+    /// `core.sj$0` block, depth 6, probe-only: core.sj$0.charge
     fn g154(&mut self) {
-        let mut core_sj_0_charged: bool = false;
         let mut core_sj_0_dom: bool = false;
         let mut core_sj_0_domw: bool = false;
         let mut core_sj_0_unj: bool = false;
@@ -9014,13 +9016,12 @@ impl HubN3M2 {
         core_sj_0_domw = (core_sj_0_dom | self.core_sj_0_seen_dom);
         core_sj_0_unj = (core_sj_0_domw & (((!self.core_err_phase) & ((((((self.core_decode_tx_region & (!self.core_sj_0_cont_r)) | self.core_decode_crc_delim) | (self.core_decode_ack_delim & (!self.core_sj_0_ack_missing))) | self.core_decode_eof_1_6) | self.core_decode_im_2) | ((self.core_decode_ack_slot & self.core_sj_0_cont_r) & self.core_sj_0_ack_rule))) | self.core_delim_z));
         core_sj_0_charge = (((self.adapter_s_r & core_sj_0_unj) & core_sj_0_enabled) & (!self.core_sj_0_suppress));
-        core_sj_0_charged = (((self.adapter_s_r & core_sj_0_unj) & core_sj_0_enabled) & (!self.core_sj_0_suppress));
-        self.core_sj_0_charged = core_sj_0_charged;
         self.core_sj_0_charge = core_sj_0_charge;
     }
 
-    /// `core.sj$1` block, depth 6, state-only: core.sj$1.bic_r.d, core.sj$1.life_r.d
+    /// `core.sj$1` block, depth 6, state-only: core.sj$1.charged, core.sj$1.bic_r.d, core.sj$1.life_r.d
     fn g155(&mut self) {
+        let mut core_sj_1_charged: bool = false;
         let mut core_sj_1_bic_r_d: u8 = 0u8;
         let mut core_sj_1_life_r_d: u8 = 0u8;
         let mut core_sj_1_dom: bool = false;
@@ -9036,6 +9037,7 @@ impl HubN3M2 {
         core_sj_1_domw = (core_sj_1_dom | self.core_sj_1_seen_dom);
         core_sj_1_unj = (core_sj_1_domw & (((!self.core_err_phase) & ((((((self.core_decode_tx_region & (!self.core_sj_1_cont_r)) | self.core_decode_crc_delim) | (self.core_decode_ack_delim & (!self.core_sj_1_ack_missing))) | self.core_decode_eof_1_6) | self.core_decode_im_2) | ((self.core_decode_ack_slot & self.core_sj_1_cont_r) & self.core_sj_1_ack_rule))) | self.core_delim_z));
         core_sj_1_charge = (((self.adapter_s_r & core_sj_1_unj) & core_sj_1_enabled) & (!self.core_sj_1_suppress));
+        core_sj_1_charged = (((self.adapter_s_r & core_sj_1_unj) & core_sj_1_enabled) & (!self.core_sj_1_suppress));
         if self.adapter_s_r {
             if ((self.adapter_mon_frame_ok & core_sj_1_enabled) & (self.core_sj_1_bic_r != 0u8)) {
                 core_sj_1_bic_r_d = self.core_sj_1_bic_r.wrapping_sub(1u8);
@@ -9066,13 +9068,13 @@ impl HubN3M2 {
             core_sj_1_bic_r_d = 0u8;
             core_sj_1_life_r_d = 0u8;
         }
+        self.core_sj_1_charged = core_sj_1_charged;
         if core_sj_1_bic_r_d != self.core_sj_1_bic_r_d { self.core_sj_1_bic_r_d = core_sj_1_bic_r_d; self.pend[1] |= 0x400000000000000; }
         if core_sj_1_life_r_d != self.core_sj_1_life_r_d { self.core_sj_1_life_r_d = core_sj_1_life_r_d; self.pend[1] |= 0x800000000000000; }
     }
 
-    /// `core.sj$1` block, depth 6, probe-only: core.sj$1.charged, core.sj$1.charge
+    /// `core.sj$1` block, depth 6, probe-only: core.sj$1.charge
     fn g156(&mut self) {
-        let mut core_sj_1_charged: bool = false;
         let mut core_sj_1_dom: bool = false;
         let mut core_sj_1_domw: bool = false;
         let mut core_sj_1_unj: bool = false;
@@ -9083,8 +9085,6 @@ impl HubN3M2 {
         core_sj_1_domw = (core_sj_1_dom | self.core_sj_1_seen_dom);
         core_sj_1_unj = (core_sj_1_domw & (((!self.core_err_phase) & ((((((self.core_decode_tx_region & (!self.core_sj_1_cont_r)) | self.core_decode_crc_delim) | (self.core_decode_ack_delim & (!self.core_sj_1_ack_missing))) | self.core_decode_eof_1_6) | self.core_decode_im_2) | ((self.core_decode_ack_slot & self.core_sj_1_cont_r) & self.core_sj_1_ack_rule))) | self.core_delim_z));
         core_sj_1_charge = (((self.adapter_s_r & core_sj_1_unj) & core_sj_1_enabled) & (!self.core_sj_1_suppress));
-        core_sj_1_charged = (((self.adapter_s_r & core_sj_1_unj) & core_sj_1_enabled) & (!self.core_sj_1_suppress));
-        self.core_sj_1_charged = core_sj_1_charged;
         self.core_sj_1_charge = core_sj_1_charge;
     }
 
@@ -11990,6 +11990,7 @@ static INFO: rt::ModelInfo = rt::ModelInfo {
     atoms: &ATOMS,
     probe: &PROBE,
     rams: &[],
+    probe_only: &[118, 190, 191, 192, 193, 194, 195, 196, 197, 198, 199, 222, 223, 224, 225, 246, 257, 310, 381, 382, 383, 384, 385, 387, 397, 450, 521, 522, 523, 524, 525, 527, 537, 590, 661, 662, 663, 664, 665, 667, 677, 716, 730, 801, 802, 803, 804, 805, 807, 817, 856, 870, 941, 942, 943, 944, 945, 947, 957, 981, 982, 983, 985, 986, 987, 1011, 1012, 1013, 1015, 1016, 1020, 1028, 1029, 1063, 1066, 1067, 1134, 1135, 1136, 1137, 1138, 1139, 1140, 1141, 1142, 1143, 1144, 1145, 1146, 1147, 1148, 1149, 1150, 1151, 1152, 1153, 1154, 1155, 1156, 1157, 1158, 1180, 1181, 1183, 1184, 1188, 1196, 1197, 1210, 1213, 1221, 1222, 1234, 1235, 1236, 1246, 1256, 1257, 1325, 1327, 1328, 1329, 1330, 1331, 1332, 1333, 1371, 1372, 1373, 1384, 1385, 1386, 1387, 1405, 1406, 1407, 1429, 1430, 1431, 1432, 1433, 1434, 1435, 1436, 1437, 1438, 1444, 1446, 1447, 1448, 1456, 1457, 1477, 1522, 1523, 1524, 1574, 1575, 1576, 1577, 1578, 1579, 1580, 1609, 1610, 1612, 1613, 1617, 1653, 1687],
 };
 
 static ATOMS: [rt::AtomMeta; 1692] = [

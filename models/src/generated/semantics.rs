@@ -689,6 +689,7 @@ static INFO: rt::ModelInfo = rt::ModelInfo {
     atoms: &ATOMS,
     probe: &PROBE,
     rams: &[],
+    probe_only: &[44, 45],
 };
 
 static ATOMS: [rt::AtomMeta; 46] = [

@@ -285,6 +285,7 @@ static INFO: rt::ModelInfo = rt::ModelInfo {
     atoms: &ATOMS,
     probe: &PROBE,
     rams: &[],
+    probe_only: &[],
 };
 
 static ATOMS: [rt::AtomMeta; 11] = [

@@ -350,6 +350,7 @@ static INFO: rt::ModelInfo = rt::ModelInfo {
     atoms: &ATOMS,
     probe: &PROBE,
     rams: &[],
+    probe_only: &[11, 12, 13],
 };
 
 static ATOMS: [rt::AtomMeta; 14] = [
