@@ -70,11 +70,11 @@ fn campaign_shards_merge_into_the_unsharded_table() {
         a.extend_from_slice(extra);
         canstar(&a, d.path())
     };
-    let (ok_full, full, _) = run(&["--json", "full.json"]);
+    let (ok_full, full, _) = run(&["--json", "full.json", "--junit", "full.xml"]);
     let (ok1, _, e1) = run(&["--shard", "1/2", "--json", "s1.json"]);
     let (ok2, _, e2) = run(&["--shard", "2/2", "--json", "s2.json"]);
     assert!(e1.contains("shard 1/2") && e2.contains("shard 2/2"));
-    let (ok_m, merged, _) = canstar(&["campaign", "--merge", "s2.json", "s1.json", "--json", "merged.json"], d.path());
+    let (ok_m, merged, _) = canstar(&["campaign", "--merge", "s2.json", "s1.json", "--json", "merged.json", "--junit", "merged.xml"], d.path());
     assert_eq!(merged, full, "merged shards print the unsharded table");
     assert_eq!(ok_m, ok_full);
     assert_eq!(ok1 && ok2, ok_full);
@@ -82,6 +82,11 @@ fn campaign_shards_merge_into_the_unsharded_table() {
     let a = std::fs::read_to_string(d.path().join("full.json")).unwrap();
     let b = std::fs::read_to_string(d.path().join("merged.json")).unwrap();
     assert_eq!(a, b, "merged JSON equals the unsharded JSON");
+    // the JUnit report: one case for the class, from a run and from merged shards alike
+    let x = std::fs::read_to_string(d.path().join("full.xml")).unwrap();
+    assert!(x.contains(r#"<testcase name="crash-counter-nontx" classname="campaign""#), "{x}");
+    assert_eq!(x.contains("<failure"), !ok_full, "{x}");
+    assert_eq!(x, std::fs::read_to_string(d.path().join("merged.xml")).unwrap(), "merged JUnit equals the unsharded one");
     // the same shard twice is refused
     let (ok, _, err) = canstar(&["campaign", "--merge", "s1.json", "s1.json"], d.path());
     assert!(!ok && err.contains("appears twice"), "{err}");

@@ -21,6 +21,7 @@
 //! specification and pass criteria.
 
 pub mod classes;
+pub mod junit;
 pub mod plot;
 pub mod report;
 pub mod sweep;

@@ -27,6 +27,9 @@ pub struct Args {
     /// Write the per-run results as JSON.
     #[arg(long)]
     json: Option<PathBuf>,
+    /// Write a JUnit XML report (one test case per class) for CI systems.
+    #[arg(long, conflicts_with = "class")]
+    junit: Option<PathBuf>,
     /// Delay between the two faults of the double-* classes, in bit times.
     #[arg(long, default_value_t = canstar_recan::campaign::classes::DEFAULT_DOUBLE_DELAY_BITS)]
     double_delay_bits: u32,
@@ -87,7 +90,7 @@ pub fn run(a: Args) -> Result<()> {
     }
     // Every output is reserved before any work.
     let mut set = OutputSet::new();
-    for p in [&a.json, &a.vcd, &a.plot, &a.plot_sweep].into_iter().flatten() {
+    for p in [&a.json, &a.junit, &a.vcd, &a.plot, &a.plot_sweep].into_iter().flatten() {
         set.file(p)?;
     }
     if !a.merge.is_empty() {
@@ -100,6 +103,9 @@ pub fn run(a: Args) -> Result<()> {
         let sweep_table = sweep_outputs(&set, &m.runs, a.plot_sweep.as_ref(), &format!("canstar sweep campaign, {} runs (merged)", m.runs.len()))?;
         if let Some(p) = &a.json {
             set.write(p, m.to_json())?;
+        }
+        if let Some(p) = &a.junit {
+            set.write(p, campaign::junit::xml(&m))?;
         }
         set.commit()?;
         out!("{}", m.table());
@@ -193,6 +199,9 @@ pub fn run(a: Args) -> Result<()> {
     let report = CampaignReport::new(settings, &classes, shard, outcomes);
     if let Some(p) = &a.json {
         set.write(p, report.to_json())?;
+    }
+    if let Some(p) = &a.junit {
+        set.write(p, campaign::junit::xml(&report))?;
     }
     let sweep_table = sweep_outputs(&set, &report.runs, a.plot_sweep.as_ref(), &format!("canstar sweep campaign, {} reps per class, seed {}", a.reps, a.seed))?;
     // The report of a finished campaign is kept even when runs failed.
