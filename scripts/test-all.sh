@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Runs every canstar check on a fresh Debian machine:
-#  - installs the open EDA tools it needs (yosys, iverilog, verilator) and sigrok-cli
+#  - installs the open EDA tools it needs (yosys, nextpnr-ice40, iverilog, verilator) and sigrok-cli
 #    (independent CAN decoder for the sim's sigrok test) when missing,
 #  - runs all Rust tests, including the Verilog flow tests that plain `cargo test`
 #    skips (Verilator lint, Yosys synthesis, Icarus co-simulation),
@@ -9,7 +9,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 missing=()
-for tool in yosys iverilog verilator sigrok-cli; do
+for tool in yosys nextpnr-ice40 iverilog verilator sigrok-cli; do
   command -v "$tool" >/dev/null 2>&1 || missing+=("$tool")
 done
 if [ "${#missing[@]}" -gt 0 ]; then
@@ -24,7 +24,7 @@ if ! python3 -c "import can" >/dev/null 2>&1; then
   echo "== installing python-can (reads the candump logs in a test)"
   python3 -m pip install -q python-can
 fi
-echo "== tools: $(yosys -V | head -1); $(iverilog -V 2>&1 | head -1); $(verilator --version)"
+echo "== tools: $(yosys -V | head -1); $(nextpnr-ice40 --version 2>&1 | head -1); $(iverilog -V 2>&1 | head -1); $(verilator --version)"
 
 # Ignored tests named diag_*, long_* and bench_print are diagnostics and
 # benchmarks (they print figures, assert little): run them by name.

@@ -1,13 +1,21 @@
 //! `canstar report`: logic size and fmax of the generated designs.
 //!
-//! - iCE40-HX8K (CB132, the Alchitry Cu's package): Yosys `synth_ice40`, then `nextpnr-ice40` for the
-//!   placed logic-cell count and the maximum clock frequency;
+//! - iCE40-HX8K (CB132, the Alchitry Cu's package): Yosys `synth_ice40`, then
+//!   `nextpnr-ice40` with several seeds ([`seeds`]), each under a watchdog
+//!   ([`pnr`]), for the placed logic-cell count and the best and median fmax;
 //! - Xilinx Spartan-3 (the XSA-3S1000's family; Yosys `synth_xilinx -family
 //!   xc3s -flatten`, marked experimental by Yosys; flattened like `synth_ice40`,
 //!   so that constants propagate across module boundaries): LUT and flip-flop
 //!   counts, no place and route (there is no open Spartan-3 flow).
 
+#[cfg(test)]
+mod fake;
+pub mod pnr;
+pub mod seeds;
+
 use anyhow::{bail, Context, Result};
+use pnr::{Pnr, SeedRun};
+use seeds::Seeds;
 use std::process::Command;
 
 /// One row of the report.
@@ -20,12 +28,11 @@ pub struct Row {
     pub ice40_dff: usize,
     /// iCE40: block RAMs (SB_RAM40_4K).
     pub ice40_bram: usize,
-    /// iCE40: placed logic cells (ICESTORM_LC) reported by nextpnr, if it ran,
-    /// including the measurement wrapper's flip-flops (see [`pnr_wrapper`]).
-    pub ice40_lc: Option<usize>,
-    /// iCE40: maximum frequency reported by nextpnr, if it ran.
-    pub ice40_fmax_mhz: Option<f64>,
-    /// Why nextpnr did not give figures, if it did not.
+    /// iCE40: the place-and-route runs, if nextpnr ran: placed logic cells
+    /// (ICESTORM_LC, including the measurement wrapper's flip-flops, see
+    /// [`pnr_wrapper`]) and fmax per seed.
+    pub pnr: Option<Seeds>,
+    /// Why nextpnr did not run, if it did not.
     pub pnr_note: Option<String>,
     /// Spartan-3: LUTs (LUT1..LUT4).
     pub xc3s_lut: usize,
@@ -96,10 +103,9 @@ pub fn pnr_wrapper(verilog: &str, top: &str) -> (String, String) {
     (format!("{verilog}\n{w}"), name)
 }
 
-/// Synthesise (and place and route, if nextpnr-ice40 is present) one design.
-/// `clock_mhz` is the frequency nextpnr is asked to meet; `pnr_timeout_s`
-/// limits place and route (0 skips it).
-pub fn measure(design: &str, verilog: &str, top: &str, clock_mhz: f64, pnr_timeout_s: u64) -> Result<Row> {
+/// Synthesise one design, and place and route it with seeds 1..=`seeds` if
+/// `pnr` is given and its program is present; `on_run` sees each seed's run.
+pub fn measure(design: &str, verilog: &str, top: &str, pnr: Option<&Pnr>, seeds: u64, on_run: &mut dyn FnMut(&SeedRun)) -> Result<Row> {
     if !have("yosys") {
         bail!("yosys not found on PATH (scripts/test-all.sh installs it)");
     }
@@ -131,67 +137,66 @@ pub fn measure(design: &str, verilog: &str, top: &str, clock_mhz: f64, pnr_timeo
         xc3s_ff: count_cells(&xil, |n| n.starts_with("FD")),
         ..Default::default()
     };
-    if pnr_timeout_s == 0 {
-        row.pnr_note = Some("place and route skipped (--pnr-timeout 0)".into());
-    } else if have("nextpnr-ice40") {
-        // A time limit, so that an unroutable design cannot hang the report.
-        // Place the measurement wrapper, so that designs with wide native
-        // interfaces fit the package too.
-        let (wrapped, wtop) = pnr_wrapper(verilog, top);
-        let wv = wd.path().join("wrapped.v");
-        std::fs::write(&wv, wrapped)?;
-        let wjson = wd.path().join("wrapped.json");
-        yosys(&format!("read_verilog {}; synth_ice40 -top {wtop} -json {}", wv.display(), wjson.display()))?;
-        let json = wjson;
-        let out = Command::new("timeout")
-            .arg(pnr_timeout_s.to_string())
-            .args(["nextpnr-ice40", "--hx8k", "--package", "cb132", "--seed", "1", "--freq"])
-            .arg(format!("{clock_mhz}"))
-            .arg("--json")
-            .arg(&json)
-            .arg("--pcf-allow-unconstrained")
-            .output()
-            .context("running nextpnr-ice40")?;
-        let log = String::from_utf8_lossy(&out.stderr).into_owned() + &String::from_utf8_lossy(&out.stdout);
-        if out.status.success() {
-            row.ice40_lc = log
-                .lines()
-                .filter_map(|l| l.split("ICESTORM_LC:").nth(1))
-                .filter_map(|r| r.split('/').next()?.trim().parse().ok())
-                .last();
-            row.ice40_fmax_mhz = log
-                .lines()
-                .filter(|l| l.contains("Max frequency for clock"))
-                .filter_map(|l| l.split(':').nth(2)?.split("MHz").next()?.trim().parse().ok())
-                .last();
-        } else if out.status.code() == Some(124) {
-            row.pnr_note = Some(format!("nextpnr-ice40 did not finish within {pnr_timeout_s} s"));
-        } else {
-            let reason = log.lines().find(|l| l.contains("ERROR")).unwrap_or("nextpnr failed").to_string();
-            row.pnr_note = Some(reason);
+    match pnr {
+        None => row.pnr_note = Some("place and route skipped (--pnr-timeout 0)".into()),
+        Some(p) if !have(&p.program) => row.pnr_note = Some(format!("{} not installed", p.program)),
+        Some(p) => {
+            // Place the measurement wrapper, so that designs with wide native
+            // interfaces fit the package too.
+            let (wrapped, wtop) = pnr_wrapper(verilog, top);
+            let wv = wd.path().join("wrapped.v");
+            std::fs::write(&wv, wrapped)?;
+            let wjson = wd.path().join("wrapped.json");
+            yosys(&format!("read_verilog {}; synth_ice40 -top {wtop} -json {}", wv.display(), wjson.display()))?;
+            row.pnr = Some(seeds::place(p, &wjson, seeds, on_run).with_context(|| format!("place and route of {design}"))?);
         }
-    } else {
-        row.pnr_note = Some("nextpnr-ice40 not installed".into());
     }
     Ok(row)
 }
 
-/// Render rows as a Markdown table.
+/// Render rows as a Markdown table, followed by a line for every design or seed
+/// without place-and-route figures and a legend for fmax below the requested
+/// frequency.
 pub fn table(rows: &[Row]) -> String {
     let mut s = String::from(
-        "| design | iCE40 LUT4 | iCE40 DFF | iCE40 BRAM | iCE40 LCs (placed) | iCE40 fmax | Spartan-3 LUT | Spartan-3 FF |\n|---|---:|---:|---:|---:|---:|---:|---:|\n",
+        "| design | iCE40 LUT4 | iCE40 DFF | iCE40 BRAM | iCE40 LCs placed (seed) | iCE40 fmax median | iCE40 fmax best | seeds placed | Spartan-3 LUT | Spartan-3 FF |\n\
+         |---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n",
     );
+    let mut below = None;
     for r in rows {
-        let lc = r.ice40_lc.map(|x| x.to_string()).unwrap_or_else(|| "-".into());
-        let f = r.ice40_fmax_mhz.map(|x| format!("{x:.1} MHz")).unwrap_or_else(|| "-".into());
+        let (mut lc, mut med, mut best, mut n) = ("-".to_string(), "-".to_string(), "-".to_string(), "-".to_string());
+        if let Some(p) = &r.pnr {
+            let mut mhz = |f: f64| {
+                if f < p.freq_mhz {
+                    below = Some(p.freq_mhz);
+                    format!("{f:.1} MHz *")
+                } else {
+                    format!("{f:.1} MHz")
+                }
+            };
+            if let Some(m) = p.median() {
+                lc = format!("{} (seed {})", m.lc, m.seed);
+                med = mhz(m.fmax_mhz);
+            }
+            if let Some(b) = p.best() {
+                best = format!("{} (seed {})", mhz(b.fmax_mhz), b.seed);
+            }
+            n = format!("{}/{}", p.placed().len(), p.runs.len());
+        }
         s.push_str(&format!(
-            "| {} | {} | {} | {} | {} | {} | {} | {} |\n",
-            r.design, r.ice40_lut4, r.ice40_dff, r.ice40_bram, lc, f, r.xc3s_lut, r.xc3s_ff
+            "| {} | {} | {} | {} | {lc} | {med} | {best} | {n} | {} | {} |\n",
+            r.design, r.ice40_lut4, r.ice40_dff, r.ice40_bram, r.xc3s_lut, r.xc3s_ff
         ));
+    }
+    if let Some(f) = below {
+        s.push_str(&format!("\n\\* below the requested {f} MHz (nextpnr --timing-allow-fail: the achieved fmax)\n"));
     }
     for r in rows {
         if let Some(n) = &r.pnr_note {
             s.push_str(&format!("\n{}: no place-and-route figures ({n})", r.design));
+        }
+        if let Some(n) = r.pnr.as_ref().and_then(|p| p.note(&r.design)) {
+            s.push_str(&format!("\n{n}"));
         }
     }
     s
@@ -225,6 +230,37 @@ mod tests {
         let flat = "=== a ===\n   Number of cells: 52\n     SB_LUT4   23\n     SB_DFFESR  15\n";
         assert_eq!(count_cells(flat, |n| n == "SB_LUT4"), 23);
         assert_eq!(count_cells(flat, |n| n.starts_with("SB_DFF")), 15);
+    }
+}
+
+#[cfg(test)]
+mod table_tests {
+    use super::pnr::Outcome;
+    use super::*;
+
+    fn row(design: &str, runs: Vec<(u64, Outcome)>) -> Row {
+        let runs = runs.into_iter().map(|(seed, outcome)| SeedRun { seed, outcome, secs: 2.0 }).collect();
+        Row { design: design.into(), ice40_lut4: 9, pnr: Some(Seeds { freq_mhz: 50.0, runs }), ..Default::default() }
+    }
+
+    #[test]
+    fn table_gives_median_best_and_a_line_for_every_design_without_figures() {
+        let placed = |lc, fmax_mhz| Outcome::Placed { lc, fmax_mhz };
+        let rows = [
+            row("a", vec![(1, placed(49, 235.5)), (2, placed(49, 240.0)), (3, Outcome::Stalled { stall_s: 60.0 })]),
+            row("b", vec![(1, placed(2871, 47.39)), (2, placed(2871, 51.5)), (3, placed(2871, 46.21))]),
+            row("c", vec![(1, Outcome::Stalled { stall_s: 60.0 }), (2, Outcome::TimedOut)]),
+            Row { design: "d".into(), pnr_note: Some("place and route skipped (--pnr-timeout 0)".into()), ..Default::default() },
+        ];
+        let t = table(&rows);
+        assert!(t.contains("| a | 9 | 0 | 0 | 49 (seed 1) | 235.5 MHz | 240.0 MHz (seed 2) | 2/3 |"), "{t}");
+        assert!(t.contains("| b | 9 | 0 | 0 | 2871 (seed 1) | 47.4 MHz * | 51.5 MHz (seed 2) | 3/3 |"), "{t}");
+        assert!(t.contains("| c | 9 | 0 | 0 | - | - | - | 0/2 |"), "{t}");
+        assert!(t.contains("\\* below the requested 50 MHz"), "{t}");
+        assert!(t.contains("\na: 2 of 3 seeds placed (seed 3: stalled: no router progress for 60 s, killed after 2 s)"), "{t}");
+        assert!(t.contains("\nc: not placed (seed 1: stalled: no router progress for 60 s, killed after 2 s; seed 2: did not finish within 2 s, killed)"), "{t}");
+        assert!(t.contains("\nd: no place-and-route figures (place and route skipped"), "{t}");
+        assert!(!t.contains("\nb:"), "{t}");
     }
 }
 
