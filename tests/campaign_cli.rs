@@ -1,23 +1,8 @@
 //! End-to-end tests of `canstar campaign`: bad input fails cleanly and writes
 //! nothing; shards written as JSON merge into the unsharded table; one run's VCD and
 //! SVG plot.
-use std::path::Path;
-use std::process::Command;
-
-fn canstar(args: &[&str], cwd: &Path) -> (bool, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_canstar")).args(args).current_dir(cwd).output().unwrap();
-    (
-        out.status.success(),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
-}
-
-fn entries(p: &Path) -> Vec<String> {
-    let mut v: Vec<String> = std::fs::read_dir(p).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().into_owned()).collect();
-    v.sort();
-    v
-}
+mod common;
+use common::{canstar, entries};
 
 #[test]
 fn campaign_bad_input_fails_cleanly_and_writes_nothing() {

@@ -44,11 +44,15 @@ pub struct SoakSettings {
     /// Node controllers at 14.74 MHz (TQ 2 clocks, same bit timing) instead of the
     /// reference 29.48 MHz: half the simulation cost.
     pub fast: bool,
+    /// The network to soak (None: the reference network, [`NetworkSpec::default`]);
+    /// its oscillator offsets, first transmitters and start time are replaced per chunk.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub network: Option<NetworkSpec>,
 }
 
 impl Default for SoakSettings {
     fn default() -> Self {
-        SoakSettings { frames: 1_000_000, chunk_frames: 2000, seed: 1, ppm: None, events: false, fast: false }
+        SoakSettings { frames: 1_000_000, chunk_frames: 2000, seed: 1, ppm: None, events: false, fast: false, network: None }
     }
 }
 
@@ -96,6 +100,10 @@ pub struct ChunkOutcome {
     pub sublink_edge_phase: Vec<u64>,
     /// The events applied (descriptions).
     pub events: Vec<String>,
+    /// Where the first blames of the chunk fell (at most 8): "hub 1 sublink 0: CrcDelim
+    /// bit 0 at bit time 24104", the field as the hub's frame monitor saw it.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub blame_sites: Vec<String>,
     pub sim_cycles: u64,
 }
 
@@ -110,8 +118,14 @@ impl ChunkOutcome {
 pub fn chunk_spec(s: &SoakSettings, index: u64) -> (RunSpec, Vec<NodeEvent>) {
     let seed = s.chunk_seed(index);
     let mut rng = ChaCha8Rng::seed_from_u64(seed ^ 0x50a4);
-    let mut net = if s.fast { NetworkSpec::fast() } else { NetworkSpec::default() };
-    let ppm = s.ppm.unwrap_or_else(|| tolerance_ppm(&net.hub.timing).min(tolerance_ppm(&net.nodes[0].a.timing)));
+    let mut net = match (&s.network, s.fast) {
+        (Some(n), _) => n.clone(),
+        (None, true) => NetworkSpec::fast(),
+        (None, false) => NetworkSpec::default(),
+    };
+    let ppm = s.ppm.unwrap_or_else(|| {
+        net.nodes.iter().flat_map(|n| [&n.a.timing, &n.b.timing]).map(tolerance_ppm).fold(tolerance_ppm(&net.hub.timing), f64::min)
+    });
     let mut sign = || if rng.gen_bool(0.5) { ppm } else { -ppm };
     for h in &mut net.hubs {
         h.ppm = sign();
@@ -208,8 +222,22 @@ pub fn run_chunk(s: &SoakSettings, index: u64) -> ChunkOutcome {
         events: r.events_applied.clone(),
         port_edge_phase: edge_phases(&r, spec.network.hub.ports, true),
         sublink_edge_phase: edge_phases(&r, spec.network.hub.ports, false),
+        blame_sites: blame_sites(&r, spec.network.hub.ports),
         sim_cycles: r.sim_cycles,
     }
+}
+
+/// The first blames of a run, described ([`ChunkOutcome::blame_sites`]).
+fn blame_sites(r: &RunResult, ports: usize) -> Vec<String> {
+    r.blames
+        .iter()
+        .take(8)
+        .map(|&(hub, t, unit, field, pos, _)| {
+            let who = if unit < ports { format!("port {unit}") } else { format!("sublink {}", unit - ports) };
+            let f = canstar_hub::frame_state::Field::from_code(field as u64);
+            format!("hub {hub} {who}: {f:?} bit {pos} at bit time {}", t / r.bit_time_ps.max(1))
+        })
+        .collect()
 }
 
 /// Run the chunks `plan` on `jobs` threads; `progress` is called in the calling thread
@@ -286,16 +314,102 @@ impl SoakReport {
             let fmt = |r: &[u64]| r.iter().enumerate().filter(|(_, &x)| x > 0).map(|(i, x)| format!("{i}:{x}")).collect::<Vec<_>>().join(" ");
             s += &format!("{name} edge phases (clocks after the monitor's sample strobe): falling {}; rising {}\n", fmt(&h[..32]), fmt(&h[32..]));
         }
+        let unclean = self.chunks.iter().filter(|c| !c.clean()).count();
+        if unclean > 0 {
+            // where the blames fell, by the monitor's field and bit (first 8 per chunk)
+            let mut sites = std::collections::BTreeMap::<String, usize>::new();
+            for site in self.chunks.iter().flat_map(|c| &c.blame_sites) {
+                let place = site.split(": ").nth(1).and_then(|x| x.split(" at ").next()).unwrap_or(site);
+                *sites.entry(place.to_string()).or_default() += 1;
+            }
+            let list = sites.iter().map(|(k, v)| format!("{k} ({v})")).collect::<Vec<_>>().join(", ");
+            s += &format!("chunks not clean: {unclean} of {}; blames in: {list}\n", self.chunks.len());
+        }
         for c in self.chunks.iter().filter(|c| !c.clean()) {
             s += &format!(
-                "chunk {} seed {}: blames {} isolations [{}] {}\n",
+                "chunk {} seed {}: blames {} isolations [{}] {}{}\n",
                 c.index,
                 c.seed,
                 c.blames,
                 c.isolations.join(", "),
-                c.problems.join("; ")
+                c.problems.join("; "),
+                c.blame_sites.first().map_or(String::new(), |b| format!(" first blame: {b}"))
             );
         }
         s
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn summary_counts_unclean_chunks_and_where_the_blames_fell() {
+        let clean = ChunkOutcome {
+            index: 0,
+            frames: 100,
+            ..Default::default()
+        };
+        let bad = ChunkOutcome {
+            index: 1,
+            seed: 7,
+            frames: 100,
+            blames: 3,
+            blame_sites: vec![
+                "hub 1 sublink 0: CrcDelim bit 0 at bit time 10".into(),
+                "hub 1 port 2: CrcDelim bit 0 at bit time 900".into(),
+                "hub 0 sublink 1: AckDelim bit 0 at bit time 11".into(),
+            ],
+            ..Default::default()
+        };
+        let r = SoakReport {
+            settings: None,
+            chunks: vec![clean, bad],
+        };
+        let s = r.summary();
+        assert!(
+            s.starts_with("frames 200  chunks 2  blames 3  isolations 0"),
+            "{s}"
+        );
+        assert!(
+            s.contains(
+                "chunks not clean: 1 of 2; blames in: AckDelim bit 0 (1), CrcDelim bit 0 (2)"
+            ),
+            "{s}"
+        );
+        assert!(s.contains("chunk 1 seed 7: blames 3 isolations []  first blame: hub 1 sublink 0: CrcDelim bit 0 at bit time 10"), "{s}");
+        assert!(!r.ok());
+    }
+
+    #[test]
+    fn the_tolerance_is_the_smallest_of_every_timing_in_the_network() {
+        let mut net = NetworkSpec::default();
+        let reference = tolerance_ppm(&net.hub.timing);
+        net.nodes[2].b.timing.sjw = 2; // a larger SJW raises this controller's tolerance
+        net.nodes[1].b.timing.prop = 5; // a longer bit with the same SJW lowers it (10 TQ: 5000 ppm)
+        let s = SoakSettings {
+            network: Some(net.clone()),
+            frames: 10,
+            chunk_frames: 10,
+            ..Default::default()
+        };
+        let (spec, _) = chunk_spec(&s, 0);
+        let want = net
+            .nodes
+            .iter()
+            .flat_map(|n| [&n.a.timing, &n.b.timing])
+            .map(tolerance_ppm)
+            .fold(reference, f64::min);
+        assert!(
+            (want - 5000.0).abs() < 1e-6,
+            "node 1 B sets the tolerance: {want}"
+        );
+        assert!(spec.network.hubs.iter().all(|h| h.ppm.abs() == want));
+        assert!(spec
+            .network
+            .nodes
+            .iter()
+            .all(|n| n.a.ppm.abs() == want && n.b.ppm.abs() == want));
     }
 }

@@ -25,8 +25,12 @@ pub struct Args {
     #[arg(long)]
     events: bool,
     /// Node controllers at 14.74 MHz (same bit timing, half the simulation cost).
-    #[arg(long)]
+    #[arg(long, conflicts_with = "network")]
     fast: bool,
+    /// Soak this network file (TOML, as `canstar sim` reads it; default: the reference
+    /// network). Oscillator offsets, first transmitters and start times are set per chunk.
+    #[arg(long)]
+    network: Option<PathBuf>,
     /// Worker threads (default: available parallelism).
     #[arg(long)]
     jobs: Option<usize>,
@@ -76,13 +80,24 @@ pub fn run(a: Args) -> Result<()> {
         return Ok(());
     }
     anyhow::ensure!(a.frames > 0 && a.chunk_frames > 0, "--frames and --chunk-frames must be at least 1");
-    let settings = SoakSettings { frames: a.frames, chunk_frames: a.chunk_frames, seed: a.seed, ppm: a.ppm, events: a.events, fast: a.fast };
+    let network = match &a.network {
+        Some(p) => {
+            let text = canstar::input::read_text(p, canstar::input::MAX_TOML_BYTES)?;
+            Some(canstar_recan::spec::NetworkSpec::from_toml(&text).map_err(|e| anyhow::anyhow!("{}: {e}", p.display()))?)
+        }
+        None => None,
+    };
+    let settings = SoakSettings { frames: a.frames, chunk_frames: a.chunk_frames, seed: a.seed, ppm: a.ppm, events: a.events, fast: a.fast, network };
     if let Some(i) = a.chunk {
         let (spec, evs) = soak::chunk_spec(&settings, i);
         for e in &evs {
             outln!("event: {}", e.describe());
         }
-        outln!("oscillators: hubs {:?} ppm", spec.network.hubs.iter().map(|h| h.ppm).collect::<Vec<_>>());
+        outln!(
+            "oscillators: hubs {:?} ppm, controllers (A, B) {:?} ppm",
+            spec.network.hubs.iter().map(|h| h.ppm).collect::<Vec<_>>(),
+            spec.network.nodes.iter().map(|n| (n.a.ppm, n.b.ppm)).collect::<Vec<_>>()
+        );
         let c = soak::run_chunk(&settings, i);
         let report = SoakReport { settings: Some(settings), chunks: vec![c.clone()] };
         if let Some(p) = &a.json {

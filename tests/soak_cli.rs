@@ -1,0 +1,159 @@
+//! End-to-end tests of `canstar soak`: bad input fails cleanly and writes nothing;
+//! shards written as JSON merge into the unsharded summary; `--network` soaks a
+//! network file (the hub clocked at 29.48 MHz is clean on the chunk where the
+//! reference hub blames a healthy input in the CRC delimiter, README "No false blame").
+mod common;
+use common::{canstar, entries, example};
+
+#[test]
+fn soak_bad_input_fails_cleanly_and_writes_nothing() {
+    let d = tempfile::tempdir().unwrap();
+    let net = std::fs::read_to_string(example("recancentrate.toml")).unwrap();
+    std::fs::write(
+        d.path().join("bad-key.toml"),
+        net.replace("k_bits = 4.0", "k_bitz = 4.0"),
+    )
+    .unwrap();
+    std::fs::write(d.path().join("bad.json"), "{ not json").unwrap();
+    let before = entries(d.path());
+    let cases: &[(&[&str], &str)] = &[
+        (
+            &[
+                "soak",
+                "--frames",
+                "100",
+                "--network",
+                "bad-key.toml",
+                "--json",
+                "o.json",
+            ],
+            "bad-key.toml",
+        ),
+        (
+            &[
+                "soak",
+                "--frames",
+                "100",
+                "--network",
+                "bad-key.toml",
+                "--json",
+                "o.json",
+            ],
+            "k_bitz",
+        ),
+        (
+            &[
+                "soak",
+                "--frames",
+                "100",
+                "--network",
+                "missing.toml",
+                "--json",
+                "o.json",
+            ],
+            "missing.toml",
+        ),
+        (&["soak", "--frames", "0", "--json", "o.json"], "--frames"),
+        (
+            &[
+                "soak", "--frames", "100", "--shard", "3/2", "--json", "o.json",
+            ],
+            "malformed shard",
+        ),
+        (
+            &["soak", "--merge", "bad.json", "--json", "o.json"],
+            "bad.json",
+        ),
+        (
+            &["soak", "--frames", "100", "--json", "no/such/dir/o.json"],
+            "does not exist",
+        ),
+    ];
+    for (args, msg) in cases {
+        let (ok, _, err) = canstar(args, d.path());
+        assert!(!ok, "{args:?} should fail");
+        assert!(
+            err.contains(msg),
+            "{args:?}: stderr {err:?} should mention {msg:?}"
+        );
+        assert_eq!(entries(d.path()), before, "{args:?} wrote something");
+    }
+    // --fast only applies to the reference network
+    let (ok, _, _) = canstar(
+        &[
+            "soak",
+            "--fast",
+            "--network",
+            &example("recancentrate.toml"),
+        ],
+        d.path(),
+    );
+    assert!(!ok);
+    assert_eq!(entries(d.path()), before);
+}
+
+#[test]
+fn soak_shards_merge_into_the_unsharded_summary() {
+    let d = tempfile::tempdir().unwrap();
+    let common = [
+        "soak",
+        "--frames",
+        "300",
+        "--chunk-frames",
+        "100",
+        "--fast",
+        "--jobs",
+        "1",
+    ];
+    let run = |extra: &[&str]| {
+        let args: Vec<&str> = common.iter().chain(extra).copied().collect();
+        let (ok, out, err) = canstar(&args, d.path());
+        assert!(ok, "{args:?}: {err}");
+        out
+    };
+    let whole = run(&["--json", "all.json"]);
+    assert!(
+        whole.starts_with("frames 300  chunks 3  blames 0  isolations 0"),
+        "{whole}"
+    );
+    run(&["--shard", "1/2", "--json", "s1.json"]);
+    run(&["--shard", "2/2", "--json", "s2.json"]);
+    let (ok, merged, err) = canstar(&["soak", "--merge", "s1.json", "s2.json"], d.path());
+    assert!(ok, "{err}");
+    assert_eq!(merged, whole);
+    let json = std::fs::read_to_string(d.path().join("all.json")).unwrap();
+    assert!(json.contains("\"chunks\""));
+}
+
+#[test]
+fn soak_of_a_network_file_uses_that_network() {
+    let d = tempfile::tempdir().unwrap();
+    // Chunk 16 of the default soak puts hub 1 at +6250 ppm and some receivers at
+    // -6250 ppm; the reference hub (14.74 MHz) blames a healthy input in its CRC
+    // delimiter there (README "No false blame"). With the hubs at 29.48 MHz it is clean.
+    let hub29 = example("recancentrate-hub-29mhz.toml");
+    let (ok, out, err) = canstar(
+        &[
+            "soak",
+            "--network",
+            &hub29,
+            "--chunk",
+            "16",
+            "--json",
+            "c.json",
+        ],
+        d.path(),
+    );
+    assert!(ok, "{out}{err}");
+    assert!(out.contains("controllers (A, B)"), "{out}");
+    assert!(
+        out.contains("blames 0  isolations 0  worst TEC 0 REC 0  controller errors 0"),
+        "{out}"
+    );
+    // the settings recorded in the JSON carry the network (its name)
+    let json = std::fs::read_to_string(d.path().join("c.json")).unwrap();
+    assert!(
+        json.contains("recancentrate-hub-29mhz"),
+        "the report should carry the soaked network"
+    );
+}
