@@ -175,6 +175,7 @@ impl HubConfig {
             glitch_limit: self.glitch_limit,
             glitch_decay: self.glitch_decay,
             window_lag: self.window_lag,
+            crc_window_end: self.crc_window_end(),
         }
     }
     /// Longest glitch in clocks: [`HubConfig::glitch_max`], or one bit minus SJW minus
@@ -185,6 +186,16 @@ impl HubConfig {
             let t = &self.timing;
             ((t.ntq() - t.sjw) * t.brp).saturating_sub(3).clamp(1, 30) as u64
         })
+    }
+    /// Early-ACK rule (hub.md §5.2): the last clock after the bit start at which a dominant
+    /// level counts in the CRC delimiter, one SJW plus one TQ before the sample point
+    /// ((PROP + PH1 - SJW) TQ; 8 clocks with the reference timing). A receiver whose
+    /// oscillator is fast against the transmitter's legitimately starts its ACK up to SJW
+    /// early, and a hub that lags the other hub's frame by an interlink crossing sees that
+    /// ACK earlier still.
+    pub fn crc_window_end(&self) -> u64 {
+        let t = &self.timing;
+        ((t.prop + t.ph1).saturating_sub(t.sjw) * t.brp).min(31) as u64
     }
     /// Parameters of the sublink judge units.
     pub fn sublink_params(&self) -> JudgeParams {
@@ -200,6 +211,7 @@ impl HubConfig {
             glitch_limit: self.sub_glitch_limit,
             glitch_decay: self.glitch_decay,
             window_lag: self.sub_window_lag,
+            crc_window_end: self.crc_window_end(),
         }
     }
     /// Check the ranges; returns a description of the first problem, starting
@@ -271,3 +283,19 @@ impl HubConfig {
     }
 }
 
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn crc_window_ends_one_sjw_and_one_tq_before_the_sample_point() {
+        let c = HubConfig::default();
+        // sample point at (1 + PROP + PH1) TQ = 12 clocks; SJW + 1 TQ = 4 clocks earlier
+        assert_eq!(c.crc_window_end(), 8);
+        assert_eq!(c.port_params().crc_window_end, 8);
+        assert_eq!(c.sublink_params().crc_window_end, 8);
+        let hub29 = HubConfig { timing: BtlConfig::new(4, 3, 2, 1), ..HubConfig::default() };
+        assert_eq!(hub29.crc_window_end(), 16);
+    }
+}

@@ -6,7 +6,7 @@ use canstar_hub::judge::{JudgeParams, JudgeUnit};
 use rand::Rng;
 
 fn params() -> JudgeParams {
-    JudgeParams { bic_limit: 64, life_limit: 32, dbc_threshold: 13, nack_threshold: 7, replica_limit: 3, reintegration: None, glitch_min: 1, glitch_max: 11, glitch_limit: 3, glitch_decay: 16, window_lag: 7 }
+    JudgeParams { bic_limit: 64, life_limit: 32, dbc_threshold: 13, nack_threshold: 7, replica_limit: 3, reintegration: None, glitch_min: 1, glitch_max: 11, glitch_limit: 3, glitch_decay: 16, window_lag: 7, crc_window_end: 8 }
 }
 
 #[derive(Default, Clone, Copy)]
@@ -217,6 +217,51 @@ fn pulse_bit(j: &mut JudgeUnit, from: u64, len: u64, suppress: bool) -> (bool, u
     drive::settle(j);
     glitches += j.glitch.val() as usize;
     (blame, glitches)
+}
+
+/// One CRC delimiter bit of 16 clocks, recessive until clock `from`, then dominant to the
+/// end of the bit (an acknowledgement that starts early, or a fault); returns the blame at
+/// the sample point (clock 12).
+fn crc_delimiter_dominant_from(j: &mut JudgeUnit, from: u64) -> bool {
+    let mut blame = false;
+    j.bt.next = true;
+    j.crc_delim.next = true;
+    for k in 0..16u64 {
+        j.c.next = k < from;
+        j.bt.next = k < from;
+        j.sample.next = k == SAMPLE_AT;
+        j.bit_start.next = k == 0;
+        j.bs_cnt.next = k.into();
+        drive::settle(j);
+        blame |= j.blame.val();
+        drive::cycle(j);
+    }
+    j.sample.next = false;
+    j.crc_delim.next = false;
+    blame
+}
+
+/// hub.md §5.2 early-ACK rule: in the CRC delimiter a dominant level counts only up to
+/// `crc_window_end` (8) clocks after the bit start. A fast receiver's ACK that reaches the
+/// hub in the last clocks before the sample point, or at it, is not blamed (the soak at the
+/// tolerance limit, README "No false blame", `canstar soak --chunk 2`: a hub one interlink
+/// further from the transmitter sees the other hub's receivers' ACK at its sample point);
+/// a dominant level from the window start on is.
+#[test]
+fn early_ack_in_the_crc_delimiter_is_not_blamed() {
+    for from in 9..=SAMPLE_AT {
+        let mut j = unit(params());
+        assert!(!crc_delimiter_dominant_from(&mut j, from), "dominant from clock {from}: an early ACK, not blamed");
+        assert_eq!(j.bic.val().index(), 0);
+    }
+    for from in [0, 7, 8] {
+        let mut j = unit(params());
+        assert!(crc_delimiter_dominant_from(&mut j, from), "dominant from clock {from}: blamed");
+        assert_eq!(j.bic.val().index(), 8);
+    }
+    // the window rule still applies to the other recessive-only positions up to the sample point
+    let mut j = unit(params());
+    assert!(pulse_bit(&mut j, 10, 6, false).0, "EOF dominant from clock 10: blamed");
 }
 
 /// hub.md §5.8 glitch rule: a run of at most `glitch_max` clocks on the input counts

@@ -2287,6 +2287,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
     localparam  glitch_limit = 3'b11;
     localparam  glitch_decay = 5'b10000;
     localparam  win_lag = 5'b111;
+    localparam  crc_end = 5'b1000;
     localparam  ack_rule = 1'b1;
     localparam  nack_on = 1'b1;
     localparam  rep_on = 1'b0;
@@ -2346,6 +2347,9 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
     reg  seen_dom$d;
     wire  seen_dom$q;
     reg  seen_dom$clock;
+    reg  seen_dom_crc$d;
+    wire  seen_dom_crc$q;
+    reg  seen_dom_crc$clock;
     reg  [2:0] gc_r$d;
     wire  [2:0] gc_r$q;
     reg  gc_r$clock;
@@ -2462,6 +2466,11 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         .q(seen_dom$q),
         .clock(seen_dom$clock)
     );
+    canstar_cancentrate_core$core$pj$0$seen_dom_crc seen_dom_crc(
+        .d(seen_dom_crc$d),
+        .q(seen_dom_crc$q),
+        .clock(seen_dom_crc$clock)
+    );
     canstar_cancentrate_core$core$pj$0$gc_r gc_r(
         .d(gc_r$d),
         .q(gc_r$q),
@@ -2511,6 +2520,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         ack_c$clock = clock;
         ack_rx$clock = clock;
         seen_dom$clock = clock;
+        seen_dom_crc$clock = clock;
         gc_r$clock = clock;
         gdec_r$clock = clock;
         an_r$clock = clock;
@@ -2533,6 +2543,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         ack_c$d = ack_c$q;
         ack_rx$d = ack_rx$q;
         seen_dom$d = seen_dom$q;
+        seen_dom_crc$d = seen_dom_crc$q;
         gc_r$d = gc_r$q;
         gdec_r$d = gdec_r$q;
         an_r$d = an_r$q;
@@ -2554,7 +2565,13 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         else if (dom & (bs_cnt >= win_lag)) begin
             seen_dom$d = 1'b1;
         end
-        unj = domw & ((~err_phase & ((tx_region & ~cont_r$q) | crc_delim | (ack_delim & ~ack_missing$q) | eof_1_6 | im_2 | (ack_slot & cont_r$q & ack_rule))) | delim);
+        if (bit_start) begin
+            seen_dom_crc$d = 1'b0;
+        end
+        else if (dom & (bs_cnt >= win_lag) & (bs_cnt <= crc_end)) begin
+            seen_dom_crc$d = 1'b1;
+        end
+        unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | im_2 | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q);
         blame = sample & unj & enabled;
         charge = sample & unj & enabled & ~suppress;
         charged = sample & unj & enabled & ~suppress;
@@ -2711,6 +2728,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
             ack_c$d = 1'b0;
             ack_rx$d = 1'b0;
             seen_dom$d = 1'b0;
+            seen_dom_crc$d = 1'b0;
             gc_r$d = 32'h0;
             gdec_r$d = 32'h0;
             an_r$d = 32'h0;
@@ -3244,6 +3262,25 @@ module canstar_cancentrate_core$core$pj$0$seen_dom(d,q,clock);
 endmodule // canstar_cancentrate_core$core$pj$0$seen_dom
 
 
+module canstar_cancentrate_core$core$pj$0$seen_dom_crc(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$0$seen_dom_crc
+
+
 module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,rep_glitched,rep_blamed,common,dis,blame,charged,tx_error,glitch,anomaly,bic,life,dbc,nack,rep_cnt,gc,silent,contender);
     
     // Module arguments
@@ -3297,6 +3334,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
     localparam  glitch_limit = 3'b11;
     localparam  glitch_decay = 5'b10000;
     localparam  win_lag = 5'b111;
+    localparam  crc_end = 5'b1000;
     localparam  ack_rule = 1'b1;
     localparam  nack_on = 1'b1;
     localparam  rep_on = 1'b0;
@@ -3356,6 +3394,9 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
     reg  seen_dom$d;
     wire  seen_dom$q;
     reg  seen_dom$clock;
+    reg  seen_dom_crc$d;
+    wire  seen_dom_crc$q;
+    reg  seen_dom_crc$clock;
     reg  [2:0] gc_r$d;
     wire  [2:0] gc_r$q;
     reg  gc_r$clock;
@@ -3472,6 +3513,11 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         .q(seen_dom$q),
         .clock(seen_dom$clock)
     );
+    canstar_cancentrate_core$core$pj$1$seen_dom_crc seen_dom_crc(
+        .d(seen_dom_crc$d),
+        .q(seen_dom_crc$q),
+        .clock(seen_dom_crc$clock)
+    );
     canstar_cancentrate_core$core$pj$1$gc_r gc_r(
         .d(gc_r$d),
         .q(gc_r$q),
@@ -3521,6 +3567,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         ack_c$clock = clock;
         ack_rx$clock = clock;
         seen_dom$clock = clock;
+        seen_dom_crc$clock = clock;
         gc_r$clock = clock;
         gdec_r$clock = clock;
         an_r$clock = clock;
@@ -3543,6 +3590,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         ack_c$d = ack_c$q;
         ack_rx$d = ack_rx$q;
         seen_dom$d = seen_dom$q;
+        seen_dom_crc$d = seen_dom_crc$q;
         gc_r$d = gc_r$q;
         gdec_r$d = gdec_r$q;
         an_r$d = an_r$q;
@@ -3564,7 +3612,13 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         else if (dom & (bs_cnt >= win_lag)) begin
             seen_dom$d = 1'b1;
         end
-        unj = domw & ((~err_phase & ((tx_region & ~cont_r$q) | crc_delim | (ack_delim & ~ack_missing$q) | eof_1_6 | im_2 | (ack_slot & cont_r$q & ack_rule))) | delim);
+        if (bit_start) begin
+            seen_dom_crc$d = 1'b0;
+        end
+        else if (dom & (bs_cnt >= win_lag) & (bs_cnt <= crc_end)) begin
+            seen_dom_crc$d = 1'b1;
+        end
+        unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | im_2 | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q);
         blame = sample & unj & enabled;
         charge = sample & unj & enabled & ~suppress;
         charged = sample & unj & enabled & ~suppress;
@@ -3721,6 +3775,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
             ack_c$d = 1'b0;
             ack_rx$d = 1'b0;
             seen_dom$d = 1'b0;
+            seen_dom_crc$d = 1'b0;
             gc_r$d = 32'h0;
             gdec_r$d = 32'h0;
             an_r$d = 32'h0;
@@ -4254,6 +4309,25 @@ module canstar_cancentrate_core$core$pj$1$seen_dom(d,q,clock);
 endmodule // canstar_cancentrate_core$core$pj$1$seen_dom
 
 
+module canstar_cancentrate_core$core$pj$1$seen_dom_crc(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$1$seen_dom_crc
+
+
 module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,rep_glitched,rep_blamed,common,dis,blame,charged,tx_error,glitch,anomaly,bic,life,dbc,nack,rep_cnt,gc,silent,contender);
     
     // Module arguments
@@ -4307,6 +4381,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
     localparam  glitch_limit = 3'b11;
     localparam  glitch_decay = 5'b10000;
     localparam  win_lag = 5'b111;
+    localparam  crc_end = 5'b1000;
     localparam  ack_rule = 1'b1;
     localparam  nack_on = 1'b1;
     localparam  rep_on = 1'b0;
@@ -4366,6 +4441,9 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
     reg  seen_dom$d;
     wire  seen_dom$q;
     reg  seen_dom$clock;
+    reg  seen_dom_crc$d;
+    wire  seen_dom_crc$q;
+    reg  seen_dom_crc$clock;
     reg  [2:0] gc_r$d;
     wire  [2:0] gc_r$q;
     reg  gc_r$clock;
@@ -4482,6 +4560,11 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         .q(seen_dom$q),
         .clock(seen_dom$clock)
     );
+    canstar_cancentrate_core$core$pj$2$seen_dom_crc seen_dom_crc(
+        .d(seen_dom_crc$d),
+        .q(seen_dom_crc$q),
+        .clock(seen_dom_crc$clock)
+    );
     canstar_cancentrate_core$core$pj$2$gc_r gc_r(
         .d(gc_r$d),
         .q(gc_r$q),
@@ -4531,6 +4614,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         ack_c$clock = clock;
         ack_rx$clock = clock;
         seen_dom$clock = clock;
+        seen_dom_crc$clock = clock;
         gc_r$clock = clock;
         gdec_r$clock = clock;
         an_r$clock = clock;
@@ -4553,6 +4637,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         ack_c$d = ack_c$q;
         ack_rx$d = ack_rx$q;
         seen_dom$d = seen_dom$q;
+        seen_dom_crc$d = seen_dom_crc$q;
         gc_r$d = gc_r$q;
         gdec_r$d = gdec_r$q;
         an_r$d = an_r$q;
@@ -4574,7 +4659,13 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         else if (dom & (bs_cnt >= win_lag)) begin
             seen_dom$d = 1'b1;
         end
-        unj = domw & ((~err_phase & ((tx_region & ~cont_r$q) | crc_delim | (ack_delim & ~ack_missing$q) | eof_1_6 | im_2 | (ack_slot & cont_r$q & ack_rule))) | delim);
+        if (bit_start) begin
+            seen_dom_crc$d = 1'b0;
+        end
+        else if (dom & (bs_cnt >= win_lag) & (bs_cnt <= crc_end)) begin
+            seen_dom_crc$d = 1'b1;
+        end
+        unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | im_2 | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q);
         blame = sample & unj & enabled;
         charge = sample & unj & enabled & ~suppress;
         charged = sample & unj & enabled & ~suppress;
@@ -4731,6 +4822,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
             ack_c$d = 1'b0;
             ack_rx$d = 1'b0;
             seen_dom$d = 1'b0;
+            seen_dom_crc$d = 1'b0;
             gc_r$d = 32'h0;
             gdec_r$d = 32'h0;
             an_r$d = 32'h0;
@@ -5262,6 +5354,25 @@ module canstar_cancentrate_core$core$pj$2$seen_dom(d,q,clock);
     end
           
 endmodule // canstar_cancentrate_core$core$pj$2$seen_dom
+
+
+module canstar_cancentrate_core$core$pj$2$seen_dom_crc(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$2$seen_dom_crc
 
 
 module canstar_cancentrate_core$core$rst_s1(d,q,clock);

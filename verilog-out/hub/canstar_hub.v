@@ -2951,6 +2951,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     localparam  glitch_limit = 3'b11;
     localparam  glitch_decay = 5'b10000;
     localparam  win_lag = 5'b111;
+    localparam  crc_end = 5'b1000;
     localparam  ack_rule = 1'b1;
     localparam  nack_on = 1'b1;
     localparam  rep_on = 1'b0;
@@ -3010,6 +3011,9 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  seen_dom$d;
     wire  seen_dom$q;
     reg  seen_dom$clock;
+    reg  seen_dom_crc$d;
+    wire  seen_dom_crc$q;
+    reg  seen_dom_crc$clock;
     reg  [2:0] gc_r$d;
     wire  [2:0] gc_r$q;
     reg  gc_r$clock;
@@ -3126,6 +3130,11 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .q(seen_dom$q),
         .clock(seen_dom$clock)
     );
+    canstar_hub_core$core$pj$0$seen_dom_crc seen_dom_crc(
+        .d(seen_dom_crc$d),
+        .q(seen_dom_crc$q),
+        .clock(seen_dom_crc$clock)
+    );
     canstar_hub_core$core$pj$0$gc_r gc_r(
         .d(gc_r$d),
         .q(gc_r$q),
@@ -3175,6 +3184,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         ack_c$clock = clock;
         ack_rx$clock = clock;
         seen_dom$clock = clock;
+        seen_dom_crc$clock = clock;
         gc_r$clock = clock;
         gdec_r$clock = clock;
         an_r$clock = clock;
@@ -3197,6 +3207,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         ack_c$d = ack_c$q;
         ack_rx$d = ack_rx$q;
         seen_dom$d = seen_dom$q;
+        seen_dom_crc$d = seen_dom_crc$q;
         gc_r$d = gc_r$q;
         gdec_r$d = gdec_r$q;
         an_r$d = an_r$q;
@@ -3218,7 +3229,13 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         else if (dom & (bs_cnt >= win_lag)) begin
             seen_dom$d = 1'b1;
         end
-        unj = domw & ((~err_phase & ((tx_region & ~cont_r$q) | crc_delim | (ack_delim & ~ack_missing$q) | eof_1_6 | im_2 | (ack_slot & cont_r$q & ack_rule))) | delim);
+        if (bit_start) begin
+            seen_dom_crc$d = 1'b0;
+        end
+        else if (dom & (bs_cnt >= win_lag) & (bs_cnt <= crc_end)) begin
+            seen_dom_crc$d = 1'b1;
+        end
+        unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | im_2 | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q);
         blame = sample & unj & enabled;
         charge = sample & unj & enabled & ~suppress;
         charged = sample & unj & enabled & ~suppress;
@@ -3375,6 +3392,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             ack_c$d = 1'b0;
             ack_rx$d = 1'b0;
             seen_dom$d = 1'b0;
+            seen_dom_crc$d = 1'b0;
             gc_r$d = 32'h0;
             gdec_r$d = 32'h0;
             an_r$d = 32'h0;
@@ -3908,6 +3926,25 @@ module canstar_hub_core$core$pj$0$seen_dom(d,q,clock);
 endmodule // canstar_hub_core$core$pj$0$seen_dom
 
 
+module canstar_hub_core$core$pj$0$seen_dom_crc(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$0$seen_dom_crc
+
+
 module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,rep_glitched,rep_blamed,common,dis,blame,charged,tx_error,glitch,anomaly,bic,life,dbc,nack,rep_cnt,gc,silent,contender);
     
     // Module arguments
@@ -3961,6 +3998,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     localparam  glitch_limit = 3'b11;
     localparam  glitch_decay = 5'b10000;
     localparam  win_lag = 5'b111;
+    localparam  crc_end = 5'b1000;
     localparam  ack_rule = 1'b1;
     localparam  nack_on = 1'b1;
     localparam  rep_on = 1'b0;
@@ -4020,6 +4058,9 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  seen_dom$d;
     wire  seen_dom$q;
     reg  seen_dom$clock;
+    reg  seen_dom_crc$d;
+    wire  seen_dom_crc$q;
+    reg  seen_dom_crc$clock;
     reg  [2:0] gc_r$d;
     wire  [2:0] gc_r$q;
     reg  gc_r$clock;
@@ -4136,6 +4177,11 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .q(seen_dom$q),
         .clock(seen_dom$clock)
     );
+    canstar_hub_core$core$pj$1$seen_dom_crc seen_dom_crc(
+        .d(seen_dom_crc$d),
+        .q(seen_dom_crc$q),
+        .clock(seen_dom_crc$clock)
+    );
     canstar_hub_core$core$pj$1$gc_r gc_r(
         .d(gc_r$d),
         .q(gc_r$q),
@@ -4185,6 +4231,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         ack_c$clock = clock;
         ack_rx$clock = clock;
         seen_dom$clock = clock;
+        seen_dom_crc$clock = clock;
         gc_r$clock = clock;
         gdec_r$clock = clock;
         an_r$clock = clock;
@@ -4207,6 +4254,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         ack_c$d = ack_c$q;
         ack_rx$d = ack_rx$q;
         seen_dom$d = seen_dom$q;
+        seen_dom_crc$d = seen_dom_crc$q;
         gc_r$d = gc_r$q;
         gdec_r$d = gdec_r$q;
         an_r$d = an_r$q;
@@ -4228,7 +4276,13 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         else if (dom & (bs_cnt >= win_lag)) begin
             seen_dom$d = 1'b1;
         end
-        unj = domw & ((~err_phase & ((tx_region & ~cont_r$q) | crc_delim | (ack_delim & ~ack_missing$q) | eof_1_6 | im_2 | (ack_slot & cont_r$q & ack_rule))) | delim);
+        if (bit_start) begin
+            seen_dom_crc$d = 1'b0;
+        end
+        else if (dom & (bs_cnt >= win_lag) & (bs_cnt <= crc_end)) begin
+            seen_dom_crc$d = 1'b1;
+        end
+        unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | im_2 | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q);
         blame = sample & unj & enabled;
         charge = sample & unj & enabled & ~suppress;
         charged = sample & unj & enabled & ~suppress;
@@ -4385,6 +4439,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             ack_c$d = 1'b0;
             ack_rx$d = 1'b0;
             seen_dom$d = 1'b0;
+            seen_dom_crc$d = 1'b0;
             gc_r$d = 32'h0;
             gdec_r$d = 32'h0;
             an_r$d = 32'h0;
@@ -4918,6 +4973,25 @@ module canstar_hub_core$core$pj$1$seen_dom(d,q,clock);
 endmodule // canstar_hub_core$core$pj$1$seen_dom
 
 
+module canstar_hub_core$core$pj$1$seen_dom_crc(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$1$seen_dom_crc
+
+
 module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,rep_glitched,rep_blamed,common,dis,blame,charged,tx_error,glitch,anomaly,bic,life,dbc,nack,rep_cnt,gc,silent,contender);
     
     // Module arguments
@@ -4971,6 +5045,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     localparam  glitch_limit = 3'b11;
     localparam  glitch_decay = 5'b10000;
     localparam  win_lag = 5'b111;
+    localparam  crc_end = 5'b1000;
     localparam  ack_rule = 1'b1;
     localparam  nack_on = 1'b1;
     localparam  rep_on = 1'b0;
@@ -5030,6 +5105,9 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  seen_dom$d;
     wire  seen_dom$q;
     reg  seen_dom$clock;
+    reg  seen_dom_crc$d;
+    wire  seen_dom_crc$q;
+    reg  seen_dom_crc$clock;
     reg  [2:0] gc_r$d;
     wire  [2:0] gc_r$q;
     reg  gc_r$clock;
@@ -5146,6 +5224,11 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .q(seen_dom$q),
         .clock(seen_dom$clock)
     );
+    canstar_hub_core$core$pj$2$seen_dom_crc seen_dom_crc(
+        .d(seen_dom_crc$d),
+        .q(seen_dom_crc$q),
+        .clock(seen_dom_crc$clock)
+    );
     canstar_hub_core$core$pj$2$gc_r gc_r(
         .d(gc_r$d),
         .q(gc_r$q),
@@ -5195,6 +5278,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         ack_c$clock = clock;
         ack_rx$clock = clock;
         seen_dom$clock = clock;
+        seen_dom_crc$clock = clock;
         gc_r$clock = clock;
         gdec_r$clock = clock;
         an_r$clock = clock;
@@ -5217,6 +5301,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         ack_c$d = ack_c$q;
         ack_rx$d = ack_rx$q;
         seen_dom$d = seen_dom$q;
+        seen_dom_crc$d = seen_dom_crc$q;
         gc_r$d = gc_r$q;
         gdec_r$d = gdec_r$q;
         an_r$d = an_r$q;
@@ -5238,7 +5323,13 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         else if (dom & (bs_cnt >= win_lag)) begin
             seen_dom$d = 1'b1;
         end
-        unj = domw & ((~err_phase & ((tx_region & ~cont_r$q) | crc_delim | (ack_delim & ~ack_missing$q) | eof_1_6 | im_2 | (ack_slot & cont_r$q & ack_rule))) | delim);
+        if (bit_start) begin
+            seen_dom_crc$d = 1'b0;
+        end
+        else if (dom & (bs_cnt >= win_lag) & (bs_cnt <= crc_end)) begin
+            seen_dom_crc$d = 1'b1;
+        end
+        unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | im_2 | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q);
         blame = sample & unj & enabled;
         charge = sample & unj & enabled & ~suppress;
         charged = sample & unj & enabled & ~suppress;
@@ -5395,6 +5486,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             ack_c$d = 1'b0;
             ack_rx$d = 1'b0;
             seen_dom$d = 1'b0;
+            seen_dom_crc$d = 1'b0;
             gc_r$d = 32'h0;
             gdec_r$d = 32'h0;
             an_r$d = 32'h0;
@@ -5928,6 +6020,25 @@ module canstar_hub_core$core$pj$2$seen_dom(d,q,clock);
 endmodule // canstar_hub_core$core$pj$2$seen_dom
 
 
+module canstar_hub_core$core$pj$2$seen_dom_crc(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$2$seen_dom_crc
+
+
 module canstar_hub_core$core$rst_s1(d,q,clock);
     
     // Module arguments
@@ -6019,6 +6130,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     localparam  glitch_limit = 3'b110;
     localparam  glitch_decay = 5'b10000;
     localparam  win_lag = 5'b1000;
+    localparam  crc_end = 5'b1000;
     localparam  ack_rule = 1'b0;
     localparam  nack_on = 1'b0;
     localparam  rep_on = 1'b1;
@@ -6078,6 +6190,9 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  seen_dom$d;
     wire  seen_dom$q;
     reg  seen_dom$clock;
+    reg  seen_dom_crc$d;
+    wire  seen_dom_crc$q;
+    reg  seen_dom_crc$clock;
     reg  [2:0] gc_r$d;
     wire  [2:0] gc_r$q;
     reg  gc_r$clock;
@@ -6194,6 +6309,11 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .q(seen_dom$q),
         .clock(seen_dom$clock)
     );
+    canstar_hub_core$core$sj$0$seen_dom_crc seen_dom_crc(
+        .d(seen_dom_crc$d),
+        .q(seen_dom_crc$q),
+        .clock(seen_dom_crc$clock)
+    );
     canstar_hub_core$core$sj$0$gc_r gc_r(
         .d(gc_r$d),
         .q(gc_r$q),
@@ -6243,6 +6363,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         ack_c$clock = clock;
         ack_rx$clock = clock;
         seen_dom$clock = clock;
+        seen_dom_crc$clock = clock;
         gc_r$clock = clock;
         gdec_r$clock = clock;
         an_r$clock = clock;
@@ -6265,6 +6386,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         ack_c$d = ack_c$q;
         ack_rx$d = ack_rx$q;
         seen_dom$d = seen_dom$q;
+        seen_dom_crc$d = seen_dom_crc$q;
         gc_r$d = gc_r$q;
         gdec_r$d = gdec_r$q;
         an_r$d = an_r$q;
@@ -6286,7 +6408,13 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         else if (dom & (bs_cnt >= win_lag)) begin
             seen_dom$d = 1'b1;
         end
-        unj = domw & ((~err_phase & ((tx_region & ~cont_r$q) | crc_delim | (ack_delim & ~ack_missing$q) | eof_1_6 | im_2 | (ack_slot & cont_r$q & ack_rule))) | delim);
+        if (bit_start) begin
+            seen_dom_crc$d = 1'b0;
+        end
+        else if (dom & (bs_cnt >= win_lag) & (bs_cnt <= crc_end)) begin
+            seen_dom_crc$d = 1'b1;
+        end
+        unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | im_2 | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q);
         blame = sample & unj & enabled;
         charge = sample & unj & enabled & ~suppress;
         charged = sample & unj & enabled & ~suppress;
@@ -6443,6 +6571,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             ack_c$d = 1'b0;
             ack_rx$d = 1'b0;
             seen_dom$d = 1'b0;
+            seen_dom_crc$d = 1'b0;
             gc_r$d = 32'h0;
             gdec_r$d = 32'h0;
             an_r$d = 32'h0;
@@ -6976,6 +7105,25 @@ module canstar_hub_core$core$sj$0$seen_dom(d,q,clock);
 endmodule // canstar_hub_core$core$sj$0$seen_dom
 
 
+module canstar_hub_core$core$sj$0$seen_dom_crc(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$sj$0$seen_dom_crc
+
+
 module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,rep_glitched,rep_blamed,common,dis,blame,charged,tx_error,glitch,anomaly,bic,life,dbc,nack,rep_cnt,gc,silent,contender);
     
     // Module arguments
@@ -7029,6 +7177,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     localparam  glitch_limit = 3'b110;
     localparam  glitch_decay = 5'b10000;
     localparam  win_lag = 5'b1000;
+    localparam  crc_end = 5'b1000;
     localparam  ack_rule = 1'b0;
     localparam  nack_on = 1'b0;
     localparam  rep_on = 1'b1;
@@ -7088,6 +7237,9 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  seen_dom$d;
     wire  seen_dom$q;
     reg  seen_dom$clock;
+    reg  seen_dom_crc$d;
+    wire  seen_dom_crc$q;
+    reg  seen_dom_crc$clock;
     reg  [2:0] gc_r$d;
     wire  [2:0] gc_r$q;
     reg  gc_r$clock;
@@ -7204,6 +7356,11 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .q(seen_dom$q),
         .clock(seen_dom$clock)
     );
+    canstar_hub_core$core$sj$1$seen_dom_crc seen_dom_crc(
+        .d(seen_dom_crc$d),
+        .q(seen_dom_crc$q),
+        .clock(seen_dom_crc$clock)
+    );
     canstar_hub_core$core$sj$1$gc_r gc_r(
         .d(gc_r$d),
         .q(gc_r$q),
@@ -7253,6 +7410,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         ack_c$clock = clock;
         ack_rx$clock = clock;
         seen_dom$clock = clock;
+        seen_dom_crc$clock = clock;
         gc_r$clock = clock;
         gdec_r$clock = clock;
         an_r$clock = clock;
@@ -7275,6 +7433,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         ack_c$d = ack_c$q;
         ack_rx$d = ack_rx$q;
         seen_dom$d = seen_dom$q;
+        seen_dom_crc$d = seen_dom_crc$q;
         gc_r$d = gc_r$q;
         gdec_r$d = gdec_r$q;
         an_r$d = an_r$q;
@@ -7296,7 +7455,13 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         else if (dom & (bs_cnt >= win_lag)) begin
             seen_dom$d = 1'b1;
         end
-        unj = domw & ((~err_phase & ((tx_region & ~cont_r$q) | crc_delim | (ack_delim & ~ack_missing$q) | eof_1_6 | im_2 | (ack_slot & cont_r$q & ack_rule))) | delim);
+        if (bit_start) begin
+            seen_dom_crc$d = 1'b0;
+        end
+        else if (dom & (bs_cnt >= win_lag) & (bs_cnt <= crc_end)) begin
+            seen_dom_crc$d = 1'b1;
+        end
+        unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | im_2 | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q);
         blame = sample & unj & enabled;
         charge = sample & unj & enabled & ~suppress;
         charged = sample & unj & enabled & ~suppress;
@@ -7453,6 +7618,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             ack_c$d = 1'b0;
             ack_rx$d = 1'b0;
             seen_dom$d = 1'b0;
+            seen_dom_crc$d = 1'b0;
             gc_r$d = 32'h0;
             gdec_r$d = 32'h0;
             an_r$d = 32'h0;
@@ -7984,6 +8150,25 @@ module canstar_hub_core$core$sj$1$seen_dom(d,q,clock);
     end
           
 endmodule // canstar_hub_core$core$sj$1$seen_dom
+
+
+module canstar_hub_core$core$sj$1$seen_dom_crc(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$sj$1$seen_dom_crc
 
 
 module canstar_hub_core$core$sub_bl_r(d,q,clock);
