@@ -1,7 +1,7 @@
 //! End-to-end tests of `canstar soak`: bad input fails cleanly and writes nothing;
 //! shards written as JSON merge into the unsharded summary; `--network` soaks a
-//! network file (the hub clocked at 29.48 MHz is clean on the chunk where the
-//! reference hub blames a healthy input in the CRC delimiter, README "No false blame").
+//! network file (the hub clocked at 29.48 MHz on the chunk where the reference hub
+//! blamed a fast receiver's early ACK before the early-ACK rule, README "No false blame").
 mod common;
 use common::{canstar, entries, example};
 
@@ -129,8 +129,9 @@ fn soak_shards_merge_into_the_unsharded_summary() {
 fn soak_of_a_network_file_uses_that_network() {
     let d = tempfile::tempdir().unwrap();
     // Chunk 16 of the default soak puts hub 1 at +6250 ppm and some receivers at
-    // -6250 ppm; the reference hub (14.74 MHz) blames a healthy input in its CRC
-    // delimiter there (README "No false blame"). With the hubs at 29.48 MHz it is clean.
+    // -6250 ppm; the reference hub (14.74 MHz) blamed a fast receiver's early ACK in
+    // its CRC delimiter there before the early-ACK rule (README "No false blame"). With
+    // the hubs at 29.48 MHz it is clean too.
     let hub29 = example("recancentrate-hub-29mhz.toml");
     let (ok, out, err) = canstar(
         &[
