@@ -158,3 +158,15 @@ fn soak_of_a_network_file_uses_that_network() {
         "the report should carry the soaked network"
     );
 }
+
+/// The early-ACK rule at system level: chunk 2 of the default soak (hub 0 slow, the
+/// acknowledging B controllers fast) had hub 0 blame both sublinks at its CRC delimiter
+/// before the rule (README "No false blame"); now it is clean.
+#[test]
+fn reference_soak_chunk_with_an_early_ack_is_clean() {
+    let d = tempfile::tempdir().unwrap();
+    let (ok, out, err) = canstar(&["soak", "--chunk", "2"], d.path());
+    assert!(ok, "{out}{err}");
+    assert!(out.contains("hubs [6250.0, -6250.0] ppm"), "the chunk's oscillators changed: {out}");
+    assert!(out.contains("blames 0  isolations 0  worst TEC 0 REC 0  controller errors 0"), "{out}");
+}
