@@ -39,17 +39,25 @@ fn report_rejects_bad_options_and_writes_nothing() {
     }
 }
 
-/// Pids listed in `pids` whose processes still run (a zombie does not).
+/// Pids listed in `pids` whose processes still run (a zombie does not), after
+/// waiting up to 5 s for them to go (a loaded machine reaps late).
 fn alive(pids: &Path) -> Vec<String> {
-    std::fs::read_to_string(pids)
-        .unwrap_or_default()
-        .split_whitespace()
-        .filter(|p| {
-            std::fs::read_to_string(format!("/proc/{p}/stat"))
-                .is_ok_and(|s| s.rsplit_once(')').is_some_and(|(_, r)| !r.trim_start().starts_with(['Z', 'X'])))
-        })
-        .map(String::from)
-        .collect()
+    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(5);
+    loop {
+        let left: Vec<String> = std::fs::read_to_string(pids)
+            .unwrap_or_default()
+            .split_whitespace()
+            .filter(|p| {
+                std::fs::read_to_string(format!("/proc/{p}/stat"))
+                    .is_ok_and(|s| s.rsplit_once(')').is_some_and(|(_, r)| !r.trim_start().starts_with(['Z', 'X'])))
+            })
+            .map(String::from)
+            .collect();
+        if left.is_empty() || std::time::Instant::now() > deadline {
+            return left;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(50));
+    }
 }
 
 #[test]

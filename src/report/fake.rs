@@ -12,16 +12,26 @@ pub fn fake(dir: &Path, body: &str) -> String {
     p.display().to_string()
 }
 
-/// Pids written by the fake that are still running (a zombie is not).
+/// Pids written by the fake that are still running (a zombie is not), after
+/// waiting up to 5 s for them to go: a killed process is reaped by the kernel a
+/// moment after the kill returns, longer when the machine is loaded.
 pub fn alive(dir: &Path) -> Vec<String> {
-    let pids = std::fs::read_to_string(dir.join("pids")).unwrap_or_default();
-    pids.split_whitespace()
-        .filter(|p| {
-            std::fs::read_to_string(format!("/proc/{p}/stat"))
-                .is_ok_and(|s| s.rsplit_once(')').is_some_and(|(_, r)| !r.trim_start().starts_with(['Z', 'X'])))
-        })
-        .map(String::from)
-        .collect()
+    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(5);
+    loop {
+        let pids = std::fs::read_to_string(dir.join("pids")).unwrap_or_default();
+        let left: Vec<String> = pids
+            .split_whitespace()
+            .filter(|p| {
+                std::fs::read_to_string(format!("/proc/{p}/stat"))
+                    .is_ok_and(|s| s.rsplit_once(')').is_some_and(|(_, r)| !r.trim_start().starts_with(['Z', 'X'])))
+            })
+            .map(String::from)
+            .collect();
+        if left.is_empty() || std::time::Instant::now() > deadline {
+            return left;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(50));
+    }
 }
 
 /// Router lines, then a child process that sleeps: no line for an hour.

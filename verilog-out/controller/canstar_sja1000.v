@@ -8742,6 +8742,7 @@ module canstar_sja1000$txctl(clock,rst,opm,sleep,enter_rm,cmd,tr,at,srr,tx_done,
                 single$d = at;
                 srr_r$d = srr;
                 abrt$d = 1'b0;
+                tcs_n$d = 1'b1;
             end
             else if (at & pend$q & ~lb$q) begin
                 abort = 1'b1;

@@ -105,8 +105,10 @@
 //!   the node is not sleeping (else ignored); with AT in the same write the
 //!   transmission is single shot. AT alone while a transmission is pending
 //!   aborts it: if it has not started TBS = 1 at once, else at the end of
-//!   the frame; TCS tells whether it was sent. TI is raised whenever TBS
-//!   goes back to 1 (success, single-shot failure, abort). Writes to the TX
+//!   the frame. TCS goes to 0 with the TR/SRR request and to 1 only when a
+//!   transmission succeeds, so after an abort or bus-off it reads 0. TI is
+//!   raised whenever TBS goes back to 1 (success, single-shot failure,
+//!   abort). Writes to the TX
 //!   buffer while TBS = 0 are ignored (the SJA1000 locks it).
 //!   In listen-only mode a request stays pending (the core never transmits).
 //! - **Self-reception** (SRR): the core does not deliver its own frames, so

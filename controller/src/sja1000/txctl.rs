@@ -4,7 +4,8 @@
 //!
 //! TR or SRR (`cmd` with `tr`/`srr`, operating mode) starts a transmission
 //! when TBS = 1 and the node is not sleeping; with AT in the same write it
-//! is single shot. AT alone while a transmission is pending aborts it: at
+//! is single shot, and TCS goes to 0 (data sheet, status register, note on
+//! TCS: it stays 0 until a transmission succeeds). AT alone while a transmission is pending aborts it: at
 //! once if it has not started, else the core ends it after the frame. A
 //! transmission ends (TBS = 1 again, `ti`) on success (TCS = 1), on a
 //! failure of a single-shot or aborted transmission (TCS = 0), or, for a
@@ -78,6 +79,8 @@ impl Logic for TxControl {
                 self.single.d.next = self.at.val();
                 self.srr_r.d.next = self.srr.val();
                 self.abrt.d.next = false;
+                // the data sheet's note on TCS: cleared by the request
+                self.tcs_n.d.next = true;
             } else if self.at.val() & self.pend.q.val() & !self.lb.q.val() {
                 self.abort.next = true;
                 self.abrt.d.next = true;
