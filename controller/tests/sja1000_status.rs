@@ -2,7 +2,7 @@
 //! status register, note on TCS): it goes to 0 when TR or SRR is written and
 //! stays 0 until a transmission succeeds. Read at the moments a driver reads
 //! it: right after the command, during the frame, after completion, after an
-//! abort and after bus-off.
+//! abort and after bus-off; RS and TS during a frame and when idle.
 mod sja1000_util;
 use canstar_controller::frame::Frame;
 use canstar_controller::sja1000::*;
@@ -68,4 +68,27 @@ fn tcs_stays_clear_after_an_abort_and_after_bus_off() {
     n.xmit(0, &Frame::std(0x11, &[5]));
     n.run_until(400 * BIT, |n| !n.drv[0].tx_busy);
     assert_eq!(n.rd(0, REG_SR) & (SR_TBS | SR_TCS), SR_TBS | SR_TCS);
+}
+
+#[test]
+fn rs_and_ts_follow_the_frame_and_both_are_0_when_idle() {
+    let mut n = Net::opened(2, CtrlMode::default());
+    // idle after integration: neither receiving nor transmitting
+    for i in 0..2 {
+        assert_eq!(n.rd(i, REG_SR) & (SR_RS | SR_TS), 0, "node {i} idle");
+    }
+    n.xmit(0, &Frame::std(0x3A5, &[1, 2, 3, 4]));
+    // the transmitter shows TS from Start_Of_Frame, the receiver RS, never TS
+    n.wait_sr(0, SR_TS, SR_TS, 50);
+    n.run(10 * BIT);
+    assert_eq!(n.rd(1, REG_SR) & (SR_RS | SR_TS), SR_RS, "receiver during the frame");
+    assert_eq!(n.rd(0, REG_SR) & SR_TS, SR_TS, "transmitter during the frame");
+    n.run_until(400 * BIT, |n| !n.drv[0].tx_busy);
+    n.run(12 * BIT);
+    for i in 0..2 {
+        assert_eq!(n.rd(i, REG_SR) & (SR_RS | SR_TS), 0, "node {i} idle after the frame");
+    }
+    // reset mode: both 1 (waiting for bus idle), as in the 0x3C after reset
+    n.set_reset_mode(1);
+    assert_eq!(n.rd(1, REG_SR) & (SR_RS | SR_TS), SR_RS | SR_TS, "reset mode");
 }
