@@ -58,6 +58,28 @@ impl Default for Rtl {
     }
 }
 
+/// REC at a receiver's dominant End_Of_Frame bit 7 (can-protocol.md C13), as
+/// the TOML value of `controller.eof7_rec`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Eof7Rec {
+    /// `"iso"`: REC − 1, the frame was valid (ISO 16845-1 7.6.16).
+    #[default]
+    Iso,
+    /// `"bosch-1999"`: REC unchanged (the 1999 reference programs).
+    Bosch1999,
+}
+
+impl Eof7Rec {
+    /// The controller's rule.
+    pub fn rule(self) -> canstar_controller::core::Eof7Rule {
+        match self {
+            Eof7Rec::Iso => canstar_controller::core::Eof7Rule::Iso,
+            Eof7Rec::Bosch1999 => canstar_controller::core::Eof7Rule::Bosch1999,
+        }
+    }
+}
+
 /// The CAN controller designs.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -66,11 +88,14 @@ pub struct Controller {
     /// (`canstar_sja1000`, 64-byte RX FIFO, acceptance filters) and its board
     /// pin files; `false` emits only the core with its native interface.
     pub host_interface: bool,
+    /// REC at a receiver's dominant End_Of_Frame bit 7, in the core and the
+    /// SJA1000 top.
+    pub eof7_rec: Eof7Rec,
 }
 
 impl Default for Controller {
     fn default() -> Self {
-        Self { host_interface: true }
+        Self { host_interface: true, eof7_rec: Eof7Rec::Iso }
     }
 }
 

@@ -31,7 +31,8 @@ pub fn blocks(config: &Config) -> Result<Vec<Artifact>> {
 /// The CAN controller core (native interface) as `verilog-out/controller/canstar_can_core.v`.
 pub fn controller(config: &Config) -> Result<Vec<Artifact>> {
     let mut a = block(
-        canstar_controller::core::CanCore::with_sync_depth(config.rtl.sync_depth),
+        canstar_controller::core::CanCore::with_sync_depth(config.rtl.sync_depth)
+            .with_eof7_rule(config.controller.eof7_rec.rule()),
         "canstar_can_core",
         "CAN 2.0A/B protocol controller core, native interface (see controller/src/core.rs)",
     );
@@ -46,7 +47,8 @@ pub fn controller(config: &Config) -> Result<Vec<Artifact>> {
 /// board with a controller pinout (or the one asked for).
 pub fn sja1000(config: &Config, board: Option<&str>) -> Result<Vec<Artifact>> {
     let (btr0, btr1) = crate::config::btr(&config.bit_timing);
-    let mut uut = canstar_controller::sja1000::Sja1000::with_reset_timing(btr0, btr1);
+    let mut uut = canstar_controller::sja1000::Sja1000::with_reset_timing(btr0, btr1)
+        .with_eof7_rule(config.controller.eof7_rec.rule());
     uut.connect_all();
     let name = "canstar_sja1000";
     let inner = canstar_hdl::flow::rename_top(&canstar_hdl::flow::emit(&uut), name);

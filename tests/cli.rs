@@ -59,6 +59,7 @@ fn bad_config_fails_cleanly_and_writes_nothing() {
         ("bad_sjw.toml", "[bit_timing]\nph1 = 2\nsjw = 4\n", "exceeds ph1"),
         ("malformed.toml", "[bit_timing\n", "malformed"),
         ("bad_depth.toml", "[rtl]\nsync_depth = 3\n", "sync_depth"),
+        ("bad_eof7.toml", "[controller]\neof7_rec = \"bosch\"\n", "eof7_rec"),
     ] {
         std::fs::write(d.path().join(name), text).unwrap();
         let (ok, out, err) = canstar(&["generate", "--config", name, "--out", "v", "--constraints", "c"], d.path());
@@ -143,6 +144,25 @@ fn hub_generation_pins_and_bad_hub_configs() {
     let (ok, _, err) = canstar(&["generate", "hub", "--config", "big.toml", "--board", "xsa-3s1000", "--out", "v4", "--constraints", "c4"], d.path());
     assert!(!ok && err.contains("no pin for port bit `rx[3]`"), "{err}");
     assert!(!d.path().join("v4").exists() && !d.path().join("c4").exists());
+}
+
+#[test]
+fn eof7_rule_is_a_generation_time_constant_of_core_and_top() {
+    // C13: the 1999 rule changes one constant in each controller design, nothing else.
+    let d = tempfile::tempdir().unwrap();
+    std::fs::write(d.path().join("bosch.toml"), "[controller]\neof7_rec = \"bosch-1999\"\n").unwrap();
+    let (ok, out, err) = canstar(&["generate", "controller", "--out", "iso"], d.path());
+    assert!(ok, "{out}{err}");
+    let (ok, out, err) = canstar(&["generate", "controller", "--config", "bosch.toml", "--out", "bosch"], d.path());
+    assert!(ok, "{out}{err}");
+    for f in ["controller/canstar_can_core.v", "controller/canstar_sja1000.v"] {
+        let iso = std::fs::read_to_string(d.path().join("iso").join(f)).unwrap();
+        let bosch = std::fs::read_to_string(d.path().join("bosch").join(f)).unwrap();
+        let diff: Vec<(&str, &str)> = iso.lines().zip(bosch.lines()).filter(|(a, b)| a != b).collect();
+        assert_eq!(iso.lines().count(), bosch.lines().count(), "{f}");
+        assert_eq!(diff.len(), 1, "{f}: {diff:?}");
+        assert!(diff[0].0.contains("eof7_rok") && diff[0].0.contains("1") && diff[0].1.contains("0"), "{f}: {diff:?}");
+    }
 }
 
 #[test]

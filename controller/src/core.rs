@@ -37,6 +37,11 @@
 //! 4 bits (PROP 1..16), `ph1` 3 bits (1..8), `sjw` 2 bits (1..4); PH2 =
 //! max(PH1, 2) and NTQ 8..25 as in [`canstar_hdl::btl`].
 //!
+//! Generation-time options (constants of the design, not ports): the RX
+//! synchroniser depth ([`CanCore::with_sync_depth`]) and the REC rule at a
+//! receiver's dominant End_Of_Frame bit 7 ([`CanCore::with_eof7_rule`],
+//! [`Eof7Rule`]: ISO by default, C13).
+//!
 //! Outputs: `tx`; 1-clock event strobes `tx_done`, `arb_lost`
 //! (+`arb_lost_pos`), `error` (+`err_kind` mask of `ERRK_*`, `err_field`,
 //! `err_pos`, `err_tx`), `rx_valid` (+`rx_ide`, `rx_rtr`, `rx_id`, `rx_dlc`,
@@ -65,6 +70,21 @@ use rust_hdl::prelude::*;
 
 /// Default depth of the RX synchroniser.
 pub const SYNC_DEPTH: usize = 2;
+
+/// What a receiver does with REC when it reads End_Of_Frame bit 7 dominant
+/// (can-protocol.md C13). In both cases the frame is valid and delivered and
+/// an overload frame follows; the two standards differ only in the counter.
+/// A generation-time choice: a constant of the design, not a port.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Eof7Rule {
+    /// REC − 1 (127 from 128 and above), as for any successful reception:
+    /// ISO 11898-1, ISO 16845-1 test 7.6.16. The default.
+    #[default]
+    Iso,
+    /// REC unchanged: the 1999 reference programs (formerr and emlcount,
+    /// receiver step 4, and the sums of emlcount steps 9-11).
+    Bosch1999,
+}
 
 /// The controller core (see the module documentation).
 #[derive(LogicBlock)]
@@ -130,6 +150,8 @@ pub struct CanCore {
     btl: BitTiming,
     fsm: CanFsm,
     l_hold: Signal<Local, Bit>,
+    /// [`Eof7Rule::Iso`] as 1.
+    eof7_rok: Constant<Bit>,
 }
 
 // Host-side readers of the outputs: `crate::view::CoreView`.
@@ -201,6 +223,22 @@ impl CanCore {
             btl: Default::default(),
             fsm: CanFsm::new(),
             l_hold: Default::default(),
+            eof7_rok: Constant::new(Eof7Rule::default() == Eof7Rule::Iso),
+        }
+    }
+
+    /// The same core with the REC rule `rule` for a dominant End_Of_Frame bit 7.
+    pub fn with_eof7_rule(mut self, rule: Eof7Rule) -> Self {
+        self.eof7_rok = Constant::new(rule == Eof7Rule::Iso);
+        self
+    }
+
+    /// The REC rule this core was built with.
+    pub fn eof7_rule(&self) -> Eof7Rule {
+        if self.eof7_rok.val() {
+            Eof7Rule::Iso
+        } else {
+            Eof7Rule::Bosch1999
         }
     }
 
@@ -247,6 +285,7 @@ impl Logic for CanCore {
         self.fsm.single_shot.next = self.single_shot.val();
         self.fsm.host_recovery.next = self.host_recovery.val();
         self.fsm.recover.next = self.recover.val();
+        self.fsm.eof7_rok.next = self.eof7_rok.val();
         self.fsm.tx_req.next = self.tx_req.val();
         self.fsm.tx_ide.next = self.tx_ide.val();
         self.fsm.tx_rtr.next = self.tx_rtr.val();

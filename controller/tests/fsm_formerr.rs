@@ -65,6 +65,28 @@ fn formerr_rx_program() {
     assert_eq!(rec, 86);
 }
 
+/// C13, the ISO rule (`eof7_rok` high, the core's default; the programs above run the
+/// frame state machine with it low, the 1999 rule): the rx_4 step counts the reception,
+/// REC − 1 (ISO 16845-1 7.6.16), frame delivered, overload frame as before.
+#[test]
+fn formerr_rx_4_with_the_iso_rule_decrements_rec() {
+    let d = Ovr::StuckD;
+    let mut b = Bus::integrated(2);
+    for n in &mut b.nodes {
+        n.eof7_rok.next = true;
+    }
+    let f = Frame::std(0x4C1, &[0xDE, 0xAD]);
+    b.request(1, &f);
+    b.force_at(0, Field::CrcDel, 1, d, 1);
+    to_err_del(&mut b);
+    assert_eq!(b.rec(0), 9);
+    b.force_at(0, Field::Eof, 7, d, 1);
+    assert!(b.last(0).has(EV_OVL) && b.last(0).has(EV_RX_OK));
+    b.withdraw(1);
+    assert_eq!(b.rx[0], vec![f]);
+    assert_eq!(b.rec(0), 8, "rx_4, ISO");
+}
+
 #[test]
 fn formerr_tx_program() {
     let d = Ovr::StuckD;

@@ -263,21 +263,25 @@ fn extd_id_rx_1_to_10_frames_delivered_and_conditions_hold() {
     assert_eq!((b.nodes[0].rec(), b.nodes[1].tec()), (0, 0));
 }
 
-/// emlcount_rx_4 (C13): `D!` at Rx_End_Of_Frame 7 and the 13 bits after it: frame delivered,
-/// REC unchanged; OLF, then 7 `D` bits after it tolerated.
+/// emlcount_rx_4 (C13, the 1999 rule): `D!` at Rx_End_Of_Frame 7 and the 13 bits after it:
+/// frame delivered, REC unchanged; OLF, then 7 `D` bits after it tolerated. With the ISO rule
+/// (the default) REC goes to 8.
 #[test]
 fn emlcount_rx_4_eof7_and_13_more_dominant_rec_unchanged_9() {
-    let mut b = idle_bus(2);
-    b.nodes[1].request(std1(0x00F));
-    force_at(&mut b, 0, Role::Rx, Field::AckSlot, 1, false, Rec, 1);
-    b.nodes[1].withdraw();
-    assert!(b.run_to_idle(60));
-    assert_eq!(b.nodes[0].rec(), 9, "+9 pattern (emlcount_rx_3 kind)");
-    let f = std1(0x010);
-    b.nodes[1].request(f.clone());
-    let r = force_at(&mut b, 0, Role::Rx, Field::EndOfFrame, 7, false, Dom, 14);
-    assert_eq!(r[0][0].delivered(), Some(&f));
-    assert!(r[0][0].has("OLF"));
-    assert!(r[13][0].has("DAF=7"));
-    assert!(r.iter().all(|o| o[0].rec == 9));
+    for iso in [false, true] {
+        let mut b = if iso { idle_bus(2) } else { idle_bus_1999(2) };
+        b.nodes[1].request(std1(0x00F));
+        force_at(&mut b, 0, Role::Rx, Field::AckSlot, 1, false, Rec, 1);
+        b.nodes[1].withdraw();
+        assert!(b.run_to_idle(60));
+        assert_eq!(b.nodes[0].rec(), 9, "+9 pattern (emlcount_rx_3 kind)");
+        let f = std1(0x010);
+        b.nodes[1].request(f.clone());
+        let r = force_at(&mut b, 0, Role::Rx, Field::EndOfFrame, 7, false, Dom, 14);
+        assert_eq!(r[0][0].delivered(), Some(&f));
+        assert!(r[0][0].has("OLF"));
+        assert!(r[13][0].has("DAF=7"));
+        let rec = if iso { 8 } else { 9 };
+        assert!(r.iter().all(|o| o[0].rec == rec), "iso {iso}");
+    }
 }

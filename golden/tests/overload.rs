@@ -39,28 +39,32 @@ fn overload_rx_1d_dominant_intermission_2() {
 }
 
 /// formerr_rx_4 / overload_rx_1a (C13): `D!` at the receiver's End_Of_Frame 7: frame
-/// delivered, REC unchanged (no −1), overload frame. Then overload_rx_1b: `D!` at
+/// delivered, overload frame; REC unchanged with the 1999 rule, − 1 with the ISO rule (ISO
+/// 16845-1 7.6.16). Then overload_rx_1b: `D!` at
 /// Overload_Delimiter 8: OVL, OLF again.
 #[test]
 fn formerr_rx_4_dominant_eof7_receiver_delivers_rec_unchanged_overload() {
-    let mut b = idle_bus(2);
-    b.nodes[1].request(std1(0x111));
-    force_at(&mut b, 0, Role::Rx, Field::CrcDelimiter, 1, false, Dom, 1);
-    run_to_tx_ok(&mut b, 1, 300);
-    assert_eq!(b.nodes[0].rec(), 8);
-    assert!(b.run_to_idle(30));
-    let f = Frame::std_data(0x222, 3, &[1, 2, 3]);
-    b.nodes[1].request(f.clone());
-    let r = force_at(&mut b, 0, Role::Rx, Field::EndOfFrame, 7, false, Dom, 1);
-    assert_eq!(r[0][0].delivered(), Some(&f));
-    assert!(r[0][0].has("OVL") && r[0][0].has("OLF") && !r[0][0].events.iter().any(|e| matches!(e, canstar_golden::Event::Error(_))));
-    assert_eq!(r[0][0].rec, 8);
-    assert!(r[0][1].has("TX_OK"), "the transmitter saw a recessive EOF 7");
-    let r = force_at(&mut b, 0, Role::Rx, Field::OverloadDelimiter, 8, false, Dom, 1);
-    assert!(r[0][0].has("OVL") && r[0][0].has("OLF"));
-    assert!(b.run_to_idle(60));
-    assert_eq!(b.nodes[0].rec(), 8);
-    assert_eq!(b.nodes[1].tec(), 6, "8 from the form error, -1 per good frame");
+    for iso in [false, true] {
+        let mut b = if iso { idle_bus(2) } else { idle_bus_1999(2) };
+        b.nodes[1].request(std1(0x111));
+        force_at(&mut b, 0, Role::Rx, Field::CrcDelimiter, 1, false, Dom, 1);
+        run_to_tx_ok(&mut b, 1, 300);
+        assert_eq!(b.nodes[0].rec(), 8);
+        assert!(b.run_to_idle(30));
+        let f = Frame::std_data(0x222, 3, &[1, 2, 3]);
+        b.nodes[1].request(f.clone());
+        let r = force_at(&mut b, 0, Role::Rx, Field::EndOfFrame, 7, false, Dom, 1);
+        assert_eq!(r[0][0].delivered(), Some(&f));
+        assert!(r[0][0].has("OVL") && r[0][0].has("OLF") && !r[0][0].events.iter().any(|e| matches!(e, canstar_golden::Event::Error(_))));
+        let rec = if iso { 7 } else { 8 };
+        assert_eq!(r[0][0].rec, rec, "iso {iso}");
+        assert!(r[0][1].has("TX_OK"), "the transmitter saw a recessive EOF 7");
+        let r = force_at(&mut b, 0, Role::Rx, Field::OverloadDelimiter, 8, false, Dom, 1);
+        assert!(r[0][0].has("OVL") && r[0][0].has("OLF"));
+        assert!(b.run_to_idle(60));
+        assert_eq!(b.nodes[0].rec(), rec);
+        assert_eq!(b.nodes[1].tec(), 6, "8 from the form error, -1 per good frame");
+    }
 }
 
 /// formerr_tx_4: `D!` at the transmitter's End_Of_Frame 7: FORM_ERR +8, retry; the receiver

@@ -110,12 +110,12 @@ fn verilator(on: bool, name: &str, verilog: impl FnOnce() -> String, model: &dyn
 }
 
 fn core_verilog(depth: usize) -> String {
-    canstar_hdl::flow::emit(&core_sim::fresh_hdl(depth))
+    canstar_hdl::flow::emit(&core_sim::fresh_hdl(depth, Default::default()))
 }
 
 /// Replays of CanCore streams: (rust-hdl, compiled, Verilator) rates.
 fn core_engines(st: &Stim, depth: usize, o: &Options, name: &str) -> (f64, f64, Result<f64, String>) {
-    let fresh = || can_core::CanCore::from_instance(&core_sim::fresh_hdl(depth)).expect("committed CanCore model");
+    let fresh = || can_core::CanCore::from_instance(&core_sim::fresh_hdl(depth, Default::default())).expect("committed CanCore model");
     let short = st.head(o.hdl_cycles);
     let n_out = fresh().info().outputs.len();
     let (th, hh) = replay_hdl(|| canstar_controller::core::CanCore::with_sync_depth(depth), can_core::hdl_set_inputs, can_core::hdl_outputs, n_out, &short);

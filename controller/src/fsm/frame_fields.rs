@@ -18,7 +18,10 @@
 //!   ACK errors (exception 1 for an error-passive transmitter), the pending
 //!   CRC error signalled at ACK_Delimiter, success of a transmission
 //!   (`tx_ok`) and delivery of a received frame (`rx_ok`, End_Of_Frame bit 7
-//!   even if dominant: an overload condition).
+//!   even if dominant: an overload condition). A receiver's dominant
+//!   End_Of_Frame bit 7 also counts as a successful reception for REC
+//!   (`rok`) when `eof7_rok` is set (C13: ISO 16845-1 7.6.16; the 1999
+//!   reference programs expect REC unchanged, `eof7_rok` low).
 //!
 //! State: `crcerr`, a CRC error seen at the last CRC bit by a receiver and
 //! not yet signalled (set at CRC bit 15 when the CRC register is not zero
@@ -38,6 +41,9 @@ pub struct FrameFields {
     /// The sampled level and the level this node drove for it.
     pub rxbit: Signal<In, Bit>,
     pub sent: Signal<In, Bit>,
+    /// C13: REC − 1 at a receiver's dominant End_Of_Frame bit 7 (ISO);
+    /// low keeps REC unchanged (the 1999 reference programs).
+    pub eof7_rok: Signal<In, Bit>,
     pub fld: Signal<In, Field>,
     pub fpos: Signal<In, Bits<8>>,
     pub tx_role: Signal<In, Bit>,
@@ -316,6 +322,7 @@ impl Logic for FrameFields {
                                 self.rx_ok.next = true;
                                 if !self.rxbit.val() {
                                     self.ovl.next = true;
+                                    self.rok.next = self.eof7_rok.val();
                                 } else {
                                     self.rok.next = true;
                                 }

@@ -236,6 +236,9 @@ pub struct CanFsm {
     pub cnt_load: Signal<In, Bit>,
     pub tec_in: Signal<In, Bits<9>>,
     pub rec_in: Signal<In, Bits<8>>,
+    /// C13: REC − 1 at a receiver's dominant End_Of_Frame bit 7 (see
+    /// [`frame_fields::FrameFields`]); a constant of [`crate::core::CanCore`].
+    pub eof7_rok: Signal<In, Bit>,
 
     /// Level wanted on TX from the next transmit point (1 = recessive).
     pub drive: Signal<Out, Bit>,
@@ -324,6 +327,7 @@ impl Logic for CanFsm {
         self.frame.sample.next = self.sample.val();
         self.frame.rxbit.next = self.busmon.val();
         self.frame.sent.next = self.dec.drive.val();
+        self.frame.eof7_rok.next = self.eof7_rok.val();
         self.frame.fld.next = self.seq.fld.val();
         self.frame.fpos.next = self.seq.fpos.val();
         self.frame.tx_role.next = self.seq.tx_role.val();

@@ -249,6 +249,13 @@ impl Sja1000 {
         Self::build(btr0, btr1)
     }
 
+    /// The same register block around a core with the REC rule `rule` for a
+    /// dominant End_Of_Frame bit 7 (C13; ISO by default).
+    pub fn with_eof7_rule(mut self, rule: crate::core::Eof7Rule) -> Self {
+        self.core = std::mem::take(&mut self.core).with_eof7_rule(rule);
+        self
+    }
+
     /// The wrapped CAN core (read-only, for tests and debugging: e.g. its
     /// `dbg_sample` strobe and `state`).
     pub fn core(&self) -> &CanCore {

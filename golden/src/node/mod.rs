@@ -24,6 +24,10 @@ pub struct Config {
     pub single_shot: bool,
     /// Bus-off recovery waits for [`GoldenNode::start_recovery`] (SJA1000 style, C18).
     pub host_recovery: bool,
+    /// C13: a receiver's dominant End_Of_Frame bit 7 leaves REC unchanged, as the 1999
+    /// reference programs expect; by default (false) REC − 1 as for any successful
+    /// reception (ISO 16845-1 7.6.16).
+    pub eof7_bosch_1999: bool,
 }
 
 /// Result of processing one bit.

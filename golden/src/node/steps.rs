@@ -129,18 +129,19 @@ impl GoldenNode {
                 } else {
                     let f = self.dec.frame();
                     self.ev.push(Event::RxOk(f));
+                    // C13: with a dominant bit the frame is valid too and an overload frame
+                    // follows; REC counts the success unless the 1999 rule is chosen.
+                    if !self.cfg.listen_only && (s == R || !self.cfg.eof7_bosch_1999) {
+                        if self.rec >= 128 {
+                            self.rec = 127; // C11
+                        } else if self.rec > 0 {
+                            self.rec -= 1;
+                        }
+                        self.update_state();
+                    }
                     if s == D {
-                        // C13: frame valid, REC unchanged, overload frame.
                         self.start_overload();
                     } else {
-                        if !self.cfg.listen_only {
-                            if self.rec >= 128 {
-                                self.rec = 127; // C11
-                            } else if self.rec > 0 {
-                                self.rec -= 1;
-                            }
-                            self.update_state();
-                        }
                         self.mode = Mode::Intermission { pos: 1 };
                     }
                 }

@@ -13,6 +13,16 @@ pub fn idle_bus(n: usize) -> GoldenBus {
     b
 }
 
+/// As [`idle_bus`], every node with the 1999 REC rule at a dominant End_Of_Frame 7 (C13),
+/// for the steps of the reference programs that depend on it.
+#[allow(dead_code)]
+pub fn idle_bus_1999(n: usize) -> GoldenBus {
+    let cfg = canstar_golden::Config { eof7_bosch_1999: true, ..Default::default() };
+    let mut b = GoldenBus::with_nodes((0..n).map(|_| canstar_golden::GoldenNode::new(cfg)).collect());
+    assert!(b.run_to_idle(20), "integration");
+    b
+}
+
 /// Tokens of node `n`'s events from bit `from` on, in order.
 pub fn tokens(b: &GoldenBus, n: usize, from: u64) -> Vec<String> {
     b.since(n, from).iter().flat_map(|o| o.events.iter().map(|e| e.token())).collect()

@@ -329,14 +329,15 @@ macro_rules! ensure {
 }
 pub(crate) use ensure;
 
-/// Standard configuration of node `name` (T10/6/4, BRP 1).
+/// Standard configuration of a node under the reference programs (T10/6/4, BRP 1), with
+/// the 1999 REC rule at a dominant End_Of_Frame bit 7 that those programs expect (C13).
 pub fn cfg() -> NodeConfig {
-    NodeConfig::named("n")
+    NodeConfig { eof7: canstar_controller::core::Eof7Rule::Bosch1999, ..NodeConfig::named("n") }
 }
 
-/// Timing T10/8/1 (PROP 5, PH1 2, PH2 2, SJW 1), BRP 1.
+/// Timing T10/8/1 (PROP 5, PH1 2, PH2 2, SJW 1), BRP 1, as [`cfg`].
 pub fn cfg_t10_8_1() -> NodeConfig {
-    NodeConfig::named("n").timing(1, 5, 2, 1)
+    cfg().timing(1, 5, 2, 1)
 }
 
 /// Check that the frames delivered at node `i` since count `from` are `want`.
