@@ -67,6 +67,7 @@ pub enum Eof7Rec {
     #[default]
     Iso,
     /// `"bosch-1999"`: REC unchanged (the 1999 reference programs).
+    #[serde(rename = "bosch-1999")]
     Bosch1999,
 }
 
