@@ -1,5 +1,7 @@
 //! Boards as data: one TOML file per board under `boards/` (compiled into the
-//! tool), and the writers of their pin files (Xilinx UCF, iCE40 PCF).
+//! tool). Their pin files (Xilinx ISE UCF, iCE40 PCF, ECP5 LPF, Vivado XDC) are
+//! written by `rust-hdl-fpga-support` ([`pinfile`], through the board top of
+//! [`top`]).
 //!
 //! A board maps *roles* to pins. A role is one bit of a design's top-level
 //! port, written `name` for a 1-bit port and `name[i]` for bit i of a vector.
@@ -10,8 +12,12 @@
 use anyhow::{anyhow, bail, Context, Result};
 use serde::Deserialize;
 use std::collections::{BTreeMap, BTreeSet};
-use std::fmt::Write as _;
 use std::path::Path;
+
+pub mod pinfile;
+pub mod top;
+
+pub use pinfile::{pin_file, ucf_well_formed, PinFile};
 
 /// Pin-file format of a board.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
@@ -21,6 +27,32 @@ pub enum Format {
     Ucf,
     /// iCE40 physical constraints file (nextpnr-ice40).
     Pcf,
+    /// Lattice preference file (ECP5, nextpnr-ecp5).
+    Lpf,
+    /// Xilinx design constraints (Vivado).
+    Xdc,
+}
+
+impl Format {
+    /// File extension of the format's pin files.
+    pub fn ext(self) -> &'static str {
+        match self {
+            Format::Ucf => "ucf",
+            Format::Pcf => "pcf",
+            Format::Lpf => "lpf",
+            Format::Xdc => "xdc",
+        }
+    }
+
+    /// The tool flow that reads the format.
+    pub fn tool(self) -> &'static str {
+        match self {
+            Format::Ucf => "Xilinx ISE",
+            Format::Pcf => "nextpnr-ice40",
+            Format::Lpf => "nextpnr-ecp5 / Diamond",
+            Format::Xdc => "Vivado",
+        }
+    }
 }
 
 #[derive(Debug, Clone, PartialEq, Eq, Deserialize)]
@@ -45,7 +77,7 @@ pub struct DebugPins {
 pub struct Board {
     pub name: String,
     pub description: String,
-    /// FPGA family (`spartan3`, `ice40`).
+    /// FPGA family (`spartan3`, `ice40`, `ecp5`, `artix7`).
     pub family: String,
     pub part: String,
     #[serde(default)]
@@ -88,6 +120,8 @@ pub enum Pinout {
 pub const BUILTIN: &[(&str, &str)] = &[
     ("xsa-3s1000", include_str!("../boards/xsa-3s1000.toml")),
     ("ice40-hx8k", include_str!("../boards/ice40-hx8k.toml")),
+    ("ulx3s", include_str!("../boards/ulx3s.toml")),
+    ("arty-a7", include_str!("../boards/arty-a7.toml")),
 ];
 
 impl Board {
@@ -127,6 +161,14 @@ impl Board {
         if let Some(s) = &self.iostandard {
             check_token("iostandard", s)?;
         }
+        // What the library's writers can carry (its Lattice writer panics on
+        // anything but LVCMOS33, its PCF writer on any I/O standard).
+        match (self.format, self.iostandard.as_deref()) {
+            (Format::Pcf, Some(s)) => bail!("iostandard: {s:?}: a PCF (iCE40) pin file carries no I/O standard; remove the key"),
+            (Format::Lpf, Some(s)) if s != "LVCMOS33" => bail!("iostandard: {s:?}: the LPF writer knows LVCMOS33 only"),
+            (Format::Xdc, None) => bail!("iostandard: missing; Vivado needs an I/O standard on every port (e.g. iostandard = \"LVCMOS33\")"),
+            _ => {}
+        }
         check_identifier("clock.port", &self.clock.port)?;
         check_token("clock.pin", &self.clock.pin)?;
         if !(1_000..=1_000_000_000).contains(&self.clock.hz) {
@@ -160,8 +202,18 @@ impl Board {
         Ok(())
     }
 
+    /// The designs the board has a pinout for: `hub` (`[pins]`) and, with
+    /// `[controller.pins]`, `controller`.
+    pub fn designs(&self) -> Vec<&'static str> {
+        let mut v = vec!["hub"];
+        if self.controller.is_some() {
+            v.push("controller");
+        }
+        v
+    }
+
     /// The role -> pin map and the free debug pins of one pinout.
-    fn pinout(&self, which: Pinout) -> Result<(&BTreeMap<String, String>, Vec<&String>)> {
+    pub(crate) fn pinout(&self, which: Pinout) -> Result<(&BTreeMap<String, String>, Vec<&String>)> {
         match which {
             Pinout::Hub => Ok((&self.pins, self.debug.pins.iter().collect())),
             Pinout::Controller => {
@@ -268,96 +320,6 @@ impl DesignPins {
     }
 }
 
-/// A rendered pin file.
-#[derive(Debug, Clone)]
-pub struct PinFile {
-    pub text: String,
-    /// Debug bits that found a pin.
-    pub placed_debug: Vec<(String, String)>,
-    /// Debug bits for which the board has no pin left.
-    pub left_out: Vec<String>,
-}
-
-/// `rx[0]` as a UCF net name (`rx<0>`).
-fn ucf_net(role: &str) -> String {
-    role.replace('[', "<").replace(']', ">")
-}
-
-/// Render the pin file of `design` on `board` with the board's `which` pinout.
-pub fn pin_file(board: &Board, which: Pinout, design_name: &str, design: &DesignPins) -> Result<PinFile> {
-    let (pins, free_debug) = board.pinout(which)?;
-    let mut lines: Vec<(String, String)> = vec![];
-    let mut seen = BTreeSet::new();
-    for role in &design.functional {
-        if !seen.insert(role.clone()) {
-            bail!("design {design_name} lists the port bit {role} twice");
-        }
-        let pin = pins
-            .get(role)
-            .ok_or_else(|| anyhow!("{} has no pin for port bit `{role}` of design {design_name} (pins.\"{role}\")", board.label()))?;
-        lines.push((role.clone(), pin.clone()));
-    }
-    let mut placed_debug = vec![];
-    let mut left_out = vec![];
-    let mut free = free_debug.into_iter();
-    for role in &design.debug {
-        match free.next() {
-            Some(pin) => placed_debug.push((role.clone(), pin.clone())),
-            None => left_out.push(role.clone()),
-        }
-    }
-    let mut t = String::new();
-    let period = board.clock_period_ns();
-    match board.format {
-        Format::Ucf => {
-            let io = |t: &mut String, net: &str, pin: &str| {
-                let std = board.iostandard.as_ref().map(|s| format!(" | IOSTANDARD = {s}")).unwrap_or_default();
-                writeln!(t, "NET \"{net}\" LOC = \"{pin}\"{std};").unwrap();
-            };
-            writeln!(t, "# {design_name} on {} ({}), generated by canstar {}", board.description, board.part, env!("CARGO_PKG_VERSION")).unwrap();
-            writeln!(t, "# Do not edit: regenerate with `canstar generate`.").unwrap();
-            io(&mut t, &board.clock.port, &board.clock.pin);
-            writeln!(t, "NET \"{}\" TNM_NET = \"{}\";", board.clock.port, board.clock.port).unwrap();
-            writeln!(
-                t,
-                "TIMESPEC \"TS_{}\" = PERIOD \"{}\" {:.2} ns HIGH 50%;",
-                board.clock.port, board.clock.port, period
-            )
-            .unwrap();
-            for (role, pin) in &lines {
-                io(&mut t, &ucf_net(role), pin);
-            }
-            if !placed_debug.is_empty() {
-                writeln!(t, "# debug outputs").unwrap();
-            }
-            for (role, pin) in &placed_debug {
-                io(&mut t, &ucf_net(role), pin);
-            }
-            if !left_out.is_empty() {
-                writeln!(t, "# debug outputs without a free pin on this board: {}", left_out.join(", ")).unwrap();
-            }
-        }
-        Format::Pcf => {
-            writeln!(t, "# {design_name} on {} ({} {}), generated by canstar {}", board.description, board.part, board.package.as_deref().unwrap_or(""), env!("CARGO_PKG_VERSION")).unwrap();
-            writeln!(t, "# Do not edit: regenerate with `canstar generate`. Clock {} Hz ({period:.2} ns).", board.clock.hz).unwrap();
-            writeln!(t, "set_io {} {}", board.clock.port, board.clock.pin).unwrap();
-            for (role, pin) in lines.iter().chain(placed_debug.iter()) {
-                writeln!(t, "set_io {role} {pin}").unwrap();
-            }
-            if !left_out.is_empty() {
-                writeln!(t, "# debug outputs without a free pin on this board: {}", left_out.join(", ")).unwrap();
-            }
-        }
-    }
-    Ok(PinFile { text: t, placed_debug, left_out })
-}
-
-/// Check that every non-comment UCF line ends with `;` (rust-hdl's own
-/// writer leaves the last one without).
-pub fn ucf_well_formed(text: &str) -> bool {
-    text.lines().filter(|l| !l.trim().is_empty() && !l.trim_start().starts_with('#')).all(|l| l.trim_end().ends_with(';'))
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -389,60 +351,30 @@ mod tests {
         assert!(Board::from_toml(&text).is_err());
     }
 
-    fn hub_pins() -> DesignPins {
-        let mut f = vec!["rst_n".to_string(), "inject_fault".to_string()];
-        f.extend(DesignPins::port_roles("rx", 3));
-        f.extend(DesignPins::port_roles("reh_rx", 2));
-        f.extend(DesignPins::port_roles("tx", 3));
-        f.extend(DesignPins::port_roles("hub_tx", 2));
-        DesignPins { functional: f, debug: DesignPins::port_roles("dbg", 60) }
+    fn builtin(name: &str) -> &'static str {
+        BUILTIN.iter().find(|(n, _)| *n == name).unwrap().1
     }
 
     #[test]
-    fn xsa_ucf_matches_the_published_pin_map() {
-        let b = Board::lookup("xsa-3s1000").unwrap();
-        let f = pin_file(&b, Pinout::Hub, "hub", &hub_pins()).unwrap();
-        assert!(ucf_well_formed(&f.text), "{}", f.text);
-        for (net, pin) in [
-            ("nRST", "E11"), ("clkOscl", "H16"), ("injectFault", "A13"), ("rx_0", "H15"), ("rx_1", "H14"),
-            ("rx_2", "G12"), ("rehRx_0", "G16"), ("rehRx_1", "H13"), ("tx_0", "G15"), ("tx_1", "G14"),
-            ("tx_2", "F14"), ("hubTx_0", "F15"), ("hubTx_1", "G13"),
-        ] {
-            // Published net name -> canstar port bit.
-            let ours = match net {
-                "nRST" => "rst_n".to_string(),
-                "clkOscl" => "clock".to_string(),
-                "injectFault" => "inject_fault".to_string(),
-                n => {
-                    let (base, idx) = n.rsplit_once('_').unwrap();
-                    let base = match base { "rehRx" => "reh_rx", "hubTx" => "hub_tx", b => b };
-                    format!("{base}<{idx}>")
-                }
-            };
-            let line = format!("NET \"{ours}\" LOC = \"{pin}\" | IOSTANDARD = LVCMOS33;");
-            assert!(f.text.contains(&line), "missing `{line}` in\n{}", f.text);
+    fn iostandard_must_suit_the_format() {
+        let pcf = builtin("ice40-hx8k").replace("format = \"pcf\"", "format = \"pcf\"\niostandard = \"LVCMOS33\"");
+        let e = Board::from_toml(&pcf).unwrap_err().to_string();
+        assert!(e.contains("iostandard") && e.contains("PCF"), "{e}");
+        let lpf = builtin("ulx3s").replace("iostandard = \"LVCMOS33\"", "iostandard = \"LVCMOS25\"");
+        let e = Board::from_toml(&lpf).unwrap_err().to_string();
+        assert!(e.contains("iostandard: \"LVCMOS25\"") && e.contains("LVCMOS33 only"), "{e}");
+        let xdc = builtin("arty-a7").replace("iostandard = \"LVCMOS33\"", "");
+        let e = Board::from_toml(&xdc).unwrap_err().to_string();
+        assert!(e.contains("iostandard: missing"), "{e}");
+    }
+
+    #[test]
+    fn every_builtin_board_has_both_pinouts() {
+        for (n, _) in BUILTIN {
+            let b = Board::lookup(n).unwrap();
+            assert_eq!(b.designs(), ["hub", "controller"], "{n}");
         }
-        assert!(f.text.contains("PERIOD \"clock\" 67.84 ns"), "{}", f.text);
-        // 54 debug pins on the header: 6 of the 60 requested bits are reported.
-        assert_eq!(f.placed_debug.len(), 54);
-        assert_eq!(f.left_out.len(), 6);
-        assert!(f.text.contains("without a free pin"));
-    }
-
-    #[test]
-    fn missing_functional_pin_is_an_error() {
-        let b = Board::lookup("xsa-3s1000").unwrap();
-        let mut d = hub_pins();
-        d.functional.extend(DesignPins::port_roles("rx", 4).into_iter().skip(3));
-        let e = pin_file(&b, Pinout::Hub, "hub", &d).unwrap_err().to_string();
-        assert!(e.contains("no pin for port bit `rx[3]`"), "{e}");
-    }
-
-    #[test]
-    fn ice40_pcf() {
-        let b = Board::lookup("ice40-hx8k").unwrap();
-        let f = pin_file(&b, Pinout::Hub, "hub", &hub_pins()).unwrap();
-        assert!(f.text.contains("set_io clock P7"));
-        assert!(f.text.contains("set_io rx[0] A1"));
+        let hub_only = builtin("ulx3s").split("[controller.pins]").next().unwrap().to_string();
+        assert_eq!(Board::from_toml(&hub_only).unwrap().designs(), ["hub"]);
     }
 }

@@ -1,7 +1,7 @@
 //! The registry of generatable designs: every design `canstar generate` renders,
 //! with its Verilog file, board top and pin files.
 use crate::config::Config;
-use crate::boards::{pin_file, Board, DesignPins, Format, Pinout, BUILTIN};
+use crate::boards::{pin_file, Board, DesignPins, Pinout, BUILTIN};
 use crate::verilog::{block, board_top, header, vector_wrapper, Artifact, Root};
 use rust_hdl::prelude::Block;
 use anyhow::Result;
@@ -79,16 +79,9 @@ pub fn sja1000(config: &Config, board: Option<&str>) -> Result<Vec<Artifact>> {
     };
     for b in &boards {
         let f = pin_file(b, Pinout::Controller, &board_name, &pins)?;
-        out.push(Artifact { root: Root::Constraints, path: format!("{}/{board_name}.{}", b.name, ext(b)).into(), contents: f.text });
+        out.push(Artifact { root: Root::Constraints, path: format!("{}/{board_name}.{}", b.name, b.format.ext()).into(), contents: f.text });
     }
     Ok(out)
-}
-
-fn ext(b: &Board) -> &'static str {
-    match b.format {
-        Format::Ucf => "ucf",
-        Format::Pcf => "pcf",
-    }
 }
 
 /// Boards a hub's pin files are generated for: the one asked for, or all built-in ones.
@@ -174,7 +167,7 @@ pub fn hub(config: &Config, board: Option<&str>) -> Result<Vec<Artifact>> {
                 );
             }
             let f = pin_file(b, Pinout::Hub, name, &pins)?;
-            out.push(Artifact { root: Root::Constraints, path: format!("{}/{name}.{}", b.name, ext(b)).into(), contents: f.text });
+            out.push(Artifact { root: Root::Constraints, path: format!("{}/{name}.{}", b.name, b.format.ext()).into(), contents: f.text });
         }
     }
     Ok(out)

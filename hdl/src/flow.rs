@@ -152,6 +152,10 @@ pub enum SynthTarget {
     Generic,
     /// `synth_ice40` (LUT4 + DFF counts).
     Ice40,
+    /// `synth_ecp5` (Lattice ECP5: LUT4, TRELLIS_FF, CCU2C carry cells).
+    Ecp5,
+    /// `synth_xilinx -family xc7` (7-series: LUT1..6, FDRE/FDSE, CARRY4, I/O buffers).
+    Xilinx7,
 }
 
 /// Synthesise with Yosys; fail on any latch, on undriven wires and on any
@@ -164,6 +168,8 @@ pub fn synth_check(verilog: &str, top: &str, target: SynthTarget) -> Result<Synt
     let synth = match target {
         SynthTarget::Generic => format!("synth -flatten -top {top}"),
         SynthTarget::Ice40 => format!("synth_ice40 -top {top}"),
+        SynthTarget::Ecp5 => format!("synth_ecp5 -top {top}"),
+        SynthTarget::Xilinx7 => format!("synth_xilinx -flatten -family xc7 -top {top}"),
     };
     // Latches are looked for right after `proc`, before technology mapping
     // renames them, and again at the end.
@@ -173,7 +179,7 @@ pub fn synth_check(verilog: &str, top: &str, target: SynthTarget) -> Result<Synt
          select -assert-none t:$dlatch t:$adlatch t:$dlatchsr t:$sr; \
          opt_clean; write_json {json}; \
          {synth}; \
-         select -assert-none t:$_DLATCH_* t:$_SR_* t:SB_DFF*_LATCH*; \
+         select -assert-none t:$_DLATCH_* t:$_SR_* t:SB_DFF*_LATCH* t:LDCE t:LDPE; \
          check -assert; tee -o {stat} stat",
         v = vfile.display(),
         json = json.display(),

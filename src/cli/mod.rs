@@ -22,6 +22,7 @@ macro_rules! errln {
 
 pub mod print;
 mod bench;
+mod boards;
 mod campaign;
 mod conformance;
 mod fuzz;
@@ -42,6 +43,9 @@ pub struct Cli {
 enum Cmd {
     /// Generate Verilog (and pin files) for a design, with defaults or from a TOML config.
     Generate(generate::Args),
+    /// List the boards (FPGA family, part, clock, pin-file format, the designs each has a
+    /// pinout for: hub, controller); given names or board .toml files, check and list those.
+    Boards(boards::Args),
     /// Synthesise the generated designs and print a resource table (iCE40 cells, flip-flops,
     /// block RAMs and fmax with Yosys + nextpnr-ice40; Spartan-3 LUTs and flip-flops with Yosys).
     Report(report::Args),
@@ -72,6 +76,7 @@ enum Cmd {
 pub fn run(cli: Cli) -> Result<()> {
     match cli.cmd {
         Cmd::Generate(a) => generate::run(a),
+        Cmd::Boards(a) => boards::run(a),
         Cmd::Report(a) => report::run(a),
         Cmd::Sim(a) => sim::run(a),
         Cmd::Bench(a) => bench::run(a),

@@ -1,0 +1,51 @@
+//! `canstar boards`: the built-in boards with family, clock, pin-file format and
+//! designs; a board file given by path is checked and listed; bad input is a
+//! clear error naming the file and the key.
+use std::path::Path;
+use std::process::Command;
+
+fn canstar(args: &[&str], cwd: &Path) -> (bool, String, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_canstar")).args(args).current_dir(cwd).output().unwrap();
+    (out.status.success(), String::from_utf8_lossy(&out.stdout).into_owned(), String::from_utf8_lossy(&out.stderr).into_owned())
+}
+
+#[test]
+fn boards_lists_every_builtin_board() {
+    let d = tempfile::tempdir().unwrap();
+    let (ok, out, err) = canstar(&["boards"], d.path());
+    assert!(ok, "{out}{err}");
+    let row = |name: &str| out.lines().find(|l| l.starts_with(&format!("{name} "))).unwrap_or_else(|| panic!("no row for {name}:\n{out}")).to_string();
+    assert!(out.lines().next().unwrap().starts_with("board"), "{out}");
+    for (name, family, clock, format) in [
+        ("xsa-3s1000", "spartan3", "14.74 MHz on H16", "ucf (Xilinx ISE)"),
+        ("ice40-hx8k", "ice40", "100 MHz on P7", "pcf (nextpnr-ice40)"),
+        ("ulx3s", "ecp5", "25 MHz on G2", "lpf ("),
+        ("arty-a7", "artix7", "100 MHz on E3", "xdc (Vivado)"),
+    ] {
+        let r = row(name);
+        for want in [family, clock, format] {
+            assert!(r.contains(want), "{name}: `{want}` not in `{r}`");
+        }
+        assert!(r.ends_with("hub, controller"), "{r}");
+    }
+    assert!(std::fs::read_dir(d.path()).unwrap().next().is_none(), "`boards` writes nothing");
+}
+
+#[test]
+fn boards_checks_a_board_file() {
+    let d = tempfile::tempdir().unwrap();
+    let text = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("boards/ulx3s.toml")).unwrap();
+    // A hub-only copy of a board: listed with the hub only.
+    let hub_only = text.split("[controller.pins]").next().unwrap().replace("name = \"ulx3s\"", "name = \"mine\"");
+    std::fs::write(d.path().join("mine.toml"), &hub_only).unwrap();
+    let (ok, out, err) = canstar(&["boards", "mine.toml", "arty-a7"], d.path());
+    assert!(ok, "{out}{err}");
+    assert!(out.lines().any(|l| l.starts_with("mine ") && l.ends_with(" hub")), "{out}");
+    assert!(out.contains("(mine.toml)") && out.contains("arty-a7 "), "{out}");
+    // A bad key and an unknown board: the file and key named, non-zero exit, nothing printed.
+    std::fs::write(d.path().join("bad.toml"), format!("{hub_only}\n[clock2]\nhz = 1\n")).unwrap();
+    let (ok, out, err) = canstar(&["boards", "bad.toml"], d.path());
+    assert!(!ok && out.is_empty() && err.contains("bad.toml") && err.contains("clock2"), "{out}{err}");
+    let (ok, out, err) = canstar(&["boards", "no-such-board"], d.path());
+    assert!(!ok && out.is_empty() && err.contains("unknown board `no-such-board`") && err.contains("ulx3s"), "{out}{err}");
+}
