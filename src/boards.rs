@@ -17,7 +17,6 @@ use std::path::Path;
 pub mod pinfile;
 pub mod top;
 
-pub use pinfile::{pin_file, ucf_well_formed, PinFile};
 
 /// Pin-file format of a board.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]

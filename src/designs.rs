@@ -1,7 +1,8 @@
 //! The registry of generatable designs: every design `canstar generate` renders,
 //! with its Verilog file, board top and pin files.
 use crate::config::Config;
-use crate::boards::{pin_file, Board, DesignPins, Pinout, BUILTIN};
+use crate::boards::pinfile::pin_file;
+use crate::boards::{Board, DesignPins, Pinout, BUILTIN};
 use crate::verilog::{block, board_top, header, vector_wrapper, Artifact, Root};
 use rust_hdl::prelude::Block;
 use anyhow::Result;

@@ -119,7 +119,7 @@ fn hub_generation_pins_and_bad_hub_configs() {
     let (ok, out, err) = canstar(&["generate", "hub", "--board", "xsa-3s1000", "--out", "v", "--constraints", "c"], d.path());
     assert!(ok, "{out}{err}");
     let ucf = std::fs::read_to_string(d.path().join("c/xsa-3s1000/canstar_hub.ucf")).unwrap();
-    assert!(canstar::boards::ucf_well_formed(&ucf));
+    assert!(canstar::boards::pinfile::ucf_well_formed(&ucf));
     assert!(ucf.contains("NET rx<2> LOC=G12;") && ucf.contains("NET hub_tx<1> LOC=G13;"), "{ucf}");
     assert!(ucf.contains("without a free pin"), "the board has fewer debug pins than the hub has debug bits");
     let v = std::fs::read_to_string(d.path().join("v/hub/canstar_hub.v")).unwrap();
@@ -171,7 +171,7 @@ fn controller_pinout_and_host_interface_switch() {
     let (ok, out, err) = canstar(&["generate", "controller", "--board", "xsa-3s1000", "--out", "v", "--constraints", "c"], d.path());
     assert!(ok, "{out}{err}");
     let ucf = std::fs::read_to_string(d.path().join("c/xsa-3s1000/canstar_sja1000_board.ucf")).unwrap();
-    assert!(canstar::boards::ucf_well_formed(&ucf), "{ucf}");
+    assert!(canstar::boards::pinfile::ucf_well_formed(&ucf), "{ucf}");
     // CAN on node port 0's transceiver pins, reset on the nRST switch, 14.74 MHz clock.
     for line in [
         "NET rx LOC=H15;",

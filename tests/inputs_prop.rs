@@ -13,7 +13,8 @@
 //! The cases are the same on every run; `PROPTEST_RNG_SEED=<n> cargo test
 //! --release --test inputs_prop` explores others (a loop over seeds found the
 //! bugs of the test itself that the fixed seed did not).
-use canstar::boards::{pin_file, Board, DesignPins, Pinout};
+use canstar::boards::pinfile::pin_file;
+use canstar::boards::{Board, DesignPins, Pinout};
 use proptest::prelude::*;
 use proptest::test_runner::{Config as PtConfig, TestRunner};
 use std::path::{Path, PathBuf};
