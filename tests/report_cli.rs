@@ -2,6 +2,7 @@
 //! PATH), and the real Yosys + nextpnr-ice40 flow on a small block.
 use std::path::Path;
 use std::process::Command;
+use canstar::report::fake::alive;
 
 /// Run `canstar report ARGS` in `dir` with TMPDIR = `dir/tmp` and `path_first`
 /// (if any) ahead of PATH: (success, stdout, stderr).
@@ -36,27 +37,6 @@ fn report_rejects_bad_options_and_writes_nothing() {
         assert!(!ok && out.is_empty() && err.contains(expect), "{args:?}: {out}{err}");
         assert_eq!(entries(d.path()), vec!["tmp"], "{args:?}");
         assert!(entries(&d.path().join("tmp")).is_empty(), "{args:?}");
-    }
-}
-
-/// Pids listed in `pids` whose processes still run (a zombie does not), after
-/// waiting up to 5 s for them to go (a loaded machine reaps late).
-fn alive(pids: &Path) -> Vec<String> {
-    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(5);
-    loop {
-        let left: Vec<String> = std::fs::read_to_string(pids)
-            .unwrap_or_default()
-            .split_whitespace()
-            .filter(|p| {
-                std::fs::read_to_string(format!("/proc/{p}/stat"))
-                    .is_ok_and(|s| s.rsplit_once(')').is_some_and(|(_, r)| !r.trim_start().starts_with(['Z', 'X'])))
-            })
-            .map(String::from)
-            .collect();
-        if left.is_empty() || std::time::Instant::now() > deadline {
-            return left;
-        }
-        std::thread::sleep(std::time::Duration::from_millis(50));
     }
 }
 
@@ -96,7 +76,7 @@ fn report_kills_a_stalled_nextpnr_and_says_the_design_was_not_placed() {
     assert!(secs < 60.0, "{secs} s");
     // Two seeds, two processes each, none left running, no temporary files left.
     assert_eq!(std::fs::read_to_string(&pids).unwrap().lines().count(), 4);
-    assert!(alive(&pids).is_empty(), "left running: {:?}", alive(&pids));
+    assert!(alive(&bin).is_empty(), "left running: {:?}", alive(&bin));
     assert!(entries(&d.path().join("tmp")).is_empty(), "{:?}", entries(&d.path().join("tmp")));
 }
 

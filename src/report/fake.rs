@@ -1,5 +1,7 @@
 //! A fake `nextpnr-ice40` for the watchdog tests: a shell script in a temporary
-//! folder that appends the pids of its processes to `pids` there.
+//! folder that appends the pids of its processes to `pids` there. Test support,
+//! shared by the unit tests and `tests/report_cli.rs` (hence public, hidden from
+//! the documentation).
 
 use std::path::Path;
 

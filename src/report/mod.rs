@@ -8,8 +8,8 @@
 //!   so that constants propagate across module boundaries): LUT and flip-flop
 //!   counts, no place and route (there is no open Spartan-3 flow).
 
-#[cfg(test)]
-mod fake;
+#[doc(hidden)]
+pub mod fake;
 pub mod pnr;
 pub mod seeds;
 
