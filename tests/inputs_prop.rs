@@ -33,7 +33,12 @@ fn read(p: &str) -> String {
 fn bases(format: &str) -> Vec<String> {
     match format {
         "config" => vec![read("configs/default.toml")],
-        "board" => vec![read("boards/xsa-3s1000.toml"), read("boards/ice40-hx8k.toml")],
+        "board" => vec![
+            read("boards/xsa-3s1000.toml"),
+            read("boards/ice40-hx8k.toml"),
+            read("boards/ulx3s.toml"),
+            read("boards/arty-a7.toml"),
+        ],
         "scenario" => vec![read("examples/arbitration.toml"), read("examples/disturbance.toml")],
         "network" => vec![read("examples/recancentrate.toml")],
         _ => unreachable!(),
