@@ -170,3 +170,25 @@ fn reference_soak_chunk_with_an_early_ack_is_clean() {
     assert!(out.contains("hubs [6250.0, -6250.0] ppm"), "the chunk's oscillators changed: {out}");
     assert!(out.contains("blames 0  isolations 0  worst TEC 0 REC 0  controller errors 0"), "{out}");
 }
+
+#[test]
+fn soak_chunk_vcd_covers_only_its_window() {
+    let d = tempfile::tempdir().unwrap();
+    let (ok, out, err) =
+        canstar(&["soak", "--chunk", "0", "--frames", "200", "--chunk-frames", "200", "--vcd", "w.vcd", "--vcd-from", "100", "--vcd-bits", "20"], d.path());
+    assert!(ok, "{out}{err}");
+    let vcd = std::fs::read_to_string(d.path().join("w.vcd")).unwrap();
+    let body = &vcd[vcd.find("$enddefinitions").expect("a VCD header")..];
+    assert!(vcd.contains("$scope module hub0") && vcd.contains("$scope module hub1"));
+    let times: Vec<u64> = body.lines().filter_map(|l| l.strip_prefix('#')).map(|t| t.parse().unwrap()).collect();
+    // the reference network's bit time is 8 TQ of 2 clocks at 14.74 MHz: 1085.5 ns
+    let bit_ps = 1_085_487u64;
+    assert!(times.len() > 100, "{} timestamps", times.len());
+    assert!(times[0] >= 100 * bit_ps - bit_ps / 100, "starts at {}", times[0]);
+    assert!(*times.last().unwrap() <= 121 * bit_ps, "ends at {}", times.last().unwrap());
+    assert_eq!(entries(d.path()), vec!["w.vcd"]);
+    // only with --chunk
+    let (ok, _, err) = canstar(&["soak", "--frames", "200", "--vcd", "x.vcd"], d.path());
+    assert!(!ok && err.contains("--chunk"), "{err}");
+    assert_eq!(entries(d.path()), vec!["w.vcd"]);
+}

@@ -43,6 +43,9 @@ pub struct RunSpec {
     pub max_time_ps: Option<u64>,
     /// Write a VCD of every signal.
     pub vcd: Option<PathBuf>,
+    /// Only this window of simulated time (from, to, in ps) goes into the VCD (None: all
+    /// of the run). A whole long run is gigabytes.
+    pub vcd_window_ps: Option<(u64, u64)>,
     /// Record the driver's routine log in [`RunResult::trace`].
     pub trace: bool,
     /// Simulation engine of the hubs and controllers (compiled models by default).
@@ -55,7 +58,7 @@ pub struct RunSpec {
 impl RunSpec {
     /// The reference network without faults.
     pub fn new(network: NetworkSpec, seed: u64, frames: u32) -> Self {
-        RunSpec { network, seed, faults: Vec::new(), frames, quiet_frames: None, max_time_ps: None, vcd: None, trace: false, engine: Default::default(), events: Vec::new() }
+        RunSpec { network, seed, faults: Vec::new(), frames, quiet_frames: None, max_time_ps: None, vcd: None, vcd_window_ps: None, trace: false, engine: Default::default(), events: Vec::new() }
     }
 }
 
@@ -207,16 +210,36 @@ fn run_impl(
         }
     };
     setup(&mut sim, &net);
-    if let Some(p) = &spec.vcd {
+    // the VCD starts now, or at the start of its window (and stops at its end)
+    let (vcd_from, vcd_to) = spec.vcd_window_ps.unwrap_or((0, u64::MAX));
+    let mut vcd_state = if spec.vcd.is_some() { VcdWindow::Before } else { VcdWindow::Done };
+    let start_vcd = |sim: &mut Sim, res: &mut RunResult| -> bool {
+        let p = spec.vcd.as_ref().expect("a VCD path");
         if let Err(e) = sim.start_vcd_file(p, None) {
             let m = format!("cannot write VCD {}: {e}", p.display());
             res.failures.push(m.clone());
             res.vcd_error = Some(m);
+            return false;
+        }
+        true
+    };
+    if vcd_state == VcdWindow::Before && vcd_from == 0 {
+        if !start_vcd(&mut sim, &mut res) {
             return res;
         }
+        vcd_state = VcdWindow::Open;
     }
     let mut st = RunState::new(spec, res);
     while !st.finished(sim.now()) {
+        if vcd_state == VcdWindow::Before && sim.now() >= vcd_from {
+            vcd_state = if start_vcd(&mut sim, &mut st.res) { VcdWindow::Open } else { VcdWindow::Done };
+        }
+        if vcd_state == VcdWindow::Open && sim.now() >= vcd_to {
+            if let Err(e) = sim.finish_vcd() {
+                st.res.vcd_error = Some(format!("VCD: {e}"));
+            }
+            vcd_state = VcdWindow::Done;
+        }
         let trigger = st.advance(&mut sim, &net);
         st.start_faults(&mut sim, &net, trigger);
         st.observe_isolations(&sim, &net);
@@ -225,7 +248,19 @@ fn run_impl(
         st.observe_counters(&sim, &net);
         progress(sim.now(), st.limit);
     }
+    if vcd_state == VcdWindow::Before {
+        // the run ended before the window: the file holds the last values
+        start_vcd(&mut sim, &mut st.res);
+    }
     let res = st.finish(&mut sim, &net);
     finish(&mut sim, &net);
     res
+}
+
+/// Where a run is with respect to its VCD window.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum VcdWindow {
+    Before,
+    Open,
+    Done,
 }

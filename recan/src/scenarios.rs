@@ -251,6 +251,7 @@ pub fn published_scenario(n: usize, seed: u64) -> (RunSpec, Expected) {
         quiet_frames: Some(5),
         max_time_ps: None,
         vcd: None,
+        vcd_window_ps: None,
         trace: false,
         engine: Default::default(),
         events: Vec::new(),

@@ -180,7 +180,18 @@ fn edge_phases(r: &RunResult, np: usize, ports: bool) -> Vec<u64> {
 
 /// Run chunk `index`.
 pub fn run_chunk(s: &SoakSettings, index: u64) -> ChunkOutcome {
-    let (spec, evs) = chunk_spec(s, index);
+    run_chunk_vcd(s, index, None)
+}
+
+/// Run chunk `index`, writing a VCD (if `vcd` is given: path, first bit time, number of
+/// bit times; a failure to write it is a problem of the outcome).
+pub fn run_chunk_vcd(s: &SoakSettings, index: u64, vcd: Option<(&std::path::Path, u64, u64)>) -> ChunkOutcome {
+    let (mut spec, evs) = chunk_spec(s, index);
+    if let Some((p, from, bits)) = vcd {
+        let bit = spec.network.bit_time_ps();
+        spec.vcd = Some(p.to_path_buf());
+        spec.vcd_window_ps = Some((from.saturating_mul(bit), from.saturating_add(bits).saturating_mul(bit)));
+    }
     let r = crate::run(&spec);
     let passive: Vec<(usize, usize)> = evs
         .iter()
@@ -197,6 +208,7 @@ pub fn run_chunk(s: &SoakSettings, index: u64) -> ChunkOutcome {
         }
     }
     let mut problems: Vec<String> = r.failures.clone();
+    problems.extend(r.vcd_error.clone());
     for &(k, c, t) in &r.quarantined {
         problems.push(format!("node {k} controller {} quarantined at bit {}", "AB".as_bytes()[c] as char, t / r.bit_time_ps.max(1)));
     }

@@ -46,6 +46,17 @@ pub struct Args {
     /// Run one chunk only (by index) and print it.
     #[arg(long, conflicts_with_all = ["shard", "merge"])]
     chunk: Option<u64>,
+    /// With --chunk: write the chunk's run as VCD (every hub, link and controller, as
+    /// `canstar sim` writes a network run), from bit --vcd-from for --vcd-bits bit times
+    /// (a whole chunk is gigabytes).
+    #[arg(long, requires = "chunk")]
+    vcd: Option<PathBuf>,
+    /// First bit time of the VCD (e.g. a few bits before a blame site).
+    #[arg(long, requires = "vcd", default_value_t = 0)]
+    vcd_from: u64,
+    /// Length of the VCD window in bit times.
+    #[arg(long, requires = "vcd", default_value_t = 200)]
+    vcd_bits: u64,
 }
 
 pub fn run(a: Args) -> Result<()> {
@@ -53,6 +64,9 @@ pub fn run(a: Args) -> Result<()> {
     // The output is reserved before any work.
     let mut set = OutputSet::new();
     if let Some(p) = &a.json {
+        set.file(p)?;
+    }
+    if let Some(p) = &a.vcd {
         set.file(p)?;
     }
     if !a.merge.is_empty() {
@@ -98,7 +112,8 @@ pub fn run(a: Args) -> Result<()> {
             spec.network.hubs.iter().map(|h| h.ppm).collect::<Vec<_>>(),
             spec.network.nodes.iter().map(|n| (n.a.ppm, n.b.ppm)).collect::<Vec<_>>()
         );
-        let c = soak::run_chunk(&settings, i);
+        let window = a.vcd.as_deref().and_then(|p| set.temp_of(p)).map(|p| (p, a.vcd_from, a.vcd_bits));
+        let c = soak::run_chunk_vcd(&settings, i, window);
         let report = SoakReport { settings: Some(settings), chunks: vec![c.clone()] };
         if let Some(p) = &a.json {
             set.write(p, serde_json::to_string_pretty(&report)?)?;
