@@ -276,12 +276,17 @@ fn check_identifier(key: &str, v: &str) -> Result<()> {
     Ok(())
 }
 
-/// A role: `name` or `name[i]`.
-fn check_role(key: &str, v: &str) -> Result<()> {
-    let (base, idx) = match v.strip_suffix(']').and_then(|s| s.split_once('[')) {
+/// A role's port name and, for `name[i]`, the index as written.
+pub(crate) fn role_parts(v: &str) -> (&str, Option<&str>) {
+    match v.strip_suffix(']').and_then(|s| s.split_once('[')) {
         Some((b, i)) => (b, Some(i)),
         None => (v, None),
-    };
+    }
+}
+
+/// A role: `name` or `name[i]`.
+fn check_role(key: &str, v: &str) -> Result<()> {
+    let (base, idx) = role_parts(v);
     check_identifier(key, base).map_err(|_| anyhow!("{key}: role {v:?} must be a port name or name[index]"))?;
     if let Some(i) = idx {
         if i.is_empty() || i.len() > 6 || !i.chars().all(|c| c.is_ascii_digit()) {

@@ -5,6 +5,7 @@ use anyhow::{bail, Result};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 
+use canstar_controller::core::Eof7Rule;
 use canstar_hdl::timing::{BtlConfig, TimingPatch};
 
 /// Power-up bit timing of the SJA1000-compatible top: the values a hardware
@@ -58,27 +59,17 @@ impl Default for Rtl {
     }
 }
 
-/// REC at a receiver's dominant End_Of_Frame bit 7 (can-protocol.md C13), as
-/// the TOML value of `controller.eof7_rec`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum Eof7Rec {
+/// The TOML spelling of [`Eof7Rule`] (`controller.eof7_rec`): serde's remote
+/// definition, checked against the controller's enum by the compiler.
+#[derive(Serialize, Deserialize)]
+#[serde(remote = "Eof7Rule")]
+enum Eof7RuleToml {
     /// `"iso"`: REC − 1, the frame was valid (ISO 16845-1 7.6.16).
-    #[default]
+    #[serde(rename = "iso")]
     Iso,
     /// `"bosch-1999"`: REC unchanged (the 1999 reference programs).
     #[serde(rename = "bosch-1999")]
     Bosch1999,
-}
-
-impl Eof7Rec {
-    /// The controller's rule.
-    pub fn rule(self) -> canstar_controller::core::Eof7Rule {
-        match self {
-            Eof7Rec::Iso => canstar_controller::core::Eof7Rule::Iso,
-            Eof7Rec::Bosch1999 => canstar_controller::core::Eof7Rule::Bosch1999,
-        }
-    }
 }
 
 /// The CAN controller designs.
@@ -89,14 +80,15 @@ pub struct Controller {
     /// (`canstar_sja1000`, 64-byte RX FIFO, acceptance filters) and its board
     /// pin files; `false` emits only the core with its native interface.
     pub host_interface: bool,
-    /// REC at a receiver's dominant End_Of_Frame bit 7, in the core and the
-    /// SJA1000 top.
-    pub eof7_rec: Eof7Rec,
+    /// REC at a receiver's dominant End_Of_Frame bit 7 (can-protocol.md C13),
+    /// in the core and the SJA1000 top.
+    #[serde(with = "Eof7RuleToml")]
+    pub eof7_rec: Eof7Rule,
 }
 
 impl Default for Controller {
     fn default() -> Self {
-        Self { host_interface: true, eof7_rec: Eof7Rec::Iso }
+        Self { host_interface: true, eof7_rec: Eof7Rule::Iso }
     }
 }
 

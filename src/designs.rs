@@ -33,7 +33,7 @@ pub fn blocks(config: &Config) -> Result<Vec<Artifact>> {
 pub fn controller(config: &Config) -> Result<Vec<Artifact>> {
     let mut a = block(
         canstar_controller::core::CanCore::with_sync_depth(config.rtl.sync_depth)
-            .with_eof7_rule(config.controller.eof7_rec.rule()),
+            .with_eof7_rule(config.controller.eof7_rec),
         "canstar_can_core",
         "CAN 2.0A/B protocol controller core, native interface (see controller/src/core.rs)",
     );
@@ -49,7 +49,7 @@ pub fn controller(config: &Config) -> Result<Vec<Artifact>> {
 pub fn sja1000(config: &Config, board: Option<&str>) -> Result<Vec<Artifact>> {
     let (btr0, btr1) = crate::config::btr(&config.bit_timing);
     let mut uut = canstar_controller::sja1000::Sja1000::with_reset_timing(btr0, btr1)
-        .with_eof7_rule(config.controller.eof7_rec.rule());
+        .with_eof7_rule(config.controller.eof7_rec);
     uut.connect_all();
     let name = "canstar_sja1000";
     let inner = canstar_hdl::flow::rename_top(&canstar_hdl::flow::emit(&uut), name);

@@ -1,13 +1,9 @@
 //! `canstar boards`: the built-in boards with family, clock, pin-file format and
 //! designs; a board file given by path is checked and listed; bad input is a
 //! clear error naming the file and the key.
+mod common;
+use common::canstar;
 use std::path::Path;
-use std::process::Command;
-
-fn canstar(args: &[&str], cwd: &Path) -> (bool, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_canstar")).args(args).current_dir(cwd).output().unwrap();
-    (out.status.success(), String::from_utf8_lossy(&out.stdout).into_owned(), String::from_utf8_lossy(&out.stderr).into_owned())
-}
 
 #[test]
 fn boards_lists_every_builtin_board() {

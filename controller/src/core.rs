@@ -233,15 +233,6 @@ impl CanCore {
         self
     }
 
-    /// The REC rule this core was built with.
-    pub fn eof7_rule(&self) -> Eof7Rule {
-        if self.eof7_rok.val() {
-            Eof7Rule::Iso
-        } else {
-            Eof7Rule::Bosch1999
-        }
-    }
-
     /// RX latency in clocks (§1.5) of a core with synchroniser depth `depth`:
     /// from a change of `rx` to the clock on which `busmon` can show it.
     pub fn l_rx(depth: usize) -> usize {

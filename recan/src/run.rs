@@ -236,6 +236,8 @@ fn run_impl(
         }
         if vcd_state == VcdWindow::Open && sim.now() >= vcd_to {
             if let Err(e) = sim.finish_vcd() {
+                // as at the end of a run (`RunState::finish`)
+                st.res.failures.push(format!("VCD: {e}"));
                 st.res.vcd_error = Some(format!("VCD: {e}"));
             }
             vcd_state = VcdWindow::Done;

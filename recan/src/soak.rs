@@ -184,7 +184,7 @@ pub fn run_chunk(s: &SoakSettings, index: u64) -> ChunkOutcome {
 }
 
 /// Run chunk `index`, writing a VCD (if `vcd` is given: path, first bit time, number of
-/// bit times; a failure to write it is a problem of the outcome).
+/// bit times; a failure to write it is a problem of the outcome, as every run failure).
 pub fn run_chunk_vcd(s: &SoakSettings, index: u64, vcd: Option<(&std::path::Path, u64, u64)>) -> ChunkOutcome {
     let (mut spec, evs) = chunk_spec(s, index);
     if let Some((p, from, bits)) = vcd {
@@ -208,7 +208,6 @@ pub fn run_chunk_vcd(s: &SoakSettings, index: u64, vcd: Option<(&std::path::Path
         }
     }
     let mut problems: Vec<String> = r.failures.clone();
-    problems.extend(r.vcd_error.clone());
     for &(k, c, t) in &r.quarantined {
         problems.push(format!("node {k} controller {} quarantined at bit {}", "AB".as_bytes()[c] as char, t / r.bit_time_ps.max(1)));
     }

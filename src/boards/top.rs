@@ -73,10 +73,8 @@ pub struct ConstrainedTop {
 /// `rx[3]` -> (`rx`, Some(3)); `rst_n` -> (`rst_n`, None). Roles are checked
 /// when a board is read ([`super::Board::validate`]).
 pub fn split_role(role: &str) -> (&str, Option<usize>) {
-    match role.strip_suffix(']').and_then(|s| s.split_once('[')) {
-        Some((base, i)) => (base, i.parse().ok()),
-        None => (role, None),
-    }
+    let (base, idx) = super::role_parts(role);
+    (base, idx.and_then(|i| i.parse().ok()))
 }
 
 impl ConstrainedTop {
