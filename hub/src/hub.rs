@@ -115,7 +115,7 @@ pub struct HubCore {
     err_phase: Signal<Local, Bit>,
     bs_r: DFF<Bits<5>>,
     jd_u: Vec<DFF<Bits<3>>>,
-    jd_s: Vec<DFF<Bits<3>>>,
+    bs_p: DFF<Bits<5>>,
     jd_bt: DFF<Bits<3>>,
     jd_bs: DFF<Bits<3>>,
     delim_r: DFF<Bit>,
@@ -200,7 +200,7 @@ impl HubCore {
             err_phase: Default::default(),
             bs_r: Default::default(),
             jd_u: (0..n).map(|_| Default::default()).collect(),
-            jd_s: (0..m).map(|_| Default::default()).collect(),
+            bs_p: Default::default(),
             jd_bt: Default::default(),
             jd_bs: Default::default(),
             delim_r: Default::default(),
@@ -255,10 +255,12 @@ impl Logic for HubCore {
         self.decode.pos.next = self.mon_pos.val();
         self.frame_state.next = self.mon_field.val();
         self.err_phase.next = self.decode.err_phase.val() | self.efgen.busy.val();
-        // the judges' view (hub.md §5.9): every input of the judging rules delayed by
-        // JUDGE_DELAY = 3 clocks, so that at `mon_sample` the judges see the inputs as
-        // the frame monitor sampled BT (monitor RX flip-flop, BTL sample register,
-        // adapter register); shift registers, bit 2 is the value 3 clocks ago
+        // the port judges' view (hub.md §5.9): their inputs (uplink, BT, bit-start
+        // estimate) delayed by JUDGE_DELAY = 3 clocks, so that at `mon_sample` they see
+        // the uplinks as the frame monitor sampled BT (monitor RX flip-flop, BTL sample
+        // register, adapter register); shift registers, bit 2 is the value 3 clocks ago.
+        // The sublink judges look at the present (a faulty peer hub's late level is
+        // evidence against it)
         self.jd_bt.clock.next = self.clock.val();
         if self.coupler.bt.val() {
             self.jd_bt.d.next = (self.jd_bt.q.val() << 1) | 1;
@@ -286,21 +288,18 @@ impl Logic for HubCore {
                 self.jd_u[i].d.next = 7.into();
             }
         }
-        for j in 0..self._m {
-            self.jd_s[j].clock.next = self.clock.val();
-            if self.coupler.s[j].val() {
-                self.jd_s[j].d.next = (self.jd_s[j].q.val() << 1) | 1;
-            } else {
-                self.jd_s[j].d.next = self.jd_s[j].q.val() << 1;
-            }
-            if self.reset.val() {
-                self.jd_s[j].d.next = 7.into();
-            }
+        // clocks since the estimated bit start, in the port judges' (delayed) time
+        self.bs_p.clock.next = self.clock.val();
+        self.bs_p.d.next = self.bs_p.q.val();
+        if self.jd_bs.q.val().get_bit(2) {
+            self.bs_p.d.next = 0.into();
+        } else if self.bs_p.q.val() != 31 {
+            self.bs_p.d.next = self.bs_p.q.val() + 1;
         }
-        // clocks since the estimated bit start, in the judges' (delayed) time (window rule)
+        // clocks since the estimated bit start, for the sublink judges (window rule)
         self.bs_r.clock.next = self.clock.val();
         self.bs_r.d.next = self.bs_r.q.val();
-        if self.jd_bs.q.val().get_bit(2) {
+        if self.mon_bit_start.val() {
             self.bs_r.d.next = 0.into();
         } else if self.bs_r.q.val() != 31 {
             self.bs_r.d.next = self.bs_r.q.val() + 1;
@@ -310,7 +309,7 @@ impl Logic for HubCore {
         self.delim_r.clock.next = self.clock.val();
         self.delim_r.d.next = self.delim_r.q.val();
         if self.mon_sample.val() {
-            self.delim_r.d.next = self.err_phase.val() & self.jd_bt.q.val().get_bit(2);
+            self.delim_r.d.next = self.err_phase.val() & self.coupler.bt.val();
         }
         self.delim_z.next = self.err_phase.val()
             & self.delim_r.q.val()
@@ -364,8 +363,8 @@ impl Logic for HubCore {
                 self.coupler.hub_fault[j].next = 0.into();
             }
             if !self.sj[j].dis.val() {
-                self.rep_rec.next = self.rep_rec.val() | self.jd_s[j].q.val().get_bit(2);
-                self.rep_dom.next = self.rep_dom.val() | !self.jd_s[j].q.val().get_bit(2);
+                self.rep_rec.next = self.rep_rec.val() | self.coupler.s[j].val();
+                self.rep_dom.next = self.rep_dom.val() | !self.coupler.s[j].val();
                 self.rep_gl.next = self.rep_gl.val() | (self.sj[j].gc.val() != 0);
             }
         }
@@ -409,7 +408,7 @@ impl Logic for HubCore {
             self.pj[i].rep_blamed.next = false;
             self.pj[i].common.next = false;
             self.pj[i].bit_start.next = self.jd_bs.q.val().get_bit(2);
-            self.pj[i].bs_cnt.next = self.bs_r.q.val();
+            self.pj[i].bs_cnt.next = self.bs_p.q.val();
             self.pj[i].delim.next = self.delim_z.val();
             self.pj[i].suppress.next = self.any_an.val() & !self.pj[i].anomaly.val();
             self.any_blame.next = self.any_blame.val() | self.pj[i].blame.val();
@@ -419,8 +418,8 @@ impl Logic for HubCore {
             self.sj[j].clock.next = self.clock.val();
             self.sj[j].reset.next = self.reset.val();
             self.sj[j].sample.next = self.mon_sample.val();
-            self.sj[j].c.next = self.jd_s[j].q.val().get_bit(2);
-            self.sj[j].bt.next = self.jd_bt.q.val().get_bit(2);
+            self.sj[j].c.next = self.coupler.s[j].val();
+            self.sj[j].bt.next = self.coupler.bt.val();
             self.sj[j].sof.next = self.decode.sof.val();
             self.sj[j].tx_region.next = self.decode.tx_region.val();
             self.sj[j].arb.next = self.decode.arb.val();
@@ -435,7 +434,7 @@ impl Logic for HubCore {
             self.sj[j].rep_rec.next = self.rep_rec.val();
             self.sj[j].rep_dom.next = self.rep_dom.val();
             self.sj[j].rep_glitched.next = self.rep_gl.val();
-            self.sj[j].bit_start.next = self.jd_bs.q.val().get_bit(2);
+            self.sj[j].bit_start.next = self.mon_bit_start.val();
             self.sj[j].bs_cnt.next = self.bs_r.q.val();
             self.sj[j].delim.next = self.delim_z.val();
             self.sj[j].suppress.next = self.any_an.val() & !self.sj[j].anomaly.val();
@@ -523,8 +522,8 @@ pub const RESET_SYNC_DEPTH: usize = 2;
 /// Synchroniser depth of the monitor's RX input: BT is already synchronous.
 pub const MONITOR_SYNC_DEPTH: usize = 1;
 
-/// Clocks by which [`HubCore`] delays the judges' inputs (uplinks, sublinks, BT and the
-/// bit start estimate; hub.md §5.9): the frame monitor sees BT through its RX flip-flop
+/// Clocks by which [`HubCore`] delays the port judges' inputs (uplinks, BT and the bit
+/// start estimate; hub.md §5.9): the frame monitor sees BT through its RX flip-flop
 /// ([`MONITOR_SYNC_DEPTH`]), takes the sample on a tick clock and reports it
 /// [`canstar_hdl::btl::L_RX`] clock later, and the [`MonitorAdapter`] registers it once
 /// more, so `mon_sample` comes this many clocks after the instant the monitor sampled.

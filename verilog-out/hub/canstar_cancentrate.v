@@ -871,6 +871,9 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
     reg  [2:0] jd_u$2$d;
     wire  [2:0] jd_u$2$q;
     reg  jd_u$2$clock;
+    reg  [4:0] bs_p$d;
+    wire  [4:0] bs_p$q;
+    reg  bs_p$clock;
     reg  [2:0] jd_bt$d;
     wire  [2:0] jd_bt$q;
     reg  jd_bt$clock;
@@ -1123,6 +1126,11 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         .q(jd_u$2$q),
         .clock(jd_u$2$clock)
     );
+    canstar_cancentrate_core$core$bs_p bs_p(
+        .d(bs_p$d),
+        .q(bs_p$q),
+        .clock(bs_p$clock)
+    );
     canstar_cancentrate_core$core$jd_bt jd_bt(
         .d(jd_bt$d),
         .q(jd_bt$q),
@@ -1200,9 +1208,17 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         if (reset) begin
             jd_u$2$d = 32'h7;
         end
+        bs_p$clock = clock;
+        bs_p$d = bs_p$q;
+        if (jd_bs$q[32'h2]) begin
+            bs_p$d = 32'h0;
+        end
+        else if (bs_p$q != 32'h1f) begin
+            bs_p$d = bs_p$q + 32'h1;
+        end
         bs_r$clock = clock;
         bs_r$d = bs_r$q;
-        if (jd_bs$q[32'h2]) begin
+        if (mon_bit_start) begin
             bs_r$d = 32'h0;
         end
         else if (bs_r$q != 32'h1f) begin
@@ -1211,7 +1227,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         delim_r$clock = clock;
         delim_r$d = delim_r$q;
         if (mon_sample) begin
-            delim_r$d = err_phase & jd_bt$q[32'h2];
+            delim_r$d = err_phase & coupler$bt;
         end
         delim_z = err_phase & delim_r$q & ~(((mon_field == 32'he) | (mon_field == 32'hf)) & (mon_pos == 32'h7));
         if (reset) begin
@@ -1277,7 +1293,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         pj$0$rep_blamed = 1'b0;
         pj$0$common = 1'b0;
         pj$0$bit_start = jd_bs$q[32'h2];
-        pj$0$bs_cnt = bs_r$q;
+        pj$0$bs_cnt = bs_p$q;
         pj$0$delim = delim_z;
         pj$0$suppress = any_an & ~pj$0$anomaly;
         any_blame = any_blame | pj$0$blame;
@@ -1318,7 +1334,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         pj$1$rep_blamed = 1'b0;
         pj$1$common = 1'b0;
         pj$1$bit_start = jd_bs$q[32'h2];
-        pj$1$bs_cnt = bs_r$q;
+        pj$1$bs_cnt = bs_p$q;
         pj$1$delim = delim_z;
         pj$1$suppress = any_an & ~pj$1$anomaly;
         any_blame = any_blame | pj$1$blame;
@@ -1359,7 +1375,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         pj$2$rep_blamed = 1'b0;
         pj$2$common = 1'b0;
         pj$2$bit_start = jd_bs$q[32'h2];
-        pj$2$bs_cnt = bs_r$q;
+        pj$2$bs_cnt = bs_p$q;
         pj$2$delim = delim_z;
         pj$2$suppress = any_an & ~pj$2$anomaly;
         any_blame = any_blame | pj$2$blame;
@@ -1386,6 +1402,25 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
     end
     
 endmodule // canstar_cancentrate_core$core
+
+
+module canstar_cancentrate_core$core$bs_p(d,q,clock);
+    
+    // Module arguments
+    input wire  [4:0] d;
+    output reg  [4:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 5'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$bs_p
 
 
 module canstar_cancentrate_core$core$bs_r(d,q,clock);

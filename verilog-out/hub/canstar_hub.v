@@ -1023,12 +1023,9 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     reg  [2:0] jd_u$2$d;
     wire  [2:0] jd_u$2$q;
     reg  jd_u$2$clock;
-    reg  [2:0] jd_s$0$d;
-    wire  [2:0] jd_s$0$q;
-    reg  jd_s$0$clock;
-    reg  [2:0] jd_s$1$d;
-    wire  [2:0] jd_s$1$q;
-    reg  jd_s$1$clock;
+    reg  [4:0] bs_p$d;
+    wire  [4:0] bs_p$q;
+    reg  bs_p$clock;
     reg  [2:0] jd_bt$d;
     wire  [2:0] jd_bt$q;
     reg  jd_bt$clock;
@@ -1375,15 +1372,10 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .q(jd_u$2$q),
         .clock(jd_u$2$clock)
     );
-    canstar_hub_core$core$jd_s$0 jd_s$0(
-        .d(jd_s$0$d),
-        .q(jd_s$0$q),
-        .clock(jd_s$0$clock)
-    );
-    canstar_hub_core$core$jd_s$1 jd_s$1(
-        .d(jd_s$1$d),
-        .q(jd_s$1$q),
-        .clock(jd_s$1$clock)
+    canstar_hub_core$core$bs_p bs_p(
+        .d(bs_p$d),
+        .q(bs_p$q),
+        .clock(bs_p$clock)
     );
     canstar_hub_core$core$jd_bt jd_bt(
         .d(jd_bt$d),
@@ -1462,29 +1454,17 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         if (reset) begin
             jd_u$2$d = 32'h7;
         end
-        jd_s$0$clock = clock;
-        if (coupler$s$0) begin
-            jd_s$0$d = (jd_s$0$q << 32'h1) | 32'h1;
+        bs_p$clock = clock;
+        bs_p$d = bs_p$q;
+        if (jd_bs$q[32'h2]) begin
+            bs_p$d = 32'h0;
         end
-        else begin
-            jd_s$0$d = jd_s$0$q << 32'h1;
-        end
-        if (reset) begin
-            jd_s$0$d = 32'h7;
-        end
-        jd_s$1$clock = clock;
-        if (coupler$s$1) begin
-            jd_s$1$d = (jd_s$1$q << 32'h1) | 32'h1;
-        end
-        else begin
-            jd_s$1$d = jd_s$1$q << 32'h1;
-        end
-        if (reset) begin
-            jd_s$1$d = 32'h7;
+        else if (bs_p$q != 32'h1f) begin
+            bs_p$d = bs_p$q + 32'h1;
         end
         bs_r$clock = clock;
         bs_r$d = bs_r$q;
-        if (jd_bs$q[32'h2]) begin
+        if (mon_bit_start) begin
             bs_r$d = 32'h0;
         end
         else if (bs_r$q != 32'h1f) begin
@@ -1493,7 +1473,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         delim_r$clock = clock;
         delim_r$d = delim_r$q;
         if (mon_sample) begin
-            delim_r$d = err_phase & jd_bt$q[32'h2];
+            delim_r$d = err_phase & coupler$bt;
         end
         delim_z = err_phase & delim_r$q & ~(((mon_field == 32'he) | (mon_field == 32'hf)) & (mon_pos == 32'h7));
         if (reset) begin
@@ -1543,8 +1523,8 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
             coupler$hub_fault$0 = 32'h0;
         end
         if (~sj$0$dis) begin
-            rep_rec = rep_rec | jd_s$0$q[32'h2];
-            rep_dom = rep_dom | ~jd_s$0$q[32'h2];
+            rep_rec = rep_rec | coupler$s$0;
+            rep_dom = rep_dom | ~coupler$s$0;
             rep_gl = rep_gl | (sj$0$gc != 32'h0);
         end
         coupler$reh_rx$1 = reh_rx$1;
@@ -1558,8 +1538,8 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
             coupler$hub_fault$1 = 32'h0;
         end
         if (~sj$1$dis) begin
-            rep_rec = rep_rec | jd_s$1$q[32'h2];
-            rep_dom = rep_dom | ~jd_s$1$q[32'h2];
+            rep_rec = rep_rec | coupler$s$1;
+            rep_dom = rep_dom | ~coupler$s$1;
             rep_gl = rep_gl | (sj$1$gc != 32'h0);
         end
         any_blame = 1'b0;
@@ -1601,7 +1581,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         pj$0$rep_blamed = 1'b0;
         pj$0$common = 1'b0;
         pj$0$bit_start = jd_bs$q[32'h2];
-        pj$0$bs_cnt = bs_r$q;
+        pj$0$bs_cnt = bs_p$q;
         pj$0$delim = delim_z;
         pj$0$suppress = any_an & ~pj$0$anomaly;
         any_blame = any_blame | pj$0$blame;
@@ -1642,7 +1622,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         pj$1$rep_blamed = 1'b0;
         pj$1$common = 1'b0;
         pj$1$bit_start = jd_bs$q[32'h2];
-        pj$1$bs_cnt = bs_r$q;
+        pj$1$bs_cnt = bs_p$q;
         pj$1$delim = delim_z;
         pj$1$suppress = any_an & ~pj$1$anomaly;
         any_blame = any_blame | pj$1$blame;
@@ -1683,7 +1663,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         pj$2$rep_blamed = 1'b0;
         pj$2$common = 1'b0;
         pj$2$bit_start = jd_bs$q[32'h2];
-        pj$2$bs_cnt = bs_r$q;
+        pj$2$bs_cnt = bs_p$q;
         pj$2$delim = delim_z;
         pj$2$suppress = any_an & ~pj$2$anomaly;
         any_blame = any_blame | pj$2$blame;
@@ -1691,8 +1671,8 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         sj$0$clock = clock;
         sj$0$reset = reset;
         sj$0$sample = mon_sample;
-        sj$0$c = jd_s$0$q[32'h2];
-        sj$0$bt = jd_bt$q[32'h2];
+        sj$0$c = coupler$s$0;
+        sj$0$bt = coupler$bt;
         sj$0$sof = decode$sof;
         sj$0$tx_region = decode$tx_region;
         sj$0$arb = decode$arb;
@@ -1707,7 +1687,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         sj$0$rep_rec = rep_rec;
         sj$0$rep_dom = rep_dom;
         sj$0$rep_glitched = rep_gl;
-        sj$0$bit_start = jd_bs$q[32'h2];
+        sj$0$bit_start = mon_bit_start;
         sj$0$bs_cnt = bs_r$q;
         sj$0$delim = delim_z;
         sj$0$suppress = any_an & ~sj$0$anomaly;
@@ -1717,8 +1697,8 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         sj$1$clock = clock;
         sj$1$reset = reset;
         sj$1$sample = mon_sample;
-        sj$1$c = jd_s$1$q[32'h2];
-        sj$1$bt = jd_bt$q[32'h2];
+        sj$1$c = coupler$s$1;
+        sj$1$bt = coupler$bt;
         sj$1$sof = decode$sof;
         sj$1$tx_region = decode$tx_region;
         sj$1$arb = decode$arb;
@@ -1733,7 +1713,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         sj$1$rep_rec = rep_rec;
         sj$1$rep_dom = rep_dom;
         sj$1$rep_glitched = rep_gl;
-        sj$1$bit_start = jd_bs$q[32'h2];
+        sj$1$bit_start = mon_bit_start;
         sj$1$bs_cnt = bs_r$q;
         sj$1$delim = delim_z;
         sj$1$suppress = any_an & ~sj$1$anomaly;
@@ -1774,6 +1754,25 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     end
     
 endmodule // canstar_hub_core$core
+
+
+module canstar_hub_core$core$bs_p(d,q,clock);
+    
+    // Module arguments
+    input wire  [4:0] d;
+    output reg  [4:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 5'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$bs_p
 
 
 module canstar_hub_core$core$bs_r(d,q,clock);
@@ -3058,44 +3057,6 @@ module canstar_hub_core$core$jd_bt(d,q,clock);
     end
           
 endmodule // canstar_hub_core$core$jd_bt
-
-
-module canstar_hub_core$core$jd_s$0(d,q,clock);
-    
-    // Module arguments
-    input wire  [2:0] d;
-    output reg  [2:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 3'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_hub_core$core$jd_s$0
-
-
-module canstar_hub_core$core$jd_s$1(d,q,clock);
-    
-    // Module arguments
-    input wire  [2:0] d;
-    output reg  [2:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 3'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_hub_core$core$jd_s$1
 
 
 module canstar_hub_core$core$jd_u$0(d,q,clock);
