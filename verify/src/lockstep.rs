@@ -250,6 +250,7 @@ impl LockstepNode {
             brp: f(cfg.timing.brp),
             prop: f(cfg.timing.prop),
             ph1: f(cfg.timing.ph1),
+            ph2: f(cfg.timing.ph2),
             sjw: f(cfg.timing.sjw),
             triple: cfg.timing.triple,
             rx: true,

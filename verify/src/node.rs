@@ -157,6 +157,7 @@ impl CanNode {
         i.brp = f(c.timing.brp);
         i.prop = f(c.timing.prop);
         i.ph1 = f(c.timing.ph1);
+        i.ph2 = f(c.timing.ph2);
         i.sjw = f(c.timing.sjw);
         i.triple = c.timing.triple;
         i.listen_only = c.listen_only;

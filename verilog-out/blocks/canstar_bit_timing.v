@@ -3,7 +3,7 @@
 
 
 
-module canstar_bit_timing(clock,reset,brp,prop,ph1,sjw,triple,rx,drive,hs_en,tq,sample,busmon,bit_start,tx,hard_sync,resync,cfg_err);
+module canstar_bit_timing(clock,reset,brp,prop,ph1,ph2,sjw,triple,rx,drive,hs_en,tq,sample,busmon,bit_start,tx,hard_sync,resync,cfg_err);
     
     // Module arguments
     input wire  clock;
@@ -11,6 +11,7 @@ module canstar_bit_timing(clock,reset,brp,prop,ph1,sjw,triple,rx,drive,hs_en,tq,
     input wire  [6:0] brp;
     input wire  [3:0] prop;
     input wire  [2:0] ph1;
+    input wire  [2:0] ph2;
     input wire  [1:0] sjw;
     input wire  triple;
     input wire  rx;
@@ -41,6 +42,9 @@ module canstar_bit_timing(clock,reset,brp,prop,ph1,sjw,triple,rx,drive,hs_en,tq,
     reg  c_triple$d;
     wire  c_triple$q;
     reg  c_triple$clock;
+    reg  c_ipt1$d;
+    wire  c_ipt1$q;
+    reg  c_ipt1$clock;
     reg  c_valid$d;
     wire  c_valid$q;
     reg  c_valid$clock;
@@ -143,6 +147,11 @@ module canstar_bit_timing(clock,reset,brp,prop,ph1,sjw,triple,rx,drive,hs_en,tq,
         .q(c_triple$q),
         .clock(c_triple$clock)
     );
+    canstar_bit_timing$c_ipt1 c_ipt1(
+        .d(c_ipt1$d),
+        .q(c_ipt1$q),
+        .clock(c_ipt1$clock)
+    );
     canstar_bit_timing$c_valid c_valid(
         .d(c_valid$d),
         .q(c_valid$q),
@@ -231,6 +240,7 @@ module canstar_bit_timing(clock,reset,brp,prop,ph1,sjw,triple,rx,drive,hs_en,tq,
         c_ntq$clock = clock;
         c_sjw$clock = clock;
         c_triple$clock = clock;
+        c_ipt1$clock = clock;
         c_valid$clock = clock;
         c_bad$clock = clock;
         pre$clock = clock;
@@ -252,6 +262,7 @@ module canstar_bit_timing(clock,reset,brp,prop,ph1,sjw,triple,rx,drive,hs_en,tq,
         c_ntq$d = c_ntq$q;
         c_sjw$d = c_sjw$q;
         c_triple$d = c_triple$q;
+        c_ipt1$d = c_ipt1$q;
         c_valid$d = c_valid$q;
         c_bad$d = c_bad$q;
         pre$d = pre$q;
@@ -269,13 +280,10 @@ module canstar_bit_timing(clock,reset,brp,prop,ph1,sjw,triple,rx,drive,hs_en,tq,
         hard_r$d = hard_r$q;
         resync_r$d = resync_r$q;
         in_sp = (((prop) & 6'h3f) + ((ph1) & 6'h3f)) + 32'h3;
-        in_ph2 = ((ph1) & 6'h3f) + 32'h1;
-        if (ph1 == 32'h0) begin
-            in_ph2 = 32'h2;
-        end
+        in_ph2 = ((ph2) & 6'h3f) + 32'h1;
         in_ntq = in_sp + in_ph2;
         in_sjw = ((sjw) & 5'h1f) + 32'h1;
-        in_bad = ((in_ntq < 32'h8) | (in_ntq > 32'h19)) | (((sjw) & 3'h7) > ph1);
+        in_bad = (((in_ntq < 32'h8) | (in_ntq > 32'h19)) | (((sjw) & 3'h7) > ph1)) | ((ph2 == 32'h0) & (brp == 32'h0));
         tick = (c_valid$q & ~reset) & (pre$q == c_brp$q);
         c1 = cnt$q + 32'h1;
         late = c1 > spw$q;
@@ -333,13 +341,14 @@ module canstar_bit_timing(clock,reset,brp,prop,ph1,sjw,triple,rx,drive,hs_en,tq,
         if (since$q == 32'h2) begin
             since_inc = 32'h2;
         end
-        fire = (restart | eob | pending$q) & (since_inc == 32'h2);
+        fire = (restart | eob | pending$q) & ((since_inc == 32'h2) | c_ipt1$q);
         if (reset) begin
             c_brp$d = brp;
             c_sp$d = in_sp[(32'h0)+:(5)];
             c_ntq$d = in_ntq[(32'h0)+:(5)];
             c_sjw$d = in_sjw;
             c_triple$d = triple;
+            c_ipt1$d = ph2 == 32'h0;
             c_bad$d = in_bad;
             c_valid$d = ~in_bad;
             pre$d = 32'h0;
@@ -460,6 +469,25 @@ module canstar_bit_timing$c_brp(d,q,clock);
     end
           
 endmodule // canstar_bit_timing$c_brp
+
+
+module canstar_bit_timing$c_ipt1(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_bit_timing$c_ipt1
 
 
 module canstar_bit_timing$c_ntq(d,q,clock);
