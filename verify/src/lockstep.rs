@@ -14,8 +14,8 @@
 //!   with the RTL's bit-stream latency (the decision taken at a sample point
 //!   is used by the bit timing from the second clock after the sample
 //!   strobe, the same instant as [`canstar_controller::fsm::CanFsm`] presents
-//!   it; with IPT = 2 TQ the decision is always in place before the earliest
-//!   transmit point, §2.5);
+//!   it; the IPT of §2.5 is at least 2 clocks, so the decision is always in
+//!   place by the earliest transmit point);
 //! - the golden bit-stream model [`GoldenNode`], stepped at every sample
 //!   point of the golden bit timing with the golden sampled level.
 //!

@@ -42,7 +42,8 @@ pub const RESET_CYCLES: u32 = 4;
 #[derive(Debug, Clone, PartialEq)]
 pub struct NodeConfig {
     pub name: String,
-    /// Bit timing (real values; PH2 = max(PH1, 2)).
+    /// Bit timing (real values; [`NodeConfig::timing`] sets PH2 = max(PH1, 2),
+    /// `BtlConfig::with_ph2` another PH2).
     pub timing: BtlConfig,
     pub listen_only: bool,
     pub self_test: bool,
