@@ -25,8 +25,11 @@ fn power_up_timing<'de, D: serde::Deserializer<'de>>(d: D) -> std::result::Resul
 }
 
 /// Check a power-up timing: the ranges of can-protocol.md §2.2 (the bit timing
-/// logic's own check, [`BtlConfig::check`]) and that BTR0/BTR1 can express it
-/// (clocks per TQ = 2·(BRP+1), TSEG1 = PROP + PH1 <= 16).
+/// logic's own check, [`BtlConfig::check`]), that BTR0/BTR1 can express it
+/// (clocks per TQ = 2·(BRP+1), TSEG1 = PROP + PH1 <= 16, TSEG2 = PH2) and that
+/// the SJA1000 top maps those registers back onto the same bit
+/// ([`canstar_controller::sja1000::timing::core_timing`]: same clocks per TQ,
+/// sample point, bit time and SJW).
 pub fn validate_power_up(t: &BtlConfig) -> Result<()> {
     if t.brp < 2 || t.brp > 128 || t.brp % 2 != 0 {
         bail!("bit_timing: invalid bit timing: brp = {} clocks per TQ (the SJA1000 top has 2·(BRP+1): even, 2..=128)", t.brp);
@@ -35,13 +38,19 @@ pub fn validate_power_up(t: &BtlConfig) -> Result<()> {
     if t.prop + t.ph1 > 16 {
         bail!("bit_timing: invalid bit timing: prop + ph1 = TSEG1 = {} TQ (must be <= 16)", t.prop + t.ph1);
     }
+    let (b0, b1) = btr(t);
+    let c = canstar_controller::sja1000::timing::core_timing(b0, b1).map_err(|e| anyhow::anyhow!("bit_timing: {e}"))?;
+    let key = |t: &BtlConfig| (t.brp, t.sp(), t.ntq(), t.sjw, t.triple);
+    if key(&c) != key(t) {
+        bail!("bit_timing: BTR0/BTR1 0x{b0:02X}/0x{b1:02X} map onto {c:?}, not onto the same bit as {t:?}");
+    }
     Ok(())
 }
 
 /// The BTR0 and BTR1 register values of a (valid) power-up timing.
 pub fn btr(t: &BtlConfig) -> (u8, u8) {
     let btr0 = ((t.sjw - 1) << 6) | (t.brp / 2 - 1);
-    let btr1 = ((t.triple as u32) << 7) | ((t.ph2() - 1) << 4) | (t.prop + t.ph1 - 1);
+    let btr1 = ((t.triple as u32) << 7) | ((t.ph2 - 1) << 4) | (t.prop + t.ph1 - 1);
     (btr0 as u8, btr1 as u8)
 }
 
@@ -178,6 +187,21 @@ mod tests {
     fn sjw_above_ph1_is_rejected() {
         let e = Config::from_toml("[bit_timing]\nph1 = 2\nsjw = 3\nprop = 4\n").unwrap_err();
         assert!(format!("{e:#}").contains("exceeds ph1"), "{e:#}");
+    }
+
+    #[test]
+    fn ph2_is_a_power_up_key() {
+        // 24 MHz, 500 kbit/s, 87.5 % (what can-calc-bit-timing gives for an
+        // SJA1000 on a 24 MHz oscillator): 48 clocks per bit = 8 TQ of 6
+        // clocks, TSEG1 = 6, TSEG2 = 1 TQ: BTR0 0x02, BTR1 0x05
+        let c = Config::from_toml("[bit_timing]\nbrp = 6\nprop = 1\nph1 = 5\nph2 = 1\nsjw = 1\n").unwrap();
+        assert_eq!((c.bit_timing.ntq(), c.bit_timing.sp(), c.bit_timing.ntq() * c.bit_timing.brp), (8, 7, 48));
+        assert_eq!(btr(&c.bit_timing), (0x02, 0x05));
+        // without ph2: max(PH1, 2), as before the key existed
+        let c = Config::from_toml("[bit_timing]\nph1 = 3\n").unwrap();
+        assert_eq!(c.bit_timing.ph2, 3);
+        // SJW above PH2 is legal (C22), above PH1 not
+        Config::from_toml("[bit_timing]\nbrp = 6\nprop = 1\nph1 = 5\nph2 = 1\nsjw = 4\n").unwrap();
     }
 }
 

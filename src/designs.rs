@@ -24,7 +24,7 @@ pub fn blocks(config: &Config) -> Result<Vec<Artifact>> {
         block(
             btl::BitTiming::default(),
             "canstar_bit_timing",
-            "CAN bit timing logic (prescaler, segments, hard sync and resync, IPT = 2 TQ)",
+            "CAN bit timing logic (prescaler, segments, hard sync and resync, PH2 a field, IPT = min(PH2, 2) TQ)",
         ),
     ])
 }

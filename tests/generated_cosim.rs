@@ -72,7 +72,7 @@ fn committed_blocks_cosimulate() {
     run(&mut btl::BitTiming::default(), "blocks/canstar_bit_timing.v", "canstar_bit_timing", |u, r, c| {
         u.reset.next = c < 3 || r.gen_ratio(1, 20_000);
         if c % 7_000 == 0 {
-            let cfg = btl::BtlConfig::from_fields(r.gen_range(1..4), r.gen_range(1..5), r.gen_range(2..6), r.gen_range(1..3), r.gen_bool(0.2));
+            let cfg = btl::BtlConfig::from_fields(r.gen_range(1..4), r.gen_range(1..5), r.gen_range(2..6), r.gen_range(0..6), r.gen_range(1..3), r.gen_bool(0.2));
             u.set_config(&cfg);
         }
         u.rx.next = wander(r, u.rx.val(), 40);
@@ -95,6 +95,7 @@ fn committed_controller_core_cosimulates() {
         u.brp.next = 1.into();
         u.prop.next = 2.into();
         u.ph1.next = 3.into();
+        u.ph2.next = 3.into();
         u.sjw.next = 1.into();
         u.self_test.next = true;
         // a disturbance of about one bit time now and then

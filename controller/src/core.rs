@@ -23,7 +23,7 @@
 //! # Ports
 //!
 //! Inputs: `clock`; `reset` (synchronous; the timing fields are latched
-//! while it is high); `rx`; timing `brp`, `prop`, `ph1`, `sjw` (value − 1)
+//! while it is high); `rx`; timing `brp`, `prop`, `ph1`, `ph2`, `sjw` (value − 1)
 //! and `triple`; mode bits `listen_only`, `self_test`, `single_shot`,
 //! `host_recovery` and the `recover` strobe; the transmit request `tx_req`
 //! with `tx_ide`, `tx_rtr`, `tx_id` (29 bits, standard ids in bits 10..0),
@@ -34,8 +34,10 @@
 //! over `reset` (see [`crate::fsm::CanFsm`]); tie it low when unused.
 //!
 //! Timing fields (value − 1): `brp` 7 bits (1..128 clocks per TQ), `prop`
-//! 4 bits (PROP 1..16), `ph1` 3 bits (1..8), `sjw` 2 bits (1..4); PH2 =
-//! max(PH1, 2) and NTQ 8..25 as in [`canstar_hdl::btl`].
+//! 4 bits (PROP 1..16), `ph1` 3 bits (1..8), `ph2` 3 bits (1..8; 1 only
+//! with BRP ≥ 2), `sjw` 2 bits (1..min(4, PH1, PH2)); NTQ 8..25, as in
+//! [`canstar_hdl::btl`] ([`CanCore::set_timing`] sets them from a
+//! [`canstar_hdl::timing::BtlConfig`]).
 //!
 //! Generation-time options (constants of the design, not ports): the RX
 //! synchroniser depth ([`CanCore::with_sync_depth`]) and the REC rule at a
@@ -95,6 +97,7 @@ pub struct CanCore {
     pub brp: Signal<In, Bits<7>>,
     pub prop: Signal<In, Bits<4>>,
     pub ph1: Signal<In, Bits<3>>,
+    pub ph2: Signal<In, Bits<3>>,
     pub sjw: Signal<In, Bits<2>>,
     pub triple: Signal<In, Bit>,
     pub listen_only: Signal<In, Bit>,
@@ -171,6 +174,7 @@ impl CanCore {
             brp: Default::default(),
             prop: Default::default(),
             ph1: Default::default(),
+            ph2: Default::default(),
             sjw: Default::default(),
             triple: Default::default(),
             listen_only: Default::default(),
@@ -238,6 +242,18 @@ impl CanCore {
     pub fn l_rx(depth: usize) -> usize {
         depth + canstar_hdl::btl::L_RX
     }
+
+    /// Drive the timing inputs (`brp`, `prop`, `ph1`, `ph2`, `sjw`, `triple`)
+    /// from `t` (they take effect under reset).
+    pub fn set_timing(&mut self, t: &canstar_hdl::timing::BtlConfig) {
+        let (brp, prop, ph1, ph2, sjw) = t.fields();
+        self.brp.next = (brp as u64).into();
+        self.prop.next = (prop as u64).into();
+        self.ph1.next = (ph1 as u64).into();
+        self.ph2.next = (ph2 as u64).into();
+        self.sjw.next = (sjw as u64).into();
+        self.triple.next = t.triple;
+    }
 }
 
 impl Default for CanCore {
@@ -261,6 +277,7 @@ impl Logic for CanCore {
         self.btl.brp.next = self.brp.val();
         self.btl.prop.next = self.prop.val();
         self.btl.ph1.next = self.ph1.val();
+        self.btl.ph2.next = self.ph2.val();
         self.btl.sjw.next = self.sjw.val();
         self.btl.triple.next = self.triple.val();
         self.btl.rx.next = self.sync.q.val();

@@ -36,6 +36,7 @@ fn bench_print() {
         u.brp.next = 0.into();
         u.prop.next = 3.into();
         u.ph1.next = 3.into();
+        u.ph2.next = 3.into();
         u.sjw.next = 0.into();
         x ^= x << 13;
         x ^= x >> 17;

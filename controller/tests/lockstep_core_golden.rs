@@ -29,12 +29,16 @@ fn cframe(f: &golden::Frame) -> Frame {
     Frame { ide: f.ide, id: f.id, rtr: f.rtr, dlc: f.dlc, data: f.data.clone() }
 }
 
-fn run(seed: u64, t: (u64, u64, u64, u64), delays: &[usize], rate: f64, cycles: usize) {
+/// Timing fields (value - 1) with PH2 = max(PH1, 2).
+fn fields(t: (u64, u64, u64, u64)) -> BtlConfig {
+    BtlConfig::from_fields(t.0 as u32, t.1 as u32, t.2 as u32, t.2.max(1) as u32, t.3 as u32, false)
+}
+
+fn run(seed: u64, cfg: BtlConfig, delays: &[usize], rate: f64, cycles: usize) {
     let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
     let n = 3;
-    let mut b = CoreBus::with_timing(n, delays, t, false);
+    let mut b = CoreBus::with_config(n, delays, &cfg);
     // one reference per node, released from reset on the same clock as the DUT
-    let cfg = BtlConfig::from_fields(t.0 as u32, t.1 as u32, t.2 as u32, t.3 as u32, false);
     let mut btl: Vec<BtlCycleModel> = (0..n).map(|_| BtlCycleModel::new()).collect();
     let mut inp = BtlInputs::with_config(&cfg);
     inp.reset = true;
@@ -45,7 +49,7 @@ fn run(seed: u64, t: (u64, u64, u64, u64), delays: &[usize], rate: f64, cycles: 
     inp.reset = false;
     let mut gold: Vec<golden::GoldenNode> = (0..n).map(|_| golden::GoldenNode::default()).collect();
     let mut rxq: Vec<VecDeque<bool>> = (0..n).map(|_| VecDeque::from(vec![true; SYNC_DEPTH])).collect();
-    let bitc = (t.0 as usize + 1) * cfg.ntq() as usize;
+    let bitc = (cfg.brp * cfg.ntq()) as usize;
     let mut want: Vec<Option<Frame>> = vec![None; n];
     let mut seen_rqst = vec![false; n];
     let mut gdel: Vec<Vec<Frame>> = vec![vec![]; n];
@@ -131,7 +135,7 @@ fn run(seed: u64, t: (u64, u64, u64, u64), delays: &[usize], rate: f64, cycles: 
 
 #[test]
 fn core_lockstep_clean() {
-    run(1, T10_6_4, &[0, 0, 0], 0.0, 60_000);
+    run(1, fields(T10_6_4), &[0, 0, 0], 0.0, 60_000);
 }
 
 /// Disturbances, and RX delays of 1 and 2 clocks at nodes 1 and 2 (with the
@@ -140,9 +144,24 @@ fn core_lockstep_clean() {
 #[test]
 fn core_lockstep_disturbed() {
     for seed in 2..4 {
-        run(seed, T10_6_4, &[0, 1, 2], 0.0004, 60_000);
+        run(seed, fields(T10_6_4), &[0, 1, 2], 0.0004, 60_000);
     }
     // T10/6/2 (the emlcount timing) and T10/8/1 at BRP 2
-    run(4, (0, 0, 3, 1), &[0, 1, 1], 0.0004, 60_000);
-    run(5, (1, 4, 1, 0), &[0, 1, 2], 0.0004, 60_000);
+    run(4, fields((0, 0, 3, 1)), &[0, 1, 1], 0.0004, 60_000);
+    run(5, fields((1, 4, 1, 0)), &[0, 1, 2], 0.0004, 60_000);
+}
+
+/// PH2 = 1 TQ at the shortest TQ that allows it (2 clocks: the transmit
+/// point is 2 clocks after the sample point's tick, the bit-stream logic's
+/// whole information processing time), and PH2 != PH1: the core equals the
+/// golden reference on every clock, with disturbances and RX delays that
+/// make restarts right after the sample point (IPT = 1 TQ, no postponement).
+#[test]
+fn core_lockstep_ph2_settings() {
+    // 8 TQ of 2 clocks, SP 7 (the 87.5 % of 24 MHz / 500 kbit/s, scaled), SJW 1 and 4
+    run(6, BtlConfig::new(2, 1, 5, 1).with_ph2(1), &[0, 1, 2], 0.0004, 60_000);
+    run(7, BtlConfig::new(2, 2, 4, 4).with_ph2(1), &[0, 1, 3], 0.0004, 60_000);
+    // PH2 > PH1 and PH2 < PH1 with PH2 >= 2
+    run(8, BtlConfig::new(1, 2, 2, 2).with_ph2(5), &[0, 1, 2], 0.0004, 60_000);
+    run(9, BtlConfig::new(3, 3, 6, 3).with_ph2(3), &[0, 2, 5], 0.0004, 60_000);
 }

@@ -194,6 +194,7 @@ fn core_counter_load_port() {
     c.brp.next = 0u64.into();
     c.prop.next = 0u64.into();
     c.ph1.next = 3u64.into();
+    c.ph2.next = 3u64.into();
     c.sjw.next = 0u64.into();
     c.rx.next = true;
     let clk = |c: &mut CanCore, k: usize| {

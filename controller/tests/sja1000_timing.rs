@@ -95,14 +95,16 @@ fn sja_timing_exact_settings() {
     check(0x01, 0x1C, 14);
 }
 
+/// Settings that used to be approximations (PH2 was max(PH1, 2)) are exact.
 #[test]
-fn sja_timing_settings_the_core_approximates() {
-    // TSEG2 = 1 TQ (the core's PH2 is at least 2): bit time kept, sample point 1 TQ early
-    // BRP 32 (66 clocks), TSEG1 16: 18 TQ, SP 16 instead of 17
-    check(0x20, 0x0F, 16);
-    // TSEG1 <= TSEG2: bit time kept, PH1 = PH2, SP later.
-    // TSEG1 6, TSEG2 6: 13 TQ; PROP 2, PH1 = PH2 5: SP 8 instead of 7
-    check(0x00, 0x55, 8);
+fn sja_timing_tseg2_1_and_short_tseg1_are_exact() {
+    // 24 MHz, 500 kbit/s, 87.5 % (can-calc-bit-timing's choice for an
+    // SJA1000 on 24 MHz): BRP 2 (6 clocks), TSEG1 6, TSEG2 1: 8 TQ, SP 7
+    check(0x02, 0x05, 7);
+    // BRP 32 (66 clocks), TSEG1 16, TSEG2 1: 18 TQ, SP 17
+    check(0x20, 0x0F, 17);
+    // TSEG1 <= TSEG2: TSEG1 6, TSEG2 6: 13 TQ, SP 7
+    check(0x00, 0x55, 7);
 }
 
 #[test]
@@ -122,4 +124,9 @@ fn sja_timing_under_8_tq_is_rejected() {
         assert!(n.nodes[0].tx.val());
     }
     assert_eq!(n.rd(0, REG_SR) & (SR_TS | SR_RS | SR_TBS), SR_TS | SR_RS);
+    // TSEG1 = 0 (a sample point 2 TQ after the bit start) is refused too
+    n.set_reset_mode(0);
+    n.set_bittiming(0, 0x00, 0x70);
+    n.start(0);
+    assert!(n.nodes[0].core().cfg_err.val());
 }

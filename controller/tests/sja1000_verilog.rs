@@ -128,10 +128,11 @@ fn push_init<R: Rng>(q: &mut VecDeque<(bool, u8, u8)>, rng: &mut R, odd_timing: 
 fn stimulus(st: Rc<RefCell<Seen>>) -> impl FnMut(&mut Sja1000, &mut rand_chacha::ChaCha8Rng, usize) {
     let mut peer = Box::new(CanCore::new());
     drive::init(&mut *peer);
-    // BTR0 0x40 / BTR1 0x25 as the block maps it: BRP 2 clocks, PROP 3, PH1 3, SJW 2
+    // BTR0 0x40 / BTR1 0x25 as the block maps it: BRP 2 clocks, PROP 1, PH1 5, PH2 3, SJW 2
     peer.brp.next = 1u64.into();
-    peer.prop.next = 2u64.into();
-    peer.ph1.next = 2u64.into();
+    peer.prop.next = 0u64.into();
+    peer.ph1.next = 4u64.into();
+    peer.ph2.next = 2u64.into();
     peer.sjw.next = 1u64.into();
     peer.reset.next = true;
     let mut q: VecDeque<(bool, u8, u8)> = VecDeque::new();

@@ -18,12 +18,16 @@
 //!   configuration are computed from the latched fields, so they are fixed
 //!   from the release of reset on.
 //! - `brp` (BRP − 1, 7 bits), `prop` (PROP − 1, 4 bits), `ph1` (PH1 − 1,
-//!   3 bits), `sjw` (SJW − 1, 2 bits), `triple` (triple sampling): the host
-//!   fields of §2.2. PH2 = max(PH1, IPT = 2), SP = 1 + PROP + PH1,
+//!   3 bits), `ph2` (PH2 − 1, 3 bits), `sjw` (SJW − 1, 2 bits), `triple`
+//!   (triple sampling): the host fields of §2.2. SP = 1 + PROP + PH1,
 //!   NTQ = SP + PH2. The prescaler (1..128) and PROP (1..16) are wider than
-//!   §2.2's 1..32 and 1..8, so that every SJA1000 bus timing setting
-//!   (TQ = 2·(BRP+1) clocks, TSEG1 up to 16 TQ) can be expressed; NTQ is
-//!   still limited to 8..25.
+//!   §2.2's 1..32 and 1..8, and PH2 is a field (1..8, C2) where §2.2's
+//!   Bosch-style interface derives it as max(PH1, 2), so that every SJA1000
+//!   bus timing setting (TQ = 2·(BRP+1) clocks, TSEG1 up to 16 TQ, TSEG2 up
+//!   to 8 TQ) can be expressed; NTQ is still limited to 8..25. Only SP, NTQ
+//!   and SJW shape the behaviour: any PROP/PH1 split with the same sum
+//!   behaves the same. The information processing time is IPT = min(PH2, 2)
+//!   TQ (§2.5, C1): 1 TQ when PH2 = 1, which needs BRP ≥ 2 (see Latency).
 //! - `rx`: the synchronised RX level (1 = recessive), looked at only on TQ
 //!   ticks.
 //! - `drive`: the level the bit-stream logic wants on TX from the next
@@ -36,7 +40,10 @@
 //! `bit_start`.
 //!
 //! Outputs:
-//! - `cfg_err`: the latched configuration is invalid (NTQ < 8 or SJW > PH1).
+//! - `cfg_err`: the latched configuration is invalid (NTQ outside 8..25,
+//!   SJW > PH1, or PH2 = 1 with BRP = 1: an IPT of 1 clock). SJW may exceed
+//!   PH2 (C22): an edge after the sample point is then always corrected in
+//!   full by a restart.
 //!   The block is then inert: `tx` recessive, no strobe, until a reset with
 //!   a valid configuration. The block is also inert after power-up until its
 //!   first reset (with `cfg_err` = 0).
@@ -73,10 +80,16 @@
 //! at once sees the same instants when its RX is delayed by [`L_RX`] clocks
 //! more than this block's `rx` input.
 //!
-//! With IPT = 2 TQ and the bit-stream logic latching on `sample` and
-//! presenting the new `drive` on the next clock, the earliest transmit
-//! point after a sample point (tick clock ts) is the tick clock ts + 2·BRP,
-//! on which the new `drive` has been present for 2·BRP − 1 ≥ 1 clocks.
+//! The bit-stream logic latches on `sample` (clock ts + 1 for a sample
+//! point on tick clock ts) and presents the new `drive` and `hs_en` from
+//! clock ts + 2 on, so a transmit point needs its tick clock at ts + 2 or
+//! later: [`IPT_CLOCKS`] = 2 clocks. With IPT = 2 TQ the earliest transmit
+//! point is the tick clock ts + 2·BRP, on which the new `drive` has been
+//! present for 2·BRP − 1 ≥ 1 clocks; with PH2 = 1 (IPT = 1 TQ, BRP ≥ 2 so
+//! that one TQ is at least 2 clocks) it is ts + BRP ≥ ts + 2, the normal
+//! end of the bit, on which `drive` has been present for BRP − 1 ≥ 1
+//! clocks. The shortest legal case, BRP = 2 and PH2 = 1, uses exactly the 2
+//! clocks (controller/tests/bit_timing_ph2.rs runs frames through it).
 //! With BRP = 1, a sample point on tick clock k and the earliest transmit
 //! point after it (§2.5 postponement, e.g. T10/8/1 with an edge in TQ 8):
 //!
@@ -93,7 +106,7 @@
 
 use crate::impl_clocked;
 pub use crate::btl_model::{BtlCycleModel, BtlEvents, BtlInputs, BtlModel, BtlPins};
-pub use crate::timing::{BtlConfig, IPT};
+pub use crate::timing::{BtlConfig, IPT, IPT_CLOCKS};
 use rust_hdl::prelude::*;
 
 /// Clocks from the tick clock on which `rx` is looked at to the clock on
@@ -109,6 +122,7 @@ pub struct BitTiming {
     pub brp: Signal<In, Bits<7>>,
     pub prop: Signal<In, Bits<4>>,
     pub ph1: Signal<In, Bits<3>>,
+    pub ph2: Signal<In, Bits<3>>,
     pub sjw: Signal<In, Bits<2>>,
     pub triple: Signal<In, Bit>,
     pub rx: Signal<In, Bit>,
@@ -128,6 +142,7 @@ pub struct BitTiming {
     c_ntq: DFF<Bits<5>>,
     c_sjw: DFF<Bits<5>>,
     c_triple: DFF<Bit>,
+    c_ipt1: DFF<Bit>,
     c_valid: DFF<Bit>,
     c_bad: DFF<Bit>,
     // Prescaler and counter model state. Levels that must be recessive at
@@ -180,20 +195,20 @@ impl Logic for BitTiming {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
-            self, clock, c_brp, c_sp, c_ntq, c_sjw, c_triple, c_valid, c_bad, pre, cnt, spw, nbw, busmon_n, sync_dis,
-            since, pending, tx_n, h1_n, h2_n, sample_r, hard_r, resync_r
+            self, clock, c_brp, c_sp, c_ntq, c_sjw, c_triple, c_ipt1, c_valid, c_bad, pre, cnt, spw, nbw, busmon_n,
+            sync_dis, since, pending, tx_n, h1_n, h2_n, sample_r, hard_r, resync_r
         );
 
         // Configuration from the input fields (value - 1 encoding).
         self.in_sp.next = (bit_cast::<6, 4>(self.prop.val()) + bit_cast::<6, 3>(self.ph1.val())) + 3;
-        self.in_ph2.next = bit_cast::<6, 3>(self.ph1.val()) + 1;
-        if self.ph1.val() == 0 {
-            self.in_ph2.next = 2.into();
-        }
+        self.in_ph2.next = bit_cast::<6, 3>(self.ph2.val()) + 1;
         self.in_ntq.next = self.in_sp.val() + self.in_ph2.val();
         self.in_sjw.next = bit_cast::<5, 2>(self.sjw.val()) + 1;
-        self.in_bad.next = ((self.in_ntq.val() < 8) | (self.in_ntq.val() > 25))
-            | (bit_cast::<3, 2>(self.sjw.val()) > self.ph1.val());
+        // NTQ 8..25, SJW <= PH1 (C22), PH2 = 1 TQ only with BRP >= 2 (IPT =
+        // 1 TQ must still be 2 clocks).
+        self.in_bad.next = (((self.in_ntq.val() < 8) | (self.in_ntq.val() > 25))
+            | (bit_cast::<3, 2>(self.sjw.val()) > self.ph1.val()))
+            | ((self.ph2.val() == 0) & (self.brp.val() == 0));
 
         // Prescaler tick.
         self.tick.next = (self.c_valid.q.val() & !self.reset.val()) & (self.pre.q.val() == self.c_brp.q.val());
@@ -257,12 +272,15 @@ impl Logic for BitTiming {
                 | (self.h1_n.q.val() & self.h2_n.q.val());
         }
 
-        // §2.5: transmit point, postponed to sample point + IPT.
+        // §2.5: transmit point, postponed to sample point + IPT (2 TQ, or
+        // 1 TQ when PH2 = 1: then every transmit point is at least one TQ,
+        // so at least 2 clocks, after the sample point).
         self.since_inc.next = self.since.q.val() + 1;
         if self.since.q.val() == 2 {
             self.since_inc.next = 2.into();
         }
-        self.fire.next = (self.restart.val() | self.eob.val() | self.pending.q.val()) & (self.since_inc.val() == 2);
+        self.fire.next = (self.restart.val() | self.eob.val() | self.pending.q.val())
+            & ((self.since_inc.val() == 2) | self.c_ipt1.q.val());
 
         // Registers.
         if self.reset.val() {
@@ -271,6 +289,7 @@ impl Logic for BitTiming {
             self.c_ntq.d.next = self.in_ntq.val().get_bits::<5>(0);
             self.c_sjw.d.next = self.in_sjw.val();
             self.c_triple.d.next = self.triple.val();
+            self.c_ipt1.d.next = self.ph2.val() == 0;
             self.c_bad.d.next = self.in_bad.val();
             self.c_valid.d.next = !self.in_bad.val();
             self.pre.d.next = 0.into();
@@ -336,10 +355,11 @@ impl Logic for BitTiming {
 impl BitTiming {
     /// Set the configuration inputs from `cfg` (takes effect under reset).
     pub fn set_config(&mut self, cfg: &BtlConfig) {
-        let (brp, prop, ph1, sjw) = cfg.fields();
+        let (brp, prop, ph1, ph2, sjw) = cfg.fields();
         self.brp.next = (brp as u64).into();
         self.prop.next = (prop as u64).into();
         self.ph1.next = (ph1 as u64).into();
+        self.ph2.next = (ph2 as u64).into();
         self.sjw.next = (sjw as u64).into();
         self.triple.next = cfg.triple;
     }
@@ -350,6 +370,7 @@ impl BitTiming {
         self.brp.next = (i.brp as u64 & 127).into();
         self.prop.next = (i.prop as u64 & 15).into();
         self.ph1.next = (i.ph1 as u64 & 7).into();
+        self.ph2.next = (i.ph2 as u64 & 7).into();
         self.sjw.next = (i.sjw as u64 & 3).into();
         self.triple.next = i.triple;
         self.rx.next = i.rx;

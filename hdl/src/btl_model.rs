@@ -54,7 +54,7 @@ pub struct BtlModel {
     pub tx: bool,
     /// TQ ticks since the latest sample point (saturating).
     since_sample: u32,
-    /// A transmit point waits for sample point + IPT.
+    /// A transmit point waits for sample point + IPT (`cfg.ipt()`).
     pending_tx: bool,
     /// `rx` on the previous two ticks (most recent first), for triple sampling.
     hist: [bool; 2],
@@ -152,7 +152,7 @@ impl BtlModel {
         }
         // §2.5: transmit points, postponed to sample point + IPT.
         if transmit_point || self.pending_tx {
-            if self.since_sample >= IPT {
+            if self.since_sample >= self.cfg.ipt() {
                 self.tx = drive;
                 self.pending_tx = false;
                 ev.bit_start = true;
@@ -176,6 +176,7 @@ pub struct BtlInputs {
     pub brp: u32,
     pub prop: u32,
     pub ph1: u32,
+    pub ph2: u32,
     pub sjw: u32,
     pub triple: bool,
     pub rx: bool,
@@ -186,8 +187,8 @@ pub struct BtlInputs {
 impl BtlInputs {
     /// Inputs holding `cfg` (recessive rx and drive, no reset, no hard sync).
     pub fn with_config(cfg: &BtlConfig) -> Self {
-        let (brp, prop, ph1, sjw) = cfg.fields();
-        Self { reset: false, brp, prop, ph1, sjw, triple: cfg.triple, rx: true, drive: true, hs_en: false }
+        let (brp, prop, ph1, ph2, sjw) = cfg.fields();
+        Self { reset: false, brp, prop, ph1, ph2, sjw, triple: cfg.triple, rx: true, drive: true, hs_en: false }
     }
 }
 
@@ -256,7 +257,7 @@ impl BtlCycleModel {
         };
         self.last = None;
         if i.reset {
-            let cfg = BtlConfig::from_fields(i.brp, i.prop, i.ph1, i.sjw, i.triple);
+            let cfg = BtlConfig::from_fields(i.brp, i.prop, i.ph1, i.ph2, i.sjw, i.triple);
             self.bad = !cfg.is_valid();
             self.active = if self.bad { None } else { Some(BtlModel::new(cfg)) };
             self.pre = 0;

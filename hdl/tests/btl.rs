@@ -52,10 +52,26 @@ impl Stim {
             1 => BtlConfig::T25_17_1,
             2 => BtlConfig::T10_8_1,
             3 => BtlConfig::T10_6_2,
-            // Anything, valid or not.
-            4 => BtlConfig::from_fields(0, rng.gen_range(0..16), rng.gen_range(0..8), rng.gen_range(0..4), false),
+            // Anything, valid or not (PH2 from the field, so also PH2 = 1 and
+            // PH2 != PH1; PH2 = 1 is refused with BRP 1).
+            4 => BtlConfig::from_fields(
+                0,
+                rng.gen_range(0..16),
+                rng.gen_range(0..8),
+                rng.gen_range(0..8),
+                rng.gen_range(0..4),
+                false,
+            ),
             _ => loop {
-                let c = BtlConfig::from_fields(0, rng.gen_range(0..16), rng.gen_range(0..8), rng.gen_range(0..4), false);
+                let c = BtlConfig::from_fields(
+                    0,
+                    rng.gen_range(0..16),
+                    rng.gen_range(0..8),
+                    rng.gen_range(0..8),
+                    rng.gen_range(0..4),
+                    false,
+                )
+                .with_brp(brp);
                 if c.is_valid() {
                     break c;
                 }
@@ -81,6 +97,7 @@ impl Stim {
                 i.brp = rng.gen_range(0..32);
                 i.prop = rng.gen_range(0..8);
                 i.ph1 = rng.gen_range(0..8);
+                i.ph2 = rng.gen_range(0..8);
                 i.sjw = rng.gen_range(0..4);
             }
             i.reset = true;
@@ -208,6 +225,9 @@ fn btl_rtl_matches_model_random() {
         (3, BtlConfig::T10_8_1),
         (4, BtlConfig::T10_6_2.with_brp(3)),
         (5, BtlConfig { triple: true, ..BtlConfig::T10_6_4.with_brp(2) }),
+        // PH2 = 1 (IPT 1 TQ) at the shortest TQ that allows it, and PH2 != PH1
+        (6, BtlConfig::new(2, 5, 3, 2).with_ph2(1)),
+        (7, BtlConfig::new(3, 2, 2, 2).with_ph2(5)),
     ] {
         let mut rng = ChaCha8Rng::seed_from_u64(seed);
         let mut rig = Rig::new(true);
@@ -220,14 +240,21 @@ fn btl_rtl_matches_model_random() {
             let p = rig.step(&i);
             cov.add(&rig.model);
             // IPT contract: drive presented on the clock after `sample` is in
-            // place at the transmit point, which is >= 2 TQ after the sample point.
+            // place at the transmit point, which is >= IPT TQ and >= 2 clocks
+            // after the sample point's tick (the strobe is 1 clock later).
             if i.reset {
                 last_sample = None;
             }
             if p.bit_start {
-                let brp = rig.model.model().unwrap().config().brp as usize;
+                let cfg = rig.model.model().unwrap().config();
+                let ipt = (cfg.ipt() * cfg.brp) as usize;
                 if let Some(s) = last_sample {
-                    assert!(c + 1 >= s + 2 * brp, "seed {seed} cycle {c}: transmit point {} clocks after the sample strobe", c - s);
+                    assert!(
+                        c + 1 >= s + ipt,
+                        "seed {seed} cycle {c}: transmit point {} clocks after the sample strobe",
+                        c - s
+                    );
+                    assert!(c + 1 >= s + IPT_CLOCKS as usize, "seed {seed} cycle {c}: IPT under {IPT_CLOCKS} clocks");
                 }
             }
             if p.sample {
@@ -239,6 +266,43 @@ fn btl_rtl_matches_model_random() {
         let syncs = rig.trace.iter().filter(|p| p.hard_sync || p.resync).count();
         let samples = rig.trace.iter().filter(|p| p.sample).count();
         assert!(syncs > 100 && samples > 1000, "seed {seed}: stimulus too quiet ({syncs} syncs, {samples} samples)");
+    }
+}
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig { cases: 24, ..Default::default() })]
+
+    /// Random valid settings, PH2 = 1 and PH2 != PH1 included (the whole
+    /// range of the fields): the RTL equals the clock-exact model on every
+    /// output of every clock, and no transmit point comes less than IPT
+    /// (and 2 clocks) after a sample point.
+    #[test]
+    fn btl_rtl_matches_model_any_setting(
+        brp in proptest::sample::select(vec![1u32, 2, 3, 4, 7, 64]),
+        prop in 1u32..=16, ph1 in 1u32..=8, ph2 in 1u32..=8, sjw in 1u32..=4,
+        triple in proptest::bool::weighted(0.2), seed in 0u64..1000,
+    ) {
+        let cfg = BtlConfig { triple, ..BtlConfig::new(brp, prop, ph1, sjw).with_ph2(ph2) };
+        proptest::prop_assume!(cfg.is_valid());
+        let mut rng = ChaCha8Rng::seed_from_u64(seed);
+        let mut rig = Rig::new(true);
+        let mut stim = Stim::new(cfg, 0.0);
+        let mut last_sample: Option<usize> = None;
+        let cycles = (60 * cfg.ntq() * brp).max(6000) as usize;
+        for c in 0..cycles {
+            let (sample, tx) = rig.registered();
+            let i = stim.next(&mut rng, sample, tx);
+            let p = rig.step(&i);
+            if p.bit_start {
+                if let Some(s) = last_sample {
+                    proptest::prop_assert!(c + 1 >= s + (cfg.ipt() * brp).max(IPT_CLOCKS) as usize, "cycle {c}");
+                }
+            }
+            if p.sample {
+                last_sample = Some(c);
+            }
+        }
+        proptest::prop_assert!(rig.trace.iter().filter(|p| p.sample).count() > 40);
     }
 }
 
@@ -424,7 +488,12 @@ fn btl_cfg_err() {
         (BtlConfig::new(1, 4, 1, 1), false), // NTQ 8
         (BtlConfig::new(1, 8, 2, 3), true),  // SJW > PH1
         (BtlConfig::new(1, 8, 3, 3), false),
-        (BtlConfig::new(4, 8, 8, 4), false), // NTQ 25
+        (BtlConfig::new(4, 8, 8, 4), false),             // NTQ 25
+        (BtlConfig::new(1, 5, 3, 1).with_ph2(1), true),  // PH2 1 with BRP 1: IPT 1 clock
+        (BtlConfig::new(2, 5, 3, 1).with_ph2(1), false), // PH2 1 with BRP 2
+        (BtlConfig::new(2, 5, 3, 3).with_ph2(1), false), // SJW > PH2 is legal (C22)
+        (BtlConfig::new(1, 9, 8, 1).with_ph2(8), true),  // NTQ 26
+        (BtlConfig::new(1, 1, 1, 1).with_ph2(5), false), // PH2 > PH1: NTQ 8
     ] {
         assert_eq!(cfg.is_valid(), !bad);
         let mut rig = Rig::new(true);

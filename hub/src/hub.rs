@@ -508,6 +508,7 @@ pub struct Hub {
     brp: Constant<Bits<5>>,
     prop: Constant<Bits<3>>,
     ph1: Constant<Bits<3>>,
+    ph2: Constant<Bits<3>>,
     sjw: Constant<Bits<2>>,
     _n: usize,
     _m: usize,
@@ -537,8 +538,8 @@ impl Hub {
         let (n, m) = (cfg.ports, cfg.sublinks);
         let (dn, dm) = if cfg.debug { (n, m) } else { (0, 0) };
         let t = cfg.timing;
-        let bs_delay = (t.ph2() * t.brp).saturating_sub(2) as u64;
-        let (brp, prop, ph1, sjw) = t.fields();
+        let bs_delay = (t.ph2 * t.brp).saturating_sub(2) as u64;
+        let (brp, prop, ph1, ph2, sjw) = t.fields();
         Self {
             clock: Default::default(),
             rst_n: Default::default(),
@@ -565,6 +566,7 @@ impl Hub {
             brp: Constant::new((brp as u64).into()),
             prop: Constant::new((prop as u64).into()),
             ph1: Constant::new((ph1 as u64).into()),
+            ph2: Constant::new((ph2 as u64).into()),
             sjw: Constant::new((sjw as u64).into()),
             _n: n,
             _m: m,
@@ -592,6 +594,7 @@ impl Logic for Hub {
         self.monitor.brp.next = bit_cast::<7, 5>(self.brp.val());
         self.monitor.prop.next = bit_cast::<4, 3>(self.prop.val());
         self.monitor.ph1.next = self.ph1.val();
+        self.monitor.ph2.next = self.ph2.val();
         self.monitor.sjw.next = self.sjw.val();
         self.monitor.triple.next = false;
         self.monitor.listen_only.next = true;

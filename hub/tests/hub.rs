@@ -209,8 +209,8 @@ fn cancentrate_and_single_port_configurations() {
 fn config_defaults_serde_and_validation() {
     let d = HubConfig::default();
     assert_eq!((d.ports, d.sublinks, d.clock_hz, d.sync_depth), (3, 2, 14_740_000, 1));
-    assert_eq!(d.timing.fields(), (1, 2, 1, 0));
-    assert_eq!((d.timing.ntq(), d.timing.sp(), d.timing.ph2(), d.bit_clocks()), (8, 6, 2, 16));
+    assert_eq!(d.timing.fields(), (1, 2, 1, 1, 0));
+    assert_eq!((d.timing.ntq(), d.timing.sp(), d.timing.ph2, d.bit_clocks()), (8, 6, 2, 16));
     assert_eq!((d.bic_threshold, d.nack_threshold, d.dbc_threshold), (8, 7, 13));
     assert_eq!((d.sub_bic_threshold, d.sub_dbc_threshold, d.replica_limit), (10, 28, 3));
     assert_eq!(d.reintegration, None);

@@ -26,6 +26,7 @@ pub struct CoreInputs {
     pub brp: u8,
     pub prop: u8,
     pub ph1: u8,
+    pub ph2: u8,
     pub sjw: u8,
     pub triple: bool,
     pub listen_only: bool,
@@ -47,18 +48,18 @@ pub struct CoreInputs {
 
 impl CoreInputs {
     /// Names of the inputs in [`CoreInputs::words`] order (the model's port order).
-    pub const NAMES: [&'static str; 22] = [
-        "reset", "rx", "brp", "prop", "ph1", "sjw", "triple", "listen_only", "self_test", "single_shot", "host_recovery", "recover",
-        "tx_req", "tx_ide", "tx_rtr", "tx_id", "tx_dlc", "tx_data", "tx_abort", "cnt_load", "tec_in", "rec_in",
+    pub const NAMES: [&'static str; 23] = [
+        "reset", "rx", "brp", "prop", "ph1", "ph2", "sjw", "triple", "listen_only", "self_test", "single_shot", "host_recovery",
+        "recover", "tx_req", "tx_ide", "tx_rtr", "tx_id", "tx_dlc", "tx_data", "tx_abort", "cnt_load", "tec_in", "rec_in",
     ];
     /// The inputs as integers in the model's port order.
-    pub fn words(&self) -> [u128; 22] {
+    pub fn words(&self) -> [u128; 23] {
         let b = |x: bool| x as u128;
         [
-            b(self.reset), b(self.rx), self.brp as u128, self.prop as u128, self.ph1 as u128, self.sjw as u128, b(self.triple),
-            b(self.listen_only), b(self.self_test), b(self.single_shot), b(self.host_recovery), b(self.recover), b(self.tx_req),
-            b(self.tx_ide), b(self.tx_rtr), self.tx_id as u128, self.tx_dlc as u128, self.tx_data as u128, b(self.tx_abort),
-            b(self.cnt_load), self.tec_in as u128, self.rec_in as u128,
+            b(self.reset), b(self.rx), self.brp as u128, self.prop as u128, self.ph1 as u128, self.ph2 as u128, self.sjw as u128,
+            b(self.triple), b(self.listen_only), b(self.self_test), b(self.single_shot), b(self.host_recovery), b(self.recover),
+            b(self.tx_req), b(self.tx_ide), b(self.tx_rtr), self.tx_id as u128, self.tx_dlc as u128, self.tx_data as u128,
+            b(self.tx_abort), b(self.cnt_load), self.tec_in as u128, self.rec_in as u128,
         ]
     }
 }
@@ -170,6 +171,7 @@ impl CoreSim {
                 m.brp = i.brp & 0x7f;
                 m.prop = i.prop & 0xf;
                 m.ph1 = i.ph1 & 7;
+                m.ph2 = i.ph2 & 7;
                 m.sjw = i.sjw & 3;
                 m.triple = i.triple;
                 m.listen_only = i.listen_only;
@@ -195,6 +197,7 @@ impl CoreSim {
                 c.brp.next = (i.brp as u64).into();
                 c.prop.next = (i.prop as u64).into();
                 c.ph1.next = (i.ph1 as u64).into();
+                c.ph2.next = (i.ph2 as u64).into();
                 c.sjw.next = (i.sjw as u64).into();
                 c.triple.next = i.triple;
                 c.listen_only.next = i.listen_only;
@@ -301,6 +304,7 @@ mod tests {
                 c.inp.brp = 0;
                 c.inp.prop = 4;
                 c.inp.ph1 = 2;
+                c.inp.ph2 = 2;
                 c.inp.sjw = 1;
                 c.inp.rx = !(t > 1500 && (t / 10) % 3 == 0);
                 c.inp.tx_req = t > 200;

@@ -29,6 +29,7 @@ use rand_chacha::ChaCha8Rng;
 fn core_inputs(p: &Ports, v: &mut [u128], rng: &mut ChaCha8Rng, done: bool, cycle: u64) {
     if cycle == 0 {
         v[p.i("ph1")] = 3;
+        v[p.i("ph2")] = 3;
         v[p.i("sjw")] = 3;
         v[p.i("reset")] = 1;
         v[p.i("rx")] = 1;

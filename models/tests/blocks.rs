@@ -69,11 +69,11 @@ fn bit_timing() {
     let prob = |n: &str| match n {
         "reset" => 0.0005,
         "rx" => 0.05,
-        "brp" | "prop" | "ph1" | "sjw" | "triple" => 0.00005,
+        "brp" | "prop" | "ph1" | "ph2" | "sjw" | "triple" => 0.00005,
         _ => 0.02,
     };
     let mut b = btl::BitTiming::default();
-    b.set_config(&btl::BtlConfig::from_fields(1, 1, 3, 2, false));
+    b.set_config(&btl::BtlConfig::from_fields(1, 1, 3, 3, 2, false));
     run(b, g::bit_timing::BitTiming::from_instance, g::bit_timing::hdl_set_inputs, g::bit_timing::hdl_outputs, 1_000_000, 7, prob);
 }
 

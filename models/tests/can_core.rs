@@ -85,7 +85,7 @@ fn random_stimulus() {
     let prob = |name: &str| match name {
         "rx" => 0.1,
         "reset" => 0.0005,
-        "brp" | "prop" | "ph1" | "sjw" | "triple" | "listen_only" => 0.0001,
+        "brp" | "prop" | "ph1" | "ph2" | "sjw" | "triple" | "listen_only" => 0.0001,
         "cnt_load" | "recover" | "tx_abort" => 0.002,
         _ => 0.01,
     };

@@ -43,7 +43,7 @@ fn every_mutant_is_caught() {
     let mut caught = vec![];
     let btl = || {
         let mut b = btl::BitTiming::default();
-        b.set_config(&btl::BtlConfig::from_fields(1, 1, 3, 2, false));
+        b.set_config(&btl::BtlConfig::from_fields(1, 1, 3, 3, 2, false));
         b
     };
     caught.push(first_mismatch(crc15::Crc15::default(), crc15_m0::Crc15M0::from_instance, crc15_m0::hdl_set_inputs, crc15_m0::hdl_outputs, 100_000));
@@ -65,7 +65,7 @@ fn real_models_pass_the_same_check() {
     assert_eq!(first_mismatch(crc15::Crc15::default(), g::crc15::Crc15::from_instance, g::crc15::hdl_set_inputs, g::crc15::hdl_outputs, 100_000), None);
     assert_eq!(first_mismatch(stuff::BitStuffer::default(), g::bit_stuffer::BitStuffer::from_instance, g::bit_stuffer::hdl_set_inputs, g::bit_stuffer::hdl_outputs, 100_000), None);
     let mut b = btl::BitTiming::default();
-    b.set_config(&btl::BtlConfig::from_fields(1, 1, 3, 2, false));
+    b.set_config(&btl::BtlConfig::from_fields(1, 1, 3, 3, 2, false));
     assert_eq!(first_mismatch(b, g::bit_timing::BitTiming::from_instance, g::bit_timing::hdl_set_inputs, g::bit_timing::hdl_outputs, 100_000), None);
 }
 

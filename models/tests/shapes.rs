@@ -24,7 +24,7 @@ fn constants_do_not_change_the_shape() {
         HubConfig { sync_depth: 2, ..HubConfig::default() },
         HubConfig { reintegration: Some(7), bic_threshold: 3, life_threshold: 100, nack_threshold: 2, ..HubConfig::default() },
         HubConfig { fault_injection: Some(FaultInjection { point: FaultPoint::Sublink(1), kind: InjectionKind::StuckRecessive, start_field: 2 }), ..HubConfig::default() },
-        HubConfig { timing: canstar_hdl::timing::BtlConfig::from_fields(3, 4, 3, 2, false), ..HubConfig::default() },
+        HubConfig { timing: canstar_hdl::timing::BtlConfig::from_fields(3, 4, 3, 3, 2, false), ..HubConfig::default() },
     ];
     for cfg in &variants {
         assert_eq!(fp(&Hub::new(cfg)), g::hub_n3_m2::HubN3M2::FINGERPRINT, "{cfg:?}");

@@ -89,6 +89,7 @@ impl Ctrl {
         i.brp = f(s.timing.brp);
         i.prop = f(s.timing.prop);
         i.ph1 = f(s.timing.ph1);
+        i.ph2 = f(s.timing.ph2);
         i.sjw = f(s.timing.sjw);
         i.triple = false;
         i.listen_only = false;

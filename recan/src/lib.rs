@@ -25,7 +25,7 @@
 //!   randomised from a seed), [`Expected`] and [`check`].
 //!
 //! Modelling choices (all in [`DriverSpec`] / [`NetworkSpec`]):
-//! - The controllers' PH2 is max(PH1, 2), so the prototype's PROP 2 / PH1 3 /
+//! - Network files give no PH2, so it is max(PH1, 2): the prototype's PROP 2 / PH1 3 /
 //!   PH2 2 is expressed as PROP 3 / PH1 2 / PH2 2 (same 8 TQ, same sample point).
 //! - The hubs use one input flip-flop (`sync_depth = 1`, as the prototype): with
 //!   two, the round trip through both hubs no longer fits before the sample point.

@@ -20,7 +20,7 @@ use serde::{Deserialize, Serialize};
 /// Oscillator tolerance of a bit timing (ISO 11898-1): df <= min(min(PH1, PH2) /
 /// (2 (13 NBT - PH2)), SJW / (20 NBT)), in ppm.
 pub fn tolerance_ppm(t: &BtlConfig) -> f64 {
-    let (ph1, ph2, sjw, nbt) = (t.ph1 as f64, t.ph2() as f64, t.sjw as f64, t.ntq() as f64);
+    let (ph1, ph2, sjw, nbt) = (t.ph1 as f64, t.ph2 as f64, t.sjw as f64, t.ntq() as f64);
     let a = ph1.min(ph2) / (2.0 * (13.0 * nbt - ph2));
     let b = sjw / (20.0 * nbt);
     a.min(b) * 1e6

@@ -48,7 +48,8 @@ impl Default for InterlinkSpec {
     }
 }
 
-/// One CAN controller of a node: clock, bit timing (real values, PH2 = max(PH1, 2)),
+/// One CAN controller of a node: clock, bit timing (real values; the file has no
+/// `ph2` key, so PH2 = max(PH1, 2)),
 /// and its link delays. In a network file the timing keys (`brp`, `prop`, `ph1`,
 /// `sjw`) sit beside the others (see [`CtrlSpecFile`]).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]

@@ -15,7 +15,7 @@ use std::path::Path;
 /// T10/6/4 (1 Mbit/s), held in reset for its first two cycles. Its RX is the
 /// bus; the benchmark's pattern driver puts pseudo-random bits on the bus.
 fn btl_node(i: usize, clock: canstar_sim::ClockSpec) -> HdlComponent<btl::BitTiming> {
-    let cfg = btl::BtlConfig::from_fields(4, 1, 4, 4, false);
+    let cfg = btl::BtlConfig::from_fields(4, 1, 4, 4, 4, false);
     let mut b = btl::BitTiming::default();
     b.set_config(&cfg);
     let mut n = 0u32;

@@ -14,8 +14,8 @@
 //!   with the RTL's bit-stream latency (the decision taken at a sample point
 //!   is used by the bit timing from the second clock after the sample
 //!   strobe, the same instant as [`canstar_controller::fsm::CanFsm`] presents
-//!   it; with IPT = 2 TQ the decision is always in place before the earliest
-//!   transmit point, §2.5);
+//!   it; the IPT of §2.5 is at least 2 clocks, so the decision is always in
+//!   place by the earliest transmit point);
 //! - the golden bit-stream model [`GoldenNode`], stepped at every sample
 //!   point of the golden bit timing with the golden sampled level.
 //!
@@ -250,6 +250,7 @@ impl LockstepNode {
             brp: f(cfg.timing.brp),
             prop: f(cfg.timing.prop),
             ph1: f(cfg.timing.ph1),
+            ph2: f(cfg.timing.ph2),
             sjw: f(cfg.timing.sjw),
             triple: cfg.timing.triple,
             rx: true,

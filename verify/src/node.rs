@@ -42,7 +42,8 @@ pub const RESET_CYCLES: u32 = 4;
 #[derive(Debug, Clone, PartialEq)]
 pub struct NodeConfig {
     pub name: String,
-    /// Bit timing (real values; PH2 = max(PH1, 2)).
+    /// Bit timing (real values; [`NodeConfig::timing`] sets PH2 = max(PH1, 2),
+    /// `BtlConfig::with_ph2` another PH2).
     pub timing: BtlConfig,
     pub listen_only: bool,
     pub self_test: bool,
@@ -157,6 +158,7 @@ impl CanNode {
         i.brp = f(c.timing.brp);
         i.prop = f(c.timing.prop);
         i.ph1 = f(c.timing.ph1);
+        i.ph2 = f(c.timing.ph2);
         i.sjw = f(c.timing.sjw);
         i.triple = c.timing.triple;
         i.listen_only = c.listen_only;

@@ -3,7 +3,7 @@
 
 
 
-module canstar_can_core(clock,reset,rx,brp,prop,ph1,sjw,triple,listen_only,self_test,single_shot,host_recovery,recover,tx_req,tx_ide,tx_rtr,tx_id,tx_dlc,tx_data,tx_abort,cnt_load,tec_in,rec_in,tx,tx_done,arb_lost,arb_lost_pos,error,err_kind,err_field,err_pos,err_tx,rx_valid,rx_ide,rx_rtr,rx_id,rx_dlc,rx_data,tec,rec,state,err_warn,cfg_err,dbg_busmon,dbg_sample,dbg_tx_rqst,dbg_field,dbg_pos,dbg_stuff,dbg_role,dbg_events,dbg_runs,dbg_hard_sync,dbg_resync);
+module canstar_can_core(clock,reset,rx,brp,prop,ph1,ph2,sjw,triple,listen_only,self_test,single_shot,host_recovery,recover,tx_req,tx_ide,tx_rtr,tx_id,tx_dlc,tx_data,tx_abort,cnt_load,tec_in,rec_in,tx,tx_done,arb_lost,arb_lost_pos,error,err_kind,err_field,err_pos,err_tx,rx_valid,rx_ide,rx_rtr,rx_id,rx_dlc,rx_data,tec,rec,state,err_warn,cfg_err,dbg_busmon,dbg_sample,dbg_tx_rqst,dbg_field,dbg_pos,dbg_stuff,dbg_role,dbg_events,dbg_runs,dbg_hard_sync,dbg_resync);
     
     // Module arguments
     input wire  clock;
@@ -12,6 +12,7 @@ module canstar_can_core(clock,reset,rx,brp,prop,ph1,sjw,triple,listen_only,self_
     input wire  [6:0] brp;
     input wire  [3:0] prop;
     input wire  [2:0] ph1;
+    input wire  [2:0] ph2;
     input wire  [1:0] sjw;
     input wire  triple;
     input wire  listen_only;
@@ -74,6 +75,7 @@ module canstar_can_core(clock,reset,rx,brp,prop,ph1,sjw,triple,listen_only,self_
     reg  [6:0] btl$brp;
     reg  [3:0] btl$prop;
     reg  [2:0] btl$ph1;
+    reg  [2:0] btl$ph2;
     reg  [1:0] btl$sjw;
     reg  btl$triple;
     reg  btl$rx;
@@ -151,6 +153,7 @@ module canstar_can_core(clock,reset,rx,brp,prop,ph1,sjw,triple,listen_only,self_
         .brp(btl$brp),
         .prop(btl$prop),
         .ph1(btl$ph1),
+        .ph2(btl$ph2),
         .sjw(btl$sjw),
         .triple(btl$triple),
         .rx(btl$rx),
@@ -226,6 +229,7 @@ module canstar_can_core(clock,reset,rx,brp,prop,ph1,sjw,triple,listen_only,self_
         btl$brp = brp;
         btl$prop = prop;
         btl$ph1 = ph1;
+        btl$ph2 = ph2;
         btl$sjw = sjw;
         btl$triple = triple;
         btl$rx = sync$q;
@@ -290,7 +294,7 @@ module canstar_can_core(clock,reset,rx,brp,prop,ph1,sjw,triple,listen_only,self_
 endmodule // canstar_can_core
 
 
-module canstar_can_core$btl(clock,reset,brp,prop,ph1,sjw,triple,rx,drive,hs_en,tq,sample,busmon,bit_start,tx,hard_sync,resync,cfg_err);
+module canstar_can_core$btl(clock,reset,brp,prop,ph1,ph2,sjw,triple,rx,drive,hs_en,tq,sample,busmon,bit_start,tx,hard_sync,resync,cfg_err);
     
     // Module arguments
     input wire  clock;
@@ -298,6 +302,7 @@ module canstar_can_core$btl(clock,reset,brp,prop,ph1,sjw,triple,rx,drive,hs_en,t
     input wire  [6:0] brp;
     input wire  [3:0] prop;
     input wire  [2:0] ph1;
+    input wire  [2:0] ph2;
     input wire  [1:0] sjw;
     input wire  triple;
     input wire  rx;
@@ -328,6 +333,9 @@ module canstar_can_core$btl(clock,reset,brp,prop,ph1,sjw,triple,rx,drive,hs_en,t
     reg  c_triple$d;
     wire  c_triple$q;
     reg  c_triple$clock;
+    reg  c_ipt1$d;
+    wire  c_ipt1$q;
+    reg  c_ipt1$clock;
     reg  c_valid$d;
     wire  c_valid$q;
     reg  c_valid$clock;
@@ -430,6 +438,11 @@ module canstar_can_core$btl(clock,reset,brp,prop,ph1,sjw,triple,rx,drive,hs_en,t
         .q(c_triple$q),
         .clock(c_triple$clock)
     );
+    canstar_can_core$btl$c_ipt1 c_ipt1(
+        .d(c_ipt1$d),
+        .q(c_ipt1$q),
+        .clock(c_ipt1$clock)
+    );
     canstar_can_core$btl$c_valid c_valid(
         .d(c_valid$d),
         .q(c_valid$q),
@@ -518,6 +531,7 @@ module canstar_can_core$btl(clock,reset,brp,prop,ph1,sjw,triple,rx,drive,hs_en,t
         c_ntq$clock = clock;
         c_sjw$clock = clock;
         c_triple$clock = clock;
+        c_ipt1$clock = clock;
         c_valid$clock = clock;
         c_bad$clock = clock;
         pre$clock = clock;
@@ -539,6 +553,7 @@ module canstar_can_core$btl(clock,reset,brp,prop,ph1,sjw,triple,rx,drive,hs_en,t
         c_ntq$d = c_ntq$q;
         c_sjw$d = c_sjw$q;
         c_triple$d = c_triple$q;
+        c_ipt1$d = c_ipt1$q;
         c_valid$d = c_valid$q;
         c_bad$d = c_bad$q;
         pre$d = pre$q;
@@ -556,13 +571,10 @@ module canstar_can_core$btl(clock,reset,brp,prop,ph1,sjw,triple,rx,drive,hs_en,t
         hard_r$d = hard_r$q;
         resync_r$d = resync_r$q;
         in_sp = (((prop) & 6'h3f) + ((ph1) & 6'h3f)) + 32'h3;
-        in_ph2 = ((ph1) & 6'h3f) + 32'h1;
-        if (ph1 == 32'h0) begin
-            in_ph2 = 32'h2;
-        end
+        in_ph2 = ((ph2) & 6'h3f) + 32'h1;
         in_ntq = in_sp + in_ph2;
         in_sjw = ((sjw) & 5'h1f) + 32'h1;
-        in_bad = ((in_ntq < 32'h8) | (in_ntq > 32'h19)) | (((sjw) & 3'h7) > ph1);
+        in_bad = (((in_ntq < 32'h8) | (in_ntq > 32'h19)) | (((sjw) & 3'h7) > ph1)) | ((ph2 == 32'h0) & (brp == 32'h0));
         tick = (c_valid$q & ~reset) & (pre$q == c_brp$q);
         c1 = cnt$q + 32'h1;
         late = c1 > spw$q;
@@ -620,13 +632,14 @@ module canstar_can_core$btl(clock,reset,brp,prop,ph1,sjw,triple,rx,drive,hs_en,t
         if (since$q == 32'h2) begin
             since_inc = 32'h2;
         end
-        fire = (restart | eob | pending$q) & (since_inc == 32'h2);
+        fire = (restart | eob | pending$q) & ((since_inc == 32'h2) | c_ipt1$q);
         if (reset) begin
             c_brp$d = brp;
             c_sp$d = in_sp[(32'h0)+:(5)];
             c_ntq$d = in_ntq[(32'h0)+:(5)];
             c_sjw$d = in_sjw;
             c_triple$d = triple;
+            c_ipt1$d = ph2 == 32'h0;
             c_bad$d = in_bad;
             c_valid$d = ~in_bad;
             pre$d = 32'h0;
@@ -747,6 +760,25 @@ module canstar_can_core$btl$c_brp(d,q,clock);
     end
           
 endmodule // canstar_can_core$btl$c_brp
+
+
+module canstar_can_core$btl$c_ipt1(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_can_core$btl$c_ipt1
 
 
 module canstar_can_core$btl$c_ntq(d,q,clock);

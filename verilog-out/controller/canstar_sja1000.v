@@ -62,6 +62,7 @@ module canstar_sja1000(clock,rst,wb_cyc,wb_stb,wb_we,wb_adr,wb_dat_w,wb_dat_r,wb
     reg  [6:0] core$brp;
     reg  [3:0] core$prop;
     reg  [2:0] core$ph1;
+    reg  [2:0] core$ph2;
     reg  [1:0] core$sjw;
     reg  core$triple;
     reg  core$listen_only;
@@ -120,6 +121,7 @@ module canstar_sja1000(clock,rst,wb_cyc,wb_stb,wb_we,wb_adr,wb_dat_w,wb_dat_r,wb
     wire  [6:0] timing$brp;
     wire  [3:0] timing$prop;
     wire  [2:0] timing$ph1;
+    wire  [2:0] timing$ph2;
     wire  [1:0] timing$sjw;
     wire  timing$triple;
     reg  txbuf$clock;
@@ -341,6 +343,7 @@ module canstar_sja1000(clock,rst,wb_cyc,wb_stb,wb_we,wb_adr,wb_dat_w,wb_dat_r,wb
         .brp(core$brp),
         .prop(core$prop),
         .ph1(core$ph1),
+        .ph2(core$ph2),
         .sjw(core$sjw),
         .triple(core$triple),
         .listen_only(core$listen_only),
@@ -401,6 +404,7 @@ module canstar_sja1000(clock,rst,wb_cyc,wb_stb,wb_we,wb_adr,wb_dat_w,wb_dat_r,wb
         .brp(timing$brp),
         .prop(timing$prop),
         .ph1(timing$ph1),
+        .ph2(timing$ph2),
         .sjw(timing$sjw),
         .triple(timing$triple)
     );
@@ -763,6 +767,7 @@ module canstar_sja1000(clock,rst,wb_cyc,wb_stb,wb_we,wb_adr,wb_dat_w,wb_dat_r,wb
         core$brp = timing$brp;
         core$prop = timing$prop;
         core$ph1 = timing$ph1;
+        core$ph2 = timing$ph2;
         core$sjw = timing$sjw;
         core$triple = timing$triple;
         core$listen_only = mode$lom;
@@ -1263,7 +1268,7 @@ module canstar_sja1000$cdr(d,q,clock);
 endmodule // canstar_sja1000$cdr
 
 
-module canstar_sja1000$core(clock,reset,rx,brp,prop,ph1,sjw,triple,listen_only,self_test,single_shot,host_recovery,recover,tx_req,tx_ide,tx_rtr,tx_id,tx_dlc,tx_data,tx_abort,cnt_load,tec_in,rec_in,tx,tx_done,arb_lost,arb_lost_pos,error,err_kind,err_field,err_pos,err_tx,rx_valid,rx_ide,rx_rtr,rx_id,rx_dlc,rx_data,tec,rec,state,err_warn,cfg_err,dbg_busmon,dbg_sample,dbg_tx_rqst,dbg_field,dbg_pos,dbg_stuff,dbg_role,dbg_events,dbg_runs,dbg_hard_sync,dbg_resync);
+module canstar_sja1000$core(clock,reset,rx,brp,prop,ph1,ph2,sjw,triple,listen_only,self_test,single_shot,host_recovery,recover,tx_req,tx_ide,tx_rtr,tx_id,tx_dlc,tx_data,tx_abort,cnt_load,tec_in,rec_in,tx,tx_done,arb_lost,arb_lost_pos,error,err_kind,err_field,err_pos,err_tx,rx_valid,rx_ide,rx_rtr,rx_id,rx_dlc,rx_data,tec,rec,state,err_warn,cfg_err,dbg_busmon,dbg_sample,dbg_tx_rqst,dbg_field,dbg_pos,dbg_stuff,dbg_role,dbg_events,dbg_runs,dbg_hard_sync,dbg_resync);
     
     // Module arguments
     input wire  clock;
@@ -1272,6 +1277,7 @@ module canstar_sja1000$core(clock,reset,rx,brp,prop,ph1,sjw,triple,listen_only,s
     input wire  [6:0] brp;
     input wire  [3:0] prop;
     input wire  [2:0] ph1;
+    input wire  [2:0] ph2;
     input wire  [1:0] sjw;
     input wire  triple;
     input wire  listen_only;
@@ -1334,6 +1340,7 @@ module canstar_sja1000$core(clock,reset,rx,brp,prop,ph1,sjw,triple,listen_only,s
     reg  [6:0] btl$brp;
     reg  [3:0] btl$prop;
     reg  [2:0] btl$ph1;
+    reg  [2:0] btl$ph2;
     reg  [1:0] btl$sjw;
     reg  btl$triple;
     reg  btl$rx;
@@ -1411,6 +1418,7 @@ module canstar_sja1000$core(clock,reset,rx,brp,prop,ph1,sjw,triple,listen_only,s
         .brp(btl$brp),
         .prop(btl$prop),
         .ph1(btl$ph1),
+        .ph2(btl$ph2),
         .sjw(btl$sjw),
         .triple(btl$triple),
         .rx(btl$rx),
@@ -1486,6 +1494,7 @@ module canstar_sja1000$core(clock,reset,rx,brp,prop,ph1,sjw,triple,listen_only,s
         btl$brp = brp;
         btl$prop = prop;
         btl$ph1 = ph1;
+        btl$ph2 = ph2;
         btl$sjw = sjw;
         btl$triple = triple;
         btl$rx = sync$q;
@@ -1550,7 +1559,7 @@ module canstar_sja1000$core(clock,reset,rx,brp,prop,ph1,sjw,triple,listen_only,s
 endmodule // canstar_sja1000$core
 
 
-module canstar_sja1000$core$btl(clock,reset,brp,prop,ph1,sjw,triple,rx,drive,hs_en,tq,sample,busmon,bit_start,tx,hard_sync,resync,cfg_err);
+module canstar_sja1000$core$btl(clock,reset,brp,prop,ph1,ph2,sjw,triple,rx,drive,hs_en,tq,sample,busmon,bit_start,tx,hard_sync,resync,cfg_err);
     
     // Module arguments
     input wire  clock;
@@ -1558,6 +1567,7 @@ module canstar_sja1000$core$btl(clock,reset,brp,prop,ph1,sjw,triple,rx,drive,hs_
     input wire  [6:0] brp;
     input wire  [3:0] prop;
     input wire  [2:0] ph1;
+    input wire  [2:0] ph2;
     input wire  [1:0] sjw;
     input wire  triple;
     input wire  rx;
@@ -1588,6 +1598,9 @@ module canstar_sja1000$core$btl(clock,reset,brp,prop,ph1,sjw,triple,rx,drive,hs_
     reg  c_triple$d;
     wire  c_triple$q;
     reg  c_triple$clock;
+    reg  c_ipt1$d;
+    wire  c_ipt1$q;
+    reg  c_ipt1$clock;
     reg  c_valid$d;
     wire  c_valid$q;
     reg  c_valid$clock;
@@ -1690,6 +1703,11 @@ module canstar_sja1000$core$btl(clock,reset,brp,prop,ph1,sjw,triple,rx,drive,hs_
         .q(c_triple$q),
         .clock(c_triple$clock)
     );
+    canstar_sja1000$core$btl$c_ipt1 c_ipt1(
+        .d(c_ipt1$d),
+        .q(c_ipt1$q),
+        .clock(c_ipt1$clock)
+    );
     canstar_sja1000$core$btl$c_valid c_valid(
         .d(c_valid$d),
         .q(c_valid$q),
@@ -1778,6 +1796,7 @@ module canstar_sja1000$core$btl(clock,reset,brp,prop,ph1,sjw,triple,rx,drive,hs_
         c_ntq$clock = clock;
         c_sjw$clock = clock;
         c_triple$clock = clock;
+        c_ipt1$clock = clock;
         c_valid$clock = clock;
         c_bad$clock = clock;
         pre$clock = clock;
@@ -1799,6 +1818,7 @@ module canstar_sja1000$core$btl(clock,reset,brp,prop,ph1,sjw,triple,rx,drive,hs_
         c_ntq$d = c_ntq$q;
         c_sjw$d = c_sjw$q;
         c_triple$d = c_triple$q;
+        c_ipt1$d = c_ipt1$q;
         c_valid$d = c_valid$q;
         c_bad$d = c_bad$q;
         pre$d = pre$q;
@@ -1816,13 +1836,10 @@ module canstar_sja1000$core$btl(clock,reset,brp,prop,ph1,sjw,triple,rx,drive,hs_
         hard_r$d = hard_r$q;
         resync_r$d = resync_r$q;
         in_sp = (((prop) & 6'h3f) + ((ph1) & 6'h3f)) + 32'h3;
-        in_ph2 = ((ph1) & 6'h3f) + 32'h1;
-        if (ph1 == 32'h0) begin
-            in_ph2 = 32'h2;
-        end
+        in_ph2 = ((ph2) & 6'h3f) + 32'h1;
         in_ntq = in_sp + in_ph2;
         in_sjw = ((sjw) & 5'h1f) + 32'h1;
-        in_bad = ((in_ntq < 32'h8) | (in_ntq > 32'h19)) | (((sjw) & 3'h7) > ph1);
+        in_bad = (((in_ntq < 32'h8) | (in_ntq > 32'h19)) | (((sjw) & 3'h7) > ph1)) | ((ph2 == 32'h0) & (brp == 32'h0));
         tick = (c_valid$q & ~reset) & (pre$q == c_brp$q);
         c1 = cnt$q + 32'h1;
         late = c1 > spw$q;
@@ -1880,13 +1897,14 @@ module canstar_sja1000$core$btl(clock,reset,brp,prop,ph1,sjw,triple,rx,drive,hs_
         if (since$q == 32'h2) begin
             since_inc = 32'h2;
         end
-        fire = (restart | eob | pending$q) & (since_inc == 32'h2);
+        fire = (restart | eob | pending$q) & ((since_inc == 32'h2) | c_ipt1$q);
         if (reset) begin
             c_brp$d = brp;
             c_sp$d = in_sp[(32'h0)+:(5)];
             c_ntq$d = in_ntq[(32'h0)+:(5)];
             c_sjw$d = in_sjw;
             c_triple$d = triple;
+            c_ipt1$d = ph2 == 32'h0;
             c_bad$d = in_bad;
             c_valid$d = ~in_bad;
             pre$d = 32'h0;
@@ -2007,6 +2025,25 @@ module canstar_sja1000$core$btl$c_brp(d,q,clock);
     end
           
 endmodule // canstar_sja1000$core$btl$c_brp
+
+
+module canstar_sja1000$core$btl$c_ipt1(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_sja1000$core$btl$c_ipt1
 
 
 module canstar_sja1000$core$btl$c_ntq(d,q,clock);
@@ -7999,7 +8036,7 @@ module canstar_sja1000$status$pas_q(d,q,clock);
 endmodule // canstar_sja1000$status$pas_q
 
 
-module canstar_sja1000$timing(clock,rst,we0,we1,wdata,btr0,btr1,brp,prop,ph1,sjw,triple);
+module canstar_sja1000$timing(clock,rst,we0,we1,wdata,btr0,btr1,brp,prop,ph1,ph2,sjw,triple);
     
     // Module arguments
     input wire  clock;
@@ -8012,6 +8049,7 @@ module canstar_sja1000$timing(clock,rst,we0,we1,wdata,btr0,btr1,brp,prop,ph1,sjw
     output reg  [6:0] brp;
     output reg  [3:0] prop;
     output reg  [2:0] ph1;
+    output reg  [2:0] ph2;
     output reg  [1:0] sjw;
     output reg  triple;
     
@@ -8029,10 +8067,9 @@ module canstar_sja1000$timing(clock,rst,we0,we1,wdata,btr0,btr1,brp,prop,ph1,sjw
     
     // Local signals
     reg  [5:0] l_t1;
-    reg  [5:0] l_t2;
-    reg  [5:0] l_s;
     reg  [5:0] l_prop;
     reg  [5:0] l_ph1;
+    reg  [5:0] l_ph2;
     reg  [5:0] l_sjw;
     
     // Sub module instances
@@ -8065,21 +8102,16 @@ module canstar_sja1000$timing(clock,rst,we0,we1,wdata,btr0,btr1,brp,prop,ph1,sjw
         end
         brp = (((r0$q[(32'h0)+:(6)]) & 7'h7f) << 32'h1) | 32'h1;
         l_t1 = ((r1$q[(32'h0)+:(4)]) & 6'h3f) + 32'h1;
-        l_t2 = ((r1$q[(32'h4)+:(3)]) & 6'h3f) + 32'h1;
-        l_s = l_t1 + l_t2;
-        l_ph1 = l_t2;
-        l_prop = l_t1 - l_t2;
-        if (l_t2 == 32'h1) begin
-            l_ph1 = 32'h1;
-            l_prop = l_t1 - 32'h2;
+        l_ph1 = l_t1 - 32'h1;
+        if (l_t1 > 32'h9) begin
+            l_ph1 = 32'h8;
         end
-        else if (l_t1 <= l_t2) begin
-            l_ph1 = (l_s - 32'h1) >> 32'h1;
-            l_prop = l_s - (l_ph1 << 32'h1);
-        end
-        if (l_s < 32'h7) begin
+        l_prop = l_t1 - l_ph1;
+        l_ph2 = ((r1$q[(32'h4)+:(3)]) & 6'h3f) + 32'h1;
+        if (l_t1 == 32'h1) begin
             l_prop = 32'h1;
             l_ph1 = 32'h1;
+            l_ph2 = 32'h1;
         end
         l_sjw = ((r0$q[(32'h6)+:(2)]) & 6'h3f) + 32'h1;
         if (l_sjw > l_ph1) begin
@@ -8087,9 +8119,11 @@ module canstar_sja1000$timing(clock,rst,we0,we1,wdata,btr0,btr1,brp,prop,ph1,sjw
         end
         l_prop = l_prop - 32'h1;
         l_ph1 = l_ph1 - 32'h1;
+        l_ph2 = l_ph2 - 32'h1;
         l_sjw = l_sjw - 32'h1;
         prop = l_prop[(32'h0)+:(4)];
         ph1 = l_ph1[(32'h0)+:(3)];
+        ph2 = l_ph2[(32'h0)+:(3)];
         sjw = l_sjw[(32'h0)+:(2)];
         triple = r1$q[32'h7];
         btr0 = r0$q;

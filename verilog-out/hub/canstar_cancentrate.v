@@ -38,6 +38,7 @@ module canstar_cancentrate_core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,tx$0,tx$
     localparam  brp = 5'b1;
     localparam  prop = 3'b10;
     localparam  ph1 = 3'b1;
+    localparam  ph2 = 3'b1;
     localparam  sjw = 2'b0;
     
     // Stub signals
@@ -83,6 +84,7 @@ module canstar_cancentrate_core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,tx$0,tx$
     reg  [6:0] monitor$brp;
     reg  [3:0] monitor$prop;
     reg  [2:0] monitor$ph1;
+    reg  [2:0] monitor$ph2;
     reg  [1:0] monitor$sjw;
     reg  monitor$triple;
     reg  monitor$listen_only;
@@ -191,6 +193,7 @@ module canstar_cancentrate_core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,tx$0,tx$
         .brp(monitor$brp),
         .prop(monitor$prop),
         .ph1(monitor$ph1),
+        .ph2(monitor$ph2),
         .sjw(monitor$sjw),
         .triple(monitor$triple),
         .listen_only(monitor$listen_only),
@@ -264,6 +267,7 @@ module canstar_cancentrate_core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,tx$0,tx$
         monitor$brp = ((brp) & 7'h7f);
         monitor$prop = ((prop) & 4'hf);
         monitor$ph1 = ph1;
+        monitor$ph2 = ph2;
         monitor$sjw = sjw;
         monitor$triple = 1'b0;
         monitor$listen_only = 1'b1;
@@ -5650,7 +5654,7 @@ module canstar_cancentrate_core$core$sub_bl_r(d,q,clock);
 endmodule // canstar_cancentrate_core$core$sub_bl_r
 
 
-module canstar_cancentrate_core$monitor(clock,reset,rx,brp,prop,ph1,sjw,triple,listen_only,self_test,single_shot,host_recovery,recover,tx_req,tx_ide,tx_rtr,tx_id,tx_dlc,tx_data,tx_abort,cnt_load,tec_in,rec_in,tx,tx_done,arb_lost,arb_lost_pos,error,err_kind,err_field,err_pos,err_tx,rx_valid,rx_ide,rx_rtr,rx_id,rx_dlc,rx_data,tec,rec,state,err_warn,cfg_err,dbg_busmon,dbg_sample,dbg_tx_rqst,dbg_field,dbg_pos,dbg_stuff,dbg_role,dbg_events,dbg_runs,dbg_hard_sync,dbg_resync);
+module canstar_cancentrate_core$monitor(clock,reset,rx,brp,prop,ph1,ph2,sjw,triple,listen_only,self_test,single_shot,host_recovery,recover,tx_req,tx_ide,tx_rtr,tx_id,tx_dlc,tx_data,tx_abort,cnt_load,tec_in,rec_in,tx,tx_done,arb_lost,arb_lost_pos,error,err_kind,err_field,err_pos,err_tx,rx_valid,rx_ide,rx_rtr,rx_id,rx_dlc,rx_data,tec,rec,state,err_warn,cfg_err,dbg_busmon,dbg_sample,dbg_tx_rqst,dbg_field,dbg_pos,dbg_stuff,dbg_role,dbg_events,dbg_runs,dbg_hard_sync,dbg_resync);
     
     // Module arguments
     input wire  clock;
@@ -5659,6 +5663,7 @@ module canstar_cancentrate_core$monitor(clock,reset,rx,brp,prop,ph1,sjw,triple,l
     input wire  [6:0] brp;
     input wire  [3:0] prop;
     input wire  [2:0] ph1;
+    input wire  [2:0] ph2;
     input wire  [1:0] sjw;
     input wire  triple;
     input wire  listen_only;
@@ -5721,6 +5726,7 @@ module canstar_cancentrate_core$monitor(clock,reset,rx,brp,prop,ph1,sjw,triple,l
     reg  [6:0] btl$brp;
     reg  [3:0] btl$prop;
     reg  [2:0] btl$ph1;
+    reg  [2:0] btl$ph2;
     reg  [1:0] btl$sjw;
     reg  btl$triple;
     reg  btl$rx;
@@ -5798,6 +5804,7 @@ module canstar_cancentrate_core$monitor(clock,reset,rx,brp,prop,ph1,sjw,triple,l
         .brp(btl$brp),
         .prop(btl$prop),
         .ph1(btl$ph1),
+        .ph2(btl$ph2),
         .sjw(btl$sjw),
         .triple(btl$triple),
         .rx(btl$rx),
@@ -5873,6 +5880,7 @@ module canstar_cancentrate_core$monitor(clock,reset,rx,brp,prop,ph1,sjw,triple,l
         btl$brp = brp;
         btl$prop = prop;
         btl$ph1 = ph1;
+        btl$ph2 = ph2;
         btl$sjw = sjw;
         btl$triple = triple;
         btl$rx = sync$q;
@@ -5937,7 +5945,7 @@ module canstar_cancentrate_core$monitor(clock,reset,rx,brp,prop,ph1,sjw,triple,l
 endmodule // canstar_cancentrate_core$monitor
 
 
-module canstar_cancentrate_core$monitor$btl(clock,reset,brp,prop,ph1,sjw,triple,rx,drive,hs_en,tq,sample,busmon,bit_start,tx,hard_sync,resync,cfg_err);
+module canstar_cancentrate_core$monitor$btl(clock,reset,brp,prop,ph1,ph2,sjw,triple,rx,drive,hs_en,tq,sample,busmon,bit_start,tx,hard_sync,resync,cfg_err);
     
     // Module arguments
     input wire  clock;
@@ -5945,6 +5953,7 @@ module canstar_cancentrate_core$monitor$btl(clock,reset,brp,prop,ph1,sjw,triple,
     input wire  [6:0] brp;
     input wire  [3:0] prop;
     input wire  [2:0] ph1;
+    input wire  [2:0] ph2;
     input wire  [1:0] sjw;
     input wire  triple;
     input wire  rx;
@@ -5975,6 +5984,9 @@ module canstar_cancentrate_core$monitor$btl(clock,reset,brp,prop,ph1,sjw,triple,
     reg  c_triple$d;
     wire  c_triple$q;
     reg  c_triple$clock;
+    reg  c_ipt1$d;
+    wire  c_ipt1$q;
+    reg  c_ipt1$clock;
     reg  c_valid$d;
     wire  c_valid$q;
     reg  c_valid$clock;
@@ -6077,6 +6089,11 @@ module canstar_cancentrate_core$monitor$btl(clock,reset,brp,prop,ph1,sjw,triple,
         .q(c_triple$q),
         .clock(c_triple$clock)
     );
+    canstar_cancentrate_core$monitor$btl$c_ipt1 c_ipt1(
+        .d(c_ipt1$d),
+        .q(c_ipt1$q),
+        .clock(c_ipt1$clock)
+    );
     canstar_cancentrate_core$monitor$btl$c_valid c_valid(
         .d(c_valid$d),
         .q(c_valid$q),
@@ -6165,6 +6182,7 @@ module canstar_cancentrate_core$monitor$btl(clock,reset,brp,prop,ph1,sjw,triple,
         c_ntq$clock = clock;
         c_sjw$clock = clock;
         c_triple$clock = clock;
+        c_ipt1$clock = clock;
         c_valid$clock = clock;
         c_bad$clock = clock;
         pre$clock = clock;
@@ -6186,6 +6204,7 @@ module canstar_cancentrate_core$monitor$btl(clock,reset,brp,prop,ph1,sjw,triple,
         c_ntq$d = c_ntq$q;
         c_sjw$d = c_sjw$q;
         c_triple$d = c_triple$q;
+        c_ipt1$d = c_ipt1$q;
         c_valid$d = c_valid$q;
         c_bad$d = c_bad$q;
         pre$d = pre$q;
@@ -6203,13 +6222,10 @@ module canstar_cancentrate_core$monitor$btl(clock,reset,brp,prop,ph1,sjw,triple,
         hard_r$d = hard_r$q;
         resync_r$d = resync_r$q;
         in_sp = (((prop) & 6'h3f) + ((ph1) & 6'h3f)) + 32'h3;
-        in_ph2 = ((ph1) & 6'h3f) + 32'h1;
-        if (ph1 == 32'h0) begin
-            in_ph2 = 32'h2;
-        end
+        in_ph2 = ((ph2) & 6'h3f) + 32'h1;
         in_ntq = in_sp + in_ph2;
         in_sjw = ((sjw) & 5'h1f) + 32'h1;
-        in_bad = ((in_ntq < 32'h8) | (in_ntq > 32'h19)) | (((sjw) & 3'h7) > ph1);
+        in_bad = (((in_ntq < 32'h8) | (in_ntq > 32'h19)) | (((sjw) & 3'h7) > ph1)) | ((ph2 == 32'h0) & (brp == 32'h0));
         tick = (c_valid$q & ~reset) & (pre$q == c_brp$q);
         c1 = cnt$q + 32'h1;
         late = c1 > spw$q;
@@ -6267,13 +6283,14 @@ module canstar_cancentrate_core$monitor$btl(clock,reset,brp,prop,ph1,sjw,triple,
         if (since$q == 32'h2) begin
             since_inc = 32'h2;
         end
-        fire = (restart | eob | pending$q) & (since_inc == 32'h2);
+        fire = (restart | eob | pending$q) & ((since_inc == 32'h2) | c_ipt1$q);
         if (reset) begin
             c_brp$d = brp;
             c_sp$d = in_sp[(32'h0)+:(5)];
             c_ntq$d = in_ntq[(32'h0)+:(5)];
             c_sjw$d = in_sjw;
             c_triple$d = triple;
+            c_ipt1$d = ph2 == 32'h0;
             c_bad$d = in_bad;
             c_valid$d = ~in_bad;
             pre$d = 32'h0;
@@ -6394,6 +6411,25 @@ module canstar_cancentrate_core$monitor$btl$c_brp(d,q,clock);
     end
           
 endmodule // canstar_cancentrate_core$monitor$btl$c_brp
+
+
+module canstar_cancentrate_core$monitor$btl$c_ipt1(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$monitor$btl$c_ipt1
 
 
 module canstar_cancentrate_core$monitor$btl$c_ntq(d,q,clock);

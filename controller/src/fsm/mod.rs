@@ -7,9 +7,10 @@
 //! error detection, fault confinement, frame delivery) and latches its
 //! decision: `drive` (the level wanted on TX for the next bit) and `hs_en`
 //! (hard synchronisation enable) are functions of registers only (and of the
-//! `listen_only` mode bit), valid from the next clock on, so with IPT = 2 TQ
-//! they are ready at the earliest transmit point. Counter changes are visible
-//! on the same clock (§13.4). Everything is normative per `can-protocol.md`;
+//! `listen_only` mode bit), valid from the next clock on, so they are ready
+//! at the earliest transmit point, 2 clocks after the sample point's tick
+//! (the IPT of can-protocol.md §2.5: 2 TQ, or 1 TQ of at least 2 clocks).
+//! Counter changes are visible on the same clock (§13.4). Everything is normative per `can-protocol.md`;
 //! the section numbers below refer to it.
 //!
 //! Summary of the behaviour (details in can-protocol.md):

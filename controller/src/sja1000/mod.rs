@@ -84,19 +84,19 @@
 //!   mode entry that is not a bus-off (or after such a TXERR write).
 //!   Entering reset mode during the recovery does not freeze TXERR: the
 //!   recovery keeps counting (the SJA1000 freezes it).
-//! - **Bit timing**: BTR0/BTR1 are mapped onto the core's fields. Every BRP
-//!   0..63 is exact: TQ = 2·(BRP+1) clocks (the core's prescaler field is
-//!   2·BRP+1, 7 bits). With t1 = TSEG1+1 (1..16 TQ) and t2 = TSEG2+1
-//!   (1..8 TQ) the bit is 1 + t1 + t2 TQ; the core has PH2 = max(PH1, 2),
-//!   PROP 1..16, PH1 1..8. When t1 > t2 ≥ 2 the mapping is exact: PROP =
-//!   t1 − t2, PH1 = PH2 = t2 (sample point after 1 + t1 TQ, as on the
-//!   SJA1000). The other settings keep the bit time and move the sample
-//!   point: t2 = 1 gives PROP = t1 − 2, PH1 = 1, PH2 = 2 (sample point one TQ
-//!   earlier); t1 ≤ t2 gives PH1 = PH2 = ⌊(t1 + t2 − 1)/2⌋ and PROP =
-//!   t1 + t2 − 2·PH1 (1 or 2; sample point later). SJW is limited to PH1
-//!   (so to t2 in the exact case). Bit times below 8 TQ are rejected by the
-//!   core (it stays inert, TX recessive, RS = TS = 1). SAM selects triple
-//!   sampling.
+//! - **Bit timing**: BTR0/BTR1 are mapped exactly onto the core's fields
+//!   ([`timing`]). Every BRP 0..63: TQ = 2·(BRP+1) clocks (the core's
+//!   prescaler field is 2·BRP+1, 7 bits). With t1 = TSEG1+1 (1..16 TQ) and
+//!   t2 = TSEG2+1 (1..8 TQ): PH1 = min(t1 − 1, 8), PROP = t1 − PH1, PH2 =
+//!   t2, so the bit is 1 + t1 + t2 TQ with the sample point after 1 + t1 TQ,
+//!   as on the SJA1000, TSEG2 = 0 (PH2 = 1 TQ) included: a TQ is at least 2
+//!   clocks, the information processing time the core needs
+//!   (can-protocol.md §2.5, C1). SJW may exceed PH2 but is limited to PH1
+//!   (C22), which changes it only when t1 ≤ SJW. The core refuses bit times
+//!   below 8 TQ and TSEG1 = 0 (a sample point 2 TQ after the bit start: PROP
+//!   and PH1 are at least 1 TQ each); it then stays inert (TX recessive,
+//!   RS = TS = 1). [`timing::core_timing`] names these settings, and the
+//!   SJW-limited ones, for Rust callers. SAM selects triple sampling.
 //! - **TS/RS** are both 1 while the core waits for bus idle (reset, the
 //!   11-bit integration, bus-off), as the SJA1000's 0x3C status after reset;
 //!   otherwise TS = transmitting, RS = receiving a frame (SOF to the end of

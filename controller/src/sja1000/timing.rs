@@ -2,15 +2,26 @@
 //! the core's bit timing fields (see the module documentation of
 //! [`super`], "Bit timing").
 //!
-//! TQ = 2·(BRP+1) clocks: the core's prescaler field is 2·BRP+1. With
-//! t1 = TSEG1+1 and t2 = TSEG2+1 the bit is 1 + t1 + t2 TQ; exact when
-//! t1 > t2 ≥ 2 (PROP = t1 − t2, PH1 = PH2 = t2); t2 = 1 gives PROP = t1 − 2,
-//! PH1 = 1; t1 ≤ t2 gives PH1 = ⌊(t1 + t2 − 1)/2⌋, PROP = t1 + t2 − 2·PH1;
-//! below 8 TQ a setting the core rejects. SJW is limited to PH1.
+//! The mapping is exact for every setting the core accepts: TQ = 2·(BRP+1)
+//! clocks (the core's prescaler field is 2·BRP+1); with t1 = TSEG1+1
+//! (1..16 TQ) and t2 = TSEG2+1 (1..8 TQ), PROP + PH1 = t1 with
+//! PH1 = min(t1 − 1, 8) and PROP = t1 − PH1, and PH2 = t2, so the bit is
+//! 1 + t1 + t2 TQ with the sample point after 1 + t1 TQ, as on the SJA1000.
+//! PH2 = 1 TQ is legal because a TQ is at least 2 clocks (the information
+//! processing time, can-protocol.md §2.5). SJW may exceed PH2 (C22, as on
+//! the SJA1000) but is limited to PH1, which reduces it only when t1 ≤ SJW
+//! (to t1 − 1).
+//! What the core refuses (`cfg_err`, it stays inert with TX recessive): bits
+//! under 8 TQ (1 + t1 + t2 < 8) and t1 = 1 (TSEG1 = 0: a sample point 2 TQ
+//! after the bit start, which PROP ≥ 1 and PH1 ≥ 1 cannot express; the
+//! block then hands the core a 4-TQ bit so that it refuses it).
+//! [`mapped`] is the same mapping in Rust; [`core_timing`] also rejects, with
+//! a message naming the field, the settings the core does not honour exactly.
 //!
 //! State: `r0`, `r1` (BTR0, BTR1: written by `we0`/`we1`, loaded with the
 //! generation-time power-up values `v0`/`v1` by `rst`).
 
+use canstar_hdl::timing::BtlConfig;
 use rust_hdl::prelude::*;
 
 #[derive(LogicBlock)]
@@ -26,6 +37,7 @@ pub struct BusTiming {
     pub brp: Signal<Out, Bits<7>>,
     pub prop: Signal<Out, Bits<4>>,
     pub ph1: Signal<Out, Bits<3>>,
+    pub ph2: Signal<Out, Bits<3>>,
     pub sjw: Signal<Out, Bits<2>>,
     pub triple: Signal<Out, Bit>,
 
@@ -35,10 +47,9 @@ pub struct BusTiming {
     v1: Constant<Bits<8>>,
 
     l_t1: Signal<Local, Bits<6>>,
-    l_t2: Signal<Local, Bits<6>>,
-    l_s: Signal<Local, Bits<6>>,
     l_prop: Signal<Local, Bits<6>>,
     l_ph1: Signal<Local, Bits<6>>,
+    l_ph2: Signal<Local, Bits<6>>,
     l_sjw: Signal<Local, Bits<6>>,
 }
 
@@ -56,6 +67,7 @@ impl BusTiming {
             brp: Default::default(),
             prop: Default::default(),
             ph1: Default::default(),
+            ph2: Default::default(),
             sjw: Default::default(),
             triple: Default::default(),
             r0: Default::default(),
@@ -63,10 +75,9 @@ impl BusTiming {
             v0: Constant::new((btr0 as u64).into()),
             v1: Constant::new((btr1 as u64).into()),
             l_t1: Default::default(),
-            l_t2: Default::default(),
-            l_s: Default::default(),
             l_prop: Default::default(),
             l_ph1: Default::default(),
+            l_ph2: Default::default(),
             l_sjw: Default::default(),
         }
     }
@@ -97,34 +108,36 @@ impl Logic for BusTiming {
         // TSEG2 in bits 6..4, TSEG1 in bits 3..0.
         self.brp.next = (bit_cast::<7, 6>(self.r0.q.val().get_bits::<6>(0)) << 1) | 1;
         self.l_t1.next = bit_cast::<6, 4>(self.r1.q.val().get_bits::<4>(0)) + 1;
-        self.l_t2.next = bit_cast::<6, 3>(self.r1.q.val().get_bits::<3>(4)) + 1;
-        self.l_s.next = self.l_t1.val() + self.l_t2.val();
-        // exact: PH1 = PH2 = t2, PROP = t1 - t2 (t1 > t2 >= 2)
-        self.l_ph1.next = self.l_t2.val();
-        self.l_prop.next = self.l_t1.val() - self.l_t2.val();
-        if self.l_t2.val() == 1 {
-            // PH2 is at least 2: keep the bit time, sample point 1 TQ earlier
-            self.l_ph1.next = 1.into();
-            self.l_prop.next = self.l_t1.val() - 2;
-        } else if self.l_t1.val() <= self.l_t2.val() {
-            // keep the bit time and PH2 = PH1, sample point later
-            self.l_ph1.next = (self.l_s.val() - 1) >> 1;
-            self.l_prop.next = self.l_s.val() - (self.l_ph1.val() << 1);
+        // exact: PROP + PH1 = t1 with PH1 = min(t1 - 1, 8) (the largest PH1,
+        // so that the SJW limit bites least), PH2 = t2
+        self.l_ph1.next = self.l_t1.val() - 1;
+        if self.l_t1.val() > 9 {
+            self.l_ph1.next = 8.into();
         }
-        if self.l_s.val() < 7 {
-            // under 8 TQ: a setting the core rejects
+        self.l_prop.next = self.l_t1.val() - self.l_ph1.val();
+        self.l_ph2.next = bit_cast::<6, 3>(self.r1.q.val().get_bits::<3>(4)) + 1;
+        if self.l_t1.val() == 1 {
+            // TSEG1 = 0: a sample point 2 TQ after the bit start needs
+            // PROP + PH1 = 1, which the core cannot express; 1 + 1 + 1 + 1 =
+            // 4 TQ makes it refuse the setting (cfg_err), as it refuses every
+            // bit under 8 TQ.
             self.l_prop.next = 1.into();
             self.l_ph1.next = 1.into();
+            self.l_ph2.next = 1.into();
         }
+        // SJW <= PH1 (C22; SJW > PH2 is legal): only when t1 <= SJW is the
+        // setting's SJW reduced, to t1 - 1.
         self.l_sjw.next = bit_cast::<6, 2>(self.r0.q.val().get_bits::<2>(6)) + 1;
         if self.l_sjw.val() > self.l_ph1.val() {
             self.l_sjw.next = self.l_ph1.val();
         }
         self.l_prop.next = self.l_prop.val() - 1;
         self.l_ph1.next = self.l_ph1.val() - 1;
+        self.l_ph2.next = self.l_ph2.val() - 1;
         self.l_sjw.next = self.l_sjw.val() - 1;
         self.prop.next = self.l_prop.val().get_bits::<4>(0);
         self.ph1.next = self.l_ph1.val().get_bits::<3>(0);
+        self.ph2.next = self.l_ph2.val().get_bits::<3>(0);
         self.sjw.next = self.l_sjw.val().get_bits::<2>(0);
         self.triple.next = self.r1.q.val().get_bit(7);
         self.btr0.next = self.r0.q.val();
@@ -134,34 +147,118 @@ impl Logic for BusTiming {
 
 canstar_hdl::impl_clocked!(BusTiming);
 
+/// The core timing [`BusTiming`] hands the core for `btr0`/`btr1` (the RTL's
+/// mapping in Rust, including the SJW limit and the refused 4-TQ bit for
+/// TSEG1 = 0), whether or not the core accepts it.
+pub fn mapped(btr0: u8, btr1: u8) -> BtlConfig {
+    let brp = 2 * ((btr0 & 0x3F) as u32 + 1);
+    let t1 = (btr1 & 0x0F) as u32 + 1;
+    let t2 = ((btr1 >> 4) & 7) as u32 + 1;
+    let (prop, ph1, ph2) = if t1 == 1 { (1, 1, 1) } else { (t1 - (t1 - 1).min(8), (t1 - 1).min(8), t2) };
+    let sjw = ((btr0 >> 6) as u32 + 1).min(ph1);
+    BtlConfig { triple: btr1 & 0x80 != 0, ..BtlConfig::new(brp, prop, ph1, sjw).with_ph2(ph2) }
+}
+
+/// The core timing for `btr0`/`btr1` when the core honours the setting
+/// exactly (the datasheet's bit time, sample point and SJW), else a message
+/// naming the register field and why.
+pub fn core_timing(btr0: u8, btr1: u8) -> Result<BtlConfig, String> {
+    let t1 = (btr1 & 0x0F) as u32 + 1;
+    let t2 = ((btr1 >> 4) & 7) as u32 + 1;
+    let sjw = (btr0 >> 6) as u32 + 1;
+    let at = format!("BTR0/BTR1 = 0x{btr0:02X}/0x{btr1:02X}");
+    if t1 == 1 {
+        return Err(format!(
+            "{at}: TSEG1 = 0 (a sample point 2 TQ after the bit start) is not supported: the core needs PROP + PH1 = TSEG1 + 1 >= 2 TQ"
+        ));
+    }
+    if 1 + t1 + t2 < 8 {
+        return Err(format!(
+            "{at}: 1 + (TSEG1 + 1) + (TSEG2 + 1) = {} TQ per bit: the core needs 8..=25 TQ (can-protocol.md §2.2)",
+            1 + t1 + t2
+        ));
+    }
+    if sjw > t1 - 1 {
+        return Err(format!(
+            "{at}: SJW = {sjw} TQ with TSEG1 + 1 = {t1} TQ: the core limits SJW to PH1 = TSEG1 = {} TQ (can-protocol.md C22)",
+            t1 - 1
+        ));
+    }
+    let t = mapped(btr0, btr1);
+    t.check().map_err(|e| format!("{at}: {e}"))?;
+    Ok(t)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use canstar_hdl::drive;
 
-    /// (BRP, PROP, PH1, SJW) in TQ and clocks per TQ for BTR0/BTR1.
-    fn map(btr0: u8, btr1: u8) -> (u64, u64, u64, u64, bool) {
+    /// The core timing the RTL hands the core for BTR0/BTR1.
+    fn map(btr0: u8, btr1: u8) -> BtlConfig {
         let mut u = BusTiming::new(btr0, btr1);
         drive::init(&mut u);
         u.rst.next = true;
         drive::cycle(&mut u);
-        let v = |x: usize| x as u64 + 1;
-        (v(u.brp.val().index()), v(u.prop.val().index()), v(u.ph1.val().index()), v(u.sjw.val().index()), u.triple.val())
+        let f = |x: usize| x as u32;
+        BtlConfig::from_fields(
+            f(u.brp.val().index()),
+            f(u.prop.val().index()),
+            f(u.ph1.val().index()),
+            f(u.ph2.val().index()),
+            f(u.sjw.val().index()),
+            u.triple.val(),
+        )
     }
 
     #[test]
     fn btr_values_map_onto_the_core_fields() {
-        // TQ = 2 (BRP + 1) clocks; exact: t1 = 6, t2 = 3 -> PROP 3, PH1 = PH2 = 3
-        assert_eq!(map(0x00, 0x25), (2, 3, 3, 1, false));
-        assert_eq!(map(0x41, 0x25), (4, 3, 3, 2, false));
-        assert_eq!(map(0xC0, 0xA5), (2, 3, 3, 3, true), "SJW 4 limited to PH1; SAM");
-        // t2 = 1: PH1 1 (PH2 2), PROP t1 - 2, bit time kept (1 + 6 + 1 = 8 = 1 + 4 + 1 + 2)
-        assert_eq!(map(0x00, 0x05), (2, 4, 1, 1, false));
-        // t1 <= t2: PH1 = PH2 = (t1 + t2 - 1) / 2, PROP = t1 + t2 - 2 PH1
-        // (t1 = 3, t2 = 6: PH1 = 4, PROP = 1; 1 + 1 + 4 + 4 = 1 + 3 + 6)
-        assert_eq!(map(0x00, 0x52), (2, 1, 4, 1, false));
-        // under 8 TQ: PROP 1, PH1 1 (the core rejects it)
-        assert_eq!(map(0x00, 0x11).1, 1);
+        // TQ = 2 (BRP + 1) clocks; t1 = 6, t2 = 3 -> PH1 5, PROP 1, PH2 3
+        assert_eq!(map(0x00, 0x25), BtlConfig::new(2, 1, 5, 1).with_ph2(3));
+        assert_eq!(map(0x41, 0x25), BtlConfig::new(4, 1, 5, 2).with_ph2(3));
+        let t = map(0xC0, 0xA5);
+        assert_eq!((t.sjw, t.triple), (4, true), "SJW 4 with PH2 3 kept; SAM");
+        // t2 = 1: PH2 = 1 TQ, bit time and sample point exact
+        assert_eq!(map(0x00, 0x05), BtlConfig::new(2, 1, 5, 1).with_ph2(1));
+        // t1 = 16: PH1 8, PROP 8; t1 <= t2 exact too
+        assert_eq!(map(0x00, 0x0F), BtlConfig::new(2, 8, 8, 1).with_ph2(1));
+        assert_eq!(map(0x00, 0x52), BtlConfig::new(2, 1, 2, 1).with_ph2(6));
+        // SJW limited to PH1 = t1 - 1 when t1 <= SJW
+        assert_eq!(map(0xC0, 0x72).sjw, 2);
+        // TSEG1 = 0: a 4-TQ bit that the core refuses
+        assert_eq!(map(0x00, 0x70).ntq(), 4);
+        assert!(!map(0x00, 0x70).is_valid());
+    }
+
+    /// The RTL and [`mapped`] agree on every BTR1 and SJW, and [`core_timing`]
+    /// gives the datasheet's bit time and sample point whenever it accepts.
+    #[test]
+    fn every_btr_value_maps_like_the_rust_mapping() {
+        for btr0 in [0x00u8, 0x40, 0x80, 0xC0, 0x3F, 0xC5] {
+            for btr1 in 0..=255u8 {
+                let t = map(btr0, btr1);
+                assert_eq!(t, mapped(btr0, btr1), "BTR {btr0:#04x}/{btr1:#04x}");
+                let (t1, t2) = ((btr1 & 15) as u32 + 1, ((btr1 >> 4) & 7) as u32 + 1);
+                match core_timing(btr0, btr1) {
+                    Ok(c) => {
+                        assert_eq!(c, t);
+                        assert_eq!(
+                            (c.brp, c.ntq(), c.sp(), c.sjw),
+                            (2 * ((btr0 & 63) as u32 + 1), 1 + t1 + t2, 1 + t1, (btr0 >> 6) as u32 + 1)
+                        );
+                    }
+                    Err(e) => {
+                        assert!(e.contains(&format!("0x{btr1:02X}")), "{e}");
+                        let refused = !t.is_valid();
+                        assert_eq!(refused, t1 == 1 || 1 + t1 + t2 < 8, "{e}");
+                        assert!(refused || e.contains("SJW"), "{e}");
+                    }
+                }
+            }
+        }
+        assert!(core_timing(0x00, 0x70).unwrap_err().contains("TSEG1 = 0"));
+        assert!(core_timing(0x00, 0x12).unwrap_err().contains("6 TQ per bit"));
+        assert!(core_timing(0xC0, 0x72).unwrap_err().contains("SJW = 4 TQ"));
     }
 
     #[test]

@@ -424,6 +424,7 @@ impl Logic for Sja1000 {
         self.core.brp.next = self.timing.brp.val();
         self.core.prop.next = self.timing.prop.val();
         self.core.ph1.next = self.timing.ph1.val();
+        self.core.ph2.next = self.timing.ph2.val();
         self.core.sjw.next = self.timing.sjw.val();
         self.core.triple.next = self.timing.triple.val();
         self.core.listen_only.next = self.mode.lom.val();

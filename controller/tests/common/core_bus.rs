@@ -33,6 +33,8 @@ pub fn configure(c: &mut CanCore, t: (u64, u64, u64, u64)) {
     c.brp.next = t.0.into();
     c.prop.next = t.1.into();
     c.ph1.next = t.2.into();
+    // PH2 = max(PH1, 2)
+    c.ph2.next = t.2.max(1).into();
     c.sjw.next = t.3.into();
 }
 
@@ -41,14 +43,19 @@ impl CoreBus {
         CoreBus::with_timing(n, delays, T10_6_4, false)
     }
 
-    /// Nodes with timing fields `t` (value - 1) and optional triple sampling.
+    /// Nodes with timing fields `t` (value - 1; PH2 = max(PH1, 2)) and optional triple sampling.
     pub fn with_timing(n: usize, delays: &[usize], t: (u64, u64, u64, u64), triple: bool) -> CoreBus {
+        let (b, p, p1, s) = (t.0 as u32, t.1 as u32, t.2 as u32, t.3 as u32);
+        CoreBus::with_config(n, delays, &canstar_hdl::timing::BtlConfig::from_fields(b, p, p1, p1.max(1), s, triple))
+    }
+
+    /// Nodes with bit timing `cfg`.
+    pub fn with_config(n: usize, delays: &[usize], cfg: &canstar_hdl::timing::BtlConfig) -> CoreBus {
         let mut nodes = Vec::new();
         for _ in 0..n {
             let mut c = Box::new(CanCore::new());
             drive::init(&mut *c);
-            configure(&mut c, t);
-            c.triple.next = triple;
+            c.set_timing(cfg);
             c.rx.next = true;
             c.reset.next = true;
             drive::cycle(&mut *c);

@@ -1,7 +1,7 @@
 //! The bit timing RTL and its clock-exact model side by side, shared by the btl tests.
 #![allow(dead_code, unused_imports)]
 
-pub use canstar_hdl::btl::{BitTiming, BtlConfig, BtlCycleModel, BtlInputs, BtlModel, BtlPins};
+pub use canstar_hdl::btl::{BitTiming, BtlConfig, BtlCycleModel, BtlInputs, BtlModel, BtlPins, IPT_CLOCKS};
 pub use canstar_hdl::{drive, flow};
 pub use rand::{Rng, SeedableRng};
 pub use rand_chacha::ChaCha8Rng;

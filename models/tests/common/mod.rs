@@ -43,6 +43,7 @@ impl Host {
         v[p.i("brp")] = timing.0;
         v[p.i("prop")] = timing.1;
         v[p.i("ph1")] = timing.2;
+        v[p.i("ph2")] = timing.2.max(1);
         v[p.i("sjw")] = timing.3;
         v[p.i("triple")] = triple as u128;
         v[p.i("reset")] = 1;

@@ -176,7 +176,7 @@ impl<'a> RunState<'a> {
         // the field value changes at the sample point of the previous bit;
         // the bit itself starts PH2 later
         let c = sim.get(cands[0]).spec().clone();
-        let ph2 = c.period_ps() * c.timing.brp as u64 * c.timing.ph2() as u64;
+        let ph2 = c.period_ps() * c.timing.brp as u64 * c.timing.ph2 as u64;
         Some((i, sim.now() + ph2 + (delay_ns * 1000.0).round() as u64))
     }
 

@@ -392,7 +392,7 @@ impl Bench {
         let c = nd.config();
         let period = nd.bit_time_ps() / (c.timing.ntq() as u64 * c.timing.brp as u64);
         let l_rx = canstar_controller::core::CanCore::l_rx(c.sync_depth) as u64;
-        (c.timing.ph2() as u64 * c.timing.brp as u64).saturating_sub(l_rx) * period
+        (c.timing.ph2 as u64 * c.timing.brp as u64).saturating_sub(l_rx) * period
     }
 
     /// Set the interference of `nodes` for `k` nominal bit times from now,

@@ -192,7 +192,7 @@ fn fresh(b: &mut Bench) -> Result<(), String> {
 fn ph2_off(b: &Bench) -> i64 {
     let c = b.node(0).config();
     let l_rx = canstar_controller::core::CanCore::l_rx(c.sync_depth) as i64;
-    (c.timing.ph2() as i64 * c.timing.brp as i64 - l_rx) * CLOCK_PS as i64
+    (c.timing.ph2 as i64 * c.timing.brp as i64 - l_rx) * CLOCK_PS as i64
 }
 
 /// Start of TQ 0 of the bit after the one whose record is at `t_rec`, on

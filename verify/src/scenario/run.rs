@@ -162,7 +162,7 @@ pub fn run(s: &Scenario, opts: &RunOptions) -> Result<RunResult, String> {
                     // The bit before the target has been sampled: start at the
                     // end of its phase segment 2, i.e. the start of the target bit.
                     let bt = s.bit_timing(a.node);
-                    let start = (last_sample[a.node] + bt.ph2() as u64 * tq_ps[a.node]).max(t);
+                    let start = (last_sample[a.node] + bt.ph2 as u64 * tq_ps[a.node]).max(t);
                     bus.schedule_interference(&mut sim, a.node, start, a.mode);
                     if let Some(b) = a.bits {
                         let stop = start + b as u64 * bt.ntq() as u64 * tq_ps[a.node];
