@@ -114,10 +114,6 @@ pub struct HubCore {
     rst_s2: DFF<Bit>,
     err_phase: Signal<Local, Bit>,
     bs_r: DFF<Bits<5>>,
-    jd_u: Vec<DFF<Bits<3>>>,
-    bs_p: DFF<Bits<5>>,
-    jd_bt: DFF<Bits<3>>,
-    jd_bs: DFF<Bits<3>>,
     delim_r: DFF<Bit>,
     delim_z: Signal<Local, Bit>,
     any_an: Signal<Local, Bit>,
@@ -199,10 +195,6 @@ impl HubCore {
             rst_s2: Default::default(),
             err_phase: Default::default(),
             bs_r: Default::default(),
-            jd_u: (0..n).map(|_| Default::default()).collect(),
-            bs_p: Default::default(),
-            jd_bt: Default::default(),
-            jd_bs: Default::default(),
             delim_r: Default::default(),
             delim_z: Default::default(),
             any_an: Default::default(),
@@ -255,48 +247,7 @@ impl Logic for HubCore {
         self.decode.pos.next = self.mon_pos.val();
         self.frame_state.next = self.mon_field.val();
         self.err_phase.next = self.decode.err_phase.val() | self.efgen.busy.val();
-        // the port judges' view (hub.md §5.9): their inputs (uplink, BT, bit-start
-        // estimate) delayed by JUDGE_DELAY = 3 clocks, so that at `mon_sample` they see
-        // the uplinks as the frame monitor sampled BT (monitor RX flip-flop, BTL sample
-        // register, adapter register); shift registers, bit 2 is the value 3 clocks ago.
-        // The sublink judges look at the present (a faulty peer hub's late level is
-        // evidence against it)
-        self.jd_bt.clock.next = self.clock.val();
-        if self.coupler.bt.val() {
-            self.jd_bt.d.next = (self.jd_bt.q.val() << 1) | 1;
-        } else {
-            self.jd_bt.d.next = self.jd_bt.q.val() << 1;
-        }
-        self.jd_bs.clock.next = self.clock.val();
-        if self.mon_bit_start.val() {
-            self.jd_bs.d.next = (self.jd_bs.q.val() << 1) | 1;
-        } else {
-            self.jd_bs.d.next = self.jd_bs.q.val() << 1;
-        }
-        if self.reset.val() {
-            self.jd_bt.d.next = 7.into();
-            self.jd_bs.d.next = 0.into();
-        }
-        for i in 0..self._n {
-            self.jd_u[i].clock.next = self.clock.val();
-            if self.coupler.u[i].val() {
-                self.jd_u[i].d.next = (self.jd_u[i].q.val() << 1) | 1;
-            } else {
-                self.jd_u[i].d.next = self.jd_u[i].q.val() << 1;
-            }
-            if self.reset.val() {
-                self.jd_u[i].d.next = 7.into();
-            }
-        }
-        // clocks since the estimated bit start, in the port judges' (delayed) time
-        self.bs_p.clock.next = self.clock.val();
-        self.bs_p.d.next = self.bs_p.q.val();
-        if self.jd_bs.q.val().get_bit(2) {
-            self.bs_p.d.next = 0.into();
-        } else if self.bs_p.q.val() != 31 {
-            self.bs_p.d.next = self.bs_p.q.val() + 1;
-        }
-        // clocks since the estimated bit start, for the sublink judges (window rule)
+        // clocks since the estimated bit start (window rule)
         self.bs_r.clock.next = self.clock.val();
         self.bs_r.d.next = self.bs_r.q.val();
         if self.mon_bit_start.val() {
@@ -388,8 +339,8 @@ impl Logic for HubCore {
             self.pj[i].clock.next = self.clock.val();
             self.pj[i].reset.next = self.reset.val();
             self.pj[i].sample.next = self.mon_sample.val();
-            self.pj[i].c.next = self.jd_u[i].q.val().get_bit(2);
-            self.pj[i].bt.next = self.jd_bt.q.val().get_bit(2);
+            self.pj[i].c.next = self.coupler.u[i].val();
+            self.pj[i].bt.next = self.coupler.bt.val();
             self.pj[i].sof.next = self.decode.sof.val();
             self.pj[i].tx_region.next = self.decode.tx_region.val();
             self.pj[i].arb.next = self.decode.arb.val();
@@ -407,8 +358,8 @@ impl Logic for HubCore {
             self.pj[i].rep_glitched.next = false;
             self.pj[i].rep_blamed.next = false;
             self.pj[i].common.next = false;
-            self.pj[i].bit_start.next = self.jd_bs.q.val().get_bit(2);
-            self.pj[i].bs_cnt.next = self.bs_p.q.val();
+            self.pj[i].bit_start.next = self.mon_bit_start.val();
+            self.pj[i].bs_cnt.next = self.bs_r.q.val();
             self.pj[i].delim.next = self.delim_z.val();
             self.pj[i].suppress.next = self.any_an.val() & !self.pj[i].anomaly.val();
             self.any_blame.next = self.any_blame.val() | self.pj[i].blame.val();
@@ -522,14 +473,6 @@ pub const RESET_SYNC_DEPTH: usize = 2;
 
 /// Synchroniser depth of the monitor's RX input: BT is already synchronous.
 pub const MONITOR_SYNC_DEPTH: usize = 1;
-
-/// Clocks by which [`HubCore`] delays the port judges' inputs (uplinks, BT and the bit
-/// start estimate; hub.md §5.9): the frame monitor sees BT through its RX flip-flop
-/// ([`MONITOR_SYNC_DEPTH`]), takes the sample on a tick clock and reports it
-/// [`canstar_hdl::btl::L_RX`] clock later, and the [`MonitorAdapter`] registers it once
-/// more, so `mon_sample` comes this many clocks after the instant the monitor sampled.
-/// The shift registers in [`HubCore`] are 3 bits long; a test checks the sum.
-pub const JUDGE_DELAY: usize = 3;
 
 impl Hub {
     /// Build a hub with its frame monitor. Panics if the configuration is invalid.

@@ -221,24 +221,21 @@
 //! delimiter is still blamed there; one that turns dominant only in its last clocks is
 //! left to the frame monitor and the other rules.
 //!
-//! **§5.9 the judges' instant (added).** The judges get the frame state 3 clocks after the
-//! frame monitor sampled BT (monitor RX flip-flop, BTL sample register, adapter register),
-//! and used to count their input up to then. `canstar soak --frames 1000000 --events` had
-//! 4 blames in 3 of 500 chunks, all just after a node was switched off mid-frame; in chunk
-//! 199 (`--chunk 199 --vcd`, around bit 45320) a fast controller's error flag after six
-//! edge-free bits reached hub 1 after its monitor's sample point but before its judges
-//! looked, and port 0 was blamed. `HubCore` now delays the port judges' inputs (uplink, BT,
-//! bit-start estimate) by `JUDGE_DELAY` = 3 clocks, so a port judge sees at `sample` what
-//! the monitor sampled; chunk 199 is clean (test
-//! `events_soak_chunk_with_a_switch_off_mid_frame_is_clean`). The sublink judges are not
-//! delayed: with them delayed too, `canstar campaign --reps 100` passed 24 088 of 24 400
-//! runs instead of 24 139, the whole-hub classes losing up to 15 of 100 (a faulty hub's late
-//! dominant level is evidence); ending the port windows 3 clocks early instead of delaying
-//! passed 24 023 (`flip-receiver-tx-down-r100` 99 → 79). As built: RESULT_HYBRID.
-//! Chunks 359 and 401 keep one and two blames: there the node went off inside a dominant
-//! bit just after the hub's sample point, the nodes (which sample later, behind their
-//! downlinks) saw that bit recessive and flagged a stuff error one bit before the monitor;
-//! at the hub that cut is within a clock of a healthy transmitter's early edge (hub.md §5.9).
+//! **§5.9 the judges' instant (evaluated, not adopted).** The judges get the frame state 3
+//! clocks after the frame monitor sampled BT (monitor RX flip-flop, BTL sample register,
+//! adapter register) and count their input up to then. `canstar soak --frames 1000000
+//! --events` had 4 blames in 3 of 500 chunks, all just after a node was switched off
+//! mid-frame; in chunk 199 (`--chunk 199 --vcd`, around bit 45320) a fast controller's error
+//! flag after six edge-free bits reached hub 1 after its monitor's sample point but before
+//! its judges looked, and port 0 was blamed. Three ways to make the judges look at the
+//! monitor's instant each removed that blame (chunks 359 and 401 keep theirs: a cut inside a
+//! dominant bit just after the hub's sample point, hub.md §5.9) and each cost containment,
+//! `canstar campaign --reps 100` against 24 139 of 24 400 runs passed with the rules above:
+//! every judged input of the hub delayed by 3 clocks, 24 088 (`sweep-hub-g6-e10` 96 → 81,
+//! a faulty hub's late dominant level is evidence); only the port judges' inputs delayed,
+//! 24 024 (`flip-receiver-tx-down-r100` 99 → 79); the port windows ended 3 clocks early,
+//! 24 023 (the same classes). One blame is `bic` 8 that decays over 8 frames, a lost
+//! containment run is a healthy controller at 96, so the judges keep their instant.
 //!
 //! **§5.2 delimiter rule (added).** In the error phase, once BT was recessive at a
 //! sample (the end of every flag), the following delimiter bits are recessive-only

@@ -866,24 +866,6 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
     reg  [4:0] bs_r$d;
     wire  [4:0] bs_r$q;
     reg  bs_r$clock;
-    reg  [2:0] jd_u$0$d;
-    wire  [2:0] jd_u$0$q;
-    reg  jd_u$0$clock;
-    reg  [2:0] jd_u$1$d;
-    wire  [2:0] jd_u$1$q;
-    reg  jd_u$1$clock;
-    reg  [2:0] jd_u$2$d;
-    wire  [2:0] jd_u$2$q;
-    reg  jd_u$2$clock;
-    reg  [4:0] bs_p$d;
-    wire  [4:0] bs_p$q;
-    reg  bs_p$clock;
-    reg  [2:0] jd_bt$d;
-    wire  [2:0] jd_bt$q;
-    reg  jd_bt$clock;
-    reg  [2:0] jd_bs$d;
-    wire  [2:0] jd_bs$q;
-    reg  jd_bs$clock;
     reg  delim_r$d;
     wire  delim_r$q;
     reg  delim_r$clock;
@@ -1115,36 +1097,6 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         .q(bs_r$q),
         .clock(bs_r$clock)
     );
-    canstar_cancentrate_core$core$jd_u$0 jd_u$0(
-        .d(jd_u$0$d),
-        .q(jd_u$0$q),
-        .clock(jd_u$0$clock)
-    );
-    canstar_cancentrate_core$core$jd_u$1 jd_u$1(
-        .d(jd_u$1$d),
-        .q(jd_u$1$q),
-        .clock(jd_u$1$clock)
-    );
-    canstar_cancentrate_core$core$jd_u$2 jd_u$2(
-        .d(jd_u$2$d),
-        .q(jd_u$2$q),
-        .clock(jd_u$2$clock)
-    );
-    canstar_cancentrate_core$core$bs_p bs_p(
-        .d(bs_p$d),
-        .q(bs_p$q),
-        .clock(bs_p$clock)
-    );
-    canstar_cancentrate_core$core$jd_bt jd_bt(
-        .d(jd_bt$d),
-        .q(jd_bt$q),
-        .clock(jd_bt$clock)
-    );
-    canstar_cancentrate_core$core$jd_bs jd_bs(
-        .d(jd_bs$d),
-        .q(jd_bs$q),
-        .clock(jd_bs$clock)
-    );
     canstar_cancentrate_core$core$delim_r delim_r(
         .d(delim_r$d),
         .q(delim_r$q),
@@ -1164,62 +1116,6 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         decode$pos = mon_pos;
         frame_state = mon_field;
         err_phase = decode$err_phase | efgen$busy;
-        jd_bt$clock = clock;
-        if (coupler$bt) begin
-            jd_bt$d = (jd_bt$q << 32'h1) | 32'h1;
-        end
-        else begin
-            jd_bt$d = jd_bt$q << 32'h1;
-        end
-        jd_bs$clock = clock;
-        if (mon_bit_start) begin
-            jd_bs$d = (jd_bs$q << 32'h1) | 32'h1;
-        end
-        else begin
-            jd_bs$d = jd_bs$q << 32'h1;
-        end
-        if (reset) begin
-            jd_bt$d = 32'h7;
-            jd_bs$d = 32'h0;
-        end
-        jd_u$0$clock = clock;
-        if (coupler$u$0) begin
-            jd_u$0$d = (jd_u$0$q << 32'h1) | 32'h1;
-        end
-        else begin
-            jd_u$0$d = jd_u$0$q << 32'h1;
-        end
-        if (reset) begin
-            jd_u$0$d = 32'h7;
-        end
-        jd_u$1$clock = clock;
-        if (coupler$u$1) begin
-            jd_u$1$d = (jd_u$1$q << 32'h1) | 32'h1;
-        end
-        else begin
-            jd_u$1$d = jd_u$1$q << 32'h1;
-        end
-        if (reset) begin
-            jd_u$1$d = 32'h7;
-        end
-        jd_u$2$clock = clock;
-        if (coupler$u$2) begin
-            jd_u$2$d = (jd_u$2$q << 32'h1) | 32'h1;
-        end
-        else begin
-            jd_u$2$d = jd_u$2$q << 32'h1;
-        end
-        if (reset) begin
-            jd_u$2$d = 32'h7;
-        end
-        bs_p$clock = clock;
-        bs_p$d = bs_p$q;
-        if (jd_bs$q[32'h2]) begin
-            bs_p$d = 32'h0;
-        end
-        else if (bs_p$q != 32'h1f) begin
-            bs_p$d = bs_p$q + 32'h1;
-        end
         bs_r$clock = clock;
         bs_r$d = bs_r$q;
         if (mon_bit_start) begin
@@ -1277,8 +1173,8 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         pj$0$clock = clock;
         pj$0$reset = reset;
         pj$0$sample = mon_sample;
-        pj$0$c = jd_u$0$q[32'h2];
-        pj$0$bt = jd_bt$q[32'h2];
+        pj$0$c = coupler$u$0;
+        pj$0$bt = coupler$bt;
         pj$0$sof = decode$sof;
         pj$0$tx_region = decode$tx_region;
         pj$0$arb = decode$arb;
@@ -1296,8 +1192,8 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         pj$0$rep_glitched = 1'b0;
         pj$0$rep_blamed = 1'b0;
         pj$0$common = 1'b0;
-        pj$0$bit_start = jd_bs$q[32'h2];
-        pj$0$bs_cnt = bs_p$q;
+        pj$0$bit_start = mon_bit_start;
+        pj$0$bs_cnt = bs_r$q;
         pj$0$delim = delim_z;
         pj$0$suppress = any_an & ~pj$0$anomaly;
         any_blame = any_blame | pj$0$blame;
@@ -1318,8 +1214,8 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         pj$1$clock = clock;
         pj$1$reset = reset;
         pj$1$sample = mon_sample;
-        pj$1$c = jd_u$1$q[32'h2];
-        pj$1$bt = jd_bt$q[32'h2];
+        pj$1$c = coupler$u$1;
+        pj$1$bt = coupler$bt;
         pj$1$sof = decode$sof;
         pj$1$tx_region = decode$tx_region;
         pj$1$arb = decode$arb;
@@ -1337,8 +1233,8 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         pj$1$rep_glitched = 1'b0;
         pj$1$rep_blamed = 1'b0;
         pj$1$common = 1'b0;
-        pj$1$bit_start = jd_bs$q[32'h2];
-        pj$1$bs_cnt = bs_p$q;
+        pj$1$bit_start = mon_bit_start;
+        pj$1$bs_cnt = bs_r$q;
         pj$1$delim = delim_z;
         pj$1$suppress = any_an & ~pj$1$anomaly;
         any_blame = any_blame | pj$1$blame;
@@ -1359,8 +1255,8 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         pj$2$clock = clock;
         pj$2$reset = reset;
         pj$2$sample = mon_sample;
-        pj$2$c = jd_u$2$q[32'h2];
-        pj$2$bt = jd_bt$q[32'h2];
+        pj$2$c = coupler$u$2;
+        pj$2$bt = coupler$bt;
         pj$2$sof = decode$sof;
         pj$2$tx_region = decode$tx_region;
         pj$2$arb = decode$arb;
@@ -1378,8 +1274,8 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         pj$2$rep_glitched = 1'b0;
         pj$2$rep_blamed = 1'b0;
         pj$2$common = 1'b0;
-        pj$2$bit_start = jd_bs$q[32'h2];
-        pj$2$bs_cnt = bs_p$q;
+        pj$2$bit_start = mon_bit_start;
+        pj$2$bs_cnt = bs_r$q;
         pj$2$delim = delim_z;
         pj$2$suppress = any_an & ~pj$2$anomaly;
         any_blame = any_blame | pj$2$blame;
@@ -1406,25 +1302,6 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
     end
     
 endmodule // canstar_cancentrate_core$core
-
-
-module canstar_cancentrate_core$core$bs_p(d,q,clock);
-    
-    // Module arguments
-    input wire  [4:0] d;
-    output reg  [4:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 5'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_cancentrate_core$core$bs_p
 
 
 module canstar_cancentrate_core$core$bs_r(d,q,clock);
@@ -2359,101 +2236,6 @@ module canstar_cancentrate_core$core$injector$state(d,q,clock);
     end
           
 endmodule // canstar_cancentrate_core$core$injector$state
-
-
-module canstar_cancentrate_core$core$jd_bs(d,q,clock);
-    
-    // Module arguments
-    input wire  [2:0] d;
-    output reg  [2:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 3'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_cancentrate_core$core$jd_bs
-
-
-module canstar_cancentrate_core$core$jd_bt(d,q,clock);
-    
-    // Module arguments
-    input wire  [2:0] d;
-    output reg  [2:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 3'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_cancentrate_core$core$jd_bt
-
-
-module canstar_cancentrate_core$core$jd_u$0(d,q,clock);
-    
-    // Module arguments
-    input wire  [2:0] d;
-    output reg  [2:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 3'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_cancentrate_core$core$jd_u$0
-
-
-module canstar_cancentrate_core$core$jd_u$1(d,q,clock);
-    
-    // Module arguments
-    input wire  [2:0] d;
-    output reg  [2:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 3'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_cancentrate_core$core$jd_u$1
-
-
-module canstar_cancentrate_core$core$jd_u$2(d,q,clock);
-    
-    // Module arguments
-    input wire  [2:0] d;
-    output reg  [2:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 3'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_cancentrate_core$core$jd_u$2
 
 
 module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,rep_glitched,rep_blamed,common,dis,blame,charged,tx_error,glitch,anomaly,bic,life,dbc,nack,rep_cnt,gc,silent,contender);

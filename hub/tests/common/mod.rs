@@ -8,7 +8,7 @@ use canstar_hdl::drive;
 use canstar_hdl::drive::Clocked;
 use canstar_hub::frame_state::Field;
 use canstar_hub::config::HubConfig;
-use canstar_hub::hub::{Hub, HubCore, JUDGE_DELAY};
+use canstar_hub::hub::{Hub, HubCore};
 
 mod nodes;
 mod tracker;
@@ -142,11 +142,6 @@ impl Dut for Hub {
 
 pub const CLOCKS_PER_BIT: usize = 16;
 pub const SAMPLE_CLOCK: usize = 12;
-/// The clock on which a `HubCore` gets the monitor's sample strobe: [`JUDGE_DELAY`]
-/// clocks after the tracker sampled BT, as the complete hub's own monitor presents it
-/// (its judges see their inputs delayed by as much, hub.md §5.9).
-pub const MON_CLOCK: usize = SAMPLE_CLOCK + JUDGE_DELAY;
-const _: () = assert!(MON_CLOCK < CLOCKS_PER_BIT);
 
 /// A frame a test node sends: the controller crate's [`CanFrame`] (read its fields
 /// through `Deref`), optionally with a wrong CRC.
@@ -212,9 +207,6 @@ pub struct Stim {
     pins: Vec<bool>,
     views: Vec<bool>,
     pending: Option<BitLog>,
-    /// The monitor inputs of the bit sampled at [`SAMPLE_CLOCK`], presented
-    /// [`MON_CLOCK`]: field, position, CRC ok, error, frame ok.
-    mon: Option<(Field, usize, bool, bool, bool)>,
 }
 
 #[derive(Clone, Debug)]
@@ -248,7 +240,6 @@ impl Stim {
             pins: vec![true; n],
             views: vec![true; n],
             pending: None,
-            mon: None,
         }
     }
 
@@ -299,15 +290,11 @@ impl Stim {
             let (field, pos) = self.tracker.classify(bt);
             let crc_ok = self.tracker.crc_ok;
             let ev = self.tracker.push(bt);
-            self.mon = Some((field, pos, crc_ok, ev.error, ev.frame_ok));
+            hub.set_monitor(true, false, field, pos, crc_ok, ev.error, ev.frame_ok);
+            drive::settle(hub);
             let r = BitLog { bit: b, field, pos, bt, pins: self.pins.clone(), ev, efg: hub.efg_active(), blame: false };
             self.log.push(r.clone());
             self.pending = Some(r);
-        }
-        if k == MON_CLOCK {
-            if let Some((field, pos, crc_ok, error, frame_ok)) = self.mon.take() {
-                hub.set_monitor(true, false, field, pos, crc_ok, error, frame_ok);
-            }
         }
         // blames are seen when the (possibly delayed) monitor sample reaches the judges
         drive::settle(hub);
@@ -369,7 +356,7 @@ impl<T: Dut> Net<T> {
         for k in 0..CLOCKS_PER_BIT {
             self.stim.at_clock(&mut self.hub, k);
             drive::cycle(&mut self.hub);
-            if k == MON_CLOCK {
+            if k == SAMPLE_CLOCK + 1 {
                 for (m, b) in self.max_bic.iter_mut().zip(self.hub.bic()) {
                     *m = (*m).max(b);
                 }
