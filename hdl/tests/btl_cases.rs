@@ -22,17 +22,6 @@ fn timing(t: u32) -> BtlConfig {
     }
 }
 
-#[derive(Debug, Clone, Copy, PartialEq)]
-enum Outcome {
-    /// No change of the bit.
-    Nothing,
-    /// The edge's TQ becomes SYNC_SEG.
-    Restart,
-    /// PH1 lengthened by this many TQ.
-    Ph1Plus(u32),
-    /// PH2 shortened by this many TQ.
-    Ph2Minus(u32),
-}
 
 #[derive(Debug, Clone, Copy, PartialEq)]
 enum TxNote {

@@ -22,13 +22,6 @@
 mod btl_util;
 use btl_util::*;
 
-#[derive(Debug, Clone, Copy, PartialEq)]
-enum Outcome {
-    Nothing,
-    Restart,
-    Ph1Plus(u32),
-    Ph2Minus(u32),
-}
 
 /// (hs_en, drive) of a situation: 'a' hard sync driving R, 'b' resync
 /// driving R (receiver), 'd' resync driving D (transmitter), 'f' hard sync

@@ -9,6 +9,20 @@ pub use rand_chacha::ChaCha8Rng;
 pub const R: bool = true;
 pub const D: bool = false;
 
+/// What an edge does to the bit it falls in (can-protocol.md §3.3), the expected value of the
+/// synchronisation tests (btl_cases.rs, btl_iso.rs).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Outcome {
+    /// No change of the bit.
+    Nothing,
+    /// The edge's TQ becomes SYNC_SEG.
+    Restart,
+    /// PH1 lengthened by this many TQ.
+    Ph1Plus(u32),
+    /// PH2 shortened by this many TQ.
+    Ph2Minus(u32),
+}
+
 /// The RTL and the clock-exact model side by side; every step compares all
 /// outputs. `rtl = None` runs the model alone.
 pub struct Rig {
