@@ -35,7 +35,7 @@
 //!
 //! Timing fields (value − 1): `brp` 7 bits (1..128 clocks per TQ), `prop`
 //! 4 bits (PROP 1..16), `ph1` 3 bits (1..8), `ph2` 3 bits (1..8; 1 only
-//! with BRP ≥ 2), `sjw` 2 bits (1..min(4, PH1, PH2)); NTQ 8..25, as in
+//! with BRP ≥ 2), `sjw` 2 bits (1..min(4, PH1), not bounded by PH2: C22); NTQ 8..25, as in
 //! [`canstar_hdl::btl`] ([`CanCore::set_timing`] sets them from a
 //! [`canstar_hdl::timing::BtlConfig`]).
 //!

@@ -6,7 +6,7 @@
 mod common;
 use canstar_controller::core::CanCore;
 use canstar_hdl::flow;
-use common::core_bus::configure;
+use common::core_bus::fields_timing;
 use common::stim::{dlc_and_stuffbit_frames, random_frame, BusScript};
 use rand::Rng;
 use std::cell::Cell;
@@ -52,8 +52,9 @@ fn core_verilog_flow() {
         u.reset.next = reset;
         if reset {
             let t = if cycle < 3 { timings[0] } else { timings[rng.gen_range(0..timings.len())] };
-            configure(u, t);
-            bit_clocks = (1 + (t.1 + 1) + (t.2 + 1) + (t.2 + 1).max(2)) as u32 * (t.0 as u32 + 1);
+            let cfg = fields_timing(t, false);
+            u.set_timing(&cfg);
+            bit_clocks = cfg.ntq() * cfg.brp;
         }
         // While the core transmits a frame (SOF .. EOF), the scripted other
         // nodes pause and acknowledge it (almost always).

@@ -22,7 +22,6 @@ fn timing(t: u32) -> BtlConfig {
     }
 }
 
-
 #[derive(Debug, Clone, Copy, PartialEq)]
 enum TxNote {
     /// The table says nothing; §2.5 decides.
@@ -79,134 +78,18 @@ fn table(t: u32, case: char, j: u32) -> (Outcome, TxNote) {
     }
 }
 
-/// Expected ticks, counted from the bit start (transmit point) of the bit
-/// that holds the edge.
-#[derive(Debug)]
-struct Expect {
-    samples: Vec<u32>,
-    bit_starts: Vec<u32>,
-    /// Tick of the transmit point that takes the new drive level.
-    tx_tick: u32,
-    horizon: u32,
-}
-
-fn expect(cfg: &BtlConfig, outcome: Outcome, j: u32) -> Expect {
-    let (sp, ntq) = (cfg.sp(), cfg.ntq());
-    // (samples inside the edge bit, first transmit point, origin (cnt = 0) of the next bit)
-    let (mut samples, tx_tick, origin) = match outcome {
-        Outcome::Nothing => (vec![], ntq, ntq),
-        Outcome::Ph1Plus(d) => (vec![sp + d], ntq + d, ntq + d),
-        Outcome::Ph2Minus(s) => (vec![sp], (ntq - s).max(sp + 2), ntq - s),
-        Outcome::Restart => {
-            // The restart makes the edge's TQ (index j) SYNC_SEG: cnt = 0 at tick j.
-            // §2.5: the transmit point is not earlier than the latest sample + IPT.
-            if j >= sp {
-                (vec![sp], (j + 1).max(sp + 2), j)
-            } else {
-                (vec![], j + 1, j)
-            }
-        }
-    };
-    if outcome == Outcome::Nothing {
-        samples.push(sp);
-    }
-    let horizon = origin + 2 * ntq;
-    let mut bit_starts = vec![0, tx_tick];
-    let mut k = 0;
-    while origin + k * ntq <= horizon {
-        if k > 0 {
-            bit_starts.push(origin + k * ntq);
-        }
-        if origin + k * ntq + sp <= horizon {
-            samples.push(origin + k * ntq + sp);
-        }
-        k += 1;
-    }
-    samples.sort();
-    samples.dedup();
-    Expect { samples, bit_starts, tx_tick, horizon }
-}
-
 /// Run one btl case and check it against the tables.
 fn check_case(t: u32, case: char, j: u32, brp: u32, with_rtl: bool, rng: &mut ChaCha8Rng) {
     let cfg = timing(t).with_brp(brp);
-    let (sp, ntq) = (cfg.sp(), cfg.ntq());
+    let sp = cfg.sp();
     let (outcome, note) = table(t, case, j);
-    let exp = expect(&cfg, outcome, j);
     let tag = format!("btl_{t}{case}_j{j} (BRP {brp}, {outcome:?})");
+    let exp = check_edge(&cfg, case, j, outcome, with_rtl, rng, &tag);
     match note {
         TxNote::Rule => {}
         TxNote::AtEdge => assert_eq!(exp.tx_tick, j + 1, "{tag}: table says TX@edge"),
         TxNote::PlusOne => assert_eq!(exp.tx_tick, j + 2, "{tag}: table says TX+1"),
         TxNote::SpPlus2 => assert_eq!(exp.tx_tick, sp + 2, "{tag}: table says TX at SP + 2"),
-    }
-    let (hs_en, level) = match case {
-        'a' => (true, R),
-        'b' | 'e' => (false, R),
-        'c' | 'd' => (false, D),
-        'f' => (true, D),
-        _ => panic!("case {case}"),
-    };
-    let b = brp as usize;
-    let mut rig = Rig::new(with_rtl);
-    rig.reset(&cfg);
-    // Two bits with a recessive bus: the last sample is R, sync enabled.
-    // TX carries the opposite of `level` in the edge bit, so that the
-    // transmit point that takes `level` is visible on TX.
-    let mut i = BtlInputs::with_config(&cfg);
-    i.hs_en = hs_en;
-    i.drive = !level;
-    let mut starts = 0;
-    let c0 = loop {
-        let p = rig.step(&i);
-        if p.bit_start {
-            starts += 1;
-            if starts == 2 {
-                break rig.trace.len() - 1;
-            }
-        }
-        assert!(rig.trace.len() < 3 * ntq as usize * b + 10, "{tag}: no bit start");
-    };
-    let c_edge = c0 + j as usize * b + rng.gen_range(1..=b);
-    let end = c0 + exp.horizon as usize * b + 2;
-    i.drive = level;
-    while rig.trace.len() < end {
-        i.rx = rig.trace.len() < c_edge;
-        rig.step(&i);
-    }
-    let tr = &rig.trace;
-    let tick_of = |c: usize, what: &str| -> u32 {
-        assert_eq!((c - c0) % b, 0, "{tag}: {what} at cycle {c} is not on the TQ grid (bit start at {c0})");
-        ((c - c0) / b) as u32
-    };
-    let mut samples = vec![];
-    let mut starts = vec![];
-    let mut syncs = vec![];
-    for (c, p) in tr.iter().enumerate().skip(c0) {
-        if p.bit_start {
-            starts.push(tick_of(c, "bit_start"));
-            assert!(p.tq, "{tag}: bit_start without tq at cycle {c}");
-        }
-        if c > c0 && p.sample {
-            let k = tick_of(c - 1, "sample");
-            samples.push(k);
-            let want = if k > j { D } else { R };
-            assert_eq!(p.busmon, want, "{tag}: sampled level at tick {k}");
-        }
-        if c > c0 && (p.hard_sync || p.resync) {
-            syncs.push((tick_of(c - 1, "sync"), p.hard_sync, p.resync));
-        }
-    }
-    samples.retain(|&k| k <= exp.horizon);
-    starts.retain(|&k| k <= exp.horizon);
-    assert_eq!(samples, exp.samples, "{tag}: sample points (ticks from the bit start)");
-    assert_eq!(starts, exp.bit_starts, "{tag}: transmit points (ticks from the bit start)");
-    assert_eq!(syncs, vec![(j + 1, hs_en, !hs_en)], "{tag}: synchronisation strobes (tick, hard, resync)");
-    // TX: the old level up to the transmit point, the new one from the next clock.
-    let tx_change = c0 + exp.tx_tick as usize * b + 1;
-    for (c, p) in tr.iter().enumerate().skip(c0 + 1) {
-        let want = if c >= tx_change { level } else { !level };
-        assert_eq!(p.tx, want, "{tag}: TX at cycle {c} (tick {}); expected change at tick {}", (c - c0) / b, exp.tx_tick);
     }
 }
 

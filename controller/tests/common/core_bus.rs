@@ -7,6 +7,7 @@ use canstar_controller::core::CanCore;
 use canstar_controller::frame::Frame;
 use canstar_controller::fsm::*;
 use canstar_hdl::drive;
+use canstar_hdl::timing::BtlConfig;
 use std::collections::VecDeque;
 
 /// Timing fields (value - 1): T10/6/4 = PROP 1, PH1 4, SJW 4, BRP 1.
@@ -29,13 +30,14 @@ pub struct CoreBus {
     pending: Vec<Option<(Field, u8, bool)>>,
 }
 
+/// The timing of fields `t` (value - 1: brp, prop, ph1, sjw) with PH2 = max(PH1, 2).
+pub fn fields_timing(t: (u64, u64, u64, u64), triple: bool) -> BtlConfig {
+    let f = |x: u64| x as u32 + 1;
+    BtlConfig { triple, ..BtlConfig::new(f(t.0), f(t.1), f(t.2), f(t.3)) }
+}
+
 pub fn configure(c: &mut CanCore, t: (u64, u64, u64, u64)) {
-    c.brp.next = t.0.into();
-    c.prop.next = t.1.into();
-    c.ph1.next = t.2.into();
-    // PH2 = max(PH1, 2)
-    c.ph2.next = t.2.max(1).into();
-    c.sjw.next = t.3.into();
+    c.set_timing(&fields_timing(t, false));
 }
 
 impl CoreBus {
@@ -45,12 +47,11 @@ impl CoreBus {
 
     /// Nodes with timing fields `t` (value - 1; PH2 = max(PH1, 2)) and optional triple sampling.
     pub fn with_timing(n: usize, delays: &[usize], t: (u64, u64, u64, u64), triple: bool) -> CoreBus {
-        let (b, p, p1, s) = (t.0 as u32, t.1 as u32, t.2 as u32, t.3 as u32);
-        CoreBus::with_config(n, delays, &canstar_hdl::timing::BtlConfig::from_fields(b, p, p1, p1.max(1), s, triple))
+        CoreBus::with_config(n, delays, &fields_timing(t, triple))
     }
 
     /// Nodes with bit timing `cfg`.
-    pub fn with_config(n: usize, delays: &[usize], cfg: &canstar_hdl::timing::BtlConfig) -> CoreBus {
+    pub fn with_config(n: usize, delays: &[usize], cfg: &BtlConfig) -> CoreBus {
         let mut nodes = Vec::new();
         for _ in 0..n {
             let mut c = Box::new(CanCore::new());
