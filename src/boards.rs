@@ -93,12 +93,16 @@ pub struct Board {
     /// different bitstream, so its pins may reuse the hub's.
     #[serde(default)]
     pub controller: Option<ControllerPins>,
+    /// Pinout of the USB-to-CAN adapter (`slcan`, board top `canstar_slcan_board`:
+    /// `rst_n`, `uart_rx`, `uart_tx`, `rx`, `tx`), optional like the controller's.
+    #[serde(default)]
+    pub slcan: Option<ControllerPins>,
     /// The file the board was read from (for messages; not a key of the file).
     #[serde(skip)]
     pub source: Option<String>,
 }
 
-/// The controller's pinout on a board.
+/// The pinout of one design other than the hub (`[controller.pins]`, `[slcan.pins]`).
 #[derive(Debug, Clone, PartialEq, Eq, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ControllerPins {
@@ -113,12 +117,26 @@ pub enum Pinout {
     Hub,
     /// `[controller.pins]`; debug outputs go to the debug pins it leaves free.
     Controller,
+    /// `[slcan.pins]`; debug outputs go to the debug pins it leaves free.
+    Slcan,
+}
+
+impl Pinout {
+    /// The board file's table of this pinout (for messages).
+    pub fn table(self) -> &'static str {
+        match self {
+            Pinout::Hub => "pins",
+            Pinout::Controller => "controller.pins",
+            Pinout::Slcan => "slcan.pins",
+        }
+    }
 }
 
 /// The boards shipped with canstar.
 pub const BUILTIN: &[(&str, &str)] = &[
     ("xsa-3s1000", include_str!("../boards/xsa-3s1000.toml")),
     ("ice40-hx8k", include_str!("../boards/ice40-hx8k.toml")),
+    ("alchitry-cu", include_str!("../boards/alchitry-cu.toml")),
     ("ulx3s", include_str!("../boards/ulx3s.toml")),
     ("arty-a7", include_str!("../boards/arty-a7.toml")),
 ];
@@ -173,7 +191,9 @@ impl Board {
         if !(1_000..=1_000_000_000).contains(&self.clock.hz) {
             bail!("clock.hz: {} Hz (must be 1 kHz ..= 1 GHz)", self.clock.hz);
         }
-        let pinouts = std::iter::once(("pins", &self.pins)).chain(self.controller.as_ref().map(|c| ("controller.pins", &c.pins)));
+        let pinouts = std::iter::once(("pins", &self.pins))
+            .chain(self.controller.as_ref().map(|c| ("controller.pins", &c.pins)))
+            .chain(self.slcan.as_ref().map(|c| ("slcan.pins", &c.pins)));
         for (table, pins) in pinouts {
             for (role, pin) in pins {
                 check_role(&format!("{table}.\"{role}\""), role)?;
@@ -191,22 +211,26 @@ impl Board {
         for pin in &self.debug.pins {
             claim_pin(&mut used, pin, "a debug pin".into())?;
         }
-        if let Some(c) = &self.controller {
+        for (what, pins) in [("controller", &self.controller), ("slcan", &self.slcan)] {
+            let Some(c) = pins else { continue };
             let mut used: BTreeMap<&str, String> = BTreeMap::new();
             claim_pin(&mut used, &self.clock.pin, format!("clock port {}", self.clock.port))?;
             for (role, pin) in &c.pins {
-                claim_pin(&mut used, pin, format!("controller role {role}"))?;
+                claim_pin(&mut used, pin, format!("{what} role {role}"))?;
             }
         }
         Ok(())
     }
 
     /// The designs the board has a pinout for: `hub` (`[pins]`) and, with
-    /// `[controller.pins]`, `controller`.
+    /// `[controller.pins]`, `controller`, with `[slcan.pins]`, `slcan`.
     pub fn designs(&self) -> Vec<&'static str> {
         let mut v = vec!["hub"];
         if self.controller.is_some() {
             v.push("controller");
+        }
+        if self.slcan.is_some() {
+            v.push("slcan");
         }
         v
     }
@@ -215,8 +239,12 @@ impl Board {
     pub(crate) fn pinout(&self, which: Pinout) -> Result<(&BTreeMap<String, String>, Vec<&String>)> {
         match which {
             Pinout::Hub => Ok((&self.pins, self.debug.pins.iter().collect())),
-            Pinout::Controller => {
-                let c = self.controller.as_ref().ok_or_else(|| anyhow!("{} has no controller pinout ([controller.pins])", self.label()))?;
+            Pinout::Controller | Pinout::Slcan => {
+                let (c, what) = match which {
+                    Pinout::Controller => (self.controller.as_ref(), "controller"),
+                    _ => (self.slcan.as_ref(), "slcan"),
+                };
+                let c = c.ok_or_else(|| anyhow!("{} has no {what} pinout ([{}])", self.label(), which.table()))?;
                 let used: BTreeSet<&String> = c.pins.values().collect();
                 Ok((&c.pins, self.debug.pins.iter().filter(|p| !used.contains(p)).collect()))
             }
@@ -376,7 +404,8 @@ mod tests {
     fn every_builtin_board_has_both_pinouts() {
         for (n, _) in BUILTIN {
             let b = Board::lookup(n).unwrap();
-            assert_eq!(b.designs(), ["hub", "controller"], "{n}");
+            let want: &[&str] = if *n == "alchitry-cu" { &["hub", "controller", "slcan"] } else { &["hub", "controller"] };
+            assert_eq!(b.designs(), want, "{n}");
         }
         let hub_only = builtin("ulx3s").split("[controller.pins]").next().unwrap().to_string();
         assert_eq!(Board::from_toml(&hub_only).unwrap().designs(), ["hub"]);

@@ -54,7 +54,7 @@ pub fn pin_file(board: &Board, which: Pinout, design_name: &str, design: &Design
         }
         let pin = pins
             .get(role)
-            .ok_or_else(|| anyhow!("{} has no pin for port bit `{role}` of design {design_name} (pins.\"{role}\")", board.label()))?;
+            .ok_or_else(|| anyhow!("{} has no pin for port bit `{role}` of design {design_name} ({}.\"{role}\")", board.label(), which.table()))?;
         top.place(role, pin, io.as_ref());
     }
     let mut placed_debug = vec![];
