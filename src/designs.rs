@@ -47,27 +47,8 @@ pub fn controller(config: &Config) -> Result<Vec<Artifact>> {
 /// top `canstar_sja1000_board` with an active-low reset), and its pin files on every
 /// board with a controller pinout (or the one asked for).
 pub fn sja1000(config: &Config, board: Option<&str>) -> Result<Vec<Artifact>> {
-    let (btr0, btr1) = crate::config::btr(&config.bit_timing);
-    let mut uut = canstar_controller::sja1000::Sja1000::with_reset_timing(btr0, btr1)
-        .with_eof7_rule(config.controller.eof7_rec);
-    uut.connect_all();
-    let name = "canstar_sja1000";
-    let inner = canstar_hdl::flow::rename_top(&canstar_hdl::flow::emit(&uut), name);
-    let board_name = format!("{name}_board");
-    let (top, ports) = board_top(&inner, name, "rst", &board_name);
-    let t = &config.bit_timing;
-    let desc = format!(
-        "SJA1000 (PeliCAN) compatible CAN controller, Wishbone B4 classic slave, 8-bit (see controller/src/sja1000/); \
-         board top with active-low reset; BTR0/BTR1 after reset 0x{btr0:02X}/0x{btr1:02X} ({} clocks per TQ, {} TQ per bit, sample point {})",
-        t.brp,
-        t.ntq(),
-        t.sp()
-    );
-    let mut out = vec![Artifact {
-        root: Root::Verilog,
-        path: format!("controller/{name}.v").into(),
-        contents: header(name, &desc) + &inner + "\n" + &top,
-    }];
+    let (verilog, board_name, ports) = sja1000_verilog(config);
+    let mut out = vec![verilog];
     let mut pins = DesignPins::default();
     for (p, bits, _) in &ports {
         if p != "clock" {
@@ -85,6 +66,33 @@ pub fn sja1000(config: &Config, board: Option<&str>) -> Result<Vec<Artifact>> {
     Ok(out)
 }
 
+/// The SJA1000-compatible top's Verilog file (`controller/canstar_sja1000.v`), the
+/// name of its board top (`canstar_sja1000_board`) and the board top's ports.
+pub fn sja1000_verilog(config: &Config) -> (Artifact, String, Vec<(String, usize, bool)>) {
+    let (btr0, btr1) = crate::config::btr(&config.bit_timing);
+    let mut uut = canstar_controller::sja1000::Sja1000::with_reset_timing(btr0, btr1)
+        .with_eof7_rule(config.controller.eof7_rec);
+    uut.connect_all();
+    let name = "canstar_sja1000";
+    let inner = canstar_hdl::flow::rename_top(&canstar_hdl::flow::emit(&uut), name);
+    let board_name = format!("{name}_board");
+    let (top, ports) = board_top(&inner, name, "rst", &board_name);
+    let t = &config.bit_timing;
+    let desc = format!(
+        "SJA1000 (PeliCAN) compatible CAN controller, Wishbone B4 classic slave, 8-bit (see controller/src/sja1000/); \
+         board top with active-low reset; BTR0/BTR1 after reset 0x{btr0:02X}/0x{btr1:02X} ({} clocks per TQ, {} TQ per bit, sample point {})",
+        t.brp,
+        t.ntq(),
+        t.sp()
+    );
+    let verilog = Artifact {
+        root: Root::Verilog,
+        path: format!("controller/{name}.v").into(),
+        contents: header(name, &desc) + &inner + "\n" + &top,
+    };
+    (verilog, board_name, ports)
+}
+
 /// Boards a hub's pin files are generated for: the one asked for, or all built-in ones.
 pub fn hub_boards(board: Option<&str>) -> Result<Vec<Board>> {
     match board {
@@ -94,7 +102,7 @@ pub fn hub_boards(board: Option<&str>) -> Result<Vec<Board>> {
 }
 
 /// Functional port bits of a hub (everything else is a debug/status output).
-fn is_functional(port: &str) -> bool {
+pub fn is_functional(port: &str) -> bool {
     matches!(port, "rst_n" | "inject_fault" | "rx" | "reh_rx" | "tx" | "hub_tx")
 }
 
@@ -132,20 +140,8 @@ pub fn hub(config: &Config, board: Option<&str>) -> Result<Vec<Artifact>> {
         ("canstar_hub", rec, "ReCANcentrate star hub"),
         ("canstar_cancentrate", cc, "CANcentrate star hub (no interlinks)"),
     ] {
-        cfg.validate().map_err(|e| anyhow::anyhow!("hub: invalid [hub] configuration: {e}"))?;
-        let (inner, wrapper, ports) = hub_top(&cfg, name);
-        let desc = format!(
-            "{what}, N = {} ports, M = {} interlinks, {} Hz clock, coupling latency {} clocks",
-            cfg.ports,
-            cfg.sublinks,
-            cfg.clock_hz,
-            cfg.coupling_latency()
-        );
-        out.push(Artifact {
-            root: Root::Verilog,
-            path: format!("hub/{name}.v").into(),
-            contents: header(name, &desc) + &inner + "\n" + &wrapper,
-        });
+        let (verilog, ports) = hub_verilog(&cfg, name, what)?;
+        out.push(verilog);
         let mut pins = DesignPins::default();
         for (p, bits, _) in &ports {
             if p == "clock" {
@@ -172,6 +168,22 @@ pub fn hub(config: &Config, board: Option<&str>) -> Result<Vec<Artifact>> {
         }
     }
     Ok(out)
+}
+
+/// A hub's Verilog file (`hub/<name>.v`: its core and its top `name` with vector
+/// ports, `what` in the header) and the top's ports; the configuration is checked first.
+pub fn hub_verilog(cfg: &canstar_hub::config::HubConfig, name: &str, what: &str) -> Result<(Artifact, Vec<(String, usize, bool)>)> {
+    cfg.validate().map_err(|e| anyhow::anyhow!("hub: invalid [hub] configuration: {e}"))?;
+    let (inner, wrapper, ports) = hub_top(cfg, name);
+    let desc = format!(
+        "{what}, N = {} ports, M = {} interlinks, {} Hz clock, coupling latency {} clocks",
+        cfg.ports,
+        cfg.sublinks,
+        cfg.clock_hz,
+        cfg.coupling_latency()
+    );
+    let verilog = Artifact { root: Root::Verilog, path: format!("hub/{name}.v").into(), contents: header(name, &desc) + &inner + "\n" + &wrapper };
+    Ok((verilog, ports))
 }
 
 /// A hub's rust-hdl core (`<name>_core`), its top with vector ports and the top's ports.

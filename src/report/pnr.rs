@@ -232,9 +232,15 @@ impl Pnr {
     /// Place and route `json` with one seed. An error only when nextpnr cannot be
     /// started; everything else is an [`Outcome`].
     pub fn run(&self, json: &Path, seed: u64) -> Result<SeedRun> {
+        self.run_args(self.args(json, seed), seed)
+    }
+
+    /// One run with the arguments given (`canstar build` passes its PCF and
+    /// output files), under the same watchdog.
+    pub fn run_args(&self, args: Vec<String>, seed: u64) -> Result<SeedRun> {
         let start = Instant::now();
         let mut cmd = Command::new(&self.program);
-        cmd.args(self.args(json, seed)).stdin(Stdio::null()).stdout(Stdio::piped()).stderr(Stdio::piped());
+        cmd.args(args).stdin(Stdio::null()).stdout(Stdio::piped()).stderr(Stdio::piped());
         let mut g = Group::spawn(&mut cmd).with_context(|| format!("running {}", self.program))?;
         let (tx, rx) = mpsc::channel();
         let readers = [read_lines(g.child.stdout.take().unwrap(), tx.clone()), read_lines(g.child.stderr.take().unwrap(), tx)];
