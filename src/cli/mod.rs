@@ -23,6 +23,7 @@ macro_rules! errln {
 pub mod print;
 mod bench;
 mod boards;
+mod build;
 mod campaign;
 mod conformance;
 mod fuzz;
@@ -46,6 +47,10 @@ enum Cmd {
     /// List the boards (FPGA family, part, clock, pin-file format, the designs each has a
     /// pinout for: hub, controller); given names or board .toml files, check and list those.
     Boards(boards::Args),
+    /// Build an iCE40 bitstream of one role (hub, controller) for a board: Yosys, nextpnr-ice40
+    /// (design clock from the board oscillator through the iCE40 PLL, timing checked at it) and
+    /// icepack; writes <out>/<board>/<role>/<top>.bin and prints the iceprog command.
+    Build(build::Args),
     /// Synthesise the generated designs and print a resource table (iCE40 cells, flip-flops,
     /// block RAMs and fmax with Yosys + nextpnr-ice40; Spartan-3 LUTs and flip-flops with Yosys).
     Report(report::Args),
@@ -77,6 +82,7 @@ pub fn run(cli: Cli) -> Result<()> {
     match cli.cmd {
         Cmd::Generate(a) => generate::run(a),
         Cmd::Boards(a) => boards::run(a),
+        Cmd::Build(a) => build::run(a),
         Cmd::Report(a) => report::run(a),
         Cmd::Sim(a) => sim::run(a),
         Cmd::Bench(a) => bench::run(a),
