@@ -1,5 +1,6 @@
-//! `canstar boards`: the built-in boards with family, clock, pin-file format and
-//! designs; a board file given by path is checked and listed; bad input is a
+//! `canstar boards`: the built-in boards with family, clock, pin-file format,
+//! the roles `canstar build` makes bitstreams of, and designs; a board file
+//! given by path is checked and listed; bad input is a
 //! clear error naming the file and the key.
 mod common;
 use common::canstar;
@@ -12,18 +13,22 @@ fn boards_lists_every_builtin_board() {
     assert!(ok, "{out}{err}");
     let row = |name: &str| out.lines().find(|l| l.starts_with(&format!("{name} "))).unwrap_or_else(|| panic!("no row for {name}:\n{out}")).to_string();
     assert!(out.lines().next().unwrap().starts_with("board"), "{out}");
-    for (name, family, clock, format) in [
-        ("xsa-3s1000", "spartan3", "14.74 MHz on H16", "ucf (Xilinx ISE)"),
-        ("ice40-hx8k", "ice40", "100 MHz on P7", "pcf (nextpnr-ice40)"),
-        ("ulx3s", "ecp5", "25 MHz on G2", "lpf ("),
-        ("arty-a7", "artix7", "100 MHz on E3", "xdc (Vivado)"),
+    for (name, family, clock, format, bitstream, designs) in [
+        ("xsa-3s1000", "spartan3", "14.74 MHz on H16", "ucf (Xilinx ISE)", "-", "hub, controller"),
+        ("ice40-hx8k", "ice40", "100 MHz on P7", "pcf (nextpnr-ice40)", "hub, controller", "hub, controller"),
+        ("alchitry-cu", "ice40", "100 MHz on P7", "pcf (nextpnr-ice40)", "hub, controller", "hub, controller, slcan"),
+        ("ulx3s", "ecp5", "25 MHz on G2", "lpf (", "-", "hub, controller"),
+        ("arty-a7", "artix7", "100 MHz on E3", "xdc (Vivado)", "-", "hub, controller"),
     ] {
         let r = row(name);
         for want in [family, clock, format] {
             assert!(r.contains(want), "{name}: `{want}` not in `{r}`");
         }
-        assert!(r.ends_with("hub, controller"), "{r}");
+        // Columns are separated by at least two spaces.
+        let cells: Vec<&str> = r.split("  ").map(str::trim).filter(|c| !c.is_empty()).collect();
+        assert_eq!(cells[5..], [bitstream, designs], "{name}: `{r}`");
     }
+    assert!(out.lines().next().unwrap().contains("bitstream"), "{out}");
     assert!(std::fs::read_dir(d.path()).unwrap().next().is_none(), "`boards` writes nothing");
 }
 
