@@ -195,7 +195,13 @@ pub fn run(plan: &Plan, req: &Request, on_run: &mut dyn FnMut(&SeedRun)) -> Resu
     }
     let Some((seed, lc, fmax_mhz)) = best else {
         let why: Vec<String> = runs.iter().map(SeedRun::describe).collect();
-        bail!("place and route of {} on {}: no seed placed ({}); nothing written", plan.top, plan.board.label(), why.join("; "));
+        let hint = if why.iter().any(|w| w.contains("PLL")) {
+            " (the iCE40 PLL drives the global network through the input path of its pads, on the HX8K in CB132 \
+             A6/A7 for the top PLL and P7/P8 for the bottom one: the pinout may use them only for outputs)"
+        } else {
+            ""
+        };
+        bail!("place and route of {} on {}: no seed placed ({}){hint}; nothing written", plan.top, plan.board.label(), why.join("; "));
     };
     let timing_pass = fmax_mhz >= f;
     if !timing_pass && !req.timing_allow_fail {
