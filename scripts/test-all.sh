@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Runs every canstar check on a fresh Debian machine:
-#  - installs the open EDA tools it needs (yosys, nextpnr-ice40, iverilog, verilator) and sigrok-cli
-#    (independent CAN decoder for the sim's sigrok test) when missing,
+#  - installs the open EDA tools it needs (yosys, nextpnr-ice40, icepack from fpga-icestorm,
+#    iverilog, verilator) and sigrok-cli (independent CAN decoder for the sim's sigrok test)
+#    when missing,
 #  - runs all Rust tests, including the Verilog flow tests that plain `cargo test`
 #    skips (Verilator lint, Yosys synthesis, Icarus co-simulation),
 #  - checks that verilog-out/ and constraints/ match what `canstar generate` writes.
@@ -9,8 +10,14 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 missing=()
-for tool in yosys nextpnr-ice40 iverilog verilator sigrok-cli; do
-  command -v "$tool" >/dev/null 2>&1 || missing+=("$tool")
+for tool in yosys nextpnr-ice40 icepack iverilog verilator sigrok-cli; do
+  if ! command -v "$tool" >/dev/null 2>&1; then
+    # the Debian package is named after the tool, but for icepack (IceStorm)
+    case "$tool" in
+      icepack) missing+=(fpga-icestorm) ;;
+      *) missing+=("$tool") ;;
+    esac
+  fi
 done
 if [ "${#missing[@]}" -gt 0 ]; then
   echo "== installing tools: ${missing[*]}"
