@@ -36,6 +36,7 @@ fn bases(format: &str) -> Vec<String> {
         "board" => vec![
             read("boards/xsa-3s1000.toml"),
             read("boards/ice40-hx8k.toml"),
+            read("boards/alchitry-cu.toml"),
             read("boards/ulx3s.toml"),
             read("boards/arty-a7.toml"),
         ],
@@ -274,6 +275,12 @@ fn board_files_never_panic_never_escape_and_name_the_key() {
                     prop_assert!(p.components().count() == 1 && !board.name.starts_with('.'), "{:?}", board.name);
                     let _ = pin_file(&board, Pinout::Hub, "hub", &hub);
                     let _ = pin_file(&board, Pinout::Controller, "ctrl", &DesignPins { functional: vec!["rx".into()], debug: vec![] });
+                    let _ = pin_file(&board, Pinout::Slcan, "slcan", &DesignPins { functional: vec!["uart_rx".into()], debug: vec![] });
+                    // what `canstar build` derives from a board before running a tool
+                    let _ = canstar::build::tools::device_args(&board);
+                    if let Ok(s) = canstar::build::pll::choose(board.clock.hz, 14_740_000, 2000.0, &board.label()) {
+                        prop_assert!(s.in_range() && s.error_ppm(14_740_000).abs() <= 2000.0, "{s:?}");
+                    }
                 }
                 Err(e) => {
                     let msg = format!("{e:#}");
