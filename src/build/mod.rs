@@ -197,7 +197,7 @@ pub fn run(plan: &Plan, req: &Request, on_run: &mut dyn FnMut(&SeedRun)) -> Resu
         let why: Vec<String> = runs.iter().map(SeedRun::describe).collect();
         let hint = if why.iter().any(|w| w.contains("PLL")) {
             " (the iCE40 PLL drives the global network through the input path of its pads, on the HX8K in CB132 \
-             A6/A7 for the top PLL and P7/P8 for the bottom one: the pinout may use them only for outputs)"
+             the balls A6/A7 for the top PLL and P7/P8 for the bottom one: the pinout may use them only for outputs)"
         } else {
             ""
         };
