@@ -9,6 +9,9 @@ use anyhow::Result;
 use std::io::Write as _;
 use canstar_hdl::{btl, crc15, stuff, sync};
 
+/// A top module's ports: (name, bits, is_output).
+pub type Ports = Vec<(String, usize, bool)>;
+
 /// The shared RTL blocks as standalone modules (`verilog-out/blocks/`).
 pub fn blocks(config: &Config) -> Result<Vec<Artifact>> {
     Ok(vec![
@@ -68,7 +71,7 @@ pub fn sja1000(config: &Config, board: Option<&str>) -> Result<Vec<Artifact>> {
 
 /// The SJA1000-compatible top's Verilog file (`controller/canstar_sja1000.v`), the
 /// name of its board top (`canstar_sja1000_board`) and the board top's ports.
-pub fn sja1000_verilog(config: &Config) -> (Artifact, String, Vec<(String, usize, bool)>) {
+pub fn sja1000_verilog(config: &Config) -> (Artifact, String, Ports) {
     let (btr0, btr1) = crate::config::btr(&config.bit_timing);
     let mut uut = canstar_controller::sja1000::Sja1000::with_reset_timing(btr0, btr1)
         .with_eof7_rule(config.controller.eof7_rec);
@@ -172,7 +175,7 @@ pub fn hub(config: &Config, board: Option<&str>) -> Result<Vec<Artifact>> {
 
 /// A hub's Verilog file (`hub/<name>.v`: its core and its top `name` with vector
 /// ports, `what` in the header) and the top's ports; the configuration is checked first.
-pub fn hub_verilog(cfg: &canstar_hub::config::HubConfig, name: &str, what: &str) -> Result<(Artifact, Vec<(String, usize, bool)>)> {
+pub fn hub_verilog(cfg: &canstar_hub::config::HubConfig, name: &str, what: &str) -> Result<(Artifact, Ports)> {
     cfg.validate().map_err(|e| anyhow::anyhow!("hub: invalid [hub] configuration: {e}"))?;
     let (inner, wrapper, ports) = hub_top(cfg, name);
     let desc = format!(

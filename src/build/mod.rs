@@ -76,11 +76,11 @@ pub fn exposure(design: &Design, free_debug_pins: usize) -> Vec<Exposed> {
     let mut left = free_debug_pins;
     let mut out = vec![];
     for (name, bits, output) in &design.ports {
-        let functional = name == "clock" || design.functional.contains(name);
-        let exposed = if functional {
+        // Functional ports and inputs whole (an input cannot be left open; the pin
+        // file names a missing pin).
+        let whole = name == "clock" || design.functional.contains(name) || !output;
+        let exposed = if whole {
             *bits
-        } else if !output {
-            *bits // (a debug input cannot be left open; the pin file names it as missing)
         } else {
             let k = (*bits).min(left);
             let k = if *bits > 1 && k == 1 { 0 } else { k };
