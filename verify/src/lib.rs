@@ -13,6 +13,7 @@
 
 pub mod conformance;
 pub mod fuzz;
+pub mod iso;
 pub mod lockstep;
 pub mod node;
 pub mod scenario;

@@ -123,6 +123,8 @@ pub struct CanNode {
     /// tx_req must be low for a clock between two requests.
     gap: bool,
     recover_pulse: bool,
+    /// Counter values to load on the next clock (`cnt_load` for one clock).
+    load: Option<(u32, u32)>,
     log: Vec<(u64, HostEvent)>,
     tracer: Option<BitTracer>,
     trace: Vec<(u64, String)>,
@@ -142,6 +144,7 @@ impl CanNode {
             current: None,
             gap: false,
             recover_pulse: false,
+            load: None,
             log: vec![],
             tracer: None,
             trace: vec![],
@@ -193,6 +196,14 @@ impl CanNode {
     pub fn hard_reset(&mut self) {
         self.reset_left = RESET_CYCLES;
         self.current = None;
+    }
+
+    /// Load TEC and REC through the counter-load port (`cnt_load` high for
+    /// the next clock, `tec_in` = `tec` (9 bits, 256 and above: bus-off),
+    /// `rec_in` = `rec`): the values are visible after that clock.
+    pub fn load_counters(&mut self, tec: u32, rec: u32) {
+        assert!(tec < 512 && rec < 256, "counter values out of range: TEC {tec}, REC {rec}");
+        self.load = Some((tec, rec));
     }
 
     /// Start bus-off recovery (only with `host_recovery`).
@@ -344,6 +355,14 @@ impl Component for CanNode {
             self.drive_request();
         }
         self.core.inp.recover = std::mem::take(&mut self.recover_pulse);
+        match self.load.take() {
+            Some((tec, rec)) => {
+                self.core.inp.cnt_load = true;
+                self.core.inp.tec_in = tec as u16;
+                self.core.inp.rec_in = rec as u8;
+            }
+            None => self.core.inp.cnt_load = false,
+        }
         self.core.cycle();
         self.collect(io.now());
         io.set_output(0, self.core.tx());

@@ -130,6 +130,15 @@ impl Bench {
     /// Nodes on their own clocks (unintegrated, as [`Bench::new_unintegrated`]);
     /// the scripted transmitter uses N1's clock and bit length.
     pub fn with_clocks(cfgs: Vec<NodeConfig>, clocks: Vec<ClockSpec>, scripted: bool, vcd: Option<&Path>) -> Bench {
+        Self::with_slots(cfgs, clocks, scripted, &[], vcd)
+    }
+
+    /// [`Bench::with_clocks`] with further bus slots named `extra`, after the
+    /// nodes and the scripted transmitter: bus node `n + scripted + k` is
+    /// slot `k`. Their TX nets stay undriven (recessive) until a component
+    /// is bound to them with [`Sim::add`] (the ISO lower tester,
+    /// `crate::iso`); with a VCD file, that component cannot be added.
+    pub fn with_slots(cfgs: Vec<NodeConfig>, clocks: Vec<ClockSpec>, scripted: bool, extra: &[&str], vcd: Option<&Path>) -> Bench {
         let mut sim = Sim::new(1);
         let n = cfgs.len();
         let cfgs_brp0 = cfgs[0].timing.brp;
@@ -137,6 +146,7 @@ impl Bench {
         if scripted {
             names.push("script".into());
         }
+        names.extend(extra.iter().map(|s| s.to_string()));
         let spec: Vec<(&str, NodeDelays)> = names.iter().map(|s| (s.as_str(), NodeDelays::default())).collect();
         let bus = Bus::build(&mut sim, "bus", &spec);
         let clock = clocks[0];

@@ -1,0 +1,83 @@
+//! The ISO 16845-1 lower tester (GitHub issue #17) and the ISO conformance
+//! cases built on it.
+//!
+//! # The lower tester
+//!
+//! ISO 16845-1 tests an implementation (IUT) through a *lower tester* (LT):
+//! a bus participant that is not a conforming CAN node. Here the LT is a
+//! kernel component on a slot of the Bosch bench's wired-AND bus
+//! ([`crate::conformance::Bench`], reused unchanged apart from the slot):
+//!
+//! - [`plan`]: what the LT does in a step: a bit sequence at time-quantum
+//!   resolution (from a frame through the controller's frame builder, with
+//!   FIELD/POSITION labels, or raw levels), bits lengthened or shortened by
+//!   k TQ, glitches and disturbances of the bus as every node sees it or of
+//!   one node's receive path, and the IUT responses it expects;
+//! - [`tester`]: the component that drives the plan's levels and records
+//!   the bus clock by clock;
+//! - [`trigger`]: "bit P of the n-th occurrence of field F since the step
+//!   start, q TQ into the bit", including Bus_Off, the bus-off recovery and
+//!   Reset, derived from the IUT's debug bundle without RTL changes;
+//! - [`bench`]: [`LtBench`], steps (record, occurrence counting, VCD),
+//!   counter presets through the counter-load port, the step reset,
+//!   waiting for triggers and playing plans;
+//! - [`record`]: [`StepRecord`], what a step recorded, for assertions.
+//!
+//! # Cases
+//!
+//! [`cases`] holds the ISO 16845-1 cases implemented so far, one file per
+//! case, named by clause (`iso_7_1_1`); [`run_iso`] runs those matching a
+//! filter and returns one [`crate::conformance::StepResult`] per elementary
+//! test (`iso_7_1_1_e3`).
+
+pub mod bench;
+pub mod cases;
+pub mod plan;
+pub mod record;
+pub mod tester;
+pub mod trigger;
+
+pub use bench::LtBench;
+pub use plan::{Action, At, Disturbance, Expect, Label, Plan, PlanBit, Span, Target};
+pub use record::{Played, StepRecord};
+pub use tester::{ClockSample, LowerTester};
+pub use trigger::{Trigger, Where};
+
+use crate::conformance::StepResult;
+
+/// One ISO case.
+pub struct IsoCase {
+    /// Clause, e.g. `7.1.1`.
+    pub clause: &'static str,
+    /// `iso_7_1_1_<what>`.
+    pub name: &'static str,
+    /// Runs the case; one result per elementary test.
+    pub run: fn() -> Vec<StepResult>,
+}
+
+/// The implemented cases in clause order.
+pub fn cases() -> Vec<IsoCase> {
+    cases::all()
+}
+
+/// Run the cases whose clause or name matches `filter` (all with `None`):
+/// a clause matches itself and its sub-clauses (`7.2` runs 7.2.x), a name
+/// matches exactly. A panicking case gives one failed result `<name>_panic`.
+pub fn run_iso(filter: Option<&str>) -> Vec<(String, Vec<StepResult>)> {
+    let mut out = vec![];
+    for c in cases() {
+        let hit = match filter {
+            None => true,
+            Some(f) => c.name == f || c.clause == f || c.clause.starts_with(&format!("{f}.")),
+        };
+        if !hit {
+            continue;
+        }
+        let r = std::panic::catch_unwind(c.run).unwrap_or_else(|e| {
+            let m = e.downcast_ref::<String>().cloned().or_else(|| e.downcast_ref::<&str>().map(|s| s.to_string())).unwrap_or_default();
+            vec![StepResult { name: format!("{}_panic", c.name), pass: false, msg: m }]
+        });
+        out.push((c.name.to_string(), r));
+    }
+    out
+}
