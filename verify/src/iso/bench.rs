@@ -272,7 +272,9 @@ impl LtBench {
             let recs = self.b.recs(0);
             while self.step.cursor < recs.len() {
                 let k = self.step.cursor;
-                if k >= 1 && recs[k - 1].t + rest >= self.step.t0 {
+                // bit k starts after the previous bit's sample point (or,
+                // after a reset, about one bit before its own)
+                if k >= 1 && (recs[k - 1].t + rest).max(recs[k].t.saturating_sub(self.b.bit_ps)) >= self.step.t0 {
                     let (p, c) = (recs[k - 1], recs[k]);
                     self.step.occ.note((p.field, p.pos), (c.field, c.pos, c.stuff));
                 }
@@ -290,7 +292,15 @@ impl LtBench {
                 None
             };
             if let Some(t) = fire {
-                let t = t.max(self.b.sim.next_edge_time().unwrap_or(t));
+                // The instant may be the clock just processed (no PH2 rest
+                // beyond the RX latency, a Reset entry): the plan then starts
+                // one clock late, as the Bosch bench's override does. A
+                // trigger instant further back is an error.
+                let next = self.b.sim.next_edge_time().unwrap_or(t);
+                if t + CLOCK_PS < next {
+                    return Err(format!("trigger {trig:?}: its instant {} ns has passed (now {} ns); wait for it while the plan before it plays", t / 1000, self.b.sim.now() / 1000));
+                }
+                let t = t.max(next);
                 self.run_until_time(t - 1);
                 return Ok(t);
             }

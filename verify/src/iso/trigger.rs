@@ -18,6 +18,9 @@
 //!   one occurrence: a dominant bit during integration, every 11-bit
 //!   recovery run). A bit belongs to the step when it begins at or after the
 //!   step's start; the bit in progress when the step starts does not.
+//!   Limitation: the first Wait_For_Bus_Idle bit after a reset is shown
+//!   without a bit before it, so it cannot be a trigger target (position 2
+//!   and later can).
 //! - **The bit start** is the instant the bus level that the IUT reads in
 //!   the bit's SYNC_SEG was on the bus: the clock carrying the previous
 //!   bit's events plus the rest of its PH2 minus the IUT's RX latency, as the
