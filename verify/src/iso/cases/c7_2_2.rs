@@ -29,6 +29,9 @@ pub fn frames() -> Vec<Frame> {
         Frame::std(0x3E0, &[0x0F, 0xF0, 0x83]),
         Frame::std(0x555, &[0xAA, 0x00, 0x00, 0x00]),
         Frame::std(0x120, &[0x1F, 0x80, 0x07, 0xE0, 0x3C]),
+        // ID 10, 11, RTR, IDE, r0 dominant: R stuff after r0; DLC 15 = 1111 then makes
+        // five recessive bits: D stuff after DLC 4
+        Frame::data(false, 0x124, 15, &[0x11; 8]),
     ]
 }
 
