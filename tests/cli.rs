@@ -204,3 +204,20 @@ fn controller_pinout_and_host_interface_switch() {
     let (ok, _, err) = canstar(&["generate", "controller", "--board", "clash.toml", "--out", "v4"], d.path());
     assert!(!ok && err.contains("pin conflict: pin H15"), "{err}");
 }
+
+#[test]
+fn conformance_iso_suite_runs_cases_by_clause() {
+    let d = tempfile::tempdir().unwrap();
+    let (ok, out, err) = canstar(&["conformance", "--suite", "iso", "--case", "7.2.2"], d.path());
+    assert!(ok, "{out}{err}");
+    assert!(out.contains("iso_7_2_2_stuff_error") && !out.contains("iso_7_1_1"), "{out}");
+    let last = out.lines().last().unwrap();
+    assert!(last.ends_with(" passed, 0 failed") && !last.starts_with("0 "), "{last}");
+    let (ok, out, err) = canstar(&["conformance", "--suite", "iso", "--case", "9.9"], d.path());
+    assert!(!ok && out.is_empty() && err.contains("no ISO case matches `9.9`") && err.contains("7.1.1"), "{out}{err}");
+    let (ok, _, err) = canstar(&["conformance", "--case", "7.1.1"], d.path());
+    assert!(!ok && err.contains("--suite iso"), "{err}");
+    let (ok, _, err) = canstar(&["conformance", "--suite", "iso", "--program", "idle"], d.path());
+    assert!(!ok && err.contains("bosch suite"), "{err}");
+    assert!(files_under(d.path()).is_empty(), "the ISO suite writes nothing");
+}

@@ -19,9 +19,30 @@ pub struct Args {
     lockstep: bool,
     #[command(flatten)]
     engine: canstar::engine::EngineArg,
+    /// The suite: `bosch` (the Bosch reference programs, the default) or `iso` (the
+    /// ISO 16845-1 cases implemented on the lower tester).
+    #[arg(long, default_value = "bosch", value_parser = ["bosch", "iso"])]
+    suite: String,
+    /// With `--suite iso`: run only the cases of this clause (`7.2.2`, or `7.2` for
+    /// all of 7.2) or of this case name (`iso_7_2_2_stuff_error`).
+    #[arg(long)]
+    case: Option<String>,
 }
 
 pub fn run(a: Args) -> Result<()> {
+    if a.suite == "iso" {
+        anyhow::ensure!(a.program.is_none() && a.vcd.is_none() && !a.lockstep, "--program, --vcd and --lockstep belong to the bosch suite");
+        if let Some(c) = &a.case {
+            let cases = canstar_verify::iso::cases();
+            let names: Vec<String> = cases.iter().map(|k| format!("{} ({})", k.clause, k.name)).collect();
+            anyhow::ensure!(cases.iter().any(|k| k.matches(c)), "no ISO case matches `{c}` (cases: {})", names.join(", "));
+        }
+        let mut out = StdoutWriter;
+        let (_, failed) = canstar_verify::iso::run_iso_cli(a.case.as_deref(), &mut out)?;
+        anyhow::ensure!(failed == 0, "{failed} ISO elementary test(s) failed");
+        return Ok(());
+    }
+    anyhow::ensure!(a.case.is_none(), "--case belongs to --suite iso");
     if let Some(p) = &a.program {
         let names: Vec<&str> = canstar_verify::conformance::programs().iter().map(|p| p.name).collect();
         anyhow::ensure!(names.contains(&p.as_str()), "unknown program `{p}` (programs: {})", names.join(", "));

@@ -55,6 +55,14 @@ pub struct IsoCase {
     pub run: fn() -> Vec<StepResult>,
 }
 
+impl IsoCase {
+    /// Does filter `f` select this case: its clause, a clause above it
+    /// (`7.2` selects 7.2.x, not 7.20), or its name?
+    pub fn matches(&self, f: &str) -> bool {
+        self.name == f || self.clause == f || self.clause.starts_with(&format!("{f}."))
+    }
+}
+
 /// The implemented cases in clause order.
 pub fn cases() -> Vec<IsoCase> {
     cases::all()
@@ -66,11 +74,7 @@ pub fn cases() -> Vec<IsoCase> {
 pub fn run_iso(filter: Option<&str>) -> Vec<(String, Vec<StepResult>)> {
     let mut out = vec![];
     for c in cases() {
-        let hit = match filter {
-            None => true,
-            Some(f) => c.name == f || c.clause == f || c.clause.starts_with(&format!("{f}.")),
-        };
-        if !hit {
+        if !filter.is_none_or(|f| c.matches(f)) {
             continue;
         }
         let r = std::panic::catch_unwind(c.run).unwrap_or_else(|e| {
@@ -80,4 +84,31 @@ pub fn run_iso(filter: Option<&str>) -> Vec<(String, Vec<StepResult>)> {
         out.push((c.name.to_string(), r));
     }
     out
+}
+
+/// `canstar conformance --suite iso [--case C]`: runs the matching cases,
+/// prints one line per case, the failed elementary tests with their message
+/// and a final `N passed, M failed` line; returns (passed, failed). A filter
+/// that matches no case prints the list of cases and counts one failure.
+pub fn run_iso_cli(filter: Option<&str>, out: &mut dyn std::io::Write) -> std::io::Result<(usize, usize)> {
+    let runs = run_iso(filter);
+    if runs.is_empty() {
+        let names: Vec<String> = cases().iter().map(|c| format!("{} ({})", c.clause, c.name)).collect();
+        writeln!(out, "no ISO case matches {}; cases: {}", filter.unwrap_or(""), names.join(", "))?;
+        writeln!(out, "0 passed, 1 failed")?;
+        return Ok((0, 1));
+    }
+    let (mut tp, mut tf) = (0, 0);
+    for (name, res) in &runs {
+        let pass = res.iter().filter(|r| r.pass).count();
+        let fail = res.len() - pass;
+        tp += pass;
+        tf += fail;
+        writeln!(out, "{name:<32} {:>4} tests, {pass:>4} passed, {fail:>3} failed", res.len())?;
+        for r in res.iter().filter(|r| !r.pass) {
+            writeln!(out, "  FAIL {}: {}", r.name, r.msg)?;
+        }
+    }
+    writeln!(out, "{tp} passed, {tf} failed")?;
+    Ok((tp, tf))
 }
