@@ -347,3 +347,39 @@ fn a_step_writes_its_vcd_on_request() {
     let changes = v.lines().filter(|l| l.starts_with('#')).count();
     assert!(changes > 100, "{changes} time stamps");
 }
+
+#[test]
+fn the_lt_answers_the_iuts_frame_and_checks_every_bit_of_it() {
+    let mut lb = LtBench::new(vec![iut()]);
+    lb.begin_step("tx");
+    let f = Frame::std(0x35A, &[0xC3, 0x00, 0x7E]);
+    lb.b.node_mut(0).request(f.clone());
+    lb.wait(Trigger::at(Field::Sof, 1), 30).unwrap();
+    let p = Plan::answer(T, &f, BuildOptions::default(), 3);
+    lb.play_and_run(&p);
+    lb.run_idle(20).unwrap();
+    let r = lb.end_step();
+    r.check_expects().unwrap();
+    assert_eq!(r.iut_events(EV_TX_OK).len(), 1);
+    assert_eq!(lb.b.tec(0), 0);
+    // the check reads the IUT's TX: another frame's bits do not match it
+    let other = Plan::answer(T, &Frame::std(0x35B, &[0xC3, 0x00, 0x7E]), BuildOptions::default(), 3);
+    let mut wrong = r.clone();
+    wrong.plays[0].plan = other;
+    assert!(wrong.check_expects().is_err());
+    // without the LT's ACK the IUT sees an ACK error
+    let mut lb = LtBench::new(vec![iut()]);
+    lb.begin_step("tx no ack");
+    lb.b.node_mut(0).request(f.clone());
+    lb.wait(Trigger::at(Field::Sof, 1), 30).unwrap();
+    let mut p = Plan::answer(T, &f, BuildOptions::default(), 3);
+    let ack = p.find(Field::AckSlot, 1, false).unwrap();
+    p.set_level(ack, true).truncate(ack + 1).push_recessive(20);
+    lb.b.node_mut(0).withdraw(); // this attempt finishes, no retry
+    lb.play_and_run(&p);
+    lb.run_idle(40).unwrap();
+    let r = lb.end_step();
+    let e = r.iut_events(EV_ACK_ERR);
+    assert_eq!(e.len(), 1, "{}", r.dump(0));
+    assert_eq!(lb.b.tec(0), 8);
+}

@@ -96,7 +96,7 @@ pub fn net_timeline(windows: &[(Window, bool)]) -> Vec<(u64, FaultMode)> {
     let mut out = vec![];
     let mut cur = FaultMode::None;
     for &c in &cuts {
-        let covering = |own: bool| windows.iter().filter(|(w, o)| *o == own && w.start <= c && c < w.end).map(|(w, _)| w.action).last();
+        let covering = |own: bool| windows.iter().filter(|(w, o)| *o == own && w.start <= c && c < w.end).map(|(w, _)| w.action).next_back();
         let m = compose(covering(false), covering(true));
         if m != cur {
             out.push((c, m));

@@ -164,6 +164,24 @@ impl Plan {
         p
     }
 
+    /// The LT's answer to frame `f` sent by the IUT (played from the IUT's
+    /// SOF, `Trigger::at(Field::Sof, 1)`): recessive except a dominant ACK
+    /// slot, every bit of the IUT's frame from SOF to the ACK delimiter and
+    /// the End_Of_Frame expected on the IUT's TX, then `tail` recessive bits.
+    /// The template of the cases with the IUT as transmitter.
+    pub fn answer(timing: BtlConfig, f: &Frame, o: BuildOptions, tail: usize) -> Plan {
+        let mut p = Plan::new(timing);
+        let ntq = timing.ntq();
+        for b in bus_bits(f, o, false) {
+            let ack = b.field == Field::AckSlot;
+            let label = Label { field: b.field, pos: b.pos as u32, stuff: b.stuff };
+            p.expects.push(Expect { bit: p.bits.len(), level: b.level, what: "IUT frame bit" });
+            p.bits.push(PlanBit { level: !ack, tq: ntq, label: Some(label) });
+        }
+        p.push_recessive(tail);
+        p
+    }
+
     /// Append frame `f` (see [`Plan::frame`]); returns the index of its SOF.
     pub fn push_frame(&mut self, f: &Frame, o: BuildOptions) -> usize {
         let first = self.bits.len();
