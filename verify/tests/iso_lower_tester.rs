@@ -383,3 +383,26 @@ fn the_lt_answers_the_iuts_frame_and_checks_every_bit_of_it() {
     assert_eq!(e.len(), 1, "{}", r.dump(0));
     assert_eq!(lb.b.tec(0), 8);
 }
+
+#[test]
+fn a_trigger_at_the_second_error_flag_of_the_step() {
+    // stuff error at the dominant stuff bit after Identifier 8; a bus-wide
+    // recessive bit in the 3rd bit of the IUT's flag is a bit error that
+    // restarts the flag: the second Active_Error_Flag of the step
+    let mut lb = LtBench::new(vec![iut()]);
+    lb.begin_step("2nd flag");
+    let mut p = Plan::frame(T, &stuffy(), BuildOptions::default());
+    let s = p.find(Field::Ident, 8, true).unwrap();
+    p.set_level(s, true).truncate(s + 1).push_recessive(30);
+    p.disturb(Disturbance { at: At::tq(s + 3, 0), span: Span::Bits(1), action: Action::Force(true), target: Target::Bus });
+    let k = lb.play(&p);
+    let t1 = lb.wait(Trigger::at(Field::ActFlag, 1), 40).unwrap();
+    let t2 = lb.wait(Trigger::at(Field::ActFlag, 1).nth(2).tq(2), 40).unwrap();
+    lb.run_plan();
+    lb.run_idle(40).unwrap();
+    let r = lb.end_step();
+    assert_eq!(t1, r.bit_start(k, s + 1), "the first flag starts after the stuff bit");
+    assert_eq!(t2, r.bit_start(k, s + 4) + 2 * CLK, "the second flag starts after the disturbed flag bit, + 2 TQ");
+    assert_eq!(r.iut_events(EV_AEF).len(), 2, "{}", r.dump(0));
+    assert_eq!(lb.b.rec(0), 1 + 8, "stuff error +1, bit error in the flag +8");
+}
