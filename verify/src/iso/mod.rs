@@ -28,7 +28,19 @@
 //! [`cases`] holds the ISO 16845-1 cases implemented so far, one file per
 //! case, named by clause (`iso_7_1_1`); [`run_iso`] runs those matching a
 //! filter and returns one [`crate::conformance::StepResult`] per elementary
-//! test (`iso_7_1_1_e3`).
+//! test (`iso_7_1_1_id2aa_dlc3`); `canstar conformance --suite iso [--case C]`
+//! prints them ([`run_iso_cli`]).
+//!
+//! # Limits
+//!
+//! - The LT and every node run on the IUT's clock: no oscillator tolerance
+//!   and no other bit rate (the bit-timing clauses 7.8 and 8.8 need them).
+//! - A trigger places the bit start from the previous bit's sample point and
+//!   the nominal PH2; a resynchronisation in that PH2 is not accounted for.
+//! - Disturbances of two plans that overlap in time are not composed with
+//!   each other (those of one plan are).
+//! - Counter presets are invisible to the golden model: do not run an LT
+//!   bench in lock-step mode (`crate::conformance::set_lockstep`).
 
 pub mod bench;
 pub mod cases;

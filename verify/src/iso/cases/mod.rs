@@ -2,6 +2,28 @@
 //! (see each file's documentation for the clause and what it checks). A case
 //! is a function returning one [`crate::conformance::StepResult`] per
 //! elementary test; [`all`] lists them for [`super::run_iso`].
+//!
+//! # Writing a case
+//!
+//! - File `c<clause>.rs` (`c7_2_2.rs`), a doc comment naming the clause and
+//!   saying in our own words what the case checks, an entry in [`all`] with
+//!   the clause and the name `iso_<clause>_<topic>`, and a test in
+//!   `verify/tests/iso_cases.rs` running it through `run_iso`.
+//! - One [`super::LtBench`] per case (or per group of elementary tests that
+//!   need another configuration), one step per elementary test:
+//!   `begin_step`, `preset` of the counters the case starts from, then
+//!   - IUT as receiver (7.x): `Plan::frame` of the LT's frame, changed with
+//!     `find`/`set_level`/`lengthen`/`shorten`/`glitch`/`disturb`, cut after
+//!     the faulty bit (`truncate` + `push_recessive`) when the IUT is to flag,
+//!     `expect` for the IUT's answer (flag bits, ACK), `play_and_run`;
+//!   - IUT as transmitter (8.x): `request` a frame on node 0, `wait` for
+//!     `Trigger::at(Field::Sof, 1)`, play `Plan::answer` (ACK and every bit of
+//!     the IUT's frame expected), or wait for the bit to disturb and play a
+//!     short plan there;
+//!   - `end_step`, then assert on the record (`check_expects`, `iut_events`,
+//!     the bit records) and on the counters, with `ensure!`.
+//! - Name elementary tests `iso_<clause>_<what varies>` so a failure names
+//!   the situation (`iso_7_2_2_f0_id_8_D`).
 
 use super::IsoCase;
 
