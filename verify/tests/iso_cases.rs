@@ -34,8 +34,21 @@ fn iso_7_2_2_stuff_error() {
 }
 
 #[test]
+fn iso_8_1_1_identifier_and_dlc() {
+    let runs = run_iso(Some("8.1.1"));
+    assert_eq!(runs.len(), 1);
+    let r = &runs[0].1;
+    assert_eq!(r.len(), 8 * 9, "8 identifiers x DLC 0..8");
+    let f = failures(r);
+    assert!(f.is_empty(), "{} failed:\n{}", f.len(), f.join("\n"));
+}
+
+#[test]
 fn filters_select_by_clause_prefix_and_name() {
     assert!(run_iso(Some("9.9")).is_empty());
+    let all: Vec<String> = run_iso(None).into_iter().map(|(n, _)| n).collect();
+    assert_eq!(all, ["iso_7_1_1_identifier_and_dlc", "iso_7_2_2_stuff_error", "iso_8_1_1_identifier_and_dlc"]);
+    assert_eq!(run_iso(Some("8")).len(), 1);
     assert!(run_iso(Some("7.1")).iter().all(|(n, _)| n.starts_with("iso_7_1_")));
     // "7.1" must not select 7.10 .. 7.19 by accident
     assert!(!run_iso(Some("7.1")).iter().any(|(n, _)| n.starts_with("iso_7_2")));

@@ -29,10 +29,12 @@ use super::IsoCase;
 
 pub mod c7_1_1;
 pub mod c7_2_2;
+pub mod c8_1_1;
 
 pub fn all() -> Vec<IsoCase> {
     vec![
         IsoCase { clause: "7.1.1", name: "iso_7_1_1_identifier_and_dlc", run: c7_1_1::run },
         IsoCase { clause: "7.2.2", name: "iso_7_2_2_stuff_error", run: c7_2_2::run },
+        IsoCase { clause: "8.1.1", name: "iso_8_1_1_identifier_and_dlc", run: c8_1_1::run },
     ]
 }
