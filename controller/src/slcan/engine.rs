@@ -18,8 +18,13 @@
 //! Commands (validity as described in [`super`]; BEL otherwise):
 //! - `O`/`L` (closed): BTR0, BTR1, IER = BEIE|ALIE|EPIE|DOIE, MOD = 0 / LOM.
 //! - `C`: MOD = RM (entering reset mode empties the RX FIFO).
-//! - `t`/`T`/`r`/`R` (open, not listen-only): read SR; TBS = 0 → BEL; else
-//!   the 13 bytes of the TX buffer (FI, identifier, data; unused bytes 0),
+//! - `t`/`T`/`r`/`R` (open, not listen-only): read SR until TBS = 1, at
+//!   most `tx_wait` times ([`SlcanParams::tx_wait_polls`]: 20 ms of the
+//!   nominal clock, longer than a frame at 10 kbit/s), so that a host that
+//!   sends frames back to back (python-can, slcand) is not refused while
+//!   the previous frame is on the bus; still busy → BEL (no ACK, bus-off,
+//!   arbitration lost for that long). Received frames wait meanwhile (in
+//!   the SJA1000's 64-byte FIFO). Then the 13 bytes of the TX buffer (FI, identifier, data; unused bytes 0),
 //!   then CMR = TR; reply `z\r` / `Z\r`. The reply means "queued", as on a
 //!   Lawicel adapter, not "sent".
 //! - `F`: read SR, read IR (the read clears DOI, EPI, ALI, BEI); if SR.DOS,
@@ -96,6 +101,9 @@ pub struct Engine {
     srv: DFF<Bits<8>>,
     flags: DFF<Bits<8>>,
     rximg: DFF<Bits<104>>,
+    wcnt: DFF<Bits<20>>,
+    /// SR reads (4 clocks each) to wait for TBS before answering BEL.
+    tx_wait: Constant<Bits<20>>,
 
     /// The `Sn` table: entry n in bits 16n+15..16n (BTR0 high byte), and
     /// which entries exist.
@@ -179,6 +187,8 @@ impl Engine {
             srv: Default::default(),
             flags: Default::default(),
             rximg: Default::default(),
+            wcnt: Default::default(),
+            tx_wait: Constant::new((p.tx_wait_polls as u64).into()),
             tbl: Constant::new(tbits),
             tvalid: Constant::new(valid.into()),
             dbtr0: Constant::new((d0 as u64).into()),
@@ -216,7 +226,7 @@ pub const SERIAL: u16 = 0xCA57;
 impl Logic for Engine {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, st, ret, wcyc, wwe, wadr, wdat, rd, open, lom, btr0, btr1, k, rk, srv, flags, rximg);
+        dff_setup!(self, clock, st, ret, wcyc, wwe, wadr, wdat, rd, open, lom, btr0, btr1, k, rk, srv, flags, rximg, wcnt);
 
         // ---- the parsed line ----
         self.l_c.next = self.c_data.val().get_bits::<8>(0);
@@ -321,6 +331,7 @@ impl Logic for Engine {
                 }
             }
             EState::Exec => {
+                self.wcnt.d.next = 0.into();
                 self.rk.d.next = 1.into();
                 self.st.d.next = EState::Reply;
                 if self.l_len.val() == 0 {
@@ -439,9 +450,19 @@ impl Logic for Engine {
             }
             EState::TxCheck => {
                 if (self.rd.q.val() & 0x04) == 0 {
-                    // TBS = 0: the TX buffer is busy
-                    self.rk.d.next = 1.into();
-                    self.st.d.next = EState::Reply;
+                    // TBS = 0: wait for the TX buffer (read SR again), BEL
+                    // when it stays busy
+                    self.wcnt.d.next = self.wcnt.q.val() + 1;
+                    if self.wcnt.q.val() == self.tx_wait.val() {
+                        self.rk.d.next = 1.into();
+                        self.st.d.next = EState::Reply;
+                    } else {
+                        self.wcyc.d.next = true;
+                        self.wwe.d.next = false;
+                        self.wadr.d.next = 0x02.into();
+                        self.st.d.next = EState::WbWait;
+                        self.ret.d.next = EState::TxCheck;
+                    }
                 } else {
                     self.k.d.next = 0.into();
                     self.st.d.next = EState::TxLoad;
@@ -597,6 +618,7 @@ impl Logic for Engine {
             self.srv.d.next = 0.into();
             self.flags.d.next = 0.into();
             self.rximg.d.next = 0.into();
+            self.wcnt.d.next = 0.into();
         }
 
         // ---- sub-blocks ----

@@ -118,6 +118,9 @@ pub struct SlcanParams {
     pub clocks_per_bit: u32,
     /// BTR0/BTR1 of S0..S9 (`None`: the clock cannot make the rate).
     pub table: [Option<(u8, u8)>; 10],
+    /// How many SR reads (4 clocks each) a transmit command waits for the
+    /// TX buffer before answering BEL: 20 ms of the nominal clock.
+    pub tx_wait_polls: u32,
 }
 
 impl SlcanParams {
@@ -156,7 +159,8 @@ impl SlcanParams {
         for (k, r) in SN_RATES.iter().enumerate() {
             table[k] = btr_for(clock_hz, *r);
         }
-        Self { clock_hz, clocks_per_bit, table }
+        let tx_wait_polls = (clock_hz / 50 / 4).clamp(1, (1 << 20) - 1) as u32;
+        Self { clock_hz, clocks_per_bit, table, tx_wait_polls }
     }
 
     /// The BTR0/BTR1 loaded at reset (before any `S`/`s`): S6 (500 kbit/s)
