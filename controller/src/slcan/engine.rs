@@ -13,7 +13,8 @@
 //! of a TX-buffer write or an RX-window read); `rk` (the reply kind: 0 OK,
 //! 1 BEL, 2 `z`, 3 `Z`, 4 `F`, 5 `V`, 6 `N`, 7 a received frame); `srv`,
 //! `flags` (SR and the status flags of `F`); `rximg` (the 13 bytes of the
-//! receive window, FI in bits 103..96).
+//! receive window, FI in bits 103..96). The reply line for `rk` is composed
+//! by [`Reply`].
 //!
 //! Commands (validity as described in [`super`]; BEL otherwise):
 //! - `O`/`L` (closed): BTR0, BTR1, IER = BEIE|ALIE|EPIE|DOIE, MOD = 0 / LOM.
@@ -40,6 +41,7 @@
 
 use super::linetx::LineTx;
 use super::parse::LineParser;
+use super::reply::Reply;
 use super::SlcanParams;
 use rust_hdl::prelude::*;
 
@@ -83,6 +85,7 @@ pub struct Engine {
     pub wb_ack: Signal<In, Bit>,
 
     parser: LineParser,
+    reply: Reply,
     out: LineTx,
 
     st: DFF<EState>,
@@ -111,9 +114,6 @@ pub struct Engine {
     tvalid: Constant<Bits<10>>,
     dbtr0: Constant<Bits<8>>,
     dbtr1: Constant<Bits<8>>,
-    /// The digits of the `V` and `N` replies at the top of 128 bits.
-    vnib: Constant<Bits<128>>,
-    nnib: Constant<Bits<128>>,
 
     l_c: Signal<Local, Bits<8>>,
     l_cmd: Signal<Local, Bits<8>>,
@@ -127,13 +127,12 @@ pub struct Engine {
     l_ent: Signal<Local, Bits<16>>,
     l_fi: Signal<Local, Bits<8>>,
     l_timg: Signal<Local, Bits<104>>,
-    l_rfi: Signal<Local, Bits<8>>,
-    l_rdlc: Signal<Local, Bits<4>>,
-    l_rn: Signal<Local, Bits<5>>,
-    l_rnib: Signal<Local, Bits<128>>,
-    l_rpre: Signal<Local, Bits<8>>,
-    l_rcnt: Signal<Local, Bits<5>>,
     l_fl: Signal<Local, Bits<8>>,
+    l_take: Signal<Local, Bit>,
+    l_load: Signal<Local, Bit>,
+    l_tsh: Signal<Local, Bits<160>>,
+    l_tv: Signal<Local, Bits<10>>,
+    l_tbyte: Signal<Local, Bits<104>>,
 }
 
 impl Engine {
@@ -170,6 +169,7 @@ impl Engine {
             wb_dat_r: Default::default(),
             wb_ack: Default::default(),
             parser: Default::default(),
+            reply: Default::default(),
             out: Default::default(),
             st: Default::default(),
             ret: Default::default(),
@@ -193,8 +193,6 @@ impl Engine {
             tvalid: Constant::new(valid.into()),
             dbtr0: Constant::new((d0 as u64).into()),
             dbtr1: Constant::new((d1 as u64).into()),
-            vnib: Constant::new(super::bits128((VERSION as u128) << 112)),
-            nnib: Constant::new(super::bits128((SERIAL as u128) << 112)),
             l_c: Default::default(),
             l_cmd: Default::default(),
             l_len: Default::default(),
@@ -207,21 +205,15 @@ impl Engine {
             l_ent: Default::default(),
             l_fi: Default::default(),
             l_timg: Default::default(),
-            l_rfi: Default::default(),
-            l_rdlc: Default::default(),
-            l_rn: Default::default(),
-            l_rnib: Default::default(),
-            l_rpre: Default::default(),
-            l_rcnt: Default::default(),
             l_fl: Default::default(),
+            l_take: Default::default(),
+            l_load: Default::default(),
+            l_tsh: Default::default(),
+            l_tv: Default::default(),
+            l_tbyte: Default::default(),
         }
     }
 }
-
-/// The `V` reply's four hex digits (hardware 1, software 1).
-pub const VERSION: u16 = 0x0101;
-/// The `N` reply's four hex digits.
-pub const SERIAL: u16 = 0xCA57;
 
 impl Logic for Engine {
     #[hdl_gen]
@@ -252,8 +244,11 @@ impl Logic for Engine {
             self.l_fok.next = false;
         }
         self.l_ent.next = 0.into();
+        self.l_tsh.next = 0.into();
+        self.l_tv.next = self.tvalid.val() >> self.parser.dlc.val();
         if self.parser.dlc.val() <= 9 {
-            self.l_ent.next = (self.tbl.val() >> (bit_cast::<8, 4>(self.parser.dlc.val()) << 4)).get_bits::<16>(0);
+            self.l_tsh.next = self.tbl.val() >> (bit_cast::<8, 4>(self.parser.dlc.val()) << 4);
+            self.l_ent.next = self.l_tsh.val().get_bits::<16>(0);
         }
 
         // ---- the TX buffer image: 13 bytes, FI in bits 103..96 ----
@@ -271,53 +266,17 @@ impl Logic for Engine {
                 | (bit_cast::<104, 64>(self.parser.data.val()) << 16);
         }
 
-        // ---- the line of a received frame ----
-        self.l_rfi.next = self.rximg.q.val().get_bits::<8>(96);
-        self.l_rdlc.next = self.l_rfi.val().get_bits::<4>(0);
-        if self.l_rdlc.val() > 8 {
-            self.l_rdlc.next = 8.into();
-        }
-        self.l_rn.next = bit_cast::<5, 4>(self.l_rdlc.val()) << 1;
-        if self.l_rfi.val().get_bit(6) {
-            self.l_rn.next = 0.into();
-        }
-        if self.l_rfi.val().get_bit(7) {
-            self.l_rpre.next = 0x54.into();
-            if self.l_rfi.val().get_bit(6) {
-                self.l_rpre.next = 0x52.into();
-            }
-            self.l_rcnt.next = self.l_rn.val() + 9;
-            self.l_rnib.next = (bit_cast::<128, 29>(self.rximg.q.val().get_bits::<29>(67)) << 96)
-                | (bit_cast::<128, 4>(self.l_rdlc.val()) << 92)
-                | (bit_cast::<128, 64>(self.rximg.q.val().get_bits::<64>(0)) << 28);
-        } else {
-            self.l_rpre.next = 0x74.into();
-            if self.l_rfi.val().get_bit(6) {
-                self.l_rpre.next = 0x72.into();
-            }
-            self.l_rcnt.next = self.l_rn.val() + 4;
-            self.l_rnib.next = (bit_cast::<128, 11>(self.rximg.q.val().get_bits::<11>(85)) << 116)
-                | (bit_cast::<128, 4>(self.l_rdlc.val()) << 112)
-                | (bit_cast::<128, 64>(self.rximg.q.val().get_bits::<64>(16)) << 48);
-        }
-        // (window bytes beyond the frame are stale: only l_rcnt digits go out)
+        self.l_tbyte.next = self.l_timg.val() << (bit_cast::<7, 4>(self.k.q.val()) << 3);
 
         // ---- defaults ----
-        self.parser.take.next = false;
-        self.c_pop.next = false;
-        self.out.load.next = false;
-        self.out.l_pre.next = 0.into();
-        self.out.l_haspre.next = false;
-        self.out.l_nib.next = 0.into();
-        self.out.l_cnt.next = 0.into();
-        self.out.l_cr.next = true;
+        self.l_take.next = false;
+        self.l_load.next = false;
         self.l_fl.next = 0.into();
 
         match self.st.q.val() {
             EState::Idle => {
                 if self.c_valid.val() {
-                    self.parser.take.next = true;
-                    self.c_pop.next = true;
+                    self.l_take.next = true;
                     if self.l_c.val() == 0x0D {
                         self.st.d.next = EState::Exec;
                     }
@@ -345,7 +304,7 @@ impl Logic for Engine {
                         & !self.open.q.val()
                         & (self.parser.dlc.val() <= 9)
                     {
-                        if (self.tvalid.val() >> self.parser.dlc.val()).get_bit(0) {
+                        if self.l_tv.val().get_bit(0) {
                             self.btr0.d.next = self.l_ent.val().get_bits::<8>(8);
                             self.btr1.d.next = self.l_ent.val().get_bits::<8>(0);
                             self.rk.d.next = 0.into();
@@ -472,7 +431,7 @@ impl Logic for Engine {
                 self.wcyc.d.next = true;
                 self.wwe.d.next = true;
                 self.wadr.d.next = bit_cast::<8, 4>(self.k.q.val()) + 0x10;
-                self.wdat.d.next = (self.l_timg.val() << (bit_cast::<7, 4>(self.k.q.val()) << 3)).get_bits::<8>(96);
+                self.wdat.d.next = self.l_tbyte.val().get_bits::<8>(96);
                 self.st.d.next = EState::WbWait;
                 self.ret.d.next = EState::TxNext;
             }
@@ -559,47 +518,21 @@ impl Logic for Engine {
             }
             EState::Reply => {
                 if !self.out.busy.val() {
-                    self.out.load.next = true;
+                    self.l_load.next = true;
                     self.st.d.next = EState::Idle;
                 }
             }
         }
 
         // ---- the reply line ----
-        self.out.l_haspre.next = true;
-        if self.rk.q.val() == 0 {
-            self.out.l_haspre.next = false;
-        }
-        if self.rk.q.val() == 1 {
-            self.out.l_pre.next = 0x07.into();
-            self.out.l_cr.next = false;
-        }
-        if self.rk.q.val() == 2 {
-            self.out.l_pre.next = 0x7A.into();
-        }
-        if self.rk.q.val() == 3 {
-            self.out.l_pre.next = 0x5A.into();
-        }
-        if self.rk.q.val() == 4 {
-            self.out.l_pre.next = 0x46.into();
-            self.out.l_nib.next = bit_cast::<128, 8>(self.flags.q.val()) << 120;
-            self.out.l_cnt.next = 2.into();
-        }
-        if self.rk.q.val() == 5 {
-            self.out.l_pre.next = 0x56.into();
-            self.out.l_nib.next = self.vnib.val();
-            self.out.l_cnt.next = 4.into();
-        }
-        if self.rk.q.val() == 6 {
-            self.out.l_pre.next = 0x4E.into();
-            self.out.l_nib.next = self.nnib.val();
-            self.out.l_cnt.next = 4.into();
-        }
-        if self.rk.q.val() == 7 {
-            self.out.l_pre.next = self.l_rpre.val();
-            self.out.l_nib.next = self.l_rnib.val();
-            self.out.l_cnt.next = self.l_rcnt.val();
-        }
+        self.reply.rk.next = self.rk.q.val();
+        self.reply.flags.next = self.flags.q.val();
+        self.reply.rximg.next = self.rximg.q.val();
+        self.out.l_pre.next = self.reply.pre.val();
+        self.out.l_haspre.next = self.reply.haspre.val();
+        self.out.l_nib.next = self.reply.nib.val();
+        self.out.l_cnt.next = self.reply.cnt.val();
+        self.out.l_cr.next = self.reply.cr.val();
 
         if self.rst.val() {
             self.st.d.next = EState::Idle;
@@ -621,7 +554,12 @@ impl Logic for Engine {
             self.wcnt.d.next = 0.into();
         }
 
-        // ---- sub-blocks ----
+        // ---- sub-blocks and outputs: each assigned once per evaluation, so
+        // that no glitch of this block reaches another in an event-driven
+        // simulator (a zero-delay loop with the line transmitter otherwise) ----
+        self.parser.take.next = self.l_take.val();
+        self.c_pop.next = self.l_take.val();
+        self.out.load.next = self.l_load.val();
         self.parser.clock.next = self.clock.val();
         self.parser.rst.next = self.rst.val();
         self.parser.ch.next = self.c_data.val();

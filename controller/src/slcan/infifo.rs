@@ -41,6 +41,7 @@ pub struct InFifo {
     lost: DFF<Bit>,
     l_wr: Signal<Local, Bit>,
     l_rd: Signal<Local, Bit>,
+    l_wd: Signal<Local, Bits<9>>,
 }
 
 impl Default for InFifo {
@@ -64,6 +65,7 @@ impl Default for InFifo {
             lost: Default::default(),
             l_wr: Default::default(),
             l_rd: Default::default(),
+            l_wd: Default::default(),
         }
     }
 }
@@ -78,10 +80,11 @@ impl Logic for InFifo {
         self.l_wr.next = self.push.val() & (self.cnt.q.val() != 63);
         self.l_rd.next = (self.cnt.q.val() != 0) & !self.fetch.q.val() & (!self.ov.q.val() | self.pop.val());
         self.ram.write_address.next = self.wp.q.val();
-        self.ram.write_data.next = bit_cast::<9, 8>(self.wdata.val());
+        self.l_wd.next = bit_cast::<9, 8>(self.wdata.val());
         if self.lost.q.val() {
-            self.ram.write_data.next = bit_cast::<9, 8>(self.wdata.val()) | 0x100;
+            self.l_wd.next = bit_cast::<9, 8>(self.wdata.val()) | 0x100;
         }
+        self.ram.write_data.next = self.l_wd.val();
         self.ram.write_enable.next = self.l_wr.val();
         self.ram.read_address.next = self.rp.q.val();
 

@@ -34,6 +34,8 @@ pub struct LineTx {
     cnt: DFF<Bits<5>>,
     cr: DFF<Bit>,
     l_d: Signal<Local, Bits<4>>,
+    l_ts: Signal<Local, Bit>,
+    l_td: Signal<Local, Bits<8>>,
 }
 
 impl Default for LineTx {
@@ -58,6 +60,8 @@ impl Default for LineTx {
             cnt: Default::default(),
             cr: Default::default(),
             l_d: Default::default(),
+            l_ts: Default::default(),
+            l_td: Default::default(),
         }
     }
 }
@@ -66,17 +70,17 @@ impl Logic for LineTx {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(self, clock, ph, pre, haspre, nb, cnt, cr);
-        self.tx_start.next = false;
+        self.l_ts.next = false;
         self.l_d.next = self.nb.q.val().get_bits::<4>(124);
-        self.tx_data.next = self.pre.q.val();
+        self.l_td.next = self.pre.q.val();
         if self.ph.q.val() == 2 {
-            self.tx_data.next = bit_cast::<8, 4>(self.l_d.val()) + 0x30;
+            self.l_td.next = bit_cast::<8, 4>(self.l_d.val()) + 0x30;
             if self.l_d.val() > 9 {
-                self.tx_data.next = bit_cast::<8, 4>(self.l_d.val()) + 0x37;
+                self.l_td.next = bit_cast::<8, 4>(self.l_d.val()) + 0x37;
             }
         }
         if self.ph.q.val() == 3 {
-            self.tx_data.next = 0x0D.into();
+            self.l_td.next = 0x0D.into();
         }
         if self.ph.q.val() == 0 {
             if self.load.val() {
@@ -92,7 +96,7 @@ impl Logic for LineTx {
             if !self.haspre.q.val() {
                 self.ph.d.next = 2.into();
             } else if !self.tx_busy.val() {
-                self.tx_start.next = true;
+                self.l_ts.next = true;
                 self.ph.d.next = 2.into();
             }
         }
@@ -100,7 +104,7 @@ impl Logic for LineTx {
             if self.cnt.q.val() == 0 {
                 self.ph.d.next = 3.into();
             } else if !self.tx_busy.val() {
-                self.tx_start.next = true;
+                self.l_ts.next = true;
                 self.nb.d.next = self.nb.q.val() << 4;
                 self.cnt.d.next = self.cnt.q.val() - 1;
             }
@@ -109,7 +113,7 @@ impl Logic for LineTx {
             if !self.cr.q.val() {
                 self.ph.d.next = 0.into();
             } else if !self.tx_busy.val() {
-                self.tx_start.next = true;
+                self.l_ts.next = true;
                 self.ph.d.next = 0.into();
             }
         }
@@ -119,7 +123,10 @@ impl Logic for LineTx {
             self.haspre.d.next = false;
             self.cr.d.next = false;
         }
+        // outputs assigned once (no glitch reaches another block)
         self.busy.next = self.ph.q.val() != 0;
+        self.tx_start.next = self.l_ts.val();
+        self.tx_data.next = self.l_td.val();
     }
 }
 

@@ -13,6 +13,8 @@
 //!   characters into the fields of one command line as they arrive;
 //! - [`linetx`]: [`LineTx`](linetx::LineTx), the single transmit path: it
 //!   sends one reply or frame line at a time (prefix, hex digits, CR);
+//! - [`reply`]: [`Reply`](reply::Reply), the reply or frame line for a
+//!   reply kind (combinational);
 //! - [`engine`]: [`Engine`](engine::Engine), the command sequencer: it
 //!   executes parsed lines and forwards received frames, driving the
 //!   SJA1000 through its Wishbone port as a driver would;
@@ -44,6 +46,7 @@ pub mod engine;
 pub mod infifo;
 pub mod linetx;
 pub mod parse;
+pub mod reply;
 pub mod top;
 pub mod uart;
 
@@ -217,3 +220,5 @@ mod tests {
         assert!(SlcanParams::new(16_000_000, 8_000_000).unwrap_err().contains("at least 4"));
     }
 }
+#[cfg(test)]
+mod engine_tests;

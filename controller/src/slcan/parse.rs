@@ -93,15 +93,15 @@ impl Logic for LineParser {
         self.l_nib.next = 0.into();
         if (self.l_c.val() >= 0x30) & (self.l_c.val() <= 0x39) {
             self.l_hex.next = true;
-            self.l_nib.next = (self.l_c.val() - 0x30).get_bits::<4>(0);
+            self.l_nib.next = self.l_c.val().get_bits::<4>(0);
         }
         if (self.l_c.val() >= 0x41) & (self.l_c.val() <= 0x46) {
             self.l_hex.next = true;
-            self.l_nib.next = (self.l_c.val() - 0x37).get_bits::<4>(0);
+            self.l_nib.next = self.l_c.val().get_bits::<4>(0) + 9;
         }
         if (self.l_c.val() >= 0x61) & (self.l_c.val() <= 0x66) {
             self.l_hex.next = true;
-            self.l_nib.next = (self.l_c.val() - 0x57).get_bits::<4>(0);
+            self.l_nib.next = self.l_c.val().get_bits::<4>(0) + 9;
         }
         self.l_std.next = (self.cmd_r.q.val() == 0x74) | (self.cmd_r.q.val() == 0x72);
         self.l_ext.next = (self.cmd_r.q.val() == 0x54) | (self.cmd_r.q.val() == 0x52);

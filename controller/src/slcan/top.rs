@@ -51,6 +51,13 @@ impl SlcanTop {
         }
     }
 
+    /// The REC rule at a receiver's dominant last EOF bit of the SJA1000's
+    /// core ([`Sja1000::with_eof7_rule`]).
+    pub fn with_eof7_rule(mut self, rule: crate::core::Eof7Rule) -> Self {
+        self.can = std::mem::take(&mut self.can).with_eof7_rule(rule);
+        self
+    }
+
     /// The SJA1000 inside (read-only, for tests).
     pub fn sja1000(&self) -> &Sja1000 {
         &self.can

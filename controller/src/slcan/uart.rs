@@ -3,7 +3,7 @@
 //!
 //! [`UartRx`] state: `s1`, `s2` (2-flip-flop synchroniser of `rxd`, reset
 //! to 1 = idle); `st` (Idle, Start, Data, Stop, Break); `cnt` (clocks in the
-//! bit); `bit` (data bits taken); `sh` (the shift register, LSB first).
+//! bit); `nbit` (data bits taken); `sh` (the shift register, LSB first).
 //! A falling edge starts a character; the start bit is checked again
 //! mid-bit (a low pulse shorter than half a bit is a glitch: back to idle,
 //! nothing reported); data bits are sampled mid-bit, every `cpb` clocks;
@@ -13,7 +13,7 @@
 //! No oversampling vote, no parity, no FIFO (see [`super::infifo`]).
 //!
 //! [`UartTx`] state: `busy`, `sh` (start, 8 data, stop, LSB first), `cnt`,
-//! `bit`. `start` while `busy` = 0 takes `data`; `busy` is 1 from the next
+//! `nbit`. `start` while `busy` = 0 takes `data`; `busy` is 1 from the next
 //! clock until the end of the stop bit. `txd` is registered (1 when idle).
 //! `rst` returns both to idle.
 
@@ -41,7 +41,7 @@ pub struct UartRx {
     s2: DFF<Bit>,
     st: DFF<RxState>,
     cnt: DFF<Bits<16>>,
-    bit: DFF<Bits<4>>,
+    nbit: DFF<Bits<4>>,
     sh: DFF<Bits<8>>,
     vld: DFF<Bit>,
     fe: DFF<Bit>,
@@ -64,7 +64,7 @@ impl UartRx {
             s2: Default::default(),
             st: Default::default(),
             cnt: Default::default(),
-            bit: Default::default(),
+            nbit: Default::default(),
             sh: Default::default(),
             vld: Default::default(),
             fe: Default::default(),
@@ -77,7 +77,7 @@ impl UartRx {
 impl Logic for UartRx {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, s1, s2, st, cnt, bit, sh, vld, fe);
+        dff_setup!(self, clock, s1, s2, st, cnt, nbit, sh, vld, fe);
         self.s1.d.next = self.rxd.val();
         self.s2.d.next = self.s1.q.val();
         self.vld.d.next = false;
@@ -93,7 +93,7 @@ impl Logic for UartRx {
             RxState::Start => {
                 if self.cnt.q.val() == self.half.val() {
                     self.cnt.d.next = 0.into();
-                    self.bit.d.next = 0.into();
+                    self.nbit.d.next = 0.into();
                     if self.s2.q.val() {
                         // a glitch, not a start bit
                         self.st.d.next = RxState::Idle;
@@ -106,8 +106,8 @@ impl Logic for UartRx {
                 if self.cnt.q.val() == self.last.val() {
                     self.cnt.d.next = 0.into();
                     self.sh.d.next = (self.sh.q.val() >> 1) | (bit_cast::<8, 1>(self.s2.q.val().into()) << 7);
-                    self.bit.d.next = self.bit.q.val() + 1;
-                    if self.bit.q.val() == 7 {
+                    self.nbit.d.next = self.nbit.q.val() + 1;
+                    if self.nbit.q.val() == 7 {
                         self.st.d.next = RxState::Stop;
                     }
                 }
@@ -136,7 +136,7 @@ impl Logic for UartRx {
             self.vld.d.next = false;
             self.fe.d.next = false;
             self.cnt.d.next = 0.into();
-            self.bit.d.next = 0.into();
+            self.nbit.d.next = 0.into();
             self.sh.d.next = 0.into();
         }
         self.data.next = self.sh.q.val();
@@ -159,7 +159,7 @@ pub struct UartTx {
     bsy: DFF<Bit>,
     sh: DFF<Bits<10>>,
     cnt: DFF<Bits<16>>,
-    bit: DFF<Bits<4>>,
+    nbit: DFF<Bits<4>>,
     last: Constant<Bits<16>>,
 }
 
@@ -176,7 +176,7 @@ impl UartTx {
             bsy: Default::default(),
             sh: Default::default(),
             cnt: Default::default(),
-            bit: Default::default(),
+            nbit: Default::default(),
             last: Constant::new(((cpb - 1) as u64).into()),
         }
     }
@@ -185,21 +185,21 @@ impl UartTx {
 impl Logic for UartTx {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, bsy, sh, cnt, bit);
+        dff_setup!(self, clock, bsy, sh, cnt, nbit);
         if self.bsy.q.val() {
             self.cnt.d.next = self.cnt.q.val() + 1;
             if self.cnt.q.val() == self.last.val() {
                 self.cnt.d.next = 0.into();
                 self.sh.d.next = (self.sh.q.val() >> 1) | 0x200;
-                self.bit.d.next = self.bit.q.val() + 1;
-                if self.bit.q.val() == 9 {
+                self.nbit.d.next = self.nbit.q.val() + 1;
+                if self.nbit.q.val() == 9 {
                     self.bsy.d.next = false;
                 }
             }
         } else if self.start.val() {
             self.bsy.d.next = true;
             self.cnt.d.next = 0.into();
-            self.bit.d.next = 0.into();
+            self.nbit.d.next = 0.into();
             // stop bit, data (LSB first), start bit
             self.sh.d.next = (bit_cast::<10, 8>(self.data.val()) << 1) | 0x200;
         }
@@ -207,7 +207,7 @@ impl Logic for UartTx {
             self.bsy.d.next = false;
             self.sh.d.next = 0x3FF.into();
             self.cnt.d.next = 0.into();
-            self.bit.d.next = 0.into();
+            self.nbit.d.next = 0.into();
         }
         self.busy.next = self.bsy.q.val();
         self.txd.next = self.sh.q.val().get_bit(0) | !self.bsy.q.val();
