@@ -85,6 +85,42 @@ pub fn sja1000(config: &Config, board: Option<&str>) -> Result<Vec<Artifact>> {
     Ok(out)
 }
 
+/// The USB-to-CAN adapter speaking slcan (Lawicel ASCII) over a UART, around
+/// the SJA1000 top, as `verilog-out/controller/canstar_slcan.v` (module
+/// `canstar_slcan`, plus the board top `canstar_slcan_board` with an
+/// active-low reset). No pin files (the board pinouts come separately).
+pub fn slcan(config: &Config) -> Result<Vec<Artifact>> {
+    let p = config.slcan.params()?;
+    let mut uut = canstar_controller::slcan::SlcanTop::new(&p).with_eof7_rule(config.controller.eof7_rec);
+    uut.connect_all();
+    let name = "canstar_slcan";
+    let inner = canstar_hdl::flow::rename_top(&canstar_hdl::flow::emit(&uut), name);
+    let (top, _ports) = board_top(&inner, name, "rst", &format!("{name}_board"));
+    let rates: Vec<String> = p
+        .table
+        .iter()
+        .enumerate()
+        .map(|(k, e)| match e {
+            Some((b0, b1)) => format!("S{k} 0x{b0:02X}/0x{b1:02X}"),
+            None => format!("S{k} -"),
+        })
+        .collect();
+    let desc = format!(
+        "USB-to-CAN adapter: slcan (Lawicel ASCII) over a UART, 8N1, {} baud ({} clocks per bit at {} Hz), around the SJA1000 top \
+         (see controller/src/slcan/); ports clock, rst, uart_rx, uart_tx, rx, tx; board top with active-low reset; \
+         Sn BTR0/BTR1: {}",
+        config.slcan.baud,
+        p.clocks_per_bit,
+        p.clock_hz,
+        rates.join(", ")
+    );
+    Ok(vec![Artifact {
+        root: Root::Verilog,
+        path: "controller/canstar_slcan.v".into(),
+        contents: header(name, &desc) + &inner + "\n" + &top,
+    }])
+}
+
 /// Boards a hub's pin files are generated for: the one asked for, or all built-in ones.
 pub fn hub_boards(board: Option<&str>) -> Result<Vec<Board>> {
     match board {
@@ -187,7 +223,7 @@ fn hub_top(cfg: &canstar_hub::config::HubConfig, name: &str) -> (String, String,
 /// The designs `canstar report` measures: (name, Verilog, top module).
 pub fn report_designs(config: &Config) -> Result<Vec<(String, String, String)>> {
     let mut v = vec![];
-    for a in blocks(config)?.into_iter().chain(controller(config)?).chain(sja1000(config, None)?).chain(hub(config, None)?) {
+    for a in blocks(config)?.into_iter().chain(controller(config)?).chain(sja1000(config, None)?).chain(slcan(config)?).chain(hub(config, None)?) {
         if a.root != Root::Verilog {
             continue;
         }

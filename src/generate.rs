@@ -36,6 +36,7 @@ pub fn render(target: Target, config: &Config, board: Option<&str>) -> Result<Ve
         if config.controller.host_interface {
             out.extend(crate::designs::sja1000(config, board)?);
         }
+        out.extend(crate::designs::slcan(config)?);
     }
     if matches!(target, Target::Hub | Target::All) {
         out.extend(crate::designs::hub(config, board)?);
