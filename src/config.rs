@@ -87,7 +87,8 @@ enum Eof7RuleToml {
 pub struct Controller {
     /// Also emit the SJA1000-compatible (PeliCAN) register block on Wishbone
     /// (`canstar_sja1000`, 64-byte RX FIFO, acceptance filters) and its board
-    /// pin files; `false` emits only the core with its native interface.
+    /// pin files, and the slcan adapter around it (`canstar_slcan`); `false`
+    /// emits only the core with its native interface.
     pub host_interface: bool,
     /// REC at a receiver's dominant End_Of_Frame bit 7 (can-protocol.md C13),
     /// in the core and the SJA1000 top.

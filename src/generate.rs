@@ -35,8 +35,8 @@ pub fn render(target: Target, config: &Config, board: Option<&str>) -> Result<Ve
         out.extend(crate::designs::controller(config)?);
         if config.controller.host_interface {
             out.extend(crate::designs::sja1000(config, board)?);
+            out.extend(crate::designs::slcan(config)?);
         }
-        out.extend(crate::designs::slcan(config)?);
     }
     if matches!(target, Target::Hub | Target::All) {
         out.extend(crate::designs::hub(config, board)?);
