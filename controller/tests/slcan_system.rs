@@ -117,7 +117,8 @@ fn malformed_commands_answer_bel() {
     open_node(&mut net, 0, 0x00, 0x1C);
     let t = 40_000;
     // closed: no transmission, bad rates
-    for bad in ["t1230", "S", "SA", "S6x", "s01", "s001C0", "s0g1C", "F1", "X", "Z1"] {
+    // (s0010: TSEG1 = 0; s0013: 1 + 4 + 2 = 7 TQ: settings the core refuses)
+    for bad in ["t1230", "S", "SA", "S6x", "s01", "s001C0", "s0g1C", "s0010", "s0013", "F1", "X", "Z1"] {
         assert_eq!(command(&mut net, &sim, bad, 1, t), ["\x07"], "{bad:?} (closed)");
     }
     assert_eq!(command(&mut net, &sim, "V", 1, t), ["V0101\r"]);

@@ -9249,6 +9249,7 @@ module canstar_slcan$engine(clock,rst,c_valid,c_data,c_pop,tx_busy,tx_start,tx_d
     reg  [103:0] l_timg;
     reg  [7:0] l_fl;
     reg  l_take;
+    reg  [4:0] l_sq;
     reg  l_load;
     reg  [159:0] l_tsh;
     reg  [9:0] l_tv;
@@ -9441,6 +9442,7 @@ module canstar_slcan$engine(clock,rst,c_valid,c_data,c_pop,tx_busy,tx_start,tx_d
             l_tsh = tbl >> (((parser$dlc) & 8'hff) << 32'h4);
             l_ent = l_tsh[(32'h0)+:(16)];
         end
+        l_sq = ((parser$acc[(32'h0)+:(4)]) & 5'h1f) + ((parser$acc[(32'h4)+:(3)]) & 5'h1f);
         l_fi = ((parser$dlc) & 8'hff);
         if (l_rtr) begin
             l_fi = ((parser$dlc) & 8'hff) | 32'h40;
@@ -9492,7 +9494,7 @@ module canstar_slcan$engine(clock,rst,c_valid,c_data,c_pop,tx_busy,tx_start,tx_d
                         end
                     end
                     else if (l_cmd == 32'h73) begin
-                        if (~parser$bad & (l_len == 32'h5) & ~open$q) begin
+                        if (~parser$bad & (l_len == 32'h5) & ~open$q & (parser$acc[(32'h0)+:(4)] != 32'h0) & (l_sq >= 32'h5)) begin
                             btr0$d = parser$acc[(32'h8)+:(8)];
                             btr1$d = parser$acc[(32'h0)+:(8)];
                             rk$d = 32'h0;

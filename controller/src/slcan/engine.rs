@@ -33,7 +33,10 @@
 //!   dropped), bit 1 TX buffer busy (SR.TBS = 0), bit 2 error warning
 //!   (SR.ES), bit 3 data overrun (SR.DOS or IR.DOI), bit 5 error passive
 //!   (IR.EPI), bit 6 arbitration lost (IR.ALI), bit 7 bus error (IR.BEI).
-//! - `Sn`, `sxxyy` (closed), `V`, `N`, empty line: no bus access.
+//! - `Sn`, `sxxyy` (closed), `V`, `N`, empty line: no bus access. `sxxyy`
+//!   with a setting the core refuses (TSEG1 = 0 or a bit under 8 TQ, see
+//!   [`crate::sja1000::timing`]) answers BEL; other values are taken as
+//!   given (an SJW the core limits, for instance).
 //!
 //! Between lines, while open, SR is read; RBS = 1 → the 13 window bytes
 //! are read, CMR = RRB, and the frame line goes out. Host characters wait
@@ -129,6 +132,7 @@ pub struct Engine {
     l_timg: Signal<Local, Bits<104>>,
     l_fl: Signal<Local, Bits<8>>,
     l_take: Signal<Local, Bit>,
+    l_sq: Signal<Local, Bits<5>>,
     l_load: Signal<Local, Bit>,
     l_tsh: Signal<Local, Bits<160>>,
     l_tv: Signal<Local, Bits<10>>,
@@ -207,6 +211,7 @@ impl Engine {
             l_timg: Default::default(),
             l_fl: Default::default(),
             l_take: Default::default(),
+            l_sq: Default::default(),
             l_load: Default::default(),
             l_tsh: Default::default(),
             l_tv: Default::default(),
@@ -250,6 +255,10 @@ impl Logic for Engine {
             self.l_tsh.next = self.tbl.val() >> (bit_cast::<8, 4>(self.parser.dlc.val()) << 4);
             self.l_ent.next = self.l_tsh.val().get_bits::<16>(0);
         }
+
+        // TSEG1 + TSEG2 of sxxyy (1 + t1 + t2 >= 8 TQ: TSEG1 + TSEG2 >= 5)
+        self.l_sq.next = bit_cast::<5, 4>(self.parser.acc.val().get_bits::<4>(0))
+            + bit_cast::<5, 3>(self.parser.acc.val().get_bits::<3>(4));
 
         // ---- the TX buffer image: 13 bytes, FI in bits 103..96 ----
         self.l_fi.next = bit_cast::<8, 4>(self.parser.dlc.val());
@@ -312,7 +321,13 @@ impl Logic for Engine {
                     }
                 } else if self.l_cmd.val() == 0x73 {
                     // sxxyy
-                    if !self.parser.bad.val() & (self.l_len.val() == 5) & !self.open.q.val() {
+                    // the settings the core refuses (TSEG1 = 0, under 8 TQ) answer BEL
+                    if !self.parser.bad.val()
+                        & (self.l_len.val() == 5)
+                        & !self.open.q.val()
+                        & (self.parser.acc.val().get_bits::<4>(0) != 0)
+                        & (self.l_sq.val() >= 5)
+                    {
                         self.btr0.d.next = self.parser.acc.val().get_bits::<8>(8);
                         self.btr1.d.next = self.parser.acc.val().get_bits::<8>(0);
                         self.rk.d.next = 0.into();

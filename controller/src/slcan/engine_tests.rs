@@ -85,6 +85,8 @@ impl Bench {
 #[test]
 fn open_transmit_close() {
     let mut b = Bench::new(10);
+    assert_eq!(b.line("s0000"), "\x07", "TSEG1 = 0");
+    assert_eq!(b.line("s0014"), "\r", "8 TQ");
     assert_eq!(b.line("S6"), "\r");
     assert_eq!(b.line("O"), "\r");
     assert_eq!(b.writes, [(0x06, 0x00), (0x07, 0x1C), (0x04, 0xE8), (0x00, 0x00)]);

@@ -30,7 +30,8 @@
 //! 125k, 250k, 500k, **800k (Lawicel's S7; python-can calls S7 750 kbit/s,
 //! which this adapter does not provide)**, 1M, 83.3k (S9 as in python-can);
 //! a rate the design clock cannot make exactly (within 0.1 %) answers BEL.
-//! `sxxyy` sets BTR0/BTR1 (only when closed). `O` opens in normal mode, `L`
+//! `sxxyy` sets BTR0/BTR1 (only when closed; BEL for TSEG1 = 0 or a bit
+//! under 8 TQ, which the core refuses). `O` opens in normal mode, `L`
 //! listen-only, `C` closes (reset mode; always OK). `t`/`T`/`r`/`R` transmit
 //! (only when open in normal mode; `z\r` / `Z\r`). `F` answers `Fxx\r`
 //! (Lawicel status flags, see [`engine`]), `V` answers `V0101\r`, `N`
