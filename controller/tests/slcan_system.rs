@@ -208,3 +208,28 @@ fn overrun_shows_in_f() {
     net.xmit(0, &frames[0]);
     assert_eq!(collect(&mut net, &sim, 1, 100_000), [want[0].clone()]);
 }
+
+#[test]
+fn bus_off_refuses_transmission() {
+    let (mut net, sim) = open_both(8, "S6");
+    // the adapter's receiver stuck recessive: every dominant bit it sends is
+    // a bit error, TEC += 8 per attempt, bus-off after 32
+    sim.borrow_mut().rx_force = Some(true);
+    assert_eq!(command(&mut net, &sim, "t1230", 1, 40_000), ["z\r"]);
+    net.run(60 * 32 * BIT);
+    // bus-off: the block is in reset mode; a frame line must not be loaded
+    // into 0x10.. (the acceptance registers there)
+    assert_eq!(command(&mut net, &sim, "t1241AA", 1, 40_000), ["\x07"]);
+    sim.borrow_mut().rx_force = None;
+    // close and reopen: the recovery (128 x 11 recessive bits), then frames
+    // flow both ways with the filter intact
+    assert_eq!(command(&mut net, &sim, "C", 1, 40_000), ["\r"]);
+    assert_eq!(command(&mut net, &sim, "O", 1, 40_000), ["\r"]);
+    net.run(130 * 11 * BIT);
+    let f = Frame::data(true, 0x0BADCAFE, 2, &[1, 2]);
+    net.xmit(0, &f);
+    assert_eq!(collect(&mut net, &sim, 1, 100_000), [line_of(&f)]);
+    assert_eq!(command(&mut net, &sim, "t1241AA", 1, 40_000), ["z\r"]);
+    net.run_until(100_000, |n| n.drv[0].rx.len() == 1);
+    assert_eq!(net.drv[0].rx, [Frame::data(false, 0x124, 1, &[0xAA])]);
+}

@@ -9598,7 +9598,11 @@ module canstar_slcan$engine(clock,rst,c_valid,c_data,c_pop,tx_busy,tx_start,tx_d
                 end
             EState$TxCheck:
                 begin
-                    if ((rd$q & 32'h4) == 32'h0) begin
+                    if (rd$q[32'h7]) begin
+                        rk$d = 32'h1;
+                        st$d = EState$Reply;
+                    end
+                    else if ((rd$q & 32'h4) == 32'h0) begin
                         wcnt$d = wcnt$q + 32'h1;
                         if (wcnt$q == tx_wait) begin
                             rk$d = 32'h1;

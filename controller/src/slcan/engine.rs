@@ -25,7 +25,9 @@
 //!   sends frames back to back (python-can, slcand) is not refused while
 //!   the previous frame is on the bus; still busy → BEL (no ACK, bus-off,
 //!   arbitration lost for that long). Received frames wait meanwhile (in
-//!   the SJA1000's 64-byte FIFO). Then the 13 bytes of the TX buffer (FI, identifier, data; unused bytes 0),
+//!   the SJA1000's 64-byte FIFO). SR.BS = 1 (bus-off: the block is in reset
+//!   mode, where 0x10.. are the acceptance registers) → BEL; the host
+//!   closes and reopens (`C`, `O`) to start the recovery. Then the 13 bytes of the TX buffer (FI, identifier, data; unused bytes 0),
 //!   then CMR = TR; reply `z\r` / `Z\r`. The reply means "queued", as on a
 //!   Lawicel adapter, not "sent".
 //! - `F`: read SR, read IR (the read clears DOI, EPI, ALI, BEI); if SR.DOS,
@@ -423,7 +425,12 @@ impl Logic for Engine {
                 self.ret.d.next = EState::Reply;
             }
             EState::TxCheck => {
-                if (self.rd.q.val() & 0x04) == 0 {
+                if self.rd.q.val().get_bit(7) {
+                    // bus-off: the SJA1000 is in reset mode, where 0x10.. are
+                    // the acceptance registers; refuse
+                    self.rk.d.next = 1.into();
+                    self.st.d.next = EState::Reply;
+                } else if (self.rd.q.val() & 0x04) == 0 {
                     // TBS = 0: wait for the TX buffer (read SR again), BEL
                     // when it stays busy
                     self.wcnt.d.next = self.wcnt.q.val() + 1;

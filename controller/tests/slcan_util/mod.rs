@@ -28,6 +28,8 @@ pub struct SlcanSim {
     /// Framing errors the host receiver saw.
     pub host_ferr: usize,
     pub cycles: u64,
+    /// The level the top's CAN receiver sees instead of the bus (None: the bus).
+    pub rx_force: Option<bool>,
 }
 
 impl SlcanSim {
@@ -52,6 +54,7 @@ impl SlcanSim {
             received: vec![],
             host_ferr: 0,
             cycles: 0,
+            rx_force: None,
         }
     }
 
@@ -75,7 +78,7 @@ impl SlcanSim {
             }
         }
         self.top.uart_rx.next = self.tx_levels.pop_front().unwrap_or(true);
-        self.top.rx.next = bus;
+        self.top.rx.next = self.rx_force.unwrap_or(bus);
         drive::cycle(&mut *self.top);
         self.cycles += 1;
         // host receiver, sampling mid-bit
