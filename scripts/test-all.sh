@@ -28,8 +28,12 @@ if [ "${#missing[@]}" -gt 0 ]; then
   $SUDO apt-get install -y -qq "${missing[@]}" >/dev/null
 fi
 if ! python3 -c "import can" >/dev/null 2>&1; then
-  echo "== installing python-can (reads the candump logs in a test)"
+  echo "== installing python-can (reads the candump logs in a test; its slcan client drives the slcan top in controller/tests/slcan_pty.rs)"
   python3 -m pip install -q python-can
+fi
+if ! python3 -c "import serial" >/dev/null 2>&1; then
+  echo "== installing pyserial (python-can's slcan interface needs it: controller/tests/slcan_pty.rs)"
+  python3 -m pip install -q pyserial
 fi
 echo "== tools: $(yosys -V | head -1); $(nextpnr-ice40 --version 2>&1 | head -1); $(iverilog -V 2>&1 | head -1); $(verilator --version)"
 

@@ -87,7 +87,8 @@ enum Eof7RuleToml {
 pub struct Controller {
     /// Also emit the SJA1000-compatible (PeliCAN) register block on Wishbone
     /// (`canstar_sja1000`, 64-byte RX FIFO, acceptance filters) and its board
-    /// pin files; `false` emits only the core with its native interface.
+    /// pin files, and the slcan adapter around it (`canstar_slcan`); `false`
+    /// emits only the core with its native interface.
     pub host_interface: bool,
     /// REC at a receiver's dominant End_Of_Frame bit 7 (can-protocol.md C13),
     /// in the core and the SJA1000 top.
@@ -98,6 +99,44 @@ pub struct Controller {
 impl Default for Controller {
     fn default() -> Self {
         Self { host_interface: true, eof7_rec: Eof7Rule::Iso }
+    }
+}
+
+/// `[slcan]`: the USB-to-CAN adapter top (`canstar_slcan`, controller/src/slcan/).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Slcan {
+    /// The nominal design clock in Hz (the `Sn` bit-rate table and the UART
+    /// divider are computed for it).
+    pub clock_hz: u64,
+    /// The host UART baud rate (the integer divider must be within 2 %).
+    pub baud: u64,
+}
+
+impl Default for Slcan {
+    fn default() -> Self {
+        Self {
+            clock_hz: canstar_controller::slcan::DEFAULT_CLOCK_HZ,
+            baud: canstar_controller::slcan::DEFAULT_BAUD,
+        }
+    }
+}
+
+impl Slcan {
+    /// The generation-time parameters; an error names the key.
+    pub fn params(&self) -> Result<canstar_controller::slcan::SlcanParams> {
+        if self.clock_hz == 0 {
+            bail!("slcan.clock_hz: 0 (must be positive)");
+        }
+        if self.baud == 0 {
+            bail!("slcan.baud: 0 (must be positive)");
+        }
+        let p = canstar_controller::slcan::SlcanParams::new(self.clock_hz, self.baud)
+            .map_err(|e| anyhow::anyhow!("slcan.baud: {e}"))?;
+        if p.table.iter().all(|e| e.is_none()) {
+            bail!("slcan.clock_hz: {} Hz makes none of the slcan bit rates S0..S9 exactly", self.clock_hz);
+        }
+        Ok(p)
     }
 }
 
@@ -114,11 +153,12 @@ pub struct Config {
     /// 14.74 MHz, 8 TQ of 2 clocks per bit). Bit-timing fields here use the
     /// register encoding (value - 1), read into `canstar_hdl::timing::BtlConfig`.
     pub hub: canstar_hub::config::HubConfig,
+    pub slcan: Slcan,
 }
 
 impl Default for Config {
     fn default() -> Self {
-        Config { bit_timing: SJA1000_POWER_UP, rtl: Rtl::default(), controller: Controller::default(), hub: Default::default() }
+        Config { bit_timing: SJA1000_POWER_UP, rtl: Rtl::default(), controller: Controller::default(), hub: Default::default(), slcan: Slcan::default() }
     }
 }
 
@@ -141,6 +181,7 @@ impl Config {
             bail!("rtl.sync_depth: {} (must be 1 or 2)", self.rtl.sync_depth);
         }
         self.hub.validate().map_err(|e| anyhow::anyhow!("hub: invalid [hub] configuration: {e}"))?;
+        self.slcan.params()?;
         Ok(())
     }
 }
@@ -164,6 +205,20 @@ mod tests {
         assert_eq!(c.bit_timing, BtlConfig { prop: 4, ..SJA1000_POWER_UP });
         let e = Config::from_toml("[bit_timing]\nbrp = 3\n").unwrap_err();
         assert!(format!("{e:#}").contains("even"), "{e:#}");
+    }
+
+    #[test]
+    fn slcan_keys_are_checked() {
+        let c = Config::from_toml("[slcan]\nclock_hz = 48000000\nbaud = 1000000\n").unwrap();
+        assert_eq!(c.slcan.params().unwrap().clocks_per_bit, 48);
+        let e = Config::from_toml("[slcan]\nclock_hz = 1000000\n").unwrap_err();
+        assert!(format!("{e:#}").contains("slcan.baud") && format!("{e:#}").contains("% off"), "{e:#}");
+        let e = Config::from_toml("[slcan]\nclock_hz = 0\n").unwrap_err();
+        assert!(format!("{e:#}").contains("slcan.clock_hz"), "{e:#}");
+        let e = Config::from_toml("[slcan]\nbaud = 0\n").unwrap_err();
+        assert!(format!("{e:#}").contains("slcan.baud"), "{e:#}");
+        let e = Config::from_toml("[slcan]\nbaudrate = 9600\n").unwrap_err();
+        assert!(format!("{e:#}").contains("unknown field"), "{e:#}");
     }
 
     #[test]

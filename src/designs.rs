@@ -96,6 +96,64 @@ pub fn sja1000_verilog(config: &Config) -> (Artifact, String, Ports) {
     (verilog, board_name, ports)
 }
 
+/// The USB-to-CAN adapter speaking slcan (Lawicel ASCII) over a UART, around
+/// the SJA1000 top, as `verilog-out/controller/canstar_slcan.v` (module
+/// `canstar_slcan`, plus the board top `canstar_slcan_board` with an
+/// active-low reset), and its pin files on every board with an `[slcan.pins]`
+/// pinout (or the one asked for, when it has one).
+pub fn slcan(config: &Config, board: Option<&str>) -> Result<Vec<Artifact>> {
+    let (verilog, board_name, ports) = slcan_verilog(config)?;
+    let mut out = vec![verilog];
+    let mut pins = DesignPins::default();
+    for (p, bits, _) in &ports {
+        if p != "clock" {
+            pins.functional.extend(DesignPins::port_roles(p, *bits));
+        }
+    }
+    let boards: Vec<Board> = hub_boards(board)?.into_iter().filter(|b| b.slcan.is_some()).collect();
+    for b in &boards {
+        let f = pin_file(b, Pinout::Slcan, &board_name, &pins)?;
+        out.push(Artifact { root: Root::Constraints, path: format!("{}/{board_name}.{}", b.name, b.format.ext()).into(), contents: f.text });
+    }
+    Ok(out)
+}
+
+/// The slcan adapter's Verilog file (`controller/canstar_slcan.v`), the name of
+/// its board top (`canstar_slcan_board`) and the board top's ports.
+pub fn slcan_verilog(config: &Config) -> Result<(Artifact, String, Ports)> {
+    let p = config.slcan.params()?;
+    let mut uut = canstar_controller::slcan::SlcanTop::new(&p).with_eof7_rule(config.controller.eof7_rec);
+    uut.connect_all();
+    let name = "canstar_slcan";
+    let inner = canstar_hdl::flow::rename_top(&canstar_hdl::flow::emit(&uut), name);
+    let board_name = format!("{name}_board");
+    let (top, ports) = board_top(&inner, name, "rst", &board_name);
+    let rates: Vec<String> = p
+        .table
+        .iter()
+        .enumerate()
+        .map(|(k, e)| match e {
+            Some((b0, b1)) => format!("S{k} 0x{b0:02X}/0x{b1:02X}"),
+            None => format!("S{k} -"),
+        })
+        .collect();
+    let desc = format!(
+        "USB-to-CAN adapter: slcan (Lawicel ASCII) over a UART, 8N1, {} baud ({} clocks per bit at {} Hz), around the SJA1000 top \
+         (see controller/src/slcan/); ports clock, rst, uart_rx, uart_tx, rx, tx; board top with active-low reset; \
+         Sn BTR0/BTR1: {}",
+        config.slcan.baud,
+        p.clocks_per_bit,
+        p.clock_hz,
+        rates.join(", ")
+    );
+    let verilog = Artifact {
+        root: Root::Verilog,
+        path: format!("controller/{name}.v").into(),
+        contents: header(name, &desc) + &inner + "\n" + &top,
+    };
+    Ok((verilog, board_name, ports))
+}
+
 /// Boards a hub's pin files are generated for: the one asked for, or all built-in ones.
 pub fn hub_boards(board: Option<&str>) -> Result<Vec<Board>> {
     match board {
@@ -202,7 +260,7 @@ fn hub_top(cfg: &canstar_hub::config::HubConfig, name: &str) -> (String, String,
 /// The designs `canstar report` measures: (name, Verilog, top module).
 pub fn report_designs(config: &Config) -> Result<Vec<(String, String, String)>> {
     let mut v = vec![];
-    for a in blocks(config)?.into_iter().chain(controller(config)?).chain(sja1000(config, None)?).chain(hub(config, None)?) {
+    for a in blocks(config)?.into_iter().chain(controller(config)?).chain(sja1000(config, None)?).chain(slcan(config, None)?).chain(hub(config, None)?) {
         if a.root != Root::Verilog {
             continue;
         }

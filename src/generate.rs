@@ -35,6 +35,7 @@ pub fn render(target: Target, config: &Config, board: Option<&str>) -> Result<Ve
         out.extend(crate::designs::controller(config)?);
         if config.controller.host_interface {
             out.extend(crate::designs::sja1000(config, board)?);
+            out.extend(crate::designs::slcan(config, board)?);
         }
     }
     if matches!(target, Target::Hub | Target::All) {

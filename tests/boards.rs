@@ -16,7 +16,7 @@ fn boards_lists_every_builtin_board() {
     for (name, family, clock, format, bitstream, designs) in [
         ("xsa-3s1000", "spartan3", "14.74 MHz on H16", "ucf (Xilinx ISE)", "-", "hub, controller"),
         ("ice40-hx8k", "ice40", "100 MHz on P7", "pcf (nextpnr-ice40)", "hub, controller", "hub, controller"),
-        ("alchitry-cu", "ice40", "100 MHz on P7", "pcf (nextpnr-ice40)", "hub, controller", "hub, controller, slcan"),
+        ("alchitry-cu", "ice40", "100 MHz on P7", "pcf (nextpnr-ice40)", "hub, controller, slcan", "hub, controller, slcan"),
         ("ulx3s", "ecp5", "25 MHz on G2", "lpf (", "-", "hub, controller"),
         ("arty-a7", "artix7", "100 MHz on E3", "xdc (Vivado)", "-", "hub, controller"),
     ] {

@@ -41,7 +41,7 @@ fn bad_input_is_an_error_naming_the_file_and_key_and_writes_nothing() {
     std::fs::write(d.path().join("hubonly.toml"), cu.split("[controller.pins]").next().unwrap()).unwrap();
     let cases: &[(&[&str], &str)] = &[
         (&["--board", "no-such-board", "hub"], "unknown board `no-such-board`"),
-        (&["--board", "alchitry-cu", "router"], "unknown role `router` (known roles: hub, controller)"),
+        (&["--board", "alchitry-cu", "router"], "unknown role `router` (known roles: hub, controller, slcan)"),
         (&["--board", "arty-a7", "hub"], "board arty-a7: family: bitstream not supported for family artix7"),
         (&["--board", "xsa-3s1000", "controller"], "bitstream not supported for family spartan3"),
         (&["--board", "xc.toml", "hub"], "xc.toml: board alchitry-cu: part: \"xc7a35t\" is not an iCE40 device"),
@@ -74,40 +74,48 @@ fn preamble(bin: &[u8]) -> &[u8] {
     &bin[end + 2..end + 6]
 }
 
+/// Build `role` for the Alchitry Cu in a fresh folder and check the bitstream,
+/// the pin file, the PLL clock and the timing check at that clock.
+fn bitstream(role: &str, top: &str, clock_mhz: &str, ppm: &str, pins: &[(&str, &str)]) {
+    let d = tempfile::tempdir().unwrap();
+    let board = canstar::boards::Board::lookup("alchitry-cu").unwrap();
+    let (ok, out, err) = build(&["--board", "alchitry-cu", role, "--seeds", "2"], d.path(), None);
+    assert!(ok, "{role}: {out}{err}");
+    let dir = d.path().join("build/alchitry-cu").join(role);
+    assert_eq!(entries(&dir), [format!("{top}.bin"), format!("{top}.pcf"), format!("{top}.v"), "nextpnr.log".to_string()], "{role}");
+    let bin = std::fs::read(dir.join(format!("{top}.bin"))).unwrap();
+    assert_eq!(preamble(&bin), [0x7E, 0xAA, 0x99, 0x7E], "{role}");
+    assert!(bin.len() > 100_000, "{role}: {} bytes", bin.len());
+    let pcf = std::fs::read_to_string(dir.join(format!("{top}.pcf"))).unwrap();
+    assert!(pcf.contains(&format!("set_io {} {}\n", board.clock.port, board.clock.pin)), "{pcf}");
+    for (port, pin) in pins {
+        assert!(pcf.contains(&format!("set_io {port} {pin}\n")), "{role}: `{port} {pin}` not in\n{pcf}");
+    }
+    // Timing checked at the PLL's clock, and passed.
+    assert!(out.contains(&format!("PLL:       {clock_mhz} MHz from 100 MHz, {ppm}")), "{out}");
+    let timing = out.lines().find(|l| l.starts_with("timing:")).unwrap_or_else(|| panic!("{out}"));
+    let fmax: f64 = timing.split_whitespace().nth(2).unwrap().parse().unwrap();
+    assert!(timing.ends_with(&format!("at the {clock_mhz} MHz design clock: PASS")) && fmax >= clock_mhz.parse::<f64>().unwrap(), "{timing}");
+    let log = std::fs::read_to_string(dir.join("nextpnr.log")).unwrap();
+    assert!(log.contains(&format!("(PASS at {:.2} MHz)", clock_mhz.parse::<f64>().unwrap())), "{role}: no PASS line in the log");
+    assert!(log.contains("ICESTORM_PLL:     1/    2"), "{role}: the PLL is not in the placed design");
+    let lc: usize = out.lines().find_map(|l| l.strip_prefix("logic:")).unwrap().split_whitespace().next().unwrap().parse().unwrap();
+    assert!(lc > 500, "{role}: {lc} LC");
+    assert!(out.contains(&format!("flash:     iceprog build/alchitry-cu/{role}/{top}.bin")), "{out}");
+    assert!(entries(&d.path().join("tmp")).is_empty(), "{:?}", entries(&d.path().join("tmp")));
+}
+
 #[test]
 #[ignore = "needs yosys, nextpnr-ice40 and icepack: run scripts/test-all.sh"]
 fn hub_and_controller_bitstreams_for_the_alchitry_cu() {
-    let d = tempfile::tempdir().unwrap();
-    let board = canstar::boards::Board::lookup("alchitry-cu").unwrap();
-    for (role, top, clock_mhz, ppm, pins) in [
-        ("hub", "canstar_hub", "14.732143", "-533 ppm", vec![("rst_n", "P8"), ("rx[0]", "M1"), ("tx[0]", "L1"), ("reh_rx[1]", "A5"), ("hub_tx[1]", "C5"), ("isolated[0]", "J11")]),
-        ("controller", "canstar_sja1000_board", "16.015625", "+977 ppm", vec![("rst_n", "P8"), ("rx", "M1"), ("tx", "L1"), ("int_n", "J1"), ("wb_dat_r[0]", "A7")]),
-    ] {
-        let (ok, out, err) = build(&["--board", "alchitry-cu", role, "--seeds", "2"], d.path(), None);
-        assert!(ok, "{role}: {out}{err}");
-        let dir = d.path().join("build/alchitry-cu").join(role);
-        assert_eq!(entries(&dir), [format!("{top}.bin"), format!("{top}.pcf"), format!("{top}.v"), "nextpnr.log".to_string()], "{role}");
-        let bin = std::fs::read(dir.join(format!("{top}.bin"))).unwrap();
-        assert_eq!(preamble(&bin), [0x7E, 0xAA, 0x99, 0x7E], "{role}");
-        assert!(bin.len() > 100_000, "{role}: {} bytes", bin.len());
-        let pcf = std::fs::read_to_string(dir.join(format!("{top}.pcf"))).unwrap();
-        assert!(pcf.contains(&format!("set_io {} {}\n", board.clock.port, board.clock.pin)), "{pcf}");
-        for (port, pin) in &pins {
-            assert!(pcf.contains(&format!("set_io {port} {pin}\n")), "{role}: `{port} {pin}` not in\n{pcf}");
-        }
-        // Timing checked at the PLL's clock, and passed.
-        assert!(out.contains(&format!("PLL:       {clock_mhz} MHz from 100 MHz, {ppm}")), "{out}");
-        let timing = out.lines().find(|l| l.starts_with("timing:")).unwrap_or_else(|| panic!("{out}"));
-        let fmax: f64 = timing.split_whitespace().nth(2).unwrap().parse().unwrap();
-        assert!(timing.ends_with(&format!("at the {clock_mhz} MHz design clock: PASS")) && fmax >= clock_mhz.parse::<f64>().unwrap(), "{timing}");
-        let log = std::fs::read_to_string(dir.join("nextpnr.log")).unwrap();
-        assert!(log.contains(&format!("(PASS at {:.2} MHz)", clock_mhz.parse::<f64>().unwrap())), "{role}: no PASS line in the log");
-        assert!(log.contains("ICESTORM_PLL:     1/    2"), "{role}: the PLL is not in the placed design");
-        let lc: usize = out.lines().find_map(|l| l.strip_prefix("logic:")).unwrap().split_whitespace().next().unwrap().parse().unwrap();
-        assert!(lc > 500, "{role}: {lc} LC");
-        assert!(out.contains(&format!("flash:     iceprog build/alchitry-cu/{role}/{top}.bin")), "{out}");
-    }
-    assert!(entries(&d.path().join("tmp")).is_empty(), "{:?}", entries(&d.path().join("tmp")));
+    bitstream("hub", "canstar_hub", "14.732143", "-533 ppm", &[("rst_n", "P8"), ("rx[0]", "M1"), ("tx[0]", "L1"), ("reh_rx[1]", "A5"), ("hub_tx[1]", "C5"), ("isolated[0]", "J11")]);
+    bitstream("controller", "canstar_sja1000_board", "16.015625", "+977 ppm", &[("rst_n", "P8"), ("rx", "M1"), ("tx", "L1"), ("int_n", "J1"), ("wb_dat_r[0]", "A7")]);
+}
+
+#[test]
+#[ignore = "needs yosys, nextpnr-ice40 and icepack: run scripts/test-all.sh"]
+fn slcan_bitstream_for_the_alchitry_cu() {
+    bitstream("slcan", "canstar_slcan_board", "16.015625", "+977 ppm", &[("rst_n", "P8"), ("uart_rx", "P14"), ("uart_tx", "M9"), ("rx", "M1"), ("tx", "L1")]);
 }
 
 #[test]

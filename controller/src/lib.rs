@@ -42,3 +42,4 @@ pub use frame::{BuildOptions, BusBit, Frame};
 pub use fsm::{CanFsm, Field};
 pub use view::CoreView;
 pub mod sja1000;
+pub mod slcan;

@@ -266,7 +266,7 @@ mod tests {
         assert!(p.pcf.text.contains("set_io wb_dat_r[7] D10\n") && p.pcf.text.contains("set_io int_n J1\n"), "{}", p.pcf.text);
         assert!(!p.pll.half && p.verilog.contains("canstar_sja1000_board canstar_pll_design ("));
         let e = |b: &str, r: &str| plan(&request(b, r)).err().map(|e| format!("{e:#}")).unwrap_or_default();
-        assert!(e("alchitry-cu", "router").contains("unknown role `router` (known roles: hub, controller)"));
+        assert!(e("alchitry-cu", "router").contains("unknown role `router` (known roles: hub, controller, slcan)"));
         assert!(e("no-board", "hub").contains("unknown board `no-board`"));
         let x = e("arty-a7", "hub");
         assert!(x.contains("board arty-a7: family: bitstream not supported for family artix7"), "{x}");

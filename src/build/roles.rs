@@ -1,9 +1,7 @@
 //! The roles `canstar build` makes bitstreams for: each is a design's Verilog,
 //! the name of its board top, which of the board's pinouts it uses, which of
 //! its ports are functional (the rest are debug outputs) and its nominal
-//! design clock. Adding a role (e.g. the USB-to-CAN adapter `slcan`, board top
-//! `canstar_slcan_board` on `[slcan.pins]`, 16 MHz) is adding one entry to
-//! [`ROLES`].
+//! design clock. Adding a role is adding one entry to [`ROLES`].
 
 use crate::boards::Pinout;
 use crate::config::Config;
@@ -53,6 +51,12 @@ fn controller(config: &Config) -> Result<Design> {
     Ok(Design { verilog: verilog.contents, top, ports, functional, clock_hz: CONTROLLER_CLOCK_HZ })
 }
 
+fn slcan(config: &Config) -> Result<Design> {
+    let (verilog, top, ports) = crate::designs::slcan_verilog(config)?;
+    let functional = ports.iter().filter(|(p, _, _)| p != "clock").map(|(p, _, _)| p.clone()).collect();
+    Ok(Design { verilog: verilog.contents, top, ports, functional, clock_hz: config.slcan.clock_hz })
+}
+
 /// Every role, in the order `canstar build --help` lists them.
 pub const ROLES: &[Role] = &[
     Role { name: "hub", what: "the ReCANcentrate star hub (canstar_hub, [hub] of the configuration)", pinout: Pinout::Hub, render: hub },
@@ -61,6 +65,12 @@ pub const ROLES: &[Role] = &[
         what: "the SJA1000-compatible controller with its Wishbone slave on pins (canstar_sja1000_board)",
         pinout: Pinout::Controller,
         render: controller,
+    },
+    Role {
+        name: "slcan",
+        what: "the USB-to-CAN adapter: slcan over the board's USB UART around the SJA1000 top (canstar_slcan_board, [slcan] of the configuration)",
+        pinout: Pinout::Slcan,
+        render: slcan,
     },
 ];
 
@@ -89,7 +99,8 @@ mod tests {
         }
         assert_eq!((lookup("hub").unwrap().render)(&cfg).unwrap().clock_hz, 14_740_000);
         assert_eq!((lookup("controller").unwrap().render)(&cfg).unwrap().clock_hz, 16_000_000);
+        assert_eq!((lookup("slcan").unwrap().render)(&cfg).unwrap().clock_hz, cfg.slcan.clock_hz);
         let e = lookup("router").err().unwrap().to_string();
-        assert_eq!(e, "unknown role `router` (known roles: hub, controller)");
+        assert_eq!(e, "unknown role `router` (known roles: hub, controller, slcan)");
     }
 }

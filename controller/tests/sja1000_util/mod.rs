@@ -55,6 +55,14 @@ pub struct Drv {
     pub counters: (u8, u8),
 }
 
+/// Another device on the bus, clocked with the nodes (e.g. the slcan top):
+/// `tx` is its bus output now, `step(bus)` runs one clock with `bus` as its
+/// input.
+pub trait Peer {
+    fn tx(&self) -> bool;
+    fn step(&mut self, bus: bool);
+}
+
 pub struct Net {
     pub nodes: Vec<Box<Sja1000>>,
     pub drv: Vec<Drv>,
@@ -64,6 +72,8 @@ pub struct Net {
     pub ext: Option<bool>,
     pub cycle: usize,
     pub int_seen: Vec<usize>,
+    /// A device stepped with the nodes (None: none).
+    pub peer: Option<Box<dyn Peer>>,
 }
 
 impl Net {
@@ -91,11 +101,12 @@ impl Net {
             ext: None,
             cycle: 0,
             int_seen: vec![0; n],
+            peer: None,
         }
     }
 
     pub fn bus(&self) -> bool {
-        self.nodes.iter().all(|n| n.tx.val()) && self.ext.unwrap_or(true)
+        self.nodes.iter().all(|n| n.tx.val()) && self.ext.unwrap_or(true) && self.peer.as_ref().map_or(true, |p| p.tx())
     }
 
     /// One clock of every node (no interrupt service).
@@ -106,6 +117,9 @@ impl Net {
         }
         for n in self.nodes.iter_mut() {
             drive::cycle(&mut **n);
+        }
+        if let Some(p) = self.peer.as_mut() {
+            p.step(bus);
         }
         for i in 0..self.nodes.len() {
             if !self.nodes[i].int_n.val() {
