@@ -43,12 +43,142 @@ fn iso_8_1_1_identifier_and_dlc() {
     assert!(f.is_empty(), "{} failed:\n{}", f.len(), f.join("\n"));
 }
 
+/// Run one case by clause; it must be the case `name` with `n` elementary
+/// tests, all passing.
+fn case(clause: &str, name: &str, n: usize) -> Vec<StepResult> {
+    let runs = run_iso(Some(clause));
+    assert_eq!(runs.len(), 1, "clause {clause}");
+    let (got, r) = &runs[0];
+    assert_eq!(got, name);
+    assert_eq!(r.len(), n, "{name}: elementary tests {:?}", r.iter().map(|s| &s.name).collect::<Vec<_>>());
+    let f = failures(r);
+    assert!(f.is_empty(), "{} of {} failed:\n{}", f.len(), r.len(), f.join("\n"));
+    r.clone()
+}
+
+#[test]
+fn iso_7_1_2_extended_identifier_and_dlc() {
+    let r = case("7.1.2", "iso_7_1_2_extended_identifier_and_dlc", 5 * 9);
+    assert!(r.iter().any(|s| s.name == "iso_7_1_2_id1fffffff_dlc8"));
+}
+
+#[test]
+fn iso_7_1_3_arbitration_lost_reception() {
+    case("7.1.3", "iso_7_1_3_arbitration_lost_reception", 6);
+}
+
+#[test]
+fn iso_7_1_4_base_reserved_bit() {
+    case("7.1.4", "iso_7_1_4_base_reserved_bit", 4);
+}
+
+#[test]
+fn iso_7_1_5_extended_srr_and_reserved_bits() {
+    case("7.1.5", "iso_7_1_5_extended_srr_and_reserved_bits", 8);
+}
+
+#[test]
+fn iso_7_1_8_dlc_above_8() {
+    case("7.1.8", "iso_7_1_8_dlc_above_8", 7);
+}
+
+#[test]
+fn iso_7_1_9_frames_without_bus_idle() {
+    case("7.1.9", "iso_7_1_9_frames_without_bus_idle", 2);
+}
+
+#[test]
+fn iso_7_1_10_base_stuffing_profiles() {
+    case("7.1.10", "iso_7_1_10_base_stuffing_profiles", 10);
+}
+
+#[test]
+fn iso_7_1_11_extended_stuffing_profiles() {
+    case("7.1.11", "iso_7_1_11_extended_stuffing_profiles", 7);
+}
+
+#[test]
+fn iso_7_1_12_eof7_valid_frame() {
+    case("7.1.12", "iso_7_1_12_eof7_valid_frame", 1);
+}
+
+#[test]
+fn iso_7_2_1_ack_bit_error() {
+    case("7.2.1", "iso_7_2_1_ack_bit_error", 1);
+}
+
+#[test]
+fn iso_7_2_3_extended_stuff_error() {
+    let r = case("7.2.3", "iso_7_2_3_extended_stuff_error", run_iso(Some("7.2.3"))[0].1.len());
+    assert!(r.len() >= 30, "{} elementary tests", r.len());
+    for field in ["_id_", "_exid_", "_dlc_", "_data_", "_crc_"] {
+        assert!(r.iter().any(|s| s.name.contains(field)), "no elementary test in {field}");
+    }
+}
+
+#[test]
+fn iso_7_2_5_crc_error() {
+    case("7.2.5", "iso_7_2_5_crc_error", 2);
+}
+
+#[test]
+fn iso_7_2_7_crc_delimiter_form_error() {
+    case("7.2.7", "iso_7_2_7_crc_delimiter_form_error", 1);
+}
+
+#[test]
+fn iso_7_2_9_ack_delimiter_form_error() {
+    case("7.2.9", "iso_7_2_9_ack_delimiter_form_error", 1);
+}
+
+#[test]
+fn iso_7_2_10_eof_form_error() {
+    case("7.2.10", "iso_7_2_10_eof_form_error", 5);
+}
+
+#[test]
+fn iso_7_2_11_eof6_form_error() {
+    case("7.2.11", "iso_7_2_11_eof6_form_error", 1);
+}
+
+#[test]
+fn iso_8_1_2_extended_identifier_and_dlc() {
+    case("8.1.2", "iso_8_1_2_extended_identifier_and_dlc", 5 * 9);
+}
+
+#[test]
+fn iso_8_1_3_arbitration_lost_base() {
+    case("8.1.3", "iso_8_1_3_arbitration_lost_base", 11);
+}
+
+#[test]
+fn iso_8_1_5_intermission1_overload() {
+    case("8.1.5", "iso_8_1_5_intermission1_overload", 1);
+}
+
+#[test]
+fn iso_8_1_6_base_stuffing() {
+    case("8.1.6", "iso_8_1_6_base_stuffing", 6);
+}
+
+#[test]
+fn iso_8_1_7_extended_stuffing() {
+    case("8.1.7", "iso_8_1_7_extended_stuffing", 3);
+}
+
+#[test]
+fn iso_8_1_8_sof_at_intermission_3() {
+    case("8.1.8", "iso_8_1_8_sof_at_intermission_3", 2);
+}
+
 #[test]
 fn filters_select_by_clause_prefix_and_name() {
     assert!(run_iso(Some("9.9")).is_empty());
-    let all: Vec<String> = run_iso(None).into_iter().map(|(n, _)| n).collect();
-    assert_eq!(all, ["iso_7_1_1_identifier_and_dlc", "iso_7_2_2_stuff_error", "iso_8_1_1_identifier_and_dlc"]);
-    assert_eq!(run_iso(Some("8")).len(), 1);
+    let names: Vec<&str> = canstar_verify::iso::cases().iter().map(|c| c.name).collect();
+    assert!(names.starts_with(&["iso_7_1_1_identifier_and_dlc", "iso_7_1_2_extended_identifier_and_dlc"]), "{names:?}");
+    assert!(names.contains(&"iso_7_2_2_stuff_error") && names.contains(&"iso_8_1_1_identifier_and_dlc"));
+    assert!(run_iso(Some("8.1.1")).len() == 1 && run_iso(Some("7.1.1")).len() == 1, "7.1.1 must not select 7.1.10..7.1.12");
+    assert_eq!(run_iso(Some("iso_7_2_2_stuff_error")).len(), 1);
     assert!(run_iso(Some("7.1")).iter().all(|(n, _)| n.starts_with("iso_7_1_")));
     // "7.1" must not select 7.10 .. 7.19 by accident
     assert!(!run_iso(Some("7.1")).iter().any(|(n, _)| n.starts_with("iso_7_2")));

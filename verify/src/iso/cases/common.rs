@@ -1,0 +1,113 @@
+//! Steps shared by several ISO cases: a frame the IUT must receive and
+//! acknowledge, a frame the IUT must transmit, and a receiver error at a
+//! given bit of the LT's frame. Each case file says which it uses and what
+//! it asserts on top.
+
+use super::super::{LtBench, Plan, StepRecord, Trigger};
+use crate::conformance::{ensure, BitRec};
+use canstar_controller::frame::{BuildOptions, Frame};
+use canstar_controller::fsm::*;
+
+/// The error events (bit, stuff, CRC, form, ACK).
+pub const ERRORS: u32 = (1 << EV_BIT_ERR) | (1 << EV_STUFF_ERR) | (1 << EV_CRC_ERR) | (1 << EV_FORM_ERR) | (1 << EV_ACK_ERR);
+
+/// The IUT's bits that carry an error event.
+pub fn errors(r: &StepRecord) -> Vec<BitRec> {
+    r.iut().iter().filter(|b| b.ev & ERRORS != 0).copied().collect()
+}
+
+/// The LT plays plan `p` (frames from SOF, ACK slots expected dominant)
+/// in the current step and ends it; the IUT must drive dominant only in
+/// the plan bits `acks`, deliver exactly `want` (in order) and detect no
+/// error. Returns the step record for further checks.
+pub fn receive_plan(lb: &mut LtBench, p: &Plan, want: &[Frame], acks: &[usize]) -> Result<StepRecord, String> {
+    let got0 = lb.b.node(0).received().len();
+    lb.play_and_run(p);
+    lb.run_idle(30)?;
+    let r = lb.end_step();
+    r.check_expects()?;
+    for i in 0..p.bits.len() {
+        if !acks.contains(&i) {
+            ensure!(r.iut_tx_at(0, i) == Some(true), "IUT drove dominant in plan bit {i} ({:?}), not an ACK slot", p.bits[i].label);
+        }
+    }
+    let got = lb.b.node(0).received();
+    ensure!(got.len() == got0 + want.len() && got[got0..] == *want, "IUT delivered {:?}, expected {want:?}", &got[got0..]);
+    let e = errors(&r);
+    ensure!(e.is_empty(), "IUT detected errors: {e:?}");
+    Ok(r)
+}
+
+/// One frame `f` built with options `o`, sent by the LT and followed by 3
+/// recessive bits: the IUT acknowledges it, delivers it and detects no
+/// error (see [`receive_plan`]). Starts its own step.
+pub fn receive_frame(lb: &mut LtBench, f: &Frame, o: BuildOptions) -> Result<StepRecord, String> {
+    lb.begin_step("rx");
+    let mut p = Plan::frame(lb.timing, f, o);
+    p.push_recessive(3);
+    let ack = p.find(Field::AckSlot, 1, false).ok_or("no ACK slot in the plan")?;
+    receive_plan(lb, &p, std::slice::from_ref(f), &[ack])
+}
+
+/// The IUT transmits `f` (requested in a new step, after the counters are
+/// preset to `tec`/`rec`), the LT acknowledges it and checks every bit the
+/// IUT drives up to the end of End_Of_Frame; the IUT reports one successful
+/// transmission and detects no error. Returns the step record.
+pub fn transmit_frame(lb: &mut LtBench, f: &Frame, tec: u32, rec: u32) -> Result<StepRecord, String> {
+    lb.begin_step("tx");
+    lb.preset(0, tec, rec);
+    let sent0 = lb.b.node(0).sent().len();
+    lb.b.node_mut(0).request(f.clone());
+    lb.wait(Trigger::at(Field::Sof, 1), 30)?;
+    let p = Plan::answer(lb.timing, f, BuildOptions::default(), 3);
+    lb.play_and_run(&p);
+    lb.run_idle(30)?;
+    let r = lb.end_step();
+    r.check_expects()?;
+    ensure!(r.iut_events(EV_TX_OK).len() == 1, "no successful transmission:{}", r.dump(0));
+    let e = errors(&r);
+    ensure!(e.is_empty(), "IUT detected errors: {e:?}");
+    ensure!(!lb.b.node(0).pending(), "the frame is still pending");
+    let sent = lb.b.node(0).sent();
+    ensure!(sent.len() == sent0 + 1 && sent[sent0] == *f, "the IUT reports {:?} as sent", &sent[sent0..]);
+    Ok(r)
+}
+
+/// What a receiver error step expects.
+pub struct RxError {
+    /// The error event (`EV_*`).
+    pub ev: usize,
+    /// FIELD and POSITION of the IUT bit that carries the event.
+    pub at: (Field, u32),
+    /// Plan bit in which the IUT's active error flag begins.
+    pub flag: usize,
+}
+
+/// A receiver error: the IUT (counters preset to TEC 0 / REC `rec0`)
+/// receives plan `p` (already made faulty by the caller), of which the LT
+/// plays bits up to and including `last` and then stays recessive. The IUT
+/// must detect exactly one error, of kind `w.ev` at `w.at`, drive an active
+/// error flag of six dominant bits from plan bit `w.flag` followed by a
+/// recessive bit, deliver no frame and end with REC `rec0 + 1`. Starts its
+/// own step; returns the record.
+pub fn receive_error(lb: &mut LtBench, mut p: Plan, last: usize, w: RxError, rec0: u32) -> Result<StepRecord, String> {
+    lb.begin_step("rx error");
+    lb.preset(0, 0, rec0);
+    let got0 = lb.b.node(0).received().len();
+    p.truncate(last + 1).push_recessive(w.flag.saturating_sub(last) + 8 + 8 + 3);
+    for k in 0..6 {
+        p.expect(w.flag + k, false, "active error flag");
+    }
+    p.expect(w.flag + 6, true, "error delimiter");
+    lb.play_and_run(&p);
+    lb.run_idle(40)?;
+    let r = lb.end_step();
+    let e = errors(&r);
+    ensure!(e.len() == 1, "{} errors detected, expected one:{}", e.len(), r.dump(0));
+    ensure!(e[0].has(w.ev) && (e[0].field, e[0].pos) == w.at, "error at {}, expected event {} at {} {}", e[0], w.ev, w.at.0.name(), w.at.1);
+    ensure!(r.iut_events(EV_AEF).len() == 1, "active error flags:{}", r.dump(0));
+    r.check_expects()?;
+    ensure!(lb.b.rec(0) == rec0 + 1 && lb.b.tec(0) == 0, "TEC {} REC {}, expected 0 and {}:{}", lb.b.tec(0), lb.b.rec(0), rec0 + 1, r.dump(0));
+    ensure!(lb.b.node(0).received().len() == got0, "a frame was delivered");
+    Ok(r)
+}
