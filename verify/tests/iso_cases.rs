@@ -172,6 +172,137 @@ fn iso_8_1_8_sof_at_intermission_3() {
 }
 
 #[test]
+fn iso_7_6_1_error_flag_bit_error_rec() {
+    case("7.6.1", "iso_7_6_1_error_flag_bit_error_rec", 3);
+}
+
+#[test]
+fn iso_7_6_2_overload_flag_bit_error_rec() {
+    case("7.6.2", "iso_7_6_2_overload_flag_bit_error_rec", 3);
+}
+
+#[test]
+fn iso_7_6_3_dominant_after_error_flag_rec() {
+    case("7.6.3", "iso_7_6_3_dominant_after_error_flag_rec", 1);
+}
+
+#[test]
+fn iso_7_6_4_dominant_after_overload_flag_rec() {
+    case("7.6.4", "iso_7_6_4_dominant_after_overload_flag_rec", 1);
+}
+
+#[test]
+fn iso_7_6_5_ack_bit_error_rec() {
+    case("7.6.5", "iso_7_6_5_ack_bit_error_rec", 1);
+}
+
+#[test]
+fn iso_7_6_6_crc_delimiter_rec() {
+    case("7.6.6", "iso_7_6_6_crc_delimiter_rec", 1);
+}
+
+#[test]
+fn iso_7_6_9_stuff_error_rec() {
+    case("7.6.9", "iso_7_6_9_stuff_error_rec", 8);
+}
+
+#[test]
+fn iso_7_6_10_crc_error_rec() {
+    case("7.6.10", "iso_7_6_10_crc_error_rec", 1);
+}
+
+#[test]
+fn iso_7_6_11_first_dominant_after_flag_rec() {
+    case("7.6.11", "iso_7_6_11_first_dominant_after_flag_rec", 1);
+}
+
+#[test]
+fn iso_7_6_12_error_delimiter_form_error_rec() {
+    case("7.6.12", "iso_7_6_12_error_delimiter_form_error_rec", 2);
+}
+
+#[test]
+fn iso_7_6_13_overload_delimiter_form_error_rec() {
+    case("7.6.13", "iso_7_6_13_overload_delimiter_form_error_rec", 2);
+}
+
+#[test]
+fn iso_7_6_14_valid_frame_rec() {
+    case("7.6.14", "iso_7_6_14_valid_frame_rec", 1);
+}
+
+#[test]
+fn iso_7_6_15_passive_valid_frame_rec() {
+    case("7.6.15", "iso_7_6_15_passive_valid_frame_rec", 2);
+}
+
+#[test]
+fn iso_7_6_16_eof7_rec() {
+    case("7.6.16", "iso_7_6_16_eof7_rec", 2);
+}
+
+#[test]
+fn iso_7_6_17_long_overload_flag_rec() {
+    case("7.6.17", "iso_7_6_17_long_overload_flag_rec", 1);
+}
+
+#[test]
+fn iso_7_6_18_long_error_flag_rec() {
+    case("7.6.18", "iso_7_6_18_long_error_flag_rec", 1);
+}
+
+#[test]
+fn iso_7_6_19_error_delimiter_bit8_rec() {
+    case("7.6.19", "iso_7_6_19_error_delimiter_bit8_rec", 1);
+}
+
+#[test]
+fn iso_7_6_20_overload_delimiter_bit8_rec() {
+    case("7.6.20", "iso_7_6_20_overload_delimiter_bit8_rec", 1);
+}
+
+#[test]
+fn iso_7_6_21_own_frame_rec() {
+    case("7.6.21", "iso_7_6_21_own_frame_rec", 1);
+}
+
+/// A case whose elementary tests are all known failures (a disagreement
+/// with canstar's documented behaviour): each fails, with the message of
+/// canstar's value, and is listed in `KNOWN_FAILURES`.
+fn known_failing(clause: &str, name: &str, n: usize, msg: &str) {
+    let runs = run_iso(Some(clause));
+    assert_eq!(runs.len(), 1, "clause {clause}");
+    let (got, r) = &runs[0];
+    assert_eq!(got, name);
+    assert_eq!(r.len(), n);
+    for s in r {
+        assert!(!s.pass && s.msg.contains(msg), "{}: expected a known failure with {msg:?}, got pass={} {}", s.name, s.pass, s.msg);
+        assert!(canstar_verify::iso::cases::known_failure(&s.name).is_some(), "{} not listed as a known failure", s.name);
+    }
+}
+
+#[test]
+fn iso_7_6_7_ack_delimiter_rec_is_a_known_failure() {
+    known_failing("7.6.7", "iso_7_6_7_ack_delimiter_rec", 1, "REC 10 (REC 9 before), expected TEC 0 and REC 9");
+}
+
+#[test]
+fn iso_7_6_8_eof_form_error_rec_is_a_known_failure() {
+    known_failing("7.6.8", "iso_7_6_8_eof_form_error_rec", 3, "REC 10 (REC 9 before), expected TEC 0 and REC 9");
+}
+
+#[test]
+fn only_known_failures_fail_and_the_cli_marks_them() {
+    let mut out = vec![];
+    let (pass, fail) = canstar_verify::iso::run_iso_cli(None, &mut out).unwrap();
+    let out = String::from_utf8(out).unwrap();
+    assert!(pass > 400, "{out}");
+    assert_eq!(fail, 4, "{out}");
+    assert_eq!(out.lines().filter(|l| l.starts_with("  FAIL (known: disagreement D2")).count(), 4, "{out}");
+    assert!(out.lines().last().unwrap().ends_with("passed, 4 failed (4 of them known failures)"), "{out}");
+}
+
+#[test]
 fn filters_select_by_clause_prefix_and_name() {
     assert!(run_iso(Some("9.9")).is_empty());
     let names: Vec<&str> = canstar_verify::iso::cases().iter().map(|c| c.name).collect();

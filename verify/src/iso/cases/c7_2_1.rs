@@ -21,7 +21,7 @@ pub fn ack_bit_error(lb: &mut LtBench, rec0: u32) -> Result<(), String> {
     let mut p = Plan::frame(lb.timing, &f, BuildOptions::default());
     let ack = p.find(Field::AckSlot, 1, false).unwrap();
     p.disturb(Disturbance { at: At::tq(ack, 0), span: Span::Bits(1), action: Action::Force(true), target: Target::Bus });
-    receive_error(lb, p, ack, RxError { ev: EV_BIT_ERR, at: (Field::AckSlot, 1), flag: ack + 1 }, rec0).map(|_| ())
+    receive_error(lb, p, ack, RxError { ev: EV_BIT_ERR, at: (Field::AckSlot, 1), flag: ack + 1, rec: None }, rec0).map(|_| ())
 }
 
 pub fn run() -> Vec<StepResult> {

@@ -19,7 +19,7 @@ pub fn run() -> Vec<StepResult> {
     let mut ctx = Ctx { program: "iso_7_2_10".into(), vcd: None, results: vec![] };
     let mut lb = LtBench::new(vec![NodeConfig::named("iut")]);
     for n in 1..=5 {
-        let r = form_error_at(&mut lb, Field::Eof, n, 0);
+        let r = form_error_at(&mut lb, Field::Eof, n, 0, None);
         ctx.record(&format!("iso_7_2_10_eof{n}_dominant"), r);
     }
     ctx.results

@@ -24,7 +24,7 @@ pub fn run() -> Vec<StepResult> {
         // the IUT holds other data first
         let before = Frame::std(0x700, &[0xEE; 4]);
         receive_frame(&mut lb, &before, BuildOptions::default())?;
-        form_error_at(&mut lb, Field::Eof, 6, 0)?;
+        form_error_at(&mut lb, Field::Eof, 6, 0, None)?;
         ensure!(lb.b.node(0).received().last() == Some(&before), "the last delivered frame changed");
         Ok(())
     })();

@@ -69,7 +69,7 @@ pub fn crc_error(lb: &mut LtBench, f: &Frame, lvl: bool, rec0: u32) -> Result<St
     let ad = ack + 1;
     p.expects.retain(|e| e.bit != ack);
     p.expect(ack, true, "no ACK after a CRC error");
-    let r = receive_error(lb, p, ad, RxError { ev: EV_CRC_ERR, at: (Field::AckDel, 1), flag: ad + 1 }, rec0)?;
+    let r = receive_error(lb, p, ad, RxError { ev: EV_CRC_ERR, at: (Field::AckDel, 1), flag: ad + 1, rec: None }, rec0)?;
     ensure!(!r.iut().iter().any(|b| b.field == Field::AckSlot && !b.drove), "the IUT acknowledged");
     Ok(name)
 }

@@ -17,7 +17,7 @@ use canstar_controller::fsm::Field;
 pub fn run() -> Vec<StepResult> {
     let mut ctx = Ctx { program: "iso_7_2_9".into(), vcd: None, results: vec![] };
     let mut lb = LtBench::new(vec![NodeConfig::named("iut")]);
-    let r = form_error_at(&mut lb, Field::AckDel, 1, 0);
+    let r = form_error_at(&mut lb, Field::AckDel, 1, 0, None);
     ctx.record("iso_7_2_9_ack_delimiter_dominant", r);
     ctx.results
 }

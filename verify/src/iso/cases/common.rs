@@ -81,6 +81,8 @@ pub struct RxError {
     pub at: (Field, u32),
     /// Plan bit in which the IUT's active error flag begins.
     pub flag: usize,
+    /// REC expected at the end (`None`: one more than before).
+    pub rec: Option<u32>,
 }
 
 /// A receiver error: the IUT (counters preset to TEC 0 / REC `rec0`)
@@ -88,7 +90,8 @@ pub struct RxError {
 /// plays bits up to and including `last` and then stays recessive. The IUT
 /// must detect exactly one error, of kind `w.ev` at `w.at`, drive an active
 /// error flag of six dominant bits from plan bit `w.flag` followed by a
-/// recessive bit, deliver no frame and end with REC `rec0 + 1`. Starts its
+/// recessive bit, deliver no frame and end with REC `w.rec` (by default
+/// `rec0 + 1`). Starts its
 /// own step; returns the record.
 pub fn receive_error(lb: &mut LtBench, mut p: Plan, last: usize, w: RxError, rec0: u32) -> Result<StepRecord, String> {
     lb.begin_step("rx error");
@@ -107,7 +110,55 @@ pub fn receive_error(lb: &mut LtBench, mut p: Plan, last: usize, w: RxError, rec
     ensure!(e[0].has(w.ev) && (e[0].field, e[0].pos) == w.at, "error at {}, expected event {} at {} {}", e[0], w.ev, w.at.0.name(), w.at.1);
     ensure!(r.iut_events(EV_AEF).len() == 1, "active error flags:{}", r.dump(0));
     r.check_expects()?;
-    ensure!(lb.b.rec(0) == rec0 + 1 && lb.b.tec(0) == 0, "TEC {} REC {}, expected 0 and {}:{}", lb.b.tec(0), lb.b.rec(0), rec0 + 1, r.dump(0));
+    let want = w.rec.unwrap_or(rec0 + 1);
+    ensure!(lb.b.rec(0) == want && lb.b.tec(0) == 0, "TEC {} REC {} (REC {rec0} before), expected TEC 0 and REC {want}:{}", lb.b.tec(0), lb.b.rec(0), r.dump(0));
     ensure!(lb.b.node(0).received().len() == got0, "a frame was delivered");
     Ok(r)
+}
+
+/// The frame whose data field carries the stuff error of [`error_in_data`].
+pub fn error_frame_source() -> Frame {
+    Frame::std(0x078, &[0x00, 0xFF])
+}
+
+/// "The IUT sends an active error frame in the data field": the LT's
+/// frame with its first data stuff bit sent at the wrong level (a stuff
+/// error for the IUT, REC +1), cut after that bit. Returns the plan and the
+/// plan index of the IUT's first error flag bit; the caller appends what
+/// the LT drives from there on.
+pub fn error_in_data(lb: &LtBench) -> (Plan, usize) {
+    let mut p = Plan::frame(lb.timing, &error_frame_source(), BuildOptions::default());
+    let s = p.stuff_bits().into_iter().find(|&i| p.bits[i].label.is_some_and(|l| l.field == Field::Data)).expect("a data stuff bit");
+    let l = p.bits[s].level;
+    p.set_level(s, !l).truncate(s + 1);
+    (p, s + 1)
+}
+
+/// "The IUT sends an overload frame after a data frame": the LT's valid
+/// frame (acknowledged by the IUT) with Intermission bit 1 dominant. Returns
+/// the plan (up to that bit) and the plan index of the IUT's first overload
+/// flag bit.
+pub fn overload_after_frame(lb: &LtBench) -> (Plan, usize) {
+    let mut p = Plan::frame(lb.timing, &Frame::std(0x2C6, &[0x3E]), BuildOptions::default());
+    p.push_levels(&[false]);
+    let i = p.bits.len();
+    (p, i)
+}
+
+/// The IUT's bit record for plan bit `i` of play `k` (the bit whose sample
+/// point lies in that plan bit).
+pub fn iut_bit_at(r: &StepRecord, k: usize, i: usize) -> Option<BitRec> {
+    let s = r.bit_start(k, i);
+    let e = r.bit_start(k, i + 1);
+    r.iut().iter().find(|b| b.t >= s && b.t < e).copied()
+}
+
+/// Play `p` in a new step after presetting REC to `rec0`, run until idle;
+/// the record.
+pub fn play_step(lb: &mut LtBench, p: &Plan, rec0: u32) -> Result<StepRecord, String> {
+    lb.begin_step("step");
+    lb.preset(0, 0, rec0);
+    lb.play_and_run(p);
+    lb.run_idle(60)?;
+    Ok(lb.end_step())
 }

@@ -27,6 +27,19 @@
 
 use super::IsoCase;
 
+/// Elementary tests expected to fail, with the reason: (name prefix,
+/// reason). They keep their ISO check and stay failures in the output of
+/// `canstar conformance --suite iso`, marked as known.
+pub const KNOWN_FAILURES: &[(&str, &str)] = &[
+    ("iso_7_6_7_", "disagreement D2: canstar decrements REC only at a recessive EOF bit 7 (Bosch model, can-protocol.md 13.2/13.4), ISO at the ACK slot"),
+    ("iso_7_6_8_", "disagreement D2: canstar decrements REC only at a recessive EOF bit 7 (Bosch model, can-protocol.md 13.2/13.4), ISO at the ACK slot"),
+];
+
+/// The reason elementary test `name` is a known failure, if it is one.
+pub fn known_failure(name: &str) -> Option<&'static str> {
+    KNOWN_FAILURES.iter().find(|(p, _)| name.starts_with(p)).map(|(_, r)| *r)
+}
+
 pub mod common;
 pub mod c7_1_1;
 pub mod c7_1_2;
@@ -46,6 +59,27 @@ pub mod c7_2_7;
 pub mod c7_2_9;
 pub mod c7_2_10;
 pub mod c7_2_11;
+pub mod c7_6_1;
+pub mod c7_6_2;
+pub mod c7_6_3;
+pub mod c7_6_4;
+pub mod c7_6_5;
+pub mod c7_6_6;
+pub mod c7_6_7;
+pub mod c7_6_8;
+pub mod c7_6_9;
+pub mod c7_6_10;
+pub mod c7_6_11;
+pub mod c7_6_12;
+pub mod c7_6_13;
+pub mod c7_6_14;
+pub mod c7_6_15;
+pub mod c7_6_16;
+pub mod c7_6_17;
+pub mod c7_6_18;
+pub mod c7_6_19;
+pub mod c7_6_20;
+pub mod c7_6_21;
 pub mod c8_1_1;
 pub mod c8_1_2;
 pub mod c8_1_3;
@@ -74,6 +108,27 @@ pub fn all() -> Vec<IsoCase> {
         IsoCase { clause: "7.2.9", name: "iso_7_2_9_ack_delimiter_form_error", run: c7_2_9::run },
         IsoCase { clause: "7.2.10", name: "iso_7_2_10_eof_form_error", run: c7_2_10::run },
         IsoCase { clause: "7.2.11", name: "iso_7_2_11_eof6_form_error", run: c7_2_11::run },
+        IsoCase { clause: "7.6.1", name: "iso_7_6_1_error_flag_bit_error_rec", run: c7_6_1::run },
+        IsoCase { clause: "7.6.2", name: "iso_7_6_2_overload_flag_bit_error_rec", run: c7_6_2::run },
+        IsoCase { clause: "7.6.3", name: "iso_7_6_3_dominant_after_error_flag_rec", run: c7_6_3::run },
+        IsoCase { clause: "7.6.4", name: "iso_7_6_4_dominant_after_overload_flag_rec", run: c7_6_4::run },
+        IsoCase { clause: "7.6.5", name: "iso_7_6_5_ack_bit_error_rec", run: c7_6_5::run },
+        IsoCase { clause: "7.6.6", name: "iso_7_6_6_crc_delimiter_rec", run: c7_6_6::run },
+        IsoCase { clause: "7.6.7", name: "iso_7_6_7_ack_delimiter_rec", run: c7_6_7::run },
+        IsoCase { clause: "7.6.8", name: "iso_7_6_8_eof_form_error_rec", run: c7_6_8::run },
+        IsoCase { clause: "7.6.9", name: "iso_7_6_9_stuff_error_rec", run: c7_6_9::run },
+        IsoCase { clause: "7.6.10", name: "iso_7_6_10_crc_error_rec", run: c7_6_10::run },
+        IsoCase { clause: "7.6.11", name: "iso_7_6_11_first_dominant_after_flag_rec", run: c7_6_11::run },
+        IsoCase { clause: "7.6.12", name: "iso_7_6_12_error_delimiter_form_error_rec", run: c7_6_12::run },
+        IsoCase { clause: "7.6.13", name: "iso_7_6_13_overload_delimiter_form_error_rec", run: c7_6_13::run },
+        IsoCase { clause: "7.6.14", name: "iso_7_6_14_valid_frame_rec", run: c7_6_14::run },
+        IsoCase { clause: "7.6.15", name: "iso_7_6_15_passive_valid_frame_rec", run: c7_6_15::run },
+        IsoCase { clause: "7.6.16", name: "iso_7_6_16_eof7_rec", run: c7_6_16::run },
+        IsoCase { clause: "7.6.17", name: "iso_7_6_17_long_overload_flag_rec", run: c7_6_17::run },
+        IsoCase { clause: "7.6.18", name: "iso_7_6_18_long_error_flag_rec", run: c7_6_18::run },
+        IsoCase { clause: "7.6.19", name: "iso_7_6_19_error_delimiter_bit8_rec", run: c7_6_19::run },
+        IsoCase { clause: "7.6.20", name: "iso_7_6_20_overload_delimiter_bit8_rec", run: c7_6_20::run },
+        IsoCase { clause: "7.6.21", name: "iso_7_6_21_own_frame_rec", run: c7_6_21::run },
         IsoCase { clause: "8.1.1", name: "iso_8_1_1_identifier_and_dlc", run: c8_1_1::run },
         IsoCase { clause: "8.1.2", name: "iso_8_1_2_extended_identifier_and_dlc", run: c8_1_2::run },
         IsoCase { clause: "8.1.3", name: "iso_8_1_3_arbitration_lost_base", run: c8_1_3::run },
