@@ -172,6 +172,61 @@ fn iso_8_1_8_sof_at_intermission_3() {
 }
 
 #[test]
+fn iso_7_3_1_error_flag_lengthened() {
+    case("7.3.1", "iso_7_3_1_error_flag_lengthened", 3);
+}
+
+#[test]
+fn iso_7_3_2_frame_after_error_frame() {
+    case("7.3.2", "iso_7_3_2_frame_after_error_frame", 1);
+}
+
+#[test]
+fn iso_7_3_3_error_flag_bit_error() {
+    case("7.3.3", "iso_7_3_3_error_flag_bit_error", 3);
+}
+
+#[test]
+fn iso_7_3_4_error_delimiter_form_error() {
+    case("7.3.4", "iso_7_3_4_error_delimiter_form_error", 3);
+}
+
+#[test]
+fn iso_7_4_1_intermission_overload() {
+    case("7.4.1", "iso_7_4_1_intermission_overload", 2);
+}
+
+#[test]
+fn iso_7_4_2_eof7_overload() {
+    case("7.4.2", "iso_7_4_2_eof7_overload", 1);
+}
+
+#[test]
+fn iso_7_4_3_delimiter_bit8_overload() {
+    case("7.4.3", "iso_7_4_3_delimiter_bit8_overload", 2);
+}
+
+#[test]
+fn iso_7_4_4_overload_flag_bit_error() {
+    case("7.4.4", "iso_7_4_4_overload_flag_bit_error", 3);
+}
+
+#[test]
+fn iso_7_4_5_overload_delimiter_form_error() {
+    case("7.4.5", "iso_7_4_5_overload_delimiter_form_error", 3);
+}
+
+#[test]
+fn iso_7_4_6_intermission_after_error_frame_overload() {
+    case("7.4.6", "iso_7_4_6_intermission_after_error_frame_overload", 2);
+}
+
+#[test]
+fn iso_7_4_7_intermission_after_overload_frame_overload() {
+    case("7.4.7", "iso_7_4_7_intermission_after_overload_frame_overload", 2);
+}
+
+#[test]
 fn iso_7_6_1_error_flag_bit_error_rec() {
     case("7.6.1", "iso_7_6_1_error_flag_bit_error_rec", 3);
 }

@@ -18,11 +18,10 @@ use crate::node::NodeConfig;
 use canstar_controller::frame::{BuildOptions, Frame};
 use canstar_controller::fsm::*;
 
-pub fn run() -> Vec<StepResult> {
-    let mut ctx = Ctx { program: "iso_7_1_12".into(), vcd: None, results: vec![] };
-    let mut lb = LtBench::new(vec![NodeConfig::named("iut")]);
+/// The step of 7.1.12 and 7.4.2: a valid frame with a dominant EOF bit 7.
+pub fn eof7_overload(lb: &mut LtBench) -> Result<(), String> {
     let f = Frame::std(0x5A3, &[0xC3, 0x3C, 0x81]);
-    let r = (|| {
+    {
         lb.begin_step("eof7 dominant");
         let mut p = Plan::frame(lb.timing, &f, BuildOptions::default());
         let e7 = p.find(Field::Eof, 7, false).unwrap();
@@ -42,7 +41,13 @@ pub fn run() -> Vec<StepResult> {
         let olf = r.iut_events(EV_OLF);
         ensure!(olf.len() == 1 && (olf[0].field, olf[0].pos) == (Field::Eof, 7), "overload flags {olf:?}");
         Ok(())
-    })();
+    }
+}
+
+pub fn run() -> Vec<StepResult> {
+    let mut ctx = Ctx { program: "iso_7_1_12".into(), vcd: None, results: vec![] };
+    let mut lb = LtBench::new(vec![NodeConfig::named("iut")]);
+    let r = eof7_overload(&mut lb);
     ctx.record("iso_7_1_12_eof7_dominant", r);
     ctx.results
 }

@@ -162,3 +162,63 @@ pub fn play_step(lb: &mut LtBench, p: &Plan, rec0: u32) -> Result<StepRecord, St
     lb.run_idle(60)?;
     Ok(lb.end_step())
 }
+
+/// How a flag scenario starts (see [`flag_scenario`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Start {
+    /// A stuff error in the data field of the LT's frame ([`error_in_data`]):
+    /// the IUT sends an active error flag (REC +1).
+    ErrorInData,
+    /// A valid frame with a dominant first intermission bit
+    /// ([`overload_after_frame`]): the IUT sends an overload flag.
+    OverloadAfterFrame,
+}
+
+/// Offset (from the IUT's first flag bit) of delimiter bit `n` (1..8).
+pub fn delim(n: usize) -> usize {
+    6 + n - 1
+}
+
+/// Offset (from the IUT's first flag bit) of intermission bit `m` (1..3)
+/// after an undisturbed flag and delimiter.
+pub fn inter(m: usize) -> usize {
+    6 + 8 + m - 1
+}
+
+/// A flag scenario: after `start`, the LT drives recessive from the IUT's
+/// first flag bit on, except dominant at the offsets `dom`, and forces the
+/// bus recessive (for every node) during the offsets `forced_rec`. If
+/// `flag` is given, the IUT must drive six dominant bits from that offset
+/// and a recessive bit after them. REC is preset to `rec0`. Returns the
+/// record and the plan index of the first flag bit.
+pub fn flag_scenario(lb: &mut LtBench, start: Start, dom: &[usize], forced_rec: &[usize], flag: Option<usize>, rec0: u32) -> Result<(StepRecord, usize), String> {
+    use super::super::{Action, At, Disturbance, Span, Target};
+    let (mut p, f) = match start {
+        Start::ErrorInData => error_in_data(lb),
+        Start::OverloadAfterFrame => overload_after_frame(lb),
+    };
+    p.push_recessive(6 + 8 + 8 + 8 + 8 + 3);
+    for &d in dom {
+        p.set_level(f + d, false);
+    }
+    for &d in forced_rec {
+        p.disturb(Disturbance { at: At::tq(f + d, 0), span: Span::Bits(1), action: Action::Force(true), target: Target::Bus });
+    }
+    if let Some(o) = flag {
+        for k in 0..6 {
+            p.expect(f + o + k, false, "flag");
+        }
+        p.expect(f + o + 6, true, "delimiter after the flag");
+    }
+    let r = play_step(lb, &p, rec0)?;
+    r.check_expects()?;
+    Ok((r, f))
+}
+
+/// The IUT's bit (`field`, `pos`) (first occurrence, no stuff bit) carries
+/// event `ev`.
+pub fn event_at(r: &StepRecord, ev: usize, field: Field, pos: u32) -> Result<BitRec, String> {
+    let b = r.iut().iter().find(|b| b.field == field && b.pos == pos && !b.stuff).copied().ok_or_else(|| format!("no IUT bit {} {pos}:{}", field.name(), r.dump(0)))?;
+    ensure!(b.has(ev), "IUT bit {b}: event {ev} expected:{}", r.dump(0));
+    Ok(b)
+}

@@ -59,6 +59,17 @@ pub mod c7_2_7;
 pub mod c7_2_9;
 pub mod c7_2_10;
 pub mod c7_2_11;
+pub mod c7_3_1;
+pub mod c7_3_2;
+pub mod c7_3_3;
+pub mod c7_3_4;
+pub mod c7_4_1;
+pub mod c7_4_2;
+pub mod c7_4_3;
+pub mod c7_4_4;
+pub mod c7_4_5;
+pub mod c7_4_6;
+pub mod c7_4_7;
 pub mod c7_6_1;
 pub mod c7_6_2;
 pub mod c7_6_3;
@@ -108,6 +119,17 @@ pub fn all() -> Vec<IsoCase> {
         IsoCase { clause: "7.2.9", name: "iso_7_2_9_ack_delimiter_form_error", run: c7_2_9::run },
         IsoCase { clause: "7.2.10", name: "iso_7_2_10_eof_form_error", run: c7_2_10::run },
         IsoCase { clause: "7.2.11", name: "iso_7_2_11_eof6_form_error", run: c7_2_11::run },
+        IsoCase { clause: "7.3.1", name: "iso_7_3_1_error_flag_lengthened", run: c7_3_1::run },
+        IsoCase { clause: "7.3.2", name: "iso_7_3_2_frame_after_error_frame", run: c7_3_2::run },
+        IsoCase { clause: "7.3.3", name: "iso_7_3_3_error_flag_bit_error", run: c7_3_3::run },
+        IsoCase { clause: "7.3.4", name: "iso_7_3_4_error_delimiter_form_error", run: c7_3_4::run },
+        IsoCase { clause: "7.4.1", name: "iso_7_4_1_intermission_overload", run: c7_4_1::run },
+        IsoCase { clause: "7.4.2", name: "iso_7_4_2_eof7_overload", run: c7_4_2::run },
+        IsoCase { clause: "7.4.3", name: "iso_7_4_3_delimiter_bit8_overload", run: c7_4_3::run },
+        IsoCase { clause: "7.4.4", name: "iso_7_4_4_overload_flag_bit_error", run: c7_4_4::run },
+        IsoCase { clause: "7.4.5", name: "iso_7_4_5_overload_delimiter_form_error", run: c7_4_5::run },
+        IsoCase { clause: "7.4.6", name: "iso_7_4_6_intermission_after_error_frame_overload", run: c7_4_6::run },
+        IsoCase { clause: "7.4.7", name: "iso_7_4_7_intermission_after_overload_frame_overload", run: c7_4_7::run },
         IsoCase { clause: "7.6.1", name: "iso_7_6_1_error_flag_bit_error_rec", run: c7_6_1::run },
         IsoCase { clause: "7.6.2", name: "iso_7_6_2_overload_flag_bit_error_rec", run: c7_6_2::run },
         IsoCase { clause: "7.6.3", name: "iso_7_6_3_dominant_after_error_flag_rec", run: c7_6_3::run },
