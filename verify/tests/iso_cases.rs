@@ -321,6 +321,56 @@ fn iso_7_6_21_own_frame_rec() {
     case("7.6.21", "iso_7_6_21_own_frame_rec", 1);
 }
 
+#[test]
+fn iso_8_2_1_base_bit_error() {
+    case("8.2.1", "iso_8_2_1_base_bit_error", 11);
+}
+
+#[test]
+fn iso_8_2_2_extended_bit_error() {
+    case("8.2.2", "iso_8_2_2_extended_bit_error", 11);
+}
+
+#[test]
+fn iso_8_2_3_base_stuff_error() {
+    case("8.2.3", "iso_8_2_3_base_stuff_error", 35); // the standard counts 35 for its six frames
+}
+
+#[test]
+fn iso_8_2_4_extended_stuff_error() {
+    case("8.2.4", "iso_8_2_4_extended_stuff_error", 34);
+}
+
+#[test]
+fn iso_8_2_5_form_error() {
+    case("8.2.5", "iso_8_2_5_form_error", 5);
+}
+
+#[test]
+fn iso_8_2_6_ack_error() {
+    case("8.2.6", "iso_8_2_6_ack_error", 1);
+}
+
+#[test]
+fn iso_8_6_8_ack_error_tec() {
+    case("8.6.8", "iso_8_6_8_ack_error_tec", 1);
+}
+
+#[test]
+fn iso_8_6_11_success_tec() {
+    case("8.6.11", "iso_8_6_11_success_tec", 1);
+}
+
+#[test]
+fn iso_8_6_17_passive_ack_error_tec() {
+    case("8.6.17", "iso_8_6_17_passive_ack_error_tec", 1);
+}
+
+#[test]
+fn iso_8_6_20_reception_tec() {
+    case("8.6.20", "iso_8_6_20_reception_tec", 1);
+}
+
 /// A case whose elementary tests are all known failures (a disagreement
 /// with canstar's documented behaviour): each fails, with the message of
 /// canstar's value, and is listed in `KNOWN_FAILURES`.
@@ -369,3 +419,4 @@ fn filters_select_by_clause_prefix_and_name() {
     // "7.1" must not select 7.10 .. 7.19 by accident
     assert!(!run_iso(Some("7.1")).iter().any(|(n, _)| n.starts_with("iso_7_2")));
 }
+

@@ -222,3 +222,56 @@ pub fn event_at(r: &StepRecord, ev: usize, field: Field, pos: u32) -> Result<Bit
     ensure!(b.has(ev), "IUT bit {b}: event {ev} expected:{}", r.dump(0));
     Ok(b)
 }
+
+/// A transmitter error: the IUT (TEC preset `tec0`, REC 0) transmits `f`;
+/// the LT plays `p` (the answer plan of `f`, already made faulty by the
+/// caller) up to and including plan bit `last`, then stays recessive. The
+/// IUT must detect exactly one error, `ev` at `at`, with TEC `tec_err`
+/// after that bit, send one error flag (active: six dominant bits from plan
+/// bit `flag`; passive when `passive`: recessive there), then send `f`
+/// again, which the LT acknowledges and checks; at the end TEC is
+/// `tec_err - 1` (the success) and the frame was sent once.
+#[allow(clippy::too_many_arguments)]
+pub fn transmit_error(lb: &mut LtBench, f: &Frame, tec0: u32, mut p: Plan, last: usize, flag: usize, ev: usize, at: (Field, u32), tec_err: u32, passive: bool) -> Result<StepRecord, String> {
+    lb.begin_step("tx error");
+    lb.preset(0, tec0, 0);
+    let sent0 = lb.b.node(0).sent().len();
+    lb.b.node_mut(0).request(f.clone());
+    lb.wait(Trigger::at(Field::Sof, 1), 30)?;
+    p.truncate(last + 1).push_recessive(flag - last + 6 + 4);
+    for k in 0..6 {
+        p.expect(flag + k, passive, if passive { "passive error flag" } else { "active error flag" });
+    }
+    p.expect(flag + 6, true, "after the flag");
+    lb.play(&p);
+    lb.wait(Trigger::at(Field::Sof, 1).nth(2), p.bits.len() as u64 + 8 + 3 + 8 + 30)?;
+    lb.play_and_run(&Plan::answer(lb.timing, f, BuildOptions::default(), 3));
+    lb.run_idle(30)?;
+    let r = lb.end_step();
+    r.check_expects()?;
+    let e = errors(&r);
+    ensure!(e.len() == 1, "{} errors, expected one:{}", e.len(), r.dump(0));
+    ensure!(e[0].has(ev) && (e[0].field, e[0].pos) == at, "error at {}, expected event {ev} at {} {}", e[0], at.0.name(), at.1);
+    ensure!(e[0].tec == tec_err, "TEC {} after the error (TEC {tec0} before), expected {tec_err}", e[0].tec);
+    let flags = r.iut_events(if passive { EV_PEF } else { EV_AEF });
+    ensure!(flags.len() == 1, "error flags:{}", r.dump(0));
+    ensure!(r.iut_events(EV_TX_OK).len() == 1, "no successful retransmission:{}", r.dump(0));
+    let want = tec_err.saturating_sub(1);
+    ensure!(lb.b.tec(0) == want && lb.b.rec(0) == 0, "TEC {} REC {} at the end, expected TEC {want}", lb.b.tec(0), lb.b.rec(0));
+    let sent = lb.b.node(0).sent();
+    ensure!(sent.len() == sent0 + 1 && sent[sent0] == *f, "sent {:?}", &sent[sent0..]);
+    Ok(r)
+}
+
+/// Make plan bit `i` of an answer plan wrong for the IUT: a recessive bit
+/// of the IUT is driven dominant by the LT, a dominant one is forced
+/// recessive on the bus (for every node).
+pub fn corrupt(p: &mut Plan, i: usize) {
+    use super::super::{Action, At, Disturbance, Span, Target};
+    let iut_level = p.expects.iter().find(|e| e.bit == i).map(|e| e.level).expect("an IUT bit");
+    if iut_level {
+        p.set_level(i, false);
+    } else {
+        p.disturb(Disturbance { at: At::tq(i, 0), span: Span::Bits(1), action: Action::Force(true), target: Target::Bus });
+    }
+}

@@ -98,6 +98,16 @@ pub mod c8_1_5;
 pub mod c8_1_6;
 pub mod c8_1_7;
 pub mod c8_1_8;
+pub mod c8_2_1;
+pub mod c8_2_2;
+pub mod c8_2_3;
+pub mod c8_2_4;
+pub mod c8_2_5;
+pub mod c8_2_6;
+pub mod c8_6_8;
+pub mod c8_6_11;
+pub mod c8_6_17;
+pub mod c8_6_20;
 
 pub fn all() -> Vec<IsoCase> {
     vec![
@@ -158,5 +168,15 @@ pub fn all() -> Vec<IsoCase> {
         IsoCase { clause: "8.1.6", name: "iso_8_1_6_base_stuffing", run: c8_1_6::run },
         IsoCase { clause: "8.1.7", name: "iso_8_1_7_extended_stuffing", run: c8_1_7::run },
         IsoCase { clause: "8.1.8", name: "iso_8_1_8_sof_at_intermission_3", run: c8_1_8::run },
+        IsoCase { clause: "8.2.1", name: "iso_8_2_1_base_bit_error", run: c8_2_1::run },
+        IsoCase { clause: "8.2.2", name: "iso_8_2_2_extended_bit_error", run: c8_2_2::run },
+        IsoCase { clause: "8.2.3", name: "iso_8_2_3_base_stuff_error", run: c8_2_3::run },
+        IsoCase { clause: "8.2.4", name: "iso_8_2_4_extended_stuff_error", run: c8_2_4::run },
+        IsoCase { clause: "8.2.5", name: "iso_8_2_5_form_error", run: c8_2_5::run },
+        IsoCase { clause: "8.2.6", name: "iso_8_2_6_ack_error", run: c8_2_6::run },
+        IsoCase { clause: "8.6.8", name: "iso_8_6_8_ack_error_tec", run: c8_6_8::run },
+        IsoCase { clause: "8.6.11", name: "iso_8_6_11_success_tec", run: c8_6_11::run },
+        IsoCase { clause: "8.6.17", name: "iso_8_6_17_passive_ack_error_tec", run: c8_6_17::run },
+        IsoCase { clause: "8.6.20", name: "iso_8_6_20_reception_tec", run: c8_6_20::run },
     ]
 }
