@@ -371,6 +371,66 @@ fn iso_8_6_20_reception_tec() {
     case("8.6.20", "iso_8_6_20_reception_tec", 1);
 }
 
+#[test]
+fn iso_8_3_1_error_flag_lengthened() {
+    case("8.3.1", "iso_8_3_1_error_flag_lengthened", 3);
+}
+
+#[test]
+fn iso_8_3_3_error_flag_bit_error() {
+    case("8.3.3", "iso_8_3_3_error_flag_bit_error", 3);
+}
+
+#[test]
+fn iso_8_3_4_error_delimiter_form_error() {
+    case("8.3.4", "iso_8_3_4_error_delimiter_form_error", 3);
+}
+
+#[test]
+fn iso_8_4_1_passive_intermission_overload() {
+    case("8.4.1", "iso_8_4_1_passive_intermission_overload", 2);
+}
+
+#[test]
+fn iso_8_4_4_overload_flag_bit_error() {
+    case("8.4.4", "iso_8_4_4_overload_flag_bit_error", 3);
+}
+
+#[test]
+fn iso_8_4_5_overload_delimiter_form_error() {
+    case("8.4.5", "iso_8_4_5_overload_delimiter_form_error", 3);
+}
+
+#[test]
+fn iso_8_6_3_dominant_after_error_flag_tec() {
+    case("8.6.3", "iso_8_6_3_dominant_after_error_flag_tec", 1);
+}
+
+#[test]
+fn iso_8_6_5_dominant_after_overload_flag_tec() {
+    case("8.6.5", "iso_8_6_5_dominant_after_overload_flag_tec", 1);
+}
+
+#[test]
+fn iso_8_6_13_long_overload_flag_tec() {
+    case("8.6.13", "iso_8_6_13_long_overload_flag_tec", 1);
+}
+
+#[test]
+fn iso_8_6_14_long_error_flag_tec() {
+    case("8.6.14", "iso_8_6_14_long_error_flag_tec", 1);
+}
+
+#[test]
+fn iso_8_6_15_overload_delimiter_bit8_tec() {
+    case("8.6.15", "iso_8_6_15_overload_delimiter_bit8_tec", 1);
+}
+
+#[test]
+fn iso_8_6_16_error_delimiter_bit8_tec() {
+    case("8.6.16", "iso_8_6_16_error_delimiter_bit8_tec", 1);
+}
+
 /// A case whose elementary tests are all known failures (a disagreement
 /// with canstar's documented behaviour): each fails, with the message of
 /// canstar's value, and is listed in `KNOWN_FAILURES`.
@@ -419,4 +479,5 @@ fn filters_select_by_clause_prefix_and_name() {
     // "7.1" must not select 7.10 .. 7.19 by accident
     assert!(!run_iso(Some("7.1")).iter().any(|(n, _)| n.starts_with("iso_7_2")));
 }
+
 

@@ -172,6 +172,9 @@ pub enum Start {
     /// A valid frame with a dominant first intermission bit
     /// ([`overload_after_frame`]): the IUT sends an overload flag.
     OverloadAfterFrame,
+    /// As `OverloadAfterFrame` with intermission bit 1 recessive and bit 2
+    /// dominant.
+    OverloadAtIntermission2,
 }
 
 /// Offset (from the IUT's first flag bit) of delimiter bit `n` (1..8).
@@ -196,6 +199,11 @@ pub fn flag_scenario(lb: &mut LtBench, start: Start, dom: &[usize], forced_rec: 
     let (mut p, f) = match start {
         Start::ErrorInData => error_in_data(lb),
         Start::OverloadAfterFrame => overload_after_frame(lb),
+        Start::OverloadAtIntermission2 => {
+            let (mut p, i) = overload_after_frame(lb);
+            p.set_level(i - 1, true).push_levels(&[false]);
+            (p, i + 1)
+        }
     };
     p.push_recessive(6 + 8 + 8 + 8 + 8 + 3);
     for &d in dom {
@@ -274,4 +282,80 @@ pub fn corrupt(p: &mut Plan, i: usize) {
     } else {
         p.disturb(Disturbance { at: At::tq(i, 0), span: Span::Bits(1), action: Action::Force(true), target: Target::Bus });
     }
+}
+
+/// The frame the IUT transmits in the transmitter flag scenarios.
+pub fn tx_source() -> Frame {
+    Frame::std(0x0F5, &[0x39, 0xC6])
+}
+
+/// A flag scenario with the IUT as transmitter (TEC preset `tec0`): it
+/// sends [`tx_source`], which the LT answers; with [`Start::ErrorInData`]
+/// the LT forces the first dominant data bit recessive (a bit error, TEC
+/// +8, an active error flag from the next bit, or a passive one when
+/// error-passive); with [`Start::OverloadAfterFrame`] the LT acknowledges
+/// the frame and drives the first intermission bit dominant (an overload
+/// flag). From the IUT's first flag bit on the LT drives recessive except
+/// at the offsets `dom`, forces the bus recessive at `forced_rec`, and
+/// expects six bits of level `flag.1` from offset `flag.0`, followed by a
+/// recessive bit. After an error the IUT's retransmission is answered and
+/// must succeed. Returns the record and the plan index of the first flag
+/// bit.
+pub fn tx_flag_scenario(lb: &mut LtBench, start: Start, dom: &[usize], forced_rec: &[usize], flag: Option<(usize, bool)>, tec0: u32) -> Result<(StepRecord, usize), String> {
+    use super::super::{Action, At, Disturbance, Span, Target};
+    let f = tx_source();
+    lb.begin_step("tx flag scenario");
+    lb.preset(0, tec0, 0);
+    lb.b.node_mut(0).request(f.clone());
+    lb.wait(Trigger::at(Field::Sof, 1), 30)?;
+    let mut p = Plan::answer(lb.timing, &f, BuildOptions::default(), 0);
+    let first = match start {
+        Start::ErrorInData => {
+            let i = (0..p.bits.len()).find(|&i| p.bits[i].label.is_some_and(|l| l.field == Field::Data && !l.stuff) && p.expects.iter().any(|e| e.bit == i && !e.level)).ok_or("no dominant data bit")?;
+            corrupt(&mut p, i);
+            p.truncate(i + 1);
+            i + 1
+        }
+        Start::OverloadAfterFrame => {
+            p.push_levels(&[false]);
+            p.bits.len()
+        }
+        Start::OverloadAtIntermission2 => {
+            p.push_levels(&[true, false]);
+            p.bits.len()
+        }
+    };
+    p.push_recessive(6 + 8 + 8 + 8 + 8 + 3);
+    for &d in dom {
+        p.set_level(first + d, false);
+    }
+    for &d in forced_rec {
+        p.disturb(Disturbance { at: At::tq(first + d, 0), span: Span::Bits(1), action: Action::Force(true), target: Target::Bus });
+    }
+    if let Some((o, level)) = flag {
+        for k in 0..6 {
+            p.expect(first + o + k, level, "flag");
+        }
+        p.expect(first + o + 6, true, "after the flag");
+    }
+    lb.play(&p);
+    if start == Start::ErrorInData {
+        lb.wait(Trigger::at(Field::Sof, 1).nth(2), p.bits.len() as u64 + 60)?;
+        lb.play_and_run(&Plan::answer(lb.timing, &f, BuildOptions::default(), 3));
+    } else {
+        lb.run_plan();
+    }
+    lb.run_idle(60)?;
+    let r = lb.end_step();
+    r.check_expects()?;
+    if start == Start::ErrorInData {
+        ensure!(r.iut_events(EV_TX_OK).len() == 1, "no successful retransmission:{}", r.dump(0));
+    }
+    ensure!(!lb.b.node(0).pending(), "frame still pending");
+    Ok((r, first))
+}
+
+/// TEC after the IUT's bit (`field`, `pos`), its first occurrence.
+pub fn tec_at(r: &StepRecord, field: Field, pos: u32) -> Result<u32, String> {
+    r.iut().iter().find(|b| b.field == field && b.pos == pos && !b.stuff).map(|b| b.tec).ok_or_else(|| format!("no IUT bit {} {pos}:{}", field.name(), r.dump(0)))
 }

@@ -104,6 +104,18 @@ pub mod c8_2_3;
 pub mod c8_2_4;
 pub mod c8_2_5;
 pub mod c8_2_6;
+pub mod c8_3_1;
+pub mod c8_3_3;
+pub mod c8_3_4;
+pub mod c8_4_1;
+pub mod c8_4_4;
+pub mod c8_4_5;
+pub mod c8_6_3;
+pub mod c8_6_5;
+pub mod c8_6_13;
+pub mod c8_6_14;
+pub mod c8_6_15;
+pub mod c8_6_16;
 pub mod c8_6_8;
 pub mod c8_6_11;
 pub mod c8_6_17;
@@ -174,6 +186,18 @@ pub fn all() -> Vec<IsoCase> {
         IsoCase { clause: "8.2.4", name: "iso_8_2_4_extended_stuff_error", run: c8_2_4::run },
         IsoCase { clause: "8.2.5", name: "iso_8_2_5_form_error", run: c8_2_5::run },
         IsoCase { clause: "8.2.6", name: "iso_8_2_6_ack_error", run: c8_2_6::run },
+        IsoCase { clause: "8.3.1", name: "iso_8_3_1_error_flag_lengthened", run: c8_3_1::run },
+        IsoCase { clause: "8.3.3", name: "iso_8_3_3_error_flag_bit_error", run: c8_3_3::run },
+        IsoCase { clause: "8.3.4", name: "iso_8_3_4_error_delimiter_form_error", run: c8_3_4::run },
+        IsoCase { clause: "8.4.1", name: "iso_8_4_1_passive_intermission_overload", run: c8_4_1::run },
+        IsoCase { clause: "8.4.4", name: "iso_8_4_4_overload_flag_bit_error", run: c8_4_4::run },
+        IsoCase { clause: "8.4.5", name: "iso_8_4_5_overload_delimiter_form_error", run: c8_4_5::run },
+        IsoCase { clause: "8.6.3", name: "iso_8_6_3_dominant_after_error_flag_tec", run: c8_6_3::run },
+        IsoCase { clause: "8.6.5", name: "iso_8_6_5_dominant_after_overload_flag_tec", run: c8_6_5::run },
+        IsoCase { clause: "8.6.13", name: "iso_8_6_13_long_overload_flag_tec", run: c8_6_13::run },
+        IsoCase { clause: "8.6.14", name: "iso_8_6_14_long_error_flag_tec", run: c8_6_14::run },
+        IsoCase { clause: "8.6.15", name: "iso_8_6_15_overload_delimiter_bit8_tec", run: c8_6_15::run },
+        IsoCase { clause: "8.6.16", name: "iso_8_6_16_error_delimiter_bit8_tec", run: c8_6_16::run },
         IsoCase { clause: "8.6.8", name: "iso_8_6_8_ack_error_tec", run: c8_6_8::run },
         IsoCase { clause: "8.6.11", name: "iso_8_6_11_success_tec", run: c8_6_11::run },
         IsoCase { clause: "8.6.17", name: "iso_8_6_17_passive_ack_error_tec", run: c8_6_17::run },
