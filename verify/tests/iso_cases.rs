@@ -431,6 +431,26 @@ fn iso_8_6_16_error_delimiter_bit8_tec() {
     case("8.6.16", "iso_8_6_16_error_delimiter_bit8_tec", 1);
 }
 
+#[test]
+fn iso_7_7_3_late_edge_within_sjw() {
+    case("7.7.3", "iso_7_7_3_late_edge_within_sjw", 2);
+}
+
+#[test]
+fn iso_7_7_4_late_edge_beyond_sjw() {
+    case("7.7.4", "iso_7_7_4_late_edge_beyond_sjw", 3);
+}
+
+#[test]
+fn iso_7_7_5_early_edge_within_sjw() {
+    case("7.7.5", "iso_7_7_5_early_edge_within_sjw", 2);
+}
+
+#[test]
+fn iso_7_7_6_early_edge_beyond_sjw() {
+    case("7.7.6", "iso_7_7_6_early_edge_beyond_sjw", 2);
+}
+
 /// A case whose elementary tests are all known failures (a disagreement
 /// with canstar's documented behaviour): each fails, with the message of
 /// canstar's value, and is listed in `KNOWN_FAILURES`.
