@@ -451,6 +451,31 @@ fn iso_7_7_6_early_edge_beyond_sjw() {
     case("7.7.6", "iso_7_7_6_early_edge_beyond_sjw", 2);
 }
 
+#[test]
+fn iso_7_5_1_passive_flag_superimposed() {
+    case("7.5.1", "iso_7_5_1_passive_flag_superimposed", 3);
+}
+
+#[test]
+fn iso_7_5_2_passive_frame_after_error_frame() {
+    case("7.5.2", "iso_7_5_2_passive_frame_after_error_frame", 1);
+}
+
+#[test]
+fn iso_7_5_3_passive_dominant_after_flag() {
+    case("7.5.3", "iso_7_5_3_passive_dominant_after_flag", 3);
+}
+
+#[test]
+fn iso_7_5_5_passive_flag_restart() {
+    case("7.5.5", "iso_7_5_5_passive_flag_restart", 3);
+}
+
+#[test]
+fn iso_7_5_7_active_to_passive() {
+    case("7.5.7", "iso_7_5_7_active_to_passive", 1);
+}
+
 /// A case whose elementary tests are all known failures (a disagreement
 /// with canstar's documented behaviour): each fails, with the message of
 /// canstar's value, and is listed in `KNOWN_FAILURES`.

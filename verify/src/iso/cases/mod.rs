@@ -70,6 +70,11 @@ pub mod c7_4_4;
 pub mod c7_4_5;
 pub mod c7_4_6;
 pub mod c7_4_7;
+pub mod c7_5_1;
+pub mod c7_5_2;
+pub mod c7_5_3;
+pub mod c7_5_5;
+pub mod c7_5_7;
 pub mod c7_6_1;
 pub mod c7_6_2;
 pub mod c7_6_3;
@@ -156,6 +161,11 @@ pub fn all() -> Vec<IsoCase> {
         IsoCase { clause: "7.4.5", name: "iso_7_4_5_overload_delimiter_form_error", run: c7_4_5::run },
         IsoCase { clause: "7.4.6", name: "iso_7_4_6_intermission_after_error_frame_overload", run: c7_4_6::run },
         IsoCase { clause: "7.4.7", name: "iso_7_4_7_intermission_after_overload_frame_overload", run: c7_4_7::run },
+        IsoCase { clause: "7.5.1", name: "iso_7_5_1_passive_flag_superimposed", run: c7_5_1::run },
+        IsoCase { clause: "7.5.2", name: "iso_7_5_2_passive_frame_after_error_frame", run: c7_5_2::run },
+        IsoCase { clause: "7.5.3", name: "iso_7_5_3_passive_dominant_after_flag", run: c7_5_3::run },
+        IsoCase { clause: "7.5.5", name: "iso_7_5_5_passive_flag_restart", run: c7_5_5::run },
+        IsoCase { clause: "7.5.7", name: "iso_7_5_7_active_to_passive", run: c7_5_7::run },
         IsoCase { clause: "7.6.1", name: "iso_7_6_1_error_flag_bit_error_rec", run: c7_6_1::run },
         IsoCase { clause: "7.6.2", name: "iso_7_6_2_overload_flag_bit_error_rec", run: c7_6_2::run },
         IsoCase { clause: "7.6.3", name: "iso_7_6_3_dominant_after_error_flag_rec", run: c7_6_3::run },
