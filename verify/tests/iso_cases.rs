@@ -122,6 +122,11 @@ fn iso_7_2_5_crc_error() {
 }
 
 #[test]
+fn iso_7_2_6_crc_and_crc_delimiter_errors() {
+    case("7.2.6", "iso_7_2_6_crc_and_crc_delimiter_errors", 1);
+}
+
+#[test]
 fn iso_7_2_7_crc_delimiter_form_error() {
     case("7.2.7", "iso_7_2_7_crc_delimiter_form_error", 1);
 }
@@ -517,6 +522,8 @@ fn filters_select_by_clause_prefix_and_name() {
     assert!(run_iso(Some("9.9")).is_empty());
     let names: Vec<&str> = canstar_verify::iso::cases().iter().map(|c| c.name).collect();
     assert!(names.starts_with(&["iso_7_1_1_identifier_and_dlc", "iso_7_1_2_extended_identifier_and_dlc"]), "{names:?}");
+    let clauses: Vec<Vec<u32>> = canstar_verify::iso::cases().iter().map(|c| c.clause.split('.').map(|x| x.parse().unwrap()).collect()).collect();
+    assert!(clauses.windows(2).all(|w| w[0] < w[1]), "cases in clause order, one per clause: {names:?}");
     assert!(names.contains(&"iso_7_2_2_stuff_error") && names.contains(&"iso_8_1_1_identifier_and_dlc"));
     assert!(run_iso(Some("8.1.1")).len() == 1 && run_iso(Some("7.1.1")).len() == 1, "7.1.1 must not select 7.1.10..7.1.12");
     assert_eq!(run_iso(Some("iso_7_2_2_stuff_error")).len(), 1);

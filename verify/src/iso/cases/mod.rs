@@ -55,6 +55,7 @@ pub mod c7_2_1;
 pub mod c7_2_2;
 pub mod c7_2_3;
 pub mod c7_2_5;
+pub mod c7_2_6;
 pub mod c7_2_7;
 pub mod c7_2_9;
 pub mod c7_2_10;
@@ -130,8 +131,9 @@ pub mod c8_6_11;
 pub mod c8_6_17;
 pub mod c8_6_20;
 
+/// The cases in clause order (7.2.10 after 7.2.9).
 pub fn all() -> Vec<IsoCase> {
-    vec![
+    let mut v = vec![
         IsoCase { clause: "7.1.1", name: "iso_7_1_1_identifier_and_dlc", run: c7_1_1::run },
         IsoCase { clause: "7.1.2", name: "iso_7_1_2_extended_identifier_and_dlc", run: c7_1_2::run },
         IsoCase { clause: "7.1.3", name: "iso_7_1_3_arbitration_lost_reception", run: c7_1_3::run },
@@ -146,6 +148,7 @@ pub fn all() -> Vec<IsoCase> {
         IsoCase { clause: "7.2.2", name: "iso_7_2_2_stuff_error", run: c7_2_2::run },
         IsoCase { clause: "7.2.3", name: "iso_7_2_3_extended_stuff_error", run: c7_2_3::run },
         IsoCase { clause: "7.2.5", name: "iso_7_2_5_crc_error", run: c7_2_5::run },
+        IsoCase { clause: "7.2.6", name: "iso_7_2_6_crc_and_crc_delimiter_errors", run: c7_2_6::run },
         IsoCase { clause: "7.2.7", name: "iso_7_2_7_crc_delimiter_form_error", run: c7_2_7::run },
         IsoCase { clause: "7.2.9", name: "iso_7_2_9_ack_delimiter_form_error", run: c7_2_9::run },
         IsoCase { clause: "7.2.10", name: "iso_7_2_10_eof_form_error", run: c7_2_10::run },
@@ -220,5 +223,7 @@ pub fn all() -> Vec<IsoCase> {
         IsoCase { clause: "8.6.11", name: "iso_8_6_11_success_tec", run: c8_6_11::run },
         IsoCase { clause: "8.6.17", name: "iso_8_6_17_passive_ack_error_tec", run: c8_6_17::run },
         IsoCase { clause: "8.6.20", name: "iso_8_6_20_reception_tec", run: c8_6_20::run },
-    ]
+    ];
+    v.sort_by_key(|c| c.clause.split('.').map(|x| x.parse::<u32>().unwrap_or(0)).collect::<Vec<_>>());
+    v
 }
