@@ -28,6 +28,9 @@ pub fn frames() -> Vec<Frame> {
         Frame::ext(0x0000_001F, &[0xFF, 0x00]),
         Frame::ext(0x1F83_E0F8, &[0x0F, 0x83]),
         Frame::data(true, 0x0000_0000, 15, &[0x11; 8]),
+        // extension ending in four recessive bits and a recessive RTR: a
+        // dominant stuff bit after RTR, then r1, r0 and DLC 0 dominant
+        Frame::remote(true, 0x0000_000F, 0),
     ]
 }
 
