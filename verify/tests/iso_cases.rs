@@ -481,6 +481,16 @@ fn iso_7_5_7_active_to_passive() {
     case("7.5.7", "iso_7_5_7_active_to_passive", 1);
 }
 
+#[test]
+fn iso_8_1_4_arbitration_lost_extended() {
+    case("8.1.4", "iso_8_1_4_arbitration_lost_extended", 31);
+}
+
+#[test]
+fn iso_8_5_7_passive_suspend_after_frame() {
+    case("8.5.7", "iso_8_5_7_passive_suspend_after_frame", 1);
+}
+
 /// A case whose elementary tests are all known failures (a disagreement
 /// with canstar's documented behaviour): each fails, with the message of
 /// canstar's value, and is listed in `KNOWN_FAILURES`.

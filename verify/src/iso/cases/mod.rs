@@ -104,6 +104,7 @@ pub mod c7_7_6;
 pub mod c8_1_1;
 pub mod c8_1_2;
 pub mod c8_1_3;
+pub mod c8_1_4;
 pub mod c8_1_5;
 pub mod c8_1_6;
 pub mod c8_1_7;
@@ -120,6 +121,7 @@ pub mod c8_3_4;
 pub mod c8_4_1;
 pub mod c8_4_4;
 pub mod c8_4_5;
+pub mod c8_5_7;
 pub mod c8_6_3;
 pub mod c8_6_5;
 pub mod c8_6_13;
@@ -223,6 +225,8 @@ pub fn all() -> Vec<IsoCase> {
         IsoCase { clause: "8.6.11", name: "iso_8_6_11_success_tec", run: c8_6_11::run },
         IsoCase { clause: "8.6.17", name: "iso_8_6_17_passive_ack_error_tec", run: c8_6_17::run },
         IsoCase { clause: "8.6.20", name: "iso_8_6_20_reception_tec", run: c8_6_20::run },
+        IsoCase { clause: "8.1.4", name: "iso_8_1_4_arbitration_lost_extended", run: c8_1_4::run },
+        IsoCase { clause: "8.5.7", name: "iso_8_5_7_passive_suspend_after_frame", run: c8_5_7::run },
     ];
     v.sort_by_key(|c| c.clause.split('.').map(|x| x.parse::<u32>().unwrap_or(0)).collect::<Vec<_>>());
     v
