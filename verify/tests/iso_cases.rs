@@ -491,6 +491,11 @@ fn iso_8_5_7_passive_suspend_after_frame() {
     case("8.5.7", "iso_8_5_7_passive_suspend_after_frame", 1);
 }
 
+#[test]
+fn iso_8_3_2_sof_at_intermission_3_after_error() {
+    case("8.3.2", "iso_8_3_2_sof_at_intermission_3_after_error", 2);
+}
+
 /// A case whose elementary tests are all known failures (a disagreement
 /// with canstar's documented behaviour): each fails, with the message of
 /// canstar's value, and is listed in `KNOWN_FAILURES`.

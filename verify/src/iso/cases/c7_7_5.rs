@@ -20,7 +20,7 @@ pub fn run() -> Vec<StepResult> {
     let mut lb = LtBench::new(vec![iut()]);
     let sjw = lb.timing.sjw;
     for e in 1..=sjw {
-        let r = resync_step(&mut lb, -1 * e as i32, 10 - e as u64);
+        let r = resync_step(&mut lb, -(e as i32), 10 - e as u64);
         ctx.record(&format!("iso_7_7_5_e{e}"), r);
     }
     ctx.results

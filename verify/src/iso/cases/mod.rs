@@ -116,6 +116,7 @@ pub mod c8_2_4;
 pub mod c8_2_5;
 pub mod c8_2_6;
 pub mod c8_3_1;
+pub mod c8_3_2;
 pub mod c8_3_3;
 pub mod c8_3_4;
 pub mod c8_4_1;
@@ -227,6 +228,7 @@ pub fn all() -> Vec<IsoCase> {
         IsoCase { clause: "8.6.20", name: "iso_8_6_20_reception_tec", run: c8_6_20::run },
         IsoCase { clause: "8.1.4", name: "iso_8_1_4_arbitration_lost_extended", run: c8_1_4::run },
         IsoCase { clause: "8.5.7", name: "iso_8_5_7_passive_suspend_after_frame", run: c8_5_7::run },
+        IsoCase { clause: "8.3.2", name: "iso_8_3_2_sof_at_intermission_3_after_error", run: c8_3_2::run },
     ];
     v.sort_by_key(|c| c.clause.split('.').map(|x| x.parse::<u32>().unwrap_or(0)).collect::<Vec<_>>());
     v
