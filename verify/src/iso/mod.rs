@@ -34,7 +34,8 @@
 //! # Limits
 //!
 //! - The LT and every node run on the IUT's clock: no oscillator tolerance
-//!   and no other bit rate (the bit-timing clauses 7.8 and 8.8 need them).
+//!   and no other bit rate (no classical case of 7.7/8.7 needs them; 7.8
+//!   and 8.8, data-phase bit timing, are CAN FD only).
 //! - A trigger places the bit start from the previous bit's sample point and
 //!   the nominal PH2; a resynchronisation in that PH2 is not accounted for.
 //! - Disturbances of two plans that overlap in time are not composed with

@@ -24,6 +24,15 @@
 //!     the bit records) and on the counters, with `ensure!`.
 //! - Name elementary tests `iso_<clause>_<what varies>` so a failure names
 //!   the situation (`iso_7_2_2_f0_id_8_D`).
+//! - Shared steps live in [`common`]: `receive_frame`/`receive_plan` (a frame
+//!   acknowledged and delivered), `transmit_frame` (a frame sent and checked
+//!   bit by bit), `receive_error` and `transmit_error` (an error at a given
+//!   plan bit, its flag, the counters, the retransmission), `flag_scenario`
+//!   and `tx_flag_scenario` (what the LT does from the IUT's first error or
+//!   overload flag bit on).
+//! - Where canstar's documented behaviour differs from the ISO expectation,
+//!   keep the ISO check, list the elementary tests in [`KNOWN_FAILURES`] with
+//!   the reason, and add the disagreement to README's list.
 
 use super::IsoCase;
 
