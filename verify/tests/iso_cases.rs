@@ -43,13 +43,508 @@ fn iso_8_1_1_identifier_and_dlc() {
     assert!(f.is_empty(), "{} failed:\n{}", f.len(), f.join("\n"));
 }
 
+/// Run one case by clause; it must be the case `name` with `n` elementary
+/// tests, all passing.
+fn case(clause: &str, name: &str, n: usize) -> Vec<StepResult> {
+    let runs = run_iso(Some(clause));
+    assert_eq!(runs.len(), 1, "clause {clause}");
+    let (got, r) = &runs[0];
+    assert_eq!(got, name);
+    assert_eq!(r.len(), n, "{name}: elementary tests {:?}", r.iter().map(|s| &s.name).collect::<Vec<_>>());
+    let f = failures(r);
+    assert!(f.is_empty(), "{} of {} failed:\n{}", f.len(), r.len(), f.join("\n"));
+    r.clone()
+}
+
+#[test]
+fn iso_7_1_2_extended_identifier_and_dlc() {
+    let r = case("7.1.2", "iso_7_1_2_extended_identifier_and_dlc", 5 * 9);
+    assert!(r.iter().any(|s| s.name == "iso_7_1_2_id1fffffff_dlc8"));
+}
+
+#[test]
+fn iso_7_1_3_arbitration_lost_reception() {
+    case("7.1.3", "iso_7_1_3_arbitration_lost_reception", 6);
+}
+
+#[test]
+fn iso_7_1_4_base_reserved_bit() {
+    case("7.1.4", "iso_7_1_4_base_reserved_bit", 4);
+}
+
+#[test]
+fn iso_7_1_5_extended_srr_and_reserved_bits() {
+    case("7.1.5", "iso_7_1_5_extended_srr_and_reserved_bits", 8);
+}
+
+#[test]
+fn iso_7_1_8_dlc_above_8() {
+    case("7.1.8", "iso_7_1_8_dlc_above_8", 7);
+}
+
+#[test]
+fn iso_7_1_9_frames_without_bus_idle() {
+    case("7.1.9", "iso_7_1_9_frames_without_bus_idle", 2);
+}
+
+#[test]
+fn iso_7_1_10_base_stuffing_profiles() {
+    case("7.1.10", "iso_7_1_10_base_stuffing_profiles", 10);
+}
+
+#[test]
+fn iso_7_1_11_extended_stuffing_profiles() {
+    case("7.1.11", "iso_7_1_11_extended_stuffing_profiles", 7);
+}
+
+#[test]
+fn iso_7_1_12_eof7_valid_frame() {
+    case("7.1.12", "iso_7_1_12_eof7_valid_frame", 1);
+}
+
+#[test]
+fn iso_7_2_1_ack_bit_error() {
+    case("7.2.1", "iso_7_2_1_ack_bit_error", 1);
+}
+
+#[test]
+fn iso_7_2_3_extended_stuff_error() {
+    let r = case("7.2.3", "iso_7_2_3_extended_stuff_error", run_iso(Some("7.2.3"))[0].1.len());
+    assert!(r.len() >= 30, "{} elementary tests", r.len());
+    for field in ["_id_", "_exid_", "_dlc_", "_data_", "_crc_"] {
+        assert!(r.iter().any(|s| s.name.contains(field)), "no elementary test in {field}");
+    }
+}
+
+#[test]
+fn iso_7_2_5_crc_error() {
+    case("7.2.5", "iso_7_2_5_crc_error", 2);
+}
+
+#[test]
+fn iso_7_2_6_crc_and_crc_delimiter_errors() {
+    case("7.2.6", "iso_7_2_6_crc_and_crc_delimiter_errors", 1);
+}
+
+#[test]
+fn iso_7_2_7_crc_delimiter_form_error() {
+    case("7.2.7", "iso_7_2_7_crc_delimiter_form_error", 1);
+}
+
+#[test]
+fn iso_7_2_9_ack_delimiter_form_error() {
+    case("7.2.9", "iso_7_2_9_ack_delimiter_form_error", 1);
+}
+
+#[test]
+fn iso_7_2_10_eof_form_error() {
+    case("7.2.10", "iso_7_2_10_eof_form_error", 5);
+}
+
+#[test]
+fn iso_7_2_11_eof6_form_error() {
+    case("7.2.11", "iso_7_2_11_eof6_form_error", 1);
+}
+
+#[test]
+fn iso_8_1_2_extended_identifier_and_dlc() {
+    case("8.1.2", "iso_8_1_2_extended_identifier_and_dlc", 5 * 9);
+}
+
+#[test]
+fn iso_8_1_3_arbitration_lost_base() {
+    case("8.1.3", "iso_8_1_3_arbitration_lost_base", 11);
+}
+
+#[test]
+fn iso_8_1_5_intermission1_overload() {
+    case("8.1.5", "iso_8_1_5_intermission1_overload", 1);
+}
+
+#[test]
+fn iso_8_1_6_base_stuffing() {
+    case("8.1.6", "iso_8_1_6_base_stuffing", 6);
+}
+
+#[test]
+fn iso_8_1_7_extended_stuffing() {
+    case("8.1.7", "iso_8_1_7_extended_stuffing", 3);
+}
+
+#[test]
+fn iso_8_1_8_sof_at_intermission_3() {
+    case("8.1.8", "iso_8_1_8_sof_at_intermission_3", 2);
+}
+
+#[test]
+fn iso_7_3_1_error_flag_lengthened() {
+    case("7.3.1", "iso_7_3_1_error_flag_lengthened", 3);
+}
+
+#[test]
+fn iso_7_3_2_frame_after_error_frame() {
+    case("7.3.2", "iso_7_3_2_frame_after_error_frame", 1);
+}
+
+#[test]
+fn iso_7_3_3_error_flag_bit_error() {
+    case("7.3.3", "iso_7_3_3_error_flag_bit_error", 3);
+}
+
+#[test]
+fn iso_7_3_4_error_delimiter_form_error() {
+    case("7.3.4", "iso_7_3_4_error_delimiter_form_error", 3);
+}
+
+#[test]
+fn iso_7_4_1_intermission_overload() {
+    case("7.4.1", "iso_7_4_1_intermission_overload", 2);
+}
+
+#[test]
+fn iso_7_4_2_eof7_overload() {
+    case("7.4.2", "iso_7_4_2_eof7_overload", 1);
+}
+
+#[test]
+fn iso_7_4_3_delimiter_bit8_overload() {
+    case("7.4.3", "iso_7_4_3_delimiter_bit8_overload", 2);
+}
+
+#[test]
+fn iso_7_4_4_overload_flag_bit_error() {
+    case("7.4.4", "iso_7_4_4_overload_flag_bit_error", 3);
+}
+
+#[test]
+fn iso_7_4_5_overload_delimiter_form_error() {
+    case("7.4.5", "iso_7_4_5_overload_delimiter_form_error", 3);
+}
+
+#[test]
+fn iso_7_4_6_intermission_after_error_frame_overload() {
+    case("7.4.6", "iso_7_4_6_intermission_after_error_frame_overload", 2);
+}
+
+#[test]
+fn iso_7_4_7_intermission_after_overload_frame_overload() {
+    case("7.4.7", "iso_7_4_7_intermission_after_overload_frame_overload", 2);
+}
+
+#[test]
+fn iso_7_6_1_error_flag_bit_error_rec() {
+    case("7.6.1", "iso_7_6_1_error_flag_bit_error_rec", 3);
+}
+
+#[test]
+fn iso_7_6_2_overload_flag_bit_error_rec() {
+    case("7.6.2", "iso_7_6_2_overload_flag_bit_error_rec", 3);
+}
+
+#[test]
+fn iso_7_6_3_dominant_after_error_flag_rec() {
+    case("7.6.3", "iso_7_6_3_dominant_after_error_flag_rec", 1);
+}
+
+#[test]
+fn iso_7_6_4_dominant_after_overload_flag_rec() {
+    case("7.6.4", "iso_7_6_4_dominant_after_overload_flag_rec", 1);
+}
+
+#[test]
+fn iso_7_6_5_ack_bit_error_rec() {
+    case("7.6.5", "iso_7_6_5_ack_bit_error_rec", 1);
+}
+
+#[test]
+fn iso_7_6_6_crc_delimiter_rec() {
+    case("7.6.6", "iso_7_6_6_crc_delimiter_rec", 1);
+}
+
+#[test]
+fn iso_7_6_9_stuff_error_rec() {
+    case("7.6.9", "iso_7_6_9_stuff_error_rec", 8);
+}
+
+#[test]
+fn iso_7_6_10_crc_error_rec() {
+    case("7.6.10", "iso_7_6_10_crc_error_rec", 1);
+}
+
+#[test]
+fn iso_7_6_11_first_dominant_after_flag_rec() {
+    case("7.6.11", "iso_7_6_11_first_dominant_after_flag_rec", 1);
+}
+
+#[test]
+fn iso_7_6_12_error_delimiter_form_error_rec() {
+    case("7.6.12", "iso_7_6_12_error_delimiter_form_error_rec", 2);
+}
+
+#[test]
+fn iso_7_6_13_overload_delimiter_form_error_rec() {
+    case("7.6.13", "iso_7_6_13_overload_delimiter_form_error_rec", 2);
+}
+
+#[test]
+fn iso_7_6_14_valid_frame_rec() {
+    case("7.6.14", "iso_7_6_14_valid_frame_rec", 1);
+}
+
+#[test]
+fn iso_7_6_15_passive_valid_frame_rec() {
+    case("7.6.15", "iso_7_6_15_passive_valid_frame_rec", 2);
+}
+
+#[test]
+fn iso_7_6_16_eof7_rec() {
+    case("7.6.16", "iso_7_6_16_eof7_rec", 2);
+}
+
+#[test]
+fn iso_7_6_17_long_overload_flag_rec() {
+    case("7.6.17", "iso_7_6_17_long_overload_flag_rec", 1);
+}
+
+#[test]
+fn iso_7_6_18_long_error_flag_rec() {
+    case("7.6.18", "iso_7_6_18_long_error_flag_rec", 1);
+}
+
+#[test]
+fn iso_7_6_19_error_delimiter_bit8_rec() {
+    case("7.6.19", "iso_7_6_19_error_delimiter_bit8_rec", 1);
+}
+
+#[test]
+fn iso_7_6_20_overload_delimiter_bit8_rec() {
+    case("7.6.20", "iso_7_6_20_overload_delimiter_bit8_rec", 1);
+}
+
+#[test]
+fn iso_7_6_21_own_frame_rec() {
+    case("7.6.21", "iso_7_6_21_own_frame_rec", 1);
+}
+
+#[test]
+fn iso_8_2_1_base_bit_error() {
+    case("8.2.1", "iso_8_2_1_base_bit_error", 11);
+}
+
+#[test]
+fn iso_8_2_2_extended_bit_error() {
+    case("8.2.2", "iso_8_2_2_extended_bit_error", 11);
+}
+
+#[test]
+fn iso_8_2_3_base_stuff_error() {
+    case("8.2.3", "iso_8_2_3_base_stuff_error", 35); // the standard counts 35 for its six frames
+}
+
+#[test]
+fn iso_8_2_4_extended_stuff_error() {
+    case("8.2.4", "iso_8_2_4_extended_stuff_error", 34);
+}
+
+#[test]
+fn iso_8_2_5_form_error() {
+    case("8.2.5", "iso_8_2_5_form_error", 5);
+}
+
+#[test]
+fn iso_8_2_6_ack_error() {
+    case("8.2.6", "iso_8_2_6_ack_error", 1);
+}
+
+#[test]
+fn iso_8_6_8_ack_error_tec() {
+    case("8.6.8", "iso_8_6_8_ack_error_tec", 1);
+}
+
+#[test]
+fn iso_8_6_11_success_tec() {
+    case("8.6.11", "iso_8_6_11_success_tec", 1);
+}
+
+#[test]
+fn iso_8_6_17_passive_ack_error_tec() {
+    case("8.6.17", "iso_8_6_17_passive_ack_error_tec", 1);
+}
+
+#[test]
+fn iso_8_6_20_reception_tec() {
+    case("8.6.20", "iso_8_6_20_reception_tec", 1);
+}
+
+#[test]
+fn iso_8_3_1_error_flag_lengthened() {
+    case("8.3.1", "iso_8_3_1_error_flag_lengthened", 3);
+}
+
+#[test]
+fn iso_8_3_3_error_flag_bit_error() {
+    case("8.3.3", "iso_8_3_3_error_flag_bit_error", 3);
+}
+
+#[test]
+fn iso_8_3_4_error_delimiter_form_error() {
+    case("8.3.4", "iso_8_3_4_error_delimiter_form_error", 3);
+}
+
+#[test]
+fn iso_8_4_1_passive_intermission_overload() {
+    case("8.4.1", "iso_8_4_1_passive_intermission_overload", 2);
+}
+
+#[test]
+fn iso_8_4_4_overload_flag_bit_error() {
+    case("8.4.4", "iso_8_4_4_overload_flag_bit_error", 3);
+}
+
+#[test]
+fn iso_8_4_5_overload_delimiter_form_error() {
+    case("8.4.5", "iso_8_4_5_overload_delimiter_form_error", 3);
+}
+
+#[test]
+fn iso_8_6_3_dominant_after_error_flag_tec() {
+    case("8.6.3", "iso_8_6_3_dominant_after_error_flag_tec", 1);
+}
+
+#[test]
+fn iso_8_6_5_dominant_after_overload_flag_tec() {
+    case("8.6.5", "iso_8_6_5_dominant_after_overload_flag_tec", 1);
+}
+
+#[test]
+fn iso_8_6_13_long_overload_flag_tec() {
+    case("8.6.13", "iso_8_6_13_long_overload_flag_tec", 1);
+}
+
+#[test]
+fn iso_8_6_14_long_error_flag_tec() {
+    case("8.6.14", "iso_8_6_14_long_error_flag_tec", 1);
+}
+
+#[test]
+fn iso_8_6_15_overload_delimiter_bit8_tec() {
+    case("8.6.15", "iso_8_6_15_overload_delimiter_bit8_tec", 1);
+}
+
+#[test]
+fn iso_8_6_16_error_delimiter_bit8_tec() {
+    case("8.6.16", "iso_8_6_16_error_delimiter_bit8_tec", 1);
+}
+
+#[test]
+fn iso_7_7_3_late_edge_within_sjw() {
+    case("7.7.3", "iso_7_7_3_late_edge_within_sjw", 2);
+}
+
+#[test]
+fn iso_7_7_4_late_edge_beyond_sjw() {
+    case("7.7.4", "iso_7_7_4_late_edge_beyond_sjw", 3);
+}
+
+#[test]
+fn iso_7_7_5_early_edge_within_sjw() {
+    case("7.7.5", "iso_7_7_5_early_edge_within_sjw", 2);
+}
+
+#[test]
+fn iso_7_7_6_early_edge_beyond_sjw() {
+    case("7.7.6", "iso_7_7_6_early_edge_beyond_sjw", 2);
+}
+
+#[test]
+fn iso_7_5_1_passive_flag_superimposed() {
+    case("7.5.1", "iso_7_5_1_passive_flag_superimposed", 3);
+}
+
+#[test]
+fn iso_7_5_2_passive_frame_after_error_frame() {
+    case("7.5.2", "iso_7_5_2_passive_frame_after_error_frame", 1);
+}
+
+#[test]
+fn iso_7_5_3_passive_dominant_after_flag() {
+    case("7.5.3", "iso_7_5_3_passive_dominant_after_flag", 3);
+}
+
+#[test]
+fn iso_7_5_5_passive_flag_restart() {
+    case("7.5.5", "iso_7_5_5_passive_flag_restart", 3);
+}
+
+#[test]
+fn iso_7_5_7_active_to_passive() {
+    case("7.5.7", "iso_7_5_7_active_to_passive", 1);
+}
+
+#[test]
+fn iso_8_1_4_arbitration_lost_extended() {
+    case("8.1.4", "iso_8_1_4_arbitration_lost_extended", 31);
+}
+
+#[test]
+fn iso_8_5_7_passive_suspend_after_frame() {
+    case("8.5.7", "iso_8_5_7_passive_suspend_after_frame", 1);
+}
+
+#[test]
+fn iso_8_3_2_sof_at_intermission_3_after_error() {
+    case("8.3.2", "iso_8_3_2_sof_at_intermission_3_after_error", 2);
+}
+
+/// A case whose elementary tests are all known failures (a disagreement
+/// with canstar's documented behaviour): each fails, with the message of
+/// canstar's value, and is listed in `KNOWN_FAILURES`.
+fn known_failing(clause: &str, name: &str, n: usize, msg: &str) {
+    let runs = run_iso(Some(clause));
+    assert_eq!(runs.len(), 1, "clause {clause}");
+    let (got, r) = &runs[0];
+    assert_eq!(got, name);
+    assert_eq!(r.len(), n);
+    for s in r {
+        assert!(!s.pass && s.msg.contains(msg), "{}: expected a known failure with {msg:?}, got pass={} {}", s.name, s.pass, s.msg);
+        assert!(canstar_verify::iso::cases::known_failure(&s.name).is_some(), "{} not listed as a known failure", s.name);
+    }
+}
+
+#[test]
+fn iso_7_6_7_ack_delimiter_rec_is_a_known_failure() {
+    known_failing("7.6.7", "iso_7_6_7_ack_delimiter_rec", 1, "REC 10 (REC 9 before), expected TEC 0 and REC 9");
+}
+
+#[test]
+fn iso_7_6_8_eof_form_error_rec_is_a_known_failure() {
+    known_failing("7.6.8", "iso_7_6_8_eof_form_error_rec", 3, "REC 10 (REC 9 before), expected TEC 0 and REC 9");
+}
+
+#[test]
+fn only_known_failures_fail_and_the_cli_marks_them() {
+    let mut out = vec![];
+    let (pass, fail) = canstar_verify::iso::run_iso_cli(None, &mut out).unwrap();
+    let out = String::from_utf8(out).unwrap();
+    assert!(pass > 400, "{out}");
+    assert_eq!(fail, 4, "{out}");
+    assert_eq!(out.lines().filter(|l| l.starts_with("  FAIL (known: disagreement D2")).count(), 4, "{out}");
+    assert!(out.lines().last().unwrap().ends_with("passed, 4 failed (4 of them known failures)"), "{out}");
+}
+
 #[test]
 fn filters_select_by_clause_prefix_and_name() {
     assert!(run_iso(Some("9.9")).is_empty());
-    let all: Vec<String> = run_iso(None).into_iter().map(|(n, _)| n).collect();
-    assert_eq!(all, ["iso_7_1_1_identifier_and_dlc", "iso_7_2_2_stuff_error", "iso_8_1_1_identifier_and_dlc"]);
-    assert_eq!(run_iso(Some("8")).len(), 1);
+    let names: Vec<&str> = canstar_verify::iso::cases().iter().map(|c| c.name).collect();
+    assert!(names.starts_with(&["iso_7_1_1_identifier_and_dlc", "iso_7_1_2_extended_identifier_and_dlc"]), "{names:?}");
+    let clauses: Vec<Vec<u32>> = canstar_verify::iso::cases().iter().map(|c| c.clause.split('.').map(|x| x.parse().unwrap()).collect()).collect();
+    assert!(clauses.windows(2).all(|w| w[0] < w[1]), "cases in clause order, one per clause: {names:?}");
+    assert!(names.contains(&"iso_7_2_2_stuff_error") && names.contains(&"iso_8_1_1_identifier_and_dlc"));
+    assert!(run_iso(Some("8.1.1")).len() == 1 && run_iso(Some("7.1.1")).len() == 1, "7.1.1 must not select 7.1.10..7.1.12");
+    assert_eq!(run_iso(Some("iso_7_2_2_stuff_error")).len(), 1);
     assert!(run_iso(Some("7.1")).iter().all(|(n, _)| n.starts_with("iso_7_1_")));
     // "7.1" must not select 7.10 .. 7.19 by accident
     assert!(!run_iso(Some("7.1")).iter().any(|(n, _)| n.starts_with("iso_7_2")));
 }
+
+
