@@ -75,13 +75,20 @@ pub fn stuff_error_at(lb: &mut LtBench, f: &Frame, s: usize) -> Result<(), Strin
 }
 
 pub fn run() -> Vec<StepResult> {
-    let mut ctx = Ctx { program: "iso_7_2_2".into(), vcd: None, results: vec![] };
+    stuff_error_case("iso_7_2_2", &frames(), short)
+}
+
+/// Every stuff bit of every frame sent at the wrong level ([`stuff_error_at`]),
+/// one elementary test each, named `<program>_f<k>_<short(field)>_<pos>_<D|R>`
+/// (7.2.2 and 7.2.3).
+pub fn stuff_error_case(program: &str, frames: &[Frame], short: fn(Field) -> &'static str) -> Vec<StepResult> {
+    let mut ctx = Ctx { program: program.into(), vcd: None, results: vec![] };
     let mut lb = LtBench::new(vec![NodeConfig::named("iut")]);
-    for (k, f) in frames().iter().enumerate() {
+    for (k, f) in frames.iter().enumerate() {
         let p = Plan::frame(lb.timing, f, BuildOptions::default());
         for s in p.stuff_bits() {
             let l = p.bits[s].label.unwrap();
-            let name = format!("iso_7_2_2_f{k}_{}_{}_{}", short(l.field), l.pos, if p.bits[s].level { "R" } else { "D" });
+            let name = format!("{program}_f{k}_{}_{}_{}", short(l.field), l.pos, if p.bits[s].level { "R" } else { "D" });
             let r = stuff_error_at(&mut lb, f, s);
             ctx.record(&name, r);
         }
@@ -89,21 +96,26 @@ pub fn run() -> Vec<StepResult> {
     ctx.results
 }
 
+/// The (field group, level) pairs of the stuff bits of `frames`, fields grouped by `group`.
+#[cfg(test)]
+pub fn stuffed(frames: &[Frame], group: impl Fn(Field) -> &'static str) -> std::collections::BTreeSet<(&'static str, bool)> {
+    use canstar_controller::frame::bus_bits;
+    let mut seen = std::collections::BTreeSet::new();
+    for f in frames {
+        for b in bus_bits(f, BuildOptions::default(), false).iter().filter(|b| b.stuff) {
+            seen.insert((group(b.field), b.level));
+        }
+    }
+    seen
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
-    use canstar_controller::frame::bus_bits;
-    use std::collections::BTreeSet;
 
     #[test]
     fn the_frames_cover_every_stuffed_field_with_both_levels() {
-        let mut seen = BTreeSet::new();
-        for f in frames() {
-            for b in bus_bits(&f, BuildOptions::default(), false).iter().filter(|b| b.stuff) {
-                let field = if matches!(b.field, Field::Rtr | Field::Ide | Field::Resv | Field::Dlc) { "control" } else { short(b.field) };
-                seen.insert((field, b.level));
-            }
-        }
+        let seen = stuffed(&frames(), |f| if matches!(f, Field::Rtr | Field::Ide | Field::Resv | Field::Dlc) { "control" } else { short(f) });
         for field in ["id", "control", "data", "crc"] {
             for level in [false, true] {
                 assert!(seen.contains(&(field, level)), "no {} stuff bit in {field}: {seen:?}", if level { "R" } else { "D" });

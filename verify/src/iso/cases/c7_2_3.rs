@@ -11,11 +11,9 @@
 //!
 //! Elementary tests: `iso_7_2_3_f<k>_<field>_<pos>_<D|R>`.
 
-use super::super::{LtBench, Plan};
-use super::c7_2_2::stuff_error_at;
-use crate::conformance::{Ctx, StepResult};
-use crate::node::NodeConfig;
-use canstar_controller::frame::{BuildOptions, Frame};
+use super::c7_2_2::stuff_error_case;
+use crate::conformance::StepResult;
+use canstar_controller::frame::Frame;
 use canstar_controller::fsm::*;
 
 /// Frames whose stuff bits cover every stuffed field of an extended frame
@@ -50,39 +48,21 @@ fn short(f: Field) -> &'static str {
 }
 
 pub fn run() -> Vec<StepResult> {
-    let mut ctx = Ctx { program: "iso_7_2_3".into(), vcd: None, results: vec![] };
-    let mut lb = LtBench::new(vec![NodeConfig::named("iut")]);
-    for (k, f) in frames().iter().enumerate() {
-        let p = Plan::frame(lb.timing, f, BuildOptions::default());
-        for s in p.stuff_bits() {
-            let l = p.bits[s].label.unwrap();
-            let name = format!("iso_7_2_3_f{k}_{}_{}_{}", short(l.field), l.pos, if p.bits[s].level { "R" } else { "D" });
-            let r = stuff_error_at(&mut lb, f, s);
-            ctx.record(&name, r);
-        }
-    }
-    ctx.results
+    stuff_error_case("iso_7_2_3", &frames(), short)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use canstar_controller::frame::bus_bits;
-    use std::collections::BTreeSet;
+    use super::super::c7_2_2::stuffed;
 
     #[test]
     fn the_frames_cover_every_stuffed_field_with_both_levels() {
-        let mut seen = BTreeSet::new();
-        for f in frames() {
-            for b in bus_bits(&f, BuildOptions::default(), false).iter().filter(|b| b.stuff) {
-                let field = match b.field {
-                    Field::Srr | Field::Ide | Field::ExIdent => "ext",
-                    Field::Rtr | Field::Resv | Field::Dlc => "control",
-                    f => short(f),
-                };
-                seen.insert((field, b.level));
-            }
-        }
+        let seen = stuffed(&frames(), |f| match f {
+            Field::Srr | Field::Ide | Field::ExIdent => "ext",
+            Field::Rtr | Field::Resv | Field::Dlc => "control",
+            f => short(f),
+        });
         for field in ["id", "ext", "control", "data", "crc"] {
             for level in [false, true] {
                 assert!(seen.contains(&(field, level)), "no {} stuff bit in {field}: {seen:?}", if level { "R" } else { "D" });
