@@ -487,8 +487,18 @@ fn iso_8_1_4_arbitration_lost_extended() {
 }
 
 #[test]
+fn iso_8_5_1_passive_flag_overlapped() {
+    case("8.5.1", "iso_8_5_1_passive_flag_overlapped", 3);
+}
+
+#[test]
 fn iso_8_5_7_passive_suspend_after_frame() {
     case("8.5.7", "iso_8_5_7_passive_suspend_after_frame", 1);
+}
+
+#[test]
+fn iso_8_5_14_passive_recovery_time() {
+    case("8.5.14", "iso_8_5_14_passive_recovery_time", 1);
 }
 
 #[test]

@@ -131,7 +131,9 @@ pub mod c8_3_4;
 pub mod c8_4_1;
 pub mod c8_4_4;
 pub mod c8_4_5;
+pub mod c8_5_1;
 pub mod c8_5_7;
+pub mod c8_5_14;
 pub mod c8_6_3;
 pub mod c8_6_5;
 pub mod c8_6_13;
@@ -236,7 +238,9 @@ pub fn all() -> Vec<IsoCase> {
         IsoCase { clause: "8.6.17", name: "iso_8_6_17_passive_ack_error_tec", run: c8_6_17::run },
         IsoCase { clause: "8.6.20", name: "iso_8_6_20_reception_tec", run: c8_6_20::run },
         IsoCase { clause: "8.1.4", name: "iso_8_1_4_arbitration_lost_extended", run: c8_1_4::run },
+        IsoCase { clause: "8.5.1", name: "iso_8_5_1_passive_flag_overlapped", run: c8_5_1::run },
         IsoCase { clause: "8.5.7", name: "iso_8_5_7_passive_suspend_after_frame", run: c8_5_7::run },
+        IsoCase { clause: "8.5.14", name: "iso_8_5_14_passive_recovery_time", run: c8_5_14::run },
         IsoCase { clause: "8.3.2", name: "iso_8_3_2_sof_at_intermission_3_after_error", run: c8_3_2::run },
     ];
     v.sort_by_key(|c| c.clause.split('.').map(|x| x.parse::<u32>().unwrap_or(0)).collect::<Vec<_>>());
