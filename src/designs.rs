@@ -51,22 +51,31 @@ pub fn controller(config: &Config) -> Result<Vec<Artifact>> {
 /// board with a controller pinout (or the one asked for).
 pub fn sja1000(config: &Config, board: Option<&str>) -> Result<Vec<Artifact>> {
     let (verilog, board_name, ports) = sja1000_verilog(config);
-    let mut out = vec![verilog];
-    let mut pins = DesignPins::default();
-    for (p, bits, _) in &ports {
-        if p != "clock" {
-            pins.functional.extend(DesignPins::port_roles(p, *bits));
-        }
-    }
     let boards = match board {
         Some(b) => vec![Board::lookup(b)?],
         None => hub_boards(None)?.into_iter().filter(|b| b.controller.is_some()).collect(),
     };
-    for b in &boards {
-        let f = pin_file(b, Pinout::Controller, &board_name, &pins)?;
-        out.push(Artifact { root: Root::Constraints, path: format!("{}/{board_name}.{}", b.name, b.format.ext()).into(), contents: f.text });
-    }
+    let mut out = vec![verilog];
+    out.extend(pin_files(&boards, Pinout::Controller, &board_name, &ports)?);
     Ok(out)
+}
+
+/// The pin files of a board top whose every port but `clock` is functional,
+/// one per board, from the board's `pinout`.
+fn pin_files(boards: &[Board], pinout: Pinout, board_name: &str, ports: &Ports) -> Result<Vec<Artifact>> {
+    let mut pins = DesignPins::default();
+    for (p, bits, _) in ports {
+        if p != "clock" {
+            pins.functional.extend(DesignPins::port_roles(p, *bits));
+        }
+    }
+    boards
+        .iter()
+        .map(|b| {
+            let f = pin_file(b, pinout, board_name, &pins)?;
+            Ok(Artifact { root: Root::Constraints, path: format!("{}/{board_name}.{}", b.name, b.format.ext()).into(), contents: f.text })
+        })
+        .collect()
 }
 
 /// The SJA1000-compatible top's Verilog file (`controller/canstar_sja1000.v`), the
@@ -103,18 +112,9 @@ pub fn sja1000_verilog(config: &Config) -> (Artifact, String, Ports) {
 /// pinout (or the one asked for, when it has one).
 pub fn slcan(config: &Config, board: Option<&str>) -> Result<Vec<Artifact>> {
     let (verilog, board_name, ports) = slcan_verilog(config)?;
-    let mut out = vec![verilog];
-    let mut pins = DesignPins::default();
-    for (p, bits, _) in &ports {
-        if p != "clock" {
-            pins.functional.extend(DesignPins::port_roles(p, *bits));
-        }
-    }
     let boards: Vec<Board> = hub_boards(board)?.into_iter().filter(|b| b.slcan.is_some()).collect();
-    for b in &boards {
-        let f = pin_file(b, Pinout::Slcan, &board_name, &pins)?;
-        out.push(Artifact { root: Root::Constraints, path: format!("{}/{board_name}.{}", b.name, b.format.ext()).into(), contents: f.text });
-    }
+    let mut out = vec![verilog];
+    out.extend(pin_files(&boards, Pinout::Slcan, &board_name, &ports)?);
     Ok(out)
 }
 
