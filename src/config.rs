@@ -5,7 +5,7 @@ use anyhow::{bail, Result};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 
-use canstar_controller::core::Eof7Rule;
+use canstar_controller::core::RecRule;
 use canstar_hdl::timing::{BtlConfig, TimingPatch};
 
 /// Power-up bit timing of the SJA1000-compatible top: the values a hardware
@@ -68,15 +68,17 @@ impl Default for Rtl {
     }
 }
 
-/// The TOML spelling of [`Eof7Rule`] (`controller.eof7_rec`): serde's remote
+/// The TOML spelling of [`RecRule`] (`controller.rec_rule`): serde's remote
 /// definition, checked against the controller's enum by the compiler.
 #[derive(Serialize, Deserialize)]
-#[serde(remote = "Eof7Rule")]
-enum Eof7RuleToml {
-    /// `"iso"`: REC − 1, the frame was valid (ISO 16845-1 7.6.16).
+#[serde(remote = "RecRule")]
+enum RecRuleToml {
+    /// `"iso"`: REC − 1 at the ACK slot once the own ACK is read back
+    /// dominant (ISO 11898-1, ISO 16845-1 7.6.7, 7.6.8, 7.6.16).
     #[serde(rename = "iso")]
     Iso,
-    /// `"bosch-1999"`: REC unchanged (the 1999 reference programs).
+    /// `"bosch-1999"`: REC − 1 at a recessive End_Of_Frame bit 7 only (the
+    /// 1999 reference programs).
     #[serde(rename = "bosch-1999")]
     Bosch1999,
 }
@@ -90,15 +92,16 @@ pub struct Controller {
     /// pin files, and the slcan adapter around it (`canstar_slcan`); `false`
     /// emits only the core with its native interface.
     pub host_interface: bool,
-    /// REC at a receiver's dominant End_Of_Frame bit 7 (can-protocol.md C13),
-    /// in the core and the SJA1000 top.
-    #[serde(with = "Eof7RuleToml")]
-    pub eof7_rec: Eof7Rule,
+    /// The bit at which a receiver counts a successful reception in REC
+    /// (can-protocol.md C13), in the core and the SJA1000 top. `eof7_rec`,
+    /// its name before it also covered the ACK slot, is still read.
+    #[serde(with = "RecRuleToml", alias = "eof7_rec")]
+    pub rec_rule: RecRule,
 }
 
 impl Default for Controller {
     fn default() -> Self {
-        Self { host_interface: true, eof7_rec: Eof7Rule::Iso }
+        Self { host_interface: true, rec_rule: RecRule::Iso }
     }
 }
 

@@ -36,7 +36,7 @@ pub fn blocks(config: &Config) -> Result<Vec<Artifact>> {
 pub fn controller(config: &Config) -> Result<Vec<Artifact>> {
     let mut a = block(
         canstar_controller::core::CanCore::with_sync_depth(config.rtl.sync_depth)
-            .with_eof7_rule(config.controller.eof7_rec),
+            .with_rec_rule(config.controller.rec_rule),
         "canstar_can_core",
         "CAN 2.0A/B protocol controller core, native interface (see controller/src/core.rs)",
     );
@@ -83,7 +83,7 @@ fn pin_files(boards: &[Board], pinout: Pinout, board_name: &str, ports: &Ports) 
 pub fn sja1000_verilog(config: &Config) -> (Artifact, String, Ports) {
     let (btr0, btr1) = crate::config::btr(&config.bit_timing);
     let mut uut = canstar_controller::sja1000::Sja1000::with_reset_timing(btr0, btr1)
-        .with_eof7_rule(config.controller.eof7_rec);
+        .with_rec_rule(config.controller.rec_rule);
     uut.connect_all();
     let name = "canstar_sja1000";
     let inner = canstar_hdl::flow::rename_top(&canstar_hdl::flow::emit(&uut), name);
@@ -122,7 +122,7 @@ pub fn slcan(config: &Config, board: Option<&str>) -> Result<Vec<Artifact>> {
 /// its board top (`canstar_slcan_board`) and the board top's ports.
 pub fn slcan_verilog(config: &Config) -> Result<(Artifact, String, Ports)> {
     let p = config.slcan.params()?;
-    let mut uut = canstar_controller::slcan::SlcanTop::new(&p).with_eof7_rule(config.controller.eof7_rec);
+    let mut uut = canstar_controller::slcan::SlcanTop::new(&p).with_rec_rule(config.controller.rec_rule);
     uut.connect_all();
     let name = "canstar_slcan";
     let inner = canstar_hdl::flow::rename_top(&canstar_hdl::flow::emit(&uut), name);

@@ -59,7 +59,7 @@ fn bad_config_fails_cleanly_and_writes_nothing() {
         ("bad_sjw.toml", "[bit_timing]\nph1 = 2\nsjw = 4\n", "exceeds ph1"),
         ("malformed.toml", "[bit_timing\n", "malformed"),
         ("bad_depth.toml", "[rtl]\nsync_depth = 3\n", "sync_depth"),
-        ("bad_eof7.toml", "[controller]\neof7_rec = \"bosch\"\n", "eof7_rec"),
+        ("bad_eof7.toml", "[controller]\nrec_rule = \"bosch\"\n", "rec_rule"),
     ] {
         std::fs::write(d.path().join(name), text).unwrap();
         let (ok, out, err) = canstar(&["generate", "--config", name, "--out", "v", "--constraints", "c"], d.path());
@@ -147,10 +147,10 @@ fn hub_generation_pins_and_bad_hub_configs() {
 }
 
 #[test]
-fn eof7_rule_is_a_generation_time_constant_of_core_and_top() {
+fn rec_rule_is_a_generation_time_constant_of_core_and_top() {
     // C13: the 1999 rule changes one constant in each controller design, nothing else.
     let d = tempfile::tempdir().unwrap();
-    std::fs::write(d.path().join("bosch.toml"), "[controller]\neof7_rec = \"bosch-1999\"\n").unwrap();
+    std::fs::write(d.path().join("bosch.toml"), "[controller]\nrec_rule = \"bosch-1999\"\n").unwrap();
     let (ok, out, err) = canstar(&["generate", "controller", "--out", "iso"], d.path());
     assert!(ok, "{out}{err}");
     let (ok, out, err) = canstar(&["generate", "controller", "--config", "bosch.toml", "--out", "bosch"], d.path());
@@ -161,7 +161,7 @@ fn eof7_rule_is_a_generation_time_constant_of_core_and_top() {
         let diff: Vec<(&str, &str)> = iso.lines().zip(bosch.lines()).filter(|(a, b)| a != b).collect();
         assert_eq!(iso.lines().count(), bosch.lines().count(), "{f}");
         assert_eq!(diff.len(), 1, "{f}: {diff:?}");
-        assert!(diff[0].0.ends_with("eof7_rok = 1'b1;") && diff[0].1.ends_with("eof7_rok = 1'b0;"), "{f}: {diff:?}");
+        assert!(diff[0].0.ends_with("rec_iso = 1'b1;") && diff[0].1.ends_with("rec_iso = 1'b0;"), "{f}: {diff:?}");
     }
 }
 

@@ -156,7 +156,7 @@ fn committed_slcan_cosimulates() {
     // rare disturbances.
     let config = canstar::config::Config::default();
     let p = config.slcan.params().unwrap();
-    let mut uut = canstar_controller::slcan::SlcanTop::new(&p).with_eof7_rule(config.controller.eof7_rec);
+    let mut uut = canstar_controller::slcan::SlcanTop::new(&p).with_rec_rule(config.controller.rec_rule);
     let cpb = p.clocks_per_bit as usize;
     let mut levels = vec![true; 10];
     for b in b"O\rt1232AABB\rF\rV\r" {

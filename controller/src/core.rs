@@ -40,9 +40,9 @@
 //! [`canstar_hdl::timing::BtlConfig`]).
 //!
 //! Generation-time options (constants of the design, not ports): the RX
-//! synchroniser depth ([`CanCore::with_sync_depth`]) and the REC rule at a
-//! receiver's dominant End_Of_Frame bit 7 ([`CanCore::with_eof7_rule`],
-//! [`Eof7Rule`]: ISO by default, C13).
+//! synchroniser depth ([`CanCore::with_sync_depth`]) and the bit at which a
+//! receiver counts a successful reception in REC ([`CanCore::with_rec_rule`],
+//! [`RecRule`]: ISO by default, C13).
 //!
 //! Outputs: `tx`; 1-clock event strobes `tx_done`, `arb_lost`
 //! (+`arb_lost_pos`), `error` (+`err_kind` mask of `ERRK_*`, `err_field`,
@@ -73,17 +73,23 @@ use rust_hdl::prelude::*;
 /// Default depth of the RX synchroniser.
 pub const SYNC_DEPTH: usize = 2;
 
-/// What a receiver does with REC when it reads End_Of_Frame bit 7 dominant
-/// (can-protocol.md C13). In both cases the frame is valid and delivered and
-/// an overload frame follows; the two standards differ only in the counter.
-/// A generation-time choice: a constant of the design, not a port.
+/// When a receiver counts a successful reception in REC (can-protocol.md
+/// C13, disagreements D1 and D2). The two standards deliver the same frames
+/// and send the same flags; they differ only in the bit at which REC − 1
+/// (or the restore to 127) is applied. A generation-time choice: a constant
+/// of the design, not a port.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
-pub enum Eof7Rule {
-    /// REC − 1 (127 from 128 and above), as for any successful reception:
-    /// ISO 11898-1, ISO 16845-1 test 7.6.16. The default.
+pub enum RecRule {
+    /// At the ACK slot, once the receiver has read its own dominant ACK
+    /// back (ISO 11898-1: "reception without error up to the ACK slot and
+    /// the successful transmission of the ACK bit"). An error after it
+    /// (ACK_Delimiter, End_Of_Frame 1..6) adds its +1 to the decremented
+    /// value, and a dominant End_Of_Frame bit 7 changes nothing more:
+    /// ISO 16845-1 7.6.7, 7.6.8, 7.6.16. The default.
     #[default]
     Iso,
-    /// REC unchanged: the 1999 reference programs (formerr and emlcount,
+    /// At a recessive End_Of_Frame bit 7 only; a dominant one leaves REC
+    /// unchanged: the 1999 reference programs (formerr and emlcount,
     /// receiver step 4, and the sums of emlcount steps 9-11).
     Bosch1999,
 }
@@ -153,8 +159,8 @@ pub struct CanCore {
     btl: BitTiming,
     fsm: CanFsm,
     l_hold: Signal<Local, Bit>,
-    /// [`Eof7Rule::Iso`] as 1.
-    eof7_rok: Constant<Bit>,
+    /// [`RecRule::Iso`] as 1.
+    rec_iso: Constant<Bit>,
 }
 
 // Host-side readers of the outputs: `crate::view::CoreView`.
@@ -227,13 +233,13 @@ impl CanCore {
             btl: Default::default(),
             fsm: CanFsm::new(),
             l_hold: Default::default(),
-            eof7_rok: Constant::new(Eof7Rule::default() == Eof7Rule::Iso),
+            rec_iso: Constant::new(RecRule::default() == RecRule::Iso),
         }
     }
 
-    /// The same core with the REC rule `rule` for a dominant End_Of_Frame bit 7.
-    pub fn with_eof7_rule(mut self, rule: Eof7Rule) -> Self {
-        self.eof7_rok = Constant::new(rule == Eof7Rule::Iso);
+    /// The same core with the REC rule `rule` (C13).
+    pub fn with_rec_rule(mut self, rule: RecRule) -> Self {
+        self.rec_iso = Constant::new(rule == RecRule::Iso);
         self
     }
 
@@ -293,7 +299,7 @@ impl Logic for CanCore {
         self.fsm.single_shot.next = self.single_shot.val();
         self.fsm.host_recovery.next = self.host_recovery.val();
         self.fsm.recover.next = self.recover.val();
-        self.fsm.eof7_rok.next = self.eof7_rok.val();
+        self.fsm.rec_iso.next = self.rec_iso.val();
         self.fsm.tx_req.next = self.tx_req.val();
         self.fsm.tx_ide.next = self.tx_ide.val();
         self.fsm.tx_rtr.next = self.tx_rtr.val();

@@ -65,7 +65,7 @@ fn formerr_rx_program() {
     assert_eq!(rec, 86);
 }
 
-/// C13, the ISO rule (`eof7_rok` high, the core's default; the programs above run the
+/// C13, the ISO rule (`rec_iso` high, the core's default; the programs above run the
 /// frame state machine with it low, the 1999 rule): the rx_4 step counts the reception,
 /// REC − 1 (ISO 16845-1 7.6.16), frame delivered, overload frame as before.
 #[test]
@@ -73,7 +73,7 @@ fn formerr_rx_4_with_the_iso_rule_decrements_rec() {
     let d = Ovr::StuckD;
     let mut b = Bus::integrated(2);
     for n in &mut b.nodes {
-        n.eof7_rok.next = true;
+        n.rec_iso.next = true;
     }
     let f = Frame::std(0x4C1, &[0xDE, 0xAD]);
     b.request(1, &f);

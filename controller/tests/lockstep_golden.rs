@@ -31,7 +31,7 @@ fn run_modes(seed: u64, n: usize, rate: f64, bits: usize, modes: bool) {
     // C13: the ISO rule on both sides (the harness's frame state machines default to the
     // 1999 rule of the reference programs; with `modes` each node draws its rule)
     for u in &mut b.nodes {
-        u.eof7_rok.next = true;
+        u.rec_iso.next = true;
     }
     let mut g: Vec<golden::GoldenNode> = (0..n).map(|_| golden::GoldenNode::default()).collect();
     let mut seen_rqst = vec![false; n];
@@ -42,9 +42,9 @@ fn run_modes(seed: u64, n: usize, rate: f64, bits: usize, modes: bool) {
                 self_test: rng.gen_bool(0.3),
                 single_shot: rng.gen_bool(0.4),
                 host_recovery: rng.gen_bool(0.5),
-                eof7_bosch_1999: rng.gen_bool(0.5),
+                rec_bosch_1999: rng.gen_bool(0.5),
             };
-            b.nodes[i].eof7_rok.next = !cfg.eof7_bosch_1999;
+            b.nodes[i].rec_iso.next = !cfg.rec_bosch_1999;
             g[i] = golden::GoldenNode::new(cfg);
             b.nodes[i].listen_only.next = cfg.listen_only;
             b.nodes[i].self_test.next = cfg.self_test;

@@ -26,9 +26,11 @@
 //!   first `D` there; otherwise `EXC1` is reported at position 6.
 //! * A flag restarted by a bit error in an *overload* flag is typed like one restarted inside
 //!   an active error flag: from the state before the +8 (C14).
-//! * At a receiver's dominant End_Of_Frame 7 the step reports `RX_OK` (frame delivered, REC
-//!   − 1 as ISO 16845-1 expects, or unchanged with `Config::eof7_bosch_1999`, C13) together
-//!   with `OVL`, `OLF`.
+//! * A receiver's REC − 1 for a successful reception comes at the ACK slot, once its own
+//!   ACK was read back dominant (ISO 11898-1, ISO 16845-1), or with
+//!   `Config::rec_bosch_1999` at a recessive End_Of_Frame 7 only (C13). At a receiver's
+//!   dominant End_Of_Frame 7 the step reports `RX_OK` (frame delivered) together with
+//!   `OVL`, `OLF`.
 //! * Membership of a stuff bit in the arbitration field (TEC exception 2) is decided by the
 //!   transmitter's own frame format (§7); a test-only recessive r0/r1 read `D` is a bit error.
 //! * Listen-only nodes never drive `D` and never change counters; they still follow the

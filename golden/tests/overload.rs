@@ -43,7 +43,7 @@ fn overload_rx_1d_dominant_intermission_2() {
 /// 16845-1 7.6.16). Then overload_rx_1b: `D!` at
 /// Overload_Delimiter 8: OVL, OLF again.
 #[test]
-fn formerr_rx_4_dominant_eof7_receiver_delivers_rec_unchanged_overload() {
+fn formerr_rx_4_dominant_rec_ruleeiver_delivers_rec_unchanged_overload() {
     for iso in [false, true] {
         let mut b = if iso { idle_bus(2) } else { idle_bus_1999(2) };
         b.nodes[1].request(std1(0x111));

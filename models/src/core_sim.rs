@@ -7,7 +7,7 @@ use std::cell::RefCell;
 use std::collections::HashMap;
 
 use canstar_controller::core::CanCore as HdlCore;
-use canstar_controller::core::Eof7Rule;
+use canstar_controller::core::RecRule;
 use canstar_controller::view::CoreView;
 use canstar_hdl::drive;
 use rust_hdl::prelude::*;
@@ -81,12 +81,12 @@ pub struct CoreSim {
 thread_local! {
     /// Compiled cores loaded from a fresh rust-hdl instance, by synchroniser depth
     /// (loading reads the design's HDL, which costs more than a short simulation).
-    static PROTO: RefCell<HashMap<(usize, Eof7Rule), ModelCore>> = RefCell::new(HashMap::new());
+    static PROTO: RefCell<HashMap<(usize, RecRule), ModelCore>> = RefCell::new(HashMap::new());
 }
 
 /// The rust-hdl core as [`CoreSim::with_rule`] powers it up (`drive::init` done).
-pub fn fresh_hdl(sync_depth: usize, eof7: Eof7Rule) -> HdlCore {
-    let mut c = HdlCore::with_sync_depth(sync_depth).with_eof7_rule(eof7);
+pub fn fresh_hdl(sync_depth: usize, rec_rule: RecRule) -> HdlCore {
+    let mut c = HdlCore::with_sync_depth(sync_depth).with_rec_rule(rec_rule);
     drive::init(&mut c);
     c
 }
@@ -95,28 +95,28 @@ impl CoreSim {
     /// A core with an RX synchroniser of `sync_depth` flip-flops, powered up
     /// (`drive::init`), on `engine`.
     pub fn new(engine: Engine, sync_depth: usize) -> Self {
-        Self::with_rule(engine, sync_depth, Eof7Rule::default())
+        Self::with_rule(engine, sync_depth, RecRule::default())
     }
 
-    /// As [`CoreSim::new`], with the REC rule `eof7` at a dominant End_Of_Frame bit 7 (C13).
-    pub fn with_rule(engine: Engine, sync_depth: usize, eof7: Eof7Rule) -> Self {
+    /// As [`CoreSim::new`], with the REC rule `rec_rule` for a successful reception (C13).
+    pub fn with_rule(engine: Engine, sync_depth: usize, rec_rule: RecRule) -> Self {
         let inner = match engine {
-            Engine::RustHdl => Inner::Hdl(Box::new(fresh_hdl(sync_depth, eof7))),
+            Engine::RustHdl => Inner::Hdl(Box::new(fresh_hdl(sync_depth, rec_rule))),
             Engine::Compiled => {
                 let m = PROTO.with(|p| {
                     let mut p = p.borrow_mut();
-                    if let Some(m) = p.get(&(sync_depth, eof7)) {
+                    if let Some(m) = p.get(&(sync_depth, rec_rule)) {
                         return Ok(m.clone());
                     }
-                    let m = ModelCore::from_instance(&fresh_hdl(sync_depth, eof7))?;
-                    p.insert((sync_depth, eof7), m.clone());
+                    let m = ModelCore::from_instance(&fresh_hdl(sync_depth, rec_rule))?;
+                    p.insert((sync_depth, rec_rule), m.clone());
                     Ok::<_, canstar_rtlc::Error>(m)
                 });
                 match m {
                     Ok(m) => Inner::Model(Box::new(m)),
                     Err(e) => {
                         fallback_warning("CanCore", &e.to_string());
-                        Inner::Hdl(Box::new(fresh_hdl(sync_depth, eof7)))
+                        Inner::Hdl(Box::new(fresh_hdl(sync_depth, rec_rule)))
                     }
                 }
             }

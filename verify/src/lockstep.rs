@@ -238,7 +238,7 @@ impl LockstepNode {
             self_test: cfg.self_test,
             single_shot: cfg.single_shot,
             host_recovery: cfg.host_recovery,
-            eof7_bosch_1999: cfg.eof7 == canstar_controller::core::Eof7Rule::Bosch1999,
+            rec_bosch_1999: cfg.rec_rule == canstar_controller::core::RecRule::Bosch1999,
         };
         let depth = cfg.sync_depth;
         // the golden RX path: `depth` synchroniser stages + the bit timing's own register

@@ -25,7 +25,7 @@
 
 use canstar_sim::{ClockSpec, Component, Io};
 use canstar_controller::frame::Frame;
-use canstar_controller::core::Eof7Rule;
+use canstar_controller::core::RecRule;
 use canstar_controller::view::CoreView;
 use canstar_controller::fsm::{Field, ERRK_ACK, ERRK_BIT, ERRK_CRC, ERRK_FORM, ERRK_STUFF};
 use canstar_controller::trace::BitTracer;
@@ -51,9 +51,9 @@ pub struct NodeConfig {
     pub host_recovery: bool,
     /// RX synchroniser depth (1 or 2).
     pub sync_depth: usize,
-    /// REC at a receiver's dominant End_Of_Frame bit 7 (C13): ISO by default; the Bosch
-    /// reference programs run with [`Eof7Rule::Bosch1999`].
-    pub eof7: Eof7Rule,
+    /// The bit at which a receiver counts a successful reception in REC (C13): ISO by
+    /// default; the Bosch reference programs run with [`RecRule::Bosch1999`].
+    pub rec_rule: RecRule,
     /// Simulation engine of the controller (compiled model by default).
     pub engine: Engine,
 }
@@ -69,7 +69,7 @@ impl NodeConfig {
             single_shot: false,
             host_recovery: false,
             sync_depth: canstar_controller::core::SYNC_DEPTH,
-            eof7: Eof7Rule::default(),
+            rec_rule: RecRule::default(),
             engine: Engine::default(),
         }
     }
@@ -133,7 +133,7 @@ pub struct CanNode {
 
 impl CanNode {
     pub fn new(cfg: NodeConfig, clock: ClockSpec) -> Self {
-        let core = CoreSim::with_rule(cfg.engine, cfg.sync_depth, cfg.eof7);
+        let core = CoreSim::with_rule(cfg.engine, cfg.sync_depth, cfg.rec_rule);
         let mut n = CanNode {
             name: cfg.name.clone(),
             clock,

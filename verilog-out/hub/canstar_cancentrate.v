@@ -5496,7 +5496,7 @@ module canstar_cancentrate_core$monitor(clock,reset,rx,brp,prop,ph1,ph2,sjw,trip
     output reg  dbg_resync;
     
     // Constant declarations
-    localparam  eof7_rok = 1'b1;
+    localparam  rec_iso = 1'b1;
     
     // Stub signals
     reg  sync$clock;
@@ -5541,7 +5541,7 @@ module canstar_cancentrate_core$monitor(clock,reset,rx,brp,prop,ph1,ph2,sjw,trip
     reg  fsm$cnt_load;
     reg  [8:0] fsm$tec_in;
     reg  [7:0] fsm$rec_in;
-    reg  fsm$eof7_rok;
+    reg  fsm$rec_iso;
     wire  fsm$drive;
     wire  fsm$hs_en;
     wire  fsm$tx_done;
@@ -5621,7 +5621,7 @@ module canstar_cancentrate_core$monitor(clock,reset,rx,brp,prop,ph1,ph2,sjw,trip
         .cnt_load(fsm$cnt_load),
         .tec_in(fsm$tec_in),
         .rec_in(fsm$rec_in),
-        .eof7_rok(fsm$eof7_rok),
+        .rec_iso(fsm$rec_iso),
         .drive(fsm$drive),
         .hs_en(fsm$hs_en),
         .tx_done(fsm$tx_done),
@@ -5677,7 +5677,7 @@ module canstar_cancentrate_core$monitor(clock,reset,rx,brp,prop,ph1,ph2,sjw,trip
         fsm$single_shot = single_shot;
         fsm$host_recovery = host_recovery;
         fsm$recover = recover;
-        fsm$eof7_rok = eof7_rok;
+        fsm$rec_iso = rec_iso;
         fsm$tx_req = tx_req;
         fsm$tx_ide = tx_ide;
         fsm$tx_rtr = tx_rtr;
@@ -6556,7 +6556,7 @@ module canstar_cancentrate_core$monitor$btl$tx_n(d,q,clock);
 endmodule // canstar_cancentrate_core$monitor$btl$tx_n
 
 
-module canstar_cancentrate_core$monitor$fsm(clock,reset,sample,busmon,listen_only,self_test,single_shot,host_recovery,recover,tx_req,tx_ide,tx_rtr,tx_id,tx_dlc,tx_data,tx_abort,cnt_load,tec_in,rec_in,eof7_rok,drive,hs_en,tx_done,arb_lost,arb_lost_pos,error,err_kind,err_field,err_pos,err_tx,rx_valid,rx_ide,rx_rtr,rx_id,rx_dlc,rx_data,tec,rec,state,err_warn,tx_rqst,field,pos,stuff,role,events,runs);
+module canstar_cancentrate_core$monitor$fsm(clock,reset,sample,busmon,listen_only,self_test,single_shot,host_recovery,recover,tx_req,tx_ide,tx_rtr,tx_id,tx_dlc,tx_data,tx_abort,cnt_load,tec_in,rec_in,rec_iso,drive,hs_en,tx_done,arb_lost,arb_lost_pos,error,err_kind,err_field,err_pos,err_tx,rx_valid,rx_ide,rx_rtr,rx_id,rx_dlc,rx_data,tec,rec,state,err_warn,tx_rqst,field,pos,stuff,role,events,runs);
     
     // Module arguments
     input wire  clock;
@@ -6578,7 +6578,7 @@ module canstar_cancentrate_core$monitor$fsm(clock,reset,sample,busmon,listen_onl
     input wire  cnt_load;
     input wire  [8:0] tec_in;
     input wire  [7:0] rec_in;
-    input wire  eof7_rok;
+    input wire  rec_iso;
     output reg  drive;
     output reg  hs_en;
     output reg  tx_done;
@@ -6724,7 +6724,7 @@ module canstar_cancentrate_core$monitor$fsm(clock,reset,sample,busmon,listen_onl
     reg  frame$sample;
     reg  frame$rxbit;
     reg  frame$sent;
-    reg  frame$eof7_rok;
+    reg  frame$rec_iso;
     reg  [4:0] frame$fld;
     reg  [7:0] frame$fpos;
     reg  frame$tx_role;
@@ -6991,7 +6991,7 @@ module canstar_cancentrate_core$monitor$fsm(clock,reset,sample,busmon,listen_onl
         .sample(frame$sample),
         .rxbit(frame$rxbit),
         .sent(frame$sent),
-        .eof7_rok(frame$eof7_rok),
+        .rec_iso(frame$rec_iso),
         .fld(frame$fld),
         .fpos(frame$fpos),
         .tx_role(frame$tx_role),
@@ -7197,7 +7197,7 @@ module canstar_cancentrate_core$monitor$fsm(clock,reset,sample,busmon,listen_onl
         frame$sample = sample;
         frame$rxbit = busmon;
         frame$sent = dec$drive;
-        frame$eof7_rok = eof7_rok;
+        frame$rec_iso = rec_iso;
         frame$fld = seq$fld;
         frame$fpos = seq$fpos;
         frame$tx_role = seq$tx_role;
@@ -8273,7 +8273,7 @@ module canstar_cancentrate_core$monitor$fsm$flags$fdone(d,q,clock);
 endmodule // canstar_cancentrate_core$monitor$fsm$flags$fdone
 
 
-module canstar_cancentrate_core$monitor$fsm$frame(clock,reset,sample,rxbit,sent,eof7_rok,fld,fpos,tx_role,dom,listen_only,self_test,active,stuffed,stuff,arb,arb_stuff,stuff_error,crc_rem,ext,rtr,dlc_lo_zero,data_bits,tx_ide,sofinit,err_now,own,nf,npos,ndom,usetx,lost,err,err_bit,err_stuff,err_crc,err_form,err_ack,tinc,rinc1,rok,ovl,exc1,exc2,tx_ok,rx_ok,sof,adv);
+module canstar_cancentrate_core$monitor$fsm$frame(clock,reset,sample,rxbit,sent,rec_iso,fld,fpos,tx_role,dom,listen_only,self_test,active,stuffed,stuff,arb,arb_stuff,stuff_error,crc_rem,ext,rtr,dlc_lo_zero,data_bits,tx_ide,sofinit,err_now,own,nf,npos,ndom,usetx,lost,err,err_bit,err_stuff,err_crc,err_form,err_ack,tinc,rinc1,rok,ovl,exc1,exc2,tx_ok,rx_ok,sof,adv);
     
     // Module arguments
     input wire  clock;
@@ -8281,7 +8281,7 @@ module canstar_cancentrate_core$monitor$fsm$frame(clock,reset,sample,rxbit,sent,
     input wire  sample;
     input wire  rxbit;
     input wire  sent;
-    input wire  eof7_rok;
+    input wire  rec_iso;
     input wire  [4:0] fld;
     input wire  [7:0] fpos;
     input wire  tx_role;
@@ -8568,6 +8568,9 @@ module canstar_cancentrate_core$monitor$fsm$frame(clock,reset,sample,rxbit,sent,
                                     rinc1 = 1'b1;
                                 end
                             end
+                            else if (dom) begin
+                                rok = rec_iso;
+                            end
                         end
                     Field$AckDel:
                         begin
@@ -8593,10 +8596,9 @@ module canstar_cancentrate_core$monitor$fsm$frame(clock,reset,sample,rxbit,sent,
                                     rx_ok = 1'b1;
                                     if (~rxbit) begin
                                         ovl = 1'b1;
-                                        rok = eof7_rok;
                                     end
                                     else begin
-                                        rok = 1'b1;
+                                        rok = ~rec_iso;
                                     end
                                 end
                             end

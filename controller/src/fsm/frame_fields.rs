@@ -18,10 +18,11 @@
 //!   ACK errors (exception 1 for an error-passive transmitter), the pending
 //!   CRC error signalled at ACK_Delimiter, success of a transmission
 //!   (`tx_ok`) and delivery of a received frame (`rx_ok`, End_Of_Frame bit 7
-//!   even if dominant: an overload condition). A receiver's dominant
-//!   End_Of_Frame bit 7 also counts as a successful reception for REC
-//!   (`rok`) when `eof7_rok` is set (C13: ISO 16845-1 7.6.16; the 1999
-//!   reference programs expect REC unchanged, `eof7_rok` low).
+//!   even if dominant: an overload condition). A receiver counts the
+//!   successful reception for REC (`rok`, C13) at the ACK slot when it read
+//!   its own ACK back dominant if `rec_iso` is set (ISO 11898-1, ISO
+//!   16845-1 7.6.7, 7.6.8, 7.6.16), else at a recessive End_Of_Frame bit 7
+//!   only (the 1999 reference programs).
 //!
 //! State: `crcerr`, a CRC error seen at the last CRC bit by a receiver and
 //! not yet signalled (set at CRC bit 15 when the CRC register is not zero
@@ -41,9 +42,9 @@ pub struct FrameFields {
     /// The sampled level and the level this node drove for it.
     pub rxbit: Signal<In, Bit>,
     pub sent: Signal<In, Bit>,
-    /// C13: REC − 1 at a receiver's dominant End_Of_Frame bit 7 (ISO);
-    /// low keeps REC unchanged (the 1999 reference programs).
-    pub eof7_rok: Signal<In, Bit>,
+    /// C13: REC − 1 for a successful reception at the ACK slot (ISO);
+    /// low: at a recessive End_Of_Frame bit 7 only (the 1999 programs).
+    pub rec_iso: Signal<In, Bit>,
     pub fld: Signal<In, Field>,
     pub fpos: Signal<In, Bits<8>>,
     pub tx_role: Signal<In, Bit>,
@@ -300,6 +301,10 @@ impl Logic for FrameFields {
                                 self.err_bit.next = true;
                                 self.rinc1.next = true;
                             }
+                        } else if self.dom.val() {
+                            // the own ACK read back dominant: ISO counts
+                            // the reception as successful here (C13)
+                            self.rok.next = self.rec_iso.val();
                         }
                     }
                     Field::AckDel => {
@@ -322,9 +327,8 @@ impl Logic for FrameFields {
                                 self.rx_ok.next = true;
                                 if !self.rxbit.val() {
                                     self.ovl.next = true;
-                                    self.rok.next = self.eof7_rok.val();
                                 } else {
-                                    self.rok.next = true;
+                                    self.rok.next = !self.rec_iso.val();
                                 }
                             }
                         } else {

@@ -239,7 +239,7 @@ pub struct CanFsm {
     pub rec_in: Signal<In, Bits<8>>,
     /// C13: REC − 1 at a receiver's dominant End_Of_Frame bit 7 (see
     /// [`frame_fields::FrameFields`]); a constant of [`crate::core::CanCore`].
-    pub eof7_rok: Signal<In, Bit>,
+    pub rec_iso: Signal<In, Bit>,
 
     /// Level wanted on TX from the next transmit point (1 = recessive).
     pub drive: Signal<Out, Bit>,
@@ -328,7 +328,7 @@ impl Logic for CanFsm {
         self.frame.sample.next = self.sample.val();
         self.frame.rxbit.next = self.busmon.val();
         self.frame.sent.next = self.dec.drive.val();
-        self.frame.eof7_rok.next = self.eof7_rok.val();
+        self.frame.rec_iso.next = self.rec_iso.val();
         self.frame.fld.next = self.seq.fld.val();
         self.frame.fpos.next = self.seq.fpos.val();
         self.frame.tx_role.next = self.seq.tx_role.val();

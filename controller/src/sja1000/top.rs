@@ -251,8 +251,8 @@ impl Sja1000 {
 
     /// The same register block around a core with the REC rule `rule` for a
     /// dominant End_Of_Frame bit 7 (C13; ISO by default).
-    pub fn with_eof7_rule(mut self, rule: crate::core::Eof7Rule) -> Self {
-        self.core = std::mem::take(&mut self.core).with_eof7_rule(rule);
+    pub fn with_rec_rule(mut self, rule: crate::core::RecRule) -> Self {
+        self.core = std::mem::take(&mut self.core).with_rec_rule(rule);
         self
     }
 

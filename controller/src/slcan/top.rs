@@ -52,9 +52,9 @@ impl SlcanTop {
     }
 
     /// The REC rule at a receiver's dominant last EOF bit of the SJA1000's
-    /// core ([`Sja1000::with_eof7_rule`]).
-    pub fn with_eof7_rule(mut self, rule: crate::core::Eof7Rule) -> Self {
-        self.can = std::mem::take(&mut self.can).with_eof7_rule(rule);
+    /// core ([`Sja1000::with_rec_rule`]).
+    pub fn with_rec_rule(mut self, rule: crate::core::RecRule) -> Self {
+        self.can = std::mem::take(&mut self.can).with_rec_rule(rule);
         self
     }
 

@@ -24,10 +24,11 @@ pub struct Config {
     pub single_shot: bool,
     /// Bus-off recovery waits for [`GoldenNode::start_recovery`] (SJA1000 style, C18).
     pub host_recovery: bool,
-    /// C13: a receiver's dominant End_Of_Frame bit 7 leaves REC unchanged, as the 1999
-    /// reference programs expect; by default (false) REC − 1 as for any successful
-    /// reception (ISO 16845-1 7.6.16).
-    pub eof7_bosch_1999: bool,
+    /// C13: a receiver counts a successful reception in REC at a recessive End_Of_Frame
+    /// bit 7 only, as the 1999 reference programs expect; by default (false) at the ACK
+    /// slot once its own ACK was read back dominant (ISO 11898-1, ISO 16845-1 7.6.7,
+    /// 7.6.8, 7.6.16).
+    pub rec_bosch_1999: bool,
 }
 
 /// Result of processing one bit.

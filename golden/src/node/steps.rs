@@ -90,6 +90,10 @@ impl GoldenNode {
                 } else if !tx && drove == D && s == R {
                     self.error(ErrorKind::Bit, 8, 1);
                 } else {
+                    if !tx && drove == D && !self.cfg.rec_bosch_1999 {
+                        // C13, ISO: the own ACK read back dominant is a successful reception.
+                        self.reception_ok();
+                    }
                     self.mode = next(Field::AckDelimiter);
                 }
             }
@@ -130,14 +134,10 @@ impl GoldenNode {
                     let f = self.dec.frame();
                     self.ev.push(Event::RxOk(f));
                     // C13: with a dominant bit the frame is valid too and an overload frame
-                    // follows; REC counts the success unless the 1999 rule is chosen.
-                    if !self.cfg.listen_only && (s == R || !self.cfg.eof7_bosch_1999) {
-                        if self.rec >= 128 {
-                            self.rec = 127; // C11
-                        } else if self.rec > 0 {
-                            self.rec -= 1;
-                        }
-                        self.update_state();
+                    // follows; the 1999 rule counts the success in REC at a recessive bit
+                    // only (the ISO rule counted it at the ACK slot).
+                    if !self.cfg.listen_only && s == R && self.cfg.rec_bosch_1999 {
+                        self.reception_ok();
                     }
                     if s == D {
                         self.start_overload();
@@ -147,6 +147,16 @@ impl GoldenNode {
                 }
             }
         }
+    }
+
+    /// A successful reception in REC: − 1, or 127 from 128 and above (C11, C13).
+    fn reception_ok(&mut self) {
+        if self.rec >= 128 {
+            self.rec = 127;
+        } else if self.rec > 0 {
+            self.rec -= 1;
+        }
+        self.update_state();
     }
 
     pub(super) fn step_flag(&mut self, mut fl: FlagState, s: bool, drove: bool) {

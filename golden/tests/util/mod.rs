@@ -17,7 +17,7 @@ pub fn idle_bus(n: usize) -> GoldenBus {
 /// for the steps of the reference programs that depend on it.
 #[allow(dead_code)]
 pub fn idle_bus_1999(n: usize) -> GoldenBus {
-    let cfg = canstar_golden::Config { eof7_bosch_1999: true, ..Default::default() };
+    let cfg = canstar_golden::Config { rec_bosch_1999: true, ..Default::default() };
     let mut b = GoldenBus::with_nodes((0..n).map(|_| canstar_golden::GoldenNode::new(cfg)).collect());
     assert!(b.run_to_idle(20), "integration");
     b

@@ -332,7 +332,7 @@ pub(crate) use ensure;
 /// Standard configuration of a node under the reference programs (T10/6/4, BRP 1), with
 /// the 1999 REC rule at a dominant End_Of_Frame bit 7 that those programs expect (C13).
 pub fn cfg() -> NodeConfig {
-    NodeConfig { eof7: canstar_controller::core::Eof7Rule::Bosch1999, ..NodeConfig::named("n") }
+    NodeConfig { rec_rule: canstar_controller::core::RecRule::Bosch1999, ..NodeConfig::named("n") }
 }
 
 /// Timing T10/8/1 (PROP 5, PH1 2, PH2 2, SJW 1), BRP 1, as [`cfg`].

@@ -8,7 +8,7 @@
 //!
 //! **Disagreement (README "Disagreements", D1; can-protocol.md C13).** The
 //! 1999 Bosch reference programs expect REC unchanged (9). canstar makes
-//! this a generation-time option ([`crate::node::NodeConfig::eof7`]); the
+//! this a generation-time option ([`crate::node::NodeConfig::rec_rule`]); the
 //! ISO rule is the default. The case runs both controllers: the default
 //! one must end at 8, the Bosch-rule one at 9.
 //!
@@ -21,7 +21,7 @@ use crate::conformance::{ensure, Ctx, StepResult};
 use crate::node::NodeConfig;
 use canstar_controller::fsm::*;
 
-use canstar_controller::core::Eof7Rule;
+use canstar_controller::core::RecRule;
 use canstar_controller::frame::{BuildOptions, Frame};
 
 fn eof7_step(lb: &mut LtBench, want: u32) -> Result<(), String> {
@@ -46,7 +46,7 @@ pub fn run() -> Vec<StepResult> {
     let r = eof7_step(&mut lb, 8);
     ctx.record("iso_7_6_16_eof7_dominant_iso_rule", r);
     let mut cfg = NodeConfig::named("iut");
-    cfg.eof7 = Eof7Rule::Bosch1999;
+    cfg.rec_rule = RecRule::Bosch1999;
     let mut lb = LtBench::new(vec![cfg]);
     let r = eof7_step(&mut lb, 9);
     ctx.record("iso_7_6_16_eof7_dominant_bosch1999_rule", r);

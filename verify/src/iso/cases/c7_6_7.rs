@@ -7,25 +7,33 @@
 //! deliver nothing; per ISO its REC first drops by 1 (frame error-free up
 //! to the ACK slot) and then rises by 1: REC 9 at the end.
 //!
-//! **Disagreement (README "Disagreements", D2).** ISO 11898-1 counts a
-//! reception as successful once the ACK slot has passed without error, so
-//! an ISO receiver decrements REC there and the later form error adds 1:
-//! ISO 16845-1 expects REC unchanged (9). canstar follows the Bosch
-//! reference model and can-protocol.md §13.2/§13.4 (C21): the decrement
-//! comes only with a recessive End_Of_Frame bit 7, so REC ends at 10. The
-//! check keeps the ISO value; the elementary tests are known failures.
+//! **Disagreement (README "Disagreements", D2; can-protocol.md C13).**
+//! ISO 11898-1 counts a reception as successful once the receiver has read
+//! its own ACK back dominant, so an ISO receiver decrements REC at the ACK
+//! slot and the later form error adds 1: ISO 16845-1 expects REC unchanged
+//! (9). The 1999 Bosch reference model decrements only at a recessive
+//! End_Of_Frame bit 7, so REC ends at 10. canstar makes this a
+//! generation-time option ([`crate::node::NodeConfig::rec_rule`]); the ISO
+//! rule is the default. The case runs both controllers: the default one must
+//! end at 9, the Bosch-rule one at 10.
 //!
-//! Elementary test: `iso_7_6_7_ack_delimiter_form_error`.
+//! Elementary tests: `iso_7_6_7_ack_delimiter_form_error_iso_rule` and
+//! `iso_7_6_7_ack_delimiter_form_error_bosch1999_rule`.
 
 use super::super::LtBench;
 use crate::conformance::{Ctx, StepResult};
 use crate::node::NodeConfig;
+use canstar_controller::core::RecRule;
 use canstar_controller::fsm::*;
 
 pub fn run() -> Vec<StepResult> {
     let mut ctx = Ctx { program: "iso_7_6_7".into(), vcd: None, results: vec![] };
-    let mut lb = LtBench::new(vec![NodeConfig::named("iut")]);
-    let r = super::c7_2_7::form_error_at(&mut lb, Field::AckDel, 1, 9, Some(9));
-    ctx.record("iso_7_6_7_ack_delimiter_form_error", r);
+    for (rule, tag, want) in [(RecRule::Iso, "iso_rule", 9), (RecRule::Bosch1999, "bosch1999_rule", 10)] {
+        let mut cfg = NodeConfig::named("iut");
+        cfg.rec_rule = rule;
+        let mut lb = LtBench::new(vec![cfg]);
+        let r = super::c7_2_7::form_error_at(&mut lb, Field::AckDel, 1, 9, Some(want));
+        ctx.record(&format!("iso_7_6_7_ack_delimiter_form_error_{tag}"), r);
+    }
     ctx.results
 }

@@ -39,10 +39,7 @@ use super::IsoCase;
 /// Elementary tests expected to fail, with the reason: (name prefix,
 /// reason). They keep their ISO check and stay failures in the output of
 /// `canstar conformance --suite iso`, marked as known.
-pub const KNOWN_FAILURES: &[(&str, &str)] = &[
-    ("iso_7_6_7_", "disagreement D2: canstar decrements REC only at a recessive EOF bit 7 (Bosch model, can-protocol.md 13.2/13.4), ISO at the ACK slot"),
-    ("iso_7_6_8_", "disagreement D2: canstar decrements REC only at a recessive EOF bit 7 (Bosch model, can-protocol.md 13.2/13.4), ISO at the ACK slot"),
-];
+pub const KNOWN_FAILURES: &[(&str, &str)] = &[];
 
 /// The reason elementary test `name` is a known failure, if it is one.
 pub fn known_failure(name: &str) -> Option<&'static str> {
