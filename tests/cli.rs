@@ -221,3 +221,22 @@ fn conformance_iso_suite_runs_cases_by_clause() {
     assert!(!ok && err.contains("bosch suite"), "{err}");
     assert!(files_under(d.path()).is_empty(), "the ISO suite writes nothing");
 }
+
+#[test]
+fn conformance_iso_suite_writes_a_vcd_per_case_bench() {
+    let d = tempfile::tempdir().unwrap();
+    // 7.6.16 runs two controllers (ISO and 1999 REC rules): two benches, two files
+    let (ok, out, err) = canstar(&["conformance", "--suite", "iso", "--case", "7.6.16", "--vcd", "w"], d.path());
+    assert!(ok, "{out}{err}");
+    let mut names: Vec<String> = std::fs::read_dir(d.path().join("w")).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().into_owned()).collect();
+    names.sort();
+    assert_eq!(names, ["iso_7_6_16_eof7_rec.vcd", "iso_7_6_16_eof7_rec_2.vcd"]);
+    let v = std::fs::read_to_string(d.path().join("w/iso_7_6_16_eof7_rec.vcd")).unwrap();
+    assert!(v.contains("$enddefinitions") && v.lines().any(|l| l.contains("$scope") && l.split_whitespace().any(|w| w == "lt")), "a VCD with the LT's nets");
+    assert!(v.lines().filter(|l| l.starts_with('#')).count() > 100, "time stamps");
+    // an unwritable directory: an error naming it, nothing written
+    std::fs::write(d.path().join("file"), "").unwrap();
+    let (ok, _, err) = canstar(&["conformance", "--suite", "iso", "--case", "7.6.16", "--vcd", "file/sub"], d.path());
+    assert!(!ok && err.contains("file/sub"), "{err}");
+    assert_eq!(files_under(d.path()).len(), 3, "only the first run's files and `file`");
+}

@@ -10,7 +10,9 @@ pub struct Args {
     /// formerr, idle, overload, stuffbit, stufferr, txarb).
     #[arg(long)]
     program: Option<String>,
-    /// Write one VCD per program (`<program>.vcd`) into this directory.
+    /// Write one VCD per program (`<program>.vcd`) into this directory; with `--suite iso`
+    /// one per case (`<case>.vcd`, the lower tester's bench from start-up through every
+    /// elementary test; `<case>_2.vcd` ... for a case run on several controllers).
     #[arg(long)]
     vcd: Option<PathBuf>,
     /// Run every node in lock step with its own golden model (can-protocol.md §19): print
@@ -31,14 +33,18 @@ pub struct Args {
 
 pub fn run(a: Args) -> Result<()> {
     if a.suite == "iso" {
-        anyhow::ensure!(a.program.is_none() && a.vcd.is_none() && !a.lockstep, "--program, --vcd and --lockstep belong to the bosch suite");
+        anyhow::ensure!(a.program.is_none() && !a.lockstep, "--program and --lockstep belong to the bosch suite");
         if let Some(c) = &a.case {
             let cases = canstar_verify::iso::cases();
             let names: Vec<String> = cases.iter().map(|k| format!("{} ({})", k.clause, k.name)).collect();
             anyhow::ensure!(cases.iter().any(|k| k.matches(c)), "no ISO case matches `{c}` (cases: {})", names.join(", "));
         }
+        // The VCDs are staged and moved into the --vcd directory when every case ran.
+        let mut set = OutputSet::new();
+        let stage = a.vcd.as_deref().map(|d| set.dir(d)).transpose()?;
         let mut out = StdoutWriter;
-        let (_, failed) = canstar_verify::iso::run_iso_cli(a.case.as_deref(), &mut out)?;
+        let (_, failed) = canstar_verify::iso::run_iso_cli_vcd(a.case.as_deref(), stage.as_deref(), &mut out)?;
+        set.commit()?;
         anyhow::ensure!(failed == 0, "{failed} ISO elementary test(s) failed");
         return Ok(());
     }

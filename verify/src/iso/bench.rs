@@ -45,6 +45,40 @@ use canstar_sim::net::FaultMode;
 use canstar_sim::{ClockSpec, Handle};
 use std::path::{Path, PathBuf};
 
+thread_local! {
+    /// `canstar conformance --suite iso --vcd DIR`: while a case runs, every
+    /// [`LtBench`] it creates writes a VCD of its whole life (start-up and
+    /// every step) into the directory: `<case>.vcd`, then `<case>_2.vcd` ...
+    /// for a case with several benches (one per controller configuration).
+    static CASE_VCD: std::cell::RefCell<Option<(PathBuf, String, usize)>> = const { std::cell::RefCell::new(None) };
+}
+
+/// Run `f` (a case named `case`) with its benches writing VCD files into
+/// `dir` (see [`CASE_VCD`]); without a directory just run it. Errors of the
+/// VCD files go to the conformance run log, as for the Bosch programs.
+pub fn with_case_vcd<R>(dir: Option<&Path>, case: &str, f: impl FnOnce() -> R) -> R {
+    let Some(d) = dir else { return f() };
+    CASE_VCD.with(|c| *c.borrow_mut() = Some((d.to_path_buf(), case.to_string(), 0)));
+    struct Clear;
+    impl Drop for Clear {
+        fn drop(&mut self) {
+            CASE_VCD.with(|c| *c.borrow_mut() = None);
+        }
+    }
+    let _clear = Clear;
+    f()
+}
+
+/// The VCD file of the next bench of the running case, if one is asked for.
+fn next_case_vcd() -> Option<PathBuf> {
+    CASE_VCD.with(|c| {
+        let mut c = c.borrow_mut();
+        let (dir, case, n) = c.as_mut()?;
+        *n += 1;
+        Some(if *n == 1 { dir.join(format!("{case}.vcd")) } else { dir.join(format!("{case}_{n}.vcd")) })
+    })
+}
+
 struct StepState {
     name: String,
     t0: u64,
@@ -71,6 +105,8 @@ pub struct LtBench {
     vcd_next: Option<PathBuf>,
     /// VCD errors (path: error) of finished steps.
     pub vcd_errors: Vec<String>,
+    /// The bench writes one VCD of its whole life ([`with_case_vcd`]).
+    whole_vcd: bool,
 }
 
 /// The fault mode of a receive net under a bus-wide action `bus` and a
@@ -113,7 +149,8 @@ impl LtBench {
         let timing = cfgs[0].timing;
         let n = cfgs.len();
         let clocks = vec![ClockSpec::new(CLOCK_PS); n];
-        let mut b = Bench::with_slots(cfgs, clocks, false, &["lt"], None);
+        let whole_vcd = next_case_vcd();
+        let mut b = Bench::with_slots(cfgs, clocks, false, &["lt"], whole_vcd.as_deref());
         let lt_slot = n;
         let bus = b.bus.clone();
         let ins = [bus.nodes[lt_slot].rx, bus.level, bus.nodes[0].rx, bus.nodes[0].tx];
@@ -121,7 +158,7 @@ impl LtBench {
         let ok = b.run_until(40, |b| (0..n).all(|i| b.node(i).field() == Field::Idle));
         assert!(ok.is_ok(), "start-up: nodes did not integrate");
         let step = StepState { name: String::new(), t0: 0, marks: vec![0; n], occ: Occurrences::default(), cursor: 0, in_reset: false, reset_entries: vec![], plays: vec![], vcd: false };
-        let mut lb = LtBench { b, lt, lt_slot, timing, step, vcd_next: None, vcd_errors: vec![] };
+        let mut lb = LtBench { b, lt, lt_slot, timing, step, vcd_next: None, vcd_errors: vec![], whole_vcd: whole_vcd.is_some() };
         lb.begin_step("start");
         lb
     }
@@ -202,6 +239,10 @@ impl LtBench {
         };
         self.b.sim.get_mut(self.lt).record(true);
         if let Some(p) = self.vcd_next.take() {
+            if self.whole_vcd {
+                self.vcd_errors.push(format!("{}: the bench already writes the VCD of the whole case", p.display()));
+                return;
+            }
             match self.b.sim.start_vcd_file(&p, None) {
                 Ok(()) => self.step.vcd = true,
                 Err(e) => self.vcd_errors.push(format!("{}: {e}", p.display())),

@@ -85,12 +85,18 @@ pub fn cases() -> Vec<IsoCase> {
 /// a clause matches itself and its sub-clauses (`7.2` runs 7.2.x), a name
 /// matches exactly. A panicking case gives one failed result `<name>_panic`.
 pub fn run_iso(filter: Option<&str>) -> Vec<(String, Vec<StepResult>)> {
+    run_iso_vcd(filter, None)
+}
+
+/// As [`run_iso`], each case writing VCD files into `vcd_dir`
+/// ([`bench::with_case_vcd`]: `<case>.vcd`, the whole bench from start-up).
+pub fn run_iso_vcd(filter: Option<&str>, vcd_dir: Option<&std::path::Path>) -> Vec<(String, Vec<StepResult>)> {
     let mut out = vec![];
     for c in cases() {
         if !filter.is_none_or(|f| c.matches(f)) {
             continue;
         }
-        let r = std::panic::catch_unwind(c.run).unwrap_or_else(|e| {
+        let r = std::panic::catch_unwind(|| bench::with_case_vcd(vcd_dir, c.name, c.run)).unwrap_or_else(|e| {
             let m = e.downcast_ref::<String>().cloned().or_else(|| e.downcast_ref::<&str>().map(|s| s.to_string())).unwrap_or_default();
             vec![StepResult { name: format!("{}_panic", c.name), pass: false, msg: m }]
         });
@@ -106,7 +112,18 @@ pub fn run_iso(filter: Option<&str>) -> Vec<(String, Vec<StepResult>)> {
 /// the number of known failures among them); returns (passed, failed). A filter
 /// that matches no case prints the list of cases and counts one failure.
 pub fn run_iso_cli(filter: Option<&str>, out: &mut dyn std::io::Write) -> std::io::Result<(usize, usize)> {
-    let runs = run_iso(filter);
+    run_iso_cli_vcd(filter, None, out)
+}
+
+/// As [`run_iso_cli`], writing one VCD per case bench into `vcd_dir`; a VCD
+/// file that cannot be written is an error naming it.
+pub fn run_iso_cli_vcd(filter: Option<&str>, vcd_dir: Option<&std::path::Path>, out: &mut dyn std::io::Write) -> std::io::Result<(usize, usize)> {
+    drop(crate::conformance::take_run_log());
+    let runs = run_iso_vcd(filter, vcd_dir);
+    let vcd_errors = crate::conformance::take_run_log().vcd_errors;
+    if !vcd_errors.is_empty() {
+        return Err(std::io::Error::other(format!("cannot write VCD: {}", vcd_errors.join("; "))));
+    }
     if runs.is_empty() {
         let names: Vec<String> = cases().iter().map(|c| format!("{} ({})", c.clause, c.name)).collect();
         writeln!(out, "no ISO case matches {}; cases: {}", filter.unwrap_or(""), names.join(", "))?;
