@@ -118,7 +118,7 @@ fn iso_7_2_3_extended_stuff_error() {
 
 #[test]
 fn iso_7_2_5_crc_error() {
-    case("7.2.5", "iso_7_2_5_crc_error", 2);
+    case("7.2.5", "iso_7_2_5_crc_error", 3);
 }
 
 #[test]
@@ -454,6 +454,54 @@ fn iso_7_7_5_early_edge_within_sjw() {
 #[test]
 fn iso_7_7_6_early_edge_beyond_sjw() {
     case("7.7.6", "iso_7_7_6_early_edge_beyond_sjw", 2);
+}
+
+#[test]
+fn iso_7_7_1_sample_point() {
+    // one per timing of c7_7_1::timings
+    case("7.7.1", "iso_7_7_1_sample_point", 7);
+}
+
+#[test]
+fn iso_7_7_2_hard_sync_early_sof() {
+    // e = 1..NTQ for each timing: 10 + 10 + 10 + 10 + 8 + 25 + 10
+    let r = case("7.7.2", "iso_7_7_2_hard_sync_early_sof", 83);
+    assert!(r.iter().any(|s| s.name == "iso_7_7_2_t25_sp17_sjw1_e25"));
+}
+
+#[test]
+fn iso_7_7_7_two_edges_before_sample_point() {
+    // the timings with SP >= 4
+    case("7.7.7", "iso_7_7_7_two_edges_before_sample_point", 6);
+}
+
+#[test]
+fn iso_7_7_8_early_edge_then_second_edge() {
+    case("7.7.8", "iso_7_7_8_early_edge_then_second_edge", 6);
+}
+
+#[test]
+fn iso_7_7_9_1_idle_glitch_no_sof() {
+    case("7.7.9.1", "iso_7_7_9_1_idle_glitch_no_sof", 7);
+}
+
+#[test]
+fn iso_7_7_9_2_idle_glitch_group_no_resync() {
+    // the timings with SP >= 4, BRP doubled where the glitches need it
+    let r = case("7.7.9.2", "iso_7_7_9_2_idle_glitch_group_no_resync", 6);
+    assert!(r.iter().any(|s| s.name == "iso_7_7_9_2_t10_sp6_sjw2_brp2"));
+}
+
+#[test]
+fn iso_7_7_10_no_resync_after_dominant_sample() {
+    // the timings with PH2 >= 3
+    case("7.7.10", "iso_7_7_10_no_resync_after_dominant_sample", 4);
+}
+
+#[test]
+fn iso_7_7_11_early_edge_at_ack() {
+    // e = 1..min(SJW, PH2) for each timing: 2 + 1 + 1 + 4 + 1 + 1 + 1
+    case("7.7.11", "iso_7_7_11_early_edge_at_ack", 11);
 }
 
 #[test]

@@ -103,10 +103,18 @@ pub mod c7_6_18;
 pub mod c7_6_19;
 pub mod c7_6_20;
 pub mod c7_6_21;
+pub mod c7_7_1;
+pub mod c7_7_2;
 pub mod c7_7_3;
 pub mod c7_7_4;
 pub mod c7_7_5;
 pub mod c7_7_6;
+pub mod c7_7_7;
+pub mod c7_7_8;
+pub mod c7_7_9_1;
+pub mod c7_7_9_2;
+pub mod c7_7_10;
+pub mod c7_7_11;
 pub mod c8_1_1;
 pub mod c8_1_2;
 pub mod c8_1_3;
@@ -201,10 +209,18 @@ pub fn all() -> Vec<IsoCase> {
         IsoCase { clause: "7.6.19", name: "iso_7_6_19_error_delimiter_bit8_rec", run: c7_6_19::run },
         IsoCase { clause: "7.6.20", name: "iso_7_6_20_overload_delimiter_bit8_rec", run: c7_6_20::run },
         IsoCase { clause: "7.6.21", name: "iso_7_6_21_own_frame_rec", run: c7_6_21::run },
+        IsoCase { clause: "7.7.1", name: "iso_7_7_1_sample_point", run: c7_7_1::run },
+        IsoCase { clause: "7.7.2", name: "iso_7_7_2_hard_sync_early_sof", run: c7_7_2::run },
         IsoCase { clause: "7.7.3", name: "iso_7_7_3_late_edge_within_sjw", run: c7_7_3::run },
         IsoCase { clause: "7.7.4", name: "iso_7_7_4_late_edge_beyond_sjw", run: c7_7_4::run },
         IsoCase { clause: "7.7.5", name: "iso_7_7_5_early_edge_within_sjw", run: c7_7_5::run },
         IsoCase { clause: "7.7.6", name: "iso_7_7_6_early_edge_beyond_sjw", run: c7_7_6::run },
+        IsoCase { clause: "7.7.7", name: "iso_7_7_7_two_edges_before_sample_point", run: c7_7_7::run },
+        IsoCase { clause: "7.7.8", name: "iso_7_7_8_early_edge_then_second_edge", run: c7_7_8::run },
+        IsoCase { clause: "7.7.9.1", name: "iso_7_7_9_1_idle_glitch_no_sof", run: c7_7_9_1::run },
+        IsoCase { clause: "7.7.9.2", name: "iso_7_7_9_2_idle_glitch_group_no_resync", run: c7_7_9_2::run },
+        IsoCase { clause: "7.7.10", name: "iso_7_7_10_no_resync_after_dominant_sample", run: c7_7_10::run },
+        IsoCase { clause: "7.7.11", name: "iso_7_7_11_early_edge_at_ack", run: c7_7_11::run },
         IsoCase { clause: "8.1.1", name: "iso_8_1_1_identifier_and_dlc", run: c8_1_1::run },
         IsoCase { clause: "8.1.2", name: "iso_8_1_2_extended_identifier_and_dlc", run: c8_1_2::run },
         IsoCase { clause: "8.1.3", name: "iso_8_1_3_arbitration_lost_base", run: c8_1_3::run },
