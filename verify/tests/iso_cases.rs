@@ -377,6 +377,26 @@ fn iso_8_6_20_reception_tec() {
 }
 
 #[test]
+fn iso_8_6_4_dominant_after_passive_flag_tec() {
+    case("8.6.4", "iso_8_6_4_dominant_after_passive_flag_tec", 5);
+}
+
+#[test]
+fn iso_8_6_12_passive_success_tec() {
+    case("8.6.12", "iso_8_6_12_passive_success_tec", 1);
+}
+
+#[test]
+fn iso_8_6_18_passive_ack_error_dominant_flag_tec() {
+    case("8.6.18", "iso_8_6_18_passive_ack_error_dominant_flag_tec", 1);
+}
+
+#[test]
+fn iso_8_6_21_arbitration_lost_error_tec() {
+    case("8.6.21", "iso_8_6_21_arbitration_lost_error_tec", 1);
+}
+
+#[test]
 fn iso_8_3_1_error_flag_lengthened() {
     case("8.3.1", "iso_8_3_1_error_flag_lengthened", 3);
 }
