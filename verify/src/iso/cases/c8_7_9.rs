@@ -9,11 +9,11 @@
 //! bus comes back dominant 1 TQ after the sample point, a
 //! recessive-to-dominant edge with phase error −(PH2 − 1): the IUT must
 //! shorten its PH2 by min(SJW, PH2 − 1), so its error flag begins that much
-//! early and the flag's last edge (dominant to recessive) comes 6 bit times
-//! + (PH2 − 1 − min(SJW, PH2 − 1)) TQ after the LT's edge. The LT's plan
+//! early and the flag's last edge (dominant to recessive) comes 6 bit
+//! times plus PH2 − 1 − min(SJW, PH2 − 1) TQ after the LT's edge. The LT's plan
 //! follows that grid (the disturbed bit shortened by the same amount).
 //!
-//! ISO words the expected distance as 6 bit times + (PH2 − SJW); an edge
+//! ISO words the expected distance as 6 bit times plus PH2 − SJW; an edge
 //! 1 TQ into PH2 has a phase error of PH2 − 1 TQ, so the distance written
 //! here is one TQ shorter (and never below 6 bit times). Reported to the
 //! project as a note on the standard's wording.
