@@ -377,6 +377,71 @@ fn iso_8_6_20_reception_tec() {
 }
 
 #[test]
+fn iso_8_6_4_dominant_after_passive_flag_tec() {
+    case("8.6.4", "iso_8_6_4_dominant_after_passive_flag_tec", 5);
+}
+
+#[test]
+fn iso_8_6_12_passive_success_tec() {
+    case("8.6.12", "iso_8_6_12_passive_success_tec", 1);
+}
+
+#[test]
+fn iso_8_6_18_passive_ack_error_dominant_flag_tec() {
+    case("8.6.18", "iso_8_6_18_passive_ack_error_dominant_flag_tec", 1);
+}
+
+#[test]
+fn iso_8_6_21_arbitration_lost_error_tec() {
+    case("8.6.21", "iso_8_6_21_arbitration_lost_error_tec", 1);
+}
+
+#[test]
+fn iso_8_7_1_sample_point() {
+    case("8.7.1", "iso_8_7_1_sample_point", 7);
+}
+
+#[test]
+fn iso_8_7_2_hard_sync_before_intermission3_sample_point() {
+    case("8.7.2", "iso_8_7_2_hard_sync_before_intermission3_sample_point", 7);
+}
+
+#[test]
+fn iso_8_7_3_hard_sync_after_intermission3_sample_point() {
+    case("8.7.3", "iso_8_7_3_hard_sync_after_intermission3_sample_point", 5);
+}
+
+#[test]
+fn iso_8_7_4_early_edge_within_sjw() {
+    case("8.7.4", "iso_8_7_4_early_edge_within_sjw", 2);
+}
+
+#[test]
+fn iso_8_7_5_early_edge_beyond_sjw() {
+    case("8.7.5", "iso_8_7_5_early_edge_beyond_sjw", 2);
+}
+
+#[test]
+fn iso_8_7_6_one_sync_between_sample_points() {
+    case("8.7.6", "iso_8_7_6_one_sync_between_sample_points", 7);
+}
+
+#[test]
+fn iso_8_7_7_no_resync_on_late_edge_while_dominant() {
+    case("8.7.7", "iso_8_7_7_no_resync_on_late_edge_while_dominant", 7);
+}
+
+#[test]
+fn iso_8_7_8_edge_right_after_sample_point() {
+    case("8.7.8", "iso_8_7_8_edge_right_after_sample_point", 7);
+}
+
+#[test]
+fn iso_8_7_9_resync_after_disturbed_dominant_bit() {
+    case("8.7.9", "iso_8_7_9_resync_after_disturbed_dominant_bit", 6);
+}
+
+#[test]
 fn iso_8_3_1_error_flag_lengthened() {
     case("8.3.1", "iso_8_3_1_error_flag_lengthened", 3);
 }

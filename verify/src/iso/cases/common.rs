@@ -359,3 +359,36 @@ pub fn tx_flag_scenario(lb: &mut LtBench, start: Start, dom: &[usize], forced_re
 pub fn tec_at(r: &StepRecord, field: Field, pos: u32) -> Result<u32, String> {
     r.iut().iter().find(|b| b.field == field && b.pos == pos && !b.stuff).map(|b| b.tec).ok_or_else(|| format!("no IUT bit {} {pos}:{}", field.name(), r.dump(0)))
 }
+
+/// The IUT's TX transitions in a step: (time of the first clock sample
+/// showing the new level, new level; true = recessive).
+pub fn iut_tx_edges(r: &StepRecord) -> Vec<(u64, bool)> {
+    r.samples.windows(2).filter(|w| w[0].iut_tx != w[1].iut_tx).map(|w| (w[1].t, w[1].iut_tx)).collect()
+}
+
+/// Time from the start of a bit as the IUT perceives it (a plan's bit
+/// start, see [`super::super::trigger`]) to its TX edge at that bit's
+/// start, measured on the IUT's first SOF after the start of play `k`
+/// (which must start at that SOF, as after `Trigger::at(Field::Sof, 1)`).
+pub fn tx_offset(r: &StepRecord, k: usize) -> Result<u64, String> {
+    let t0 = r.plays[k].t0;
+    let e = iut_tx_edges(r).into_iter().find(|&(t, l)| t >= t0 && !l).ok_or("no dominant IUT TX edge after the play's start")?;
+    Ok(e.0 - t0)
+}
+
+/// Append plan `q` to plan `p` (bits, expectations and disturbances, the
+/// latter two moved to the new bit indices); returns the index of `q`'s
+/// first bit in `p`.
+pub fn append_plan(p: &mut Plan, q: &Plan) -> usize {
+    let n = p.bits.len();
+    p.bits.extend(q.bits.iter().copied());
+    for e in &q.expects {
+        p.expects.push(super::super::Expect { bit: e.bit + n, ..*e });
+    }
+    for d in &q.disturbances {
+        let mut d = *d;
+        d.at.bit += n;
+        p.disturbances.push(d);
+    }
+    n
+}

@@ -140,6 +140,7 @@ pub mod c8_5_1;
 pub mod c8_5_7;
 pub mod c8_5_14;
 pub mod c8_6_3;
+pub mod c8_6_4;
 pub mod c8_6_5;
 pub mod c8_6_13;
 pub mod c8_6_14;
@@ -147,8 +148,20 @@ pub mod c8_6_15;
 pub mod c8_6_16;
 pub mod c8_6_8;
 pub mod c8_6_11;
+pub mod c8_6_12;
 pub mod c8_6_17;
+pub mod c8_6_18;
 pub mod c8_6_20;
+pub mod c8_6_21;
+pub mod c8_7_1;
+pub mod c8_7_2;
+pub mod c8_7_3;
+pub mod c8_7_4;
+pub mod c8_7_5;
+pub mod c8_7_6;
+pub mod c8_7_7;
+pub mod c8_7_8;
+pub mod c8_7_9;
 
 /// The cases in clause order (7.2.10 after 7.2.9).
 pub fn all() -> Vec<IsoCase> {
@@ -241,6 +254,7 @@ pub fn all() -> Vec<IsoCase> {
         IsoCase { clause: "8.4.4", name: "iso_8_4_4_overload_flag_bit_error", run: c8_4_4::run },
         IsoCase { clause: "8.4.5", name: "iso_8_4_5_overload_delimiter_form_error", run: c8_4_5::run },
         IsoCase { clause: "8.6.3", name: "iso_8_6_3_dominant_after_error_flag_tec", run: c8_6_3::run },
+        IsoCase { clause: "8.6.4", name: "iso_8_6_4_dominant_after_passive_flag_tec", run: c8_6_4::run },
         IsoCase { clause: "8.6.5", name: "iso_8_6_5_dominant_after_overload_flag_tec", run: c8_6_5::run },
         IsoCase { clause: "8.6.13", name: "iso_8_6_13_long_overload_flag_tec", run: c8_6_13::run },
         IsoCase { clause: "8.6.14", name: "iso_8_6_14_long_error_flag_tec", run: c8_6_14::run },
@@ -248,8 +262,20 @@ pub fn all() -> Vec<IsoCase> {
         IsoCase { clause: "8.6.16", name: "iso_8_6_16_error_delimiter_bit8_tec", run: c8_6_16::run },
         IsoCase { clause: "8.6.8", name: "iso_8_6_8_ack_error_tec", run: c8_6_8::run },
         IsoCase { clause: "8.6.11", name: "iso_8_6_11_success_tec", run: c8_6_11::run },
+        IsoCase { clause: "8.6.12", name: "iso_8_6_12_passive_success_tec", run: c8_6_12::run },
         IsoCase { clause: "8.6.17", name: "iso_8_6_17_passive_ack_error_tec", run: c8_6_17::run },
+        IsoCase { clause: "8.6.18", name: "iso_8_6_18_passive_ack_error_dominant_flag_tec", run: c8_6_18::run },
         IsoCase { clause: "8.6.20", name: "iso_8_6_20_reception_tec", run: c8_6_20::run },
+        IsoCase { clause: "8.6.21", name: "iso_8_6_21_arbitration_lost_error_tec", run: c8_6_21::run },
+        IsoCase { clause: "8.7.1", name: "iso_8_7_1_sample_point", run: c8_7_1::run },
+        IsoCase { clause: "8.7.2", name: "iso_8_7_2_hard_sync_before_intermission3_sample_point", run: c8_7_2::run },
+        IsoCase { clause: "8.7.3", name: "iso_8_7_3_hard_sync_after_intermission3_sample_point", run: c8_7_3::run },
+        IsoCase { clause: "8.7.4", name: "iso_8_7_4_early_edge_within_sjw", run: c8_7_4::run },
+        IsoCase { clause: "8.7.5", name: "iso_8_7_5_early_edge_beyond_sjw", run: c8_7_5::run },
+        IsoCase { clause: "8.7.6", name: "iso_8_7_6_one_sync_between_sample_points", run: c8_7_6::run },
+        IsoCase { clause: "8.7.7", name: "iso_8_7_7_no_resync_on_late_edge_while_dominant", run: c8_7_7::run },
+        IsoCase { clause: "8.7.8", name: "iso_8_7_8_edge_right_after_sample_point", run: c8_7_8::run },
+        IsoCase { clause: "8.7.9", name: "iso_8_7_9_resync_after_disturbed_dominant_bit", run: c8_7_9::run },
         IsoCase { clause: "8.1.4", name: "iso_8_1_4_arbitration_lost_extended", run: c8_1_4::run },
         IsoCase { clause: "8.5.1", name: "iso_8_5_1_passive_flag_overlapped", run: c8_5_1::run },
         IsoCase { clause: "8.5.7", name: "iso_8_5_7_passive_suspend_after_frame", run: c8_5_7::run },
