@@ -562,6 +562,16 @@ fn iso_8_5_9_passive_frame_during_suspend() {
 }
 
 #[test]
+fn iso_8_5_10_passive_to_bus_off() {
+    case("8.5.10", "iso_8_5_10_passive_to_bus_off", 1);
+}
+
+#[test]
+fn iso_8_5_11_bus_off_recovery() {
+    case("8.5.11", "iso_8_5_11_bus_off_recovery", 2);
+}
+
+#[test]
 fn iso_8_5_12_passive_flag_six_equal_bits() {
     case("8.5.12", "iso_8_5_12_passive_flag_six_equal_bits", 1);
 }

@@ -59,6 +59,18 @@ pub struct Scenario {
     /// intermission bit): the IUT must be recessive there and go on with
     /// its identifier.
     pub lt_sof: bool,
+    /// LT levels after the End_Of_Frame of the retransmission (instead of
+    /// 3 recessive bits); the IUT must drive dominant at offsets `tail_dom`
+    /// of them and recessive elsewhere; the bus is forced recessive at
+    /// offsets `tail_forced`.
+    pub tail: Option<Vec<bool>>,
+    pub tail_forced: Vec<usize>,
+    pub tail_dom: Vec<usize>,
+    /// A frame the LT sends after `tail` that the IUT must ignore
+    /// (bus-off: recessive in every bit, ACK slot included).
+    pub tail_frame: Option<Frame>,
+    /// Bit times to wait for bus idle at the end (default 60).
+    pub idle_bits: u64,
 }
 
 /// What a [`passive_tx`] step gives back.
@@ -91,7 +103,8 @@ pub fn push_answer(p: &mut Plan, f: &Frame, tail: usize) -> usize {
 /// the LT's `s.frame` (acknowledged by the IUT) with 3 intermission bits;
 /// then the IUT's retransmission of the frame must start in the very next
 /// bit (or, with `s.lt_sof`, the LT drives that SOF and the IUT must be
-/// recessive in it), and the LT acknowledges and checks it. The IUT must report one
+/// recessive in it), and the LT acknowledges and checks it; then `s.tail`
+/// and `s.tail_frame` if given. The IUT must report one
 /// successful transmission and have no frame pending.
 pub fn passive_tx(lb: &mut LtBench, s: &Scenario) -> Result<Outcome, String> {
     let f = s.tx.clone().unwrap_or_else(source);
@@ -126,12 +139,31 @@ pub fn passive_tx(lb: &mut LtBench, s: &Scenario) -> Result<Outcome, String> {
             }
         }
     }
-    let sof = push_answer(&mut p, &f, 3);
+    let sof = push_answer(&mut p, &f, if s.tail.is_some() { 0 } else { 3 });
     if s.lt_sof {
         p.set_level(sof, false);
         for e in p.expects.iter_mut().filter(|e| e.bit == sof) {
             e.level = true;
             e.what = "no SOF from the IUT";
+        }
+    }
+    if let Some(t) = &s.tail {
+        let t0 = p.bits.len();
+        p.push_levels(t);
+        for k in 0..t.len() {
+            let d = s.tail_dom.contains(&k);
+            p.expect(t0 + k, !d, if d { "IUT dominant (flag)" } else { "IUT recessive" });
+        }
+        for &k in &s.tail_forced {
+            p.disturb(Disturbance { at: At::tq(t0 + k, 0), span: Span::Bits(1), action: Action::Force(true), target: Target::Bus });
+        }
+    }
+    if let Some(g) = &s.tail_frame {
+        let g0 = p.push_frame(g, BuildOptions::default());
+        p.push_recessive(3);
+        p.expects.retain(|e| e.bit < g0);
+        for k in g0..p.bits.len() {
+            p.expect(k, true, "IUT silent (bus-off)");
         }
     }
     lb.begin_step("error-passive transmitter");
@@ -141,7 +173,7 @@ pub fn passive_tx(lb: &mut LtBench, s: &Scenario) -> Result<Outcome, String> {
     lb.b.node_mut(0).request(f.clone());
     lb.wait(Trigger::at(Field::Sof, 1), 30)?;
     lb.play_and_run(&p);
-    lb.run_idle(60)?;
+    lb.run_idle(if s.idle_bits == 0 { 60 } else { s.idle_bits })?;
     let r = lb.end_step();
     r.check_expects()?;
     ensure!(r.iut_events(EV_TX_OK).len() == 1, "no successful retransmission:{}", r.dump(0));

@@ -144,6 +144,8 @@ pub mod c8_5_6;
 pub mod c8_5_7;
 pub mod c8_5_8;
 pub mod c8_5_9;
+pub mod c8_5_10;
+pub mod c8_5_11;
 pub mod c8_5_12;
 pub mod c8_5_13;
 pub mod c8_5_14;
@@ -268,6 +270,8 @@ pub fn all() -> Vec<IsoCase> {
         IsoCase { clause: "8.5.8", name: "iso_8_5_8_passive_arbitration_lost_no_suspend", run: c8_5_8::run },
         IsoCase { clause: "8.5.12", name: "iso_8_5_12_passive_flag_six_equal_bits", run: c8_5_12::run },
         IsoCase { clause: "8.5.13", name: "iso_8_5_13_passive_error_delimiter_form_error", run: c8_5_13::run },
+        IsoCase { clause: "8.5.11", name: "iso_8_5_11_bus_off_recovery", run: c8_5_11::run },
+        IsoCase { clause: "8.5.10", name: "iso_8_5_10_passive_to_bus_off", run: c8_5_10::run },
         IsoCase { clause: "8.5.14", name: "iso_8_5_14_passive_recovery_time", run: c8_5_14::run },
         IsoCase { clause: "8.3.2", name: "iso_8_3_2_sof_at_intermission_3_after_error", run: c8_3_2::run },
     ];
