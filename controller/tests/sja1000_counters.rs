@@ -80,10 +80,11 @@ fn sja_rxerr_write_makes_error_passive() {
     n.wr(0, REG_MOD, 0);
     assert_eq!(n.rd(0, REG_IR), IRQ_EI | IRQ_EPI);
     assert_eq!(core_state(&n, 0), 1);
-    // a received frame brings REC to 127 (C11): error active again
+    // a received frame brings REC to 127 (C11): error active again; the interrupt
+    // (EPI) comes at the ACK slot (C13, ISO rule), RI 8 bits later at End_Of_Frame 7
     n.xmit(1, &Frame::std(0x123, &[9, 8]));
     n.run_until(400 * BIT, |n| n.int(0));
-    n.run(2 * BIT);
+    n.run(10 * BIT);
     assert_eq!(n.rd(0, REG_RXERR), 127);
     assert_eq!(n.rd(0, REG_IR) & (IRQ_EPI | IRQ_RI), IRQ_EPI | IRQ_RI);
     assert_eq!(core_state(&n, 0), 0);

@@ -195,7 +195,12 @@ fn emlcount_rx_15_16_c14_flag_type_c12_saturation_c11_restore_127() {
     let bit = run_to_tx_ok(&mut b, 1, 300);
     let o = &b.history[0][bit as usize];
     assert_eq!(o.rec, 127);
-    assert!(o.has("TO_EA") && o.has("RX_OK"));
+    assert!(o.has("RX_OK"));
+    // C13, ISO rule: the restore to 127 (and TO_EA) came at the ACK slot, 8 bits before
+    // End_Of_Frame bit 7
+    let ack = &b.history[0][bit as usize - 8];
+    assert_eq!(ack.label.field, Field::AckSlot);
+    assert!(ack.has("TO_EA") && ack.rec == 127, "{ack:?}");
     assert!(b.run_to_idle(20));
     b.nodes[1].request(std1(0x0AD));
     run_to_tx_ok(&mut b, 1, 300);

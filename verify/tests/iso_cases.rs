@@ -620,6 +620,86 @@ fn iso_8_3_2_sof_at_intermission_3_after_error() {
 }
 
 #[test]
+fn iso_7_5_4_passive_stays_passive() {
+    case("7.5.4", "iso_7_5_4_passive_stays_passive", 1);
+}
+
+#[test]
+fn iso_7_5_6_passive_error_delimiter_form_error() {
+    case("7.5.6", "iso_7_5_6_passive_error_delimiter_form_error", 3);
+}
+
+#[test]
+fn iso_8_4_2_passive_delimiter_bit8_overload() {
+    case("8.4.2", "iso_8_4_2_passive_delimiter_bit8_overload", 2);
+}
+
+#[test]
+fn iso_8_4_3_sof_at_intermission_3_after_overload() {
+    case("8.4.3", "iso_8_4_3_sof_at_intermission_3_after_overload", 2);
+}
+
+#[test]
+fn iso_8_5_2_passive_frame_at_intermission_3() {
+    case("8.5.2", "iso_8_5_2_passive_frame_at_intermission_3", 1);
+}
+
+#[test]
+fn iso_8_5_3_passive_dominant_after_flag() {
+    case("8.5.3", "iso_8_5_3_passive_dominant_after_flag", 3);
+}
+
+#[test]
+fn iso_8_5_4_passive_frame_during_suspend() {
+    case("8.5.4", "iso_8_5_4_passive_frame_during_suspend", 3);
+}
+
+#[test]
+fn iso_8_5_5_passive_suspend_after_error() {
+    case("8.5.5", "iso_8_5_5_passive_suspend_after_error", 1);
+}
+
+#[test]
+fn iso_8_5_6_passive_suspend_after_overload() {
+    case("8.5.6", "iso_8_5_6_passive_suspend_after_overload", 1);
+}
+
+#[test]
+fn iso_8_5_8_passive_arbitration_lost_no_suspend() {
+    case("8.5.8", "iso_8_5_8_passive_arbitration_lost_no_suspend", 1);
+}
+
+#[test]
+fn iso_8_5_9_passive_frame_during_suspend() {
+    case("8.5.9", "iso_8_5_9_passive_frame_during_suspend", 3);
+}
+
+#[test]
+fn iso_8_5_10_passive_to_bus_off() {
+    case("8.5.10", "iso_8_5_10_passive_to_bus_off", 1);
+}
+
+#[test]
+fn iso_8_5_11_bus_off_recovery() {
+    case("8.5.11", "iso_8_5_11_bus_off_recovery", 2);
+}
+
+#[test]
+fn iso_8_5_12_passive_flag_six_equal_bits() {
+    case("8.5.12", "iso_8_5_12_passive_flag_six_equal_bits", 1);
+}
+
+#[test]
+fn iso_8_5_13_passive_error_delimiter_form_error() {
+    case("8.5.13", "iso_8_5_13_passive_error_delimiter_form_error", 3);
+}
+
+#[test]
+fn iso_8_5_15_active_to_passive_tx() {
+    case("8.5.15", "iso_8_5_15_active_to_passive_tx", 1);
+}
+
+#[test]
 fn iso_7_6_7_ack_delimiter_rec_under_both_rules() {
     // D2: REC 9 -> 9 with the ISO rule (-1 at the ACK slot, +1 at the form error),
     // 9 -> 10 with the 1999 rule (no decrement before a recessive EOF bit 7)

@@ -80,7 +80,9 @@ pub mod c7_4_7;
 pub mod c7_5_1;
 pub mod c7_5_2;
 pub mod c7_5_3;
+pub mod c7_5_4;
 pub mod c7_5_5;
+pub mod c7_5_6;
 pub mod c7_5_7;
 pub mod c7_6_1;
 pub mod c7_6_2;
@@ -134,11 +136,25 @@ pub mod c8_3_2;
 pub mod c8_3_3;
 pub mod c8_3_4;
 pub mod c8_4_1;
+pub mod c8_4_2;
+pub mod c8_4_3;
 pub mod c8_4_4;
 pub mod c8_4_5;
 pub mod c8_5_1;
+pub mod c8_5_2;
+pub mod c8_5_3;
+pub mod c8_5_4;
+pub mod c8_5_5;
+pub mod c8_5_6;
 pub mod c8_5_7;
+pub mod c8_5_8;
+pub mod c8_5_9;
+pub mod c8_5_10;
+pub mod c8_5_11;
+pub mod c8_5_12;
+pub mod c8_5_13;
 pub mod c8_5_14;
+pub mod c8_5_15;
 pub mod c8_6_3;
 pub mod c8_6_4;
 pub mod c8_6_5;
@@ -200,6 +216,8 @@ pub fn all() -> Vec<IsoCase> {
         IsoCase { clause: "7.5.2", name: "iso_7_5_2_passive_frame_after_error_frame", run: c7_5_2::run },
         IsoCase { clause: "7.5.3", name: "iso_7_5_3_passive_dominant_after_flag", run: c7_5_3::run },
         IsoCase { clause: "7.5.5", name: "iso_7_5_5_passive_flag_restart", run: c7_5_5::run },
+        IsoCase { clause: "7.5.4", name: "iso_7_5_4_passive_stays_passive", run: c7_5_4::run },
+        IsoCase { clause: "7.5.6", name: "iso_7_5_6_passive_error_delimiter_form_error", run: c7_5_6::run },
         IsoCase { clause: "7.5.7", name: "iso_7_5_7_active_to_passive", run: c7_5_7::run },
         IsoCase { clause: "7.6.1", name: "iso_7_6_1_error_flag_bit_error_rec", run: c7_6_1::run },
         IsoCase { clause: "7.6.2", name: "iso_7_6_2_overload_flag_bit_error_rec", run: c7_6_2::run },
@@ -279,6 +297,20 @@ pub fn all() -> Vec<IsoCase> {
         IsoCase { clause: "8.1.4", name: "iso_8_1_4_arbitration_lost_extended", run: c8_1_4::run },
         IsoCase { clause: "8.5.1", name: "iso_8_5_1_passive_flag_overlapped", run: c8_5_1::run },
         IsoCase { clause: "8.5.7", name: "iso_8_5_7_passive_suspend_after_frame", run: c8_5_7::run },
+        IsoCase { clause: "8.5.2", name: "iso_8_5_2_passive_frame_at_intermission_3", run: c8_5_2::run },
+        IsoCase { clause: "8.5.3", name: "iso_8_5_3_passive_dominant_after_flag", run: c8_5_3::run },
+        IsoCase { clause: "8.5.5", name: "iso_8_5_5_passive_suspend_after_error", run: c8_5_5::run },
+        IsoCase { clause: "8.5.9", name: "iso_8_5_9_passive_frame_during_suspend", run: c8_5_9::run },
+        IsoCase { clause: "8.5.15", name: "iso_8_5_15_active_to_passive_tx", run: c8_5_15::run },
+        IsoCase { clause: "8.4.2", name: "iso_8_4_2_passive_delimiter_bit8_overload", run: c8_4_2::run },
+        IsoCase { clause: "8.4.3", name: "iso_8_4_3_sof_at_intermission_3_after_overload", run: c8_4_3::run },
+        IsoCase { clause: "8.5.4", name: "iso_8_5_4_passive_frame_during_suspend", run: c8_5_4::run },
+        IsoCase { clause: "8.5.6", name: "iso_8_5_6_passive_suspend_after_overload", run: c8_5_6::run },
+        IsoCase { clause: "8.5.8", name: "iso_8_5_8_passive_arbitration_lost_no_suspend", run: c8_5_8::run },
+        IsoCase { clause: "8.5.12", name: "iso_8_5_12_passive_flag_six_equal_bits", run: c8_5_12::run },
+        IsoCase { clause: "8.5.13", name: "iso_8_5_13_passive_error_delimiter_form_error", run: c8_5_13::run },
+        IsoCase { clause: "8.5.11", name: "iso_8_5_11_bus_off_recovery", run: c8_5_11::run },
+        IsoCase { clause: "8.5.10", name: "iso_8_5_10_passive_to_bus_off", run: c8_5_10::run },
         IsoCase { clause: "8.5.14", name: "iso_8_5_14_passive_recovery_time", run: c8_5_14::run },
         IsoCase { clause: "8.3.2", name: "iso_8_3_2_sof_at_intermission_3_after_error", run: c8_3_2::run },
     ];
