@@ -277,7 +277,7 @@ impl OutputSet {
     /// files into `dest`.
     pub fn dir(&mut self, dest: &Path) -> Result<PathBuf> {
         self.check_unique(dest)?;
-        self.root(dest)?;
+        self.root(dest).with_context(|| format!("cannot write into {}", dest.display()))?;
         let stage = dest.join(format!(".canstar.{}{TMP_SUFFIX}", pid()));
         self.create_temp(&stage, || std::fs::create_dir(&stage)).with_context(|| format!("cannot write into {}", dest.display()))?;
         self.dirs.push((dest.to_path_buf(), stage.clone()));

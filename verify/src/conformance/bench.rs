@@ -438,6 +438,17 @@ impl Bench {
         self.recs[i].get(m).copied().ok_or_else(|| "no bit recorded".to_string())
     }
 
+    /// Start writing the VCD file `p` now (for a bench whose extra components
+    /// are added after construction); it is finished with the bench, and an
+    /// error goes to the run log as for a VCD given at construction.
+    pub fn start_vcd(&mut self, p: &Path) {
+        self.finish();
+        match self.sim.start_vcd_file(p, None) {
+            Ok(()) => self.vcd = Some(p.display().to_string()),
+            Err(e) => note_vcd_error(&p.display().to_string(), &e),
+        }
+    }
+
     /// Finish the VCD file (if one is being written).
     pub fn finish(&mut self) {
         if let Some(p) = self.vcd.take() {

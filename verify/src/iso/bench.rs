@@ -149,12 +149,15 @@ impl LtBench {
         let timing = cfgs[0].timing;
         let n = cfgs.len();
         let clocks = vec![ClockSpec::new(CLOCK_PS); n];
-        let whole_vcd = next_case_vcd();
-        let mut b = Bench::with_slots(cfgs, clocks, false, &["lt"], whole_vcd.as_deref());
+        let mut b = Bench::with_slots(cfgs, clocks, false, &["lt"], None);
         let lt_slot = n;
         let bus = b.bus.clone();
         let ins = [bus.nodes[lt_slot].rx, bus.level, bus.nodes[0].rx, bus.nodes[0].tx];
         let lt = b.sim.add(LowerTester::new("lt", ClockSpec::new(CLOCK_PS)), &ins, &[bus.nodes[lt_slot].tx]);
+        let whole_vcd = next_case_vcd();
+        if let Some(p) = &whole_vcd {
+            b.start_vcd(p);
+        }
         let ok = b.run_until(40, |b| (0..n).all(|i| b.node(i).field() == Field::Idle));
         assert!(ok.is_ok(), "start-up: nodes did not integrate");
         let step = StepState { name: String::new(), t0: 0, marks: vec![0; n], occ: Occurrences::default(), cursor: 0, in_reset: false, reset_entries: vec![], plays: vec![], vcd: false };

@@ -8,7 +8,8 @@
 //! - File `c<clause>.rs` (`c7_2_2.rs`), a doc comment naming the clause and
 //!   saying in our own words what the case checks, an entry in [`all`] with
 //!   the clause and the name `iso_<clause>_<topic>`, and a test in
-//!   `verify/tests/iso_cases.rs` running it through `run_iso`.
+//!   `verify/tests/iso_cases.rs` (clause 7) or `iso_cases_tx.rs` (clause 8) running it
+//!   through `run_iso`.
 //! - One [`super::LtBench`] per case (or per group of elementary tests that
 //!   need another configuration), one step per elementary test:
 //!   `begin_step`, `preset` of the counters the case starts from, then
