@@ -29,16 +29,7 @@ use canstar_controller::fsm::*;
 /// and the second SOF exactly `gap` bit times after the corrupted bit.
 pub fn step(lb: &mut LtBench, f: &Frame, start: usize, gap: u64) -> Result<(), String> {
     let mut p = Plan::answer(lb.timing, f, BuildOptions::default(), 0);
-    let i = (0..p.bits.len())
-        .find(|&i| {
-            let l = p.bits[i].label.unwrap();
-            l.field == Field::Data && !l.stuff && p.expects.iter().any(|e| e.bit == i && e.level)
-        })
-        .ok_or("no recessive data bit")?;
-    let at = {
-        let l = p.bits[i].label.unwrap();
-        (l.field, l.pos)
-    };
+    let (i, at) = first_recessive_data_bit(&p)?;
     corrupt(&mut p, i);
     let flag = i + 1;
     lb.begin_step("passive flag overlapped");

@@ -21,7 +21,7 @@
 //! cases ([`passive_tx`]).
 
 use super::super::{Action, At, Disturbance, LtBench, Plan, Span, StepRecord, Target, Trigger};
-use super::common::errors;
+use super::common::{errors, first_recessive_data_bit};
 use crate::conformance::{ensure, Ctx, StepResult};
 use crate::node::NodeConfig;
 use canstar_controller::frame::{BuildOptions, Frame};
@@ -109,16 +109,7 @@ pub fn push_answer(p: &mut Plan, f: &Frame, tail: usize) -> usize {
 pub fn passive_tx(lb: &mut LtBench, s: &Scenario) -> Result<Outcome, String> {
     let f = s.tx.clone().unwrap_or_else(source);
     let mut p = Plan::answer(lb.timing, &f, BuildOptions::default(), 0);
-    let i = (0..p.bits.len())
-        .find(|&i| {
-            let l = p.bits[i].label.unwrap();
-            l.field == Field::Data && !l.stuff && p.expects.iter().any(|e| e.bit == i && e.level)
-        })
-        .ok_or("no recessive data bit")?;
-    let at = {
-        let l = p.bits[i].label.unwrap();
-        (l.field, l.pos)
-    };
+    let (i, at) = first_recessive_data_bit(&p)?;
     p.set_level(i, false).truncate(i + 1);
     let flag = i + 1;
     p.push_levels(&s.levels);

@@ -78,15 +78,7 @@ pub fn early_edge(lb: &mut LtBench, f: &Frame, pick: impl Fn(&Plan) -> Option<us
     if let Some((q, n)) = glitch {
         p.glitch(At::tq(x + 1, q), Span::Tq(n), true);
     }
-    let k = lb.play_and_run(&p);
-    lb.run_idle(30)?;
-    let r = lb.end_step();
-    r.check_expects()?;
-    let errs = errors(&r);
-    ensure!(errs.is_empty(), "IUT detected errors: {errs:?}");
-    ensure!(r.iut_events(EV_TX_OK).len() == 1, "no successful transmission:{}", r.dump(0));
-    let sent = lb.b.node(0).sent();
-    ensure!(sent.len() == sent0 + 1 && sent[sent0] == *f, "sent {:?}", &sent[sent0..]);
+    let (r, k) = play_tx_ok(lb, &p, f, sent0)?;
     let t_lt = r.plan_time(k, p.clock_of(At::tq(x, ntq - e)));
     let o = tx_offset(&r, k)?;
     Ok(EarlyEdge { r, k, x, t_lt, o, shift: e - corr })

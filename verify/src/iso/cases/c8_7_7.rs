@@ -41,15 +41,7 @@ fn step(lb: &mut LtBench) -> Result<(), String> {
             delayed += 1;
         }
     }
-    let k = lb.play_and_run(&p);
-    lb.run_idle(30)?;
-    let r = lb.end_step();
-    r.check_expects()?;
-    let errs = errors(&r);
-    ensure!(errs.is_empty(), "IUT detected errors: {errs:?}");
-    ensure!(r.iut_events(EV_TX_OK).len() == 1, "no successful transmission:{}", r.dump(0));
-    let sent = lb.b.node(0).sent();
-    ensure!(sent.len() == sent0 + 1 && sent[sent0] == f, "sent {:?}", &sent[sent0..]);
+    let (r, k) = play_tx_ok(lb, &p, &f, sent0)?;
     ensure!(delayed >= 10, "only {delayed} edges delayed");
     let bit = lb.b.bit_ps;
     let (t0, t_ack) = (r.bit_start(k, 0), r.bit_start(k, ack + 1));

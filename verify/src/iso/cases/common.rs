@@ -392,3 +392,33 @@ pub fn append_plan(p: &mut Plan, q: &Plan) -> usize {
     }
     n
 }
+
+/// The first data bit of an answer plan that the IUT sends recessive and
+/// that is not a stuff bit: its plan index and its (field, position).
+pub fn first_recessive_data_bit(p: &Plan) -> Result<(usize, (Field, u32)), String> {
+    let i = (0..p.bits.len())
+        .find(|&i| {
+            let l = p.bits[i].label.unwrap();
+            l.field == Field::Data && !l.stuff && p.expects.iter().any(|e| e.bit == i && e.level)
+        })
+        .ok_or("no recessive data bit")?;
+    let l = p.bits[i].label.unwrap();
+    Ok((i, (l.field, l.pos)))
+}
+
+/// Play `p` (the LT's answer to the IUT's frame `f`), let the bus go idle and
+/// end the step: every expectation met, no error, one successful
+/// transmission, `f` the one frame sent since `sent0`. Returns the record
+/// and the play index.
+pub fn play_tx_ok(lb: &mut LtBench, p: &Plan, f: &Frame, sent0: usize) -> Result<(StepRecord, usize), String> {
+    let k = lb.play_and_run(p);
+    lb.run_idle(30)?;
+    let r = lb.end_step();
+    r.check_expects()?;
+    let errs = errors(&r);
+    ensure!(errs.is_empty(), "IUT detected errors: {errs:?}");
+    ensure!(r.iut_events(EV_TX_OK).len() == 1, "no successful transmission:{}", r.dump(0));
+    let sent = lb.b.node(0).sent();
+    ensure!(sent.len() == sent0 + 1 && sent[sent0] == *f, "sent {:?}", &sent[sent0..]);
+    Ok((r, k))
+}
