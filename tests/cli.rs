@@ -163,6 +163,12 @@ fn rec_rule_is_a_generation_time_constant_of_core_and_top() {
         assert_eq!(diff.len(), 1, "{f}: {diff:?}");
         assert!(diff[0].0.ends_with("rec_iso = 1'b1;") && diff[0].1.ends_with("rec_iso = 1'b0;"), "{f}: {diff:?}");
     }
+    // the key's former name is still read
+    std::fs::write(d.path().join("old.toml"), "[controller]\neof7_rec = \"bosch-1999\"\n").unwrap();
+    let (ok, out, err) = canstar(&["generate", "controller", "--config", "old.toml", "--out", "old"], d.path());
+    assert!(ok, "{out}{err}");
+    let f = "controller/canstar_can_core.v";
+    assert_eq!(std::fs::read_to_string(d.path().join("old").join(f)).unwrap(), std::fs::read_to_string(d.path().join("bosch").join(f)).unwrap());
 }
 
 #[test]
