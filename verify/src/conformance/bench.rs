@@ -169,14 +169,10 @@ impl Bench {
         } else {
             None
         };
-        let mut vcd_on = None;
+        let mut b = Bench { sim, bus, nodes, script, recs: vec![vec![]; n], pending: vec![None; n], div_seen: vec![false; n], seen_cycles: vec![0; n], bit_ps, vcd: None };
         if let Some(p) = vcd {
-            match sim.start_vcd_file(p, None) {
-                Ok(()) => vcd_on = Some(p.display().to_string()),
-                Err(e) => note_vcd_error(&p.display().to_string(), &e),
-            }
+            b.start_vcd(p);
         }
-        let mut b = Bench { sim, bus, nodes, script, recs: vec![vec![]; n], pending: vec![None; n], div_seen: vec![false; n], seen_cycles: vec![0; n], bit_ps, vcd: vcd_on };
         // Reset, then one dominant bit on every node's RX, then integration.
         let t = b.sim.now() + (RESET_CYCLES as u64 + 2) * clocks.iter().map(|c| c.period_ps).max().unwrap_or(CLOCK_PS);
         b.run_until_time(t);
@@ -447,6 +443,11 @@ impl Bench {
             Ok(()) => self.vcd = Some(p.display().to_string()),
             Err(e) => note_vcd_error(&p.display().to_string(), &e),
         }
+    }
+
+    /// A VCD file is being written.
+    pub fn writes_vcd(&self) -> bool {
+        self.vcd.is_some()
     }
 
     /// Finish the VCD file (if one is being written).

@@ -105,8 +105,6 @@ pub struct LtBench {
     vcd_next: Option<PathBuf>,
     /// VCD errors (path: error) of finished steps.
     pub vcd_errors: Vec<String>,
-    /// The bench writes one VCD of its whole life ([`with_case_vcd`]).
-    whole_vcd: bool,
 }
 
 /// The fault mode of a receive net under a bus-wide action `bus` and a
@@ -154,14 +152,13 @@ impl LtBench {
         let bus = b.bus.clone();
         let ins = [bus.nodes[lt_slot].rx, bus.level, bus.nodes[0].rx, bus.nodes[0].tx];
         let lt = b.sim.add(LowerTester::new("lt", ClockSpec::new(CLOCK_PS)), &ins, &[bus.nodes[lt_slot].tx]);
-        let whole_vcd = next_case_vcd();
-        if let Some(p) = &whole_vcd {
-            b.start_vcd(p);
+        if let Some(p) = next_case_vcd() {
+            b.start_vcd(&p);
         }
         let ok = b.run_until(40, |b| (0..n).all(|i| b.node(i).field() == Field::Idle));
         assert!(ok.is_ok(), "start-up: nodes did not integrate");
         let step = StepState { name: String::new(), t0: 0, marks: vec![0; n], occ: Occurrences::default(), cursor: 0, in_reset: false, reset_entries: vec![], plays: vec![], vcd: false };
-        let mut lb = LtBench { b, lt, lt_slot, timing, step, vcd_next: None, vcd_errors: vec![], whole_vcd: whole_vcd.is_some() };
+        let mut lb = LtBench { b, lt, lt_slot, timing, step, vcd_next: None, vcd_errors: vec![] };
         lb.begin_step("start");
         lb
     }
@@ -242,7 +239,8 @@ impl LtBench {
         };
         self.b.sim.get_mut(self.lt).record(true);
         if let Some(p) = self.vcd_next.take() {
-            if self.whole_vcd {
+            // a VCD of the whole case ([`with_case_vcd`]) leaves no room for a step's
+            if self.b.writes_vcd() {
                 self.vcd_errors.push(format!("{}: the bench already writes the VCD of the whole case", p.display()));
                 return;
             }
