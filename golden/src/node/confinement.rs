@@ -48,6 +48,16 @@ impl GoldenNode {
         self.update_state();
     }
 
+    /// A successful reception in REC: − 1, or 127 from 128 and above (C11, C13).
+    pub(super) fn reception_ok(&mut self) {
+        if self.rec >= 128 {
+            self.rec = 127;
+        } else if self.rec > 0 {
+            self.rec -= 1;
+        }
+        self.update_state();
+    }
+
     pub(super) fn add_rec(&mut self, n: u8) {
         if self.cfg.listen_only || n == 0 {
             return;

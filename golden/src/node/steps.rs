@@ -149,16 +149,6 @@ impl GoldenNode {
         }
     }
 
-    /// A successful reception in REC: − 1, or 127 from 128 and above (C11, C13).
-    fn reception_ok(&mut self) {
-        if self.rec >= 128 {
-            self.rec = 127;
-        } else if self.rec > 0 {
-            self.rec -= 1;
-        }
-        self.update_state();
-    }
-
     pub(super) fn step_flag(&mut self, mut fl: FlagState, s: bool, drove: bool) {
         if !fl.done {
             match fl.kind {
