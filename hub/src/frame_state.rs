@@ -142,6 +142,8 @@ pub mod ctrl_field {
 ///   `EV_CRC_ERR`, `EV_FORM_ERR`; bit and ACK errors are transmitter errors).
 /// - `mon_crc_ok`: no CRC error signalled at this bit (read by the judges in the ACK
 ///   delimiter). `mon_frame_ok`: `EV_RX_OK` (frame delivered at End_Of_Frame bit 7).
+/// - `mon_stuff`: the sampled bit is a stuff bit (the controller's `dbg_stuff` at the
+///   sample strobe; held until the next sample).
 /// - `bit_start`: an estimate of the next bit's start (the controller does not export
 ///   its transmit points): `bs_delay` clocks after `mon_sample`, i.e. PH2 time quanta
 ///   after the sample point when `bs_delay` = PH2 x TQ - 2 clocks. A
@@ -155,17 +157,21 @@ pub struct MonitorAdapter {
     pub field: Signal<In, Bits<5>>,
     pub pos: Signal<In, Bits<8>>,
     pub events: Signal<In, Bits<20>>,
+    /// The controller's `dbg_stuff`: the bit being received is a stuff bit.
+    pub stuff: Signal<In, Bit>,
     pub mon_sample: Signal<Out, Bit>,
     pub mon_field: Signal<Out, Bits<4>>,
     pub mon_pos: Signal<Out, Bits<4>>,
     pub mon_error: Signal<Out, Bit>,
     pub mon_crc_ok: Signal<Out, Bit>,
     pub mon_frame_ok: Signal<Out, Bit>,
+    pub mon_stuff: Signal<Out, Bit>,
     pub bit_start: Signal<Out, Bit>,
     bs_delay: Constant<Bits<6>>,
     s_r: DFF<Bit>,
     f_r: DFF<Bits<5>>,
     p_r: DFF<Bits<8>>,
+    st_r: DFF<Bit>,
     bs_pending: DFF<Bit>,
     bs_cnt: DFF<Bits<6>>,
     f_map: DFF<Bits<4>>,
@@ -190,17 +196,20 @@ impl MonitorAdapter {
             field: Default::default(),
             pos: Default::default(),
             events: Default::default(),
+            stuff: Default::default(),
             mon_sample: Default::default(),
             mon_field: Default::default(),
             mon_pos: Default::default(),
             mon_error: Default::default(),
             mon_crc_ok: Default::default(),
             mon_frame_ok: Default::default(),
+            mon_stuff: Default::default(),
             bit_start: Default::default(),
             bs_delay: Constant::new(bs_delay.into()),
             s_r: Default::default(),
             f_r: Default::default(),
             p_r: Default::default(),
+            st_r: Default::default(),
             bs_pending: Default::default(),
             bs_cnt: Default::default(),
             f_map: Default::default(),
@@ -212,11 +221,12 @@ impl MonitorAdapter {
 impl Logic for MonitorAdapter {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, s_r, f_r, p_r, bs_pending, bs_cnt, f_map);
+        dff_setup!(self, clock, s_r, f_r, p_r, st_r, bs_pending, bs_cnt, f_map);
         self.s_r.d.next = self.sample.val();
         if self.sample.val() {
             self.f_r.d.next = self.field.val();
             self.p_r.d.next = self.pos.val();
+            self.st_r.d.next = self.stuff.val();
         }
         // field mapping (single assignment of the outputs, see the hub module docs);
         // event bits: 0 EV_SOF, 3 EV_STUFF_ERR, 4 EV_CRC_ERR, 5 EV_FORM_ERR, 13 EV_RX_OK
@@ -271,6 +281,7 @@ impl Logic for MonitorAdapter {
             & (self.events.val().get_bit(3) | self.events.val().get_bit(4) | self.events.val().get_bit(5));
         self.mon_crc_ok.next = !self.events.val().get_bit(4);
         self.mon_frame_ok.next = self.s_r.q.val() & self.events.val().get_bit(13);
+        self.mon_stuff.next = self.st_r.q.val();
         // bit start estimate
         if self.s_r.q.val() {
             self.bs_pending.d.next = true;
@@ -286,6 +297,7 @@ impl Logic for MonitorAdapter {
             self.s_r.d.next = false;
             self.f_r.d.next = 0.into();
             self.p_r.d.next = 0.into();
+            self.st_r.d.next = false;
             self.bs_pending.d.next = false;
             self.f_map.d.next = 0.into();
         }

@@ -22,6 +22,7 @@
 //! | `mon_crc_ok` | in | the received CRC was correct (valid in the ACK slot) |
 //! | `mon_frame_ok` | in | with `mon_sample` at the last EOF bit: the frame completed without error |
 //! | `mon_error` | in | with `mon_sample`: stuff, CRC or form error detected at this bit |
+//! | `mon_stuff` | in | with `mon_sample`: the sampled bit is a stuff bit |
 //! | `tx$i` (N) | out | downlinks, `BT` through one output register |
 //! | `hub_tx$j` (M) | out | outgoing sublinks, `ANDC` through one output register |
 //! | `bt` | out | the coupled bit, combinational, for the frame monitor |
@@ -77,6 +78,7 @@ pub struct HubCore {
     pub mon_crc_ok: Signal<In, Bit>,
     pub mon_frame_ok: Signal<In, Bit>,
     pub mon_error: Signal<In, Bit>,
+    pub mon_stuff: Signal<In, Bit>,
     pub tx: Vec<Signal<Out, Bit>>,
     pub hub_tx: Vec<Signal<Out, Bit>>,
     pub bt: Signal<Out, Bit>,
@@ -116,6 +118,8 @@ pub struct HubCore {
     bs_r: DFF<Bits<5>>,
     delim_r: DFF<Bit>,
     delim_z: Signal<Local, Bit>,
+    bt_prev: DFF<Bit>,
+    stuff_dom: Signal<Local, Bit>,
     any_an: Signal<Local, Bit>,
     any_blame: Signal<Local, Bit>,
     any_tx_error: Signal<Local, Bit>,
@@ -159,6 +163,7 @@ impl HubCore {
             mon_crc_ok: Default::default(),
             mon_frame_ok: Default::default(),
             mon_error: Default::default(),
+            mon_stuff: Default::default(),
             tx: sigs(n),
             hub_tx: sigs(m),
             bt: Default::default(),
@@ -197,6 +202,8 @@ impl HubCore {
             bs_r: Default::default(),
             delim_r: Default::default(),
             delim_z: Default::default(),
+            bt_prev: Default::default(),
+            stuff_dom: Default::default(),
             any_an: Default::default(),
             any_blame: Default::default(),
             any_tx_error: Default::default(),
@@ -268,6 +275,17 @@ impl Logic for HubCore {
         if self.reset.val() {
             self.delim_r.d.next = false;
         }
+        // a stuff bit after five recessive bits: its level must be dominant (judge.rs,
+        // stuff-bit rule: a dominant level there is blamed but not charged)
+        self.bt_prev.clock.next = self.clock.val();
+        self.bt_prev.d.next = self.bt_prev.q.val();
+        if self.mon_sample.val() {
+            self.bt_prev.d.next = self.coupler.bt.val();
+        }
+        if self.reset.val() {
+            self.bt_prev.d.next = true;
+        }
+        self.stuff_dom.next = self.mon_stuff.val() & self.bt_prev.q.val();
         // some unit glitched recently: the other units' blames are not charged
         self.any_an.next = false;
         for i in 0..self._n {
@@ -361,6 +379,7 @@ impl Logic for HubCore {
             self.pj[i].bit_start.next = self.mon_bit_start.val();
             self.pj[i].bs_cnt.next = self.bs_r.q.val();
             self.pj[i].delim.next = self.delim_z.val();
+            self.pj[i].stuff_dom.next = self.stuff_dom.val();
             self.pj[i].suppress.next = self.any_an.val() & !self.pj[i].anomaly.val();
             self.any_blame.next = self.any_blame.val() | self.pj[i].blame.val();
             self.any_tx_error.next = self.any_tx_error.val() | self.pj[i].tx_error.val();
@@ -388,6 +407,7 @@ impl Logic for HubCore {
             self.sj[j].bit_start.next = self.mon_bit_start.val();
             self.sj[j].bs_cnt.next = self.bs_r.q.val();
             self.sj[j].delim.next = self.delim_z.val();
+            self.sj[j].stuff_dom.next = self.stuff_dom.val();
             self.sj[j].suppress.next = self.any_an.val() & !self.sj[j].anomaly.val();
             self.any_blame.next = self.any_blame.val() | self.sj[j].blame.val();
             self.any_sub_blame.next = self.any_sub_blame.val() | self.sj[j].blame.val();
@@ -562,6 +582,7 @@ impl Logic for Hub {
         self.adapter.field.next = self.monitor.dbg_field.val();
         self.adapter.pos.next = self.monitor.dbg_pos.val();
         self.adapter.events.next = self.monitor.dbg_events.val();
+        self.adapter.stuff.next = self.monitor.dbg_stuff.val();
         // hub core
         self.core.clock.next = self.clock.val();
         self.core.rst_n.next = self.rst_n.val();
@@ -573,6 +594,7 @@ impl Logic for Hub {
         self.core.mon_crc_ok.next = self.adapter.mon_crc_ok.val();
         self.core.mon_frame_ok.next = self.adapter.mon_frame_ok.val();
         self.core.mon_error.next = self.adapter.mon_error.val();
+        self.core.mon_stuff.next = self.adapter.mon_stuff.val();
         self.frame_state.next = self.core.frame_state.val();
         self.efg_active.next = self.core.efg_active.val();
         self.inject_active.next = self.core.inject_active.val();

@@ -333,6 +333,9 @@ pub struct JudgeUnit {
     pub delim: Signal<In, Bit>,
     /// Another unit of the hub glitched within the last samples (and this one did not).
     pub suppress: Signal<In, Bit>,
+    /// The sampled bit is a stuff bit whose level must be dominant (after five recessive
+    /// bits): blames are not charged (stuff-bit rule).
+    pub stuff_dom: Signal<In, Bit>,
     /// Some enabled replica sublink has glitches on its counter (`gc != 0`; 0 for ports).
     pub rep_glitched: Signal<In, Bit>,
     /// Some sublink unit was blamed one clock ago (with `err_start`: at the sample that
@@ -443,6 +446,7 @@ impl JudgeUnit {
             bs_cnt: Default::default(),
             delim: Default::default(),
             suppress: Default::default(),
+            stuff_dom: Default::default(),
             rep_glitched: Default::default(),
             rep_blamed: Default::default(),
             common: Default::default(),
@@ -555,8 +559,8 @@ impl Logic for JudgeUnit {
                 | self.delim.val()))
             | (self.crc_delim.val() & !self.err_phase.val() & self.seen_dom_crc.q.val());
         self.blame.next = self.sample.val() & self.unj.val() & self.enabled.val();
-        self.charge.next = self.sample.val() & self.unj.val() & self.enabled.val() & !self.suppress.val();
-        self.charged.next = self.sample.val() & self.unj.val() & self.enabled.val() & !self.suppress.val();
+        self.charge.next = self.sample.val() & self.unj.val() & self.enabled.val() & !self.suppress.val() & !self.stuff_dom.val();
+        self.charged.next = self.sample.val() & self.unj.val() & self.enabled.val() & !self.suppress.val() & !self.stuff_dom.val();
         // (port units only: `nack_on` is the port-unit constant)
         self.tx_error.next = self.sample.val()
             & self.nack_on.val()

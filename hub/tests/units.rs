@@ -329,6 +329,29 @@ fn suppressed_blames_are_not_charged() {
     assert_eq!(j.bic.val().index(), 8);
 }
 
+/// Stuff-bit rule: a receiver's dominant level at a stuff bit that must be dominant (after
+/// five recessive bits) still starts the hub's error flag but is not charged; the same
+/// level at an ordinary bit is.
+#[test]
+fn dominant_stuff_bit_is_blamed_but_not_charged() {
+    let receiver = |j: &mut JudgeUnit| {
+        sample(j, Bit { c: false, bt: false, sof: true, ..Default::default() });
+        sample(j, Bit { c: true, bt: false, tx: true, ..Default::default() });
+        assert!(!j.contender.val());
+    };
+    let mut j = unit(params());
+    receiver(&mut j);
+    j.stuff_dom.next = true;
+    assert!(sample(&mut j, Bit { c: false, bt: false, tx: true, ..Default::default() }), "blamed: starts the error flag");
+    assert_eq!(j.bic.val().index(), 0, "not charged");
+    assert_eq!(j.life.val().index(), 0);
+    j.stuff_dom.next = false;
+    let mut j = unit(params());
+    receiver(&mut j);
+    assert!(sample(&mut j, Bit { c: false, bt: false, tx: true, ..Default::default() }));
+    assert_eq!(j.bic.val().index(), 8, "charged at an ordinary bit");
+}
+
 /// Error and overload delimiter bits 2..7 (`delim`, after BT went recessive) are
 /// recessive-only positions, in the error phase too.
 #[test]
@@ -527,6 +550,7 @@ fn judge_stim(j: &mut JudgeUnit, rng: &mut rand_chacha::ChaCha8Rng, c: usize) {
         j.rep_dom.next = rng.gen_ratio(1, 10);
         j.delim.next = rng.gen_ratio(1, 20);
         j.suppress.next = rng.gen_ratio(1, 8);
+        j.stuff_dom.next = rng.gen_ratio(1, 10);
         j.rep_glitched.next = rng.gen_ratio(1, 4);
         j.rep_blamed.next = rng.gen_ratio(1, 6);
         j.common.next = rng.gen_ratio(1, 5);
@@ -610,6 +634,29 @@ fn adapter_maps_fields_events_and_estimates_bit_start() {
     assert_eq!(at, Some(3), "mon_sample at k = 0, bit_start 2 clocks later plus the counter load");
 }
 
+/// `mon_stuff` is the controller's `dbg_stuff` at the sample strobe, held to the next one.
+#[test]
+fn adapter_reports_stuff_bits() {
+    use canstar_hub::frame_state::{ctrl_field, MonitorAdapter};
+    let mut a = MonitorAdapter::new(2);
+    drive::init(&mut a);
+    for stuff in [true, false, true] {
+        a.sample.next = true;
+        a.stuff.next = stuff;
+        a.field.next = ctrl_field::DATA.into();
+        drive::cycle(&mut a);
+        a.sample.next = false;
+        a.stuff.next = !stuff;
+        drive::settle(&mut a);
+        assert!(a.mon_sample.val());
+        assert_eq!(a.mon_stuff.val(), stuff);
+        for _ in 0..5 {
+            drive::cycle(&mut a);
+            assert_eq!(a.mon_stuff.val(), stuff, "held between samples");
+        }
+    }
+}
+
 #[test]
 #[ignore = "needs iverilog, verilator and yosys: run scripts/test-all.sh"]
 fn adapter_flow() {
@@ -623,6 +670,7 @@ fn adapter_flow() {
             a.pos.next = rng.gen_range(0..20u64).into();
         }
         a.events.next = if c % 16 == 14 { rng.gen_range(0..1u64 << 20).into() } else { 0.into() };
+        a.stuff.next = rng.gen_ratio(1, 4);
     })
     .expect("adapter flow");
 }

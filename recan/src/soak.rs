@@ -78,8 +78,13 @@ pub struct ChunkOutcome {
     pub seed: u64,
     /// Frames delivered.
     pub frames: u64,
-    /// Clocks in which a judge unit blamed its port or sublink (both hubs).
+    /// Charged blames: a judge unit blamed its port or sublink and charged it (`bic += 8`,
+    /// lifetime count), both hubs, one per unit and blame.
     pub blames: u64,
+    /// Blames that started the hub's error flag without charging anyone (another unit's
+    /// glitch, or a dominant stuff bit: judge.rs §5.8 and the stuff-bit rule).
+    #[serde(default)]
+    pub uncharged: u64,
     /// Ports and sublinks isolated ("hub h port i", "hub h sublink j").
     pub isolations: Vec<String>,
     /// Error events of controllers.
@@ -215,7 +220,8 @@ pub fn run_chunk_vcd(s: &SoakSettings, index: u64, vcd: Option<(&std::path::Path
         index,
         seed: spec.seed,
         frames: r.delivered,
-        blames: r.blames.len() as u64,
+        blames: r.blames.iter().filter(|b| b.5).count() as u64,
+        uncharged: r.blames.iter().filter(|b| !b.5).count() as u64,
         isolations: r
             .isolated
             .iter()
@@ -243,10 +249,11 @@ fn blame_sites(r: &RunResult, ports: usize) -> Vec<String> {
     r.blames
         .iter()
         .take(8)
-        .map(|&(hub, t, unit, field, pos, _)| {
+        .map(|&(hub, t, unit, field, pos, charged)| {
             let who = if unit < ports { format!("port {unit}") } else { format!("sublink {}", unit - ports) };
             let f = canstar_hub::frame_state::Field::from_code(field as u64);
-            format!("hub {hub} {who}: {f:?} bit {pos} at bit time {}", t / r.bit_time_ps.max(1))
+            let note = if charged { "" } else { " (not charged)" };
+            format!("hub {hub} {who}: {f:?} bit {pos} at bit time {}{note}", t / r.bit_time_ps.max(1))
         })
         .collect()
 }
@@ -288,6 +295,9 @@ impl SoakReport {
     pub fn blames(&self) -> u64 {
         self.chunks.iter().map(|c| c.blames).sum()
     }
+    pub fn uncharged(&self) -> u64 {
+        self.chunks.iter().map(|c| c.uncharged).sum()
+    }
     pub fn isolations(&self) -> usize {
         self.chunks.iter().map(|c| c.isolations.len()).sum()
     }
@@ -303,11 +313,12 @@ impl SoakReport {
         let minp = self.chunks.iter().filter_map(|c| c.min_port_pulse).min();
         let mins = self.chunks.iter().filter_map(|c| c.min_sublink_pulse).min();
         let mut s = format!(
-            "frames {}  chunks {}  blames {}  isolations {}  worst TEC {worst_tec} REC {worst_rec}  controller errors {errors}  events {events}\n",
+            "frames {}  chunks {}  blames {}  isolations {}  worst TEC {worst_tec} REC {worst_rec}  controller errors {errors}  events {events}  uncharged blames {}\n",
             self.frames(),
             self.chunks.len(),
             self.blames(),
-            self.isolations()
+            self.isolations(),
+            self.uncharged()
         );
         s += &format!(
             "shortest pulse on a port input: {}, on a sublink input: {} (hub clocks)\n",
@@ -335,6 +346,18 @@ impl SoakReport {
             }
             let list = sites.iter().map(|(k, v)| format!("{k} ({v})")).collect::<Vec<_>>().join(", ");
             s += &format!("chunks not clean: {unclean} of {}; blames in: {list}\n", self.chunks.len());
+        }
+        let with_uncharged: Vec<String> = self
+            .chunks
+            .iter()
+            .filter(|c| c.clean() && c.uncharged > 0)
+            .map(|c| format!("{} ({})", c.index, c.blame_sites.first().map_or("", |b| b.as_str())))
+            .collect();
+        if !with_uncharged.is_empty() {
+            s += &format!(
+                "clean chunks with uncharged blames (the hub started its error flag, nobody was charged): {}\n",
+                with_uncharged.join(", ")
+            );
         }
         for c in self.chunks.iter().filter(|c| !c.clean()) {
             s += &format!(
@@ -391,6 +414,28 @@ mod tests {
         );
         assert!(s.contains("chunk 1 seed 7: blames 3 isolations []  first blame: hub 1 sublink 0: CrcDelim bit 0 at bit time 10"), "{s}");
         assert!(!r.ok());
+    }
+
+    #[test]
+    fn uncharged_blames_are_reported_but_leave_a_chunk_clean() {
+        let c = ChunkOutcome {
+            index: 4,
+            frames: 100,
+            uncharged: 2,
+            blame_sites: vec!["hub 0 port 1: Data bit 1 at bit time 45095 (not charged)".into()],
+            ..Default::default()
+        };
+        assert!(c.clean());
+        let r = SoakReport { settings: None, chunks: vec![c] };
+        let s = r.summary();
+        assert!(s.starts_with("frames 100  chunks 1  blames 0  isolations 0"), "{s}");
+        assert!(s.lines().next().unwrap().ends_with("uncharged blames 2"), "{s}");
+        assert!(
+            s.contains("clean chunks with uncharged blames (the hub started its error flag, nobody was charged): 4 (hub 0 port 1: Data bit 1 at bit time 45095 (not charged))"),
+            "{s}"
+        );
+        assert!(!s.contains("chunks not clean"), "{s}");
+        assert!(r.ok());
     }
 
     #[test]

@@ -55,6 +55,7 @@ module canstar_cancentrate_core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,tx$0,tx$
     reg  core$mon_crc_ok;
     reg  core$mon_frame_ok;
     reg  core$mon_error;
+    reg  core$mon_stuff;
     wire  core$tx$0;
     wire  core$tx$1;
     wire  core$tx$2;
@@ -139,12 +140,14 @@ module canstar_cancentrate_core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,tx$0,tx$
     reg  [4:0] adapter$field;
     reg  [7:0] adapter$pos;
     reg  [19:0] adapter$events;
+    reg  adapter$stuff;
     wire  adapter$mon_sample;
     wire  [3:0] adapter$mon_field;
     wire  [3:0] adapter$mon_pos;
     wire  adapter$mon_error;
     wire  adapter$mon_crc_ok;
     wire  adapter$mon_frame_ok;
+    wire  adapter$mon_stuff;
     wire  adapter$bit_start;
     
     // Sub module instances
@@ -162,6 +165,7 @@ module canstar_cancentrate_core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,tx$0,tx$
         .mon_crc_ok(core$mon_crc_ok),
         .mon_frame_ok(core$mon_frame_ok),
         .mon_error(core$mon_error),
+        .mon_stuff(core$mon_stuff),
         .tx$0(core$tx$0),
         .tx$1(core$tx$1),
         .tx$2(core$tx$2),
@@ -250,12 +254,14 @@ module canstar_cancentrate_core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,tx$0,tx$
         .field(adapter$field),
         .pos(adapter$pos),
         .events(adapter$events),
+        .stuff(adapter$stuff),
         .mon_sample(adapter$mon_sample),
         .mon_field(adapter$mon_field),
         .mon_pos(adapter$mon_pos),
         .mon_error(adapter$mon_error),
         .mon_crc_ok(adapter$mon_crc_ok),
         .mon_frame_ok(adapter$mon_frame_ok),
+        .mon_stuff(adapter$mon_stuff),
         .bit_start(adapter$bit_start)
     );
     
@@ -291,6 +297,7 @@ module canstar_cancentrate_core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,tx$0,tx$
         adapter$field = monitor$dbg_field;
         adapter$pos = monitor$dbg_pos;
         adapter$events = monitor$dbg_events;
+        adapter$stuff = monitor$dbg_stuff;
         core$clock = clock;
         core$rst_n = rst_n;
         core$inject_fault = inject_fault;
@@ -301,6 +308,7 @@ module canstar_cancentrate_core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,tx$0,tx$
         core$mon_crc_ok = adapter$mon_crc_ok;
         core$mon_frame_ok = adapter$mon_frame_ok;
         core$mon_error = adapter$mon_error;
+        core$mon_stuff = adapter$mon_stuff;
         frame_state = core$frame_state;
         efg_active = core$efg_active;
         inject_active = core$inject_active;
@@ -330,7 +338,7 @@ module canstar_cancentrate_core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,tx$0,tx$
 endmodule // canstar_cancentrate_core
 
 
-module canstar_cancentrate_core$adapter(clock,reset,sample,field,pos,events,mon_sample,mon_field,mon_pos,mon_error,mon_crc_ok,mon_frame_ok,bit_start);
+module canstar_cancentrate_core$adapter(clock,reset,sample,field,pos,events,stuff,mon_sample,mon_field,mon_pos,mon_error,mon_crc_ok,mon_frame_ok,mon_stuff,bit_start);
     
     // Module arguments
     input wire  clock;
@@ -339,12 +347,14 @@ module canstar_cancentrate_core$adapter(clock,reset,sample,field,pos,events,mon_
     input wire  [4:0] field;
     input wire  [7:0] pos;
     input wire  [19:0] events;
+    input wire  stuff;
     output reg  mon_sample;
     output reg  [3:0] mon_field;
     output reg  [3:0] mon_pos;
     output reg  mon_error;
     output reg  mon_crc_ok;
     output reg  mon_frame_ok;
+    output reg  mon_stuff;
     output reg  bit_start;
     
     // Constant declarations
@@ -360,6 +370,9 @@ module canstar_cancentrate_core$adapter(clock,reset,sample,field,pos,events,mon_
     reg  [7:0] p_r$d;
     wire  [7:0] p_r$q;
     reg  p_r$clock;
+    reg  st_r$d;
+    wire  st_r$q;
+    reg  st_r$clock;
     reg  bs_pending$d;
     wire  bs_pending$q;
     reg  bs_pending$clock;
@@ -389,6 +402,11 @@ module canstar_cancentrate_core$adapter(clock,reset,sample,field,pos,events,mon_
         .q(p_r$q),
         .clock(p_r$clock)
     );
+    canstar_cancentrate_core$adapter$st_r st_r(
+        .d(st_r$d),
+        .q(st_r$q),
+        .clock(st_r$clock)
+    );
     canstar_cancentrate_core$adapter$bs_pending bs_pending(
         .d(bs_pending$d),
         .q(bs_pending$q),
@@ -410,12 +428,14 @@ module canstar_cancentrate_core$adapter(clock,reset,sample,field,pos,events,mon_
         s_r$clock = clock;
         f_r$clock = clock;
         p_r$clock = clock;
+        st_r$clock = clock;
         bs_pending$clock = clock;
         bs_cnt$clock = clock;
         f_map$clock = clock;
         s_r$d = s_r$q;
         f_r$d = f_r$q;
         p_r$d = p_r$q;
+        st_r$d = st_r$q;
         bs_pending$d = bs_pending$q;
         bs_cnt$d = bs_cnt$q;
         f_map$d = f_map$q;
@@ -423,6 +443,7 @@ module canstar_cancentrate_core$adapter(clock,reset,sample,field,pos,events,mon_
         if (sample) begin
             f_r$d = field;
             p_r$d = pos;
+            st_r$d = stuff;
         end
         if (events[32'h0] | (f_r$q == 32'h4)) begin
             fl = 32'h1;
@@ -492,6 +513,7 @@ module canstar_cancentrate_core$adapter(clock,reset,sample,field,pos,events,mon_
         mon_error = s_r$q & (events[32'h3] | events[32'h4] | events[32'h5]);
         mon_crc_ok = ~events[32'h4];
         mon_frame_ok = s_r$q & events[32'hd];
+        mon_stuff = st_r$q;
         if (s_r$q) begin
             bs_pending$d = 1'b1;
             bs_cnt$d = bs_delay;
@@ -508,6 +530,7 @@ module canstar_cancentrate_core$adapter(clock,reset,sample,field,pos,events,mon_
             s_r$d = 1'b0;
             f_r$d = 32'h0;
             p_r$d = 32'h0;
+            st_r$d = 1'b0;
             bs_pending$d = 1'b0;
             f_map$d = 32'h0;
         end
@@ -631,7 +654,26 @@ module canstar_cancentrate_core$adapter$s_r(d,q,clock);
 endmodule // canstar_cancentrate_core$adapter$s_r
 
 
-module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon_sample,mon_bit_start,mon_field,mon_pos,mon_crc_ok,mon_frame_ok,mon_error,tx$0,tx$1,tx$2,bt,reset_out,isolated$0,isolated$1,isolated$2,silent$0,silent$1,silent$2,frame_state,efg_active,inject_active,bic$0,bic$1,bic$2,dbc$0,dbc$1,dbc$2,nack$0,nack$1,nack$2);
+module canstar_cancentrate_core$adapter$st_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$adapter$st_r
+
+
+module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon_sample,mon_bit_start,mon_field,mon_pos,mon_crc_ok,mon_frame_ok,mon_error,mon_stuff,tx$0,tx$1,tx$2,bt,reset_out,isolated$0,isolated$1,isolated$2,silent$0,silent$1,silent$2,frame_state,efg_active,inject_active,bic$0,bic$1,bic$2,dbc$0,dbc$1,dbc$2,nack$0,nack$1,nack$2);
     
     // Module arguments
     input wire  clock;
@@ -647,6 +689,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
     input wire  mon_crc_ok;
     input wire  mon_frame_ok;
     input wire  mon_error;
+    input wire  mon_stuff;
     output reg  tx$0;
     output reg  tx$1;
     output reg  tx$2;
@@ -760,6 +803,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
     reg  [4:0] pj$0$bs_cnt;
     reg  pj$0$delim;
     reg  pj$0$suppress;
+    reg  pj$0$stuff_dom;
     reg  pj$0$rep_glitched;
     reg  pj$0$rep_blamed;
     reg  pj$0$common;
@@ -800,6 +844,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
     reg  [4:0] pj$1$bs_cnt;
     reg  pj$1$delim;
     reg  pj$1$suppress;
+    reg  pj$1$stuff_dom;
     reg  pj$1$rep_glitched;
     reg  pj$1$rep_blamed;
     reg  pj$1$common;
@@ -840,6 +885,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
     reg  [4:0] pj$2$bs_cnt;
     reg  pj$2$delim;
     reg  pj$2$suppress;
+    reg  pj$2$stuff_dom;
     reg  pj$2$rep_glitched;
     reg  pj$2$rep_blamed;
     reg  pj$2$common;
@@ -869,6 +915,9 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
     reg  delim_r$d;
     wire  delim_r$q;
     reg  delim_r$clock;
+    reg  bt_prev$d;
+    wire  bt_prev$q;
+    reg  bt_prev$clock;
     
     // Local signals
     reg  any_sub_blame;
@@ -878,6 +927,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
     reg  reset;
     reg  err_phase;
     reg  delim_z;
+    reg  stuff_dom;
     reg  any_an;
     reg  any_blame;
     reg  any_tx_error;
@@ -980,6 +1030,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         .bs_cnt(pj$0$bs_cnt),
         .delim(pj$0$delim),
         .suppress(pj$0$suppress),
+        .stuff_dom(pj$0$stuff_dom),
         .rep_glitched(pj$0$rep_glitched),
         .rep_blamed(pj$0$rep_blamed),
         .common(pj$0$common),
@@ -1022,6 +1073,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         .bs_cnt(pj$1$bs_cnt),
         .delim(pj$1$delim),
         .suppress(pj$1$suppress),
+        .stuff_dom(pj$1$stuff_dom),
         .rep_glitched(pj$1$rep_glitched),
         .rep_blamed(pj$1$rep_blamed),
         .common(pj$1$common),
@@ -1064,6 +1116,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         .bs_cnt(pj$2$bs_cnt),
         .delim(pj$2$delim),
         .suppress(pj$2$suppress),
+        .stuff_dom(pj$2$stuff_dom),
         .rep_glitched(pj$2$rep_glitched),
         .rep_blamed(pj$2$rep_blamed),
         .common(pj$2$common),
@@ -1102,6 +1155,11 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         .q(delim_r$q),
         .clock(delim_r$clock)
     );
+    canstar_cancentrate_core$core$bt_prev bt_prev(
+        .d(bt_prev$d),
+        .q(bt_prev$q),
+        .clock(bt_prev$clock)
+    );
     
     // Update code
     always @(*) begin
@@ -1133,6 +1191,15 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         if (reset) begin
             delim_r$d = 1'b0;
         end
+        bt_prev$clock = clock;
+        bt_prev$d = bt_prev$q;
+        if (mon_sample) begin
+            bt_prev$d = coupler$bt;
+        end
+        if (reset) begin
+            bt_prev$d = 1'b1;
+        end
+        stuff_dom = mon_stuff & bt_prev$q;
         any_an = 1'b0;
         any_an = any_an | pj$0$anomaly;
         any_an = any_an | pj$1$anomaly;
@@ -1195,6 +1262,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         pj$0$bit_start = mon_bit_start;
         pj$0$bs_cnt = bs_r$q;
         pj$0$delim = delim_z;
+        pj$0$stuff_dom = stuff_dom;
         pj$0$suppress = any_an & ~pj$0$anomaly;
         any_blame = any_blame | pj$0$blame;
         any_tx_error = any_tx_error | pj$0$tx_error;
@@ -1236,6 +1304,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         pj$1$bit_start = mon_bit_start;
         pj$1$bs_cnt = bs_r$q;
         pj$1$delim = delim_z;
+        pj$1$stuff_dom = stuff_dom;
         pj$1$suppress = any_an & ~pj$1$anomaly;
         any_blame = any_blame | pj$1$blame;
         any_tx_error = any_tx_error | pj$1$tx_error;
@@ -1277,6 +1346,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         pj$2$bit_start = mon_bit_start;
         pj$2$bs_cnt = bs_r$q;
         pj$2$delim = delim_z;
+        pj$2$stuff_dom = stuff_dom;
         pj$2$suppress = any_an & ~pj$2$anomaly;
         any_blame = any_blame | pj$2$blame;
         any_tx_error = any_tx_error | pj$2$tx_error;
@@ -1321,6 +1391,25 @@ module canstar_cancentrate_core$core$bs_r(d,q,clock);
     end
           
 endmodule // canstar_cancentrate_core$core$bs_r
+
+
+module canstar_cancentrate_core$core$bt_prev(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$bt_prev
 
 
 module canstar_cancentrate_core$core$coupler(clock,reset,rx$0,rx$1,rx$2,dis$0,dis$1,dis$2,efg,up_fault$0,up_fault$1,up_fault$2,down_fault$0,down_fault$1,down_fault$2,tx$0,tx$1,tx$2,u$0,u$1,u$2,andc,bt);
@@ -2238,7 +2327,7 @@ module canstar_cancentrate_core$core$injector$state(d,q,clock);
 endmodule // canstar_cancentrate_core$core$injector$state
 
 
-module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,rep_glitched,rep_blamed,common,dis,blame,charged,tx_error,glitch,anomaly,bic,life,dbc,nack,rep_cnt,gc,silent,contender);
+module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,dis,blame,charged,tx_error,glitch,anomaly,bic,life,dbc,nack,rep_cnt,gc,silent,contender);
     
     // Module arguments
     input wire  clock;
@@ -2264,6 +2353,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
     input wire  [4:0] bs_cnt;
     input wire  delim;
     input wire  suppress;
+    input wire  stuff_dom;
     input wire  rep_glitched;
     input wire  rep_blamed;
     input wire  common;
@@ -2577,8 +2667,8 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         end
         unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | im_2 | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q);
         blame = sample & unj & enabled;
-        charge = sample & unj & enabled & ~suppress;
-        charged = sample & unj & enabled & ~suppress;
+        charge = sample & unj & enabled & ~suppress & ~stuff_dom;
+        charged = sample & unj & enabled & ~suppress & ~stuff_dom;
         tx_error = sample & nack_on & enabled & cont_r$q & tx_region & ~arb & c & ~bt & ~err_phase;
         if (sample) begin
             if (ack_slot) begin
@@ -3285,7 +3375,7 @@ module canstar_cancentrate_core$core$pj$0$seen_dom_crc(d,q,clock);
 endmodule // canstar_cancentrate_core$core$pj$0$seen_dom_crc
 
 
-module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,rep_glitched,rep_blamed,common,dis,blame,charged,tx_error,glitch,anomaly,bic,life,dbc,nack,rep_cnt,gc,silent,contender);
+module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,dis,blame,charged,tx_error,glitch,anomaly,bic,life,dbc,nack,rep_cnt,gc,silent,contender);
     
     // Module arguments
     input wire  clock;
@@ -3311,6 +3401,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
     input wire  [4:0] bs_cnt;
     input wire  delim;
     input wire  suppress;
+    input wire  stuff_dom;
     input wire  rep_glitched;
     input wire  rep_blamed;
     input wire  common;
@@ -3624,8 +3715,8 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         end
         unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | im_2 | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q);
         blame = sample & unj & enabled;
-        charge = sample & unj & enabled & ~suppress;
-        charged = sample & unj & enabled & ~suppress;
+        charge = sample & unj & enabled & ~suppress & ~stuff_dom;
+        charged = sample & unj & enabled & ~suppress & ~stuff_dom;
         tx_error = sample & nack_on & enabled & cont_r$q & tx_region & ~arb & c & ~bt & ~err_phase;
         if (sample) begin
             if (ack_slot) begin
@@ -4332,7 +4423,7 @@ module canstar_cancentrate_core$core$pj$1$seen_dom_crc(d,q,clock);
 endmodule // canstar_cancentrate_core$core$pj$1$seen_dom_crc
 
 
-module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,rep_glitched,rep_blamed,common,dis,blame,charged,tx_error,glitch,anomaly,bic,life,dbc,nack,rep_cnt,gc,silent,contender);
+module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,dis,blame,charged,tx_error,glitch,anomaly,bic,life,dbc,nack,rep_cnt,gc,silent,contender);
     
     // Module arguments
     input wire  clock;
@@ -4358,6 +4449,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
     input wire  [4:0] bs_cnt;
     input wire  delim;
     input wire  suppress;
+    input wire  stuff_dom;
     input wire  rep_glitched;
     input wire  rep_blamed;
     input wire  common;
@@ -4671,8 +4763,8 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         end
         unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | im_2 | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q);
         blame = sample & unj & enabled;
-        charge = sample & unj & enabled & ~suppress;
-        charged = sample & unj & enabled & ~suppress;
+        charge = sample & unj & enabled & ~suppress & ~stuff_dom;
+        charged = sample & unj & enabled & ~suppress & ~stuff_dom;
         tx_error = sample & nack_on & enabled & cont_r$q & tx_region & ~arb & c & ~bt & ~err_phase;
         if (sample) begin
             if (ack_slot) begin
