@@ -169,13 +169,14 @@ pub struct MonitorAdapter {
     pub bit_start: Signal<Out, Bit>,
     bs_delay: Constant<Bits<6>>,
     s_r: DFF<Bit>,
-    f_r: DFF<Bits<5>>,
-    p_r: DFF<Bits<8>>,
+    fm_r: DFF<Bits<4>>,
+    p_r: DFF<Bits<4>>,
     st_r: DFF<Bit>,
     bs_pending: DFF<Bit>,
     bs_cnt: DFF<Bits<6>>,
     f_map: DFF<Bits<4>>,
     fl: Signal<Local, Bits<4>>,
+    pl: Signal<Local, Bits<4>>,
 }
 
 /// Event bit positions of the controller's event word used by the adapter.
@@ -207,13 +208,14 @@ impl MonitorAdapter {
             bit_start: Default::default(),
             bs_delay: Constant::new(bs_delay.into()),
             s_r: Default::default(),
-            f_r: Default::default(),
+            fm_r: Default::default(),
             p_r: Default::default(),
             st_r: Default::default(),
             bs_pending: Default::default(),
             bs_cnt: Default::default(),
             f_map: Default::default(),
             fl: Default::default(),
+            pl: Default::default(),
         }
     }
 }
@@ -221,61 +223,70 @@ impl MonitorAdapter {
 impl Logic for MonitorAdapter {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, s_r, f_r, p_r, st_r, bs_pending, bs_cnt, f_map);
+        dff_setup!(self, clock, s_r, fm_r, p_r, st_r, bs_pending, bs_cnt, f_map);
         self.s_r.d.next = self.sample.val();
-        if self.sample.val() {
-            self.f_r.d.next = self.field.val();
-            self.p_r.d.next = self.pos.val();
-            self.st_r.d.next = self.stuff.val();
-        }
-        // field mapping (single assignment of the outputs, see the hub module docs);
-        // event bits: 0 EV_SOF, 3 EV_STUFF_ERR, 4 EV_CRC_ERR, 5 EV_FORM_ERR, 13 EV_RX_OK
-        if self.events.val().get_bit(0) | (self.f_r.q.val() == 4) {
+        // field mapping (single assignment of the outputs, see the hub module docs),
+        // done on the controller's FIELD at the sample strobe and registered (`fm_r`),
+        // so that only the EV_SOF override is left for the clock after it; event bits:
+        // 0 EV_SOF, 3 EV_STUFF_ERR, 4 EV_CRC_ERR, 5 EV_FORM_ERR, 13 EV_RX_OK
+        if self.field.val() == 4 {
             self.fl.next = 1.into();
-        } else if (self.f_r.q.val() == 5) | (self.f_r.q.val() == 6) | (self.f_r.q.val() == 7) | (self.f_r.q.val() == 9) {
+        } else if (self.field.val() == 5) | (self.field.val() == 6) | (self.field.val() == 7) | (self.field.val() == 9) {
             self.fl.next = 2.into();
-        } else if self.f_r.q.val() == 8 {
+        } else if self.field.val() == 8 {
             self.fl.next = 3.into();
-        } else if self.f_r.q.val() == 10 {
+        } else if self.field.val() == 10 {
             self.fl.next = 4.into();
-        } else if self.f_r.q.val() == 11 {
+        } else if self.field.val() == 11 {
             self.fl.next = 5.into();
-        } else if self.f_r.q.val() == 12 {
+        } else if self.field.val() == 12 {
             self.fl.next = 6.into();
-        } else if self.f_r.q.val() == 13 {
+        } else if self.field.val() == 13 {
             self.fl.next = 7.into();
-        } else if self.f_r.q.val() == 14 {
+        } else if self.field.val() == 14 {
             self.fl.next = 8.into();
-        } else if self.f_r.q.val() == 15 {
+        } else if self.field.val() == 15 {
             self.fl.next = 9.into();
-        } else if self.f_r.q.val() == 16 {
+        } else if self.field.val() == 16 {
             self.fl.next = 10.into();
-        } else if self.f_r.q.val() == 17 {
+        } else if self.field.val() == 17 {
             self.fl.next = 11.into();
-        } else if self.f_r.q.val() == 23 {
+        } else if self.field.val() == 23 {
             self.fl.next = 12.into();
-        } else if (self.f_r.q.val() == 18) | (self.f_r.q.val() == 19) {
+        } else if (self.field.val() == 18) | (self.field.val() == 19) {
             self.fl.next = 13.into();
-        } else if self.f_r.q.val() == 21 {
+        } else if self.field.val() == 21 {
             self.fl.next = 14.into();
-        } else if (self.f_r.q.val() == 20) | (self.f_r.q.val() == 22) {
+        } else if (self.field.val() == 20) | (self.field.val() == 22) {
             self.fl.next = 15.into();
         } else {
             self.fl.next = 0.into();
         }
+        // POSITION - 1 (0-based), saturating at 15, likewise registered at the sample
+        if self.pos.val() > 15 {
+            self.pl.next = 15.into();
+        } else if self.pos.val() == 0 {
+            self.pl.next = 0.into();
+        } else {
+            self.pl.next = self.pos.val().get_bits::<4>(0) - 1;
+        }
+        if self.sample.val() {
+            self.fm_r.d.next = self.fl.val();
+            self.p_r.d.next = self.pl.val();
+            self.st_r.d.next = self.stuff.val();
+        }
         if self.s_r.q.val() {
-            self.f_map.d.next = self.fl.val();
-            self.mon_field.next = self.fl.val();
+            if self.events.val().get_bit(0) {
+                self.f_map.d.next = 1.into();
+                self.mon_field.next = 1.into();
+            } else {
+                self.f_map.d.next = self.fm_r.q.val();
+                self.mon_field.next = self.fm_r.q.val();
+            }
         } else {
             self.mon_field.next = self.f_map.q.val();
         }
-        if self.p_r.q.val() > 15 {
-            self.mon_pos.next = 15.into();
-        } else if self.p_r.q.val() == 0 {
-            self.mon_pos.next = 0.into();
-        } else {
-            self.mon_pos.next = self.p_r.q.val().get_bits::<4>(0) - 1;
-        }
+        self.mon_pos.next = self.p_r.q.val();
         self.mon_sample.next = self.s_r.q.val();
         self.mon_error.next = self.s_r.q.val()
             & (self.events.val().get_bit(3) | self.events.val().get_bit(4) | self.events.val().get_bit(5));
@@ -295,7 +306,7 @@ impl Logic for MonitorAdapter {
         }
         if self.reset.val() {
             self.s_r.d.next = false;
-            self.f_r.d.next = 0.into();
+            self.fm_r.d.next = 0.into();
             self.p_r.d.next = 0.into();
             self.st_r.d.next = false;
             self.bs_pending.d.next = false;

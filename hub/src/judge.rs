@@ -237,6 +237,16 @@
 //! 24 023 (the same classes). One blame is `bic` 8 that decays over 8 frames, a lost
 //! containment run is a healthy controller at 96, so the judges keep their instant.
 //!
+//! **§5.10 stuff-bit rule (added).** At a sampled stuff bit that must be dominant (the
+//! monitor reports a stuff bit, `mon_stuff`, and BT was recessive at the previous sample:
+//! `stuff_dom`), a blame still starts the hub's error flag but is not charged. A dominant
+//! level there changes nothing while the transmitter is alive, and it is where healthy nodes
+//! that saw one more recessive bit than the monitor start their error flag: all 4 blames of
+//! `canstar soak --frames 1000000 --events` (chunks 199, 359 and 401, each a node switched
+//! off in a frame) fell on such a bit, and with the rule none of them is charged. Containment
+//! cost, `canstar campaign --reps 100`: XXX. Test: `hub/tests/units.rs`
+//! `dominant_stuff_bit_is_blamed_but_not_charged`.
+//!
 //! **§5.2 delimiter rule (added).** In the error phase, once BT was recessive at a
 //! sample (the end of every flag), the following delimiter bits are recessive-only
 //! positions (`delim`, computed by the hub), except the last one, where a node may

@@ -24,10 +24,16 @@ pub struct PulseCheck {
     pub c: Signal<In, Bit>,
     /// A run of `min..=max` clocks ended in this clock.
     pub glitch: Signal<Out, Bit>,
-    min: Constant<Bits<5>>,
+    /// `min - 1` and `max`: `run + 1` is in range iff `run == min - 1`, or `run` is in
+    /// range and not `max`.
+    min_m1: Constant<Bits<5>>,
     max: Constant<Bits<5>>,
+    /// A run of length 1 is in range (`min == 1`).
+    one_in: Constant<Bit>,
     prev: DFF<Bit>,
     run: DFF<Bits<5>>,
+    /// `run` is in `min..=max`, kept with `run` (timing: no comparator after `run`).
+    in_r: DFF<Bit>,
     chg: Signal<Local, Bit>,
 }
 
@@ -40,10 +46,12 @@ impl PulseCheck {
             reset: Default::default(),
             c: Default::default(),
             glitch: Default::default(),
-            min: Constant::new(min.into()),
+            min_m1: Constant::new((min - 1).into()),
             max: Constant::new(max.into()),
+            one_in: Constant::new(min == 1),
             prev: Default::default(),
             run: Default::default(),
+            in_r: Default::default(),
             chg: Default::default(),
         }
     }
@@ -52,18 +60,23 @@ impl PulseCheck {
 impl Logic for PulseCheck {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, prev, run);
+        dff_setup!(self, clock, prev, run, in_r);
         self.chg.next = self.c.val() != self.prev.q.val();
-        self.glitch.next = self.chg.val() & (self.run.q.val() >= self.min.val()) & (self.run.q.val() <= self.max.val());
+        // `in_r` = (`run` >= min) & (`run` <= max), updated with `run` (31 is never in
+        // range: max <= 30; after reset and at power-up `run` is 31 or 0, out of range)
+        self.glitch.next = self.chg.val() & self.in_r.q.val();
         self.prev.d.next = self.c.val();
         if self.chg.val() {
             self.run.d.next = 1.into();
+            self.in_r.d.next = self.one_in.val();
         } else if self.run.q.val() != 31 {
             self.run.d.next = self.run.q.val() + 1;
+            self.in_r.d.next = (self.run.q.val() == self.min_m1.val()) | (self.in_r.q.val() & (self.run.q.val() != self.max.val()));
         }
         if self.reset.val() {
             self.prev.d.next = true;
             self.run.d.next = 31.into();
+            self.in_r.d.next = false;
         }
     }
 }

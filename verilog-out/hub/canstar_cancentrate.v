@@ -364,11 +364,11 @@ module canstar_cancentrate_core$adapter(clock,reset,sample,field,pos,events,stuf
     reg  s_r$d;
     wire  s_r$q;
     reg  s_r$clock;
-    reg  [4:0] f_r$d;
-    wire  [4:0] f_r$q;
-    reg  f_r$clock;
-    reg  [7:0] p_r$d;
-    wire  [7:0] p_r$q;
+    reg  [3:0] fm_r$d;
+    wire  [3:0] fm_r$q;
+    reg  fm_r$clock;
+    reg  [3:0] p_r$d;
+    wire  [3:0] p_r$q;
     reg  p_r$clock;
     reg  st_r$d;
     wire  st_r$q;
@@ -385,6 +385,7 @@ module canstar_cancentrate_core$adapter(clock,reset,sample,field,pos,events,stuf
     
     // Local signals
     reg  [3:0] fl;
+    reg  [3:0] pl;
     
     // Sub module instances
     canstar_cancentrate_core$adapter$s_r s_r(
@@ -392,10 +393,10 @@ module canstar_cancentrate_core$adapter(clock,reset,sample,field,pos,events,stuf
         .q(s_r$q),
         .clock(s_r$clock)
     );
-    canstar_cancentrate_core$adapter$f_r f_r(
-        .d(f_r$d),
-        .q(f_r$q),
-        .clock(f_r$clock)
+    canstar_cancentrate_core$adapter$fm_r fm_r(
+        .d(fm_r$d),
+        .q(fm_r$q),
+        .clock(fm_r$clock)
     );
     canstar_cancentrate_core$adapter$p_r p_r(
         .d(p_r$d),
@@ -426,89 +427,96 @@ module canstar_cancentrate_core$adapter(clock,reset,sample,field,pos,events,stuf
     // Update code
     always @(*) begin
         s_r$clock = clock;
-        f_r$clock = clock;
+        fm_r$clock = clock;
         p_r$clock = clock;
         st_r$clock = clock;
         bs_pending$clock = clock;
         bs_cnt$clock = clock;
         f_map$clock = clock;
         s_r$d = s_r$q;
-        f_r$d = f_r$q;
+        fm_r$d = fm_r$q;
         p_r$d = p_r$q;
         st_r$d = st_r$q;
         bs_pending$d = bs_pending$q;
         bs_cnt$d = bs_cnt$q;
         f_map$d = f_map$q;
         s_r$d = sample;
-        if (sample) begin
-            f_r$d = field;
-            p_r$d = pos;
-            st_r$d = stuff;
-        end
-        if (events[32'h0] | (f_r$q == 32'h4)) begin
+        if (field == 32'h4) begin
             fl = 32'h1;
         end
-        else if ((f_r$q == 32'h5) | (f_r$q == 32'h6) | (f_r$q == 32'h7) | (f_r$q == 32'h9)) begin
+        else if ((field == 32'h5) | (field == 32'h6) | (field == 32'h7) | (field == 32'h9)) begin
             fl = 32'h2;
         end
-        else if (f_r$q == 32'h8) begin
+        else if (field == 32'h8) begin
             fl = 32'h3;
         end
-        else if (f_r$q == 32'ha) begin
+        else if (field == 32'ha) begin
             fl = 32'h4;
         end
-        else if (f_r$q == 32'hb) begin
+        else if (field == 32'hb) begin
             fl = 32'h5;
         end
-        else if (f_r$q == 32'hc) begin
+        else if (field == 32'hc) begin
             fl = 32'h6;
         end
-        else if (f_r$q == 32'hd) begin
+        else if (field == 32'hd) begin
             fl = 32'h7;
         end
-        else if (f_r$q == 32'he) begin
+        else if (field == 32'he) begin
             fl = 32'h8;
         end
-        else if (f_r$q == 32'hf) begin
+        else if (field == 32'hf) begin
             fl = 32'h9;
         end
-        else if (f_r$q == 32'h10) begin
+        else if (field == 32'h10) begin
             fl = 32'ha;
         end
-        else if (f_r$q == 32'h11) begin
+        else if (field == 32'h11) begin
             fl = 32'hb;
         end
-        else if (f_r$q == 32'h17) begin
+        else if (field == 32'h17) begin
             fl = 32'hc;
         end
-        else if ((f_r$q == 32'h12) | (f_r$q == 32'h13)) begin
+        else if ((field == 32'h12) | (field == 32'h13)) begin
             fl = 32'hd;
         end
-        else if (f_r$q == 32'h15) begin
+        else if (field == 32'h15) begin
             fl = 32'he;
         end
-        else if ((f_r$q == 32'h14) | (f_r$q == 32'h16)) begin
+        else if ((field == 32'h14) | (field == 32'h16)) begin
             fl = 32'hf;
         end
         else begin
             fl = 32'h0;
         end
+        if (pos > 32'hf) begin
+            pl = 32'hf;
+        end
+        else if (pos == 32'h0) begin
+            pl = 32'h0;
+        end
+        else begin
+            pl = pos[(32'h0)+:(4)] - 32'h1;
+        end
+        if (sample) begin
+            fm_r$d = fl;
+            p_r$d = pl;
+            st_r$d = stuff;
+        end
         if (s_r$q) begin
-            f_map$d = fl;
-            mon_field = fl;
+            if (events[32'h0]) begin
+                f_map$d = 32'h1;
+                mon_field = 32'h1;
+            end
+            else begin
+                f_map$d = fm_r$q;
+                mon_field = fm_r$q;
+            end
         end
         else begin
             mon_field = f_map$q;
         end
-        if (p_r$q > 32'hf) begin
-            mon_pos = 32'hf;
-        end
-        else if (p_r$q == 32'h0) begin
-            mon_pos = 32'h0;
-        end
-        else begin
-            mon_pos = p_r$q[(32'h0)+:(4)] - 32'h1;
-        end
+        mon_pos = p_r$q;
         mon_sample = s_r$q;
         mon_error = s_r$q & (events[32'h3] | events[32'h4] | events[32'h5]);
         mon_crc_ok = ~events[32'h4];
@@ -528,7 +536,7 @@ module canstar_cancentrate_core$adapter(clock,reset,sample,field,pos,events,stuf
         end
         if (reset) begin
             s_r$d = 1'b0;
-            f_r$d = 32'h0;
+            fm_r$d = 32'h0;
             p_r$d = 32'h0;
             st_r$d = 1'b0;
             bs_pending$d = 1'b0;
@@ -597,35 +605,35 @@ module canstar_cancentrate_core$adapter$f_map(d,q,clock);
 endmodule // canstar_cancentrate_core$adapter$f_map
 
 
-module canstar_cancentrate_core$adapter$f_r(d,q,clock);
+module canstar_cancentrate_core$adapter$fm_r(d,q,clock);
     
     // Module arguments
-    input wire  [4:0] d;
-    output reg  [4:0] q;
+    input wire  [3:0] d;
+    output reg  [3:0] q;
     input wire  clock;
     
     // Update code (custom)
     initial begin
-       q = 5'h0;
+       q = 4'h0;
     end
     
     always @(posedge clock) begin
        q <= d;
     end
           
-endmodule // canstar_cancentrate_core$adapter$f_r
+endmodule // canstar_cancentrate_core$adapter$fm_r
 
 
 module canstar_cancentrate_core$adapter$p_r(d,q,clock);
     
     // Module arguments
-    input wire  [7:0] d;
-    output reg  [7:0] q;
+    input wire  [3:0] d;
+    output reg  [3:0] q;
     input wire  clock;
     
     // Update code (custom)
     initial begin
-       q = 8'h0;
+       q = 4'h0;
     end
     
     always @(posedge clock) begin
@@ -3192,8 +3200,9 @@ module canstar_cancentrate_core$core$pj$0$pulse(clock,reset,c,glitch);
     output reg  glitch;
     
     // Constant declarations
-    localparam  min = 5'b1;
+    localparam  min_m1 = 5'b0;
     localparam  max = 5'b1011;
+    localparam  one_in = 1'b1;
     
     // Stub signals
     reg  prev$d;
@@ -3202,6 +3211,9 @@ module canstar_cancentrate_core$core$pj$0$pulse(clock,reset,c,glitch);
     reg  [4:0] run$d;
     wire  [4:0] run$q;
     reg  run$clock;
+    reg  in_r$d;
+    wire  in_r$q;
+    reg  in_r$clock;
     
     // Local signals
     reg  chg;
@@ -3217,29 +3229,58 @@ module canstar_cancentrate_core$core$pj$0$pulse(clock,reset,c,glitch);
         .q(run$q),
         .clock(run$clock)
     );
+    canstar_cancentrate_core$core$pj$0$pulse$in_r in_r(
+        .d(in_r$d),
+        .q(in_r$q),
+        .clock(in_r$clock)
+    );
     
     // Update code
     always @(*) begin
         prev$clock = clock;
         run$clock = clock;
+        in_r$clock = clock;
         prev$d = prev$q;
         run$d = run$q;
+        in_r$d = in_r$q;
         chg = c != prev$q;
-        glitch = chg & (run$q >= min) & (run$q <= max);
+        glitch = chg & in_r$q;
         prev$d = c;
         if (chg) begin
             run$d = 32'h1;
+            in_r$d = one_in;
         end
         else if (run$q != 32'h1f) begin
             run$d = run$q + 32'h1;
+            in_r$d = (run$q == min_m1) | (in_r$q & (run$q != max));
         end
         if (reset) begin
             prev$d = 1'b1;
             run$d = 32'h1f;
+            in_r$d = 1'b0;
         end
     end
     
 endmodule // canstar_cancentrate_core$core$pj$0$pulse
+
+
+module canstar_cancentrate_core$core$pj$0$pulse$in_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$0$pulse$in_r
 
 
 module canstar_cancentrate_core$core$pj$0$pulse$prev(d,q,clock);
@@ -4240,8 +4281,9 @@ module canstar_cancentrate_core$core$pj$1$pulse(clock,reset,c,glitch);
     output reg  glitch;
     
     // Constant declarations
-    localparam  min = 5'b1;
+    localparam  min_m1 = 5'b0;
     localparam  max = 5'b1011;
+    localparam  one_in = 1'b1;
     
     // Stub signals
     reg  prev$d;
@@ -4250,6 +4292,9 @@ module canstar_cancentrate_core$core$pj$1$pulse(clock,reset,c,glitch);
     reg  [4:0] run$d;
     wire  [4:0] run$q;
     reg  run$clock;
+    reg  in_r$d;
+    wire  in_r$q;
+    reg  in_r$clock;
     
     // Local signals
     reg  chg;
@@ -4265,29 +4310,58 @@ module canstar_cancentrate_core$core$pj$1$pulse(clock,reset,c,glitch);
         .q(run$q),
         .clock(run$clock)
     );
+    canstar_cancentrate_core$core$pj$1$pulse$in_r in_r(
+        .d(in_r$d),
+        .q(in_r$q),
+        .clock(in_r$clock)
+    );
     
     // Update code
     always @(*) begin
         prev$clock = clock;
         run$clock = clock;
+        in_r$clock = clock;
         prev$d = prev$q;
         run$d = run$q;
+        in_r$d = in_r$q;
         chg = c != prev$q;
-        glitch = chg & (run$q >= min) & (run$q <= max);
+        glitch = chg & in_r$q;
         prev$d = c;
         if (chg) begin
             run$d = 32'h1;
+            in_r$d = one_in;
         end
         else if (run$q != 32'h1f) begin
             run$d = run$q + 32'h1;
+            in_r$d = (run$q == min_m1) | (in_r$q & (run$q != max));
         end
         if (reset) begin
             prev$d = 1'b1;
             run$d = 32'h1f;
+            in_r$d = 1'b0;
         end
     end
     
 endmodule // canstar_cancentrate_core$core$pj$1$pulse
+
+
+module canstar_cancentrate_core$core$pj$1$pulse$in_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$1$pulse$in_r
 
 
 module canstar_cancentrate_core$core$pj$1$pulse$prev(d,q,clock);
@@ -5288,8 +5362,9 @@ module canstar_cancentrate_core$core$pj$2$pulse(clock,reset,c,glitch);
     output reg  glitch;
     
     // Constant declarations
-    localparam  min = 5'b1;
+    localparam  min_m1 = 5'b0;
     localparam  max = 5'b1011;
+    localparam  one_in = 1'b1;
     
     // Stub signals
     reg  prev$d;
@@ -5298,6 +5373,9 @@ module canstar_cancentrate_core$core$pj$2$pulse(clock,reset,c,glitch);
     reg  [4:0] run$d;
     wire  [4:0] run$q;
     reg  run$clock;
+    reg  in_r$d;
+    wire  in_r$q;
+    reg  in_r$clock;
     
     // Local signals
     reg  chg;
@@ -5313,29 +5391,58 @@ module canstar_cancentrate_core$core$pj$2$pulse(clock,reset,c,glitch);
         .q(run$q),
         .clock(run$clock)
     );
+    canstar_cancentrate_core$core$pj$2$pulse$in_r in_r(
+        .d(in_r$d),
+        .q(in_r$q),
+        .clock(in_r$clock)
+    );
     
     // Update code
     always @(*) begin
         prev$clock = clock;
         run$clock = clock;
+        in_r$clock = clock;
         prev$d = prev$q;
         run$d = run$q;
+        in_r$d = in_r$q;
         chg = c != prev$q;
-        glitch = chg & (run$q >= min) & (run$q <= max);
+        glitch = chg & in_r$q;
         prev$d = c;
         if (chg) begin
             run$d = 32'h1;
+            in_r$d = one_in;
         end
         else if (run$q != 32'h1f) begin
             run$d = run$q + 32'h1;
+            in_r$d = (run$q == min_m1) | (in_r$q & (run$q != max));
         end
         if (reset) begin
             prev$d = 1'b1;
             run$d = 32'h1f;
+            in_r$d = 1'b0;
         end
     end
     
 endmodule // canstar_cancentrate_core$core$pj$2$pulse
+
+
+module canstar_cancentrate_core$core$pj$2$pulse$in_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$2$pulse$in_r
 
 
 module canstar_cancentrate_core$core$pj$2$pulse$prev(d,q,clock);
