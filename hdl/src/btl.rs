@@ -146,11 +146,21 @@ pub struct BitTiming {
     c_valid: DFF<Bit>,
     c_bad: DFF<Bit>,
     // Prescaler and counter model state. Levels that must be recessive at
-    // power-up are stored inverted (DFFs power up at 0).
+    // power-up are stored inverted (DFFs power up at 0). The counter model
+    // of §2.3 (`cnt`, sample point `spw`, bit end `nbw`) is kept as
+    // distances, so that no step compares two counters: `lc` = min(cnt, SJW)
+    // (the lengthening of an early edge; 0 exactly when cnt = 0), `rem` =
+    // nbw − cnt (≥ 1: the phase error of a late edge, and the TQs to the end
+    // of the bit), `tsp` = spw − cnt (the TQs to the sample point, looked at
+    // only before it) and `late` = cnt ≥ spw (cnt + 1 > spw).
+    c_sp1: DFF<Bits<5>>,
+    c_ntq1: DFF<Bits<5>>,
+    c_sjw1: DFF<Bits<5>>,
     pre: DFF<Bits<7>>,
-    cnt: DFF<Bits<5>>,
-    spw: DFF<Bits<5>>,
-    nbw: DFF<Bits<5>>,
+    lc: DFF<Bits<3>>,
+    rem: DFF<Bits<5>>,
+    tsp: DFF<Bits<5>>,
+    late: DFF<Bit>,
     busmon_n: DFF<Bit>,
     sync_dis: DFF<Bit>,
     since: DFF<Bits<2>>,
@@ -168,22 +178,18 @@ pub struct BitTiming {
     in_sjw: Signal<Local, Bits<5>>,
     in_bad: Signal<Local, Bit>,
     tick: Signal<Local, Bit>,
-    c1: Signal<Local, Bits<5>>,
-    late: Signal<Local, Bit>,
-    neg_mag: Signal<Local, Bits<5>>,
+    rs_ok: Signal<Local, Bit>,
     sync_cond: Signal<Local, Bit>,
     do_hard: Signal<Local, Bit>,
     do_resync: Signal<Local, Bit>,
     restart: Signal<Local, Bit>,
-    lengthen: Signal<Local, Bits<5>>,
-    sp_a: Signal<Local, Bits<5>>,
-    nb_a: Signal<Local, Bits<5>>,
-    cnt_a: Signal<Local, Bits<5>>,
+    shorten: Signal<Local, Bit>,
+    lengthen: Signal<Local, Bit>,
     eob: Signal<Local, Bit>,
-    cnt_n: Signal<Local, Bits<5>>,
-    sp_n: Signal<Local, Bits<5>>,
-    nb_n: Signal<Local, Bits<5>>,
     smp: Signal<Local, Bit>,
+    lc_inc: Signal<Local, Bits<3>>,
+    rem_dec: Signal<Local, Bits<5>>,
+    tsp_dec: Signal<Local, Bits<5>>,
     since_inc: Signal<Local, Bits<2>>,
     fire: Signal<Local, Bit>,
     sampled: Signal<Local, Bit>,
@@ -195,8 +201,8 @@ impl Logic for BitTiming {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
-            self, clock, c_brp, c_sp, c_ntq, c_sjw, c_triple, c_ipt1, c_valid, c_bad, pre, cnt, spw, nbw, busmon_n,
-            sync_dis, since, pending, tx_n, h1_n, h2_n, sample_r, hard_r, resync_r
+            self, clock, c_brp, c_sp, c_ntq, c_sjw, c_triple, c_ipt1, c_valid, c_bad, c_sp1, c_ntq1, c_sjw1, pre, lc, rem,
+            tsp, late, busmon_n, sync_dis, since, pending, tx_n, h1_n, h2_n, sample_r, hard_r, resync_r
         );
 
         // Configuration from the input fields (value - 1 encoding).
@@ -213,58 +219,47 @@ impl Logic for BitTiming {
         // Prescaler tick.
         self.tick.next = (self.c_valid.q.val() & !self.reset.val()) & (self.pre.q.val() == self.c_brp.q.val());
 
-        // Step 1 and 2: cnt + 1, which side of the sample point.
-        self.c1.next = self.cnt.q.val() + 1;
-        self.late.next = self.c1.val() > self.spw.q.val();
-        self.neg_mag.next = self.nbw.q.val() - self.cnt.q.val();
-        if self.cnt.q.val() < self.c_sjw.q.val() {
-            self.lengthen.next = self.cnt.q.val();
+        // Step 1 and 2: which side of the sample point (`late`), whether a
+        // late edge is within SJW (phase error nbw − cnt = `rem`).
+        self.rs_ok.next = self.rem.q.val() <= self.c_sjw.q.val();
+        if self.lc.q.val() == bit_cast::<3, 5>(self.c_sjw.q.val()) {
+            self.lc_inc.next = self.lc.q.val();
         } else {
-            self.lengthen.next = self.c_sjw.q.val();
+            self.lc_inc.next = self.lc.q.val() + 1;
         }
+        self.rem_dec.next = self.rem.q.val() - 1;
+        self.tsp_dec.next = self.tsp.q.val() - 1;
 
         // Step 3: synchronisation (rx dominant, busmon recessive, sync_en).
+        // A restart puts cnt at 1; a late edge beyond SJW shortens the bit
+        // by SJW (nbw − SJW); an early edge while transmitting recessive
+        // with cnt > 0 lengthens it by min(cnt, SJW) (spw and nbw + lc).
         self.sync_cond.next = (!self.rx.val() & !self.busmon_n.q.val()) & !self.sync_dis.q.val();
         self.do_hard.next = self.sync_cond.val() & self.hs_en.val();
         self.do_resync.next = self.sync_cond.val() & !self.hs_en.val();
-        self.restart.next = false;
-        self.sp_a.next = self.spw.q.val();
-        self.nb_a.next = self.nbw.q.val();
-        if self.do_hard.val() {
-            self.restart.next = self.drive.val() | self.late.val();
-        }
-        if self.do_resync.val() {
-            if self.late.val() {
-                if self.neg_mag.val() <= self.c_sjw.q.val() {
-                    self.restart.next = true;
-                } else {
-                    self.nb_a.next = self.nbw.q.val() - self.c_sjw.q.val();
-                }
-            } else if self.drive.val() & self.cnt.q.val().any() {
-                self.sp_a.next = self.spw.q.val() + self.lengthen.val();
-                self.nb_a.next = self.nbw.q.val() + self.lengthen.val();
+        self.restart.next = (self.do_hard.val() & (self.drive.val() | self.late.q.val()))
+            | ((self.do_resync.val() & self.late.q.val()) & self.rs_ok.val());
+        self.shorten.next = (self.do_resync.val() & self.late.q.val()) & !self.rs_ok.val();
+        self.lengthen.next =
+            ((self.do_resync.val() & !self.late.q.val()) & self.drive.val()) & self.lc.q.val().any();
+
+        // Step 4: end of bit (cnt + 1 = nbw, or nbw − SJW when shortened; a
+        // restart or a lengthened bit does not end here: NTQ ≥ 8, rem ≥ 2
+        // before the sample point).
+        self.eob.next = false;
+        if !self.restart.val() {
+            if self.shorten.val() {
+                self.eob.next = self.rem.q.val() == self.c_sjw1.q.val();
+            } else {
+                self.eob.next = self.rem.q.val() == 1;
             }
         }
-        self.cnt_a.next = self.c1.val();
-        if self.restart.val() {
-            self.cnt_a.next = 1.into();
-            self.sp_a.next = self.c_sp.q.val();
-            self.nb_a.next = self.c_ntq.q.val();
-        }
 
-        // Step 4: end of bit.
-        self.eob.next = self.cnt_a.val() == self.nb_a.val();
-        self.cnt_n.next = self.cnt_a.val();
-        self.sp_n.next = self.sp_a.val();
-        self.nb_n.next = self.nb_a.val();
-        if self.eob.val() {
-            self.cnt_n.next = 0.into();
-            self.sp_n.next = self.c_sp.q.val();
-            self.nb_n.next = self.c_ntq.q.val();
-        }
-
-        // Step 5: sample point.
-        self.smp.next = self.cnt_n.val() == self.sp_n.val();
+        // Step 5: sample point (cnt + 1 = spw, only before it, and only in
+        // an unchanged bit: a lengthened bit moves it, a restart puts cnt at
+        // 1 < SP).
+        self.smp.next = (((self.tsp.q.val() == 1) & !self.late.q.val()) & !self.restart.val())
+            & (!self.lengthen.val() & !self.eob.val());
         self.sampled.next = !self.rx.val();
         if self.c_triple.q.val() {
             // Majority, computed on the inverted (dominant = 1) levels.
@@ -288,14 +283,18 @@ impl Logic for BitTiming {
             self.c_sp.d.next = self.in_sp.val().get_bits::<5>(0);
             self.c_ntq.d.next = self.in_ntq.val().get_bits::<5>(0);
             self.c_sjw.d.next = self.in_sjw.val();
+            self.c_sp1.d.next = self.in_sp.val().get_bits::<5>(0) - 1;
+            self.c_ntq1.d.next = self.in_ntq.val().get_bits::<5>(0) - 1;
+            self.c_sjw1.d.next = self.in_sjw.val() + 1;
             self.c_triple.d.next = self.triple.val();
             self.c_ipt1.d.next = self.ph2.val() == 0;
             self.c_bad.d.next = self.in_bad.val();
             self.c_valid.d.next = !self.in_bad.val();
             self.pre.d.next = 0.into();
-            self.cnt.d.next = 0.into();
-            self.spw.d.next = self.in_sp.val().get_bits::<5>(0);
-            self.nbw.d.next = self.in_ntq.val().get_bits::<5>(0);
+            self.lc.d.next = 0.into();
+            self.rem.d.next = self.in_ntq.val().get_bits::<5>(0);
+            self.tsp.d.next = self.in_sp.val().get_bits::<5>(0);
+            self.late.d.next = false;
             self.busmon_n.d.next = false;
             self.sync_dis.d.next = false;
             self.since.d.next = 2.into();
@@ -318,9 +317,32 @@ impl Logic for BitTiming {
                 }
             }
             if self.tick.val() {
-                self.cnt.d.next = self.cnt_n.val();
-                self.spw.d.next = self.sp_n.val();
-                self.nbw.d.next = self.nb_n.val();
+                if self.eob.val() {
+                    self.lc.d.next = 0.into();
+                    self.rem.d.next = self.c_ntq.q.val();
+                    self.tsp.d.next = self.c_sp.q.val();
+                    self.late.d.next = false;
+                } else if self.restart.val() {
+                    self.lc.d.next = 1.into();
+                    self.rem.d.next = self.c_ntq1.q.val();
+                    self.tsp.d.next = self.c_sp1.q.val();
+                    self.late.d.next = false;
+                } else if self.shorten.val() {
+                    self.lc.d.next = self.lc_inc.val();
+                    self.rem.d.next = self.rem.q.val() - self.c_sjw1.q.val();
+                    self.tsp.d.next = self.tsp_dec.val();
+                    self.late.d.next = true;
+                } else if self.lengthen.val() {
+                    self.lc.d.next = self.lc_inc.val();
+                    self.rem.d.next = self.rem_dec.val() + bit_cast::<5, 3>(self.lc.q.val());
+                    self.tsp.d.next = self.tsp_dec.val() + bit_cast::<5, 3>(self.lc.q.val());
+                    self.late.d.next = false;
+                } else {
+                    self.lc.d.next = self.lc_inc.val();
+                    self.rem.d.next = self.rem_dec.val();
+                    self.tsp.d.next = self.tsp_dec.val();
+                    self.late.d.next = self.late.q.val() | (self.tsp.q.val() == 1);
+                }
                 if self.smp.val() {
                     self.busmon_n.d.next = self.sampled.val();
                     self.sync_dis.d.next = false;

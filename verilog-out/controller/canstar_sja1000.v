@@ -1607,18 +1607,30 @@ module canstar_sja1000$core$btl(clock,reset,brp,prop,ph1,ph2,sjw,triple,rx,drive
     reg  c_bad$d;
     wire  c_bad$q;
     reg  c_bad$clock;
+    reg  [4:0] c_sp1$d;
+    wire  [4:0] c_sp1$q;
+    reg  c_sp1$clock;
+    reg  [4:0] c_ntq1$d;
+    wire  [4:0] c_ntq1$q;
+    reg  c_ntq1$clock;
+    reg  [4:0] c_sjw1$d;
+    wire  [4:0] c_sjw1$q;
+    reg  c_sjw1$clock;
     reg  [6:0] pre$d;
     wire  [6:0] pre$q;
     reg  pre$clock;
-    reg  [4:0] cnt$d;
-    wire  [4:0] cnt$q;
-    reg  cnt$clock;
-    reg  [4:0] spw$d;
-    wire  [4:0] spw$q;
-    reg  spw$clock;
-    reg  [4:0] nbw$d;
-    wire  [4:0] nbw$q;
-    reg  nbw$clock;
+    reg  [2:0] lc$d;
+    wire  [2:0] lc$q;
+    reg  lc$clock;
+    reg  [4:0] rem$d;
+    wire  [4:0] rem$q;
+    reg  rem$clock;
+    reg  [4:0] tsp$d;
+    wire  [4:0] tsp$q;
+    reg  tsp$clock;
+    reg  late$d;
+    wire  late$q;
+    reg  late$clock;
     reg  busmon_n$d;
     wire  busmon_n$q;
     reg  busmon_n$clock;
@@ -1657,22 +1669,18 @@ module canstar_sja1000$core$btl(clock,reset,brp,prop,ph1,ph2,sjw,triple,rx,drive
     reg  [4:0] in_sjw;
     reg  in_bad;
     reg  tick;
-    reg  [4:0] c1;
-    reg  late;
-    reg  [4:0] neg_mag;
+    reg  rs_ok;
     reg  sync_cond;
     reg  do_hard;
     reg  do_resync;
     reg  restart;
-    reg  [4:0] lengthen;
-    reg  [4:0] sp_a;
-    reg  [4:0] nb_a;
-    reg  [4:0] cnt_a;
+    reg  shorten;
+    reg  lengthen;
     reg  eob;
-    reg  [4:0] cnt_n;
-    reg  [4:0] sp_n;
-    reg  [4:0] nb_n;
     reg  smp;
+    reg  [2:0] lc_inc;
+    reg  [4:0] rem_dec;
+    reg  [4:0] tsp_dec;
     reg  [1:0] since_inc;
     reg  fire;
     reg  sampled;
@@ -1718,25 +1726,45 @@ module canstar_sja1000$core$btl(clock,reset,brp,prop,ph1,ph2,sjw,triple,rx,drive
         .q(c_bad$q),
         .clock(c_bad$clock)
     );
+    canstar_sja1000$core$btl$c_sp1 c_sp1(
+        .d(c_sp1$d),
+        .q(c_sp1$q),
+        .clock(c_sp1$clock)
+    );
+    canstar_sja1000$core$btl$c_ntq1 c_ntq1(
+        .d(c_ntq1$d),
+        .q(c_ntq1$q),
+        .clock(c_ntq1$clock)
+    );
+    canstar_sja1000$core$btl$c_sjw1 c_sjw1(
+        .d(c_sjw1$d),
+        .q(c_sjw1$q),
+        .clock(c_sjw1$clock)
+    );
     canstar_sja1000$core$btl$pre pre(
         .d(pre$d),
         .q(pre$q),
         .clock(pre$clock)
     );
-    canstar_sja1000$core$btl$cnt cnt(
-        .d(cnt$d),
-        .q(cnt$q),
-        .clock(cnt$clock)
+    canstar_sja1000$core$btl$lc lc(
+        .d(lc$d),
+        .q(lc$q),
+        .clock(lc$clock)
     );
-    canstar_sja1000$core$btl$spw spw(
-        .d(spw$d),
-        .q(spw$q),
-        .clock(spw$clock)
+    canstar_sja1000$core$btl$rem rem(
+        .d(rem$d),
+        .q(rem$q),
+        .clock(rem$clock)
     );
-    canstar_sja1000$core$btl$nbw nbw(
-        .d(nbw$d),
-        .q(nbw$q),
-        .clock(nbw$clock)
+    canstar_sja1000$core$btl$tsp tsp(
+        .d(tsp$d),
+        .q(tsp$q),
+        .clock(tsp$clock)
+    );
+    canstar_sja1000$core$btl$late late(
+        .d(late$d),
+        .q(late$q),
+        .clock(late$clock)
     );
     canstar_sja1000$core$btl$busmon_n busmon_n(
         .d(busmon_n$d),
@@ -1799,10 +1827,14 @@ module canstar_sja1000$core$btl(clock,reset,brp,prop,ph1,ph2,sjw,triple,rx,drive
         c_ipt1$clock = clock;
         c_valid$clock = clock;
         c_bad$clock = clock;
+        c_sp1$clock = clock;
+        c_ntq1$clock = clock;
+        c_sjw1$clock = clock;
         pre$clock = clock;
-        cnt$clock = clock;
-        spw$clock = clock;
-        nbw$clock = clock;
+        lc$clock = clock;
+        rem$clock = clock;
+        tsp$clock = clock;
+        late$clock = clock;
         busmon_n$clock = clock;
         sync_dis$clock = clock;
         since$clock = clock;
@@ -1821,10 +1853,14 @@ module canstar_sja1000$core$btl(clock,reset,brp,prop,ph1,ph2,sjw,triple,rx,drive
         c_ipt1$d = c_ipt1$q;
         c_valid$d = c_valid$q;
         c_bad$d = c_bad$q;
+        c_sp1$d = c_sp1$q;
+        c_ntq1$d = c_ntq1$q;
+        c_sjw1$d = c_sjw1$q;
         pre$d = pre$q;
-        cnt$d = cnt$q;
-        spw$d = spw$q;
-        nbw$d = nbw$q;
+        lc$d = lc$q;
+        rem$d = rem$q;
+        tsp$d = tsp$q;
+        late$d = late$q;
         busmon_n$d = busmon_n$q;
         sync_dis$d = sync_dis$q;
         since$d = since$q;
@@ -1841,54 +1877,31 @@ module canstar_sja1000$core$btl(clock,reset,brp,prop,ph1,ph2,sjw,triple,rx,drive
         in_sjw = ((sjw) & 5'h1f) + 32'h1;
         in_bad = (((in_ntq < 32'h8) | (in_ntq > 32'h19)) | (((sjw) & 3'h7) > ph1)) | ((ph2 == 32'h0) & (brp == 32'h0));
         tick = (c_valid$q & ~reset) & (pre$q == c_brp$q);
-        c1 = cnt$q + 32'h1;
-        late = c1 > spw$q;
-        neg_mag = nbw$q - cnt$q;
-        if (cnt$q < c_sjw$q) begin
-            lengthen = cnt$q;
+        rs_ok = rem$q <= c_sjw$q;
+        if (lc$q == ((c_sjw$q) & 3'h7)) begin
+            lc_inc = lc$q;
         end
         else begin
-            lengthen = c_sjw$q;
+            lc_inc = lc$q + 32'h1;
         end
+        rem_dec = rem$q - 32'h1;
+        tsp_dec = tsp$q - 32'h1;
         sync_cond = (~rx & ~busmon_n$q) & ~sync_dis$q;
         do_hard = sync_cond & hs_en;
         do_resync = sync_cond & ~hs_en;
-        restart = 1'b0;
-        sp_a = spw$q;
-        nb_a = nbw$q;
-        if (do_hard) begin
-            restart = drive | late;
-        end
-        if (do_resync) begin
-            if (late) begin
-                if (neg_mag <= c_sjw$q) begin
-                    restart = 1'b1;
-                end
-                else begin
-                    nb_a = nbw$q - c_sjw$q;
-                end
+        restart = (do_hard & (drive | late$q)) | ((do_resync & late$q) & rs_ok);
+        shorten = (do_resync & late$q) & ~rs_ok;
+        lengthen = ((do_resync & ~late$q) & drive) & |lc$q;
+        eob = 1'b0;
+        if (~restart) begin
+            if (shorten) begin
+                eob = rem$q == c_sjw1$q;
             end
-            else if (drive & |cnt$q) begin
-                sp_a = spw$q + lengthen;
-                nb_a = nbw$q + lengthen;
+            else begin
+                eob = rem$q == 32'h1;
             end
         end
-        cnt_a = c1;
-        if (restart) begin
-            cnt_a = 32'h1;
-            sp_a = c_sp$q;
-            nb_a = c_ntq$q;
-        end
-        eob = cnt_a == nb_a;
-        cnt_n = cnt_a;
-        sp_n = sp_a;
-        nb_n = nb_a;
-        if (eob) begin
-            cnt_n = 32'h0;
-            sp_n = c_sp$q;
-            nb_n = c_ntq$q;
-        end
-        smp = cnt_n == sp_n;
+        smp = (((tsp$q == 32'h1) & ~late$q) & ~restart) & (~lengthen & ~eob);
         sampled = ~rx;
         if (c_triple$q) begin
             sampled = ((~rx & h1_n$q) | (~rx & h2_n$q)) | (h1_n$q & h2_n$q);
@@ -1903,14 +1916,18 @@ module canstar_sja1000$core$btl(clock,reset,brp,prop,ph1,ph2,sjw,triple,rx,drive
             c_sp$d = in_sp[(32'h0)+:(5)];
             c_ntq$d = in_ntq[(32'h0)+:(5)];
             c_sjw$d = in_sjw;
+            c_sp1$d = in_sp[(32'h0)+:(5)] - 32'h1;
+            c_ntq1$d = in_ntq[(32'h0)+:(5)] - 32'h1;
+            c_sjw1$d = in_sjw + 32'h1;
             c_triple$d = triple;
             c_ipt1$d = ph2 == 32'h0;
             c_bad$d = in_bad;
             c_valid$d = ~in_bad;
             pre$d = 32'h0;
-            cnt$d = 32'h0;
-            spw$d = in_sp[(32'h0)+:(5)];
-            nbw$d = in_ntq[(32'h0)+:(5)];
+            lc$d = 32'h0;
+            rem$d = in_ntq[(32'h0)+:(5)];
+            tsp$d = in_sp[(32'h0)+:(5)];
+            late$d = 1'b0;
             busmon_n$d = 1'b0;
             sync_dis$d = 1'b0;
             since$d = 32'h2;
@@ -1935,9 +1952,36 @@ module canstar_sja1000$core$btl(clock,reset,brp,prop,ph1,ph2,sjw,triple,rx,drive
                 end
             end
             if (tick) begin
-                cnt$d = cnt_n;
-                spw$d = sp_n;
-                nbw$d = nb_n;
+                if (eob) begin
+                    lc$d = 32'h0;
+                    rem$d = c_ntq$q;
+                    tsp$d = c_sp$q;
+                    late$d = 1'b0;
+                end
+                else if (restart) begin
+                    lc$d = 32'h1;
+                    rem$d = c_ntq1$q;
+                    tsp$d = c_sp1$q;
+                    late$d = 1'b0;
+                end
+                else if (shorten) begin
+                    lc$d = lc_inc;
+                    rem$d = rem$q - c_sjw1$q;
+                    tsp$d = tsp_dec;
+                    late$d = 1'b1;
+                end
+                else if (lengthen) begin
+                    lc$d = lc_inc;
+                    rem$d = rem_dec + ((lc$q) & 5'h1f);
+                    tsp$d = tsp_dec + ((lc$q) & 5'h1f);
+                    late$d = 1'b0;
+                end
+                else begin
+                    lc$d = lc_inc;
+                    rem$d = rem_dec;
+                    tsp$d = tsp_dec;
+                    late$d = late$q | (tsp$q == 32'h1);
+                end
                 if (smp) begin
                     busmon_n$d = sampled;
                     sync_dis$d = 1'b0;
@@ -2065,6 +2109,25 @@ module canstar_sja1000$core$btl$c_ntq(d,q,clock);
 endmodule // canstar_sja1000$core$btl$c_ntq
 
 
+module canstar_sja1000$core$btl$c_ntq1(d,q,clock);
+    
+    // Module arguments
+    input wire  [4:0] d;
+    output reg  [4:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 5'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_sja1000$core$btl$c_ntq1
+
+
 module canstar_sja1000$core$btl$c_sjw(d,q,clock);
     
     // Module arguments
@@ -2084,6 +2147,25 @@ module canstar_sja1000$core$btl$c_sjw(d,q,clock);
 endmodule // canstar_sja1000$core$btl$c_sjw
 
 
+module canstar_sja1000$core$btl$c_sjw1(d,q,clock);
+    
+    // Module arguments
+    input wire  [4:0] d;
+    output reg  [4:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 5'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_sja1000$core$btl$c_sjw1
+
+
 module canstar_sja1000$core$btl$c_sp(d,q,clock);
     
     // Module arguments
@@ -2101,6 +2183,25 @@ module canstar_sja1000$core$btl$c_sp(d,q,clock);
     end
           
 endmodule // canstar_sja1000$core$btl$c_sp
+
+
+module canstar_sja1000$core$btl$c_sp1(d,q,clock);
+    
+    // Module arguments
+    input wire  [4:0] d;
+    output reg  [4:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 5'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_sja1000$core$btl$c_sp1
 
 
 module canstar_sja1000$core$btl$c_triple(d,q,clock);
@@ -2139,25 +2240,6 @@ module canstar_sja1000$core$btl$c_valid(d,q,clock);
     end
           
 endmodule // canstar_sja1000$core$btl$c_valid
-
-
-module canstar_sja1000$core$btl$cnt(d,q,clock);
-    
-    // Module arguments
-    input wire  [4:0] d;
-    output reg  [4:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 5'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_sja1000$core$btl$cnt
 
 
 module canstar_sja1000$core$btl$h1_n(d,q,clock);
@@ -2217,23 +2299,42 @@ module canstar_sja1000$core$btl$hard_r(d,q,clock);
 endmodule // canstar_sja1000$core$btl$hard_r
 
 
-module canstar_sja1000$core$btl$nbw(d,q,clock);
+module canstar_sja1000$core$btl$late(d,q,clock);
     
     // Module arguments
-    input wire  [4:0] d;
-    output reg  [4:0] q;
+    input wire  d;
+    output reg  q;
     input wire  clock;
     
     // Update code (custom)
     initial begin
-       q = 5'h0;
+       q = 1'h0;
     end
     
     always @(posedge clock) begin
        q <= d;
     end
           
-endmodule // canstar_sja1000$core$btl$nbw
+endmodule // canstar_sja1000$core$btl$late
+
+
+module canstar_sja1000$core$btl$lc(d,q,clock);
+    
+    // Module arguments
+    input wire  [2:0] d;
+    output reg  [2:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 3'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_sja1000$core$btl$lc
 
 
 module canstar_sja1000$core$btl$pending(d,q,clock);
@@ -2272,6 +2373,25 @@ module canstar_sja1000$core$btl$pre(d,q,clock);
     end
           
 endmodule // canstar_sja1000$core$btl$pre
+
+
+module canstar_sja1000$core$btl$rem(d,q,clock);
+    
+    // Module arguments
+    input wire  [4:0] d;
+    output reg  [4:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 5'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_sja1000$core$btl$rem
 
 
 module canstar_sja1000$core$btl$resync_r(d,q,clock);
@@ -2331,25 +2451,6 @@ module canstar_sja1000$core$btl$since(d,q,clock);
 endmodule // canstar_sja1000$core$btl$since
 
 
-module canstar_sja1000$core$btl$spw(d,q,clock);
-    
-    // Module arguments
-    input wire  [4:0] d;
-    output reg  [4:0] q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 5'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_sja1000$core$btl$spw
-
-
 module canstar_sja1000$core$btl$sync_dis(d,q,clock);
     
     // Module arguments
@@ -2367,6 +2468,25 @@ module canstar_sja1000$core$btl$sync_dis(d,q,clock);
     end
           
 endmodule // canstar_sja1000$core$btl$sync_dis
+
+
+module canstar_sja1000$core$btl$tsp(d,q,clock);
+    
+    // Module arguments
+    input wire  [4:0] d;
+    output reg  [4:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 5'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_sja1000$core$btl$tsp
 
 
 module canstar_sja1000$core$btl$tx_n(d,q,clock);
