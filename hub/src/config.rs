@@ -95,6 +95,11 @@ pub struct HubConfig {
     pub sub_glitch_limit: u64,
     /// Frames completed without error that take one glitch off the counter, 1..=31.
     pub glitch_decay: u64,
+    /// Peer-hub rule (hub.md §5.11): common glitches (every replica sublink at once)
+    /// that isolate every sublink from the peer, 1..=15, and the good frames that take
+    /// one off the counter, 1..=7.
+    pub peer_glitch_limit: u64,
+    pub peer_glitch_decay: u64,
     /// Window rule (hub.md §5.2): clocks after the estimated bit start from which a
     /// dominant level at any clock up to the sample point counts as the bit's value for
     /// the unjustified-dominant rules (ports, sublinks), 0..=31.
@@ -121,7 +126,7 @@ impl Default for HubConfig {
             sub_life_threshold: 64,
             nack_threshold: 7,
             dbc_threshold: 13,
-            sub_bic_threshold: 10,
+            sub_bic_threshold: 9,
             sub_dbc_threshold: 28,
             replica_limit: 3,
             glitch_max: None,
@@ -129,6 +134,8 @@ impl Default for HubConfig {
             glitch_limit: 3,
             sub_glitch_limit: 6,
             glitch_decay: 16,
+            peer_glitch_limit: 12,
+            peer_glitch_decay: 4,
             window_lag: 7,
             sub_window_lag: 8,
             reintegration: None,
@@ -174,6 +181,8 @@ impl HubConfig {
             glitch_max: self.glitch_max_clocks(),
             glitch_limit: self.glitch_limit,
             glitch_decay: self.glitch_decay,
+            peer_glitch_limit: self.peer_glitch_limit,
+            peer_glitch_decay: self.peer_glitch_decay,
             window_lag: self.window_lag,
             crc_window_end: self.crc_window_end(),
         }
@@ -210,6 +219,8 @@ impl HubConfig {
             glitch_max: self.glitch_max_clocks(),
             glitch_limit: self.sub_glitch_limit,
             glitch_decay: self.glitch_decay,
+            peer_glitch_limit: self.peer_glitch_limit,
+            peer_glitch_decay: self.peer_glitch_decay,
             window_lag: self.sub_window_lag,
             crc_window_end: self.crc_window_end(),
         }
@@ -249,6 +260,8 @@ impl HubConfig {
             ("glitch_limit", self.glitch_limit, 7),
             ("sub_glitch_limit", self.sub_glitch_limit, 7),
             ("glitch_decay", self.glitch_decay, 31),
+            ("peer_glitch_limit", self.peer_glitch_limit, 15),
+            ("peer_glitch_decay", self.peer_glitch_decay, 7),
             ("sub_glitch_min", self.sub_glitch_min, 30),
             ("glitch_max", self.glitch_max.unwrap_or(1), 30),
         ] {

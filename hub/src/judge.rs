@@ -309,6 +309,10 @@ pub struct JudgeParams {
     pub glitch_limit: u64,
     /// Good frames per glitch taken off the counter, 1..=31.
     pub glitch_decay: u64,
+    /// Peer-hub rule (sublinks only): common glitches that isolate, 1..=15.
+    pub peer_glitch_limit: u64,
+    /// Good frames per common glitch taken off the peer-glitch counter, 1..=7.
+    pub peer_glitch_decay: u64,
     /// Clocks after the bit start from which the window rule looks, 0..=31.
     pub window_lag: u64,
     /// Last clock after the bit start at which a dominant level counts in the CRC
@@ -371,6 +375,8 @@ pub struct JudgeUnit {
     pub nack: Signal<Out, Bits<3>>,
     pub rep_cnt: Signal<Out, Bits<3>>,
     pub gc: Signal<Out, Bits<3>>,
+    /// Common glitches counted against the peer hub (decaying; sublinks only).
+    pub pgc: Signal<Out, Bits<4>>,
     pub silent: Signal<Out, Bit>,
     pub contender: Signal<Out, Bit>,
     pulse: PulseCheck,
@@ -381,6 +387,8 @@ pub struct JudgeUnit {
     rep_limit: Constant<Bits<3>>,
     glitch_limit: Constant<Bits<3>>,
     glitch_decay: Constant<Bits<5>>,
+    pg_limit: Constant<Bits<4>>,
+    pg_decay: Constant<Bits<3>>,
     win_lag: Constant<Bits<5>>,
     crc_end: Constant<Bits<5>>,
     ack_rule: Constant<Bit>,
@@ -408,6 +416,8 @@ pub struct JudgeUnit {
     gc_r: DFF<Bits<3>>,
     gdec_r: DFF<Bits<5>>,
     an_r: DFF<Bits<2>>,
+    pgc_r: DFF<Bits<4>>,
+    pdec_r: DFF<Bits<3>>,
     dom: Signal<Local, Bit>,
     domw: Signal<Local, Bit>,
     unj: Signal<Local, Bit>,
@@ -419,6 +429,7 @@ pub struct JudgeUnit {
     bl_dm_r: DFF<Bit>,
     gpend: DFF<Bit>,
     gcount: Signal<Local, Bit>,
+    pcount: Signal<Local, Bit>,
 }
 
 impl JudgeUnit {
@@ -430,6 +441,8 @@ impl JudgeUnit {
         assert!((1..=7).contains(&p.replica_limit), "replica limit out of range");
         assert!((1..=7).contains(&p.glitch_limit), "glitch limit out of range");
         assert!((1..=31).contains(&p.glitch_decay), "glitch decay out of range");
+        assert!((1..=15).contains(&p.peer_glitch_limit), "peer glitch limit out of range");
+        assert!((1..=7).contains(&p.peer_glitch_decay), "peer glitch decay out of range");
         assert!(p.window_lag <= 31, "window lag out of range");
         if let Some(w) = p.reintegration {
             assert!((1..=255).contains(&w), "reintegration window out of range");
@@ -474,6 +487,7 @@ impl JudgeUnit {
             nack: Default::default(),
             rep_cnt: Default::default(),
             gc: Default::default(),
+            pgc: Default::default(),
             silent: Default::default(),
             contender: Default::default(),
             pulse: PulseCheck::new(p.glitch_min, p.glitch_max),
@@ -484,6 +498,8 @@ impl JudgeUnit {
             rep_limit: Constant::new(p.replica_limit.into()),
             glitch_limit: Constant::new(p.glitch_limit.into()),
             glitch_decay: Constant::new(p.glitch_decay.into()),
+            pg_limit: Constant::new(p.peer_glitch_limit.into()),
+            pg_decay: Constant::new(p.peer_glitch_decay.into()),
             win_lag: Constant::new(p.window_lag.into()),
             crc_end: Constant::new(p.crc_window_end.max(p.window_lag).into()),
             ack_rule: Constant::new(port),
@@ -511,6 +527,8 @@ impl JudgeUnit {
             gc_r: Default::default(),
             gdec_r: Default::default(),
             an_r: Default::default(),
+            pgc_r: Default::default(),
+            pdec_r: Default::default(),
             dom: Default::default(),
             domw: Default::default(),
             unj: Default::default(),
@@ -522,6 +540,7 @@ impl JudgeUnit {
             bl_dm_r: Default::default(),
             gpend: Default::default(),
             gcount: Default::default(),
+            pcount: Default::default(),
         }
     }
     /// A port judge unit (ACK-slot rule and NACK on, replica rule off).
@@ -537,7 +556,7 @@ impl JudgeUnit {
 impl Logic for JudgeUnit {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, dis_r, bic_r, life_r, dbc_r, nack_r, cont_r, rep_r, rep_seen, rep_first_dom, ok_r, acked, bad, ack_missing, ack_c, ack_rx, seen_dom, seen_dom_crc, gc_r, gdec_r, an_r, bl_r, bl_dm_r, gpend);
+        dff_setup!(self, clock, dis_r, bic_r, life_r, dbc_r, nack_r, cont_r, rep_r, rep_seen, rep_first_dom, ok_r, acked, bad, ack_missing, ack_c, ack_rx, seen_dom, seen_dom_crc, gc_r, gdec_r, an_r, pgc_r, pdec_r, bl_r, bl_dm_r, gpend);
         self.pulse.clock.next = self.clock.val();
         self.pulse.reset.next = self.reset.val();
         self.pulse.c.next = self.c.val();
@@ -572,7 +591,7 @@ impl Logic for JudgeUnit {
             | (self.crc_delim.val() & !self.err_phase.val() & self.seen_dom_crc.q.val());
         self.blame.next = self.sample.val() & self.unj.val() & self.enabled.val();
         self.charge.next = self.sample.val() & self.unj.val() & self.enabled.val() & !self.suppress.val() & !self.stuff_dom.val();
-        self.charged.next = self.sample.val() & self.unj.val() & self.enabled.val() & !self.suppress.val() & !self.stuff_dom.val();
+        self.charged.next = self.charge.val();
         // (port units only: `nack_on` is the port-unit constant)
         self.tx_error.next = self.sample.val()
             & self.nack_on.val()
@@ -591,7 +610,9 @@ impl Logic for JudgeUnit {
             // §5.1 roles
             if self.sof.val() {
                 self.cont_r.d.next = true;
-            } else if self.tx_region.val() & self.c.val() & !self.bt.val() {
+            } else if self.tx_region.val() & self.c.val() & !self.bt.val() & !self.rep_dom.val() {
+                // (a sublink recessive while a replica is dominant has not lost
+                // arbitration: the replicas disagree, and the replica rule judges that)
                 self.cont_r.d.next = false;
             }
             // §5.4 dominant run
@@ -620,6 +641,15 @@ impl Logic for JudgeUnit {
                     self.gc_r.d.next = self.gc_r.q.val() - 1;
                 } else {
                     self.gdec_r.d.next = self.gdec_r.q.val() + 1;
+                }
+            }
+            // peer-hub rule decay
+            if self.frame_ok.val() & self.enabled.val() & (self.pgc_r.q.val() != 0) {
+                if (self.pdec_r.q.val() + 1) >= self.pg_decay.val() {
+                    self.pdec_r.d.next = 0.into();
+                    self.pgc_r.d.next = self.pgc_r.q.val() - 1;
+                } else {
+                    self.pdec_r.d.next = self.pdec_r.q.val() + 1;
                 }
             }
             if self.an_r.q.val() != 0 {
@@ -673,6 +703,14 @@ impl Logic for JudgeUnit {
             self.gc_r.d.next = self.gc_r.q.val() + 1;
             self.gdec_r.d.next = 0.into();
         }
+        // peer-hub rule: a common glitch is counted against the peer hub's contribution
+        // (every replica at once; the peer counts its ports' glitches itself, so a stream
+        // of them that outlasts the peer's own glitch limits is the peer's output)
+        self.pcount.next = self.sample.val() & (self.gpend.q.val() | self.g.val()) & self.common.val() & self.enabled.val() & self.rep_on.val();
+        if self.pcount.val() & (self.pgc_r.q.val() != 15) {
+            self.pgc_r.d.next = self.pgc_r.q.val() + 1;
+            self.pdec_r.d.next = 0.into();
+        }
         if (self.gcount.val() | self.charge.val()) & (self.life_r.q.val() != 127) {
             self.life_r.d.next = self.life_r.q.val() + 1;
         }
@@ -708,6 +746,7 @@ impl Logic for JudgeUnit {
                 | (self.life_r.q.val() >= self.life_limit.val())
                 | (self.dbc_r.q.val() >= self.dbc_thr.val())
                 | (self.gc_r.q.val() >= self.glitch_limit.val())
+                | (self.pgc_r.q.val() >= self.pg_limit.val())
                 | (self.rep_on.val() & (self.rep_r.q.val() >= self.rep_limit.val())))
         {
             self.dis_r.d.next = true;
@@ -733,6 +772,8 @@ impl Logic for JudgeUnit {
                     self.ok_r.d.next = 0.into();
                     self.gc_r.d.next = 0.into();
                     self.gdec_r.d.next = 0.into();
+                    self.pgc_r.d.next = 0.into();
+                    self.pdec_r.d.next = 0.into();
                 }
             } else {
                 self.ok_r.d.next = 0.into();
@@ -762,6 +803,8 @@ impl Logic for JudgeUnit {
             self.gc_r.d.next = 0.into();
             self.gdec_r.d.next = 0.into();
             self.an_r.d.next = 0.into();
+            self.pgc_r.d.next = 0.into();
+            self.pdec_r.d.next = 0.into();
         }
         self.dis.next = self.dis_r.q.val();
         self.bic.next = self.bic_r.q.val();
@@ -770,6 +813,7 @@ impl Logic for JudgeUnit {
         self.nack.next = self.nack_r.q.val();
         self.rep_cnt.next = self.rep_r.q.val();
         self.gc.next = self.gc_r.q.val();
+        self.pgc.next = self.pgc_r.q.val();
         self.silent.next = self.nack_r.q.val() >= self.nack_thr.val();
         self.contender.next = self.cont_r.q.val();
     }

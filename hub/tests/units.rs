@@ -6,7 +6,7 @@ use canstar_hub::judge::{JudgeParams, JudgeUnit};
 use rand::Rng;
 
 fn params() -> JudgeParams {
-    JudgeParams { bic_limit: 64, life_limit: 32, dbc_threshold: 13, nack_threshold: 7, replica_limit: 3, reintegration: None, glitch_min: 1, glitch_max: 11, glitch_limit: 3, glitch_decay: 16, window_lag: 7, crc_window_end: 8 }
+    JudgeParams { bic_limit: 64, life_limit: 32, dbc_threshold: 13, nack_threshold: 7, replica_limit: 3, reintegration: None, glitch_min: 1, glitch_max: 11, glitch_limit: 3, glitch_decay: 16, peer_glitch_limit: 12, peer_glitch_decay: 4, window_lag: 7, crc_window_end: 8 }
 }
 
 #[derive(Default, Clone, Copy)]
@@ -449,6 +449,74 @@ fn replica_rule_charges_by_consequence() {
     j.rep_rec.next = false;
     sample(&mut j, Bit { c: true, bt: true, frame_ok: true, ..Default::default() });
     assert_eq!(j.rep_cnt.val().index(), 1);
+}
+
+/// §5.1 with §5.7: a sublink that is recessive while BT is dominant has lost arbitration
+/// (it becomes a receiver, and its next dominant bit is blamed) only when no replica is
+/// dominant; recessive while a replica is dominant is a replica disagreement, not a loss.
+#[test]
+fn recessive_replica_minority_stays_a_contender() {
+    for (rep_dom, blamed) in [(false, true), (true, false)] {
+        let mut j = JudgeUnit::sublink(params());
+        drive::init(&mut j);
+        sample(&mut j, Bit { c: false, bt: false, sof: true, ..Default::default() });
+        j.rep_dom.next = rep_dom;
+        sample(&mut j, Bit { c: true, bt: false, tx: true, ..Default::default() });
+        j.rep_dom.next = false;
+        assert_eq!(j.contender.val(), rep_dom, "contender after a recessive bit with rep_dom = {rep_dom}");
+        // the peer's next dominant data bit
+        sample(&mut j, Bit { c: true, bt: true, tx: true, ..Default::default() });
+        let b = sample(&mut j, Bit { c: false, bt: false, tx: true, ..Default::default() });
+        assert_eq!(b, blamed, "dominant bit blamed with rep_dom = {rep_dom}");
+    }
+    // ports have no replicas: unchanged
+    let mut j = unit(params());
+    sample(&mut j, Bit { c: false, bt: false, sof: true, ..Default::default() });
+    sample(&mut j, Bit { c: true, bt: false, tx: true, ..Default::default() });
+    assert!(!j.contender.val());
+}
+
+/// hub.md §5.11 peer-hub rule: common glitches (every replica at once) are counted in
+/// `pgc` on sublinks only, decay by one per `peer_glitch_decay` good frames, and isolate at
+/// `peer_glitch_limit`; they never count in `gc` or `life`.
+#[test]
+fn common_glitches_isolate_the_peer_hub() {
+    let p = JudgeParams { peer_glitch_limit: 4, peer_glitch_decay: 2, ..params() };
+    let mut j = JudgeUnit::sublink(p);
+    drive::init(&mut j);
+    j.reset.next = true;
+    drive::cycle(&mut j);
+    j.reset.next = false;
+    j.common.next = true;
+    pulse_bit(&mut j, 3, 4, false);
+    pulse_bit(&mut j, 3, 4, false);
+    assert_eq!(j.pgc.val().index(), 2);
+    assert_eq!(j.gc.val().index(), 0);
+    assert_eq!(j.life.val().index(), 0);
+    j.common.next = false;
+    // a glitch on this replica alone counts in gc, not in pgc
+    pulse_bit(&mut j, 3, 4, false);
+    assert_eq!((j.pgc.val().index(), j.gc.val().index()), (2, 1));
+    // two good frames take one off
+    for _ in 0..2 {
+        sample(&mut j, Bit { c: true, bt: true, frame_ok: true, ..Default::default() });
+    }
+    assert_eq!(j.pgc.val().index(), 1, "decayed");
+    j.common.next = true;
+    for k in 1..=3 {
+        assert!(!j.dis.val(), "not isolated at pgc {k}");
+        pulse_bit(&mut j, 3, 4, false);
+    }
+    drive::cycle(&mut j);
+    assert_eq!(j.pgc.val().index(), 4);
+    assert!(j.dis.val(), "isolated at the limit");
+    // a port never counts common glitches (its `common` input is 0 in the hub anyway)
+    let mut j = unit(p);
+    j.common.next = true;
+    for _ in 0..5 {
+        pulse_bit(&mut j, 3, 4, false);
+    }
+    assert_eq!(j.pgc.val().index(), 0);
 }
 
 /// §5.8 with §5.7: while another replica has glitches on its counter (and this one has

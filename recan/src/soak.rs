@@ -244,6 +244,11 @@ pub fn run_chunk_vcd(s: &SoakSettings, index: u64, vcd: Option<(&std::path::Path
     }
 }
 
+/// A blame site of a blame that was not charged (marked by [`blame_sites`]).
+fn uncharged_site(site: &str) -> bool {
+    site.ends_with(" (not charged)")
+}
+
 /// The first blames of a run, described ([`ChunkOutcome::blame_sites`]).
 fn blame_sites(r: &RunResult, ports: usize) -> Vec<String> {
     r.blames
@@ -338,9 +343,10 @@ impl SoakReport {
         }
         let unclean = self.chunks.iter().filter(|c| !c.clean()).count();
         if unclean > 0 {
-            // where the blames fell, by the monitor's field and bit (first 8 per chunk)
+            // where the charged blames of the unclean chunks fell, by the monitor's field
+            // and bit (first 8 per chunk; uncharged ones are listed with the clean chunks)
             let mut sites = std::collections::BTreeMap::<String, usize>::new();
-            for site in self.chunks.iter().flat_map(|c| &c.blame_sites) {
+            for site in self.chunks.iter().filter(|c| !c.clean()).flat_map(|c| &c.blame_sites).filter(|b| !uncharged_site(b)) {
                 let place = site.split(": ").nth(1).and_then(|x| x.split(" at ").next()).unwrap_or(site);
                 *sites.entry(place.to_string()).or_default() += 1;
             }
@@ -367,7 +373,7 @@ impl SoakReport {
                 c.blames,
                 c.isolations.join(", "),
                 c.problems.join("; "),
-                c.blame_sites.first().map_or(String::new(), |b| format!(" first blame: {b}"))
+                c.blame_sites.iter().find(|b| !uncharged_site(b)).map_or(String::new(), |b| format!(" first blame: {b}"))
             );
         }
         s
@@ -391,24 +397,33 @@ mod tests {
             frames: 100,
             blames: 3,
             blame_sites: vec![
+                "hub 0 port 2: Data bit 3 at bit time 5 (not charged)".into(),
                 "hub 1 sublink 0: CrcDelim bit 0 at bit time 10".into(),
                 "hub 1 port 2: CrcDelim bit 0 at bit time 900".into(),
                 "hub 0 sublink 1: AckDelim bit 0 at bit time 11".into(),
             ],
             ..Default::default()
         };
+        // a clean chunk's uncharged blame is not listed with the unclean chunks' sites
+        let clean_uncharged = ChunkOutcome {
+            index: 2,
+            frames: 100,
+            uncharged: 1,
+            blame_sites: vec!["hub 0 port 1: Eof bit 2 at bit time 7 (not charged)".into()],
+            ..Default::default()
+        };
         let r = SoakReport {
             settings: None,
-            chunks: vec![clean, bad],
+            chunks: vec![clean, bad, clean_uncharged],
         };
         let s = r.summary();
         assert!(
-            s.starts_with("frames 200  chunks 2  blames 3  isolations 0"),
+            s.starts_with("frames 300  chunks 3  blames 3  isolations 0"),
             "{s}"
         );
         assert!(
             s.contains(
-                "chunks not clean: 1 of 2; blames in: AckDelim bit 0 (1), CrcDelim bit 0 (2)"
+                "chunks not clean: 1 of 3; blames in: AckDelim bit 0 (1), CrcDelim bit 0 (2)"
             ),
             "{s}"
         );
