@@ -6614,6 +6614,8 @@ module canstar_slcan$can$fifo(clock,rst,clear,offer_rx,offer_own,rx_ide,rx_rtr,r
     reg  [7:0] l_wbyte;
     reg  l_wdone;
     reg  l_fits;
+    reg  [10:0] l_le;
+    reg  [10:0] l_th;
     reg  [7:0] l_fi;
     reg  [3:0] l_cur_n;
     reg  [3:0] l_cur_len;
@@ -6792,7 +6794,94 @@ module canstar_slcan$can$fifo(clock,rst,clear,offer_rx,offer_own,rx_ide,rx_rtr,r
             l_wbyte = l_msg[(32'h0)+:(8)];
         end
         l_wdone = wr_busy$q & ((wr_idx$q + 32'h1) == wr_len$q);
-        l_fits = (used$q + ((l_len) & 7'h7f)) <= 32'h40;
+        l_le = 32'h0;
+        l_le = (l_le & ~(1 << (32'h0)) | ((~used$q[32'h3] & ~used$q[32'h2]) << (32'h0)));
+        l_le = (l_le & ~(1 << (32'h1)) | ((~used$q[32'h3] & (~used$q[32'h2] | (~used$q[32'h1] & ~used$q[32'h0]))) << (32'h1)));
+        l_le = (l_le & ~(1 << (32'h2)) | ((~used$q[32'h3] & (~used$q[32'h2] | ~used$q[32'h1])) << (32'h2)));
+        l_le = (l_le & ~(1 << (32'h3)) | ((~used$q[32'h3] & ((~used$q[32'h2] | ~used$q[32'h1]) | ~used$q[32'h0])) << (32'h3)));
+        l_le = (l_le & ~(1 << (32'h4)) | ((~used$q[32'h3]) << (32'h4)));
+        l_le = (l_le & ~(1 << (32'h5)) | ((~used$q[32'h3] | ((~used$q[32'h2] & ~used$q[32'h1]) & ~used$q[32'h0])) << (32'h5)));
+        l_le = (l_le & ~(1 << (32'h6)) | ((~used$q[32'h3] | (~used$q[32'h2] & ~used$q[32'h1])) << (32'h6)));
+        l_le = (l_le & ~(1 << (32'h7)) | ((~used$q[32'h3] | (~used$q[32'h2] & (~used$q[32'h1] | ~used$q[32'h0]))) << (32'h7)));
+        l_le = (l_le & ~(1 << (32'h8)) | ((~used$q[32'h3] | ~used$q[32'h2]) << (32'h8)));
+        l_le = (l_le & ~(1 << (32'h9)) | (((~used$q[32'h3] | ~used$q[32'h2]) | (~used$q[32'h1] & ~used$q[32'h0])) << (32'h9)));
+        l_le = (l_le & ~(1 << (32'ha)) | (((~used$q[32'h3] | ~used$q[32'h2]) | ~used$q[32'h1]) << (32'ha)));
+        l_th = l_le;
+        if (~(used$q[32'h5] & used$q[32'h4])) begin
+            l_th = 32'h7ff;
+        end
+        if (used$q[32'h6]) begin
+            l_th = 32'h0;
+        end
+        l_fits = 1'b0;
+        case (f_n)
+            0:
+                begin
+                    l_fits = l_th[32'ha];
+                    if (f_ide) begin
+                        l_fits = l_th[32'h8];
+                    end
+                end
+            1:
+                begin
+                    l_fits = l_th[32'h9];
+                    if (f_ide) begin
+                        l_fits = l_th[32'h7];
+                    end
+                end
+            2:
+                begin
+                    l_fits = l_th[32'h8];
+                    if (f_ide) begin
+                        l_fits = l_th[32'h6];
+                    end
+                end
+            3:
+                begin
+                    l_fits = l_th[32'h7];
+                    if (f_ide) begin
+                        l_fits = l_th[32'h5];
+                    end
+                end
+            4:
+                begin
+                    l_fits = l_th[32'h6];
+                    if (f_ide) begin
+                        l_fits = l_th[32'h4];
+                    end
+                end
+            5:
+                begin
+                    l_fits = l_th[32'h5];
+                    if (f_ide) begin
+                        l_fits = l_th[32'h3];
+                    end
+                end
+            6:
+                begin
+                    l_fits = l_th[32'h4];
+                    if (f_ide) begin
+                        l_fits = l_th[32'h2];
+                    end
+                end
+            7:
+                begin
+                    l_fits = l_th[32'h3];
+                    if (f_ide) begin
+                        l_fits = l_th[32'h1];
+                    end
+                end
+            8:
+                begin
+                    l_fits = l_th[32'h2];
+                    if (f_ide) begin
+                        l_fits = l_th[32'h0];
+                    end
+                end
+            default:
+                begin
+                end
+        endcase
         l_fi = cur_fi$q;
         if (fetch_q$q & (fetch_a$q == rbsa_r$q)) begin
             l_fi = ram$read_data;

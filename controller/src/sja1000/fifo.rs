@@ -105,6 +105,8 @@ pub struct RxFifo {
     l_wbyte: Signal<Local, Bits<8>>,
     l_wdone: Signal<Local, Bit>,
     l_fits: Signal<Local, Bit>,
+    l_le: Signal<Local, Bits<11>>,
+    l_th: Signal<Local, Bits<11>>,
     l_fi: Signal<Local, Bits<8>>,
     l_cur_n: Signal<Local, Bits<4>>,
     l_cur_len: Signal<Local, Bits<4>>,
@@ -173,6 +175,8 @@ impl Default for RxFifo {
             l_wbyte: Default::default(),
             l_wdone: Default::default(),
             l_fits: Default::default(),
+            l_le: Default::default(),
+            l_th: Default::default(),
             l_fi: Default::default(),
             l_cur_n: Default::default(),
             l_cur_len: Default::default(),
@@ -277,7 +281,89 @@ impl Logic for RxFifo {
             self.l_wbyte.next = self.l_msg.val().get_bits::<8>(0);
         }
         self.l_wdone.next = self.wr_busy.q.val() & ((self.wr_idx.q.val() + 1) == self.wr_len.q.val());
-        self.l_fits.next = (self.used.q.val() + bit_cast::<7, 4>(self.l_len.val())) <= 64;
+        // used + l_len <= 64 without an adder on the offer path: l_len is
+        // f_n + 3 (f_n + 5 extended), f_n 0..8, so the frame fits when used
+        // <= 61 - f_n (59 - f_n); bit j of `l_th` is used <= 51 + j, from
+        // the register alone and without comparators (which Yosys maps to
+        // carry chains): used <= 51 + j is used < 64 and either used < 48 or
+        // used[3:0] <= 3 + j (`l_le` bit j).
+        self.l_le.next = 0.into();
+        self.l_le.next = self.l_le.val().replace_bit(0, !self.used.q.val().get_bit(3) & !self.used.q.val().get_bit(2));
+        self.l_le.next = self.l_le.val().replace_bit(1, !self.used.q.val().get_bit(3) & (!self.used.q.val().get_bit(2) | (!self.used.q.val().get_bit(1) & !self.used.q.val().get_bit(0))));
+        self.l_le.next = self.l_le.val().replace_bit(2, !self.used.q.val().get_bit(3) & (!self.used.q.val().get_bit(2) | !self.used.q.val().get_bit(1)));
+        self.l_le.next = self.l_le.val().replace_bit(3, !self.used.q.val().get_bit(3) & ((!self.used.q.val().get_bit(2) | !self.used.q.val().get_bit(1)) | !self.used.q.val().get_bit(0)));
+        self.l_le.next = self.l_le.val().replace_bit(4, !self.used.q.val().get_bit(3));
+        self.l_le.next = self.l_le.val().replace_bit(5, !self.used.q.val().get_bit(3) | ((!self.used.q.val().get_bit(2) & !self.used.q.val().get_bit(1)) & !self.used.q.val().get_bit(0)));
+        self.l_le.next = self.l_le.val().replace_bit(6, !self.used.q.val().get_bit(3) | (!self.used.q.val().get_bit(2) & !self.used.q.val().get_bit(1)));
+        self.l_le.next = self.l_le.val().replace_bit(7, !self.used.q.val().get_bit(3) | (!self.used.q.val().get_bit(2) & (!self.used.q.val().get_bit(1) | !self.used.q.val().get_bit(0))));
+        self.l_le.next = self.l_le.val().replace_bit(8, !self.used.q.val().get_bit(3) | !self.used.q.val().get_bit(2));
+        self.l_le.next = self.l_le.val().replace_bit(9, (!self.used.q.val().get_bit(3) | !self.used.q.val().get_bit(2)) | (!self.used.q.val().get_bit(1) & !self.used.q.val().get_bit(0)));
+        self.l_le.next = self.l_le.val().replace_bit(10, (!self.used.q.val().get_bit(3) | !self.used.q.val().get_bit(2)) | !self.used.q.val().get_bit(1));
+        self.l_th.next = self.l_le.val();
+        if !(self.used.q.val().get_bit(5) & self.used.q.val().get_bit(4)) {
+            self.l_th.next = 0x7FF.into();
+        }
+        if self.used.q.val().get_bit(6) {
+            self.l_th.next = 0.into();
+        }
+        self.l_fits.next = false;
+        match self.f_n.val().index() {
+            0 => {
+                self.l_fits.next = self.l_th.val().get_bit(10);
+                if self.f_ide.val() {
+                    self.l_fits.next = self.l_th.val().get_bit(8);
+                }
+            }
+            1 => {
+                self.l_fits.next = self.l_th.val().get_bit(9);
+                if self.f_ide.val() {
+                    self.l_fits.next = self.l_th.val().get_bit(7);
+                }
+            }
+            2 => {
+                self.l_fits.next = self.l_th.val().get_bit(8);
+                if self.f_ide.val() {
+                    self.l_fits.next = self.l_th.val().get_bit(6);
+                }
+            }
+            3 => {
+                self.l_fits.next = self.l_th.val().get_bit(7);
+                if self.f_ide.val() {
+                    self.l_fits.next = self.l_th.val().get_bit(5);
+                }
+            }
+            4 => {
+                self.l_fits.next = self.l_th.val().get_bit(6);
+                if self.f_ide.val() {
+                    self.l_fits.next = self.l_th.val().get_bit(4);
+                }
+            }
+            5 => {
+                self.l_fits.next = self.l_th.val().get_bit(5);
+                if self.f_ide.val() {
+                    self.l_fits.next = self.l_th.val().get_bit(3);
+                }
+            }
+            6 => {
+                self.l_fits.next = self.l_th.val().get_bit(4);
+                if self.f_ide.val() {
+                    self.l_fits.next = self.l_th.val().get_bit(2);
+                }
+            }
+            7 => {
+                self.l_fits.next = self.l_th.val().get_bit(3);
+                if self.f_ide.val() {
+                    self.l_fits.next = self.l_th.val().get_bit(1);
+                }
+            }
+            8 => {
+                self.l_fits.next = self.l_th.val().get_bit(2);
+                if self.f_ide.val() {
+                    self.l_fits.next = self.l_th.val().get_bit(0);
+                }
+            }
+            _ => {}
+        }
 
         // Length of the message at RBSA (for a release), from its FI byte.
         self.l_fi.next = self.cur_fi.q.val();
