@@ -29,7 +29,7 @@
 //! blamed now; the hub triggers its error flag with it), `tx_error` (combinational
 //! strobe: this unit's transmitter has just seen a bit error, see §5.1 below; the hub
 //! also triggers its error flag with it, without blaming anyone), `bic`, `dbc`, `nack`,
-//! `life` (lifetime blame count), `rep_cnt` counters, `silent` (NACK threshold reached), `contender` (role, debug).
+//! `life` (lifetime blame count), `rep_cnt`, `pgc` (common glitches, peer-hub rule) counters, `silent` (NACK threshold reached), `contender` (role, debug).
 //!
 //! # Rules
 //! **§5.1 roles (changed).** The baseline makes a port a contender if it is dominant at
@@ -191,8 +191,8 @@
 //! isolated its glitching port (a peer port's glitch often shows as two on the sublinks:
 //! the glitch and the sliver of the peer's error flag), `--class sweep-up-flip-e100
 //! --run-seed 8002060917787091705`, which partitioned the network. A faulty peer hub (its
-//! whole output flipping) is therefore cut off by the unjustified-dominant rule (sublink
-//! limit 80) alone. A glitch also
+//! whole output flipping) was therefore cut off by the unjustified-dominant rule alone;
+//! common glitches now count against the peer hub (peer-hub rule, below). A glitch also
 //! counts in `life` and marks the reintegration window bad. For two samples after a
 //! glitch the unit is `anomaly`; while some *other* unit is anomalous (`suppress`) a
 //! unit's blame still starts the hub's error flag but is not charged (`charged` = 0: no
@@ -248,6 +248,26 @@
 //! without the rule (two classes lose one run each, a healthy controller at exactly 96;
 //! hub.md §5.10). Test: `hub/tests/units.rs`
 //! `dominant_stuff_bit_is_blamed_but_not_charged`.
+//!
+//! **§5.11 replica-aware roles (changed).** A sublink recessive while BT is dominant stops
+//! being a contender only if no other enabled replica is dominant (`rep_dom`): a replica
+//! that drops out under its replica's dominant bit has not lost arbitration. Before, its
+//! next dominant bit was blamed, the blame started an error episode the masked fault never
+//! caused, and the other hub charged its *healthy* replica as the dominant minority of that
+//! episode: the hubs isolated each other (`--class sweep-interlink-d2r-e2 --run-seed
+//! 6012036996613459331`). With the rule every `sweep-interlink-d2r-*` and
+//! `sweep-sublink-d2r-*` class passes 100 of 100 with worst healthy TEC/REC 0. Ports have no
+//! replicas (`rep_dom` = 0): unchanged. Test: `recessive_replica_minority_stays_a_contender`.
+//!
+//! **§5.11 peer-hub rule (added).** A common glitch (every replica at once, `common`) is not
+//! counted in `gc` (§5.8) but in `pgc` (4 bits, sublinks only): one count off per
+//! `peer_glitch_decay` (4) good frames, isolation at `peer_glitch_limit` (12). The peer
+//! isolates its own glitching port after 3 glitches (often seen twice on the sublinks), so
+//! a stream of common glitches beyond that is the peer's own output. Limit 8 partitioned the
+//! hubs in 2 of 10 700 campaign runs (hub.md §5.11), 12 in none of them. Together with the
+//! sublink BIC threshold 9 (72 counter units, was 10): `hub-flip` 75 → 92 of 100,
+//! `sweep-hub-flip-e100` 71 → 87 (`canstar campaign --reps 100`, hub.md §5.11). Test:
+//! `common_glitches_isolate_the_peer_hub`.
 //!
 //! **§5.2 delimiter rule (added).** In the error phase, once BT was recessive at a
 //! sample (the end of every flag), the following delimiter bits are recessive-only

@@ -827,6 +827,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
     wire  [2:0] pj$0$nack;
     wire  [2:0] pj$0$rep_cnt;
     wire  [2:0] pj$0$gc;
+    wire  [3:0] pj$0$pgc;
     wire  pj$0$silent;
     wire  pj$0$contender;
     reg  pj$1$clock;
@@ -868,6 +869,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
     wire  [2:0] pj$1$nack;
     wire  [2:0] pj$1$rep_cnt;
     wire  [2:0] pj$1$gc;
+    wire  [3:0] pj$1$pgc;
     wire  pj$1$silent;
     wire  pj$1$contender;
     reg  pj$2$clock;
@@ -909,6 +911,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
     wire  [2:0] pj$2$nack;
     wire  [2:0] pj$2$rep_cnt;
     wire  [2:0] pj$2$gc;
+    wire  [3:0] pj$2$pgc;
     wire  pj$2$silent;
     wire  pj$2$contender;
     reg  rst_s1$d;
@@ -1054,6 +1057,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         .nack(pj$0$nack),
         .rep_cnt(pj$0$rep_cnt),
         .gc(pj$0$gc),
+        .pgc(pj$0$pgc),
         .silent(pj$0$silent),
         .contender(pj$0$contender)
     );
@@ -1097,6 +1101,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         .nack(pj$1$nack),
         .rep_cnt(pj$1$rep_cnt),
         .gc(pj$1$gc),
+        .pgc(pj$1$pgc),
         .silent(pj$1$silent),
         .contender(pj$1$contender)
     );
@@ -1140,6 +1145,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         .nack(pj$2$nack),
         .rep_cnt(pj$2$rep_cnt),
         .gc(pj$2$gc),
+        .pgc(pj$2$pgc),
         .silent(pj$2$silent),
         .contender(pj$2$contender)
     );
@@ -2335,7 +2341,7 @@ module canstar_cancentrate_core$core$injector$state(d,q,clock);
 endmodule // canstar_cancentrate_core$core$injector$state
 
 
-module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,dis,blame,charged,tx_error,glitch,anomaly,bic,life,dbc,nack,rep_cnt,gc,silent,contender);
+module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,dis,blame,charged,tx_error,glitch,anomaly,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender);
     
     // Module arguments
     input wire  clock;
@@ -2377,6 +2383,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
     output reg  [2:0] nack;
     output reg  [2:0] rep_cnt;
     output reg  [2:0] gc;
+    output reg  [3:0] pgc;
     output reg  silent;
     output reg  contender;
     
@@ -2388,6 +2395,8 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
     localparam  rep_limit = 3'b11;
     localparam  glitch_limit = 3'b11;
     localparam  glitch_decay = 5'b10000;
+    localparam  pg_limit = 4'hc;
+    localparam  pg_decay = 3'b100;
     localparam  win_lag = 5'b111;
     localparam  crc_end = 5'b1000;
     localparam  ack_rule = 1'b1;
@@ -2461,6 +2470,12 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
     reg  [1:0] an_r$d;
     wire  [1:0] an_r$q;
     reg  an_r$clock;
+    reg  [3:0] pgc_r$d;
+    wire  [3:0] pgc_r$q;
+    reg  pgc_r$clock;
+    reg  [2:0] pdec_r$d;
+    wire  [2:0] pdec_r$q;
+    reg  pdec_r$clock;
     reg  bl_r$d;
     wire  bl_r$q;
     reg  bl_r$clock;
@@ -2480,6 +2495,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
     reg  g;
     reg  rep_ok;
     reg  gcount;
+    reg  pcount;
     
     // Sub module instances
     canstar_cancentrate_core$core$pj$0$pulse pulse(
@@ -2588,6 +2604,16 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         .q(an_r$q),
         .clock(an_r$clock)
     );
+    canstar_cancentrate_core$core$pj$0$pgc_r pgc_r(
+        .d(pgc_r$d),
+        .q(pgc_r$q),
+        .clock(pgc_r$clock)
+    );
+    canstar_cancentrate_core$core$pj$0$pdec_r pdec_r(
+        .d(pdec_r$d),
+        .q(pdec_r$q),
+        .clock(pdec_r$clock)
+    );
     canstar_cancentrate_core$core$pj$0$bl_r bl_r(
         .d(bl_r$d),
         .q(bl_r$q),
@@ -2626,6 +2652,8 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         gc_r$clock = clock;
         gdec_r$clock = clock;
         an_r$clock = clock;
+        pgc_r$clock = clock;
+        pdec_r$clock = clock;
         bl_r$clock = clock;
         bl_dm_r$clock = clock;
         gpend$clock = clock;
@@ -2649,6 +2677,8 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         gc_r$d = gc_r$q;
         gdec_r$d = gdec_r$q;
         an_r$d = an_r$q;
+        pgc_r$d = pgc_r$q;
+        pdec_r$d = pdec_r$q;
         bl_r$d = bl_r$q;
         bl_dm_r$d = bl_dm_r$q;
         gpend$d = gpend$q;
@@ -2676,7 +2706,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | im_2 | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q);
         blame = sample & unj & enabled;
         charge = sample & unj & enabled & ~suppress & ~stuff_dom;
-        charged = sample & unj & enabled & ~suppress & ~stuff_dom;
+        charged = charge;
         tx_error = sample & nack_on & enabled & cont_r$q & tx_region & ~arb & c & ~bt & ~err_phase;
         if (sample) begin
             if (ack_slot) begin
@@ -2685,7 +2715,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
             if (sof) begin
                 cont_r$d = 1'b1;
             end
-            else if (tx_region & c & ~bt) begin
+            else if (tx_region & c & ~bt & ~rep_dom) begin
                 cont_r$d = 1'b0;
             end
             if (dom) begin
@@ -2714,6 +2744,15 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
                 end
                 else begin
                     gdec_r$d = gdec_r$q + 32'h1;
+                end
+            end
+            if (frame_ok & enabled & (pgc_r$q != 32'h0)) begin
+                if ((pdec_r$q + 32'h1) >= pg_decay) begin
+                    pdec_r$d = 32'h0;
+                    pgc_r$d = pgc_r$q - 32'h1;
+                end
+                else begin
+                    pdec_r$d = pdec_r$q + 32'h1;
                 end
             end
             if (an_r$q != 32'h0) begin
@@ -2759,6 +2798,11 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
             gc_r$d = gc_r$q + 32'h1;
             gdec_r$d = 32'h0;
         end
+        pcount = sample & (gpend$q | g) & common & enabled & rep_on;
+        if (pcount & (pgc_r$q != 32'hf)) begin
+            pgc_r$d = pgc_r$q + 32'h1;
+            pdec_r$d = 32'h0;
+        end
         if ((gcount | charge) & (life_r$q != 32'h7f)) begin
             life_r$d = life_r$q + 32'h1;
         end
@@ -2780,7 +2824,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
                 rep_r$d = rep_r$q + 32'h1;
             end
         end
-        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (rep_on & (rep_r$q >= rep_limit)))) begin
+        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (pgc_r$q >= pg_limit) | (rep_on & (rep_r$q >= rep_limit)))) begin
             dis_r$d = 1'b1;
         end
         if (enabled) begin
@@ -2804,6 +2848,8 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
                     ok_r$d = 32'h0;
                     gc_r$d = 32'h0;
                     gdec_r$d = 32'h0;
+                    pgc_r$d = 32'h0;
+                    pdec_r$d = 32'h0;
                 end
             end
             else begin
@@ -2834,6 +2880,8 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
             gc_r$d = 32'h0;
             gdec_r$d = 32'h0;
             an_r$d = 32'h0;
+            pgc_r$d = 32'h0;
+            pdec_r$d = 32'h0;
         end
         dis = dis_r$q;
         bic = bic_r$q;
@@ -2842,6 +2890,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         nack = nack_r$q;
         rep_cnt = rep_r$q;
         gc = gc_r$q;
+        pgc = pgc_r$q;
         silent = nack_r$q >= nack_thr;
         contender = cont_r$q;
     end
@@ -3191,6 +3240,44 @@ module canstar_cancentrate_core$core$pj$0$ok_r(d,q,clock);
 endmodule // canstar_cancentrate_core$core$pj$0$ok_r
 
 
+module canstar_cancentrate_core$core$pj$0$pdec_r(d,q,clock);
+    
+    // Module arguments
+    input wire  [2:0] d;
+    output reg  [2:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 3'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$0$pdec_r
+
+
+module canstar_cancentrate_core$core$pj$0$pgc_r(d,q,clock);
+    
+    // Module arguments
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 4'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$0$pgc_r
+
+
 module canstar_cancentrate_core$core$pj$0$pulse(clock,reset,c,glitch);
     
     // Module arguments
@@ -3416,7 +3503,7 @@ module canstar_cancentrate_core$core$pj$0$seen_dom_crc(d,q,clock);
 endmodule // canstar_cancentrate_core$core$pj$0$seen_dom_crc
 
 
-module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,dis,blame,charged,tx_error,glitch,anomaly,bic,life,dbc,nack,rep_cnt,gc,silent,contender);
+module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,dis,blame,charged,tx_error,glitch,anomaly,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender);
     
     // Module arguments
     input wire  clock;
@@ -3458,6 +3545,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
     output reg  [2:0] nack;
     output reg  [2:0] rep_cnt;
     output reg  [2:0] gc;
+    output reg  [3:0] pgc;
     output reg  silent;
     output reg  contender;
     
@@ -3469,6 +3557,8 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
     localparam  rep_limit = 3'b11;
     localparam  glitch_limit = 3'b11;
     localparam  glitch_decay = 5'b10000;
+    localparam  pg_limit = 4'hc;
+    localparam  pg_decay = 3'b100;
     localparam  win_lag = 5'b111;
     localparam  crc_end = 5'b1000;
     localparam  ack_rule = 1'b1;
@@ -3542,6 +3632,12 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
     reg  [1:0] an_r$d;
     wire  [1:0] an_r$q;
     reg  an_r$clock;
+    reg  [3:0] pgc_r$d;
+    wire  [3:0] pgc_r$q;
+    reg  pgc_r$clock;
+    reg  [2:0] pdec_r$d;
+    wire  [2:0] pdec_r$q;
+    reg  pdec_r$clock;
     reg  bl_r$d;
     wire  bl_r$q;
     reg  bl_r$clock;
@@ -3561,6 +3657,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
     reg  g;
     reg  rep_ok;
     reg  gcount;
+    reg  pcount;
     
     // Sub module instances
     canstar_cancentrate_core$core$pj$1$pulse pulse(
@@ -3669,6 +3766,16 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         .q(an_r$q),
         .clock(an_r$clock)
     );
+    canstar_cancentrate_core$core$pj$1$pgc_r pgc_r(
+        .d(pgc_r$d),
+        .q(pgc_r$q),
+        .clock(pgc_r$clock)
+    );
+    canstar_cancentrate_core$core$pj$1$pdec_r pdec_r(
+        .d(pdec_r$d),
+        .q(pdec_r$q),
+        .clock(pdec_r$clock)
+    );
     canstar_cancentrate_core$core$pj$1$bl_r bl_r(
         .d(bl_r$d),
         .q(bl_r$q),
@@ -3707,6 +3814,8 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         gc_r$clock = clock;
         gdec_r$clock = clock;
         an_r$clock = clock;
+        pgc_r$clock = clock;
+        pdec_r$clock = clock;
         bl_r$clock = clock;
         bl_dm_r$clock = clock;
         gpend$clock = clock;
@@ -3730,6 +3839,8 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         gc_r$d = gc_r$q;
         gdec_r$d = gdec_r$q;
         an_r$d = an_r$q;
+        pgc_r$d = pgc_r$q;
+        pdec_r$d = pdec_r$q;
         bl_r$d = bl_r$q;
         bl_dm_r$d = bl_dm_r$q;
         gpend$d = gpend$q;
@@ -3757,7 +3868,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | im_2 | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q);
         blame = sample & unj & enabled;
         charge = sample & unj & enabled & ~suppress & ~stuff_dom;
-        charged = sample & unj & enabled & ~suppress & ~stuff_dom;
+        charged = charge;
         tx_error = sample & nack_on & enabled & cont_r$q & tx_region & ~arb & c & ~bt & ~err_phase;
         if (sample) begin
             if (ack_slot) begin
@@ -3766,7 +3877,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
             if (sof) begin
                 cont_r$d = 1'b1;
             end
-            else if (tx_region & c & ~bt) begin
+            else if (tx_region & c & ~bt & ~rep_dom) begin
                 cont_r$d = 1'b0;
             end
             if (dom) begin
@@ -3795,6 +3906,15 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
                 end
                 else begin
                     gdec_r$d = gdec_r$q + 32'h1;
+                end
+            end
+            if (frame_ok & enabled & (pgc_r$q != 32'h0)) begin
+                if ((pdec_r$q + 32'h1) >= pg_decay) begin
+                    pdec_r$d = 32'h0;
+                    pgc_r$d = pgc_r$q - 32'h1;
+                end
+                else begin
+                    pdec_r$d = pdec_r$q + 32'h1;
                 end
             end
             if (an_r$q != 32'h0) begin
@@ -3840,6 +3960,11 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
             gc_r$d = gc_r$q + 32'h1;
             gdec_r$d = 32'h0;
         end
+        pcount = sample & (gpend$q | g) & common & enabled & rep_on;
+        if (pcount & (pgc_r$q != 32'hf)) begin
+            pgc_r$d = pgc_r$q + 32'h1;
+            pdec_r$d = 32'h0;
+        end
         if ((gcount | charge) & (life_r$q != 32'h7f)) begin
             life_r$d = life_r$q + 32'h1;
         end
@@ -3861,7 +3986,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
                 rep_r$d = rep_r$q + 32'h1;
             end
         end
-        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (rep_on & (rep_r$q >= rep_limit)))) begin
+        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (pgc_r$q >= pg_limit) | (rep_on & (rep_r$q >= rep_limit)))) begin
             dis_r$d = 1'b1;
         end
         if (enabled) begin
@@ -3885,6 +4010,8 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
                     ok_r$d = 32'h0;
                     gc_r$d = 32'h0;
                     gdec_r$d = 32'h0;
+                    pgc_r$d = 32'h0;
+                    pdec_r$d = 32'h0;
                 end
             end
             else begin
@@ -3915,6 +4042,8 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
             gc_r$d = 32'h0;
             gdec_r$d = 32'h0;
             an_r$d = 32'h0;
+            pgc_r$d = 32'h0;
+            pdec_r$d = 32'h0;
         end
         dis = dis_r$q;
         bic = bic_r$q;
@@ -3923,6 +4052,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         nack = nack_r$q;
         rep_cnt = rep_r$q;
         gc = gc_r$q;
+        pgc = pgc_r$q;
         silent = nack_r$q >= nack_thr;
         contender = cont_r$q;
     end
@@ -4272,6 +4402,44 @@ module canstar_cancentrate_core$core$pj$1$ok_r(d,q,clock);
 endmodule // canstar_cancentrate_core$core$pj$1$ok_r
 
 
+module canstar_cancentrate_core$core$pj$1$pdec_r(d,q,clock);
+    
+    // Module arguments
+    input wire  [2:0] d;
+    output reg  [2:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 3'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$1$pdec_r
+
+
+module canstar_cancentrate_core$core$pj$1$pgc_r(d,q,clock);
+    
+    // Module arguments
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 4'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$1$pgc_r
+
+
 module canstar_cancentrate_core$core$pj$1$pulse(clock,reset,c,glitch);
     
     // Module arguments
@@ -4497,7 +4665,7 @@ module canstar_cancentrate_core$core$pj$1$seen_dom_crc(d,q,clock);
 endmodule // canstar_cancentrate_core$core$pj$1$seen_dom_crc
 
 
-module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,dis,blame,charged,tx_error,glitch,anomaly,bic,life,dbc,nack,rep_cnt,gc,silent,contender);
+module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,dis,blame,charged,tx_error,glitch,anomaly,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender);
     
     // Module arguments
     input wire  clock;
@@ -4539,6 +4707,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
     output reg  [2:0] nack;
     output reg  [2:0] rep_cnt;
     output reg  [2:0] gc;
+    output reg  [3:0] pgc;
     output reg  silent;
     output reg  contender;
     
@@ -4550,6 +4719,8 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
     localparam  rep_limit = 3'b11;
     localparam  glitch_limit = 3'b11;
     localparam  glitch_decay = 5'b10000;
+    localparam  pg_limit = 4'hc;
+    localparam  pg_decay = 3'b100;
     localparam  win_lag = 5'b111;
     localparam  crc_end = 5'b1000;
     localparam  ack_rule = 1'b1;
@@ -4623,6 +4794,12 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
     reg  [1:0] an_r$d;
     wire  [1:0] an_r$q;
     reg  an_r$clock;
+    reg  [3:0] pgc_r$d;
+    wire  [3:0] pgc_r$q;
+    reg  pgc_r$clock;
+    reg  [2:0] pdec_r$d;
+    wire  [2:0] pdec_r$q;
+    reg  pdec_r$clock;
     reg  bl_r$d;
     wire  bl_r$q;
     reg  bl_r$clock;
@@ -4642,6 +4819,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
     reg  g;
     reg  rep_ok;
     reg  gcount;
+    reg  pcount;
     
     // Sub module instances
     canstar_cancentrate_core$core$pj$2$pulse pulse(
@@ -4750,6 +4928,16 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         .q(an_r$q),
         .clock(an_r$clock)
     );
+    canstar_cancentrate_core$core$pj$2$pgc_r pgc_r(
+        .d(pgc_r$d),
+        .q(pgc_r$q),
+        .clock(pgc_r$clock)
+    );
+    canstar_cancentrate_core$core$pj$2$pdec_r pdec_r(
+        .d(pdec_r$d),
+        .q(pdec_r$q),
+        .clock(pdec_r$clock)
+    );
     canstar_cancentrate_core$core$pj$2$bl_r bl_r(
         .d(bl_r$d),
         .q(bl_r$q),
@@ -4788,6 +4976,8 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         gc_r$clock = clock;
         gdec_r$clock = clock;
         an_r$clock = clock;
+        pgc_r$clock = clock;
+        pdec_r$clock = clock;
         bl_r$clock = clock;
         bl_dm_r$clock = clock;
         gpend$clock = clock;
@@ -4811,6 +5001,8 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         gc_r$d = gc_r$q;
         gdec_r$d = gdec_r$q;
         an_r$d = an_r$q;
+        pgc_r$d = pgc_r$q;
+        pdec_r$d = pdec_r$q;
         bl_r$d = bl_r$q;
         bl_dm_r$d = bl_dm_r$q;
         gpend$d = gpend$q;
@@ -4838,7 +5030,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | im_2 | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q);
         blame = sample & unj & enabled;
         charge = sample & unj & enabled & ~suppress & ~stuff_dom;
-        charged = sample & unj & enabled & ~suppress & ~stuff_dom;
+        charged = charge;
         tx_error = sample & nack_on & enabled & cont_r$q & tx_region & ~arb & c & ~bt & ~err_phase;
         if (sample) begin
             if (ack_slot) begin
@@ -4847,7 +5039,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
             if (sof) begin
                 cont_r$d = 1'b1;
             end
-            else if (tx_region & c & ~bt) begin
+            else if (tx_region & c & ~bt & ~rep_dom) begin
                 cont_r$d = 1'b0;
             end
             if (dom) begin
@@ -4876,6 +5068,15 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
                 end
                 else begin
                     gdec_r$d = gdec_r$q + 32'h1;
+                end
+            end
+            if (frame_ok & enabled & (pgc_r$q != 32'h0)) begin
+                if ((pdec_r$q + 32'h1) >= pg_decay) begin
+                    pdec_r$d = 32'h0;
+                    pgc_r$d = pgc_r$q - 32'h1;
+                end
+                else begin
+                    pdec_r$d = pdec_r$q + 32'h1;
                 end
             end
             if (an_r$q != 32'h0) begin
@@ -4921,6 +5122,11 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
             gc_r$d = gc_r$q + 32'h1;
             gdec_r$d = 32'h0;
         end
+        pcount = sample & (gpend$q | g) & common & enabled & rep_on;
+        if (pcount & (pgc_r$q != 32'hf)) begin
+            pgc_r$d = pgc_r$q + 32'h1;
+            pdec_r$d = 32'h0;
+        end
         if ((gcount | charge) & (life_r$q != 32'h7f)) begin
             life_r$d = life_r$q + 32'h1;
         end
@@ -4942,7 +5148,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
                 rep_r$d = rep_r$q + 32'h1;
             end
         end
-        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (rep_on & (rep_r$q >= rep_limit)))) begin
+        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (pgc_r$q >= pg_limit) | (rep_on & (rep_r$q >= rep_limit)))) begin
             dis_r$d = 1'b1;
         end
         if (enabled) begin
@@ -4966,6 +5172,8 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
                     ok_r$d = 32'h0;
                     gc_r$d = 32'h0;
                     gdec_r$d = 32'h0;
+                    pgc_r$d = 32'h0;
+                    pdec_r$d = 32'h0;
                 end
             end
             else begin
@@ -4996,6 +5204,8 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
             gc_r$d = 32'h0;
             gdec_r$d = 32'h0;
             an_r$d = 32'h0;
+            pgc_r$d = 32'h0;
+            pdec_r$d = 32'h0;
         end
         dis = dis_r$q;
         bic = bic_r$q;
@@ -5004,6 +5214,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         nack = nack_r$q;
         rep_cnt = rep_r$q;
         gc = gc_r$q;
+        pgc = pgc_r$q;
         silent = nack_r$q >= nack_thr;
         contender = cont_r$q;
     end
@@ -5351,6 +5562,44 @@ module canstar_cancentrate_core$core$pj$2$ok_r(d,q,clock);
     end
           
 endmodule // canstar_cancentrate_core$core$pj$2$ok_r
+
+
+module canstar_cancentrate_core$core$pj$2$pdec_r(d,q,clock);
+    
+    // Module arguments
+    input wire  [2:0] d;
+    output reg  [2:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 3'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$2$pdec_r
+
+
+module canstar_cancentrate_core$core$pj$2$pgc_r(d,q,clock);
+    
+    // Module arguments
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 4'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$2$pgc_r
 
 
 module canstar_cancentrate_core$core$pj$2$pulse(clock,reset,c,glitch);

@@ -899,6 +899,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     wire  [2:0] pj$0$nack;
     wire  [2:0] pj$0$rep_cnt;
     wire  [2:0] pj$0$gc;
+    wire  [3:0] pj$0$pgc;
     wire  pj$0$silent;
     wire  pj$0$contender;
     reg  pj$1$clock;
@@ -940,6 +941,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     wire  [2:0] pj$1$nack;
     wire  [2:0] pj$1$rep_cnt;
     wire  [2:0] pj$1$gc;
+    wire  [3:0] pj$1$pgc;
     wire  pj$1$silent;
     wire  pj$1$contender;
     reg  pj$2$clock;
@@ -981,6 +983,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     wire  [2:0] pj$2$nack;
     wire  [2:0] pj$2$rep_cnt;
     wire  [2:0] pj$2$gc;
+    wire  [3:0] pj$2$pgc;
     wire  pj$2$silent;
     wire  pj$2$contender;
     reg  sj$0$clock;
@@ -1022,6 +1025,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     wire  [2:0] sj$0$nack;
     wire  [2:0] sj$0$rep_cnt;
     wire  [2:0] sj$0$gc;
+    wire  [3:0] sj$0$pgc;
     wire  sj$0$silent;
     wire  sj$0$contender;
     reg  sj$1$clock;
@@ -1063,6 +1067,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     wire  [2:0] sj$1$nack;
     wire  [2:0] sj$1$rep_cnt;
     wire  [2:0] sj$1$gc;
+    wire  [3:0] sj$1$pgc;
     wire  sj$1$silent;
     wire  sj$1$contender;
     reg  rst_s1$d;
@@ -1218,6 +1223,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .nack(pj$0$nack),
         .rep_cnt(pj$0$rep_cnt),
         .gc(pj$0$gc),
+        .pgc(pj$0$pgc),
         .silent(pj$0$silent),
         .contender(pj$0$contender)
     );
@@ -1261,6 +1267,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .nack(pj$1$nack),
         .rep_cnt(pj$1$rep_cnt),
         .gc(pj$1$gc),
+        .pgc(pj$1$pgc),
         .silent(pj$1$silent),
         .contender(pj$1$contender)
     );
@@ -1304,6 +1311,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .nack(pj$2$nack),
         .rep_cnt(pj$2$rep_cnt),
         .gc(pj$2$gc),
+        .pgc(pj$2$pgc),
         .silent(pj$2$silent),
         .contender(pj$2$contender)
     );
@@ -1347,6 +1355,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .nack(sj$0$nack),
         .rep_cnt(sj$0$rep_cnt),
         .gc(sj$0$gc),
+        .pgc(sj$0$pgc),
         .silent(sj$0$silent),
         .contender(sj$0$contender)
     );
@@ -1390,6 +1399,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .nack(sj$1$nack),
         .rep_cnt(sj$1$rep_cnt),
         .gc(sj$1$gc),
+        .pgc(sj$1$pgc),
         .silent(sj$1$silent),
         .contender(sj$1$contender)
     );
@@ -3005,7 +3015,7 @@ module canstar_hub_core$core$injector$state(d,q,clock);
 endmodule // canstar_hub_core$core$injector$state
 
 
-module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,dis,blame,charged,tx_error,glitch,anomaly,bic,life,dbc,nack,rep_cnt,gc,silent,contender);
+module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,dis,blame,charged,tx_error,glitch,anomaly,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender);
     
     // Module arguments
     input wire  clock;
@@ -3047,6 +3057,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     output reg  [2:0] nack;
     output reg  [2:0] rep_cnt;
     output reg  [2:0] gc;
+    output reg  [3:0] pgc;
     output reg  silent;
     output reg  contender;
     
@@ -3058,6 +3069,8 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     localparam  rep_limit = 3'b11;
     localparam  glitch_limit = 3'b11;
     localparam  glitch_decay = 5'b10000;
+    localparam  pg_limit = 4'hc;
+    localparam  pg_decay = 3'b100;
     localparam  win_lag = 5'b111;
     localparam  crc_end = 5'b1000;
     localparam  ack_rule = 1'b1;
@@ -3131,6 +3144,12 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  [1:0] an_r$d;
     wire  [1:0] an_r$q;
     reg  an_r$clock;
+    reg  [3:0] pgc_r$d;
+    wire  [3:0] pgc_r$q;
+    reg  pgc_r$clock;
+    reg  [2:0] pdec_r$d;
+    wire  [2:0] pdec_r$q;
+    reg  pdec_r$clock;
     reg  bl_r$d;
     wire  bl_r$q;
     reg  bl_r$clock;
@@ -3150,6 +3169,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  g;
     reg  rep_ok;
     reg  gcount;
+    reg  pcount;
     
     // Sub module instances
     canstar_hub_core$core$pj$0$pulse pulse(
@@ -3258,6 +3278,16 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .q(an_r$q),
         .clock(an_r$clock)
     );
+    canstar_hub_core$core$pj$0$pgc_r pgc_r(
+        .d(pgc_r$d),
+        .q(pgc_r$q),
+        .clock(pgc_r$clock)
+    );
+    canstar_hub_core$core$pj$0$pdec_r pdec_r(
+        .d(pdec_r$d),
+        .q(pdec_r$q),
+        .clock(pdec_r$clock)
+    );
     canstar_hub_core$core$pj$0$bl_r bl_r(
         .d(bl_r$d),
         .q(bl_r$q),
@@ -3296,6 +3326,8 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         gc_r$clock = clock;
         gdec_r$clock = clock;
         an_r$clock = clock;
+        pgc_r$clock = clock;
+        pdec_r$clock = clock;
         bl_r$clock = clock;
         bl_dm_r$clock = clock;
         gpend$clock = clock;
@@ -3319,6 +3351,8 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         gc_r$d = gc_r$q;
         gdec_r$d = gdec_r$q;
         an_r$d = an_r$q;
+        pgc_r$d = pgc_r$q;
+        pdec_r$d = pdec_r$q;
         bl_r$d = bl_r$q;
         bl_dm_r$d = bl_dm_r$q;
         gpend$d = gpend$q;
@@ -3346,7 +3380,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | im_2 | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q);
         blame = sample & unj & enabled;
         charge = sample & unj & enabled & ~suppress & ~stuff_dom;
-        charged = sample & unj & enabled & ~suppress & ~stuff_dom;
+        charged = charge;
         tx_error = sample & nack_on & enabled & cont_r$q & tx_region & ~arb & c & ~bt & ~err_phase;
         if (sample) begin
             if (ack_slot) begin
@@ -3355,7 +3389,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             if (sof) begin
                 cont_r$d = 1'b1;
             end
-            else if (tx_region & c & ~bt) begin
+            else if (tx_region & c & ~bt & ~rep_dom) begin
                 cont_r$d = 1'b0;
             end
             if (dom) begin
@@ -3384,6 +3418,15 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                 end
                 else begin
                     gdec_r$d = gdec_r$q + 32'h1;
+                end
+            end
+            if (frame_ok & enabled & (pgc_r$q != 32'h0)) begin
+                if ((pdec_r$q + 32'h1) >= pg_decay) begin
+                    pdec_r$d = 32'h0;
+                    pgc_r$d = pgc_r$q - 32'h1;
+                end
+                else begin
+                    pdec_r$d = pdec_r$q + 32'h1;
                 end
             end
             if (an_r$q != 32'h0) begin
@@ -3429,6 +3472,11 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             gc_r$d = gc_r$q + 32'h1;
             gdec_r$d = 32'h0;
         end
+        pcount = sample & (gpend$q | g) & common & enabled & rep_on;
+        if (pcount & (pgc_r$q != 32'hf)) begin
+            pgc_r$d = pgc_r$q + 32'h1;
+            pdec_r$d = 32'h0;
+        end
         if ((gcount | charge) & (life_r$q != 32'h7f)) begin
             life_r$d = life_r$q + 32'h1;
         end
@@ -3450,7 +3498,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                 rep_r$d = rep_r$q + 32'h1;
             end
         end
-        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (rep_on & (rep_r$q >= rep_limit)))) begin
+        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (pgc_r$q >= pg_limit) | (rep_on & (rep_r$q >= rep_limit)))) begin
             dis_r$d = 1'b1;
         end
         if (enabled) begin
@@ -3474,6 +3522,8 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                     ok_r$d = 32'h0;
                     gc_r$d = 32'h0;
                     gdec_r$d = 32'h0;
+                    pgc_r$d = 32'h0;
+                    pdec_r$d = 32'h0;
                 end
             end
             else begin
@@ -3504,6 +3554,8 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             gc_r$d = 32'h0;
             gdec_r$d = 32'h0;
             an_r$d = 32'h0;
+            pgc_r$d = 32'h0;
+            pdec_r$d = 32'h0;
         end
         dis = dis_r$q;
         bic = bic_r$q;
@@ -3512,6 +3564,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         nack = nack_r$q;
         rep_cnt = rep_r$q;
         gc = gc_r$q;
+        pgc = pgc_r$q;
         silent = nack_r$q >= nack_thr;
         contender = cont_r$q;
     end
@@ -3861,6 +3914,44 @@ module canstar_hub_core$core$pj$0$ok_r(d,q,clock);
 endmodule // canstar_hub_core$core$pj$0$ok_r
 
 
+module canstar_hub_core$core$pj$0$pdec_r(d,q,clock);
+    
+    // Module arguments
+    input wire  [2:0] d;
+    output reg  [2:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 3'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$0$pdec_r
+
+
+module canstar_hub_core$core$pj$0$pgc_r(d,q,clock);
+    
+    // Module arguments
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 4'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$0$pgc_r
+
+
 module canstar_hub_core$core$pj$0$pulse(clock,reset,c,glitch);
     
     // Module arguments
@@ -4086,7 +4177,7 @@ module canstar_hub_core$core$pj$0$seen_dom_crc(d,q,clock);
 endmodule // canstar_hub_core$core$pj$0$seen_dom_crc
 
 
-module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,dis,blame,charged,tx_error,glitch,anomaly,bic,life,dbc,nack,rep_cnt,gc,silent,contender);
+module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,dis,blame,charged,tx_error,glitch,anomaly,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender);
     
     // Module arguments
     input wire  clock;
@@ -4128,6 +4219,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     output reg  [2:0] nack;
     output reg  [2:0] rep_cnt;
     output reg  [2:0] gc;
+    output reg  [3:0] pgc;
     output reg  silent;
     output reg  contender;
     
@@ -4139,6 +4231,8 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     localparam  rep_limit = 3'b11;
     localparam  glitch_limit = 3'b11;
     localparam  glitch_decay = 5'b10000;
+    localparam  pg_limit = 4'hc;
+    localparam  pg_decay = 3'b100;
     localparam  win_lag = 5'b111;
     localparam  crc_end = 5'b1000;
     localparam  ack_rule = 1'b1;
@@ -4212,6 +4306,12 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  [1:0] an_r$d;
     wire  [1:0] an_r$q;
     reg  an_r$clock;
+    reg  [3:0] pgc_r$d;
+    wire  [3:0] pgc_r$q;
+    reg  pgc_r$clock;
+    reg  [2:0] pdec_r$d;
+    wire  [2:0] pdec_r$q;
+    reg  pdec_r$clock;
     reg  bl_r$d;
     wire  bl_r$q;
     reg  bl_r$clock;
@@ -4231,6 +4331,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  g;
     reg  rep_ok;
     reg  gcount;
+    reg  pcount;
     
     // Sub module instances
     canstar_hub_core$core$pj$1$pulse pulse(
@@ -4339,6 +4440,16 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .q(an_r$q),
         .clock(an_r$clock)
     );
+    canstar_hub_core$core$pj$1$pgc_r pgc_r(
+        .d(pgc_r$d),
+        .q(pgc_r$q),
+        .clock(pgc_r$clock)
+    );
+    canstar_hub_core$core$pj$1$pdec_r pdec_r(
+        .d(pdec_r$d),
+        .q(pdec_r$q),
+        .clock(pdec_r$clock)
+    );
     canstar_hub_core$core$pj$1$bl_r bl_r(
         .d(bl_r$d),
         .q(bl_r$q),
@@ -4377,6 +4488,8 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         gc_r$clock = clock;
         gdec_r$clock = clock;
         an_r$clock = clock;
+        pgc_r$clock = clock;
+        pdec_r$clock = clock;
         bl_r$clock = clock;
         bl_dm_r$clock = clock;
         gpend$clock = clock;
@@ -4400,6 +4513,8 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         gc_r$d = gc_r$q;
         gdec_r$d = gdec_r$q;
         an_r$d = an_r$q;
+        pgc_r$d = pgc_r$q;
+        pdec_r$d = pdec_r$q;
         bl_r$d = bl_r$q;
         bl_dm_r$d = bl_dm_r$q;
         gpend$d = gpend$q;
@@ -4427,7 +4542,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | im_2 | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q);
         blame = sample & unj & enabled;
         charge = sample & unj & enabled & ~suppress & ~stuff_dom;
-        charged = sample & unj & enabled & ~suppress & ~stuff_dom;
+        charged = charge;
         tx_error = sample & nack_on & enabled & cont_r$q & tx_region & ~arb & c & ~bt & ~err_phase;
         if (sample) begin
             if (ack_slot) begin
@@ -4436,7 +4551,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             if (sof) begin
                 cont_r$d = 1'b1;
             end
-            else if (tx_region & c & ~bt) begin
+            else if (tx_region & c & ~bt & ~rep_dom) begin
                 cont_r$d = 1'b0;
             end
             if (dom) begin
@@ -4465,6 +4580,15 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                 end
                 else begin
                     gdec_r$d = gdec_r$q + 32'h1;
+                end
+            end
+            if (frame_ok & enabled & (pgc_r$q != 32'h0)) begin
+                if ((pdec_r$q + 32'h1) >= pg_decay) begin
+                    pdec_r$d = 32'h0;
+                    pgc_r$d = pgc_r$q - 32'h1;
+                end
+                else begin
+                    pdec_r$d = pdec_r$q + 32'h1;
                 end
             end
             if (an_r$q != 32'h0) begin
@@ -4510,6 +4634,11 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             gc_r$d = gc_r$q + 32'h1;
             gdec_r$d = 32'h0;
         end
+        pcount = sample & (gpend$q | g) & common & enabled & rep_on;
+        if (pcount & (pgc_r$q != 32'hf)) begin
+            pgc_r$d = pgc_r$q + 32'h1;
+            pdec_r$d = 32'h0;
+        end
         if ((gcount | charge) & (life_r$q != 32'h7f)) begin
             life_r$d = life_r$q + 32'h1;
         end
@@ -4531,7 +4660,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                 rep_r$d = rep_r$q + 32'h1;
             end
         end
-        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (rep_on & (rep_r$q >= rep_limit)))) begin
+        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (pgc_r$q >= pg_limit) | (rep_on & (rep_r$q >= rep_limit)))) begin
             dis_r$d = 1'b1;
         end
         if (enabled) begin
@@ -4555,6 +4684,8 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                     ok_r$d = 32'h0;
                     gc_r$d = 32'h0;
                     gdec_r$d = 32'h0;
+                    pgc_r$d = 32'h0;
+                    pdec_r$d = 32'h0;
                 end
             end
             else begin
@@ -4585,6 +4716,8 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             gc_r$d = 32'h0;
             gdec_r$d = 32'h0;
             an_r$d = 32'h0;
+            pgc_r$d = 32'h0;
+            pdec_r$d = 32'h0;
         end
         dis = dis_r$q;
         bic = bic_r$q;
@@ -4593,6 +4726,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         nack = nack_r$q;
         rep_cnt = rep_r$q;
         gc = gc_r$q;
+        pgc = pgc_r$q;
         silent = nack_r$q >= nack_thr;
         contender = cont_r$q;
     end
@@ -4942,6 +5076,44 @@ module canstar_hub_core$core$pj$1$ok_r(d,q,clock);
 endmodule // canstar_hub_core$core$pj$1$ok_r
 
 
+module canstar_hub_core$core$pj$1$pdec_r(d,q,clock);
+    
+    // Module arguments
+    input wire  [2:0] d;
+    output reg  [2:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 3'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$1$pdec_r
+
+
+module canstar_hub_core$core$pj$1$pgc_r(d,q,clock);
+    
+    // Module arguments
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 4'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$1$pgc_r
+
+
 module canstar_hub_core$core$pj$1$pulse(clock,reset,c,glitch);
     
     // Module arguments
@@ -5167,7 +5339,7 @@ module canstar_hub_core$core$pj$1$seen_dom_crc(d,q,clock);
 endmodule // canstar_hub_core$core$pj$1$seen_dom_crc
 
 
-module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,dis,blame,charged,tx_error,glitch,anomaly,bic,life,dbc,nack,rep_cnt,gc,silent,contender);
+module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,dis,blame,charged,tx_error,glitch,anomaly,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender);
     
     // Module arguments
     input wire  clock;
@@ -5209,6 +5381,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     output reg  [2:0] nack;
     output reg  [2:0] rep_cnt;
     output reg  [2:0] gc;
+    output reg  [3:0] pgc;
     output reg  silent;
     output reg  contender;
     
@@ -5220,6 +5393,8 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     localparam  rep_limit = 3'b11;
     localparam  glitch_limit = 3'b11;
     localparam  glitch_decay = 5'b10000;
+    localparam  pg_limit = 4'hc;
+    localparam  pg_decay = 3'b100;
     localparam  win_lag = 5'b111;
     localparam  crc_end = 5'b1000;
     localparam  ack_rule = 1'b1;
@@ -5293,6 +5468,12 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  [1:0] an_r$d;
     wire  [1:0] an_r$q;
     reg  an_r$clock;
+    reg  [3:0] pgc_r$d;
+    wire  [3:0] pgc_r$q;
+    reg  pgc_r$clock;
+    reg  [2:0] pdec_r$d;
+    wire  [2:0] pdec_r$q;
+    reg  pdec_r$clock;
     reg  bl_r$d;
     wire  bl_r$q;
     reg  bl_r$clock;
@@ -5312,6 +5493,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  g;
     reg  rep_ok;
     reg  gcount;
+    reg  pcount;
     
     // Sub module instances
     canstar_hub_core$core$pj$2$pulse pulse(
@@ -5420,6 +5602,16 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .q(an_r$q),
         .clock(an_r$clock)
     );
+    canstar_hub_core$core$pj$2$pgc_r pgc_r(
+        .d(pgc_r$d),
+        .q(pgc_r$q),
+        .clock(pgc_r$clock)
+    );
+    canstar_hub_core$core$pj$2$pdec_r pdec_r(
+        .d(pdec_r$d),
+        .q(pdec_r$q),
+        .clock(pdec_r$clock)
+    );
     canstar_hub_core$core$pj$2$bl_r bl_r(
         .d(bl_r$d),
         .q(bl_r$q),
@@ -5458,6 +5650,8 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         gc_r$clock = clock;
         gdec_r$clock = clock;
         an_r$clock = clock;
+        pgc_r$clock = clock;
+        pdec_r$clock = clock;
         bl_r$clock = clock;
         bl_dm_r$clock = clock;
         gpend$clock = clock;
@@ -5481,6 +5675,8 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         gc_r$d = gc_r$q;
         gdec_r$d = gdec_r$q;
         an_r$d = an_r$q;
+        pgc_r$d = pgc_r$q;
+        pdec_r$d = pdec_r$q;
         bl_r$d = bl_r$q;
         bl_dm_r$d = bl_dm_r$q;
         gpend$d = gpend$q;
@@ -5508,7 +5704,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | im_2 | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q);
         blame = sample & unj & enabled;
         charge = sample & unj & enabled & ~suppress & ~stuff_dom;
-        charged = sample & unj & enabled & ~suppress & ~stuff_dom;
+        charged = charge;
         tx_error = sample & nack_on & enabled & cont_r$q & tx_region & ~arb & c & ~bt & ~err_phase;
         if (sample) begin
             if (ack_slot) begin
@@ -5517,7 +5713,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             if (sof) begin
                 cont_r$d = 1'b1;
             end
-            else if (tx_region & c & ~bt) begin
+            else if (tx_region & c & ~bt & ~rep_dom) begin
                 cont_r$d = 1'b0;
             end
             if (dom) begin
@@ -5546,6 +5742,15 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                 end
                 else begin
                     gdec_r$d = gdec_r$q + 32'h1;
+                end
+            end
+            if (frame_ok & enabled & (pgc_r$q != 32'h0)) begin
+                if ((pdec_r$q + 32'h1) >= pg_decay) begin
+                    pdec_r$d = 32'h0;
+                    pgc_r$d = pgc_r$q - 32'h1;
+                end
+                else begin
+                    pdec_r$d = pdec_r$q + 32'h1;
                 end
             end
             if (an_r$q != 32'h0) begin
@@ -5591,6 +5796,11 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             gc_r$d = gc_r$q + 32'h1;
             gdec_r$d = 32'h0;
         end
+        pcount = sample & (gpend$q | g) & common & enabled & rep_on;
+        if (pcount & (pgc_r$q != 32'hf)) begin
+            pgc_r$d = pgc_r$q + 32'h1;
+            pdec_r$d = 32'h0;
+        end
         if ((gcount | charge) & (life_r$q != 32'h7f)) begin
             life_r$d = life_r$q + 32'h1;
         end
@@ -5612,7 +5822,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                 rep_r$d = rep_r$q + 32'h1;
             end
         end
-        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (rep_on & (rep_r$q >= rep_limit)))) begin
+        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (pgc_r$q >= pg_limit) | (rep_on & (rep_r$q >= rep_limit)))) begin
             dis_r$d = 1'b1;
         end
         if (enabled) begin
@@ -5636,6 +5846,8 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                     ok_r$d = 32'h0;
                     gc_r$d = 32'h0;
                     gdec_r$d = 32'h0;
+                    pgc_r$d = 32'h0;
+                    pdec_r$d = 32'h0;
                 end
             end
             else begin
@@ -5666,6 +5878,8 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             gc_r$d = 32'h0;
             gdec_r$d = 32'h0;
             an_r$d = 32'h0;
+            pgc_r$d = 32'h0;
+            pdec_r$d = 32'h0;
         end
         dis = dis_r$q;
         bic = bic_r$q;
@@ -5674,6 +5888,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         nack = nack_r$q;
         rep_cnt = rep_r$q;
         gc = gc_r$q;
+        pgc = pgc_r$q;
         silent = nack_r$q >= nack_thr;
         contender = cont_r$q;
     end
@@ -6023,6 +6238,44 @@ module canstar_hub_core$core$pj$2$ok_r(d,q,clock);
 endmodule // canstar_hub_core$core$pj$2$ok_r
 
 
+module canstar_hub_core$core$pj$2$pdec_r(d,q,clock);
+    
+    // Module arguments
+    input wire  [2:0] d;
+    output reg  [2:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 3'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$2$pdec_r
+
+
+module canstar_hub_core$core$pj$2$pgc_r(d,q,clock);
+    
+    // Module arguments
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 4'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$2$pgc_r
+
+
 module canstar_hub_core$core$pj$2$pulse(clock,reset,c,glitch);
     
     // Module arguments
@@ -6286,7 +6539,7 @@ module canstar_hub_core$core$rst_s2(d,q,clock);
 endmodule // canstar_hub_core$core$rst_s2
 
 
-module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,dis,blame,charged,tx_error,glitch,anomaly,bic,life,dbc,nack,rep_cnt,gc,silent,contender);
+module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,dis,blame,charged,tx_error,glitch,anomaly,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender);
     
     // Module arguments
     input wire  clock;
@@ -6328,17 +6581,20 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     output reg  [2:0] nack;
     output reg  [2:0] rep_cnt;
     output reg  [2:0] gc;
+    output reg  [3:0] pgc;
     output reg  silent;
     output reg  contender;
     
     // Constant declarations
-    localparam  bic_limit = 8'h50;
+    localparam  bic_limit = 8'h48;
     localparam  life_limit = 7'b1000000;
     localparam  dbc_thr = 5'b11100;
     localparam  nack_thr = 3'b111;
     localparam  rep_limit = 3'b11;
     localparam  glitch_limit = 3'b110;
     localparam  glitch_decay = 5'b10000;
+    localparam  pg_limit = 4'hc;
+    localparam  pg_decay = 3'b100;
     localparam  win_lag = 5'b1000;
     localparam  crc_end = 5'b1000;
     localparam  ack_rule = 1'b0;
@@ -6412,6 +6668,12 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  [1:0] an_r$d;
     wire  [1:0] an_r$q;
     reg  an_r$clock;
+    reg  [3:0] pgc_r$d;
+    wire  [3:0] pgc_r$q;
+    reg  pgc_r$clock;
+    reg  [2:0] pdec_r$d;
+    wire  [2:0] pdec_r$q;
+    reg  pdec_r$clock;
     reg  bl_r$d;
     wire  bl_r$q;
     reg  bl_r$clock;
@@ -6431,6 +6693,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  g;
     reg  rep_ok;
     reg  gcount;
+    reg  pcount;
     
     // Sub module instances
     canstar_hub_core$core$sj$0$pulse pulse(
@@ -6539,6 +6802,16 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .q(an_r$q),
         .clock(an_r$clock)
     );
+    canstar_hub_core$core$sj$0$pgc_r pgc_r(
+        .d(pgc_r$d),
+        .q(pgc_r$q),
+        .clock(pgc_r$clock)
+    );
+    canstar_hub_core$core$sj$0$pdec_r pdec_r(
+        .d(pdec_r$d),
+        .q(pdec_r$q),
+        .clock(pdec_r$clock)
+    );
     canstar_hub_core$core$sj$0$bl_r bl_r(
         .d(bl_r$d),
         .q(bl_r$q),
@@ -6577,6 +6850,8 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         gc_r$clock = clock;
         gdec_r$clock = clock;
         an_r$clock = clock;
+        pgc_r$clock = clock;
+        pdec_r$clock = clock;
         bl_r$clock = clock;
         bl_dm_r$clock = clock;
         gpend$clock = clock;
@@ -6600,6 +6875,8 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         gc_r$d = gc_r$q;
         gdec_r$d = gdec_r$q;
         an_r$d = an_r$q;
+        pgc_r$d = pgc_r$q;
+        pdec_r$d = pdec_r$q;
         bl_r$d = bl_r$q;
         bl_dm_r$d = bl_dm_r$q;
         gpend$d = gpend$q;
@@ -6627,7 +6904,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | im_2 | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q);
         blame = sample & unj & enabled;
         charge = sample & unj & enabled & ~suppress & ~stuff_dom;
-        charged = sample & unj & enabled & ~suppress & ~stuff_dom;
+        charged = charge;
         tx_error = sample & nack_on & enabled & cont_r$q & tx_region & ~arb & c & ~bt & ~err_phase;
         if (sample) begin
             if (ack_slot) begin
@@ -6636,7 +6913,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             if (sof) begin
                 cont_r$d = 1'b1;
             end
-            else if (tx_region & c & ~bt) begin
+            else if (tx_region & c & ~bt & ~rep_dom) begin
                 cont_r$d = 1'b0;
             end
             if (dom) begin
@@ -6665,6 +6942,15 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                 end
                 else begin
                     gdec_r$d = gdec_r$q + 32'h1;
+                end
+            end
+            if (frame_ok & enabled & (pgc_r$q != 32'h0)) begin
+                if ((pdec_r$q + 32'h1) >= pg_decay) begin
+                    pdec_r$d = 32'h0;
+                    pgc_r$d = pgc_r$q - 32'h1;
+                end
+                else begin
+                    pdec_r$d = pdec_r$q + 32'h1;
                 end
             end
             if (an_r$q != 32'h0) begin
@@ -6710,6 +6996,11 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             gc_r$d = gc_r$q + 32'h1;
             gdec_r$d = 32'h0;
         end
+        pcount = sample & (gpend$q | g) & common & enabled & rep_on;
+        if (pcount & (pgc_r$q != 32'hf)) begin
+            pgc_r$d = pgc_r$q + 32'h1;
+            pdec_r$d = 32'h0;
+        end
         if ((gcount | charge) & (life_r$q != 32'h7f)) begin
             life_r$d = life_r$q + 32'h1;
         end
@@ -6731,7 +7022,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                 rep_r$d = rep_r$q + 32'h1;
             end
         end
-        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (rep_on & (rep_r$q >= rep_limit)))) begin
+        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (pgc_r$q >= pg_limit) | (rep_on & (rep_r$q >= rep_limit)))) begin
             dis_r$d = 1'b1;
         end
         if (enabled) begin
@@ -6755,6 +7046,8 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                     ok_r$d = 32'h0;
                     gc_r$d = 32'h0;
                     gdec_r$d = 32'h0;
+                    pgc_r$d = 32'h0;
+                    pdec_r$d = 32'h0;
                 end
             end
             else begin
@@ -6785,6 +7078,8 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             gc_r$d = 32'h0;
             gdec_r$d = 32'h0;
             an_r$d = 32'h0;
+            pgc_r$d = 32'h0;
+            pdec_r$d = 32'h0;
         end
         dis = dis_r$q;
         bic = bic_r$q;
@@ -6793,6 +7088,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         nack = nack_r$q;
         rep_cnt = rep_r$q;
         gc = gc_r$q;
+        pgc = pgc_r$q;
         silent = nack_r$q >= nack_thr;
         contender = cont_r$q;
     end
@@ -7142,6 +7438,44 @@ module canstar_hub_core$core$sj$0$ok_r(d,q,clock);
 endmodule // canstar_hub_core$core$sj$0$ok_r
 
 
+module canstar_hub_core$core$sj$0$pdec_r(d,q,clock);
+    
+    // Module arguments
+    input wire  [2:0] d;
+    output reg  [2:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 3'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$sj$0$pdec_r
+
+
+module canstar_hub_core$core$sj$0$pgc_r(d,q,clock);
+    
+    // Module arguments
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 4'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$sj$0$pgc_r
+
+
 module canstar_hub_core$core$sj$0$pulse(clock,reset,c,glitch);
     
     // Module arguments
@@ -7367,7 +7701,7 @@ module canstar_hub_core$core$sj$0$seen_dom_crc(d,q,clock);
 endmodule // canstar_hub_core$core$sj$0$seen_dom_crc
 
 
-module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,dis,blame,charged,tx_error,glitch,anomaly,bic,life,dbc,nack,rep_cnt,gc,silent,contender);
+module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,dis,blame,charged,tx_error,glitch,anomaly,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender);
     
     // Module arguments
     input wire  clock;
@@ -7409,17 +7743,20 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     output reg  [2:0] nack;
     output reg  [2:0] rep_cnt;
     output reg  [2:0] gc;
+    output reg  [3:0] pgc;
     output reg  silent;
     output reg  contender;
     
     // Constant declarations
-    localparam  bic_limit = 8'h50;
+    localparam  bic_limit = 8'h48;
     localparam  life_limit = 7'b1000000;
     localparam  dbc_thr = 5'b11100;
     localparam  nack_thr = 3'b111;
     localparam  rep_limit = 3'b11;
     localparam  glitch_limit = 3'b110;
     localparam  glitch_decay = 5'b10000;
+    localparam  pg_limit = 4'hc;
+    localparam  pg_decay = 3'b100;
     localparam  win_lag = 5'b1000;
     localparam  crc_end = 5'b1000;
     localparam  ack_rule = 1'b0;
@@ -7493,6 +7830,12 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  [1:0] an_r$d;
     wire  [1:0] an_r$q;
     reg  an_r$clock;
+    reg  [3:0] pgc_r$d;
+    wire  [3:0] pgc_r$q;
+    reg  pgc_r$clock;
+    reg  [2:0] pdec_r$d;
+    wire  [2:0] pdec_r$q;
+    reg  pdec_r$clock;
     reg  bl_r$d;
     wire  bl_r$q;
     reg  bl_r$clock;
@@ -7512,6 +7855,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  g;
     reg  rep_ok;
     reg  gcount;
+    reg  pcount;
     
     // Sub module instances
     canstar_hub_core$core$sj$1$pulse pulse(
@@ -7620,6 +7964,16 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .q(an_r$q),
         .clock(an_r$clock)
     );
+    canstar_hub_core$core$sj$1$pgc_r pgc_r(
+        .d(pgc_r$d),
+        .q(pgc_r$q),
+        .clock(pgc_r$clock)
+    );
+    canstar_hub_core$core$sj$1$pdec_r pdec_r(
+        .d(pdec_r$d),
+        .q(pdec_r$q),
+        .clock(pdec_r$clock)
+    );
     canstar_hub_core$core$sj$1$bl_r bl_r(
         .d(bl_r$d),
         .q(bl_r$q),
@@ -7658,6 +8012,8 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         gc_r$clock = clock;
         gdec_r$clock = clock;
         an_r$clock = clock;
+        pgc_r$clock = clock;
+        pdec_r$clock = clock;
         bl_r$clock = clock;
         bl_dm_r$clock = clock;
         gpend$clock = clock;
@@ -7681,6 +8037,8 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         gc_r$d = gc_r$q;
         gdec_r$d = gdec_r$q;
         an_r$d = an_r$q;
+        pgc_r$d = pgc_r$q;
+        pdec_r$d = pdec_r$q;
         bl_r$d = bl_r$q;
         bl_dm_r$d = bl_dm_r$q;
         gpend$d = gpend$q;
@@ -7708,7 +8066,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | im_2 | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q);
         blame = sample & unj & enabled;
         charge = sample & unj & enabled & ~suppress & ~stuff_dom;
-        charged = sample & unj & enabled & ~suppress & ~stuff_dom;
+        charged = charge;
         tx_error = sample & nack_on & enabled & cont_r$q & tx_region & ~arb & c & ~bt & ~err_phase;
         if (sample) begin
             if (ack_slot) begin
@@ -7717,7 +8075,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             if (sof) begin
                 cont_r$d = 1'b1;
             end
-            else if (tx_region & c & ~bt) begin
+            else if (tx_region & c & ~bt & ~rep_dom) begin
                 cont_r$d = 1'b0;
             end
             if (dom) begin
@@ -7746,6 +8104,15 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                 end
                 else begin
                     gdec_r$d = gdec_r$q + 32'h1;
+                end
+            end
+            if (frame_ok & enabled & (pgc_r$q != 32'h0)) begin
+                if ((pdec_r$q + 32'h1) >= pg_decay) begin
+                    pdec_r$d = 32'h0;
+                    pgc_r$d = pgc_r$q - 32'h1;
+                end
+                else begin
+                    pdec_r$d = pdec_r$q + 32'h1;
                 end
             end
             if (an_r$q != 32'h0) begin
@@ -7791,6 +8158,11 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             gc_r$d = gc_r$q + 32'h1;
             gdec_r$d = 32'h0;
         end
+        pcount = sample & (gpend$q | g) & common & enabled & rep_on;
+        if (pcount & (pgc_r$q != 32'hf)) begin
+            pgc_r$d = pgc_r$q + 32'h1;
+            pdec_r$d = 32'h0;
+        end
         if ((gcount | charge) & (life_r$q != 32'h7f)) begin
             life_r$d = life_r$q + 32'h1;
         end
@@ -7812,7 +8184,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                 rep_r$d = rep_r$q + 32'h1;
             end
         end
-        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (rep_on & (rep_r$q >= rep_limit)))) begin
+        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (pgc_r$q >= pg_limit) | (rep_on & (rep_r$q >= rep_limit)))) begin
             dis_r$d = 1'b1;
         end
         if (enabled) begin
@@ -7836,6 +8208,8 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                     ok_r$d = 32'h0;
                     gc_r$d = 32'h0;
                     gdec_r$d = 32'h0;
+                    pgc_r$d = 32'h0;
+                    pdec_r$d = 32'h0;
                 end
             end
             else begin
@@ -7866,6 +8240,8 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             gc_r$d = 32'h0;
             gdec_r$d = 32'h0;
             an_r$d = 32'h0;
+            pgc_r$d = 32'h0;
+            pdec_r$d = 32'h0;
         end
         dis = dis_r$q;
         bic = bic_r$q;
@@ -7874,6 +8250,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         nack = nack_r$q;
         rep_cnt = rep_r$q;
         gc = gc_r$q;
+        pgc = pgc_r$q;
         silent = nack_r$q >= nack_thr;
         contender = cont_r$q;
     end
@@ -8221,6 +8598,44 @@ module canstar_hub_core$core$sj$1$ok_r(d,q,clock);
     end
           
 endmodule // canstar_hub_core$core$sj$1$ok_r
+
+
+module canstar_hub_core$core$sj$1$pdec_r(d,q,clock);
+    
+    // Module arguments
+    input wire  [2:0] d;
+    output reg  [2:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 3'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$sj$1$pdec_r
+
+
+module canstar_hub_core$core$sj$1$pgc_r(d,q,clock);
+    
+    // Module arguments
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 4'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$sj$1$pgc_r
 
 
 module canstar_hub_core$core$sj$1$pulse(clock,reset,c,glitch);
