@@ -212,7 +212,8 @@ fn config_defaults_serde_and_validation() {
     assert_eq!(d.timing.fields(), (1, 2, 1, 1, 0));
     assert_eq!((d.timing.ntq(), d.timing.sp(), d.timing.ph2, d.bit_clocks()), (8, 6, 2, 16));
     assert_eq!((d.bic_threshold, d.nack_threshold, d.dbc_threshold), (8, 7, 13));
-    assert_eq!((d.sub_bic_threshold, d.sub_dbc_threshold, d.replica_limit), (10, 28, 3));
+    assert_eq!((d.sub_bic_threshold, d.sub_dbc_threshold, d.replica_limit), (9, 28, 3));
+    assert_eq!((d.peer_glitch_limit, d.peer_glitch_decay), (12, 4));
     assert_eq!(d.reintegration, None);
     assert!(d.validate().is_ok());
     let text = toml::to_string(&d).unwrap();
@@ -231,6 +232,8 @@ fn config_defaults_serde_and_validation() {
         HubConfig { sync_depth: 3, ..Default::default() },
         HubConfig { dbc_threshold: 32, ..Default::default() },
         HubConfig { nack_threshold: 8, ..Default::default() },
+        HubConfig { peer_glitch_limit: 16, ..Default::default() },
+        HubConfig { peer_glitch_decay: 0, ..Default::default() },
         HubConfig { reintegration: Some(0), ..Default::default() },
         HubConfig {
             fault_injection: Some(FaultInjection { point: FaultPoint::Sublink(2), kind: InjectionKind::BitFlip, start_field: 6 }),
