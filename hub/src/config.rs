@@ -126,7 +126,7 @@ impl Default for HubConfig {
             sub_life_threshold: 64,
             nack_threshold: 7,
             dbc_threshold: 13,
-            sub_bic_threshold: 9,
+            sub_bic_threshold: 10,
             sub_dbc_threshold: 28,
             replica_limit: 3,
             glitch_max: None,

@@ -2746,7 +2746,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
                     gdec_r$d = gdec_r$q + 32'h1;
                 end
             end
-            if (frame_ok & enabled & (pgc_r$q != 32'h0)) begin
+            if (rep_on & frame_ok & enabled & (pgc_r$q != 32'h0)) begin
                 if ((pdec_r$q + 32'h1) >= pg_decay) begin
                     pdec_r$d = 32'h0;
                     pgc_r$d = pgc_r$q - 32'h1;
@@ -2824,7 +2824,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
                 rep_r$d = rep_r$q + 32'h1;
             end
         end
-        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (pgc_r$q >= pg_limit) | (rep_on & (rep_r$q >= rep_limit)))) begin
+        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (rep_on & (pgc_r$q >= pg_limit)) | (rep_on & (rep_r$q >= rep_limit)))) begin
             dis_r$d = 1'b1;
         end
         if (enabled) begin
@@ -3908,7 +3908,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
                     gdec_r$d = gdec_r$q + 32'h1;
                 end
             end
-            if (frame_ok & enabled & (pgc_r$q != 32'h0)) begin
+            if (rep_on & frame_ok & enabled & (pgc_r$q != 32'h0)) begin
                 if ((pdec_r$q + 32'h1) >= pg_decay) begin
                     pdec_r$d = 32'h0;
                     pgc_r$d = pgc_r$q - 32'h1;
@@ -3986,7 +3986,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
                 rep_r$d = rep_r$q + 32'h1;
             end
         end
-        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (pgc_r$q >= pg_limit) | (rep_on & (rep_r$q >= rep_limit)))) begin
+        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (rep_on & (pgc_r$q >= pg_limit)) | (rep_on & (rep_r$q >= rep_limit)))) begin
             dis_r$d = 1'b1;
         end
         if (enabled) begin
@@ -5070,7 +5070,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
                     gdec_r$d = gdec_r$q + 32'h1;
                 end
             end
-            if (frame_ok & enabled & (pgc_r$q != 32'h0)) begin
+            if (rep_on & frame_ok & enabled & (pgc_r$q != 32'h0)) begin
                 if ((pdec_r$q + 32'h1) >= pg_decay) begin
                     pdec_r$d = 32'h0;
                     pgc_r$d = pgc_r$q - 32'h1;
@@ -5148,7 +5148,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
                 rep_r$d = rep_r$q + 32'h1;
             end
         end
-        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (pgc_r$q >= pg_limit) | (rep_on & (rep_r$q >= rep_limit)))) begin
+        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (rep_on & (pgc_r$q >= pg_limit)) | (rep_on & (rep_r$q >= rep_limit)))) begin
             dis_r$d = 1'b1;
         end
         if (enabled) begin

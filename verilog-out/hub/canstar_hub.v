@@ -3420,7 +3420,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                     gdec_r$d = gdec_r$q + 32'h1;
                 end
             end
-            if (frame_ok & enabled & (pgc_r$q != 32'h0)) begin
+            if (rep_on & frame_ok & enabled & (pgc_r$q != 32'h0)) begin
                 if ((pdec_r$q + 32'h1) >= pg_decay) begin
                     pdec_r$d = 32'h0;
                     pgc_r$d = pgc_r$q - 32'h1;
@@ -3498,7 +3498,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                 rep_r$d = rep_r$q + 32'h1;
             end
         end
-        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (pgc_r$q >= pg_limit) | (rep_on & (rep_r$q >= rep_limit)))) begin
+        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (rep_on & (pgc_r$q >= pg_limit)) | (rep_on & (rep_r$q >= rep_limit)))) begin
             dis_r$d = 1'b1;
         end
         if (enabled) begin
@@ -4582,7 +4582,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                     gdec_r$d = gdec_r$q + 32'h1;
                 end
             end
-            if (frame_ok & enabled & (pgc_r$q != 32'h0)) begin
+            if (rep_on & frame_ok & enabled & (pgc_r$q != 32'h0)) begin
                 if ((pdec_r$q + 32'h1) >= pg_decay) begin
                     pdec_r$d = 32'h0;
                     pgc_r$d = pgc_r$q - 32'h1;
@@ -4660,7 +4660,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                 rep_r$d = rep_r$q + 32'h1;
             end
         end
-        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (pgc_r$q >= pg_limit) | (rep_on & (rep_r$q >= rep_limit)))) begin
+        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (rep_on & (pgc_r$q >= pg_limit)) | (rep_on & (rep_r$q >= rep_limit)))) begin
             dis_r$d = 1'b1;
         end
         if (enabled) begin
@@ -5744,7 +5744,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                     gdec_r$d = gdec_r$q + 32'h1;
                 end
             end
-            if (frame_ok & enabled & (pgc_r$q != 32'h0)) begin
+            if (rep_on & frame_ok & enabled & (pgc_r$q != 32'h0)) begin
                 if ((pdec_r$q + 32'h1) >= pg_decay) begin
                     pdec_r$d = 32'h0;
                     pgc_r$d = pgc_r$q - 32'h1;
@@ -5822,7 +5822,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                 rep_r$d = rep_r$q + 32'h1;
             end
         end
-        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (pgc_r$q >= pg_limit) | (rep_on & (rep_r$q >= rep_limit)))) begin
+        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (rep_on & (pgc_r$q >= pg_limit)) | (rep_on & (rep_r$q >= rep_limit)))) begin
             dis_r$d = 1'b1;
         end
         if (enabled) begin
@@ -6586,7 +6586,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     output reg  contender;
     
     // Constant declarations
-    localparam  bic_limit = 8'h48;
+    localparam  bic_limit = 8'h50;
     localparam  life_limit = 7'b1000000;
     localparam  dbc_thr = 5'b11100;
     localparam  nack_thr = 3'b111;
@@ -6944,7 +6944,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                     gdec_r$d = gdec_r$q + 32'h1;
                 end
             end
-            if (frame_ok & enabled & (pgc_r$q != 32'h0)) begin
+            if (rep_on & frame_ok & enabled & (pgc_r$q != 32'h0)) begin
                 if ((pdec_r$q + 32'h1) >= pg_decay) begin
                     pdec_r$d = 32'h0;
                     pgc_r$d = pgc_r$q - 32'h1;
@@ -7022,7 +7022,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                 rep_r$d = rep_r$q + 32'h1;
             end
         end
-        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (pgc_r$q >= pg_limit) | (rep_on & (rep_r$q >= rep_limit)))) begin
+        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (rep_on & (pgc_r$q >= pg_limit)) | (rep_on & (rep_r$q >= rep_limit)))) begin
             dis_r$d = 1'b1;
         end
         if (enabled) begin
@@ -7748,7 +7748,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     output reg  contender;
     
     // Constant declarations
-    localparam  bic_limit = 8'h48;
+    localparam  bic_limit = 8'h50;
     localparam  life_limit = 7'b1000000;
     localparam  dbc_thr = 5'b11100;
     localparam  nack_thr = 3'b111;
@@ -8106,7 +8106,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                     gdec_r$d = gdec_r$q + 32'h1;
                 end
             end
-            if (frame_ok & enabled & (pgc_r$q != 32'h0)) begin
+            if (rep_on & frame_ok & enabled & (pgc_r$q != 32'h0)) begin
                 if ((pdec_r$q + 32'h1) >= pg_decay) begin
                     pdec_r$d = 32'h0;
                     pgc_r$d = pgc_r$q - 32'h1;
@@ -8184,7 +8184,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                 rep_r$d = rep_r$q + 32'h1;
             end
         end
-        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (pgc_r$q >= pg_limit) | (rep_on & (rep_r$q >= rep_limit)))) begin
+        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (rep_on & (pgc_r$q >= pg_limit)) | (rep_on & (rep_r$q >= rep_limit)))) begin
             dis_r$d = 1'b1;
         end
         if (enabled) begin
