@@ -67,7 +67,11 @@ fn clock_at(j: &mut JudgeUnit, k: u64) {
 }
 
 fn unit(p: JudgeParams) -> JudgeUnit {
-    let mut j = JudgeUnit::port(p);
+    reset(JudgeUnit::port(p))
+}
+
+/// `j` initialised and reset.
+fn reset(mut j: JudgeUnit) -> JudgeUnit {
     drive::init(&mut j);
     j.reset.next = true;
     drive::cycle(&mut j);
@@ -482,11 +486,7 @@ fn recessive_replica_minority_stays_a_contender() {
 #[test]
 fn common_glitches_isolate_the_peer_hub() {
     let p = JudgeParams { peer_glitch_limit: 4, peer_glitch_decay: 2, ..params() };
-    let mut j = JudgeUnit::sublink(p);
-    drive::init(&mut j);
-    j.reset.next = true;
-    drive::cycle(&mut j);
-    j.reset.next = false;
+    let mut j = reset(JudgeUnit::sublink(p));
     j.common.next = true;
     pulse_bit(&mut j, 3, 4, false);
     pulse_bit(&mut j, 3, 4, false);
