@@ -100,6 +100,7 @@
 //! - The lifetime counter also counts transient disturbances of healthy ports; without
 //!   reintegration a port hit 32 times in its life is isolated.
 
+pub mod cause;
 pub mod config;
 pub mod coupler;
 pub mod efg;

@@ -46,6 +46,12 @@ struct Map {
     pj_dbc: Vec<usize>,
     sj_bic: Vec<usize>,
     sj_dbc: Vec<usize>,
+    pj_life: Vec<usize>,
+    sj_life: Vec<usize>,
+    pj_gc: Vec<usize>,
+    sj_gc: Vec<usize>,
+    sj_pgc: Vec<usize>,
+    sj_rep: Vec<usize>,
     mon_sample: usize,
     mon_field: usize,
     mon_pos: usize,
@@ -80,8 +86,12 @@ fn atom_paths(m: &dyn Model) -> HashMap<String, usize> {
 /// a model in which one of them is probe-only.
 pub fn core_reader_signals(n: usize, k: usize) -> Vec<String> {
     let mut v = vec![];
-    for what in ["blame", "charged", "glitch", "bic", "dbc"] {
+    for what in ["blame", "charged", "glitch", "bic", "dbc", "life", "gc"] {
         v.extend((0..n).map(|i| format!("pj${i}.{what}")));
+        v.extend((0..k).map(|j| format!("sj${j}.{what}")));
+    }
+    // (the peer-hub and replica counters exist in sublink units only)
+    for what in ["pgc", "rep_cnt"] {
         v.extend((0..k).map(|j| format!("sj${j}.{what}")));
     }
     v.extend(["mon_sample", "mon_field", "mon_pos", "mon_error", "mon_frame_ok"].map(String::from));
@@ -125,6 +135,12 @@ impl Map {
             pj_dbc: each(n, &|i| atom(&format!("core.pj${i}.dbc")))?,
             sj_bic: each(k, &|j| atom(&format!("core.sj${j}.bic")))?,
             sj_dbc: each(k, &|j| atom(&format!("core.sj${j}.dbc")))?,
+            pj_life: each(n, &|i| atom(&format!("core.pj${i}.life")))?,
+            sj_life: each(k, &|j| atom(&format!("core.sj${j}.life")))?,
+            pj_gc: each(n, &|i| atom(&format!("core.pj${i}.gc")))?,
+            sj_gc: each(k, &|j| atom(&format!("core.sj${j}.gc")))?,
+            sj_pgc: each(k, &|j| atom(&format!("core.sj${j}.pgc")))?,
+            sj_rep: each(k, &|j| atom(&format!("core.sj${j}.rep_cnt")))?,
             mon_sample: atom("core.mon_sample")?,
             mon_field: atom("core.mon_field")?,
             mon_pos: atom("core.mon_pos")?,
@@ -344,6 +360,16 @@ readers! {
     port_dbc(i) -> u64: |h| h.core().port_judge(i).dbc.val().index() as u64, |m, p| m.atom(p.pj_dbc[i]) as u64;
     sub_bic(j) -> u64: |h| h.core().sublink_judge(j).bic.val().index() as u64, |m, p| m.atom(p.sj_bic[j]) as u64;
     sub_dbc(j) -> u64: |h| h.core().sublink_judge(j).dbc.val().index() as u64, |m, p| m.atom(p.sj_dbc[j]) as u64;
+    /// Lifetime count of blames and glitches (never decays).
+    port_life(i) -> u64: |h| h.core().port_judge(i).life.val().index() as u64, |m, p| m.atom(p.pj_life[i]) as u64;
+    sub_life(j) -> u64: |h| h.core().sublink_judge(j).life.val().index() as u64, |m, p| m.atom(p.sj_life[j]) as u64;
+    /// Glitch counter (decaying).
+    port_gc(i) -> u64: |h| h.core().port_judge(i).gc.val().index() as u64, |m, p| m.atom(p.pj_gc[i]) as u64;
+    sub_gc(j) -> u64: |h| h.core().sublink_judge(j).gc.val().index() as u64, |m, p| m.atom(p.sj_gc[j]) as u64;
+    /// Peer-hub rule: common glitches counted by sublink unit `j` (decaying).
+    sub_pgc(j) -> u64: |h| h.core().sublink_judge(j).pgc.val().index() as u64, |m, p| m.atom(p.sj_pgc[j]) as u64;
+    /// Replica rule: episodes charged to sublink `j`.
+    sub_rep_cnt(j) -> u64: |h| h.core().sublink_judge(j).rep_cnt.val().index() as u64, |m, p| m.atom(p.sj_rep[j]) as u64;
     /// The frame monitor's sample point.
     mon_sample() -> bool: |h| h.core().mon_sample.val(), |m, p| m.atom(p.mon_sample) != 0;
     mon_field() -> u8: |h| h.core().mon_field.val().index() as u8, |m, p| m.atom(p.mon_field) as u8;
@@ -459,7 +485,7 @@ mod tests {
         let cfg = HubConfig { ports: 3, sublinks: 2, ..HubConfig::default() };
         let mut hubs = [HubSim::new(Engine::Compiled, &cfg), HubSim::new(Engine::RustHdl, &cfg)];
         assert_eq!(hubs[0].engine(), Engine::Compiled);
-        let (mut isolated, mut glitches) = (false, false);
+        let (mut isolated, mut glitches, mut counted) = (false, false, false);
         for t in 0..30_000u32 {
             for h in hubs.iter_mut() {
                 // port 0 stuck dominant from clock 3000; port 1 with 2-clock glitches
@@ -471,18 +497,20 @@ mod tests {
                 v.extend([h.mon_error() as u64, h.mon_frame_ok() as u64, h.blame_any() as u64]);
                 for i in 0..3 {
                     v.extend([h.tx(i) as u64, h.isolated(i) as u64, h.silent(i) as u64, h.port_bic(i), h.port_dbc(i), h.port_blame(i) as u64]);
-                    v.extend([h.port_charged(i) as u64, h.port_glitch(i) as u64]);
+                    v.extend([h.port_charged(i) as u64, h.port_glitch(i) as u64, h.port_life(i), h.port_gc(i)]);
                 }
                 for j in 0..2 {
                     v.extend([h.hub_tx(j) as u64, h.sub_isolated(j) as u64, h.sub_bic(j), h.sub_dbc(j), h.sub_blame(j) as u64]);
-                    v.extend([h.sub_charged(j) as u64, h.sub_glitch(j) as u64]);
+                    v.extend([h.sub_charged(j) as u64, h.sub_glitch(j) as u64, h.sub_life(j), h.sub_gc(j), h.sub_pgc(j), h.sub_rep_cnt(j)]);
                 }
                 v
             };
             assert_eq!(r(&hubs[0]), r(&hubs[1]), "clock {t}");
             isolated |= hubs[0].isolated(0);
             glitches |= hubs[0].port_glitch(1);
+            counted |= hubs[0].port_gc(1) > 0 && hubs[0].port_life(1) > 0;
         }
+        assert!(counted, "the glitching port's glitch and lifetime counters moved");
         assert!(isolated, "the stuck port was isolated");
         assert!(glitches, "the glitching port's glitches were seen");
     }

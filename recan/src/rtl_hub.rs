@@ -1,6 +1,8 @@
 //! The generated hub RTL as a kernel component ([`RtlHub`]), with judge statistics
 //! and input recording for replay (co-simulation, benchmarks).
 
+use canstar_hub::cause::{isolation_cause, JudgeCounts};
+use canstar_hub::judge::JudgeParams;
 use canstar_models::hub_sim::HubSim;
 use canstar_models::Engine;
 use canstar_sim::{ClockSpec, Component, Io};
@@ -29,6 +31,8 @@ pub struct RtlHub {
     pub stats: HubStats,
     record: Option<Vec<u64>>,
     samples: Option<Vec<(u64, bool, u8)>>,
+    /// Judge parameters of the port units and of the sublink units.
+    params: [JudgeParams; 2],
 }
 
 /// Judge activity of an [`RtlHub`], accumulated clock by clock (needs
@@ -46,6 +50,12 @@ pub struct HubStats {
     /// Time (ps) of the first clock with the port / sublink isolated.
     pub isolated_at: Vec<Option<u64>>,
     pub sub_isolated_at: Vec<Option<u64>>,
+    /// Why each port / sublink was isolated ([`canstar_hub::cause::isolation_cause`] of
+    /// its counters in the clock before), set with `isolated_at` / `sub_isolated_at`.
+    pub isolated_by: Vec<Option<String>>,
+    pub sub_isolated_by: Vec<Option<String>>,
+    /// Per unit (ports, then sublinks): its counters in the last clock.
+    last_counts: Vec<JudgeCounts>,
     /// Time (ps) of the first clock with the port reported silent.
     pub silent_at: Vec<Option<u64>>,
     /// Clocks with the hub's error flag driven.
@@ -113,6 +123,9 @@ impl RtlHub {
                 max_sub_dbc: vec![0; cfg.sublinks],
                 isolated_at: vec![None; cfg.ports],
                 sub_isolated_at: vec![None; cfg.sublinks],
+                isolated_by: vec![None; cfg.ports],
+                sub_isolated_by: vec![None; cfg.sublinks],
+                last_counts: vec![JudgeCounts::default(); cfg.ports + cfg.sublinks],
                 silent_at: vec![None; cfg.ports],
                 short_runs: vec![[0; 32]; cfg.ports + cfg.sublinks],
                 run_now: vec![(true, 0); cfg.ports + cfg.sublinks],
@@ -121,6 +134,7 @@ impl RtlHub {
             },
             record: None,
             samples: None,
+            params: [cfg.port_params(), cfg.sublink_params()],
         }
     }
 
@@ -297,8 +311,14 @@ impl Component for RtlHub {
         for i in 0..self.n {
             st.max_bic[i] = st.max_bic[i].max(hub.port_bic(i));
             st.max_dbc[i] = st.max_dbc[i].max(hub.port_dbc(i));
-            if st.isolated_at[i].is_none() && hub.isolated(i) {
-                st.isolated_at[i] = Some(now);
+            if st.isolated_at[i].is_none() {
+                if hub.isolated(i) {
+                    st.isolated_at[i] = Some(now);
+                    st.isolated_by[i] = Some(isolation_cause(&self.params[0], false, &st.last_counts[i]));
+                } else {
+                    let c = &mut st.last_counts[i];
+                    (c.bic, c.life, c.dbc, c.gc) = (hub.port_bic(i), hub.port_life(i), hub.port_dbc(i), hub.port_gc(i));
+                }
             }
             if st.silent_at[i].is_none() && hub.silent(i) {
                 st.silent_at[i] = Some(now);
@@ -307,8 +327,15 @@ impl Component for RtlHub {
         for k in 0..self.m {
             st.max_sub_bic[k] = st.max_sub_bic[k].max(hub.sub_bic(k));
             st.max_sub_dbc[k] = st.max_sub_dbc[k].max(hub.sub_dbc(k));
-            if st.sub_isolated_at[k].is_none() && hub.sub_isolated(k) {
-                st.sub_isolated_at[k] = Some(now);
+            if st.sub_isolated_at[k].is_none() {
+                if hub.sub_isolated(k) {
+                    st.sub_isolated_at[k] = Some(now);
+                    st.sub_isolated_by[k] = Some(isolation_cause(&self.params[1], true, &st.last_counts[self.n + k]));
+                } else {
+                    let c = &mut st.last_counts[self.n + k];
+                    (c.bic, c.life, c.dbc, c.gc) = (hub.sub_bic(k), hub.sub_life(k), hub.sub_dbc(k), hub.sub_gc(k));
+                    (c.pgc, c.rep_cnt) = (hub.sub_pgc(k), hub.sub_rep_cnt(k));
+                }
             }
         }
     }

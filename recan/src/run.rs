@@ -72,13 +72,16 @@ pub enum Isolated {
 }
 
 /// An isolation seen during a run.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct IsolationEvent {
     pub what: Isolated,
     /// When it was first seen (ps; resolution: a quarter bit).
     pub t_ps: u64,
     /// Bit times since the first fault started (None if before it or without fault).
     pub latency_bits: Option<f64>,
+    /// Which counters were at their limits ([`canstar_hub::cause::isolation_cause`]).
+    #[serde(default)]
+    pub cause: String,
 }
 
 /// TEC and REC of one controller at one instant.

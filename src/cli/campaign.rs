@@ -137,7 +137,7 @@ pub fn run(a: Args) -> Result<()> {
             outln!("  fault: {f}");
         }
         for i in &o.isolations {
-            outln!("  isolated: {i} (bit)");
+            outln!("  isolated: {i}");
         }
         for q in &o.quarantined {
             outln!("  quarantined: {q}");
@@ -240,7 +240,7 @@ fn print_events(r: &canstar_recan::RunResult) {
         lines.push((t, format!("node {k} ctrl {} error ({}) in {field}", "AB".as_bytes()[c] as char, if tx { "tx" } else { "rx" })));
     }
     for i in &r.isolated {
-        lines.push((i.t_ps, format!("isolated {:?}", i.what)));
+        lines.push((i.t_ps, format!("isolated {:?} by {}", i.what, i.cause)));
     }
     lines.sort_by_key(|l| l.0);
     for (t, l) in lines {

@@ -564,7 +564,7 @@ pub fn run_detailed(class: &Class, rep: u32, seed: u64, settings: &Settings, vcd
         worst_healthy_tec: tec,
         worst_healthy_rec: rec,
         isolation_latency_bits: r.isolated.iter().filter_map(|i| i.latency_bits).next().map(|l| l.round() as u32),
-        isolations: r.isolated.iter().map(|i| format!("{}@{}", iso_name(i.what), i.t_ps / bit)).collect(),
+        isolations: r.isolated.iter().map(|i| format!("{}@{} ({})", iso_name(i.what), i.t_ps / bit, i.cause)).collect(),
         quarantined: r
             .quarantined
             .iter()

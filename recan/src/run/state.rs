@@ -232,7 +232,11 @@ impl<'a> RunState<'a> {
             let what = self.seen_iso[self.res.isolated.len()];
             let first = self.fault_start[..self.nf].iter().flatten().min().copied();
             let latency_bits = first.filter(|&f| f <= now).map(|f| (now - f) as f64 / self.bit as f64);
-            self.res.isolated.push(IsolationEvent { what, t_ps: now, latency_bits });
+            let cause = match what {
+                Isolated::Port { hub, port } => sim.get(net.hubs[hub]).stats.isolated_by[port].clone(),
+                Isolated::Sublink { hub, sublink } => sim.get(net.hubs[hub]).stats.sub_isolated_by[sublink].clone(),
+            };
+            self.res.isolated.push(IsolationEvent { what, t_ps: now, latency_bits, cause: cause.unwrap_or_default() });
         }
     }
 
