@@ -280,8 +280,14 @@
 //! another enabled replica has glitches on its counter and this one has none
 //! (`rep_glitched`), it is not charged; (2) at an episode started by the blame of another
 //! sublink and not of this one (`rep_blamed`), it is not charged; (3) a sublink blamed
-//! while a replica was recessive (the dominant minority that started the episode) is
-//! charged whatever its first disagreement was. Evidence: `interlink-flip` seeds
+//! while dominant at the sample point with a replica recessive there (the dominant
+//! minority that started the episode) is charged whatever its first disagreement was.
+//! (3) first looked at the replicas' levels only: a pulse of the peer's contribution that
+//! both replicas carried, blamed by the window rule and ended before the sample point,
+//! made every replica "the dominant minority", and three such episodes (a peer port
+//! forced dominant every 2 bits) isolated both healthy sublinks before the peer isolated
+//! its port (`--class sweep-up-r2d-e2 --run-seed 4712347962206117595`, hub.md §5.11).
+//! Test: `window_blame_is_not_a_dominant_minority`. Evidence: `interlink-flip` seeds
 //! 5197395770926476992 and 1778083763214258429 both isolated a healthy interlink before
 //! (and reached 96/101); now both pass (the second only with the common-glitch rule of
 //! §5.8 above: it reached 96 before).
@@ -742,10 +748,13 @@ impl Logic for JudgeUnit {
         self.rep_ok.next = (self.rep_r.q.val() != 7) & !(self.rep_glitched.val() & (self.gc_r.q.val() == 0));
         // (at an error episode started by the blame of another sublink, not this one, the
         // blamed one is the culprit: the others are not charged)
-        // (and a unit blamed while a replica was recessive, the dominant minority that
-        // started the episode, is charged whatever its first disagreement was)
+        // (and a unit blamed while dominant at the sample point with a replica recessive
+        // there, the dominant minority that started the episode, is charged whatever its
+        // first disagreement was; a unit blamed by the window rule for a dominant pulse
+        // that every replica carried and that ended before the sample point is not a
+        // minority)
         self.bl_r.d.next = self.blame.val();
-        self.bl_dm_r.d.next = self.blame.val() & self.rep_rec.val();
+        self.bl_dm_r.d.next = self.blame.val() & self.dom.val() & self.rep_rec.val();
         if self.err_start.val() {
             self.rep_seen.d.next = false;
             if ((self.rep_seen.q.val() & self.rep_first_dom.q.val() & self.rep_ok.val() & !(self.rep_blamed.val() & !self.bl_r.q.val()))

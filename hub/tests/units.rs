@@ -480,6 +480,35 @@ fn recessive_replica_minority_stays_a_contender() {
     assert!(!j.contender.val());
 }
 
+/// §5.7: a sublink blamed while dominant at the sample point with a replica recessive
+/// there is the dominant minority of the episode and is charged; one blamed by the window
+/// rule for a pulse that ended before the sample point (every replica carried it, and all
+/// are recessive at the sample) is not.
+#[test]
+fn window_blame_is_not_a_dominant_minority() {
+    for (len, charged) in [(3, 0), (8, 1)] {
+        let mut j = reset(JudgeUnit::sublink(params()));
+        // an EOF bit, dominant from clock 8 for `len` clocks, the replica recessive at the
+        // sample point; the hub starts its episode one clock after the sample (registered)
+        let mut blame = false;
+        j.bt.next = true;
+        j.eof_1_6.next = true;
+        j.rep_rec.next = true;
+        for k in 0..16u64 {
+            j.c.next = !(8..8 + len).contains(&k);
+            j.sample.next = k == SAMPLE_AT;
+            j.err_start.next = k == SAMPLE_AT + 1;
+            j.bit_start.next = k == 0;
+            j.bs_cnt.next = k.into();
+            drive::settle(&mut j);
+            blame |= j.blame.val();
+            drive::cycle(&mut j);
+        }
+        assert!(blame, "dominant from clock 8 for {len} clocks: blamed");
+        assert_eq!(j.rep_cnt.val().index(), charged, "dominant for {len} clocks from clock 8");
+    }
+}
+
 /// hub.md §5.11 peer-hub rule: common glitches (every replica at once) are counted in
 /// `pgc` on sublinks only, decay by one per `peer_glitch_decay` good frames, and isolate at
 /// `peer_glitch_limit`; they never count in `gc` or `life`.

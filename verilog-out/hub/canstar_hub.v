@@ -3485,7 +3485,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         end
         rep_ok = (rep_r$q != 32'h7) & ~(rep_glitched & (gc_r$q == 32'h0));
         bl_r$d = blame;
-        bl_dm_r$d = blame & rep_rec;
+        bl_dm_r$d = blame & dom & rep_rec;
         if (err_start) begin
             rep_seen$d = 1'b0;
             if (((rep_seen$q & rep_first_dom$q & rep_ok & ~(rep_blamed & ~bl_r$q)) | bl_dm_r$q) & (rep_r$q != 32'h7)) begin
@@ -4647,7 +4647,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         end
         rep_ok = (rep_r$q != 32'h7) & ~(rep_glitched & (gc_r$q == 32'h0));
         bl_r$d = blame;
-        bl_dm_r$d = blame & rep_rec;
+        bl_dm_r$d = blame & dom & rep_rec;
         if (err_start) begin
             rep_seen$d = 1'b0;
             if (((rep_seen$q & rep_first_dom$q & rep_ok & ~(rep_blamed & ~bl_r$q)) | bl_dm_r$q) & (rep_r$q != 32'h7)) begin
@@ -5809,7 +5809,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         end
         rep_ok = (rep_r$q != 32'h7) & ~(rep_glitched & (gc_r$q == 32'h0));
         bl_r$d = blame;
-        bl_dm_r$d = blame & rep_rec;
+        bl_dm_r$d = blame & dom & rep_rec;
         if (err_start) begin
             rep_seen$d = 1'b0;
             if (((rep_seen$q & rep_first_dom$q & rep_ok & ~(rep_blamed & ~bl_r$q)) | bl_dm_r$q) & (rep_r$q != 32'h7)) begin
@@ -7009,7 +7009,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         end
         rep_ok = (rep_r$q != 32'h7) & ~(rep_glitched & (gc_r$q == 32'h0));
         bl_r$d = blame;
-        bl_dm_r$d = blame & rep_rec;
+        bl_dm_r$d = blame & dom & rep_rec;
         if (err_start) begin
             rep_seen$d = 1'b0;
             if (((rep_seen$q & rep_first_dom$q & rep_ok & ~(rep_blamed & ~bl_r$q)) | bl_dm_r$q) & (rep_r$q != 32'h7)) begin
@@ -8171,7 +8171,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         end
         rep_ok = (rep_r$q != 32'h7) & ~(rep_glitched & (gc_r$q == 32'h0));
         bl_r$d = blame;
-        bl_dm_r$d = blame & rep_rec;
+        bl_dm_r$d = blame & dom & rep_rec;
         if (err_start) begin
             rep_seen$d = 1'b0;
             if (((rep_seen$q & rep_first_dom$q & rep_ok & ~(rep_blamed & ~bl_r$q)) | bl_dm_r$q) & (rep_r$q != 32'h7)) begin
