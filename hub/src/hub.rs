@@ -126,6 +126,7 @@ pub struct HubCore {
     trigger: Signal<Local, Bit>,
     rep_rec: Signal<Local, Bit>,
     rep_dom: Signal<Local, Bit>,
+    rep_rec_w: Signal<Local, Bit>,
     rep_gl: Signal<Local, Bit>,
     _n: usize,
     _m: usize,
@@ -210,6 +211,7 @@ impl HubCore {
             trigger: Default::default(),
             rep_rec: Default::default(),
             rep_dom: Default::default(),
+            rep_rec_w: Default::default(),
             rep_gl: Default::default(),
             _n: n,
             _m: m,
@@ -320,6 +322,7 @@ impl Logic for HubCore {
         // replica summary for the sublink judges
         self.rep_rec.next = false;
         self.rep_dom.next = false;
+        self.rep_rec_w.next = false;
         self.rep_gl.next = false;
         for j in 0..self._m {
             self.coupler.reh_rx[j].next = self.reh_rx[j].val();
@@ -334,6 +337,7 @@ impl Logic for HubCore {
             if !self.sj[j].dis.val() {
                 self.rep_rec.next = self.rep_rec.val() | self.coupler.s[j].val();
                 self.rep_dom.next = self.rep_dom.val() | !self.coupler.s[j].val();
+                self.rep_rec_w.next = self.rep_rec_w.val() | !self.sj[j].window_dom.val();
                 self.rep_gl.next = self.rep_gl.val() | (self.sj[j].gc.val() != 0);
             }
         }
@@ -373,6 +377,7 @@ impl Logic for HubCore {
             self.pj[i].err_start.next = false;
             self.pj[i].rep_rec.next = false;
             self.pj[i].rep_dom.next = false;
+            self.pj[i].rep_rec_w.next = false;
             self.pj[i].rep_glitched.next = false;
             self.pj[i].rep_blamed.next = false;
             self.pj[i].common.next = false;
@@ -403,6 +408,7 @@ impl Logic for HubCore {
             self.sj[j].frame_ok.next = self.mon_frame_ok.val();
             self.sj[j].rep_rec.next = self.rep_rec.val();
             self.sj[j].rep_dom.next = self.rep_dom.val();
+            self.sj[j].rep_rec_w.next = self.rep_rec_w.val();
             self.sj[j].rep_glitched.next = self.rep_gl.val();
             self.sj[j].bit_start.next = self.mon_bit_start.val();
             self.sj[j].bs_cnt.next = self.bs_r.q.val();

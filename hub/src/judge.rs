@@ -280,14 +280,14 @@
 //! another enabled replica has glitches on its counter and this one has none
 //! (`rep_glitched`), it is not charged; (2) at an episode started by the blame of another
 //! sublink and not of this one (`rep_blamed`), it is not charged; (3) a sublink blamed
-//! while dominant at the sample point with a replica recessive there (the dominant
-//! minority that started the episode) is charged whatever its first disagreement was.
-//! (3) first looked at the replicas' levels only: a pulse of the peer's contribution that
-//! both replicas carried, blamed by the window rule and ended before the sample point,
-//! made every replica "the dominant minority", and three such episodes (a peer port
-//! forced dominant every 2 bits) isolated both healthy sublinks before the peer isolated
-//! its port (`--class sweep-up-r2d-e2 --run-seed 4712347962206117595`, hub.md §5.11).
-//! Test: `window_blame_is_not_a_dominant_minority`. Evidence: `interlink-flip` seeds
+//! while a replica had no dominant level in its window (`rep_rec_w`: the dominant minority
+//! that started the episode) is charged whatever its first disagreement was. (3) first
+//! compared the replicas' levels at the sample point only: a pulse of the peer's
+//! contribution that both replicas carried, blamed by the window rule and ended before the
+//! sample point, made every replica "the dominant minority", and three such episodes (a
+//! peer port forced dominant every 2 bits) isolated both healthy sublinks before the peer
+//! isolated its port (`--class sweep-up-r2d-e2 --run-seed 4712347962206117595`, hub.md
+//! §5.11). Test: `window_blame_is_not_a_dominant_minority`. Evidence: `interlink-flip` seeds
 //! 5197395770926476992 and 1778083763214258429 both isolated a healthy interlink before
 //! (and reached 96/101); now both pass (the second only with the common-glitch rule of
 //! §5.8 above: it reached 96 before).
@@ -385,6 +385,9 @@ pub struct JudgeUnit {
     /// Every enabled replica sublink (at least two) glitched within the last two bits:
     /// the glitch is in the peer's contribution, which the peer judges (0 for ports).
     pub common: Signal<In, Bit>,
+    /// Some enabled replica sublink has not been dominant in this bit's window (window
+    /// rule, §5.2) so far (0 for ports).
+    pub rep_rec_w: Signal<In, Bit>,
     pub dis: Signal<Out, Bit>,
     pub blame: Signal<Out, Bit>,
     /// `blame` that is charged (not suppressed by another unit's glitch).
@@ -404,6 +407,8 @@ pub struct JudgeUnit {
     pub pgc: Signal<Out, Bits<4>>,
     pub silent: Signal<Out, Bit>,
     pub contender: Signal<Out, Bit>,
+    /// Dominant in this bit's window so far (window rule, §5.2).
+    pub window_dom: Signal<Out, Bit>,
     pulse: PulseCheck,
     bic_limit: Constant<Bits<8>>,
     life_limit: Constant<Bits<7>>,
@@ -500,6 +505,7 @@ impl JudgeUnit {
             rep_glitched: Default::default(),
             rep_blamed: Default::default(),
             common: Default::default(),
+            rep_rec_w: Default::default(),
             dis: Default::default(),
             blame: Default::default(),
             charged: Default::default(),
@@ -515,6 +521,7 @@ impl JudgeUnit {
             pgc: Default::default(),
             silent: Default::default(),
             contender: Default::default(),
+            window_dom: Default::default(),
             pulse: PulseCheck::new(p.glitch_min, p.glitch_max),
             bic_limit: Constant::new(p.bic_limit.into()),
             life_limit: Constant::new(p.life_limit.into()),
@@ -748,13 +755,12 @@ impl Logic for JudgeUnit {
         self.rep_ok.next = (self.rep_r.q.val() != 7) & !(self.rep_glitched.val() & (self.gc_r.q.val() == 0));
         // (at an error episode started by the blame of another sublink, not this one, the
         // blamed one is the culprit: the others are not charged)
-        // (and a unit blamed while dominant at the sample point with a replica recessive
-        // there, the dominant minority that started the episode, is charged whatever its
-        // first disagreement was; a unit blamed by the window rule for a dominant pulse
-        // that every replica carried and that ended before the sample point is not a
-        // minority)
+        // (and a unit blamed while a replica had no dominant level in its window, the
+        // dominant minority that started the episode, is charged whatever its first
+        // disagreement was; units blamed by the window rule for a pulse that every
+        // replica carried are not a minority)
         self.bl_r.d.next = self.blame.val();
-        self.bl_dm_r.d.next = self.blame.val() & self.dom.val() & self.rep_rec.val();
+        self.bl_dm_r.d.next = self.blame.val() & self.rep_rec_w.val();
         if self.err_start.val() {
             self.rep_seen.d.next = false;
             if ((self.rep_seen.q.val() & self.rep_first_dom.q.val() & self.rep_ok.val() & !(self.rep_blamed.val() & !self.bl_r.q.val()))
@@ -845,6 +851,7 @@ impl Logic for JudgeUnit {
         self.pgc.next = self.pgc_r.q.val();
         self.silent.next = self.nack_r.q.val() >= self.nack_thr.val();
         self.contender.next = self.cont_r.q.val();
+        self.window_dom.next = self.domw.val();
     }
 }
 

@@ -480,32 +480,34 @@ fn recessive_replica_minority_stays_a_contender() {
     assert!(!j.contender.val());
 }
 
-/// §5.7: a sublink blamed while dominant at the sample point with a replica recessive
-/// there is the dominant minority of the episode and is charged; one blamed by the window
-/// rule for a pulse that ended before the sample point (every replica carried it, and all
-/// are recessive at the sample) is not.
+/// §5.7: a sublink blamed while a replica had no dominant level in its window is the
+/// dominant minority of the episode and is charged, even when its own pulse ended before
+/// the sample point (window rule); units blamed for a pulse that every replica carried
+/// (all recessive again at the sample point) are not.
 #[test]
 fn window_blame_is_not_a_dominant_minority() {
-    for (len, charged) in [(3, 0), (8, 1)] {
+    for (replica_carried_it, charged) in [(true, 0), (false, 1)] {
         let mut j = reset(JudgeUnit::sublink(params()));
-        // an EOF bit, dominant from clock 8 for `len` clocks, the replica recessive at the
-        // sample point; the hub starts its episode one clock after the sample (registered)
+        // an EOF bit, dominant from clock 8 to 10, every replica recessive at the sample
+        // point; the hub starts its episode one clock after the sample (registered)
         let mut blame = false;
         j.bt.next = true;
         j.eof_1_6.next = true;
         j.rep_rec.next = true;
         for k in 0..16u64 {
-            j.c.next = !(8..8 + len).contains(&k);
+            j.c.next = !(8..11).contains(&k);
+            j.rep_rec_w.next = !replica_carried_it && k >= 7;
             j.sample.next = k == SAMPLE_AT;
             j.err_start.next = k == SAMPLE_AT + 1;
             j.bit_start.next = k == 0;
             j.bs_cnt.next = k.into();
             drive::settle(&mut j);
             blame |= j.blame.val();
+            assert_eq!(j.window_dom.val(), (8..16).contains(&k), "window_dom at clock {k}");
             drive::cycle(&mut j);
         }
-        assert!(blame, "dominant from clock 8 for {len} clocks: blamed");
-        assert_eq!(j.rep_cnt.val().index(), charged, "dominant for {len} clocks from clock 8");
+        assert!(blame, "dominant at clocks 8..10: blamed");
+        assert_eq!(j.rep_cnt.val().index(), charged, "replica carried the pulse: {replica_carried_it}");
     }
 }
 
@@ -644,6 +646,7 @@ fn judge_stim(j: &mut JudgeUnit, rng: &mut rand_chacha::ChaCha8Rng, c: usize) {
             j.c.next = false; // occasionally long dominant runs
         }
         j.rep_rec.next = rng.gen_ratio(1, 10);
+        j.rep_rec_w.next = rng.gen_ratio(1, 10);
         j.rep_dom.next = rng.gen_ratio(1, 10);
         j.delim.next = rng.gen_ratio(1, 20);
         j.suppress.next = rng.gen_ratio(1, 8);

@@ -815,6 +815,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
     reg  pj$0$rep_glitched;
     reg  pj$0$rep_blamed;
     reg  pj$0$common;
+    reg  pj$0$rep_rec_w;
     wire  pj$0$dis;
     wire  pj$0$blame;
     wire  pj$0$charged;
@@ -830,6 +831,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
     wire  [3:0] pj$0$pgc;
     wire  pj$0$silent;
     wire  pj$0$contender;
+    wire  pj$0$window_dom;
     reg  pj$1$clock;
     reg  pj$1$reset;
     reg  pj$1$sample;
@@ -857,6 +859,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
     reg  pj$1$rep_glitched;
     reg  pj$1$rep_blamed;
     reg  pj$1$common;
+    reg  pj$1$rep_rec_w;
     wire  pj$1$dis;
     wire  pj$1$blame;
     wire  pj$1$charged;
@@ -872,6 +875,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
     wire  [3:0] pj$1$pgc;
     wire  pj$1$silent;
     wire  pj$1$contender;
+    wire  pj$1$window_dom;
     reg  pj$2$clock;
     reg  pj$2$reset;
     reg  pj$2$sample;
@@ -899,6 +903,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
     reg  pj$2$rep_glitched;
     reg  pj$2$rep_blamed;
     reg  pj$2$common;
+    reg  pj$2$rep_rec_w;
     wire  pj$2$dis;
     wire  pj$2$blame;
     wire  pj$2$charged;
@@ -914,6 +919,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
     wire  [3:0] pj$2$pgc;
     wire  pj$2$silent;
     wire  pj$2$contender;
+    wire  pj$2$window_dom;
     reg  rst_s1$d;
     wire  rst_s1$q;
     reg  rst_s1$clock;
@@ -945,6 +951,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
     reg  trigger;
     reg  rep_rec;
     reg  rep_dom;
+    reg  rep_rec_w;
     reg  rep_gl;
     
     // Sub module instances
@@ -1045,6 +1052,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         .rep_glitched(pj$0$rep_glitched),
         .rep_blamed(pj$0$rep_blamed),
         .common(pj$0$common),
+        .rep_rec_w(pj$0$rep_rec_w),
         .dis(pj$0$dis),
         .blame(pj$0$blame),
         .charged(pj$0$charged),
@@ -1059,7 +1067,8 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         .gc(pj$0$gc),
         .pgc(pj$0$pgc),
         .silent(pj$0$silent),
-        .contender(pj$0$contender)
+        .contender(pj$0$contender),
+        .window_dom(pj$0$window_dom)
     );
     canstar_cancentrate_core$core$pj$1 pj$1(
         .clock(pj$1$clock),
@@ -1089,6 +1098,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         .rep_glitched(pj$1$rep_glitched),
         .rep_blamed(pj$1$rep_blamed),
         .common(pj$1$common),
+        .rep_rec_w(pj$1$rep_rec_w),
         .dis(pj$1$dis),
         .blame(pj$1$blame),
         .charged(pj$1$charged),
@@ -1103,7 +1113,8 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         .gc(pj$1$gc),
         .pgc(pj$1$pgc),
         .silent(pj$1$silent),
-        .contender(pj$1$contender)
+        .contender(pj$1$contender),
+        .window_dom(pj$1$window_dom)
     );
     canstar_cancentrate_core$core$pj$2 pj$2(
         .clock(pj$2$clock),
@@ -1133,6 +1144,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         .rep_glitched(pj$2$rep_glitched),
         .rep_blamed(pj$2$rep_blamed),
         .common(pj$2$common),
+        .rep_rec_w(pj$2$rep_rec_w),
         .dis(pj$2$dis),
         .blame(pj$2$blame),
         .charged(pj$2$charged),
@@ -1147,7 +1159,8 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         .gc(pj$2$gc),
         .pgc(pj$2$pgc),
         .silent(pj$2$silent),
-        .contender(pj$2$contender)
+        .contender(pj$2$contender),
+        .window_dom(pj$2$window_dom)
     );
     canstar_cancentrate_core$core$rst_s1 rst_s1(
         .d(rst_s1$d),
@@ -1234,6 +1247,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         bt = coupler$bt;
         rep_rec = 1'b0;
         rep_dom = 1'b0;
+        rep_rec_w = 1'b0;
         rep_gl = 1'b0;
         any_blame = 1'b0;
         any_sub_blame = 1'b0;
@@ -1270,6 +1284,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         pj$0$err_start = 1'b0;
         pj$0$rep_rec = 1'b0;
         pj$0$rep_dom = 1'b0;
+        pj$0$rep_rec_w = 1'b0;
         pj$0$rep_glitched = 1'b0;
         pj$0$rep_blamed = 1'b0;
         pj$0$common = 1'b0;
@@ -1312,6 +1327,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         pj$1$err_start = 1'b0;
         pj$1$rep_rec = 1'b0;
         pj$1$rep_dom = 1'b0;
+        pj$1$rep_rec_w = 1'b0;
         pj$1$rep_glitched = 1'b0;
         pj$1$rep_blamed = 1'b0;
         pj$1$common = 1'b0;
@@ -1354,6 +1370,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         pj$2$err_start = 1'b0;
         pj$2$rep_rec = 1'b0;
         pj$2$rep_dom = 1'b0;
+        pj$2$rep_rec_w = 1'b0;
         pj$2$rep_glitched = 1'b0;
         pj$2$rep_blamed = 1'b0;
         pj$2$common = 1'b0;
@@ -2341,7 +2358,7 @@ module canstar_cancentrate_core$core$injector$state(d,q,clock);
 endmodule // canstar_cancentrate_core$core$injector$state
 
 
-module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,dis,blame,charged,tx_error,glitch,anomaly,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender);
+module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,dis,blame,charged,tx_error,glitch,anomaly,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
     
     // Module arguments
     input wire  clock;
@@ -2371,6 +2388,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
     input wire  rep_glitched;
     input wire  rep_blamed;
     input wire  common;
+    input wire  rep_rec_w;
     output reg  dis;
     output reg  blame;
     output reg  charged;
@@ -2386,6 +2404,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
     output reg  [3:0] pgc;
     output reg  silent;
     output reg  contender;
+    output reg  window_dom;
     
     // Constant declarations
     localparam  bic_limit = 8'h40;
@@ -2811,7 +2830,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         end
         rep_ok = (rep_r$q != 32'h7) & ~(rep_glitched & (gc_r$q == 32'h0));
         bl_r$d = blame;
-        bl_dm_r$d = blame & dom & rep_rec;
+        bl_dm_r$d = blame & rep_rec_w;
         if (err_start) begin
             rep_seen$d = 1'b0;
             if (((rep_seen$q & rep_first_dom$q & rep_ok & ~(rep_blamed & ~bl_r$q)) | bl_dm_r$q) & (rep_r$q != 32'h7)) begin
@@ -2893,6 +2912,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         pgc = pgc_r$q;
         silent = nack_r$q >= nack_thr;
         contender = cont_r$q;
+        window_dom = domw;
     end
     
 endmodule // canstar_cancentrate_core$core$pj$0
@@ -3503,7 +3523,7 @@ module canstar_cancentrate_core$core$pj$0$seen_dom_crc(d,q,clock);
 endmodule // canstar_cancentrate_core$core$pj$0$seen_dom_crc
 
 
-module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,dis,blame,charged,tx_error,glitch,anomaly,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender);
+module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,dis,blame,charged,tx_error,glitch,anomaly,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
     
     // Module arguments
     input wire  clock;
@@ -3533,6 +3553,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
     input wire  rep_glitched;
     input wire  rep_blamed;
     input wire  common;
+    input wire  rep_rec_w;
     output reg  dis;
     output reg  blame;
     output reg  charged;
@@ -3548,6 +3569,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
     output reg  [3:0] pgc;
     output reg  silent;
     output reg  contender;
+    output reg  window_dom;
     
     // Constant declarations
     localparam  bic_limit = 8'h40;
@@ -3973,7 +3995,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         end
         rep_ok = (rep_r$q != 32'h7) & ~(rep_glitched & (gc_r$q == 32'h0));
         bl_r$d = blame;
-        bl_dm_r$d = blame & dom & rep_rec;
+        bl_dm_r$d = blame & rep_rec_w;
         if (err_start) begin
             rep_seen$d = 1'b0;
             if (((rep_seen$q & rep_first_dom$q & rep_ok & ~(rep_blamed & ~bl_r$q)) | bl_dm_r$q) & (rep_r$q != 32'h7)) begin
@@ -4055,6 +4077,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         pgc = pgc_r$q;
         silent = nack_r$q >= nack_thr;
         contender = cont_r$q;
+        window_dom = domw;
     end
     
 endmodule // canstar_cancentrate_core$core$pj$1
@@ -4665,7 +4688,7 @@ module canstar_cancentrate_core$core$pj$1$seen_dom_crc(d,q,clock);
 endmodule // canstar_cancentrate_core$core$pj$1$seen_dom_crc
 
 
-module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,dis,blame,charged,tx_error,glitch,anomaly,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender);
+module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,dis,blame,charged,tx_error,glitch,anomaly,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
     
     // Module arguments
     input wire  clock;
@@ -4695,6 +4718,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
     input wire  rep_glitched;
     input wire  rep_blamed;
     input wire  common;
+    input wire  rep_rec_w;
     output reg  dis;
     output reg  blame;
     output reg  charged;
@@ -4710,6 +4734,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
     output reg  [3:0] pgc;
     output reg  silent;
     output reg  contender;
+    output reg  window_dom;
     
     // Constant declarations
     localparam  bic_limit = 8'h40;
@@ -5135,7 +5160,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         end
         rep_ok = (rep_r$q != 32'h7) & ~(rep_glitched & (gc_r$q == 32'h0));
         bl_r$d = blame;
-        bl_dm_r$d = blame & dom & rep_rec;
+        bl_dm_r$d = blame & rep_rec_w;
         if (err_start) begin
             rep_seen$d = 1'b0;
             if (((rep_seen$q & rep_first_dom$q & rep_ok & ~(rep_blamed & ~bl_r$q)) | bl_dm_r$q) & (rep_r$q != 32'h7)) begin
@@ -5217,6 +5242,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         pgc = pgc_r$q;
         silent = nack_r$q >= nack_thr;
         contender = cont_r$q;
+        window_dom = domw;
     end
     
 endmodule // canstar_cancentrate_core$core$pj$2

@@ -887,6 +887,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     reg  pj$0$rep_glitched;
     reg  pj$0$rep_blamed;
     reg  pj$0$common;
+    reg  pj$0$rep_rec_w;
     wire  pj$0$dis;
     wire  pj$0$blame;
     wire  pj$0$charged;
@@ -902,6 +903,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     wire  [3:0] pj$0$pgc;
     wire  pj$0$silent;
     wire  pj$0$contender;
+    wire  pj$0$window_dom;
     reg  pj$1$clock;
     reg  pj$1$reset;
     reg  pj$1$sample;
@@ -929,6 +931,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     reg  pj$1$rep_glitched;
     reg  pj$1$rep_blamed;
     reg  pj$1$common;
+    reg  pj$1$rep_rec_w;
     wire  pj$1$dis;
     wire  pj$1$blame;
     wire  pj$1$charged;
@@ -944,6 +947,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     wire  [3:0] pj$1$pgc;
     wire  pj$1$silent;
     wire  pj$1$contender;
+    wire  pj$1$window_dom;
     reg  pj$2$clock;
     reg  pj$2$reset;
     reg  pj$2$sample;
@@ -971,6 +975,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     reg  pj$2$rep_glitched;
     reg  pj$2$rep_blamed;
     reg  pj$2$common;
+    reg  pj$2$rep_rec_w;
     wire  pj$2$dis;
     wire  pj$2$blame;
     wire  pj$2$charged;
@@ -986,6 +991,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     wire  [3:0] pj$2$pgc;
     wire  pj$2$silent;
     wire  pj$2$contender;
+    wire  pj$2$window_dom;
     reg  sj$0$clock;
     reg  sj$0$reset;
     reg  sj$0$sample;
@@ -1013,6 +1019,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     reg  sj$0$rep_glitched;
     reg  sj$0$rep_blamed;
     reg  sj$0$common;
+    reg  sj$0$rep_rec_w;
     wire  sj$0$dis;
     wire  sj$0$blame;
     wire  sj$0$charged;
@@ -1028,6 +1035,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     wire  [3:0] sj$0$pgc;
     wire  sj$0$silent;
     wire  sj$0$contender;
+    wire  sj$0$window_dom;
     reg  sj$1$clock;
     reg  sj$1$reset;
     reg  sj$1$sample;
@@ -1055,6 +1063,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     reg  sj$1$rep_glitched;
     reg  sj$1$rep_blamed;
     reg  sj$1$common;
+    reg  sj$1$rep_rec_w;
     wire  sj$1$dis;
     wire  sj$1$blame;
     wire  sj$1$charged;
@@ -1070,6 +1079,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     wire  [3:0] sj$1$pgc;
     wire  sj$1$silent;
     wire  sj$1$contender;
+    wire  sj$1$window_dom;
     reg  rst_s1$d;
     wire  rst_s1$q;
     reg  rst_s1$clock;
@@ -1101,6 +1111,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     reg  trigger;
     reg  rep_rec;
     reg  rep_dom;
+    reg  rep_rec_w;
     reg  rep_gl;
     
     // Sub module instances
@@ -1211,6 +1222,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .rep_glitched(pj$0$rep_glitched),
         .rep_blamed(pj$0$rep_blamed),
         .common(pj$0$common),
+        .rep_rec_w(pj$0$rep_rec_w),
         .dis(pj$0$dis),
         .blame(pj$0$blame),
         .charged(pj$0$charged),
@@ -1225,7 +1237,8 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .gc(pj$0$gc),
         .pgc(pj$0$pgc),
         .silent(pj$0$silent),
-        .contender(pj$0$contender)
+        .contender(pj$0$contender),
+        .window_dom(pj$0$window_dom)
     );
     canstar_hub_core$core$pj$1 pj$1(
         .clock(pj$1$clock),
@@ -1255,6 +1268,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .rep_glitched(pj$1$rep_glitched),
         .rep_blamed(pj$1$rep_blamed),
         .common(pj$1$common),
+        .rep_rec_w(pj$1$rep_rec_w),
         .dis(pj$1$dis),
         .blame(pj$1$blame),
         .charged(pj$1$charged),
@@ -1269,7 +1283,8 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .gc(pj$1$gc),
         .pgc(pj$1$pgc),
         .silent(pj$1$silent),
-        .contender(pj$1$contender)
+        .contender(pj$1$contender),
+        .window_dom(pj$1$window_dom)
     );
     canstar_hub_core$core$pj$2 pj$2(
         .clock(pj$2$clock),
@@ -1299,6 +1314,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .rep_glitched(pj$2$rep_glitched),
         .rep_blamed(pj$2$rep_blamed),
         .common(pj$2$common),
+        .rep_rec_w(pj$2$rep_rec_w),
         .dis(pj$2$dis),
         .blame(pj$2$blame),
         .charged(pj$2$charged),
@@ -1313,7 +1329,8 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .gc(pj$2$gc),
         .pgc(pj$2$pgc),
         .silent(pj$2$silent),
-        .contender(pj$2$contender)
+        .contender(pj$2$contender),
+        .window_dom(pj$2$window_dom)
     );
     canstar_hub_core$core$sj$0 sj$0(
         .clock(sj$0$clock),
@@ -1343,6 +1360,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .rep_glitched(sj$0$rep_glitched),
         .rep_blamed(sj$0$rep_blamed),
         .common(sj$0$common),
+        .rep_rec_w(sj$0$rep_rec_w),
         .dis(sj$0$dis),
         .blame(sj$0$blame),
         .charged(sj$0$charged),
@@ -1357,7 +1375,8 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .gc(sj$0$gc),
         .pgc(sj$0$pgc),
         .silent(sj$0$silent),
-        .contender(sj$0$contender)
+        .contender(sj$0$contender),
+        .window_dom(sj$0$window_dom)
     );
     canstar_hub_core$core$sj$1 sj$1(
         .clock(sj$1$clock),
@@ -1387,6 +1406,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .rep_glitched(sj$1$rep_glitched),
         .rep_blamed(sj$1$rep_blamed),
         .common(sj$1$common),
+        .rep_rec_w(sj$1$rep_rec_w),
         .dis(sj$1$dis),
         .blame(sj$1$blame),
         .charged(sj$1$charged),
@@ -1401,7 +1421,8 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .gc(sj$1$gc),
         .pgc(sj$1$pgc),
         .silent(sj$1$silent),
-        .contender(sj$1$contender)
+        .contender(sj$1$contender),
+        .window_dom(sj$1$window_dom)
     );
     canstar_hub_core$core$rst_s1 rst_s1(
         .d(rst_s1$d),
@@ -1500,6 +1521,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         bt = coupler$bt;
         rep_rec = 1'b0;
         rep_dom = 1'b0;
+        rep_rec_w = 1'b0;
         rep_gl = 1'b0;
         coupler$reh_rx$0 = reh_rx$0;
         hub_tx$0 = coupler$hub_tx$0;
@@ -1514,6 +1536,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         if (~sj$0$dis) begin
             rep_rec = rep_rec | coupler$s$0;
             rep_dom = rep_dom | ~coupler$s$0;
+            rep_rec_w = rep_rec_w | ~sj$0$window_dom;
             rep_gl = rep_gl | (sj$0$gc != 32'h0);
         end
         coupler$reh_rx$1 = reh_rx$1;
@@ -1529,6 +1552,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         if (~sj$1$dis) begin
             rep_rec = rep_rec | coupler$s$1;
             rep_dom = rep_dom | ~coupler$s$1;
+            rep_rec_w = rep_rec_w | ~sj$1$window_dom;
             rep_gl = rep_gl | (sj$1$gc != 32'h0);
         end
         any_blame = 1'b0;
@@ -1566,6 +1590,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         pj$0$err_start = 1'b0;
         pj$0$rep_rec = 1'b0;
         pj$0$rep_dom = 1'b0;
+        pj$0$rep_rec_w = 1'b0;
         pj$0$rep_glitched = 1'b0;
         pj$0$rep_blamed = 1'b0;
         pj$0$common = 1'b0;
@@ -1608,6 +1633,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         pj$1$err_start = 1'b0;
         pj$1$rep_rec = 1'b0;
         pj$1$rep_dom = 1'b0;
+        pj$1$rep_rec_w = 1'b0;
         pj$1$rep_glitched = 1'b0;
         pj$1$rep_blamed = 1'b0;
         pj$1$common = 1'b0;
@@ -1650,6 +1676,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         pj$2$err_start = 1'b0;
         pj$2$rep_rec = 1'b0;
         pj$2$rep_dom = 1'b0;
+        pj$2$rep_rec_w = 1'b0;
         pj$2$rep_glitched = 1'b0;
         pj$2$rep_blamed = 1'b0;
         pj$2$common = 1'b0;
@@ -1678,6 +1705,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         sj$0$frame_ok = mon_frame_ok;
         sj$0$rep_rec = rep_rec;
         sj$0$rep_dom = rep_dom;
+        sj$0$rep_rec_w = rep_rec_w;
         sj$0$rep_glitched = rep_gl;
         sj$0$bit_start = mon_bit_start;
         sj$0$bs_cnt = bs_r$q;
@@ -1705,6 +1733,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         sj$1$frame_ok = mon_frame_ok;
         sj$1$rep_rec = rep_rec;
         sj$1$rep_dom = rep_dom;
+        sj$1$rep_rec_w = rep_rec_w;
         sj$1$rep_glitched = rep_gl;
         sj$1$bit_start = mon_bit_start;
         sj$1$bs_cnt = bs_r$q;
@@ -3015,7 +3044,7 @@ module canstar_hub_core$core$injector$state(d,q,clock);
 endmodule // canstar_hub_core$core$injector$state
 
 
-module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,dis,blame,charged,tx_error,glitch,anomaly,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender);
+module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,dis,blame,charged,tx_error,glitch,anomaly,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
     
     // Module arguments
     input wire  clock;
@@ -3045,6 +3074,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     input wire  rep_glitched;
     input wire  rep_blamed;
     input wire  common;
+    input wire  rep_rec_w;
     output reg  dis;
     output reg  blame;
     output reg  charged;
@@ -3060,6 +3090,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     output reg  [3:0] pgc;
     output reg  silent;
     output reg  contender;
+    output reg  window_dom;
     
     // Constant declarations
     localparam  bic_limit = 8'h40;
@@ -3485,7 +3516,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         end
         rep_ok = (rep_r$q != 32'h7) & ~(rep_glitched & (gc_r$q == 32'h0));
         bl_r$d = blame;
-        bl_dm_r$d = blame & dom & rep_rec;
+        bl_dm_r$d = blame & rep_rec_w;
         if (err_start) begin
             rep_seen$d = 1'b0;
             if (((rep_seen$q & rep_first_dom$q & rep_ok & ~(rep_blamed & ~bl_r$q)) | bl_dm_r$q) & (rep_r$q != 32'h7)) begin
@@ -3567,6 +3598,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         pgc = pgc_r$q;
         silent = nack_r$q >= nack_thr;
         contender = cont_r$q;
+        window_dom = domw;
     end
     
 endmodule // canstar_hub_core$core$pj$0
@@ -4177,7 +4209,7 @@ module canstar_hub_core$core$pj$0$seen_dom_crc(d,q,clock);
 endmodule // canstar_hub_core$core$pj$0$seen_dom_crc
 
 
-module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,dis,blame,charged,tx_error,glitch,anomaly,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender);
+module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,dis,blame,charged,tx_error,glitch,anomaly,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
     
     // Module arguments
     input wire  clock;
@@ -4207,6 +4239,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     input wire  rep_glitched;
     input wire  rep_blamed;
     input wire  common;
+    input wire  rep_rec_w;
     output reg  dis;
     output reg  blame;
     output reg  charged;
@@ -4222,6 +4255,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     output reg  [3:0] pgc;
     output reg  silent;
     output reg  contender;
+    output reg  window_dom;
     
     // Constant declarations
     localparam  bic_limit = 8'h40;
@@ -4647,7 +4681,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         end
         rep_ok = (rep_r$q != 32'h7) & ~(rep_glitched & (gc_r$q == 32'h0));
         bl_r$d = blame;
-        bl_dm_r$d = blame & dom & rep_rec;
+        bl_dm_r$d = blame & rep_rec_w;
         if (err_start) begin
             rep_seen$d = 1'b0;
             if (((rep_seen$q & rep_first_dom$q & rep_ok & ~(rep_blamed & ~bl_r$q)) | bl_dm_r$q) & (rep_r$q != 32'h7)) begin
@@ -4729,6 +4763,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         pgc = pgc_r$q;
         silent = nack_r$q >= nack_thr;
         contender = cont_r$q;
+        window_dom = domw;
     end
     
 endmodule // canstar_hub_core$core$pj$1
@@ -5339,7 +5374,7 @@ module canstar_hub_core$core$pj$1$seen_dom_crc(d,q,clock);
 endmodule // canstar_hub_core$core$pj$1$seen_dom_crc
 
 
-module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,dis,blame,charged,tx_error,glitch,anomaly,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender);
+module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,dis,blame,charged,tx_error,glitch,anomaly,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
     
     // Module arguments
     input wire  clock;
@@ -5369,6 +5404,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     input wire  rep_glitched;
     input wire  rep_blamed;
     input wire  common;
+    input wire  rep_rec_w;
     output reg  dis;
     output reg  blame;
     output reg  charged;
@@ -5384,6 +5420,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     output reg  [3:0] pgc;
     output reg  silent;
     output reg  contender;
+    output reg  window_dom;
     
     // Constant declarations
     localparam  bic_limit = 8'h40;
@@ -5809,7 +5846,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         end
         rep_ok = (rep_r$q != 32'h7) & ~(rep_glitched & (gc_r$q == 32'h0));
         bl_r$d = blame;
-        bl_dm_r$d = blame & dom & rep_rec;
+        bl_dm_r$d = blame & rep_rec_w;
         if (err_start) begin
             rep_seen$d = 1'b0;
             if (((rep_seen$q & rep_first_dom$q & rep_ok & ~(rep_blamed & ~bl_r$q)) | bl_dm_r$q) & (rep_r$q != 32'h7)) begin
@@ -5891,6 +5928,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         pgc = pgc_r$q;
         silent = nack_r$q >= nack_thr;
         contender = cont_r$q;
+        window_dom = domw;
     end
     
 endmodule // canstar_hub_core$core$pj$2
@@ -6539,7 +6577,7 @@ module canstar_hub_core$core$rst_s2(d,q,clock);
 endmodule // canstar_hub_core$core$rst_s2
 
 
-module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,dis,blame,charged,tx_error,glitch,anomaly,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender);
+module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,dis,blame,charged,tx_error,glitch,anomaly,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
     
     // Module arguments
     input wire  clock;
@@ -6569,6 +6607,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     input wire  rep_glitched;
     input wire  rep_blamed;
     input wire  common;
+    input wire  rep_rec_w;
     output reg  dis;
     output reg  blame;
     output reg  charged;
@@ -6584,6 +6623,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     output reg  [3:0] pgc;
     output reg  silent;
     output reg  contender;
+    output reg  window_dom;
     
     // Constant declarations
     localparam  bic_limit = 8'h50;
@@ -7009,7 +7049,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         end
         rep_ok = (rep_r$q != 32'h7) & ~(rep_glitched & (gc_r$q == 32'h0));
         bl_r$d = blame;
-        bl_dm_r$d = blame & dom & rep_rec;
+        bl_dm_r$d = blame & rep_rec_w;
         if (err_start) begin
             rep_seen$d = 1'b0;
             if (((rep_seen$q & rep_first_dom$q & rep_ok & ~(rep_blamed & ~bl_r$q)) | bl_dm_r$q) & (rep_r$q != 32'h7)) begin
@@ -7091,6 +7131,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         pgc = pgc_r$q;
         silent = nack_r$q >= nack_thr;
         contender = cont_r$q;
+        window_dom = domw;
     end
     
 endmodule // canstar_hub_core$core$sj$0
@@ -7701,7 +7742,7 @@ module canstar_hub_core$core$sj$0$seen_dom_crc(d,q,clock);
 endmodule // canstar_hub_core$core$sj$0$seen_dom_crc
 
 
-module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,dis,blame,charged,tx_error,glitch,anomaly,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender);
+module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,dis,blame,charged,tx_error,glitch,anomaly,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
     
     // Module arguments
     input wire  clock;
@@ -7731,6 +7772,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     input wire  rep_glitched;
     input wire  rep_blamed;
     input wire  common;
+    input wire  rep_rec_w;
     output reg  dis;
     output reg  blame;
     output reg  charged;
@@ -7746,6 +7788,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     output reg  [3:0] pgc;
     output reg  silent;
     output reg  contender;
+    output reg  window_dom;
     
     // Constant declarations
     localparam  bic_limit = 8'h50;
@@ -8171,7 +8214,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         end
         rep_ok = (rep_r$q != 32'h7) & ~(rep_glitched & (gc_r$q == 32'h0));
         bl_r$d = blame;
-        bl_dm_r$d = blame & dom & rep_rec;
+        bl_dm_r$d = blame & rep_rec_w;
         if (err_start) begin
             rep_seen$d = 1'b0;
             if (((rep_seen$q & rep_first_dom$q & rep_ok & ~(rep_blamed & ~bl_r$q)) | bl_dm_r$q) & (rep_r$q != 32'h7)) begin
@@ -8253,6 +8296,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         pgc = pgc_r$q;
         silent = nack_r$q >= nack_thr;
         contender = cont_r$q;
+        window_dom = domw;
     end
     
 endmodule // canstar_hub_core$core$sj$1
