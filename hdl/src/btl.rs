@@ -156,6 +156,8 @@ pub struct BitTiming {
     c_sp1: DFF<Bits<5>>,
     c_ntq1: DFF<Bits<5>>,
     c_sjw1: DFF<Bits<5>>,
+    // Bit i: SJW ≥ i + 1 (all 0 before the first reset, where `c_sjw` = 0).
+    c_sjw_ge: DFF<Bits<4>>,
     pre: DFF<Bits<7>>,
     lc: DFF<Bits<3>>,
     rem: DFF<Bits<5>>,
@@ -201,8 +203,8 @@ impl Logic for BitTiming {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
-            self, clock, c_brp, c_sp, c_ntq, c_sjw, c_triple, c_ipt1, c_valid, c_bad, c_sp1, c_ntq1, c_sjw1, pre, lc, rem,
-            tsp, late, busmon_n, sync_dis, since, pending, tx_n, h1_n, h2_n, sample_r, hard_r, resync_r
+            self, clock, c_brp, c_sp, c_ntq, c_sjw, c_triple, c_ipt1, c_valid, c_bad, c_sp1, c_ntq1, c_sjw1, c_sjw_ge, pre,
+            lc, rem, tsp, late, busmon_n, sync_dis, since, pending, tx_n, h1_n, h2_n, sample_r, hard_r, resync_r
         );
 
         // Configuration from the input fields (value - 1 encoding).
@@ -221,7 +223,15 @@ impl Logic for BitTiming {
 
         // Step 1 and 2: which side of the sample point (`late`), whether a
         // late edge is within SJW (phase error nbw − cnt = `rem`).
-        self.rs_ok.next = self.rem.q.val() <= self.c_sjw.q.val();
+        // rem ≤ SJW without a comparator after `rem`: `c_sjw` is 0 (before
+        // the first reset) or SJW = 1..4, and `c_sjw_ge` bit i is SJW ≥ i + 1,
+        // so this is exactly `rem <= c_sjw` for every `rem` (unit test
+        // `rs_ok_is_rem_le_sjw`).
+        self.rs_ok.next = ((((self.rem.q.val() == 0)
+            | ((self.rem.q.val() == 1) & self.c_sjw_ge.q.val().get_bit(0)))
+            | ((self.rem.q.val() == 2) & self.c_sjw_ge.q.val().get_bit(1)))
+            | ((self.rem.q.val() == 3) & self.c_sjw_ge.q.val().get_bit(2)))
+            | ((self.rem.q.val() == 4) & self.c_sjw_ge.q.val().get_bit(3));
         if self.lc.q.val() == bit_cast::<3, 5>(self.c_sjw.q.val()) {
             self.lc_inc.next = self.lc.q.val();
         } else {
@@ -286,6 +296,16 @@ impl Logic for BitTiming {
             self.c_sp1.d.next = self.in_sp.val().get_bits::<5>(0) - 1;
             self.c_ntq1.d.next = self.in_ntq.val().get_bits::<5>(0) - 1;
             self.c_sjw1.d.next = self.in_sjw.val() + 1;
+            self.c_sjw_ge.d.next = 1.into();
+            if self.sjw.val() == 1 {
+                self.c_sjw_ge.d.next = 3.into();
+            }
+            if self.sjw.val() == 2 {
+                self.c_sjw_ge.d.next = 7.into();
+            }
+            if self.sjw.val() == 3 {
+                self.c_sjw_ge.d.next = 15.into();
+            }
             self.c_triple.d.next = self.triple.val();
             self.c_ipt1.d.next = self.ph2.val() == 0;
             self.c_bad.d.next = self.in_bad.val();
@@ -411,6 +431,45 @@ impl BitTiming {
             hard_sync: self.hard_sync.val(),
             resync: self.resync.val(),
             cfg_err: self.cfg_err.val(),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::drive::{cycle, init, settle};
+
+    /// `rs_ok` (a late edge within SJW) is exactly the comparison
+    /// `rem <= c_sjw` it replaces, for every `rem`, before the first reset
+    /// (`c_sjw` = 0) and after a reset with each SJW.
+    #[test]
+    fn rs_ok_is_rem_le_sjw() {
+        // None: never reset; Some(s): reset with the SJW field s (SJW − 1).
+        for sjw in [None, Some(0u64), Some(1), Some(2), Some(3)] {
+            let mut uut = BitTiming::default();
+            init(&mut uut);
+            if let Some(s) = sjw {
+                // T = 1 + 3 + 3 + 3 TQ, SJW ≤ PH1 for every s.
+                uut.brp.next = 1.into();
+                uut.prop.next = 2.into();
+                uut.ph1.next = 3.into();
+                uut.ph2.next = 2.into();
+                uut.sjw.next = s.into();
+                uut.reset.next = true;
+                cycle(&mut uut);
+                uut.reset.next = false;
+                settle(&mut uut);
+                assert_eq!(uut.c_sjw.q.val().index() as u64, s + 1);
+            } else {
+                assert_eq!(uut.c_sjw.q.val().index(), 0);
+            }
+            for rem in 0..32u64 {
+                uut.rem.q.next = rem.into();
+                settle(&mut uut);
+                let expected = uut.rem.q.val() <= uut.c_sjw.q.val();
+                assert_eq!(uut.rs_ok.val(), expected, "sjw field {sjw:?}, rem {rem}");
+            }
         }
     }
 }

@@ -6258,6 +6258,9 @@ module canstar_cancentrate_core$monitor$btl(clock,reset,brp,prop,ph1,ph2,sjw,tri
     reg  [4:0] c_sjw1$d;
     wire  [4:0] c_sjw1$q;
     reg  c_sjw1$clock;
+    reg  [3:0] c_sjw_ge$d;
+    wire  [3:0] c_sjw_ge$q;
+    reg  c_sjw_ge$clock;
     reg  [6:0] pre$d;
     wire  [6:0] pre$q;
     reg  pre$clock;
@@ -6383,6 +6386,11 @@ module canstar_cancentrate_core$monitor$btl(clock,reset,brp,prop,ph1,ph2,sjw,tri
         .q(c_sjw1$q),
         .clock(c_sjw1$clock)
     );
+    canstar_cancentrate_core$monitor$btl$c_sjw_ge c_sjw_ge(
+        .d(c_sjw_ge$d),
+        .q(c_sjw_ge$q),
+        .clock(c_sjw_ge$clock)
+    );
     canstar_cancentrate_core$monitor$btl$pre pre(
         .d(pre$d),
         .q(pre$q),
@@ -6472,6 +6480,7 @@ module canstar_cancentrate_core$monitor$btl(clock,reset,brp,prop,ph1,ph2,sjw,tri
         c_sp1$clock = clock;
         c_ntq1$clock = clock;
         c_sjw1$clock = clock;
+        c_sjw_ge$clock = clock;
         pre$clock = clock;
         lc$clock = clock;
         rem$clock = clock;
@@ -6498,6 +6507,7 @@ module canstar_cancentrate_core$monitor$btl(clock,reset,brp,prop,ph1,ph2,sjw,tri
         c_sp1$d = c_sp1$q;
         c_ntq1$d = c_ntq1$q;
         c_sjw1$d = c_sjw1$q;
+        c_sjw_ge$d = c_sjw_ge$q;
         pre$d = pre$q;
         lc$d = lc$q;
         rem$d = rem$q;
@@ -6519,7 +6529,7 @@ module canstar_cancentrate_core$monitor$btl(clock,reset,brp,prop,ph1,ph2,sjw,tri
         in_sjw = ((sjw) & 5'h1f) + 32'h1;
         in_bad = (((in_ntq < 32'h8) | (in_ntq > 32'h19)) | (((sjw) & 3'h7) > ph1)) | ((ph2 == 32'h0) & (brp == 32'h0));
         tick = (c_valid$q & ~reset) & (pre$q == c_brp$q);
-        rs_ok = rem$q <= c_sjw$q;
+        rs_ok = ((((rem$q == 32'h0) | ((rem$q == 32'h1) & c_sjw_ge$q[32'h0])) | ((rem$q == 32'h2) & c_sjw_ge$q[32'h1])) | ((rem$q == 32'h3) & c_sjw_ge$q[32'h2])) | ((rem$q == 32'h4) & c_sjw_ge$q[32'h3]);
         if (lc$q == ((c_sjw$q) & 3'h7)) begin
             lc_inc = lc$q;
         end
@@ -6561,6 +6571,16 @@ module canstar_cancentrate_core$monitor$btl(clock,reset,brp,prop,ph1,ph2,sjw,tri
             c_sp1$d = in_sp[(32'h0)+:(5)] - 32'h1;
             c_ntq1$d = in_ntq[(32'h0)+:(5)] - 32'h1;
             c_sjw1$d = in_sjw + 32'h1;
+            c_sjw_ge$d = 32'h1;
+            if (sjw == 32'h1) begin
+                c_sjw_ge$d = 32'h3;
+            end
+            if (sjw == 32'h2) begin
+                c_sjw_ge$d = 32'h7;
+            end
+            if (sjw == 32'h3) begin
+                c_sjw_ge$d = 32'hf;
+            end
             c_triple$d = triple;
             c_ipt1$d = ph2 == 32'h0;
             c_bad$d = in_bad;
@@ -6806,6 +6826,25 @@ module canstar_cancentrate_core$monitor$btl$c_sjw1(d,q,clock);
     end
           
 endmodule // canstar_cancentrate_core$monitor$btl$c_sjw1
+
+
+module canstar_cancentrate_core$monitor$btl$c_sjw_ge(d,q,clock);
+    
+    // Module arguments
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 4'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$monitor$btl$c_sjw_ge
 
 
 module canstar_cancentrate_core$monitor$btl$c_sp(d,q,clock);
