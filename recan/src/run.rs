@@ -71,6 +71,16 @@ pub enum Isolated {
     Sublink { hub: usize, sublink: usize },
 }
 
+impl std::fmt::Display for Isolated {
+    /// `hub 0 port 2`, `hub 1 sublink 0`.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match *self {
+            Isolated::Port { hub, port } => write!(f, "hub {hub} port {port}"),
+            Isolated::Sublink { hub, sublink } => write!(f, "hub {hub} sublink {sublink}"),
+        }
+    }
+}
+
 /// An isolation seen during a run.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct IsolationEvent {

@@ -225,10 +225,7 @@ pub fn run_chunk_vcd(s: &SoakSettings, index: u64, vcd: Option<(&std::path::Path
         isolations: r
             .isolated
             .iter()
-            .map(|i| match i.what {
-                crate::Isolated::Port { hub, port } => format!("hub {hub} port {port} ({})", i.cause),
-                crate::Isolated::Sublink { hub, sublink } => format!("hub {hub} sublink {sublink} ({})", i.cause),
-            })
+            .map(|i| format!("{} ({})", i.what, i.cause))
             .collect(),
         errors: r.ctrl_errors.len() as u64,
         worst_tec: tec,

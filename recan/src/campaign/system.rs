@@ -454,7 +454,7 @@ fn judge_generic(spec: &RunSpec, g: &Generic, r: &RunResult, lost: &mut Vec<Stri
     seen.dedup();
     for m in &g.must_isolate {
         if !seen.contains(m) {
-            f.push(format!("{} not isolated", iso_name(*m)));
+            f.push(format!("{m} not isolated"));
         }
     }
     for s in &seen {
@@ -463,7 +463,7 @@ fn judge_generic(spec: &RunSpec, g: &Generic, r: &RunResult, lost: &mut Vec<Stri
                 Isolated::Sublink { .. } => "hubs isolated each other: ",
                 Isolated::Port { .. } => "healthy path isolated: ",
             };
-            f.push(format!("{what}{}", iso_name(*s)));
+            f.push(format!("{what}{s}"));
         }
     }
     f
@@ -491,13 +491,6 @@ fn worst_sampled(r: &RunResult, unhealthy: &[(usize, usize)]) -> (u32, u32) {
         }
     }
     w
-}
-
-fn iso_name(i: Isolated) -> String {
-    match i {
-        Isolated::Port { hub, port } => format!("hub {hub} port {port}"),
-        Isolated::Sublink { hub, sublink } => format!("hub {hub} sublink {sublink}"),
-    }
 }
 
 /// Shortest run of equal level on the inputs of both hubs: the ports of healthy
@@ -564,7 +557,7 @@ pub fn run_detailed(class: &Class, rep: u32, seed: u64, settings: &Settings, vcd
         worst_healthy_tec: tec,
         worst_healthy_rec: rec,
         isolation_latency_bits: r.isolated.iter().filter_map(|i| i.latency_bits).next().map(|l| l.round() as u32),
-        isolations: r.isolated.iter().map(|i| format!("{}@{} ({})", iso_name(i.what), i.t_ps / bit, i.cause)).collect(),
+        isolations: r.isolated.iter().map(|i| format!("{}@{} ({})", i.what, i.t_ps / bit, i.cause)).collect(),
         quarantined: r
             .quarantined
             .iter()
@@ -610,7 +603,7 @@ pub fn plot_data(class: &Class, seed: u64, spec: &RunSpec, r: &RunResult) -> Plo
         }
     }
     for i in &r.isolated {
-        markers.push(Marker { t_ps: i.t_ps, kind: MarkerKind::Isolation, label: format!("isolated {}", iso_name(i.what)) });
+        markers.push(Marker { t_ps: i.t_ps, kind: MarkerKind::Isolation, label: format!("isolated {}", i.what) });
     }
     for &(k, c, t) in &r.quarantined {
         let name = spec.network.nodes.get(k).map(|n| n.name.clone()).unwrap_or_else(|| format!("node {k}"));
