@@ -9,6 +9,9 @@ fn campaign_bad_input_fails_cleanly_and_writes_nothing() {
     let d = tempfile::tempdir().unwrap();
     std::fs::write(d.path().join("bad.json"), "{ not json").unwrap();
     std::fs::write(d.path().join("empty.json"), "").unwrap();
+    std::fs::write(d.path().join("h4.toml"), "[hub]\nports = 4\n").unwrap();
+    std::fs::write(d.path().join("hkey.toml"), "[hub]\nsub_bic_decay = 9\n").unwrap();
+    std::fs::write(d.path().join("hunk.toml"), "[hub]\nbic_decays = 2\n").unwrap();
     let before = entries(d.path());
     let cases: &[(&[&str], &str)] = &[
         (&["campaign", "--classes", "pub99", "--json", "out.json"], "unknown scenario class `pub99`"),
@@ -23,6 +26,10 @@ fn campaign_bad_input_fails_cleanly_and_writes_nothing() {
         (&["campaign", "--class", "pub01", "--plot", "no/such/dir/p.svg"], "does not exist"),
         (&["campaign", "--classes", "pub01", "--json", "no/such/dir/o.json"], "does not exist"),
         (&["campaign", "--classes", "pub01", "--reps", "0", "--json", "out.json"], "--reps"),
+        (&["campaign", "--classes", "pub01", "--hub-config", "h4.toml", "--json", "out.json"], "h4.toml: hub.ports = 4"),
+        (&["campaign", "--classes", "pub01", "--hub-config", "hkey.toml", "--json", "out.json"], "sub_bic_decay must be in 1..=7"),
+        (&["campaign", "--classes", "pub01", "--hub-config", "hunk.toml", "--json", "out.json"], "hunk.toml"),
+        (&["campaign", "--class", "pub01", "--hub-config", "none.toml"], "none.toml"),
     ];
     for (args, msg) in cases {
         let (ok, _, err) = canstar(args, d.path());
@@ -34,6 +41,17 @@ fn campaign_bad_input_fails_cleanly_and_writes_nothing() {
     let (ok, _, _) = canstar(&["campaign", "--plot", "p.svg"], d.path());
     assert!(!ok);
     assert_eq!(entries(d.path()), before);
+}
+
+/// `--hub-config` reaches both hubs: the healthy hub cuts a stuck-dominant hub off by
+/// the sublink dominant-run limit of the file (20) instead of the reference 28.
+#[test]
+fn campaign_hub_config_sets_both_hubs() {
+    let d = tempfile::tempdir().unwrap();
+    std::fs::write(d.path().join("h.toml"), "[hub]\nsub_dbc_threshold = 20\n").unwrap();
+    let (ok, out, err) = canstar(&["campaign", "--class", "hub-sad", "--hub-config", "h.toml"], d.path());
+    assert!(ok, "{err}");
+    assert!(out.contains("(dominant run 20/20)") && !out.contains("28/28"), "{out}");
 }
 
 #[test]

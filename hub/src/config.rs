@@ -79,6 +79,9 @@ pub struct HubConfig {
     pub dbc_threshold: u64,
     /// BIC threshold for sublinks (default twice the port threshold), 1..=31.
     pub sub_bic_threshold: u64,
+    /// Good frames per count taken off a port's / a sublink's `bic` (§5.3 decay), 1..=7.
+    pub bic_decay: u64,
+    pub sub_bic_decay: u64,
     /// Dominant-run threshold for sublinks, 1..=31.
     pub sub_dbc_threshold: u64,
     /// Replica disagreement limit, 1..=7.
@@ -127,6 +130,8 @@ impl Default for HubConfig {
             nack_threshold: 7,
             dbc_threshold: 13,
             sub_bic_threshold: 10,
+            bic_decay: 2,
+            sub_bic_decay: 2,
             sub_dbc_threshold: 28,
             replica_limit: 3,
             glitch_max: None,
@@ -172,6 +177,7 @@ impl HubConfig {
     pub fn port_params(&self) -> JudgeParams {
         JudgeParams {
             bic_limit: 8 * self.bic_threshold,
+            bic_decay: self.bic_decay,
             life_limit: self.life_threshold,
             dbc_threshold: self.dbc_threshold,
             nack_threshold: self.nack_threshold,
@@ -210,6 +216,7 @@ impl HubConfig {
     pub fn sublink_params(&self) -> JudgeParams {
         JudgeParams {
             bic_limit: 8 * self.sub_bic_threshold,
+            bic_decay: self.sub_bic_decay,
             life_limit: self.sub_life_threshold,
             dbc_threshold: self.sub_dbc_threshold,
             nack_threshold: self.nack_threshold,
@@ -251,6 +258,8 @@ impl HubConfig {
         for (n, v, hi) in [
             ("bic_threshold", self.bic_threshold, 31),
             ("sub_bic_threshold", self.sub_bic_threshold, 31),
+            ("bic_decay", self.bic_decay, 7),
+            ("sub_bic_decay", self.sub_bic_decay, 7),
             ("dbc_threshold", self.dbc_threshold, 31),
             ("sub_dbc_threshold", self.sub_dbc_threshold, 31),
             ("nack_threshold", self.nack_threshold, 7),

@@ -111,8 +111,15 @@
 //! sublinks carrying it). It is bounded by the time the faulty port needs to be
 //! isolated (a few blames, each decaying like any other).
 //!
-//! **§5.3 decay.** At `frame_ok` every enabled unit's `bic` decreases by 1 (not below 0).
-//! The unit isolates when `bic >= 8 * BIC_threshold` (`bic_limit`, 8 bits: ports default
+//! **§5.3 decay (changed).** At every `bic_decay`-th `frame_ok` (default 2, ports and
+//! sublinks; the prescaler `bdec` counts only while `bic` is not 0) every enabled unit's
+//! `bic` decreases by 1 (not below 0). The baseline's one count per good frame let `bic`
+//! fall behind the TEC it is meant to track: the hub sees every node's good frames, a
+//! victim transmitter decays only on its own. A faulty hub flipping one bit per frame of
+//! one transmitter, with another node's frame completing in between, took 12 episodes to
+//! `bic 85/80` while that transmitter reached 96 (`--class sweep-hub-flip-e100 --rep 5`).
+//! With 2 it is cut off at `bic 83/80` in the 11th episode, worst healthy TEC/REC 84.
+//! Evidence in hub.md §5.11. The unit isolates when `bic >= 8 * BIC_threshold` (`bic_limit`, 8 bits: ports default
 //! 64, sublinks 80 **(changed)**: the baseline's twice the port threshold, 128, let a hub
 //! whose output flips whole bits (`hub-flip`, wider than a glitch) cost the healthy
 //! controllers of the other hub 8 per episode for 16 episodes: they reached 99 and were
@@ -122,7 +129,8 @@
 //! instants by both hubs, and the peer isolates it two episodes earlier).
 //!
 //! **§5.3 lifetime counter (added).** With decay alone a port that causes one error
-//! episode every 8 or more frames never reaches the limit (bic settles at 8 or below),
+//! episode every 8 · `bic_decay` or more frames never reaches the limit (bic settles at 8
+//! or below),
 //! so a rarely flipping uplink would disturb the network for ever (A3 asks for "any
 //! rate"). Every blame therefore also increments `life` (7 bits, saturating), which
 //! never decays; the unit isolates when `life >= life_limit` (ports default 32,
@@ -317,6 +325,8 @@ use rust_hdl::prelude::*;
 pub struct JudgeParams {
     /// Isolation limit of `bic` in counter units (8 x the BIC threshold), 1..=255.
     pub bic_limit: u64,
+    /// Good frames per count taken off `bic` (§5.3 decay), 1..=7.
+    pub bic_decay: u64,
     /// Isolation limit of the non-decaying lifetime blame counter `life`, 1..=127.
     pub life_limit: u64,
     /// DBC threshold, 1..=31.
@@ -411,6 +421,7 @@ pub struct JudgeUnit {
     pub window_dom: Signal<Out, Bit>,
     pulse: PulseCheck,
     bic_limit: Constant<Bits<8>>,
+    b_decay: Constant<Bits<3>>,
     life_limit: Constant<Bits<7>>,
     dbc_thr: Constant<Bits<5>>,
     nack_thr: Constant<Bits<3>>,
@@ -428,6 +439,7 @@ pub struct JudgeUnit {
     reint_w: Constant<Bits<8>>,
     dis_r: DFF<Bit>,
     bic_r: DFF<Bits<8>>,
+    bdec_r: DFF<Bits<3>>,
     life_r: DFF<Bits<7>>,
     dbc_r: DFF<Bits<5>>,
     nack_r: DFF<Bits<3>>,
@@ -465,6 +477,7 @@ pub struct JudgeUnit {
 impl JudgeUnit {
     fn build(p: JudgeParams, port: bool) -> Self {
         assert!((1..=255).contains(&p.bic_limit), "bic limit out of range");
+        assert!((1..=7).contains(&p.bic_decay), "bic decay out of range");
         assert!((1..=127).contains(&p.life_limit), "lifetime limit out of range");
         assert!((1..=31).contains(&p.dbc_threshold), "DBC threshold out of range");
         assert!((1..=7).contains(&p.nack_threshold), "NACK threshold out of range");
@@ -524,6 +537,7 @@ impl JudgeUnit {
             window_dom: Default::default(),
             pulse: PulseCheck::new(p.glitch_min, p.glitch_max),
             bic_limit: Constant::new(p.bic_limit.into()),
+            b_decay: Constant::new(p.bic_decay.into()),
             life_limit: Constant::new(p.life_limit.into()),
             dbc_thr: Constant::new(p.dbc_threshold.into()),
             nack_thr: Constant::new(p.nack_threshold.into()),
@@ -541,6 +555,7 @@ impl JudgeUnit {
             reint_w: Constant::new(p.reintegration.unwrap_or(1).into()),
             dis_r: Default::default(),
             bic_r: Default::default(),
+            bdec_r: Default::default(),
             life_r: Default::default(),
             dbc_r: Default::default(),
             nack_r: Default::default(),
@@ -588,7 +603,7 @@ impl JudgeUnit {
 impl Logic for JudgeUnit {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, dis_r, bic_r, life_r, dbc_r, nack_r, cont_r, rep_r, rep_seen, rep_first_dom, ok_r, acked, bad, ack_missing, ack_c, ack_rx, seen_dom, seen_dom_crc, gc_r, gdec_r, an_r, pgc_r, pdec_r, bl_r, bl_dm_r, gpend);
+        dff_setup!(self, clock, dis_r, bic_r, bdec_r, life_r, dbc_r, nack_r, cont_r, rep_r, rep_seen, rep_first_dom, ok_r, acked, bad, ack_missing, ack_c, ack_rx, seen_dom, seen_dom_crc, gc_r, gdec_r, an_r, pgc_r, pdec_r, bl_r, bl_dm_r, gpend);
         self.pulse.clock.next = self.clock.val();
         self.pulse.reset.next = self.reset.val();
         self.pulse.c.next = self.c.val();
@@ -657,7 +672,12 @@ impl Logic for JudgeUnit {
             }
             // §5.3 decay, §5.2 blame
             if self.frame_ok.val() & self.enabled.val() & (self.bic_r.q.val() != 0) {
-                self.bic_r.d.next = self.bic_r.q.val() - 1;
+                if (self.bdec_r.q.val() + 1) >= self.b_decay.val() {
+                    self.bdec_r.d.next = 0.into();
+                    self.bic_r.d.next = self.bic_r.q.val() - 1;
+                } else {
+                    self.bdec_r.d.next = self.bdec_r.q.val() + 1;
+                }
             }
             if self.charge.val() {
                 if self.bic_r.q.val() > 247 {
@@ -799,6 +819,7 @@ impl Logic for JudgeUnit {
                 if self.reint_on.val() & ((self.ok_r.q.val() + 1) >= self.reint_w.val()) {
                     self.dis_r.d.next = false;
                     self.bic_r.d.next = 0.into();
+                    self.bdec_r.d.next = 0.into();
                     self.life_r.d.next = 0.into();
                     self.dbc_r.d.next = 0.into();
                     self.nack_r.d.next = 0.into();
@@ -817,6 +838,7 @@ impl Logic for JudgeUnit {
         if self.reset.val() {
             self.dis_r.d.next = false;
             self.bic_r.d.next = 0.into();
+            self.bdec_r.d.next = 0.into();
             self.life_r.d.next = 0.into();
             self.dbc_r.d.next = 0.into();
             self.nack_r.d.next = 0.into();

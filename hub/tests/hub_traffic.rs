@@ -234,8 +234,8 @@ fn bit_flip_uplink_blamed_per_episode_and_isolated<T: Dut>() {
     assert_eq!(net.stim.nodes[0].sent, 30);
 }
 
-/// §5.3 decay: blame +8, then -1 per frame completed without error.
-fn blame_decays_one_per_good_frame<T: Dut>() {
+/// §5.3 decay: blame +8, then -1 per `bic_decay` (2) frames completed without error.
+fn blame_decays_one_per_bic_decay_good_frames<T: Dut>() {
     let mut n = nodes(3);
     for k in 0..12 {
         n[0].queue.push_back(Frame::std(0x300 + k, &[0xff]));
@@ -253,7 +253,8 @@ fn blame_decays_one_per_good_frame<T: Dut>() {
     net.run_until_idle(20_000);
     assert_eq!(net.blames(), 1);
     assert_eq!(net.max_bic[2], 8);
-    assert_eq!(net.bic()[2], 0, "decayed by 8 good frames");
+    assert_eq!(cancentrate().bic_decay, 2);
+    assert_eq!(net.bic()[2], 2, "decayed by 6 of 12 good frames");
     assert_eq!(net.frames_ok(), 12);
     assert!(!net.isolated()[2]);
 }
@@ -394,4 +395,4 @@ macro_rules! both {
     };
 }
 
-both!(random_bit_flip_uplink_isolated_and_harmless, single_frame_completes, fault_free_arbitration_never_blames, late_joiner_is_not_blamed, overload_from_dominant_last_eof_bit_is_not_blamed, error_frames_are_not_blamed, stuck_dominant_uplink_isolated_within_dbc_plus_two_bits, node_with_dead_downlink_is_isolated, bit_flip_uplink_blamed_per_episode_and_isolated, blame_decays_one_per_good_frame, never_acknowledging_receiver_reported_silent_not_isolated, reintegration_after_transient_fault, no_reintegration_while_still_faulty);
+both!(random_bit_flip_uplink_isolated_and_harmless, single_frame_completes, fault_free_arbitration_never_blames, late_joiner_is_not_blamed, overload_from_dominant_last_eof_bit_is_not_blamed, error_frames_are_not_blamed, stuck_dominant_uplink_isolated_within_dbc_plus_two_bits, node_with_dead_downlink_is_isolated, bit_flip_uplink_blamed_per_episode_and_isolated, blame_decays_one_per_bic_decay_good_frames, never_acknowledging_receiver_reported_silent_not_isolated, reintegration_after_transient_fault, no_reintegration_while_still_faulty);

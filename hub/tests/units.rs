@@ -6,7 +6,7 @@ use canstar_hub::judge::{JudgeParams, JudgeUnit};
 use rand::Rng;
 
 fn params() -> JudgeParams {
-    JudgeParams { bic_limit: 64, life_limit: 32, dbc_threshold: 13, nack_threshold: 7, replica_limit: 3, reintegration: None, glitch_min: 1, glitch_max: 11, glitch_limit: 3, glitch_decay: 16, peer_glitch_limit: 12, peer_glitch_decay: 4, window_lag: 7, crc_window_end: 8 }
+    JudgeParams { bic_limit: 64, bic_decay: 1, life_limit: 32, dbc_threshold: 13, nack_threshold: 7, replica_limit: 3, reintegration: None, glitch_min: 1, glitch_max: 11, glitch_limit: 3, glitch_decay: 16, peer_glitch_limit: 12, peer_glitch_decay: 4, window_lag: 7, crc_window_end: 8 }
 }
 
 #[derive(Default, Clone, Copy)]
@@ -150,6 +150,44 @@ fn bic_saturates_isolates_and_decays() {
         sample(&mut j, Bit { c: true, bt: true, frame_ok: true, ..Default::default() });
         assert_eq!(j.bic.val().index(), 7usize.saturating_sub(k));
     }
+}
+
+/// hub.md §5.3 decay prescaler (`bic_decay`, sublinks 2 by default): one count off `bic`
+/// per `bic_decay` good frames, the frames counted only while `bic` is not 0, and a blame
+/// in between does not restart the count.
+#[test]
+fn bic_decays_once_per_bic_decay_frames() {
+    let good = Bit { c: true, bt: true, frame_ok: true, ..Default::default() };
+    let blame = Bit { c: false, bt: false, eof: true, ..Default::default() };
+    let mut j = unit(JudgeParams { bic_decay: 3, ..params() });
+    // frames while bic is 0 are not counted
+    sample(&mut j, good);
+    sample(&mut j, good);
+    assert!(sample(&mut j, blame));
+    let mut seen = vec![];
+    for _ in 0..7 {
+        sample(&mut j, good);
+        seen.push(j.bic.val().index());
+    }
+    assert_eq!(seen, [8, 8, 7, 7, 7, 6, 6]);
+    // the prescaler keeps its count across a blame: 1 frame so far, the second decays
+    assert!(sample(&mut j, blame));
+    assert_eq!(j.bic.val().index(), 14);
+    sample(&mut j, good);
+    assert_eq!(j.bic.val().index(), 14);
+    sample(&mut j, good);
+    assert_eq!(j.bic.val().index(), 13);
+    // reset clears the prescaler: three more frames for the next count
+    j.reset.next = true;
+    drive::cycle(&mut j);
+    j.reset.next = false;
+    assert!(sample(&mut j, blame));
+    let mut seen = vec![];
+    for _ in 0..3 {
+        sample(&mut j, good);
+        seen.push(j.bic.val().index());
+    }
+    assert_eq!(seen, [8, 8, 7]);
 }
 
 /// hub.md §5.3 lifetime counter: blames rarer than the decay can absorb (one per 9 frames,

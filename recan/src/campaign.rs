@@ -160,7 +160,7 @@ pub struct RunPlan {
 }
 
 /// Settings shared by every run of a campaign.
-#[derive(Clone, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Settings {
     /// Master seed.
     pub seed: u64,
@@ -172,11 +172,15 @@ pub struct Settings {
     /// recorded: both engines give the same results).
     #[serde(skip)]
     pub engine: canstar_models::Engine,
+    /// Configuration of both hubs instead of the reference hub (`None`); the network
+    /// keeps N = 3 ports and M = 2 interlinks.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub hub: Option<canstar_hub::config::HubConfig>,
 }
 
 impl Default for Settings {
     fn default() -> Self {
-        Settings { seed: 1, reps: 100, double_delay_bits: classes::DEFAULT_DOUBLE_DELAY_BITS, engine: Default::default() }
+        Settings { seed: 1, reps: 100, double_delay_bits: classes::DEFAULT_DOUBLE_DELAY_BITS, engine: Default::default(), hub: None }
     }
 }
 

@@ -125,6 +125,11 @@ fn merge_and_json_bookkeeping() {
     let mut other = shards[1].clone();
     other.settings.seed = 12;
     assert!(CampaignReport::merge(&[shards[0].clone(), other]).is_err());
+    // a campaign with another hub configuration is another campaign; it survives the JSON
+    let mut other = shards[1].clone();
+    other.settings.hub = Some(canstar_hub::config::HubConfig { sub_bic_decay: 3, ..Default::default() });
+    assert_eq!(CampaignReport::from_json(&other.to_json(), "h").unwrap(), other);
+    assert!(CampaignReport::merge(&[shards[0].clone(), other]).is_err());
     assert!(CampaignReport::from_json("{", "x").is_err());
     assert!(CampaignReport::from_json("[]", "x").is_err());
     let bad = full.to_json().replacen("\"pub10\"", "\"pub99\"", 1);

@@ -57,6 +57,11 @@ pub struct Args {
     /// List the scenario classes.
     #[arg(long)]
     list: bool,
+    /// Configure both hubs from the `[hub]` table of this TOML file (the format of
+    /// `canstar generate --config`) instead of the reference hub; `ports` and `sublinks`
+    /// must stay 3 and 2 (the campaign's network).
+    #[arg(long, value_name = "TOML", conflicts_with = "merge")]
+    hub_config: Option<PathBuf>,
     #[command(flatten)]
     engine: canstar::engine::EngineArg,
     /// Draw the sweep classes' isolation latency and worst healthy TEC/REC against the
@@ -116,7 +121,8 @@ pub fn run(a: Args) -> Result<()> {
         anyhow::ensure!(m.ok(), "{} failing run(s)", m.runs.iter().filter(|r| !r.pass).count());
         return Ok(());
     }
-    let settings = Settings { seed: a.seed, reps: a.reps, double_delay_bits: a.double_delay_bits, engine: a.engine.engine };
+    let hub = a.hub_config.as_deref().map(campaign_hub).transpose()?;
+    let settings = Settings { seed: a.seed, reps: a.reps, double_delay_bits: a.double_delay_bits, engine: a.engine.engine, hub };
     if let Some(name) = &a.class {
         let class = campaign::class(name)?;
         let rep = a.rep.unwrap_or(0);
@@ -221,6 +227,16 @@ pub fn run(a: Args) -> Result<()> {
     Ok(())
 }
 
+
+/// The `[hub]` table of a configuration file for the campaign's network (3 ports, 2
+/// interlinks); errors name the file and the key.
+fn campaign_hub(p: &std::path::Path) -> Result<canstar_hub::config::HubConfig> {
+    let c = canstar::config::Config::load(p)?;
+    for (key, v, want) in [("hub.ports", c.hub.ports, 3), ("hub.sublinks", c.hub.sublinks, 2)] {
+        anyhow::ensure!(v == want, "{}: {key} = {v}: the campaign's network has {want} (remove the key)", p.display());
+    }
+    Ok(c.hub)
+}
 
 /// The hub blames and controller errors of one run, in time order (bit times).
 fn print_events(r: &canstar_recan::RunResult) {

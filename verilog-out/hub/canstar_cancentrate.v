@@ -2408,6 +2408,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
     
     // Constant declarations
     localparam  bic_limit = 8'h40;
+    localparam  b_decay = 3'b10;
     localparam  life_limit = 7'b100000;
     localparam  dbc_thr = 5'b1101;
     localparam  nack_thr = 3'b111;
@@ -2435,6 +2436,9 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
     reg  [7:0] bic_r$d;
     wire  [7:0] bic_r$q;
     reg  bic_r$clock;
+    reg  [2:0] bdec_r$d;
+    wire  [2:0] bdec_r$q;
+    reg  bdec_r$clock;
     reg  [6:0] life_r$d;
     wire  [6:0] life_r$q;
     reg  life_r$clock;
@@ -2532,6 +2536,11 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         .d(bic_r$d),
         .q(bic_r$q),
         .clock(bic_r$clock)
+    );
+    canstar_cancentrate_core$core$pj$0$bdec_r bdec_r(
+        .d(bdec_r$d),
+        .q(bdec_r$q),
+        .clock(bdec_r$clock)
     );
     canstar_cancentrate_core$core$pj$0$life_r life_r(
         .d(life_r$d),
@@ -2653,6 +2662,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
     always @(*) begin
         dis_r$clock = clock;
         bic_r$clock = clock;
+        bdec_r$clock = clock;
         life_r$clock = clock;
         dbc_r$clock = clock;
         nack_r$clock = clock;
@@ -2678,6 +2688,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         gpend$clock = clock;
         dis_r$d = dis_r$q;
         bic_r$d = bic_r$q;
+        bdec_r$d = bdec_r$q;
         life_r$d = life_r$q;
         dbc_r$d = dbc_r$q;
         nack_r$d = nack_r$q;
@@ -2746,7 +2757,13 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
                 dbc_r$d = 32'h0;
             end
             if (frame_ok & enabled & (bic_r$q != 32'h0)) begin
-                bic_r$d = bic_r$q - 32'h1;
+                if ((bdec_r$q + 32'h1) >= b_decay) begin
+                    bdec_r$d = 32'h0;
+                    bic_r$d = bic_r$q - 32'h1;
+                end
+                else begin
+                    bdec_r$d = bdec_r$q + 32'h1;
+                end
             end
             if (charge) begin
                 if (bic_r$q > 32'hf7) begin
@@ -2859,6 +2876,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
                 if (reint_on & ((ok_r$q + 32'h1) >= reint_w)) begin
                     dis_r$d = 1'b0;
                     bic_r$d = 32'h0;
+                    bdec_r$d = 32'h0;
                     life_r$d = 32'h0;
                     dbc_r$d = 32'h0;
                     nack_r$d = 32'h0;
@@ -2878,6 +2896,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         if (reset) begin
             dis_r$d = 1'b0;
             bic_r$d = 32'h0;
+            bdec_r$d = 32'h0;
             life_r$d = 32'h0;
             dbc_r$d = 32'h0;
             nack_r$d = 32'h0;
@@ -3030,6 +3049,25 @@ module canstar_cancentrate_core$core$pj$0$bad(d,q,clock);
     end
           
 endmodule // canstar_cancentrate_core$core$pj$0$bad
+
+
+module canstar_cancentrate_core$core$pj$0$bdec_r(d,q,clock);
+    
+    // Module arguments
+    input wire  [2:0] d;
+    output reg  [2:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 3'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$0$bdec_r
 
 
 module canstar_cancentrate_core$core$pj$0$bic_r(d,q,clock);
@@ -3573,6 +3611,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
     
     // Constant declarations
     localparam  bic_limit = 8'h40;
+    localparam  b_decay = 3'b10;
     localparam  life_limit = 7'b100000;
     localparam  dbc_thr = 5'b1101;
     localparam  nack_thr = 3'b111;
@@ -3600,6 +3639,9 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
     reg  [7:0] bic_r$d;
     wire  [7:0] bic_r$q;
     reg  bic_r$clock;
+    reg  [2:0] bdec_r$d;
+    wire  [2:0] bdec_r$q;
+    reg  bdec_r$clock;
     reg  [6:0] life_r$d;
     wire  [6:0] life_r$q;
     reg  life_r$clock;
@@ -3697,6 +3739,11 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         .d(bic_r$d),
         .q(bic_r$q),
         .clock(bic_r$clock)
+    );
+    canstar_cancentrate_core$core$pj$1$bdec_r bdec_r(
+        .d(bdec_r$d),
+        .q(bdec_r$q),
+        .clock(bdec_r$clock)
     );
     canstar_cancentrate_core$core$pj$1$life_r life_r(
         .d(life_r$d),
@@ -3818,6 +3865,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
     always @(*) begin
         dis_r$clock = clock;
         bic_r$clock = clock;
+        bdec_r$clock = clock;
         life_r$clock = clock;
         dbc_r$clock = clock;
         nack_r$clock = clock;
@@ -3843,6 +3891,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         gpend$clock = clock;
         dis_r$d = dis_r$q;
         bic_r$d = bic_r$q;
+        bdec_r$d = bdec_r$q;
         life_r$d = life_r$q;
         dbc_r$d = dbc_r$q;
         nack_r$d = nack_r$q;
@@ -3911,7 +3960,13 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
                 dbc_r$d = 32'h0;
             end
             if (frame_ok & enabled & (bic_r$q != 32'h0)) begin
-                bic_r$d = bic_r$q - 32'h1;
+                if ((bdec_r$q + 32'h1) >= b_decay) begin
+                    bdec_r$d = 32'h0;
+                    bic_r$d = bic_r$q - 32'h1;
+                end
+                else begin
+                    bdec_r$d = bdec_r$q + 32'h1;
+                end
             end
             if (charge) begin
                 if (bic_r$q > 32'hf7) begin
@@ -4024,6 +4079,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
                 if (reint_on & ((ok_r$q + 32'h1) >= reint_w)) begin
                     dis_r$d = 1'b0;
                     bic_r$d = 32'h0;
+                    bdec_r$d = 32'h0;
                     life_r$d = 32'h0;
                     dbc_r$d = 32'h0;
                     nack_r$d = 32'h0;
@@ -4043,6 +4099,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         if (reset) begin
             dis_r$d = 1'b0;
             bic_r$d = 32'h0;
+            bdec_r$d = 32'h0;
             life_r$d = 32'h0;
             dbc_r$d = 32'h0;
             nack_r$d = 32'h0;
@@ -4195,6 +4252,25 @@ module canstar_cancentrate_core$core$pj$1$bad(d,q,clock);
     end
           
 endmodule // canstar_cancentrate_core$core$pj$1$bad
+
+
+module canstar_cancentrate_core$core$pj$1$bdec_r(d,q,clock);
+    
+    // Module arguments
+    input wire  [2:0] d;
+    output reg  [2:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 3'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$1$bdec_r
 
 
 module canstar_cancentrate_core$core$pj$1$bic_r(d,q,clock);
@@ -4738,6 +4814,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
     
     // Constant declarations
     localparam  bic_limit = 8'h40;
+    localparam  b_decay = 3'b10;
     localparam  life_limit = 7'b100000;
     localparam  dbc_thr = 5'b1101;
     localparam  nack_thr = 3'b111;
@@ -4765,6 +4842,9 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
     reg  [7:0] bic_r$d;
     wire  [7:0] bic_r$q;
     reg  bic_r$clock;
+    reg  [2:0] bdec_r$d;
+    wire  [2:0] bdec_r$q;
+    reg  bdec_r$clock;
     reg  [6:0] life_r$d;
     wire  [6:0] life_r$q;
     reg  life_r$clock;
@@ -4862,6 +4942,11 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         .d(bic_r$d),
         .q(bic_r$q),
         .clock(bic_r$clock)
+    );
+    canstar_cancentrate_core$core$pj$2$bdec_r bdec_r(
+        .d(bdec_r$d),
+        .q(bdec_r$q),
+        .clock(bdec_r$clock)
     );
     canstar_cancentrate_core$core$pj$2$life_r life_r(
         .d(life_r$d),
@@ -4983,6 +5068,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
     always @(*) begin
         dis_r$clock = clock;
         bic_r$clock = clock;
+        bdec_r$clock = clock;
         life_r$clock = clock;
         dbc_r$clock = clock;
         nack_r$clock = clock;
@@ -5008,6 +5094,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         gpend$clock = clock;
         dis_r$d = dis_r$q;
         bic_r$d = bic_r$q;
+        bdec_r$d = bdec_r$q;
         life_r$d = life_r$q;
         dbc_r$d = dbc_r$q;
         nack_r$d = nack_r$q;
@@ -5076,7 +5163,13 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
                 dbc_r$d = 32'h0;
             end
             if (frame_ok & enabled & (bic_r$q != 32'h0)) begin
-                bic_r$d = bic_r$q - 32'h1;
+                if ((bdec_r$q + 32'h1) >= b_decay) begin
+                    bdec_r$d = 32'h0;
+                    bic_r$d = bic_r$q - 32'h1;
+                end
+                else begin
+                    bdec_r$d = bdec_r$q + 32'h1;
+                end
             end
             if (charge) begin
                 if (bic_r$q > 32'hf7) begin
@@ -5189,6 +5282,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
                 if (reint_on & ((ok_r$q + 32'h1) >= reint_w)) begin
                     dis_r$d = 1'b0;
                     bic_r$d = 32'h0;
+                    bdec_r$d = 32'h0;
                     life_r$d = 32'h0;
                     dbc_r$d = 32'h0;
                     nack_r$d = 32'h0;
@@ -5208,6 +5302,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         if (reset) begin
             dis_r$d = 1'b0;
             bic_r$d = 32'h0;
+            bdec_r$d = 32'h0;
             life_r$d = 32'h0;
             dbc_r$d = 32'h0;
             nack_r$d = 32'h0;
@@ -5360,6 +5455,25 @@ module canstar_cancentrate_core$core$pj$2$bad(d,q,clock);
     end
           
 endmodule // canstar_cancentrate_core$core$pj$2$bad
+
+
+module canstar_cancentrate_core$core$pj$2$bdec_r(d,q,clock);
+    
+    // Module arguments
+    input wire  [2:0] d;
+    output reg  [2:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 3'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$2$bdec_r
 
 
 module canstar_cancentrate_core$core$pj$2$bic_r(d,q,clock);

@@ -3094,6 +3094,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     
     // Constant declarations
     localparam  bic_limit = 8'h40;
+    localparam  b_decay = 3'b10;
     localparam  life_limit = 7'b100000;
     localparam  dbc_thr = 5'b1101;
     localparam  nack_thr = 3'b111;
@@ -3121,6 +3122,9 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  [7:0] bic_r$d;
     wire  [7:0] bic_r$q;
     reg  bic_r$clock;
+    reg  [2:0] bdec_r$d;
+    wire  [2:0] bdec_r$q;
+    reg  bdec_r$clock;
     reg  [6:0] life_r$d;
     wire  [6:0] life_r$q;
     reg  life_r$clock;
@@ -3218,6 +3222,11 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .d(bic_r$d),
         .q(bic_r$q),
         .clock(bic_r$clock)
+    );
+    canstar_hub_core$core$pj$0$bdec_r bdec_r(
+        .d(bdec_r$d),
+        .q(bdec_r$q),
+        .clock(bdec_r$clock)
     );
     canstar_hub_core$core$pj$0$life_r life_r(
         .d(life_r$d),
@@ -3339,6 +3348,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     always @(*) begin
         dis_r$clock = clock;
         bic_r$clock = clock;
+        bdec_r$clock = clock;
         life_r$clock = clock;
         dbc_r$clock = clock;
         nack_r$clock = clock;
@@ -3364,6 +3374,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         gpend$clock = clock;
         dis_r$d = dis_r$q;
         bic_r$d = bic_r$q;
+        bdec_r$d = bdec_r$q;
         life_r$d = life_r$q;
         dbc_r$d = dbc_r$q;
         nack_r$d = nack_r$q;
@@ -3432,7 +3443,13 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                 dbc_r$d = 32'h0;
             end
             if (frame_ok & enabled & (bic_r$q != 32'h0)) begin
-                bic_r$d = bic_r$q - 32'h1;
+                if ((bdec_r$q + 32'h1) >= b_decay) begin
+                    bdec_r$d = 32'h0;
+                    bic_r$d = bic_r$q - 32'h1;
+                end
+                else begin
+                    bdec_r$d = bdec_r$q + 32'h1;
+                end
             end
             if (charge) begin
                 if (bic_r$q > 32'hf7) begin
@@ -3545,6 +3562,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                 if (reint_on & ((ok_r$q + 32'h1) >= reint_w)) begin
                     dis_r$d = 1'b0;
                     bic_r$d = 32'h0;
+                    bdec_r$d = 32'h0;
                     life_r$d = 32'h0;
                     dbc_r$d = 32'h0;
                     nack_r$d = 32'h0;
@@ -3564,6 +3582,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         if (reset) begin
             dis_r$d = 1'b0;
             bic_r$d = 32'h0;
+            bdec_r$d = 32'h0;
             life_r$d = 32'h0;
             dbc_r$d = 32'h0;
             nack_r$d = 32'h0;
@@ -3716,6 +3735,25 @@ module canstar_hub_core$core$pj$0$bad(d,q,clock);
     end
           
 endmodule // canstar_hub_core$core$pj$0$bad
+
+
+module canstar_hub_core$core$pj$0$bdec_r(d,q,clock);
+    
+    // Module arguments
+    input wire  [2:0] d;
+    output reg  [2:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 3'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$0$bdec_r
 
 
 module canstar_hub_core$core$pj$0$bic_r(d,q,clock);
@@ -4259,6 +4297,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     
     // Constant declarations
     localparam  bic_limit = 8'h40;
+    localparam  b_decay = 3'b10;
     localparam  life_limit = 7'b100000;
     localparam  dbc_thr = 5'b1101;
     localparam  nack_thr = 3'b111;
@@ -4286,6 +4325,9 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  [7:0] bic_r$d;
     wire  [7:0] bic_r$q;
     reg  bic_r$clock;
+    reg  [2:0] bdec_r$d;
+    wire  [2:0] bdec_r$q;
+    reg  bdec_r$clock;
     reg  [6:0] life_r$d;
     wire  [6:0] life_r$q;
     reg  life_r$clock;
@@ -4383,6 +4425,11 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .d(bic_r$d),
         .q(bic_r$q),
         .clock(bic_r$clock)
+    );
+    canstar_hub_core$core$pj$1$bdec_r bdec_r(
+        .d(bdec_r$d),
+        .q(bdec_r$q),
+        .clock(bdec_r$clock)
     );
     canstar_hub_core$core$pj$1$life_r life_r(
         .d(life_r$d),
@@ -4504,6 +4551,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     always @(*) begin
         dis_r$clock = clock;
         bic_r$clock = clock;
+        bdec_r$clock = clock;
         life_r$clock = clock;
         dbc_r$clock = clock;
         nack_r$clock = clock;
@@ -4529,6 +4577,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         gpend$clock = clock;
         dis_r$d = dis_r$q;
         bic_r$d = bic_r$q;
+        bdec_r$d = bdec_r$q;
         life_r$d = life_r$q;
         dbc_r$d = dbc_r$q;
         nack_r$d = nack_r$q;
@@ -4597,7 +4646,13 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                 dbc_r$d = 32'h0;
             end
             if (frame_ok & enabled & (bic_r$q != 32'h0)) begin
-                bic_r$d = bic_r$q - 32'h1;
+                if ((bdec_r$q + 32'h1) >= b_decay) begin
+                    bdec_r$d = 32'h0;
+                    bic_r$d = bic_r$q - 32'h1;
+                end
+                else begin
+                    bdec_r$d = bdec_r$q + 32'h1;
+                end
             end
             if (charge) begin
                 if (bic_r$q > 32'hf7) begin
@@ -4710,6 +4765,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                 if (reint_on & ((ok_r$q + 32'h1) >= reint_w)) begin
                     dis_r$d = 1'b0;
                     bic_r$d = 32'h0;
+                    bdec_r$d = 32'h0;
                     life_r$d = 32'h0;
                     dbc_r$d = 32'h0;
                     nack_r$d = 32'h0;
@@ -4729,6 +4785,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         if (reset) begin
             dis_r$d = 1'b0;
             bic_r$d = 32'h0;
+            bdec_r$d = 32'h0;
             life_r$d = 32'h0;
             dbc_r$d = 32'h0;
             nack_r$d = 32'h0;
@@ -4881,6 +4938,25 @@ module canstar_hub_core$core$pj$1$bad(d,q,clock);
     end
           
 endmodule // canstar_hub_core$core$pj$1$bad
+
+
+module canstar_hub_core$core$pj$1$bdec_r(d,q,clock);
+    
+    // Module arguments
+    input wire  [2:0] d;
+    output reg  [2:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 3'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$1$bdec_r
 
 
 module canstar_hub_core$core$pj$1$bic_r(d,q,clock);
@@ -5424,6 +5500,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     
     // Constant declarations
     localparam  bic_limit = 8'h40;
+    localparam  b_decay = 3'b10;
     localparam  life_limit = 7'b100000;
     localparam  dbc_thr = 5'b1101;
     localparam  nack_thr = 3'b111;
@@ -5451,6 +5528,9 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  [7:0] bic_r$d;
     wire  [7:0] bic_r$q;
     reg  bic_r$clock;
+    reg  [2:0] bdec_r$d;
+    wire  [2:0] bdec_r$q;
+    reg  bdec_r$clock;
     reg  [6:0] life_r$d;
     wire  [6:0] life_r$q;
     reg  life_r$clock;
@@ -5548,6 +5628,11 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .d(bic_r$d),
         .q(bic_r$q),
         .clock(bic_r$clock)
+    );
+    canstar_hub_core$core$pj$2$bdec_r bdec_r(
+        .d(bdec_r$d),
+        .q(bdec_r$q),
+        .clock(bdec_r$clock)
     );
     canstar_hub_core$core$pj$2$life_r life_r(
         .d(life_r$d),
@@ -5669,6 +5754,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     always @(*) begin
         dis_r$clock = clock;
         bic_r$clock = clock;
+        bdec_r$clock = clock;
         life_r$clock = clock;
         dbc_r$clock = clock;
         nack_r$clock = clock;
@@ -5694,6 +5780,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         gpend$clock = clock;
         dis_r$d = dis_r$q;
         bic_r$d = bic_r$q;
+        bdec_r$d = bdec_r$q;
         life_r$d = life_r$q;
         dbc_r$d = dbc_r$q;
         nack_r$d = nack_r$q;
@@ -5762,7 +5849,13 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                 dbc_r$d = 32'h0;
             end
             if (frame_ok & enabled & (bic_r$q != 32'h0)) begin
-                bic_r$d = bic_r$q - 32'h1;
+                if ((bdec_r$q + 32'h1) >= b_decay) begin
+                    bdec_r$d = 32'h0;
+                    bic_r$d = bic_r$q - 32'h1;
+                end
+                else begin
+                    bdec_r$d = bdec_r$q + 32'h1;
+                end
             end
             if (charge) begin
                 if (bic_r$q > 32'hf7) begin
@@ -5875,6 +5968,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                 if (reint_on & ((ok_r$q + 32'h1) >= reint_w)) begin
                     dis_r$d = 1'b0;
                     bic_r$d = 32'h0;
+                    bdec_r$d = 32'h0;
                     life_r$d = 32'h0;
                     dbc_r$d = 32'h0;
                     nack_r$d = 32'h0;
@@ -5894,6 +5988,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         if (reset) begin
             dis_r$d = 1'b0;
             bic_r$d = 32'h0;
+            bdec_r$d = 32'h0;
             life_r$d = 32'h0;
             dbc_r$d = 32'h0;
             nack_r$d = 32'h0;
@@ -6046,6 +6141,25 @@ module canstar_hub_core$core$pj$2$bad(d,q,clock);
     end
           
 endmodule // canstar_hub_core$core$pj$2$bad
+
+
+module canstar_hub_core$core$pj$2$bdec_r(d,q,clock);
+    
+    // Module arguments
+    input wire  [2:0] d;
+    output reg  [2:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 3'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$2$bdec_r
 
 
 module canstar_hub_core$core$pj$2$bic_r(d,q,clock);
@@ -6627,6 +6741,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     
     // Constant declarations
     localparam  bic_limit = 8'h50;
+    localparam  b_decay = 3'b10;
     localparam  life_limit = 7'b1000000;
     localparam  dbc_thr = 5'b11100;
     localparam  nack_thr = 3'b111;
@@ -6654,6 +6769,9 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  [7:0] bic_r$d;
     wire  [7:0] bic_r$q;
     reg  bic_r$clock;
+    reg  [2:0] bdec_r$d;
+    wire  [2:0] bdec_r$q;
+    reg  bdec_r$clock;
     reg  [6:0] life_r$d;
     wire  [6:0] life_r$q;
     reg  life_r$clock;
@@ -6751,6 +6869,11 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .d(bic_r$d),
         .q(bic_r$q),
         .clock(bic_r$clock)
+    );
+    canstar_hub_core$core$sj$0$bdec_r bdec_r(
+        .d(bdec_r$d),
+        .q(bdec_r$q),
+        .clock(bdec_r$clock)
     );
     canstar_hub_core$core$sj$0$life_r life_r(
         .d(life_r$d),
@@ -6872,6 +6995,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     always @(*) begin
         dis_r$clock = clock;
         bic_r$clock = clock;
+        bdec_r$clock = clock;
         life_r$clock = clock;
         dbc_r$clock = clock;
         nack_r$clock = clock;
@@ -6897,6 +7021,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         gpend$clock = clock;
         dis_r$d = dis_r$q;
         bic_r$d = bic_r$q;
+        bdec_r$d = bdec_r$q;
         life_r$d = life_r$q;
         dbc_r$d = dbc_r$q;
         nack_r$d = nack_r$q;
@@ -6965,7 +7090,13 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                 dbc_r$d = 32'h0;
             end
             if (frame_ok & enabled & (bic_r$q != 32'h0)) begin
-                bic_r$d = bic_r$q - 32'h1;
+                if ((bdec_r$q + 32'h1) >= b_decay) begin
+                    bdec_r$d = 32'h0;
+                    bic_r$d = bic_r$q - 32'h1;
+                end
+                else begin
+                    bdec_r$d = bdec_r$q + 32'h1;
+                end
             end
             if (charge) begin
                 if (bic_r$q > 32'hf7) begin
@@ -7078,6 +7209,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                 if (reint_on & ((ok_r$q + 32'h1) >= reint_w)) begin
                     dis_r$d = 1'b0;
                     bic_r$d = 32'h0;
+                    bdec_r$d = 32'h0;
                     life_r$d = 32'h0;
                     dbc_r$d = 32'h0;
                     nack_r$d = 32'h0;
@@ -7097,6 +7229,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         if (reset) begin
             dis_r$d = 1'b0;
             bic_r$d = 32'h0;
+            bdec_r$d = 32'h0;
             life_r$d = 32'h0;
             dbc_r$d = 32'h0;
             nack_r$d = 32'h0;
@@ -7249,6 +7382,25 @@ module canstar_hub_core$core$sj$0$bad(d,q,clock);
     end
           
 endmodule // canstar_hub_core$core$sj$0$bad
+
+
+module canstar_hub_core$core$sj$0$bdec_r(d,q,clock);
+    
+    // Module arguments
+    input wire  [2:0] d;
+    output reg  [2:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 3'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$sj$0$bdec_r
 
 
 module canstar_hub_core$core$sj$0$bic_r(d,q,clock);
@@ -7792,6 +7944,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     
     // Constant declarations
     localparam  bic_limit = 8'h50;
+    localparam  b_decay = 3'b10;
     localparam  life_limit = 7'b1000000;
     localparam  dbc_thr = 5'b11100;
     localparam  nack_thr = 3'b111;
@@ -7819,6 +7972,9 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  [7:0] bic_r$d;
     wire  [7:0] bic_r$q;
     reg  bic_r$clock;
+    reg  [2:0] bdec_r$d;
+    wire  [2:0] bdec_r$q;
+    reg  bdec_r$clock;
     reg  [6:0] life_r$d;
     wire  [6:0] life_r$q;
     reg  life_r$clock;
@@ -7916,6 +8072,11 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .d(bic_r$d),
         .q(bic_r$q),
         .clock(bic_r$clock)
+    );
+    canstar_hub_core$core$sj$1$bdec_r bdec_r(
+        .d(bdec_r$d),
+        .q(bdec_r$q),
+        .clock(bdec_r$clock)
     );
     canstar_hub_core$core$sj$1$life_r life_r(
         .d(life_r$d),
@@ -8037,6 +8198,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     always @(*) begin
         dis_r$clock = clock;
         bic_r$clock = clock;
+        bdec_r$clock = clock;
         life_r$clock = clock;
         dbc_r$clock = clock;
         nack_r$clock = clock;
@@ -8062,6 +8224,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         gpend$clock = clock;
         dis_r$d = dis_r$q;
         bic_r$d = bic_r$q;
+        bdec_r$d = bdec_r$q;
         life_r$d = life_r$q;
         dbc_r$d = dbc_r$q;
         nack_r$d = nack_r$q;
@@ -8130,7 +8293,13 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                 dbc_r$d = 32'h0;
             end
             if (frame_ok & enabled & (bic_r$q != 32'h0)) begin
-                bic_r$d = bic_r$q - 32'h1;
+                if ((bdec_r$q + 32'h1) >= b_decay) begin
+                    bdec_r$d = 32'h0;
+                    bic_r$d = bic_r$q - 32'h1;
+                end
+                else begin
+                    bdec_r$d = bdec_r$q + 32'h1;
+                end
             end
             if (charge) begin
                 if (bic_r$q > 32'hf7) begin
@@ -8243,6 +8412,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                 if (reint_on & ((ok_r$q + 32'h1) >= reint_w)) begin
                     dis_r$d = 1'b0;
                     bic_r$d = 32'h0;
+                    bdec_r$d = 32'h0;
                     life_r$d = 32'h0;
                     dbc_r$d = 32'h0;
                     nack_r$d = 32'h0;
@@ -8262,6 +8432,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         if (reset) begin
             dis_r$d = 1'b0;
             bic_r$d = 32'h0;
+            bdec_r$d = 32'h0;
             life_r$d = 32'h0;
             dbc_r$d = 32'h0;
             nack_r$d = 32'h0;
@@ -8414,6 +8585,25 @@ module canstar_hub_core$core$sj$1$bad(d,q,clock);
     end
           
 endmodule // canstar_hub_core$core$sj$1$bad
+
+
+module canstar_hub_core$core$sj$1$bdec_r(d,q,clock);
+    
+    // Module arguments
+    input wire  [2:0] d;
+    output reg  [2:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 3'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$sj$1$bdec_r
 
 
 module canstar_hub_core$core$sj$1$bic_r(d,q,clock);

@@ -54,7 +54,7 @@ mod tests {
     fn one_case_per_class_and_a_failure_with_the_rerun_command() {
         let runs = vec![outcome("pub01", 0, true), outcome("pub01", 1, true), outcome("hub-flip", 0, true), outcome("hub-flip", 1, false)];
         let classes = [crate::campaign::class("pub01").unwrap(), crate::campaign::class("hub-flip").unwrap()];
-        let settings = crate::campaign::Settings { seed: 1, reps: 2, double_delay_bits: 400, engine: Default::default() };
+        let settings = crate::campaign::Settings { seed: 1, reps: 2, double_delay_bits: 400, engine: Default::default(), hub: None };
         let rep = CampaignReport::new(settings, &classes, None, runs);
         let x = xml(&rep);
         assert!(x.contains(r#"<testsuite name="canstar-campaign" tests="2""#), "{x}");

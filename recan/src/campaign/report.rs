@@ -69,7 +69,7 @@ pub struct ClassSummary {
 }
 
 /// A campaign's settings and per-run outcomes (all of them, or one shard's).
-#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct CampaignReport {
     /// Format version of the JSON file.
     pub format: u32,

@@ -182,12 +182,18 @@ pub fn build(class: &Class, seed: u64, settings: &Settings) -> Built {
     if let ClassKind::Published(n) = class.kind {
         let (mut spec, e) = crate::published_scenario(n as usize, seed);
         spec.engine = settings.engine;
+        if let Some(h) = &settings.hub {
+            spec.network.hub = h.clone();
+        }
         return Built { spec, expect: Expectation::Published(e), simultaneous: false };
     }
     let mut rng = ChaCha8Rng::seed_from_u64(seed ^ 0xca3a_1a7e);
     // the reference system with 14.74 MHz controller clocks (same time quantum and bit
     // timing, half the cycles), as the published scenarios
     let mut net = NetworkSpec::fast();
+    if let Some(h) = &settings.hub {
+        net.hub = h.clone();
+    }
     randomise(&mut net, &mut rng);
     let nn = net.nodes.len();
     let bit = net.bit_time_ps();
