@@ -2814,6 +2814,10 @@ module canstar_slcan$can$core$fsm(clock,reset,sample,busmon,listen_only,self_tes
     wire  dec$arb_stuff;
     wire  [5:0] dec$arb_pos;
     wire  dec$drive;
+    wire  dec$arb_bit;
+    wire  dec$sent_bit;
+    wire  dec$arb_stuff_bit;
+    wire  dec$sent_stuff;
     reg  seq$clock;
     reg  seq$reset;
     reg  seq$sample;
@@ -2868,6 +2872,7 @@ module canstar_slcan$can$core$fsm(clock,reset,sample,busmon,listen_only,self_tes
     reg  frame$sample;
     reg  frame$rxbit;
     reg  frame$sent;
+    reg  frame$sent_stuff;
     reg  frame$rec_iso;
     reg  [4:0] frame$fld;
     reg  [7:0] frame$fpos;
@@ -3076,7 +3081,11 @@ module canstar_slcan$can$core$fsm(clock,reset,sample,busmon,listen_only,self_tes
         .arb(dec$arb),
         .arb_stuff(dec$arb_stuff),
         .arb_pos(dec$arb_pos),
-        .drive(dec$drive)
+        .drive(dec$drive),
+        .arb_bit(dec$arb_bit),
+        .sent_bit(dec$sent_bit),
+        .arb_stuff_bit(dec$arb_stuff_bit),
+        .sent_stuff(dec$sent_stuff)
     );
     canstar_slcan$can$core$fsm$seq seq(
         .clock(seq$clock),
@@ -3135,6 +3144,7 @@ module canstar_slcan$can$core$fsm(clock,reset,sample,busmon,listen_only,self_tes
         .sample(frame$sample),
         .rxbit(frame$rxbit),
         .sent(frame$sent),
+        .sent_stuff(frame$sent_stuff),
         .rec_iso(frame$rec_iso),
         .fld(frame$fld),
         .fpos(frame$fpos),
@@ -3340,7 +3350,8 @@ module canstar_slcan$can$core$fsm(clock,reset,sample,busmon,listen_only,self_tes
         frame$reset = reset;
         frame$sample = sample;
         frame$rxbit = busmon;
-        frame$sent = dec$drive;
+        frame$sent = dec$sent_bit;
+        frame$sent_stuff = dec$sent_stuff;
         frame$rec_iso = rec_iso;
         frame$fld = seq$fld;
         frame$fpos = seq$fpos;
@@ -3351,8 +3362,8 @@ module canstar_slcan$can$core$fsm(clock,reset,sample,busmon,listen_only,self_tes
         frame$active = conf$active;
         frame$stuffed = dec$stuffed;
         frame$stuff = dec$stuff;
-        frame$arb = dec$arb;
-        frame$arb_stuff = dec$arb_stuff;
+        frame$arb = dec$arb_bit;
+        frame$arb_stuff = dec$arb_stuff_bit;
         frame$stuff_error = dstf$stuff_error;
         frame$crc_rem = |crcb$crc_next;
         frame$ext = rxf$ext;
@@ -3366,7 +3377,7 @@ module canstar_slcan$can$core$fsm(clock,reset,sample,busmon,listen_only,self_tes
         flags$reset = reset;
         flags$sample = sample;
         flags$rxbit = busmon;
-        flags$sent = dec$drive;
+        flags$sent = dec$sent_bit;
         flags$fld = seq$fld;
         flags$fpos = seq$fpos;
         flags$tx_role = seq$tx_role;
@@ -3809,7 +3820,7 @@ module canstar_slcan$can$core$fsm$crcb$state(d,q,clock);
 endmodule // canstar_slcan$can$core$fsm$crcb$state
 
 
-module canstar_slcan$can$core$fsm$dec(fld,fpos,pfld,ppos,ext,tx_role,dom,listen_only,next_is_stuff,stuff_level,stuffed,stuff,code,pos,hs_en,arb,arb_stuff,arb_pos,drive);
+module canstar_slcan$can$core$fsm$dec(fld,fpos,pfld,ppos,ext,tx_role,dom,listen_only,next_is_stuff,stuff_level,stuffed,stuff,code,pos,hs_en,arb,arb_stuff,arb_pos,drive,arb_bit,sent_bit,arb_stuff_bit,sent_stuff);
     
     // Module arguments
     input wire  [4:0] fld;
@@ -3831,6 +3842,10 @@ module canstar_slcan$can$core$fsm$dec(fld,fpos,pfld,ppos,ext,tx_role,dom,listen_
     output reg  arb_stuff;
     output reg  [5:0] arb_pos;
     output reg  drive;
+    output reg  arb_bit;
+    output reg  sent_bit;
+    output reg  arb_stuff_bit;
+    output reg  sent_stuff;
     
     // Enums
     localparam Field$Reset = 0;
@@ -3919,6 +3934,10 @@ module canstar_slcan$can$core$fsm$dec(fld,fpos,pfld,ppos,ext,tx_role,dom,listen_
                 begin
                 end
         endcase
+        arb_bit = (fld == Field$Ident) | (fld == Field$Srr) | (fld == Field$Ide) | (fld == Field$Rtr) | (fld == Field$ExIdent);
+        arb_stuff_bit = (pfld == Field$Ident) | (pfld == Field$Srr) | (pfld == Field$ExIdent) | ((pfld == Field$Ide) & ext) | ((pfld == Field$Rtr) & ~ext);
+        sent_bit = ~dom | listen_only;
+        sent_stuff = ~tx_role | stuff_level | listen_only;
         stuffed = l_area | stuff;
         code = l_dfld;
         hs_en = (l_dfld == Field$Reset) | (l_dfld == Field$WaitIdle) | (l_dfld == Field$Idle) | (l_dfld == Field$BusOff) | (l_dfld == Field$Sof) | (l_dfld == Field$Suspend) | ((l_dfld == Field$Inter) & (fpos == 32'h3));
@@ -4417,7 +4436,7 @@ module canstar_slcan$can$core$fsm$flags$fdone(d,q,clock);
 endmodule // canstar_slcan$can$core$fsm$flags$fdone
 
 
-module canstar_slcan$can$core$fsm$frame(clock,reset,sample,rxbit,sent,rec_iso,fld,fpos,tx_role,dom,listen_only,self_test,active,stuffed,stuff,arb,arb_stuff,stuff_error,crc_rem,ext,rtr,dlc_lo_zero,data_bits,tx_ide,sofinit,err_now,own,nf,npos,ndom,usetx,lost,err,err_bit,err_stuff,err_crc,err_form,err_ack,tinc,rinc1,rok,ovl,exc1,exc2,tx_ok,rx_ok,sof,adv);
+module canstar_slcan$can$core$fsm$frame(clock,reset,sample,rxbit,sent,sent_stuff,rec_iso,fld,fpos,tx_role,dom,listen_only,self_test,active,stuffed,stuff,arb,arb_stuff,stuff_error,crc_rem,ext,rtr,dlc_lo_zero,data_bits,tx_ide,sofinit,err_now,own,nf,npos,ndom,usetx,lost,err,err_bit,err_stuff,err_crc,err_form,err_ack,tinc,rinc1,rok,ovl,exc1,exc2,tx_ok,rx_ok,sof,adv);
     
     // Module arguments
     input wire  clock;
@@ -4425,6 +4444,7 @@ module canstar_slcan$can$core$fsm$frame(clock,reset,sample,rxbit,sent,rec_iso,fl
     input wire  sample;
     input wire  rxbit;
     input wire  sent;
+    input wire  sent_stuff;
     input wire  rec_iso;
     input wire  [4:0] fld;
     input wire  [7:0] fpos;
@@ -4551,7 +4571,7 @@ module canstar_slcan$can$core$fsm$frame(clock,reset,sample,rxbit,sent,rec_iso,fl
                     ndom = dom;
                     if (stuff_error) begin
                         err = 1'b1;
-                        if (tx_role & rxbit & ~sent) begin
+                        if (tx_role & rxbit & ~sent_stuff) begin
                             err_bit = 1'b1;
                             tinc = 1'b1;
                         end

@@ -7303,6 +7303,10 @@ module canstar_cancentrate_core$monitor$fsm(clock,reset,sample,busmon,listen_onl
     wire  dec$arb_stuff;
     wire  [5:0] dec$arb_pos;
     wire  dec$drive;
+    wire  dec$arb_bit;
+    wire  dec$sent_bit;
+    wire  dec$arb_stuff_bit;
+    wire  dec$sent_stuff;
     reg  seq$clock;
     reg  seq$reset;
     reg  seq$sample;
@@ -7357,6 +7361,7 @@ module canstar_cancentrate_core$monitor$fsm(clock,reset,sample,busmon,listen_onl
     reg  frame$sample;
     reg  frame$rxbit;
     reg  frame$sent;
+    reg  frame$sent_stuff;
     reg  frame$rec_iso;
     reg  [4:0] frame$fld;
     reg  [7:0] frame$fpos;
@@ -7565,7 +7570,11 @@ module canstar_cancentrate_core$monitor$fsm(clock,reset,sample,busmon,listen_onl
         .arb(dec$arb),
         .arb_stuff(dec$arb_stuff),
         .arb_pos(dec$arb_pos),
-        .drive(dec$drive)
+        .drive(dec$drive),
+        .arb_bit(dec$arb_bit),
+        .sent_bit(dec$sent_bit),
+        .arb_stuff_bit(dec$arb_stuff_bit),
+        .sent_stuff(dec$sent_stuff)
     );
     canstar_cancentrate_core$monitor$fsm$seq seq(
         .clock(seq$clock),
@@ -7624,6 +7633,7 @@ module canstar_cancentrate_core$monitor$fsm(clock,reset,sample,busmon,listen_onl
         .sample(frame$sample),
         .rxbit(frame$rxbit),
         .sent(frame$sent),
+        .sent_stuff(frame$sent_stuff),
         .rec_iso(frame$rec_iso),
         .fld(frame$fld),
         .fpos(frame$fpos),
@@ -7829,7 +7839,8 @@ module canstar_cancentrate_core$monitor$fsm(clock,reset,sample,busmon,listen_onl
         frame$reset = reset;
         frame$sample = sample;
         frame$rxbit = busmon;
-        frame$sent = dec$drive;
+        frame$sent = dec$sent_bit;
+        frame$sent_stuff = dec$sent_stuff;
         frame$rec_iso = rec_iso;
         frame$fld = seq$fld;
         frame$fpos = seq$fpos;
@@ -7840,8 +7851,8 @@ module canstar_cancentrate_core$monitor$fsm(clock,reset,sample,busmon,listen_onl
         frame$active = conf$active;
         frame$stuffed = dec$stuffed;
         frame$stuff = dec$stuff;
-        frame$arb = dec$arb;
-        frame$arb_stuff = dec$arb_stuff;
+        frame$arb = dec$arb_bit;
+        frame$arb_stuff = dec$arb_stuff_bit;
         frame$stuff_error = dstf$stuff_error;
         frame$crc_rem = |crcb$crc_next;
         frame$ext = rxf$ext;
@@ -7855,7 +7866,7 @@ module canstar_cancentrate_core$monitor$fsm(clock,reset,sample,busmon,listen_onl
         flags$reset = reset;
         flags$sample = sample;
         flags$rxbit = busmon;
-        flags$sent = dec$drive;
+        flags$sent = dec$sent_bit;
         flags$fld = seq$fld;
         flags$fpos = seq$fpos;
         flags$tx_role = seq$tx_role;
@@ -8298,7 +8309,7 @@ module canstar_cancentrate_core$monitor$fsm$crcb$state(d,q,clock);
 endmodule // canstar_cancentrate_core$monitor$fsm$crcb$state
 
 
-module canstar_cancentrate_core$monitor$fsm$dec(fld,fpos,pfld,ppos,ext,tx_role,dom,listen_only,next_is_stuff,stuff_level,stuffed,stuff,code,pos,hs_en,arb,arb_stuff,arb_pos,drive);
+module canstar_cancentrate_core$monitor$fsm$dec(fld,fpos,pfld,ppos,ext,tx_role,dom,listen_only,next_is_stuff,stuff_level,stuffed,stuff,code,pos,hs_en,arb,arb_stuff,arb_pos,drive,arb_bit,sent_bit,arb_stuff_bit,sent_stuff);
     
     // Module arguments
     input wire  [4:0] fld;
@@ -8320,6 +8331,10 @@ module canstar_cancentrate_core$monitor$fsm$dec(fld,fpos,pfld,ppos,ext,tx_role,d
     output reg  arb_stuff;
     output reg  [5:0] arb_pos;
     output reg  drive;
+    output reg  arb_bit;
+    output reg  sent_bit;
+    output reg  arb_stuff_bit;
+    output reg  sent_stuff;
     
     // Enums
     localparam Field$Reset = 0;
@@ -8408,6 +8423,10 @@ module canstar_cancentrate_core$monitor$fsm$dec(fld,fpos,pfld,ppos,ext,tx_role,d
                 begin
                 end
         endcase
+        arb_bit = (fld == Field$Ident) | (fld == Field$Srr) | (fld == Field$Ide) | (fld == Field$Rtr) | (fld == Field$ExIdent);
+        arb_stuff_bit = (pfld == Field$Ident) | (pfld == Field$Srr) | (pfld == Field$ExIdent) | ((pfld == Field$Ide) & ext) | ((pfld == Field$Rtr) & ~ext);
+        sent_bit = ~dom | listen_only;
+        sent_stuff = ~tx_role | stuff_level | listen_only;
         stuffed = l_area | stuff;
         code = l_dfld;
         hs_en = (l_dfld == Field$Reset) | (l_dfld == Field$WaitIdle) | (l_dfld == Field$Idle) | (l_dfld == Field$BusOff) | (l_dfld == Field$Sof) | (l_dfld == Field$Suspend) | ((l_dfld == Field$Inter) & (fpos == 32'h3));
@@ -8906,7 +8925,7 @@ module canstar_cancentrate_core$monitor$fsm$flags$fdone(d,q,clock);
 endmodule // canstar_cancentrate_core$monitor$fsm$flags$fdone
 
 
-module canstar_cancentrate_core$monitor$fsm$frame(clock,reset,sample,rxbit,sent,rec_iso,fld,fpos,tx_role,dom,listen_only,self_test,active,stuffed,stuff,arb,arb_stuff,stuff_error,crc_rem,ext,rtr,dlc_lo_zero,data_bits,tx_ide,sofinit,err_now,own,nf,npos,ndom,usetx,lost,err,err_bit,err_stuff,err_crc,err_form,err_ack,tinc,rinc1,rok,ovl,exc1,exc2,tx_ok,rx_ok,sof,adv);
+module canstar_cancentrate_core$monitor$fsm$frame(clock,reset,sample,rxbit,sent,sent_stuff,rec_iso,fld,fpos,tx_role,dom,listen_only,self_test,active,stuffed,stuff,arb,arb_stuff,stuff_error,crc_rem,ext,rtr,dlc_lo_zero,data_bits,tx_ide,sofinit,err_now,own,nf,npos,ndom,usetx,lost,err,err_bit,err_stuff,err_crc,err_form,err_ack,tinc,rinc1,rok,ovl,exc1,exc2,tx_ok,rx_ok,sof,adv);
     
     // Module arguments
     input wire  clock;
@@ -8914,6 +8933,7 @@ module canstar_cancentrate_core$monitor$fsm$frame(clock,reset,sample,rxbit,sent,
     input wire  sample;
     input wire  rxbit;
     input wire  sent;
+    input wire  sent_stuff;
     input wire  rec_iso;
     input wire  [4:0] fld;
     input wire  [7:0] fpos;
@@ -9040,7 +9060,7 @@ module canstar_cancentrate_core$monitor$fsm$frame(clock,reset,sample,rxbit,sent,
                     ndom = dom;
                     if (stuff_error) begin
                         err = 1'b1;
-                        if (tx_role & rxbit & ~sent) begin
+                        if (tx_role & rxbit & ~sent_stuff) begin
                             err_bit = 1'b1;
                             tinc = 1'b1;
                         end

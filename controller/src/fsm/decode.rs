@@ -18,6 +18,15 @@
 //! - `drive`: the level wanted on TX for the bit: a transmitter's stuff bit
 //!   (the complement of the run), else the sequencer's registered decision
 //!   `dom`; always recessive in listen-only mode.
+//! - `arb_bit`, `arb_stuff_bit`, `sent_bit`, `sent_stuff`: the same decisions
+//!   for the frame fields' two cases taken separately, without the stuff-bit
+//!   selection in front of them: `arb` and the level driven for a bit that is
+//!   not a stuff bit (from `fld`, `dom`), `arb_stuff` and the level driven for
+//!   a stuff bit (from `pfld`, the stuff level). The frame fields use each
+//!   only in its own case (`stuff` low, resp. high), where it equals `arb`,
+//!   `arb_stuff` or `drive`; the flags only while `stuff` is low. This keeps
+//!   the destuffer's count (`next_is_stuff`) out of the field decode in front
+//!   of the per-bit decision (issue #16).
 
 use super::field::Field;
 use rust_hdl::prelude::*;
@@ -45,6 +54,12 @@ pub struct BitDecode {
     pub arb_stuff: Signal<Out, Bit>,
     pub arb_pos: Signal<Out, Bits<6>>,
     pub drive: Signal<Out, Bit>,
+    /// `arb` and `drive` of a bit that is not a stuff bit.
+    pub arb_bit: Signal<Out, Bit>,
+    pub sent_bit: Signal<Out, Bit>,
+    /// `arb_stuff` and `drive` of a stuff bit.
+    pub arb_stuff_bit: Signal<Out, Bit>,
+    pub sent_stuff: Signal<Out, Bit>,
 
     // Working values.
     l_area: Signal<Local, Bit>,
@@ -113,6 +128,20 @@ impl Logic for BitDecode {
             }
             _ => {}
         }
+
+        // The two cases without the stuff-bit selection (see the module doc).
+        self.arb_bit.next = (self.fld.val() == Field::Ident)
+            | (self.fld.val() == Field::Srr)
+            | (self.fld.val() == Field::Ide)
+            | (self.fld.val() == Field::Rtr)
+            | (self.fld.val() == Field::ExIdent);
+        self.arb_stuff_bit.next = (self.pfld.val() == Field::Ident)
+            | (self.pfld.val() == Field::Srr)
+            | (self.pfld.val() == Field::ExIdent)
+            | ((self.pfld.val() == Field::Ide) & self.ext.val())
+            | ((self.pfld.val() == Field::Rtr) & !self.ext.val());
+        self.sent_bit.next = !self.dom.val() | self.listen_only.val();
+        self.sent_stuff.next = !self.tx_role.val() | self.stuff_level.val() | self.listen_only.val();
 
         self.stuffed.next = self.l_area.val() | self.stuff.val();
         self.code.next = self.l_dfld.val().into();

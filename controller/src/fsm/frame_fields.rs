@@ -39,9 +39,12 @@ pub struct FrameFields {
     pub clock: Signal<In, Clock>,
     pub reset: Signal<In, Bit>,
     pub sample: Signal<In, Bit>,
-    /// The sampled level and the level this node drove for it.
+    /// The sampled level, and the level this node drove for it: `sent` if
+    /// the bit is not a stuff bit, `sent_stuff` if it is (each is read in
+    /// its own case only, so neither waits for the stuff-bit decode).
     pub rxbit: Signal<In, Bit>,
     pub sent: Signal<In, Bit>,
+    pub sent_stuff: Signal<In, Bit>,
     /// C13: REC − 1 for a successful reception at the ACK slot (ISO);
     /// low: at a recessive End_Of_Frame bit 7 only (the 1999 programs).
     pub rec_iso: Signal<In, Bit>,
@@ -53,7 +56,8 @@ pub struct FrameFields {
     pub self_test: Signal<In, Bit>,
     /// Error-active (error flags are active flags).
     pub active: Signal<In, Bit>,
-    /// From [`super::decode::BitDecode`].
+    /// From [`super::decode::BitDecode`]; `arb` is read for a bit that is
+    /// not a stuff bit only, `arb_stuff` for a stuff bit only.
     pub stuffed: Signal<In, Bit>,
     pub stuff: Signal<In, Bit>,
     pub arb: Signal<In, Bit>,
@@ -163,7 +167,7 @@ impl Logic for FrameFields {
                     self.ndom.next = self.dom.val();
                     if self.stuff_error.val() {
                         self.err.next = true;
-                        if self.tx_role.val() & self.rxbit.val() & !self.sent.val() {
+                        if self.tx_role.val() & self.rxbit.val() & !self.sent_stuff.val() {
                             self.err_bit.next = true;
                             self.tinc.next = true;
                         } else {

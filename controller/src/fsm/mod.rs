@@ -327,7 +327,8 @@ impl Logic for CanFsm {
         self.frame.reset.next = self.reset.val();
         self.frame.sample.next = self.sample.val();
         self.frame.rxbit.next = self.busmon.val();
-        self.frame.sent.next = self.dec.drive.val();
+        self.frame.sent.next = self.dec.sent_bit.val();
+        self.frame.sent_stuff.next = self.dec.sent_stuff.val();
         self.frame.rec_iso.next = self.rec_iso.val();
         self.frame.fld.next = self.seq.fld.val();
         self.frame.fpos.next = self.seq.fpos.val();
@@ -338,8 +339,8 @@ impl Logic for CanFsm {
         self.frame.active.next = self.conf.active.val();
         self.frame.stuffed.next = self.dec.stuffed.val();
         self.frame.stuff.next = self.dec.stuff.val();
-        self.frame.arb.next = self.dec.arb.val();
-        self.frame.arb_stuff.next = self.dec.arb_stuff.val();
+        self.frame.arb.next = self.dec.arb_bit.val();
+        self.frame.arb_stuff.next = self.dec.arb_stuff_bit.val();
         self.frame.stuff_error.next = self.dstf.stuff_error.val();
         self.frame.crc_rem.next = self.crcb.crc_next.val().any();
         self.frame.ext.next = self.rxf.ext.val();
@@ -354,7 +355,8 @@ impl Logic for CanFsm {
         self.flags.reset.next = self.reset.val();
         self.flags.sample.next = self.sample.val();
         self.flags.rxbit.next = self.busmon.val();
-        self.flags.sent.next = self.dec.drive.val();
+        // the flags own no stuff bit: `drive` is `sent_bit` there
+        self.flags.sent.next = self.dec.sent_bit.val();
         self.flags.fld.next = self.seq.fld.val();
         self.flags.fpos.next = self.seq.fpos.val();
         self.flags.tx_role.next = self.seq.tx_role.val();
