@@ -46,6 +46,8 @@ pub struct BitDecode {
     pub stuff_level: Signal<In, Bit>,
 
     pub stuffed: Signal<Out, Bit>,
+    /// The field is one of the stuffed area (Start_Of_Frame .. CRC_Sequence).
+    pub area: Signal<Out, Bit>,
     pub stuff: Signal<Out, Bit>,
     pub code: Signal<Out, Bits<5>>,
     pub pos: Signal<Out, Bits<8>>,
@@ -144,6 +146,7 @@ impl Logic for BitDecode {
         self.sent_stuff.next = !self.tx_role.val() | self.stuff_level.val() | self.listen_only.val();
 
         self.stuffed.next = self.l_area.val() | self.stuff.val();
+        self.area.next = self.l_area.val();
         self.code.next = self.l_dfld.val().into();
         self.hs_en.next = (self.l_dfld.val() == Field::Reset)
             | (self.l_dfld.val() == Field::WaitIdle)

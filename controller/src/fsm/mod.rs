@@ -377,7 +377,9 @@ impl Logic for CanFsm {
         self.seq.armed.next = self.conf.armed.val();
         self.seq.last_run.next = self.conf.last_run.val();
         self.seq.busoff.next = self.conf.busoff.val();
+        self.seq.in_frame.next = self.dec.area.val();
         self.seq.level.next = self.txq.level.val();
+        self.seq.level_sof.next = self.txq.level_sof.val();
         self.seq.f_own.next = self.frame.own.val();
         self.seq.f_nf.next = self.frame.nf.val();
         self.seq.f_npos.next = self.frame.npos.val();
@@ -424,7 +426,7 @@ impl Logic for CanFsm {
         self.txq.load.next = self.seq.txsof.val();
         self.txq.adv.next = self.frame.adv.val();
         self.txq.fld.next = self.seq.fld.val();
-        self.txq.nf.next = self.seq.nf_tx.val();
+        self.txq.nf.next = self.frame.lnf.val();
         // the MSB of the CRC register after this bit: the next CRC bit to send
         self.txq.crc_bit.next = self.crcb.crc_next.val().get_bit(14);
         self.txq.lost.next = self.frame.lost.val();
