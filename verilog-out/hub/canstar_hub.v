@@ -11393,6 +11393,8 @@ module canstar_hub_core$monitor$fsm$dec(fld,fpos,pfld,ppos,ext,tx_role,dom,liste
     // Local signals
     reg  l_area;
     reg  [4:0] l_dfld;
+    reg  l_hsf;
+    reg  l_hsp;
     
     // Update code
     always @(*) begin
@@ -11457,7 +11459,12 @@ module canstar_hub_core$monitor$fsm$dec(fld,fpos,pfld,ppos,ext,tx_role,dom,liste
         stuffed = l_area | stuff;
         area = l_area;
         code = l_dfld;
-        hs_en = (l_dfld == Field$Reset) | (l_dfld == Field$WaitIdle) | (l_dfld == Field$Idle) | (l_dfld == Field$BusOff) | (l_dfld == Field$Sof) | (l_dfld == Field$Suspend) | ((l_dfld == Field$Inter) & (fpos == 32'h3));
+        l_hsf = (fld == Field$Reset) | (fld == Field$WaitIdle) | (fld == Field$Idle) | (fld == Field$BusOff) | (fld == Field$Sof) | (fld == Field$Suspend) | ((fld == Field$Inter) & (fpos == 32'h3));
+        l_hsp = (pfld == Field$Reset) | (pfld == Field$WaitIdle) | (pfld == Field$Idle) | (pfld == Field$BusOff) | (pfld == Field$Sof) | (pfld == Field$Suspend) | ((pfld == Field$Inter) & (fpos == 32'h3));
+        hs_en = l_hsf;
+        if (stuff) begin
+            hs_en = l_hsp;
+        end
     end
     
 endmodule // canstar_hub_core$monitor$fsm$dec

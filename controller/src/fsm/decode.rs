@@ -66,6 +66,8 @@ pub struct BitDecode {
     // Working values.
     l_area: Signal<Local, Bit>,
     l_dfld: Signal<Local, Field>,
+    l_hsf: Signal<Local, Bit>,
+    l_hsp: Signal<Local, Bit>,
 }
 
 impl Logic for BitDecode {
@@ -148,13 +150,27 @@ impl Logic for BitDecode {
         self.stuffed.next = self.l_area.val() | self.stuff.val();
         self.area.next = self.l_area.val();
         self.code.next = self.l_dfld.val().into();
-        self.hs_en.next = (self.l_dfld.val() == Field::Reset)
-            | (self.l_dfld.val() == Field::WaitIdle)
-            | (self.l_dfld.val() == Field::Idle)
-            | (self.l_dfld.val() == Field::BusOff)
-            | (self.l_dfld.val() == Field::Sof)
-            | (self.l_dfld.val() == Field::Suspend)
-            | ((self.l_dfld.val() == Field::Inter) & (self.fpos.val() == 3));
+        // `hs_en` of the displayed field, decoded from `fld` and from `pfld`
+        // side by side and selected by `stuff` (not `stuff` selecting the field
+        // in front of one decode: the bit timing reads it on every clock).
+        self.l_hsf.next = (self.fld.val() == Field::Reset)
+            | (self.fld.val() == Field::WaitIdle)
+            | (self.fld.val() == Field::Idle)
+            | (self.fld.val() == Field::BusOff)
+            | (self.fld.val() == Field::Sof)
+            | (self.fld.val() == Field::Suspend)
+            | ((self.fld.val() == Field::Inter) & (self.fpos.val() == 3));
+        self.l_hsp.next = (self.pfld.val() == Field::Reset)
+            | (self.pfld.val() == Field::WaitIdle)
+            | (self.pfld.val() == Field::Idle)
+            | (self.pfld.val() == Field::BusOff)
+            | (self.pfld.val() == Field::Sof)
+            | (self.pfld.val() == Field::Suspend)
+            | ((self.pfld.val() == Field::Inter) & (self.fpos.val() == 3));
+        self.hs_en.next = self.l_hsf.val();
+        if self.stuff.val() {
+            self.hs_en.next = self.l_hsp.val();
+        }
     }
 }
 
