@@ -1388,6 +1388,7 @@ module canstar_can_core$fsm(clock,reset,sample,busmon,listen_only,self_test,sing
     reg  dec$next_is_stuff;
     reg  dec$stuff_level;
     wire  dec$stuffed;
+    wire  dec$area;
     wire  dec$stuff;
     wire  [4:0] dec$code;
     wire  [7:0] dec$pos;
@@ -1396,6 +1397,10 @@ module canstar_can_core$fsm(clock,reset,sample,busmon,listen_only,self_test,sing
     wire  dec$arb_stuff;
     wire  [5:0] dec$arb_pos;
     wire  dec$drive;
+    wire  dec$arb_bit;
+    wire  dec$sent_bit;
+    wire  dec$arb_stuff_bit;
+    wire  dec$sent_stuff;
     reg  seq$clock;
     reg  seq$reset;
     reg  seq$sample;
@@ -1410,7 +1415,9 @@ module canstar_can_core$fsm(clock,reset,sample,busmon,listen_only,self_test,sing
     reg  seq$armed;
     reg  seq$last_run;
     reg  seq$busoff;
+    reg  seq$in_frame;
     reg  seq$level;
+    reg  seq$level_sof;
     reg  seq$f_own;
     reg  [4:0] seq$f_nf;
     reg  [7:0] seq$f_npos;
@@ -1433,7 +1440,6 @@ module canstar_can_core$fsm(clock,reset,sample,busmon,listen_only,self_test,sing
     wire  seq$tx_role;
     wire  seq$dom;
     wire  seq$in_busoff;
-    wire  [4:0] seq$nf_tx;
     wire  seq$err;
     wire  seq$flag_start;
     wire  seq$sofinit;
@@ -1450,6 +1456,7 @@ module canstar_can_core$fsm(clock,reset,sample,busmon,listen_only,self_test,sing
     reg  frame$sample;
     reg  frame$rxbit;
     reg  frame$sent;
+    reg  frame$sent_stuff;
     reg  frame$rec_iso;
     reg  [4:0] frame$fld;
     reg  [7:0] frame$fpos;
@@ -1476,6 +1483,7 @@ module canstar_can_core$fsm(clock,reset,sample,busmon,listen_only,self_test,sing
     wire  [7:0] frame$npos;
     wire  frame$ndom;
     wire  frame$usetx;
+    wire  [4:0] frame$lnf;
     wire  frame$lost;
     wire  frame$err;
     wire  frame$err_bit;
@@ -1563,6 +1571,7 @@ module canstar_can_core$fsm(clock,reset,sample,busmon,listen_only,self_test,sing
     wire  txq$req;
     wire  txq$ide;
     wire  txq$level;
+    wire  txq$level_sof;
     reg  rxf$clock;
     reg  rxf$reset;
     reg  rxf$sample;
@@ -1651,6 +1660,7 @@ module canstar_can_core$fsm(clock,reset,sample,busmon,listen_only,self_test,sing
         .next_is_stuff(dec$next_is_stuff),
         .stuff_level(dec$stuff_level),
         .stuffed(dec$stuffed),
+        .area(dec$area),
         .stuff(dec$stuff),
         .code(dec$code),
         .pos(dec$pos),
@@ -1658,7 +1668,11 @@ module canstar_can_core$fsm(clock,reset,sample,busmon,listen_only,self_test,sing
         .arb(dec$arb),
         .arb_stuff(dec$arb_stuff),
         .arb_pos(dec$arb_pos),
-        .drive(dec$drive)
+        .drive(dec$drive),
+        .arb_bit(dec$arb_bit),
+        .sent_bit(dec$sent_bit),
+        .arb_stuff_bit(dec$arb_stuff_bit),
+        .sent_stuff(dec$sent_stuff)
     );
     canstar_can_core$fsm$seq seq(
         .clock(seq$clock),
@@ -1675,7 +1689,9 @@ module canstar_can_core$fsm(clock,reset,sample,busmon,listen_only,self_test,sing
         .armed(seq$armed),
         .last_run(seq$last_run),
         .busoff(seq$busoff),
+        .in_frame(seq$in_frame),
         .level(seq$level),
+        .level_sof(seq$level_sof),
         .f_own(seq$f_own),
         .f_nf(seq$f_nf),
         .f_npos(seq$f_npos),
@@ -1698,7 +1714,6 @@ module canstar_can_core$fsm(clock,reset,sample,busmon,listen_only,self_test,sing
         .tx_role(seq$tx_role),
         .dom(seq$dom),
         .in_busoff(seq$in_busoff),
-        .nf_tx(seq$nf_tx),
         .err(seq$err),
         .flag_start(seq$flag_start),
         .sofinit(seq$sofinit),
@@ -1717,6 +1732,7 @@ module canstar_can_core$fsm(clock,reset,sample,busmon,listen_only,self_test,sing
         .sample(frame$sample),
         .rxbit(frame$rxbit),
         .sent(frame$sent),
+        .sent_stuff(frame$sent_stuff),
         .rec_iso(frame$rec_iso),
         .fld(frame$fld),
         .fpos(frame$fpos),
@@ -1743,6 +1759,7 @@ module canstar_can_core$fsm(clock,reset,sample,busmon,listen_only,self_test,sing
         .npos(frame$npos),
         .ndom(frame$ndom),
         .usetx(frame$usetx),
+        .lnf(frame$lnf),
         .lost(frame$lost),
         .err(frame$err),
         .err_bit(frame$err_bit),
@@ -1835,7 +1852,8 @@ module canstar_can_core$fsm(clock,reset,sample,busmon,listen_only,self_test,sing
         .tx_role(txq$tx_role),
         .req(txq$req),
         .ide(txq$ide),
-        .level(txq$level)
+        .level(txq$level),
+        .level_sof(txq$level_sof)
     );
     canstar_can_core$fsm$rxf rxf(
         .clock(rxf$clock),
@@ -1922,7 +1940,8 @@ module canstar_can_core$fsm(clock,reset,sample,busmon,listen_only,self_test,sing
         frame$reset = reset;
         frame$sample = sample;
         frame$rxbit = busmon;
-        frame$sent = dec$drive;
+        frame$sent = dec$sent_bit;
+        frame$sent_stuff = dec$sent_stuff;
         frame$rec_iso = rec_iso;
         frame$fld = seq$fld;
         frame$fpos = seq$fpos;
@@ -1933,8 +1952,8 @@ module canstar_can_core$fsm(clock,reset,sample,busmon,listen_only,self_test,sing
         frame$active = conf$active;
         frame$stuffed = dec$stuffed;
         frame$stuff = dec$stuff;
-        frame$arb = dec$arb;
-        frame$arb_stuff = dec$arb_stuff;
+        frame$arb = dec$arb_bit;
+        frame$arb_stuff = dec$arb_stuff_bit;
         frame$stuff_error = dstf$stuff_error;
         frame$crc_rem = |crcb$crc_next;
         frame$ext = rxf$ext;
@@ -1948,7 +1967,7 @@ module canstar_can_core$fsm(clock,reset,sample,busmon,listen_only,self_test,sing
         flags$reset = reset;
         flags$sample = sample;
         flags$rxbit = busmon;
-        flags$sent = dec$drive;
+        flags$sent = dec$sent_bit;
         flags$fld = seq$fld;
         flags$fpos = seq$fpos;
         flags$tx_role = seq$tx_role;
@@ -1968,7 +1987,9 @@ module canstar_can_core$fsm(clock,reset,sample,busmon,listen_only,self_test,sing
         seq$armed = conf$armed;
         seq$last_run = conf$last_run;
         seq$busoff = conf$busoff;
+        seq$in_frame = dec$area;
         seq$level = txq$level;
+        seq$level_sof = txq$level_sof;
         seq$f_own = frame$own;
         seq$f_nf = frame$nf;
         seq$f_npos = frame$npos;
@@ -2013,7 +2034,7 @@ module canstar_can_core$fsm(clock,reset,sample,busmon,listen_only,self_test,sing
         txq$load = seq$txsof;
         txq$adv = frame$adv;
         txq$fld = seq$fld;
-        txq$nf = seq$nf_tx;
+        txq$nf = frame$lnf;
         txq$crc_bit = crcb$crc_next[32'he];
         txq$lost = frame$lost;
         txq$done = frame$tx_ok;
@@ -2391,7 +2412,7 @@ module canstar_can_core$fsm$crcb$state(d,q,clock);
 endmodule // canstar_can_core$fsm$crcb$state
 
 
-module canstar_can_core$fsm$dec(fld,fpos,pfld,ppos,ext,tx_role,dom,listen_only,next_is_stuff,stuff_level,stuffed,stuff,code,pos,hs_en,arb,arb_stuff,arb_pos,drive);
+module canstar_can_core$fsm$dec(fld,fpos,pfld,ppos,ext,tx_role,dom,listen_only,next_is_stuff,stuff_level,stuffed,area,stuff,code,pos,hs_en,arb,arb_stuff,arb_pos,drive,arb_bit,sent_bit,arb_stuff_bit,sent_stuff);
     
     // Module arguments
     input wire  [4:0] fld;
@@ -2405,6 +2426,7 @@ module canstar_can_core$fsm$dec(fld,fpos,pfld,ppos,ext,tx_role,dom,listen_only,n
     input wire  next_is_stuff;
     input wire  stuff_level;
     output reg  stuffed;
+    output reg  area;
     output reg  stuff;
     output reg  [4:0] code;
     output reg  [7:0] pos;
@@ -2413,6 +2435,10 @@ module canstar_can_core$fsm$dec(fld,fpos,pfld,ppos,ext,tx_role,dom,listen_only,n
     output reg  arb_stuff;
     output reg  [5:0] arb_pos;
     output reg  drive;
+    output reg  arb_bit;
+    output reg  sent_bit;
+    output reg  arb_stuff_bit;
+    output reg  sent_stuff;
     
     // Enums
     localparam Field$Reset = 0;
@@ -2444,6 +2470,8 @@ module canstar_can_core$fsm$dec(fld,fpos,pfld,ppos,ext,tx_role,dom,listen_only,n
     // Local signals
     reg  l_area;
     reg  [4:0] l_dfld;
+    reg  l_hsf;
+    reg  l_hsp;
     
     // Update code
     always @(*) begin
@@ -2501,9 +2529,19 @@ module canstar_can_core$fsm$dec(fld,fpos,pfld,ppos,ext,tx_role,dom,listen_only,n
                 begin
                 end
         endcase
+        arb_bit = (fld == Field$Ident) | (fld == Field$Srr) | (fld == Field$Ide) | (fld == Field$Rtr) | (fld == Field$ExIdent);
+        arb_stuff_bit = (pfld == Field$Ident) | (pfld == Field$Srr) | (pfld == Field$ExIdent) | ((pfld == Field$Ide) & ext) | ((pfld == Field$Rtr) & ~ext);
+        sent_bit = ~dom | listen_only;
+        sent_stuff = ~tx_role | stuff_level | listen_only;
         stuffed = l_area | stuff;
+        area = l_area;
         code = l_dfld;
-        hs_en = (l_dfld == Field$Reset) | (l_dfld == Field$WaitIdle) | (l_dfld == Field$Idle) | (l_dfld == Field$BusOff) | (l_dfld == Field$Sof) | (l_dfld == Field$Suspend) | ((l_dfld == Field$Inter) & (fpos == 32'h3));
+        l_hsf = (fld == Field$Reset) | (fld == Field$WaitIdle) | (fld == Field$Idle) | (fld == Field$BusOff) | (fld == Field$Sof) | (fld == Field$Suspend) | ((fld == Field$Inter) & (fpos == 32'h3));
+        l_hsp = (pfld == Field$Reset) | (pfld == Field$WaitIdle) | (pfld == Field$Idle) | (pfld == Field$BusOff) | (pfld == Field$Sof) | (pfld == Field$Suspend) | ((pfld == Field$Inter) & (fpos == 32'h3));
+        hs_en = l_hsf;
+        if (stuff) begin
+            hs_en = l_hsp;
+        end
     end
     
 endmodule // canstar_can_core$fsm$dec
@@ -2999,7 +3037,7 @@ module canstar_can_core$fsm$flags$fdone(d,q,clock);
 endmodule // canstar_can_core$fsm$flags$fdone
 
 
-module canstar_can_core$fsm$frame(clock,reset,sample,rxbit,sent,rec_iso,fld,fpos,tx_role,dom,listen_only,self_test,active,stuffed,stuff,arb,arb_stuff,stuff_error,crc_rem,ext,rtr,dlc_lo_zero,data_bits,tx_ide,sofinit,err_now,own,nf,npos,ndom,usetx,lost,err,err_bit,err_stuff,err_crc,err_form,err_ack,tinc,rinc1,rok,ovl,exc1,exc2,tx_ok,rx_ok,sof,adv);
+module canstar_can_core$fsm$frame(clock,reset,sample,rxbit,sent,sent_stuff,rec_iso,fld,fpos,tx_role,dom,listen_only,self_test,active,stuffed,stuff,arb,arb_stuff,stuff_error,crc_rem,ext,rtr,dlc_lo_zero,data_bits,tx_ide,sofinit,err_now,own,nf,npos,ndom,usetx,lnf,lost,err,err_bit,err_stuff,err_crc,err_form,err_ack,tinc,rinc1,rok,ovl,exc1,exc2,tx_ok,rx_ok,sof,adv);
     
     // Module arguments
     input wire  clock;
@@ -3007,6 +3045,7 @@ module canstar_can_core$fsm$frame(clock,reset,sample,rxbit,sent,rec_iso,fld,fpos
     input wire  sample;
     input wire  rxbit;
     input wire  sent;
+    input wire  sent_stuff;
     input wire  rec_iso;
     input wire  [4:0] fld;
     input wire  [7:0] fpos;
@@ -3033,6 +3072,7 @@ module canstar_can_core$fsm$frame(clock,reset,sample,rxbit,sent,rec_iso,fld,fpos
     output reg  [7:0] npos;
     output reg  ndom;
     output reg  usetx;
+    output reg  [4:0] lnf;
     output reg  lost;
     output reg  err;
     output reg  err_bit;
@@ -3133,7 +3173,7 @@ module canstar_can_core$fsm$frame(clock,reset,sample,rxbit,sent,rec_iso,fld,fpos
                     ndom = dom;
                     if (stuff_error) begin
                         err = 1'b1;
-                        if (tx_role & rxbit & ~sent) begin
+                        if (tx_role & rxbit & ~sent_stuff) begin
                             err_bit = 1'b1;
                             tinc = 1'b1;
                         end
@@ -3356,6 +3396,84 @@ module canstar_can_core$fsm$frame(clock,reset,sample,rxbit,sent,rec_iso,fld,fpos
         if (reset) begin
             crcerr$d = 1'b0;
         end
+        lnf = fld;
+        case (fld)
+            Field$Sof:
+                begin
+                    lnf = Field$Ident;
+                end
+            Field$Ident:
+                begin
+                    if (fpos == 32'hb) begin
+                        if (tx_role & tx_ide) begin
+                            lnf = Field$Srr;
+                        end
+                        else begin
+                            lnf = Field$Rtr;
+                        end
+                    end
+                end
+            Field$Srr:
+                begin
+                    lnf = Field$Ide;
+                end
+            Field$Rtr:
+                begin
+                    if (ext) begin
+                        lnf = Field$Resv;
+                    end
+                    else begin
+                        lnf = Field$Ide;
+                    end
+                end
+            Field$Ide:
+                begin
+                    if (rxbit) begin
+                        lnf = Field$ExIdent;
+                    end
+                    else begin
+                        lnf = Field$Resv;
+                    end
+                end
+            Field$ExIdent:
+                begin
+                    if (fpos == 32'h12) begin
+                        lnf = Field$Rtr;
+                    end
+                end
+            Field$Resv:
+                begin
+                    if (~(ext & (fpos == 32'h1))) begin
+                        lnf = Field$Dlc;
+                    end
+                end
+            Field$Dlc:
+                begin
+                    if (fpos == 32'h4) begin
+                        if (rtr | (dlc_lo_zero & ~rxbit)) begin
+                            lnf = Field$Crc;
+                        end
+                        else begin
+                            lnf = Field$Data;
+                        end
+                    end
+                end
+            Field$Data:
+                begin
+                    if (fpos == data_bits) begin
+                        lnf = Field$Crc;
+                    end
+                end
+            Field$Crc:
+                begin
+                    if (fpos == 32'hf) begin
+                        lnf = Field$CrcDel;
+                    end
+                end
+            default:
+                begin
+                end
+        endcase
         sof = adv & (fld == Field$Sof);
         lost = tx_role & ~l_role;
     end
@@ -4105,7 +4223,7 @@ module canstar_can_core$fsm$rxf$rxrtr_r(d,q,clock);
 endmodule // canstar_can_core$fsm$rxf$rxrtr_r
 
 
-module canstar_can_core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_recovery,cnt_load,tec_in,stuff,req,active,armed,last_run,busoff,level,f_own,f_nf,f_npos,f_ndom,f_usetx,f_lost,f_err,f_ovl,f_sof,g_own,g_nf,g_npos,g_ndom,g_err,g_ovl,fld,fpos,pfld,ppos,tx_role,dom,in_busoff,nf_tx,err,flag_start,sofinit,txsof,ev_aef,ev_pef,ev_olf,ev_ovl,ev_integrated,ev_run,ev_recovered);
+module canstar_can_core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_recovery,cnt_load,tec_in,stuff,req,active,armed,last_run,busoff,in_frame,level,level_sof,f_own,f_nf,f_npos,f_ndom,f_usetx,f_lost,f_err,f_ovl,f_sof,g_own,g_nf,g_npos,g_ndom,g_err,g_ovl,fld,fpos,pfld,ppos,tx_role,dom,in_busoff,err,flag_start,sofinit,txsof,ev_aef,ev_pef,ev_olf,ev_ovl,ev_integrated,ev_run,ev_recovered);
     
     // Module arguments
     input wire  clock;
@@ -4122,7 +4240,9 @@ module canstar_can_core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_recove
     input wire  armed;
     input wire  last_run;
     input wire  busoff;
+    input wire  in_frame;
     input wire  level;
+    input wire  level_sof;
     input wire  f_own;
     input wire  [4:0] f_nf;
     input wire  [7:0] f_npos;
@@ -4145,7 +4265,6 @@ module canstar_can_core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_recove
     output reg  tx_role;
     output reg  dom;
     output reg  in_busoff;
-    output reg  [4:0] nf_tx;
     output reg  err;
     output reg  flag_start;
     output reg  sofinit;
@@ -4215,6 +4334,7 @@ module canstar_can_core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_recove
     reg  l_role;
     reg  l_start;
     reg  l_ovl;
+    reg  l_lvl;
     
     // Sub module instances
     canstar_can_core$fsm$seq$rfld rfld(
@@ -4409,9 +4529,12 @@ module canstar_can_core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_recove
                 end
             end
         end
-        nf_tx = l_nf;
+        l_lvl = level;
+        if (~in_frame) begin
+            l_lvl = level_sof & ~l_start;
+        end
         if (l_usetx) begin
-            l_ndom = l_role & ~level;
+            l_ndom = l_role & ~l_lvl;
         end
         ev_aef = 1'b0;
         ev_pef = 1'b0;
@@ -4654,7 +4777,7 @@ module canstar_can_core$fsm$seq$rtx(d,q,clock);
 endmodule // canstar_can_core$fsm$seq$rtx
 
 
-module canstar_can_core$fsm$txq(clock,reset,sample,tx_req,tx_abort,single_shot,tx_ide,tx_rtr,tx_id,tx_dlc,tx_data,load,adv,fld,nf,crc_bit,lost,done,err_now,tx_role,req,ide,level);
+module canstar_can_core$fsm$txq(clock,reset,sample,tx_req,tx_abort,single_shot,tx_ide,tx_rtr,tx_id,tx_dlc,tx_data,load,adv,fld,nf,crc_bit,lost,done,err_now,tx_role,req,ide,level,level_sof);
     
     // Module arguments
     input wire  clock;
@@ -4680,6 +4803,7 @@ module canstar_can_core$fsm$txq(clock,reset,sample,tx_req,tx_abort,single_shot,t
     output reg  req;
     output reg  ide;
     output reg  level;
+    output reg  level_sof;
     
     // Enums
     localparam Field$Reset = 0;
@@ -4737,6 +4861,9 @@ module canstar_can_core$fsm$txq(clock,reset,sample,tx_req,tx_abort,single_shot,t
     reg  [3:0] l_tdlc;
     reg  l_tide;
     reg  l_trtr;
+    reg  [28:0] lv_tid;
+    reg  [63:0] lv_tdat;
+    reg  [3:0] lv_tdlc;
     
     // Sub module instances
     canstar_can_core$fsm$txq$rq rq(
@@ -4808,7 +4935,6 @@ module canstar_can_core$fsm$txq(clock,reset,sample,tx_req,tx_abort,single_shot,t
         l_tdlc = tdlc$q;
         l_tide = tide$q;
         l_trtr = trtr$q;
-        level = 1'b1;
         if (sample) begin
             if (adv) begin
                 case (fld)
@@ -4850,47 +4976,79 @@ module canstar_can_core$fsm$txq(clock,reset,sample,tx_req,tx_abort,single_shot,t
             tdlc$d = l_tdlc;
             tide$d = l_tide;
             trtr$d = l_trtr;
-            case (nf)
-                Field$Sof:
-                    begin
-                        level = 1'b0;
-                    end
-                Field$Ident:
-                    begin
-                        level = l_tid[32'h1c];
-                    end
-                Field$ExIdent:
-                    begin
-                        level = l_tid[32'h1c];
-                    end
-                Field$Ide:
-                    begin
-                        level = l_tide;
-                    end
-                Field$Rtr:
-                    begin
-                        level = l_trtr;
-                    end
-                Field$Resv:
-                    begin
-                        level = 1'b0;
-                    end
-                Field$Dlc:
-                    begin
-                        level = l_tdlc[32'h3];
-                    end
-                Field$Data:
-                    begin
-                        level = l_tdat[32'h3f];
-                    end
-                Field$Crc:
-                    begin
-                        level = crc_bit;
-                    end
-                default:
-                    begin
-                    end
-            endcase
+        end
+        lv_tid = tid$q;
+        lv_tdlc = tdlc$q;
+        lv_tdat = tdat$q;
+        case (fld)
+            Field$Ident:
+                begin
+                    lv_tid = tid$q << 32'h1;
+                end
+            Field$ExIdent:
+                begin
+                    lv_tid = tid$q << 32'h1;
+                end
+            Field$Dlc:
+                begin
+                    lv_tdlc = tdlc$q << 32'h1;
+                end
+            Field$Data:
+                begin
+                    lv_tdat = tdat$q << 32'h1;
+                end
+            default:
+                begin
+                end
+        endcase
+        level = 1'b1;
+        case (nf)
+            Field$Sof:
+                begin
+                    level = 1'b0;
+                end
+            Field$Ident:
+                begin
+                    level = lv_tid[32'h1c];
+                end
+            Field$ExIdent:
+                begin
+                    level = lv_tid[32'h1c];
+                end
+            Field$Ide:
+                begin
+                    level = tide$q;
+                end
+            Field$Rtr:
+                begin
+                    level = trtr$q;
+                end
+            Field$Resv:
+                begin
+                    level = 1'b0;
+                end
+            Field$Dlc:
+                begin
+                    level = lv_tdlc[32'h3];
+                end
+            Field$Data:
+                begin
+                    level = lv_tdat[32'h3f];
+                end
+            Field$Crc:
+                begin
+                    level = crc_bit;
+                end
+            default:
+                begin
+                end
+        endcase
+        level_sof = tid$q[32'h1c];
+        if (load) begin
+            level_sof = tx_id[32'ha];
+            if (tx_ide) begin
+                level_sof = tx_id[32'h1c];
+            end
         end
         req = rq$q;
         ide = tide$q;

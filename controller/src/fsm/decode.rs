@@ -18,6 +18,15 @@
 //! - `drive`: the level wanted on TX for the bit: a transmitter's stuff bit
 //!   (the complement of the run), else the sequencer's registered decision
 //!   `dom`; always recessive in listen-only mode.
+//! - `arb_bit`, `arb_stuff_bit`, `sent_bit`, `sent_stuff`: the same decisions
+//!   for the frame fields' two cases taken separately, without the stuff-bit
+//!   selection in front of them: `arb` and the level driven for a bit that is
+//!   not a stuff bit (from `fld`, `dom`), `arb_stuff` and the level driven for
+//!   a stuff bit (from `pfld`, the stuff level). The frame fields use each
+//!   only in its own case (`stuff` low, resp. high), where it equals `arb`,
+//!   `arb_stuff` or `drive`; the flags only while `stuff` is low. This keeps
+//!   the destuffer's count (`next_is_stuff`) out of the field decode in front
+//!   of the per-bit decision (issue #16).
 
 use super::field::Field;
 use rust_hdl::prelude::*;
@@ -37,6 +46,8 @@ pub struct BitDecode {
     pub stuff_level: Signal<In, Bit>,
 
     pub stuffed: Signal<Out, Bit>,
+    /// The field is one of the stuffed area (Start_Of_Frame .. CRC_Sequence).
+    pub area: Signal<Out, Bit>,
     pub stuff: Signal<Out, Bit>,
     pub code: Signal<Out, Bits<5>>,
     pub pos: Signal<Out, Bits<8>>,
@@ -45,10 +56,18 @@ pub struct BitDecode {
     pub arb_stuff: Signal<Out, Bit>,
     pub arb_pos: Signal<Out, Bits<6>>,
     pub drive: Signal<Out, Bit>,
+    /// `arb` and `drive` of a bit that is not a stuff bit.
+    pub arb_bit: Signal<Out, Bit>,
+    pub sent_bit: Signal<Out, Bit>,
+    /// `arb_stuff` and `drive` of a stuff bit.
+    pub arb_stuff_bit: Signal<Out, Bit>,
+    pub sent_stuff: Signal<Out, Bit>,
 
     // Working values.
     l_area: Signal<Local, Bit>,
     l_dfld: Signal<Local, Field>,
+    l_hsf: Signal<Local, Bit>,
+    l_hsp: Signal<Local, Bit>,
 }
 
 impl Logic for BitDecode {
@@ -114,15 +133,44 @@ impl Logic for BitDecode {
             _ => {}
         }
 
+        // The two cases without the stuff-bit selection (see the module doc).
+        self.arb_bit.next = (self.fld.val() == Field::Ident)
+            | (self.fld.val() == Field::Srr)
+            | (self.fld.val() == Field::Ide)
+            | (self.fld.val() == Field::Rtr)
+            | (self.fld.val() == Field::ExIdent);
+        self.arb_stuff_bit.next = (self.pfld.val() == Field::Ident)
+            | (self.pfld.val() == Field::Srr)
+            | (self.pfld.val() == Field::ExIdent)
+            | ((self.pfld.val() == Field::Ide) & self.ext.val())
+            | ((self.pfld.val() == Field::Rtr) & !self.ext.val());
+        self.sent_bit.next = !self.dom.val() | self.listen_only.val();
+        self.sent_stuff.next = !self.tx_role.val() | self.stuff_level.val() | self.listen_only.val();
+
         self.stuffed.next = self.l_area.val() | self.stuff.val();
+        self.area.next = self.l_area.val();
         self.code.next = self.l_dfld.val().into();
-        self.hs_en.next = (self.l_dfld.val() == Field::Reset)
-            | (self.l_dfld.val() == Field::WaitIdle)
-            | (self.l_dfld.val() == Field::Idle)
-            | (self.l_dfld.val() == Field::BusOff)
-            | (self.l_dfld.val() == Field::Sof)
-            | (self.l_dfld.val() == Field::Suspend)
-            | ((self.l_dfld.val() == Field::Inter) & (self.fpos.val() == 3));
+        // `hs_en` of the displayed field, decoded from `fld` and from `pfld`
+        // side by side and selected by `stuff` (not `stuff` selecting the field
+        // in front of one decode: the bit timing reads it on every clock).
+        self.l_hsf.next = (self.fld.val() == Field::Reset)
+            | (self.fld.val() == Field::WaitIdle)
+            | (self.fld.val() == Field::Idle)
+            | (self.fld.val() == Field::BusOff)
+            | (self.fld.val() == Field::Sof)
+            | (self.fld.val() == Field::Suspend)
+            | ((self.fld.val() == Field::Inter) & (self.fpos.val() == 3));
+        self.l_hsp.next = (self.pfld.val() == Field::Reset)
+            | (self.pfld.val() == Field::WaitIdle)
+            | (self.pfld.val() == Field::Idle)
+            | (self.pfld.val() == Field::BusOff)
+            | (self.pfld.val() == Field::Sof)
+            | (self.pfld.val() == Field::Suspend)
+            | ((self.pfld.val() == Field::Inter) & (self.fpos.val() == 3));
+        self.hs_en.next = self.l_hsf.val();
+        if self.stuff.val() {
+            self.hs_en.next = self.l_hsp.val();
+        }
     }
 }
 

@@ -39,9 +39,12 @@ pub struct FrameFields {
     pub clock: Signal<In, Clock>,
     pub reset: Signal<In, Bit>,
     pub sample: Signal<In, Bit>,
-    /// The sampled level and the level this node drove for it.
+    /// The sampled level, and the level this node drove for it: `sent` if
+    /// the bit is not a stuff bit, `sent_stuff` if it is (each is read in
+    /// its own case only, so neither waits for the stuff-bit decode).
     pub rxbit: Signal<In, Bit>,
     pub sent: Signal<In, Bit>,
+    pub sent_stuff: Signal<In, Bit>,
     /// C13: REC − 1 for a successful reception at the ACK slot (ISO);
     /// low: at a recessive End_Of_Frame bit 7 only (the 1999 programs).
     pub rec_iso: Signal<In, Bit>,
@@ -53,7 +56,8 @@ pub struct FrameFields {
     pub self_test: Signal<In, Bit>,
     /// Error-active (error flags are active flags).
     pub active: Signal<In, Bit>,
-    /// From [`super::decode::BitDecode`].
+    /// From [`super::decode::BitDecode`]; `arb` is read for a bit that is
+    /// not a stuff bit only, `arb_stuff` for a stuff bit only.
     pub stuffed: Signal<In, Bit>,
     pub stuff: Signal<In, Bit>,
     pub arb: Signal<In, Bit>,
@@ -83,6 +87,14 @@ pub struct FrameFields {
     pub ndom: Signal<Out, Bit>,
     /// The next bit is a bit of the own frame (see the transmit register).
     pub usetx: Signal<Out, Bit>,
+    /// The field of the next bit if the bit in progress is a bit of the
+    /// stuffed area, not a stuff bit, and is taken without an error, with
+    /// the role kept: `nf` whenever `usetx` is set, except at Identifier 11
+    /// of a transmitter that loses arbitration there, whose next bit is not
+    /// driven. It selects the level of the next own bit
+    /// ([`super::txreq::TxRequest`]) without waiting for the bit and
+    /// arbitration checks (issue #16); any value on other clocks.
+    pub lnf: Signal<Out, Field>,
     /// Arbitration lost at this bit: the node continues as a receiver.
     pub lost: Signal<Out, Bit>,
     pub err: Signal<Out, Bit>,
@@ -163,7 +175,7 @@ impl Logic for FrameFields {
                     self.ndom.next = self.dom.val();
                     if self.stuff_error.val() {
                         self.err.next = true;
-                        if self.tx_role.val() & self.rxbit.val() & !self.sent.val() {
+                        if self.tx_role.val() & self.rxbit.val() & !self.sent_stuff.val() {
                             self.err_bit.next = true;
                             self.tinc.next = true;
                         } else {
@@ -361,6 +373,71 @@ impl Logic for FrameFields {
         }
         if self.reset.val() {
             self.crcerr.d.next = false;
+        }
+
+        // The next field of a taken bit of the stuffed area (see `lnf`): the
+        // field advance above without the error and arbitration checks.
+        self.lnf.next = self.fld.val();
+        match self.fld.val() {
+            Field::Sof => {
+                self.lnf.next = Field::Ident;
+            }
+            Field::Ident => {
+                if self.fpos.val() == 11 {
+                    if self.tx_role.val() & self.tx_ide.val() {
+                        self.lnf.next = Field::Srr;
+                    } else {
+                        self.lnf.next = Field::Rtr;
+                    }
+                }
+            }
+            Field::Srr => {
+                self.lnf.next = Field::Ide;
+            }
+            Field::Rtr => {
+                if self.ext.val() {
+                    self.lnf.next = Field::Resv;
+                } else {
+                    self.lnf.next = Field::Ide;
+                }
+            }
+            Field::Ide => {
+                if self.rxbit.val() {
+                    self.lnf.next = Field::ExIdent;
+                } else {
+                    self.lnf.next = Field::Resv;
+                }
+            }
+            Field::ExIdent => {
+                if self.fpos.val() == 18 {
+                    self.lnf.next = Field::Rtr;
+                }
+            }
+            Field::Resv => {
+                if !(self.ext.val() & (self.fpos.val() == 1)) {
+                    self.lnf.next = Field::Dlc;
+                }
+            }
+            Field::Dlc => {
+                if self.fpos.val() == 4 {
+                    if self.rtr.val() | (self.dlc_lo_zero.val() & !self.rxbit.val()) {
+                        self.lnf.next = Field::Crc;
+                    } else {
+                        self.lnf.next = Field::Data;
+                    }
+                }
+            }
+            Field::Data => {
+                if self.fpos.val() == self.data_bits.val() {
+                    self.lnf.next = Field::Crc;
+                }
+            }
+            Field::Crc => {
+                if self.fpos.val() == 15 {
+                    self.lnf.next = Field::CrcDel;
+                }
+            }
+            _ => {}
         }
 
         self.sof.next = self.adv.val() & (self.fld.val() == Field::Sof);

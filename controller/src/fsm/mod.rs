@@ -327,7 +327,8 @@ impl Logic for CanFsm {
         self.frame.reset.next = self.reset.val();
         self.frame.sample.next = self.sample.val();
         self.frame.rxbit.next = self.busmon.val();
-        self.frame.sent.next = self.dec.drive.val();
+        self.frame.sent.next = self.dec.sent_bit.val();
+        self.frame.sent_stuff.next = self.dec.sent_stuff.val();
         self.frame.rec_iso.next = self.rec_iso.val();
         self.frame.fld.next = self.seq.fld.val();
         self.frame.fpos.next = self.seq.fpos.val();
@@ -338,8 +339,8 @@ impl Logic for CanFsm {
         self.frame.active.next = self.conf.active.val();
         self.frame.stuffed.next = self.dec.stuffed.val();
         self.frame.stuff.next = self.dec.stuff.val();
-        self.frame.arb.next = self.dec.arb.val();
-        self.frame.arb_stuff.next = self.dec.arb_stuff.val();
+        self.frame.arb.next = self.dec.arb_bit.val();
+        self.frame.arb_stuff.next = self.dec.arb_stuff_bit.val();
         self.frame.stuff_error.next = self.dstf.stuff_error.val();
         self.frame.crc_rem.next = self.crcb.crc_next.val().any();
         self.frame.ext.next = self.rxf.ext.val();
@@ -354,7 +355,8 @@ impl Logic for CanFsm {
         self.flags.reset.next = self.reset.val();
         self.flags.sample.next = self.sample.val();
         self.flags.rxbit.next = self.busmon.val();
-        self.flags.sent.next = self.dec.drive.val();
+        // the flags own no stuff bit: `drive` is `sent_bit` there
+        self.flags.sent.next = self.dec.sent_bit.val();
         self.flags.fld.next = self.seq.fld.val();
         self.flags.fpos.next = self.seq.fpos.val();
         self.flags.tx_role.next = self.seq.tx_role.val();
@@ -375,7 +377,9 @@ impl Logic for CanFsm {
         self.seq.armed.next = self.conf.armed.val();
         self.seq.last_run.next = self.conf.last_run.val();
         self.seq.busoff.next = self.conf.busoff.val();
+        self.seq.in_frame.next = self.dec.area.val();
         self.seq.level.next = self.txq.level.val();
+        self.seq.level_sof.next = self.txq.level_sof.val();
         self.seq.f_own.next = self.frame.own.val();
         self.seq.f_nf.next = self.frame.nf.val();
         self.seq.f_npos.next = self.frame.npos.val();
@@ -422,7 +426,7 @@ impl Logic for CanFsm {
         self.txq.load.next = self.seq.txsof.val();
         self.txq.adv.next = self.frame.adv.val();
         self.txq.fld.next = self.seq.fld.val();
-        self.txq.nf.next = self.seq.nf_tx.val();
+        self.txq.nf.next = self.frame.lnf.val();
         // the MSB of the CRC register after this bit: the next CRC bit to send
         self.txq.crc_bit.next = self.crcb.crc_next.val().get_bit(14);
         self.txq.lost.next = self.frame.lost.val();

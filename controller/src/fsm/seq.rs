@@ -20,7 +20,7 @@
 //! Intermission bit 3 or Suspend_Transmission bit 8) starts an own frame if
 //! one is pending (`req`, not in listen-only mode), else Bus_Idle; while
 //! the next bit is an own frame bit its level comes from the transmit
-//! register (`nf_tx` out, `level` in); an error starts an active or passive
+//! register (`level`, `level_sof` in); an error starts an active or passive
 //! error flag, otherwise an overload condition an overload flag; a TEC above
 //! 255 (`busoff` from fault confinement) makes it Bus_Off instead, with no
 //! flag. The registers take the result on `sample`.
@@ -57,8 +57,12 @@ pub struct Sequencer {
     pub armed: Signal<In, Bit>,
     pub last_run: Signal<In, Bit>,
     pub busoff: Signal<In, Bit>,
-    /// Level of the next own frame bit (for field `nf_tx`).
+    /// Level of the next own frame bit: `level` after a taken bit of the
+    /// stuffed area (`in_frame`, the bit in progress lies there), `level_sof`
+    /// (Identifier 1) after a SOF sampled outside it.
+    pub in_frame: Signal<In, Bit>,
     pub level: Signal<In, Bit>,
+    pub level_sof: Signal<In, Bit>,
     /// The decision of [`super::frame_fields::FrameFields`].
     pub f_own: Signal<In, Bit>,
     pub f_nf: Signal<In, Field>,
@@ -84,8 +88,6 @@ pub struct Sequencer {
     pub tx_role: Signal<Out, Bit>,
     pub dom: Signal<Out, Bit>,
     pub in_busoff: Signal<Out, Bit>,
-    /// The field of the next bit, before error and overload flags.
-    pub nf_tx: Signal<Out, Field>,
     /// This bit's outcome: an error flag starts; an error or overload flag
     /// starts; a frame starts (SOF sampled); an own frame starts.
     pub err: Signal<Out, Bit>,
@@ -117,6 +119,7 @@ pub struct Sequencer {
     l_role: Signal<Local, Bit>,
     l_start: Signal<Local, Bit>,
     l_ovl: Signal<Local, Bit>,
+    l_lvl: Signal<Local, Bit>,
 }
 
 impl Logic for Sequencer {
@@ -257,10 +260,16 @@ impl Logic for Sequencer {
                 }
             }
         }
-        // The level of an own frame bit.
-        self.nf_tx.next = self.l_nf.val();
+        // The level of an own frame bit. Inside the stuffed area the next own
+        // bit follows a taken frame bit (`level`, or Identifier 1 after the
+        // SOF bit); outside it, it is Identifier 1 after a SOF sampled here
+        // (`level_sof`) or a SOF of an own frame started here (dominant).
+        self.l_lvl.next = self.level.val();
+        if !self.in_frame.val() {
+            self.l_lvl.next = self.level_sof.val() & !self.l_start.val();
+        }
         if self.l_usetx.val() {
-            self.l_ndom.next = self.l_role.val() & !self.level.val();
+            self.l_ndom.next = self.l_role.val() & !self.l_lvl.val();
         }
         // Error and overload flags.
         self.ev_aef.next = false;

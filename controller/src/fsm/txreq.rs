@@ -12,8 +12,12 @@
 //! `tx_data`; each identifier, DLC and data bit taken (`adv` in that field)
 //! shifts its register left, so the bit to send next is always the MSB.
 //! `level` is the level of the next bit of the own frame, for the field
-//! `nf` the sequencer goes to (combinational: it sees this bit's shift or
-//! load); the CRC sequence comes from the CRC engine (`crc_bit`).
+//! `nf` the frame fields go to after a taken bit of the stuffed area (or
+//! Start_Of_Frame): combinational, it sees the shift of this bit, which such
+//! a bit makes exactly when `fld` is a shifting field; the CRC sequence comes
+//! from the CRC engine (`crc_bit`). `level_sof` is the level of Identifier
+//! bit 1 when a SOF is sampled outside the frame fields (it sees `load`).
+//! Both are read only on a `sample` clock whose next bit is an own frame bit.
 //!
 //! State: `req` (see above), `blocked` (no further attempt until `tx_req`
 //! falls; cleared by `reset` and by `tx_req` low), `tid`, `tdat`, `tdlc`,
@@ -56,6 +60,10 @@ pub struct TxRequest {
     /// The own frame is extended.
     pub ide: Signal<Out, Bit>,
     pub level: Signal<Out, Bit>,
+    /// The level of Identifier bit 1 of an own frame whose SOF is sampled
+    /// outside the frame fields (Bus_Idle, Intermission 3, Suspend), with
+    /// the frame loaded on this clock if `load` is set.
+    pub level_sof: Signal<Out, Bit>,
 
     rq: DFF<Bit>,
     blocked: DFF<Bit>,
@@ -70,6 +78,9 @@ pub struct TxRequest {
     l_tdlc: Signal<Local, Bits<4>>,
     l_tide: Signal<Local, Bit>,
     l_trtr: Signal<Local, Bit>,
+    lv_tid: Signal<Local, Bits<29>>,
+    lv_tdat: Signal<Local, Bits<64>>,
+    lv_tdlc: Signal<Local, Bits<4>>,
 }
 
 impl Logic for TxRequest {
@@ -100,7 +111,6 @@ impl Logic for TxRequest {
         self.l_tdlc.next = self.tdlc.q.val();
         self.l_tide.next = self.tide.q.val();
         self.l_trtr.next = self.trtr.q.val();
-        self.level.next = true;
         if self.sample.val() {
             if self.adv.val() {
                 match self.fld.val() {
@@ -135,35 +145,66 @@ impl Logic for TxRequest {
             self.tdlc.d.next = self.l_tdlc.val();
             self.tide.d.next = self.l_tide.val();
             self.trtr.d.next = self.l_trtr.val();
-            match self.nf.val() {
-                Field::Sof => {
-                    self.level.next = false;
-                }
-                Field::Ident => {
-                    self.level.next = self.l_tid.val().get_bit(28);
-                }
-                Field::ExIdent => {
-                    self.level.next = self.l_tid.val().get_bit(28);
-                }
-                Field::Ide => {
-                    self.level.next = self.l_tide.val();
-                }
-                Field::Rtr => {
-                    self.level.next = self.l_trtr.val();
-                }
-                Field::Resv => {
-                    self.level.next = false;
-                }
-                Field::Dlc => {
-                    self.level.next = self.l_tdlc.val().get_bit(3);
-                }
-                Field::Data => {
-                    self.level.next = self.l_tdat.val().get_bit(63);
-                }
-                Field::Crc => {
-                    self.level.next = self.crc_bit.val();
-                }
-                _ => {}
+        }
+        // The level of the next own bit, read by the sequencer only on a
+        // `sample` clock whose next bit is an own frame bit. For a bit of the
+        // stuffed area that is taken, `adv` is set and `load` is not, so the
+        // registers shift exactly when `fld` is a shifting field: `level` does
+        // not wait for `adv` (the bit and arbitration checks) nor for `load`.
+        self.lv_tid.next = self.tid.q.val();
+        self.lv_tdlc.next = self.tdlc.q.val();
+        self.lv_tdat.next = self.tdat.q.val();
+        match self.fld.val() {
+            Field::Ident => {
+                self.lv_tid.next = self.tid.q.val() << 1;
+            }
+            Field::ExIdent => {
+                self.lv_tid.next = self.tid.q.val() << 1;
+            }
+            Field::Dlc => {
+                self.lv_tdlc.next = self.tdlc.q.val() << 1;
+            }
+            Field::Data => {
+                self.lv_tdat.next = self.tdat.q.val() << 1;
+            }
+            _ => {}
+        }
+        self.level.next = true;
+        match self.nf.val() {
+            Field::Sof => {
+                self.level.next = false;
+            }
+            Field::Ident => {
+                self.level.next = self.lv_tid.val().get_bit(28);
+            }
+            Field::ExIdent => {
+                self.level.next = self.lv_tid.val().get_bit(28);
+            }
+            Field::Ide => {
+                self.level.next = self.tide.q.val();
+            }
+            Field::Rtr => {
+                self.level.next = self.trtr.q.val();
+            }
+            Field::Resv => {
+                self.level.next = false;
+            }
+            Field::Dlc => {
+                self.level.next = self.lv_tdlc.val().get_bit(3);
+            }
+            Field::Data => {
+                self.level.next = self.lv_tdat.val().get_bit(63);
+            }
+            Field::Crc => {
+                self.level.next = self.crc_bit.val();
+            }
+            _ => {}
+        }
+        self.level_sof.next = self.tid.q.val().get_bit(28);
+        if self.load.val() {
+            self.level_sof.next = self.tx_id.val().get_bit(10);
+            if self.tx_ide.val() {
+                self.level_sof.next = self.tx_id.val().get_bit(28);
             }
         }
 
