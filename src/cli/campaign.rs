@@ -228,11 +228,12 @@ pub fn run(a: Args) -> Result<()> {
 }
 
 
-/// The `[hub]` table of a configuration file for the campaign's network (3 ports, 2
-/// interlinks); errors name the file and the key.
+/// The `[hub]` table of a configuration file for the campaign's network (its hubs'
+/// ports and interlinks, from the network itself); errors name the file and the key.
 fn campaign_hub(p: &std::path::Path) -> Result<canstar_hub::config::HubConfig> {
     let c = canstar::config::Config::load(p)?;
-    for (key, v, want) in [("hub.ports", c.hub.ports, 3), ("hub.sublinks", c.hub.sublinks, 2)] {
+    let net = canstar_recan::spec::NetworkSpec::fast().hub;
+    for (key, v, want) in [("hub.ports", c.hub.ports, net.ports), ("hub.sublinks", c.hub.sublinks, net.sublinks)] {
         anyhow::ensure!(v == want, "{}: {key} = {v}: the campaign's network has {want} (remove the key)", p.display());
     }
     Ok(c.hub)
