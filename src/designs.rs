@@ -249,7 +249,7 @@ pub fn hub_verilog(cfg: &canstar_hub::config::HubConfig, name: &str, what: &str)
 
 /// A hub's rust-hdl core (`<name>_core`), its top with vector ports and the top's ports.
 fn hub_top(cfg: &canstar_hub::config::HubConfig, name: &str) -> (String, String, Vec<(String, usize, bool)>) {
-    let mut h = canstar_hub::hub::Hub::new(cfg);
+    let mut h = canstar_hub::top::Hub::new(cfg);
     h.connect_all();
     let core = format!("{name}_core");
     let inner = canstar_hdl::flow::rename_top(&canstar_hdl::flow::emit(&h), &core);

@@ -186,7 +186,7 @@ fn committed_hubs_cosimulate() {
         ("hub/canstar_hub.v", "canstar_hub_core", canstar_hub::config::HubConfig::default()),
         ("hub/canstar_cancentrate.v", "canstar_cancentrate_core", canstar_hub::config::HubConfig { sublinks: 0, ..Default::default() }),
     ] {
-        let mut uut = canstar_hub::hub::Hub::new(&cfg);
+        let mut uut = canstar_hub::top::Hub::new(&cfg);
         let mut blamed = 0;
         // Mostly recessive uplinks with dominant bursts of bit length (16
         // clocks) and occasional long dominant runs, so that frames start,

@@ -108,6 +108,12 @@ pub struct HubConfig {
     /// the unjustified-dominant rules (ports, sublinks), 0..=31.
     pub window_lag: u64,
     pub sub_window_lag: u64,
+    /// First-flagger rule (hub.md §5.12): at an error episode that the frame monitor
+    /// alone started in the transmission region of a frame without glitches, charge every
+    /// port / sublink that was a dominant contender at that sample (a transmitter flagging
+    /// a bit error the hub did not see).
+    pub first_flagger: bool,
+    pub sub_first_flagger: bool,
     /// Reintegration window W in frames (None = isolation latched until reset).
     pub reintegration: Option<u64>,
     /// Fault-injection hook (None = no hooks).
@@ -124,7 +130,7 @@ impl Default for HubConfig {
             clock_hz: 14_740_000,
             timing: REFERENCE_TIMING,
             sync_depth: 1,
-            bic_threshold: 8,
+            bic_threshold: 6,
             life_threshold: 32,
             sub_life_threshold: 64,
             nack_threshold: 7,
@@ -143,6 +149,8 @@ impl Default for HubConfig {
             peer_glitch_decay: 4,
             window_lag: 7,
             sub_window_lag: 8,
+            first_flagger: true,
+            sub_first_flagger: true,
             reintegration: None,
             fault_injection: None,
             debug: true,
@@ -191,6 +199,7 @@ impl HubConfig {
             peer_glitch_decay: self.peer_glitch_decay,
             window_lag: self.window_lag,
             crc_window_end: self.crc_window_end(),
+            first_flagger: self.first_flagger,
         }
     }
     /// Longest glitch in clocks: [`HubConfig::glitch_max`], or one bit minus SJW minus
@@ -230,6 +239,7 @@ impl HubConfig {
             peer_glitch_decay: self.peer_glitch_decay,
             window_lag: self.sub_window_lag,
             crc_window_end: self.crc_window_end(),
+            first_flagger: self.sub_first_flagger,
         }
     }
     /// Check the ranges; returns a description of the first problem, starting

@@ -1,5 +1,5 @@
-//! The hub top levels: [`HubCore`] and the complete [`Hub`] with its frame monitor
-//! (configuration: [`crate::config::HubConfig`]).
+//! The hub without its frame monitor, [`HubCore`] (the complete hub with its monitor is
+//! [`crate::top::Hub`]; configuration: [`crate::config::HubConfig`]).
 //!
 //! [`HubCore`] wires the coupler, the error-flag generator, one port judge unit per
 //! uplink, one sublink judge unit per incoming sublink, the frame-state decoder and the
@@ -53,8 +53,7 @@
 use crate::config::{FaultPoint, HubConfig};
 use crate::coupler::{self, Coupler};
 use crate::efg::ErrorFlagGen;
-use crate::frame_state::{Field, FrameDecode, MonitorAdapter};
-use canstar_controller::CanCore;
+use crate::frame_state::{Field, FrameDecode};
 use crate::inject::Injector;
 use crate::judge::JudgeUnit;
 use rust_hdl::prelude::*;
@@ -99,6 +98,9 @@ pub struct HubCore {
     coupler: Coupler,
     efgen: ErrorFlagGen,
     err_start_r: DFF<Bit>,
+    ff_r: DFF<Bit>,
+    gl_one: Signal<Local, Bit>,
+    gl_two: Signal<Local, Bit>,
     sub_bl_r: DFF<Bit>,
     any_sub_blame: Signal<Local, Bit>,
     sub_all_an: Signal<Local, Bit>,
@@ -184,6 +186,9 @@ impl HubCore {
             coupler: Coupler::new(n, m, cfg.sync_depth),
             efgen: Default::default(),
             err_start_r: Default::default(),
+            ff_r: Default::default(),
+            gl_one: Default::default(),
+            gl_two: Default::default(),
             sub_bl_r: Default::default(),
             any_sub_blame: Default::default(),
             sub_all_an: Default::default(),
@@ -290,8 +295,15 @@ impl Logic for HubCore {
         self.stuff_dom.next = self.mon_stuff.val() & self.bt_prev.q.val();
         // some unit glitched recently: the other units' blames are not charged
         self.any_an.next = false;
+        // units that glitched in this frame: at least one, at least two (first-flagger rule)
+        self.gl_one.next = false;
+        self.gl_two.next = false;
         for i in 0..self._n {
             self.any_an.next = self.any_an.val() | self.pj[i].anomaly.val();
+            if self.pj[i].glf.val() {
+                self.gl_two.next = self.gl_two.val() | self.gl_one.val();
+                self.gl_one.next = true;
+            }
         }
         // every enabled replica sublink (at least two) glitched recently: a glitch of
         // the peer's contribution, not counted against the sublinks (hub.md §5.8)
@@ -300,6 +312,10 @@ impl Logic for HubCore {
         self.sub_two.next = false;
         for j in 0..self._m {
             self.any_an.next = self.any_an.val() | self.sj[j].anomaly.val();
+            if self.sj[j].glf.val() {
+                self.gl_two.next = self.gl_two.val() | self.gl_one.val();
+                self.gl_one.next = true;
+            }
             if !self.sj[j].dis.val() {
                 self.sub_all_an.next = self.sub_all_an.val() & self.sj[j].anomaly.val();
                 self.sub_two.next = self.sub_two.val() | self.sub_one.val();
@@ -381,6 +397,8 @@ impl Logic for HubCore {
             self.pj[i].rep_glitched.next = false;
             self.pj[i].rep_blamed.next = false;
             self.pj[i].common.next = false;
+            self.pj[i].ff.next = self.ff_r.q.val();
+            self.pj[i].gl_others.next = self.gl_two.val() | (self.gl_one.val() & !self.pj[i].glf.val());
             self.pj[i].bit_start.next = self.mon_bit_start.val();
             self.pj[i].bs_cnt.next = self.bs_r.q.val();
             self.pj[i].delim.next = self.delim_z.val();
@@ -425,11 +443,25 @@ impl Logic for HubCore {
         // that the replica evaluation does not depend combinationally on the blames
         self.err_start_r.clock.next = self.clock.val();
         self.err_start_r.d.next = self.trigger.val() & !self.efgen.busy.val();
+        // first-flagger rule (judge.rs §5.12): the monitor alone started the episode, in
+        // the transmission region (each unit excuses itself if another input glitched)
+        self.ff_r.clock.next = self.clock.val();
+        self.ff_r.d.next = self.trigger.val()
+            & !self.efgen.busy.val()
+            & self.mon_error.val()
+            & !self.any_blame.val()
+            & !self.any_tx_error.val()
+            & self.decode.tx_region.val();
+        if self.reset.val() {
+            self.ff_r.d.next = false;
+        }
         // some sublink was blamed at the sample that started the episode (replica rule)
         self.sub_bl_r.clock.next = self.clock.val();
         self.sub_bl_r.d.next = self.any_sub_blame.val();
         for j in 0..self._m {
             self.sj[j].err_start.next = self.err_start_r.q.val();
+            self.sj[j].ff.next = self.ff_r.q.val();
+            self.sj[j].gl_others.next = self.gl_two.val() | (self.gl_one.val() & !self.sj[j].glf.val());
             self.sj[j].rep_blamed.next = self.sub_bl_r.q.val();
             self.sj[j].common.next = self.sub_all_an.val() & self.sub_two.val();
         }
@@ -454,178 +486,6 @@ impl Logic for HubCore {
 
 canstar_hdl::impl_clocked!(HubCore);
 
-/// The complete hub: [`HubCore`] plus its frame monitor, the CAN controller
-/// (`canstar_controller::CanCore`, listen-only, following BT with the hub's bit timing)
-/// and the [`MonitorAdapter`] that maps the controller's debug bundle onto the frame
-/// state C. Ports: those of [`HubCore`] without the `mon_*` inputs and without `bt`.
-#[derive(LogicBlock)]
-pub struct Hub {
-    pub clock: Signal<In, Clock>,
-    pub rst_n: Signal<In, Bit>,
-    pub inject_fault: Signal<In, Bit>,
-    pub rx: Vec<Signal<In, Bit>>,
-    pub reh_rx: Vec<Signal<In, Bit>>,
-    pub tx: Vec<Signal<Out, Bit>>,
-    pub hub_tx: Vec<Signal<Out, Bit>>,
-    pub isolated: Vec<Signal<Out, Bit>>,
-    pub silent: Vec<Signal<Out, Bit>>,
-    pub sub_isolated: Vec<Signal<Out, Bit>>,
-    pub frame_state: Signal<Out, Bits<4>>,
-    pub efg_active: Signal<Out, Bit>,
-    pub inject_active: Signal<Out, Bit>,
-    pub bic: Vec<Signal<Out, Bits<8>>>,
-    pub dbc: Vec<Signal<Out, Bits<5>>>,
-    pub nack: Vec<Signal<Out, Bits<3>>>,
-    pub sub_bic: Vec<Signal<Out, Bits<8>>>,
-    pub sub_dbc: Vec<Signal<Out, Bits<5>>>,
-    pub sub_rep: Vec<Signal<Out, Bits<3>>>,
-    core: HubCore,
-    monitor: CanCore,
-    adapter: MonitorAdapter,
-    brp: Constant<Bits<5>>,
-    prop: Constant<Bits<3>>,
-    ph1: Constant<Bits<3>>,
-    ph2: Constant<Bits<3>>,
-    sjw: Constant<Bits<2>>,
-    _n: usize,
-    _m: usize,
-    _dn: usize,
-    _dm: usize,
-}
-
 /// Flip-flops of the reset synchroniser: the internal reset follows `rst_n` after this
 /// many clocks, and the outputs are recessive one clock later.
 pub const RESET_SYNC_DEPTH: usize = 2;
-
-/// Synchroniser depth of the monitor's RX input: BT is already synchronous.
-pub const MONITOR_SYNC_DEPTH: usize = 1;
-
-impl Hub {
-    /// Build a hub with its frame monitor. Panics if the configuration is invalid.
-    pub fn new(cfg: &HubConfig) -> Self {
-        let core = HubCore::new(cfg);
-        let (n, m) = (cfg.ports, cfg.sublinks);
-        let (dn, dm) = if cfg.debug { (n, m) } else { (0, 0) };
-        let t = cfg.timing;
-        let bs_delay = (t.ph2 * t.brp).saturating_sub(2) as u64;
-        let (brp, prop, ph1, ph2, sjw) = t.fields();
-        Self {
-            clock: Default::default(),
-            rst_n: Default::default(),
-            inject_fault: Default::default(),
-            rx: sigs(n),
-            reh_rx: sigs(m),
-            tx: sigs(n),
-            hub_tx: sigs(m),
-            isolated: sigs(n),
-            silent: sigs(n),
-            sub_isolated: sigs(m),
-            frame_state: Default::default(),
-            efg_active: Default::default(),
-            inject_active: Default::default(),
-            bic: sigs(dn),
-            dbc: sigs(dn),
-            nack: sigs(dn),
-            sub_bic: sigs(dm),
-            sub_dbc: sigs(dm),
-            sub_rep: sigs(dm),
-            core,
-            monitor: CanCore::with_sync_depth(MONITOR_SYNC_DEPTH),
-            adapter: MonitorAdapter::new(bs_delay),
-            brp: Constant::new((brp as u64).into()),
-            prop: Constant::new((prop as u64).into()),
-            ph1: Constant::new((ph1 as u64).into()),
-            ph2: Constant::new((ph2 as u64).into()),
-            sjw: Constant::new((sjw as u64).into()),
-            _n: n,
-            _m: m,
-            _dn: dn,
-            _dm: dm,
-        }
-    }
-    /// The hub without its monitor (simulation probes: `blame_any`, judge units, `bt`).
-    pub fn core(&self) -> &HubCore {
-        &self.core
-    }
-    /// The frame monitor (simulation probe).
-    pub fn monitor(&self) -> &CanCore {
-        &self.monitor
-    }
-}
-
-impl Logic for Hub {
-    #[hdl_gen]
-    fn update(&mut self) {
-        // frame monitor: the CAN controller, listen-only, on BT
-        self.monitor.clock.next = self.clock.val();
-        self.monitor.reset.next = self.core.reset_out.val();
-        self.monitor.rx.next = self.core.bt.val();
-        self.monitor.brp.next = bit_cast::<7, 5>(self.brp.val());
-        self.monitor.prop.next = bit_cast::<4, 3>(self.prop.val());
-        self.monitor.ph1.next = self.ph1.val();
-        self.monitor.ph2.next = self.ph2.val();
-        self.monitor.sjw.next = self.sjw.val();
-        self.monitor.triple.next = false;
-        self.monitor.listen_only.next = true;
-        self.monitor.self_test.next = false;
-        self.monitor.single_shot.next = false;
-        self.monitor.host_recovery.next = false;
-        self.monitor.recover.next = false;
-        self.monitor.tx_req.next = false;
-        self.monitor.tx_ide.next = false;
-        self.monitor.tx_rtr.next = false;
-        self.monitor.tx_id.next = 0.into();
-        self.monitor.tx_dlc.next = 0.into();
-        self.monitor.tx_data.next = 0.into();
-        self.monitor.tx_abort.next = false;
-        self.monitor.cnt_load.next = false;
-        self.monitor.tec_in.next = 0.into();
-        self.monitor.rec_in.next = 0.into();
-        // frame state adapter
-        self.adapter.clock.next = self.clock.val();
-        self.adapter.reset.next = self.core.reset_out.val();
-        self.adapter.sample.next = self.monitor.dbg_sample.val();
-        self.adapter.field.next = self.monitor.dbg_field.val();
-        self.adapter.pos.next = self.monitor.dbg_pos.val();
-        self.adapter.events.next = self.monitor.dbg_events.val();
-        self.adapter.stuff.next = self.monitor.dbg_stuff.val();
-        // hub core
-        self.core.clock.next = self.clock.val();
-        self.core.rst_n.next = self.rst_n.val();
-        self.core.inject_fault.next = self.inject_fault.val();
-        self.core.mon_sample.next = self.adapter.mon_sample.val();
-        self.core.mon_bit_start.next = self.adapter.bit_start.val();
-        self.core.mon_field.next = self.adapter.mon_field.val();
-        self.core.mon_pos.next = self.adapter.mon_pos.val();
-        self.core.mon_crc_ok.next = self.adapter.mon_crc_ok.val();
-        self.core.mon_frame_ok.next = self.adapter.mon_frame_ok.val();
-        self.core.mon_error.next = self.adapter.mon_error.val();
-        self.core.mon_stuff.next = self.adapter.mon_stuff.val();
-        self.frame_state.next = self.core.frame_state.val();
-        self.efg_active.next = self.core.efg_active.val();
-        self.inject_active.next = self.core.inject_active.val();
-        for i in 0..self._n {
-            self.core.rx[i].next = self.rx[i].val();
-            self.tx[i].next = self.core.tx[i].val();
-            self.isolated[i].next = self.core.isolated[i].val();
-            self.silent[i].next = self.core.silent[i].val();
-        }
-        for j in 0..self._m {
-            self.core.reh_rx[j].next = self.reh_rx[j].val();
-            self.hub_tx[j].next = self.core.hub_tx[j].val();
-            self.sub_isolated[j].next = self.core.sub_isolated[j].val();
-        }
-        for i in 0..self._dn {
-            self.bic[i].next = self.core.bic[i].val();
-            self.dbc[i].next = self.core.dbc[i].val();
-            self.nack[i].next = self.core.nack[i].val();
-        }
-        for j in 0..self._dm {
-            self.sub_bic[j].next = self.core.sub_bic[j].val();
-            self.sub_dbc[j].next = self.core.sub_dbc[j].val();
-            self.sub_rep[j].next = self.core.sub_rep[j].val();
-        }
-    }
-}
-
-canstar_hdl::impl_clocked!(Hub);

@@ -120,13 +120,13 @@
 //! `bic 85/80` while that transmitter reached 96 (`--class sweep-hub-flip-e100 --rep 5`).
 //! With 2 it is cut off at `bic 83/80` in the 11th episode, worst healthy TEC/REC 84.
 //! Evidence in hub.md §5.11. The unit isolates when `bic >= 8 * BIC_threshold` (`bic_limit`, 8 bits: ports default
-//! 64, sublinks 80 **(changed)**: the baseline's twice the port threshold, 128, let a hub
+//! 48 **(changed with §5.12**, the baseline's 64: see there), sublinks 80 **(changed)**: the baseline's twice the port threshold, 128, let a hub
 //! whose output flips whole bits (`hub-flip`, wider than a glitch) cost the healthy
 //! controllers of the other hub 8 per episode for 16 episodes: they reached 99 and were
 //! quarantined before the healthy hub cut the faulty one off (2 of 5 runs failed, e.g.
 //! `--class hub-flip --run-seed 8011133680121485277`; with 80 they pass, worst 89). 80
 //! stays above the port limit: a peer's port flipping whole bits is blamed at the same
-//! instants by both hubs, and the peer isolates it two episodes earlier).
+//! instants by both hubs, and the peer isolates it four episodes earlier).
 //!
 //! **§5.3 lifetime counter (added).** With decay alone a port that causes one error
 //! episode every 8 · `bic_decay` or more frames never reaches the limit (bic settles at 8
@@ -276,6 +276,24 @@
 //! and without a sublink BIC threshold of 9 (measured, not adopted: it partitions the hubs
 //! in some port-fault runs) are in hub.md §5.11. Test: `common_glitches_isolate_the_peer_hub`.
 //!
+//! **§5.12 first flagger (added).** When the hub starts an error episode because of its
+//! monitor's error alone (no blame, no transmitter bit error at that sample) in the
+//! transmission region, a node flagged without a reason the hub could see: a transmitter
+//! whose bit was changed on its way (its links, or a faulty hub between it and the others)
+//! sends its error flag, and the monitor finds the stuff error by the flag's sixth bit.
+//! Every enabled unit that was a dominant contender at that sample is charged like a blame
+//! (`ff`, one clock after the sample: `bic += 8`, `life += 1`, reported on `blame` and
+//! `charged`), unless another enabled input glitched since the last SOF (`gl_others`, from
+//! the units' `glf`) or in the last two bits (`suppress`): the flag may then be a reaction
+//! to that glitch. Its own glitch does not excuse a unit. Before, a faulty hub forcing the
+//! bus recessive under a transmitter behind it was charged to nobody (`--class hub-flip
+//! --run-seed 4294338105487423072`: the receivers' REC reached 96 before the sublinks were
+//! isolated). On for ports and sublinks (`first_flagger`, `sub_first_flagger`); with the
+//! sublinks alone the peer's faulty port lost its head start (257 partitions in 6 900
+//! runs), and the port threshold went from 8 to 6 so that the peer's port reaches its limit
+//! four episodes before the sublinks. Evidence in hub.md §5.12. Test:
+//! `first_flagger_charges_the_dominant_contender`.
+//!
 //! **§5.2 delimiter rule (added).** In the error phase, once BT was recessive at a
 //! sample (the end of every flag), the following delimiter bits are recessive-only
 //! positions (`delim`, computed by the hub), except the last one, where a node may
@@ -353,6 +371,9 @@ pub struct JudgeParams {
     /// Last clock after the bit start at which a dominant level counts in the CRC
     /// delimiter (early-ACK rule), `window_lag..=31`.
     pub crc_window_end: u64,
+    /// First-flagger rule (§5.12): charge a dominant contender at an error episode that
+    /// the frame monitor alone started.
+    pub first_flagger: bool,
 }
 
 #[derive(LogicBlock)]
@@ -398,6 +419,13 @@ pub struct JudgeUnit {
     /// Some enabled replica sublink has not been dominant in this bit's window (window
     /// rule, §5.2) so far (0 for ports).
     pub rep_rec_w: Signal<In, Bit>,
+    /// Strobe, one clock after the sample point (with `err_start`): the episode was
+    /// started by the frame monitor's own error detection in the transmission region,
+    /// with no blame, transmitter bit error or glitch in the frame (first-flagger rule).
+    pub ff: Signal<In, Bit>,
+    /// Another enabled unit of the hub has glitched since the last SOF (from the units'
+    /// `glf` outputs): this unit's error flag may be the reaction to that glitch.
+    pub gl_others: Signal<In, Bit>,
     pub dis: Signal<Out, Bit>,
     pub blame: Signal<Out, Bit>,
     /// `blame` that is charged (not suppressed by another unit's glitch).
@@ -407,6 +435,8 @@ pub struct JudgeUnit {
     pub glitch: Signal<Out, Bit>,
     /// This unit glitched in the current or the last two bits.
     pub anomaly: Signal<Out, Bit>,
+    /// This unit (enabled) glitched since the last SOF.
+    pub glf: Signal<Out, Bit>,
     pub bic: Signal<Out, Bits<8>>,
     pub life: Signal<Out, Bits<7>>,
     pub dbc: Signal<Out, Bits<5>>,
@@ -432,6 +462,7 @@ pub struct JudgeUnit {
     pg_decay: Constant<Bits<3>>,
     win_lag: Constant<Bits<5>>,
     crc_end: Constant<Bits<5>>,
+    ff_on: Constant<Bit>,
     ack_rule: Constant<Bit>,
     nack_on: Constant<Bit>,
     rep_on: Constant<Bit>,
@@ -460,6 +491,9 @@ pub struct JudgeUnit {
     an_r: DFF<Bits<2>>,
     pgc_r: DFF<Bits<4>>,
     pdec_r: DFF<Bits<3>>,
+    ffd_r: DFF<Bit>,
+    glf_r: DFF<Bit>,
+    ffc: Signal<Local, Bit>,
     dom: Signal<Local, Bit>,
     domw: Signal<Local, Bit>,
     unj: Signal<Local, Bit>,
@@ -519,12 +553,15 @@ impl JudgeUnit {
             rep_blamed: Default::default(),
             common: Default::default(),
             rep_rec_w: Default::default(),
+            ff: Default::default(),
+            gl_others: Default::default(),
             dis: Default::default(),
             blame: Default::default(),
             charged: Default::default(),
             tx_error: Default::default(),
             glitch: Default::default(),
             anomaly: Default::default(),
+            glf: Default::default(),
             bic: Default::default(),
             life: Default::default(),
             dbc: Default::default(),
@@ -548,6 +585,7 @@ impl JudgeUnit {
             pg_decay: Constant::new(p.peer_glitch_decay.into()),
             win_lag: Constant::new(p.window_lag.into()),
             crc_end: Constant::new(p.crc_window_end.max(p.window_lag).into()),
+            ff_on: Constant::new(p.first_flagger),
             ack_rule: Constant::new(port),
             nack_on: Constant::new(port),
             rep_on: Constant::new(!port),
@@ -576,6 +614,9 @@ impl JudgeUnit {
             an_r: Default::default(),
             pgc_r: Default::default(),
             pdec_r: Default::default(),
+            ffd_r: Default::default(),
+            glf_r: Default::default(),
+            ffc: Default::default(),
             dom: Default::default(),
             domw: Default::default(),
             unj: Default::default(),
@@ -603,7 +644,7 @@ impl JudgeUnit {
 impl Logic for JudgeUnit {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, dis_r, bic_r, bdec_r, life_r, dbc_r, nack_r, cont_r, rep_r, rep_seen, rep_first_dom, ok_r, acked, bad, ack_missing, ack_c, ack_rx, seen_dom, seen_dom_crc, gc_r, gdec_r, an_r, pgc_r, pdec_r, bl_r, bl_dm_r, gpend);
+        dff_setup!(self, clock, dis_r, bic_r, bdec_r, life_r, dbc_r, nack_r, cont_r, rep_r, rep_seen, rep_first_dom, ok_r, acked, bad, ack_missing, ack_c, ack_rx, seen_dom, seen_dom_crc, gc_r, gdec_r, an_r, pgc_r, pdec_r, ffd_r, glf_r, bl_r, bl_dm_r, gpend);
         self.pulse.clock.next = self.clock.val();
         self.pulse.reset.next = self.reset.val();
         self.pulse.c.next = self.c.val();
@@ -636,9 +677,12 @@ impl Logic for JudgeUnit {
                     | (self.ack_slot.val() & self.cont_r.q.val() & self.ack_rule.val())))
                 | self.delim.val()))
             | (self.crc_delim.val() & !self.err_phase.val() & self.seen_dom_crc.q.val());
-        self.blame.next = self.sample.val() & self.unj.val() & self.enabled.val();
+        // §5.12 first flagger: charged one clock after the sample (with `ff`), reported
+        // on `blame`/`charged` like a blame (the hub's error flag is already started)
+        self.ffc.next = self.ff.val() & self.ff_on.val() & self.enabled.val() & self.ffd_r.q.val();
+        self.blame.next = (self.sample.val() & self.unj.val() & self.enabled.val()) | self.ffc.val();
         self.charge.next = self.sample.val() & self.unj.val() & self.enabled.val() & !self.suppress.val() & !self.stuff_dom.val();
-        self.charged.next = self.charge.val();
+        self.charged.next = self.charge.val() | self.ffc.val();
         // (port units only: `nack_on` is the port-unit constant)
         self.tx_error.next = self.sample.val()
             & self.nack_on.val()
@@ -661,6 +705,14 @@ impl Logic for JudgeUnit {
                 // (a sublink recessive while a replica is dominant has not lost
                 // arbitration: the replicas disagree, and the replica rule judges that)
                 self.cont_r.d.next = false;
+            }
+            // §5.12 a dominant contender at this sample (a transmitter's error flag if the
+            // monitor alone starts an episode here), unless another input glitched in this
+            // frame (the flag may be the reaction to that glitch); its own glitch does not
+            // excuse it
+            self.ffd_r.d.next = self.dom.val() & self.cont_r.q.val() & !self.suppress.val() & !self.gl_others.val();
+            if self.sof.val() {
+                self.glf_r.d.next = false;
             }
             // §5.4 dominant run
             if self.dom.val() {
@@ -748,6 +800,9 @@ impl Logic for JudgeUnit {
         } else if self.g.val() {
             self.gpend.d.next = true;
         }
+        if self.g.val() & self.enabled.val() {
+            self.glf_r.d.next = true;
+        }
         if self.g.val() {
             self.an_r.d.next = 3.into();
             self.bad.d.next = true;
@@ -764,7 +819,16 @@ impl Logic for JudgeUnit {
             self.pgc_r.d.next = self.pgc_r.q.val() + 1;
             self.pdec_r.d.next = 0.into();
         }
-        if (self.gcount.val() | self.charge.val()) & (self.life_r.q.val() != 127) {
+        // (the first-flagger charge comes one clock after a sample, never with one)
+        if self.ffc.val() {
+            if self.bic_r.q.val() > 247 {
+                self.bic_r.d.next = 255.into();
+            } else {
+                self.bic_r.d.next = self.bic_r.q.val() + 8;
+            }
+            self.bad.d.next = true;
+        }
+        if (self.gcount.val() | self.charge.val() | self.ffc.val()) & (self.life_r.q.val() != 127) {
             self.life_r.d.next = self.life_r.q.val() + 1;
         }
         if self.dbc_r.q.val() >= self.dbc_thr.val() {
@@ -862,6 +926,8 @@ impl Logic for JudgeUnit {
             self.an_r.d.next = 0.into();
             self.pgc_r.d.next = 0.into();
             self.pdec_r.d.next = 0.into();
+            self.ffd_r.d.next = false;
+            self.glf_r.d.next = false;
         }
         self.dis.next = self.dis_r.q.val();
         self.bic.next = self.bic_r.q.val();
@@ -874,6 +940,7 @@ impl Logic for JudgeUnit {
         self.silent.next = self.nack_r.q.val() >= self.nack_thr.val();
         self.contender.next = self.cont_r.q.val();
         self.window_dom.next = self.domw.val();
+        self.glf.next = self.glf_r.q.val();
     }
 }
 

@@ -12,9 +12,9 @@
 //! - [`frame_state`]: the frame state C: field codes, the decoder for the judges and
 //!   the adapter from the CAN controller's debug bundle.
 //! - [`hub`]: [`hub::HubCore`] (everything but the frame monitor, frame state on `mon_*`
-//!   inputs), [`hub::Hub`] (the complete hub: `HubCore` + the CAN controller
-//!   `canstar_controller::CanCore` in listen-only mode as frame monitor + adapter),
-//!   and [`config::HubConfig`] (serde, defaults = the reference hub).
+//!   inputs); [`top`]: [`top::Hub`] (the complete hub: `HubCore` + the CAN controller
+//!   `canstar_controller::CanCore` in listen-only mode as frame monitor + adapter);
+//!   [`config::HubConfig`] (serde, defaults = the reference hub).
 //!
 //! # Design notes
 //! - **One frame tracker.** The hub has no frame tracking of its own: the frame
@@ -109,3 +109,4 @@ pub mod hub;
 pub mod inject;
 pub mod judge;
 pub mod pulse;
+pub mod top;

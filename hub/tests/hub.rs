@@ -4,7 +4,7 @@ mod common;
 use canstar_hdl::{drive, flow};
 use canstar_hub::frame_state::Field;
 use canstar_hub::config::{FaultInjection, InjectionKind, FaultPoint, HubConfig};
-use canstar_hub::hub::{Hub, HubCore};
+use canstar_hub::{hub::HubCore, top::Hub};
 use common::*;
 use rand::{Rng, SeedableRng};
 
@@ -211,7 +211,8 @@ fn config_defaults_serde_and_validation() {
     assert_eq!((d.ports, d.sublinks, d.clock_hz, d.sync_depth), (3, 2, 14_740_000, 1));
     assert_eq!(d.timing.fields(), (1, 2, 1, 1, 0));
     assert_eq!((d.timing.ntq(), d.timing.sp(), d.timing.ph2, d.bit_clocks()), (8, 6, 2, 16));
-    assert_eq!((d.bic_threshold, d.nack_threshold, d.dbc_threshold), (8, 7, 13));
+    assert_eq!((d.bic_threshold, d.nack_threshold, d.dbc_threshold), (6, 7, 13));
+    assert!(d.first_flagger && d.sub_first_flagger);
     assert_eq!((d.sub_bic_threshold, d.sub_dbc_threshold, d.replica_limit), (10, 28, 3));
     assert_eq!((d.peer_glitch_limit, d.peer_glitch_decay), (12, 4));
     assert_eq!(d.reintegration, None);

@@ -3,7 +3,7 @@
 mod common;
 use canstar_hub::frame_state::Field;
 use canstar_hub::config::HubConfig;
-use canstar_hub::hub::{Hub, HubCore};
+use canstar_hub::{hub::HubCore, top::Hub};
 use common::*;
 use rand::{Rng, SeedableRng};
 
@@ -196,7 +196,8 @@ fn node_with_dead_downlink_is_isolated<T: Dut>() {
 }
 
 /// A bit-flipping uplink (a receiver that turns one recessive data bit dominant in
-/// every frame): +8 per episode, one blame per episode, isolated at 8 x 8 = 64.
+/// every frame): +8 per episode, one blame per episode, isolated at 8 x the BIC threshold
+/// (6: 48).
 fn bit_flip_uplink_blamed_per_episode_and_isolated<T: Dut>() {
     let mut n = nodes(3);
     for k in 0..30 {
@@ -226,8 +227,10 @@ fn bit_flip_uplink_blamed_per_episode_and_isolated<T: Dut>() {
         }
     }
     assert!(net.isolated()[1], "not isolated; bic history {history:?}");
-    assert_eq!(history, vec![8, 16, 24, 32, 40, 48, 56, 64], "one +8 per episode, no decay without good frames");
-    assert_eq!(net.blames(), 8);
+    let episodes = cancentrate().bic_threshold;
+    assert_eq!(episodes, 6);
+    assert_eq!(history, (1..=episodes).map(|k| 8 * k).collect::<Vec<_>>(), "one +8 per episode, no decay without good frames");
+    assert_eq!(net.blames(), episodes as usize);
     assert_eq!(net.isolated(), vec![false, true, false]);
     assert!(net.stim.nodes.iter().all(|n| n.tec < 96), "healthy TEC stays below 96");
     net.run_until_idle(40_000);

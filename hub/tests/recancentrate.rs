@@ -6,7 +6,7 @@
 mod common;
 use canstar_hdl::drive;
 use canstar_hub::config::HubConfig;
-use canstar_hub::hub::Hub;
+use canstar_hub::top::Hub;
 use common::*;
 
 /// A closure that may corrupt the wire from one hub's `hub_tx[j]` to the other's

@@ -2,7 +2,7 @@
 mod common;
 use canstar_hub::frame_state::Field;
 use canstar_hub::config::HubConfig;
-use canstar_hub::hub::{Hub, HubCore};
+use canstar_hub::{hub::HubCore, top::Hub};
 use common::*;
 
 fn traffic(frames: usize) -> Vec<Node> {
@@ -89,7 +89,9 @@ fn dominant_run_isolates_single_sublink<T: Dut>() {
     // the run may have started up to 5 bits before the fault (dominant frame bits)
     assert!((22..=30).contains(&(at - 100)), "isolated after {} bits", at - 100);
     assert!(net.hub.sub_dbc()[0] as usize >= 28, "isolated by the dominant-run rule");
-    assert_eq!(net.hub.sub_bic()[0] as usize, 0);
+    // at most one first-flagger charge (hub.md §5.12): the stuck sublink was the dominant
+    // contender when the monitor found the stuff error that its dominant run caused
+    assert!(net.hub.sub_bic()[0] as usize <= 8, "sub bic {}", net.hub.sub_bic()[0]);
     assert_eq!(net.hub.sub_rep()[0] as usize, 0, "no replica rule with one sublink");
     net.run_until_idle(60_000);
     assert_eq!(net.isolated(), vec![false; 3]);

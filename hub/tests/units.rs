@@ -6,7 +6,7 @@ use canstar_hub::judge::{JudgeParams, JudgeUnit};
 use rand::Rng;
 
 fn params() -> JudgeParams {
-    JudgeParams { bic_limit: 64, bic_decay: 1, life_limit: 32, dbc_threshold: 13, nack_threshold: 7, replica_limit: 3, reintegration: None, glitch_min: 1, glitch_max: 11, glitch_limit: 3, glitch_decay: 16, peer_glitch_limit: 12, peer_glitch_decay: 4, window_lag: 7, crc_window_end: 8 }
+    JudgeParams { bic_limit: 64, bic_decay: 1, life_limit: 32, dbc_threshold: 13, nack_threshold: 7, replica_limit: 3, reintegration: None, glitch_min: 1, glitch_max: 11, glitch_limit: 3, glitch_decay: 16, peer_glitch_limit: 12, peer_glitch_decay: 4, window_lag: 7, crc_window_end: 8, first_flagger: false }
 }
 
 #[derive(Default, Clone, Copy)]
@@ -493,6 +493,80 @@ fn replica_rule_charges_by_consequence() {
     assert_eq!(j.rep_cnt.val().index(), 1);
 }
 
+/// One clock with the first-flagger strobe `ff` (the hub raises it one clock after the
+/// sample at which its monitor alone started an error episode); returns `charged`.
+fn first_flagger_clock(j: &mut JudgeUnit) -> bool {
+    j.ff.next = true;
+    drive::settle(j);
+    let charged = j.charged.val() && j.blame.val();
+    drive::cycle(j);
+    j.ff.next = false;
+    drive::cycle(j);
+    charged
+}
+
+/// hub.md §5.12: at an episode the monitor alone started, a unit that was a dominant
+/// contender at that sample (a transmitter sending its error flag) is charged like a
+/// blame (`bic += 8`, `life += 1`); a recessive contender, a dominant receiver, a unit
+/// excused by another input's glitch in the frame, and every unit with the rule off are not.
+#[test]
+fn first_flagger_charges_the_dominant_contender() {
+    let on = JudgeParams { first_flagger: true, ..params() };
+    let mut j = unit(on);
+    sample(&mut j, Bit { c: false, bt: false, sof: true, ..Default::default() });
+    sample(&mut j, Bit { c: false, bt: false, tx: true, ..Default::default() });
+    assert!(j.contender.val());
+    assert!(first_flagger_clock(&mut j));
+    assert_eq!((j.bic.val().index(), j.life.val().index()), (8, 1));
+    // recessive at the sample: not the flagger
+    sample(&mut j, Bit { c: true, bt: false, tx: true, err: true, ..Default::default() });
+    assert!(!first_flagger_clock(&mut j));
+    assert_eq!(j.bic.val().index(), 8);
+    // a receiver (lost arbitration) dominant at the sample: not a contender, not charged
+    let mut r = unit(on);
+    sample(&mut r, Bit { c: false, bt: false, sof: true, ..Default::default() });
+    sample(&mut r, Bit { c: true, bt: false, tx: true, ..Default::default() });
+    sample(&mut r, Bit { c: false, bt: false, tx: true, err: true, ..Default::default() });
+    assert!(!r.contender.val());
+    assert!(!first_flagger_clock(&mut r));
+    assert_eq!(r.bic.val().index(), 0);
+    // another input glitched in this frame (`gl_others` at the sample): excused
+    let mut g = unit(on);
+    sample(&mut g, Bit { c: false, bt: false, sof: true, ..Default::default() });
+    g.gl_others.next = true;
+    sample(&mut g, Bit { c: false, bt: false, tx: true, ..Default::default() });
+    g.gl_others.next = false;
+    assert!(!first_flagger_clock(&mut g));
+    assert_eq!(g.bic.val().index(), 0);
+    // its own glitch does not excuse a unit: `glf` marks it until the next SOF
+    let mut s = unit(on);
+    sample(&mut s, Bit { c: false, bt: false, sof: true, ..Default::default() });
+    sample(&mut s, Bit { c: false, bt: false, tx: true, ..Default::default() });
+    assert!(!s.glf.val());
+    pulse_bit(&mut s, 1, 4, false);
+    assert!(s.glf.val());
+    sample(&mut s, Bit { c: false, bt: false, tx: true, ..Default::default() });
+    assert!(first_flagger_clock(&mut s));
+    assert!(s.glf.val());
+    sample(&mut s, Bit { c: false, bt: false, sof: true, ..Default::default() });
+    assert!(!s.glf.val(), "cleared at SOF");
+    // the rule off
+    let mut o = unit(params());
+    sample(&mut o, Bit { c: false, bt: false, sof: true, ..Default::default() });
+    sample(&mut o, Bit { c: false, bt: false, tx: true, ..Default::default() });
+    assert!(!first_flagger_clock(&mut o));
+    assert_eq!(o.bic.val().index(), 0);
+    // eight first-flagger charges reach the limit 64 (a new frame: a contender again)
+    sample(&mut j, Bit { c: false, bt: false, sof: true, ..Default::default() });
+    for _ in 0..7 {
+        sample(&mut j, Bit { c: false, bt: false, tx: true, ..Default::default() });
+        assert!(first_flagger_clock(&mut j));
+    }
+    assert_eq!(j.bic.val().index(), 64);
+    drive::cycle(&mut j);
+    assert!(j.dis.val());
+}
+
 /// §5.1 with §5.7: a sublink that is recessive while BT is dominant has lost arbitration
 /// (it becomes a receiver, and its next dominant bit is blamed) only when no replica is
 /// dominant; recessive while a replica is dominant is a replica disagreement, not a loss.
@@ -654,6 +728,8 @@ fn judge_stim(j: &mut JudgeUnit, rng: &mut rand_chacha::ChaCha8Rng, c: usize) {
     let k = c % 16;
     j.sample.next = k == 12;
     j.err_start.next = k == 13 && rng.gen_ratio(1, 40);
+    j.ff.next = k == 13 && rng.gen_ratio(1, 40);
+    j.gl_others.next = rng.gen_ratio(1, 4);
     if k == 0 {
         // a rough frame-like field sequence, biased towards fault-free behaviour
         let phase = (c / 16) % 120;
@@ -704,14 +780,14 @@ fn judge_stim(j: &mut JudgeUnit, rng: &mut rand_chacha::ChaCha8Rng, c: usize) {
 #[test]
 #[ignore = "needs iverilog, verilator and yosys: run scripts/test-all.sh"]
 fn port_judge_flow() {
-    let mut j = JudgeUnit::port(JudgeParams { reintegration: Some(3), ..params() });
+    let mut j = JudgeUnit::port(JudgeParams { reintegration: Some(3), first_flagger: true, ..params() });
     flow::full_check(&mut j, "port_judge", 100_000, 21, judge_stim).expect("port judge flow");
 }
 
 #[test]
 #[ignore = "needs iverilog, verilator and yosys: run scripts/test-all.sh"]
 fn sublink_judge_flow() {
-    let mut j = JudgeUnit::sublink(JudgeParams { bic_limit: 128, dbc_threshold: 28, ..params() });
+    let mut j = JudgeUnit::sublink(JudgeParams { bic_limit: 128, dbc_threshold: 28, first_flagger: true, ..params() });
     flow::full_check(&mut j, "sublink_judge", 100_000, 22, judge_stim).expect("sublink judge flow");
 }
 

@@ -1,4 +1,4 @@
-//! [`HubSim`]: the hub RTL ([`canstar_hub::hub::Hub`], frame monitor included) on
+//! [`HubSim`]: the hub RTL ([`canstar_hub::top::Hub`], frame monitor included) on
 //! either engine behind one interface: the ports by index, the status outputs and
 //! the judge units' signals the system simulation reads (blame, counters, the frame
 //! monitor's sample/field/position), the same probe walk (VCD) on both.
@@ -11,7 +11,7 @@ use std::cell::RefCell;
 use std::collections::HashMap;
 
 use canstar_hub::config::HubConfig;
-use canstar_hub::hub::Hub;
+use canstar_hub::top::Hub;
 use canstar_rtlc::rt::Op;
 use rust_hdl::prelude::*;
 

@@ -10,7 +10,7 @@
 use std::path::{Path, PathBuf};
 
 use canstar_hub::config::HubConfig;
-use canstar_hub::hub::{Hub, HubCore};
+use canstar_hub::{hub::HubCore, top::Hub};
 use canstar_rtlc::rt::Block;
 
 /// One committed model.
@@ -90,7 +90,7 @@ pub fn entries() -> Vec<Entry> {
         v.push(e);
         let module: &'static str = Box::leak(format!("hub_{suffix}").into_boxed_str());
         let name: &'static str = Box::leak(format!("Hub{name_suffix}").into_boxed_str());
-        let mut e = entry(module, name, "canstar_hub::hub::Hub", &format!("complete hub with frame monitor (`canstar_hub::hub::Hub`), N = {n} ports, M = {m} sublinks, debug outputs"), move || {
+        let mut e = entry(module, name, "canstar_hub::top::Hub", &format!("complete hub with frame monitor (`canstar_hub::top::Hub`), N = {n} ports, M = {m} sublinks, debug outputs"), move || {
             Box::new(Hub::new(&hub_cfg(n, m)))
         });
         e.keep = crate::hub_sim::core_reader_signals(n, m).into_iter().map(|p| format!("core.{p}")).collect();

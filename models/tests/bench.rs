@@ -168,7 +168,7 @@ fn bench_print() {
     let short = head(&st, 30_000);
     let cfg = canstar_hub::config::HubConfig::default();
     let n_out = g::hub_n3_m2::HubN3M2::new().info().outputs.len();
-    let (h, hh) = replay_hdl(|| canstar_hub::hub::Hub::new(&cfg), g::hub_n3_m2::hdl_set_inputs, g::hub_n3_m2::hdl_outputs, n_out, &short);
+    let (h, hh) = replay_hdl(|| canstar_hub::top::Hub::new(&cfg), g::hub_n3_m2::hdl_set_inputs, g::hub_n3_m2::hdl_outputs, n_out, &short);
     assert_eq!(hh, replay_model(g::hub_n3_m2::HubN3M2::new, &short, true).1, "the engines disagree");
     line("Hub N=3 M=2 (with monitor)", "cycles", h, replay_model(g::hub_n3_m2::HubN3M2::new, &st, false).0);
 }

@@ -12,7 +12,7 @@
 mod common;
 
 use canstar_hub::config::{FaultInjection, FaultPoint, HubConfig, InjectionKind};
-use canstar_hub::hub::{Hub, HubCore};
+use canstar_hub::{hub::HubCore, top::Hub};
 use canstar_models::generated as g;
 use canstar_models::lockstep::{Lockstep, RandomInputs};
 use canstar_rtlc::rt::Model;

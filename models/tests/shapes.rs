@@ -6,7 +6,7 @@
 use canstar_controller::core::CanCore;
 use canstar_controller::sja1000::Sja1000;
 use canstar_hub::config::{FaultInjection, FaultPoint, HubConfig, InjectionKind};
-use canstar_hub::hub::Hub;
+use canstar_hub::top::Hub;
 use canstar_models::generated as g;
 use canstar_rtlc::{fingerprint, Error};
 
@@ -80,7 +80,7 @@ fn any_configuration_compiles_on_request() {
     let dir = std::env::temp_dir().join(format!("rtlc-shape-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join("hub_n5_m3.rs");
-    let opts = canstar_rtlc::Options { name: "HubN5M3".into(), description: "hub N = 5, M = 3".into(), hdl_type: Some("canstar_hub::hub::Hub".into()), mutate: None, keep: vec![] };
+    let opts = canstar_rtlc::Options { name: "HubN5M3".into(), description: "hub N = 5, M = 3".into(), hdl_type: Some("canstar_hub::top::Hub".into()), mutate: None, keep: vec![] };
     let c = canstar_rtlc::generate(&h, &opts, &path).unwrap();
     let text = std::fs::read_to_string(&path).unwrap();
     assert!(text.contains("pub struct HubN5M3") && text.contains(&format!("{:#018x}", c.fingerprint)));

@@ -73,7 +73,7 @@ fn hub_vcd_is_byte_identical() {
         net.inputs(out).to_vec()
     };
     let cfg = canstar_hub::config::HubConfig::default();
-    let (a, b) = vcds(canstar_hub::hub::Hub::new(&cfg), g::hub_n3_m2::HubN3M2::from_instance, g::hub_n3_m2::hdl_set_inputs, &mut stim, g::hub_n3_m2::hdl_outputs, 10_000);
+    let (a, b) = vcds(canstar_hub::top::Hub::new(&cfg), g::hub_n3_m2::HubN3M2::from_instance, g::hub_n3_m2::hdl_set_inputs, &mut stim, g::hub_n3_m2::hdl_outputs, 10_000);
     same("Hub", &a, &b);
 }
 

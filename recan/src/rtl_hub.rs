@@ -7,7 +7,7 @@ use canstar_models::hub_sim::HubSim;
 use canstar_models::Engine;
 use canstar_sim::{ClockSpec, Component, Io};
 
-/// The generated hub RTL ([`canstar_hub::hub::Hub`], frame monitor included) as a
+/// The generated hub RTL ([`canstar_hub::top::Hub`], frame monitor included) as a
 /// kernel component. Bind it exactly like [`AndHub`]:
 /// `sim.add(hub, &ports.hub_inputs(), &ports.hub_outputs())` (inputs: uplinks then
 /// incoming sublinks; outputs: downlinks then outgoing sublinks).
@@ -165,7 +165,7 @@ impl RtlHub {
 
     /// Apply one recorded input word to a hub RTL (the replay side of
     /// [`RtlHub::start_recording`]).
-    pub fn apply_input_word(hub: &mut canstar_hub::hub::Hub, w: HubInputWord) {
+    pub fn apply_input_word(hub: &mut canstar_hub::top::Hub, w: HubInputWord) {
         let n = hub.rx.len();
         hub.rst_n.next = w & 1 != 0;
         hub.inject_fault.next = w & 2 != 0;

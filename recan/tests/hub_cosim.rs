@@ -8,7 +8,7 @@
 mod hub_util;
 use canstar_hdl::flow;
 use canstar_hub::config::HubConfig;
-use canstar_hub::hub::Hub;
+use canstar_hub::top::Hub;
 use canstar_recan::rtl_hub::RtlHub;
 use canstar_sim::FaultMode;
 use hub_util::*;

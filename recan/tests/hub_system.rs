@@ -1,4 +1,4 @@
-//! The RTL hub (`canstar_hub::hub::Hub` as `RtlHub`) with real CAN controllers
+//! The RTL hub (`canstar_hub::top::Hub` as `RtlHub`) with real CAN controllers
 //! (`CanNode`) in the simulation kernel: hub.md acceptance A1 (fault-free traffic is
 //! never blamed), A3 (faulty uplinks isolated in time), A4 (two coupled hubs) and H2
 //! (coupling latency measured on the pins).
@@ -249,28 +249,20 @@ fn identical_identifiers_one_hub() {
     assert_never_blamed(st.rtl(), "identical identifiers");
 }
 
-/// A1: a node made error-passive beforehand (downlink flips during its own data
-/// fields: bit errors that only it sees, so its TEC rises and nobody is blamed), then
-/// full load with the error-passive transmitter (passive error flags, suspend
-/// transmission): never blamed.
+/// A1: a node made error-passive beforehand (the host loads TEC 160, as `canstar soak
+/// --events` does), then full load with the error-passive transmitter (passive error flags,
+/// suspend transmission): never blamed.
 #[test]
 fn error_passive_node_one_hub() {
-    use canstar_controller::fsm::Field as F;
     let cfg = hub_cfg(3, 0);
     let mut st = Star::new(&cfg, &[0.0, 0.0, 0.0], 4);
     let nodes = st.nodes.clone();
     let x = st.nodes[0];
-    let down0 = st.ports.downlinks[0];
-    for i in 0..40 {
-        st.sim.get_mut(x).request(Frame::std(0x100 + i, &[0x55, i as u8, 0xaa]));
-    }
-    let mut flips = 0;
-    while st.node(0).tec() < 160 && flips < 60 {
-        assert!(flip_bit_at(&mut st.sim, x, down0, F::Data, 9, 400, |n| canstar_controller::view::CoreView::dbg_role(&n.core)));
-        flips += 1;
-        st.sim.run_for(20 * BIT);
-    }
-    assert_eq!(st.node(0).state(), 1, "node 0 error-passive after {flips} flips, tec {}", st.node(0).tec());
+    // (after the controller's reset: a load during reset is ignored)
+    st.sim.run_for(20 * BIT);
+    st.sim.get_mut(x).load_counters(160, 0);
+    st.sim.run_for(BIT);
+    assert_eq!(st.node(0).state(), 1, "node 0 error-passive, tec {}", st.node(0).tec());
     st.node_mut(0).withdraw();
     st.sim.run_for(200 * BIT);
     let sent = load(&mut st.sim, &nodes, 4, 44);
@@ -283,8 +275,35 @@ fn error_passive_node_one_hub() {
             }
         }
     }
-    eprintln!("flips {flips}, tec {} rec {:?}", st.node(0).tec(), (st.node(1).rec(), st.node(2).rec()));
+    eprintln!("tec {} rec {:?}", st.node(0).tec(), (st.node(1).rec(), st.node(2).rec()));
     assert_never_blamed(st.rtl(), "error-passive node");
+}
+
+/// hub.md §5.12: a transmitter whose downlink flips one bit of its data field sees a bit
+/// error that nobody else sees and sends its error flag; the monitor detects the stuff error
+/// with no blame before it, and the first-flagger rule charges the transmitter's port, 8 per
+/// episode, until it is isolated at `bic 48/48` (6 episodes). The receivers are never charged.
+#[test]
+fn transmitter_with_flipping_downlink_isolated_by_first_flagger() {
+    use canstar_controller::fsm::Field as F;
+    let cfg = hub_cfg(3, 0);
+    let mut st = Star::new(&cfg, &[0.0, 0.0, 0.0], 4);
+    let x = st.nodes[0];
+    let down0 = st.ports.downlinks[0];
+    for i in 0..40 {
+        st.sim.get_mut(x).request(Frame::std(0x100 + i, &[0x55, i as u8, 0xaa]));
+    }
+    let mut flips = 0;
+    while st.rtl().stats.isolated_at[0].is_none() && flips < 20 {
+        assert!(flip_bit_at(&mut st.sim, x, down0, F::Data, 9, 400, |n| canstar_controller::view::CoreView::dbg_role(&n.core)));
+        flips += 1;
+        st.sim.run_for(20 * BIT);
+    }
+    let s = &st.rtl().stats;
+    assert_eq!(flips, 6, "isolated after {flips} flips: {s:?}");
+    assert_eq!(s.isolated_by[0].as_deref(), Some("bic 48/48"));
+    assert_eq!(&s.max_bic[1..], &[0, 0], "receivers charged: {s:?}");
+    assert!(s.isolated_at[1..].iter().all(|i| i.is_none()));
 }
 
 /// A1: a dominant last EOF bit at one receiver (a short inversion of its downlink)

@@ -133,7 +133,7 @@ fn hub_engines(st: &Stim, cfg: &HubConfig, o: &Options) -> (f64, f64, Result<f64
     let short = st.head(o.hdl_cycles);
     let n_out = fresh().info().outputs.len();
     let hdl_fresh = || {
-        let mut h = canstar_hub::hub::Hub::new(cfg);
+        let mut h = canstar_hub::top::Hub::new(cfg);
         for r in h.rx.iter_mut().chain(h.reh_rx.iter_mut()) {
             r.next = true;
         }

@@ -764,6 +764,9 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
     reg  err_start_r$d;
     wire  err_start_r$q;
     reg  err_start_r$clock;
+    reg  ff_r$d;
+    wire  ff_r$q;
+    reg  ff_r$clock;
     reg  sub_bl_r$d;
     wire  sub_bl_r$q;
     reg  sub_bl_r$clock;
@@ -816,12 +819,15 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
     reg  pj$0$rep_blamed;
     reg  pj$0$common;
     reg  pj$0$rep_rec_w;
+    reg  pj$0$ff;
+    reg  pj$0$gl_others;
     wire  pj$0$dis;
     wire  pj$0$blame;
     wire  pj$0$charged;
     wire  pj$0$tx_error;
     wire  pj$0$glitch;
     wire  pj$0$anomaly;
+    wire  pj$0$glf;
     wire  [7:0] pj$0$bic;
     wire  [6:0] pj$0$life;
     wire  [4:0] pj$0$dbc;
@@ -860,12 +866,15 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
     reg  pj$1$rep_blamed;
     reg  pj$1$common;
     reg  pj$1$rep_rec_w;
+    reg  pj$1$ff;
+    reg  pj$1$gl_others;
     wire  pj$1$dis;
     wire  pj$1$blame;
     wire  pj$1$charged;
     wire  pj$1$tx_error;
     wire  pj$1$glitch;
     wire  pj$1$anomaly;
+    wire  pj$1$glf;
     wire  [7:0] pj$1$bic;
     wire  [6:0] pj$1$life;
     wire  [4:0] pj$1$dbc;
@@ -904,12 +913,15 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
     reg  pj$2$rep_blamed;
     reg  pj$2$common;
     reg  pj$2$rep_rec_w;
+    reg  pj$2$ff;
+    reg  pj$2$gl_others;
     wire  pj$2$dis;
     wire  pj$2$blame;
     wire  pj$2$charged;
     wire  pj$2$tx_error;
     wire  pj$2$glitch;
     wire  pj$2$anomaly;
+    wire  pj$2$glf;
     wire  [7:0] pj$2$bic;
     wire  [6:0] pj$2$life;
     wire  [4:0] pj$2$dbc;
@@ -937,6 +949,8 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
     reg  bt_prev$clock;
     
     // Local signals
+    reg  gl_one;
+    reg  gl_two;
     reg  any_sub_blame;
     reg  sub_all_an;
     reg  sub_one;
@@ -993,6 +1007,11 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         .d(err_start_r$d),
         .q(err_start_r$q),
         .clock(err_start_r$clock)
+    );
+    canstar_cancentrate_core$core$ff_r ff_r(
+        .d(ff_r$d),
+        .q(ff_r$q),
+        .clock(ff_r$clock)
     );
     canstar_cancentrate_core$core$sub_bl_r sub_bl_r(
         .d(sub_bl_r$d),
@@ -1053,12 +1072,15 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         .rep_blamed(pj$0$rep_blamed),
         .common(pj$0$common),
         .rep_rec_w(pj$0$rep_rec_w),
+        .ff(pj$0$ff),
+        .gl_others(pj$0$gl_others),
         .dis(pj$0$dis),
         .blame(pj$0$blame),
         .charged(pj$0$charged),
         .tx_error(pj$0$tx_error),
         .glitch(pj$0$glitch),
         .anomaly(pj$0$anomaly),
+        .glf(pj$0$glf),
         .bic(pj$0$bic),
         .life(pj$0$life),
         .dbc(pj$0$dbc),
@@ -1099,12 +1121,15 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         .rep_blamed(pj$1$rep_blamed),
         .common(pj$1$common),
         .rep_rec_w(pj$1$rep_rec_w),
+        .ff(pj$1$ff),
+        .gl_others(pj$1$gl_others),
         .dis(pj$1$dis),
         .blame(pj$1$blame),
         .charged(pj$1$charged),
         .tx_error(pj$1$tx_error),
         .glitch(pj$1$glitch),
         .anomaly(pj$1$anomaly),
+        .glf(pj$1$glf),
         .bic(pj$1$bic),
         .life(pj$1$life),
         .dbc(pj$1$dbc),
@@ -1145,12 +1170,15 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         .rep_blamed(pj$2$rep_blamed),
         .common(pj$2$common),
         .rep_rec_w(pj$2$rep_rec_w),
+        .ff(pj$2$ff),
+        .gl_others(pj$2$gl_others),
         .dis(pj$2$dis),
         .blame(pj$2$blame),
         .charged(pj$2$charged),
         .tx_error(pj$2$tx_error),
         .glitch(pj$2$glitch),
         .anomaly(pj$2$anomaly),
+        .glf(pj$2$glf),
         .bic(pj$2$bic),
         .life(pj$2$life),
         .dbc(pj$2$dbc),
@@ -1228,9 +1256,23 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         end
         stuff_dom = mon_stuff & bt_prev$q;
         any_an = 1'b0;
+        gl_one = 1'b0;
+        gl_two = 1'b0;
         any_an = any_an | pj$0$anomaly;
+        if (pj$0$glf) begin
+            gl_two = gl_two | gl_one;
+            gl_one = 1'b1;
+        end
         any_an = any_an | pj$1$anomaly;
+        if (pj$1$glf) begin
+            gl_two = gl_two | gl_one;
+            gl_one = 1'b1;
+        end
         any_an = any_an | pj$2$anomaly;
+        if (pj$2$glf) begin
+            gl_two = gl_two | gl_one;
+            gl_one = 1'b1;
+        end
         sub_all_an = 1'b1;
         sub_one = 1'b0;
         sub_two = 1'b0;
@@ -1288,6 +1330,8 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         pj$0$rep_glitched = 1'b0;
         pj$0$rep_blamed = 1'b0;
         pj$0$common = 1'b0;
+        pj$0$ff = ff_r$q;
+        pj$0$gl_others = gl_two | (gl_one & ~pj$0$glf);
         pj$0$bit_start = mon_bit_start;
         pj$0$bs_cnt = bs_r$q;
         pj$0$delim = delim_z;
@@ -1331,6 +1375,8 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         pj$1$rep_glitched = 1'b0;
         pj$1$rep_blamed = 1'b0;
         pj$1$common = 1'b0;
+        pj$1$ff = ff_r$q;
+        pj$1$gl_others = gl_two | (gl_one & ~pj$1$glf);
         pj$1$bit_start = mon_bit_start;
         pj$1$bs_cnt = bs_r$q;
         pj$1$delim = delim_z;
@@ -1374,6 +1420,8 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         pj$2$rep_glitched = 1'b0;
         pj$2$rep_blamed = 1'b0;
         pj$2$common = 1'b0;
+        pj$2$ff = ff_r$q;
+        pj$2$gl_others = gl_two | (gl_one & ~pj$2$glf);
         pj$2$bit_start = mon_bit_start;
         pj$2$bs_cnt = bs_r$q;
         pj$2$delim = delim_z;
@@ -1384,6 +1432,11 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         trigger = mon_sample & (mon_error | any_blame | any_tx_error);
         err_start_r$clock = clock;
         err_start_r$d = trigger & ~efgen$busy;
+        ff_r$clock = clock;
+        ff_r$d = trigger & ~efgen$busy & mon_error & ~any_blame & ~any_tx_error & decode$tx_region;
+        if (reset) begin
+            ff_r$d = 1'b0;
+        end
         sub_bl_r$clock = clock;
         sub_bl_r$d = any_sub_blame;
         efgen$clock = clock;
@@ -2188,6 +2241,25 @@ module canstar_cancentrate_core$core$err_start_r(d,q,clock);
 endmodule // canstar_cancentrate_core$core$err_start_r
 
 
+module canstar_cancentrate_core$core$ff_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$ff_r
+
+
 module canstar_cancentrate_core$core$injector(clock,reset,button,sample,field,eof_last,active,armed);
     
     // Module arguments
@@ -2358,7 +2430,7 @@ module canstar_cancentrate_core$core$injector$state(d,q,clock);
 endmodule // canstar_cancentrate_core$core$injector$state
 
 
-module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,dis,blame,charged,tx_error,glitch,anomaly,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
+module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
     
     // Module arguments
     input wire  clock;
@@ -2389,12 +2461,15 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
     input wire  rep_blamed;
     input wire  common;
     input wire  rep_rec_w;
+    input wire  ff;
+    input wire  gl_others;
     output reg  dis;
     output reg  blame;
     output reg  charged;
     output reg  tx_error;
     output reg  glitch;
     output reg  anomaly;
+    output reg  glf;
     output reg  [7:0] bic;
     output reg  [6:0] life;
     output reg  [4:0] dbc;
@@ -2407,7 +2482,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
     output reg  window_dom;
     
     // Constant declarations
-    localparam  bic_limit = 8'h40;
+    localparam  bic_limit = 8'h30;
     localparam  b_decay = 3'b10;
     localparam  life_limit = 7'b100000;
     localparam  dbc_thr = 5'b1101;
@@ -2419,6 +2494,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
     localparam  pg_decay = 3'b100;
     localparam  win_lag = 5'b111;
     localparam  crc_end = 5'b1000;
+    localparam  ff_on = 1'b1;
     localparam  ack_rule = 1'b1;
     localparam  nack_on = 1'b1;
     localparam  rep_on = 1'b0;
@@ -2499,6 +2575,12 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
     reg  [2:0] pdec_r$d;
     wire  [2:0] pdec_r$q;
     reg  pdec_r$clock;
+    reg  ffd_r$d;
+    wire  ffd_r$q;
+    reg  ffd_r$clock;
+    reg  glf_r$d;
+    wire  glf_r$q;
+    reg  glf_r$clock;
     reg  bl_r$d;
     wire  bl_r$q;
     reg  bl_r$clock;
@@ -2510,6 +2592,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
     reg  gpend$clock;
     
     // Local signals
+    reg  ffc;
     reg  dom;
     reg  domw;
     reg  unj;
@@ -2642,6 +2725,16 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         .q(pdec_r$q),
         .clock(pdec_r$clock)
     );
+    canstar_cancentrate_core$core$pj$0$ffd_r ffd_r(
+        .d(ffd_r$d),
+        .q(ffd_r$q),
+        .clock(ffd_r$clock)
+    );
+    canstar_cancentrate_core$core$pj$0$glf_r glf_r(
+        .d(glf_r$d),
+        .q(glf_r$q),
+        .clock(glf_r$clock)
+    );
     canstar_cancentrate_core$core$pj$0$bl_r bl_r(
         .d(bl_r$d),
         .q(bl_r$q),
@@ -2683,6 +2776,8 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         an_r$clock = clock;
         pgc_r$clock = clock;
         pdec_r$clock = clock;
+        ffd_r$clock = clock;
+        glf_r$clock = clock;
         bl_r$clock = clock;
         bl_dm_r$clock = clock;
         gpend$clock = clock;
@@ -2709,6 +2804,8 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         an_r$d = an_r$q;
         pgc_r$d = pgc_r$q;
         pdec_r$d = pdec_r$q;
+        ffd_r$d = ffd_r$q;
+        glf_r$d = glf_r$q;
         bl_r$d = bl_r$q;
         bl_dm_r$d = bl_dm_r$q;
         gpend$d = gpend$q;
@@ -2734,9 +2831,10 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
             seen_dom_crc$d = 1'b1;
         end
         unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | im_2 | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q);
-        blame = sample & unj & enabled;
+        ffc = ff & ff_on & enabled & ffd_r$q;
+        blame = (sample & unj & enabled) | ffc;
         charge = sample & unj & enabled & ~suppress & ~stuff_dom;
-        charged = charge;
+        charged = charge | ffc;
         tx_error = sample & nack_on & enabled & cont_r$q & tx_region & ~arb & c & ~bt & ~err_phase;
         if (sample) begin
             if (ack_slot) begin
@@ -2747,6 +2845,10 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
             end
             else if (tx_region & c & ~bt & ~rep_dom) begin
                 cont_r$d = 1'b0;
+            end
+            ffd_r$d = dom & cont_r$q & ~suppress & ~gl_others;
+            if (sof) begin
+                glf_r$d = 1'b0;
             end
             if (dom) begin
                 if (dbc_r$q != 32'h1f) begin
@@ -2826,6 +2928,9 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         else if (g) begin
             gpend$d = 1'b1;
         end
+        if (g & enabled) begin
+            glf_r$d = 1'b1;
+        end
         if (g) begin
             an_r$d = 32'h3;
             bad$d = 1'b1;
@@ -2839,7 +2944,16 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
             pgc_r$d = pgc_r$q + 32'h1;
             pdec_r$d = 32'h0;
         end
-        if ((gcount | charge) & (life_r$q != 32'h7f)) begin
+        if (ffc) begin
+            if (bic_r$q > 32'hf7) begin
+                bic_r$d = 32'hff;
+            end
+            else begin
+                bic_r$d = bic_r$q + 32'h8;
+            end
+            bad$d = 1'b1;
+        end
+        if ((gcount | charge | ffc) & (life_r$q != 32'h7f)) begin
             life_r$d = life_r$q + 32'h1;
         end
         if (dbc_r$q >= dbc_thr) begin
@@ -2920,6 +3034,8 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
             an_r$d = 32'h0;
             pgc_r$d = 32'h0;
             pdec_r$d = 32'h0;
+            ffd_r$d = 1'b0;
+            glf_r$d = 1'b0;
         end
         dis = dis_r$q;
         bic = bic_r$q;
@@ -2932,6 +3048,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         silent = nack_r$q >= nack_thr;
         contender = cont_r$q;
         window_dom = domw;
+        glf = glf_r$q;
     end
     
 endmodule // canstar_cancentrate_core$core$pj$0
@@ -3184,6 +3301,25 @@ module canstar_cancentrate_core$core$pj$0$dis_r(d,q,clock);
 endmodule // canstar_cancentrate_core$core$pj$0$dis_r
 
 
+module canstar_cancentrate_core$core$pj$0$ffd_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$0$ffd_r
+
+
 module canstar_cancentrate_core$core$pj$0$gc_r(d,q,clock);
     
     // Module arguments
@@ -3220,6 +3356,25 @@ module canstar_cancentrate_core$core$pj$0$gdec_r(d,q,clock);
     end
           
 endmodule // canstar_cancentrate_core$core$pj$0$gdec_r
+
+
+module canstar_cancentrate_core$core$pj$0$glf_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$0$glf_r
 
 
 module canstar_cancentrate_core$core$pj$0$gpend(d,q,clock);
@@ -3561,7 +3716,7 @@ module canstar_cancentrate_core$core$pj$0$seen_dom_crc(d,q,clock);
 endmodule // canstar_cancentrate_core$core$pj$0$seen_dom_crc
 
 
-module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,dis,blame,charged,tx_error,glitch,anomaly,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
+module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
     
     // Module arguments
     input wire  clock;
@@ -3592,12 +3747,15 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
     input wire  rep_blamed;
     input wire  common;
     input wire  rep_rec_w;
+    input wire  ff;
+    input wire  gl_others;
     output reg  dis;
     output reg  blame;
     output reg  charged;
     output reg  tx_error;
     output reg  glitch;
     output reg  anomaly;
+    output reg  glf;
     output reg  [7:0] bic;
     output reg  [6:0] life;
     output reg  [4:0] dbc;
@@ -3610,7 +3768,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
     output reg  window_dom;
     
     // Constant declarations
-    localparam  bic_limit = 8'h40;
+    localparam  bic_limit = 8'h30;
     localparam  b_decay = 3'b10;
     localparam  life_limit = 7'b100000;
     localparam  dbc_thr = 5'b1101;
@@ -3622,6 +3780,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
     localparam  pg_decay = 3'b100;
     localparam  win_lag = 5'b111;
     localparam  crc_end = 5'b1000;
+    localparam  ff_on = 1'b1;
     localparam  ack_rule = 1'b1;
     localparam  nack_on = 1'b1;
     localparam  rep_on = 1'b0;
@@ -3702,6 +3861,12 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
     reg  [2:0] pdec_r$d;
     wire  [2:0] pdec_r$q;
     reg  pdec_r$clock;
+    reg  ffd_r$d;
+    wire  ffd_r$q;
+    reg  ffd_r$clock;
+    reg  glf_r$d;
+    wire  glf_r$q;
+    reg  glf_r$clock;
     reg  bl_r$d;
     wire  bl_r$q;
     reg  bl_r$clock;
@@ -3713,6 +3878,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
     reg  gpend$clock;
     
     // Local signals
+    reg  ffc;
     reg  dom;
     reg  domw;
     reg  unj;
@@ -3845,6 +4011,16 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         .q(pdec_r$q),
         .clock(pdec_r$clock)
     );
+    canstar_cancentrate_core$core$pj$1$ffd_r ffd_r(
+        .d(ffd_r$d),
+        .q(ffd_r$q),
+        .clock(ffd_r$clock)
+    );
+    canstar_cancentrate_core$core$pj$1$glf_r glf_r(
+        .d(glf_r$d),
+        .q(glf_r$q),
+        .clock(glf_r$clock)
+    );
     canstar_cancentrate_core$core$pj$1$bl_r bl_r(
         .d(bl_r$d),
         .q(bl_r$q),
@@ -3886,6 +4062,8 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         an_r$clock = clock;
         pgc_r$clock = clock;
         pdec_r$clock = clock;
+        ffd_r$clock = clock;
+        glf_r$clock = clock;
         bl_r$clock = clock;
         bl_dm_r$clock = clock;
         gpend$clock = clock;
@@ -3912,6 +4090,8 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         an_r$d = an_r$q;
         pgc_r$d = pgc_r$q;
         pdec_r$d = pdec_r$q;
+        ffd_r$d = ffd_r$q;
+        glf_r$d = glf_r$q;
         bl_r$d = bl_r$q;
         bl_dm_r$d = bl_dm_r$q;
         gpend$d = gpend$q;
@@ -3937,9 +4117,10 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
             seen_dom_crc$d = 1'b1;
         end
         unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | im_2 | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q);
-        blame = sample & unj & enabled;
+        ffc = ff & ff_on & enabled & ffd_r$q;
+        blame = (sample & unj & enabled) | ffc;
         charge = sample & unj & enabled & ~suppress & ~stuff_dom;
-        charged = charge;
+        charged = charge | ffc;
         tx_error = sample & nack_on & enabled & cont_r$q & tx_region & ~arb & c & ~bt & ~err_phase;
         if (sample) begin
             if (ack_slot) begin
@@ -3950,6 +4131,10 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
             end
             else if (tx_region & c & ~bt & ~rep_dom) begin
                 cont_r$d = 1'b0;
+            end
+            ffd_r$d = dom & cont_r$q & ~suppress & ~gl_others;
+            if (sof) begin
+                glf_r$d = 1'b0;
             end
             if (dom) begin
                 if (dbc_r$q != 32'h1f) begin
@@ -4029,6 +4214,9 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         else if (g) begin
             gpend$d = 1'b1;
         end
+        if (g & enabled) begin
+            glf_r$d = 1'b1;
+        end
         if (g) begin
             an_r$d = 32'h3;
             bad$d = 1'b1;
@@ -4042,7 +4230,16 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
             pgc_r$d = pgc_r$q + 32'h1;
             pdec_r$d = 32'h0;
         end
-        if ((gcount | charge) & (life_r$q != 32'h7f)) begin
+        if (ffc) begin
+            if (bic_r$q > 32'hf7) begin
+                bic_r$d = 32'hff;
+            end
+            else begin
+                bic_r$d = bic_r$q + 32'h8;
+            end
+            bad$d = 1'b1;
+        end
+        if ((gcount | charge | ffc) & (life_r$q != 32'h7f)) begin
             life_r$d = life_r$q + 32'h1;
         end
         if (dbc_r$q >= dbc_thr) begin
@@ -4123,6 +4320,8 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
             an_r$d = 32'h0;
             pgc_r$d = 32'h0;
             pdec_r$d = 32'h0;
+            ffd_r$d = 1'b0;
+            glf_r$d = 1'b0;
         end
         dis = dis_r$q;
         bic = bic_r$q;
@@ -4135,6 +4334,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         silent = nack_r$q >= nack_thr;
         contender = cont_r$q;
         window_dom = domw;
+        glf = glf_r$q;
     end
     
 endmodule // canstar_cancentrate_core$core$pj$1
@@ -4387,6 +4587,25 @@ module canstar_cancentrate_core$core$pj$1$dis_r(d,q,clock);
 endmodule // canstar_cancentrate_core$core$pj$1$dis_r
 
 
+module canstar_cancentrate_core$core$pj$1$ffd_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$1$ffd_r
+
+
 module canstar_cancentrate_core$core$pj$1$gc_r(d,q,clock);
     
     // Module arguments
@@ -4423,6 +4642,25 @@ module canstar_cancentrate_core$core$pj$1$gdec_r(d,q,clock);
     end
           
 endmodule // canstar_cancentrate_core$core$pj$1$gdec_r
+
+
+module canstar_cancentrate_core$core$pj$1$glf_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$1$glf_r
 
 
 module canstar_cancentrate_core$core$pj$1$gpend(d,q,clock);
@@ -4764,7 +5002,7 @@ module canstar_cancentrate_core$core$pj$1$seen_dom_crc(d,q,clock);
 endmodule // canstar_cancentrate_core$core$pj$1$seen_dom_crc
 
 
-module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,dis,blame,charged,tx_error,glitch,anomaly,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
+module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
     
     // Module arguments
     input wire  clock;
@@ -4795,12 +5033,15 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
     input wire  rep_blamed;
     input wire  common;
     input wire  rep_rec_w;
+    input wire  ff;
+    input wire  gl_others;
     output reg  dis;
     output reg  blame;
     output reg  charged;
     output reg  tx_error;
     output reg  glitch;
     output reg  anomaly;
+    output reg  glf;
     output reg  [7:0] bic;
     output reg  [6:0] life;
     output reg  [4:0] dbc;
@@ -4813,7 +5054,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
     output reg  window_dom;
     
     // Constant declarations
-    localparam  bic_limit = 8'h40;
+    localparam  bic_limit = 8'h30;
     localparam  b_decay = 3'b10;
     localparam  life_limit = 7'b100000;
     localparam  dbc_thr = 5'b1101;
@@ -4825,6 +5066,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
     localparam  pg_decay = 3'b100;
     localparam  win_lag = 5'b111;
     localparam  crc_end = 5'b1000;
+    localparam  ff_on = 1'b1;
     localparam  ack_rule = 1'b1;
     localparam  nack_on = 1'b1;
     localparam  rep_on = 1'b0;
@@ -4905,6 +5147,12 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
     reg  [2:0] pdec_r$d;
     wire  [2:0] pdec_r$q;
     reg  pdec_r$clock;
+    reg  ffd_r$d;
+    wire  ffd_r$q;
+    reg  ffd_r$clock;
+    reg  glf_r$d;
+    wire  glf_r$q;
+    reg  glf_r$clock;
     reg  bl_r$d;
     wire  bl_r$q;
     reg  bl_r$clock;
@@ -4916,6 +5164,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
     reg  gpend$clock;
     
     // Local signals
+    reg  ffc;
     reg  dom;
     reg  domw;
     reg  unj;
@@ -5048,6 +5297,16 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         .q(pdec_r$q),
         .clock(pdec_r$clock)
     );
+    canstar_cancentrate_core$core$pj$2$ffd_r ffd_r(
+        .d(ffd_r$d),
+        .q(ffd_r$q),
+        .clock(ffd_r$clock)
+    );
+    canstar_cancentrate_core$core$pj$2$glf_r glf_r(
+        .d(glf_r$d),
+        .q(glf_r$q),
+        .clock(glf_r$clock)
+    );
     canstar_cancentrate_core$core$pj$2$bl_r bl_r(
         .d(bl_r$d),
         .q(bl_r$q),
@@ -5089,6 +5348,8 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         an_r$clock = clock;
         pgc_r$clock = clock;
         pdec_r$clock = clock;
+        ffd_r$clock = clock;
+        glf_r$clock = clock;
         bl_r$clock = clock;
         bl_dm_r$clock = clock;
         gpend$clock = clock;
@@ -5115,6 +5376,8 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         an_r$d = an_r$q;
         pgc_r$d = pgc_r$q;
         pdec_r$d = pdec_r$q;
+        ffd_r$d = ffd_r$q;
+        glf_r$d = glf_r$q;
         bl_r$d = bl_r$q;
         bl_dm_r$d = bl_dm_r$q;
         gpend$d = gpend$q;
@@ -5140,9 +5403,10 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
             seen_dom_crc$d = 1'b1;
         end
         unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | im_2 | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q);
-        blame = sample & unj & enabled;
+        ffc = ff & ff_on & enabled & ffd_r$q;
+        blame = (sample & unj & enabled) | ffc;
         charge = sample & unj & enabled & ~suppress & ~stuff_dom;
-        charged = charge;
+        charged = charge | ffc;
         tx_error = sample & nack_on & enabled & cont_r$q & tx_region & ~arb & c & ~bt & ~err_phase;
         if (sample) begin
             if (ack_slot) begin
@@ -5153,6 +5417,10 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
             end
             else if (tx_region & c & ~bt & ~rep_dom) begin
                 cont_r$d = 1'b0;
+            end
+            ffd_r$d = dom & cont_r$q & ~suppress & ~gl_others;
+            if (sof) begin
+                glf_r$d = 1'b0;
             end
             if (dom) begin
                 if (dbc_r$q != 32'h1f) begin
@@ -5232,6 +5500,9 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         else if (g) begin
             gpend$d = 1'b1;
         end
+        if (g & enabled) begin
+            glf_r$d = 1'b1;
+        end
         if (g) begin
             an_r$d = 32'h3;
             bad$d = 1'b1;
@@ -5245,7 +5516,16 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
             pgc_r$d = pgc_r$q + 32'h1;
             pdec_r$d = 32'h0;
         end
-        if ((gcount | charge) & (life_r$q != 32'h7f)) begin
+        if (ffc) begin
+            if (bic_r$q > 32'hf7) begin
+                bic_r$d = 32'hff;
+            end
+            else begin
+                bic_r$d = bic_r$q + 32'h8;
+            end
+            bad$d = 1'b1;
+        end
+        if ((gcount | charge | ffc) & (life_r$q != 32'h7f)) begin
             life_r$d = life_r$q + 32'h1;
         end
         if (dbc_r$q >= dbc_thr) begin
@@ -5326,6 +5606,8 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
             an_r$d = 32'h0;
             pgc_r$d = 32'h0;
             pdec_r$d = 32'h0;
+            ffd_r$d = 1'b0;
+            glf_r$d = 1'b0;
         end
         dis = dis_r$q;
         bic = bic_r$q;
@@ -5338,6 +5620,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         silent = nack_r$q >= nack_thr;
         contender = cont_r$q;
         window_dom = domw;
+        glf = glf_r$q;
     end
     
 endmodule // canstar_cancentrate_core$core$pj$2
@@ -5590,6 +5873,25 @@ module canstar_cancentrate_core$core$pj$2$dis_r(d,q,clock);
 endmodule // canstar_cancentrate_core$core$pj$2$dis_r
 
 
+module canstar_cancentrate_core$core$pj$2$ffd_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$2$ffd_r
+
+
 module canstar_cancentrate_core$core$pj$2$gc_r(d,q,clock);
     
     // Module arguments
@@ -5626,6 +5928,25 @@ module canstar_cancentrate_core$core$pj$2$gdec_r(d,q,clock);
     end
           
 endmodule // canstar_cancentrate_core$core$pj$2$gdec_r
+
+
+module canstar_cancentrate_core$core$pj$2$glf_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$2$glf_r
 
 
 module canstar_cancentrate_core$core$pj$2$gpend(d,q,clock);

@@ -836,6 +836,9 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     reg  err_start_r$d;
     wire  err_start_r$q;
     reg  err_start_r$clock;
+    reg  ff_r$d;
+    wire  ff_r$q;
+    reg  ff_r$clock;
     reg  sub_bl_r$d;
     wire  sub_bl_r$q;
     reg  sub_bl_r$clock;
@@ -888,12 +891,15 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     reg  pj$0$rep_blamed;
     reg  pj$0$common;
     reg  pj$0$rep_rec_w;
+    reg  pj$0$ff;
+    reg  pj$0$gl_others;
     wire  pj$0$dis;
     wire  pj$0$blame;
     wire  pj$0$charged;
     wire  pj$0$tx_error;
     wire  pj$0$glitch;
     wire  pj$0$anomaly;
+    wire  pj$0$glf;
     wire  [7:0] pj$0$bic;
     wire  [6:0] pj$0$life;
     wire  [4:0] pj$0$dbc;
@@ -932,12 +938,15 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     reg  pj$1$rep_blamed;
     reg  pj$1$common;
     reg  pj$1$rep_rec_w;
+    reg  pj$1$ff;
+    reg  pj$1$gl_others;
     wire  pj$1$dis;
     wire  pj$1$blame;
     wire  pj$1$charged;
     wire  pj$1$tx_error;
     wire  pj$1$glitch;
     wire  pj$1$anomaly;
+    wire  pj$1$glf;
     wire  [7:0] pj$1$bic;
     wire  [6:0] pj$1$life;
     wire  [4:0] pj$1$dbc;
@@ -976,12 +985,15 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     reg  pj$2$rep_blamed;
     reg  pj$2$common;
     reg  pj$2$rep_rec_w;
+    reg  pj$2$ff;
+    reg  pj$2$gl_others;
     wire  pj$2$dis;
     wire  pj$2$blame;
     wire  pj$2$charged;
     wire  pj$2$tx_error;
     wire  pj$2$glitch;
     wire  pj$2$anomaly;
+    wire  pj$2$glf;
     wire  [7:0] pj$2$bic;
     wire  [6:0] pj$2$life;
     wire  [4:0] pj$2$dbc;
@@ -1020,12 +1032,15 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     reg  sj$0$rep_blamed;
     reg  sj$0$common;
     reg  sj$0$rep_rec_w;
+    reg  sj$0$ff;
+    reg  sj$0$gl_others;
     wire  sj$0$dis;
     wire  sj$0$blame;
     wire  sj$0$charged;
     wire  sj$0$tx_error;
     wire  sj$0$glitch;
     wire  sj$0$anomaly;
+    wire  sj$0$glf;
     wire  [7:0] sj$0$bic;
     wire  [6:0] sj$0$life;
     wire  [4:0] sj$0$dbc;
@@ -1064,12 +1079,15 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     reg  sj$1$rep_blamed;
     reg  sj$1$common;
     reg  sj$1$rep_rec_w;
+    reg  sj$1$ff;
+    reg  sj$1$gl_others;
     wire  sj$1$dis;
     wire  sj$1$blame;
     wire  sj$1$charged;
     wire  sj$1$tx_error;
     wire  sj$1$glitch;
     wire  sj$1$anomaly;
+    wire  sj$1$glf;
     wire  [7:0] sj$1$bic;
     wire  [6:0] sj$1$life;
     wire  [4:0] sj$1$dbc;
@@ -1097,6 +1115,8 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     reg  bt_prev$clock;
     
     // Local signals
+    reg  gl_one;
+    reg  gl_two;
     reg  any_sub_blame;
     reg  sub_all_an;
     reg  sub_one;
@@ -1164,6 +1184,11 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .q(err_start_r$q),
         .clock(err_start_r$clock)
     );
+    canstar_hub_core$core$ff_r ff_r(
+        .d(ff_r$d),
+        .q(ff_r$q),
+        .clock(ff_r$clock)
+    );
     canstar_hub_core$core$sub_bl_r sub_bl_r(
         .d(sub_bl_r$d),
         .q(sub_bl_r$q),
@@ -1223,12 +1248,15 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .rep_blamed(pj$0$rep_blamed),
         .common(pj$0$common),
         .rep_rec_w(pj$0$rep_rec_w),
+        .ff(pj$0$ff),
+        .gl_others(pj$0$gl_others),
         .dis(pj$0$dis),
         .blame(pj$0$blame),
         .charged(pj$0$charged),
         .tx_error(pj$0$tx_error),
         .glitch(pj$0$glitch),
         .anomaly(pj$0$anomaly),
+        .glf(pj$0$glf),
         .bic(pj$0$bic),
         .life(pj$0$life),
         .dbc(pj$0$dbc),
@@ -1269,12 +1297,15 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .rep_blamed(pj$1$rep_blamed),
         .common(pj$1$common),
         .rep_rec_w(pj$1$rep_rec_w),
+        .ff(pj$1$ff),
+        .gl_others(pj$1$gl_others),
         .dis(pj$1$dis),
         .blame(pj$1$blame),
         .charged(pj$1$charged),
         .tx_error(pj$1$tx_error),
         .glitch(pj$1$glitch),
         .anomaly(pj$1$anomaly),
+        .glf(pj$1$glf),
         .bic(pj$1$bic),
         .life(pj$1$life),
         .dbc(pj$1$dbc),
@@ -1315,12 +1346,15 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .rep_blamed(pj$2$rep_blamed),
         .common(pj$2$common),
         .rep_rec_w(pj$2$rep_rec_w),
+        .ff(pj$2$ff),
+        .gl_others(pj$2$gl_others),
         .dis(pj$2$dis),
         .blame(pj$2$blame),
         .charged(pj$2$charged),
         .tx_error(pj$2$tx_error),
         .glitch(pj$2$glitch),
         .anomaly(pj$2$anomaly),
+        .glf(pj$2$glf),
         .bic(pj$2$bic),
         .life(pj$2$life),
         .dbc(pj$2$dbc),
@@ -1361,12 +1395,15 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .rep_blamed(sj$0$rep_blamed),
         .common(sj$0$common),
         .rep_rec_w(sj$0$rep_rec_w),
+        .ff(sj$0$ff),
+        .gl_others(sj$0$gl_others),
         .dis(sj$0$dis),
         .blame(sj$0$blame),
         .charged(sj$0$charged),
         .tx_error(sj$0$tx_error),
         .glitch(sj$0$glitch),
         .anomaly(sj$0$anomaly),
+        .glf(sj$0$glf),
         .bic(sj$0$bic),
         .life(sj$0$life),
         .dbc(sj$0$dbc),
@@ -1407,12 +1444,15 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .rep_blamed(sj$1$rep_blamed),
         .common(sj$1$common),
         .rep_rec_w(sj$1$rep_rec_w),
+        .ff(sj$1$ff),
+        .gl_others(sj$1$gl_others),
         .dis(sj$1$dis),
         .blame(sj$1$blame),
         .charged(sj$1$charged),
         .tx_error(sj$1$tx_error),
         .glitch(sj$1$glitch),
         .anomaly(sj$1$anomaly),
+        .glf(sj$1$glf),
         .bic(sj$1$bic),
         .life(sj$1$life),
         .dbc(sj$1$dbc),
@@ -1490,19 +1530,41 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         end
         stuff_dom = mon_stuff & bt_prev$q;
         any_an = 1'b0;
+        gl_one = 1'b0;
+        gl_two = 1'b0;
         any_an = any_an | pj$0$anomaly;
+        if (pj$0$glf) begin
+            gl_two = gl_two | gl_one;
+            gl_one = 1'b1;
+        end
         any_an = any_an | pj$1$anomaly;
+        if (pj$1$glf) begin
+            gl_two = gl_two | gl_one;
+            gl_one = 1'b1;
+        end
         any_an = any_an | pj$2$anomaly;
+        if (pj$2$glf) begin
+            gl_two = gl_two | gl_one;
+            gl_one = 1'b1;
+        end
         sub_all_an = 1'b1;
         sub_one = 1'b0;
         sub_two = 1'b0;
         any_an = any_an | sj$0$anomaly;
+        if (sj$0$glf) begin
+            gl_two = gl_two | gl_one;
+            gl_one = 1'b1;
+        end
         if (~sj$0$dis) begin
             sub_all_an = sub_all_an & sj$0$anomaly;
             sub_two = sub_two | sub_one;
             sub_one = 1'b1;
         end
         any_an = any_an | sj$1$anomaly;
+        if (sj$1$glf) begin
+            gl_two = gl_two | gl_one;
+            gl_one = 1'b1;
+        end
         if (~sj$1$dis) begin
             sub_all_an = sub_all_an & sj$1$anomaly;
             sub_two = sub_two | sub_one;
@@ -1594,6 +1656,8 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         pj$0$rep_glitched = 1'b0;
         pj$0$rep_blamed = 1'b0;
         pj$0$common = 1'b0;
+        pj$0$ff = ff_r$q;
+        pj$0$gl_others = gl_two | (gl_one & ~pj$0$glf);
         pj$0$bit_start = mon_bit_start;
         pj$0$bs_cnt = bs_r$q;
         pj$0$delim = delim_z;
@@ -1637,6 +1701,8 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         pj$1$rep_glitched = 1'b0;
         pj$1$rep_blamed = 1'b0;
         pj$1$common = 1'b0;
+        pj$1$ff = ff_r$q;
+        pj$1$gl_others = gl_two | (gl_one & ~pj$1$glf);
         pj$1$bit_start = mon_bit_start;
         pj$1$bs_cnt = bs_r$q;
         pj$1$delim = delim_z;
@@ -1680,6 +1746,8 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         pj$2$rep_glitched = 1'b0;
         pj$2$rep_blamed = 1'b0;
         pj$2$common = 1'b0;
+        pj$2$ff = ff_r$q;
+        pj$2$gl_others = gl_two | (gl_one & ~pj$2$glf);
         pj$2$bit_start = mon_bit_start;
         pj$2$bs_cnt = bs_r$q;
         pj$2$delim = delim_z;
@@ -1746,12 +1814,21 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         trigger = mon_sample & (mon_error | any_blame | any_tx_error);
         err_start_r$clock = clock;
         err_start_r$d = trigger & ~efgen$busy;
+        ff_r$clock = clock;
+        ff_r$d = trigger & ~efgen$busy & mon_error & ~any_blame & ~any_tx_error & decode$tx_region;
+        if (reset) begin
+            ff_r$d = 1'b0;
+        end
         sub_bl_r$clock = clock;
         sub_bl_r$d = any_sub_blame;
         sj$0$err_start = err_start_r$q;
+        sj$0$ff = ff_r$q;
+        sj$0$gl_others = gl_two | (gl_one & ~sj$0$glf);
         sj$0$rep_blamed = sub_bl_r$q;
         sj$0$common = sub_all_an & sub_two;
         sj$1$err_start = err_start_r$q;
+        sj$1$ff = ff_r$q;
+        sj$1$gl_others = gl_two | (gl_one & ~sj$1$glf);
         sj$1$rep_blamed = sub_bl_r$q;
         sj$1$common = sub_all_an & sub_two;
         efgen$clock = clock;
@@ -2874,6 +2951,25 @@ module canstar_hub_core$core$err_start_r(d,q,clock);
 endmodule // canstar_hub_core$core$err_start_r
 
 
+module canstar_hub_core$core$ff_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$ff_r
+
+
 module canstar_hub_core$core$injector(clock,reset,button,sample,field,eof_last,active,armed);
     
     // Module arguments
@@ -3044,7 +3140,7 @@ module canstar_hub_core$core$injector$state(d,q,clock);
 endmodule // canstar_hub_core$core$injector$state
 
 
-module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,dis,blame,charged,tx_error,glitch,anomaly,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
+module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
     
     // Module arguments
     input wire  clock;
@@ -3075,12 +3171,15 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     input wire  rep_blamed;
     input wire  common;
     input wire  rep_rec_w;
+    input wire  ff;
+    input wire  gl_others;
     output reg  dis;
     output reg  blame;
     output reg  charged;
     output reg  tx_error;
     output reg  glitch;
     output reg  anomaly;
+    output reg  glf;
     output reg  [7:0] bic;
     output reg  [6:0] life;
     output reg  [4:0] dbc;
@@ -3093,7 +3192,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     output reg  window_dom;
     
     // Constant declarations
-    localparam  bic_limit = 8'h40;
+    localparam  bic_limit = 8'h30;
     localparam  b_decay = 3'b10;
     localparam  life_limit = 7'b100000;
     localparam  dbc_thr = 5'b1101;
@@ -3105,6 +3204,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     localparam  pg_decay = 3'b100;
     localparam  win_lag = 5'b111;
     localparam  crc_end = 5'b1000;
+    localparam  ff_on = 1'b1;
     localparam  ack_rule = 1'b1;
     localparam  nack_on = 1'b1;
     localparam  rep_on = 1'b0;
@@ -3185,6 +3285,12 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  [2:0] pdec_r$d;
     wire  [2:0] pdec_r$q;
     reg  pdec_r$clock;
+    reg  ffd_r$d;
+    wire  ffd_r$q;
+    reg  ffd_r$clock;
+    reg  glf_r$d;
+    wire  glf_r$q;
+    reg  glf_r$clock;
     reg  bl_r$d;
     wire  bl_r$q;
     reg  bl_r$clock;
@@ -3196,6 +3302,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  gpend$clock;
     
     // Local signals
+    reg  ffc;
     reg  dom;
     reg  domw;
     reg  unj;
@@ -3328,6 +3435,16 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .q(pdec_r$q),
         .clock(pdec_r$clock)
     );
+    canstar_hub_core$core$pj$0$ffd_r ffd_r(
+        .d(ffd_r$d),
+        .q(ffd_r$q),
+        .clock(ffd_r$clock)
+    );
+    canstar_hub_core$core$pj$0$glf_r glf_r(
+        .d(glf_r$d),
+        .q(glf_r$q),
+        .clock(glf_r$clock)
+    );
     canstar_hub_core$core$pj$0$bl_r bl_r(
         .d(bl_r$d),
         .q(bl_r$q),
@@ -3369,6 +3486,8 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         an_r$clock = clock;
         pgc_r$clock = clock;
         pdec_r$clock = clock;
+        ffd_r$clock = clock;
+        glf_r$clock = clock;
         bl_r$clock = clock;
         bl_dm_r$clock = clock;
         gpend$clock = clock;
@@ -3395,6 +3514,8 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         an_r$d = an_r$q;
         pgc_r$d = pgc_r$q;
         pdec_r$d = pdec_r$q;
+        ffd_r$d = ffd_r$q;
+        glf_r$d = glf_r$q;
         bl_r$d = bl_r$q;
         bl_dm_r$d = bl_dm_r$q;
         gpend$d = gpend$q;
@@ -3420,9 +3541,10 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             seen_dom_crc$d = 1'b1;
         end
         unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | im_2 | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q);
-        blame = sample & unj & enabled;
+        ffc = ff & ff_on & enabled & ffd_r$q;
+        blame = (sample & unj & enabled) | ffc;
         charge = sample & unj & enabled & ~suppress & ~stuff_dom;
-        charged = charge;
+        charged = charge | ffc;
         tx_error = sample & nack_on & enabled & cont_r$q & tx_region & ~arb & c & ~bt & ~err_phase;
         if (sample) begin
             if (ack_slot) begin
@@ -3433,6 +3555,10 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             end
             else if (tx_region & c & ~bt & ~rep_dom) begin
                 cont_r$d = 1'b0;
+            end
+            ffd_r$d = dom & cont_r$q & ~suppress & ~gl_others;
+            if (sof) begin
+                glf_r$d = 1'b0;
             end
             if (dom) begin
                 if (dbc_r$q != 32'h1f) begin
@@ -3512,6 +3638,9 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         else if (g) begin
             gpend$d = 1'b1;
         end
+        if (g & enabled) begin
+            glf_r$d = 1'b1;
+        end
         if (g) begin
             an_r$d = 32'h3;
             bad$d = 1'b1;
@@ -3525,7 +3654,16 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             pgc_r$d = pgc_r$q + 32'h1;
             pdec_r$d = 32'h0;
         end
-        if ((gcount | charge) & (life_r$q != 32'h7f)) begin
+        if (ffc) begin
+            if (bic_r$q > 32'hf7) begin
+                bic_r$d = 32'hff;
+            end
+            else begin
+                bic_r$d = bic_r$q + 32'h8;
+            end
+            bad$d = 1'b1;
+        end
+        if ((gcount | charge | ffc) & (life_r$q != 32'h7f)) begin
             life_r$d = life_r$q + 32'h1;
         end
         if (dbc_r$q >= dbc_thr) begin
@@ -3606,6 +3744,8 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             an_r$d = 32'h0;
             pgc_r$d = 32'h0;
             pdec_r$d = 32'h0;
+            ffd_r$d = 1'b0;
+            glf_r$d = 1'b0;
         end
         dis = dis_r$q;
         bic = bic_r$q;
@@ -3618,6 +3758,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         silent = nack_r$q >= nack_thr;
         contender = cont_r$q;
         window_dom = domw;
+        glf = glf_r$q;
     end
     
 endmodule // canstar_hub_core$core$pj$0
@@ -3870,6 +4011,25 @@ module canstar_hub_core$core$pj$0$dis_r(d,q,clock);
 endmodule // canstar_hub_core$core$pj$0$dis_r
 
 
+module canstar_hub_core$core$pj$0$ffd_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$0$ffd_r
+
+
 module canstar_hub_core$core$pj$0$gc_r(d,q,clock);
     
     // Module arguments
@@ -3906,6 +4066,25 @@ module canstar_hub_core$core$pj$0$gdec_r(d,q,clock);
     end
           
 endmodule // canstar_hub_core$core$pj$0$gdec_r
+
+
+module canstar_hub_core$core$pj$0$glf_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$0$glf_r
 
 
 module canstar_hub_core$core$pj$0$gpend(d,q,clock);
@@ -4247,7 +4426,7 @@ module canstar_hub_core$core$pj$0$seen_dom_crc(d,q,clock);
 endmodule // canstar_hub_core$core$pj$0$seen_dom_crc
 
 
-module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,dis,blame,charged,tx_error,glitch,anomaly,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
+module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
     
     // Module arguments
     input wire  clock;
@@ -4278,12 +4457,15 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     input wire  rep_blamed;
     input wire  common;
     input wire  rep_rec_w;
+    input wire  ff;
+    input wire  gl_others;
     output reg  dis;
     output reg  blame;
     output reg  charged;
     output reg  tx_error;
     output reg  glitch;
     output reg  anomaly;
+    output reg  glf;
     output reg  [7:0] bic;
     output reg  [6:0] life;
     output reg  [4:0] dbc;
@@ -4296,7 +4478,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     output reg  window_dom;
     
     // Constant declarations
-    localparam  bic_limit = 8'h40;
+    localparam  bic_limit = 8'h30;
     localparam  b_decay = 3'b10;
     localparam  life_limit = 7'b100000;
     localparam  dbc_thr = 5'b1101;
@@ -4308,6 +4490,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     localparam  pg_decay = 3'b100;
     localparam  win_lag = 5'b111;
     localparam  crc_end = 5'b1000;
+    localparam  ff_on = 1'b1;
     localparam  ack_rule = 1'b1;
     localparam  nack_on = 1'b1;
     localparam  rep_on = 1'b0;
@@ -4388,6 +4571,12 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  [2:0] pdec_r$d;
     wire  [2:0] pdec_r$q;
     reg  pdec_r$clock;
+    reg  ffd_r$d;
+    wire  ffd_r$q;
+    reg  ffd_r$clock;
+    reg  glf_r$d;
+    wire  glf_r$q;
+    reg  glf_r$clock;
     reg  bl_r$d;
     wire  bl_r$q;
     reg  bl_r$clock;
@@ -4399,6 +4588,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  gpend$clock;
     
     // Local signals
+    reg  ffc;
     reg  dom;
     reg  domw;
     reg  unj;
@@ -4531,6 +4721,16 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .q(pdec_r$q),
         .clock(pdec_r$clock)
     );
+    canstar_hub_core$core$pj$1$ffd_r ffd_r(
+        .d(ffd_r$d),
+        .q(ffd_r$q),
+        .clock(ffd_r$clock)
+    );
+    canstar_hub_core$core$pj$1$glf_r glf_r(
+        .d(glf_r$d),
+        .q(glf_r$q),
+        .clock(glf_r$clock)
+    );
     canstar_hub_core$core$pj$1$bl_r bl_r(
         .d(bl_r$d),
         .q(bl_r$q),
@@ -4572,6 +4772,8 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         an_r$clock = clock;
         pgc_r$clock = clock;
         pdec_r$clock = clock;
+        ffd_r$clock = clock;
+        glf_r$clock = clock;
         bl_r$clock = clock;
         bl_dm_r$clock = clock;
         gpend$clock = clock;
@@ -4598,6 +4800,8 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         an_r$d = an_r$q;
         pgc_r$d = pgc_r$q;
         pdec_r$d = pdec_r$q;
+        ffd_r$d = ffd_r$q;
+        glf_r$d = glf_r$q;
         bl_r$d = bl_r$q;
         bl_dm_r$d = bl_dm_r$q;
         gpend$d = gpend$q;
@@ -4623,9 +4827,10 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             seen_dom_crc$d = 1'b1;
         end
         unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | im_2 | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q);
-        blame = sample & unj & enabled;
+        ffc = ff & ff_on & enabled & ffd_r$q;
+        blame = (sample & unj & enabled) | ffc;
         charge = sample & unj & enabled & ~suppress & ~stuff_dom;
-        charged = charge;
+        charged = charge | ffc;
         tx_error = sample & nack_on & enabled & cont_r$q & tx_region & ~arb & c & ~bt & ~err_phase;
         if (sample) begin
             if (ack_slot) begin
@@ -4636,6 +4841,10 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             end
             else if (tx_region & c & ~bt & ~rep_dom) begin
                 cont_r$d = 1'b0;
+            end
+            ffd_r$d = dom & cont_r$q & ~suppress & ~gl_others;
+            if (sof) begin
+                glf_r$d = 1'b0;
             end
             if (dom) begin
                 if (dbc_r$q != 32'h1f) begin
@@ -4715,6 +4924,9 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         else if (g) begin
             gpend$d = 1'b1;
         end
+        if (g & enabled) begin
+            glf_r$d = 1'b1;
+        end
         if (g) begin
             an_r$d = 32'h3;
             bad$d = 1'b1;
@@ -4728,7 +4940,16 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             pgc_r$d = pgc_r$q + 32'h1;
             pdec_r$d = 32'h0;
         end
-        if ((gcount | charge) & (life_r$q != 32'h7f)) begin
+        if (ffc) begin
+            if (bic_r$q > 32'hf7) begin
+                bic_r$d = 32'hff;
+            end
+            else begin
+                bic_r$d = bic_r$q + 32'h8;
+            end
+            bad$d = 1'b1;
+        end
+        if ((gcount | charge | ffc) & (life_r$q != 32'h7f)) begin
             life_r$d = life_r$q + 32'h1;
         end
         if (dbc_r$q >= dbc_thr) begin
@@ -4809,6 +5030,8 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             an_r$d = 32'h0;
             pgc_r$d = 32'h0;
             pdec_r$d = 32'h0;
+            ffd_r$d = 1'b0;
+            glf_r$d = 1'b0;
         end
         dis = dis_r$q;
         bic = bic_r$q;
@@ -4821,6 +5044,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         silent = nack_r$q >= nack_thr;
         contender = cont_r$q;
         window_dom = domw;
+        glf = glf_r$q;
     end
     
 endmodule // canstar_hub_core$core$pj$1
@@ -5073,6 +5297,25 @@ module canstar_hub_core$core$pj$1$dis_r(d,q,clock);
 endmodule // canstar_hub_core$core$pj$1$dis_r
 
 
+module canstar_hub_core$core$pj$1$ffd_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$1$ffd_r
+
+
 module canstar_hub_core$core$pj$1$gc_r(d,q,clock);
     
     // Module arguments
@@ -5109,6 +5352,25 @@ module canstar_hub_core$core$pj$1$gdec_r(d,q,clock);
     end
           
 endmodule // canstar_hub_core$core$pj$1$gdec_r
+
+
+module canstar_hub_core$core$pj$1$glf_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$1$glf_r
 
 
 module canstar_hub_core$core$pj$1$gpend(d,q,clock);
@@ -5450,7 +5712,7 @@ module canstar_hub_core$core$pj$1$seen_dom_crc(d,q,clock);
 endmodule // canstar_hub_core$core$pj$1$seen_dom_crc
 
 
-module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,dis,blame,charged,tx_error,glitch,anomaly,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
+module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
     
     // Module arguments
     input wire  clock;
@@ -5481,12 +5743,15 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     input wire  rep_blamed;
     input wire  common;
     input wire  rep_rec_w;
+    input wire  ff;
+    input wire  gl_others;
     output reg  dis;
     output reg  blame;
     output reg  charged;
     output reg  tx_error;
     output reg  glitch;
     output reg  anomaly;
+    output reg  glf;
     output reg  [7:0] bic;
     output reg  [6:0] life;
     output reg  [4:0] dbc;
@@ -5499,7 +5764,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     output reg  window_dom;
     
     // Constant declarations
-    localparam  bic_limit = 8'h40;
+    localparam  bic_limit = 8'h30;
     localparam  b_decay = 3'b10;
     localparam  life_limit = 7'b100000;
     localparam  dbc_thr = 5'b1101;
@@ -5511,6 +5776,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     localparam  pg_decay = 3'b100;
     localparam  win_lag = 5'b111;
     localparam  crc_end = 5'b1000;
+    localparam  ff_on = 1'b1;
     localparam  ack_rule = 1'b1;
     localparam  nack_on = 1'b1;
     localparam  rep_on = 1'b0;
@@ -5591,6 +5857,12 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  [2:0] pdec_r$d;
     wire  [2:0] pdec_r$q;
     reg  pdec_r$clock;
+    reg  ffd_r$d;
+    wire  ffd_r$q;
+    reg  ffd_r$clock;
+    reg  glf_r$d;
+    wire  glf_r$q;
+    reg  glf_r$clock;
     reg  bl_r$d;
     wire  bl_r$q;
     reg  bl_r$clock;
@@ -5602,6 +5874,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  gpend$clock;
     
     // Local signals
+    reg  ffc;
     reg  dom;
     reg  domw;
     reg  unj;
@@ -5734,6 +6007,16 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .q(pdec_r$q),
         .clock(pdec_r$clock)
     );
+    canstar_hub_core$core$pj$2$ffd_r ffd_r(
+        .d(ffd_r$d),
+        .q(ffd_r$q),
+        .clock(ffd_r$clock)
+    );
+    canstar_hub_core$core$pj$2$glf_r glf_r(
+        .d(glf_r$d),
+        .q(glf_r$q),
+        .clock(glf_r$clock)
+    );
     canstar_hub_core$core$pj$2$bl_r bl_r(
         .d(bl_r$d),
         .q(bl_r$q),
@@ -5775,6 +6058,8 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         an_r$clock = clock;
         pgc_r$clock = clock;
         pdec_r$clock = clock;
+        ffd_r$clock = clock;
+        glf_r$clock = clock;
         bl_r$clock = clock;
         bl_dm_r$clock = clock;
         gpend$clock = clock;
@@ -5801,6 +6086,8 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         an_r$d = an_r$q;
         pgc_r$d = pgc_r$q;
         pdec_r$d = pdec_r$q;
+        ffd_r$d = ffd_r$q;
+        glf_r$d = glf_r$q;
         bl_r$d = bl_r$q;
         bl_dm_r$d = bl_dm_r$q;
         gpend$d = gpend$q;
@@ -5826,9 +6113,10 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             seen_dom_crc$d = 1'b1;
         end
         unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | im_2 | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q);
-        blame = sample & unj & enabled;
+        ffc = ff & ff_on & enabled & ffd_r$q;
+        blame = (sample & unj & enabled) | ffc;
         charge = sample & unj & enabled & ~suppress & ~stuff_dom;
-        charged = charge;
+        charged = charge | ffc;
         tx_error = sample & nack_on & enabled & cont_r$q & tx_region & ~arb & c & ~bt & ~err_phase;
         if (sample) begin
             if (ack_slot) begin
@@ -5839,6 +6127,10 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             end
             else if (tx_region & c & ~bt & ~rep_dom) begin
                 cont_r$d = 1'b0;
+            end
+            ffd_r$d = dom & cont_r$q & ~suppress & ~gl_others;
+            if (sof) begin
+                glf_r$d = 1'b0;
             end
             if (dom) begin
                 if (dbc_r$q != 32'h1f) begin
@@ -5918,6 +6210,9 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         else if (g) begin
             gpend$d = 1'b1;
         end
+        if (g & enabled) begin
+            glf_r$d = 1'b1;
+        end
         if (g) begin
             an_r$d = 32'h3;
             bad$d = 1'b1;
@@ -5931,7 +6226,16 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             pgc_r$d = pgc_r$q + 32'h1;
             pdec_r$d = 32'h0;
         end
-        if ((gcount | charge) & (life_r$q != 32'h7f)) begin
+        if (ffc) begin
+            if (bic_r$q > 32'hf7) begin
+                bic_r$d = 32'hff;
+            end
+            else begin
+                bic_r$d = bic_r$q + 32'h8;
+            end
+            bad$d = 1'b1;
+        end
+        if ((gcount | charge | ffc) & (life_r$q != 32'h7f)) begin
             life_r$d = life_r$q + 32'h1;
         end
         if (dbc_r$q >= dbc_thr) begin
@@ -6012,6 +6316,8 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             an_r$d = 32'h0;
             pgc_r$d = 32'h0;
             pdec_r$d = 32'h0;
+            ffd_r$d = 1'b0;
+            glf_r$d = 1'b0;
         end
         dis = dis_r$q;
         bic = bic_r$q;
@@ -6024,6 +6330,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         silent = nack_r$q >= nack_thr;
         contender = cont_r$q;
         window_dom = domw;
+        glf = glf_r$q;
     end
     
 endmodule // canstar_hub_core$core$pj$2
@@ -6276,6 +6583,25 @@ module canstar_hub_core$core$pj$2$dis_r(d,q,clock);
 endmodule // canstar_hub_core$core$pj$2$dis_r
 
 
+module canstar_hub_core$core$pj$2$ffd_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$2$ffd_r
+
+
 module canstar_hub_core$core$pj$2$gc_r(d,q,clock);
     
     // Module arguments
@@ -6312,6 +6638,25 @@ module canstar_hub_core$core$pj$2$gdec_r(d,q,clock);
     end
           
 endmodule // canstar_hub_core$core$pj$2$gdec_r
+
+
+module canstar_hub_core$core$pj$2$glf_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$2$glf_r
 
 
 module canstar_hub_core$core$pj$2$gpend(d,q,clock);
@@ -6691,7 +7036,7 @@ module canstar_hub_core$core$rst_s2(d,q,clock);
 endmodule // canstar_hub_core$core$rst_s2
 
 
-module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,dis,blame,charged,tx_error,glitch,anomaly,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
+module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
     
     // Module arguments
     input wire  clock;
@@ -6722,12 +7067,15 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     input wire  rep_blamed;
     input wire  common;
     input wire  rep_rec_w;
+    input wire  ff;
+    input wire  gl_others;
     output reg  dis;
     output reg  blame;
     output reg  charged;
     output reg  tx_error;
     output reg  glitch;
     output reg  anomaly;
+    output reg  glf;
     output reg  [7:0] bic;
     output reg  [6:0] life;
     output reg  [4:0] dbc;
@@ -6752,6 +7100,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     localparam  pg_decay = 3'b100;
     localparam  win_lag = 5'b1000;
     localparam  crc_end = 5'b1000;
+    localparam  ff_on = 1'b1;
     localparam  ack_rule = 1'b0;
     localparam  nack_on = 1'b0;
     localparam  rep_on = 1'b1;
@@ -6832,6 +7181,12 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  [2:0] pdec_r$d;
     wire  [2:0] pdec_r$q;
     reg  pdec_r$clock;
+    reg  ffd_r$d;
+    wire  ffd_r$q;
+    reg  ffd_r$clock;
+    reg  glf_r$d;
+    wire  glf_r$q;
+    reg  glf_r$clock;
     reg  bl_r$d;
     wire  bl_r$q;
     reg  bl_r$clock;
@@ -6843,6 +7198,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  gpend$clock;
     
     // Local signals
+    reg  ffc;
     reg  dom;
     reg  domw;
     reg  unj;
@@ -6975,6 +7331,16 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .q(pdec_r$q),
         .clock(pdec_r$clock)
     );
+    canstar_hub_core$core$sj$0$ffd_r ffd_r(
+        .d(ffd_r$d),
+        .q(ffd_r$q),
+        .clock(ffd_r$clock)
+    );
+    canstar_hub_core$core$sj$0$glf_r glf_r(
+        .d(glf_r$d),
+        .q(glf_r$q),
+        .clock(glf_r$clock)
+    );
     canstar_hub_core$core$sj$0$bl_r bl_r(
         .d(bl_r$d),
         .q(bl_r$q),
@@ -7016,6 +7382,8 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         an_r$clock = clock;
         pgc_r$clock = clock;
         pdec_r$clock = clock;
+        ffd_r$clock = clock;
+        glf_r$clock = clock;
         bl_r$clock = clock;
         bl_dm_r$clock = clock;
         gpend$clock = clock;
@@ -7042,6 +7410,8 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         an_r$d = an_r$q;
         pgc_r$d = pgc_r$q;
         pdec_r$d = pdec_r$q;
+        ffd_r$d = ffd_r$q;
+        glf_r$d = glf_r$q;
         bl_r$d = bl_r$q;
         bl_dm_r$d = bl_dm_r$q;
         gpend$d = gpend$q;
@@ -7067,9 +7437,10 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             seen_dom_crc$d = 1'b1;
         end
         unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | im_2 | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q);
-        blame = sample & unj & enabled;
+        ffc = ff & ff_on & enabled & ffd_r$q;
+        blame = (sample & unj & enabled) | ffc;
         charge = sample & unj & enabled & ~suppress & ~stuff_dom;
-        charged = charge;
+        charged = charge | ffc;
         tx_error = sample & nack_on & enabled & cont_r$q & tx_region & ~arb & c & ~bt & ~err_phase;
         if (sample) begin
             if (ack_slot) begin
@@ -7080,6 +7451,10 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             end
             else if (tx_region & c & ~bt & ~rep_dom) begin
                 cont_r$d = 1'b0;
+            end
+            ffd_r$d = dom & cont_r$q & ~suppress & ~gl_others;
+            if (sof) begin
+                glf_r$d = 1'b0;
             end
             if (dom) begin
                 if (dbc_r$q != 32'h1f) begin
@@ -7159,6 +7534,9 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         else if (g) begin
             gpend$d = 1'b1;
         end
+        if (g & enabled) begin
+            glf_r$d = 1'b1;
+        end
         if (g) begin
             an_r$d = 32'h3;
             bad$d = 1'b1;
@@ -7172,7 +7550,16 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             pgc_r$d = pgc_r$q + 32'h1;
             pdec_r$d = 32'h0;
         end
-        if ((gcount | charge) & (life_r$q != 32'h7f)) begin
+        if (ffc) begin
+            if (bic_r$q > 32'hf7) begin
+                bic_r$d = 32'hff;
+            end
+            else begin
+                bic_r$d = bic_r$q + 32'h8;
+            end
+            bad$d = 1'b1;
+        end
+        if ((gcount | charge | ffc) & (life_r$q != 32'h7f)) begin
             life_r$d = life_r$q + 32'h1;
         end
         if (dbc_r$q >= dbc_thr) begin
@@ -7253,6 +7640,8 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             an_r$d = 32'h0;
             pgc_r$d = 32'h0;
             pdec_r$d = 32'h0;
+            ffd_r$d = 1'b0;
+            glf_r$d = 1'b0;
         end
         dis = dis_r$q;
         bic = bic_r$q;
@@ -7265,6 +7654,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         silent = nack_r$q >= nack_thr;
         contender = cont_r$q;
         window_dom = domw;
+        glf = glf_r$q;
     end
     
 endmodule // canstar_hub_core$core$sj$0
@@ -7517,6 +7907,25 @@ module canstar_hub_core$core$sj$0$dis_r(d,q,clock);
 endmodule // canstar_hub_core$core$sj$0$dis_r
 
 
+module canstar_hub_core$core$sj$0$ffd_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$sj$0$ffd_r
+
+
 module canstar_hub_core$core$sj$0$gc_r(d,q,clock);
     
     // Module arguments
@@ -7553,6 +7962,25 @@ module canstar_hub_core$core$sj$0$gdec_r(d,q,clock);
     end
           
 endmodule // canstar_hub_core$core$sj$0$gdec_r
+
+
+module canstar_hub_core$core$sj$0$glf_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$sj$0$glf_r
 
 
 module canstar_hub_core$core$sj$0$gpend(d,q,clock);
@@ -7894,7 +8322,7 @@ module canstar_hub_core$core$sj$0$seen_dom_crc(d,q,clock);
 endmodule // canstar_hub_core$core$sj$0$seen_dom_crc
 
 
-module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,dis,blame,charged,tx_error,glitch,anomaly,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
+module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
     
     // Module arguments
     input wire  clock;
@@ -7925,12 +8353,15 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     input wire  rep_blamed;
     input wire  common;
     input wire  rep_rec_w;
+    input wire  ff;
+    input wire  gl_others;
     output reg  dis;
     output reg  blame;
     output reg  charged;
     output reg  tx_error;
     output reg  glitch;
     output reg  anomaly;
+    output reg  glf;
     output reg  [7:0] bic;
     output reg  [6:0] life;
     output reg  [4:0] dbc;
@@ -7955,6 +8386,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     localparam  pg_decay = 3'b100;
     localparam  win_lag = 5'b1000;
     localparam  crc_end = 5'b1000;
+    localparam  ff_on = 1'b1;
     localparam  ack_rule = 1'b0;
     localparam  nack_on = 1'b0;
     localparam  rep_on = 1'b1;
@@ -8035,6 +8467,12 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  [2:0] pdec_r$d;
     wire  [2:0] pdec_r$q;
     reg  pdec_r$clock;
+    reg  ffd_r$d;
+    wire  ffd_r$q;
+    reg  ffd_r$clock;
+    reg  glf_r$d;
+    wire  glf_r$q;
+    reg  glf_r$clock;
     reg  bl_r$d;
     wire  bl_r$q;
     reg  bl_r$clock;
@@ -8046,6 +8484,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  gpend$clock;
     
     // Local signals
+    reg  ffc;
     reg  dom;
     reg  domw;
     reg  unj;
@@ -8178,6 +8617,16 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .q(pdec_r$q),
         .clock(pdec_r$clock)
     );
+    canstar_hub_core$core$sj$1$ffd_r ffd_r(
+        .d(ffd_r$d),
+        .q(ffd_r$q),
+        .clock(ffd_r$clock)
+    );
+    canstar_hub_core$core$sj$1$glf_r glf_r(
+        .d(glf_r$d),
+        .q(glf_r$q),
+        .clock(glf_r$clock)
+    );
     canstar_hub_core$core$sj$1$bl_r bl_r(
         .d(bl_r$d),
         .q(bl_r$q),
@@ -8219,6 +8668,8 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         an_r$clock = clock;
         pgc_r$clock = clock;
         pdec_r$clock = clock;
+        ffd_r$clock = clock;
+        glf_r$clock = clock;
         bl_r$clock = clock;
         bl_dm_r$clock = clock;
         gpend$clock = clock;
@@ -8245,6 +8696,8 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         an_r$d = an_r$q;
         pgc_r$d = pgc_r$q;
         pdec_r$d = pdec_r$q;
+        ffd_r$d = ffd_r$q;
+        glf_r$d = glf_r$q;
         bl_r$d = bl_r$q;
         bl_dm_r$d = bl_dm_r$q;
         gpend$d = gpend$q;
@@ -8270,9 +8723,10 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             seen_dom_crc$d = 1'b1;
         end
         unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | im_2 | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q);
-        blame = sample & unj & enabled;
+        ffc = ff & ff_on & enabled & ffd_r$q;
+        blame = (sample & unj & enabled) | ffc;
         charge = sample & unj & enabled & ~suppress & ~stuff_dom;
-        charged = charge;
+        charged = charge | ffc;
         tx_error = sample & nack_on & enabled & cont_r$q & tx_region & ~arb & c & ~bt & ~err_phase;
         if (sample) begin
             if (ack_slot) begin
@@ -8283,6 +8737,10 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             end
             else if (tx_region & c & ~bt & ~rep_dom) begin
                 cont_r$d = 1'b0;
+            end
+            ffd_r$d = dom & cont_r$q & ~suppress & ~gl_others;
+            if (sof) begin
+                glf_r$d = 1'b0;
             end
             if (dom) begin
                 if (dbc_r$q != 32'h1f) begin
@@ -8362,6 +8820,9 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         else if (g) begin
             gpend$d = 1'b1;
         end
+        if (g & enabled) begin
+            glf_r$d = 1'b1;
+        end
         if (g) begin
             an_r$d = 32'h3;
             bad$d = 1'b1;
@@ -8375,7 +8836,16 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             pgc_r$d = pgc_r$q + 32'h1;
             pdec_r$d = 32'h0;
         end
-        if ((gcount | charge) & (life_r$q != 32'h7f)) begin
+        if (ffc) begin
+            if (bic_r$q > 32'hf7) begin
+                bic_r$d = 32'hff;
+            end
+            else begin
+                bic_r$d = bic_r$q + 32'h8;
+            end
+            bad$d = 1'b1;
+        end
+        if ((gcount | charge | ffc) & (life_r$q != 32'h7f)) begin
             life_r$d = life_r$q + 32'h1;
         end
         if (dbc_r$q >= dbc_thr) begin
@@ -8456,6 +8926,8 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             an_r$d = 32'h0;
             pgc_r$d = 32'h0;
             pdec_r$d = 32'h0;
+            ffd_r$d = 1'b0;
+            glf_r$d = 1'b0;
         end
         dis = dis_r$q;
         bic = bic_r$q;
@@ -8468,6 +8940,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         silent = nack_r$q >= nack_thr;
         contender = cont_r$q;
         window_dom = domw;
+        glf = glf_r$q;
     end
     
 endmodule // canstar_hub_core$core$sj$1
@@ -8720,6 +9193,25 @@ module canstar_hub_core$core$sj$1$dis_r(d,q,clock);
 endmodule // canstar_hub_core$core$sj$1$dis_r
 
 
+module canstar_hub_core$core$sj$1$ffd_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$sj$1$ffd_r
+
+
 module canstar_hub_core$core$sj$1$gc_r(d,q,clock);
     
     // Module arguments
@@ -8756,6 +9248,25 @@ module canstar_hub_core$core$sj$1$gdec_r(d,q,clock);
     end
           
 endmodule // canstar_hub_core$core$sj$1$gdec_r
+
+
+module canstar_hub_core$core$sj$1$glf_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$sj$1$glf_r
 
 
 module canstar_hub_core$core$sj$1$gpend(d,q,clock);

@@ -8,7 +8,7 @@ use canstar_hdl::drive;
 use canstar_hdl::drive::Clocked;
 use canstar_hub::frame_state::Field;
 use canstar_hub::config::HubConfig;
-use canstar_hub::hub::{Hub, HubCore};
+use canstar_hub::{hub::HubCore, top::Hub};
 
 mod nodes;
 mod tracker;
