@@ -171,6 +171,21 @@ fn reference_soak_chunk_with_an_early_ack_is_clean() {
     assert!(out.contains("blames 0  isolations 0  worst TEC 0 REC 0  controller errors 0"), "{out}");
 }
 
+/// The first-flagger rule (hub.md §5.12) at a dominant stuff bit: in chunk 25 of the
+/// event soak node 1 is switched off in the middle of its own frame (bit 35100); nodes
+/// that saw one more recessive bit than hub 1's monitor start their error flags at the
+/// stuff bit the monitor still expects, the monitor finds the stuff error five bits later
+/// with the sublinks dominant, and without the dominant-stuff-bit exception hub 1 charged
+/// both sublinks (2 blames at CRC bit 12). Now clean.
+#[test]
+fn event_soak_chunk_with_a_transmitter_switched_off_is_clean() {
+    let d = tempfile::tempdir().unwrap();
+    let (ok, out, err) = canstar(&["soak", "--events", "--chunk", "25"], d.path());
+    assert!(ok, "{out}{err}");
+    assert!(out.contains("node 1 off at bit 35100"), "the chunk's events changed: {out}");
+    assert!(out.contains("blames 0  isolations 0"), "{out}");
+}
+
 #[test]
 fn soak_chunk_vcd_covers_only_its_window() {
     let d = tempfile::tempdir().unwrap();

@@ -34,6 +34,7 @@
 //! `hub_tx[j]`.
 
 use canstar_hdl::sync::Synchroniser;
+use crate::sigs;
 use rust_hdl::prelude::*;
 
 /// Fault-injection code: no fault.
@@ -81,10 +82,6 @@ pub struct Coupler {
     bt_acc: Signal<Local, Bit>,
     _n: usize,
     _m: usize,
-}
-
-fn sigs<D: Direction, T: Synth>(k: usize) -> Vec<Signal<D, T>> {
-    (0..k).map(|_| Default::default()).collect()
 }
 
 impl Coupler {

@@ -56,11 +56,8 @@ use crate::efg::ErrorFlagGen;
 use crate::frame_state::{Field, FrameDecode};
 use crate::inject::Injector;
 use crate::judge::JudgeUnit;
+use crate::sigs;
 use rust_hdl::prelude::*;
-
-fn sigs<D: Direction, T: Synth>(k: usize) -> Vec<Signal<D, T>> {
-    (0..k).map(|_| Default::default()).collect()
-}
 
 /// The hub without its frame monitor (see the module docs for the ports).
 #[derive(LogicBlock)]
@@ -99,6 +96,7 @@ pub struct HubCore {
     efgen: ErrorFlagGen,
     err_start_r: DFF<Bit>,
     ff_r: DFF<Bit>,
+    sd_run: DFF<Bit>,
     gl_one: Signal<Local, Bit>,
     gl_two: Signal<Local, Bit>,
     sub_bl_r: DFF<Bit>,
@@ -187,6 +185,7 @@ impl HubCore {
             efgen: Default::default(),
             err_start_r: Default::default(),
             ff_r: Default::default(),
+            sd_run: Default::default(),
             gl_one: Default::default(),
             gl_two: Default::default(),
             sub_bl_r: Default::default(),
@@ -293,6 +292,20 @@ impl Logic for HubCore {
             self.bt_prev.d.next = true;
         }
         self.stuff_dom.next = self.mon_stuff.val() & self.bt_prev.q.val();
+        // BT's dominant run began at such a stuff bit (first-flagger rule: the flags of
+        // nodes that saw one more recessive bit than the monitor start there)
+        self.sd_run.clock.next = self.clock.val();
+        self.sd_run.d.next = self.sd_run.q.val();
+        if self.mon_sample.val() {
+            if self.coupler.bt.val() {
+                self.sd_run.d.next = false;
+            } else if self.stuff_dom.val() {
+                self.sd_run.d.next = true;
+            }
+        }
+        if self.reset.val() {
+            self.sd_run.d.next = false;
+        }
         // some unit glitched recently: the other units' blames are not charged
         self.any_an.next = false;
         // units that glitched in this frame: at least one, at least two (first-flagger rule)
@@ -444,13 +457,16 @@ impl Logic for HubCore {
         self.err_start_r.clock.next = self.clock.val();
         self.err_start_r.d.next = self.trigger.val() & !self.efgen.busy.val();
         // first-flagger rule (judge.rs §5.12): the monitor alone started the episode, in
-        // the transmission region (each unit excuses itself if another input glitched)
+        // the transmission region, and BT's dominant run did not begin at a dominant stuff
+        // bit (each unit excuses itself if another input glitched)
         self.ff_r.clock.next = self.clock.val();
         self.ff_r.d.next = self.trigger.val()
             & !self.efgen.busy.val()
             & self.mon_error.val()
             & !self.any_blame.val()
             & !self.any_tx_error.val()
+            & !self.sd_run.q.val()
+            & !self.stuff_dom.val()
             & self.decode.tx_region.val();
         if self.reset.val() {
             self.ff_r.d.next = false;

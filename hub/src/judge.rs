@@ -285,7 +285,11 @@
 //! (`ff`, one clock after the sample: `bic += 8`, `life += 1`, reported on `blame` and
 //! `charged`), unless another enabled input glitched since the last SOF (`gl_others`, from
 //! the units' `glf`) or in the last two bits (`suppress`): the flag may then be a reaction
-//! to that glitch. Its own glitch does not excuse a unit. Before, a faulty hub forcing the
+//! to that glitch. Its own glitch does not excuse a unit, and nobody is charged when BT's
+//! dominant run began at a dominant stuff bit (`stuff_dom`, §5.10: where nodes that saw one
+//! more recessive bit than the monitor start their flags; the hub withholds `ff` then: a
+//! node switched off in its own frame, `canstar soak --events --chunk 25`, had both
+//! sublinks charged). Before, a faulty hub forcing the
 //! bus recessive under a transmitter behind it was charged to nobody (`--class hub-flip
 //! --run-seed 4294338105487423072`: the receivers' REC reached 96 before the sublinks were
 //! isolated). On for ports and sublinks (`first_flagger`, `sub_first_flagger`); with the

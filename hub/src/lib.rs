@@ -110,3 +110,10 @@ pub mod inject;
 pub mod judge;
 pub mod pulse;
 pub mod top;
+
+use rust_hdl::prelude::{Direction, Signal, Synth};
+
+/// `k` default signals (the per-port and per-sublink vectors of the hub's blocks).
+pub(crate) fn sigs<D: Direction, T: Synth>(k: usize) -> Vec<Signal<D, T>> {
+    (0..k).map(|_| Default::default()).collect()
+}

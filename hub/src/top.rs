@@ -9,11 +9,8 @@ use crate::config::HubConfig;
 use crate::frame_state::MonitorAdapter;
 use crate::hub::HubCore;
 use canstar_controller::CanCore;
+use crate::sigs;
 use rust_hdl::prelude::*;
-
-fn sigs<D: Direction, T: Synth>(k: usize) -> Vec<Signal<D, T>> {
-    (0..k).map(|_| Default::default()).collect()
-}
 
 /// The complete hub: [`HubCore`] plus its frame monitor, the CAN controller
 /// (`canstar_controller::CanCore`, listen-only, following BT with the hub's bit timing)

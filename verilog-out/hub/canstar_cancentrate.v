@@ -767,6 +767,9 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
     reg  ff_r$d;
     wire  ff_r$q;
     reg  ff_r$clock;
+    reg  sd_run$d;
+    wire  sd_run$q;
+    reg  sd_run$clock;
     reg  sub_bl_r$d;
     wire  sub_bl_r$q;
     reg  sub_bl_r$clock;
@@ -1013,6 +1016,11 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         .q(ff_r$q),
         .clock(ff_r$clock)
     );
+    canstar_cancentrate_core$core$sd_run sd_run(
+        .d(sd_run$d),
+        .q(sd_run$q),
+        .clock(sd_run$clock)
+    );
     canstar_cancentrate_core$core$sub_bl_r sub_bl_r(
         .d(sub_bl_r$d),
         .q(sub_bl_r$q),
@@ -1255,6 +1263,19 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
             bt_prev$d = 1'b1;
         end
         stuff_dom = mon_stuff & bt_prev$q;
+        sd_run$clock = clock;
+        sd_run$d = sd_run$q;
+        if (mon_sample) begin
+            if (coupler$bt) begin
+                sd_run$d = 1'b0;
+            end
+            else if (stuff_dom) begin
+                sd_run$d = 1'b1;
+            end
+        end
+        if (reset) begin
+            sd_run$d = 1'b0;
+        end
         any_an = 1'b0;
         gl_one = 1'b0;
         gl_two = 1'b0;
@@ -1433,7 +1454,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         err_start_r$clock = clock;
         err_start_r$d = trigger & ~efgen$busy;
         ff_r$clock = clock;
-        ff_r$d = trigger & ~efgen$busy & mon_error & ~any_blame & ~any_tx_error & decode$tx_region;
+        ff_r$d = trigger & ~efgen$busy & mon_error & ~any_blame & ~any_tx_error & ~sd_run$q & ~stuff_dom & decode$tx_region;
         if (reset) begin
             ff_r$d = 1'b0;
         end
@@ -6324,6 +6345,25 @@ module canstar_cancentrate_core$core$rst_s2(d,q,clock);
     end
           
 endmodule // canstar_cancentrate_core$core$rst_s2
+
+
+module canstar_cancentrate_core$core$sd_run(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$sd_run
 
 
 module canstar_cancentrate_core$core$sub_bl_r(d,q,clock);

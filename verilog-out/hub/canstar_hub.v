@@ -839,6 +839,9 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     reg  ff_r$d;
     wire  ff_r$q;
     reg  ff_r$clock;
+    reg  sd_run$d;
+    wire  sd_run$q;
+    reg  sd_run$clock;
     reg  sub_bl_r$d;
     wire  sub_bl_r$q;
     reg  sub_bl_r$clock;
@@ -1189,6 +1192,11 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .q(ff_r$q),
         .clock(ff_r$clock)
     );
+    canstar_hub_core$core$sd_run sd_run(
+        .d(sd_run$d),
+        .q(sd_run$q),
+        .clock(sd_run$clock)
+    );
     canstar_hub_core$core$sub_bl_r sub_bl_r(
         .d(sub_bl_r$d),
         .q(sub_bl_r$q),
@@ -1529,6 +1537,19 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
             bt_prev$d = 1'b1;
         end
         stuff_dom = mon_stuff & bt_prev$q;
+        sd_run$clock = clock;
+        sd_run$d = sd_run$q;
+        if (mon_sample) begin
+            if (coupler$bt) begin
+                sd_run$d = 1'b0;
+            end
+            else if (stuff_dom) begin
+                sd_run$d = 1'b1;
+            end
+        end
+        if (reset) begin
+            sd_run$d = 1'b0;
+        end
         any_an = 1'b0;
         gl_one = 1'b0;
         gl_two = 1'b0;
@@ -1815,7 +1836,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         err_start_r$clock = clock;
         err_start_r$d = trigger & ~efgen$busy;
         ff_r$clock = clock;
-        ff_r$d = trigger & ~efgen$busy & mon_error & ~any_blame & ~any_tx_error & decode$tx_region;
+        ff_r$d = trigger & ~efgen$busy & mon_error & ~any_blame & ~any_tx_error & ~sd_run$q & ~stuff_dom & decode$tx_region;
         if (reset) begin
             ff_r$d = 1'b0;
         end
@@ -7034,6 +7055,25 @@ module canstar_hub_core$core$rst_s2(d,q,clock);
     end
           
 endmodule // canstar_hub_core$core$rst_s2
+
+
+module canstar_hub_core$core$sd_run(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$sd_run
 
 
 module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
