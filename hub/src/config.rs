@@ -135,7 +135,7 @@ impl Default for HubConfig {
             sub_life_threshold: 64,
             nack_threshold: 7,
             dbc_threshold: 13,
-            sub_bic_threshold: 10,
+            sub_bic_threshold: 9,
             bic_decay: 2,
             sub_bic_decay: 2,
             sub_dbc_threshold: 28,

@@ -120,7 +120,8 @@
 //! `bic 85/80` while that transmitter reached 96 (`--class sweep-hub-flip-e100 --rep 5`).
 //! With 2 it is cut off at `bic 83/80` in the 11th episode, worst healthy TEC/REC 84.
 //! Evidence in hub.md §5.11. The unit isolates when `bic >= 8 * BIC_threshold` (`bic_limit`, 8 bits: ports default
-//! 48 **(changed with §5.12**, the baseline's 64: see there), sublinks 80 **(changed)**: the baseline's twice the port threshold, 128, let a hub
+//! 48 **(changed with §5.12**, the baseline's 64: see there), sublinks 72 **(changed**; 80
+//! before §5.13**)**: the baseline's twice the port threshold, 128, let a hub
 //! whose output flips whole bits (`hub-flip`, wider than a glitch) cost the healthy
 //! controllers of the other hub 8 per episode for 16 episodes: they reached 99 and were
 //! quarantined before the healthy hub cut the faulty one off (2 of 5 runs failed, e.g.
@@ -297,6 +298,20 @@
 //! runs), and the port threshold went from 8 to 6 so that the peer's port reaches its limit
 //! four episodes before the sublinks. Evidence in hub.md §5.12. Test:
 //! `first_flagger_charges_the_dominant_contender`.
+//!
+//! **§5.13 monitor episodes and the replica rule (changed); sublink threshold 9.** At an
+//! episode that the monitor alone detected (`ff` with `err_start`), the replica rule no
+//! longer charges the dominant minority: the first-flagger rule charges the dominant
+//! contenders of that bit instead. A flipping interlink inverts both directions at once;
+//! the peer sees the flip on its own sublink and flags, and this hub, whose other replica
+//! had carried the right dominant bit while the flipped one was recessive, found its
+//! healthy replica "the dominant minority" of the episode the peer's flag started: three
+//! such episodes isolated it and the hubs isolated each other (`--class interlink-flip
+//! --run-seed 17392911670995716363`). With the exemption the sublink BIC threshold goes
+//! from 10 to 9 (limit 72): the faulty peer hub is cut off an episode earlier, and the peer's
+//! faulty port still reaches 48 three episodes before the sublinks. `canstar campaign --reps
+//! 100`: 24 368 → 24 383 of 24 400 runs, 13 → 11 failing classes, 7 → 2 partitions (hub.md
+//! §5.13). Test: `replica_rule_leaves_monitor_episodes_to_the_first_flagger`.
 //!
 //! **§5.2 delimiter rule (added).** In the error phase, once BT was recessive at a
 //! sample (the end of every flag), the following delimiter bits are recessive-only
@@ -843,6 +858,8 @@ impl Logic for JudgeUnit {
         self.rep_ok.next = (self.rep_r.q.val() != 7) & !(self.rep_glitched.val() & (self.gc_r.q.val() == 0));
         // (at an error episode started by the blame of another sublink, not this one, the
         // blamed one is the culprit: the others are not charged)
+        // (nor at an episode the monitor alone detected, `ff`: the first-flagger rule
+        // charges that bit's dominant contenders, hub.md §5.13)
         // (and a unit blamed while a replica had no dominant level in its window, the
         // dominant minority that started the episode, is charged whatever its first
         // disagreement was; units blamed by the window rule for a pulse that every
@@ -851,7 +868,7 @@ impl Logic for JudgeUnit {
         self.bl_dm_r.d.next = self.blame.val() & self.rep_rec_w.val();
         if self.err_start.val() {
             self.rep_seen.d.next = false;
-            if ((self.rep_seen.q.val() & self.rep_first_dom.q.val() & self.rep_ok.val() & !(self.rep_blamed.val() & !self.bl_r.q.val()))
+            if ((self.rep_seen.q.val() & self.rep_first_dom.q.val() & self.rep_ok.val() & !(self.rep_blamed.val() & !self.bl_r.q.val()) & !self.ff.val())
                 | self.bl_dm_r.q.val())
                 & (self.rep_r.q.val() != 7)
             {

@@ -213,7 +213,7 @@ fn config_defaults_serde_and_validation() {
     assert_eq!((d.timing.ntq(), d.timing.sp(), d.timing.ph2, d.bit_clocks()), (8, 6, 2, 16));
     assert_eq!((d.bic_threshold, d.nack_threshold, d.dbc_threshold), (6, 7, 13));
     assert!(d.first_flagger && d.sub_first_flagger);
-    assert_eq!((d.sub_bic_threshold, d.sub_dbc_threshold, d.replica_limit), (10, 28, 3));
+    assert_eq!((d.sub_bic_threshold, d.sub_dbc_threshold, d.replica_limit), (9, 28, 3));
     assert_eq!((d.peer_glitch_limit, d.peer_glitch_decay), (12, 4));
     assert_eq!(d.reintegration, None);
     assert!(d.validate().is_ok());

@@ -699,6 +699,28 @@ fn replica_rule_spares_the_unit_whose_replica_glitches() {
     assert_eq!(j.rep_cnt.val().index(), 0, "another sublink's blame started the episode");
 }
 
+/// §5.7 refinement (4), hub.md §5.13: the dominant minority is not charged by the replica
+/// rule at an episode that the frame monitor alone detected (`ff`, the first-flagger strobe
+/// that comes with `err_start`): the first-flagger rule charges the dominant contenders of
+/// that bit instead. Without `ff` the same disagreement is charged.
+#[test]
+fn replica_rule_leaves_monitor_episodes_to_the_first_flagger() {
+    for (ff, charged) in [(false, 1), (true, 0)] {
+        let mut j = JudgeUnit::sublink(params());
+        drive::init(&mut j);
+        // first disagreement: this replica dominant, another recessive
+        j.rep_rec.next = true;
+        sample(&mut j, Bit { c: false, bt: false, err: true, ..Default::default() });
+        j.rep_rec.next = false;
+        j.err_start.next = true;
+        j.ff.next = ff;
+        drive::cycle(&mut j);
+        j.err_start.next = false;
+        j.ff.next = false;
+        assert_eq!(j.rep_cnt.val().index(), charged, "ff {ff}");
+    }
+}
+
 #[test]
 fn frame_decode_matches_its_table() {
     let mut d = FrameDecode::default();
@@ -727,8 +749,10 @@ fn judge_stim(j: &mut JudgeUnit, rng: &mut rand_chacha::ChaCha8Rng, c: usize) {
     j.reset.next = c < 2 || rng.gen_ratio(1, 20_000);
     let k = c % 16;
     j.sample.next = k == 12;
-    j.err_start.next = k == 13 && rng.gen_ratio(1, 40);
-    j.ff.next = k == 13 && rng.gen_ratio(1, 40);
+    // in the hub `ff` only comes with `err_start` (both registered from the same trigger)
+    let err_start = k == 13 && rng.gen_ratio(1, 20);
+    j.err_start.next = err_start;
+    j.ff.next = err_start && rng.gen_bool(0.5);
     j.gl_others.next = rng.gen_ratio(1, 4);
     if k == 0 {
         // a rough frame-like field sequence, biased towards fault-free behaviour

@@ -2985,7 +2985,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         bl_dm_r$d = blame & rep_rec_w;
         if (err_start) begin
             rep_seen$d = 1'b0;
-            if (((rep_seen$q & rep_first_dom$q & rep_ok & ~(rep_blamed & ~bl_r$q)) | bl_dm_r$q) & (rep_r$q != 32'h7)) begin
+            if (((rep_seen$q & rep_first_dom$q & rep_ok & ~(rep_blamed & ~bl_r$q) & ~ff) | bl_dm_r$q) & (rep_r$q != 32'h7)) begin
                 rep_r$d = rep_r$q + 32'h1;
             end
         end
@@ -4271,7 +4271,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         bl_dm_r$d = blame & rep_rec_w;
         if (err_start) begin
             rep_seen$d = 1'b0;
-            if (((rep_seen$q & rep_first_dom$q & rep_ok & ~(rep_blamed & ~bl_r$q)) | bl_dm_r$q) & (rep_r$q != 32'h7)) begin
+            if (((rep_seen$q & rep_first_dom$q & rep_ok & ~(rep_blamed & ~bl_r$q) & ~ff) | bl_dm_r$q) & (rep_r$q != 32'h7)) begin
                 rep_r$d = rep_r$q + 32'h1;
             end
         end
@@ -5557,7 +5557,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         bl_dm_r$d = blame & rep_rec_w;
         if (err_start) begin
             rep_seen$d = 1'b0;
-            if (((rep_seen$q & rep_first_dom$q & rep_ok & ~(rep_blamed & ~bl_r$q)) | bl_dm_r$q) & (rep_r$q != 32'h7)) begin
+            if (((rep_seen$q & rep_first_dom$q & rep_ok & ~(rep_blamed & ~bl_r$q) & ~ff) | bl_dm_r$q) & (rep_r$q != 32'h7)) begin
                 rep_r$d = rep_r$q + 32'h1;
             end
         end

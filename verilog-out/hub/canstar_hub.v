@@ -3695,7 +3695,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         bl_dm_r$d = blame & rep_rec_w;
         if (err_start) begin
             rep_seen$d = 1'b0;
-            if (((rep_seen$q & rep_first_dom$q & rep_ok & ~(rep_blamed & ~bl_r$q)) | bl_dm_r$q) & (rep_r$q != 32'h7)) begin
+            if (((rep_seen$q & rep_first_dom$q & rep_ok & ~(rep_blamed & ~bl_r$q) & ~ff) | bl_dm_r$q) & (rep_r$q != 32'h7)) begin
                 rep_r$d = rep_r$q + 32'h1;
             end
         end
@@ -4981,7 +4981,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         bl_dm_r$d = blame & rep_rec_w;
         if (err_start) begin
             rep_seen$d = 1'b0;
-            if (((rep_seen$q & rep_first_dom$q & rep_ok & ~(rep_blamed & ~bl_r$q)) | bl_dm_r$q) & (rep_r$q != 32'h7)) begin
+            if (((rep_seen$q & rep_first_dom$q & rep_ok & ~(rep_blamed & ~bl_r$q) & ~ff) | bl_dm_r$q) & (rep_r$q != 32'h7)) begin
                 rep_r$d = rep_r$q + 32'h1;
             end
         end
@@ -6267,7 +6267,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         bl_dm_r$d = blame & rep_rec_w;
         if (err_start) begin
             rep_seen$d = 1'b0;
-            if (((rep_seen$q & rep_first_dom$q & rep_ok & ~(rep_blamed & ~bl_r$q)) | bl_dm_r$q) & (rep_r$q != 32'h7)) begin
+            if (((rep_seen$q & rep_first_dom$q & rep_ok & ~(rep_blamed & ~bl_r$q) & ~ff) | bl_dm_r$q) & (rep_r$q != 32'h7)) begin
                 rep_r$d = rep_r$q + 32'h1;
             end
         end
@@ -7128,7 +7128,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     output reg  window_dom;
     
     // Constant declarations
-    localparam  bic_limit = 8'h50;
+    localparam  bic_limit = 8'h48;
     localparam  b_decay = 3'b10;
     localparam  life_limit = 7'b1000000;
     localparam  dbc_thr = 5'b11100;
@@ -7610,7 +7610,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         bl_dm_r$d = blame & rep_rec_w;
         if (err_start) begin
             rep_seen$d = 1'b0;
-            if (((rep_seen$q & rep_first_dom$q & rep_ok & ~(rep_blamed & ~bl_r$q)) | bl_dm_r$q) & (rep_r$q != 32'h7)) begin
+            if (((rep_seen$q & rep_first_dom$q & rep_ok & ~(rep_blamed & ~bl_r$q) & ~ff) | bl_dm_r$q) & (rep_r$q != 32'h7)) begin
                 rep_r$d = rep_r$q + 32'h1;
             end
         end
@@ -8414,7 +8414,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     output reg  window_dom;
     
     // Constant declarations
-    localparam  bic_limit = 8'h50;
+    localparam  bic_limit = 8'h48;
     localparam  b_decay = 3'b10;
     localparam  life_limit = 7'b1000000;
     localparam  dbc_thr = 5'b11100;
@@ -8896,7 +8896,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         bl_dm_r$d = blame & rep_rec_w;
         if (err_start) begin
             rep_seen$d = 1'b0;
-            if (((rep_seen$q & rep_first_dom$q & rep_ok & ~(rep_blamed & ~bl_r$q)) | bl_dm_r$q) & (rep_r$q != 32'h7)) begin
+            if (((rep_seen$q & rep_first_dom$q & rep_ok & ~(rep_blamed & ~bl_r$q) & ~ff) | bl_dm_r$q) & (rep_r$q != 32'h7)) begin
                 rep_r$d = rep_r$q + 32'h1;
             end
         end
