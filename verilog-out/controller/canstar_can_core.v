@@ -1387,6 +1387,12 @@ module canstar_can_core$fsm(clock,reset,sample,busmon,listen_only,self_test,sing
     reg  dec$listen_only;
     reg  dec$next_is_stuff;
     reg  dec$stuff_level;
+    reg  dec$in_area;
+    reg  dec$stuffable;
+    reg  dec$hs_fld;
+    reg  dec$inter_fld;
+    reg  dec$hs_pfld;
+    reg  dec$inter_pfld;
     wire  dec$stuffed;
     wire  dec$area;
     wire  dec$stuff;
@@ -1440,6 +1446,12 @@ module canstar_can_core$fsm(clock,reset,sample,busmon,listen_only,self_test,sing
     wire  seq$tx_role;
     wire  seq$dom;
     wire  seq$in_busoff;
+    wire  seq$area;
+    wire  seq$stuffable;
+    wire  seq$hs_fld;
+    wire  seq$inter_fld;
+    wire  seq$hs_pfld;
+    wire  seq$inter_pfld;
     wire  seq$err;
     wire  seq$flag_start;
     wire  seq$sofinit;
@@ -1659,6 +1671,12 @@ module canstar_can_core$fsm(clock,reset,sample,busmon,listen_only,self_test,sing
         .listen_only(dec$listen_only),
         .next_is_stuff(dec$next_is_stuff),
         .stuff_level(dec$stuff_level),
+        .in_area(dec$in_area),
+        .stuffable(dec$stuffable),
+        .hs_fld(dec$hs_fld),
+        .inter_fld(dec$inter_fld),
+        .hs_pfld(dec$hs_pfld),
+        .inter_pfld(dec$inter_pfld),
         .stuffed(dec$stuffed),
         .area(dec$area),
         .stuff(dec$stuff),
@@ -1714,6 +1732,12 @@ module canstar_can_core$fsm(clock,reset,sample,busmon,listen_only,self_test,sing
         .tx_role(seq$tx_role),
         .dom(seq$dom),
         .in_busoff(seq$in_busoff),
+        .area(seq$area),
+        .stuffable(seq$stuffable),
+        .hs_fld(seq$hs_fld),
+        .inter_fld(seq$inter_fld),
+        .hs_pfld(seq$hs_pfld),
+        .inter_pfld(seq$inter_pfld),
         .err(seq$err),
         .flag_start(seq$flag_start),
         .sofinit(seq$sofinit),
@@ -1936,6 +1960,12 @@ module canstar_can_core$fsm(clock,reset,sample,busmon,listen_only,self_test,sing
         dec$listen_only = listen_only;
         dec$next_is_stuff = dstf$next_is_stuff;
         dec$stuff_level = dstf$stuff_level;
+        dec$in_area = seq$area;
+        dec$stuffable = seq$stuffable;
+        dec$hs_fld = seq$hs_fld;
+        dec$inter_fld = seq$inter_fld;
+        dec$hs_pfld = seq$hs_pfld;
+        dec$inter_pfld = seq$inter_pfld;
         frame$clock = clock;
         frame$reset = reset;
         frame$sample = sample;
@@ -2412,7 +2442,7 @@ module canstar_can_core$fsm$crcb$state(d,q,clock);
 endmodule // canstar_can_core$fsm$crcb$state
 
 
-module canstar_can_core$fsm$dec(fld,fpos,pfld,ppos,ext,tx_role,dom,listen_only,next_is_stuff,stuff_level,stuffed,area,stuff,code,pos,hs_en,arb,arb_stuff,arb_pos,drive,arb_bit,sent_bit,arb_stuff_bit,sent_stuff);
+module canstar_can_core$fsm$dec(fld,fpos,pfld,ppos,ext,tx_role,dom,listen_only,next_is_stuff,stuff_level,in_area,stuffable,hs_fld,inter_fld,hs_pfld,inter_pfld,stuffed,area,stuff,code,pos,hs_en,arb,arb_stuff,arb_pos,drive,arb_bit,sent_bit,arb_stuff_bit,sent_stuff);
     
     // Module arguments
     input wire  [4:0] fld;
@@ -2425,6 +2455,12 @@ module canstar_can_core$fsm$dec(fld,fpos,pfld,ppos,ext,tx_role,dom,listen_only,n
     input wire  listen_only;
     input wire  next_is_stuff;
     input wire  stuff_level;
+    input wire  in_area;
+    input wire  stuffable;
+    input wire  hs_fld;
+    input wire  inter_fld;
+    input wire  hs_pfld;
+    input wire  inter_pfld;
     output reg  stuffed;
     output reg  area;
     output reg  stuff;
@@ -2468,15 +2504,11 @@ module canstar_can_core$fsm$dec(fld,fpos,pfld,ppos,ext,tx_role,dom,listen_only,n
     localparam Field$Suspend = 24;
     
     // Local signals
-    reg  l_area;
     reg  [4:0] l_dfld;
-    reg  l_hsf;
-    reg  l_hsp;
     
     // Update code
     always @(*) begin
-        l_area = (fld == Field$Sof) | (fld == Field$Ident) | (fld == Field$Srr) | (fld == Field$Ide) | (fld == Field$Rtr) | (fld == Field$ExIdent) | (fld == Field$Resv) | (fld == Field$Dlc) | (fld == Field$Data) | (fld == Field$Crc);
-        stuff = next_is_stuff & (l_area | (fld == Field$CrcDel));
+        stuff = next_is_stuff & stuffable;
         l_dfld = fld;
         pos = fpos;
         drive = ~dom;
@@ -2533,14 +2565,12 @@ module canstar_can_core$fsm$dec(fld,fpos,pfld,ppos,ext,tx_role,dom,listen_only,n
         arb_stuff_bit = (pfld == Field$Ident) | (pfld == Field$Srr) | (pfld == Field$ExIdent) | ((pfld == Field$Ide) & ext) | ((pfld == Field$Rtr) & ~ext);
         sent_bit = ~dom | listen_only;
         sent_stuff = ~tx_role | stuff_level | listen_only;
-        stuffed = l_area | stuff;
-        area = l_area;
+        stuffed = in_area | stuff;
+        area = in_area;
         code = l_dfld;
-        l_hsf = (fld == Field$Reset) | (fld == Field$WaitIdle) | (fld == Field$Idle) | (fld == Field$BusOff) | (fld == Field$Sof) | (fld == Field$Suspend) | ((fld == Field$Inter) & (fpos == 32'h3));
-        l_hsp = (pfld == Field$Reset) | (pfld == Field$WaitIdle) | (pfld == Field$Idle) | (pfld == Field$BusOff) | (pfld == Field$Sof) | (pfld == Field$Suspend) | ((pfld == Field$Inter) & (fpos == 32'h3));
-        hs_en = l_hsf;
+        hs_en = hs_fld | (inter_fld & (fpos == 32'h3));
         if (stuff) begin
-            hs_en = l_hsp;
+            hs_en = hs_pfld | (inter_pfld & (fpos == 32'h3));
         end
     end
     
@@ -4223,7 +4253,7 @@ module canstar_can_core$fsm$rxf$rxrtr_r(d,q,clock);
 endmodule // canstar_can_core$fsm$rxf$rxrtr_r
 
 
-module canstar_can_core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_recovery,cnt_load,tec_in,stuff,req,active,armed,last_run,busoff,in_frame,level,level_sof,f_own,f_nf,f_npos,f_ndom,f_usetx,f_lost,f_err,f_ovl,f_sof,g_own,g_nf,g_npos,g_ndom,g_err,g_ovl,fld,fpos,pfld,ppos,tx_role,dom,in_busoff,err,flag_start,sofinit,txsof,ev_aef,ev_pef,ev_olf,ev_ovl,ev_integrated,ev_run,ev_recovered);
+module canstar_can_core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_recovery,cnt_load,tec_in,stuff,req,active,armed,last_run,busoff,in_frame,level,level_sof,f_own,f_nf,f_npos,f_ndom,f_usetx,f_lost,f_err,f_ovl,f_sof,g_own,g_nf,g_npos,g_ndom,g_err,g_ovl,fld,fpos,pfld,ppos,tx_role,dom,in_busoff,area,stuffable,hs_fld,inter_fld,hs_pfld,inter_pfld,err,flag_start,sofinit,txsof,ev_aef,ev_pef,ev_olf,ev_ovl,ev_integrated,ev_run,ev_recovered);
     
     // Module arguments
     input wire  clock;
@@ -4265,6 +4295,12 @@ module canstar_can_core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_recove
     output reg  tx_role;
     output reg  dom;
     output reg  in_busoff;
+    output reg  area;
+    output reg  stuffable;
+    output reg  hs_fld;
+    output reg  inter_fld;
+    output reg  hs_pfld;
+    output reg  inter_pfld;
     output reg  err;
     output reg  flag_start;
     output reg  sofinit;
@@ -4323,6 +4359,24 @@ module canstar_can_core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_recove
     reg  rdom$d;
     wire  rdom$q;
     reg  rdom$clock;
+    reg  rarea$d;
+    wire  rarea$q;
+    reg  rarea$clock;
+    reg  rsa$d;
+    wire  rsa$q;
+    reg  rsa$clock;
+    reg  rnhs$d;
+    wire  rnhs$q;
+    reg  rnhs$clock;
+    reg  rinter$d;
+    wire  rinter$q;
+    reg  rinter$clock;
+    reg  rnphs$d;
+    wire  rnphs$q;
+    reg  rnphs$clock;
+    reg  rpinter$d;
+    wire  rpinter$q;
+    reg  rpinter$clock;
     
     // Local signals
     reg  [7:0] l_posinc;
@@ -4335,6 +4389,14 @@ module canstar_can_core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_recove
     reg  l_start;
     reg  l_ovl;
     reg  l_lvl;
+    reg  l_na;
+    reg  l_nsa;
+    reg  l_nhs;
+    reg  l_ni;
+    reg  l_fa;
+    reg  l_fhs;
+    reg  l_ga;
+    reg  l_ghs;
     
     // Sub module instances
     canstar_can_core$fsm$seq$rfld rfld(
@@ -4367,6 +4429,36 @@ module canstar_can_core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_recove
         .q(rdom$q),
         .clock(rdom$clock)
     );
+    canstar_can_core$fsm$seq$rarea rarea(
+        .d(rarea$d),
+        .q(rarea$q),
+        .clock(rarea$clock)
+    );
+    canstar_can_core$fsm$seq$rsa rsa(
+        .d(rsa$d),
+        .q(rsa$q),
+        .clock(rsa$clock)
+    );
+    canstar_can_core$fsm$seq$rnhs rnhs(
+        .d(rnhs$d),
+        .q(rnhs$q),
+        .clock(rnhs$clock)
+    );
+    canstar_can_core$fsm$seq$rinter rinter(
+        .d(rinter$d),
+        .q(rinter$q),
+        .clock(rinter$clock)
+    );
+    canstar_can_core$fsm$seq$rnphs rnphs(
+        .d(rnphs$d),
+        .q(rnphs$q),
+        .clock(rnphs$clock)
+    );
+    canstar_can_core$fsm$seq$rpinter rpinter(
+        .d(rpinter$d),
+        .q(rpinter$q),
+        .clock(rpinter$clock)
+    );
     
     // Update code
     always @(*) begin
@@ -4376,18 +4468,38 @@ module canstar_can_core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_recove
         rppos$clock = clock;
         rtx$clock = clock;
         rdom$clock = clock;
+        rarea$clock = clock;
+        rsa$clock = clock;
+        rnhs$clock = clock;
+        rinter$clock = clock;
+        rnphs$clock = clock;
+        rpinter$clock = clock;
         rfld$d = rfld$q;
         rpos$d = rpos$q;
         rpfld$d = rpfld$q;
         rppos$d = rppos$q;
         rtx$d = rtx$q;
         rdom$d = rdom$q;
+        rarea$d = rarea$q;
+        rsa$d = rsa$q;
+        rnhs$d = rnhs$q;
+        rinter$d = rinter$q;
+        rnphs$d = rnphs$q;
+        rpinter$d = rpinter$q;
         l_posinc = rpos$q + 32'h1;
         if (rpos$q == 32'hff) begin
             l_posinc = rpos$q;
         end
         l_cantx = req & ~listen_only;
         l_nf = rfld$q;
+        l_na = rarea$q;
+        l_nsa = rsa$q;
+        l_nhs = ~rnhs$q;
+        l_ni = rinter$q;
+        l_fa = (f_nf == Field$Sof) | (f_nf == Field$Ident) | (f_nf == Field$Srr) | (f_nf == Field$Ide) | (f_nf == Field$Rtr) | (f_nf == Field$ExIdent) | (f_nf == Field$Resv) | (f_nf == Field$Dlc) | (f_nf == Field$Data) | (f_nf == Field$Crc);
+        l_fhs = (f_nf == Field$Reset) | (f_nf == Field$WaitIdle) | (f_nf == Field$Idle) | (f_nf == Field$BusOff) | (f_nf == Field$Sof) | (f_nf == Field$Suspend);
+        l_ga = (g_nf == Field$Sof) | (g_nf == Field$Ident) | (g_nf == Field$Srr) | (g_nf == Field$Ide) | (g_nf == Field$Rtr) | (g_nf == Field$ExIdent) | (g_nf == Field$Resv) | (g_nf == Field$Dlc) | (g_nf == Field$Data) | (g_nf == Field$Crc);
+        l_ghs = (g_nf == Field$Reset) | (g_nf == Field$WaitIdle) | (g_nf == Field$Idle) | (g_nf == Field$BusOff) | (g_nf == Field$Sof) | (g_nf == Field$Suspend);
         l_npos = rpos$q;
         l_ndom = 1'b0;
         l_usetx = 1'b0;
@@ -4403,6 +4515,10 @@ module canstar_can_core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_recove
         if (sample) begin
             if (f_own) begin
                 l_nf = f_nf;
+                l_na = l_fa;
+                l_nsa = l_fa | (f_nf == Field$CrcDel);
+                l_nhs = l_fhs;
+                l_ni = f_nf == Field$Inter;
                 l_npos = f_npos;
                 l_ndom = f_ndom;
                 l_usetx = f_usetx;
@@ -4413,6 +4529,10 @@ module canstar_can_core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_recove
             end
             else if (g_own) begin
                 l_nf = g_nf;
+                l_na = l_ga;
+                l_nsa = l_ga | (g_nf == Field$CrcDel);
+                l_nhs = l_ghs;
+                l_ni = g_nf == Field$Inter;
                 l_npos = g_npos;
                 l_ndom = g_ndom;
                 err = g_err;
@@ -4423,6 +4543,10 @@ module canstar_can_core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_recove
                     Field$Reset:
                         begin
                             l_nf = Field$WaitIdle;
+                            l_na = 1'b0;
+                            l_nsa = 1'b0;
+                            l_nhs = 1'b1;
+                            l_ni = 1'b0;
                             l_npos = 32'h1;
                         end
                     Field$WaitIdle:
@@ -4481,6 +4605,10 @@ module canstar_can_core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_recove
                                 end
                                 else if (rtx$q & ~active) begin
                                     l_nf = Field$Suspend;
+                                    l_na = 1'b0;
+                                    l_nsa = 1'b0;
+                                    l_nhs = 1'b1;
+                                    l_ni = 1'b0;
                                     l_npos = 32'h1;
                                 end
                                 else begin
@@ -4509,12 +4637,20 @@ module canstar_can_core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_recove
             end
             if (sofinit) begin
                 l_nf = Field$Ident;
+                l_na = 1'b1;
+                l_nsa = 1'b1;
+                l_nhs = 1'b0;
+                l_ni = 1'b0;
                 l_npos = 32'h1;
                 l_usetx = 1'b1;
             end
             if (l_start) begin
                 if (l_cantx) begin
                     l_nf = Field$Sof;
+                    l_na = 1'b1;
+                    l_nsa = 1'b1;
+                    l_nhs = 1'b1;
+                    l_ni = 1'b0;
                     l_npos = 32'h1;
                     l_role = 1'b1;
                     txsof = 1'b1;
@@ -4522,6 +4658,10 @@ module canstar_can_core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_recove
                 end
                 else begin
                     l_nf = Field$Idle;
+                    l_na = 1'b0;
+                    l_nsa = 1'b0;
+                    l_nhs = 1'b1;
+                    l_ni = 1'b0;
                     l_npos = 32'h1;
                     if (rfld$q == Field$Idle) begin
                         l_npos = l_posinc;
@@ -4543,17 +4683,29 @@ module canstar_can_core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_recove
             l_npos = 32'h1;
             if (active) begin
                 l_nf = Field$ActFlag;
+                l_na = 1'b0;
+                l_nsa = 1'b0;
+                l_nhs = 1'b0;
+                l_ni = 1'b0;
                 l_ndom = 1'b1;
                 ev_aef = 1'b1;
             end
             else begin
                 l_nf = Field$PasFlag;
+                l_na = 1'b0;
+                l_nsa = 1'b0;
+                l_nhs = 1'b0;
+                l_ni = 1'b0;
                 l_ndom = 1'b0;
                 ev_pef = 1'b1;
             end
         end
         else if (l_ovl) begin
             l_nf = Field$OvlFlag;
+            l_na = 1'b0;
+            l_nsa = 1'b0;
+            l_nhs = 1'b0;
+            l_ni = 1'b0;
             l_npos = 32'h1;
             l_ndom = 1'b1;
             ev_olf = 1'b1;
@@ -4563,6 +4715,10 @@ module canstar_can_core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_recove
             ev_pef = 1'b0;
             ev_olf = 1'b0;
             l_nf = Field$BusOff;
+            l_na = 1'b0;
+            l_nsa = 1'b0;
+            l_nhs = 1'b1;
+            l_ni = 1'b0;
             l_npos = 32'h1;
             l_ndom = 1'b0;
         end
@@ -4572,14 +4728,24 @@ module canstar_can_core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_recove
             if (~stuff) begin
                 rpfld$d = rfld$q;
                 rppos$d = rpos$q;
+                rnphs$d = rnhs$q;
+                rpinter$d = rinter$q;
             end
             rfld$d = l_nf;
+            rarea$d = l_na;
+            rsa$d = l_nsa;
+            rnhs$d = ~l_nhs;
+            rinter$d = l_ni;
             rpos$d = l_npos;
             rtx$d = l_role;
             rdom$d = l_ndom;
         end
         if (reset) begin
             rfld$d = Field$WaitIdle;
+            rarea$d = 1'b0;
+            rsa$d = 1'b0;
+            rnhs$d = 1'b0;
+            rinter$d = 1'b0;
             rpos$d = 32'h1;
             rtx$d = 1'b0;
             rdom$d = 1'b0;
@@ -4587,12 +4753,20 @@ module canstar_can_core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_recove
         if (cnt_load) begin
             if (tec_in >= 32'h100) begin
                 rfld$d = Field$BusOff;
+                rarea$d = 1'b0;
+                rsa$d = 1'b0;
+                rnhs$d = 1'b0;
+                rinter$d = 1'b0;
                 rpos$d = 32'h1;
                 rtx$d = 1'b0;
                 rdom$d = 1'b0;
             end
             else if (rfld$q == Field$BusOff) begin
                 rfld$d = Field$WaitIdle;
+                rarea$d = 1'b0;
+                rsa$d = 1'b0;
+                rnhs$d = 1'b0;
+                rinter$d = 1'b0;
                 rpos$d = 32'h1;
                 rdom$d = 1'b0;
             end
@@ -4604,9 +4778,34 @@ module canstar_can_core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_recove
         tx_role = rtx$q;
         dom = rdom$q;
         in_busoff = rfld$q == Field$BusOff;
+        area = rarea$q;
+        stuffable = rsa$q;
+        hs_fld = ~rnhs$q;
+        inter_fld = rinter$q;
+        hs_pfld = ~rnphs$q;
+        inter_pfld = rpinter$q;
     end
     
 endmodule // canstar_can_core$fsm$seq
+
+
+module canstar_can_core$fsm$seq$rarea(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_can_core$fsm$seq$rarea
 
 
 module canstar_can_core$fsm$seq$rdom(d,q,clock);
@@ -4674,6 +4873,63 @@ module canstar_can_core$fsm$seq$rfld(d,q,clock);
 endmodule // canstar_can_core$fsm$seq$rfld
 
 
+module canstar_can_core$fsm$seq$rinter(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_can_core$fsm$seq$rinter
+
+
+module canstar_can_core$fsm$seq$rnhs(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_can_core$fsm$seq$rnhs
+
+
+module canstar_can_core$fsm$seq$rnphs(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_can_core$fsm$seq$rnphs
+
+
 module canstar_can_core$fsm$seq$rpfld(d,q,clock);
     
     // Module arguments
@@ -4720,6 +4976,25 @@ module canstar_can_core$fsm$seq$rpfld(d,q,clock);
 endmodule // canstar_can_core$fsm$seq$rpfld
 
 
+module canstar_can_core$fsm$seq$rpinter(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_can_core$fsm$seq$rpinter
+
+
 module canstar_can_core$fsm$seq$rpos(d,q,clock);
     
     // Module arguments
@@ -4756,6 +5031,25 @@ module canstar_can_core$fsm$seq$rppos(d,q,clock);
     end
           
 endmodule // canstar_can_core$fsm$seq$rppos
+
+
+module canstar_can_core$fsm$seq$rsa(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_can_core$fsm$seq$rsa
 
 
 module canstar_can_core$fsm$seq$rtx(d,q,clock);

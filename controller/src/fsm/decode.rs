@@ -44,6 +44,17 @@ pub struct BitDecode {
     pub listen_only: Signal<In, Bit>,
     pub next_is_stuff: Signal<In, Bit>,
     pub stuff_level: Signal<In, Bit>,
+    /// The sequencer's registered decodes of `fld`, `fpos` and `pfld`:
+    /// `fld` in the stuffed area (Start_Of_Frame .. CRC_Sequence), `fld` there
+    /// or CRC_Delimiter, `fld` one of the fields with hard synchronisation at
+    /// every position, `fld` Intermission, and the last two for `pfld` (see
+    /// [`super::seq::Sequencer`]).
+    pub in_area: Signal<In, Bit>,
+    pub stuffable: Signal<In, Bit>,
+    pub hs_fld: Signal<In, Bit>,
+    pub inter_fld: Signal<In, Bit>,
+    pub hs_pfld: Signal<In, Bit>,
+    pub inter_pfld: Signal<In, Bit>,
 
     pub stuffed: Signal<Out, Bit>,
     /// The field is one of the stuffed area (Start_Of_Frame .. CRC_Sequence).
@@ -64,28 +75,17 @@ pub struct BitDecode {
     pub sent_stuff: Signal<Out, Bit>,
 
     // Working values.
-    l_area: Signal<Local, Bit>,
     l_dfld: Signal<Local, Field>,
-    l_hsf: Signal<Local, Bit>,
-    l_hsp: Signal<Local, Bit>,
 }
 
 impl Logic for BitDecode {
     #[hdl_gen]
     fn update(&mut self) {
-        self.l_area.next = (self.fld.val() == Field::Sof)
-            | (self.fld.val() == Field::Ident)
-            | (self.fld.val() == Field::Srr)
-            | (self.fld.val() == Field::Ide)
-            | (self.fld.val() == Field::Rtr)
-            | (self.fld.val() == Field::ExIdent)
-            | (self.fld.val() == Field::Resv)
-            | (self.fld.val() == Field::Dlc)
-            | (self.fld.val() == Field::Data)
-            | (self.fld.val() == Field::Crc);
         // The final stuff bit after CRC bit 15 comes while the field already
-        // says CRC_Delimiter.
-        self.stuff.next = self.next_is_stuff.val() & (self.l_area.val() | (self.fld.val() == Field::CrcDel));
+        // says CRC_Delimiter (`stuffable`: the stuffed area or CRC_Delimiter,
+        // a register of the sequencer, so that `stuff` is one LUT on the
+        // destuffer's count, issue #16).
+        self.stuff.next = self.next_is_stuff.val() & self.stuffable.val();
         self.l_dfld.next = self.fld.val();
         self.pos.next = self.fpos.val();
         self.drive.next = !self.dom.val();
@@ -147,29 +147,15 @@ impl Logic for BitDecode {
         self.sent_bit.next = !self.dom.val() | self.listen_only.val();
         self.sent_stuff.next = !self.tx_role.val() | self.stuff_level.val() | self.listen_only.val();
 
-        self.stuffed.next = self.l_area.val() | self.stuff.val();
-        self.area.next = self.l_area.val();
+        self.stuffed.next = self.in_area.val() | self.stuff.val();
+        self.area.next = self.in_area.val();
         self.code.next = self.l_dfld.val().into();
-        // `hs_en` of the displayed field, decoded from `fld` and from `pfld`
-        // side by side and selected by `stuff` (not `stuff` selecting the field
-        // in front of one decode: the bit timing reads it on every clock).
-        self.l_hsf.next = (self.fld.val() == Field::Reset)
-            | (self.fld.val() == Field::WaitIdle)
-            | (self.fld.val() == Field::Idle)
-            | (self.fld.val() == Field::BusOff)
-            | (self.fld.val() == Field::Sof)
-            | (self.fld.val() == Field::Suspend)
-            | ((self.fld.val() == Field::Inter) & (self.fpos.val() == 3));
-        self.l_hsp.next = (self.pfld.val() == Field::Reset)
-            | (self.pfld.val() == Field::WaitIdle)
-            | (self.pfld.val() == Field::Idle)
-            | (self.pfld.val() == Field::BusOff)
-            | (self.pfld.val() == Field::Sof)
-            | (self.pfld.val() == Field::Suspend)
-            | ((self.pfld.val() == Field::Inter) & (self.fpos.val() == 3));
-        self.hs_en.next = self.l_hsf.val();
+        // `hs_en` of the displayed field: the decodes of `fld` and of `pfld`
+        // (registers of the sequencer, with Intermission bit 3 from `fpos`)
+        // selected by `stuff` (the bit timing reads it on every clock).
+        self.hs_en.next = self.hs_fld.val() | (self.inter_fld.val() & (self.fpos.val() == 3));
         if self.stuff.val() {
-            self.hs_en.next = self.l_hsp.val();
+            self.hs_en.next = self.hs_pfld.val() | (self.inter_pfld.val() & (self.fpos.val() == 3));
         }
     }
 }
@@ -186,6 +172,16 @@ mod tests {
         u.pfld.next = Field::Idle;
         u.dom.next = false;
         f(&mut u);
+        // the sequencer's registered decodes of the fields set above
+        let area = |f: Field| (Field::Sof.code()..=Field::Crc.code()).contains(&f.code());
+        let hs = |f: Field| matches!(f, Field::Reset | Field::WaitIdle | Field::Idle | Field::BusOff | Field::Sof | Field::Suspend);
+        let (fld, pfld) = (u.fld.next, u.pfld.next);
+        u.in_area.next = area(fld);
+        u.stuffable.next = area(fld) || fld == Field::CrcDel;
+        u.hs_fld.next = hs(fld);
+        u.inter_fld.next = fld == Field::Inter;
+        u.hs_pfld.next = hs(pfld);
+        u.inter_pfld.next = pfld == Field::Inter;
         drive::settle(&mut u);
         u
     }

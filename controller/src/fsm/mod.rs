@@ -322,6 +322,12 @@ impl Logic for CanFsm {
         self.dec.listen_only.next = self.listen_only.val();
         self.dec.next_is_stuff.next = self.dstf.next_is_stuff.val();
         self.dec.stuff_level.next = self.dstf.stuff_level.val();
+        self.dec.in_area.next = self.seq.area.val();
+        self.dec.stuffable.next = self.seq.stuffable.val();
+        self.dec.hs_fld.next = self.seq.hs_fld.val();
+        self.dec.inter_fld.next = self.seq.inter_fld.val();
+        self.dec.hs_pfld.next = self.seq.hs_pfld.val();
+        self.dec.inter_pfld.next = self.seq.inter_pfld.val();
 
         self.frame.clock.next = self.clock.val();
         self.frame.reset.next = self.reset.val();

@@ -88,6 +88,20 @@ pub struct Sequencer {
     pub tx_role: Signal<Out, Bit>,
     pub dom: Signal<Out, Bit>,
     pub in_busoff: Signal<Out, Bit>,
+    /// Decodes of `fld` and `pfld`, kept in registers of their own (issue
+    /// #16) that take the decode of the next FIELD along every branch that
+    /// sets it, so that they always equal the decode of `fld`/`pfld`:
+    /// `fld` lies in the stuffed area (Start_Of_Frame .. CRC_Sequence); there
+    /// or CRC_Delimiter (a stuff bit may be in progress); `fld` is one of the
+    /// fields with hard synchronisation at every position (Reset,
+    /// Wait_For_Bus_Idle, Bus_Idle, Bus_Off, Start_Of_Frame,
+    /// Suspend_Transmission); `fld` is Intermission; the last two for `pfld`.
+    pub area: Signal<Out, Bit>,
+    pub stuffable: Signal<Out, Bit>,
+    pub hs_fld: Signal<Out, Bit>,
+    pub inter_fld: Signal<Out, Bit>,
+    pub hs_pfld: Signal<Out, Bit>,
+    pub inter_pfld: Signal<Out, Bit>,
     /// This bit's outcome: an error flag starts; an error or overload flag
     /// starts; a frame starts (SOF sampled); an own frame starts.
     pub err: Signal<Out, Bit>,
@@ -109,6 +123,15 @@ pub struct Sequencer {
     rppos: DFF<Bits<8>>,
     rtx: DFF<Bit>,
     rdom: DFF<Bit>,
+    // The decodes (see `area` above); the hard-sync ones inverted, so that
+    // the flip-flops' power-up 0 matches FIELD Reset (code 0) of `rfld` and
+    // `rpfld`.
+    rarea: DFF<Bit>,
+    rsa: DFF<Bit>,
+    rnhs: DFF<Bit>,
+    rinter: DFF<Bit>,
+    rnphs: DFF<Bit>,
+    rpinter: DFF<Bit>,
 
     l_posinc: Signal<Local, Bits<8>>,
     l_cantx: Signal<Local, Bit>,
@@ -120,18 +143,64 @@ pub struct Sequencer {
     l_start: Signal<Local, Bit>,
     l_ovl: Signal<Local, Bit>,
     l_lvl: Signal<Local, Bit>,
+    /// The decodes of `l_nf` (see `area`), set along with it.
+    l_na: Signal<Local, Bit>,
+    l_nsa: Signal<Local, Bit>,
+    l_nhs: Signal<Local, Bit>,
+    l_ni: Signal<Local, Bit>,
+    /// Those of `f_nf` and `g_nf`.
+    l_fa: Signal<Local, Bit>,
+    l_fhs: Signal<Local, Bit>,
+    l_ga: Signal<Local, Bit>,
+    l_ghs: Signal<Local, Bit>,
 }
 
 impl Logic for Sequencer {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, rfld, rpos, rpfld, rppos, rtx, rdom);
+        dff_setup!(self, clock, rfld, rpos, rpfld, rppos, rtx, rdom, rarea, rsa, rnhs, rinter, rnphs, rpinter);
         self.l_posinc.next = self.rpos.q.val() + 1;
         if self.rpos.q.val() == 255 {
             self.l_posinc.next = self.rpos.q.val();
         }
         self.l_cantx.next = self.req.val() & !self.listen_only.val();
         self.l_nf.next = self.rfld.q.val();
+        self.l_na.next = self.rarea.q.val();
+        self.l_nsa.next = self.rsa.q.val();
+        self.l_nhs.next = !self.rnhs.q.val();
+        self.l_ni.next = self.rinter.q.val();
+        self.l_fa.next = (self.f_nf.val() == Field::Sof)
+            | (self.f_nf.val() == Field::Ident)
+            | (self.f_nf.val() == Field::Srr)
+            | (self.f_nf.val() == Field::Ide)
+            | (self.f_nf.val() == Field::Rtr)
+            | (self.f_nf.val() == Field::ExIdent)
+            | (self.f_nf.val() == Field::Resv)
+            | (self.f_nf.val() == Field::Dlc)
+            | (self.f_nf.val() == Field::Data)
+            | (self.f_nf.val() == Field::Crc);
+        self.l_fhs.next = (self.f_nf.val() == Field::Reset)
+            | (self.f_nf.val() == Field::WaitIdle)
+            | (self.f_nf.val() == Field::Idle)
+            | (self.f_nf.val() == Field::BusOff)
+            | (self.f_nf.val() == Field::Sof)
+            | (self.f_nf.val() == Field::Suspend);
+        self.l_ga.next = (self.g_nf.val() == Field::Sof)
+            | (self.g_nf.val() == Field::Ident)
+            | (self.g_nf.val() == Field::Srr)
+            | (self.g_nf.val() == Field::Ide)
+            | (self.g_nf.val() == Field::Rtr)
+            | (self.g_nf.val() == Field::ExIdent)
+            | (self.g_nf.val() == Field::Resv)
+            | (self.g_nf.val() == Field::Dlc)
+            | (self.g_nf.val() == Field::Data)
+            | (self.g_nf.val() == Field::Crc);
+        self.l_ghs.next = (self.g_nf.val() == Field::Reset)
+            | (self.g_nf.val() == Field::WaitIdle)
+            | (self.g_nf.val() == Field::Idle)
+            | (self.g_nf.val() == Field::BusOff)
+            | (self.g_nf.val() == Field::Sof)
+            | (self.g_nf.val() == Field::Suspend);
         self.l_npos.next = self.rpos.q.val();
         self.l_ndom.next = false;
         self.l_usetx.next = false;
@@ -150,6 +219,10 @@ impl Logic for Sequencer {
         if self.sample.val() {
             if self.f_own.val() {
                 self.l_nf.next = self.f_nf.val();
+                self.l_na.next = self.l_fa.val();
+                self.l_nsa.next = self.l_fa.val() | (self.f_nf.val() == Field::CrcDel);
+                self.l_nhs.next = self.l_fhs.val();
+                self.l_ni.next = self.f_nf.val() == Field::Inter;
                 self.l_npos.next = self.f_npos.val();
                 self.l_ndom.next = self.f_ndom.val();
                 self.l_usetx.next = self.f_usetx.val();
@@ -159,6 +232,10 @@ impl Logic for Sequencer {
                 self.l_ovl.next = self.f_ovl.val();
             } else if self.g_own.val() {
                 self.l_nf.next = self.g_nf.val();
+                self.l_na.next = self.l_ga.val();
+                self.l_nsa.next = self.l_ga.val() | (self.g_nf.val() == Field::CrcDel);
+                self.l_nhs.next = self.l_ghs.val();
+                self.l_ni.next = self.g_nf.val() == Field::Inter;
                 self.l_npos.next = self.g_npos.val();
                 self.l_ndom.next = self.g_ndom.val();
                 self.err.next = self.g_err.val();
@@ -167,6 +244,10 @@ impl Logic for Sequencer {
                 match self.rfld.q.val() {
                     Field::Reset => {
                         self.l_nf.next = Field::WaitIdle;
+                        self.l_na.next = false;
+                        self.l_nsa.next = false;
+                        self.l_nhs.next = true;
+                        self.l_ni.next = false;
                         self.l_npos.next = 1.into();
                     }
                     Field::WaitIdle => {
@@ -216,6 +297,10 @@ impl Logic for Sequencer {
                                 }
                             } else if self.rtx.q.val() & !self.active.val() {
                                 self.l_nf.next = Field::Suspend;
+                                self.l_na.next = false;
+                                self.l_nsa.next = false;
+                                self.l_nhs.next = true;
+                                self.l_ni.next = false;
                                 self.l_npos.next = 1.into();
                             } else {
                                 self.l_start.next = true;
@@ -240,6 +325,10 @@ impl Logic for Sequencer {
             // A SOF was sampled: the frame starts (Identifier 1 next).
             if self.sofinit.val() {
                 self.l_nf.next = Field::Ident;
+                self.l_na.next = true;
+                self.l_nsa.next = true;
+                self.l_nhs.next = false;
+                self.l_ni.next = false;
                 self.l_npos.next = 1.into();
                 self.l_usetx.next = true;
             }
@@ -247,12 +336,20 @@ impl Logic for Sequencer {
             if self.l_start.val() {
                 if self.l_cantx.val() {
                     self.l_nf.next = Field::Sof;
+                    self.l_na.next = true;
+                    self.l_nsa.next = true;
+                    self.l_nhs.next = true;
+                    self.l_ni.next = false;
                     self.l_npos.next = 1.into();
                     self.l_role.next = true;
                     self.txsof.next = true;
                     self.l_usetx.next = true;
                 } else {
                     self.l_nf.next = Field::Idle;
+                    self.l_na.next = false;
+                    self.l_nsa.next = false;
+                    self.l_nhs.next = true;
+                    self.l_ni.next = false;
                     self.l_npos.next = 1.into();
                     if self.rfld.q.val() == Field::Idle {
                         self.l_npos.next = self.l_posinc.val();
@@ -279,15 +376,27 @@ impl Logic for Sequencer {
             self.l_npos.next = 1.into();
             if self.active.val() {
                 self.l_nf.next = Field::ActFlag;
+                self.l_na.next = false;
+                self.l_nsa.next = false;
+                self.l_nhs.next = false;
+                self.l_ni.next = false;
                 self.l_ndom.next = true;
                 self.ev_aef.next = true;
             } else {
                 self.l_nf.next = Field::PasFlag;
+                self.l_na.next = false;
+                self.l_nsa.next = false;
+                self.l_nhs.next = false;
+                self.l_ni.next = false;
                 self.l_ndom.next = false;
                 self.ev_pef.next = true;
             }
         } else if self.l_ovl.val() {
             self.l_nf.next = Field::OvlFlag;
+            self.l_na.next = false;
+            self.l_nsa.next = false;
+            self.l_nhs.next = false;
+            self.l_ni.next = false;
             self.l_npos.next = 1.into();
             self.l_ndom.next = true;
             self.ev_olf.next = true;
@@ -298,6 +407,10 @@ impl Logic for Sequencer {
             self.ev_pef.next = false;
             self.ev_olf.next = false;
             self.l_nf.next = Field::BusOff;
+            self.l_na.next = false;
+            self.l_nsa.next = false;
+            self.l_nhs.next = true;
+            self.l_ni.next = false;
             self.l_npos.next = 1.into();
             self.l_ndom.next = false;
         }
@@ -308,14 +421,24 @@ impl Logic for Sequencer {
             if !self.stuff.val() {
                 self.rpfld.d.next = self.rfld.q.val();
                 self.rppos.d.next = self.rpos.q.val();
+                self.rnphs.d.next = self.rnhs.q.val();
+                self.rpinter.d.next = self.rinter.q.val();
             }
             self.rfld.d.next = self.l_nf.val();
+            self.rarea.d.next = self.l_na.val();
+            self.rsa.d.next = self.l_nsa.val();
+            self.rnhs.d.next = !self.l_nhs.val();
+            self.rinter.d.next = self.l_ni.val();
             self.rpos.d.next = self.l_npos.val();
             self.rtx.d.next = self.l_role.val();
             self.rdom.d.next = self.l_ndom.val();
         }
         if self.reset.val() {
             self.rfld.d.next = Field::WaitIdle;
+            self.rarea.d.next = false;
+            self.rsa.d.next = false;
+            self.rnhs.d.next = false;
+            self.rinter.d.next = false;
             self.rpos.d.next = 1.into();
             self.rtx.d.next = false;
             self.rdom.d.next = false;
@@ -324,11 +447,19 @@ impl Logic for Sequencer {
         if self.cnt_load.val() {
             if self.tec_in.val() >= 256 {
                 self.rfld.d.next = Field::BusOff;
+                self.rarea.d.next = false;
+                self.rsa.d.next = false;
+                self.rnhs.d.next = false;
+                self.rinter.d.next = false;
                 self.rpos.d.next = 1.into();
                 self.rtx.d.next = false;
                 self.rdom.d.next = false;
             } else if self.rfld.q.val() == Field::BusOff {
                 self.rfld.d.next = Field::WaitIdle;
+                self.rarea.d.next = false;
+                self.rsa.d.next = false;
+                self.rnhs.d.next = false;
+                self.rinter.d.next = false;
                 self.rpos.d.next = 1.into();
                 self.rdom.d.next = false;
             }
@@ -341,6 +472,12 @@ impl Logic for Sequencer {
         self.tx_role.next = self.rtx.q.val();
         self.dom.next = self.rdom.q.val();
         self.in_busoff.next = self.rfld.q.val() == Field::BusOff;
+        self.area.next = self.rarea.q.val();
+        self.stuffable.next = self.rsa.q.val();
+        self.hs_fld.next = !self.rnhs.q.val();
+        self.inter_fld.next = self.rinter.q.val();
+        self.hs_pfld.next = !self.rnphs.q.val();
+        self.inter_pfld.next = self.rpinter.q.val();
     }
 }
 
