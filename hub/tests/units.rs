@@ -686,17 +686,22 @@ fn replica_rule_spares_the_unit_whose_replica_glitches() {
     drive::cycle(&mut j);
     assert_eq!(j.rep_cnt.val().index(), 1, "charged again without the replica's glitches");
     // an episode started by the blame of another sublink (not this one): not charged
+    assert_eq!(dominant_minority_then_episode(true, false), 0, "another sublink's blame started the episode");
+}
+
+/// A fresh sublink unit is the dominant minority of a replica disagreement, then the hub
+/// starts an episode (`err_start`) with `rep_blamed` and `ff` as given; returns `rep_cnt`.
+fn dominant_minority_then_episode(rep_blamed: bool, ff: bool) -> usize {
     let mut j = JudgeUnit::sublink(params());
     drive::init(&mut j);
     j.rep_rec.next = true;
     sample(&mut j, Bit { c: false, bt: false, err: true, ..Default::default() });
     j.rep_rec.next = false;
     j.err_start.next = true;
-    j.rep_blamed.next = true;
+    j.rep_blamed.next = rep_blamed;
+    j.ff.next = ff;
     drive::cycle(&mut j);
-    j.err_start.next = false;
-    j.rep_blamed.next = false;
-    assert_eq!(j.rep_cnt.val().index(), 0, "another sublink's blame started the episode");
+    j.rep_cnt.val().index()
 }
 
 /// §5.7 refinement (4), hub.md §5.13: the dominant minority is not charged by the replica
@@ -706,18 +711,7 @@ fn replica_rule_spares_the_unit_whose_replica_glitches() {
 #[test]
 fn replica_rule_leaves_monitor_episodes_to_the_first_flagger() {
     for (ff, charged) in [(false, 1), (true, 0)] {
-        let mut j = JudgeUnit::sublink(params());
-        drive::init(&mut j);
-        // first disagreement: this replica dominant, another recessive
-        j.rep_rec.next = true;
-        sample(&mut j, Bit { c: false, bt: false, err: true, ..Default::default() });
-        j.rep_rec.next = false;
-        j.err_start.next = true;
-        j.ff.next = ff;
-        drive::cycle(&mut j);
-        j.err_start.next = false;
-        j.ff.next = false;
-        assert_eq!(j.rep_cnt.val().index(), charged, "ff {ff}");
+        assert_eq!(dominant_minority_then_episode(false, ff), charged, "ff {ff}");
     }
 }
 
