@@ -4377,6 +4377,16 @@ module canstar_can_core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_recove
     reg  rpinter$d;
     wire  rpinter$q;
     reg  rpinter$clock;
+    reg  [4:0] fcls$f;
+    wire  fcls$area;
+    wire  fcls$stuffable;
+    wire  fcls$hs;
+    wire  fcls$inter;
+    reg  [4:0] gcls$f;
+    wire  gcls$area;
+    wire  gcls$stuffable;
+    wire  gcls$hs;
+    wire  gcls$inter;
     
     // Local signals
     reg  [7:0] l_posinc;
@@ -4393,10 +4403,6 @@ module canstar_can_core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_recove
     reg  l_nsa;
     reg  l_nhs;
     reg  l_ni;
-    reg  l_fa;
-    reg  l_fhs;
-    reg  l_ga;
-    reg  l_ghs;
     
     // Sub module instances
     canstar_can_core$fsm$seq$rfld rfld(
@@ -4459,6 +4465,20 @@ module canstar_can_core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_recove
         .q(rpinter$q),
         .clock(rpinter$clock)
     );
+    canstar_can_core$fsm$seq$fcls fcls(
+        .f(fcls$f),
+        .area(fcls$area),
+        .stuffable(fcls$stuffable),
+        .hs(fcls$hs),
+        .inter(fcls$inter)
+    );
+    canstar_can_core$fsm$seq$gcls gcls(
+        .f(gcls$f),
+        .area(gcls$area),
+        .stuffable(gcls$stuffable),
+        .hs(gcls$hs),
+        .inter(gcls$inter)
+    );
     
     // Update code
     always @(*) begin
@@ -4496,10 +4516,8 @@ module canstar_can_core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_recove
         l_nsa = rsa$q;
         l_nhs = ~rnhs$q;
         l_ni = rinter$q;
-        l_fa = (f_nf == Field$Sof) | (f_nf == Field$Ident) | (f_nf == Field$Srr) | (f_nf == Field$Ide) | (f_nf == Field$Rtr) | (f_nf == Field$ExIdent) | (f_nf == Field$Resv) | (f_nf == Field$Dlc) | (f_nf == Field$Data) | (f_nf == Field$Crc);
-        l_fhs = (f_nf == Field$Reset) | (f_nf == Field$WaitIdle) | (f_nf == Field$Idle) | (f_nf == Field$BusOff) | (f_nf == Field$Sof) | (f_nf == Field$Suspend);
-        l_ga = (g_nf == Field$Sof) | (g_nf == Field$Ident) | (g_nf == Field$Srr) | (g_nf == Field$Ide) | (g_nf == Field$Rtr) | (g_nf == Field$ExIdent) | (g_nf == Field$Resv) | (g_nf == Field$Dlc) | (g_nf == Field$Data) | (g_nf == Field$Crc);
-        l_ghs = (g_nf == Field$Reset) | (g_nf == Field$WaitIdle) | (g_nf == Field$Idle) | (g_nf == Field$BusOff) | (g_nf == Field$Sof) | (g_nf == Field$Suspend);
+        fcls$f = f_nf;
+        gcls$f = g_nf;
         l_npos = rpos$q;
         l_ndom = 1'b0;
         l_usetx = 1'b0;
@@ -4515,10 +4533,10 @@ module canstar_can_core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_recove
         if (sample) begin
             if (f_own) begin
                 l_nf = f_nf;
-                l_na = l_fa;
-                l_nsa = l_fa | (f_nf == Field$CrcDel);
-                l_nhs = l_fhs;
-                l_ni = f_nf == Field$Inter;
+                l_na = fcls$area;
+                l_nsa = fcls$stuffable;
+                l_nhs = fcls$hs;
+                l_ni = fcls$inter;
                 l_npos = f_npos;
                 l_ndom = f_ndom;
                 l_usetx = f_usetx;
@@ -4529,10 +4547,10 @@ module canstar_can_core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_recove
             end
             else if (g_own) begin
                 l_nf = g_nf;
-                l_na = l_ga;
-                l_nsa = l_ga | (g_nf == Field$CrcDel);
-                l_nhs = l_ghs;
-                l_ni = g_nf == Field$Inter;
+                l_na = gcls$area;
+                l_nsa = gcls$stuffable;
+                l_nhs = gcls$hs;
+                l_ni = gcls$inter;
                 l_npos = g_npos;
                 l_ndom = g_ndom;
                 err = g_err;
@@ -4787,6 +4805,100 @@ module canstar_can_core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_recove
     end
     
 endmodule // canstar_can_core$fsm$seq
+
+
+module canstar_can_core$fsm$seq$fcls(f,area,stuffable,hs,inter);
+    
+    // Module arguments
+    input wire  [4:0] f;
+    output reg  area;
+    output reg  stuffable;
+    output reg  hs;
+    output reg  inter;
+    
+    // Enums
+    localparam Field$Reset = 0;
+    localparam Field$WaitIdle = 1;
+    localparam Field$Idle = 2;
+    localparam Field$BusOff = 3;
+    localparam Field$Sof = 4;
+    localparam Field$Ident = 5;
+    localparam Field$Srr = 6;
+    localparam Field$Ide = 7;
+    localparam Field$Rtr = 8;
+    localparam Field$ExIdent = 9;
+    localparam Field$Resv = 10;
+    localparam Field$Dlc = 11;
+    localparam Field$Data = 12;
+    localparam Field$Crc = 13;
+    localparam Field$CrcDel = 14;
+    localparam Field$AckSlot = 15;
+    localparam Field$AckDel = 16;
+    localparam Field$Eof = 17;
+    localparam Field$ActFlag = 18;
+    localparam Field$PasFlag = 19;
+    localparam Field$OvlFlag = 20;
+    localparam Field$ErrDel = 21;
+    localparam Field$OvlDel = 22;
+    localparam Field$Inter = 23;
+    localparam Field$Suspend = 24;
+    
+    // Update code
+    always @(*) begin
+        area = (f == Field$Sof) | (f == Field$Ident) | (f == Field$Srr) | (f == Field$Ide) | (f == Field$Rtr) | (f == Field$ExIdent) | (f == Field$Resv) | (f == Field$Dlc) | (f == Field$Data) | (f == Field$Crc);
+        stuffable = area | (f == Field$CrcDel);
+        hs = (f == Field$Reset) | (f == Field$WaitIdle) | (f == Field$Idle) | (f == Field$BusOff) | (f == Field$Sof) | (f == Field$Suspend);
+        inter = f == Field$Inter;
+    end
+    
+endmodule // canstar_can_core$fsm$seq$fcls
+
+
+module canstar_can_core$fsm$seq$gcls(f,area,stuffable,hs,inter);
+    
+    // Module arguments
+    input wire  [4:0] f;
+    output reg  area;
+    output reg  stuffable;
+    output reg  hs;
+    output reg  inter;
+    
+    // Enums
+    localparam Field$Reset = 0;
+    localparam Field$WaitIdle = 1;
+    localparam Field$Idle = 2;
+    localparam Field$BusOff = 3;
+    localparam Field$Sof = 4;
+    localparam Field$Ident = 5;
+    localparam Field$Srr = 6;
+    localparam Field$Ide = 7;
+    localparam Field$Rtr = 8;
+    localparam Field$ExIdent = 9;
+    localparam Field$Resv = 10;
+    localparam Field$Dlc = 11;
+    localparam Field$Data = 12;
+    localparam Field$Crc = 13;
+    localparam Field$CrcDel = 14;
+    localparam Field$AckSlot = 15;
+    localparam Field$AckDel = 16;
+    localparam Field$Eof = 17;
+    localparam Field$ActFlag = 18;
+    localparam Field$PasFlag = 19;
+    localparam Field$OvlFlag = 20;
+    localparam Field$ErrDel = 21;
+    localparam Field$OvlDel = 22;
+    localparam Field$Inter = 23;
+    localparam Field$Suspend = 24;
+    
+    // Update code
+    always @(*) begin
+        area = (f == Field$Sof) | (f == Field$Ident) | (f == Field$Srr) | (f == Field$Ide) | (f == Field$Rtr) | (f == Field$ExIdent) | (f == Field$Resv) | (f == Field$Dlc) | (f == Field$Data) | (f == Field$Crc);
+        stuffable = area | (f == Field$CrcDel);
+        hs = (f == Field$Reset) | (f == Field$WaitIdle) | (f == Field$Idle) | (f == Field$BusOff) | (f == Field$Sof) | (f == Field$Suspend);
+        inter = f == Field$Inter;
+    end
+    
+endmodule // canstar_can_core$fsm$seq$gcls
 
 
 module canstar_can_core$fsm$seq$rarea(d,q,clock);

@@ -173,14 +173,12 @@ mod tests {
         u.dom.next = false;
         f(&mut u);
         // the sequencer's registered decodes of the fields set above
-        let area = |f: Field| (Field::Sof.code()..=Field::Crc.code()).contains(&f.code());
-        let hs = |f: Field| matches!(f, Field::Reset | Field::WaitIdle | Field::Idle | Field::BusOff | Field::Sof | Field::Suspend);
         let (fld, pfld) = (u.fld.next, u.pfld.next);
-        u.in_area.next = area(fld);
-        u.stuffable.next = area(fld) || fld == Field::CrcDel;
-        u.hs_fld.next = hs(fld);
+        u.in_area.next = fld.in_stuffed_area();
+        u.stuffable.next = fld.in_stuffed_area() || fld == Field::CrcDel;
+        u.hs_fld.next = fld.hard_sync();
         u.inter_fld.next = fld == Field::Inter;
-        u.hs_pfld.next = hs(pfld);
+        u.hs_pfld.next = pfld.hard_sync();
         u.inter_pfld.next = pfld == Field::Inter;
         drive::settle(&mut u);
         u

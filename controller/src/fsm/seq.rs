@@ -34,7 +34,7 @@
 //! gives Bus_Off 1, one with `tec_in` < 256 while in Bus_Off gives
 //! Wait_For_Bus_Idle 1.
 
-use super::field::Field;
+use super::field::{Field, FieldClass};
 use rust_hdl::prelude::*;
 
 #[derive(LogicBlock, Default)]
@@ -149,10 +149,8 @@ pub struct Sequencer {
     l_nhs: Signal<Local, Bit>,
     l_ni: Signal<Local, Bit>,
     /// Those of `f_nf` and `g_nf`.
-    l_fa: Signal<Local, Bit>,
-    l_fhs: Signal<Local, Bit>,
-    l_ga: Signal<Local, Bit>,
-    l_ghs: Signal<Local, Bit>,
+    fcls: FieldClass,
+    gcls: FieldClass,
 }
 
 impl Logic for Sequencer {
@@ -169,38 +167,8 @@ impl Logic for Sequencer {
         self.l_nsa.next = self.rsa.q.val();
         self.l_nhs.next = !self.rnhs.q.val();
         self.l_ni.next = self.rinter.q.val();
-        self.l_fa.next = (self.f_nf.val() == Field::Sof)
-            | (self.f_nf.val() == Field::Ident)
-            | (self.f_nf.val() == Field::Srr)
-            | (self.f_nf.val() == Field::Ide)
-            | (self.f_nf.val() == Field::Rtr)
-            | (self.f_nf.val() == Field::ExIdent)
-            | (self.f_nf.val() == Field::Resv)
-            | (self.f_nf.val() == Field::Dlc)
-            | (self.f_nf.val() == Field::Data)
-            | (self.f_nf.val() == Field::Crc);
-        self.l_fhs.next = (self.f_nf.val() == Field::Reset)
-            | (self.f_nf.val() == Field::WaitIdle)
-            | (self.f_nf.val() == Field::Idle)
-            | (self.f_nf.val() == Field::BusOff)
-            | (self.f_nf.val() == Field::Sof)
-            | (self.f_nf.val() == Field::Suspend);
-        self.l_ga.next = (self.g_nf.val() == Field::Sof)
-            | (self.g_nf.val() == Field::Ident)
-            | (self.g_nf.val() == Field::Srr)
-            | (self.g_nf.val() == Field::Ide)
-            | (self.g_nf.val() == Field::Rtr)
-            | (self.g_nf.val() == Field::ExIdent)
-            | (self.g_nf.val() == Field::Resv)
-            | (self.g_nf.val() == Field::Dlc)
-            | (self.g_nf.val() == Field::Data)
-            | (self.g_nf.val() == Field::Crc);
-        self.l_ghs.next = (self.g_nf.val() == Field::Reset)
-            | (self.g_nf.val() == Field::WaitIdle)
-            | (self.g_nf.val() == Field::Idle)
-            | (self.g_nf.val() == Field::BusOff)
-            | (self.g_nf.val() == Field::Sof)
-            | (self.g_nf.val() == Field::Suspend);
+        self.fcls.f.next = self.f_nf.val();
+        self.gcls.f.next = self.g_nf.val();
         self.l_npos.next = self.rpos.q.val();
         self.l_ndom.next = false;
         self.l_usetx.next = false;
@@ -219,10 +187,10 @@ impl Logic for Sequencer {
         if self.sample.val() {
             if self.f_own.val() {
                 self.l_nf.next = self.f_nf.val();
-                self.l_na.next = self.l_fa.val();
-                self.l_nsa.next = self.l_fa.val() | (self.f_nf.val() == Field::CrcDel);
-                self.l_nhs.next = self.l_fhs.val();
-                self.l_ni.next = self.f_nf.val() == Field::Inter;
+                self.l_na.next = self.fcls.area.val();
+                self.l_nsa.next = self.fcls.stuffable.val();
+                self.l_nhs.next = self.fcls.hs.val();
+                self.l_ni.next = self.fcls.inter.val();
                 self.l_npos.next = self.f_npos.val();
                 self.l_ndom.next = self.f_ndom.val();
                 self.l_usetx.next = self.f_usetx.val();
@@ -232,10 +200,10 @@ impl Logic for Sequencer {
                 self.l_ovl.next = self.f_ovl.val();
             } else if self.g_own.val() {
                 self.l_nf.next = self.g_nf.val();
-                self.l_na.next = self.l_ga.val();
-                self.l_nsa.next = self.l_ga.val() | (self.g_nf.val() == Field::CrcDel);
-                self.l_nhs.next = self.l_ghs.val();
-                self.l_ni.next = self.g_nf.val() == Field::Inter;
+                self.l_na.next = self.gcls.area.val();
+                self.l_nsa.next = self.gcls.stuffable.val();
+                self.l_nhs.next = self.gcls.hs.val();
+                self.l_ni.next = self.gcls.inter.val();
                 self.l_npos.next = self.g_npos.val();
                 self.l_ndom.next = self.g_ndom.val();
                 self.err.next = self.g_err.val();
