@@ -255,7 +255,7 @@
 //! off in a frame) fell on such a bit, and with the rule none of them is charged. Containment
 //! cost, `canstar campaign --reps 100` (same seed): 24 140 of 24 400 runs pass, 24 142
 //! without the rule (two classes lose one run each, a healthy controller at exactly 96;
-//! hub.md §5.10). Test: `hub/tests/units.rs`
+//! hub.md §5.10). Test: `hub/tests/judge_rules.rs`
 //! `dominant_stuff_bit_is_blamed_but_not_charged`.
 //!
 //! **§5.11 replica-aware roles (changed).** A sublink recessive while BT is dominant stops
@@ -313,6 +313,25 @@
 //! 100`: 24 368 → 24 383 of 24 400 runs, 13 → 11 failing classes, 7 → 2 partitions (hub.md
 //! §5.13). Test: `replica_rule_leaves_monitor_episodes_to_the_first_flagger`.
 //!
+//! **§5.14 reactions and causes (session 17).** (1) An error episode that starts while a
+//! sublink unit is `anomaly` after a *common* glitch (every replica at once, counted in
+//! `pgc`) is charged to it, +8 and `life`, at `err_start` (`pge`), unless it was charged at
+//! the sample that started the episode (`ch_r`) or as first flagger: the pulses of a faulty
+//! peer hub that end before this hub's sample point but cover the nodes' were charged to
+//! nobody (each replica's blame is suppressed by the other's anomaly), and a healthy
+//! transmitter reached 96 before the ninth charged episode (`--class sweep-hub-r2d-e2
+//! --run-seed 10562745809187427993`). A peer's glitching port makes at most three such
+//! episodes before the peer isolates it. `pgl_r` remembers whether the last glitch was
+//! common. (2) Intermission bit 2 is blamed only for a level seen within the early-ACK
+//! window (`seen_dom_crc`) while BT was recessive at the bit start (`dom_bs`): BT that went
+//! dominant late in bit 1, after this hub's sample, made nodes that sample later flag
+//! rightly in bit 2 (`--class sweep-down-r2d-e2 --run-seed 10596384751197753893`: a
+//! healthy port and the sublinks were isolated). (3) In the hub, the bit after a sample
+//! that triggered the error flag is not a delimiter bit (`delim`): it carries the reactions
+//! to that error. Evidence in hub.md §5.14. Tests: `hub/tests/judge_sublinks.rs`
+//! `episode_after_a_common_glitch_is_charged_to_the_sublink`, `hub/tests/judge_rules.rs`
+//! `intermission_bit_2_blames_only_a_flag_that_starts_in_it`, `hub/tests/delimiter.rs`.
+//!
 //! **§5.2 delimiter rule (added).** In the error phase, once BT was recessive at a
 //! sample (the end of every flag), the following delimiter bits are recessive-only
 //! positions (`delim`, computed by the hub), except the last one, where a node may
@@ -346,10 +365,11 @@
 //! double-random classes, interlink-flip 4 of 4); the failure is `hub-flip`
 //! (`--run-seed 4294338105487423072`: 96, isolation after 793 bits; hub-flip is the open
 //! case: the faulty hub's flips wider than a glitch cost 8 per episode to the other
-//! hub's transmitter and the healthy hub needs 10 of them). Tests: `hub/tests/units.rs`
+//! hub's transmitter and the healthy hub needs 10 of them). Tests: `hub/tests/judge_rules.rs`
 //! (`glitches_isolate_and_decay`, `window_rule_sees_dominant_before_the_sample_point`,
-//! `suppressed_blames_are_not_charged`, `dominant_in_a_delimiter_is_blamed`,
-//! `replica_rule_spares_the_unit_whose_replica_glitches`, `pulse_check_flow`),
+//! `suppressed_blames_are_not_charged`, `dominant_in_a_delimiter_is_blamed`),
+//! `hub/tests/judge_sublinks.rs` (`replica_rule_spares_the_unit_whose_replica_glitches`),
+//! `hub/tests/units.rs` (`pulse_check_flow`),
 //! `recan/tests/hub_system.rs`
 //! (`slow_bit_flipping_uplink_isolated_by_lifetime_counter`: the glitch counter alone
 //! isolates a flip every 1201 bits).
@@ -447,7 +467,8 @@ pub struct JudgeUnit {
     pub gl_others: Signal<In, Bit>,
     pub dis: Signal<Out, Bit>,
     pub blame: Signal<Out, Bit>,
-    /// `blame` that is charged (not suppressed by another unit's glitch).
+    /// `blame` that is charged (not suppressed by another unit's glitch; with the first
+    /// flagger and the common-glitch episode of §5.14, one clock after the sample).
     pub charged: Signal<Out, Bit>,
     pub tx_error: Signal<Out, Bit>,
     /// Strobe: a glitch on this unit's input.
@@ -505,6 +526,7 @@ pub struct JudgeUnit {
     ack_rx: DFF<Bit>,
     seen_dom: DFF<Bit>,
     seen_dom_crc: DFF<Bit>,
+    dom_bs: DFF<Bit>,
     gc_r: DFF<Bits<3>>,
     gdec_r: DFF<Bits<5>>,
     an_r: DFF<Bits<2>>,
@@ -512,7 +534,10 @@ pub struct JudgeUnit {
     pdec_r: DFF<Bits<3>>,
     ffd_r: DFF<Bit>,
     glf_r: DFF<Bit>,
+    pgl_r: DFF<Bit>,
+    ch_r: DFF<Bit>,
     ffc: Signal<Local, Bit>,
+    pge: Signal<Local, Bit>,
     dom: Signal<Local, Bit>,
     domw: Signal<Local, Bit>,
     unj: Signal<Local, Bit>,
@@ -628,6 +653,7 @@ impl JudgeUnit {
             ack_rx: Default::default(),
             seen_dom: Default::default(),
             seen_dom_crc: Default::default(),
+            dom_bs: Default::default(),
             gc_r: Default::default(),
             gdec_r: Default::default(),
             an_r: Default::default(),
@@ -635,7 +661,10 @@ impl JudgeUnit {
             pdec_r: Default::default(),
             ffd_r: Default::default(),
             glf_r: Default::default(),
+            pgl_r: Default::default(),
+            ch_r: Default::default(),
             ffc: Default::default(),
+            pge: Default::default(),
             dom: Default::default(),
             domw: Default::default(),
             unj: Default::default(),
@@ -663,7 +692,7 @@ impl JudgeUnit {
 impl Logic for JudgeUnit {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, dis_r, bic_r, bdec_r, life_r, dbc_r, nack_r, cont_r, rep_r, rep_seen, rep_first_dom, ok_r, acked, bad, ack_missing, ack_c, ack_rx, seen_dom, seen_dom_crc, gc_r, gdec_r, an_r, pgc_r, pdec_r, ffd_r, glf_r, bl_r, bl_dm_r, gpend);
+        dff_setup!(self, clock, dis_r, bic_r, bdec_r, life_r, dbc_r, nack_r, cont_r, rep_r, rep_seen, rep_first_dom, ok_r, acked, bad, ack_missing, ack_c, ack_rx, seen_dom, seen_dom_crc, dom_bs, gc_r, gdec_r, an_r, pgc_r, pdec_r, ffd_r, glf_r, pgl_r, ch_r, bl_r, bl_dm_r, gpend);
         self.pulse.clock.next = self.clock.val();
         self.pulse.reset.next = self.reset.val();
         self.pulse.c.next = self.c.val();
@@ -681,9 +710,13 @@ impl Logic for JudgeUnit {
             self.seen_dom.d.next = true;
         }
         // early-ACK rule: in the CRC delimiter only a dominant level from `win_lag` up to
-        // `crc_end` clocks after the bit start counts (registered: seen at the sample)
+        // `crc_end` clocks after the bit start counts (registered: seen at the sample);
+        // the same in intermission bit 2, and only when BT was recessive at the bit start
+        // (§5.14: BT went dominant late in intermission bit 1, after this hub's sample, so
+        // nodes that sample later saw a dominant bit 1 and rightly send overload flags)
         if self.bit_start.val() {
             self.seen_dom_crc.d.next = false;
+            self.dom_bs.d.next = !self.bt.val();
         } else if self.dom.val() & (self.bs_cnt.val() >= self.win_lag.val()) & (self.bs_cnt.val() <= self.crc_end.val()) {
             self.seen_dom_crc.d.next = true;
         }
@@ -692,16 +725,26 @@ impl Logic for JudgeUnit {
                 & ((self.tx_region.val() & !self.cont_r.q.val())
                     | (self.ack_delim.val() & !self.ack_missing.q.val())
                     | self.eof_1_6.val()
-                    | self.im_2.val()
                     | (self.ack_slot.val() & self.cont_r.q.val() & self.ack_rule.val())))
                 | self.delim.val()))
-            | (self.crc_delim.val() & !self.err_phase.val() & self.seen_dom_crc.q.val());
+            | (self.crc_delim.val() & !self.err_phase.val() & self.seen_dom_crc.q.val())
+            | (self.im_2.val() & !self.err_phase.val() & self.seen_dom_crc.q.val() & !self.dom_bs.q.val());
         // §5.12 first flagger: charged one clock after the sample (with `ff`), reported
         // on `blame`/`charged` like a blame (the hub's error flag is already started)
         self.ffc.next = self.ff.val() & self.ff_on.val() & self.enabled.val() & self.ffd_r.q.val();
-        self.blame.next = (self.sample.val() & self.unj.val() & self.enabled.val()) | self.ffc.val();
         self.charge.next = self.sample.val() & self.unj.val() & self.enabled.val() & !self.suppress.val() & !self.stuff_dom.val();
-        self.charged.next = self.charge.val() | self.ffc.val();
+        // §5.14 an episode right after a common glitch of the peer's contribution: charged
+        // to the sublink (once, unless it was charged at that sample or as first flagger)
+        self.pge.next = self.err_start.val()
+            & self.rep_on.val()
+            & self.enabled.val()
+            & (self.an_r.q.val() != 0)
+            & self.pgl_r.q.val()
+            & !self.ch_r.q.val()
+            & !self.ffc.val();
+        self.blame.next = (self.sample.val() & self.unj.val() & self.enabled.val()) | self.ffc.val() | self.pge.val();
+        self.charged.next = self.charge.val() | self.ffc.val() | self.pge.val();
+        self.ch_r.d.next = self.charge.val();
         // (port units only: `nack_on` is the port-unit constant)
         self.tx_error.next = self.sample.val()
             & self.nack_on.val()
@@ -826,6 +869,11 @@ impl Logic for JudgeUnit {
             self.an_r.d.next = 3.into();
             self.bad.d.next = true;
         }
+        if self.gcount.val() {
+            self.pgl_r.d.next = false;
+        } else if self.pcount.val() {
+            self.pgl_r.d.next = true;
+        }
         if self.gcount.val() & (self.gc_r.q.val() != 7) {
             self.gc_r.d.next = self.gc_r.q.val() + 1;
             self.gdec_r.d.next = 0.into();
@@ -839,7 +887,7 @@ impl Logic for JudgeUnit {
             self.pdec_r.d.next = 0.into();
         }
         // (the first-flagger charge comes one clock after a sample, never with one)
-        if self.ffc.val() {
+        if self.ffc.val() | self.pge.val() {
             if self.bic_r.q.val() > 247 {
                 self.bic_r.d.next = 255.into();
             } else {
@@ -847,7 +895,7 @@ impl Logic for JudgeUnit {
             }
             self.bad.d.next = true;
         }
-        if (self.gcount.val() | self.charge.val() | self.ffc.val()) & (self.life_r.q.val() != 127) {
+        if (self.gcount.val() | self.charge.val() | self.ffc.val() | self.pge.val()) & (self.life_r.q.val() != 127) {
             self.life_r.d.next = self.life_r.q.val() + 1;
         }
         if self.dbc_r.q.val() >= self.dbc_thr.val() {
@@ -942,6 +990,7 @@ impl Logic for JudgeUnit {
             self.ack_rx.d.next = false;
             self.seen_dom.d.next = false;
             self.seen_dom_crc.d.next = false;
+            self.dom_bs.d.next = false;
             self.gc_r.d.next = 0.into();
             self.gdec_r.d.next = 0.into();
             self.an_r.d.next = 0.into();
@@ -949,6 +998,8 @@ impl Logic for JudgeUnit {
             self.pdec_r.d.next = 0.into();
             self.ffd_r.d.next = false;
             self.glf_r.d.next = false;
+            self.pgl_r.d.next = false;
+            self.ch_r.d.next = false;
         }
         self.dis.next = self.dis_r.q.val();
         self.bic.next = self.bic_r.q.val();

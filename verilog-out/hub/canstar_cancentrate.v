@@ -947,6 +947,9 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
     reg  delim_r$d;
     wire  delim_r$q;
     reg  delim_r$clock;
+    reg  trig_r$d;
+    wire  trig_r$q;
+    reg  trig_r$clock;
     reg  bt_prev$d;
     wire  bt_prev$q;
     reg  bt_prev$clock;
@@ -1218,6 +1221,11 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         .q(delim_r$q),
         .clock(delim_r$clock)
     );
+    canstar_cancentrate_core$core$trig_r trig_r(
+        .d(trig_r$d),
+        .q(trig_r$q),
+        .clock(trig_r$clock)
+    );
     canstar_cancentrate_core$core$bt_prev bt_prev(
         .d(bt_prev$d),
         .q(bt_prev$q),
@@ -1250,7 +1258,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         if (mon_sample) begin
             delim_r$d = err_phase & coupler$bt;
         end
-        delim_z = err_phase & delim_r$q & ~(((mon_field == 32'he) | (mon_field == 32'hf)) & (mon_pos == 32'h7));
+        delim_z = err_phase & delim_r$q & ~trig_r$q & ~(((mon_field == 32'he) | (mon_field == 32'hf)) & (mon_pos == 32'h7));
         if (reset) begin
             delim_r$d = 1'b0;
         end
@@ -1453,6 +1461,14 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         trigger = mon_sample & (mon_error | any_blame | any_tx_error);
         err_start_r$clock = clock;
         err_start_r$d = trigger & ~efgen$busy;
+        trig_r$clock = clock;
+        trig_r$d = trig_r$q;
+        if (mon_sample) begin
+            trig_r$d = trigger;
+        end
+        if (reset) begin
+            trig_r$d = 1'b0;
+        end
         ff_r$clock = clock;
         ff_r$d = trigger & ~efgen$busy & mon_error & ~any_blame & ~any_tx_error & ~sd_run$q & ~stuff_dom & decode$tx_region;
         if (reset) begin
@@ -2581,6 +2597,9 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
     reg  seen_dom_crc$d;
     wire  seen_dom_crc$q;
     reg  seen_dom_crc$clock;
+    reg  dom_bs$d;
+    wire  dom_bs$q;
+    reg  dom_bs$clock;
     reg  [2:0] gc_r$d;
     wire  [2:0] gc_r$q;
     reg  gc_r$clock;
@@ -2602,6 +2621,12 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
     reg  glf_r$d;
     wire  glf_r$q;
     reg  glf_r$clock;
+    reg  pgl_r$d;
+    wire  pgl_r$q;
+    reg  pgl_r$clock;
+    reg  ch_r$d;
+    wire  ch_r$q;
+    reg  ch_r$clock;
     reg  bl_r$d;
     wire  bl_r$q;
     reg  bl_r$clock;
@@ -2614,6 +2639,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
     
     // Local signals
     reg  ffc;
+    reg  pge;
     reg  dom;
     reg  domw;
     reg  unj;
@@ -2721,6 +2747,11 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         .q(seen_dom_crc$q),
         .clock(seen_dom_crc$clock)
     );
+    canstar_cancentrate_core$core$pj$0$dom_bs dom_bs(
+        .d(dom_bs$d),
+        .q(dom_bs$q),
+        .clock(dom_bs$clock)
+    );
     canstar_cancentrate_core$core$pj$0$gc_r gc_r(
         .d(gc_r$d),
         .q(gc_r$q),
@@ -2755,6 +2786,16 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         .d(glf_r$d),
         .q(glf_r$q),
         .clock(glf_r$clock)
+    );
+    canstar_cancentrate_core$core$pj$0$pgl_r pgl_r(
+        .d(pgl_r$d),
+        .q(pgl_r$q),
+        .clock(pgl_r$clock)
+    );
+    canstar_cancentrate_core$core$pj$0$ch_r ch_r(
+        .d(ch_r$d),
+        .q(ch_r$q),
+        .clock(ch_r$clock)
     );
     canstar_cancentrate_core$core$pj$0$bl_r bl_r(
         .d(bl_r$d),
@@ -2792,6 +2833,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         ack_rx$clock = clock;
         seen_dom$clock = clock;
         seen_dom_crc$clock = clock;
+        dom_bs$clock = clock;
         gc_r$clock = clock;
         gdec_r$clock = clock;
         an_r$clock = clock;
@@ -2799,6 +2841,8 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         pdec_r$clock = clock;
         ffd_r$clock = clock;
         glf_r$clock = clock;
+        pgl_r$clock = clock;
+        ch_r$clock = clock;
         bl_r$clock = clock;
         bl_dm_r$clock = clock;
         gpend$clock = clock;
@@ -2820,6 +2864,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         ack_rx$d = ack_rx$q;
         seen_dom$d = seen_dom$q;
         seen_dom_crc$d = seen_dom_crc$q;
+        dom_bs$d = dom_bs$q;
         gc_r$d = gc_r$q;
         gdec_r$d = gdec_r$q;
         an_r$d = an_r$q;
@@ -2827,6 +2872,8 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         pdec_r$d = pdec_r$q;
         ffd_r$d = ffd_r$q;
         glf_r$d = glf_r$q;
+        pgl_r$d = pgl_r$q;
+        ch_r$d = ch_r$q;
         bl_r$d = bl_r$q;
         bl_dm_r$d = bl_dm_r$q;
         gpend$d = gpend$q;
@@ -2847,15 +2894,18 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         end
         if (bit_start) begin
             seen_dom_crc$d = 1'b0;
+            dom_bs$d = ~bt;
         end
         else if (dom & (bs_cnt >= win_lag) & (bs_cnt <= crc_end)) begin
             seen_dom_crc$d = 1'b1;
         end
-        unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | im_2 | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q);
+        unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q) | (im_2 & ~err_phase & seen_dom_crc$q & ~dom_bs$q);
         ffc = ff & ff_on & enabled & ffd_r$q;
-        blame = (sample & unj & enabled) | ffc;
         charge = sample & unj & enabled & ~suppress & ~stuff_dom;
-        charged = charge | ffc;
+        pge = err_start & rep_on & enabled & (an_r$q != 32'h0) & pgl_r$q & ~ch_r$q & ~ffc;
+        blame = (sample & unj & enabled) | ffc | pge;
+        charged = charge | ffc | pge;
+        ch_r$d = charge;
         tx_error = sample & nack_on & enabled & cont_r$q & tx_region & ~arb & c & ~bt & ~err_phase;
         if (sample) begin
             if (ack_slot) begin
@@ -2956,6 +3006,12 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
             an_r$d = 32'h3;
             bad$d = 1'b1;
         end
+        if (gcount) begin
+            pgl_r$d = 1'b0;
+        end
+        else if (pcount) begin
+            pgl_r$d = 1'b1;
+        end
         if (gcount & (gc_r$q != 32'h7)) begin
             gc_r$d = gc_r$q + 32'h1;
             gdec_r$d = 32'h0;
@@ -2965,7 +3021,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
             pgc_r$d = pgc_r$q + 32'h1;
             pdec_r$d = 32'h0;
         end
-        if (ffc) begin
+        if (ffc | pge) begin
             if (bic_r$q > 32'hf7) begin
                 bic_r$d = 32'hff;
             end
@@ -2974,7 +3030,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
             end
             bad$d = 1'b1;
         end
-        if ((gcount | charge | ffc) & (life_r$q != 32'h7f)) begin
+        if ((gcount | charge | ffc | pge) & (life_r$q != 32'h7f)) begin
             life_r$d = life_r$q + 32'h1;
         end
         if (dbc_r$q >= dbc_thr) begin
@@ -3050,6 +3106,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
             ack_rx$d = 1'b0;
             seen_dom$d = 1'b0;
             seen_dom_crc$d = 1'b0;
+            dom_bs$d = 1'b0;
             gc_r$d = 32'h0;
             gdec_r$d = 32'h0;
             an_r$d = 32'h0;
@@ -3057,6 +3114,8 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
             pdec_r$d = 32'h0;
             ffd_r$d = 1'b0;
             glf_r$d = 1'b0;
+            pgl_r$d = 1'b0;
+            ch_r$d = 1'b0;
         end
         dis = dis_r$q;
         bic = bic_r$q;
@@ -3265,6 +3324,25 @@ module canstar_cancentrate_core$core$pj$0$bl_r(d,q,clock);
 endmodule // canstar_cancentrate_core$core$pj$0$bl_r
 
 
+module canstar_cancentrate_core$core$pj$0$ch_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$0$ch_r
+
+
 module canstar_cancentrate_core$core$pj$0$cont_r(d,q,clock);
     
     // Module arguments
@@ -3320,6 +3398,25 @@ module canstar_cancentrate_core$core$pj$0$dis_r(d,q,clock);
     end
           
 endmodule // canstar_cancentrate_core$core$pj$0$dis_r
+
+
+module canstar_cancentrate_core$core$pj$0$dom_bs(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$0$dom_bs
 
 
 module canstar_cancentrate_core$core$pj$0$ffd_r(d,q,clock);
@@ -3510,6 +3607,25 @@ module canstar_cancentrate_core$core$pj$0$pgc_r(d,q,clock);
     end
           
 endmodule // canstar_cancentrate_core$core$pj$0$pgc_r
+
+
+module canstar_cancentrate_core$core$pj$0$pgl_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$0$pgl_r
 
 
 module canstar_cancentrate_core$core$pj$0$pulse(clock,reset,c,glitch);
@@ -3867,6 +3983,9 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
     reg  seen_dom_crc$d;
     wire  seen_dom_crc$q;
     reg  seen_dom_crc$clock;
+    reg  dom_bs$d;
+    wire  dom_bs$q;
+    reg  dom_bs$clock;
     reg  [2:0] gc_r$d;
     wire  [2:0] gc_r$q;
     reg  gc_r$clock;
@@ -3888,6 +4007,12 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
     reg  glf_r$d;
     wire  glf_r$q;
     reg  glf_r$clock;
+    reg  pgl_r$d;
+    wire  pgl_r$q;
+    reg  pgl_r$clock;
+    reg  ch_r$d;
+    wire  ch_r$q;
+    reg  ch_r$clock;
     reg  bl_r$d;
     wire  bl_r$q;
     reg  bl_r$clock;
@@ -3900,6 +4025,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
     
     // Local signals
     reg  ffc;
+    reg  pge;
     reg  dom;
     reg  domw;
     reg  unj;
@@ -4007,6 +4133,11 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         .q(seen_dom_crc$q),
         .clock(seen_dom_crc$clock)
     );
+    canstar_cancentrate_core$core$pj$1$dom_bs dom_bs(
+        .d(dom_bs$d),
+        .q(dom_bs$q),
+        .clock(dom_bs$clock)
+    );
     canstar_cancentrate_core$core$pj$1$gc_r gc_r(
         .d(gc_r$d),
         .q(gc_r$q),
@@ -4041,6 +4172,16 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         .d(glf_r$d),
         .q(glf_r$q),
         .clock(glf_r$clock)
+    );
+    canstar_cancentrate_core$core$pj$1$pgl_r pgl_r(
+        .d(pgl_r$d),
+        .q(pgl_r$q),
+        .clock(pgl_r$clock)
+    );
+    canstar_cancentrate_core$core$pj$1$ch_r ch_r(
+        .d(ch_r$d),
+        .q(ch_r$q),
+        .clock(ch_r$clock)
     );
     canstar_cancentrate_core$core$pj$1$bl_r bl_r(
         .d(bl_r$d),
@@ -4078,6 +4219,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         ack_rx$clock = clock;
         seen_dom$clock = clock;
         seen_dom_crc$clock = clock;
+        dom_bs$clock = clock;
         gc_r$clock = clock;
         gdec_r$clock = clock;
         an_r$clock = clock;
@@ -4085,6 +4227,8 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         pdec_r$clock = clock;
         ffd_r$clock = clock;
         glf_r$clock = clock;
+        pgl_r$clock = clock;
+        ch_r$clock = clock;
         bl_r$clock = clock;
         bl_dm_r$clock = clock;
         gpend$clock = clock;
@@ -4106,6 +4250,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         ack_rx$d = ack_rx$q;
         seen_dom$d = seen_dom$q;
         seen_dom_crc$d = seen_dom_crc$q;
+        dom_bs$d = dom_bs$q;
         gc_r$d = gc_r$q;
         gdec_r$d = gdec_r$q;
         an_r$d = an_r$q;
@@ -4113,6 +4258,8 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         pdec_r$d = pdec_r$q;
         ffd_r$d = ffd_r$q;
         glf_r$d = glf_r$q;
+        pgl_r$d = pgl_r$q;
+        ch_r$d = ch_r$q;
         bl_r$d = bl_r$q;
         bl_dm_r$d = bl_dm_r$q;
         gpend$d = gpend$q;
@@ -4133,15 +4280,18 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         end
         if (bit_start) begin
             seen_dom_crc$d = 1'b0;
+            dom_bs$d = ~bt;
         end
         else if (dom & (bs_cnt >= win_lag) & (bs_cnt <= crc_end)) begin
             seen_dom_crc$d = 1'b1;
         end
-        unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | im_2 | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q);
+        unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q) | (im_2 & ~err_phase & seen_dom_crc$q & ~dom_bs$q);
         ffc = ff & ff_on & enabled & ffd_r$q;
-        blame = (sample & unj & enabled) | ffc;
         charge = sample & unj & enabled & ~suppress & ~stuff_dom;
-        charged = charge | ffc;
+        pge = err_start & rep_on & enabled & (an_r$q != 32'h0) & pgl_r$q & ~ch_r$q & ~ffc;
+        blame = (sample & unj & enabled) | ffc | pge;
+        charged = charge | ffc | pge;
+        ch_r$d = charge;
         tx_error = sample & nack_on & enabled & cont_r$q & tx_region & ~arb & c & ~bt & ~err_phase;
         if (sample) begin
             if (ack_slot) begin
@@ -4242,6 +4392,12 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
             an_r$d = 32'h3;
             bad$d = 1'b1;
         end
+        if (gcount) begin
+            pgl_r$d = 1'b0;
+        end
+        else if (pcount) begin
+            pgl_r$d = 1'b1;
+        end
         if (gcount & (gc_r$q != 32'h7)) begin
             gc_r$d = gc_r$q + 32'h1;
             gdec_r$d = 32'h0;
@@ -4251,7 +4407,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
             pgc_r$d = pgc_r$q + 32'h1;
             pdec_r$d = 32'h0;
         end
-        if (ffc) begin
+        if (ffc | pge) begin
             if (bic_r$q > 32'hf7) begin
                 bic_r$d = 32'hff;
             end
@@ -4260,7 +4416,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
             end
             bad$d = 1'b1;
         end
-        if ((gcount | charge | ffc) & (life_r$q != 32'h7f)) begin
+        if ((gcount | charge | ffc | pge) & (life_r$q != 32'h7f)) begin
             life_r$d = life_r$q + 32'h1;
         end
         if (dbc_r$q >= dbc_thr) begin
@@ -4336,6 +4492,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
             ack_rx$d = 1'b0;
             seen_dom$d = 1'b0;
             seen_dom_crc$d = 1'b0;
+            dom_bs$d = 1'b0;
             gc_r$d = 32'h0;
             gdec_r$d = 32'h0;
             an_r$d = 32'h0;
@@ -4343,6 +4500,8 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
             pdec_r$d = 32'h0;
             ffd_r$d = 1'b0;
             glf_r$d = 1'b0;
+            pgl_r$d = 1'b0;
+            ch_r$d = 1'b0;
         end
         dis = dis_r$q;
         bic = bic_r$q;
@@ -4551,6 +4710,25 @@ module canstar_cancentrate_core$core$pj$1$bl_r(d,q,clock);
 endmodule // canstar_cancentrate_core$core$pj$1$bl_r
 
 
+module canstar_cancentrate_core$core$pj$1$ch_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$1$ch_r
+
+
 module canstar_cancentrate_core$core$pj$1$cont_r(d,q,clock);
     
     // Module arguments
@@ -4606,6 +4784,25 @@ module canstar_cancentrate_core$core$pj$1$dis_r(d,q,clock);
     end
           
 endmodule // canstar_cancentrate_core$core$pj$1$dis_r
+
+
+module canstar_cancentrate_core$core$pj$1$dom_bs(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$1$dom_bs
 
 
 module canstar_cancentrate_core$core$pj$1$ffd_r(d,q,clock);
@@ -4796,6 +4993,25 @@ module canstar_cancentrate_core$core$pj$1$pgc_r(d,q,clock);
     end
           
 endmodule // canstar_cancentrate_core$core$pj$1$pgc_r
+
+
+module canstar_cancentrate_core$core$pj$1$pgl_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$1$pgl_r
 
 
 module canstar_cancentrate_core$core$pj$1$pulse(clock,reset,c,glitch);
@@ -5153,6 +5369,9 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
     reg  seen_dom_crc$d;
     wire  seen_dom_crc$q;
     reg  seen_dom_crc$clock;
+    reg  dom_bs$d;
+    wire  dom_bs$q;
+    reg  dom_bs$clock;
     reg  [2:0] gc_r$d;
     wire  [2:0] gc_r$q;
     reg  gc_r$clock;
@@ -5174,6 +5393,12 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
     reg  glf_r$d;
     wire  glf_r$q;
     reg  glf_r$clock;
+    reg  pgl_r$d;
+    wire  pgl_r$q;
+    reg  pgl_r$clock;
+    reg  ch_r$d;
+    wire  ch_r$q;
+    reg  ch_r$clock;
     reg  bl_r$d;
     wire  bl_r$q;
     reg  bl_r$clock;
@@ -5186,6 +5411,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
     
     // Local signals
     reg  ffc;
+    reg  pge;
     reg  dom;
     reg  domw;
     reg  unj;
@@ -5293,6 +5519,11 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         .q(seen_dom_crc$q),
         .clock(seen_dom_crc$clock)
     );
+    canstar_cancentrate_core$core$pj$2$dom_bs dom_bs(
+        .d(dom_bs$d),
+        .q(dom_bs$q),
+        .clock(dom_bs$clock)
+    );
     canstar_cancentrate_core$core$pj$2$gc_r gc_r(
         .d(gc_r$d),
         .q(gc_r$q),
@@ -5327,6 +5558,16 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         .d(glf_r$d),
         .q(glf_r$q),
         .clock(glf_r$clock)
+    );
+    canstar_cancentrate_core$core$pj$2$pgl_r pgl_r(
+        .d(pgl_r$d),
+        .q(pgl_r$q),
+        .clock(pgl_r$clock)
+    );
+    canstar_cancentrate_core$core$pj$2$ch_r ch_r(
+        .d(ch_r$d),
+        .q(ch_r$q),
+        .clock(ch_r$clock)
     );
     canstar_cancentrate_core$core$pj$2$bl_r bl_r(
         .d(bl_r$d),
@@ -5364,6 +5605,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         ack_rx$clock = clock;
         seen_dom$clock = clock;
         seen_dom_crc$clock = clock;
+        dom_bs$clock = clock;
         gc_r$clock = clock;
         gdec_r$clock = clock;
         an_r$clock = clock;
@@ -5371,6 +5613,8 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         pdec_r$clock = clock;
         ffd_r$clock = clock;
         glf_r$clock = clock;
+        pgl_r$clock = clock;
+        ch_r$clock = clock;
         bl_r$clock = clock;
         bl_dm_r$clock = clock;
         gpend$clock = clock;
@@ -5392,6 +5636,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         ack_rx$d = ack_rx$q;
         seen_dom$d = seen_dom$q;
         seen_dom_crc$d = seen_dom_crc$q;
+        dom_bs$d = dom_bs$q;
         gc_r$d = gc_r$q;
         gdec_r$d = gdec_r$q;
         an_r$d = an_r$q;
@@ -5399,6 +5644,8 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         pdec_r$d = pdec_r$q;
         ffd_r$d = ffd_r$q;
         glf_r$d = glf_r$q;
+        pgl_r$d = pgl_r$q;
+        ch_r$d = ch_r$q;
         bl_r$d = bl_r$q;
         bl_dm_r$d = bl_dm_r$q;
         gpend$d = gpend$q;
@@ -5419,15 +5666,18 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         end
         if (bit_start) begin
             seen_dom_crc$d = 1'b0;
+            dom_bs$d = ~bt;
         end
         else if (dom & (bs_cnt >= win_lag) & (bs_cnt <= crc_end)) begin
             seen_dom_crc$d = 1'b1;
         end
-        unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | im_2 | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q);
+        unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q) | (im_2 & ~err_phase & seen_dom_crc$q & ~dom_bs$q);
         ffc = ff & ff_on & enabled & ffd_r$q;
-        blame = (sample & unj & enabled) | ffc;
         charge = sample & unj & enabled & ~suppress & ~stuff_dom;
-        charged = charge | ffc;
+        pge = err_start & rep_on & enabled & (an_r$q != 32'h0) & pgl_r$q & ~ch_r$q & ~ffc;
+        blame = (sample & unj & enabled) | ffc | pge;
+        charged = charge | ffc | pge;
+        ch_r$d = charge;
         tx_error = sample & nack_on & enabled & cont_r$q & tx_region & ~arb & c & ~bt & ~err_phase;
         if (sample) begin
             if (ack_slot) begin
@@ -5528,6 +5778,12 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
             an_r$d = 32'h3;
             bad$d = 1'b1;
         end
+        if (gcount) begin
+            pgl_r$d = 1'b0;
+        end
+        else if (pcount) begin
+            pgl_r$d = 1'b1;
+        end
         if (gcount & (gc_r$q != 32'h7)) begin
             gc_r$d = gc_r$q + 32'h1;
             gdec_r$d = 32'h0;
@@ -5537,7 +5793,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
             pgc_r$d = pgc_r$q + 32'h1;
             pdec_r$d = 32'h0;
         end
-        if (ffc) begin
+        if (ffc | pge) begin
             if (bic_r$q > 32'hf7) begin
                 bic_r$d = 32'hff;
             end
@@ -5546,7 +5802,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
             end
             bad$d = 1'b1;
         end
-        if ((gcount | charge | ffc) & (life_r$q != 32'h7f)) begin
+        if ((gcount | charge | ffc | pge) & (life_r$q != 32'h7f)) begin
             life_r$d = life_r$q + 32'h1;
         end
         if (dbc_r$q >= dbc_thr) begin
@@ -5622,6 +5878,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
             ack_rx$d = 1'b0;
             seen_dom$d = 1'b0;
             seen_dom_crc$d = 1'b0;
+            dom_bs$d = 1'b0;
             gc_r$d = 32'h0;
             gdec_r$d = 32'h0;
             an_r$d = 32'h0;
@@ -5629,6 +5886,8 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
             pdec_r$d = 32'h0;
             ffd_r$d = 1'b0;
             glf_r$d = 1'b0;
+            pgl_r$d = 1'b0;
+            ch_r$d = 1'b0;
         end
         dis = dis_r$q;
         bic = bic_r$q;
@@ -5837,6 +6096,25 @@ module canstar_cancentrate_core$core$pj$2$bl_r(d,q,clock);
 endmodule // canstar_cancentrate_core$core$pj$2$bl_r
 
 
+module canstar_cancentrate_core$core$pj$2$ch_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$2$ch_r
+
+
 module canstar_cancentrate_core$core$pj$2$cont_r(d,q,clock);
     
     // Module arguments
@@ -5892,6 +6170,25 @@ module canstar_cancentrate_core$core$pj$2$dis_r(d,q,clock);
     end
           
 endmodule // canstar_cancentrate_core$core$pj$2$dis_r
+
+
+module canstar_cancentrate_core$core$pj$2$dom_bs(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$2$dom_bs
 
 
 module canstar_cancentrate_core$core$pj$2$ffd_r(d,q,clock);
@@ -6082,6 +6379,25 @@ module canstar_cancentrate_core$core$pj$2$pgc_r(d,q,clock);
     end
           
 endmodule // canstar_cancentrate_core$core$pj$2$pgc_r
+
+
+module canstar_cancentrate_core$core$pj$2$pgl_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$2$pgl_r
 
 
 module canstar_cancentrate_core$core$pj$2$pulse(clock,reset,c,glitch);
@@ -6383,6 +6699,25 @@ module canstar_cancentrate_core$core$sub_bl_r(d,q,clock);
     end
           
 endmodule // canstar_cancentrate_core$core$sub_bl_r
+
+
+module canstar_cancentrate_core$core$trig_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$trig_r
 
 
 module canstar_cancentrate_core$monitor(clock,reset,rx,brp,prop,ph1,ph2,sjw,triple,listen_only,self_test,single_shot,host_recovery,recover,tx_req,tx_ide,tx_rtr,tx_id,tx_dlc,tx_data,tx_abort,cnt_load,tec_in,rec_in,tx,tx_done,arb_lost,arb_lost_pos,error,err_kind,err_field,err_pos,err_tx,rx_valid,rx_ide,rx_rtr,rx_id,rx_dlc,rx_data,tec,rec,state,err_warn,cfg_err,dbg_busmon,dbg_sample,dbg_tx_rqst,dbg_field,dbg_pos,dbg_stuff,dbg_role,dbg_events,dbg_runs,dbg_hard_sync,dbg_resync);

@@ -1113,6 +1113,9 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     reg  delim_r$d;
     wire  delim_r$q;
     reg  delim_r$clock;
+    reg  trig_r$d;
+    wire  trig_r$q;
+    reg  trig_r$clock;
     reg  bt_prev$d;
     wire  bt_prev$q;
     reg  bt_prev$clock;
@@ -1492,6 +1495,11 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .q(delim_r$q),
         .clock(delim_r$clock)
     );
+    canstar_hub_core$core$trig_r trig_r(
+        .d(trig_r$d),
+        .q(trig_r$q),
+        .clock(trig_r$clock)
+    );
     canstar_hub_core$core$bt_prev bt_prev(
         .d(bt_prev$d),
         .q(bt_prev$q),
@@ -1524,7 +1532,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         if (mon_sample) begin
             delim_r$d = err_phase & coupler$bt;
         end
-        delim_z = err_phase & delim_r$q & ~(((mon_field == 32'he) | (mon_field == 32'hf)) & (mon_pos == 32'h7));
+        delim_z = err_phase & delim_r$q & ~trig_r$q & ~(((mon_field == 32'he) | (mon_field == 32'hf)) & (mon_pos == 32'h7));
         if (reset) begin
             delim_r$d = 1'b0;
         end
@@ -1835,6 +1843,14 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         trigger = mon_sample & (mon_error | any_blame | any_tx_error);
         err_start_r$clock = clock;
         err_start_r$d = trigger & ~efgen$busy;
+        trig_r$clock = clock;
+        trig_r$d = trig_r$q;
+        if (mon_sample) begin
+            trig_r$d = trigger;
+        end
+        if (reset) begin
+            trig_r$d = 1'b0;
+        end
         ff_r$clock = clock;
         ff_r$d = trigger & ~efgen$busy & mon_error & ~any_blame & ~any_tx_error & ~sd_run$q & ~stuff_dom & decode$tx_region;
         if (reset) begin
@@ -3291,6 +3307,9 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  seen_dom_crc$d;
     wire  seen_dom_crc$q;
     reg  seen_dom_crc$clock;
+    reg  dom_bs$d;
+    wire  dom_bs$q;
+    reg  dom_bs$clock;
     reg  [2:0] gc_r$d;
     wire  [2:0] gc_r$q;
     reg  gc_r$clock;
@@ -3312,6 +3331,12 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  glf_r$d;
     wire  glf_r$q;
     reg  glf_r$clock;
+    reg  pgl_r$d;
+    wire  pgl_r$q;
+    reg  pgl_r$clock;
+    reg  ch_r$d;
+    wire  ch_r$q;
+    reg  ch_r$clock;
     reg  bl_r$d;
     wire  bl_r$q;
     reg  bl_r$clock;
@@ -3324,6 +3349,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     
     // Local signals
     reg  ffc;
+    reg  pge;
     reg  dom;
     reg  domw;
     reg  unj;
@@ -3431,6 +3457,11 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .q(seen_dom_crc$q),
         .clock(seen_dom_crc$clock)
     );
+    canstar_hub_core$core$pj$0$dom_bs dom_bs(
+        .d(dom_bs$d),
+        .q(dom_bs$q),
+        .clock(dom_bs$clock)
+    );
     canstar_hub_core$core$pj$0$gc_r gc_r(
         .d(gc_r$d),
         .q(gc_r$q),
@@ -3465,6 +3496,16 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .d(glf_r$d),
         .q(glf_r$q),
         .clock(glf_r$clock)
+    );
+    canstar_hub_core$core$pj$0$pgl_r pgl_r(
+        .d(pgl_r$d),
+        .q(pgl_r$q),
+        .clock(pgl_r$clock)
+    );
+    canstar_hub_core$core$pj$0$ch_r ch_r(
+        .d(ch_r$d),
+        .q(ch_r$q),
+        .clock(ch_r$clock)
     );
     canstar_hub_core$core$pj$0$bl_r bl_r(
         .d(bl_r$d),
@@ -3502,6 +3543,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         ack_rx$clock = clock;
         seen_dom$clock = clock;
         seen_dom_crc$clock = clock;
+        dom_bs$clock = clock;
         gc_r$clock = clock;
         gdec_r$clock = clock;
         an_r$clock = clock;
@@ -3509,6 +3551,8 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         pdec_r$clock = clock;
         ffd_r$clock = clock;
         glf_r$clock = clock;
+        pgl_r$clock = clock;
+        ch_r$clock = clock;
         bl_r$clock = clock;
         bl_dm_r$clock = clock;
         gpend$clock = clock;
@@ -3530,6 +3574,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         ack_rx$d = ack_rx$q;
         seen_dom$d = seen_dom$q;
         seen_dom_crc$d = seen_dom_crc$q;
+        dom_bs$d = dom_bs$q;
         gc_r$d = gc_r$q;
         gdec_r$d = gdec_r$q;
         an_r$d = an_r$q;
@@ -3537,6 +3582,8 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         pdec_r$d = pdec_r$q;
         ffd_r$d = ffd_r$q;
         glf_r$d = glf_r$q;
+        pgl_r$d = pgl_r$q;
+        ch_r$d = ch_r$q;
         bl_r$d = bl_r$q;
         bl_dm_r$d = bl_dm_r$q;
         gpend$d = gpend$q;
@@ -3557,15 +3604,18 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         end
         if (bit_start) begin
             seen_dom_crc$d = 1'b0;
+            dom_bs$d = ~bt;
         end
         else if (dom & (bs_cnt >= win_lag) & (bs_cnt <= crc_end)) begin
             seen_dom_crc$d = 1'b1;
         end
-        unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | im_2 | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q);
+        unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q) | (im_2 & ~err_phase & seen_dom_crc$q & ~dom_bs$q);
         ffc = ff & ff_on & enabled & ffd_r$q;
-        blame = (sample & unj & enabled) | ffc;
         charge = sample & unj & enabled & ~suppress & ~stuff_dom;
-        charged = charge | ffc;
+        pge = err_start & rep_on & enabled & (an_r$q != 32'h0) & pgl_r$q & ~ch_r$q & ~ffc;
+        blame = (sample & unj & enabled) | ffc | pge;
+        charged = charge | ffc | pge;
+        ch_r$d = charge;
         tx_error = sample & nack_on & enabled & cont_r$q & tx_region & ~arb & c & ~bt & ~err_phase;
         if (sample) begin
             if (ack_slot) begin
@@ -3666,6 +3716,12 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             an_r$d = 32'h3;
             bad$d = 1'b1;
         end
+        if (gcount) begin
+            pgl_r$d = 1'b0;
+        end
+        else if (pcount) begin
+            pgl_r$d = 1'b1;
+        end
         if (gcount & (gc_r$q != 32'h7)) begin
             gc_r$d = gc_r$q + 32'h1;
             gdec_r$d = 32'h0;
@@ -3675,7 +3731,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             pgc_r$d = pgc_r$q + 32'h1;
             pdec_r$d = 32'h0;
         end
-        if (ffc) begin
+        if (ffc | pge) begin
             if (bic_r$q > 32'hf7) begin
                 bic_r$d = 32'hff;
             end
@@ -3684,7 +3740,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             end
             bad$d = 1'b1;
         end
-        if ((gcount | charge | ffc) & (life_r$q != 32'h7f)) begin
+        if ((gcount | charge | ffc | pge) & (life_r$q != 32'h7f)) begin
             life_r$d = life_r$q + 32'h1;
         end
         if (dbc_r$q >= dbc_thr) begin
@@ -3760,6 +3816,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             ack_rx$d = 1'b0;
             seen_dom$d = 1'b0;
             seen_dom_crc$d = 1'b0;
+            dom_bs$d = 1'b0;
             gc_r$d = 32'h0;
             gdec_r$d = 32'h0;
             an_r$d = 32'h0;
@@ -3767,6 +3824,8 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             pdec_r$d = 32'h0;
             ffd_r$d = 1'b0;
             glf_r$d = 1'b0;
+            pgl_r$d = 1'b0;
+            ch_r$d = 1'b0;
         end
         dis = dis_r$q;
         bic = bic_r$q;
@@ -3975,6 +4034,25 @@ module canstar_hub_core$core$pj$0$bl_r(d,q,clock);
 endmodule // canstar_hub_core$core$pj$0$bl_r
 
 
+module canstar_hub_core$core$pj$0$ch_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$0$ch_r
+
+
 module canstar_hub_core$core$pj$0$cont_r(d,q,clock);
     
     // Module arguments
@@ -4030,6 +4108,25 @@ module canstar_hub_core$core$pj$0$dis_r(d,q,clock);
     end
           
 endmodule // canstar_hub_core$core$pj$0$dis_r
+
+
+module canstar_hub_core$core$pj$0$dom_bs(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$0$dom_bs
 
 
 module canstar_hub_core$core$pj$0$ffd_r(d,q,clock);
@@ -4220,6 +4317,25 @@ module canstar_hub_core$core$pj$0$pgc_r(d,q,clock);
     end
           
 endmodule // canstar_hub_core$core$pj$0$pgc_r
+
+
+module canstar_hub_core$core$pj$0$pgl_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$0$pgl_r
 
 
 module canstar_hub_core$core$pj$0$pulse(clock,reset,c,glitch);
@@ -4577,6 +4693,9 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  seen_dom_crc$d;
     wire  seen_dom_crc$q;
     reg  seen_dom_crc$clock;
+    reg  dom_bs$d;
+    wire  dom_bs$q;
+    reg  dom_bs$clock;
     reg  [2:0] gc_r$d;
     wire  [2:0] gc_r$q;
     reg  gc_r$clock;
@@ -4598,6 +4717,12 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  glf_r$d;
     wire  glf_r$q;
     reg  glf_r$clock;
+    reg  pgl_r$d;
+    wire  pgl_r$q;
+    reg  pgl_r$clock;
+    reg  ch_r$d;
+    wire  ch_r$q;
+    reg  ch_r$clock;
     reg  bl_r$d;
     wire  bl_r$q;
     reg  bl_r$clock;
@@ -4610,6 +4735,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     
     // Local signals
     reg  ffc;
+    reg  pge;
     reg  dom;
     reg  domw;
     reg  unj;
@@ -4717,6 +4843,11 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .q(seen_dom_crc$q),
         .clock(seen_dom_crc$clock)
     );
+    canstar_hub_core$core$pj$1$dom_bs dom_bs(
+        .d(dom_bs$d),
+        .q(dom_bs$q),
+        .clock(dom_bs$clock)
+    );
     canstar_hub_core$core$pj$1$gc_r gc_r(
         .d(gc_r$d),
         .q(gc_r$q),
@@ -4751,6 +4882,16 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .d(glf_r$d),
         .q(glf_r$q),
         .clock(glf_r$clock)
+    );
+    canstar_hub_core$core$pj$1$pgl_r pgl_r(
+        .d(pgl_r$d),
+        .q(pgl_r$q),
+        .clock(pgl_r$clock)
+    );
+    canstar_hub_core$core$pj$1$ch_r ch_r(
+        .d(ch_r$d),
+        .q(ch_r$q),
+        .clock(ch_r$clock)
     );
     canstar_hub_core$core$pj$1$bl_r bl_r(
         .d(bl_r$d),
@@ -4788,6 +4929,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         ack_rx$clock = clock;
         seen_dom$clock = clock;
         seen_dom_crc$clock = clock;
+        dom_bs$clock = clock;
         gc_r$clock = clock;
         gdec_r$clock = clock;
         an_r$clock = clock;
@@ -4795,6 +4937,8 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         pdec_r$clock = clock;
         ffd_r$clock = clock;
         glf_r$clock = clock;
+        pgl_r$clock = clock;
+        ch_r$clock = clock;
         bl_r$clock = clock;
         bl_dm_r$clock = clock;
         gpend$clock = clock;
@@ -4816,6 +4960,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         ack_rx$d = ack_rx$q;
         seen_dom$d = seen_dom$q;
         seen_dom_crc$d = seen_dom_crc$q;
+        dom_bs$d = dom_bs$q;
         gc_r$d = gc_r$q;
         gdec_r$d = gdec_r$q;
         an_r$d = an_r$q;
@@ -4823,6 +4968,8 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         pdec_r$d = pdec_r$q;
         ffd_r$d = ffd_r$q;
         glf_r$d = glf_r$q;
+        pgl_r$d = pgl_r$q;
+        ch_r$d = ch_r$q;
         bl_r$d = bl_r$q;
         bl_dm_r$d = bl_dm_r$q;
         gpend$d = gpend$q;
@@ -4843,15 +4990,18 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         end
         if (bit_start) begin
             seen_dom_crc$d = 1'b0;
+            dom_bs$d = ~bt;
         end
         else if (dom & (bs_cnt >= win_lag) & (bs_cnt <= crc_end)) begin
             seen_dom_crc$d = 1'b1;
         end
-        unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | im_2 | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q);
+        unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q) | (im_2 & ~err_phase & seen_dom_crc$q & ~dom_bs$q);
         ffc = ff & ff_on & enabled & ffd_r$q;
-        blame = (sample & unj & enabled) | ffc;
         charge = sample & unj & enabled & ~suppress & ~stuff_dom;
-        charged = charge | ffc;
+        pge = err_start & rep_on & enabled & (an_r$q != 32'h0) & pgl_r$q & ~ch_r$q & ~ffc;
+        blame = (sample & unj & enabled) | ffc | pge;
+        charged = charge | ffc | pge;
+        ch_r$d = charge;
         tx_error = sample & nack_on & enabled & cont_r$q & tx_region & ~arb & c & ~bt & ~err_phase;
         if (sample) begin
             if (ack_slot) begin
@@ -4952,6 +5102,12 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             an_r$d = 32'h3;
             bad$d = 1'b1;
         end
+        if (gcount) begin
+            pgl_r$d = 1'b0;
+        end
+        else if (pcount) begin
+            pgl_r$d = 1'b1;
+        end
         if (gcount & (gc_r$q != 32'h7)) begin
             gc_r$d = gc_r$q + 32'h1;
             gdec_r$d = 32'h0;
@@ -4961,7 +5117,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             pgc_r$d = pgc_r$q + 32'h1;
             pdec_r$d = 32'h0;
         end
-        if (ffc) begin
+        if (ffc | pge) begin
             if (bic_r$q > 32'hf7) begin
                 bic_r$d = 32'hff;
             end
@@ -4970,7 +5126,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             end
             bad$d = 1'b1;
         end
-        if ((gcount | charge | ffc) & (life_r$q != 32'h7f)) begin
+        if ((gcount | charge | ffc | pge) & (life_r$q != 32'h7f)) begin
             life_r$d = life_r$q + 32'h1;
         end
         if (dbc_r$q >= dbc_thr) begin
@@ -5046,6 +5202,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             ack_rx$d = 1'b0;
             seen_dom$d = 1'b0;
             seen_dom_crc$d = 1'b0;
+            dom_bs$d = 1'b0;
             gc_r$d = 32'h0;
             gdec_r$d = 32'h0;
             an_r$d = 32'h0;
@@ -5053,6 +5210,8 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             pdec_r$d = 32'h0;
             ffd_r$d = 1'b0;
             glf_r$d = 1'b0;
+            pgl_r$d = 1'b0;
+            ch_r$d = 1'b0;
         end
         dis = dis_r$q;
         bic = bic_r$q;
@@ -5261,6 +5420,25 @@ module canstar_hub_core$core$pj$1$bl_r(d,q,clock);
 endmodule // canstar_hub_core$core$pj$1$bl_r
 
 
+module canstar_hub_core$core$pj$1$ch_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$1$ch_r
+
+
 module canstar_hub_core$core$pj$1$cont_r(d,q,clock);
     
     // Module arguments
@@ -5316,6 +5494,25 @@ module canstar_hub_core$core$pj$1$dis_r(d,q,clock);
     end
           
 endmodule // canstar_hub_core$core$pj$1$dis_r
+
+
+module canstar_hub_core$core$pj$1$dom_bs(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$1$dom_bs
 
 
 module canstar_hub_core$core$pj$1$ffd_r(d,q,clock);
@@ -5506,6 +5703,25 @@ module canstar_hub_core$core$pj$1$pgc_r(d,q,clock);
     end
           
 endmodule // canstar_hub_core$core$pj$1$pgc_r
+
+
+module canstar_hub_core$core$pj$1$pgl_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$1$pgl_r
 
 
 module canstar_hub_core$core$pj$1$pulse(clock,reset,c,glitch);
@@ -5863,6 +6079,9 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  seen_dom_crc$d;
     wire  seen_dom_crc$q;
     reg  seen_dom_crc$clock;
+    reg  dom_bs$d;
+    wire  dom_bs$q;
+    reg  dom_bs$clock;
     reg  [2:0] gc_r$d;
     wire  [2:0] gc_r$q;
     reg  gc_r$clock;
@@ -5884,6 +6103,12 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  glf_r$d;
     wire  glf_r$q;
     reg  glf_r$clock;
+    reg  pgl_r$d;
+    wire  pgl_r$q;
+    reg  pgl_r$clock;
+    reg  ch_r$d;
+    wire  ch_r$q;
+    reg  ch_r$clock;
     reg  bl_r$d;
     wire  bl_r$q;
     reg  bl_r$clock;
@@ -5896,6 +6121,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     
     // Local signals
     reg  ffc;
+    reg  pge;
     reg  dom;
     reg  domw;
     reg  unj;
@@ -6003,6 +6229,11 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .q(seen_dom_crc$q),
         .clock(seen_dom_crc$clock)
     );
+    canstar_hub_core$core$pj$2$dom_bs dom_bs(
+        .d(dom_bs$d),
+        .q(dom_bs$q),
+        .clock(dom_bs$clock)
+    );
     canstar_hub_core$core$pj$2$gc_r gc_r(
         .d(gc_r$d),
         .q(gc_r$q),
@@ -6037,6 +6268,16 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .d(glf_r$d),
         .q(glf_r$q),
         .clock(glf_r$clock)
+    );
+    canstar_hub_core$core$pj$2$pgl_r pgl_r(
+        .d(pgl_r$d),
+        .q(pgl_r$q),
+        .clock(pgl_r$clock)
+    );
+    canstar_hub_core$core$pj$2$ch_r ch_r(
+        .d(ch_r$d),
+        .q(ch_r$q),
+        .clock(ch_r$clock)
     );
     canstar_hub_core$core$pj$2$bl_r bl_r(
         .d(bl_r$d),
@@ -6074,6 +6315,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         ack_rx$clock = clock;
         seen_dom$clock = clock;
         seen_dom_crc$clock = clock;
+        dom_bs$clock = clock;
         gc_r$clock = clock;
         gdec_r$clock = clock;
         an_r$clock = clock;
@@ -6081,6 +6323,8 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         pdec_r$clock = clock;
         ffd_r$clock = clock;
         glf_r$clock = clock;
+        pgl_r$clock = clock;
+        ch_r$clock = clock;
         bl_r$clock = clock;
         bl_dm_r$clock = clock;
         gpend$clock = clock;
@@ -6102,6 +6346,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         ack_rx$d = ack_rx$q;
         seen_dom$d = seen_dom$q;
         seen_dom_crc$d = seen_dom_crc$q;
+        dom_bs$d = dom_bs$q;
         gc_r$d = gc_r$q;
         gdec_r$d = gdec_r$q;
         an_r$d = an_r$q;
@@ -6109,6 +6354,8 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         pdec_r$d = pdec_r$q;
         ffd_r$d = ffd_r$q;
         glf_r$d = glf_r$q;
+        pgl_r$d = pgl_r$q;
+        ch_r$d = ch_r$q;
         bl_r$d = bl_r$q;
         bl_dm_r$d = bl_dm_r$q;
         gpend$d = gpend$q;
@@ -6129,15 +6376,18 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         end
         if (bit_start) begin
             seen_dom_crc$d = 1'b0;
+            dom_bs$d = ~bt;
         end
         else if (dom & (bs_cnt >= win_lag) & (bs_cnt <= crc_end)) begin
             seen_dom_crc$d = 1'b1;
         end
-        unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | im_2 | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q);
+        unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q) | (im_2 & ~err_phase & seen_dom_crc$q & ~dom_bs$q);
         ffc = ff & ff_on & enabled & ffd_r$q;
-        blame = (sample & unj & enabled) | ffc;
         charge = sample & unj & enabled & ~suppress & ~stuff_dom;
-        charged = charge | ffc;
+        pge = err_start & rep_on & enabled & (an_r$q != 32'h0) & pgl_r$q & ~ch_r$q & ~ffc;
+        blame = (sample & unj & enabled) | ffc | pge;
+        charged = charge | ffc | pge;
+        ch_r$d = charge;
         tx_error = sample & nack_on & enabled & cont_r$q & tx_region & ~arb & c & ~bt & ~err_phase;
         if (sample) begin
             if (ack_slot) begin
@@ -6238,6 +6488,12 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             an_r$d = 32'h3;
             bad$d = 1'b1;
         end
+        if (gcount) begin
+            pgl_r$d = 1'b0;
+        end
+        else if (pcount) begin
+            pgl_r$d = 1'b1;
+        end
         if (gcount & (gc_r$q != 32'h7)) begin
             gc_r$d = gc_r$q + 32'h1;
             gdec_r$d = 32'h0;
@@ -6247,7 +6503,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             pgc_r$d = pgc_r$q + 32'h1;
             pdec_r$d = 32'h0;
         end
-        if (ffc) begin
+        if (ffc | pge) begin
             if (bic_r$q > 32'hf7) begin
                 bic_r$d = 32'hff;
             end
@@ -6256,7 +6512,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             end
             bad$d = 1'b1;
         end
-        if ((gcount | charge | ffc) & (life_r$q != 32'h7f)) begin
+        if ((gcount | charge | ffc | pge) & (life_r$q != 32'h7f)) begin
             life_r$d = life_r$q + 32'h1;
         end
         if (dbc_r$q >= dbc_thr) begin
@@ -6332,6 +6588,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             ack_rx$d = 1'b0;
             seen_dom$d = 1'b0;
             seen_dom_crc$d = 1'b0;
+            dom_bs$d = 1'b0;
             gc_r$d = 32'h0;
             gdec_r$d = 32'h0;
             an_r$d = 32'h0;
@@ -6339,6 +6596,8 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             pdec_r$d = 32'h0;
             ffd_r$d = 1'b0;
             glf_r$d = 1'b0;
+            pgl_r$d = 1'b0;
+            ch_r$d = 1'b0;
         end
         dis = dis_r$q;
         bic = bic_r$q;
@@ -6547,6 +6806,25 @@ module canstar_hub_core$core$pj$2$bl_r(d,q,clock);
 endmodule // canstar_hub_core$core$pj$2$bl_r
 
 
+module canstar_hub_core$core$pj$2$ch_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$2$ch_r
+
+
 module canstar_hub_core$core$pj$2$cont_r(d,q,clock);
     
     // Module arguments
@@ -6602,6 +6880,25 @@ module canstar_hub_core$core$pj$2$dis_r(d,q,clock);
     end
           
 endmodule // canstar_hub_core$core$pj$2$dis_r
+
+
+module canstar_hub_core$core$pj$2$dom_bs(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$2$dom_bs
 
 
 module canstar_hub_core$core$pj$2$ffd_r(d,q,clock);
@@ -6792,6 +7089,25 @@ module canstar_hub_core$core$pj$2$pgc_r(d,q,clock);
     end
           
 endmodule // canstar_hub_core$core$pj$2$pgc_r
+
+
+module canstar_hub_core$core$pj$2$pgl_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$2$pgl_r
 
 
 module canstar_hub_core$core$pj$2$pulse(clock,reset,c,glitch);
@@ -7206,6 +7522,9 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  seen_dom_crc$d;
     wire  seen_dom_crc$q;
     reg  seen_dom_crc$clock;
+    reg  dom_bs$d;
+    wire  dom_bs$q;
+    reg  dom_bs$clock;
     reg  [2:0] gc_r$d;
     wire  [2:0] gc_r$q;
     reg  gc_r$clock;
@@ -7227,6 +7546,12 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  glf_r$d;
     wire  glf_r$q;
     reg  glf_r$clock;
+    reg  pgl_r$d;
+    wire  pgl_r$q;
+    reg  pgl_r$clock;
+    reg  ch_r$d;
+    wire  ch_r$q;
+    reg  ch_r$clock;
     reg  bl_r$d;
     wire  bl_r$q;
     reg  bl_r$clock;
@@ -7239,6 +7564,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     
     // Local signals
     reg  ffc;
+    reg  pge;
     reg  dom;
     reg  domw;
     reg  unj;
@@ -7346,6 +7672,11 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .q(seen_dom_crc$q),
         .clock(seen_dom_crc$clock)
     );
+    canstar_hub_core$core$sj$0$dom_bs dom_bs(
+        .d(dom_bs$d),
+        .q(dom_bs$q),
+        .clock(dom_bs$clock)
+    );
     canstar_hub_core$core$sj$0$gc_r gc_r(
         .d(gc_r$d),
         .q(gc_r$q),
@@ -7380,6 +7711,16 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .d(glf_r$d),
         .q(glf_r$q),
         .clock(glf_r$clock)
+    );
+    canstar_hub_core$core$sj$0$pgl_r pgl_r(
+        .d(pgl_r$d),
+        .q(pgl_r$q),
+        .clock(pgl_r$clock)
+    );
+    canstar_hub_core$core$sj$0$ch_r ch_r(
+        .d(ch_r$d),
+        .q(ch_r$q),
+        .clock(ch_r$clock)
     );
     canstar_hub_core$core$sj$0$bl_r bl_r(
         .d(bl_r$d),
@@ -7417,6 +7758,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         ack_rx$clock = clock;
         seen_dom$clock = clock;
         seen_dom_crc$clock = clock;
+        dom_bs$clock = clock;
         gc_r$clock = clock;
         gdec_r$clock = clock;
         an_r$clock = clock;
@@ -7424,6 +7766,8 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         pdec_r$clock = clock;
         ffd_r$clock = clock;
         glf_r$clock = clock;
+        pgl_r$clock = clock;
+        ch_r$clock = clock;
         bl_r$clock = clock;
         bl_dm_r$clock = clock;
         gpend$clock = clock;
@@ -7445,6 +7789,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         ack_rx$d = ack_rx$q;
         seen_dom$d = seen_dom$q;
         seen_dom_crc$d = seen_dom_crc$q;
+        dom_bs$d = dom_bs$q;
         gc_r$d = gc_r$q;
         gdec_r$d = gdec_r$q;
         an_r$d = an_r$q;
@@ -7452,6 +7797,8 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         pdec_r$d = pdec_r$q;
         ffd_r$d = ffd_r$q;
         glf_r$d = glf_r$q;
+        pgl_r$d = pgl_r$q;
+        ch_r$d = ch_r$q;
         bl_r$d = bl_r$q;
         bl_dm_r$d = bl_dm_r$q;
         gpend$d = gpend$q;
@@ -7472,15 +7819,18 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         end
         if (bit_start) begin
             seen_dom_crc$d = 1'b0;
+            dom_bs$d = ~bt;
         end
         else if (dom & (bs_cnt >= win_lag) & (bs_cnt <= crc_end)) begin
             seen_dom_crc$d = 1'b1;
         end
-        unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | im_2 | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q);
+        unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q) | (im_2 & ~err_phase & seen_dom_crc$q & ~dom_bs$q);
         ffc = ff & ff_on & enabled & ffd_r$q;
-        blame = (sample & unj & enabled) | ffc;
         charge = sample & unj & enabled & ~suppress & ~stuff_dom;
-        charged = charge | ffc;
+        pge = err_start & rep_on & enabled & (an_r$q != 32'h0) & pgl_r$q & ~ch_r$q & ~ffc;
+        blame = (sample & unj & enabled) | ffc | pge;
+        charged = charge | ffc | pge;
+        ch_r$d = charge;
         tx_error = sample & nack_on & enabled & cont_r$q & tx_region & ~arb & c & ~bt & ~err_phase;
         if (sample) begin
             if (ack_slot) begin
@@ -7581,6 +7931,12 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             an_r$d = 32'h3;
             bad$d = 1'b1;
         end
+        if (gcount) begin
+            pgl_r$d = 1'b0;
+        end
+        else if (pcount) begin
+            pgl_r$d = 1'b1;
+        end
         if (gcount & (gc_r$q != 32'h7)) begin
             gc_r$d = gc_r$q + 32'h1;
             gdec_r$d = 32'h0;
@@ -7590,7 +7946,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             pgc_r$d = pgc_r$q + 32'h1;
             pdec_r$d = 32'h0;
         end
-        if (ffc) begin
+        if (ffc | pge) begin
             if (bic_r$q > 32'hf7) begin
                 bic_r$d = 32'hff;
             end
@@ -7599,7 +7955,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             end
             bad$d = 1'b1;
         end
-        if ((gcount | charge | ffc) & (life_r$q != 32'h7f)) begin
+        if ((gcount | charge | ffc | pge) & (life_r$q != 32'h7f)) begin
             life_r$d = life_r$q + 32'h1;
         end
         if (dbc_r$q >= dbc_thr) begin
@@ -7675,6 +8031,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             ack_rx$d = 1'b0;
             seen_dom$d = 1'b0;
             seen_dom_crc$d = 1'b0;
+            dom_bs$d = 1'b0;
             gc_r$d = 32'h0;
             gdec_r$d = 32'h0;
             an_r$d = 32'h0;
@@ -7682,6 +8039,8 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             pdec_r$d = 32'h0;
             ffd_r$d = 1'b0;
             glf_r$d = 1'b0;
+            pgl_r$d = 1'b0;
+            ch_r$d = 1'b0;
         end
         dis = dis_r$q;
         bic = bic_r$q;
@@ -7890,6 +8249,25 @@ module canstar_hub_core$core$sj$0$bl_r(d,q,clock);
 endmodule // canstar_hub_core$core$sj$0$bl_r
 
 
+module canstar_hub_core$core$sj$0$ch_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$sj$0$ch_r
+
+
 module canstar_hub_core$core$sj$0$cont_r(d,q,clock);
     
     // Module arguments
@@ -7945,6 +8323,25 @@ module canstar_hub_core$core$sj$0$dis_r(d,q,clock);
     end
           
 endmodule // canstar_hub_core$core$sj$0$dis_r
+
+
+module canstar_hub_core$core$sj$0$dom_bs(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$sj$0$dom_bs
 
 
 module canstar_hub_core$core$sj$0$ffd_r(d,q,clock);
@@ -8135,6 +8532,25 @@ module canstar_hub_core$core$sj$0$pgc_r(d,q,clock);
     end
           
 endmodule // canstar_hub_core$core$sj$0$pgc_r
+
+
+module canstar_hub_core$core$sj$0$pgl_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$sj$0$pgl_r
 
 
 module canstar_hub_core$core$sj$0$pulse(clock,reset,c,glitch);
@@ -8492,6 +8908,9 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  seen_dom_crc$d;
     wire  seen_dom_crc$q;
     reg  seen_dom_crc$clock;
+    reg  dom_bs$d;
+    wire  dom_bs$q;
+    reg  dom_bs$clock;
     reg  [2:0] gc_r$d;
     wire  [2:0] gc_r$q;
     reg  gc_r$clock;
@@ -8513,6 +8932,12 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  glf_r$d;
     wire  glf_r$q;
     reg  glf_r$clock;
+    reg  pgl_r$d;
+    wire  pgl_r$q;
+    reg  pgl_r$clock;
+    reg  ch_r$d;
+    wire  ch_r$q;
+    reg  ch_r$clock;
     reg  bl_r$d;
     wire  bl_r$q;
     reg  bl_r$clock;
@@ -8525,6 +8950,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     
     // Local signals
     reg  ffc;
+    reg  pge;
     reg  dom;
     reg  domw;
     reg  unj;
@@ -8632,6 +9058,11 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .q(seen_dom_crc$q),
         .clock(seen_dom_crc$clock)
     );
+    canstar_hub_core$core$sj$1$dom_bs dom_bs(
+        .d(dom_bs$d),
+        .q(dom_bs$q),
+        .clock(dom_bs$clock)
+    );
     canstar_hub_core$core$sj$1$gc_r gc_r(
         .d(gc_r$d),
         .q(gc_r$q),
@@ -8666,6 +9097,16 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .d(glf_r$d),
         .q(glf_r$q),
         .clock(glf_r$clock)
+    );
+    canstar_hub_core$core$sj$1$pgl_r pgl_r(
+        .d(pgl_r$d),
+        .q(pgl_r$q),
+        .clock(pgl_r$clock)
+    );
+    canstar_hub_core$core$sj$1$ch_r ch_r(
+        .d(ch_r$d),
+        .q(ch_r$q),
+        .clock(ch_r$clock)
     );
     canstar_hub_core$core$sj$1$bl_r bl_r(
         .d(bl_r$d),
@@ -8703,6 +9144,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         ack_rx$clock = clock;
         seen_dom$clock = clock;
         seen_dom_crc$clock = clock;
+        dom_bs$clock = clock;
         gc_r$clock = clock;
         gdec_r$clock = clock;
         an_r$clock = clock;
@@ -8710,6 +9152,8 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         pdec_r$clock = clock;
         ffd_r$clock = clock;
         glf_r$clock = clock;
+        pgl_r$clock = clock;
+        ch_r$clock = clock;
         bl_r$clock = clock;
         bl_dm_r$clock = clock;
         gpend$clock = clock;
@@ -8731,6 +9175,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         ack_rx$d = ack_rx$q;
         seen_dom$d = seen_dom$q;
         seen_dom_crc$d = seen_dom_crc$q;
+        dom_bs$d = dom_bs$q;
         gc_r$d = gc_r$q;
         gdec_r$d = gdec_r$q;
         an_r$d = an_r$q;
@@ -8738,6 +9183,8 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         pdec_r$d = pdec_r$q;
         ffd_r$d = ffd_r$q;
         glf_r$d = glf_r$q;
+        pgl_r$d = pgl_r$q;
+        ch_r$d = ch_r$q;
         bl_r$d = bl_r$q;
         bl_dm_r$d = bl_dm_r$q;
         gpend$d = gpend$q;
@@ -8758,15 +9205,18 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         end
         if (bit_start) begin
             seen_dom_crc$d = 1'b0;
+            dom_bs$d = ~bt;
         end
         else if (dom & (bs_cnt >= win_lag) & (bs_cnt <= crc_end)) begin
             seen_dom_crc$d = 1'b1;
         end
-        unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | im_2 | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q);
+        unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q) | (im_2 & ~err_phase & seen_dom_crc$q & ~dom_bs$q);
         ffc = ff & ff_on & enabled & ffd_r$q;
-        blame = (sample & unj & enabled) | ffc;
         charge = sample & unj & enabled & ~suppress & ~stuff_dom;
-        charged = charge | ffc;
+        pge = err_start & rep_on & enabled & (an_r$q != 32'h0) & pgl_r$q & ~ch_r$q & ~ffc;
+        blame = (sample & unj & enabled) | ffc | pge;
+        charged = charge | ffc | pge;
+        ch_r$d = charge;
         tx_error = sample & nack_on & enabled & cont_r$q & tx_region & ~arb & c & ~bt & ~err_phase;
         if (sample) begin
             if (ack_slot) begin
@@ -8867,6 +9317,12 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             an_r$d = 32'h3;
             bad$d = 1'b1;
         end
+        if (gcount) begin
+            pgl_r$d = 1'b0;
+        end
+        else if (pcount) begin
+            pgl_r$d = 1'b1;
+        end
         if (gcount & (gc_r$q != 32'h7)) begin
             gc_r$d = gc_r$q + 32'h1;
             gdec_r$d = 32'h0;
@@ -8876,7 +9332,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             pgc_r$d = pgc_r$q + 32'h1;
             pdec_r$d = 32'h0;
         end
-        if (ffc) begin
+        if (ffc | pge) begin
             if (bic_r$q > 32'hf7) begin
                 bic_r$d = 32'hff;
             end
@@ -8885,7 +9341,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             end
             bad$d = 1'b1;
         end
-        if ((gcount | charge | ffc) & (life_r$q != 32'h7f)) begin
+        if ((gcount | charge | ffc | pge) & (life_r$q != 32'h7f)) begin
             life_r$d = life_r$q + 32'h1;
         end
         if (dbc_r$q >= dbc_thr) begin
@@ -8961,6 +9417,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             ack_rx$d = 1'b0;
             seen_dom$d = 1'b0;
             seen_dom_crc$d = 1'b0;
+            dom_bs$d = 1'b0;
             gc_r$d = 32'h0;
             gdec_r$d = 32'h0;
             an_r$d = 32'h0;
@@ -8968,6 +9425,8 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             pdec_r$d = 32'h0;
             ffd_r$d = 1'b0;
             glf_r$d = 1'b0;
+            pgl_r$d = 1'b0;
+            ch_r$d = 1'b0;
         end
         dis = dis_r$q;
         bic = bic_r$q;
@@ -9176,6 +9635,25 @@ module canstar_hub_core$core$sj$1$bl_r(d,q,clock);
 endmodule // canstar_hub_core$core$sj$1$bl_r
 
 
+module canstar_hub_core$core$sj$1$ch_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$sj$1$ch_r
+
+
 module canstar_hub_core$core$sj$1$cont_r(d,q,clock);
     
     // Module arguments
@@ -9231,6 +9709,25 @@ module canstar_hub_core$core$sj$1$dis_r(d,q,clock);
     end
           
 endmodule // canstar_hub_core$core$sj$1$dis_r
+
+
+module canstar_hub_core$core$sj$1$dom_bs(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$sj$1$dom_bs
 
 
 module canstar_hub_core$core$sj$1$ffd_r(d,q,clock);
@@ -9421,6 +9918,25 @@ module canstar_hub_core$core$sj$1$pgc_r(d,q,clock);
     end
           
 endmodule // canstar_hub_core$core$sj$1$pgc_r
+
+
+module canstar_hub_core$core$sj$1$pgl_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$sj$1$pgl_r
 
 
 module canstar_hub_core$core$sj$1$pulse(clock,reset,c,glitch);
@@ -9665,6 +10181,25 @@ module canstar_hub_core$core$sub_bl_r(d,q,clock);
     end
           
 endmodule // canstar_hub_core$core$sub_bl_r
+
+
+module canstar_hub_core$core$trig_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$trig_r
 
 
 module canstar_hub_core$monitor(clock,reset,rx,brp,prop,ph1,ph2,sjw,triple,listen_only,self_test,single_shot,host_recovery,recover,tx_req,tx_ide,tx_rtr,tx_id,tx_dlc,tx_data,tx_abort,cnt_load,tec_in,rec_in,tx,tx_done,arb_lost,arb_lost_pos,error,err_kind,err_field,err_pos,err_tx,rx_valid,rx_ide,rx_rtr,rx_id,rx_dlc,rx_data,tec,rec,state,err_warn,cfg_err,dbg_busmon,dbg_sample,dbg_tx_rqst,dbg_field,dbg_pos,dbg_stuff,dbg_role,dbg_events,dbg_runs,dbg_hard_sync,dbg_resync);

@@ -1,0 +1,357 @@
+//! Judge-unit rules of one port in isolation (hub.md §5.1-§5.10, §5.14): roles,
+//! recessive-only positions, blame counters, windows, glitches, dominant runs, NACK.
+mod judge_common;
+use canstar_hdl::drive;
+use canstar_hub::judge::{JudgeParams, JudgeUnit};
+use judge_common::*;
+
+#[test]
+fn contender_role_and_loss() {
+    let mut j = unit(params());
+    // dominant at SOF: contender; dominant while BT dominant: still contender
+    sample(&mut j, Bit { c: false, bt: false, sof: true, ..Default::default() });
+    assert!(j.contender.val());
+    assert!(!sample(&mut j, Bit { c: false, bt: false, tx: true, ..Default::default() }));
+    // recessive while BT recessive: still
+    sample(&mut j, Bit { c: true, bt: true, tx: true, ..Default::default() });
+    assert!(j.contender.val());
+    // recessive while BT dominant: lost
+    sample(&mut j, Bit { c: true, bt: false, tx: true, ..Default::default() });
+    assert!(!j.contender.val());
+    // now a dominant bit in the transmission region is unjustified: +8, once per episode
+    assert!(sample(&mut j, Bit { c: false, bt: false, tx: true, ..Default::default() }));
+    assert_eq!(j.bic.val().index(), 8);
+    // in the error phase nothing is blamed
+    assert!(!sample(&mut j, Bit { c: false, bt: false, tx: true, err: true, ..Default::default() }));
+    assert_eq!(j.bic.val().index(), 8);
+}
+
+#[test]
+fn recessive_only_positions() {
+    // (intermission bit 2: `intermission_bit_2_blames_only_a_flag_that_starts_in_it`)
+    for which in 0..4 {
+        let mut j = unit(params());
+        let mut b = Bit { c: false, bt: false, ..Default::default() };
+        match which {
+            0 => b.crc_delim = true,
+            1 => b.ack_delim = true,
+            2 => b.eof = true,
+            _ => {
+                // transmitter dominant in the ACK slot
+                sample(&mut j, Bit { c: false, bt: false, sof: true, ..Default::default() });
+                b.ack_slot = true;
+            }
+        }
+        assert!(sample(&mut j, b), "case {which}");
+        assert_eq!(j.bic.val().index(), 8);
+    }
+    // a receiver acknowledging is fine
+    let mut j = unit(params());
+    sample(&mut j, Bit { c: true, bt: false, sof: true, ..Default::default() });
+    sample(&mut j, Bit { c: true, bt: false, tx: true, ..Default::default() });
+    assert!(!sample(&mut j, Bit { c: false, bt: false, ack_slot: true, crc_ok: true, ..Default::default() }));
+    // ACK delimiter after a recessive ACK slot (ACK error flag) is fine
+    let mut j = unit(params());
+    sample(&mut j, Bit { c: true, bt: true, ack_slot: true, ..Default::default() });
+    assert!(!sample(&mut j, Bit { c: false, bt: false, ack_delim: true, ..Default::default() }));
+}
+
+#[test]
+fn bic_saturates_isolates_and_decays() {
+    let mut j = unit(params());
+    for k in 1..=8u64 {
+        assert!(!j.dis.val());
+        assert!(sample(&mut j, Bit { c: false, bt: false, crc_delim: true, ..Default::default() }));
+        assert_eq!(j.bic.val().index() as u64, 8 * k);
+    }
+    assert!(j.dis.val(), "isolated at 64");
+    // isolated: no more blame, no decay
+    assert!(!sample(&mut j, Bit { c: false, bt: false, crc_delim: true, ..Default::default() }));
+    sample(&mut j, Bit { c: true, bt: true, frame_ok: true, ..Default::default() });
+    assert_eq!(j.bic.val().index(), 64);
+    // decay while enabled
+    let mut j = unit(params());
+    sample(&mut j, Bit { c: false, bt: false, eof: true, ..Default::default() });
+    for k in 0..10 {
+        sample(&mut j, Bit { c: true, bt: true, frame_ok: true, ..Default::default() });
+        assert_eq!(j.bic.val().index(), 7usize.saturating_sub(k));
+    }
+}
+
+/// hub.md §5.3 decay prescaler (`bic_decay`, sublinks 2 by default): one count off `bic`
+/// per `bic_decay` good frames, the frames counted only while `bic` is not 0, and a blame
+/// in between does not restart the count.
+#[test]
+fn bic_decays_once_per_bic_decay_frames() {
+    let good = Bit { c: true, bt: true, frame_ok: true, ..Default::default() };
+    let blame = Bit { c: false, bt: false, eof: true, ..Default::default() };
+    let mut j = unit(JudgeParams { bic_decay: 3, ..params() });
+    // frames while bic is 0 are not counted
+    sample(&mut j, good);
+    sample(&mut j, good);
+    assert!(sample(&mut j, blame));
+    let mut seen = vec![];
+    for _ in 0..7 {
+        sample(&mut j, good);
+        seen.push(j.bic.val().index());
+    }
+    assert_eq!(seen, [8, 8, 7, 7, 7, 6, 6]);
+    // the prescaler keeps its count across a blame: 1 frame so far, the second decays
+    assert!(sample(&mut j, blame));
+    assert_eq!(j.bic.val().index(), 14);
+    sample(&mut j, good);
+    assert_eq!(j.bic.val().index(), 14);
+    sample(&mut j, good);
+    assert_eq!(j.bic.val().index(), 13);
+    // reset clears the prescaler: three more frames for the next count
+    j.reset.next = true;
+    drive::cycle(&mut j);
+    j.reset.next = false;
+    assert!(sample(&mut j, blame));
+    let mut seen = vec![];
+    for _ in 0..3 {
+        sample(&mut j, good);
+        seen.push(j.bic.val().index());
+    }
+    assert_eq!(seen, [8, 8, 7]);
+}
+
+/// hub.md §5.3 lifetime counter: blames rarer than the decay can absorb (one per 9 frames,
+/// so `bic` never exceeds 8) still isolate after `life_limit` blames.
+#[test]
+fn lifetime_counter_isolates_rare_blames() {
+    let mut j = unit(JudgeParams { life_limit: 5, ..params() });
+    for k in 1..=5u64 {
+        assert!(!j.dis.val(), "not yet isolated after {} blames", k - 1);
+        assert!(sample(&mut j, Bit { c: false, bt: false, eof: true, ..Default::default() }));
+        assert_eq!(j.life.val().index() as u64, k);
+        assert!(j.bic.val().index() <= 8);
+        for _ in 0..9 {
+            sample(&mut j, Bit { c: true, bt: true, frame_ok: true, ..Default::default() });
+        }
+        if k < 5 {
+            assert_eq!(j.bic.val().index(), 0, "decayed");
+        }
+    }
+    assert!(j.dis.val(), "isolated by the lifetime counter");
+    // reset clears it
+    j.reset.next = true;
+    drive::cycle(&mut j);
+    j.reset.next = false;
+    drive::cycle(&mut j);
+    assert!(!j.dis.val());
+    assert_eq!(j.life.val().index(), 0);
+}
+
+/// Arbitration field (changed back, hub.md §5.2): a port that dropped out (recessive while
+/// BT dominant) is a receiver, and its dominant bits in the rest of the transmission
+/// region are blamed, in the arbitration field too. Collateral blame of a healthy
+/// transmitter that never saw another port's glitch is handled by the glitch rule (the
+/// glitching port is charged, the others' blames are not: `suppress`).
+#[test]
+fn receiver_dominant_in_arbitration_is_blamed() {
+    let mut j = unit(params());
+    sample(&mut j, Bit { c: false, bt: false, sof: true, ..Default::default() });
+    j.arb.next = true;
+    sample(&mut j, Bit { c: true, bt: false, tx: true, ..Default::default() });
+    assert!(!j.contender.val(), "dropped out");
+    assert!(sample(&mut j, Bit { c: false, bt: false, tx: true, ..Default::default() }), "blamed in arbitration");
+    assert!(!j.contender.val(), "no readmission");
+    assert_eq!(j.bic.val().index(), 8);
+}
+
+/// hub.md §5.2 early-ACK rule: in the CRC delimiter a dominant level counts only up to
+/// `crc_window_end` (8) clocks after the bit start. A fast receiver's ACK that reaches the
+/// hub in the last clocks before the sample point, or at it, is not blamed (the soak at the
+/// tolerance limit, README "No false blame", `canstar soak --chunk 2`: a hub one interlink
+/// further from the transmitter sees the other hub's receivers' ACK at its sample point);
+/// a dominant level from the window start on is.
+#[test]
+fn early_ack_in_the_crc_delimiter_is_not_blamed() {
+    for from in 9..=SAMPLE_AT {
+        let mut j = unit(params());
+        assert!(!crc_delimiter_dominant_from(&mut j, from), "dominant from clock {from}: an early ACK, not blamed");
+        assert_eq!(j.bic.val().index(), 0);
+    }
+    for from in [0, 7, 8] {
+        let mut j = unit(params());
+        assert!(crc_delimiter_dominant_from(&mut j, from), "dominant from clock {from}: blamed");
+        assert_eq!(j.bic.val().index(), 8);
+    }
+    // the window rule still applies to the other recessive-only positions up to the sample point
+    let mut j = unit(params());
+    assert!(pulse_bit(&mut j, 10, 6, false).0, "EOF dominant from clock 10: blamed");
+}
+
+/// hub.md §5.8 glitch rule: a run of at most `glitch_max` clocks on the input counts
+/// against the unit, `glitch_limit` of them isolate it, good frames decay the count.
+#[test]
+fn glitches_isolate_and_decay() {
+    let mut j = unit(params());
+    // a pulse before the window (clocks 1..5) is a glitch, not a blame
+    assert_eq!(pulse_bit(&mut j, 1, 4, false), (false, 1));
+    assert_eq!(j.gc.val().index(), 1);
+    assert_eq!(j.bic.val().index(), 0);
+    // 16 good frames take one glitch off
+    for _ in 0..16 {
+        sample(&mut j, Bit { c: true, bt: true, frame_ok: true, ..Default::default() });
+    }
+    assert_eq!(j.gc.val().index(), 0, "decayed");
+    for k in 1..=3 {
+        assert!(!j.dis.val(), "not isolated after {} glitches", k - 1);
+        pulse_bit(&mut j, 1, 4, false);
+    }
+    drive::cycle(&mut j);
+    assert!(j.dis.val(), "three glitches isolate");
+    assert_eq!(j.life.val().index(), 4, "every glitch counts in the lifetime counter");
+    // a glitch that every replica sublink saw (`common`) is the peer's: not counted
+    let mut j = unit(params());
+    j.common.next = true;
+    assert_eq!(pulse_bit(&mut j, 1, 4, false).1, 1);
+    assert_eq!(j.gc.val().index(), 0);
+    assert_eq!(j.life.val().index(), 0);
+    j.common.next = false;
+    // a bit shortened by SJW (14 clocks) and a normal bit are no glitch
+    let mut j = unit(params());
+    assert_eq!(pulse_bit(&mut j, 2, 14, false).1, 0);
+    sample(&mut j, Bit { c: false, bt: false, tx: true, ..Default::default() });
+    sample(&mut j, Bit { c: true, bt: true, tx: true, ..Default::default() });
+    assert_eq!(j.gc.val().index(), 0);
+}
+
+/// hub.md §5.2 window rule: a dominant level from `window_lag` clocks after the bit start
+/// up to the sample point counts as a dominant bit for the unjustified-dominant rules,
+/// even when the input is recessive again at the sample point; earlier it does not
+/// (a late edge of the previous bit).
+#[test]
+fn window_rule_sees_dominant_before_the_sample_point() {
+    let mut j = unit(params());
+    let (blame, g) = pulse_bit(&mut j, 8, 3, false);
+    assert!(blame, "dominant at clocks 8..10, recessive at the sample point: blamed");
+    assert_eq!(g, 1);
+    assert_eq!(j.bic.val().index(), 8);
+    let mut j = unit(params());
+    assert!(!pulse_bit(&mut j, 2, 4, false).0, "dominant only before the window: not blamed");
+}
+
+/// `suppress` (another unit glitched within the last bits): the blame still starts the
+/// hub's error flag, but is not charged to this unit.
+#[test]
+fn suppressed_blames_are_not_charged() {
+    let mut j = unit(params());
+    let (blame, _) = pulse_bit(&mut j, 8, 8, true);
+    assert!(blame);
+    assert_eq!(j.bic.val().index(), 0, "not charged");
+    assert_eq!(j.life.val().index(), 0);
+    let mut j = unit(params());
+    assert!(pulse_bit(&mut j, 8, 8, false).0);
+    assert_eq!(j.bic.val().index(), 8);
+}
+
+/// Stuff-bit rule: a receiver's dominant level at a stuff bit that must be dominant (after
+/// five recessive bits) still starts the hub's error flag but is not charged; the same
+/// level at an ordinary bit is.
+#[test]
+fn dominant_stuff_bit_is_blamed_but_not_charged() {
+    let receiver = |j: &mut JudgeUnit| {
+        sample(j, Bit { c: false, bt: false, sof: true, ..Default::default() });
+        sample(j, Bit { c: true, bt: false, tx: true, ..Default::default() });
+        assert!(!j.contender.val());
+    };
+    let mut j = unit(params());
+    receiver(&mut j);
+    j.stuff_dom.next = true;
+    assert!(sample(&mut j, Bit { c: false, bt: false, tx: true, ..Default::default() }), "blamed: starts the error flag");
+    assert_eq!(j.bic.val().index(), 0, "not charged");
+    assert_eq!(j.life.val().index(), 0);
+    j.stuff_dom.next = false;
+    let mut j = unit(params());
+    receiver(&mut j);
+    assert!(sample(&mut j, Bit { c: false, bt: false, tx: true, ..Default::default() }));
+    assert_eq!(j.bic.val().index(), 8, "charged at an ordinary bit");
+}
+
+/// Error and overload delimiter bits 2..7 (`delim`, after BT went recessive) are
+/// recessive-only positions, in the error phase too.
+#[test]
+fn dominant_in_a_delimiter_is_blamed() {
+    let mut j = unit(params());
+    j.delim.next = true;
+    assert!(sample(&mut j, Bit { c: false, bt: false, err: true, ..Default::default() }));
+    assert!(!sample(&mut j, Bit { c: true, bt: true, err: true, ..Default::default() }));
+    j.delim.next = false;
+    assert!(!sample(&mut j, Bit { c: false, bt: false, err: true, ..Default::default() }));
+}
+
+/// Intermission bit 1 is not blamed (a node's reaction to a dominant last EOF bit that only
+/// it saw). In bit 2 (`im_2`) an overload flag starts at a bit start (hub.md §5.2, §5.14):
+/// a dominant level is blamed only if BT was recessive at the hub's bit start and the level
+/// is there within the early-ACK window (`window_lag`..=`crc_window_end`, clocks 7..=8). BT
+/// already dominant at the bit start went dominant late in bit 1, after the hub's sample:
+/// nodes that sample later saw a dominant bit 1 and rightly flag in bit 2. A level that
+/// starts after the window is a node's SOF of bit 3, a little early.
+#[test]
+fn intermission_bit_2_blames_only_a_flag_that_starts_in_it() {
+    let im1 = Bit { c: true, bt: true, ..Default::default() };
+    let im2 = Bit { im: true, ..Default::default() };
+    let mut j = unit(params());
+    assert!(!sample(&mut j, Bit { c: false, bt: false, ..Default::default() }), "im bit 1: no rule");
+    for (from, blamed) in [(1, true), (7, true), (8, true), (9, false), (12, false)] {
+        let mut j = unit(params());
+        sample(&mut j, im1);
+        assert_eq!(bit_dominant_from(&mut j, im2, from), blamed, "dominant from clock {from}");
+        assert_eq!(j.bic.val().index(), 8 * blamed as usize);
+    }
+    // BT went dominant at clock 14 of bit 1, after the sample: not blamed in bit 2
+    let mut j = unit(params());
+    assert!(!bit_dominant_from(&mut j, Bit::default(), 14));
+    assert!(!bit_dominant_from(&mut j, im2, 0));
+    assert_eq!(j.bic.val().index(), 0);
+}
+
+#[test]
+fn dominant_run_threshold() {
+    for thr in [13u64, 24] {
+        let mut j = unit(JudgeParams { dbc_threshold: thr, ..params() });
+        for k in 1..=thr {
+            assert!(!j.dis.val(), "isolated too early at {k}");
+            sample(&mut j, Bit { c: false, bt: false, err: true, ..Default::default() });
+        }
+        assert!(j.dis.val());
+        assert_eq!(j.bic.val().index(), 0, "error phase: no blame");
+    }
+    // a recessive sample clears the run
+    let mut j = unit(params());
+    for _ in 0..3 {
+        for _ in 0..12 {
+            sample(&mut j, Bit { c: false, bt: false, err: true, ..Default::default() });
+        }
+        sample(&mut j, Bit { c: true, bt: true, err: true, ..Default::default() });
+    }
+    assert!(!j.dis.val());
+}
+
+#[test]
+fn nack_counts_only_correct_frames_and_never_isolates() {
+    let mut j = unit(params());
+    let frame = |j: &mut JudgeUnit, ack: bool, crc_ok: bool| {
+        sample(j, Bit { c: true, bt: false, sof: true, ..Default::default() });
+        sample(j, Bit { c: true, bt: false, tx: true, ..Default::default() });
+        sample(j, Bit { c: !ack, bt: false, ack_slot: true, ..Default::default() });
+        sample(j, Bit { c: true, bt: true, ack_delim: true, crc_ok, ..Default::default() });
+    };
+    for _ in 0..5 {
+        frame(&mut j, false, false);
+    }
+    assert_eq!(j.nack.val().index(), 0, "CRC not correct: not counted");
+    for k in 1..=6 {
+        frame(&mut j, false, true);
+        assert_eq!(j.nack.val().index(), k);
+        assert!(!j.silent.val());
+    }
+    frame(&mut j, false, true);
+    assert!(j.silent.val() && !j.dis.val());
+    frame(&mut j, true, true);
+    assert_eq!(j.nack.val().index(), 0);
+    assert!(!j.silent.val());
+}

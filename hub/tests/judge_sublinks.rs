@@ -1,0 +1,323 @@
+//! Judge-unit rules of the sublinks in isolation (hub.md §5.7, §5.11-§5.14): replica
+//! rule, first flagger, peer-hub glitches.
+mod judge_common;
+use canstar_hdl::drive;
+use canstar_hub::judge::{JudgeParams, JudgeUnit};
+use judge_common::*;
+
+#[test]
+fn replica_rule_charges_by_consequence() {
+    let mut j = JudgeUnit::sublink(params());
+    drive::init(&mut j);
+    // dominant-minority then an error episode: charged
+    for _ in 0..3 {
+        j.rep_rec.next = true;
+        sample(&mut j, Bit { c: false, bt: false, err: true, ..Default::default() });
+        j.rep_rec.next = false;
+        j.err_start.next = true;
+        drive::cycle(&mut j);
+        j.err_start.next = false;
+    }
+    assert_eq!(j.rep_cnt.val().index(), 3);
+    drive::cycle(&mut j);
+    assert!(j.dis.val());
+    // recessive-minority then a good frame: charged; dominant-minority then a good frame: not
+    let mut j = JudgeUnit::sublink(params());
+    drive::init(&mut j);
+    j.rep_dom.next = true;
+    sample(&mut j, Bit { c: true, bt: false, ..Default::default() });
+    j.rep_dom.next = false;
+    sample(&mut j, Bit { c: true, bt: true, frame_ok: true, ..Default::default() });
+    assert_eq!(j.rep_cnt.val().index(), 1);
+    j.rep_rec.next = true;
+    sample(&mut j, Bit { c: false, bt: false, err: true, ..Default::default() });
+    j.rep_rec.next = false;
+    sample(&mut j, Bit { c: true, bt: true, frame_ok: true, ..Default::default() });
+    assert_eq!(j.rep_cnt.val().index(), 1);
+}
+
+/// One clock with the first-flagger strobe `ff` (the hub raises it one clock after the
+/// sample at which its monitor alone started an error episode); returns `charged`.
+fn first_flagger_clock(j: &mut JudgeUnit) -> bool {
+    j.ff.next = true;
+    drive::settle(j);
+    let charged = j.charged.val() && j.blame.val();
+    drive::cycle(j);
+    j.ff.next = false;
+    drive::cycle(j);
+    charged
+}
+
+/// hub.md §5.12: at an episode the monitor alone started, a unit that was a dominant
+/// contender at that sample (a transmitter sending its error flag) is charged like a
+/// blame (`bic += 8`, `life += 1`); a recessive contender, a dominant receiver, a unit
+/// excused by another input's glitch in the frame, and every unit with the rule off are not.
+#[test]
+fn first_flagger_charges_the_dominant_contender() {
+    let on = JudgeParams { first_flagger: true, ..params() };
+    let mut j = unit(on);
+    sample(&mut j, Bit { c: false, bt: false, sof: true, ..Default::default() });
+    sample(&mut j, Bit { c: false, bt: false, tx: true, ..Default::default() });
+    assert!(j.contender.val());
+    assert!(first_flagger_clock(&mut j));
+    assert_eq!((j.bic.val().index(), j.life.val().index()), (8, 1));
+    // recessive at the sample: not the flagger
+    sample(&mut j, Bit { c: true, bt: false, tx: true, err: true, ..Default::default() });
+    assert!(!first_flagger_clock(&mut j));
+    assert_eq!(j.bic.val().index(), 8);
+    // a receiver (lost arbitration) dominant at the sample: not a contender, not charged
+    let mut r = unit(on);
+    sample(&mut r, Bit { c: false, bt: false, sof: true, ..Default::default() });
+    sample(&mut r, Bit { c: true, bt: false, tx: true, ..Default::default() });
+    sample(&mut r, Bit { c: false, bt: false, tx: true, err: true, ..Default::default() });
+    assert!(!r.contender.val());
+    assert!(!first_flagger_clock(&mut r));
+    assert_eq!(r.bic.val().index(), 0);
+    // another input glitched in this frame (`gl_others` at the sample): excused
+    let mut g = unit(on);
+    sample(&mut g, Bit { c: false, bt: false, sof: true, ..Default::default() });
+    g.gl_others.next = true;
+    sample(&mut g, Bit { c: false, bt: false, tx: true, ..Default::default() });
+    g.gl_others.next = false;
+    assert!(!first_flagger_clock(&mut g));
+    assert_eq!(g.bic.val().index(), 0);
+    // its own glitch does not excuse a unit: `glf` marks it until the next SOF
+    let mut s = unit(on);
+    sample(&mut s, Bit { c: false, bt: false, sof: true, ..Default::default() });
+    sample(&mut s, Bit { c: false, bt: false, tx: true, ..Default::default() });
+    assert!(!s.glf.val());
+    pulse_bit(&mut s, 1, 4, false);
+    assert!(s.glf.val());
+    sample(&mut s, Bit { c: false, bt: false, tx: true, ..Default::default() });
+    assert!(first_flagger_clock(&mut s));
+    assert!(s.glf.val());
+    sample(&mut s, Bit { c: false, bt: false, sof: true, ..Default::default() });
+    assert!(!s.glf.val(), "cleared at SOF");
+    // the rule off
+    let mut o = unit(params());
+    sample(&mut o, Bit { c: false, bt: false, sof: true, ..Default::default() });
+    sample(&mut o, Bit { c: false, bt: false, tx: true, ..Default::default() });
+    assert!(!first_flagger_clock(&mut o));
+    assert_eq!(o.bic.val().index(), 0);
+    // eight first-flagger charges reach the limit 64 (a new frame: a contender again)
+    sample(&mut j, Bit { c: false, bt: false, sof: true, ..Default::default() });
+    for _ in 0..7 {
+        sample(&mut j, Bit { c: false, bt: false, tx: true, ..Default::default() });
+        assert!(first_flagger_clock(&mut j));
+    }
+    assert_eq!(j.bic.val().index(), 64);
+    drive::cycle(&mut j);
+    assert!(j.dis.val());
+}
+
+/// §5.1 with §5.7: a sublink that is recessive while BT is dominant has lost arbitration
+/// (it becomes a receiver, and its next dominant bit is blamed) only when no replica is
+/// dominant; recessive while a replica is dominant is a replica disagreement, not a loss.
+#[test]
+fn recessive_replica_minority_stays_a_contender() {
+    for (rep_dom, blamed) in [(false, true), (true, false)] {
+        let mut j = JudgeUnit::sublink(params());
+        drive::init(&mut j);
+        sample(&mut j, Bit { c: false, bt: false, sof: true, ..Default::default() });
+        j.rep_dom.next = rep_dom;
+        sample(&mut j, Bit { c: true, bt: false, tx: true, ..Default::default() });
+        j.rep_dom.next = false;
+        assert_eq!(j.contender.val(), rep_dom, "contender after a recessive bit with rep_dom = {rep_dom}");
+        // the peer's next dominant data bit
+        sample(&mut j, Bit { c: true, bt: true, tx: true, ..Default::default() });
+        let b = sample(&mut j, Bit { c: false, bt: false, tx: true, ..Default::default() });
+        assert_eq!(b, blamed, "dominant bit blamed with rep_dom = {rep_dom}");
+    }
+    // ports have no replicas: unchanged
+    let mut j = unit(params());
+    sample(&mut j, Bit { c: false, bt: false, sof: true, ..Default::default() });
+    sample(&mut j, Bit { c: true, bt: false, tx: true, ..Default::default() });
+    assert!(!j.contender.val());
+}
+
+/// §5.7: a sublink blamed while a replica had no dominant level in its window is the
+/// dominant minority of the episode and is charged, even when its own pulse ended before
+/// the sample point (window rule); units blamed for a pulse that every replica carried
+/// (all recessive again at the sample point) are not.
+#[test]
+fn window_blame_is_not_a_dominant_minority() {
+    for (replica_carried_it, charged) in [(true, 0), (false, 1)] {
+        let mut j = reset(JudgeUnit::sublink(params()));
+        // an EOF bit, dominant from clock 8 to 10, every replica recessive at the sample
+        // point; the hub starts its episode one clock after the sample (registered)
+        let mut blame = false;
+        j.bt.next = true;
+        j.eof_1_6.next = true;
+        j.rep_rec.next = true;
+        for k in 0..16u64 {
+            j.c.next = !(8..11).contains(&k);
+            j.rep_rec_w.next = !replica_carried_it && k >= 7;
+            j.sample.next = k == SAMPLE_AT;
+            j.err_start.next = k == SAMPLE_AT + 1;
+            j.bit_start.next = k == 0;
+            j.bs_cnt.next = k.into();
+            drive::settle(&mut j);
+            blame |= j.blame.val();
+            assert_eq!(j.window_dom.val(), (8..16).contains(&k), "window_dom at clock {k}");
+            drive::cycle(&mut j);
+        }
+        assert!(blame, "dominant at clocks 8..10: blamed");
+        assert_eq!(j.rep_cnt.val().index(), charged, "replica carried the pulse: {replica_carried_it}");
+    }
+}
+
+/// hub.md §5.11 peer-hub rule: common glitches (every replica at once) are counted in
+/// `pgc` on sublinks only, decay by one per `peer_glitch_decay` good frames, and isolate at
+/// `peer_glitch_limit`; they never count in `gc` or `life`.
+#[test]
+fn common_glitches_isolate_the_peer_hub() {
+    let p = JudgeParams { peer_glitch_limit: 4, peer_glitch_decay: 2, ..params() };
+    let mut j = reset(JudgeUnit::sublink(p));
+    j.common.next = true;
+    pulse_bit(&mut j, 3, 4, false);
+    pulse_bit(&mut j, 3, 4, false);
+    assert_eq!(j.pgc.val().index(), 2);
+    assert_eq!(j.gc.val().index(), 0);
+    assert_eq!(j.life.val().index(), 0);
+    j.common.next = false;
+    // a glitch on this replica alone counts in gc, not in pgc
+    pulse_bit(&mut j, 3, 4, false);
+    assert_eq!((j.pgc.val().index(), j.gc.val().index()), (2, 1));
+    // two good frames take one off
+    for _ in 0..2 {
+        sample(&mut j, Bit { c: true, bt: true, frame_ok: true, ..Default::default() });
+    }
+    assert_eq!(j.pgc.val().index(), 1, "decayed");
+    j.common.next = true;
+    for k in 1..=3 {
+        assert!(!j.dis.val(), "not isolated at pgc {k}");
+        pulse_bit(&mut j, 3, 4, false);
+    }
+    drive::cycle(&mut j);
+    assert_eq!(j.pgc.val().index(), 4);
+    assert!(j.dis.val(), "isolated at the limit");
+    // a port never counts common glitches (its `common` input is 0 in the hub anyway)
+    let mut j = unit(p);
+    j.common.next = true;
+    for _ in 0..5 {
+        pulse_bit(&mut j, 3, 4, false);
+    }
+    assert_eq!(j.pgc.val().index(), 0);
+}
+
+/// The hub's `err_start` strobe for one clock (between samples); returns `charged`.
+fn episode(j: &mut JudgeUnit) -> bool {
+    j.err_start.next = true;
+    drive::settle(j);
+    let charged = j.charged.val();
+    drive::cycle(j);
+    j.err_start.next = false;
+    charged
+}
+
+/// A sublink unit after a glitch at clocks 3..6 of an EOF bit; `common`: every replica
+/// glitched with it (the peer's contribution).
+fn sublink_after_glitch(common: bool) -> JudgeUnit {
+    let mut j = reset(JudgeUnit::sublink(params()));
+    j.common.next = common;
+    pulse_bit(&mut j, 3, 4, false);
+    j.common.next = false;
+    j
+}
+
+/// hub.md §5.14: an error episode that starts within two bits after a common glitch (the
+/// peer's contribution glitched on every replica, and nodes that sampled it flag) is
+/// charged to the sublink, +8 like a blame, unless the sublink was charged at the sample
+/// that started the episode. Later, after a glitch of this replica alone (`gc`), or on a
+/// port, the episode charges nothing.
+#[test]
+fn episode_after_a_common_glitch_is_charged_to_the_sublink() {
+    let mut j = sublink_after_glitch(true);
+    assert_eq!((j.pgc.val().index(), j.bic.val().index()), (1, 0), "counted as the peer's glitch");
+    assert!(episode(&mut j), "charged");
+    assert_eq!((j.bic.val().index(), j.life.val().index()), (8, 1));
+    // three samples later the glitch no longer explains an episode
+    let mut j = sublink_after_glitch(true);
+    for _ in 0..3 {
+        sample(&mut j, Bit { c: true, bt: true, ..Default::default() });
+    }
+    assert!(!episode(&mut j));
+    assert_eq!(j.bic.val().index(), 0);
+    // a glitch of this replica alone counts in gc (§5.8), the episode is not charged here
+    let mut j = sublink_after_glitch(false);
+    assert_eq!(j.gc.val().index(), 1);
+    assert!(!episode(&mut j));
+    assert_eq!(j.bic.val().index(), 0);
+    // charged at the sample that started the episode (dominant in the EOF): not twice
+    let mut j = sublink_after_glitch(true);
+    apply(&mut j, Bit { c: false, bt: false, eof: true, ..Default::default() });
+    for k in 0..SAMPLE_AT {
+        clock_at(&mut j, k);
+    }
+    j.sample.next = true;
+    j.bs_cnt.next = SAMPLE_AT.into();
+    drive::cycle(&mut j);
+    j.sample.next = false;
+    assert_eq!(j.bic.val().index(), 8, "blamed and charged at the sample");
+    assert!(!episode(&mut j), "not charged again");
+    assert_eq!(j.bic.val().index(), 8);
+    // a port unit never (its `common` is 0 in the hub; the rule is the sublinks')
+    let mut j = unit(params());
+    j.common.next = true;
+    pulse_bit(&mut j, 3, 4, false);
+    assert!(!episode(&mut j));
+    assert_eq!(j.bic.val().index(), 0);
+}
+
+/// §5.8 with §5.7: while another replica has glitches on its counter (and this one has
+/// none), the replica rule does not charge this one.
+#[test]
+fn replica_rule_spares_the_unit_whose_replica_glitches() {
+    let mut j = JudgeUnit::sublink(params());
+    drive::init(&mut j);
+    j.rep_glitched.next = true;
+    for _ in 0..3 {
+        j.rep_rec.next = true;
+        sample(&mut j, Bit { c: false, bt: false, err: true, ..Default::default() });
+        j.rep_rec.next = false;
+        j.err_start.next = true;
+        drive::cycle(&mut j);
+        j.err_start.next = false;
+    }
+    assert_eq!(j.rep_cnt.val().index(), 0);
+    j.rep_glitched.next = false;
+    j.rep_rec.next = true;
+    sample(&mut j, Bit { c: false, bt: false, err: true, ..Default::default() });
+    j.rep_rec.next = false;
+    j.err_start.next = true;
+    drive::cycle(&mut j);
+    assert_eq!(j.rep_cnt.val().index(), 1, "charged again without the replica's glitches");
+    // an episode started by the blame of another sublink (not this one): not charged
+    assert_eq!(dominant_minority_then_episode(true, false), 0, "another sublink's blame started the episode");
+}
+
+/// A fresh sublink unit is the dominant minority of a replica disagreement, then the hub
+/// starts an episode (`err_start`) with `rep_blamed` and `ff` as given; returns `rep_cnt`.
+fn dominant_minority_then_episode(rep_blamed: bool, ff: bool) -> usize {
+    let mut j = JudgeUnit::sublink(params());
+    drive::init(&mut j);
+    j.rep_rec.next = true;
+    sample(&mut j, Bit { c: false, bt: false, err: true, ..Default::default() });
+    j.rep_rec.next = false;
+    j.err_start.next = true;
+    j.rep_blamed.next = rep_blamed;
+    j.ff.next = ff;
+    drive::cycle(&mut j);
+    j.rep_cnt.val().index()
+}
+
+/// §5.7 refinement (4), hub.md §5.13: the dominant minority is not charged by the replica
+/// rule at an episode that the frame monitor alone detected (`ff`, the first-flagger strobe
+/// that comes with `err_start`): the first-flagger rule charges the dominant contenders of
+/// that bit instead. Without `ff` the same disagreement is charged.
+#[test]
+fn replica_rule_leaves_monitor_episodes_to_the_first_flagger() {
+    for (ff, charged) in [(false, 1), (true, 0)] {
+        assert_eq!(dominant_minority_then_episode(false, ff), charged, "ff {ff}");
+    }
+}
