@@ -161,6 +161,9 @@ pub struct CanCore {
     l_hold: Signal<Local, Bit>,
     /// [`RecRule::Iso`] as 1.
     rec_iso: Constant<Bit>,
+    /// The frame state machine's two-clock mode (the bit timing's `sample`
+    /// strobes are at least 2 clocks apart).
+    pipe: Constant<Bit>,
 }
 
 // Host-side readers of the outputs: `crate::view::CoreView`.
@@ -234,6 +237,7 @@ impl CanCore {
             fsm: CanFsm::new(),
             l_hold: Default::default(),
             rec_iso: Constant::new(RecRule::default() == RecRule::Iso),
+            pipe: Constant::new(true),
         }
     }
 
@@ -300,6 +304,7 @@ impl Logic for CanCore {
         self.fsm.host_recovery.next = self.host_recovery.val();
         self.fsm.recover.next = self.recover.val();
         self.fsm.rec_iso.next = self.rec_iso.val();
+        self.fsm.pipe.next = self.pipe.val();
         self.fsm.tx_req.next = self.tx_req.val();
         self.fsm.tx_ide.next = self.tx_ide.val();
         self.fsm.tx_rtr.next = self.tx_rtr.val();

@@ -64,6 +64,7 @@ module canstar_can_core(clock,reset,rx,brp,prop,ph1,ph2,sjw,triple,listen_only,s
     
     // Constant declarations
     localparam  rec_iso = 1'b1;
+    localparam  pipe = 1'b1;
     
     // Stub signals
     reg  sync$clock;
@@ -109,6 +110,7 @@ module canstar_can_core(clock,reset,rx,brp,prop,ph1,ph2,sjw,triple,listen_only,s
     reg  [8:0] fsm$tec_in;
     reg  [7:0] fsm$rec_in;
     reg  fsm$rec_iso;
+    reg  fsm$pipe;
     wire  fsm$drive;
     wire  fsm$hs_en;
     wire  fsm$tx_done;
@@ -189,6 +191,7 @@ module canstar_can_core(clock,reset,rx,brp,prop,ph1,ph2,sjw,triple,listen_only,s
         .tec_in(fsm$tec_in),
         .rec_in(fsm$rec_in),
         .rec_iso(fsm$rec_iso),
+        .pipe(fsm$pipe),
         .drive(fsm$drive),
         .hs_en(fsm$hs_en),
         .tx_done(fsm$tx_done),
@@ -245,6 +248,7 @@ module canstar_can_core(clock,reset,rx,brp,prop,ph1,ph2,sjw,triple,listen_only,s
         fsm$host_recovery = host_recovery;
         fsm$recover = recover;
         fsm$rec_iso = rec_iso;
+        fsm$pipe = pipe;
         fsm$tx_req = tx_req;
         fsm$tx_ide = tx_ide;
         fsm$tx_rtr = tx_rtr;
@@ -1282,7 +1286,7 @@ module canstar_can_core$btl$tx_n(d,q,clock);
 endmodule // canstar_can_core$btl$tx_n
 
 
-module canstar_can_core$fsm(clock,reset,sample,busmon,listen_only,self_test,single_shot,host_recovery,recover,tx_req,tx_ide,tx_rtr,tx_id,tx_dlc,tx_data,tx_abort,cnt_load,tec_in,rec_in,rec_iso,drive,hs_en,tx_done,arb_lost,arb_lost_pos,error,err_kind,err_field,err_pos,err_tx,rx_valid,rx_ide,rx_rtr,rx_id,rx_dlc,rx_data,tec,rec,state,err_warn,tx_rqst,field,pos,stuff,role,events,runs);
+module canstar_can_core$fsm(clock,reset,sample,busmon,listen_only,self_test,single_shot,host_recovery,recover,tx_req,tx_ide,tx_rtr,tx_id,tx_dlc,tx_data,tx_abort,cnt_load,tec_in,rec_in,rec_iso,pipe,drive,hs_en,tx_done,arb_lost,arb_lost_pos,error,err_kind,err_field,err_pos,err_tx,rx_valid,rx_ide,rx_rtr,rx_id,rx_dlc,rx_data,tec,rec,state,err_warn,tx_rqst,field,pos,stuff,role,events,runs);
     
     // Module arguments
     input wire  clock;
@@ -1305,6 +1309,7 @@ module canstar_can_core$fsm(clock,reset,sample,busmon,listen_only,self_test,sing
     input wire  [8:0] tec_in;
     input wire  [7:0] rec_in;
     input wire  rec_iso;
+    input wire  pipe;
     output reg  drive;
     output reg  hs_en;
     output reg  tx_done;
@@ -1416,6 +1421,9 @@ module canstar_can_core$fsm(clock,reset,sample,busmon,listen_only,self_test,sing
     reg  seq$cnt_load;
     reg  [8:0] seq$tec_in;
     reg  seq$stuff;
+    reg  seq$pipe;
+    reg  seq$ext;
+    reg  [7:0] seq$data_bits;
     reg  seq$req;
     reg  seq$active;
     reg  seq$armed;
@@ -1426,6 +1434,10 @@ module canstar_can_core$fsm(clock,reset,sample,busmon,listen_only,self_test,sing
     reg  seq$level_sof;
     reg  seq$f_own;
     reg  [4:0] seq$f_nf;
+    reg  seq$f_na;
+    reg  seq$f_nsa;
+    reg  seq$f_nhs;
+    reg  seq$f_ni;
     reg  [7:0] seq$f_npos;
     reg  seq$f_ndom;
     reg  seq$f_usetx;
@@ -1435,6 +1447,10 @@ module canstar_can_core$fsm(clock,reset,sample,busmon,listen_only,self_test,sing
     reg  seq$f_sof;
     reg  seq$g_own;
     reg  [4:0] seq$g_nf;
+    reg  seq$g_na;
+    reg  seq$g_nsa;
+    reg  seq$g_nhs;
+    reg  seq$g_ni;
     reg  [7:0] seq$g_npos;
     reg  seq$g_ndom;
     reg  seq$g_err;
@@ -1446,6 +1462,9 @@ module canstar_can_core$fsm(clock,reset,sample,busmon,listen_only,self_test,sing
     wire  seq$tx_role;
     wire  seq$dom;
     wire  seq$in_busoff;
+    wire  seq$at_end;
+    wire  seq$pstuff;
+    wire  seq$pstuffed;
     wire  seq$area;
     wire  seq$stuffable;
     wire  seq$hs_fld;
@@ -1472,6 +1491,11 @@ module canstar_can_core$fsm(clock,reset,sample,busmon,listen_only,self_test,sing
     reg  frame$rec_iso;
     reg  [4:0] frame$fld;
     reg  [7:0] frame$fpos;
+    reg  frame$at_end;
+    reg  frame$area;
+    reg  frame$stuffable;
+    reg  frame$hs_fld;
+    reg  frame$inter_fld;
     reg  frame$tx_role;
     reg  frame$dom;
     reg  frame$listen_only;
@@ -1493,6 +1517,10 @@ module canstar_can_core$fsm(clock,reset,sample,busmon,listen_only,self_test,sing
     wire  frame$own;
     wire  [4:0] frame$nf;
     wire  [7:0] frame$npos;
+    wire  frame$narea;
+    wire  frame$nsa;
+    wire  frame$nhs;
+    wire  frame$ninter;
     wire  frame$ndom;
     wire  frame$usetx;
     wire  [4:0] frame$lnf;
@@ -1520,12 +1548,21 @@ module canstar_can_core$fsm(clock,reset,sample,busmon,listen_only,self_test,sing
     reg  flags$sent;
     reg  [4:0] flags$fld;
     reg  [7:0] flags$fpos;
+    reg  flags$at_end;
+    reg  flags$area;
+    reg  flags$stuffable;
+    reg  flags$hs_fld;
+    reg  flags$inter_fld;
     reg  flags$tx_role;
     reg  flags$flag_start;
     reg  flags$exc1_set;
     wire  flags$own;
     wire  [4:0] flags$nf;
     wire  [7:0] flags$npos;
+    wire  flags$narea;
+    wire  flags$nsa;
+    wire  flags$nhs;
+    wire  flags$ninter;
     wire  flags$ndom;
     wire  flags$err;
     wire  flags$err_bit;
@@ -1702,6 +1739,9 @@ module canstar_can_core$fsm(clock,reset,sample,busmon,listen_only,self_test,sing
         .cnt_load(seq$cnt_load),
         .tec_in(seq$tec_in),
         .stuff(seq$stuff),
+        .pipe(seq$pipe),
+        .ext(seq$ext),
+        .data_bits(seq$data_bits),
         .req(seq$req),
         .active(seq$active),
         .armed(seq$armed),
@@ -1712,6 +1752,10 @@ module canstar_can_core$fsm(clock,reset,sample,busmon,listen_only,self_test,sing
         .level_sof(seq$level_sof),
         .f_own(seq$f_own),
         .f_nf(seq$f_nf),
+        .f_na(seq$f_na),
+        .f_nsa(seq$f_nsa),
+        .f_nhs(seq$f_nhs),
+        .f_ni(seq$f_ni),
         .f_npos(seq$f_npos),
         .f_ndom(seq$f_ndom),
         .f_usetx(seq$f_usetx),
@@ -1721,6 +1765,10 @@ module canstar_can_core$fsm(clock,reset,sample,busmon,listen_only,self_test,sing
         .f_sof(seq$f_sof),
         .g_own(seq$g_own),
         .g_nf(seq$g_nf),
+        .g_na(seq$g_na),
+        .g_nsa(seq$g_nsa),
+        .g_nhs(seq$g_nhs),
+        .g_ni(seq$g_ni),
         .g_npos(seq$g_npos),
         .g_ndom(seq$g_ndom),
         .g_err(seq$g_err),
@@ -1732,6 +1780,9 @@ module canstar_can_core$fsm(clock,reset,sample,busmon,listen_only,self_test,sing
         .tx_role(seq$tx_role),
         .dom(seq$dom),
         .in_busoff(seq$in_busoff),
+        .at_end(seq$at_end),
+        .pstuff(seq$pstuff),
+        .pstuffed(seq$pstuffed),
         .area(seq$area),
         .stuffable(seq$stuffable),
         .hs_fld(seq$hs_fld),
@@ -1760,6 +1811,11 @@ module canstar_can_core$fsm(clock,reset,sample,busmon,listen_only,self_test,sing
         .rec_iso(frame$rec_iso),
         .fld(frame$fld),
         .fpos(frame$fpos),
+        .at_end(frame$at_end),
+        .area(frame$area),
+        .stuffable(frame$stuffable),
+        .hs_fld(frame$hs_fld),
+        .inter_fld(frame$inter_fld),
         .tx_role(frame$tx_role),
         .dom(frame$dom),
         .listen_only(frame$listen_only),
@@ -1781,6 +1837,10 @@ module canstar_can_core$fsm(clock,reset,sample,busmon,listen_only,self_test,sing
         .own(frame$own),
         .nf(frame$nf),
         .npos(frame$npos),
+        .narea(frame$narea),
+        .nsa(frame$nsa),
+        .nhs(frame$nhs),
+        .ninter(frame$ninter),
         .ndom(frame$ndom),
         .usetx(frame$usetx),
         .lnf(frame$lnf),
@@ -1810,12 +1870,21 @@ module canstar_can_core$fsm(clock,reset,sample,busmon,listen_only,self_test,sing
         .sent(flags$sent),
         .fld(flags$fld),
         .fpos(flags$fpos),
+        .at_end(flags$at_end),
+        .area(flags$area),
+        .stuffable(flags$stuffable),
+        .hs_fld(flags$hs_fld),
+        .inter_fld(flags$inter_fld),
         .tx_role(flags$tx_role),
         .flag_start(flags$flag_start),
         .exc1_set(flags$exc1_set),
         .own(flags$own),
         .nf(flags$nf),
         .npos(flags$npos),
+        .narea(flags$narea),
+        .nsa(flags$nsa),
+        .nhs(flags$nhs),
+        .ninter(flags$ninter),
         .ndom(flags$ndom),
         .err(flags$err),
         .err_bit(flags$err_bit),
@@ -1944,7 +2013,7 @@ module canstar_can_core$fsm(clock,reset,sample,busmon,listen_only,self_test,sing
         dstf$reset = reset;
         dstf$en = sample;
         dstf$din = busmon;
-        dstf$active = dec$stuffed | seq$sofinit;
+        dstf$active = seq$pstuffed | seq$sofinit;
         crcb$clock = clock;
         crcb$reset = reset;
         crcb$din = busmon;
@@ -1975,13 +2044,18 @@ module canstar_can_core$fsm(clock,reset,sample,busmon,listen_only,self_test,sing
         frame$rec_iso = rec_iso;
         frame$fld = seq$fld;
         frame$fpos = seq$fpos;
+        frame$at_end = seq$at_end;
+        frame$area = seq$area;
+        frame$stuffable = seq$stuffable;
+        frame$hs_fld = seq$hs_fld;
+        frame$inter_fld = seq$inter_fld;
         frame$tx_role = seq$tx_role;
         frame$dom = seq$dom;
         frame$listen_only = listen_only;
         frame$self_test = self_test;
         frame$active = conf$active;
-        frame$stuffed = dec$stuffed;
-        frame$stuff = dec$stuff;
+        frame$stuffed = seq$pstuffed;
+        frame$stuff = seq$pstuff;
         frame$arb = dec$arb_bit;
         frame$arb_stuff = dec$arb_stuff_bit;
         frame$stuff_error = dstf$stuff_error;
@@ -2000,6 +2074,11 @@ module canstar_can_core$fsm(clock,reset,sample,busmon,listen_only,self_test,sing
         flags$sent = dec$sent_bit;
         flags$fld = seq$fld;
         flags$fpos = seq$fpos;
+        flags$at_end = seq$at_end;
+        flags$area = seq$area;
+        flags$stuffable = seq$stuffable;
+        flags$hs_fld = seq$hs_fld;
+        flags$inter_fld = seq$inter_fld;
         flags$tx_role = seq$tx_role;
         flags$flag_start = seq$flag_start;
         flags$exc1_set = frame$exc1;
@@ -2012,6 +2091,9 @@ module canstar_can_core$fsm(clock,reset,sample,busmon,listen_only,self_test,sing
         seq$cnt_load = cnt_load;
         seq$tec_in = tec_in;
         seq$stuff = dec$stuff;
+        seq$pipe = pipe;
+        seq$ext = rxf$ext;
+        seq$data_bits = rxf$data_bits;
         seq$req = txq$req;
         seq$active = conf$active;
         seq$armed = conf$armed;
@@ -2022,6 +2104,10 @@ module canstar_can_core$fsm(clock,reset,sample,busmon,listen_only,self_test,sing
         seq$level_sof = txq$level_sof;
         seq$f_own = frame$own;
         seq$f_nf = frame$nf;
+        seq$f_na = frame$narea;
+        seq$f_nsa = frame$nsa;
+        seq$f_nhs = frame$nhs;
+        seq$f_ni = frame$ninter;
         seq$f_npos = frame$npos;
         seq$f_ndom = frame$ndom;
         seq$f_usetx = frame$usetx;
@@ -2031,6 +2117,10 @@ module canstar_can_core$fsm(clock,reset,sample,busmon,listen_only,self_test,sing
         seq$f_sof = frame$sof;
         seq$g_own = flags$own;
         seq$g_nf = flags$nf;
+        seq$g_na = flags$narea;
+        seq$g_nsa = flags$nsa;
+        seq$g_nhs = flags$nhs;
+        seq$g_ni = flags$ninter;
         seq$g_npos = flags$npos;
         seq$g_ndom = flags$ndom;
         seq$g_err = flags$err;
@@ -2183,6 +2273,12 @@ module canstar_can_core$fsm$conf(clock,reset,sample,listen_only,recover,tinc,tde
     reg  [8:0] l_tec;
     reg  [7:0] l_rec;
     reg  l_clear;
+    reg  l_ge256;
+    reg  l_ge257;
+    reg  l_ge248;
+    reg  l_over;
+    reg  l_t128;
+    reg  l_r128;
     
     // Sub module instances
     canstar_can_core$fsm$conf$tecr tecr(
@@ -2216,6 +2312,8 @@ module canstar_can_core$fsm$conf(clock,reset,sample,listen_only,recover,tinc,tde
         recr$d = recr$q;
         runr$d = runr$q;
         rarmed$d = rarmed$q;
+        l_t128 = tecr$q[32'h8] | tecr$q[32'h7];
+        l_r128 = recr$q[32'h7];
         l_clear = run & (runr$q == 32'h7f);
         l_tec = tecr$q;
         l_rec = recr$q;
@@ -2231,7 +2329,7 @@ module canstar_can_core$fsm$conf(clock,reset,sample,listen_only,recover,tinc,tde
                 else if (tdec & (tecr$q != 32'h0)) begin
                     l_tec = tecr$q - 32'h1;
                 end
-                if (recr$q < 32'h80) begin
+                if (~l_r128) begin
                     if (rinc8) begin
                         l_rec = recr$q + 32'h8;
                     end
@@ -2247,7 +2345,19 @@ module canstar_can_core$fsm$conf(clock,reset,sample,listen_only,recover,tinc,tde
                 end
             end
         end
-        busoff = sample & (l_tec >= 32'h100) & ~in_busoff;
+        l_ge256 = tecr$q[32'h8];
+        l_ge257 = tecr$q[32'h8] & (tecr$q[(32'h0)+:(8)] != 32'h0);
+        l_ge248 = tecr$q[32'h8] ^ (tecr$q[(32'h3)+:(5)] == 32'h1f);
+        l_over = l_ge256;
+        if (sample & ~listen_only) begin
+            if (tinc) begin
+                l_over = l_ge248;
+            end
+            else if (tdec) begin
+                l_over = l_ge257;
+            end
+        end
+        busoff = sample & l_over & ~in_busoff;
         rarmed$d = rarmed$q | recover;
         if (sample) begin
             tecr$d = l_tec;
@@ -2277,14 +2387,14 @@ module canstar_can_core$fsm$conf(clock,reset,sample,listen_only,recover,tinc,tde
         tec = tecr$q;
         rec = recr$q;
         state = 32'h0;
-        if (tecr$q >= 32'h100) begin
+        if (tecr$q[32'h8]) begin
             state = 32'h2;
         end
-        else if ((tecr$q >= 32'h80) | (recr$q >= 32'h80)) begin
+        else if (l_t128 | l_r128) begin
             state = 32'h1;
         end
-        err_warn = (tecr$q >= 32'h60) | (recr$q >= 32'h60);
-        active = (tecr$q < 32'h80) & (recr$q < 32'h80);
+        err_warn = l_t128 | l_r128 | (tecr$q[32'h6] & tecr$q[32'h5]) | (recr$q[32'h6] & recr$q[32'h5]);
+        active = ~l_t128 & ~l_r128;
         runs = runr$q;
         last_run = runr$q == 32'h7f;
         armed = rarmed$q | recover;
@@ -2691,7 +2801,7 @@ module canstar_can_core$fsm$dstf$lvl(d,q,clock);
 endmodule // canstar_can_core$fsm$dstf$lvl
 
 
-module canstar_can_core$fsm$flags(clock,reset,sample,rxbit,sent,fld,fpos,tx_role,flag_start,exc1_set,own,nf,npos,ndom,err,err_bit,err_form,tinc,rinc1,rinc8,ovl,daf,exc1_met);
+module canstar_can_core$fsm$flags(clock,reset,sample,rxbit,sent,fld,fpos,at_end,area,stuffable,hs_fld,inter_fld,tx_role,flag_start,exc1_set,own,nf,npos,narea,nsa,nhs,ninter,ndom,err,err_bit,err_form,tinc,rinc1,rinc8,ovl,daf,exc1_met);
     
     // Module arguments
     input wire  clock;
@@ -2701,12 +2811,21 @@ module canstar_can_core$fsm$flags(clock,reset,sample,rxbit,sent,fld,fpos,tx_role
     input wire  sent;
     input wire  [4:0] fld;
     input wire  [7:0] fpos;
+    input wire  at_end;
+    input wire  area;
+    input wire  stuffable;
+    input wire  hs_fld;
+    input wire  inter_fld;
     input wire  tx_role;
     input wire  flag_start;
     input wire  exc1_set;
     output reg  own;
     output reg  [4:0] nf;
     output reg  [7:0] npos;
+    output reg  narea;
+    output reg  nsa;
+    output reg  nhs;
+    output reg  ninter;
     output reg  ndom;
     output reg  err;
     output reg  err_bit;
@@ -2832,6 +2951,10 @@ module canstar_can_core$fsm$flags(clock,reset,sample,rxbit,sent,fld,fpos,tx_role
         l_delim = sample & ((fld == Field$ErrDel) | (fld == Field$OvlDel));
         own = l_flag | l_delim;
         nf = fld;
+        narea = area;
+        nsa = stuffable;
+        nhs = hs_fld;
+        ninter = inter_fld;
         npos = fpos;
         ndom = 1'b0;
         err = 1'b0;
@@ -2853,7 +2976,7 @@ module canstar_can_core$fsm$flags(clock,reset,sample,rxbit,sent,fld,fpos,tx_role
             if (~fdone$q) begin
                 npos = l_posinc;
                 if (fld == Field$PasFlag) begin
-                    if (fpos == 32'h1) begin
+                    if (at_end) begin
                         l_eqcnt = 32'h1;
                         l_eqlast = rxbit;
                     end
@@ -2882,7 +3005,7 @@ module canstar_can_core$fsm$flags(clock,reset,sample,rxbit,sent,fld,fpos,tx_role
                 end
                 else begin
                     ndom = 1'b1;
-                    if (fpos == 32'h6) begin
+                    if (at_end) begin
                         l_fdone = 1'b1;
                         ndom = 1'b0;
                     end
@@ -2896,9 +3019,17 @@ module canstar_can_core$fsm$flags(clock,reset,sample,rxbit,sent,fld,fpos,tx_role
                 npos = 32'h2;
                 if (fld == Field$OvlFlag) begin
                     nf = Field$OvlDel;
+                    narea = 1'b0;
+                    nsa = 1'b0;
+                    nhs = 1'b0;
+                    ninter = 1'b0;
                 end
                 else begin
                     nf = Field$ErrDel;
+                    narea = 1'b0;
+                    nsa = 1'b0;
+                    nhs = 1'b0;
+                    ninter = 1'b0;
                 end
             end
             else begin
@@ -2917,8 +3048,12 @@ module canstar_can_core$fsm$flags(clock,reset,sample,rxbit,sent,fld,fpos,tx_role
         end
         if (l_delim) begin
             npos = l_posinc;
-            if (fpos == 32'h8) begin
+            if (at_end) begin
                 nf = Field$Inter;
+                narea = 1'b0;
+                nsa = 1'b0;
+                nhs = 1'b0;
+                ninter = 1'b1;
                 npos = 32'h1;
                 ovl = ~rxbit;
             end
@@ -3067,7 +3202,7 @@ module canstar_can_core$fsm$flags$fdone(d,q,clock);
 endmodule // canstar_can_core$fsm$flags$fdone
 
 
-module canstar_can_core$fsm$frame(clock,reset,sample,rxbit,sent,sent_stuff,rec_iso,fld,fpos,tx_role,dom,listen_only,self_test,active,stuffed,stuff,arb,arb_stuff,stuff_error,crc_rem,ext,rtr,dlc_lo_zero,data_bits,tx_ide,sofinit,err_now,own,nf,npos,ndom,usetx,lnf,lost,err,err_bit,err_stuff,err_crc,err_form,err_ack,tinc,rinc1,rok,ovl,exc1,exc2,tx_ok,rx_ok,sof,adv);
+module canstar_can_core$fsm$frame(clock,reset,sample,rxbit,sent,sent_stuff,rec_iso,fld,fpos,at_end,area,stuffable,hs_fld,inter_fld,tx_role,dom,listen_only,self_test,active,stuffed,stuff,arb,arb_stuff,stuff_error,crc_rem,ext,rtr,dlc_lo_zero,data_bits,tx_ide,sofinit,err_now,own,nf,npos,narea,nsa,nhs,ninter,ndom,usetx,lnf,lost,err,err_bit,err_stuff,err_crc,err_form,err_ack,tinc,rinc1,rok,ovl,exc1,exc2,tx_ok,rx_ok,sof,adv);
     
     // Module arguments
     input wire  clock;
@@ -3079,6 +3214,11 @@ module canstar_can_core$fsm$frame(clock,reset,sample,rxbit,sent,sent_stuff,rec_i
     input wire  rec_iso;
     input wire  [4:0] fld;
     input wire  [7:0] fpos;
+    input wire  at_end;
+    input wire  area;
+    input wire  stuffable;
+    input wire  hs_fld;
+    input wire  inter_fld;
     input wire  tx_role;
     input wire  dom;
     input wire  listen_only;
@@ -3100,6 +3240,10 @@ module canstar_can_core$fsm$frame(clock,reset,sample,rxbit,sent,sent_stuff,rec_i
     output reg  own;
     output reg  [4:0] nf;
     output reg  [7:0] npos;
+    output reg  narea;
+    output reg  nsa;
+    output reg  nhs;
+    output reg  ninter;
     output reg  ndom;
     output reg  usetx;
     output reg  [4:0] lnf;
@@ -3176,6 +3320,10 @@ module canstar_can_core$fsm$frame(clock,reset,sample,rxbit,sent,sent_stuff,rec_i
         end
         own = sample & (stuffed | (fld == Field$CrcDel) | (fld == Field$AckSlot) | (fld == Field$AckDel) | (fld == Field$Eof));
         nf = fld;
+        narea = area;
+        nsa = stuffable;
+        nhs = hs_fld;
+        ninter = inter_fld;
         npos = fpos;
         ndom = 1'b0;
         usetx = 1'b0;
@@ -3240,23 +3388,39 @@ module canstar_can_core$fsm$frame(clock,reset,sample,rxbit,sent,sent_stuff,rec_i
                             Field$Sof:
                                 begin
                                     nf = Field$Ident;
+                                    narea = 1'b1;
+                                    nsa = 1'b1;
+                                    nhs = 1'b0;
+                                    ninter = 1'b0;
                                     npos = 32'h1;
                                 end
                             Field$Ident:
                                 begin
-                                    if (fpos == 32'hb) begin
+                                    if (at_end) begin
                                         npos = 32'h1;
                                         if (l_role & tx_ide) begin
                                             nf = Field$Srr;
+                                            narea = 1'b1;
+                                            nsa = 1'b1;
+                                            nhs = 1'b0;
+                                            ninter = 1'b0;
                                         end
                                         else begin
                                             nf = Field$Rtr;
+                                            narea = 1'b1;
+                                            nsa = 1'b1;
+                                            nhs = 1'b0;
+                                            ninter = 1'b0;
                                         end
                                     end
                                 end
                             Field$Srr:
                                 begin
                                     nf = Field$Ide;
+                                    narea = 1'b1;
+                                    nsa = 1'b1;
+                                    nhs = 1'b0;
+                                    ninter = 1'b0;
                                     npos = 32'h1;
                                 end
                             Field$Rtr:
@@ -3264,9 +3428,17 @@ module canstar_can_core$fsm$frame(clock,reset,sample,rxbit,sent,sent_stuff,rec_i
                                     npos = 32'h1;
                                     if (ext) begin
                                         nf = Field$Resv;
+                                        narea = 1'b1;
+                                        nsa = 1'b1;
+                                        nhs = 1'b0;
+                                        ninter = 1'b0;
                                     end
                                     else begin
                                         nf = Field$Ide;
+                                        narea = 1'b1;
+                                        nsa = 1'b1;
+                                        nhs = 1'b0;
+                                        ninter = 1'b0;
                                     end
                                 end
                             Field$Ide:
@@ -3274,48 +3446,80 @@ module canstar_can_core$fsm$frame(clock,reset,sample,rxbit,sent,sent_stuff,rec_i
                                     npos = 32'h1;
                                     if (rxbit) begin
                                         nf = Field$ExIdent;
+                                        narea = 1'b1;
+                                        nsa = 1'b1;
+                                        nhs = 1'b0;
+                                        ninter = 1'b0;
                                     end
                                     else begin
                                         nf = Field$Resv;
+                                        narea = 1'b1;
+                                        nsa = 1'b1;
+                                        nhs = 1'b0;
+                                        ninter = 1'b0;
                                     end
                                 end
                             Field$ExIdent:
                                 begin
-                                    if (fpos == 32'h12) begin
+                                    if (at_end) begin
                                         nf = Field$Rtr;
+                                        narea = 1'b1;
+                                        nsa = 1'b1;
+                                        nhs = 1'b0;
+                                        ninter = 1'b0;
                                         npos = 32'h1;
                                     end
                                 end
                             Field$Resv:
                                 begin
-                                    if (~(ext & (fpos == 32'h1))) begin
+                                    if (~at_end) begin
                                         nf = Field$Dlc;
+                                        narea = 1'b1;
+                                        nsa = 1'b1;
+                                        nhs = 1'b0;
+                                        ninter = 1'b0;
                                         npos = 32'h1;
                                     end
                                 end
                             Field$Dlc:
                                 begin
-                                    if (fpos == 32'h4) begin
+                                    if (at_end) begin
                                         npos = 32'h1;
                                         if (rtr | (dlc_lo_zero & ~rxbit)) begin
                                             nf = Field$Crc;
+                                            narea = 1'b1;
+                                            nsa = 1'b1;
+                                            nhs = 1'b0;
+                                            ninter = 1'b0;
                                         end
                                         else begin
                                             nf = Field$Data;
+                                            narea = 1'b1;
+                                            nsa = 1'b1;
+                                            nhs = 1'b0;
+                                            ninter = 1'b0;
                                         end
                                     end
                                 end
                             Field$Data:
                                 begin
-                                    if (fpos == data_bits) begin
+                                    if (at_end) begin
                                         nf = Field$Crc;
+                                        narea = 1'b1;
+                                        nsa = 1'b1;
+                                        nhs = 1'b0;
+                                        ninter = 1'b0;
                                         npos = 32'h1;
                                     end
                                 end
                             Field$Crc:
                                 begin
-                                    if (fpos == 32'hf) begin
+                                    if (at_end) begin
                                         nf = Field$CrcDel;
+                                        narea = 1'b0;
+                                        nsa = 1'b1;
+                                        nhs = 1'b0;
+                                        ninter = 1'b0;
                                         npos = 32'h1;
                                         usetx = 1'b0;
                                         l_crcset = crc_rem;
@@ -3337,6 +3541,10 @@ module canstar_can_core$fsm$frame(clock,reset,sample,rxbit,sent,sent_stuff,rec_i
                             end
                             else begin
                                 nf = Field$AckSlot;
+                                narea = 1'b0;
+                                nsa = 1'b0;
+                                nhs = 1'b0;
+                                ninter = 1'b0;
                                 npos = 32'h1;
                                 ndom = ~tx_role & ~crcerr$q & ~listen_only;
                             end
@@ -3344,6 +3552,10 @@ module canstar_can_core$fsm$frame(clock,reset,sample,rxbit,sent,sent_stuff,rec_i
                     Field$AckSlot:
                         begin
                             nf = Field$AckDel;
+                            narea = 1'b0;
+                            nsa = 1'b0;
+                            nhs = 1'b0;
+                            ninter = 1'b0;
                             npos = 32'h1;
                             if (rxbit) begin
                                 if (tx_role) begin
@@ -3372,13 +3584,21 @@ module canstar_can_core$fsm$frame(clock,reset,sample,rxbit,sent,sent_stuff,rec_i
                         begin
                             l_form = ~rxbit;
                             nf = Field$Eof;
+                            narea = 1'b0;
+                            nsa = 1'b0;
+                            nhs = 1'b0;
+                            ninter = 1'b0;
                             npos = 32'h1;
                         end
                     Field$Eof:
                         begin
                             npos = l_posinc;
-                            if (fpos == 32'h7) begin
+                            if (at_end) begin
                                 nf = Field$Inter;
+                                narea = 1'b0;
+                                nsa = 1'b0;
+                                nhs = 1'b0;
+                                ninter = 1'b1;
                                 npos = 32'h1;
                                 if (tx_role) begin
                                     if (~rxbit) begin
@@ -3434,7 +3654,7 @@ module canstar_can_core$fsm$frame(clock,reset,sample,rxbit,sent,sent_stuff,rec_i
                 end
             Field$Ident:
                 begin
-                    if (fpos == 32'hb) begin
+                    if (at_end) begin
                         if (tx_role & tx_ide) begin
                             lnf = Field$Srr;
                         end
@@ -3467,19 +3687,19 @@ module canstar_can_core$fsm$frame(clock,reset,sample,rxbit,sent,sent_stuff,rec_i
                 end
             Field$ExIdent:
                 begin
-                    if (fpos == 32'h12) begin
+                    if (at_end) begin
                         lnf = Field$Rtr;
                     end
                 end
             Field$Resv:
                 begin
-                    if (~(ext & (fpos == 32'h1))) begin
+                    if (~at_end) begin
                         lnf = Field$Dlc;
                     end
                 end
             Field$Dlc:
                 begin
-                    if (fpos == 32'h4) begin
+                    if (at_end) begin
                         if (rtr | (dlc_lo_zero & ~rxbit)) begin
                             lnf = Field$Crc;
                         end
@@ -3490,13 +3710,13 @@ module canstar_can_core$fsm$frame(clock,reset,sample,rxbit,sent,sent_stuff,rec_i
                 end
             Field$Data:
                 begin
-                    if (fpos == data_bits) begin
+                    if (at_end) begin
                         lnf = Field$Crc;
                     end
                 end
             Field$Crc:
                 begin
-                    if (fpos == 32'hf) begin
+                    if (at_end) begin
                         lnf = Field$CrcDel;
                     end
                 end
@@ -4253,7 +4473,7 @@ module canstar_can_core$fsm$rxf$rxrtr_r(d,q,clock);
 endmodule // canstar_can_core$fsm$rxf$rxrtr_r
 
 
-module canstar_can_core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_recovery,cnt_load,tec_in,stuff,req,active,armed,last_run,busoff,in_frame,level,level_sof,f_own,f_nf,f_npos,f_ndom,f_usetx,f_lost,f_err,f_ovl,f_sof,g_own,g_nf,g_npos,g_ndom,g_err,g_ovl,fld,fpos,pfld,ppos,tx_role,dom,in_busoff,area,stuffable,hs_fld,inter_fld,hs_pfld,inter_pfld,err,flag_start,sofinit,txsof,ev_aef,ev_pef,ev_olf,ev_ovl,ev_integrated,ev_run,ev_recovered);
+module canstar_can_core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_recovery,cnt_load,tec_in,stuff,pipe,ext,data_bits,req,active,armed,last_run,busoff,in_frame,level,level_sof,f_own,f_nf,f_na,f_nsa,f_nhs,f_ni,f_npos,f_ndom,f_usetx,f_lost,f_err,f_ovl,f_sof,g_own,g_nf,g_na,g_nsa,g_nhs,g_ni,g_npos,g_ndom,g_err,g_ovl,fld,fpos,pfld,ppos,tx_role,dom,in_busoff,at_end,pstuff,pstuffed,area,stuffable,hs_fld,inter_fld,hs_pfld,inter_pfld,err,flag_start,sofinit,txsof,ev_aef,ev_pef,ev_olf,ev_ovl,ev_integrated,ev_run,ev_recovered);
     
     // Module arguments
     input wire  clock;
@@ -4265,6 +4485,9 @@ module canstar_can_core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_recove
     input wire  cnt_load;
     input wire  [8:0] tec_in;
     input wire  stuff;
+    input wire  pipe;
+    input wire  ext;
+    input wire  [7:0] data_bits;
     input wire  req;
     input wire  active;
     input wire  armed;
@@ -4275,6 +4498,10 @@ module canstar_can_core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_recove
     input wire  level_sof;
     input wire  f_own;
     input wire  [4:0] f_nf;
+    input wire  f_na;
+    input wire  f_nsa;
+    input wire  f_nhs;
+    input wire  f_ni;
     input wire  [7:0] f_npos;
     input wire  f_ndom;
     input wire  f_usetx;
@@ -4284,6 +4511,10 @@ module canstar_can_core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_recove
     input wire  f_sof;
     input wire  g_own;
     input wire  [4:0] g_nf;
+    input wire  g_na;
+    input wire  g_nsa;
+    input wire  g_nhs;
+    input wire  g_ni;
     input wire  [7:0] g_npos;
     input wire  g_ndom;
     input wire  g_err;
@@ -4295,6 +4526,9 @@ module canstar_can_core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_recove
     output reg  tx_role;
     output reg  dom;
     output reg  in_busoff;
+    output reg  at_end;
+    output reg  pstuff;
+    output reg  pstuffed;
     output reg  area;
     output reg  stuffable;
     output reg  hs_fld;
@@ -4377,19 +4611,18 @@ module canstar_can_core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_recove
     reg  rpinter$d;
     wire  rpinter$q;
     reg  rpinter$clock;
-    reg  [4:0] fcls$f;
-    wire  fcls$area;
-    wire  fcls$stuffable;
-    wire  fcls$hs;
-    wire  fcls$inter;
-    reg  [4:0] gcls$f;
-    wire  gcls$area;
-    wire  gcls$stuffable;
-    wire  gcls$hs;
-    wire  gcls$inter;
+    reg  rend$d;
+    wire  rend$q;
+    reg  rend$clock;
+    reg  rstp$d;
+    wire  rstp$q;
+    reg  rstp$clock;
     
     // Local signals
     reg  [7:0] l_posinc;
+    reg  l_endc;
+    reg  l_end;
+    reg  l_stuff;
     reg  l_cantx;
     reg  [4:0] l_nf;
     reg  [7:0] l_npos;
@@ -4399,6 +4632,7 @@ module canstar_can_core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_recove
     reg  l_start;
     reg  l_ovl;
     reg  l_lvl;
+    reg  l_sofs;
     reg  l_na;
     reg  l_nsa;
     reg  l_nhs;
@@ -4465,19 +4699,15 @@ module canstar_can_core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_recove
         .q(rpinter$q),
         .clock(rpinter$clock)
     );
-    canstar_can_core$fsm$seq$fcls fcls(
-        .f(fcls$f),
-        .area(fcls$area),
-        .stuffable(fcls$stuffable),
-        .hs(fcls$hs),
-        .inter(fcls$inter)
+    canstar_can_core$fsm$seq$rend rend(
+        .d(rend$d),
+        .q(rend$q),
+        .clock(rend$clock)
     );
-    canstar_can_core$fsm$seq$gcls gcls(
-        .f(gcls$f),
-        .area(gcls$area),
-        .stuffable(gcls$stuffable),
-        .hs(gcls$hs),
-        .inter(gcls$inter)
+    canstar_can_core$fsm$seq$rstp rstp(
+        .d(rstp$d),
+        .q(rstp$q),
+        .clock(rstp$clock)
     );
     
     // Update code
@@ -4494,6 +4724,8 @@ module canstar_can_core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_recove
         rinter$clock = clock;
         rnphs$clock = clock;
         rpinter$clock = clock;
+        rend$clock = clock;
+        rstp$clock = clock;
         rfld$d = rfld$q;
         rpos$d = rpos$q;
         rpfld$d = rpfld$q;
@@ -4506,18 +4738,94 @@ module canstar_can_core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_recove
         rinter$d = rinter$q;
         rnphs$d = rnphs$q;
         rpinter$d = rpinter$q;
+        rend$d = rend$q;
+        rstp$d = rstp$q;
         l_posinc = rpos$q + 32'h1;
         if (rpos$q == 32'hff) begin
             l_posinc = rpos$q;
         end
         l_cantx = req & ~listen_only;
+        l_endc = 1'b0;
+        case (rfld$q)
+            Field$WaitIdle:
+                begin
+                    l_endc = rpos$q == 32'hb;
+                end
+            Field$BusOff:
+                begin
+                    l_endc = rpos$q == 32'hb;
+                end
+            Field$Ident:
+                begin
+                    l_endc = rpos$q == 32'hb;
+                end
+            Field$ExIdent:
+                begin
+                    l_endc = rpos$q == 32'h12;
+                end
+            Field$Resv:
+                begin
+                    l_endc = ext & (rpos$q == 32'h1);
+                end
+            Field$Dlc:
+                begin
+                    l_endc = rpos$q == 32'h4;
+                end
+            Field$Data:
+                begin
+                    l_endc = rpos$q == data_bits;
+                end
+            Field$Crc:
+                begin
+                    l_endc = rpos$q == 32'hf;
+                end
+            Field$Eof:
+                begin
+                    l_endc = rpos$q == 32'h7;
+                end
+            Field$PasFlag:
+                begin
+                    l_endc = rpos$q == 32'h1;
+                end
+            Field$ActFlag:
+                begin
+                    l_endc = rpos$q == 32'h6;
+                end
+            Field$OvlFlag:
+                begin
+                    l_endc = rpos$q == 32'h6;
+                end
+            Field$ErrDel:
+                begin
+                    l_endc = rpos$q == 32'h8;
+                end
+            Field$OvlDel:
+                begin
+                    l_endc = rpos$q == 32'h8;
+                end
+            Field$Inter:
+                begin
+                    l_endc = rpos$q == 32'h3;
+                end
+            Field$Suspend:
+                begin
+                    l_endc = rpos$q == 32'h8;
+                end
+            default:
+                begin
+                end
+        endcase
+        l_end = l_endc;
+        l_stuff = stuff;
+        if (pipe) begin
+            l_end = rend$q;
+            l_stuff = rstp$q;
+        end
         l_nf = rfld$q;
         l_na = rarea$q;
         l_nsa = rsa$q;
         l_nhs = ~rnhs$q;
         l_ni = rinter$q;
-        fcls$f = f_nf;
-        gcls$f = g_nf;
         l_npos = rpos$q;
         l_ndom = 1'b0;
         l_usetx = 1'b0;
@@ -4525,6 +4833,7 @@ module canstar_can_core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_recove
         l_start = 1'b0;
         l_ovl = 1'b0;
         sofinit = 1'b0;
+        l_sofs = 1'b0;
         txsof = 1'b0;
         err = 1'b0;
         ev_integrated = 1'b0;
@@ -4533,10 +4842,10 @@ module canstar_can_core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_recove
         if (sample) begin
             if (f_own) begin
                 l_nf = f_nf;
-                l_na = fcls$area;
-                l_nsa = fcls$stuffable;
-                l_nhs = fcls$hs;
-                l_ni = fcls$inter;
+                l_na = f_na;
+                l_nsa = f_nsa;
+                l_nhs = f_nhs;
+                l_ni = f_ni;
                 l_npos = f_npos;
                 l_ndom = f_ndom;
                 l_usetx = f_usetx;
@@ -4547,10 +4856,10 @@ module canstar_can_core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_recove
             end
             else if (g_own) begin
                 l_nf = g_nf;
-                l_na = gcls$area;
-                l_nsa = gcls$stuffable;
-                l_nhs = gcls$hs;
-                l_ni = gcls$inter;
+                l_na = g_na;
+                l_nsa = g_nsa;
+                l_nhs = g_nhs;
+                l_ni = g_ni;
                 l_npos = g_npos;
                 l_ndom = g_ndom;
                 err = g_err;
@@ -4572,7 +4881,7 @@ module canstar_can_core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_recove
                             if (~rxbit) begin
                                 l_npos = 32'h1;
                             end
-                            else if (rpos$q == 32'hb) begin
+                            else if (l_end) begin
                                 ev_integrated = 1'b1;
                                 l_start = 1'b1;
                             end
@@ -4584,6 +4893,7 @@ module canstar_can_core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_recove
                         begin
                             if (~rxbit) begin
                                 sofinit = 1'b1;
+                                l_sofs = 1'b1;
                                 l_role = 1'b0;
                             end
                             else begin
@@ -4595,7 +4905,7 @@ module canstar_can_core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_recove
                             if ((host_recovery & ~armed) | ~rxbit) begin
                                 l_npos = 32'h1;
                             end
-                            else if (rpos$q == 32'hb) begin
+                            else if (l_end) begin
                                 ev_run = 1'b1;
                                 l_npos = 32'h1;
                                 if (last_run) begin
@@ -4610,9 +4920,10 @@ module canstar_can_core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_recove
                     Field$Inter:
                         begin
                             l_npos = l_posinc;
-                            if (rpos$q == 32'h3) begin
+                            if (l_end) begin
                                 if (~rxbit) begin
                                     sofinit = 1'b1;
+                                    l_sofs = 1'b1;
                                     if (l_cantx & ~(rtx$q & ~active)) begin
                                         l_role = 1'b1;
                                         txsof = 1'b1;
@@ -4642,9 +4953,10 @@ module canstar_can_core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_recove
                             l_npos = l_posinc;
                             if (~rxbit) begin
                                 sofinit = 1'b1;
+                                l_sofs = 1'b1;
                                 l_role = 1'b0;
                             end
-                            else if (rpos$q == 32'h8) begin
+                            else if (l_end) begin
                                 l_start = 1'b1;
                             end
                         end
@@ -4653,7 +4965,7 @@ module canstar_can_core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_recove
                         end
                 endcase
             end
-            if (sofinit) begin
+            if (l_sofs) begin
                 l_nf = Field$Ident;
                 l_na = 1'b1;
                 l_nsa = 1'b1;
@@ -4743,7 +5055,7 @@ module canstar_can_core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_recove
         flag_start = err | l_ovl;
         ev_ovl = l_ovl & ~err;
         if (sample) begin
-            if (~stuff) begin
+            if (~l_stuff) begin
                 rpfld$d = rfld$q;
                 rppos$d = rpos$q;
                 rnphs$d = rnhs$q;
@@ -4758,7 +5070,11 @@ module canstar_can_core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_recove
             rtx$d = l_role;
             rdom$d = l_ndom;
         end
+        rend$d = l_endc;
+        rstp$d = stuff;
         if (reset) begin
+            rend$d = 1'b0;
+            rstp$d = 1'b0;
             rfld$d = Field$WaitIdle;
             rarea$d = 1'b0;
             rsa$d = 1'b0;
@@ -4769,6 +5085,10 @@ module canstar_can_core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_recove
             rdom$d = 1'b0;
         end
         if (cnt_load) begin
+            if ((tec_in >= 32'h100) | (rfld$q == Field$BusOff)) begin
+                rend$d = 1'b0;
+                rstp$d = 1'b0;
+            end
             if (tec_in >= 32'h100) begin
                 rfld$d = Field$BusOff;
                 rarea$d = 1'b0;
@@ -4797,6 +5117,9 @@ module canstar_can_core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_recove
         dom = rdom$q;
         in_busoff = rfld$q == Field$BusOff;
         area = rarea$q;
+        at_end = l_end;
+        pstuff = l_stuff;
+        pstuffed = rarea$q | l_stuff;
         stuffable = rsa$q;
         hs_fld = ~rnhs$q;
         inter_fld = rinter$q;
@@ -4805,100 +5128,6 @@ module canstar_can_core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_recove
     end
     
 endmodule // canstar_can_core$fsm$seq
-
-
-module canstar_can_core$fsm$seq$fcls(f,area,stuffable,hs,inter);
-    
-    // Module arguments
-    input wire  [4:0] f;
-    output reg  area;
-    output reg  stuffable;
-    output reg  hs;
-    output reg  inter;
-    
-    // Enums
-    localparam Field$Reset = 0;
-    localparam Field$WaitIdle = 1;
-    localparam Field$Idle = 2;
-    localparam Field$BusOff = 3;
-    localparam Field$Sof = 4;
-    localparam Field$Ident = 5;
-    localparam Field$Srr = 6;
-    localparam Field$Ide = 7;
-    localparam Field$Rtr = 8;
-    localparam Field$ExIdent = 9;
-    localparam Field$Resv = 10;
-    localparam Field$Dlc = 11;
-    localparam Field$Data = 12;
-    localparam Field$Crc = 13;
-    localparam Field$CrcDel = 14;
-    localparam Field$AckSlot = 15;
-    localparam Field$AckDel = 16;
-    localparam Field$Eof = 17;
-    localparam Field$ActFlag = 18;
-    localparam Field$PasFlag = 19;
-    localparam Field$OvlFlag = 20;
-    localparam Field$ErrDel = 21;
-    localparam Field$OvlDel = 22;
-    localparam Field$Inter = 23;
-    localparam Field$Suspend = 24;
-    
-    // Update code
-    always @(*) begin
-        area = (f == Field$Sof) | (f == Field$Ident) | (f == Field$Srr) | (f == Field$Ide) | (f == Field$Rtr) | (f == Field$ExIdent) | (f == Field$Resv) | (f == Field$Dlc) | (f == Field$Data) | (f == Field$Crc);
-        stuffable = area | (f == Field$CrcDel);
-        hs = (f == Field$Reset) | (f == Field$WaitIdle) | (f == Field$Idle) | (f == Field$BusOff) | (f == Field$Sof) | (f == Field$Suspend);
-        inter = f == Field$Inter;
-    end
-    
-endmodule // canstar_can_core$fsm$seq$fcls
-
-
-module canstar_can_core$fsm$seq$gcls(f,area,stuffable,hs,inter);
-    
-    // Module arguments
-    input wire  [4:0] f;
-    output reg  area;
-    output reg  stuffable;
-    output reg  hs;
-    output reg  inter;
-    
-    // Enums
-    localparam Field$Reset = 0;
-    localparam Field$WaitIdle = 1;
-    localparam Field$Idle = 2;
-    localparam Field$BusOff = 3;
-    localparam Field$Sof = 4;
-    localparam Field$Ident = 5;
-    localparam Field$Srr = 6;
-    localparam Field$Ide = 7;
-    localparam Field$Rtr = 8;
-    localparam Field$ExIdent = 9;
-    localparam Field$Resv = 10;
-    localparam Field$Dlc = 11;
-    localparam Field$Data = 12;
-    localparam Field$Crc = 13;
-    localparam Field$CrcDel = 14;
-    localparam Field$AckSlot = 15;
-    localparam Field$AckDel = 16;
-    localparam Field$Eof = 17;
-    localparam Field$ActFlag = 18;
-    localparam Field$PasFlag = 19;
-    localparam Field$OvlFlag = 20;
-    localparam Field$ErrDel = 21;
-    localparam Field$OvlDel = 22;
-    localparam Field$Inter = 23;
-    localparam Field$Suspend = 24;
-    
-    // Update code
-    always @(*) begin
-        area = (f == Field$Sof) | (f == Field$Ident) | (f == Field$Srr) | (f == Field$Ide) | (f == Field$Rtr) | (f == Field$ExIdent) | (f == Field$Resv) | (f == Field$Dlc) | (f == Field$Data) | (f == Field$Crc);
-        stuffable = area | (f == Field$CrcDel);
-        hs = (f == Field$Reset) | (f == Field$WaitIdle) | (f == Field$Idle) | (f == Field$BusOff) | (f == Field$Sof) | (f == Field$Suspend);
-        inter = f == Field$Inter;
-    end
-    
-endmodule // canstar_can_core$fsm$seq$gcls
 
 
 module canstar_can_core$fsm$seq$rarea(d,q,clock);
@@ -4937,6 +5166,25 @@ module canstar_can_core$fsm$seq$rdom(d,q,clock);
     end
           
 endmodule // canstar_can_core$fsm$seq$rdom
+
+
+module canstar_can_core$fsm$seq$rend(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_can_core$fsm$seq$rend
 
 
 module canstar_can_core$fsm$seq$rfld(d,q,clock);
@@ -5162,6 +5410,25 @@ module canstar_can_core$fsm$seq$rsa(d,q,clock);
     end
           
 endmodule // canstar_can_core$fsm$seq$rsa
+
+
+module canstar_can_core$fsm$seq$rstp(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_can_core$fsm$seq$rstp
 
 
 module canstar_can_core$fsm$seq$rtx(d,q,clock);

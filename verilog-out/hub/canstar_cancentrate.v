@@ -6781,6 +6781,7 @@ module canstar_cancentrate_core$monitor(clock,reset,rx,brp,prop,ph1,ph2,sjw,trip
     
     // Constant declarations
     localparam  rec_iso = 1'b1;
+    localparam  pipe = 1'b1;
     
     // Stub signals
     reg  sync$clock;
@@ -6826,6 +6827,7 @@ module canstar_cancentrate_core$monitor(clock,reset,rx,brp,prop,ph1,ph2,sjw,trip
     reg  [8:0] fsm$tec_in;
     reg  [7:0] fsm$rec_in;
     reg  fsm$rec_iso;
+    reg  fsm$pipe;
     wire  fsm$drive;
     wire  fsm$hs_en;
     wire  fsm$tx_done;
@@ -6906,6 +6908,7 @@ module canstar_cancentrate_core$monitor(clock,reset,rx,brp,prop,ph1,ph2,sjw,trip
         .tec_in(fsm$tec_in),
         .rec_in(fsm$rec_in),
         .rec_iso(fsm$rec_iso),
+        .pipe(fsm$pipe),
         .drive(fsm$drive),
         .hs_en(fsm$hs_en),
         .tx_done(fsm$tx_done),
@@ -6962,6 +6965,7 @@ module canstar_cancentrate_core$monitor(clock,reset,rx,brp,prop,ph1,ph2,sjw,trip
         fsm$host_recovery = host_recovery;
         fsm$recover = recover;
         fsm$rec_iso = rec_iso;
+        fsm$pipe = pipe;
         fsm$tx_req = tx_req;
         fsm$tx_ide = tx_ide;
         fsm$tx_rtr = tx_rtr;
@@ -7999,7 +8003,7 @@ module canstar_cancentrate_core$monitor$btl$tx_n(d,q,clock);
 endmodule // canstar_cancentrate_core$monitor$btl$tx_n
 
 
-module canstar_cancentrate_core$monitor$fsm(clock,reset,sample,busmon,listen_only,self_test,single_shot,host_recovery,recover,tx_req,tx_ide,tx_rtr,tx_id,tx_dlc,tx_data,tx_abort,cnt_load,tec_in,rec_in,rec_iso,drive,hs_en,tx_done,arb_lost,arb_lost_pos,error,err_kind,err_field,err_pos,err_tx,rx_valid,rx_ide,rx_rtr,rx_id,rx_dlc,rx_data,tec,rec,state,err_warn,tx_rqst,field,pos,stuff,role,events,runs);
+module canstar_cancentrate_core$monitor$fsm(clock,reset,sample,busmon,listen_only,self_test,single_shot,host_recovery,recover,tx_req,tx_ide,tx_rtr,tx_id,tx_dlc,tx_data,tx_abort,cnt_load,tec_in,rec_in,rec_iso,pipe,drive,hs_en,tx_done,arb_lost,arb_lost_pos,error,err_kind,err_field,err_pos,err_tx,rx_valid,rx_ide,rx_rtr,rx_id,rx_dlc,rx_data,tec,rec,state,err_warn,tx_rqst,field,pos,stuff,role,events,runs);
     
     // Module arguments
     input wire  clock;
@@ -8022,6 +8026,7 @@ module canstar_cancentrate_core$monitor$fsm(clock,reset,sample,busmon,listen_onl
     input wire  [8:0] tec_in;
     input wire  [7:0] rec_in;
     input wire  rec_iso;
+    input wire  pipe;
     output reg  drive;
     output reg  hs_en;
     output reg  tx_done;
@@ -8133,6 +8138,9 @@ module canstar_cancentrate_core$monitor$fsm(clock,reset,sample,busmon,listen_onl
     reg  seq$cnt_load;
     reg  [8:0] seq$tec_in;
     reg  seq$stuff;
+    reg  seq$pipe;
+    reg  seq$ext;
+    reg  [7:0] seq$data_bits;
     reg  seq$req;
     reg  seq$active;
     reg  seq$armed;
@@ -8143,6 +8151,10 @@ module canstar_cancentrate_core$monitor$fsm(clock,reset,sample,busmon,listen_onl
     reg  seq$level_sof;
     reg  seq$f_own;
     reg  [4:0] seq$f_nf;
+    reg  seq$f_na;
+    reg  seq$f_nsa;
+    reg  seq$f_nhs;
+    reg  seq$f_ni;
     reg  [7:0] seq$f_npos;
     reg  seq$f_ndom;
     reg  seq$f_usetx;
@@ -8152,6 +8164,10 @@ module canstar_cancentrate_core$monitor$fsm(clock,reset,sample,busmon,listen_onl
     reg  seq$f_sof;
     reg  seq$g_own;
     reg  [4:0] seq$g_nf;
+    reg  seq$g_na;
+    reg  seq$g_nsa;
+    reg  seq$g_nhs;
+    reg  seq$g_ni;
     reg  [7:0] seq$g_npos;
     reg  seq$g_ndom;
     reg  seq$g_err;
@@ -8163,6 +8179,9 @@ module canstar_cancentrate_core$monitor$fsm(clock,reset,sample,busmon,listen_onl
     wire  seq$tx_role;
     wire  seq$dom;
     wire  seq$in_busoff;
+    wire  seq$at_end;
+    wire  seq$pstuff;
+    wire  seq$pstuffed;
     wire  seq$area;
     wire  seq$stuffable;
     wire  seq$hs_fld;
@@ -8189,6 +8208,11 @@ module canstar_cancentrate_core$monitor$fsm(clock,reset,sample,busmon,listen_onl
     reg  frame$rec_iso;
     reg  [4:0] frame$fld;
     reg  [7:0] frame$fpos;
+    reg  frame$at_end;
+    reg  frame$area;
+    reg  frame$stuffable;
+    reg  frame$hs_fld;
+    reg  frame$inter_fld;
     reg  frame$tx_role;
     reg  frame$dom;
     reg  frame$listen_only;
@@ -8210,6 +8234,10 @@ module canstar_cancentrate_core$monitor$fsm(clock,reset,sample,busmon,listen_onl
     wire  frame$own;
     wire  [4:0] frame$nf;
     wire  [7:0] frame$npos;
+    wire  frame$narea;
+    wire  frame$nsa;
+    wire  frame$nhs;
+    wire  frame$ninter;
     wire  frame$ndom;
     wire  frame$usetx;
     wire  [4:0] frame$lnf;
@@ -8237,12 +8265,21 @@ module canstar_cancentrate_core$monitor$fsm(clock,reset,sample,busmon,listen_onl
     reg  flags$sent;
     reg  [4:0] flags$fld;
     reg  [7:0] flags$fpos;
+    reg  flags$at_end;
+    reg  flags$area;
+    reg  flags$stuffable;
+    reg  flags$hs_fld;
+    reg  flags$inter_fld;
     reg  flags$tx_role;
     reg  flags$flag_start;
     reg  flags$exc1_set;
     wire  flags$own;
     wire  [4:0] flags$nf;
     wire  [7:0] flags$npos;
+    wire  flags$narea;
+    wire  flags$nsa;
+    wire  flags$nhs;
+    wire  flags$ninter;
     wire  flags$ndom;
     wire  flags$err;
     wire  flags$err_bit;
@@ -8419,6 +8456,9 @@ module canstar_cancentrate_core$monitor$fsm(clock,reset,sample,busmon,listen_onl
         .cnt_load(seq$cnt_load),
         .tec_in(seq$tec_in),
         .stuff(seq$stuff),
+        .pipe(seq$pipe),
+        .ext(seq$ext),
+        .data_bits(seq$data_bits),
         .req(seq$req),
         .active(seq$active),
         .armed(seq$armed),
@@ -8429,6 +8469,10 @@ module canstar_cancentrate_core$monitor$fsm(clock,reset,sample,busmon,listen_onl
         .level_sof(seq$level_sof),
         .f_own(seq$f_own),
         .f_nf(seq$f_nf),
+        .f_na(seq$f_na),
+        .f_nsa(seq$f_nsa),
+        .f_nhs(seq$f_nhs),
+        .f_ni(seq$f_ni),
         .f_npos(seq$f_npos),
         .f_ndom(seq$f_ndom),
         .f_usetx(seq$f_usetx),
@@ -8438,6 +8482,10 @@ module canstar_cancentrate_core$monitor$fsm(clock,reset,sample,busmon,listen_onl
         .f_sof(seq$f_sof),
         .g_own(seq$g_own),
         .g_nf(seq$g_nf),
+        .g_na(seq$g_na),
+        .g_nsa(seq$g_nsa),
+        .g_nhs(seq$g_nhs),
+        .g_ni(seq$g_ni),
         .g_npos(seq$g_npos),
         .g_ndom(seq$g_ndom),
         .g_err(seq$g_err),
@@ -8449,6 +8497,9 @@ module canstar_cancentrate_core$monitor$fsm(clock,reset,sample,busmon,listen_onl
         .tx_role(seq$tx_role),
         .dom(seq$dom),
         .in_busoff(seq$in_busoff),
+        .at_end(seq$at_end),
+        .pstuff(seq$pstuff),
+        .pstuffed(seq$pstuffed),
         .area(seq$area),
         .stuffable(seq$stuffable),
         .hs_fld(seq$hs_fld),
@@ -8477,6 +8528,11 @@ module canstar_cancentrate_core$monitor$fsm(clock,reset,sample,busmon,listen_onl
         .rec_iso(frame$rec_iso),
         .fld(frame$fld),
         .fpos(frame$fpos),
+        .at_end(frame$at_end),
+        .area(frame$area),
+        .stuffable(frame$stuffable),
+        .hs_fld(frame$hs_fld),
+        .inter_fld(frame$inter_fld),
         .tx_role(frame$tx_role),
         .dom(frame$dom),
         .listen_only(frame$listen_only),
@@ -8498,6 +8554,10 @@ module canstar_cancentrate_core$monitor$fsm(clock,reset,sample,busmon,listen_onl
         .own(frame$own),
         .nf(frame$nf),
         .npos(frame$npos),
+        .narea(frame$narea),
+        .nsa(frame$nsa),
+        .nhs(frame$nhs),
+        .ninter(frame$ninter),
         .ndom(frame$ndom),
         .usetx(frame$usetx),
         .lnf(frame$lnf),
@@ -8527,12 +8587,21 @@ module canstar_cancentrate_core$monitor$fsm(clock,reset,sample,busmon,listen_onl
         .sent(flags$sent),
         .fld(flags$fld),
         .fpos(flags$fpos),
+        .at_end(flags$at_end),
+        .area(flags$area),
+        .stuffable(flags$stuffable),
+        .hs_fld(flags$hs_fld),
+        .inter_fld(flags$inter_fld),
         .tx_role(flags$tx_role),
         .flag_start(flags$flag_start),
         .exc1_set(flags$exc1_set),
         .own(flags$own),
         .nf(flags$nf),
         .npos(flags$npos),
+        .narea(flags$narea),
+        .nsa(flags$nsa),
+        .nhs(flags$nhs),
+        .ninter(flags$ninter),
         .ndom(flags$ndom),
         .err(flags$err),
         .err_bit(flags$err_bit),
@@ -8661,7 +8730,7 @@ module canstar_cancentrate_core$monitor$fsm(clock,reset,sample,busmon,listen_onl
         dstf$reset = reset;
         dstf$en = sample;
         dstf$din = busmon;
-        dstf$active = dec$stuffed | seq$sofinit;
+        dstf$active = seq$pstuffed | seq$sofinit;
         crcb$clock = clock;
         crcb$reset = reset;
         crcb$din = busmon;
@@ -8692,13 +8761,18 @@ module canstar_cancentrate_core$monitor$fsm(clock,reset,sample,busmon,listen_onl
         frame$rec_iso = rec_iso;
         frame$fld = seq$fld;
         frame$fpos = seq$fpos;
+        frame$at_end = seq$at_end;
+        frame$area = seq$area;
+        frame$stuffable = seq$stuffable;
+        frame$hs_fld = seq$hs_fld;
+        frame$inter_fld = seq$inter_fld;
         frame$tx_role = seq$tx_role;
         frame$dom = seq$dom;
         frame$listen_only = listen_only;
         frame$self_test = self_test;
         frame$active = conf$active;
-        frame$stuffed = dec$stuffed;
-        frame$stuff = dec$stuff;
+        frame$stuffed = seq$pstuffed;
+        frame$stuff = seq$pstuff;
         frame$arb = dec$arb_bit;
         frame$arb_stuff = dec$arb_stuff_bit;
         frame$stuff_error = dstf$stuff_error;
@@ -8717,6 +8791,11 @@ module canstar_cancentrate_core$monitor$fsm(clock,reset,sample,busmon,listen_onl
         flags$sent = dec$sent_bit;
         flags$fld = seq$fld;
         flags$fpos = seq$fpos;
+        flags$at_end = seq$at_end;
+        flags$area = seq$area;
+        flags$stuffable = seq$stuffable;
+        flags$hs_fld = seq$hs_fld;
+        flags$inter_fld = seq$inter_fld;
         flags$tx_role = seq$tx_role;
         flags$flag_start = seq$flag_start;
         flags$exc1_set = frame$exc1;
@@ -8729,6 +8808,9 @@ module canstar_cancentrate_core$monitor$fsm(clock,reset,sample,busmon,listen_onl
         seq$cnt_load = cnt_load;
         seq$tec_in = tec_in;
         seq$stuff = dec$stuff;
+        seq$pipe = pipe;
+        seq$ext = rxf$ext;
+        seq$data_bits = rxf$data_bits;
         seq$req = txq$req;
         seq$active = conf$active;
         seq$armed = conf$armed;
@@ -8739,6 +8821,10 @@ module canstar_cancentrate_core$monitor$fsm(clock,reset,sample,busmon,listen_onl
         seq$level_sof = txq$level_sof;
         seq$f_own = frame$own;
         seq$f_nf = frame$nf;
+        seq$f_na = frame$narea;
+        seq$f_nsa = frame$nsa;
+        seq$f_nhs = frame$nhs;
+        seq$f_ni = frame$ninter;
         seq$f_npos = frame$npos;
         seq$f_ndom = frame$ndom;
         seq$f_usetx = frame$usetx;
@@ -8748,6 +8834,10 @@ module canstar_cancentrate_core$monitor$fsm(clock,reset,sample,busmon,listen_onl
         seq$f_sof = frame$sof;
         seq$g_own = flags$own;
         seq$g_nf = flags$nf;
+        seq$g_na = flags$narea;
+        seq$g_nsa = flags$nsa;
+        seq$g_nhs = flags$nhs;
+        seq$g_ni = flags$ninter;
         seq$g_npos = flags$npos;
         seq$g_ndom = flags$ndom;
         seq$g_err = flags$err;
@@ -8900,6 +8990,12 @@ module canstar_cancentrate_core$monitor$fsm$conf(clock,reset,sample,listen_only,
     reg  [8:0] l_tec;
     reg  [7:0] l_rec;
     reg  l_clear;
+    reg  l_ge256;
+    reg  l_ge257;
+    reg  l_ge248;
+    reg  l_over;
+    reg  l_t128;
+    reg  l_r128;
     
     // Sub module instances
     canstar_cancentrate_core$monitor$fsm$conf$tecr tecr(
@@ -8933,6 +9029,8 @@ module canstar_cancentrate_core$monitor$fsm$conf(clock,reset,sample,listen_only,
         recr$d = recr$q;
         runr$d = runr$q;
         rarmed$d = rarmed$q;
+        l_t128 = tecr$q[32'h8] | tecr$q[32'h7];
+        l_r128 = recr$q[32'h7];
         l_clear = run & (runr$q == 32'h7f);
         l_tec = tecr$q;
         l_rec = recr$q;
@@ -8948,7 +9046,7 @@ module canstar_cancentrate_core$monitor$fsm$conf(clock,reset,sample,listen_only,
                 else if (tdec & (tecr$q != 32'h0)) begin
                     l_tec = tecr$q - 32'h1;
                 end
-                if (recr$q < 32'h80) begin
+                if (~l_r128) begin
                     if (rinc8) begin
                         l_rec = recr$q + 32'h8;
                     end
@@ -8964,7 +9062,19 @@ module canstar_cancentrate_core$monitor$fsm$conf(clock,reset,sample,listen_only,
                 end
             end
         end
-        busoff = sample & (l_tec >= 32'h100) & ~in_busoff;
+        l_ge256 = tecr$q[32'h8];
+        l_ge257 = tecr$q[32'h8] & (tecr$q[(32'h0)+:(8)] != 32'h0);
+        l_ge248 = tecr$q[32'h8] ^ (tecr$q[(32'h3)+:(5)] == 32'h1f);
+        l_over = l_ge256;
+        if (sample & ~listen_only) begin
+            if (tinc) begin
+                l_over = l_ge248;
+            end
+            else if (tdec) begin
+                l_over = l_ge257;
+            end
+        end
+        busoff = sample & l_over & ~in_busoff;
         rarmed$d = rarmed$q | recover;
         if (sample) begin
             tecr$d = l_tec;
@@ -8994,14 +9104,14 @@ module canstar_cancentrate_core$monitor$fsm$conf(clock,reset,sample,listen_only,
         tec = tecr$q;
         rec = recr$q;
         state = 32'h0;
-        if (tecr$q >= 32'h100) begin
+        if (tecr$q[32'h8]) begin
             state = 32'h2;
         end
-        else if ((tecr$q >= 32'h80) | (recr$q >= 32'h80)) begin
+        else if (l_t128 | l_r128) begin
             state = 32'h1;
         end
-        err_warn = (tecr$q >= 32'h60) | (recr$q >= 32'h60);
-        active = (tecr$q < 32'h80) & (recr$q < 32'h80);
+        err_warn = l_t128 | l_r128 | (tecr$q[32'h6] & tecr$q[32'h5]) | (recr$q[32'h6] & recr$q[32'h5]);
+        active = ~l_t128 & ~l_r128;
         runs = runr$q;
         last_run = runr$q == 32'h7f;
         armed = rarmed$q | recover;
@@ -9408,7 +9518,7 @@ module canstar_cancentrate_core$monitor$fsm$dstf$lvl(d,q,clock);
 endmodule // canstar_cancentrate_core$monitor$fsm$dstf$lvl
 
 
-module canstar_cancentrate_core$monitor$fsm$flags(clock,reset,sample,rxbit,sent,fld,fpos,tx_role,flag_start,exc1_set,own,nf,npos,ndom,err,err_bit,err_form,tinc,rinc1,rinc8,ovl,daf,exc1_met);
+module canstar_cancentrate_core$monitor$fsm$flags(clock,reset,sample,rxbit,sent,fld,fpos,at_end,area,stuffable,hs_fld,inter_fld,tx_role,flag_start,exc1_set,own,nf,npos,narea,nsa,nhs,ninter,ndom,err,err_bit,err_form,tinc,rinc1,rinc8,ovl,daf,exc1_met);
     
     // Module arguments
     input wire  clock;
@@ -9418,12 +9528,21 @@ module canstar_cancentrate_core$monitor$fsm$flags(clock,reset,sample,rxbit,sent,
     input wire  sent;
     input wire  [4:0] fld;
     input wire  [7:0] fpos;
+    input wire  at_end;
+    input wire  area;
+    input wire  stuffable;
+    input wire  hs_fld;
+    input wire  inter_fld;
     input wire  tx_role;
     input wire  flag_start;
     input wire  exc1_set;
     output reg  own;
     output reg  [4:0] nf;
     output reg  [7:0] npos;
+    output reg  narea;
+    output reg  nsa;
+    output reg  nhs;
+    output reg  ninter;
     output reg  ndom;
     output reg  err;
     output reg  err_bit;
@@ -9549,6 +9668,10 @@ module canstar_cancentrate_core$monitor$fsm$flags(clock,reset,sample,rxbit,sent,
         l_delim = sample & ((fld == Field$ErrDel) | (fld == Field$OvlDel));
         own = l_flag | l_delim;
         nf = fld;
+        narea = area;
+        nsa = stuffable;
+        nhs = hs_fld;
+        ninter = inter_fld;
         npos = fpos;
         ndom = 1'b0;
         err = 1'b0;
@@ -9570,7 +9693,7 @@ module canstar_cancentrate_core$monitor$fsm$flags(clock,reset,sample,rxbit,sent,
             if (~fdone$q) begin
                 npos = l_posinc;
                 if (fld == Field$PasFlag) begin
-                    if (fpos == 32'h1) begin
+                    if (at_end) begin
                         l_eqcnt = 32'h1;
                         l_eqlast = rxbit;
                     end
@@ -9599,7 +9722,7 @@ module canstar_cancentrate_core$monitor$fsm$flags(clock,reset,sample,rxbit,sent,
                 end
                 else begin
                     ndom = 1'b1;
-                    if (fpos == 32'h6) begin
+                    if (at_end) begin
                         l_fdone = 1'b1;
                         ndom = 1'b0;
                     end
@@ -9613,9 +9736,17 @@ module canstar_cancentrate_core$monitor$fsm$flags(clock,reset,sample,rxbit,sent,
                 npos = 32'h2;
                 if (fld == Field$OvlFlag) begin
                     nf = Field$OvlDel;
+                    narea = 1'b0;
+                    nsa = 1'b0;
+                    nhs = 1'b0;
+                    ninter = 1'b0;
                 end
                 else begin
                     nf = Field$ErrDel;
+                    narea = 1'b0;
+                    nsa = 1'b0;
+                    nhs = 1'b0;
+                    ninter = 1'b0;
                 end
             end
             else begin
@@ -9634,8 +9765,12 @@ module canstar_cancentrate_core$monitor$fsm$flags(clock,reset,sample,rxbit,sent,
         end
         if (l_delim) begin
             npos = l_posinc;
-            if (fpos == 32'h8) begin
+            if (at_end) begin
                 nf = Field$Inter;
+                narea = 1'b0;
+                nsa = 1'b0;
+                nhs = 1'b0;
+                ninter = 1'b1;
                 npos = 32'h1;
                 ovl = ~rxbit;
             end
@@ -9784,7 +9919,7 @@ module canstar_cancentrate_core$monitor$fsm$flags$fdone(d,q,clock);
 endmodule // canstar_cancentrate_core$monitor$fsm$flags$fdone
 
 
-module canstar_cancentrate_core$monitor$fsm$frame(clock,reset,sample,rxbit,sent,sent_stuff,rec_iso,fld,fpos,tx_role,dom,listen_only,self_test,active,stuffed,stuff,arb,arb_stuff,stuff_error,crc_rem,ext,rtr,dlc_lo_zero,data_bits,tx_ide,sofinit,err_now,own,nf,npos,ndom,usetx,lnf,lost,err,err_bit,err_stuff,err_crc,err_form,err_ack,tinc,rinc1,rok,ovl,exc1,exc2,tx_ok,rx_ok,sof,adv);
+module canstar_cancentrate_core$monitor$fsm$frame(clock,reset,sample,rxbit,sent,sent_stuff,rec_iso,fld,fpos,at_end,area,stuffable,hs_fld,inter_fld,tx_role,dom,listen_only,self_test,active,stuffed,stuff,arb,arb_stuff,stuff_error,crc_rem,ext,rtr,dlc_lo_zero,data_bits,tx_ide,sofinit,err_now,own,nf,npos,narea,nsa,nhs,ninter,ndom,usetx,lnf,lost,err,err_bit,err_stuff,err_crc,err_form,err_ack,tinc,rinc1,rok,ovl,exc1,exc2,tx_ok,rx_ok,sof,adv);
     
     // Module arguments
     input wire  clock;
@@ -9796,6 +9931,11 @@ module canstar_cancentrate_core$monitor$fsm$frame(clock,reset,sample,rxbit,sent,
     input wire  rec_iso;
     input wire  [4:0] fld;
     input wire  [7:0] fpos;
+    input wire  at_end;
+    input wire  area;
+    input wire  stuffable;
+    input wire  hs_fld;
+    input wire  inter_fld;
     input wire  tx_role;
     input wire  dom;
     input wire  listen_only;
@@ -9817,6 +9957,10 @@ module canstar_cancentrate_core$monitor$fsm$frame(clock,reset,sample,rxbit,sent,
     output reg  own;
     output reg  [4:0] nf;
     output reg  [7:0] npos;
+    output reg  narea;
+    output reg  nsa;
+    output reg  nhs;
+    output reg  ninter;
     output reg  ndom;
     output reg  usetx;
     output reg  [4:0] lnf;
@@ -9893,6 +10037,10 @@ module canstar_cancentrate_core$monitor$fsm$frame(clock,reset,sample,rxbit,sent,
         end
         own = sample & (stuffed | (fld == Field$CrcDel) | (fld == Field$AckSlot) | (fld == Field$AckDel) | (fld == Field$Eof));
         nf = fld;
+        narea = area;
+        nsa = stuffable;
+        nhs = hs_fld;
+        ninter = inter_fld;
         npos = fpos;
         ndom = 1'b0;
         usetx = 1'b0;
@@ -9957,23 +10105,39 @@ module canstar_cancentrate_core$monitor$fsm$frame(clock,reset,sample,rxbit,sent,
                             Field$Sof:
                                 begin
                                     nf = Field$Ident;
+                                    narea = 1'b1;
+                                    nsa = 1'b1;
+                                    nhs = 1'b0;
+                                    ninter = 1'b0;
                                     npos = 32'h1;
                                 end
                             Field$Ident:
                                 begin
-                                    if (fpos == 32'hb) begin
+                                    if (at_end) begin
                                         npos = 32'h1;
                                         if (l_role & tx_ide) begin
                                             nf = Field$Srr;
+                                            narea = 1'b1;
+                                            nsa = 1'b1;
+                                            nhs = 1'b0;
+                                            ninter = 1'b0;
                                         end
                                         else begin
                                             nf = Field$Rtr;
+                                            narea = 1'b1;
+                                            nsa = 1'b1;
+                                            nhs = 1'b0;
+                                            ninter = 1'b0;
                                         end
                                     end
                                 end
                             Field$Srr:
                                 begin
                                     nf = Field$Ide;
+                                    narea = 1'b1;
+                                    nsa = 1'b1;
+                                    nhs = 1'b0;
+                                    ninter = 1'b0;
                                     npos = 32'h1;
                                 end
                             Field$Rtr:
@@ -9981,9 +10145,17 @@ module canstar_cancentrate_core$monitor$fsm$frame(clock,reset,sample,rxbit,sent,
                                     npos = 32'h1;
                                     if (ext) begin
                                         nf = Field$Resv;
+                                        narea = 1'b1;
+                                        nsa = 1'b1;
+                                        nhs = 1'b0;
+                                        ninter = 1'b0;
                                     end
                                     else begin
                                         nf = Field$Ide;
+                                        narea = 1'b1;
+                                        nsa = 1'b1;
+                                        nhs = 1'b0;
+                                        ninter = 1'b0;
                                     end
                                 end
                             Field$Ide:
@@ -9991,48 +10163,80 @@ module canstar_cancentrate_core$monitor$fsm$frame(clock,reset,sample,rxbit,sent,
                                     npos = 32'h1;
                                     if (rxbit) begin
                                         nf = Field$ExIdent;
+                                        narea = 1'b1;
+                                        nsa = 1'b1;
+                                        nhs = 1'b0;
+                                        ninter = 1'b0;
                                     end
                                     else begin
                                         nf = Field$Resv;
+                                        narea = 1'b1;
+                                        nsa = 1'b1;
+                                        nhs = 1'b0;
+                                        ninter = 1'b0;
                                     end
                                 end
                             Field$ExIdent:
                                 begin
-                                    if (fpos == 32'h12) begin
+                                    if (at_end) begin
                                         nf = Field$Rtr;
+                                        narea = 1'b1;
+                                        nsa = 1'b1;
+                                        nhs = 1'b0;
+                                        ninter = 1'b0;
                                         npos = 32'h1;
                                     end
                                 end
                             Field$Resv:
                                 begin
-                                    if (~(ext & (fpos == 32'h1))) begin
+                                    if (~at_end) begin
                                         nf = Field$Dlc;
+                                        narea = 1'b1;
+                                        nsa = 1'b1;
+                                        nhs = 1'b0;
+                                        ninter = 1'b0;
                                         npos = 32'h1;
                                     end
                                 end
                             Field$Dlc:
                                 begin
-                                    if (fpos == 32'h4) begin
+                                    if (at_end) begin
                                         npos = 32'h1;
                                         if (rtr | (dlc_lo_zero & ~rxbit)) begin
                                             nf = Field$Crc;
+                                            narea = 1'b1;
+                                            nsa = 1'b1;
+                                            nhs = 1'b0;
+                                            ninter = 1'b0;
                                         end
                                         else begin
                                             nf = Field$Data;
+                                            narea = 1'b1;
+                                            nsa = 1'b1;
+                                            nhs = 1'b0;
+                                            ninter = 1'b0;
                                         end
                                     end
                                 end
                             Field$Data:
                                 begin
-                                    if (fpos == data_bits) begin
+                                    if (at_end) begin
                                         nf = Field$Crc;
+                                        narea = 1'b1;
+                                        nsa = 1'b1;
+                                        nhs = 1'b0;
+                                        ninter = 1'b0;
                                         npos = 32'h1;
                                     end
                                 end
                             Field$Crc:
                                 begin
-                                    if (fpos == 32'hf) begin
+                                    if (at_end) begin
                                         nf = Field$CrcDel;
+                                        narea = 1'b0;
+                                        nsa = 1'b1;
+                                        nhs = 1'b0;
+                                        ninter = 1'b0;
                                         npos = 32'h1;
                                         usetx = 1'b0;
                                         l_crcset = crc_rem;
@@ -10054,6 +10258,10 @@ module canstar_cancentrate_core$monitor$fsm$frame(clock,reset,sample,rxbit,sent,
                             end
                             else begin
                                 nf = Field$AckSlot;
+                                narea = 1'b0;
+                                nsa = 1'b0;
+                                nhs = 1'b0;
+                                ninter = 1'b0;
                                 npos = 32'h1;
                                 ndom = ~tx_role & ~crcerr$q & ~listen_only;
                             end
@@ -10061,6 +10269,10 @@ module canstar_cancentrate_core$monitor$fsm$frame(clock,reset,sample,rxbit,sent,
                     Field$AckSlot:
                         begin
                             nf = Field$AckDel;
+                            narea = 1'b0;
+                            nsa = 1'b0;
+                            nhs = 1'b0;
+                            ninter = 1'b0;
                             npos = 32'h1;
                             if (rxbit) begin
                                 if (tx_role) begin
@@ -10089,13 +10301,21 @@ module canstar_cancentrate_core$monitor$fsm$frame(clock,reset,sample,rxbit,sent,
                         begin
                             l_form = ~rxbit;
                             nf = Field$Eof;
+                            narea = 1'b0;
+                            nsa = 1'b0;
+                            nhs = 1'b0;
+                            ninter = 1'b0;
                             npos = 32'h1;
                         end
                     Field$Eof:
                         begin
                             npos = l_posinc;
-                            if (fpos == 32'h7) begin
+                            if (at_end) begin
                                 nf = Field$Inter;
+                                narea = 1'b0;
+                                nsa = 1'b0;
+                                nhs = 1'b0;
+                                ninter = 1'b1;
                                 npos = 32'h1;
                                 if (tx_role) begin
                                     if (~rxbit) begin
@@ -10151,7 +10371,7 @@ module canstar_cancentrate_core$monitor$fsm$frame(clock,reset,sample,rxbit,sent,
                 end
             Field$Ident:
                 begin
-                    if (fpos == 32'hb) begin
+                    if (at_end) begin
                         if (tx_role & tx_ide) begin
                             lnf = Field$Srr;
                         end
@@ -10184,19 +10404,19 @@ module canstar_cancentrate_core$monitor$fsm$frame(clock,reset,sample,rxbit,sent,
                 end
             Field$ExIdent:
                 begin
-                    if (fpos == 32'h12) begin
+                    if (at_end) begin
                         lnf = Field$Rtr;
                     end
                 end
             Field$Resv:
                 begin
-                    if (~(ext & (fpos == 32'h1))) begin
+                    if (~at_end) begin
                         lnf = Field$Dlc;
                     end
                 end
             Field$Dlc:
                 begin
-                    if (fpos == 32'h4) begin
+                    if (at_end) begin
                         if (rtr | (dlc_lo_zero & ~rxbit)) begin
                             lnf = Field$Crc;
                         end
@@ -10207,13 +10427,13 @@ module canstar_cancentrate_core$monitor$fsm$frame(clock,reset,sample,rxbit,sent,
                 end
             Field$Data:
                 begin
-                    if (fpos == data_bits) begin
+                    if (at_end) begin
                         lnf = Field$Crc;
                     end
                 end
             Field$Crc:
                 begin
-                    if (fpos == 32'hf) begin
+                    if (at_end) begin
                         lnf = Field$CrcDel;
                     end
                 end
@@ -10970,7 +11190,7 @@ module canstar_cancentrate_core$monitor$fsm$rxf$rxrtr_r(d,q,clock);
 endmodule // canstar_cancentrate_core$monitor$fsm$rxf$rxrtr_r
 
 
-module canstar_cancentrate_core$monitor$fsm$seq(clock,reset,sample,rxbit,listen_only,host_recovery,cnt_load,tec_in,stuff,req,active,armed,last_run,busoff,in_frame,level,level_sof,f_own,f_nf,f_npos,f_ndom,f_usetx,f_lost,f_err,f_ovl,f_sof,g_own,g_nf,g_npos,g_ndom,g_err,g_ovl,fld,fpos,pfld,ppos,tx_role,dom,in_busoff,area,stuffable,hs_fld,inter_fld,hs_pfld,inter_pfld,err,flag_start,sofinit,txsof,ev_aef,ev_pef,ev_olf,ev_ovl,ev_integrated,ev_run,ev_recovered);
+module canstar_cancentrate_core$monitor$fsm$seq(clock,reset,sample,rxbit,listen_only,host_recovery,cnt_load,tec_in,stuff,pipe,ext,data_bits,req,active,armed,last_run,busoff,in_frame,level,level_sof,f_own,f_nf,f_na,f_nsa,f_nhs,f_ni,f_npos,f_ndom,f_usetx,f_lost,f_err,f_ovl,f_sof,g_own,g_nf,g_na,g_nsa,g_nhs,g_ni,g_npos,g_ndom,g_err,g_ovl,fld,fpos,pfld,ppos,tx_role,dom,in_busoff,at_end,pstuff,pstuffed,area,stuffable,hs_fld,inter_fld,hs_pfld,inter_pfld,err,flag_start,sofinit,txsof,ev_aef,ev_pef,ev_olf,ev_ovl,ev_integrated,ev_run,ev_recovered);
     
     // Module arguments
     input wire  clock;
@@ -10982,6 +11202,9 @@ module canstar_cancentrate_core$monitor$fsm$seq(clock,reset,sample,rxbit,listen_
     input wire  cnt_load;
     input wire  [8:0] tec_in;
     input wire  stuff;
+    input wire  pipe;
+    input wire  ext;
+    input wire  [7:0] data_bits;
     input wire  req;
     input wire  active;
     input wire  armed;
@@ -10992,6 +11215,10 @@ module canstar_cancentrate_core$monitor$fsm$seq(clock,reset,sample,rxbit,listen_
     input wire  level_sof;
     input wire  f_own;
     input wire  [4:0] f_nf;
+    input wire  f_na;
+    input wire  f_nsa;
+    input wire  f_nhs;
+    input wire  f_ni;
     input wire  [7:0] f_npos;
     input wire  f_ndom;
     input wire  f_usetx;
@@ -11001,6 +11228,10 @@ module canstar_cancentrate_core$monitor$fsm$seq(clock,reset,sample,rxbit,listen_
     input wire  f_sof;
     input wire  g_own;
     input wire  [4:0] g_nf;
+    input wire  g_na;
+    input wire  g_nsa;
+    input wire  g_nhs;
+    input wire  g_ni;
     input wire  [7:0] g_npos;
     input wire  g_ndom;
     input wire  g_err;
@@ -11012,6 +11243,9 @@ module canstar_cancentrate_core$monitor$fsm$seq(clock,reset,sample,rxbit,listen_
     output reg  tx_role;
     output reg  dom;
     output reg  in_busoff;
+    output reg  at_end;
+    output reg  pstuff;
+    output reg  pstuffed;
     output reg  area;
     output reg  stuffable;
     output reg  hs_fld;
@@ -11094,19 +11328,18 @@ module canstar_cancentrate_core$monitor$fsm$seq(clock,reset,sample,rxbit,listen_
     reg  rpinter$d;
     wire  rpinter$q;
     reg  rpinter$clock;
-    reg  [4:0] fcls$f;
-    wire  fcls$area;
-    wire  fcls$stuffable;
-    wire  fcls$hs;
-    wire  fcls$inter;
-    reg  [4:0] gcls$f;
-    wire  gcls$area;
-    wire  gcls$stuffable;
-    wire  gcls$hs;
-    wire  gcls$inter;
+    reg  rend$d;
+    wire  rend$q;
+    reg  rend$clock;
+    reg  rstp$d;
+    wire  rstp$q;
+    reg  rstp$clock;
     
     // Local signals
     reg  [7:0] l_posinc;
+    reg  l_endc;
+    reg  l_end;
+    reg  l_stuff;
     reg  l_cantx;
     reg  [4:0] l_nf;
     reg  [7:0] l_npos;
@@ -11116,6 +11349,7 @@ module canstar_cancentrate_core$monitor$fsm$seq(clock,reset,sample,rxbit,listen_
     reg  l_start;
     reg  l_ovl;
     reg  l_lvl;
+    reg  l_sofs;
     reg  l_na;
     reg  l_nsa;
     reg  l_nhs;
@@ -11182,19 +11416,15 @@ module canstar_cancentrate_core$monitor$fsm$seq(clock,reset,sample,rxbit,listen_
         .q(rpinter$q),
         .clock(rpinter$clock)
     );
-    canstar_cancentrate_core$monitor$fsm$seq$fcls fcls(
-        .f(fcls$f),
-        .area(fcls$area),
-        .stuffable(fcls$stuffable),
-        .hs(fcls$hs),
-        .inter(fcls$inter)
+    canstar_cancentrate_core$monitor$fsm$seq$rend rend(
+        .d(rend$d),
+        .q(rend$q),
+        .clock(rend$clock)
     );
-    canstar_cancentrate_core$monitor$fsm$seq$gcls gcls(
-        .f(gcls$f),
-        .area(gcls$area),
-        .stuffable(gcls$stuffable),
-        .hs(gcls$hs),
-        .inter(gcls$inter)
+    canstar_cancentrate_core$monitor$fsm$seq$rstp rstp(
+        .d(rstp$d),
+        .q(rstp$q),
+        .clock(rstp$clock)
     );
     
     // Update code
@@ -11211,6 +11441,8 @@ module canstar_cancentrate_core$monitor$fsm$seq(clock,reset,sample,rxbit,listen_
         rinter$clock = clock;
         rnphs$clock = clock;
         rpinter$clock = clock;
+        rend$clock = clock;
+        rstp$clock = clock;
         rfld$d = rfld$q;
         rpos$d = rpos$q;
         rpfld$d = rpfld$q;
@@ -11223,18 +11455,94 @@ module canstar_cancentrate_core$monitor$fsm$seq(clock,reset,sample,rxbit,listen_
         rinter$d = rinter$q;
         rnphs$d = rnphs$q;
         rpinter$d = rpinter$q;
+        rend$d = rend$q;
+        rstp$d = rstp$q;
         l_posinc = rpos$q + 32'h1;
         if (rpos$q == 32'hff) begin
             l_posinc = rpos$q;
         end
         l_cantx = req & ~listen_only;
+        l_endc = 1'b0;
+        case (rfld$q)
+            Field$WaitIdle:
+                begin
+                    l_endc = rpos$q == 32'hb;
+                end
+            Field$BusOff:
+                begin
+                    l_endc = rpos$q == 32'hb;
+                end
+            Field$Ident:
+                begin
+                    l_endc = rpos$q == 32'hb;
+                end
+            Field$ExIdent:
+                begin
+                    l_endc = rpos$q == 32'h12;
+                end
+            Field$Resv:
+                begin
+                    l_endc = ext & (rpos$q == 32'h1);
+                end
+            Field$Dlc:
+                begin
+                    l_endc = rpos$q == 32'h4;
+                end
+            Field$Data:
+                begin
+                    l_endc = rpos$q == data_bits;
+                end
+            Field$Crc:
+                begin
+                    l_endc = rpos$q == 32'hf;
+                end
+            Field$Eof:
+                begin
+                    l_endc = rpos$q == 32'h7;
+                end
+            Field$PasFlag:
+                begin
+                    l_endc = rpos$q == 32'h1;
+                end
+            Field$ActFlag:
+                begin
+                    l_endc = rpos$q == 32'h6;
+                end
+            Field$OvlFlag:
+                begin
+                    l_endc = rpos$q == 32'h6;
+                end
+            Field$ErrDel:
+                begin
+                    l_endc = rpos$q == 32'h8;
+                end
+            Field$OvlDel:
+                begin
+                    l_endc = rpos$q == 32'h8;
+                end
+            Field$Inter:
+                begin
+                    l_endc = rpos$q == 32'h3;
+                end
+            Field$Suspend:
+                begin
+                    l_endc = rpos$q == 32'h8;
+                end
+            default:
+                begin
+                end
+        endcase
+        l_end = l_endc;
+        l_stuff = stuff;
+        if (pipe) begin
+            l_end = rend$q;
+            l_stuff = rstp$q;
+        end
         l_nf = rfld$q;
         l_na = rarea$q;
         l_nsa = rsa$q;
         l_nhs = ~rnhs$q;
         l_ni = rinter$q;
-        fcls$f = f_nf;
-        gcls$f = g_nf;
         l_npos = rpos$q;
         l_ndom = 1'b0;
         l_usetx = 1'b0;
@@ -11242,6 +11550,7 @@ module canstar_cancentrate_core$monitor$fsm$seq(clock,reset,sample,rxbit,listen_
         l_start = 1'b0;
         l_ovl = 1'b0;
         sofinit = 1'b0;
+        l_sofs = 1'b0;
         txsof = 1'b0;
         err = 1'b0;
         ev_integrated = 1'b0;
@@ -11250,10 +11559,10 @@ module canstar_cancentrate_core$monitor$fsm$seq(clock,reset,sample,rxbit,listen_
         if (sample) begin
             if (f_own) begin
                 l_nf = f_nf;
-                l_na = fcls$area;
-                l_nsa = fcls$stuffable;
-                l_nhs = fcls$hs;
-                l_ni = fcls$inter;
+                l_na = f_na;
+                l_nsa = f_nsa;
+                l_nhs = f_nhs;
+                l_ni = f_ni;
                 l_npos = f_npos;
                 l_ndom = f_ndom;
                 l_usetx = f_usetx;
@@ -11264,10 +11573,10 @@ module canstar_cancentrate_core$monitor$fsm$seq(clock,reset,sample,rxbit,listen_
             end
             else if (g_own) begin
                 l_nf = g_nf;
-                l_na = gcls$area;
-                l_nsa = gcls$stuffable;
-                l_nhs = gcls$hs;
-                l_ni = gcls$inter;
+                l_na = g_na;
+                l_nsa = g_nsa;
+                l_nhs = g_nhs;
+                l_ni = g_ni;
                 l_npos = g_npos;
                 l_ndom = g_ndom;
                 err = g_err;
@@ -11289,7 +11598,7 @@ module canstar_cancentrate_core$monitor$fsm$seq(clock,reset,sample,rxbit,listen_
                             if (~rxbit) begin
                                 l_npos = 32'h1;
                             end
-                            else if (rpos$q == 32'hb) begin
+                            else if (l_end) begin
                                 ev_integrated = 1'b1;
                                 l_start = 1'b1;
                             end
@@ -11301,6 +11610,7 @@ module canstar_cancentrate_core$monitor$fsm$seq(clock,reset,sample,rxbit,listen_
                         begin
                             if (~rxbit) begin
                                 sofinit = 1'b1;
+                                l_sofs = 1'b1;
                                 l_role = 1'b0;
                             end
                             else begin
@@ -11312,7 +11622,7 @@ module canstar_cancentrate_core$monitor$fsm$seq(clock,reset,sample,rxbit,listen_
                             if ((host_recovery & ~armed) | ~rxbit) begin
                                 l_npos = 32'h1;
                             end
-                            else if (rpos$q == 32'hb) begin
+                            else if (l_end) begin
                                 ev_run = 1'b1;
                                 l_npos = 32'h1;
                                 if (last_run) begin
@@ -11327,9 +11637,10 @@ module canstar_cancentrate_core$monitor$fsm$seq(clock,reset,sample,rxbit,listen_
                     Field$Inter:
                         begin
                             l_npos = l_posinc;
-                            if (rpos$q == 32'h3) begin
+                            if (l_end) begin
                                 if (~rxbit) begin
                                     sofinit = 1'b1;
+                                    l_sofs = 1'b1;
                                     if (l_cantx & ~(rtx$q & ~active)) begin
                                         l_role = 1'b1;
                                         txsof = 1'b1;
@@ -11359,9 +11670,10 @@ module canstar_cancentrate_core$monitor$fsm$seq(clock,reset,sample,rxbit,listen_
                             l_npos = l_posinc;
                             if (~rxbit) begin
                                 sofinit = 1'b1;
+                                l_sofs = 1'b1;
                                 l_role = 1'b0;
                             end
-                            else if (rpos$q == 32'h8) begin
+                            else if (l_end) begin
                                 l_start = 1'b1;
                             end
                         end
@@ -11370,7 +11682,7 @@ module canstar_cancentrate_core$monitor$fsm$seq(clock,reset,sample,rxbit,listen_
                         end
                 endcase
             end
-            if (sofinit) begin
+            if (l_sofs) begin
                 l_nf = Field$Ident;
                 l_na = 1'b1;
                 l_nsa = 1'b1;
@@ -11460,7 +11772,7 @@ module canstar_cancentrate_core$monitor$fsm$seq(clock,reset,sample,rxbit,listen_
         flag_start = err | l_ovl;
         ev_ovl = l_ovl & ~err;
         if (sample) begin
-            if (~stuff) begin
+            if (~l_stuff) begin
                 rpfld$d = rfld$q;
                 rppos$d = rpos$q;
                 rnphs$d = rnhs$q;
@@ -11475,7 +11787,11 @@ module canstar_cancentrate_core$monitor$fsm$seq(clock,reset,sample,rxbit,listen_
             rtx$d = l_role;
             rdom$d = l_ndom;
         end
+        rend$d = l_endc;
+        rstp$d = stuff;
         if (reset) begin
+            rend$d = 1'b0;
+            rstp$d = 1'b0;
             rfld$d = Field$WaitIdle;
             rarea$d = 1'b0;
             rsa$d = 1'b0;
@@ -11486,6 +11802,10 @@ module canstar_cancentrate_core$monitor$fsm$seq(clock,reset,sample,rxbit,listen_
             rdom$d = 1'b0;
         end
         if (cnt_load) begin
+            if ((tec_in >= 32'h100) | (rfld$q == Field$BusOff)) begin
+                rend$d = 1'b0;
+                rstp$d = 1'b0;
+            end
             if (tec_in >= 32'h100) begin
                 rfld$d = Field$BusOff;
                 rarea$d = 1'b0;
@@ -11514,6 +11834,9 @@ module canstar_cancentrate_core$monitor$fsm$seq(clock,reset,sample,rxbit,listen_
         dom = rdom$q;
         in_busoff = rfld$q == Field$BusOff;
         area = rarea$q;
+        at_end = l_end;
+        pstuff = l_stuff;
+        pstuffed = rarea$q | l_stuff;
         stuffable = rsa$q;
         hs_fld = ~rnhs$q;
         inter_fld = rinter$q;
@@ -11522,100 +11845,6 @@ module canstar_cancentrate_core$monitor$fsm$seq(clock,reset,sample,rxbit,listen_
     end
     
 endmodule // canstar_cancentrate_core$monitor$fsm$seq
-
-
-module canstar_cancentrate_core$monitor$fsm$seq$fcls(f,area,stuffable,hs,inter);
-    
-    // Module arguments
-    input wire  [4:0] f;
-    output reg  area;
-    output reg  stuffable;
-    output reg  hs;
-    output reg  inter;
-    
-    // Enums
-    localparam Field$Reset = 0;
-    localparam Field$WaitIdle = 1;
-    localparam Field$Idle = 2;
-    localparam Field$BusOff = 3;
-    localparam Field$Sof = 4;
-    localparam Field$Ident = 5;
-    localparam Field$Srr = 6;
-    localparam Field$Ide = 7;
-    localparam Field$Rtr = 8;
-    localparam Field$ExIdent = 9;
-    localparam Field$Resv = 10;
-    localparam Field$Dlc = 11;
-    localparam Field$Data = 12;
-    localparam Field$Crc = 13;
-    localparam Field$CrcDel = 14;
-    localparam Field$AckSlot = 15;
-    localparam Field$AckDel = 16;
-    localparam Field$Eof = 17;
-    localparam Field$ActFlag = 18;
-    localparam Field$PasFlag = 19;
-    localparam Field$OvlFlag = 20;
-    localparam Field$ErrDel = 21;
-    localparam Field$OvlDel = 22;
-    localparam Field$Inter = 23;
-    localparam Field$Suspend = 24;
-    
-    // Update code
-    always @(*) begin
-        area = (f == Field$Sof) | (f == Field$Ident) | (f == Field$Srr) | (f == Field$Ide) | (f == Field$Rtr) | (f == Field$ExIdent) | (f == Field$Resv) | (f == Field$Dlc) | (f == Field$Data) | (f == Field$Crc);
-        stuffable = area | (f == Field$CrcDel);
-        hs = (f == Field$Reset) | (f == Field$WaitIdle) | (f == Field$Idle) | (f == Field$BusOff) | (f == Field$Sof) | (f == Field$Suspend);
-        inter = f == Field$Inter;
-    end
-    
-endmodule // canstar_cancentrate_core$monitor$fsm$seq$fcls
-
-
-module canstar_cancentrate_core$monitor$fsm$seq$gcls(f,area,stuffable,hs,inter);
-    
-    // Module arguments
-    input wire  [4:0] f;
-    output reg  area;
-    output reg  stuffable;
-    output reg  hs;
-    output reg  inter;
-    
-    // Enums
-    localparam Field$Reset = 0;
-    localparam Field$WaitIdle = 1;
-    localparam Field$Idle = 2;
-    localparam Field$BusOff = 3;
-    localparam Field$Sof = 4;
-    localparam Field$Ident = 5;
-    localparam Field$Srr = 6;
-    localparam Field$Ide = 7;
-    localparam Field$Rtr = 8;
-    localparam Field$ExIdent = 9;
-    localparam Field$Resv = 10;
-    localparam Field$Dlc = 11;
-    localparam Field$Data = 12;
-    localparam Field$Crc = 13;
-    localparam Field$CrcDel = 14;
-    localparam Field$AckSlot = 15;
-    localparam Field$AckDel = 16;
-    localparam Field$Eof = 17;
-    localparam Field$ActFlag = 18;
-    localparam Field$PasFlag = 19;
-    localparam Field$OvlFlag = 20;
-    localparam Field$ErrDel = 21;
-    localparam Field$OvlDel = 22;
-    localparam Field$Inter = 23;
-    localparam Field$Suspend = 24;
-    
-    // Update code
-    always @(*) begin
-        area = (f == Field$Sof) | (f == Field$Ident) | (f == Field$Srr) | (f == Field$Ide) | (f == Field$Rtr) | (f == Field$ExIdent) | (f == Field$Resv) | (f == Field$Dlc) | (f == Field$Data) | (f == Field$Crc);
-        stuffable = area | (f == Field$CrcDel);
-        hs = (f == Field$Reset) | (f == Field$WaitIdle) | (f == Field$Idle) | (f == Field$BusOff) | (f == Field$Sof) | (f == Field$Suspend);
-        inter = f == Field$Inter;
-    end
-    
-endmodule // canstar_cancentrate_core$monitor$fsm$seq$gcls
 
 
 module canstar_cancentrate_core$monitor$fsm$seq$rarea(d,q,clock);
@@ -11654,6 +11883,25 @@ module canstar_cancentrate_core$monitor$fsm$seq$rdom(d,q,clock);
     end
           
 endmodule // canstar_cancentrate_core$monitor$fsm$seq$rdom
+
+
+module canstar_cancentrate_core$monitor$fsm$seq$rend(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$monitor$fsm$seq$rend
 
 
 module canstar_cancentrate_core$monitor$fsm$seq$rfld(d,q,clock);
@@ -11879,6 +12127,25 @@ module canstar_cancentrate_core$monitor$fsm$seq$rsa(d,q,clock);
     end
           
 endmodule // canstar_cancentrate_core$monitor$fsm$seq$rsa
+
+
+module canstar_cancentrate_core$monitor$fsm$seq$rstp(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$monitor$fsm$seq$rstp
 
 
 module canstar_cancentrate_core$monitor$fsm$seq$rtx(d,q,clock);

@@ -71,12 +71,21 @@ pub struct FaultConfinement {
     l_tec: Signal<Local, Bits<9>>,
     l_rec: Signal<Local, Bits<8>>,
     l_clear: Signal<Local, Bit>,
+    l_ge256: Signal<Local, Bit>,
+    l_ge257: Signal<Local, Bit>,
+    l_ge248: Signal<Local, Bit>,
+    l_over: Signal<Local, Bit>,
+    l_t128: Signal<Local, Bit>,
+    l_r128: Signal<Local, Bit>,
 }
 
 impl Logic for FaultConfinement {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(self, clock, tecr, recr, runr, rarmed);
+        // TEC ≥ 128 and REC ≥ 128 (see the thresholds below).
+        self.l_t128.next = self.tecr.q.val().get_bit(8) | self.tecr.q.val().get_bit(7);
+        self.l_r128.next = self.recr.q.val().get_bit(7);
         // Recovery complete: the 128th run.
         self.l_clear.next = self.run.val() & (self.runr.q.val() == 127);
         self.l_tec.next = self.tecr.q.val();
@@ -92,7 +101,7 @@ impl Logic for FaultConfinement {
                 } else if self.tdec.val() & (self.tecr.q.val() != 0) {
                     self.l_tec.next = self.tecr.q.val() - 1;
                 }
-                if self.recr.q.val() < 128 {
+                if !self.l_r128.val() {
                     if self.rinc8.val() {
                         self.l_rec.next = self.recr.q.val() + 8;
                     } else if self.rinc1.val() {
@@ -105,7 +114,25 @@ impl Logic for FaultConfinement {
                 }
             }
         }
-        self.busoff.next = self.sample.val() & (self.l_tec.val() >= 256) & !self.in_busoff.val();
+        // Bus-off: `l_tec` ≥ 256 from TEC's bits beside the adders (issue
+        // #16), so that the test does not wait for them: TEC + 8 ≥ 256 (9-bit
+        // sum) for TEC in 248..=503, TEC − 1 ≥ 256 for TEC ≥ 257, TEC ≥ 256
+        // otherwise. `l_ge248` is TEC in
+        // 248..=503: bit 8 differs from "bits 7..3 all set".
+        self.l_ge256.next = self.tecr.q.val().get_bit(8);
+        self.l_ge257.next = self.tecr.q.val().get_bit(8) & (self.tecr.q.val().get_bits::<8>(0) != 0);
+        self.l_ge248.next = self.tecr.q.val().get_bit(8) ^ (self.tecr.q.val().get_bits::<5>(3) == 31);
+        // (A completed recovery, `l_clear`, comes in Bus_Off only, where
+        // `busoff` is 0 anyway.)
+        self.l_over.next = self.l_ge256.val();
+        if self.sample.val() & !self.listen_only.val() {
+            if self.tinc.val() {
+                self.l_over.next = self.l_ge248.val();
+            } else if self.tdec.val() {
+                self.l_over.next = self.l_ge257.val();
+            }
+        }
+        self.busoff.next = self.sample.val() & self.l_over.val() & !self.in_busoff.val();
 
         self.rarmed.d.next = self.rarmed.q.val() | self.recover.val();
         if self.sample.val() {
@@ -136,14 +163,20 @@ impl Logic for FaultConfinement {
 
         self.tec.next = self.tecr.q.val();
         self.rec.next = self.recr.q.val();
+        // The thresholds as logic on the counters' bits (issue #16; Yosys
+        // maps the comparisons to carry chains): TEC ≥ 256 is bit 8, ≥ 128
+        // bit 8 or 7, ≥ 96 bit 8 or 7 or bits 6 and 5 (REC alike, 8 bits).
         self.state.next = 0.into();
-        if self.tecr.q.val() >= 256 {
+        if self.tecr.q.val().get_bit(8) {
             self.state.next = 2.into();
-        } else if (self.tecr.q.val() >= 128) | (self.recr.q.val() >= 128) {
+        } else if self.l_t128.val() | self.l_r128.val() {
             self.state.next = 1.into();
         }
-        self.err_warn.next = (self.tecr.q.val() >= 96) | (self.recr.q.val() >= 96);
-        self.active.next = (self.tecr.q.val() < 128) & (self.recr.q.val() < 128);
+        self.err_warn.next = self.l_t128.val()
+            | self.l_r128.val()
+            | (self.tecr.q.val().get_bit(6) & self.tecr.q.val().get_bit(5))
+            | (self.recr.q.val().get_bit(6) & self.recr.q.val().get_bit(5));
+        self.active.next = !self.l_t128.val() & !self.l_r128.val();
         self.runs.next = self.runr.q.val();
         self.last_run.next = self.runr.q.val() == 127;
         self.armed.next = self.rarmed.q.val() | self.recover.val();
@@ -211,6 +244,63 @@ mod tests {
         // a bus-off node (in_busoff) does not signal it again
         u.in_busoff.next = true;
         assert!(!bit(&mut u, |_| {}));
+    }
+
+    /// Issue #16: the bus-off test from TEC's bits and the thresholds as bit
+    /// logic equal the comparisons after the adders, for every TEC and REC.
+    #[test]
+    fn thresholds_from_bits_equal_the_comparisons() {
+        let mut u = block();
+        for tec in 0..512u64 {
+            for rec in [0u64, 95, 96, 127, 128, 200, 255] {
+                u.cnt_load.next = true;
+                u.tec_in.next = tec.into();
+                u.rec_in.next = rec.into();
+                drive::cycle(&mut u);
+                u.cnt_load.next = false;
+                drive::settle(&mut u);
+                let state = if tec >= 256 {
+                    2
+                } else if tec >= 128 || rec >= 128 {
+                    1
+                } else {
+                    0
+                };
+                assert_eq!(counters(&u), (tec, rec, state), "tec {tec} rec {rec}");
+                assert_eq!(u.err_warn.val(), tec >= 96 || rec >= 96, "tec {tec} rec {rec}");
+                assert_eq!(u.active.val(), tec < 128 && rec < 128, "tec {tec} rec {rec}");
+                for (tinc, tdec, lo) in [
+                    (false, false, false),
+                    (true, false, false),
+                    (false, true, false),
+                    (true, true, false),
+                    (true, false, true),
+                    (false, true, true),
+                ] {
+                    u.sample.next = true;
+                    u.tinc.next = tinc;
+                    u.tdec.next = tdec;
+                    u.listen_only.next = lo;
+                    drive::settle(&mut u);
+                    let next = if lo {
+                        tec
+                    } else if tinc {
+                        (tec + 8) % 512
+                    } else if tdec && tec != 0 {
+                        tec - 1
+                    } else {
+                        tec
+                    };
+                    assert_eq!(u.busoff.val(), next >= 256, "tec {tec} tinc {tinc} tdec {tdec} lo {lo}");
+                }
+                u.sample.next = false;
+                u.tinc.next = false;
+                u.tdec.next = false;
+                u.listen_only.next = false;
+                drive::settle(&mut u);
+                assert!(!u.busoff.val());
+            }
+        }
     }
 
     #[test]

@@ -103,6 +103,25 @@ impl Field {
             Field::Suspend => "Suspend_Transmission",
         }
     }
+    /// POSITION `pos` is the one at which the field's decision depends on it
+    /// (the sequencer's `at_end`, issue #16; `ext` and `data_bits` from the
+    /// receive register).
+    pub fn at_end(self, pos: u64, ext: bool, data_bits: u64) -> bool {
+        match self {
+            Field::WaitIdle | Field::BusOff | Field::Ident => pos == 11,
+            Field::ExIdent => pos == 18,
+            Field::Resv => ext && pos == 1,
+            Field::Dlc => pos == 4,
+            Field::Data => pos == data_bits,
+            Field::Crc => pos == 15,
+            Field::Eof => pos == 7,
+            Field::PasFlag => pos == 1,
+            Field::ActFlag | Field::OvlFlag => pos == 6,
+            Field::ErrDel | Field::OvlDel | Field::Suspend => pos == 8,
+            Field::Inter => pos == 3,
+            _ => false,
+        }
+    }
     /// Fields that carry a Tx_/Rx_ role prefix in the trace (§18).
     pub fn has_role(self) -> bool {
         !matches!(self, Field::Reset | Field::WaitIdle | Field::Idle | Field::BusOff)

@@ -46,6 +46,17 @@ pub struct FlagFields {
     pub sent: Signal<In, Bit>,
     pub fld: Signal<In, Field>,
     pub fpos: Signal<In, Bits<8>>,
+    /// POSITION is the field's decisive one (the sequencer's `at_end`:
+    /// Passive_Error_Flag 1, Active_Error_Flag and Overload_Flag 6, the
+    /// delimiters 8).
+    pub at_end: Signal<In, Bit>,
+    /// The classes of `fld` (the sequencer's registers, see
+    /// [`super::seq::Sequencer`]): stuffed area, there or CRC_Delimiter,
+    /// hard synchronisation at every position, Intermission.
+    pub area: Signal<In, Bit>,
+    pub stuffable: Signal<In, Bit>,
+    pub hs_fld: Signal<In, Bit>,
+    pub inter_fld: Signal<In, Bit>,
     pub tx_role: Signal<In, Bit>,
     /// A flag starts with the next bit (the sequencer's final decision).
     pub flag_start: Signal<In, Bit>,
@@ -56,6 +67,12 @@ pub struct FlagFields {
     pub own: Signal<Out, Bit>,
     pub nf: Signal<Out, Field>,
     pub npos: Signal<Out, Bits<8>>,
+    /// The classes of `nf` (as `area` .. `inter_fld`), set along with it
+    /// (issue #16: no decode of `nf` after its multiplexers).
+    pub narea: Signal<Out, Bit>,
+    pub nsa: Signal<Out, Bit>,
+    pub nhs: Signal<Out, Bit>,
+    pub ninter: Signal<Out, Bit>,
     pub ndom: Signal<Out, Bit>,
     pub err: Signal<Out, Bit>,
     pub err_bit: Signal<Out, Bit>,
@@ -103,6 +120,10 @@ impl Logic for FlagFields {
         self.l_delim.next = self.sample.val() & ((self.fld.val() == Field::ErrDel) | (self.fld.val() == Field::OvlDel));
         self.own.next = self.l_flag.val() | self.l_delim.val();
         self.nf.next = self.fld.val();
+        self.narea.next = self.area.val();
+        self.nsa.next = self.stuffable.val();
+        self.nhs.next = self.hs_fld.val();
+        self.ninter.next = self.inter_fld.val();
         self.npos.next = self.fpos.val();
         self.ndom.next = false;
         self.err.next = false;
@@ -126,7 +147,7 @@ impl Logic for FlagFields {
                 self.npos.next = self.l_posinc.val();
                 if self.fld.val() == Field::PasFlag {
                     // 6 consecutive equal bits, counted from the flag's first bit
-                    if self.fpos.val() == 1 {
+                    if self.at_end.val() {
                         self.l_eqcnt.next = 1.into();
                         self.l_eqlast.next = self.rxbit.val();
                     } else if self.rxbit.val() == self.eqlast.q.val() {
@@ -153,7 +174,7 @@ impl Logic for FlagFields {
                     self.rinc8.next = !self.tx_role.val();
                 } else {
                     self.ndom.next = true;
-                    if self.fpos.val() == 6 {
+                    if self.at_end.val() {
                         self.l_fdone.next = true;
                         self.ndom.next = false;
                     }
@@ -167,8 +188,16 @@ impl Logic for FlagFields {
                 self.npos.next = 2.into();
                 if self.fld.val() == Field::OvlFlag {
                     self.nf.next = Field::OvlDel;
+                    self.narea.next = false;
+                    self.nsa.next = false;
+                    self.nhs.next = false;
+                    self.ninter.next = false;
                 } else {
                     self.nf.next = Field::ErrDel;
+                    self.narea.next = false;
+                    self.nsa.next = false;
+                    self.nhs.next = false;
+                    self.ninter.next = false;
                 }
             } else {
                 self.npos.next = self.l_posinc.val();
@@ -186,8 +215,12 @@ impl Logic for FlagFields {
         }
         if self.l_delim.val() {
             self.npos.next = self.l_posinc.val();
-            if self.fpos.val() == 8 {
+            if self.at_end.val() {
                 self.nf.next = Field::Inter;
+                self.narea.next = false;
+                self.nsa.next = false;
+                self.nhs.next = false;
+                self.ninter.next = true;
                 self.npos.next = 1.into();
                 self.ovl.next = !self.rxbit.val();
             } else if !self.rxbit.val() {
@@ -217,7 +250,6 @@ impl Logic for FlagFields {
             self.dafany.d.next = false;
             self.exc1.d.next = false;
         }
-
     }
 }
 
@@ -259,6 +291,7 @@ mod tests {
         u.sample.next = true;
         u.fld.next = fld;
         u.fpos.next = fpos.into();
+        u.at_end.next = fld.at_end(fpos, false, 0);
         u.rxbit.next = level;
         u.sent.next = sent;
         drive::settle(u);
@@ -304,7 +337,11 @@ mod tests {
             start(&mut u, false);
             for pos in 1..=6 {
                 let o = bit(&mut u, Field::ActFlag, pos, false, false);
-                assert_eq!((o.nf, o.npos, o.ndom, o.err), (Some(Field::ActFlag), pos + 1, pos < 6, false), "flag bit {pos}");
+                assert_eq!(
+                    (o.nf, o.npos, o.ndom, o.err),
+                    (Some(Field::ActFlag), pos + 1, pos < 6, false),
+                    "flag bit {pos}"
+                );
             }
             let d = dafs(&mut u, Field::ActFlag, 7, 16);
             assert!(d.iter().all(|o| o.daf && !o.err));

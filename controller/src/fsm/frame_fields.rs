@@ -50,6 +50,17 @@ pub struct FrameFields {
     pub rec_iso: Signal<In, Bit>,
     pub fld: Signal<In, Field>,
     pub fpos: Signal<In, Bits<8>>,
+    /// POSITION is the field's decisive one (the sequencer's `at_end`:
+    /// Identifier 11, Ex_Identifier 18, Reserved_Bits 1 of an extended
+    /// frame, DLC 4, Data `data_bits`, CRC_Sequence 15, End_Of_Frame 7).
+    pub at_end: Signal<In, Bit>,
+    /// The classes of `fld` (the sequencer's registers, see
+    /// [`super::seq::Sequencer`]): stuffed area, there or CRC_Delimiter,
+    /// hard synchronisation at every position, Intermission.
+    pub area: Signal<In, Bit>,
+    pub stuffable: Signal<In, Bit>,
+    pub hs_fld: Signal<In, Bit>,
+    pub inter_fld: Signal<In, Bit>,
     pub tx_role: Signal<In, Bit>,
     pub dom: Signal<In, Bit>,
     pub listen_only: Signal<In, Bit>,
@@ -83,6 +94,12 @@ pub struct FrameFields {
     pub own: Signal<Out, Bit>,
     pub nf: Signal<Out, Field>,
     pub npos: Signal<Out, Bits<8>>,
+    /// The classes of `nf` (as `area` .. `inter_fld`), set along with it
+    /// (issue #16: no decode of `nf` after its multiplexers).
+    pub narea: Signal<Out, Bit>,
+    pub nsa: Signal<Out, Bit>,
+    pub nhs: Signal<Out, Bit>,
+    pub ninter: Signal<Out, Bit>,
     /// Drive dominant in the next bit (the ACK; a stuff bit keeps `dom`).
     pub ndom: Signal<Out, Bit>,
     /// The next bit is a bit of the own frame (see the transmit register).
@@ -147,6 +164,10 @@ impl Logic for FrameFields {
                 | (self.fld.val() == Field::AckDel)
                 | (self.fld.val() == Field::Eof));
         self.nf.next = self.fld.val();
+        self.narea.next = self.area.val();
+        self.nsa.next = self.stuffable.val();
+        self.nhs.next = self.hs_fld.val();
+        self.ninter.next = self.inter_fld.val();
         self.npos.next = self.fpos.val();
         self.ndom.next = false;
         self.usetx.next = false;
@@ -206,28 +227,52 @@ impl Logic for FrameFields {
                         match self.fld.val() {
                             Field::Sof => {
                                 self.nf.next = Field::Ident;
+                                self.narea.next = true;
+                                self.nsa.next = true;
+                                self.nhs.next = false;
+                                self.ninter.next = false;
                                 self.npos.next = 1.into();
                             }
                             Field::Ident => {
-                                if self.fpos.val() == 11 {
+                                if self.at_end.val() {
                                     self.npos.next = 1.into();
                                     if self.l_role.val() & self.tx_ide.val() {
                                         self.nf.next = Field::Srr;
+                                        self.narea.next = true;
+                                        self.nsa.next = true;
+                                        self.nhs.next = false;
+                                        self.ninter.next = false;
                                     } else {
                                         self.nf.next = Field::Rtr;
+                                        self.narea.next = true;
+                                        self.nsa.next = true;
+                                        self.nhs.next = false;
+                                        self.ninter.next = false;
                                     }
                                 }
                             }
                             Field::Srr => {
                                 self.nf.next = Field::Ide;
+                                self.narea.next = true;
+                                self.nsa.next = true;
+                                self.nhs.next = false;
+                                self.ninter.next = false;
                                 self.npos.next = 1.into();
                             }
                             Field::Rtr => {
                                 self.npos.next = 1.into();
                                 if self.ext.val() {
                                     self.nf.next = Field::Resv;
+                                    self.narea.next = true;
+                                    self.nsa.next = true;
+                                    self.nhs.next = false;
+                                    self.ninter.next = false;
                                 } else {
                                     self.nf.next = Field::Ide;
+                                    self.narea.next = true;
+                                    self.nsa.next = true;
+                                    self.nhs.next = false;
+                                    self.ninter.next = false;
                                 }
                             }
                             Field::Ide => {
@@ -235,44 +280,76 @@ impl Logic for FrameFields {
                                 self.npos.next = 1.into();
                                 if self.rxbit.val() {
                                     self.nf.next = Field::ExIdent;
+                                    self.narea.next = true;
+                                    self.nsa.next = true;
+                                    self.nhs.next = false;
+                                    self.ninter.next = false;
                                 } else {
                                     self.nf.next = Field::Resv;
+                                    self.narea.next = true;
+                                    self.nsa.next = true;
+                                    self.nhs.next = false;
+                                    self.ninter.next = false;
                                 }
                             }
                             Field::ExIdent => {
-                                if self.fpos.val() == 18 {
+                                if self.at_end.val() {
                                     self.nf.next = Field::Rtr;
+                                    self.narea.next = true;
+                                    self.nsa.next = true;
+                                    self.nhs.next = false;
+                                    self.ninter.next = false;
                                     self.npos.next = 1.into();
                                 }
                             }
                             Field::Resv => {
                                 // r1 and r0 (extended) or r0 (standard)
-                                if !(self.ext.val() & (self.fpos.val() == 1)) {
+                                if !self.at_end.val() {
                                     self.nf.next = Field::Dlc;
+                                    self.narea.next = true;
+                                    self.nsa.next = true;
+                                    self.nhs.next = false;
+                                    self.ninter.next = false;
                                     self.npos.next = 1.into();
                                 }
                             }
                             Field::Dlc => {
-                                if self.fpos.val() == 4 {
+                                if self.at_end.val() {
                                     // no data: a remote frame, or DLC 0 (the
                                     // last DLC bit is this one)
                                     self.npos.next = 1.into();
                                     if self.rtr.val() | (self.dlc_lo_zero.val() & !self.rxbit.val()) {
                                         self.nf.next = Field::Crc;
+                                        self.narea.next = true;
+                                        self.nsa.next = true;
+                                        self.nhs.next = false;
+                                        self.ninter.next = false;
                                     } else {
                                         self.nf.next = Field::Data;
+                                        self.narea.next = true;
+                                        self.nsa.next = true;
+                                        self.nhs.next = false;
+                                        self.ninter.next = false;
                                     }
                                 }
                             }
                             Field::Data => {
-                                if self.fpos.val() == self.data_bits.val() {
+                                if self.at_end.val() {
                                     self.nf.next = Field::Crc;
+                                    self.narea.next = true;
+                                    self.nsa.next = true;
+                                    self.nhs.next = false;
+                                    self.ninter.next = false;
                                     self.npos.next = 1.into();
                                 }
                             }
                             Field::Crc => {
-                                if self.fpos.val() == 15 {
+                                if self.at_end.val() {
                                     self.nf.next = Field::CrcDel;
+                                    self.narea.next = false;
+                                    self.nsa.next = true;
+                                    self.nhs.next = false;
+                                    self.ninter.next = false;
                                     self.npos.next = 1.into();
                                     self.usetx.next = false;
                                     self.l_crcset.next = self.crc_rem.val();
@@ -289,12 +366,20 @@ impl Logic for FrameFields {
                             self.l_form.next = true;
                         } else {
                             self.nf.next = Field::AckSlot;
+                            self.narea.next = false;
+                            self.nsa.next = false;
+                            self.nhs.next = false;
+                            self.ninter.next = false;
                             self.npos.next = 1.into();
                             self.ndom.next = !self.tx_role.val() & !self.crcerr.q.val() & !self.listen_only.val();
                         }
                     }
                     Field::AckSlot => {
                         self.nf.next = Field::AckDel;
+                        self.narea.next = false;
+                        self.nsa.next = false;
+                        self.nhs.next = false;
+                        self.ninter.next = false;
                         self.npos.next = 1.into();
                         if self.rxbit.val() {
                             if self.tx_role.val() {
@@ -322,12 +407,20 @@ impl Logic for FrameFields {
                     Field::AckDel => {
                         self.l_form.next = !self.rxbit.val();
                         self.nf.next = Field::Eof;
+                        self.narea.next = false;
+                        self.nsa.next = false;
+                        self.nhs.next = false;
+                        self.ninter.next = false;
                         self.npos.next = 1.into();
                     }
                     Field::Eof => {
                         self.npos.next = self.l_posinc.val();
-                        if self.fpos.val() == 7 {
+                        if self.at_end.val() {
                             self.nf.next = Field::Inter;
+                            self.narea.next = false;
+                            self.nsa.next = false;
+                            self.nhs.next = false;
+                            self.ninter.next = true;
                             self.npos.next = 1.into();
                             if self.tx_role.val() {
                                 if !self.rxbit.val() {
@@ -383,7 +476,7 @@ impl Logic for FrameFields {
                 self.lnf.next = Field::Ident;
             }
             Field::Ident => {
-                if self.fpos.val() == 11 {
+                if self.at_end.val() {
                     if self.tx_role.val() & self.tx_ide.val() {
                         self.lnf.next = Field::Srr;
                     } else {
@@ -409,17 +502,17 @@ impl Logic for FrameFields {
                 }
             }
             Field::ExIdent => {
-                if self.fpos.val() == 18 {
+                if self.at_end.val() {
                     self.lnf.next = Field::Rtr;
                 }
             }
             Field::Resv => {
-                if !(self.ext.val() & (self.fpos.val() == 1)) {
+                if !self.at_end.val() {
                     self.lnf.next = Field::Dlc;
                 }
             }
             Field::Dlc => {
-                if self.fpos.val() == 4 {
+                if self.at_end.val() {
                     if self.rtr.val() | (self.dlc_lo_zero.val() & !self.rxbit.val()) {
                         self.lnf.next = Field::Crc;
                     } else {
@@ -428,12 +521,12 @@ impl Logic for FrameFields {
                 }
             }
             Field::Data => {
-                if self.fpos.val() == self.data_bits.val() {
+                if self.at_end.val() {
                     self.lnf.next = Field::Crc;
                 }
             }
             Field::Crc => {
-                if self.fpos.val() == 15 {
+                if self.at_end.val() {
                     self.lnf.next = Field::CrcDel;
                 }
             }

@@ -240,6 +240,12 @@ pub struct CanFsm {
     /// C13: REC − 1 at a receiver's dominant End_Of_Frame bit 7 (see
     /// [`frame_fields::FrameFields`]); a constant of [`crate::core::CanCore`].
     pub rec_iso: Signal<In, Bit>,
+    /// Two-clock mode: `sample` strobes at least 2 clocks apart, as from
+    /// the bit timing logic; some register decodes of the per-bit decision
+    /// are then taken from flip-flops a clock ahead (issue #16, see
+    /// [`seq::Sequencer`]). [`crate::core::CanCore`] ties it high; tie it
+    /// low when `sample` may come on consecutive clocks.
+    pub pipe: Signal<In, Bit>,
 
     /// Level wanted on TX from the next transmit point (1 = recessive).
     pub drive: Signal<Out, Bit>,
@@ -305,7 +311,7 @@ impl Logic for CanFsm {
         self.dstf.reset.next = self.reset.val();
         self.dstf.en.next = self.sample.val();
         self.dstf.din.next = self.busmon.val();
-        self.dstf.active.next = self.dec.stuffed.val() | self.seq.sofinit.val();
+        self.dstf.active.next = self.seq.pstuffed.val() | self.seq.sofinit.val();
         self.crcb.clock.next = self.clock.val();
         self.crcb.reset.next = self.reset.val();
         self.crcb.din.next = self.busmon.val();
@@ -338,13 +344,18 @@ impl Logic for CanFsm {
         self.frame.rec_iso.next = self.rec_iso.val();
         self.frame.fld.next = self.seq.fld.val();
         self.frame.fpos.next = self.seq.fpos.val();
+        self.frame.at_end.next = self.seq.at_end.val();
+        self.frame.area.next = self.seq.area.val();
+        self.frame.stuffable.next = self.seq.stuffable.val();
+        self.frame.hs_fld.next = self.seq.hs_fld.val();
+        self.frame.inter_fld.next = self.seq.inter_fld.val();
         self.frame.tx_role.next = self.seq.tx_role.val();
         self.frame.dom.next = self.seq.dom.val();
         self.frame.listen_only.next = self.listen_only.val();
         self.frame.self_test.next = self.self_test.val();
         self.frame.active.next = self.conf.active.val();
-        self.frame.stuffed.next = self.dec.stuffed.val();
-        self.frame.stuff.next = self.dec.stuff.val();
+        self.frame.stuffed.next = self.seq.pstuffed.val();
+        self.frame.stuff.next = self.seq.pstuff.val();
         self.frame.arb.next = self.dec.arb_bit.val();
         self.frame.arb_stuff.next = self.dec.arb_stuff_bit.val();
         self.frame.stuff_error.next = self.dstf.stuff_error.val();
@@ -365,6 +376,11 @@ impl Logic for CanFsm {
         self.flags.sent.next = self.dec.sent_bit.val();
         self.flags.fld.next = self.seq.fld.val();
         self.flags.fpos.next = self.seq.fpos.val();
+        self.flags.at_end.next = self.seq.at_end.val();
+        self.flags.area.next = self.seq.area.val();
+        self.flags.stuffable.next = self.seq.stuffable.val();
+        self.flags.hs_fld.next = self.seq.hs_fld.val();
+        self.flags.inter_fld.next = self.seq.inter_fld.val();
         self.flags.tx_role.next = self.seq.tx_role.val();
         self.flags.flag_start.next = self.seq.flag_start.val();
         self.flags.exc1_set.next = self.frame.exc1.val();
@@ -378,6 +394,9 @@ impl Logic for CanFsm {
         self.seq.cnt_load.next = self.cnt_load.val();
         self.seq.tec_in.next = self.tec_in.val();
         self.seq.stuff.next = self.dec.stuff.val();
+        self.seq.pipe.next = self.pipe.val();
+        self.seq.ext.next = self.rxf.ext.val();
+        self.seq.data_bits.next = self.rxf.data_bits.val();
         self.seq.req.next = self.txq.req.val();
         self.seq.active.next = self.conf.active.val();
         self.seq.armed.next = self.conf.armed.val();
@@ -388,6 +407,10 @@ impl Logic for CanFsm {
         self.seq.level_sof.next = self.txq.level_sof.val();
         self.seq.f_own.next = self.frame.own.val();
         self.seq.f_nf.next = self.frame.nf.val();
+        self.seq.f_na.next = self.frame.narea.val();
+        self.seq.f_nsa.next = self.frame.nsa.val();
+        self.seq.f_nhs.next = self.frame.nhs.val();
+        self.seq.f_ni.next = self.frame.ninter.val();
         self.seq.f_npos.next = self.frame.npos.val();
         self.seq.f_ndom.next = self.frame.ndom.val();
         self.seq.f_usetx.next = self.frame.usetx.val();
@@ -397,6 +420,10 @@ impl Logic for CanFsm {
         self.seq.f_sof.next = self.frame.sof.val();
         self.seq.g_own.next = self.flags.own.val();
         self.seq.g_nf.next = self.flags.nf.val();
+        self.seq.g_na.next = self.flags.narea.val();
+        self.seq.g_nsa.next = self.flags.nsa.val();
+        self.seq.g_nhs.next = self.flags.nhs.val();
+        self.seq.g_ni.next = self.flags.ninter.val();
         self.seq.g_npos.next = self.flags.npos.val();
         self.seq.g_ndom.next = self.flags.ndom.val();
         self.seq.g_err.next = self.flags.err.val();

@@ -34,7 +34,7 @@
 //! gives Bus_Off 1, one with `tec_in` < 256 while in Bus_Off gives
 //! Wait_For_Bus_Idle 1.
 
-use super::field::{Field, FieldClass};
+use super::field::Field;
 use rust_hdl::prelude::*;
 
 #[derive(LogicBlock, Default)]
@@ -49,6 +49,16 @@ pub struct Sequencer {
     pub tec_in: Signal<In, Bits<9>>,
     /// The bit in progress is a stuff bit.
     pub stuff: Signal<In, Bit>,
+    /// Two-clock mode (issue #16; [`crate::core::CanCore`] ties it high, its
+    /// `sample` strobes are at least 2 clocks apart): `at_end` and `pstuff`
+    /// come from flip-flops that take their decodes on every clock, so they
+    /// are valid from the second clock after a `sample` on. Low: the same
+    /// decodes combinationally (`sample` may come on every clock).
+    pub pipe: Signal<In, Bit>,
+    /// From the receive register: extended frame, data field length in bits
+    /// (for `at_end`).
+    pub ext: Signal<In, Bit>,
+    pub data_bits: Signal<In, Bits<8>>,
     /// A transmission is requested.
     pub req: Signal<In, Bit>,
     /// From fault confinement: error-active, recovery armed, the next run is
@@ -66,6 +76,11 @@ pub struct Sequencer {
     /// The decision of [`super::frame_fields::FrameFields`].
     pub f_own: Signal<In, Bit>,
     pub f_nf: Signal<In, Field>,
+    /// The classes of `f_nf` (see `area` below), set along with it.
+    pub f_na: Signal<In, Bit>,
+    pub f_nsa: Signal<In, Bit>,
+    pub f_nhs: Signal<In, Bit>,
+    pub f_ni: Signal<In, Bit>,
     pub f_npos: Signal<In, Bits<8>>,
     pub f_ndom: Signal<In, Bit>,
     pub f_usetx: Signal<In, Bit>,
@@ -76,6 +91,10 @@ pub struct Sequencer {
     /// The decision of [`super::flags::FlagFields`].
     pub g_own: Signal<In, Bit>,
     pub g_nf: Signal<In, Field>,
+    pub g_na: Signal<In, Bit>,
+    pub g_nsa: Signal<In, Bit>,
+    pub g_nhs: Signal<In, Bit>,
+    pub g_ni: Signal<In, Bit>,
     pub g_npos: Signal<In, Bits<8>>,
     pub g_ndom: Signal<In, Bit>,
     pub g_err: Signal<In, Bit>,
@@ -88,6 +107,17 @@ pub struct Sequencer {
     pub tx_role: Signal<Out, Bit>,
     pub dom: Signal<Out, Bit>,
     pub in_busoff: Signal<Out, Bit>,
+    /// POSITION is the one at which the field's decision depends on it
+    /// (issue #16): Wait_For_Bus_Idle, Bus_Off, Identifier 11;
+    /// Ex_Identifier 18; Reserved_Bits 1 of an extended frame; DLC 4; Data
+    /// `data_bits`; CRC_Sequence 15; End_Of_Frame 7; Passive_Error_Flag 1;
+    /// Active_Error_Flag, Overload_Flag 6; the delimiters and
+    /// Suspend_Transmission 8; Intermission 3. Valid on `sample` clocks.
+    pub at_end: Signal<Out, Bit>,
+    /// `stuff`, and the stuffed area or `stuff` (the destuffer's and the
+    /// frame fields' `stuffed`), valid on `sample` clocks (see `pipe`).
+    pub pstuff: Signal<Out, Bit>,
+    pub pstuffed: Signal<Out, Bit>,
     /// Decodes of `fld` and `pfld`, kept in registers of their own (issue
     /// #16) that take the decode of the next FIELD along every branch that
     /// sets it, so that they always equal the decode of `fld`/`pfld`:
@@ -132,8 +162,14 @@ pub struct Sequencer {
     rinter: DFF<Bit>,
     rnphs: DFF<Bit>,
     rpinter: DFF<Bit>,
+    // `at_end` and `stuff` one clock late (see `pipe`).
+    rend: DFF<Bit>,
+    rstp: DFF<Bit>,
 
     l_posinc: Signal<Local, Bits<8>>,
+    l_endc: Signal<Local, Bit>,
+    l_end: Signal<Local, Bit>,
+    l_stuff: Signal<Local, Bit>,
     l_cantx: Signal<Local, Bit>,
     l_nf: Signal<Local, Field>,
     l_npos: Signal<Local, Bits<8>>,
@@ -143,32 +179,90 @@ pub struct Sequencer {
     l_start: Signal<Local, Bit>,
     l_ovl: Signal<Local, Bit>,
     l_lvl: Signal<Local, Bit>,
+    /// A SOF sampled in a field of the sequencer's own.
+    l_sofs: Signal<Local, Bit>,
     /// The decodes of `l_nf` (see `area`), set along with it.
     l_na: Signal<Local, Bit>,
     l_nsa: Signal<Local, Bit>,
     l_nhs: Signal<Local, Bit>,
     l_ni: Signal<Local, Bit>,
-    /// Those of `f_nf` and `g_nf`.
-    fcls: FieldClass,
-    gcls: FieldClass,
 }
 
 impl Logic for Sequencer {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, rfld, rpos, rpfld, rppos, rtx, rdom, rarea, rsa, rnhs, rinter, rnphs, rpinter);
+        dff_setup!(
+            self, clock, rfld, rpos, rpfld, rppos, rtx, rdom, rarea, rsa, rnhs, rinter, rnphs, rpinter, rend, rstp
+        );
         self.l_posinc.next = self.rpos.q.val() + 1;
         if self.rpos.q.val() == 255 {
             self.l_posinc.next = self.rpos.q.val();
         }
         self.l_cantx.next = self.req.val() & !self.listen_only.val();
+        // The decisive position of the field (see `at_end`).
+        self.l_endc.next = false;
+        match self.rfld.q.val() {
+            Field::WaitIdle => {
+                self.l_endc.next = self.rpos.q.val() == 11;
+            }
+            Field::BusOff => {
+                self.l_endc.next = self.rpos.q.val() == 11;
+            }
+            Field::Ident => {
+                self.l_endc.next = self.rpos.q.val() == 11;
+            }
+            Field::ExIdent => {
+                self.l_endc.next = self.rpos.q.val() == 18;
+            }
+            Field::Resv => {
+                self.l_endc.next = self.ext.val() & (self.rpos.q.val() == 1);
+            }
+            Field::Dlc => {
+                self.l_endc.next = self.rpos.q.val() == 4;
+            }
+            Field::Data => {
+                self.l_endc.next = self.rpos.q.val() == self.data_bits.val();
+            }
+            Field::Crc => {
+                self.l_endc.next = self.rpos.q.val() == 15;
+            }
+            Field::Eof => {
+                self.l_endc.next = self.rpos.q.val() == 7;
+            }
+            Field::PasFlag => {
+                self.l_endc.next = self.rpos.q.val() == 1;
+            }
+            Field::ActFlag => {
+                self.l_endc.next = self.rpos.q.val() == 6;
+            }
+            Field::OvlFlag => {
+                self.l_endc.next = self.rpos.q.val() == 6;
+            }
+            Field::ErrDel => {
+                self.l_endc.next = self.rpos.q.val() == 8;
+            }
+            Field::OvlDel => {
+                self.l_endc.next = self.rpos.q.val() == 8;
+            }
+            Field::Inter => {
+                self.l_endc.next = self.rpos.q.val() == 3;
+            }
+            Field::Suspend => {
+                self.l_endc.next = self.rpos.q.val() == 8;
+            }
+            _ => {}
+        }
+        self.l_end.next = self.l_endc.val();
+        self.l_stuff.next = self.stuff.val();
+        if self.pipe.val() {
+            self.l_end.next = self.rend.q.val();
+            self.l_stuff.next = self.rstp.q.val();
+        }
         self.l_nf.next = self.rfld.q.val();
         self.l_na.next = self.rarea.q.val();
         self.l_nsa.next = self.rsa.q.val();
         self.l_nhs.next = !self.rnhs.q.val();
         self.l_ni.next = self.rinter.q.val();
-        self.fcls.f.next = self.f_nf.val();
-        self.gcls.f.next = self.g_nf.val();
         self.l_npos.next = self.rpos.q.val();
         self.l_ndom.next = false;
         self.l_usetx.next = false;
@@ -176,6 +270,7 @@ impl Logic for Sequencer {
         self.l_start.next = false;
         self.l_ovl.next = false;
         self.sofinit.next = false;
+        self.l_sofs.next = false;
         self.txsof.next = false;
         self.err.next = false;
         self.ev_integrated.next = false;
@@ -187,10 +282,10 @@ impl Logic for Sequencer {
         if self.sample.val() {
             if self.f_own.val() {
                 self.l_nf.next = self.f_nf.val();
-                self.l_na.next = self.fcls.area.val();
-                self.l_nsa.next = self.fcls.stuffable.val();
-                self.l_nhs.next = self.fcls.hs.val();
-                self.l_ni.next = self.fcls.inter.val();
+                self.l_na.next = self.f_na.val();
+                self.l_nsa.next = self.f_nsa.val();
+                self.l_nhs.next = self.f_nhs.val();
+                self.l_ni.next = self.f_ni.val();
                 self.l_npos.next = self.f_npos.val();
                 self.l_ndom.next = self.f_ndom.val();
                 self.l_usetx.next = self.f_usetx.val();
@@ -200,10 +295,10 @@ impl Logic for Sequencer {
                 self.l_ovl.next = self.f_ovl.val();
             } else if self.g_own.val() {
                 self.l_nf.next = self.g_nf.val();
-                self.l_na.next = self.gcls.area.val();
-                self.l_nsa.next = self.gcls.stuffable.val();
-                self.l_nhs.next = self.gcls.hs.val();
-                self.l_ni.next = self.gcls.inter.val();
+                self.l_na.next = self.g_na.val();
+                self.l_nsa.next = self.g_nsa.val();
+                self.l_nhs.next = self.g_nhs.val();
+                self.l_ni.next = self.g_ni.val();
                 self.l_npos.next = self.g_npos.val();
                 self.l_ndom.next = self.g_ndom.val();
                 self.err.next = self.g_err.val();
@@ -221,7 +316,7 @@ impl Logic for Sequencer {
                     Field::WaitIdle => {
                         if !self.rxbit.val() {
                             self.l_npos.next = 1.into();
-                        } else if self.rpos.q.val() == 11 {
+                        } else if self.l_end.val() {
                             self.ev_integrated.next = true;
                             self.l_start.next = true;
                         } else {
@@ -231,6 +326,7 @@ impl Logic for Sequencer {
                     Field::Idle => {
                         if !self.rxbit.val() {
                             self.sofinit.next = true;
+                            self.l_sofs.next = true;
                             self.l_role.next = false;
                         } else {
                             self.l_start.next = true;
@@ -240,7 +336,7 @@ impl Logic for Sequencer {
                         if (self.host_recovery.val() & !self.armed.val()) | !self.rxbit.val() {
                             // waiting for the host, or a dominant bit restarts the run
                             self.l_npos.next = 1.into();
-                        } else if self.rpos.q.val() == 11 {
+                        } else if self.l_end.val() {
                             self.ev_run.next = true;
                             self.l_npos.next = 1.into();
                             if self.last_run.val() {
@@ -253,10 +349,11 @@ impl Logic for Sequencer {
                     }
                     Field::Inter => {
                         self.l_npos.next = self.l_posinc.val();
-                        if self.rpos.q.val() == 3 {
+                        if self.l_end.val() {
                             if !self.rxbit.val() {
                                 // a dominant third intermission bit is a SOF
                                 self.sofinit.next = true;
+                                self.l_sofs.next = true;
                                 if self.l_cantx.val() & !(self.rtx.q.val() & !self.active.val()) {
                                     self.l_role.next = true;
                                     self.txsof.next = true;
@@ -281,8 +378,9 @@ impl Logic for Sequencer {
                         self.l_npos.next = self.l_posinc.val();
                         if !self.rxbit.val() {
                             self.sofinit.next = true;
+                            self.l_sofs.next = true;
                             self.l_role.next = false;
-                        } else if self.rpos.q.val() == 8 {
+                        } else if self.l_end.val() {
                             self.l_start.next = true;
                         }
                     }
@@ -290,8 +388,10 @@ impl Logic for Sequencer {
                 }
             }
 
-            // A SOF was sampled: the frame starts (Identifier 1 next).
-            if self.sofinit.val() {
+            // A SOF was sampled outside the frame fields: the frame starts
+            // (Identifier 1 next; a taken Start_Of_Frame bit of the frame
+            // fields decides the same, so their `f_sof` is not waited for).
+            if self.l_sofs.val() {
                 self.l_nf.next = Field::Ident;
                 self.l_na.next = true;
                 self.l_nsa.next = true;
@@ -386,7 +486,7 @@ impl Logic for Sequencer {
         self.ev_ovl.next = self.l_ovl.val() & !self.err.val();
 
         if self.sample.val() {
-            if !self.stuff.val() {
+            if !self.l_stuff.val() {
                 self.rpfld.d.next = self.rfld.q.val();
                 self.rppos.d.next = self.rpos.q.val();
                 self.rnphs.d.next = self.rnhs.q.val();
@@ -401,7 +501,14 @@ impl Logic for Sequencer {
             self.rtx.d.next = self.l_role.val();
             self.rdom.d.next = self.l_ndom.val();
         }
+        // The decodes for the next clock (see `pipe`): FIELD and POSITION
+        // after a reset or a counter load that sets them are outside the
+        // fields that read `at_end` and outside the stuffed area.
+        self.rend.d.next = self.l_endc.val();
+        self.rstp.d.next = self.stuff.val();
         if self.reset.val() {
+            self.rend.d.next = false;
+            self.rstp.d.next = false;
             self.rfld.d.next = Field::WaitIdle;
             self.rarea.d.next = false;
             self.rsa.d.next = false;
@@ -413,6 +520,10 @@ impl Logic for Sequencer {
         }
         // Counter load (priority over reset and the protocol).
         if self.cnt_load.val() {
+            if (self.tec_in.val() >= 256) | (self.rfld.q.val() == Field::BusOff) {
+                self.rend.d.next = false;
+                self.rstp.d.next = false;
+            }
             if self.tec_in.val() >= 256 {
                 self.rfld.d.next = Field::BusOff;
                 self.rarea.d.next = false;
@@ -441,6 +552,9 @@ impl Logic for Sequencer {
         self.dom.next = self.rdom.q.val();
         self.in_busoff.next = self.rfld.q.val() == Field::BusOff;
         self.area.next = self.rarea.q.val();
+        self.at_end.next = self.l_end.val();
+        self.pstuff.next = self.l_stuff.val();
+        self.pstuffed.next = self.rarea.q.val() | self.l_stuff.val();
         self.stuffable.next = self.rsa.q.val();
         self.hs_fld.next = !self.rnhs.q.val();
         self.inter_fld.next = self.rinter.q.val();
