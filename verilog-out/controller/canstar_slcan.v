@@ -1003,7 +1003,10 @@ module canstar_slcan$can(clock,rst,wb_cyc,wb_stb,wb_we,wb_adr,wb_dat_w,wb_dat_r,
         txbuf$we = l_we_txb;
         txbuf$idx = l_a[(32'h0)+:(4)];
         txbuf$wdata = l_d;
-        txram$read_address = l_ra;
+        txram$read_address = 32'hf;
+        if (l_rd & (l_txb_a | l_racc)) begin
+            txram$read_address = l_ra;
+        end
         txram$write_address = l_ra;
         txram$write_data = l_d;
         txram$write_enable = l_we_txb | l_we_acc;

@@ -501,7 +501,12 @@ impl Logic for Sja1000 {
         self.txbuf.we.next = self.l_we_txb.val();
         self.txbuf.idx.next = self.l_a.val().get_bits::<4>(0);
         self.txbuf.wdata.next = self.l_d.val();
-        self.txram.read_address.next = self.l_ra.val();
+        // (entry 15 is never written: between reads the read register holds
+        // 0, which a model built from a running instance starts from)
+        self.txram.read_address.next = 15.into();
+        if self.l_rd.val() & (self.l_txb_a.val() | self.l_racc.val()) {
+            self.txram.read_address.next = self.l_ra.val();
+        }
         self.txram.write_address.next = self.l_ra.val();
         self.txram.write_data.next = self.l_d.val();
         self.txram.write_enable.next = self.l_we_txb.val() | self.l_we_acc.val();
