@@ -281,7 +281,6 @@ module canstar_slcan$can(clock,rst,wb_cyc,wb_stb,wb_we,wb_adr,wb_dat_w,wb_dat_r,
     reg  txbuf$we;
     reg  [3:0] txbuf$idx;
     reg  [7:0] txbuf$wdata;
-    wire  [7:0] txbuf$rdata;
     wire  txbuf$ide;
     wire  txbuf$rtr;
     wire  [28:0] txbuf$id;
@@ -292,7 +291,6 @@ module canstar_slcan$can(clock,rst,wb_cyc,wb_stb,wb_we,wb_adr,wb_dat_w,wb_dat_r,
     reg  filter$we;
     reg  [2:0] filter$idx;
     reg  [7:0] filter$wdata;
-    wire  [7:0] filter$rdata;
     reg  filter$single;
     reg  filter$ide;
     reg  filter$rtr;
@@ -441,6 +439,13 @@ module canstar_slcan$can(clock,rst,wb_cyc,wb_stb,wb_we,wb_adr,wb_dat_w,wb_dat_r,
     wire  [7:0] irq$ier;
     wire  [7:0] irq$ir;
     wire  irq$int_n;
+    reg  [4:0] txram$read_address;
+    reg  txram$read_clock;
+    wire  [7:0] txram$read_data;
+    reg  [4:0] txram$write_address;
+    reg  txram$write_clock;
+    reg  [7:0] txram$write_data;
+    reg  txram$write_enable;
     reg  ack$d;
     wire  ack$q;
     reg  ack$clock;
@@ -450,6 +455,15 @@ module canstar_slcan$can(clock,rst,wb_cyc,wb_stb,wb_we,wb_adr,wb_dat_w,wb_dat_r,
     reg  ramsel$d;
     wire  ramsel$q;
     reg  ramsel$clock;
+    reg  txsel$d;
+    wire  txsel$q;
+    reg  txsel$clock;
+    reg  ffsel$d;
+    wire  ffsel$q;
+    reg  ffsel$clock;
+    reg  [3:0] amr_def$d;
+    wire  [3:0] amr_def$q;
+    reg  amr_def$clock;
     reg  [7:0] ocr$d;
     wire  [7:0] ocr$q;
     reg  ocr$clock;
@@ -472,6 +486,9 @@ module canstar_slcan$can(clock,rst,wb_cyc,wb_stb,wb_we,wb_adr,wb_dat_w,wb_dat_r,
     reg  [6:0] l_off;
     reg  l_txb_a;
     reg  l_acc_a;
+    reg  l_racc;
+    reg  [4:0] l_ra;
+    reg  [7:0] l_rram;
     reg  l_ramrd;
     reg  [7:0] l_rdv;
     reg  [7:0] l_cdrm;
@@ -566,7 +583,6 @@ module canstar_slcan$can(clock,rst,wb_cyc,wb_stb,wb_we,wb_adr,wb_dat_w,wb_dat_r,
         .we(txbuf$we),
         .idx(txbuf$idx),
         .wdata(txbuf$wdata),
-        .rdata(txbuf$rdata),
         .ide(txbuf$ide),
         .rtr(txbuf$rtr),
         .id(txbuf$id),
@@ -579,7 +595,6 @@ module canstar_slcan$can(clock,rst,wb_cyc,wb_stb,wb_we,wb_adr,wb_dat_w,wb_dat_r,
         .we(filter$we),
         .idx(filter$idx),
         .wdata(filter$wdata),
-        .rdata(filter$rdata),
         .single(filter$single),
         .ide(filter$ide),
         .rtr(filter$rtr),
@@ -741,6 +756,15 @@ module canstar_slcan$can(clock,rst,wb_cyc,wb_stb,wb_we,wb_adr,wb_dat_w,wb_dat_r,
         .ir(irq$ir),
         .int_n(irq$int_n)
     );
+    canstar_slcan$can$txram txram(
+        .read_address(txram$read_address),
+        .read_clock(txram$read_clock),
+        .read_data(txram$read_data),
+        .write_address(txram$write_address),
+        .write_clock(txram$write_clock),
+        .write_data(txram$write_data),
+        .write_enable(txram$write_enable)
+    );
     canstar_slcan$can$ack ack(
         .d(ack$d),
         .q(ack$q),
@@ -755,6 +779,21 @@ module canstar_slcan$can(clock,rst,wb_cyc,wb_stb,wb_we,wb_adr,wb_dat_w,wb_dat_r,
         .d(ramsel$d),
         .q(ramsel$q),
         .clock(ramsel$clock)
+    );
+    canstar_slcan$can$txsel txsel(
+        .d(txsel$d),
+        .q(txsel$q),
+        .clock(txsel$clock)
+    );
+    canstar_slcan$can$ffsel ffsel(
+        .d(ffsel$d),
+        .q(ffsel$q),
+        .clock(ffsel$clock)
+    );
+    canstar_slcan$can$amr_def amr_def(
+        .d(amr_def$d),
+        .q(amr_def$q),
+        .clock(amr_def$clock)
     );
     canstar_slcan$can$ocr ocr(
         .d(ocr$d),
@@ -777,15 +816,23 @@ module canstar_slcan$can(clock,rst,wb_cyc,wb_stb,wb_we,wb_adr,wb_dat_w,wb_dat_r,
         ack$clock = clock;
         rdat$clock = clock;
         ramsel$clock = clock;
+        txsel$clock = clock;
+        ffsel$clock = clock;
+        amr_def$clock = clock;
         ocr$clock = clock;
         ewl$clock = clock;
         cdr$clock = clock;
         ack$d = ack$q;
         rdat$d = rdat$q;
         ramsel$d = ramsel$q;
+        txsel$d = txsel$q;
+        ffsel$d = ffsel$q;
+        amr_def$d = amr_def$q;
         ocr$d = ocr$q;
         ewl$d = ewl$q;
         cdr$d = cdr$q;
+        txram$read_clock = clock;
+        txram$write_clock = clock;
         l_req = wb_cyc & wb_stb & ~ack$q;
         l_wr = l_req & wb_we;
         l_rd = l_req & ~wb_we;
@@ -850,12 +897,7 @@ module canstar_slcan$can(clock,rst,wb_cyc,wb_stb,wb_we,wb_adr,wb_dat_w,wb_dat_r,
         if (l_a == a_txerr) begin
             l_rdv = status$txerr;
         end
-        if (l_rm) begin
-            if (l_acc_a) begin
-                l_rdv = filter$rdata;
-            end
-        end
-        else if (l_win) begin
+        if (~l_rm & l_win) begin
             l_ramrd = 1'b1;
         end
         if (l_a == a_rmc) begin
@@ -870,12 +912,22 @@ module canstar_slcan$can(clock,rst,wb_cyc,wb_stb,wb_we,wb_adr,wb_dat_w,wb_dat_r,
         if (l_ram_a) begin
             l_ramrd = 1'b1;
         end
-        if (l_txb_a) begin
-            l_rdv = txbuf$rdata;
+        l_racc = l_rm & l_acc_a;
+        l_ra = ((l_a[(32'h0)+:(4)]) & 5'h1f);
+        l_ra = (l_ra & ~(1 << (32'h4)) | ((l_racc) << (32'h4)));
+        l_rram = txram$read_data;
+        if (ffsel$q) begin
+            l_rram = 32'hff;
+        end
+        txsel$d = 1'b0;
+        if (txsel$q) begin
+            rdat$d = l_rram;
         end
         if (l_rd) begin
             rdat$d = l_rdv;
             ramsel$d = l_ramrd;
+            txsel$d = l_txb_a | l_racc;
+            ffsel$d = l_racc & l_a[32'h2] & amr_def$q[l_a[(32'h0)+:(2)]];
         end
         l_cdrm = wm_cdr_op;
         if (l_rm) begin
@@ -908,7 +960,11 @@ module canstar_slcan$can(clock,rst,wb_cyc,wb_stb,wb_we,wb_adr,wb_dat_w,wb_dat_r,
             end
         end
         l_we_txb = l_wr & ((mode$opm & l_win & ~txctl$pending) | (l_rm & l_txb_a));
+        if (l_we_acc & l_a[32'h2]) begin
+            amr_def$d = (amr_def$q & ~(1 << (l_a[(32'h0)+:(2)])) | ((1'b0) << (l_a[(32'h0)+:(2)])));
+        end
         if (rst) begin
+            amr_def$d = 32'hf;
             ack$d = 1'b0;
             ocr$d = rv_ocr;
             ewl$d = rv_ewl;
@@ -947,6 +1003,13 @@ module canstar_slcan$can(clock,rst,wb_cyc,wb_stb,wb_we,wb_adr,wb_dat_w,wb_dat_r,
         txbuf$we = l_we_txb;
         txbuf$idx = l_a[(32'h0)+:(4)];
         txbuf$wdata = l_d;
+        txram$read_address = 32'hf;
+        if (l_rd & (l_txb_a | l_racc)) begin
+            txram$read_address = l_ra;
+        end
+        txram$write_address = l_ra;
+        txram$write_data = l_d;
+        txram$write_enable = l_we_txb | l_we_acc;
         txctl$clock = clock;
         txctl$rst = rst;
         txctl$opm = mode$opm;
@@ -1056,6 +1119,9 @@ module canstar_slcan$can(clock,rst,wb_cyc,wb_stb,wb_we,wb_adr,wb_dat_w,wb_dat_r,
         if (ramsel$q) begin
             wb_dat_r = fifo$rdata;
         end
+        if (txsel$q) begin
+            wb_dat_r = l_rram;
+        end
         int_n = irq$int_n;
     end
     
@@ -1079,6 +1145,25 @@ module canstar_slcan$can$ack(d,q,clock);
     end
           
 endmodule // canstar_slcan$can$ack
+
+
+module canstar_slcan$can$amr_def(d,q,clock);
+    
+    // Module arguments
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 4'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_slcan$can$amr_def
 
 
 module canstar_slcan$can$capture(clock,rst,arb_lost,arb_lost_pos,error,err_kind,err_field,err_pos,err_tx,field,rd_alc,rd_ecc,alc,ecc);
@@ -7390,6 +7475,25 @@ module canstar_slcan$can$ewl(d,q,clock);
 endmodule // canstar_slcan$can$ewl
 
 
+module canstar_slcan$can$ffsel(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_slcan$can$ffsel
+
+
 module canstar_slcan$can$fifo(clock,rst,clear,offer_rx,offer_own,rx_ide,rx_rtr,rx_id,rx_dlc,rx_data,own_ide,own_rtr,own_id,own_dlc,own_data,accept,rrb,cdo,rbsa_we,ram_we,wdata,host_rd,host_win,host_idx,f_ide,f_rtr,f_id,f_n,f_d01,rdata,rmc,rbsa,dos,overrun,own_done,own_dropped,busy,busy_own);
     
     // Module arguments
@@ -7473,14 +7577,20 @@ module canstar_slcan$can$fifo(clock,rst,clear,offer_rx,offer_own,rx_ide,rx_rtr,r
     reg  [7:0] cur_fi$d;
     wire  [7:0] cur_fi$q;
     reg  cur_fi$clock;
+    reg  own_acc$d;
+    wire  own_acc$q;
+    reg  own_acc$clock;
     
     // Local signals
     reg  l_own;
+    reg  l_acc;
     reg  [3:0] l_dlc;
     reg  [63:0] l_data;
-    reg  [28:0] l_sid;
     reg  [3:0] l_len;
-    reg  [103:0] l_msg;
+    reg  [7:0] l_hb;
+    reg  l_hdr;
+    reg  [3:0] l_j;
+    reg  [7:0] l_db;
     reg  [7:0] l_wbyte;
     reg  l_wdone;
     reg  l_fits;
@@ -7555,6 +7665,11 @@ module canstar_slcan$can$fifo(clock,rst,clear,offer_rx,offer_own,rx_ide,rx_rtr,r
         .q(cur_fi$q),
         .clock(cur_fi$clock)
     );
+    canstar_slcan$can$fifo$own_acc own_acc(
+        .d(own_acc$d),
+        .q(own_acc$q),
+        .clock(own_acc$clock)
+    );
     
     // Update code
     always @(*) begin
@@ -7569,6 +7684,7 @@ module canstar_slcan$can$fifo(clock,rst,clear,offer_rx,offer_own,rx_ide,rx_rtr,r
         fetch_q$clock = clock;
         fetch_a$clock = clock;
         cur_fi$clock = clock;
+        own_acc$clock = clock;
         rbsa_r$d = rbsa_r$q;
         used$d = used$q;
         rmc_r$d = rmc_r$q;
@@ -7580,9 +7696,10 @@ module canstar_slcan$can$fifo(clock,rst,clear,offer_rx,offer_own,rx_ide,rx_rtr,r
         fetch_q$d = fetch_q$q;
         fetch_a$d = fetch_a$q;
         cur_fi$d = cur_fi$q;
+        own_acc$d = own_acc$q;
         ram$read_clock = clock;
         ram$write_clock = clock;
-        l_own = offer_own;
+        l_own = offer_own | ~offer_rx;
         if (wr_busy$q) begin
             l_own = wr_src$q;
         end
@@ -7606,62 +7723,78 @@ module canstar_slcan$can$fifo(clock,rst,clear,offer_rx,offer_own,rx_ide,rx_rtr,r
             f_n = 32'h0;
         end
         f_d01 = l_data[(32'h30)+:(16)];
-        l_sid = f_id;
-        if (~f_ide) begin
-            l_sid = f_id & 32'h7ff;
-        end
         l_len = f_n + 32'h3;
         if (f_ide) begin
             l_len = f_n + 32'h5;
         end
-        l_msg = (((l_dlc) & 104'hffffffffffffffffffffffffff) << 32'h60) | (((l_data) & 104'hffffffffffffffffffffffffff) << 32'h10);
-        l_msg = (l_msg & ~(1 << (32'h66)) | ((f_rtr) << (32'h66)));
-        if (f_ide) begin
-            l_msg = (((l_dlc) & 104'hffffffffffffffffffffffffff) << 32'h60) | (((l_sid) & 104'hffffffffffffffffffffffffff) << 32'h43) | ((l_data) & 104'hffffffffffffffffffffffffff);
-            l_msg = (l_msg & ~(1 << (32'h67)) | ((1'b1) << (32'h67)));
-            l_msg = (l_msg & ~(1 << (32'h66)) | ((f_rtr) << (32'h66)));
-            l_msg = (l_msg & ~(1 << (32'h42)) | ((f_rtr) << (32'h42)));
-        end
-        else begin
-            l_msg = l_msg | (((l_sid) & 104'hffffffffffffffffffffffffff) << 32'h55);
-            l_msg = (l_msg & ~(1 << (32'h54)) | ((f_rtr) << (32'h54)));
-        end
-        l_wbyte = l_msg[(32'h60)+:(8)];
+        l_hb = ((l_dlc) & 8'hff);
+        l_hb = (l_hb & ~(1 << (32'h7)) | ((f_ide) << (32'h7)));
+        l_hb = (l_hb & ~(1 << (32'h6)) | ((f_rtr) << (32'h6)));
         if (wr_idx$q == 32'h1) begin
-            l_wbyte = l_msg[(32'h58)+:(8)];
+            l_hb = f_id[(32'h3)+:(8)];
+            if (f_ide) begin
+                l_hb = f_id[(32'h15)+:(8)];
+            end
         end
         if (wr_idx$q == 32'h2) begin
-            l_wbyte = l_msg[(32'h50)+:(8)];
+            l_hb = ((f_id[(32'h0)+:(3)]) & 8'hff) << 32'h5;
+            l_hb = (l_hb & ~(1 << (32'h4)) | ((f_rtr) << (32'h4)));
+            if (f_ide) begin
+                l_hb = f_id[(32'hd)+:(8)];
+            end
         end
         if (wr_idx$q == 32'h3) begin
-            l_wbyte = l_msg[(32'h48)+:(8)];
+            l_hb = f_id[(32'h5)+:(8)];
         end
         if (wr_idx$q == 32'h4) begin
-            l_wbyte = l_msg[(32'h40)+:(8)];
+            l_hb = ((f_id[(32'h0)+:(5)]) & 8'hff) << 32'h3;
+            l_hb = (l_hb & ~(1 << (32'h2)) | ((f_rtr) << (32'h2)));
         end
-        if (wr_idx$q == 32'h5) begin
-            l_wbyte = l_msg[(32'h38)+:(8)];
+        l_hdr = ~wr_idx$q[32'h3] & ~wr_idx$q[32'h2] & ~(wr_idx$q[32'h1] & wr_idx$q[32'h0]);
+        if (f_ide) begin
+            l_hdr = ~wr_idx$q[32'h3] & (~wr_idx$q[32'h2] | (~wr_idx$q[32'h1] & ~wr_idx$q[32'h0]));
         end
-        if (wr_idx$q == 32'h6) begin
-            l_wbyte = l_msg[(32'h30)+:(8)];
+        l_j = wr_idx$q - 32'h3;
+        if (f_ide) begin
+            l_j = wr_idx$q - 32'h5;
         end
-        if (wr_idx$q == 32'h7) begin
-            l_wbyte = l_msg[(32'h28)+:(8)];
-        end
-        if (wr_idx$q == 32'h8) begin
-            l_wbyte = l_msg[(32'h20)+:(8)];
-        end
-        if (wr_idx$q == 32'h9) begin
-            l_wbyte = l_msg[(32'h18)+:(8)];
-        end
-        if (wr_idx$q == 32'ha) begin
-            l_wbyte = l_msg[(32'h10)+:(8)];
-        end
-        if (wr_idx$q == 32'hb) begin
-            l_wbyte = l_msg[(32'h8)+:(8)];
-        end
-        if (wr_idx$q == 32'hc) begin
-            l_wbyte = l_msg[(32'h0)+:(8)];
+        l_db = l_data[(32'h38)+:(8)];
+        case (l_j[(32'h0)+:(3)])
+            1:
+                begin
+                    l_db = l_data[(32'h30)+:(8)];
+                end
+            2:
+                begin
+                    l_db = l_data[(32'h28)+:(8)];
+                end
+            3:
+                begin
+                    l_db = l_data[(32'h20)+:(8)];
+                end
+            4:
+                begin
+                    l_db = l_data[(32'h18)+:(8)];
+                end
+            5:
+                begin
+                    l_db = l_data[(32'h10)+:(8)];
+                end
+            6:
+                begin
+                    l_db = l_data[(32'h8)+:(8)];
+                end
+            7:
+                begin
+                    l_db = l_data[(32'h0)+:(8)];
+                end
+            default:
+                begin
+                end
+        endcase
+        l_wbyte = l_db;
+        if (l_hdr) begin
+            l_wbyte = l_hb;
         end
         l_wdone = wr_busy$q & ((wr_idx$q + 32'h1) == wr_len$q);
         l_le = 32'h0;
@@ -7804,21 +7937,28 @@ module canstar_slcan$can$fifo(clock,rst,clear,offer_rx,offer_own,rx_ide,rx_rtr,r
                 own_done = wr_src$q;
             end
         end
+        if (~wr_busy$q & ~offer_rx) begin
+            own_acc$d = accept;
+        end
+        l_acc = accept;
+        if (offer_own & ~wr_busy$q) begin
+            l_acc = own_acc$q;
+        end
         if (offer_rx | offer_own) begin
-            if (accept & l_fits & ~wr_busy$q) begin
+            if (l_acc & l_fits & ~wr_busy$q) begin
                 wr_busy$d = 1'b1;
                 wr_src$d = offer_own;
                 wr_idx$d = 32'h0;
                 wr_len$d = l_len;
             end
             else begin
-                if (accept) begin
+                if (l_acc) begin
                     dos_r$d = 1'b1;
                     overrun = ~dos_r$q;
                 end
-                own_dropped = offer_own;
             end
         end
+        own_dropped = offer_own & ~(own_acc$q & l_fits & ~wr_busy$q);
         if (rrb) begin
             rbsa_r$d = rbsa_r$q + ((l_cur_len) & 6'h3f);
         end
@@ -7931,6 +8071,25 @@ module canstar_slcan$can$fifo$fetch_q(d,q,clock);
     end
           
 endmodule // canstar_slcan$can$fifo$fetch_q
+
+
+module canstar_slcan$can$fifo$own_acc(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_slcan$can$fifo$own_acc
 
 
 module canstar_slcan$can$fifo$ram(read_address,read_clock,read_data,write_address,write_clock,write_data,write_enable);
@@ -8161,7 +8320,7 @@ module canstar_slcan$can$fifo$wr_src(d,q,clock);
 endmodule // canstar_slcan$can$fifo$wr_src
 
 
-module canstar_slcan$can$filter(clock,rst,we,idx,wdata,rdata,single,ide,rtr,id,n,d01,accept);
+module canstar_slcan$can$filter(clock,rst,we,idx,wdata,single,ide,rtr,id,n,d01,accept);
     
     // Module arguments
     input wire  clock;
@@ -8169,7 +8328,6 @@ module canstar_slcan$can$filter(clock,rst,we,idx,wdata,rdata,single,ide,rtr,id,n
     input wire  we;
     input wire  [2:0] idx;
     input wire  [7:0] wdata;
-    output reg  [7:0] rdata;
     input wire  single;
     input wire  ide;
     input wire  rtr;
@@ -8275,60 +8433,51 @@ module canstar_slcan$can$filter(clock,rst,we,idx,wdata,rdata,single,ide,rtr,id,n
         amr1$d = amr1$q;
         amr2$d = amr2$q;
         amr3$d = amr3$q;
-        rdata = 32'h0;
         case (idx)
             0:
                 begin
-                    rdata = acr0$q;
                     if (we) begin
                         acr0$d = wdata;
                     end
                 end
             1:
                 begin
-                    rdata = acr1$q;
                     if (we) begin
                         acr1$d = wdata;
                     end
                 end
             2:
                 begin
-                    rdata = acr2$q;
                     if (we) begin
                         acr2$d = wdata;
                     end
                 end
             3:
                 begin
-                    rdata = acr3$q;
                     if (we) begin
                         acr3$d = wdata;
                     end
                 end
             4:
                 begin
-                    rdata = amr0$q;
                     if (we) begin
                         amr0$d = wdata;
                     end
                 end
             5:
                 begin
-                    rdata = amr1$q;
                     if (we) begin
                         amr1$d = wdata;
                     end
                 end
             6:
                 begin
-                    rdata = amr2$q;
                     if (we) begin
                         amr2$d = wdata;
                     end
                 end
             7:
                 begin
-                    rdata = amr3$q;
                     if (we) begin
                         amr3$d = wdata;
                     end
@@ -9298,8 +9447,28 @@ module canstar_slcan$can$timing(clock,rst,we0,we1,wdata,btr0,btr1,brp,prop,ph1,p
     reg  [7:0] r1$d;
     wire  [7:0] r1$q;
     reg  r1$clock;
+    reg  [5:0] o_brp$d;
+    wire  [5:0] o_brp$q;
+    reg  o_brp$clock;
+    reg  [3:0] o_prop$d;
+    wire  [3:0] o_prop$q;
+    reg  o_prop$clock;
+    reg  [2:0] o_ph1$d;
+    wire  [2:0] o_ph1$q;
+    reg  o_ph1$clock;
+    reg  [2:0] o_ph2$d;
+    wire  [2:0] o_ph2$q;
+    reg  o_ph2$clock;
+    reg  [1:0] o_sjw$d;
+    wire  [1:0] o_sjw$q;
+    reg  o_sjw$clock;
+    reg  o_tri$d;
+    wire  o_tri$q;
+    reg  o_tri$clock;
     
     // Local signals
+    reg  [7:0] l_n0;
+    reg  [7:0] l_n1;
     reg  [5:0] l_t1;
     reg  [5:0] l_prop;
     reg  [5:0] l_ph1;
@@ -9317,37 +9486,83 @@ module canstar_slcan$can$timing(clock,rst,we0,we1,wdata,btr0,btr1,brp,prop,ph1,p
         .q(r1$q),
         .clock(r1$clock)
     );
+    canstar_slcan$can$timing$o_brp o_brp(
+        .d(o_brp$d),
+        .q(o_brp$q),
+        .clock(o_brp$clock)
+    );
+    canstar_slcan$can$timing$o_prop o_prop(
+        .d(o_prop$d),
+        .q(o_prop$q),
+        .clock(o_prop$clock)
+    );
+    canstar_slcan$can$timing$o_ph1 o_ph1(
+        .d(o_ph1$d),
+        .q(o_ph1$q),
+        .clock(o_ph1$clock)
+    );
+    canstar_slcan$can$timing$o_ph2 o_ph2(
+        .d(o_ph2$d),
+        .q(o_ph2$q),
+        .clock(o_ph2$clock)
+    );
+    canstar_slcan$can$timing$o_sjw o_sjw(
+        .d(o_sjw$d),
+        .q(o_sjw$q),
+        .clock(o_sjw$clock)
+    );
+    canstar_slcan$can$timing$o_tri o_tri(
+        .d(o_tri$d),
+        .q(o_tri$q),
+        .clock(o_tri$clock)
+    );
     
     // Update code
     always @(*) begin
         r0$clock = clock;
         r1$clock = clock;
+        o_brp$clock = clock;
+        o_prop$clock = clock;
+        o_ph1$clock = clock;
+        o_ph2$clock = clock;
+        o_sjw$clock = clock;
+        o_tri$clock = clock;
         r0$d = r0$q;
         r1$d = r1$q;
+        o_brp$d = o_brp$q;
+        o_prop$d = o_prop$q;
+        o_ph1$d = o_ph1$q;
+        o_ph2$d = o_ph2$q;
+        o_sjw$d = o_sjw$q;
+        o_tri$d = o_tri$q;
+        l_n0 = r0$q;
+        l_n1 = r1$q;
         if (we0) begin
-            r0$d = wdata;
+            l_n0 = wdata;
         end
         if (we1) begin
-            r1$d = wdata;
+            l_n1 = wdata;
         end
         if (rst) begin
-            r0$d = v0;
-            r1$d = v1;
+            l_n0 = v0;
+            l_n1 = v1;
         end
-        brp = (((r0$q[(32'h0)+:(6)]) & 7'h7f) << 32'h1) | 32'h1;
-        l_t1 = ((r1$q[(32'h0)+:(4)]) & 6'h3f) + 32'h1;
+        r0$d = l_n0;
+        r1$d = l_n1;
+        o_brp$d = l_n0[(32'h0)+:(6)];
+        l_t1 = ((l_n1[(32'h0)+:(4)]) & 6'h3f) + 32'h1;
         l_ph1 = l_t1 - 32'h1;
         if (l_t1 > 32'h9) begin
             l_ph1 = 32'h8;
         end
         l_prop = l_t1 - l_ph1;
-        l_ph2 = ((r1$q[(32'h4)+:(3)]) & 6'h3f) + 32'h1;
+        l_ph2 = ((l_n1[(32'h4)+:(3)]) & 6'h3f) + 32'h1;
         if (l_t1 == 32'h1) begin
             l_prop = 32'h1;
             l_ph1 = 32'h1;
             l_ph2 = 32'h1;
         end
-        l_sjw = ((r0$q[(32'h6)+:(2)]) & 6'h3f) + 32'h1;
+        l_sjw = ((l_n0[(32'h6)+:(2)]) & 6'h3f) + 32'h1;
         if (l_sjw > l_ph1) begin
             l_sjw = l_ph1;
         end
@@ -9355,16 +9570,136 @@ module canstar_slcan$can$timing(clock,rst,we0,we1,wdata,btr0,btr1,brp,prop,ph1,p
         l_ph1 = l_ph1 - 32'h1;
         l_ph2 = l_ph2 - 32'h1;
         l_sjw = l_sjw - 32'h1;
-        prop = l_prop[(32'h0)+:(4)];
-        ph1 = l_ph1[(32'h0)+:(3)];
-        ph2 = l_ph2[(32'h0)+:(3)];
-        sjw = l_sjw[(32'h0)+:(2)];
-        triple = r1$q[32'h7];
+        o_prop$d = l_prop[(32'h0)+:(4)];
+        o_ph1$d = l_ph1[(32'h0)+:(3)];
+        o_ph2$d = l_ph2[(32'h0)+:(3)];
+        o_sjw$d = l_sjw[(32'h0)+:(2)];
+        o_tri$d = l_n1[32'h7];
+        brp = (((o_brp$q) & 7'h7f) << 32'h1) | 32'h1;
+        prop = o_prop$q;
+        ph1 = o_ph1$q;
+        ph2 = o_ph2$q;
+        sjw = o_sjw$q;
+        triple = o_tri$q;
         btr0 = r0$q;
         btr1 = r1$q;
     end
     
 endmodule // canstar_slcan$can$timing
+
+
+module canstar_slcan$can$timing$o_brp(d,q,clock);
+    
+    // Module arguments
+    input wire  [5:0] d;
+    output reg  [5:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 6'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_slcan$can$timing$o_brp
+
+
+module canstar_slcan$can$timing$o_ph1(d,q,clock);
+    
+    // Module arguments
+    input wire  [2:0] d;
+    output reg  [2:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 3'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_slcan$can$timing$o_ph1
+
+
+module canstar_slcan$can$timing$o_ph2(d,q,clock);
+    
+    // Module arguments
+    input wire  [2:0] d;
+    output reg  [2:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 3'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_slcan$can$timing$o_ph2
+
+
+module canstar_slcan$can$timing$o_prop(d,q,clock);
+    
+    // Module arguments
+    input wire  [3:0] d;
+    output reg  [3:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 4'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_slcan$can$timing$o_prop
+
+
+module canstar_slcan$can$timing$o_sjw(d,q,clock);
+    
+    // Module arguments
+    input wire  [1:0] d;
+    output reg  [1:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 2'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_slcan$can$timing$o_sjw
+
+
+module canstar_slcan$can$timing$o_tri(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_slcan$can$timing$o_tri
 
 
 module canstar_slcan$can$timing$r0(d,q,clock);
@@ -9405,14 +9740,13 @@ module canstar_slcan$can$timing$r1(d,q,clock);
 endmodule // canstar_slcan$can$timing$r1
 
 
-module canstar_slcan$can$txbuf(clock,we,idx,wdata,rdata,ide,rtr,id,dlc,data);
+module canstar_slcan$can$txbuf(clock,we,idx,wdata,ide,rtr,id,dlc,data);
     
     // Module arguments
     input wire  clock;
     input wire  we;
     input wire  [3:0] idx;
     input wire  [7:0] wdata;
-    output reg  [7:0] rdata;
     output reg  ide;
     output reg  rtr;
     output reg  [28:0] id;
@@ -9555,95 +9889,81 @@ module canstar_slcan$can$txbuf(clock,we,idx,wdata,rdata,ide,rtr,id,dlc,data);
         b10$d = b10$q;
         b11$d = b11$q;
         b12$d = b12$q;
-        rdata = 32'h0;
         case (idx)
             0:
                 begin
-                    rdata = b0$q;
                     if (we) begin
                         b0$d = wdata;
                     end
                 end
             1:
                 begin
-                    rdata = b1$q;
                     if (we) begin
                         b1$d = wdata;
                     end
                 end
             2:
                 begin
-                    rdata = b2$q;
                     if (we) begin
                         b2$d = wdata;
                     end
                 end
             3:
                 begin
-                    rdata = b3$q;
                     if (we) begin
                         b3$d = wdata;
                     end
                 end
             4:
                 begin
-                    rdata = b4$q;
                     if (we) begin
                         b4$d = wdata;
                     end
                 end
             5:
                 begin
-                    rdata = b5$q;
                     if (we) begin
                         b5$d = wdata;
                     end
                 end
             6:
                 begin
-                    rdata = b6$q;
                     if (we) begin
                         b6$d = wdata;
                     end
                 end
             7:
                 begin
-                    rdata = b7$q;
                     if (we) begin
                         b7$d = wdata;
                     end
                 end
             8:
                 begin
-                    rdata = b8$q;
                     if (we) begin
                         b8$d = wdata;
                     end
                 end
             9:
                 begin
-                    rdata = b9$q;
                     if (we) begin
                         b9$d = wdata;
                     end
                 end
             10:
                 begin
-                    rdata = b10$q;
                     if (we) begin
                         b10$d = wdata;
                     end
                 end
             11:
                 begin
-                    rdata = b11$q;
                     if (we) begin
                         b11$d = wdata;
                     end
                 end
             12:
                 begin
-                    rdata = b12$q;
                     if (we) begin
                         b12$d = wdata;
                     end
@@ -10188,6 +10508,88 @@ module canstar_slcan$can$txctl$tcs_n(d,q,clock);
     end
           
 endmodule // canstar_slcan$can$txctl$tcs_n
+
+
+module canstar_slcan$can$txram(read_address,read_clock,read_data,write_address,write_clock,write_data,write_enable);
+    
+    // Module arguments
+    input wire  [4:0] read_address;
+    input wire  read_clock;
+    output reg  [7:0] read_data;
+    input wire  [4:0] write_address;
+    input wire  write_clock;
+    input wire  [7:0] write_data;
+    input wire  write_enable;
+    
+    // Update code (custom)
+    reg[7:0] mem[31:0];
+    
+    initial begin
+    mem[5'b0] = 8'h0;
+    mem[5'b1] = 8'h0;
+    mem[5'b10] = 8'h0;
+    mem[5'b11] = 8'h0;
+    mem[5'b100] = 8'h0;
+    mem[5'b101] = 8'h0;
+    mem[5'b110] = 8'h0;
+    mem[5'b111] = 8'h0;
+    mem[5'b1000] = 8'h0;
+    mem[5'b1001] = 8'h0;
+    mem[5'b1010] = 8'h0;
+    mem[5'b1011] = 8'h0;
+    mem[5'b1100] = 8'h0;
+    mem[5'b1101] = 8'h0;
+    mem[5'b1110] = 8'h0;
+    mem[5'b1111] = 8'h0;
+    mem[5'b10000] = 8'h0;
+    mem[5'b10001] = 8'h0;
+    mem[5'b10010] = 8'h0;
+    mem[5'b10011] = 8'h0;
+    mem[5'b10100] = 8'h0;
+    mem[5'b10101] = 8'h0;
+    mem[5'b10110] = 8'h0;
+    mem[5'b10111] = 8'h0;
+    mem[5'b11000] = 8'h0;
+    mem[5'b11001] = 8'h0;
+    mem[5'b11010] = 8'h0;
+    mem[5'b11011] = 8'h0;
+    mem[5'b11100] = 8'h0;
+    mem[5'b11101] = 8'h0;
+    mem[5'b11110] = 8'h0;
+    mem[5'b11111] = 8'h0;
+    end
+    
+    
+    always @(posedge read_clock) begin
+       read_data <= mem[read_address];
+    end
+    
+    always @(posedge write_clock) begin
+       if (write_enable) begin
+          mem[write_address] <= write_data;
+       end
+    end
+                
+endmodule // canstar_slcan$can$txram
+
+
+module canstar_slcan$can$txsel(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_slcan$can$txsel
 
 
 module canstar_slcan$engine(clock,rst,c_valid,c_data,c_pop,tx_busy,tx_start,tx_data,wb_cyc,wb_we,wb_adr,wb_dat_w,wb_dat_r,wb_ack);

@@ -29,8 +29,10 @@
 //! `wr_busy`/`wr_src`/`wr_idx`/`wr_len` (writer running, writing the own
 //! frame, next byte, message length), `fetch_q`/`fetch_a` (the RAM read
 //! port fetched the FI at RBSA `fetch_a` on the last clock), `cur_fi` (the
-//! FI of the message at RBSA). A hardware reset clears all but the RAM,
-//! `wr_src`, `wr_idx`, `wr_len`, the fetch registers and `cur_fi`.
+//! FI of the message at RBSA), `own_acc` (the acceptance filter's verdict on
+//! the own frame, from the last clock it saw it). A hardware reset clears
+//! all but the RAM, `wr_src`, `wr_idx`, `wr_len`, the fetch registers,
+//! `cur_fi` and `own_acc`.
 
 use rust_hdl::prelude::*;
 
@@ -95,13 +97,17 @@ pub struct RxFifo {
     fetch_q: DFF<Bit>,
     fetch_a: DFF<Bits<6>>,
     cur_fi: DFF<Bits<8>>,
+    own_acc: DFF<Bit>,
 
     l_own: Signal<Local, Bit>,
+    l_acc: Signal<Local, Bit>,
     l_dlc: Signal<Local, Bits<4>>,
     l_data: Signal<Local, Bits<64>>,
-    l_sid: Signal<Local, Bits<29>>,
     l_len: Signal<Local, Bits<4>>,
-    l_msg: Signal<Local, Bits<104>>,
+    l_hb: Signal<Local, Bits<8>>,
+    l_hdr: Signal<Local, Bit>,
+    l_j: Signal<Local, Bits<4>>,
+    l_db: Signal<Local, Bits<8>>,
     l_wbyte: Signal<Local, Bits<8>>,
     l_wdone: Signal<Local, Bit>,
     l_fits: Signal<Local, Bit>,
@@ -166,12 +172,16 @@ impl Default for RxFifo {
             fetch_q: Default::default(),
             fetch_a: Default::default(),
             cur_fi: Default::default(),
+            own_acc: Default::default(),
             l_own: Default::default(),
+            l_acc: Default::default(),
             l_dlc: Default::default(),
             l_data: Default::default(),
-            l_sid: Default::default(),
             l_len: Default::default(),
-            l_msg: Default::default(),
+            l_hb: Default::default(),
+            l_hdr: Default::default(),
+            l_j: Default::default(),
+            l_db: Default::default(),
             l_wbyte: Default::default(),
             l_wdone: Default::default(),
             l_fits: Default::default(),
@@ -187,13 +197,14 @@ impl Default for RxFifo {
 impl Logic for RxFifo {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, rbsa_r, used, rmc_r, dos_r, wr_busy, wr_src, wr_idx, wr_len, fetch_q, fetch_a, cur_fi);
+        dff_setup!(self, clock, rbsa_r, used, rmc_r, dos_r, wr_busy, wr_src, wr_idx, wr_len, fetch_q, fetch_a, cur_fi, own_acc);
         self.ram.read_clock.next = self.clock.val();
         self.ram.write_clock.next = self.clock.val();
 
-        // The candidate frame: the core's delivery, or the own frame; while
-        // the writer runs, the frame it writes (both stay on the inputs).
-        self.l_own.next = self.offer_own.val();
+        // The candidate frame: the core's delivery, or the own frame (also
+        // on every clock without an offer, for `own_acc`); while the writer
+        // runs, the frame it writes (both stay on the inputs).
+        self.l_own.next = self.offer_own.val() | !self.offer_rx.val();
         if self.wr_busy.q.val() {
             self.l_own.next = self.wr_src.q.val();
         }
@@ -219,66 +230,78 @@ impl Logic for RxFifo {
         }
         self.f_d01.next = self.l_data.val().get_bits::<16>(48);
 
-        // The message as stored: FI, identifier bytes, data (13 bytes, FI
-        // in bits 103..96).
-        self.l_sid.next = self.f_id.val();
-        if !self.f_ide.val() {
-            self.l_sid.next = self.f_id.val() & 0x7FF;
-        }
         self.l_len.next = self.f_n.val() + 3;
         if self.f_ide.val() {
             self.l_len.next = self.f_n.val() + 5;
         }
-        self.l_msg.next = (bit_cast::<104, 4>(self.l_dlc.val()) << 96) | (bit_cast::<104, 64>(self.l_data.val()) << 16);
-        self.l_msg.next = self.l_msg.val().replace_bit(102, self.f_rtr.val());
-        if self.f_ide.val() {
-            self.l_msg.next = (bit_cast::<104, 4>(self.l_dlc.val()) << 96)
-                | (bit_cast::<104, 29>(self.l_sid.val()) << 67)
-                | bit_cast::<104, 64>(self.l_data.val());
-            self.l_msg.next = self.l_msg.val().replace_bit(103, true);
-            self.l_msg.next = self.l_msg.val().replace_bit(102, self.f_rtr.val());
-            self.l_msg.next = self.l_msg.val().replace_bit(66, self.f_rtr.val());
-        } else {
-            self.l_msg.next = self.l_msg.val() | (bit_cast::<104, 29>(self.l_sid.val()) << 85);
-            self.l_msg.next = self.l_msg.val().replace_bit(84, self.f_rtr.val());
-        }
-        // The byte to write next.
-        self.l_wbyte.next = self.l_msg.val().get_bits::<8>(96);
+        // The byte to write next (wr_idx < l_len while the writer runs): a
+        // header byte (FI, then the identifier bytes; unused bits 0, RTR in
+        // SFF ID2 bit 4 / EFF ID4 bit 2) or data byte j = wr_idx - 3 (- 5
+        // extended).
+        self.l_hb.next = bit_cast::<8, 4>(self.l_dlc.val());
+        self.l_hb.next = self.l_hb.val().replace_bit(7, self.f_ide.val());
+        self.l_hb.next = self.l_hb.val().replace_bit(6, self.f_rtr.val());
         if self.wr_idx.q.val() == 1 {
-            self.l_wbyte.next = self.l_msg.val().get_bits::<8>(88);
+            self.l_hb.next = self.f_id.val().get_bits::<8>(3);
+            if self.f_ide.val() {
+                self.l_hb.next = self.f_id.val().get_bits::<8>(21);
+            }
         }
         if self.wr_idx.q.val() == 2 {
-            self.l_wbyte.next = self.l_msg.val().get_bits::<8>(80);
+            self.l_hb.next = bit_cast::<8, 3>(self.f_id.val().get_bits::<3>(0)) << 5;
+            self.l_hb.next = self.l_hb.val().replace_bit(4, self.f_rtr.val());
+            if self.f_ide.val() {
+                self.l_hb.next = self.f_id.val().get_bits::<8>(13);
+            }
         }
         if self.wr_idx.q.val() == 3 {
-            self.l_wbyte.next = self.l_msg.val().get_bits::<8>(72);
+            self.l_hb.next = self.f_id.val().get_bits::<8>(5);
         }
         if self.wr_idx.q.val() == 4 {
-            self.l_wbyte.next = self.l_msg.val().get_bits::<8>(64);
+            self.l_hb.next = bit_cast::<8, 5>(self.f_id.val().get_bits::<5>(0)) << 3;
+            self.l_hb.next = self.l_hb.val().replace_bit(2, self.f_rtr.val());
         }
-        if self.wr_idx.q.val() == 5 {
-            self.l_wbyte.next = self.l_msg.val().get_bits::<8>(56);
+        // header: wr_idx < 3 (< 5 extended), written on the bits (no carry chain)
+        self.l_hdr.next = !self.wr_idx.q.val().get_bit(3)
+            & !self.wr_idx.q.val().get_bit(2)
+            & !(self.wr_idx.q.val().get_bit(1) & self.wr_idx.q.val().get_bit(0));
+        if self.f_ide.val() {
+            self.l_hdr.next = !self.wr_idx.q.val().get_bit(3)
+                & (!self.wr_idx.q.val().get_bit(2)
+                    | (!self.wr_idx.q.val().get_bit(1) & !self.wr_idx.q.val().get_bit(0)));
         }
-        if self.wr_idx.q.val() == 6 {
-            self.l_wbyte.next = self.l_msg.val().get_bits::<8>(48);
+        self.l_j.next = self.wr_idx.q.val() - 3;
+        if self.f_ide.val() {
+            self.l_j.next = self.wr_idx.q.val() - 5;
         }
-        if self.wr_idx.q.val() == 7 {
-            self.l_wbyte.next = self.l_msg.val().get_bits::<8>(40);
+        self.l_db.next = self.l_data.val().get_bits::<8>(56);
+        match self.l_j.val().get_bits::<3>(0).index() {
+            1 => {
+                self.l_db.next = self.l_data.val().get_bits::<8>(48);
+            }
+            2 => {
+                self.l_db.next = self.l_data.val().get_bits::<8>(40);
+            }
+            3 => {
+                self.l_db.next = self.l_data.val().get_bits::<8>(32);
+            }
+            4 => {
+                self.l_db.next = self.l_data.val().get_bits::<8>(24);
+            }
+            5 => {
+                self.l_db.next = self.l_data.val().get_bits::<8>(16);
+            }
+            6 => {
+                self.l_db.next = self.l_data.val().get_bits::<8>(8);
+            }
+            7 => {
+                self.l_db.next = self.l_data.val().get_bits::<8>(0);
+            }
+            _ => {}
         }
-        if self.wr_idx.q.val() == 8 {
-            self.l_wbyte.next = self.l_msg.val().get_bits::<8>(32);
-        }
-        if self.wr_idx.q.val() == 9 {
-            self.l_wbyte.next = self.l_msg.val().get_bits::<8>(24);
-        }
-        if self.wr_idx.q.val() == 10 {
-            self.l_wbyte.next = self.l_msg.val().get_bits::<8>(16);
-        }
-        if self.wr_idx.q.val() == 11 {
-            self.l_wbyte.next = self.l_msg.val().get_bits::<8>(8);
-        }
-        if self.wr_idx.q.val() == 12 {
-            self.l_wbyte.next = self.l_msg.val().get_bits::<8>(0);
+        self.l_wbyte.next = self.l_db.val();
+        if self.l_hdr.val() {
+            self.l_wbyte.next = self.l_hb.val();
         }
         self.l_wdone.next = self.wr_busy.q.val() & ((self.wr_idx.q.val() + 1) == self.wr_len.q.val());
         // used + l_len <= 64 without an adder on the offer path: l_len is
@@ -424,20 +447,40 @@ impl Logic for RxFifo {
                 self.own_done.next = self.wr_src.q.val();
             }
         }
+        // The filter's verdict on the own frame, taken on every clock on
+        // which it sees the own frame (the writer idle, no received frame
+        // offered); the own frame's offer uses the verdict of the clock
+        // before, so that the filter is not between the core's `tx_done` and
+        // the transmit control. The verdict is that of the offered frame:
+        // the own frame is offered while its request is pending, and from
+        // the clock the request is taken (TBS = 0) to its offer neither the
+        // transmit buffer (locked) nor the filter's code, mask and mode
+        // (reset mode only) change, and that is at least a frame's length
+        // (no other offer and writer run can fill it).
+        if !self.wr_busy.q.val() & !self.offer_rx.val() {
+            self.own_acc.d.next = self.accept.val();
+        }
+        self.l_acc.next = self.accept.val();
+        if self.offer_own.val() & !self.wr_busy.q.val() {
+            self.l_acc.next = self.own_acc.q.val();
+        }
         if self.offer_rx.val() | self.offer_own.val() {
-            if self.accept.val() & self.l_fits.val() & !self.wr_busy.q.val() {
+            if self.l_acc.val() & self.l_fits.val() & !self.wr_busy.q.val() {
                 self.wr_busy.d.next = true;
                 self.wr_src.d.next = self.offer_own.val();
                 self.wr_idx.d.next = 0.into();
                 self.wr_len.d.next = self.l_len.val();
             } else {
-                if self.accept.val() {
+                if self.l_acc.val() {
                     self.dos_r.d.next = true;
                     self.overrun.next = !self.dos_r.q.val();
                 }
-                self.own_dropped.next = self.offer_own.val();
             }
         }
+        // (the else branch above for the own frame, written without the
+        // filter's combinational verdict, which it does not depend on)
+        self.own_dropped.next = self.offer_own.val()
+            & !(self.own_acc.q.val() & self.l_fits.val() & !self.wr_busy.q.val());
         // Pointers.
         if self.rrb.val() {
             self.rbsa_r.d.next = self.rbsa_r.q.val() + bit_cast::<6, 4>(self.l_cur_len.val());

@@ -12,8 +12,9 @@
 //! (`n` bytes: remote frames and DLC < 2) match any code.
 //!
 //! The filter is combinational in the frame (`accept`); the registers are
-//! written on `we` at index `idx` (0..3 ACR0..3, 4..7 AMR0..3), read on
-//! `rdata`.
+//! written on `we` at index `idx` (0..3 ACR0..3, 4..7 AMR0..3). The host
+//! reads them from a copy in block RAM that the top keeps (the same writes;
+//! AMR bytes since a hardware reset read 0xFF there).
 //!
 //! State: `acr0`..`acr3` (not reset), `amr0`..`amr3` (reset to the table's
 //! AMR value, 0xFF: accept all).
@@ -28,7 +29,6 @@ pub struct AcceptanceFilter {
     pub we: Signal<In, Bit>,
     pub idx: Signal<In, Bits<3>>,
     pub wdata: Signal<In, Bits<8>>,
-    pub rdata: Signal<Out, Bits<8>>,
     /// Single filter mode (MOD.AFM).
     pub single: Signal<In, Bit>,
     /// The frame: IDE, RTR, identifier, data bytes carried, data bytes 0
@@ -66,7 +66,6 @@ impl Default for AcceptanceFilter {
             we: Default::default(),
             idx: Default::default(),
             wdata: Default::default(),
-            rdata: Default::default(),
             single: Default::default(),
             ide: Default::default(),
             rtr: Default::default(),
@@ -97,52 +96,43 @@ impl Logic for AcceptanceFilter {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(self, clock, acr0, acr1, acr2, acr3, amr0, amr1, amr2, amr3);
-        self.rdata.next = 0.into();
         match self.idx.val().index() {
             0 => {
-                self.rdata.next = self.acr0.q.val();
                 if self.we.val() {
                     self.acr0.d.next = self.wdata.val();
                 }
             }
             1 => {
-                self.rdata.next = self.acr1.q.val();
                 if self.we.val() {
                     self.acr1.d.next = self.wdata.val();
                 }
             }
             2 => {
-                self.rdata.next = self.acr2.q.val();
                 if self.we.val() {
                     self.acr2.d.next = self.wdata.val();
                 }
             }
             3 => {
-                self.rdata.next = self.acr3.q.val();
                 if self.we.val() {
                     self.acr3.d.next = self.wdata.val();
                 }
             }
             4 => {
-                self.rdata.next = self.amr0.q.val();
                 if self.we.val() {
                     self.amr0.d.next = self.wdata.val();
                 }
             }
             5 => {
-                self.rdata.next = self.amr1.q.val();
                 if self.we.val() {
                     self.amr1.d.next = self.wdata.val();
                 }
             }
             6 => {
-                self.rdata.next = self.amr2.q.val();
                 if self.we.val() {
                     self.amr2.d.next = self.wdata.val();
                 }
             }
             7 => {
-                self.rdata.next = self.amr3.q.val();
                 if self.we.val() {
                     self.amr3.d.next = self.wdata.val();
                 }

@@ -19,7 +19,12 @@
 //! a message naming the field, the settings the core does not honour exactly.
 //!
 //! State: `r0`, `r1` (BTR0, BTR1: written by `we0`/`we1`, loaded with the
-//! generation-time power-up values `v0`/`v1` by `rst`).
+//! generation-time power-up values `v0`/`v1` by `rst`); `o_brp`, `o_prop`,
+//! `o_ph1`, `o_ph2`, `o_sjw`, `o_tri` (the core's fields, mapped from the
+//! values `r0` and `r1` take on the clock edge, so that on every clock they
+//! are the mapping of `r0`/`r1` without the mapping's adders and
+//! comparators between these registers and the core; BTR0 = BTR1 = 0, the
+//! flip-flops' power-up value, maps to all-zero fields and BRP 0).
 
 use canstar_hdl::timing::BtlConfig;
 use rust_hdl::prelude::*;
@@ -43,9 +48,17 @@ pub struct BusTiming {
 
     r0: DFF<Bits<8>>,
     r1: DFF<Bits<8>>,
+    o_brp: DFF<Bits<6>>,
+    o_prop: DFF<Bits<4>>,
+    o_ph1: DFF<Bits<3>>,
+    o_ph2: DFF<Bits<3>>,
+    o_sjw: DFF<Bits<2>>,
+    o_tri: DFF<Bit>,
     v0: Constant<Bits<8>>,
     v1: Constant<Bits<8>>,
 
+    l_n0: Signal<Local, Bits<8>>,
+    l_n1: Signal<Local, Bits<8>>,
     l_t1: Signal<Local, Bits<6>>,
     l_prop: Signal<Local, Bits<6>>,
     l_ph1: Signal<Local, Bits<6>>,
@@ -72,8 +85,16 @@ impl BusTiming {
             triple: Default::default(),
             r0: Default::default(),
             r1: Default::default(),
+            o_brp: Default::default(),
+            o_prop: Default::default(),
+            o_ph1: Default::default(),
+            o_ph2: Default::default(),
+            o_sjw: Default::default(),
+            o_tri: Default::default(),
             v0: Constant::new((btr0 as u64).into()),
             v1: Constant::new((btr1 as u64).into()),
+            l_n0: Default::default(),
+            l_n1: Default::default(),
             l_t1: Default::default(),
             l_prop: Default::default(),
             l_ph1: Default::default(),
@@ -92,22 +113,28 @@ impl Default for BusTiming {
 impl Logic for BusTiming {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, r0, r1);
+        dff_setup!(self, clock, r0, r1, o_brp, o_prop, o_ph1, o_ph2, o_sjw, o_tri);
+        // the values BTR0/BTR1 take on this clock edge
+        self.l_n0.next = self.r0.q.val();
+        self.l_n1.next = self.r1.q.val();
         if self.we0.val() {
-            self.r0.d.next = self.wdata.val();
+            self.l_n0.next = self.wdata.val();
         }
         if self.we1.val() {
-            self.r1.d.next = self.wdata.val();
+            self.l_n1.next = self.wdata.val();
         }
         if self.rst.val() {
-            self.r0.d.next = self.v0.val();
-            self.r1.d.next = self.v1.val();
+            self.l_n0.next = self.v0.val();
+            self.l_n1.next = self.v1.val();
         }
+        self.r0.d.next = self.l_n0.val();
+        self.r1.d.next = self.l_n1.val();
 
         // BTR0: SJW in bits 7..6, BRP in bits 5..0; BTR1: SAM in bit 7,
-        // TSEG2 in bits 6..4, TSEG1 in bits 3..0.
-        self.brp.next = (bit_cast::<7, 6>(self.r0.q.val().get_bits::<6>(0)) << 1) | 1;
-        self.l_t1.next = bit_cast::<6, 4>(self.r1.q.val().get_bits::<4>(0)) + 1;
+        // TSEG2 in bits 6..4, TSEG1 in bits 3..0 (mapped from the next
+        // values, registered).
+        self.o_brp.d.next = self.l_n0.val().get_bits::<6>(0);
+        self.l_t1.next = bit_cast::<6, 4>(self.l_n1.val().get_bits::<4>(0)) + 1;
         // exact: PROP + PH1 = t1 with PH1 = min(t1 - 1, 8) (the largest PH1,
         // so that the SJW limit bites least), PH2 = t2
         self.l_ph1.next = self.l_t1.val() - 1;
@@ -115,7 +142,7 @@ impl Logic for BusTiming {
             self.l_ph1.next = 8.into();
         }
         self.l_prop.next = self.l_t1.val() - self.l_ph1.val();
-        self.l_ph2.next = bit_cast::<6, 3>(self.r1.q.val().get_bits::<3>(4)) + 1;
+        self.l_ph2.next = bit_cast::<6, 3>(self.l_n1.val().get_bits::<3>(4)) + 1;
         if self.l_t1.val() == 1 {
             // TSEG1 = 0: a sample point 2 TQ after the bit start needs
             // PROP + PH1 = 1, which the core cannot express; 1 + 1 + 1 + 1 =
@@ -127,7 +154,7 @@ impl Logic for BusTiming {
         }
         // SJW <= PH1 (C22; SJW > PH2 is legal): only when t1 <= SJW is the
         // setting's SJW reduced, to t1 - 1.
-        self.l_sjw.next = bit_cast::<6, 2>(self.r0.q.val().get_bits::<2>(6)) + 1;
+        self.l_sjw.next = bit_cast::<6, 2>(self.l_n0.val().get_bits::<2>(6)) + 1;
         if self.l_sjw.val() > self.l_ph1.val() {
             self.l_sjw.next = self.l_ph1.val();
         }
@@ -135,11 +162,17 @@ impl Logic for BusTiming {
         self.l_ph1.next = self.l_ph1.val() - 1;
         self.l_ph2.next = self.l_ph2.val() - 1;
         self.l_sjw.next = self.l_sjw.val() - 1;
-        self.prop.next = self.l_prop.val().get_bits::<4>(0);
-        self.ph1.next = self.l_ph1.val().get_bits::<3>(0);
-        self.ph2.next = self.l_ph2.val().get_bits::<3>(0);
-        self.sjw.next = self.l_sjw.val().get_bits::<2>(0);
-        self.triple.next = self.r1.q.val().get_bit(7);
+        self.o_prop.d.next = self.l_prop.val().get_bits::<4>(0);
+        self.o_ph1.d.next = self.l_ph1.val().get_bits::<3>(0);
+        self.o_ph2.d.next = self.l_ph2.val().get_bits::<3>(0);
+        self.o_sjw.d.next = self.l_sjw.val().get_bits::<2>(0);
+        self.o_tri.d.next = self.l_n1.val().get_bit(7);
+        self.brp.next = (bit_cast::<7, 6>(self.o_brp.q.val()) << 1) | 1;
+        self.prop.next = self.o_prop.q.val();
+        self.ph1.next = self.o_ph1.q.val();
+        self.ph2.next = self.o_ph2.q.val();
+        self.sjw.next = self.o_sjw.q.val();
+        self.triple.next = self.o_tri.q.val();
         self.btr0.next = self.r0.q.val();
         self.btr1.next = self.r1.q.val();
     }

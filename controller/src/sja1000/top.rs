@@ -12,9 +12,15 @@
 //!
 //! State: `ack` (the Wishbone acknowledge: a request was seen on the last
 //! clock); `rdat`, `ramsel` (read data, or take the FIFO RAM's read data;
-//! written on a read); `ocr`, `ewl`, `cdr` (stored registers, written in
-//! the modes of the register table). `rst` clears `ack` and loads the
-//! table's reset values into `ocr`, `ewl` and `cdr`.
+//! written on a read); `txram`, `txsel`, `ffsel`, `amr_def` (a block-RAM
+//! copy of the transmit buffer and of ACR0..3/AMR0..3, written with them,
+//! from which the host reads them: `txsel` on the acknowledge clock of such
+//! a read, when `wb_dat_r` is the RAM's read data, or 0xFF (`ffsel`) for an
+//! AMR byte not written since the hardware reset (`amr_def`, one bit per
+//! AMR byte; the filter's AMR flip-flops are 0xFF then), and `rdat` takes
+//! it, so that they read as the flip-flops would); `ocr`, `ewl`, `cdr` (stored registers, written in
+//! the modes of the register table). `rst` clears `ack`, sets `amr_def` and
+//! loads the table's reset values into `ocr`, `ewl` and `cdr`.
 
 use super::capture::ErrorCapture;
 use super::status::Status;
@@ -55,9 +61,15 @@ pub struct Sja1000 {
     mode: ModeControl,
     irq: Interrupts,
 
+    /// A copy of the transmit buffer (0..12) and of ACR0..3, AMR0..3
+    /// (16..23) for host reads, written with them.
+    txram: RAM<Bits<8>, 5>,
     ack: DFF<Bit>,
     rdat: DFF<Bits<8>>,
     ramsel: DFF<Bit>,
+    txsel: DFF<Bit>,
+    ffsel: DFF<Bit>,
+    amr_def: DFF<Bits<4>>,
     ocr: DFF<Bits<8>>,
     ewl: DFF<Bits<8>>,
     cdr: DFF<Bits<8>>,
@@ -110,6 +122,9 @@ pub struct Sja1000 {
     l_off: Signal<Local, Bits<7>>,
     l_txb_a: Signal<Local, Bit>,
     l_acc_a: Signal<Local, Bit>,
+    l_racc: Signal<Local, Bit>,
+    l_ra: Signal<Local, Bits<5>>,
+    l_rram: Signal<Local, Bits<8>>,
     l_ramrd: Signal<Local, Bit>,
     l_rdv: Signal<Local, Bits<8>>,
     l_cdrm: Signal<Local, Bits<8>>,
@@ -167,9 +182,14 @@ impl Sja1000 {
             status: Default::default(),
             mode: Default::default(),
             irq: Default::default(),
+            // zero-initialised, as the buffer's flip-flops
+            txram: (0..32).map(|_| Bits::<8>::from(0u64)).into(),
             ack: Default::default(),
             rdat: Default::default(),
             ramsel: Default::default(),
+            txsel: Default::default(),
+            ffsel: Default::default(),
+            amr_def: Default::default(),
             ocr: Default::default(),
             ewl: Default::default(),
             cdr: Default::default(),
@@ -218,6 +238,9 @@ impl Sja1000 {
             l_off: Default::default(),
             l_txb_a: Default::default(),
             l_acc_a: Default::default(),
+            l_racc: Default::default(),
+            l_ra: Default::default(),
+            l_rram: Default::default(),
             l_ramrd: Default::default(),
             l_rdv: Default::default(),
             l_cdrm: Default::default(),
@@ -272,7 +295,9 @@ impl Default for Sja1000 {
 impl Logic for Sja1000 {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, ack, rdat, ramsel, ocr, ewl, cdr);
+        dff_setup!(self, clock, ack, rdat, ramsel, txsel, ffsel, amr_def, ocr, ewl, cdr);
+        self.txram.read_clock.next = self.clock.val();
+        self.txram.write_clock.next = self.clock.val();
 
         // ---- Wishbone decode (address bit 7 ignored) ----
         self.l_req.next = self.wb_cyc.val() & self.wb_stb.val() & !self.ack.q.val();
@@ -344,11 +369,8 @@ impl Logic for Sja1000 {
         if self.l_a.val() == self.a_txerr.val() {
             self.l_rdv.next = self.status.txerr.val();
         }
-        if self.l_rm.val() {
-            if self.l_acc_a.val() {
-                self.l_rdv.next = self.filter.rdata.val();
-            }
-        } else if self.l_win.val() {
+        // (ACR/AMR in reset mode: from the RAM copy, below)
+        if !self.l_rm.val() & self.l_win.val() {
             self.l_ramrd.next = true;
         }
         if self.l_a.val() == self.a_rmc.val() {
@@ -363,12 +385,28 @@ impl Logic for Sja1000 {
         if self.l_ram_a.val() {
             self.l_ramrd.next = true;
         }
-        if self.l_txb_a.val() {
-            self.l_rdv.next = self.txbuf.rdata.val();
+        // The transmit buffer and ACR/AMR are read from their RAM copy: the
+        // byte arrives on the acknowledge clock (`txsel`; `ffsel`: an AMR
+        // byte not written since the hardware reset, 0xFF) and is kept in
+        // `rdat` from then on.
+        self.l_racc.next = self.l_rm.val() & self.l_acc_a.val();
+        self.l_ra.next = bit_cast::<5, 4>(self.l_a.val().get_bits::<4>(0));
+        self.l_ra.next = self.l_ra.val().replace_bit(4, self.l_racc.val());
+        self.l_rram.next = self.txram.read_data.val();
+        if self.ffsel.q.val() {
+            self.l_rram.next = 0xFF.into();
+        }
+        self.txsel.d.next = false;
+        if self.txsel.q.val() {
+            self.rdat.d.next = self.l_rram.val();
         }
         if self.l_rd.val() {
             self.rdat.d.next = self.l_rdv.val();
             self.ramsel.d.next = self.l_ramrd.val();
+            self.txsel.d.next = self.l_txb_a.val() | self.l_racc.val();
+            self.ffsel.d.next = self.l_racc.val()
+                & self.l_a.val().get_bit(2)
+                & self.amr_def.q.val().get_bit(self.l_a.val().get_bits::<2>(0).index());
         }
 
         // ---- Writes ----
@@ -409,8 +447,18 @@ impl Logic for Sja1000 {
             & ((self.mode.opm.val() & self.l_win.val() & !self.txctl.pending.val())
                 | (self.l_rm.val() & self.l_txb_a.val()));
 
+        // AMR bytes read 0xFF from a hardware reset until written
+        if self.l_we_acc.val() & self.l_a.val().get_bit(2) {
+            self.amr_def.d.next = self
+                .amr_def
+                .q
+                .val()
+                .replace_bit(self.l_a.val().get_bits::<2>(0).index(), false);
+        }
+
         // ---- Hardware reset ----
         if self.rst.val() {
+            self.amr_def.d.next = 0xF.into();
             self.ack.d.next = false;
             self.ocr.d.next = self.rv_ocr.val();
             self.ewl.d.next = self.rv_ewl.val();
@@ -453,6 +501,15 @@ impl Logic for Sja1000 {
         self.txbuf.we.next = self.l_we_txb.val();
         self.txbuf.idx.next = self.l_a.val().get_bits::<4>(0);
         self.txbuf.wdata.next = self.l_d.val();
+        // (entry 15 is never written: between reads the read register holds
+        // 0, which a model built from a running instance starts from)
+        self.txram.read_address.next = 15.into();
+        if self.l_rd.val() & (self.l_txb_a.val() | self.l_racc.val()) {
+            self.txram.read_address.next = self.l_ra.val();
+        }
+        self.txram.write_address.next = self.l_ra.val();
+        self.txram.write_data.next = self.l_d.val();
+        self.txram.write_enable.next = self.l_we_txb.val() | self.l_we_acc.val();
 
         self.txctl.clock.next = self.clock.val();
         self.txctl.rst.next = self.rst.val();
@@ -571,6 +628,9 @@ impl Logic for Sja1000 {
         self.wb_dat_r.next = self.rdat.q.val();
         if self.ramsel.q.val() {
             self.wb_dat_r.next = self.fifo.rdata.val();
+        }
+        if self.txsel.q.val() {
+            self.wb_dat_r.next = self.l_rram.val();
         }
         self.int_n.next = self.irq.int_n.val();
     }
