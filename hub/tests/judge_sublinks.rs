@@ -5,18 +5,22 @@ use canstar_hdl::drive;
 use canstar_hub::judge::{JudgeParams, JudgeUnit};
 use judge_common::*;
 
+/// A dominant-minority disagreement (a replica recessive at the sample), then the hub's
+/// `err_start` for one clock; returns `charged` at that clock.
+fn dominant_minority_episode(j: &mut JudgeUnit) -> bool {
+    j.rep_rec.next = true;
+    sample(j, Bit { c: false, bt: false, err: true, ..Default::default() });
+    j.rep_rec.next = false;
+    episode(j)
+}
+
 #[test]
 fn replica_rule_charges_by_consequence() {
     let mut j = JudgeUnit::sublink(params());
     drive::init(&mut j);
     // dominant-minority then an error episode: charged
     for _ in 0..3 {
-        j.rep_rec.next = true;
-        sample(&mut j, Bit { c: false, bt: false, err: true, ..Default::default() });
-        j.rep_rec.next = false;
-        j.err_start.next = true;
-        drive::cycle(&mut j);
-        j.err_start.next = false;
+        dominant_minority_episode(&mut j);
     }
     assert_eq!(j.rep_cnt.val().index(), 3);
     drive::cycle(&mut j);
@@ -277,20 +281,11 @@ fn replica_rule_spares_the_unit_whose_replica_glitches() {
     drive::init(&mut j);
     j.rep_glitched.next = true;
     for _ in 0..3 {
-        j.rep_rec.next = true;
-        sample(&mut j, Bit { c: false, bt: false, err: true, ..Default::default() });
-        j.rep_rec.next = false;
-        j.err_start.next = true;
-        drive::cycle(&mut j);
-        j.err_start.next = false;
+        dominant_minority_episode(&mut j);
     }
     assert_eq!(j.rep_cnt.val().index(), 0);
     j.rep_glitched.next = false;
-    j.rep_rec.next = true;
-    sample(&mut j, Bit { c: false, bt: false, err: true, ..Default::default() });
-    j.rep_rec.next = false;
-    j.err_start.next = true;
-    drive::cycle(&mut j);
+    dominant_minority_episode(&mut j);
     assert_eq!(j.rep_cnt.val().index(), 1, "charged again without the replica's glitches");
     // an episode started by the blame of another sublink (not this one): not charged
     assert_eq!(dominant_minority_then_episode(true, false), 0, "another sublink's blame started the episode");
