@@ -117,7 +117,6 @@ pub struct HubCore {
     err_phase: Signal<Local, Bit>,
     bs_r: DFF<Bits<5>>,
     delim_r: DFF<Bit>,
-    trig_r: DFF<Bit>,
     delim_z: Signal<Local, Bit>,
     bt_prev: DFF<Bit>,
     stuff_dom: Signal<Local, Bit>,
@@ -207,7 +206,6 @@ impl HubCore {
             err_phase: Default::default(),
             bs_r: Default::default(),
             delim_r: Default::default(),
-            trig_r: Default::default(),
             delim_z: Default::default(),
             bt_prev: Default::default(),
             stuff_dom: Default::default(),
@@ -279,7 +277,6 @@ impl Logic for HubCore {
         }
         self.delim_z.next = self.err_phase.val()
             & self.delim_r.q.val()
-            & !self.trig_r.q.val()
             & !(((self.mon_field.val() == 14) | (self.mon_field.val() == 15)) & (self.mon_pos.val() == 7));
         if self.reset.val() {
             self.delim_r.d.next = false;
@@ -459,15 +456,10 @@ impl Logic for HubCore {
         // that the replica evaluation does not depend combinationally on the blames
         self.err_start_r.clock.next = self.clock.val();
         self.err_start_r.d.next = self.trigger.val() & !self.efgen.busy.val();
-        // the last sample started or renewed an error episode: the next bit carries the
-        // reactions to that error and is no delimiter bit that must be recessive
-        self.trig_r.clock.next = self.clock.val();
-        self.trig_r.d.next = self.trig_r.q.val();
-        if self.mon_sample.val() {
-            self.trig_r.d.next = self.trigger.val();
-        }
-        if self.reset.val() {
-            self.trig_r.d.next = false;
+        // (a sample that started or renewed an error episode: the next bit carries the
+        // reactions to that error and is no delimiter bit that must be recessive)
+        if self.trigger.val() {
+            self.delim_r.d.next = false;
         }
         // first-flagger rule (judge.rs §5.12): the monitor alone started the episode, in
         // the transmission region, and BT's dominant run did not begin at a dominant stuff

@@ -316,7 +316,8 @@
 //! **§5.14 reactions and causes (session 17).** (1) An error episode that starts while a
 //! sublink unit is `anomaly` after a *common* glitch (every replica at once, counted in
 //! `pgc`) is charged to it, +8 and `life`, at `err_start` (`pge`), unless it was charged at
-//! the sample that started the episode (`ch_r`) or as first flagger: the pulses of a faulty
+//! the sample that started the episode (`ch_r`); with a first-flagger charge (`ffc`) it is
+//! the same single +8 (`late`): the pulses of a faulty
 //! peer hub that end before this hub's sample point but cover the nodes' were charged to
 //! nobody (each replica's blame is suppressed by the other's anomaly), and a healthy
 //! transmitter reached 96 before the ninth charged episode (`--class sweep-hub-r2d-e2
@@ -538,6 +539,7 @@ pub struct JudgeUnit {
     ch_r: DFF<Bit>,
     ffc: Signal<Local, Bit>,
     pge: Signal<Local, Bit>,
+    late: Signal<Local, Bit>,
     dom: Signal<Local, Bit>,
     domw: Signal<Local, Bit>,
     unj: Signal<Local, Bit>,
@@ -665,6 +667,7 @@ impl JudgeUnit {
             ch_r: Default::default(),
             ffc: Default::default(),
             pge: Default::default(),
+            late: Default::default(),
             dom: Default::default(),
             domw: Default::default(),
             unj: Default::default(),
@@ -734,16 +737,17 @@ impl Logic for JudgeUnit {
         self.ffc.next = self.ff.val() & self.ff_on.val() & self.enabled.val() & self.ffd_r.q.val();
         self.charge.next = self.sample.val() & self.unj.val() & self.enabled.val() & !self.suppress.val() & !self.stuff_dom.val();
         // §5.14 an episode right after a common glitch of the peer's contribution: charged
-        // to the sublink (once, unless it was charged at that sample or as first flagger)
+        // to the sublink, unless it was charged at that sample
         self.pge.next = self.err_start.val()
             & self.rep_on.val()
             & self.enabled.val()
             & (self.an_r.q.val() != 0)
             & self.pgl_r.q.val()
-            & !self.ch_r.q.val()
-            & !self.ffc.val();
-        self.blame.next = (self.sample.val() & self.unj.val() & self.enabled.val()) | self.ffc.val() | self.pge.val();
-        self.charged.next = self.charge.val() | self.ffc.val() | self.pge.val();
+            & !self.ch_r.q.val();
+        // the charges one clock after a sample: one +8 when both come
+        self.late.next = self.ffc.val() | self.pge.val();
+        self.blame.next = (self.sample.val() & self.unj.val() & self.enabled.val()) | self.late.val();
+        self.charged.next = self.charge.val() | self.late.val();
         self.ch_r.d.next = self.charge.val();
         // (port units only: `nack_on` is the port-unit constant)
         self.tx_error.next = self.sample.val()
@@ -886,8 +890,9 @@ impl Logic for JudgeUnit {
             self.pgc_r.d.next = self.pgc_r.q.val() + 1;
             self.pdec_r.d.next = 0.into();
         }
-        // (the first-flagger charge comes one clock after a sample, never with one)
-        if self.ffc.val() | self.pge.val() {
+        // (the first-flagger and common-glitch charges come one clock after a sample,
+        // never with one)
+        if self.late.val() {
             if self.bic_r.q.val() > 247 {
                 self.bic_r.d.next = 255.into();
             } else {
@@ -895,7 +900,7 @@ impl Logic for JudgeUnit {
             }
             self.bad.d.next = true;
         }
-        if (self.gcount.val() | self.charge.val() | self.ffc.val() | self.pge.val()) & (self.life_r.q.val() != 127) {
+        if (self.gcount.val() | self.charge.val() | self.late.val()) & (self.life_r.q.val() != 127) {
             self.life_r.d.next = self.life_r.q.val() + 1;
         }
         if self.dbc_r.q.val() >= self.dbc_thr.val() {

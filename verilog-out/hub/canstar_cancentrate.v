@@ -947,9 +947,6 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
     reg  delim_r$d;
     wire  delim_r$q;
     reg  delim_r$clock;
-    reg  trig_r$d;
-    wire  trig_r$q;
-    reg  trig_r$clock;
     reg  bt_prev$d;
     wire  bt_prev$q;
     reg  bt_prev$clock;
@@ -1221,11 +1218,6 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         .q(delim_r$q),
         .clock(delim_r$clock)
     );
-    canstar_cancentrate_core$core$trig_r trig_r(
-        .d(trig_r$d),
-        .q(trig_r$q),
-        .clock(trig_r$clock)
-    );
     canstar_cancentrate_core$core$bt_prev bt_prev(
         .d(bt_prev$d),
         .q(bt_prev$q),
@@ -1258,7 +1250,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         if (mon_sample) begin
             delim_r$d = err_phase & coupler$bt;
         end
-        delim_z = err_phase & delim_r$q & ~trig_r$q & ~(((mon_field == 32'he) | (mon_field == 32'hf)) & (mon_pos == 32'h7));
+        delim_z = err_phase & delim_r$q & ~(((mon_field == 32'he) | (mon_field == 32'hf)) & (mon_pos == 32'h7));
         if (reset) begin
             delim_r$d = 1'b0;
         end
@@ -1461,13 +1453,8 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         trigger = mon_sample & (mon_error | any_blame | any_tx_error);
         err_start_r$clock = clock;
         err_start_r$d = trigger & ~efgen$busy;
-        trig_r$clock = clock;
-        trig_r$d = trig_r$q;
-        if (mon_sample) begin
-            trig_r$d = trigger;
-        end
-        if (reset) begin
-            trig_r$d = 1'b0;
+        if (trigger) begin
+            delim_r$d = 1'b0;
         end
         ff_r$clock = clock;
         ff_r$d = trigger & ~efgen$busy & mon_error & ~any_blame & ~any_tx_error & ~sd_run$q & ~stuff_dom & decode$tx_region;
@@ -2640,6 +2627,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
     // Local signals
     reg  ffc;
     reg  pge;
+    reg  late;
     reg  dom;
     reg  domw;
     reg  unj;
@@ -2902,9 +2890,10 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q) | (im_2 & ~err_phase & seen_dom_crc$q & ~dom_bs$q);
         ffc = ff & ff_on & enabled & ffd_r$q;
         charge = sample & unj & enabled & ~suppress & ~stuff_dom;
-        pge = err_start & rep_on & enabled & (an_r$q != 32'h0) & pgl_r$q & ~ch_r$q & ~ffc;
-        blame = (sample & unj & enabled) | ffc | pge;
-        charged = charge | ffc | pge;
+        pge = err_start & rep_on & enabled & (an_r$q != 32'h0) & pgl_r$q & ~ch_r$q;
+        late = ffc | pge;
+        blame = (sample & unj & enabled) | late;
+        charged = charge | late;
         ch_r$d = charge;
         tx_error = sample & nack_on & enabled & cont_r$q & tx_region & ~arb & c & ~bt & ~err_phase;
         if (sample) begin
@@ -3021,7 +3010,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
             pgc_r$d = pgc_r$q + 32'h1;
             pdec_r$d = 32'h0;
         end
-        if (ffc | pge) begin
+        if (late) begin
             if (bic_r$q > 32'hf7) begin
                 bic_r$d = 32'hff;
             end
@@ -3030,7 +3019,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
             end
             bad$d = 1'b1;
         end
-        if ((gcount | charge | ffc | pge) & (life_r$q != 32'h7f)) begin
+        if ((gcount | charge | late) & (life_r$q != 32'h7f)) begin
             life_r$d = life_r$q + 32'h1;
         end
         if (dbc_r$q >= dbc_thr) begin
@@ -4026,6 +4015,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
     // Local signals
     reg  ffc;
     reg  pge;
+    reg  late;
     reg  dom;
     reg  domw;
     reg  unj;
@@ -4288,9 +4278,10 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q) | (im_2 & ~err_phase & seen_dom_crc$q & ~dom_bs$q);
         ffc = ff & ff_on & enabled & ffd_r$q;
         charge = sample & unj & enabled & ~suppress & ~stuff_dom;
-        pge = err_start & rep_on & enabled & (an_r$q != 32'h0) & pgl_r$q & ~ch_r$q & ~ffc;
-        blame = (sample & unj & enabled) | ffc | pge;
-        charged = charge | ffc | pge;
+        pge = err_start & rep_on & enabled & (an_r$q != 32'h0) & pgl_r$q & ~ch_r$q;
+        late = ffc | pge;
+        blame = (sample & unj & enabled) | late;
+        charged = charge | late;
         ch_r$d = charge;
         tx_error = sample & nack_on & enabled & cont_r$q & tx_region & ~arb & c & ~bt & ~err_phase;
         if (sample) begin
@@ -4407,7 +4398,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
             pgc_r$d = pgc_r$q + 32'h1;
             pdec_r$d = 32'h0;
         end
-        if (ffc | pge) begin
+        if (late) begin
             if (bic_r$q > 32'hf7) begin
                 bic_r$d = 32'hff;
             end
@@ -4416,7 +4407,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
             end
             bad$d = 1'b1;
         end
-        if ((gcount | charge | ffc | pge) & (life_r$q != 32'h7f)) begin
+        if ((gcount | charge | late) & (life_r$q != 32'h7f)) begin
             life_r$d = life_r$q + 32'h1;
         end
         if (dbc_r$q >= dbc_thr) begin
@@ -5412,6 +5403,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
     // Local signals
     reg  ffc;
     reg  pge;
+    reg  late;
     reg  dom;
     reg  domw;
     reg  unj;
@@ -5674,9 +5666,10 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q) | (im_2 & ~err_phase & seen_dom_crc$q & ~dom_bs$q);
         ffc = ff & ff_on & enabled & ffd_r$q;
         charge = sample & unj & enabled & ~suppress & ~stuff_dom;
-        pge = err_start & rep_on & enabled & (an_r$q != 32'h0) & pgl_r$q & ~ch_r$q & ~ffc;
-        blame = (sample & unj & enabled) | ffc | pge;
-        charged = charge | ffc | pge;
+        pge = err_start & rep_on & enabled & (an_r$q != 32'h0) & pgl_r$q & ~ch_r$q;
+        late = ffc | pge;
+        blame = (sample & unj & enabled) | late;
+        charged = charge | late;
         ch_r$d = charge;
         tx_error = sample & nack_on & enabled & cont_r$q & tx_region & ~arb & c & ~bt & ~err_phase;
         if (sample) begin
@@ -5793,7 +5786,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
             pgc_r$d = pgc_r$q + 32'h1;
             pdec_r$d = 32'h0;
         end
-        if (ffc | pge) begin
+        if (late) begin
             if (bic_r$q > 32'hf7) begin
                 bic_r$d = 32'hff;
             end
@@ -5802,7 +5795,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
             end
             bad$d = 1'b1;
         end
-        if ((gcount | charge | ffc | pge) & (life_r$q != 32'h7f)) begin
+        if ((gcount | charge | late) & (life_r$q != 32'h7f)) begin
             life_r$d = life_r$q + 32'h1;
         end
         if (dbc_r$q >= dbc_thr) begin
@@ -6699,25 +6692,6 @@ module canstar_cancentrate_core$core$sub_bl_r(d,q,clock);
     end
           
 endmodule // canstar_cancentrate_core$core$sub_bl_r
-
-
-module canstar_cancentrate_core$core$trig_r(d,q,clock);
-    
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_cancentrate_core$core$trig_r
 
 
 module canstar_cancentrate_core$monitor(clock,reset,rx,brp,prop,ph1,ph2,sjw,triple,listen_only,self_test,single_shot,host_recovery,recover,tx_req,tx_ide,tx_rtr,tx_id,tx_dlc,tx_data,tx_abort,cnt_load,tec_in,rec_in,tx,tx_done,arb_lost,arb_lost_pos,error,err_kind,err_field,err_pos,err_tx,rx_valid,rx_ide,rx_rtr,rx_id,rx_dlc,rx_data,tec,rec,state,err_warn,cfg_err,dbg_busmon,dbg_sample,dbg_tx_rqst,dbg_field,dbg_pos,dbg_stuff,dbg_role,dbg_events,dbg_runs,dbg_hard_sync,dbg_resync);

@@ -1113,9 +1113,6 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     reg  delim_r$d;
     wire  delim_r$q;
     reg  delim_r$clock;
-    reg  trig_r$d;
-    wire  trig_r$q;
-    reg  trig_r$clock;
     reg  bt_prev$d;
     wire  bt_prev$q;
     reg  bt_prev$clock;
@@ -1495,11 +1492,6 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .q(delim_r$q),
         .clock(delim_r$clock)
     );
-    canstar_hub_core$core$trig_r trig_r(
-        .d(trig_r$d),
-        .q(trig_r$q),
-        .clock(trig_r$clock)
-    );
     canstar_hub_core$core$bt_prev bt_prev(
         .d(bt_prev$d),
         .q(bt_prev$q),
@@ -1532,7 +1524,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         if (mon_sample) begin
             delim_r$d = err_phase & coupler$bt;
         end
-        delim_z = err_phase & delim_r$q & ~trig_r$q & ~(((mon_field == 32'he) | (mon_field == 32'hf)) & (mon_pos == 32'h7));
+        delim_z = err_phase & delim_r$q & ~(((mon_field == 32'he) | (mon_field == 32'hf)) & (mon_pos == 32'h7));
         if (reset) begin
             delim_r$d = 1'b0;
         end
@@ -1843,13 +1835,8 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         trigger = mon_sample & (mon_error | any_blame | any_tx_error);
         err_start_r$clock = clock;
         err_start_r$d = trigger & ~efgen$busy;
-        trig_r$clock = clock;
-        trig_r$d = trig_r$q;
-        if (mon_sample) begin
-            trig_r$d = trigger;
-        end
-        if (reset) begin
-            trig_r$d = 1'b0;
+        if (trigger) begin
+            delim_r$d = 1'b0;
         end
         ff_r$clock = clock;
         ff_r$d = trigger & ~efgen$busy & mon_error & ~any_blame & ~any_tx_error & ~sd_run$q & ~stuff_dom & decode$tx_region;
@@ -3350,6 +3337,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     // Local signals
     reg  ffc;
     reg  pge;
+    reg  late;
     reg  dom;
     reg  domw;
     reg  unj;
@@ -3612,9 +3600,10 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q) | (im_2 & ~err_phase & seen_dom_crc$q & ~dom_bs$q);
         ffc = ff & ff_on & enabled & ffd_r$q;
         charge = sample & unj & enabled & ~suppress & ~stuff_dom;
-        pge = err_start & rep_on & enabled & (an_r$q != 32'h0) & pgl_r$q & ~ch_r$q & ~ffc;
-        blame = (sample & unj & enabled) | ffc | pge;
-        charged = charge | ffc | pge;
+        pge = err_start & rep_on & enabled & (an_r$q != 32'h0) & pgl_r$q & ~ch_r$q;
+        late = ffc | pge;
+        blame = (sample & unj & enabled) | late;
+        charged = charge | late;
         ch_r$d = charge;
         tx_error = sample & nack_on & enabled & cont_r$q & tx_region & ~arb & c & ~bt & ~err_phase;
         if (sample) begin
@@ -3731,7 +3720,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             pgc_r$d = pgc_r$q + 32'h1;
             pdec_r$d = 32'h0;
         end
-        if (ffc | pge) begin
+        if (late) begin
             if (bic_r$q > 32'hf7) begin
                 bic_r$d = 32'hff;
             end
@@ -3740,7 +3729,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             end
             bad$d = 1'b1;
         end
-        if ((gcount | charge | ffc | pge) & (life_r$q != 32'h7f)) begin
+        if ((gcount | charge | late) & (life_r$q != 32'h7f)) begin
             life_r$d = life_r$q + 32'h1;
         end
         if (dbc_r$q >= dbc_thr) begin
@@ -4736,6 +4725,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     // Local signals
     reg  ffc;
     reg  pge;
+    reg  late;
     reg  dom;
     reg  domw;
     reg  unj;
@@ -4998,9 +4988,10 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q) | (im_2 & ~err_phase & seen_dom_crc$q & ~dom_bs$q);
         ffc = ff & ff_on & enabled & ffd_r$q;
         charge = sample & unj & enabled & ~suppress & ~stuff_dom;
-        pge = err_start & rep_on & enabled & (an_r$q != 32'h0) & pgl_r$q & ~ch_r$q & ~ffc;
-        blame = (sample & unj & enabled) | ffc | pge;
-        charged = charge | ffc | pge;
+        pge = err_start & rep_on & enabled & (an_r$q != 32'h0) & pgl_r$q & ~ch_r$q;
+        late = ffc | pge;
+        blame = (sample & unj & enabled) | late;
+        charged = charge | late;
         ch_r$d = charge;
         tx_error = sample & nack_on & enabled & cont_r$q & tx_region & ~arb & c & ~bt & ~err_phase;
         if (sample) begin
@@ -5117,7 +5108,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             pgc_r$d = pgc_r$q + 32'h1;
             pdec_r$d = 32'h0;
         end
-        if (ffc | pge) begin
+        if (late) begin
             if (bic_r$q > 32'hf7) begin
                 bic_r$d = 32'hff;
             end
@@ -5126,7 +5117,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             end
             bad$d = 1'b1;
         end
-        if ((gcount | charge | ffc | pge) & (life_r$q != 32'h7f)) begin
+        if ((gcount | charge | late) & (life_r$q != 32'h7f)) begin
             life_r$d = life_r$q + 32'h1;
         end
         if (dbc_r$q >= dbc_thr) begin
@@ -6122,6 +6113,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     // Local signals
     reg  ffc;
     reg  pge;
+    reg  late;
     reg  dom;
     reg  domw;
     reg  unj;
@@ -6384,9 +6376,10 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q) | (im_2 & ~err_phase & seen_dom_crc$q & ~dom_bs$q);
         ffc = ff & ff_on & enabled & ffd_r$q;
         charge = sample & unj & enabled & ~suppress & ~stuff_dom;
-        pge = err_start & rep_on & enabled & (an_r$q != 32'h0) & pgl_r$q & ~ch_r$q & ~ffc;
-        blame = (sample & unj & enabled) | ffc | pge;
-        charged = charge | ffc | pge;
+        pge = err_start & rep_on & enabled & (an_r$q != 32'h0) & pgl_r$q & ~ch_r$q;
+        late = ffc | pge;
+        blame = (sample & unj & enabled) | late;
+        charged = charge | late;
         ch_r$d = charge;
         tx_error = sample & nack_on & enabled & cont_r$q & tx_region & ~arb & c & ~bt & ~err_phase;
         if (sample) begin
@@ -6503,7 +6496,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             pgc_r$d = pgc_r$q + 32'h1;
             pdec_r$d = 32'h0;
         end
-        if (ffc | pge) begin
+        if (late) begin
             if (bic_r$q > 32'hf7) begin
                 bic_r$d = 32'hff;
             end
@@ -6512,7 +6505,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             end
             bad$d = 1'b1;
         end
-        if ((gcount | charge | ffc | pge) & (life_r$q != 32'h7f)) begin
+        if ((gcount | charge | late) & (life_r$q != 32'h7f)) begin
             life_r$d = life_r$q + 32'h1;
         end
         if (dbc_r$q >= dbc_thr) begin
@@ -7565,6 +7558,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     // Local signals
     reg  ffc;
     reg  pge;
+    reg  late;
     reg  dom;
     reg  domw;
     reg  unj;
@@ -7827,9 +7821,10 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q) | (im_2 & ~err_phase & seen_dom_crc$q & ~dom_bs$q);
         ffc = ff & ff_on & enabled & ffd_r$q;
         charge = sample & unj & enabled & ~suppress & ~stuff_dom;
-        pge = err_start & rep_on & enabled & (an_r$q != 32'h0) & pgl_r$q & ~ch_r$q & ~ffc;
-        blame = (sample & unj & enabled) | ffc | pge;
-        charged = charge | ffc | pge;
+        pge = err_start & rep_on & enabled & (an_r$q != 32'h0) & pgl_r$q & ~ch_r$q;
+        late = ffc | pge;
+        blame = (sample & unj & enabled) | late;
+        charged = charge | late;
         ch_r$d = charge;
         tx_error = sample & nack_on & enabled & cont_r$q & tx_region & ~arb & c & ~bt & ~err_phase;
         if (sample) begin
@@ -7946,7 +7941,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             pgc_r$d = pgc_r$q + 32'h1;
             pdec_r$d = 32'h0;
         end
-        if (ffc | pge) begin
+        if (late) begin
             if (bic_r$q > 32'hf7) begin
                 bic_r$d = 32'hff;
             end
@@ -7955,7 +7950,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             end
             bad$d = 1'b1;
         end
-        if ((gcount | charge | ffc | pge) & (life_r$q != 32'h7f)) begin
+        if ((gcount | charge | late) & (life_r$q != 32'h7f)) begin
             life_r$d = life_r$q + 32'h1;
         end
         if (dbc_r$q >= dbc_thr) begin
@@ -8951,6 +8946,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     // Local signals
     reg  ffc;
     reg  pge;
+    reg  late;
     reg  dom;
     reg  domw;
     reg  unj;
@@ -9213,9 +9209,10 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q) | (im_2 & ~err_phase & seen_dom_crc$q & ~dom_bs$q);
         ffc = ff & ff_on & enabled & ffd_r$q;
         charge = sample & unj & enabled & ~suppress & ~stuff_dom;
-        pge = err_start & rep_on & enabled & (an_r$q != 32'h0) & pgl_r$q & ~ch_r$q & ~ffc;
-        blame = (sample & unj & enabled) | ffc | pge;
-        charged = charge | ffc | pge;
+        pge = err_start & rep_on & enabled & (an_r$q != 32'h0) & pgl_r$q & ~ch_r$q;
+        late = ffc | pge;
+        blame = (sample & unj & enabled) | late;
+        charged = charge | late;
         ch_r$d = charge;
         tx_error = sample & nack_on & enabled & cont_r$q & tx_region & ~arb & c & ~bt & ~err_phase;
         if (sample) begin
@@ -9332,7 +9329,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             pgc_r$d = pgc_r$q + 32'h1;
             pdec_r$d = 32'h0;
         end
-        if (ffc | pge) begin
+        if (late) begin
             if (bic_r$q > 32'hf7) begin
                 bic_r$d = 32'hff;
             end
@@ -9341,7 +9338,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             end
             bad$d = 1'b1;
         end
-        if ((gcount | charge | ffc | pge) & (life_r$q != 32'h7f)) begin
+        if ((gcount | charge | late) & (life_r$q != 32'h7f)) begin
             life_r$d = life_r$q + 32'h1;
         end
         if (dbc_r$q >= dbc_thr) begin
@@ -10181,25 +10178,6 @@ module canstar_hub_core$core$sub_bl_r(d,q,clock);
     end
           
 endmodule // canstar_hub_core$core$sub_bl_r
-
-
-module canstar_hub_core$core$trig_r(d,q,clock);
-    
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_hub_core$core$trig_r
 
 
 module canstar_hub_core$monitor(clock,reset,rx,brp,prop,ph1,ph2,sjw,triple,listen_only,self_test,single_shot,host_recovery,recover,tx_req,tx_ide,tx_rtr,tx_id,tx_dlc,tx_data,tx_abort,cnt_load,tec_in,rec_in,tx,tx_done,arb_lost,arb_lost_pos,error,err_kind,err_field,err_pos,err_tx,rx_valid,rx_ide,rx_rtr,rx_id,rx_dlc,rx_data,tec,rec,state,err_warn,cfg_err,dbg_busmon,dbg_sample,dbg_tx_rqst,dbg_field,dbg_pos,dbg_stuff,dbg_role,dbg_events,dbg_runs,dbg_hard_sync,dbg_resync);
