@@ -90,9 +90,12 @@ pub struct HubConfig {
     /// input is a glitch (None: one bit minus SJW minus 3 clocks, 11 with the reference
     /// timing), 1..=30.
     pub glitch_max: Option<u64>,
-    /// Shortest run that counts as a glitch on a sublink (shorter slivers occur when the
-    /// peer isolates a port or starts its error flag inside a bit), 1..=30.
+    /// Shortest recessive run that counts as a glitch on a sublink (shorter recessive
+    /// slivers occur when the peer isolates a port or an error flag starts inside a bit),
+    /// 1..=30.
     pub sub_glitch_min: u64,
+    /// Shortest dominant run that counts as a glitch on a sublink (hub.md §5.15), 1..=30.
+    pub sub_dominant_glitch_min: u64,
     /// Glitches that isolate a port / a sublink (decaying counter), 1..=7.
     pub glitch_limit: u64,
     pub sub_glitch_limit: u64,
@@ -142,6 +145,7 @@ impl Default for HubConfig {
             replica_limit: 3,
             glitch_max: None,
             sub_glitch_min: 3,
+            sub_dominant_glitch_min: 1,
             glitch_limit: 3,
             sub_glitch_limit: 6,
             glitch_decay: 16,
@@ -192,6 +196,7 @@ impl HubConfig {
             replica_limit: self.replica_limit,
             reintegration: self.reintegration,
             glitch_min: 1,
+            glitch_min_dominant: 1,
             glitch_max: self.glitch_max_clocks(),
             glitch_limit: self.glitch_limit,
             glitch_decay: self.glitch_decay,
@@ -232,6 +237,7 @@ impl HubConfig {
             replica_limit: self.replica_limit,
             reintegration: self.reintegration,
             glitch_min: self.sub_glitch_min,
+            glitch_min_dominant: self.sub_dominant_glitch_min,
             glitch_max: self.glitch_max_clocks(),
             glitch_limit: self.sub_glitch_limit,
             glitch_decay: self.glitch_decay,
@@ -282,6 +288,7 @@ impl HubConfig {
             ("peer_glitch_limit", self.peer_glitch_limit, 15),
             ("peer_glitch_decay", self.peer_glitch_decay, 7),
             ("sub_glitch_min", self.sub_glitch_min, 30),
+            ("sub_dominant_glitch_min", self.sub_dominant_glitch_min, 30),
             ("glitch_max", self.glitch_max.unwrap_or(1), 30),
         ] {
             if v == 0 || v > hi {
@@ -293,6 +300,9 @@ impl HubConfig {
         }
         if self.sub_glitch_min > self.glitch_max_clocks() {
             return Err("sub_glitch_min must not exceed the glitch maximum".into());
+        }
+        if self.sub_dominant_glitch_min > self.glitch_max_clocks() {
+            return Err("sub_dominant_glitch_min must not exceed the glitch maximum".into());
         }
         if let Some(w) = self.reintegration {
             if w == 0 || w > 255 {

@@ -395,8 +395,10 @@ pub struct JudgeParams {
     pub replica_limit: u64,
     /// Reintegration window W in frames, 1..=255; `None` = isolation latched until reset.
     pub reintegration: Option<u64>,
-    /// Runs of `glitch_min..=glitch_max` clocks are glitches (1..=30).
+    /// Recessive runs of `glitch_min..=glitch_max` clocks and dominant runs of
+    /// `glitch_min_dominant..=glitch_max` clocks are glitches (1..=30).
     pub glitch_min: u64,
+    pub glitch_min_dominant: u64,
     pub glitch_max: u64,
     /// Glitch counter limit, 1..=7.
     pub glitch_limit: u64,
@@ -618,7 +620,7 @@ impl JudgeUnit {
             silent: Default::default(),
             contender: Default::default(),
             window_dom: Default::default(),
-            pulse: PulseCheck::new(p.glitch_min, p.glitch_max),
+            pulse: PulseCheck::new(p.glitch_min, p.glitch_min_dominant, p.glitch_max),
             bic_limit: Constant::new(p.bic_limit.into()),
             b_decay: Constant::new(p.bic_decay.into()),
             life_limit: Constant::new(p.life_limit.into()),

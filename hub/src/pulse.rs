@@ -7,9 +7,12 @@
 //! fault-free soak measured on a port input is 14 clocks, `canstar soak`). A sublink carries
 //! the peer hub's coupled contribution, whose runs are as long except for the 1-2 clock
 //! slivers left when a port is isolated or an error flag starts in the middle of a bit.
-//! A completed run of `min..=max` clocks is therefore a glitch of the input itself: a
-//! flipped or disturbed link, seen where it enters the hub whatever the sample points of
-//! the hub and of the nodes.
+//! Those slivers are recessive: the gap between a dominant run that ends and the isolation
+//! or error flag that follows it. A dominant run shorter than the recessive minimum has no
+//! such cause (hub.md §5.15), so the minimum is set per level: a completed recessive run
+//! of `min..=max` clocks, or dominant run of `dmin..=max` clocks, is a glitch of the input
+//! itself: a flipped or disturbed link, seen where it enters the hub whatever the sample
+//! points of the hub and of the nodes.
 //!
 //! `glitch` is a combinational strobe in the clock where the run ends (the input changes
 //! level). The first edge after reset is never a glitch.
@@ -30,17 +33,26 @@ pub struct PulseCheck {
     max: Constant<Bits<5>>,
     /// A run of length 1 is in range (`min == 1`).
     one_in: Constant<Bit>,
+    /// The same for dominant runs (`dmin`).
+    dmin_m1: Constant<Bits<5>>,
+    done_in: Constant<Bit>,
     prev: DFF<Bit>,
     run: DFF<Bits<5>>,
     /// `run` is in `min..=max`, kept with `run` (timing: no comparator after `run`).
     in_r: DFF<Bit>,
+    /// `run` is in `dmin..=max`.
+    din_r: DFF<Bit>,
     chg: Signal<Local, Bit>,
 }
 
 impl PulseCheck {
-    /// Runs of `min..=max` clocks (1..=30) are glitches.
-    pub fn new(min: u64, max: u64) -> Self {
-        assert!((1..=30).contains(&min) && (min..=30).contains(&max), "glitch range {min}..={max} out of 1..=30");
+    /// Recessive runs of `min..=max` clocks and dominant runs of `dmin..=max` clocks
+    /// (1..=30) are glitches.
+    pub fn new(min: u64, dmin: u64, max: u64) -> Self {
+        assert!(
+            (1..=30).contains(&min) && (1..=30).contains(&dmin) && (min.max(dmin)..=30).contains(&max),
+            "glitch ranges {min}..={max}, {dmin}..={max} out of 1..=30"
+        );
         Self {
             clock: Default::default(),
             reset: Default::default(),
@@ -49,9 +61,12 @@ impl PulseCheck {
             min_m1: Constant::new((min - 1).into()),
             max: Constant::new(max.into()),
             one_in: Constant::new(min == 1),
+            dmin_m1: Constant::new((dmin - 1).into()),
+            done_in: Constant::new(dmin == 1),
             prev: Default::default(),
             run: Default::default(),
             in_r: Default::default(),
+            din_r: Default::default(),
             chg: Default::default(),
         }
     }
@@ -60,23 +75,27 @@ impl PulseCheck {
 impl Logic for PulseCheck {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, prev, run, in_r);
+        dff_setup!(self, clock, prev, run, in_r, din_r);
         self.chg.next = self.c.val() != self.prev.q.val();
         // `in_r` = (`run` >= min) & (`run` <= max), updated with `run` (31 is never in
         // range: max <= 30; after reset and at power-up `run` is 31 or 0, out of range)
-        self.glitch.next = self.chg.val() & self.in_r.q.val();
+        // `prev` is the level of the run that ends (true = recessive)
+        self.glitch.next = self.chg.val() & ((self.prev.q.val() & self.in_r.q.val()) | (!self.prev.q.val() & self.din_r.q.val()));
         self.prev.d.next = self.c.val();
         if self.chg.val() {
             self.run.d.next = 1.into();
             self.in_r.d.next = self.one_in.val();
+            self.din_r.d.next = self.done_in.val();
         } else if self.run.q.val() != 31 {
             self.run.d.next = self.run.q.val() + 1;
             self.in_r.d.next = (self.run.q.val() == self.min_m1.val()) | (self.in_r.q.val() & (self.run.q.val() != self.max.val()));
+            self.din_r.d.next = (self.run.q.val() == self.dmin_m1.val()) | (self.din_r.q.val() & (self.run.q.val() != self.max.val()));
         }
         if self.reset.val() {
             self.prev.d.next = true;
             self.run.d.next = 31.into();
             self.in_r.d.next = false;
+            self.din_r.d.next = false;
         }
     }
 }
@@ -90,7 +109,11 @@ mod tests {
 
     /// Drive `levels` (one per clock) and return the clocks with a glitch strobe.
     fn glitches(min: u64, max: u64, levels: &[bool]) -> Vec<usize> {
-        let mut p = PulseCheck::new(min, max);
+        glitches_by_level(min, min, max, levels)
+    }
+
+    fn glitches_by_level(min: u64, dmin: u64, max: u64, levels: &[bool]) -> Vec<usize> {
+        let mut p = PulseCheck::new(min, dmin, max);
         p.c.next = true;
         p.reset.next = true;
         drive::init(&mut p);
@@ -124,6 +147,22 @@ mod tests {
         assert_eq!(glitches(1, 12, &w), vec![25, 72, 84]);
         // a lower bound of 6 ignores the 5-clock pulse
         assert_eq!(glitches(6, 11, &w), vec![72]);
+    }
+
+    #[test]
+    fn the_minimum_is_set_per_level() {
+        // a 2-clock dominant pulse (ends at 22), a 2-clock recessive sliver between two
+        // dominant runs (ends at 58), a 3-clock recessive run (ends at 77), a 1-clock
+        // dominant pulse (ends at 78)
+        let w = wave(&[(true, 20), (false, 2), (true, 18), (false, 16), (true, 2), (false, 16), (true, 3), (false, 1), (true, 20)]);
+        // sublink default: recessive runs from 3 clocks, dominant runs from 1
+        assert_eq!(glitches_by_level(3, 1, 11, &w), vec![22, 77, 78]);
+        // both from 3: only the 3-clock recessive run
+        assert_eq!(glitches(3, 11, &w), vec![77]);
+        // both from 1: every short run
+        assert_eq!(glitches(1, 11, &w), vec![22, 58, 77, 78]);
+        // dominant from 2: the 1-clock pulse is ignored
+        assert_eq!(glitches_by_level(3, 2, 11, &w), vec![22, 77]);
     }
 
     #[test]

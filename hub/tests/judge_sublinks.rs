@@ -209,6 +209,52 @@ fn common_glitches_isolate_the_peer_hub() {
     assert_eq!(j.pgc.val().index(), 0);
 }
 
+/// One error-flag bit of 16 clocks on a sublink: the input dominant but recessive at
+/// clocks `from..from + len` (the gap between a dominant run and a flag that starts inside
+/// the bit); returns the glitch strobes, counting the run that ends in the next bit.
+fn recessive_sliver_bit(j: &mut JudgeUnit, from: u64, len: u64) -> usize {
+    let mut glitches = 0;
+    j.bt.next = false;
+    j.err_phase.next = true;
+    for k in 0..16u64 {
+        j.c.next = (from..from + len).contains(&k);
+        j.sample.next = k == SAMPLE_AT;
+        j.bit_start.next = k == 0;
+        j.bs_cnt.next = k.into();
+        drive::settle(j);
+        glitches += j.glitch.val() as usize;
+        drive::cycle(j);
+    }
+    j.sample.next = false;
+    j.err_phase.next = false;
+    glitches
+}
+
+/// hub.md §5.15: with the default sublink parameters a recessive sliver shorter than 3
+/// clocks is legal (an isolation or a flag starting inside a bit), a dominant run of 1 or
+/// 2 clocks is a glitch: it counts in `gc`, or in `pgc` when every replica shows it.
+#[test]
+fn short_dominant_runs_on_a_sublink_are_glitches() {
+    let p = canstar_hub::config::HubConfig::default().sublink_params();
+    assert_eq!((p.glitch_min, p.glitch_min_dominant), (3, 1));
+    let mut j = reset(JudgeUnit::sublink(p));
+    // a dominant bit first: the dominant runs around the slivers are long
+    sample(&mut j, Bit { c: false, bt: false, err: true, ..Default::default() });
+    assert_eq!(recessive_sliver_bit(&mut j, 5, 2), 0, "2-clock recessive sliver: legal");
+    assert_eq!(recessive_sliver_bit(&mut j, 5, 1), 0, "1-clock recessive sliver: legal");
+    assert_eq!(recessive_sliver_bit(&mut j, 5, 3), 1, "3-clock recessive run: a glitch");
+    let mut j = reset(JudgeUnit::sublink(p));
+    for len in [1, 2] {
+        assert_eq!(pulse_bit(&mut j, 3, len, false).1, 1, "{len}-clock dominant pulse: a glitch");
+        sample(&mut j, Bit { c: true, bt: true, ..Default::default() });
+    }
+    assert_eq!(j.gc.val().index(), 2);
+    j.common.next = true;
+    pulse_bit(&mut j, 3, 2, false);
+    sample(&mut j, Bit { c: true, bt: true, ..Default::default() });
+    assert_eq!((j.gc.val().index(), j.pgc.val().index()), (2, 1), "common: the peer's");
+}
+
 /// The hub's `err_start` strobe for one clock (between samples); returns `charged`.
 fn episode(j: &mut JudgeUnit) -> bool {
     j.err_start.next = true;

@@ -204,7 +204,7 @@ fn adapter_flow() {
 #[ignore = "needs iverilog, verilator and yosys: run scripts/test-all.sh"]
 fn pulse_check_flow() {
     use canstar_hub::pulse::PulseCheck;
-    let mut p = PulseCheck::new(3, 11);
+    let mut p = PulseCheck::new(3, 1, 11);
     flow::full_check(&mut p, "pulse_check", 100_000, 25, |p: &mut PulseCheck, rng, c| {
         p.reset.next = c < 2 || rng.gen_ratio(1, 20_000);
         // runs of 1..40 clocks: glitches and legal bits

@@ -3629,6 +3629,8 @@ module canstar_cancentrate_core$core$pj$0$pulse(clock,reset,c,glitch);
     localparam  min_m1 = 5'b0;
     localparam  max = 5'b1011;
     localparam  one_in = 1'b1;
+    localparam  dmin_m1 = 5'b0;
+    localparam  done_in = 1'b1;
     
     // Stub signals
     reg  prev$d;
@@ -3640,6 +3642,9 @@ module canstar_cancentrate_core$core$pj$0$pulse(clock,reset,c,glitch);
     reg  in_r$d;
     wire  in_r$q;
     reg  in_r$clock;
+    reg  din_r$d;
+    wire  din_r$q;
+    reg  din_r$clock;
     
     // Local signals
     reg  chg;
@@ -3660,34 +3665,63 @@ module canstar_cancentrate_core$core$pj$0$pulse(clock,reset,c,glitch);
         .q(in_r$q),
         .clock(in_r$clock)
     );
+    canstar_cancentrate_core$core$pj$0$pulse$din_r din_r(
+        .d(din_r$d),
+        .q(din_r$q),
+        .clock(din_r$clock)
+    );
     
     // Update code
     always @(*) begin
         prev$clock = clock;
         run$clock = clock;
         in_r$clock = clock;
+        din_r$clock = clock;
         prev$d = prev$q;
         run$d = run$q;
         in_r$d = in_r$q;
+        din_r$d = din_r$q;
         chg = c != prev$q;
-        glitch = chg & in_r$q;
+        glitch = chg & ((prev$q & in_r$q) | (~prev$q & din_r$q));
         prev$d = c;
         if (chg) begin
             run$d = 32'h1;
             in_r$d = one_in;
+            din_r$d = done_in;
         end
         else if (run$q != 32'h1f) begin
             run$d = run$q + 32'h1;
             in_r$d = (run$q == min_m1) | (in_r$q & (run$q != max));
+            din_r$d = (run$q == dmin_m1) | (din_r$q & (run$q != max));
         end
         if (reset) begin
             prev$d = 1'b1;
             run$d = 32'h1f;
             in_r$d = 1'b0;
+            din_r$d = 1'b0;
         end
     end
     
 endmodule // canstar_cancentrate_core$core$pj$0$pulse
+
+
+module canstar_cancentrate_core$core$pj$0$pulse$din_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$0$pulse$din_r
 
 
 module canstar_cancentrate_core$core$pj$0$pulse$in_r(d,q,clock);
@@ -5017,6 +5051,8 @@ module canstar_cancentrate_core$core$pj$1$pulse(clock,reset,c,glitch);
     localparam  min_m1 = 5'b0;
     localparam  max = 5'b1011;
     localparam  one_in = 1'b1;
+    localparam  dmin_m1 = 5'b0;
+    localparam  done_in = 1'b1;
     
     // Stub signals
     reg  prev$d;
@@ -5028,6 +5064,9 @@ module canstar_cancentrate_core$core$pj$1$pulse(clock,reset,c,glitch);
     reg  in_r$d;
     wire  in_r$q;
     reg  in_r$clock;
+    reg  din_r$d;
+    wire  din_r$q;
+    reg  din_r$clock;
     
     // Local signals
     reg  chg;
@@ -5048,34 +5087,63 @@ module canstar_cancentrate_core$core$pj$1$pulse(clock,reset,c,glitch);
         .q(in_r$q),
         .clock(in_r$clock)
     );
+    canstar_cancentrate_core$core$pj$1$pulse$din_r din_r(
+        .d(din_r$d),
+        .q(din_r$q),
+        .clock(din_r$clock)
+    );
     
     // Update code
     always @(*) begin
         prev$clock = clock;
         run$clock = clock;
         in_r$clock = clock;
+        din_r$clock = clock;
         prev$d = prev$q;
         run$d = run$q;
         in_r$d = in_r$q;
+        din_r$d = din_r$q;
         chg = c != prev$q;
-        glitch = chg & in_r$q;
+        glitch = chg & ((prev$q & in_r$q) | (~prev$q & din_r$q));
         prev$d = c;
         if (chg) begin
             run$d = 32'h1;
             in_r$d = one_in;
+            din_r$d = done_in;
         end
         else if (run$q != 32'h1f) begin
             run$d = run$q + 32'h1;
             in_r$d = (run$q == min_m1) | (in_r$q & (run$q != max));
+            din_r$d = (run$q == dmin_m1) | (din_r$q & (run$q != max));
         end
         if (reset) begin
             prev$d = 1'b1;
             run$d = 32'h1f;
             in_r$d = 1'b0;
+            din_r$d = 1'b0;
         end
     end
     
 endmodule // canstar_cancentrate_core$core$pj$1$pulse
+
+
+module canstar_cancentrate_core$core$pj$1$pulse$din_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$1$pulse$din_r
 
 
 module canstar_cancentrate_core$core$pj$1$pulse$in_r(d,q,clock);
@@ -6405,6 +6473,8 @@ module canstar_cancentrate_core$core$pj$2$pulse(clock,reset,c,glitch);
     localparam  min_m1 = 5'b0;
     localparam  max = 5'b1011;
     localparam  one_in = 1'b1;
+    localparam  dmin_m1 = 5'b0;
+    localparam  done_in = 1'b1;
     
     // Stub signals
     reg  prev$d;
@@ -6416,6 +6486,9 @@ module canstar_cancentrate_core$core$pj$2$pulse(clock,reset,c,glitch);
     reg  in_r$d;
     wire  in_r$q;
     reg  in_r$clock;
+    reg  din_r$d;
+    wire  din_r$q;
+    reg  din_r$clock;
     
     // Local signals
     reg  chg;
@@ -6436,34 +6509,63 @@ module canstar_cancentrate_core$core$pj$2$pulse(clock,reset,c,glitch);
         .q(in_r$q),
         .clock(in_r$clock)
     );
+    canstar_cancentrate_core$core$pj$2$pulse$din_r din_r(
+        .d(din_r$d),
+        .q(din_r$q),
+        .clock(din_r$clock)
+    );
     
     // Update code
     always @(*) begin
         prev$clock = clock;
         run$clock = clock;
         in_r$clock = clock;
+        din_r$clock = clock;
         prev$d = prev$q;
         run$d = run$q;
         in_r$d = in_r$q;
+        din_r$d = din_r$q;
         chg = c != prev$q;
-        glitch = chg & in_r$q;
+        glitch = chg & ((prev$q & in_r$q) | (~prev$q & din_r$q));
         prev$d = c;
         if (chg) begin
             run$d = 32'h1;
             in_r$d = one_in;
+            din_r$d = done_in;
         end
         else if (run$q != 32'h1f) begin
             run$d = run$q + 32'h1;
             in_r$d = (run$q == min_m1) | (in_r$q & (run$q != max));
+            din_r$d = (run$q == dmin_m1) | (din_r$q & (run$q != max));
         end
         if (reset) begin
             prev$d = 1'b1;
             run$d = 32'h1f;
             in_r$d = 1'b0;
+            din_r$d = 1'b0;
         end
     end
     
 endmodule // canstar_cancentrate_core$core$pj$2$pulse
+
+
+module canstar_cancentrate_core$core$pj$2$pulse$din_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$2$pulse$din_r
 
 
 module canstar_cancentrate_core$core$pj$2$pulse$in_r(d,q,clock);

@@ -4339,6 +4339,8 @@ module canstar_hub_core$core$pj$0$pulse(clock,reset,c,glitch);
     localparam  min_m1 = 5'b0;
     localparam  max = 5'b1011;
     localparam  one_in = 1'b1;
+    localparam  dmin_m1 = 5'b0;
+    localparam  done_in = 1'b1;
     
     // Stub signals
     reg  prev$d;
@@ -4350,6 +4352,9 @@ module canstar_hub_core$core$pj$0$pulse(clock,reset,c,glitch);
     reg  in_r$d;
     wire  in_r$q;
     reg  in_r$clock;
+    reg  din_r$d;
+    wire  din_r$q;
+    reg  din_r$clock;
     
     // Local signals
     reg  chg;
@@ -4370,34 +4375,63 @@ module canstar_hub_core$core$pj$0$pulse(clock,reset,c,glitch);
         .q(in_r$q),
         .clock(in_r$clock)
     );
+    canstar_hub_core$core$pj$0$pulse$din_r din_r(
+        .d(din_r$d),
+        .q(din_r$q),
+        .clock(din_r$clock)
+    );
     
     // Update code
     always @(*) begin
         prev$clock = clock;
         run$clock = clock;
         in_r$clock = clock;
+        din_r$clock = clock;
         prev$d = prev$q;
         run$d = run$q;
         in_r$d = in_r$q;
+        din_r$d = din_r$q;
         chg = c != prev$q;
-        glitch = chg & in_r$q;
+        glitch = chg & ((prev$q & in_r$q) | (~prev$q & din_r$q));
         prev$d = c;
         if (chg) begin
             run$d = 32'h1;
             in_r$d = one_in;
+            din_r$d = done_in;
         end
         else if (run$q != 32'h1f) begin
             run$d = run$q + 32'h1;
             in_r$d = (run$q == min_m1) | (in_r$q & (run$q != max));
+            din_r$d = (run$q == dmin_m1) | (din_r$q & (run$q != max));
         end
         if (reset) begin
             prev$d = 1'b1;
             run$d = 32'h1f;
             in_r$d = 1'b0;
+            din_r$d = 1'b0;
         end
     end
     
 endmodule // canstar_hub_core$core$pj$0$pulse
+
+
+module canstar_hub_core$core$pj$0$pulse$din_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$0$pulse$din_r
 
 
 module canstar_hub_core$core$pj$0$pulse$in_r(d,q,clock);
@@ -5727,6 +5761,8 @@ module canstar_hub_core$core$pj$1$pulse(clock,reset,c,glitch);
     localparam  min_m1 = 5'b0;
     localparam  max = 5'b1011;
     localparam  one_in = 1'b1;
+    localparam  dmin_m1 = 5'b0;
+    localparam  done_in = 1'b1;
     
     // Stub signals
     reg  prev$d;
@@ -5738,6 +5774,9 @@ module canstar_hub_core$core$pj$1$pulse(clock,reset,c,glitch);
     reg  in_r$d;
     wire  in_r$q;
     reg  in_r$clock;
+    reg  din_r$d;
+    wire  din_r$q;
+    reg  din_r$clock;
     
     // Local signals
     reg  chg;
@@ -5758,34 +5797,63 @@ module canstar_hub_core$core$pj$1$pulse(clock,reset,c,glitch);
         .q(in_r$q),
         .clock(in_r$clock)
     );
+    canstar_hub_core$core$pj$1$pulse$din_r din_r(
+        .d(din_r$d),
+        .q(din_r$q),
+        .clock(din_r$clock)
+    );
     
     // Update code
     always @(*) begin
         prev$clock = clock;
         run$clock = clock;
         in_r$clock = clock;
+        din_r$clock = clock;
         prev$d = prev$q;
         run$d = run$q;
         in_r$d = in_r$q;
+        din_r$d = din_r$q;
         chg = c != prev$q;
-        glitch = chg & in_r$q;
+        glitch = chg & ((prev$q & in_r$q) | (~prev$q & din_r$q));
         prev$d = c;
         if (chg) begin
             run$d = 32'h1;
             in_r$d = one_in;
+            din_r$d = done_in;
         end
         else if (run$q != 32'h1f) begin
             run$d = run$q + 32'h1;
             in_r$d = (run$q == min_m1) | (in_r$q & (run$q != max));
+            din_r$d = (run$q == dmin_m1) | (din_r$q & (run$q != max));
         end
         if (reset) begin
             prev$d = 1'b1;
             run$d = 32'h1f;
             in_r$d = 1'b0;
+            din_r$d = 1'b0;
         end
     end
     
 endmodule // canstar_hub_core$core$pj$1$pulse
+
+
+module canstar_hub_core$core$pj$1$pulse$din_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$1$pulse$din_r
 
 
 module canstar_hub_core$core$pj$1$pulse$in_r(d,q,clock);
@@ -7115,6 +7183,8 @@ module canstar_hub_core$core$pj$2$pulse(clock,reset,c,glitch);
     localparam  min_m1 = 5'b0;
     localparam  max = 5'b1011;
     localparam  one_in = 1'b1;
+    localparam  dmin_m1 = 5'b0;
+    localparam  done_in = 1'b1;
     
     // Stub signals
     reg  prev$d;
@@ -7126,6 +7196,9 @@ module canstar_hub_core$core$pj$2$pulse(clock,reset,c,glitch);
     reg  in_r$d;
     wire  in_r$q;
     reg  in_r$clock;
+    reg  din_r$d;
+    wire  din_r$q;
+    reg  din_r$clock;
     
     // Local signals
     reg  chg;
@@ -7146,34 +7219,63 @@ module canstar_hub_core$core$pj$2$pulse(clock,reset,c,glitch);
         .q(in_r$q),
         .clock(in_r$clock)
     );
+    canstar_hub_core$core$pj$2$pulse$din_r din_r(
+        .d(din_r$d),
+        .q(din_r$q),
+        .clock(din_r$clock)
+    );
     
     // Update code
     always @(*) begin
         prev$clock = clock;
         run$clock = clock;
         in_r$clock = clock;
+        din_r$clock = clock;
         prev$d = prev$q;
         run$d = run$q;
         in_r$d = in_r$q;
+        din_r$d = din_r$q;
         chg = c != prev$q;
-        glitch = chg & in_r$q;
+        glitch = chg & ((prev$q & in_r$q) | (~prev$q & din_r$q));
         prev$d = c;
         if (chg) begin
             run$d = 32'h1;
             in_r$d = one_in;
+            din_r$d = done_in;
         end
         else if (run$q != 32'h1f) begin
             run$d = run$q + 32'h1;
             in_r$d = (run$q == min_m1) | (in_r$q & (run$q != max));
+            din_r$d = (run$q == dmin_m1) | (din_r$q & (run$q != max));
         end
         if (reset) begin
             prev$d = 1'b1;
             run$d = 32'h1f;
             in_r$d = 1'b0;
+            din_r$d = 1'b0;
         end
     end
     
 endmodule // canstar_hub_core$core$pj$2$pulse
+
+
+module canstar_hub_core$core$pj$2$pulse$din_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$2$pulse$din_r
 
 
 module canstar_hub_core$core$pj$2$pulse$in_r(d,q,clock);
@@ -8560,6 +8662,8 @@ module canstar_hub_core$core$sj$0$pulse(clock,reset,c,glitch);
     localparam  min_m1 = 5'b10;
     localparam  max = 5'b1011;
     localparam  one_in = 1'b0;
+    localparam  dmin_m1 = 5'b0;
+    localparam  done_in = 1'b1;
     
     // Stub signals
     reg  prev$d;
@@ -8571,6 +8675,9 @@ module canstar_hub_core$core$sj$0$pulse(clock,reset,c,glitch);
     reg  in_r$d;
     wire  in_r$q;
     reg  in_r$clock;
+    reg  din_r$d;
+    wire  din_r$q;
+    reg  din_r$clock;
     
     // Local signals
     reg  chg;
@@ -8591,34 +8698,63 @@ module canstar_hub_core$core$sj$0$pulse(clock,reset,c,glitch);
         .q(in_r$q),
         .clock(in_r$clock)
     );
+    canstar_hub_core$core$sj$0$pulse$din_r din_r(
+        .d(din_r$d),
+        .q(din_r$q),
+        .clock(din_r$clock)
+    );
     
     // Update code
     always @(*) begin
         prev$clock = clock;
         run$clock = clock;
         in_r$clock = clock;
+        din_r$clock = clock;
         prev$d = prev$q;
         run$d = run$q;
         in_r$d = in_r$q;
+        din_r$d = din_r$q;
         chg = c != prev$q;
-        glitch = chg & in_r$q;
+        glitch = chg & ((prev$q & in_r$q) | (~prev$q & din_r$q));
         prev$d = c;
         if (chg) begin
             run$d = 32'h1;
             in_r$d = one_in;
+            din_r$d = done_in;
         end
         else if (run$q != 32'h1f) begin
             run$d = run$q + 32'h1;
             in_r$d = (run$q == min_m1) | (in_r$q & (run$q != max));
+            din_r$d = (run$q == dmin_m1) | (din_r$q & (run$q != max));
         end
         if (reset) begin
             prev$d = 1'b1;
             run$d = 32'h1f;
             in_r$d = 1'b0;
+            din_r$d = 1'b0;
         end
     end
     
 endmodule // canstar_hub_core$core$sj$0$pulse
+
+
+module canstar_hub_core$core$sj$0$pulse$din_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$sj$0$pulse$din_r
 
 
 module canstar_hub_core$core$sj$0$pulse$in_r(d,q,clock);
@@ -9948,6 +10084,8 @@ module canstar_hub_core$core$sj$1$pulse(clock,reset,c,glitch);
     localparam  min_m1 = 5'b10;
     localparam  max = 5'b1011;
     localparam  one_in = 1'b0;
+    localparam  dmin_m1 = 5'b0;
+    localparam  done_in = 1'b1;
     
     // Stub signals
     reg  prev$d;
@@ -9959,6 +10097,9 @@ module canstar_hub_core$core$sj$1$pulse(clock,reset,c,glitch);
     reg  in_r$d;
     wire  in_r$q;
     reg  in_r$clock;
+    reg  din_r$d;
+    wire  din_r$q;
+    reg  din_r$clock;
     
     // Local signals
     reg  chg;
@@ -9979,34 +10120,63 @@ module canstar_hub_core$core$sj$1$pulse(clock,reset,c,glitch);
         .q(in_r$q),
         .clock(in_r$clock)
     );
+    canstar_hub_core$core$sj$1$pulse$din_r din_r(
+        .d(din_r$d),
+        .q(din_r$q),
+        .clock(din_r$clock)
+    );
     
     // Update code
     always @(*) begin
         prev$clock = clock;
         run$clock = clock;
         in_r$clock = clock;
+        din_r$clock = clock;
         prev$d = prev$q;
         run$d = run$q;
         in_r$d = in_r$q;
+        din_r$d = din_r$q;
         chg = c != prev$q;
-        glitch = chg & in_r$q;
+        glitch = chg & ((prev$q & in_r$q) | (~prev$q & din_r$q));
         prev$d = c;
         if (chg) begin
             run$d = 32'h1;
             in_r$d = one_in;
+            din_r$d = done_in;
         end
         else if (run$q != 32'h1f) begin
             run$d = run$q + 32'h1;
             in_r$d = (run$q == min_m1) | (in_r$q & (run$q != max));
+            din_r$d = (run$q == dmin_m1) | (din_r$q & (run$q != max));
         end
         if (reset) begin
             prev$d = 1'b1;
             run$d = 32'h1f;
             in_r$d = 1'b0;
+            din_r$d = 1'b0;
         end
     end
     
 endmodule // canstar_hub_core$core$sj$1$pulse
+
+
+module canstar_hub_core$core$sj$1$pulse$din_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$sj$1$pulse$din_r
 
 
 module canstar_hub_core$core$sj$1$pulse$in_r(d,q,clock);
