@@ -99,6 +99,11 @@ pub struct HubCore {
     sd_run: DFF<Bit>,
     gl_one: Signal<Local, Bit>,
     gl_two: Signal<Local, Bit>,
+    /// some port glitched in this frame; sublinks with a glitch of their own (not common)
+    /// in this frame: at least one, at least two (§5.15)
+    gl_port: Signal<Local, Bit>,
+    glo_one: Signal<Local, Bit>,
+    glo_two: Signal<Local, Bit>,
     sub_bl_r: DFF<Bit>,
     any_sub_blame: Signal<Local, Bit>,
     sub_all_an: Signal<Local, Bit>,
@@ -188,6 +193,9 @@ impl HubCore {
             sd_run: Default::default(),
             gl_one: Default::default(),
             gl_two: Default::default(),
+            gl_port: Default::default(),
+            glo_one: Default::default(),
+            glo_two: Default::default(),
             sub_bl_r: Default::default(),
             any_sub_blame: Default::default(),
             sub_all_an: Default::default(),
@@ -318,12 +326,19 @@ impl Logic for HubCore {
                 self.gl_one.next = true;
             }
         }
+        self.gl_port.next = self.gl_one.val();
         // every enabled replica sublink (at least two) glitched recently: a glitch of
         // the peer's contribution, not counted against the sublinks (hub.md §5.8)
         self.sub_all_an.next = true;
         self.sub_one.next = false;
         self.sub_two.next = false;
+        self.glo_one.next = false;
+        self.glo_two.next = false;
         for j in 0..self._m {
+            if self.sj[j].glf_own.val() {
+                self.glo_two.next = self.glo_two.val() | self.glo_one.val();
+                self.glo_one.next = true;
+            }
             self.any_an.next = self.any_an.val() | self.sj[j].anomaly.val();
             if self.sj[j].glf.val() {
                 self.gl_two.next = self.gl_two.val() | self.gl_one.val();
@@ -482,7 +497,9 @@ impl Logic for HubCore {
         for j in 0..self._m {
             self.sj[j].err_start.next = self.err_start_r.q.val();
             self.sj[j].ff.next = self.ff_r.q.val();
-            self.sj[j].gl_others.next = self.gl_two.val() | (self.gl_one.val() & !self.sj[j].glf.val());
+            // (a common glitch, the peer's contribution on every replica, does not excuse
+            // the replicas from each other, §5.15)
+            self.sj[j].gl_others.next = self.gl_port.val() | self.glo_two.val() | (self.glo_one.val() & !self.sj[j].glf_own.val());
             self.sj[j].rep_blamed.next = self.sub_bl_r.q.val();
             self.sj[j].common.next = self.sub_all_an.val() & self.sub_two.val();
         }

@@ -186,7 +186,8 @@
 //! sublink input 1-2 clocks (slivers when the peer isolates a port or a node's flag
 //! starts inside a bit), `canstar soak` "shortest pulse". [`crate::pulse::PulseCheck`]
 //! strobes `glitch` when a run of `glitch_min..=glitch_max` clocks ends on the unit's
-//! input (ports 1..=11: one bit minus SJW minus 3 clocks; sublinks 3..=11). A glitch is
+//! input (ports 1..=11: one bit minus SJW minus 3 clocks; sublinks 3..=11 for recessive
+//! runs, the legal slivers, and 1..=11 for dominant runs, hub.md §5.15). A glitch is
 //! evidence against that input alone, seen where it enters the hub, whatever the sample
 //! points of the hub and of the nodes, so it attributes the error episodes a flipping
 //! link causes in the nodes (which the baseline blamed on the healthy nodes whose flags
@@ -332,6 +333,19 @@
 //! to that error. Evidence in hub.md §5.14. Tests: `hub/tests/judge_sublinks.rs`
 //! `episode_after_a_common_glitch_is_charged_to_the_sublink`, `hub/tests/judge_rules.rs`
 //! `intermission_bit_2_blames_only_a_flag_that_starts_in_it`, `hub/tests/delimiter.rs`.
+//!
+//! **§5.15 short dominant runs; common glitches (session 18).** (1) The pulse check's
+//! minimum is set per level: on sublinks recessive runs count from `sub_glitch_min` (3),
+//! the slivers an isolation or a flag leaves, and dominant runs from
+//! `sub_dominant_glitch_min` (1), which no healthy cause leaves but an isolation by the peer
+//! (`--class sweep-hub-g2-e2 --run-seed 270444328573384593`: a faulty hub glitching for 2
+//! clocks was cut off 135 bits after the fault and every node lost both controllers; now 20
+//! bits). (2) The first-flagger excuse of a sublink (`gl_others`) comes from the ports'
+//! glitches and the other sublinks' glitches of their own (`glf_own`: counted in `gc`), not
+//! from common glitches: with (1) a faulty hub's flip next to an edge left a common sliver,
+//! and each replica's glitch excused the other from the episode the flip caused (`--class
+//! hub-flip --run-seed 12864914667304991574`). Evidence in hub.md §5.15. Tests:
+//! `short_dominant_runs_on_a_sublink_are_glitches`, `hub/tests/first_flagger.rs`.
 //!
 //! **§5.2 delimiter rule (added).** In the error phase, once BT was recessive at a
 //! sample (the end of every flag), the following delimiter bits are recessive-only
@@ -480,6 +494,9 @@ pub struct JudgeUnit {
     pub anomaly: Signal<Out, Bit>,
     /// This unit (enabled) glitched since the last SOF.
     pub glf: Signal<Out, Bit>,
+    /// This unit glitched since the last SOF with a glitch of its own (counted in `gc`, not
+    /// common to every replica): what excuses the other sublinks (§5.15).
+    pub glf_own: Signal<Out, Bit>,
     pub bic: Signal<Out, Bits<8>>,
     pub life: Signal<Out, Bits<7>>,
     pub dbc: Signal<Out, Bits<5>>,
@@ -537,6 +554,7 @@ pub struct JudgeUnit {
     pdec_r: DFF<Bits<3>>,
     ffd_r: DFF<Bit>,
     glf_r: DFF<Bit>,
+    glo_r: DFF<Bit>,
     pgl_r: DFF<Bit>,
     ch_r: DFF<Bit>,
     ffc: Signal<Local, Bit>,
@@ -610,6 +628,7 @@ impl JudgeUnit {
             glitch: Default::default(),
             anomaly: Default::default(),
             glf: Default::default(),
+            glf_own: Default::default(),
             bic: Default::default(),
             life: Default::default(),
             dbc: Default::default(),
@@ -665,6 +684,7 @@ impl JudgeUnit {
             pdec_r: Default::default(),
             ffd_r: Default::default(),
             glf_r: Default::default(),
+            glo_r: Default::default(),
             pgl_r: Default::default(),
             ch_r: Default::default(),
             ffc: Default::default(),
@@ -697,7 +717,7 @@ impl JudgeUnit {
 impl Logic for JudgeUnit {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, dis_r, bic_r, bdec_r, life_r, dbc_r, nack_r, cont_r, rep_r, rep_seen, rep_first_dom, ok_r, acked, bad, ack_missing, ack_c, ack_rx, seen_dom, seen_dom_crc, dom_bs, gc_r, gdec_r, an_r, pgc_r, pdec_r, ffd_r, glf_r, pgl_r, ch_r, bl_r, bl_dm_r, gpend);
+        dff_setup!(self, clock, dis_r, bic_r, bdec_r, life_r, dbc_r, nack_r, cont_r, rep_r, rep_seen, rep_first_dom, ok_r, acked, bad, ack_missing, ack_c, ack_rx, seen_dom, seen_dom_crc, dom_bs, gc_r, gdec_r, an_r, pgc_r, pdec_r, ffd_r, glf_r, glo_r, pgl_r, ch_r, bl_r, bl_dm_r, gpend);
         self.pulse.clock.next = self.clock.val();
         self.pulse.reset.next = self.reset.val();
         self.pulse.c.next = self.c.val();
@@ -781,6 +801,7 @@ impl Logic for JudgeUnit {
             self.ffd_r.d.next = self.dom.val() & self.cont_r.q.val() & !self.suppress.val() & !self.gl_others.val();
             if self.sof.val() {
                 self.glf_r.d.next = false;
+                self.glo_r.d.next = false;
             }
             // §5.4 dominant run
             if self.dom.val() {
@@ -874,6 +895,9 @@ impl Logic for JudgeUnit {
         if self.g.val() {
             self.an_r.d.next = 3.into();
             self.bad.d.next = true;
+        }
+        if self.gcount.val() {
+            self.glo_r.d.next = true;
         }
         if self.gcount.val() {
             self.pgl_r.d.next = false;
@@ -1005,6 +1029,7 @@ impl Logic for JudgeUnit {
             self.pdec_r.d.next = 0.into();
             self.ffd_r.d.next = false;
             self.glf_r.d.next = false;
+            self.glo_r.d.next = false;
             self.pgl_r.d.next = false;
             self.ch_r.d.next = false;
         }
@@ -1020,6 +1045,7 @@ impl Logic for JudgeUnit {
         self.contender.next = self.cont_r.q.val();
         self.window_dom.next = self.domw.val();
         self.glf.next = self.glf_r.q.val();
+        self.glf_own.next = self.glo_r.q.val();
     }
 }
 

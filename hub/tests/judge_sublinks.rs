@@ -249,10 +249,13 @@ fn short_dominant_runs_on_a_sublink_are_glitches() {
         sample(&mut j, Bit { c: true, bt: true, ..Default::default() });
     }
     assert_eq!(j.gc.val().index(), 2);
+    assert!(j.glf_own.val(), "glitches of its own excuse the other sublinks (§5.15)");
+    let mut j = reset(JudgeUnit::sublink(p));
     j.common.next = true;
     pulse_bit(&mut j, 3, 2, false);
     sample(&mut j, Bit { c: true, bt: true, ..Default::default() });
-    assert_eq!((j.gc.val().index(), j.pgc.val().index()), (2, 1), "common: the peer's");
+    assert_eq!((j.gc.val().index(), j.pgc.val().index()), (0, 1), "common: the peer's");
+    assert!(j.glf.val() && !j.glf_own.val(), "a common glitch excuses no other sublink");
 }
 
 /// The hub's `err_start` strobe for one clock (between samples); returns `charged`.

@@ -831,6 +831,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
     wire  pj$0$glitch;
     wire  pj$0$anomaly;
     wire  pj$0$glf;
+    wire  pj$0$glf_own;
     wire  [7:0] pj$0$bic;
     wire  [6:0] pj$0$life;
     wire  [4:0] pj$0$dbc;
@@ -878,6 +879,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
     wire  pj$1$glitch;
     wire  pj$1$anomaly;
     wire  pj$1$glf;
+    wire  pj$1$glf_own;
     wire  [7:0] pj$1$bic;
     wire  [6:0] pj$1$life;
     wire  [4:0] pj$1$dbc;
@@ -925,6 +927,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
     wire  pj$2$glitch;
     wire  pj$2$anomaly;
     wire  pj$2$glf;
+    wire  pj$2$glf_own;
     wire  [7:0] pj$2$bic;
     wire  [6:0] pj$2$life;
     wire  [4:0] pj$2$dbc;
@@ -954,6 +957,9 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
     // Local signals
     reg  gl_one;
     reg  gl_two;
+    reg  gl_port;
+    reg  glo_one;
+    reg  glo_two;
     reg  any_sub_blame;
     reg  sub_all_an;
     reg  sub_one;
@@ -1089,6 +1095,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         .glitch(pj$0$glitch),
         .anomaly(pj$0$anomaly),
         .glf(pj$0$glf),
+        .glf_own(pj$0$glf_own),
         .bic(pj$0$bic),
         .life(pj$0$life),
         .dbc(pj$0$dbc),
@@ -1138,6 +1145,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         .glitch(pj$1$glitch),
         .anomaly(pj$1$anomaly),
         .glf(pj$1$glf),
+        .glf_own(pj$1$glf_own),
         .bic(pj$1$bic),
         .life(pj$1$life),
         .dbc(pj$1$dbc),
@@ -1187,6 +1195,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         .glitch(pj$2$glitch),
         .anomaly(pj$2$anomaly),
         .glf(pj$2$glf),
+        .glf_own(pj$2$glf_own),
         .bic(pj$2$bic),
         .life(pj$2$life),
         .dbc(pj$2$dbc),
@@ -1294,9 +1303,12 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
             gl_two = gl_two | gl_one;
             gl_one = 1'b1;
         end
+        gl_port = gl_one;
         sub_all_an = 1'b1;
         sub_one = 1'b0;
         sub_two = 1'b0;
+        glo_one = 1'b0;
+        glo_two = 1'b0;
         injector$clock = clock;
         injector$reset = reset;
         injector$button = inject_fault;
@@ -2454,7 +2466,7 @@ module canstar_cancentrate_core$core$injector$state(d,q,clock);
 endmodule // canstar_cancentrate_core$core$injector$state
 
 
-module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
+module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
     
     // Module arguments
     input wire  clock;
@@ -2494,6 +2506,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
     output reg  glitch;
     output reg  anomaly;
     output reg  glf;
+    output reg  glf_own;
     output reg  [7:0] bic;
     output reg  [6:0] life;
     output reg  [4:0] dbc;
@@ -2608,6 +2621,9 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
     reg  glf_r$d;
     wire  glf_r$q;
     reg  glf_r$clock;
+    reg  glo_r$d;
+    wire  glo_r$q;
+    reg  glo_r$clock;
     reg  pgl_r$d;
     wire  pgl_r$q;
     reg  pgl_r$clock;
@@ -2775,6 +2791,11 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         .q(glf_r$q),
         .clock(glf_r$clock)
     );
+    canstar_cancentrate_core$core$pj$0$glo_r glo_r(
+        .d(glo_r$d),
+        .q(glo_r$q),
+        .clock(glo_r$clock)
+    );
     canstar_cancentrate_core$core$pj$0$pgl_r pgl_r(
         .d(pgl_r$d),
         .q(pgl_r$q),
@@ -2829,6 +2850,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         pdec_r$clock = clock;
         ffd_r$clock = clock;
         glf_r$clock = clock;
+        glo_r$clock = clock;
         pgl_r$clock = clock;
         ch_r$clock = clock;
         bl_r$clock = clock;
@@ -2860,6 +2882,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         pdec_r$d = pdec_r$q;
         ffd_r$d = ffd_r$q;
         glf_r$d = glf_r$q;
+        glo_r$d = glo_r$q;
         pgl_r$d = pgl_r$q;
         ch_r$d = ch_r$q;
         bl_r$d = bl_r$q;
@@ -2909,6 +2932,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
             ffd_r$d = dom & cont_r$q & ~suppress & ~gl_others;
             if (sof) begin
                 glf_r$d = 1'b0;
+                glo_r$d = 1'b0;
             end
             if (dom) begin
                 if (dbc_r$q != 32'h1f) begin
@@ -2994,6 +3018,9 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         if (g) begin
             an_r$d = 32'h3;
             bad$d = 1'b1;
+        end
+        if (gcount) begin
+            glo_r$d = 1'b1;
         end
         if (gcount) begin
             pgl_r$d = 1'b0;
@@ -3103,6 +3130,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
             pdec_r$d = 32'h0;
             ffd_r$d = 1'b0;
             glf_r$d = 1'b0;
+            glo_r$d = 1'b0;
             pgl_r$d = 1'b0;
             ch_r$d = 1'b0;
         end
@@ -3118,6 +3146,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         contender = cont_r$q;
         window_dom = domw;
         glf = glf_r$q;
+        glf_own = glo_r$q;
     end
     
 endmodule // canstar_cancentrate_core$core$pj$0
@@ -3482,6 +3511,25 @@ module canstar_cancentrate_core$core$pj$0$glf_r(d,q,clock);
     end
           
 endmodule // canstar_cancentrate_core$core$pj$0$glf_r
+
+
+module canstar_cancentrate_core$core$pj$0$glo_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$0$glo_r
 
 
 module canstar_cancentrate_core$core$pj$0$gpend(d,q,clock);
@@ -3876,7 +3924,7 @@ module canstar_cancentrate_core$core$pj$0$seen_dom_crc(d,q,clock);
 endmodule // canstar_cancentrate_core$core$pj$0$seen_dom_crc
 
 
-module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
+module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
     
     // Module arguments
     input wire  clock;
@@ -3916,6 +3964,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
     output reg  glitch;
     output reg  anomaly;
     output reg  glf;
+    output reg  glf_own;
     output reg  [7:0] bic;
     output reg  [6:0] life;
     output reg  [4:0] dbc;
@@ -4030,6 +4079,9 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
     reg  glf_r$d;
     wire  glf_r$q;
     reg  glf_r$clock;
+    reg  glo_r$d;
+    wire  glo_r$q;
+    reg  glo_r$clock;
     reg  pgl_r$d;
     wire  pgl_r$q;
     reg  pgl_r$clock;
@@ -4197,6 +4249,11 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         .q(glf_r$q),
         .clock(glf_r$clock)
     );
+    canstar_cancentrate_core$core$pj$1$glo_r glo_r(
+        .d(glo_r$d),
+        .q(glo_r$q),
+        .clock(glo_r$clock)
+    );
     canstar_cancentrate_core$core$pj$1$pgl_r pgl_r(
         .d(pgl_r$d),
         .q(pgl_r$q),
@@ -4251,6 +4308,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         pdec_r$clock = clock;
         ffd_r$clock = clock;
         glf_r$clock = clock;
+        glo_r$clock = clock;
         pgl_r$clock = clock;
         ch_r$clock = clock;
         bl_r$clock = clock;
@@ -4282,6 +4340,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         pdec_r$d = pdec_r$q;
         ffd_r$d = ffd_r$q;
         glf_r$d = glf_r$q;
+        glo_r$d = glo_r$q;
         pgl_r$d = pgl_r$q;
         ch_r$d = ch_r$q;
         bl_r$d = bl_r$q;
@@ -4331,6 +4390,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
             ffd_r$d = dom & cont_r$q & ~suppress & ~gl_others;
             if (sof) begin
                 glf_r$d = 1'b0;
+                glo_r$d = 1'b0;
             end
             if (dom) begin
                 if (dbc_r$q != 32'h1f) begin
@@ -4416,6 +4476,9 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         if (g) begin
             an_r$d = 32'h3;
             bad$d = 1'b1;
+        end
+        if (gcount) begin
+            glo_r$d = 1'b1;
         end
         if (gcount) begin
             pgl_r$d = 1'b0;
@@ -4525,6 +4588,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
             pdec_r$d = 32'h0;
             ffd_r$d = 1'b0;
             glf_r$d = 1'b0;
+            glo_r$d = 1'b0;
             pgl_r$d = 1'b0;
             ch_r$d = 1'b0;
         end
@@ -4540,6 +4604,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         contender = cont_r$q;
         window_dom = domw;
         glf = glf_r$q;
+        glf_own = glo_r$q;
     end
     
 endmodule // canstar_cancentrate_core$core$pj$1
@@ -4904,6 +4969,25 @@ module canstar_cancentrate_core$core$pj$1$glf_r(d,q,clock);
     end
           
 endmodule // canstar_cancentrate_core$core$pj$1$glf_r
+
+
+module canstar_cancentrate_core$core$pj$1$glo_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$1$glo_r
 
 
 module canstar_cancentrate_core$core$pj$1$gpend(d,q,clock);
@@ -5298,7 +5382,7 @@ module canstar_cancentrate_core$core$pj$1$seen_dom_crc(d,q,clock);
 endmodule // canstar_cancentrate_core$core$pj$1$seen_dom_crc
 
 
-module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
+module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
     
     // Module arguments
     input wire  clock;
@@ -5338,6 +5422,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
     output reg  glitch;
     output reg  anomaly;
     output reg  glf;
+    output reg  glf_own;
     output reg  [7:0] bic;
     output reg  [6:0] life;
     output reg  [4:0] dbc;
@@ -5452,6 +5537,9 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
     reg  glf_r$d;
     wire  glf_r$q;
     reg  glf_r$clock;
+    reg  glo_r$d;
+    wire  glo_r$q;
+    reg  glo_r$clock;
     reg  pgl_r$d;
     wire  pgl_r$q;
     reg  pgl_r$clock;
@@ -5619,6 +5707,11 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         .q(glf_r$q),
         .clock(glf_r$clock)
     );
+    canstar_cancentrate_core$core$pj$2$glo_r glo_r(
+        .d(glo_r$d),
+        .q(glo_r$q),
+        .clock(glo_r$clock)
+    );
     canstar_cancentrate_core$core$pj$2$pgl_r pgl_r(
         .d(pgl_r$d),
         .q(pgl_r$q),
@@ -5673,6 +5766,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         pdec_r$clock = clock;
         ffd_r$clock = clock;
         glf_r$clock = clock;
+        glo_r$clock = clock;
         pgl_r$clock = clock;
         ch_r$clock = clock;
         bl_r$clock = clock;
@@ -5704,6 +5798,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         pdec_r$d = pdec_r$q;
         ffd_r$d = ffd_r$q;
         glf_r$d = glf_r$q;
+        glo_r$d = glo_r$q;
         pgl_r$d = pgl_r$q;
         ch_r$d = ch_r$q;
         bl_r$d = bl_r$q;
@@ -5753,6 +5848,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
             ffd_r$d = dom & cont_r$q & ~suppress & ~gl_others;
             if (sof) begin
                 glf_r$d = 1'b0;
+                glo_r$d = 1'b0;
             end
             if (dom) begin
                 if (dbc_r$q != 32'h1f) begin
@@ -5838,6 +5934,9 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         if (g) begin
             an_r$d = 32'h3;
             bad$d = 1'b1;
+        end
+        if (gcount) begin
+            glo_r$d = 1'b1;
         end
         if (gcount) begin
             pgl_r$d = 1'b0;
@@ -5947,6 +6046,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
             pdec_r$d = 32'h0;
             ffd_r$d = 1'b0;
             glf_r$d = 1'b0;
+            glo_r$d = 1'b0;
             pgl_r$d = 1'b0;
             ch_r$d = 1'b0;
         end
@@ -5962,6 +6062,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         contender = cont_r$q;
         window_dom = domw;
         glf = glf_r$q;
+        glf_own = glo_r$q;
     end
     
 endmodule // canstar_cancentrate_core$core$pj$2
@@ -6326,6 +6427,25 @@ module canstar_cancentrate_core$core$pj$2$glf_r(d,q,clock);
     end
           
 endmodule // canstar_cancentrate_core$core$pj$2$glf_r
+
+
+module canstar_cancentrate_core$core$pj$2$glo_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$2$glo_r
 
 
 module canstar_cancentrate_core$core$pj$2$gpend(d,q,clock);

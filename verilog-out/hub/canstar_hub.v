@@ -903,6 +903,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     wire  pj$0$glitch;
     wire  pj$0$anomaly;
     wire  pj$0$glf;
+    wire  pj$0$glf_own;
     wire  [7:0] pj$0$bic;
     wire  [6:0] pj$0$life;
     wire  [4:0] pj$0$dbc;
@@ -950,6 +951,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     wire  pj$1$glitch;
     wire  pj$1$anomaly;
     wire  pj$1$glf;
+    wire  pj$1$glf_own;
     wire  [7:0] pj$1$bic;
     wire  [6:0] pj$1$life;
     wire  [4:0] pj$1$dbc;
@@ -997,6 +999,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     wire  pj$2$glitch;
     wire  pj$2$anomaly;
     wire  pj$2$glf;
+    wire  pj$2$glf_own;
     wire  [7:0] pj$2$bic;
     wire  [6:0] pj$2$life;
     wire  [4:0] pj$2$dbc;
@@ -1044,6 +1047,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     wire  sj$0$glitch;
     wire  sj$0$anomaly;
     wire  sj$0$glf;
+    wire  sj$0$glf_own;
     wire  [7:0] sj$0$bic;
     wire  [6:0] sj$0$life;
     wire  [4:0] sj$0$dbc;
@@ -1091,6 +1095,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     wire  sj$1$glitch;
     wire  sj$1$anomaly;
     wire  sj$1$glf;
+    wire  sj$1$glf_own;
     wire  [7:0] sj$1$bic;
     wire  [6:0] sj$1$life;
     wire  [4:0] sj$1$dbc;
@@ -1120,6 +1125,9 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     // Local signals
     reg  gl_one;
     reg  gl_two;
+    reg  gl_port;
+    reg  glo_one;
+    reg  glo_two;
     reg  any_sub_blame;
     reg  sub_all_an;
     reg  sub_one;
@@ -1265,6 +1273,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .glitch(pj$0$glitch),
         .anomaly(pj$0$anomaly),
         .glf(pj$0$glf),
+        .glf_own(pj$0$glf_own),
         .bic(pj$0$bic),
         .life(pj$0$life),
         .dbc(pj$0$dbc),
@@ -1314,6 +1323,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .glitch(pj$1$glitch),
         .anomaly(pj$1$anomaly),
         .glf(pj$1$glf),
+        .glf_own(pj$1$glf_own),
         .bic(pj$1$bic),
         .life(pj$1$life),
         .dbc(pj$1$dbc),
@@ -1363,6 +1373,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .glitch(pj$2$glitch),
         .anomaly(pj$2$anomaly),
         .glf(pj$2$glf),
+        .glf_own(pj$2$glf_own),
         .bic(pj$2$bic),
         .life(pj$2$life),
         .dbc(pj$2$dbc),
@@ -1412,6 +1423,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .glitch(sj$0$glitch),
         .anomaly(sj$0$anomaly),
         .glf(sj$0$glf),
+        .glf_own(sj$0$glf_own),
         .bic(sj$0$bic),
         .life(sj$0$life),
         .dbc(sj$0$dbc),
@@ -1461,6 +1473,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .glitch(sj$1$glitch),
         .anomaly(sj$1$anomaly),
         .glf(sj$1$glf),
+        .glf_own(sj$1$glf_own),
         .bic(sj$1$bic),
         .life(sj$1$life),
         .dbc(sj$1$dbc),
@@ -1568,9 +1581,16 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
             gl_two = gl_two | gl_one;
             gl_one = 1'b1;
         end
+        gl_port = gl_one;
         sub_all_an = 1'b1;
         sub_one = 1'b0;
         sub_two = 1'b0;
+        glo_one = 1'b0;
+        glo_two = 1'b0;
+        if (sj$0$glf_own) begin
+            glo_two = glo_two | glo_one;
+            glo_one = 1'b1;
+        end
         any_an = any_an | sj$0$anomaly;
         if (sj$0$glf) begin
             gl_two = gl_two | gl_one;
@@ -1580,6 +1600,10 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
             sub_all_an = sub_all_an & sj$0$anomaly;
             sub_two = sub_two | sub_one;
             sub_one = 1'b1;
+        end
+        if (sj$1$glf_own) begin
+            glo_two = glo_two | glo_one;
+            glo_one = 1'b1;
         end
         any_an = any_an | sj$1$anomaly;
         if (sj$1$glf) begin
@@ -1847,12 +1871,12 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         sub_bl_r$d = any_sub_blame;
         sj$0$err_start = err_start_r$q;
         sj$0$ff = ff_r$q;
-        sj$0$gl_others = gl_two | (gl_one & ~sj$0$glf);
+        sj$0$gl_others = gl_port | glo_two | (glo_one & ~sj$0$glf_own);
         sj$0$rep_blamed = sub_bl_r$q;
         sj$0$common = sub_all_an & sub_two;
         sj$1$err_start = err_start_r$q;
         sj$1$ff = ff_r$q;
-        sj$1$gl_others = gl_two | (gl_one & ~sj$1$glf);
+        sj$1$gl_others = gl_port | glo_two | (glo_one & ~sj$1$glf_own);
         sj$1$rep_blamed = sub_bl_r$q;
         sj$1$common = sub_all_an & sub_two;
         efgen$clock = clock;
@@ -3164,7 +3188,7 @@ module canstar_hub_core$core$injector$state(d,q,clock);
 endmodule // canstar_hub_core$core$injector$state
 
 
-module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
+module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
     
     // Module arguments
     input wire  clock;
@@ -3204,6 +3228,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     output reg  glitch;
     output reg  anomaly;
     output reg  glf;
+    output reg  glf_own;
     output reg  [7:0] bic;
     output reg  [6:0] life;
     output reg  [4:0] dbc;
@@ -3318,6 +3343,9 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  glf_r$d;
     wire  glf_r$q;
     reg  glf_r$clock;
+    reg  glo_r$d;
+    wire  glo_r$q;
+    reg  glo_r$clock;
     reg  pgl_r$d;
     wire  pgl_r$q;
     reg  pgl_r$clock;
@@ -3485,6 +3513,11 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .q(glf_r$q),
         .clock(glf_r$clock)
     );
+    canstar_hub_core$core$pj$0$glo_r glo_r(
+        .d(glo_r$d),
+        .q(glo_r$q),
+        .clock(glo_r$clock)
+    );
     canstar_hub_core$core$pj$0$pgl_r pgl_r(
         .d(pgl_r$d),
         .q(pgl_r$q),
@@ -3539,6 +3572,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         pdec_r$clock = clock;
         ffd_r$clock = clock;
         glf_r$clock = clock;
+        glo_r$clock = clock;
         pgl_r$clock = clock;
         ch_r$clock = clock;
         bl_r$clock = clock;
@@ -3570,6 +3604,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         pdec_r$d = pdec_r$q;
         ffd_r$d = ffd_r$q;
         glf_r$d = glf_r$q;
+        glo_r$d = glo_r$q;
         pgl_r$d = pgl_r$q;
         ch_r$d = ch_r$q;
         bl_r$d = bl_r$q;
@@ -3619,6 +3654,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             ffd_r$d = dom & cont_r$q & ~suppress & ~gl_others;
             if (sof) begin
                 glf_r$d = 1'b0;
+                glo_r$d = 1'b0;
             end
             if (dom) begin
                 if (dbc_r$q != 32'h1f) begin
@@ -3704,6 +3740,9 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         if (g) begin
             an_r$d = 32'h3;
             bad$d = 1'b1;
+        end
+        if (gcount) begin
+            glo_r$d = 1'b1;
         end
         if (gcount) begin
             pgl_r$d = 1'b0;
@@ -3813,6 +3852,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             pdec_r$d = 32'h0;
             ffd_r$d = 1'b0;
             glf_r$d = 1'b0;
+            glo_r$d = 1'b0;
             pgl_r$d = 1'b0;
             ch_r$d = 1'b0;
         end
@@ -3828,6 +3868,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         contender = cont_r$q;
         window_dom = domw;
         glf = glf_r$q;
+        glf_own = glo_r$q;
     end
     
 endmodule // canstar_hub_core$core$pj$0
@@ -4192,6 +4233,25 @@ module canstar_hub_core$core$pj$0$glf_r(d,q,clock);
     end
           
 endmodule // canstar_hub_core$core$pj$0$glf_r
+
+
+module canstar_hub_core$core$pj$0$glo_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$0$glo_r
 
 
 module canstar_hub_core$core$pj$0$gpend(d,q,clock);
@@ -4586,7 +4646,7 @@ module canstar_hub_core$core$pj$0$seen_dom_crc(d,q,clock);
 endmodule // canstar_hub_core$core$pj$0$seen_dom_crc
 
 
-module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
+module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
     
     // Module arguments
     input wire  clock;
@@ -4626,6 +4686,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     output reg  glitch;
     output reg  anomaly;
     output reg  glf;
+    output reg  glf_own;
     output reg  [7:0] bic;
     output reg  [6:0] life;
     output reg  [4:0] dbc;
@@ -4740,6 +4801,9 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  glf_r$d;
     wire  glf_r$q;
     reg  glf_r$clock;
+    reg  glo_r$d;
+    wire  glo_r$q;
+    reg  glo_r$clock;
     reg  pgl_r$d;
     wire  pgl_r$q;
     reg  pgl_r$clock;
@@ -4907,6 +4971,11 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .q(glf_r$q),
         .clock(glf_r$clock)
     );
+    canstar_hub_core$core$pj$1$glo_r glo_r(
+        .d(glo_r$d),
+        .q(glo_r$q),
+        .clock(glo_r$clock)
+    );
     canstar_hub_core$core$pj$1$pgl_r pgl_r(
         .d(pgl_r$d),
         .q(pgl_r$q),
@@ -4961,6 +5030,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         pdec_r$clock = clock;
         ffd_r$clock = clock;
         glf_r$clock = clock;
+        glo_r$clock = clock;
         pgl_r$clock = clock;
         ch_r$clock = clock;
         bl_r$clock = clock;
@@ -4992,6 +5062,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         pdec_r$d = pdec_r$q;
         ffd_r$d = ffd_r$q;
         glf_r$d = glf_r$q;
+        glo_r$d = glo_r$q;
         pgl_r$d = pgl_r$q;
         ch_r$d = ch_r$q;
         bl_r$d = bl_r$q;
@@ -5041,6 +5112,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             ffd_r$d = dom & cont_r$q & ~suppress & ~gl_others;
             if (sof) begin
                 glf_r$d = 1'b0;
+                glo_r$d = 1'b0;
             end
             if (dom) begin
                 if (dbc_r$q != 32'h1f) begin
@@ -5126,6 +5198,9 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         if (g) begin
             an_r$d = 32'h3;
             bad$d = 1'b1;
+        end
+        if (gcount) begin
+            glo_r$d = 1'b1;
         end
         if (gcount) begin
             pgl_r$d = 1'b0;
@@ -5235,6 +5310,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             pdec_r$d = 32'h0;
             ffd_r$d = 1'b0;
             glf_r$d = 1'b0;
+            glo_r$d = 1'b0;
             pgl_r$d = 1'b0;
             ch_r$d = 1'b0;
         end
@@ -5250,6 +5326,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         contender = cont_r$q;
         window_dom = domw;
         glf = glf_r$q;
+        glf_own = glo_r$q;
     end
     
 endmodule // canstar_hub_core$core$pj$1
@@ -5614,6 +5691,25 @@ module canstar_hub_core$core$pj$1$glf_r(d,q,clock);
     end
           
 endmodule // canstar_hub_core$core$pj$1$glf_r
+
+
+module canstar_hub_core$core$pj$1$glo_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$1$glo_r
 
 
 module canstar_hub_core$core$pj$1$gpend(d,q,clock);
@@ -6008,7 +6104,7 @@ module canstar_hub_core$core$pj$1$seen_dom_crc(d,q,clock);
 endmodule // canstar_hub_core$core$pj$1$seen_dom_crc
 
 
-module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
+module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
     
     // Module arguments
     input wire  clock;
@@ -6048,6 +6144,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     output reg  glitch;
     output reg  anomaly;
     output reg  glf;
+    output reg  glf_own;
     output reg  [7:0] bic;
     output reg  [6:0] life;
     output reg  [4:0] dbc;
@@ -6162,6 +6259,9 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  glf_r$d;
     wire  glf_r$q;
     reg  glf_r$clock;
+    reg  glo_r$d;
+    wire  glo_r$q;
+    reg  glo_r$clock;
     reg  pgl_r$d;
     wire  pgl_r$q;
     reg  pgl_r$clock;
@@ -6329,6 +6429,11 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .q(glf_r$q),
         .clock(glf_r$clock)
     );
+    canstar_hub_core$core$pj$2$glo_r glo_r(
+        .d(glo_r$d),
+        .q(glo_r$q),
+        .clock(glo_r$clock)
+    );
     canstar_hub_core$core$pj$2$pgl_r pgl_r(
         .d(pgl_r$d),
         .q(pgl_r$q),
@@ -6383,6 +6488,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         pdec_r$clock = clock;
         ffd_r$clock = clock;
         glf_r$clock = clock;
+        glo_r$clock = clock;
         pgl_r$clock = clock;
         ch_r$clock = clock;
         bl_r$clock = clock;
@@ -6414,6 +6520,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         pdec_r$d = pdec_r$q;
         ffd_r$d = ffd_r$q;
         glf_r$d = glf_r$q;
+        glo_r$d = glo_r$q;
         pgl_r$d = pgl_r$q;
         ch_r$d = ch_r$q;
         bl_r$d = bl_r$q;
@@ -6463,6 +6570,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             ffd_r$d = dom & cont_r$q & ~suppress & ~gl_others;
             if (sof) begin
                 glf_r$d = 1'b0;
+                glo_r$d = 1'b0;
             end
             if (dom) begin
                 if (dbc_r$q != 32'h1f) begin
@@ -6548,6 +6656,9 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         if (g) begin
             an_r$d = 32'h3;
             bad$d = 1'b1;
+        end
+        if (gcount) begin
+            glo_r$d = 1'b1;
         end
         if (gcount) begin
             pgl_r$d = 1'b0;
@@ -6657,6 +6768,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             pdec_r$d = 32'h0;
             ffd_r$d = 1'b0;
             glf_r$d = 1'b0;
+            glo_r$d = 1'b0;
             pgl_r$d = 1'b0;
             ch_r$d = 1'b0;
         end
@@ -6672,6 +6784,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         contender = cont_r$q;
         window_dom = domw;
         glf = glf_r$q;
+        glf_own = glo_r$q;
     end
     
 endmodule // canstar_hub_core$core$pj$2
@@ -7036,6 +7149,25 @@ module canstar_hub_core$core$pj$2$glf_r(d,q,clock);
     end
           
 endmodule // canstar_hub_core$core$pj$2$glf_r
+
+
+module canstar_hub_core$core$pj$2$glo_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$2$glo_r
 
 
 module canstar_hub_core$core$pj$2$gpend(d,q,clock);
@@ -7487,7 +7619,7 @@ module canstar_hub_core$core$sd_run(d,q,clock);
 endmodule // canstar_hub_core$core$sd_run
 
 
-module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
+module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
     
     // Module arguments
     input wire  clock;
@@ -7527,6 +7659,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     output reg  glitch;
     output reg  anomaly;
     output reg  glf;
+    output reg  glf_own;
     output reg  [7:0] bic;
     output reg  [6:0] life;
     output reg  [4:0] dbc;
@@ -7641,6 +7774,9 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  glf_r$d;
     wire  glf_r$q;
     reg  glf_r$clock;
+    reg  glo_r$d;
+    wire  glo_r$q;
+    reg  glo_r$clock;
     reg  pgl_r$d;
     wire  pgl_r$q;
     reg  pgl_r$clock;
@@ -7808,6 +7944,11 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .q(glf_r$q),
         .clock(glf_r$clock)
     );
+    canstar_hub_core$core$sj$0$glo_r glo_r(
+        .d(glo_r$d),
+        .q(glo_r$q),
+        .clock(glo_r$clock)
+    );
     canstar_hub_core$core$sj$0$pgl_r pgl_r(
         .d(pgl_r$d),
         .q(pgl_r$q),
@@ -7862,6 +8003,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         pdec_r$clock = clock;
         ffd_r$clock = clock;
         glf_r$clock = clock;
+        glo_r$clock = clock;
         pgl_r$clock = clock;
         ch_r$clock = clock;
         bl_r$clock = clock;
@@ -7893,6 +8035,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         pdec_r$d = pdec_r$q;
         ffd_r$d = ffd_r$q;
         glf_r$d = glf_r$q;
+        glo_r$d = glo_r$q;
         pgl_r$d = pgl_r$q;
         ch_r$d = ch_r$q;
         bl_r$d = bl_r$q;
@@ -7942,6 +8085,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             ffd_r$d = dom & cont_r$q & ~suppress & ~gl_others;
             if (sof) begin
                 glf_r$d = 1'b0;
+                glo_r$d = 1'b0;
             end
             if (dom) begin
                 if (dbc_r$q != 32'h1f) begin
@@ -8027,6 +8171,9 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         if (g) begin
             an_r$d = 32'h3;
             bad$d = 1'b1;
+        end
+        if (gcount) begin
+            glo_r$d = 1'b1;
         end
         if (gcount) begin
             pgl_r$d = 1'b0;
@@ -8136,6 +8283,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             pdec_r$d = 32'h0;
             ffd_r$d = 1'b0;
             glf_r$d = 1'b0;
+            glo_r$d = 1'b0;
             pgl_r$d = 1'b0;
             ch_r$d = 1'b0;
         end
@@ -8151,6 +8299,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         contender = cont_r$q;
         window_dom = domw;
         glf = glf_r$q;
+        glf_own = glo_r$q;
     end
     
 endmodule // canstar_hub_core$core$sj$0
@@ -8515,6 +8664,25 @@ module canstar_hub_core$core$sj$0$glf_r(d,q,clock);
     end
           
 endmodule // canstar_hub_core$core$sj$0$glf_r
+
+
+module canstar_hub_core$core$sj$0$glo_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$sj$0$glo_r
 
 
 module canstar_hub_core$core$sj$0$gpend(d,q,clock);
@@ -8909,7 +9077,7 @@ module canstar_hub_core$core$sj$0$seen_dom_crc(d,q,clock);
 endmodule // canstar_hub_core$core$sj$0$seen_dom_crc
 
 
-module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
+module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
     
     // Module arguments
     input wire  clock;
@@ -8949,6 +9117,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     output reg  glitch;
     output reg  anomaly;
     output reg  glf;
+    output reg  glf_own;
     output reg  [7:0] bic;
     output reg  [6:0] life;
     output reg  [4:0] dbc;
@@ -9063,6 +9232,9 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  glf_r$d;
     wire  glf_r$q;
     reg  glf_r$clock;
+    reg  glo_r$d;
+    wire  glo_r$q;
+    reg  glo_r$clock;
     reg  pgl_r$d;
     wire  pgl_r$q;
     reg  pgl_r$clock;
@@ -9230,6 +9402,11 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .q(glf_r$q),
         .clock(glf_r$clock)
     );
+    canstar_hub_core$core$sj$1$glo_r glo_r(
+        .d(glo_r$d),
+        .q(glo_r$q),
+        .clock(glo_r$clock)
+    );
     canstar_hub_core$core$sj$1$pgl_r pgl_r(
         .d(pgl_r$d),
         .q(pgl_r$q),
@@ -9284,6 +9461,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         pdec_r$clock = clock;
         ffd_r$clock = clock;
         glf_r$clock = clock;
+        glo_r$clock = clock;
         pgl_r$clock = clock;
         ch_r$clock = clock;
         bl_r$clock = clock;
@@ -9315,6 +9493,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         pdec_r$d = pdec_r$q;
         ffd_r$d = ffd_r$q;
         glf_r$d = glf_r$q;
+        glo_r$d = glo_r$q;
         pgl_r$d = pgl_r$q;
         ch_r$d = ch_r$q;
         bl_r$d = bl_r$q;
@@ -9364,6 +9543,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             ffd_r$d = dom & cont_r$q & ~suppress & ~gl_others;
             if (sof) begin
                 glf_r$d = 1'b0;
+                glo_r$d = 1'b0;
             end
             if (dom) begin
                 if (dbc_r$q != 32'h1f) begin
@@ -9449,6 +9629,9 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         if (g) begin
             an_r$d = 32'h3;
             bad$d = 1'b1;
+        end
+        if (gcount) begin
+            glo_r$d = 1'b1;
         end
         if (gcount) begin
             pgl_r$d = 1'b0;
@@ -9558,6 +9741,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             pdec_r$d = 32'h0;
             ffd_r$d = 1'b0;
             glf_r$d = 1'b0;
+            glo_r$d = 1'b0;
             pgl_r$d = 1'b0;
             ch_r$d = 1'b0;
         end
@@ -9573,6 +9757,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         contender = cont_r$q;
         window_dom = domw;
         glf = glf_r$q;
+        glf_own = glo_r$q;
     end
     
 endmodule // canstar_hub_core$core$sj$1
@@ -9937,6 +10122,25 @@ module canstar_hub_core$core$sj$1$glf_r(d,q,clock);
     end
           
 endmodule // canstar_hub_core$core$sj$1$glf_r
+
+
+module canstar_hub_core$core$sj$1$glo_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$sj$1$glo_r
 
 
 module canstar_hub_core$core$sj$1$gpend(d,q,clock);
