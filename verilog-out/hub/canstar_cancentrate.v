@@ -8418,6 +8418,7 @@ module canstar_cancentrate_core$monitor$fsm(clock,reset,sample,busmon,listen_onl
     reg  frame$stuff;
     reg  frame$arb;
     reg  frame$arb_stuff;
+    reg  frame$pipe;
     reg  frame$stuff_error;
     reg  frame$crc_rem;
     reg  frame$ext;
@@ -8738,6 +8739,7 @@ module canstar_cancentrate_core$monitor$fsm(clock,reset,sample,busmon,listen_onl
         .stuff(frame$stuff),
         .arb(frame$arb),
         .arb_stuff(frame$arb_stuff),
+        .pipe(frame$pipe),
         .stuff_error(frame$stuff_error),
         .crc_rem(frame$crc_rem),
         .ext(frame$ext),
@@ -8971,7 +8973,8 @@ module canstar_cancentrate_core$monitor$fsm(clock,reset,sample,busmon,listen_onl
         frame$stuff = seq$pstuff;
         frame$arb = dec$arb_bit;
         frame$arb_stuff = dec$arb_stuff_bit;
-        frame$stuff_error = dstf$stuff_error;
+        frame$pipe = pipe;
+        frame$stuff_error = dstf$next_is_stuff & (busmon != dstf$stuff_level);
         frame$crc_rem = |crcb$crc_next;
         frame$ext = rxf$ext;
         frame$rtr = rxf$rtr;
@@ -10115,7 +10118,7 @@ module canstar_cancentrate_core$monitor$fsm$flags$fdone(d,q,clock);
 endmodule // canstar_cancentrate_core$monitor$fsm$flags$fdone
 
 
-module canstar_cancentrate_core$monitor$fsm$frame(clock,reset,sample,rxbit,sent,sent_stuff,rec_iso,fld,fpos,at_end,area,stuffable,hs_fld,inter_fld,tx_role,dom,listen_only,self_test,active,stuffed,stuff,arb,arb_stuff,stuff_error,crc_rem,ext,rtr,dlc_lo_zero,data_bits,tx_ide,sofinit,err_now,own,nf,npos,narea,nsa,nhs,ninter,ndom,usetx,lnf,lost,err,err_bit,err_stuff,err_crc,err_form,err_ack,tinc,rinc1,rok,ovl,exc1,exc2,tx_ok,rx_ok,sof,adv);
+module canstar_cancentrate_core$monitor$fsm$frame(clock,reset,sample,rxbit,sent,sent_stuff,rec_iso,fld,fpos,at_end,area,stuffable,hs_fld,inter_fld,tx_role,dom,listen_only,self_test,active,stuffed,stuff,arb,arb_stuff,pipe,stuff_error,crc_rem,ext,rtr,dlc_lo_zero,data_bits,tx_ide,sofinit,err_now,own,nf,npos,narea,nsa,nhs,ninter,ndom,usetx,lnf,lost,err,err_bit,err_stuff,err_crc,err_form,err_ack,tinc,rinc1,rok,ovl,exc1,exc2,tx_ok,rx_ok,sof,adv);
     
     // Module arguments
     input wire  clock;
@@ -10141,6 +10144,7 @@ module canstar_cancentrate_core$monitor$fsm$frame(clock,reset,sample,rxbit,sent,
     input wire  stuff;
     input wire  arb;
     input wire  arb_stuff;
+    input wire  pipe;
     input wire  stuff_error;
     input wire  crc_rem;
     input wire  ext;
@@ -10209,12 +10213,20 @@ module canstar_cancentrate_core$monitor$fsm$frame(clock,reset,sample,rxbit,sent,
     reg  crcerr$d;
     wire  crcerr$q;
     reg  crcerr$clock;
+    reg  rarb$d;
+    wire  rarb$q;
+    reg  rarb$clock;
+    reg  rarbs$d;
+    wire  rarbs$q;
+    reg  rarbs$clock;
     
     // Local signals
     reg  [7:0] l_posinc;
     reg  l_role;
     reg  l_form;
     reg  l_crcset;
+    reg  l_arb;
+    reg  l_arbs;
     
     // Sub module instances
     canstar_cancentrate_core$monitor$fsm$frame$crcerr crcerr(
@@ -10222,11 +10234,33 @@ module canstar_cancentrate_core$monitor$fsm$frame(clock,reset,sample,rxbit,sent,
         .q(crcerr$q),
         .clock(crcerr$clock)
     );
+    canstar_cancentrate_core$monitor$fsm$frame$rarb rarb(
+        .d(rarb$d),
+        .q(rarb$q),
+        .clock(rarb$clock)
+    );
+    canstar_cancentrate_core$monitor$fsm$frame$rarbs rarbs(
+        .d(rarbs$d),
+        .q(rarbs$q),
+        .clock(rarbs$clock)
+    );
     
     // Update code
     always @(*) begin
         crcerr$clock = clock;
+        rarb$clock = clock;
+        rarbs$clock = clock;
         crcerr$d = crcerr$q;
+        rarb$d = rarb$q;
+        rarbs$d = rarbs$q;
+        rarb$d = arb;
+        rarbs$d = arb_stuff;
+        l_arb = arb;
+        l_arbs = arb_stuff;
+        if (pipe) begin
+            l_arb = rarb$q;
+            l_arbs = rarbs$q;
+        end
         l_posinc = fpos + 32'h1;
         if (fpos == 32'hff) begin
             l_posinc = fpos;
@@ -10273,7 +10307,7 @@ module canstar_cancentrate_core$monitor$fsm$frame(clock,reset,sample,rxbit,sent,
                             if (~tx_role) begin
                                 rinc1 = 1'b1;
                             end
-                            else if (arb_stuff) begin
+                            else if (l_arbs) begin
                                 exc2 = 1'b1;
                             end
                             else begin
@@ -10284,7 +10318,7 @@ module canstar_cancentrate_core$monitor$fsm$frame(clock,reset,sample,rxbit,sent,
                 end
                 else begin
                     if (tx_role & (rxbit != sent)) begin
-                        if (arb & sent) begin
+                        if (l_arb & sent) begin
                             l_role = 1'b0;
                         end
                         else begin
@@ -10661,6 +10695,44 @@ module canstar_cancentrate_core$monitor$fsm$frame$crcerr(d,q,clock);
     end
           
 endmodule // canstar_cancentrate_core$monitor$fsm$frame$crcerr
+
+
+module canstar_cancentrate_core$monitor$fsm$frame$rarb(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$monitor$fsm$frame$rarb
+
+
+module canstar_cancentrate_core$monitor$fsm$frame$rarbs(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$monitor$fsm$frame$rarbs
 
 
 module canstar_cancentrate_core$monitor$fsm$rpt(clock,reset,sample,ev_sof,ev_arb_lost,ev_bit_err,ev_stuff_err,ev_crc_err,ev_form_err,ev_ack_err,ev_aef,ev_pef,ev_olf,ev_ovl,ev_daf,ev_tx_ok,ev_rx_ok,ev_exc1,ev_exc2,ev_run,ev_recovered,ev_integrated,err_now,code,pos,tx_role,arb_pos,events,tx_done,arb_lost,arb_lost_pos,error,err_kind,err_field,err_pos,err_tx,rx_valid);

@@ -73,7 +73,18 @@ pub struct FrameFields {
     pub stuff: Signal<In, Bit>,
     pub arb: Signal<In, Bit>,
     pub arb_stuff: Signal<In, Bit>,
-    /// The destuffer's sixth equal bit.
+    /// Two-clock mode (see [`super::seq::Sequencer`]): `arb` and
+    /// `arb_stuff`, decodes of `fld`, `pfld` and `ext` alone, are taken from
+    /// flip-flops that load them on every clock (issue #16). Those registers
+    /// change on `sample` clocks and with `reset`; a counter load changes
+    /// `fld` only to fields where `own` is 0, where neither is read.
+    pub pipe: Signal<In, Bit>,
+    /// The sampled bit is a sixth equal bit: the destuffer has seen 5
+    /// (`next_is_stuff`) and the sampled level continues the run. Read on a
+    /// stuff bit of the stuffed area only, where the destuffer is active, so
+    /// it equals the destuffer's `stuff_error` there; taken without the
+    /// destuffer's `active` input, which holds the sequencer's SOF decision
+    /// (issue #16; the destuffer's own `stuff_error` is not used).
     pub stuff_error: Signal<In, Bit>,
     /// The CRC register is not zero after this bit (a receiver's CRC check).
     pub crc_rem: Signal<In, Bit>,
@@ -140,18 +151,31 @@ pub struct FrameFields {
     pub adv: Signal<Out, Bit>,
 
     crcerr: DFF<Bit>,
+    // `arb` and `arb_stuff` one clock late (see `pipe`).
+    rarb: DFF<Bit>,
+    rarbs: DFF<Bit>,
 
     // Working values.
     l_posinc: Signal<Local, Bits<8>>,
     l_role: Signal<Local, Bit>,
     l_form: Signal<Local, Bit>,
     l_crcset: Signal<Local, Bit>,
+    l_arb: Signal<Local, Bit>,
+    l_arbs: Signal<Local, Bit>,
 }
 
 impl Logic for FrameFields {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, crcerr);
+        dff_setup!(self, clock, crcerr, rarb, rarbs);
+        self.rarb.d.next = self.arb.val();
+        self.rarbs.d.next = self.arb_stuff.val();
+        self.l_arb.next = self.arb.val();
+        self.l_arbs.next = self.arb_stuff.val();
+        if self.pipe.val() {
+            self.l_arb.next = self.rarb.q.val();
+            self.l_arbs.next = self.rarbs.q.val();
+        }
         self.l_posinc.next = self.fpos.val() + 1;
         if self.fpos.val() == 255 {
             self.l_posinc.next = self.fpos.val();
@@ -203,7 +227,7 @@ impl Logic for FrameFields {
                             self.err_stuff.next = true;
                             if !self.tx_role.val() {
                                 self.rinc1.next = true;
-                            } else if self.arb_stuff.val() {
+                            } else if self.l_arbs.val() {
                                 self.exc2.next = true;
                             } else {
                                 self.tinc.next = true;
@@ -212,7 +236,7 @@ impl Logic for FrameFields {
                     }
                 } else {
                     if self.tx_role.val() & (self.rxbit.val() != self.sent.val()) {
-                        if self.arb.val() & self.sent.val() {
+                        if self.l_arb.val() & self.sent.val() {
                             self.l_role.next = false;
                         } else {
                             self.err.next = true;

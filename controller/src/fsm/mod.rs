@@ -243,8 +243,9 @@ pub struct CanFsm {
     /// Two-clock mode: `sample` strobes at least 2 clocks apart, as from
     /// the bit timing logic; some register decodes of the per-bit decision
     /// are then taken from flip-flops a clock ahead (issue #16, see
-    /// [`seq::Sequencer`]). [`crate::core::CanCore`] ties it high; tie it
-    /// low when `sample` may come on consecutive clocks.
+    /// [`seq::Sequencer`] and [`frame_fields::FrameFields`]).
+    /// [`crate::core::CanCore`] ties it high; tie it low when `sample` may
+    /// come on consecutive clocks.
     pub pipe: Signal<In, Bit>,
 
     /// Level wanted on TX from the next transmit point (1 = recessive).
@@ -358,7 +359,8 @@ impl Logic for CanFsm {
         self.frame.stuff.next = self.seq.pstuff.val();
         self.frame.arb.next = self.dec.arb_bit.val();
         self.frame.arb_stuff.next = self.dec.arb_stuff_bit.val();
-        self.frame.stuff_error.next = self.dstf.stuff_error.val();
+        self.frame.pipe.next = self.pipe.val();
+        self.frame.stuff_error.next = self.dstf.next_is_stuff.val() & (self.busmon.val() != self.dstf.stuff_level.val());
         self.frame.crc_rem.next = self.crcb.crc_next.val().any();
         self.frame.ext.next = self.rxf.ext.val();
         self.frame.rtr.next = self.rxf.rtr.val();
