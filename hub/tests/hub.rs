@@ -235,6 +235,8 @@ fn config_defaults_serde_and_validation() {
         HubConfig { nack_threshold: 8, ..Default::default() },
         HubConfig { peer_glitch_limit: 16, ..Default::default() },
         HubConfig { peer_glitch_decay: 0, ..Default::default() },
+        HubConfig { sub_dominant_glitch_min: 0, ..Default::default() },
+        HubConfig { sub_dominant_glitch_min: 12, ..Default::default() },
         HubConfig { reintegration: Some(0), ..Default::default() },
         HubConfig {
             fault_injection: Some(FaultInjection { point: FaultPoint::Sublink(2), kind: InjectionKind::BitFlip, start_field: 6 }),
