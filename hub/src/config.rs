@@ -298,11 +298,10 @@ impl HubConfig {
         if self.window_lag > 31 || self.sub_window_lag > 31 {
             return Err("window_lag and sub_window_lag must be in 0..=31".into());
         }
-        if self.sub_glitch_min > self.glitch_max_clocks() {
-            return Err("sub_glitch_min must not exceed the glitch maximum".into());
-        }
-        if self.sub_dominant_glitch_min > self.glitch_max_clocks() {
-            return Err("sub_dominant_glitch_min must not exceed the glitch maximum".into());
+        for (n, v) in [("sub_glitch_min", self.sub_glitch_min), ("sub_dominant_glitch_min", self.sub_dominant_glitch_min)] {
+            if v > self.glitch_max_clocks() {
+                return Err(format!("{n} must not exceed the glitch maximum"));
+            }
         }
         if let Some(w) = self.reintegration {
             if w == 0 || w > 255 {

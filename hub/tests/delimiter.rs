@@ -2,7 +2,6 @@
 //! bits 2..7 must be recessive, except the bit right after a sample that started or renewed
 //! an error episode, which carries the nodes' reactions to that error.
 mod common;
-use canstar_hdl::drive;
 use canstar_hub::config::HubConfig;
 use canstar_hub::frame_state::Field;
 use canstar_hub::hub::HubCore;
@@ -11,13 +10,7 @@ use common::*;
 /// One error-delimiter bit at position `pos` as the frame monitor reports it; `dom(i, k)`:
 /// port i's uplink is dominant at clock k of the bit.
 fn delimiter_bit(h: &mut HubCore, pos: usize, dom: &dyn Fn(usize, usize) -> bool) {
-    for k in 0..CLOCKS_PER_BIT {
-        for i in 0..3 {
-            h.set_rx(i, !dom(i, k));
-        }
-        h.set_monitor(k == SAMPLE_CLOCK, k == 0, Field::ErrorDelim, pos, false, false, false);
-        drive::cycle(h);
-    }
+    monitor_bit(h, Field::ErrorDelim, pos, false, &|i, k| !dom(i, k), &|_, _| true);
 }
 
 /// With `pulse`, port 0 is dominant from clock 13 of delimiter bit 1 to clock 8 of bit 2

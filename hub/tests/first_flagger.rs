@@ -4,7 +4,6 @@
 //! every replica shows (the peer's contribution) does not excuse the replicas from each
 //! other; a glitch of one replica alone excuses the other one.
 mod common;
-use canstar_hdl::drive;
 use canstar_hub::config::HubConfig;
 use canstar_hub::frame_state::Field;
 use canstar_hub::hub::HubCore;
@@ -13,16 +12,7 @@ use common::*;
 /// One bit as the frame monitor reports it; the ports are recessive, sublink j is
 /// recessive at clock k iff `sub(j, k)`; `error`: the monitor detects an error at the sample.
 fn bit(h: &mut HubCore, field: Field, pos: usize, error: bool, sub: &dyn Fn(usize, usize) -> bool) {
-    for k in 0..CLOCKS_PER_BIT {
-        for i in 0..3 {
-            h.set_rx(i, true);
-        }
-        for j in 0..2 {
-            h.set_reh_rx(j, sub(j, k));
-        }
-        h.set_monitor(k == SAMPLE_CLOCK, k == 0, field, pos, false, error && k == SAMPLE_CLOCK, false);
-        drive::cycle(h);
-    }
+    monitor_bit(h, field, pos, error, &|_, _| true, sub);
 }
 
 /// A frame from behind the peer: SOF and identifier bits on both sublinks, a 2-clock

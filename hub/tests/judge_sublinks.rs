@@ -211,21 +211,11 @@ fn common_glitches_isolate_the_peer_hub() {
 
 /// One error-flag bit of 16 clocks on a sublink: the input dominant but recessive at
 /// clocks `from..from + len` (the gap between a dominant run and a flag that starts inside
-/// the bit); returns the glitch strobes, counting the run that ends in the next bit.
+/// the bit); returns the glitch strobes.
 fn recessive_sliver_bit(j: &mut JudgeUnit, from: u64, len: u64) -> usize {
-    let mut glitches = 0;
     j.bt.next = false;
     j.err_phase.next = true;
-    for k in 0..16u64 {
-        j.c.next = (from..from + len).contains(&k);
-        j.sample.next = k == SAMPLE_AT;
-        j.bit_start.next = k == 0;
-        j.bs_cnt.next = k.into();
-        drive::settle(j);
-        glitches += j.glitch.val() as usize;
-        drive::cycle(j);
-    }
-    j.sample.next = false;
+    let (_, glitches) = bit_clocks(j, &|j, k| j.c.next = (from..from + len).contains(&k));
     j.err_phase.next = false;
     glitches
 }

@@ -320,6 +320,23 @@ pub struct Net<T: Dut = HubCore> {
     pub efg_bits: usize,
 }
 
+/// One bit of clock-level stimulus on a [`HubCore`] as the frame monitor reports it:
+/// port i is recessive at clock k iff `port(i, k)`, sublink j iff `sub(j, k)`; `error`:
+/// the monitor detects an error at the sample.
+pub fn monitor_bit(h: &mut HubCore, field: Field, pos: usize, error: bool, port: &dyn Fn(usize, usize) -> bool, sub: &dyn Fn(usize, usize) -> bool) {
+    let (n, m) = (h.config().ports, h.config().sublinks);
+    for k in 0..CLOCKS_PER_BIT {
+        for i in 0..n {
+            h.set_rx(i, port(i, k));
+        }
+        for j in 0..m {
+            h.set_reh_rx(j, sub(j, k));
+        }
+        h.set_monitor(k == SAMPLE_CLOCK, k == 0, field, pos, false, error && k == SAMPLE_CLOCK, false);
+        drive::cycle(h);
+    }
+}
+
 pub fn reset_hub<T: Dut>(hub: &mut T) {
     drive::init(hub);
     hub.set_rst_n(false);

@@ -84,15 +84,12 @@ pub fn reset(mut j: JudgeUnit) -> JudgeUnit {
 }
 
 
-/// One bit of 16 clocks, recessive but dominant from clock `from` for `len` clocks, in
-/// the EOF (a recessive-only position); returns (blame at the sample point, glitches).
-pub fn pulse_bit(j: &mut JudgeUnit, from: u64, len: u64, suppress: bool) -> (bool, usize) {
+/// The 16 clocks of one bit: `levels(j, k)` sets the inputs of clock k, the sample strobe
+/// comes at `SAMPLE_AT`; returns (blame at any clock, glitch strobes).
+pub fn bit_clocks(j: &mut JudgeUnit, levels: &dyn Fn(&mut JudgeUnit, u64)) -> (bool, usize) {
     let (mut blame, mut glitches) = (false, 0);
-    j.bt.next = true;
-    j.eof_1_6.next = true;
-    j.suppress.next = suppress;
     for k in 0..16u64 {
-        j.c.next = !(from..from + len).contains(&k);
+        levels(j, k);
         j.sample.next = k == SAMPLE_AT;
         j.bit_start.next = k == 0;
         j.bs_cnt.next = k.into();
@@ -102,6 +99,16 @@ pub fn pulse_bit(j: &mut JudgeUnit, from: u64, len: u64, suppress: bool) -> (boo
         drive::cycle(j);
     }
     j.sample.next = false;
+    (blame, glitches)
+}
+
+/// One bit of 16 clocks, recessive but dominant from clock `from` for `len` clocks, in
+/// the EOF (a recessive-only position); returns (blame at the sample point, glitches).
+pub fn pulse_bit(j: &mut JudgeUnit, from: u64, len: u64, suppress: bool) -> (bool, usize) {
+    j.bt.next = true;
+    j.eof_1_6.next = true;
+    j.suppress.next = suppress;
+    let (blame, mut glitches) = bit_clocks(j, &|j, k| j.c.next = !(from..from + len).contains(&k));
     j.eof_1_6.next = false;
     j.suppress.next = false;
     // the run ending in the first clock of the next bit: count it here
@@ -115,19 +122,11 @@ pub fn pulse_bit(j: &mut JudgeUnit, from: u64, len: u64, suppress: bool) -> (boo
 /// clock `from`, then dominant to the end of the bit; returns the blame at the sample point
 /// (clock 12).
 pub fn bit_dominant_from(j: &mut JudgeUnit, b: Bit, from: u64) -> bool {
-    let mut blame = false;
     apply(j, b);
-    for k in 0..16u64 {
+    let (blame, _) = bit_clocks(j, &|j, k| {
         j.c.next = k < from;
         j.bt.next = k < from;
-        j.sample.next = k == SAMPLE_AT;
-        j.bit_start.next = k == 0;
-        j.bs_cnt.next = k.into();
-        drive::settle(j);
-        blame |= j.blame.val();
-        drive::cycle(j);
-    }
-    j.sample.next = false;
+    });
     apply(j, Bit { c: j.c.val(), bt: j.bt.val(), ..Default::default() });
     blame
 }
