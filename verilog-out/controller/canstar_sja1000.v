@@ -145,6 +145,12 @@ module canstar_sja1000(clock,rst,wb_cyc,wb_stb,wb_we,wb_adr,wb_dat_w,wb_dat_r,wb
     reg  [3:0] filter$n;
     reg  [15:0] filter$d01;
     wire  filter$accept;
+    reg  filter$own_ide;
+    reg  filter$own_rtr;
+    reg  [28:0] filter$own_id;
+    reg  [3:0] filter$own_n;
+    reg  [15:0] filter$own_d01;
+    wire  filter$accept_own;
     reg  fifo$clock;
     reg  fifo$rst;
     reg  fifo$clear;
@@ -161,6 +167,7 @@ module canstar_sja1000(clock,rst,wb_cyc,wb_stb,wb_we,wb_adr,wb_dat_w,wb_dat_r,wb
     reg  [3:0] fifo$own_dlc;
     reg  [63:0] fifo$own_data;
     reg  fifo$accept;
+    reg  fifo$accept_own;
     reg  fifo$rrb;
     reg  fifo$cdo;
     reg  fifo$rbsa_we;
@@ -169,6 +176,8 @@ module canstar_sja1000(clock,rst,wb_cyc,wb_stb,wb_we,wb_adr,wb_dat_w,wb_dat_r,wb
     reg  fifo$host_rd;
     reg  fifo$host_win;
     reg  [5:0] fifo$host_idx;
+    wire  [3:0] fifo$rx_n;
+    wire  [3:0] fifo$own_n;
     wire  fifo$f_ide;
     wire  fifo$f_rtr;
     wire  [28:0] fifo$f_id;
@@ -448,7 +457,13 @@ module canstar_sja1000(clock,rst,wb_cyc,wb_stb,wb_we,wb_adr,wb_dat_w,wb_dat_r,wb
         .id(filter$id),
         .n(filter$n),
         .d01(filter$d01),
-        .accept(filter$accept)
+        .accept(filter$accept),
+        .own_ide(filter$own_ide),
+        .own_rtr(filter$own_rtr),
+        .own_id(filter$own_id),
+        .own_n(filter$own_n),
+        .own_d01(filter$own_d01),
+        .accept_own(filter$accept_own)
     );
     canstar_sja1000$fifo fifo(
         .clock(fifo$clock),
@@ -467,6 +482,7 @@ module canstar_sja1000(clock,rst,wb_cyc,wb_stb,wb_we,wb_adr,wb_dat_w,wb_dat_r,wb
         .own_dlc(fifo$own_dlc),
         .own_data(fifo$own_data),
         .accept(fifo$accept),
+        .accept_own(fifo$accept_own),
         .rrb(fifo$rrb),
         .cdo(fifo$cdo),
         .rbsa_we(fifo$rbsa_we),
@@ -475,6 +491,8 @@ module canstar_sja1000(clock,rst,wb_cyc,wb_stb,wb_we,wb_adr,wb_dat_w,wb_dat_r,wb
         .host_rd(fifo$host_rd),
         .host_win(fifo$host_win),
         .host_idx(fifo$host_idx),
+        .rx_n(fifo$rx_n),
+        .own_n(fifo$own_n),
         .f_ide(fifo$f_ide),
         .f_rtr(fifo$f_rtr),
         .f_id(fifo$f_id),
@@ -898,11 +916,16 @@ module canstar_sja1000(clock,rst,wb_cyc,wb_stb,wb_we,wb_adr,wb_dat_w,wb_dat_r,wb
         filter$idx = l_a[(32'h0)+:(3)];
         filter$wdata = l_d;
         filter$single = mode$afm;
-        filter$ide = fifo$f_ide;
-        filter$rtr = fifo$f_rtr;
-        filter$id = fifo$f_id;
-        filter$n = fifo$f_n;
-        filter$d01 = fifo$f_d01;
+        filter$ide = core$rx_ide;
+        filter$rtr = core$rx_rtr;
+        filter$id = core$rx_id;
+        filter$n = fifo$rx_n;
+        filter$d01 = core$rx_data[(32'h30)+:(16)];
+        filter$own_ide = txbuf$ide;
+        filter$own_rtr = txbuf$rtr;
+        filter$own_id = txbuf$id;
+        filter$own_n = fifo$own_n;
+        filter$own_d01 = txbuf$data[(32'h30)+:(16)];
         fifo$clock = clock;
         fifo$rst = rst;
         fifo$clear = mode$enter_rm;
@@ -919,6 +942,7 @@ module canstar_sja1000(clock,rst,wb_cyc,wb_stb,wb_we,wb_adr,wb_dat_w,wb_dat_r,wb
         fifo$own_dlc = txbuf$dlc;
         fifo$own_data = txbuf$data;
         fifo$accept = filter$accept;
+        fifo$accept_own = filter$accept_own;
         fifo$rrb = l_rrb;
         fifo$cdo = l_cdo;
         fifo$rbsa_we = l_we_rbsa;
@@ -7413,7 +7437,7 @@ module canstar_sja1000$ffsel(d,q,clock);
 endmodule // canstar_sja1000$ffsel
 
 
-module canstar_sja1000$fifo(clock,rst,clear,offer_rx,offer_own,rx_ide,rx_rtr,rx_id,rx_dlc,rx_data,own_ide,own_rtr,own_id,own_dlc,own_data,accept,rrb,cdo,rbsa_we,ram_we,wdata,host_rd,host_win,host_idx,f_ide,f_rtr,f_id,f_n,f_d01,rdata,rmc,rbsa,dos,overrun,own_done,own_dropped,busy,busy_own);
+module canstar_sja1000$fifo(clock,rst,clear,offer_rx,offer_own,rx_ide,rx_rtr,rx_id,rx_dlc,rx_data,own_ide,own_rtr,own_id,own_dlc,own_data,accept,accept_own,rrb,cdo,rbsa_we,ram_we,wdata,host_rd,host_win,host_idx,rx_n,own_n,f_ide,f_rtr,f_id,f_n,f_d01,rdata,rmc,rbsa,dos,overrun,own_done,own_dropped,busy,busy_own);
     
     // Module arguments
     input wire  clock;
@@ -7432,6 +7456,7 @@ module canstar_sja1000$fifo(clock,rst,clear,offer_rx,offer_own,rx_ide,rx_rtr,rx_
     input wire  [3:0] own_dlc;
     input wire  [63:0] own_data;
     input wire  accept;
+    input wire  accept_own;
     input wire  rrb;
     input wire  cdo;
     input wire  rbsa_we;
@@ -7440,6 +7465,8 @@ module canstar_sja1000$fifo(clock,rst,clear,offer_rx,offer_own,rx_ide,rx_rtr,rx_
     input wire  host_rd;
     input wire  host_win;
     input wire  [5:0] host_idx;
+    output reg  [3:0] rx_n;
+    output reg  [3:0] own_n;
     output reg  f_ide;
     output reg  f_rtr;
     output reg  [28:0] f_id;
@@ -7512,7 +7539,13 @@ module canstar_sja1000$fifo(clock,rst,clear,offer_rx,offer_own,rx_ide,rx_rtr,rx_
     reg  [7:0] l_db;
     reg  [7:0] l_wbyte;
     reg  l_wdone;
-    reg  l_fits;
+    reg  [15:0] l_fsff;
+    reg  [15:0] l_feff;
+    reg  [3:0] l_rn;
+    reg  [3:0] l_on;
+    reg  l_rfits;
+    reg  l_ofits;
+    reg  l_sfits;
     reg  [10:0] l_le;
     reg  [10:0] l_th;
     reg  [7:0] l_fi;
@@ -7635,7 +7668,7 @@ module canstar_sja1000$fifo(clock,rst,clear,offer_rx,offer_own,rx_ide,rx_rtr,rx_
             l_data = own_data;
         end
         f_n = l_dlc;
-        if (l_dlc >= 32'h8) begin
+        if (l_dlc[32'h3]) begin
             f_n = 32'h8;
         end
         if (f_rtr) begin
@@ -7735,75 +7768,52 @@ module canstar_sja1000$fifo(clock,rst,clear,offer_rx,offer_own,rx_ide,rx_rtr,rx_
         if (used$q[32'h6]) begin
             l_th = 32'h0;
         end
-        l_fits = 1'b0;
-        case (f_n)
-            0:
-                begin
-                    l_fits = l_th[32'ha];
-                    if (f_ide) begin
-                        l_fits = l_th[32'h8];
-                    end
-                end
-            1:
-                begin
-                    l_fits = l_th[32'h9];
-                    if (f_ide) begin
-                        l_fits = l_th[32'h7];
-                    end
-                end
-            2:
-                begin
-                    l_fits = l_th[32'h8];
-                    if (f_ide) begin
-                        l_fits = l_th[32'h6];
-                    end
-                end
-            3:
-                begin
-                    l_fits = l_th[32'h7];
-                    if (f_ide) begin
-                        l_fits = l_th[32'h5];
-                    end
-                end
-            4:
-                begin
-                    l_fits = l_th[32'h6];
-                    if (f_ide) begin
-                        l_fits = l_th[32'h4];
-                    end
-                end
-            5:
-                begin
-                    l_fits = l_th[32'h5];
-                    if (f_ide) begin
-                        l_fits = l_th[32'h3];
-                    end
-                end
-            6:
-                begin
-                    l_fits = l_th[32'h4];
-                    if (f_ide) begin
-                        l_fits = l_th[32'h2];
-                    end
-                end
-            7:
-                begin
-                    l_fits = l_th[32'h3];
-                    if (f_ide) begin
-                        l_fits = l_th[32'h1];
-                    end
-                end
-            8:
-                begin
-                    l_fits = l_th[32'h2];
-                    if (f_ide) begin
-                        l_fits = l_th[32'h0];
-                    end
-                end
-            default:
-                begin
-                end
-        endcase
+        l_fsff = 32'h0;
+        l_feff = 32'h0;
+        l_fsff = (l_fsff & ~(1 << (32'h0)) | ((l_th[32'ha]) << (32'h0)));
+        l_fsff = (l_fsff & ~(1 << (32'h1)) | ((l_th[32'h9]) << (32'h1)));
+        l_fsff = (l_fsff & ~(1 << (32'h2)) | ((l_th[32'h8]) << (32'h2)));
+        l_fsff = (l_fsff & ~(1 << (32'h3)) | ((l_th[32'h7]) << (32'h3)));
+        l_fsff = (l_fsff & ~(1 << (32'h4)) | ((l_th[32'h6]) << (32'h4)));
+        l_fsff = (l_fsff & ~(1 << (32'h5)) | ((l_th[32'h5]) << (32'h5)));
+        l_fsff = (l_fsff & ~(1 << (32'h6)) | ((l_th[32'h4]) << (32'h6)));
+        l_fsff = (l_fsff & ~(1 << (32'h7)) | ((l_th[32'h3]) << (32'h7)));
+        l_fsff = (l_fsff & ~(1 << (32'h8)) | ((l_th[32'h2]) << (32'h8)));
+        l_feff = (l_feff & ~(1 << (32'h0)) | ((l_th[32'h8]) << (32'h0)));
+        l_feff = (l_feff & ~(1 << (32'h1)) | ((l_th[32'h7]) << (32'h1)));
+        l_feff = (l_feff & ~(1 << (32'h2)) | ((l_th[32'h6]) << (32'h2)));
+        l_feff = (l_feff & ~(1 << (32'h3)) | ((l_th[32'h5]) << (32'h3)));
+        l_feff = (l_feff & ~(1 << (32'h4)) | ((l_th[32'h4]) << (32'h4)));
+        l_feff = (l_feff & ~(1 << (32'h5)) | ((l_th[32'h3]) << (32'h5)));
+        l_feff = (l_feff & ~(1 << (32'h6)) | ((l_th[32'h2]) << (32'h6)));
+        l_feff = (l_feff & ~(1 << (32'h7)) | ((l_th[32'h1]) << (32'h7)));
+        l_feff = (l_feff & ~(1 << (32'h8)) | ((l_th[32'h0]) << (32'h8)));
+        l_rn = rx_dlc;
+        if (rx_dlc[32'h3]) begin
+            l_rn = 32'h8;
+        end
+        if (rx_rtr) begin
+            l_rn = 32'h0;
+        end
+        l_on = own_dlc;
+        if (own_dlc[32'h3]) begin
+            l_on = 32'h8;
+        end
+        if (own_rtr) begin
+            l_on = 32'h0;
+        end
+        l_rfits = l_fsff[l_rn];
+        if (rx_ide) begin
+            l_rfits = l_feff[l_rn];
+        end
+        l_ofits = l_fsff[l_on];
+        if (own_ide) begin
+            l_ofits = l_feff[l_on];
+        end
+        l_sfits = l_rfits;
+        if (offer_own) begin
+            l_sfits = l_ofits;
+        end
         l_fi = cur_fi$q;
         if (fetch_q$q & (fetch_a$q == rbsa_r$q)) begin
             l_fi = ram$read_data;
@@ -7857,14 +7867,19 @@ module canstar_sja1000$fifo(clock,rst,clear,offer_rx,offer_own,rx_ide,rx_rtr,rx_
             end
         end
         if (~wr_busy$q & ~offer_rx) begin
-            own_acc$d = accept;
+            own_acc$d = accept_own;
         end
         l_acc = accept;
-        if (offer_own & ~wr_busy$q) begin
+        if (wr_busy$q) begin
+            if (wr_src$q) begin
+                l_acc = accept_own;
+            end
+        end
+        else if (offer_own) begin
             l_acc = own_acc$q;
         end
         if (offer_rx | offer_own) begin
-            if (l_acc & l_fits & ~wr_busy$q) begin
+            if (l_acc & l_sfits & ~wr_busy$q) begin
                 wr_busy$d = 1'b1;
                 wr_src$d = offer_own;
                 wr_idx$d = 32'h0;
@@ -7877,7 +7892,7 @@ module canstar_sja1000$fifo(clock,rst,clear,offer_rx,offer_own,rx_ide,rx_rtr,rx_
                 end
             end
         end
-        own_dropped = offer_own & ~(own_acc$q & l_fits & ~wr_busy$q);
+        own_dropped = offer_own & ~(own_acc$q & l_ofits & ~wr_busy$q);
         if (rrb) begin
             rbsa_r$d = rbsa_r$q + ((l_cur_len) & 6'h3f);
         end
@@ -7905,6 +7920,8 @@ module canstar_sja1000$fifo(clock,rst,clear,offer_rx,offer_own,rx_ide,rx_rtr,rx_
             wr_busy$d = 1'b0;
             ram$write_enable = 1'b0;
         end
+        rx_n = l_rn;
+        own_n = l_on;
         rdata = ram$read_data;
         rmc = rmc_r$q;
         rbsa = rbsa_r$q;
@@ -8239,7 +8256,7 @@ module canstar_sja1000$fifo$wr_src(d,q,clock);
 endmodule // canstar_sja1000$fifo$wr_src
 
 
-module canstar_sja1000$filter(clock,rst,we,idx,wdata,single,ide,rtr,id,n,d01,accept);
+module canstar_sja1000$filter(clock,rst,we,idx,wdata,single,ide,rtr,id,n,d01,accept,own_ide,own_rtr,own_id,own_n,own_d01,accept_own);
     
     // Module arguments
     input wire  clock;
@@ -8254,6 +8271,12 @@ module canstar_sja1000$filter(clock,rst,we,idx,wdata,single,ide,rtr,id,n,d01,acc
     input wire  [3:0] n;
     input wire  [15:0] d01;
     output reg  accept;
+    input wire  own_ide;
+    input wire  own_rtr;
+    input wire  [28:0] own_id;
+    input wire  [3:0] own_n;
+    input wire  [15:0] own_d01;
+    output reg  accept_own;
     
     // Constant declarations
     localparam  amr_reset = 8'hff;
@@ -8283,14 +8306,28 @@ module canstar_sja1000$filter(clock,rst,we,idx,wdata,single,ide,rtr,id,n,d01,acc
     reg  [7:0] amr3$d;
     wire  [7:0] amr3$q;
     reg  amr3$clock;
+    reg  [31:0] m_rx$acr;
+    reg  [31:0] m_rx$amr;
+    reg  m_rx$single;
+    reg  m_rx$ide;
+    reg  m_rx$rtr;
+    reg  [28:0] m_rx$id;
+    reg  [3:0] m_rx$n;
+    reg  [15:0] m_rx$d01;
+    wire  m_rx$accept;
+    reg  [31:0] m_own$acr;
+    reg  [31:0] m_own$amr;
+    reg  m_own$single;
+    reg  m_own$ide;
+    reg  m_own$rtr;
+    reg  [28:0] m_own$id;
+    reg  [3:0] m_own$n;
+    reg  [15:0] m_own$d01;
+    wire  m_own$accept;
     
     // Local signals
     reg  [31:0] l_acr;
     reg  [31:0] l_amr;
-    reg  [31:0] l_v1;
-    reg  [31:0] l_v2;
-    reg  [31:0] l_m1;
-    reg  [31:0] l_m2;
     
     // Sub module instances
     canstar_sja1000$filter$acr0 acr0(
@@ -8332,6 +8369,28 @@ module canstar_sja1000$filter(clock,rst,we,idx,wdata,single,ide,rtr,id,n,d01,acc
         .d(amr3$d),
         .q(amr3$q),
         .clock(amr3$clock)
+    );
+    canstar_sja1000$filter$m_rx m_rx(
+        .acr(m_rx$acr),
+        .amr(m_rx$amr),
+        .single(m_rx$single),
+        .ide(m_rx$ide),
+        .rtr(m_rx$rtr),
+        .id(m_rx$id),
+        .n(m_rx$n),
+        .d01(m_rx$d01),
+        .accept(m_rx$accept)
+    );
+    canstar_sja1000$filter$m_own m_own(
+        .acr(m_own$acr),
+        .amr(m_own$amr),
+        .single(m_own$single),
+        .ide(m_own$ide),
+        .rtr(m_own$rtr),
+        .id(m_own$id),
+        .n(m_own$n),
+        .d01(m_own$d01),
+        .accept(m_own$accept)
     );
     
     // Update code
@@ -8413,47 +8472,24 @@ module canstar_sja1000$filter(clock,rst,we,idx,wdata,single,ide,rtr,id,n,d01,acc
         end
         l_acr = (((acr0$q) & 32'hffffffff) << 32'h18) | (((acr1$q) & 32'hffffffff) << 32'h10) | (((acr2$q) & 32'hffffffff) << 32'h8) | ((acr3$q) & 32'hffffffff);
         l_amr = (((amr0$q) & 32'hffffffff) << 32'h18) | (((amr1$q) & 32'hffffffff) << 32'h10) | (((amr2$q) & 32'hffffffff) << 32'h8) | ((amr3$q) & 32'hffffffff);
-        if (single) begin
-            if (ide) begin
-                l_v1 = ((id) & 32'hffffffff) << 32'h3;
-                l_v1 = (l_v1 & ~(1 << (32'h2)) | ((rtr) << (32'h2)));
-                l_m1 = l_amr | 32'h3;
-            end
-            else begin
-                l_v1 = (((id[(32'h0)+:(11)]) & 32'hffffffff) << 32'h15) | ((d01) & 32'hffffffff);
-                l_v1 = (l_v1 & ~(1 << (32'h14)) | ((rtr) << (32'h14)));
-                l_m1 = l_amr | 32'hf0000;
-                if (n < 32'h2) begin
-                    l_m1 = l_m1 | 32'hff;
-                end
-                if (n < 32'h1) begin
-                    l_m1 = l_m1 | 32'hff00;
-                end
-            end
-            l_v2 = 32'h0;
-            l_m2 = 32'h0;
-            accept = ((l_v1 ^ l_acr) & ~l_m1) == 32'h0;
-        end
-        else begin
-            if (ide) begin
-                l_v1 = ((id[(32'hd)+:(16)]) & 32'hffffffff) << 32'h10;
-                l_m1 = l_amr | 32'hffff;
-                l_v2 = ((id[(32'hd)+:(16)]) & 32'hffffffff);
-                l_m2 = l_amr | 64'hffff0000;
-            end
-            else begin
-                l_v1 = (((id[(32'h0)+:(11)]) & 32'hffffffff) << 32'h15) | (((d01[(32'hc)+:(4)]) & 32'hffffffff) << 32'h10) | ((d01[(32'h8)+:(4)]) & 32'hffffffff);
-                l_v1 = (l_v1 & ~(1 << (32'h14)) | ((rtr) << (32'h14)));
-                l_m1 = l_amr | 32'hfff0;
-                if (n < 32'h1) begin
-                    l_m1 = l_m1 | 32'hf000f;
-                end
-                l_v2 = ((id[(32'h0)+:(11)]) & 32'hffffffff) << 32'h5;
-                l_v2 = (l_v2 & ~(1 << (32'h4)) | ((rtr) << (32'h4)));
-                l_m2 = l_amr | 64'hffff000f;
-            end
-            accept = (((l_v1 ^ l_acr) & ~l_m1) == 32'h0) | (((l_v2 ^ l_acr) & ~l_m2) == 32'h0);
-        end
+        m_rx$acr = l_acr;
+        m_rx$amr = l_amr;
+        m_rx$single = single;
+        m_rx$ide = ide;
+        m_rx$rtr = rtr;
+        m_rx$id = id;
+        m_rx$n = n;
+        m_rx$d01 = d01;
+        accept = m_rx$accept;
+        m_own$acr = l_acr;
+        m_own$amr = l_amr;
+        m_own$single = single;
+        m_own$ide = own_ide;
+        m_own$rtr = own_rtr;
+        m_own$id = own_id;
+        m_own$n = own_n;
+        m_own$d01 = own_d01;
+        accept_own = m_own$accept;
     end
     
 endmodule // canstar_sja1000$filter
@@ -8609,6 +8645,140 @@ module canstar_sja1000$filter$amr3(d,q,clock);
     end
           
 endmodule // canstar_sja1000$filter$amr3
+
+
+module canstar_sja1000$filter$m_own(acr,amr,single,ide,rtr,id,n,d01,accept);
+    
+    // Module arguments
+    input wire  [31:0] acr;
+    input wire  [31:0] amr;
+    input wire  single;
+    input wire  ide;
+    input wire  rtr;
+    input wire  [28:0] id;
+    input wire  [3:0] n;
+    input wire  [15:0] d01;
+    output reg  accept;
+    
+    // Local signals
+    reg  [31:0] l_v1;
+    reg  [31:0] l_v2;
+    reg  [31:0] l_m1;
+    reg  [31:0] l_m2;
+    
+    // Update code
+    always @(*) begin
+        if (single) begin
+            if (ide) begin
+                l_v1 = ((id) & 32'hffffffff) << 32'h3;
+                l_v1 = (l_v1 & ~(1 << (32'h2)) | ((rtr) << (32'h2)));
+                l_m1 = amr | 32'h3;
+            end
+            else begin
+                l_v1 = (((id[(32'h0)+:(11)]) & 32'hffffffff) << 32'h15) | ((d01) & 32'hffffffff);
+                l_v1 = (l_v1 & ~(1 << (32'h14)) | ((rtr) << (32'h14)));
+                l_m1 = amr | 32'hf0000;
+                if (n[(32'h1)+:(3)] == 32'h0) begin
+                    l_m1 = l_m1 | 32'hff;
+                end
+                if (n == 32'h0) begin
+                    l_m1 = l_m1 | 32'hff00;
+                end
+            end
+            l_v2 = 32'h0;
+            l_m2 = 32'h0;
+            accept = ((l_v1 ^ acr) & ~l_m1) == 32'h0;
+        end
+        else begin
+            if (ide) begin
+                l_v1 = ((id[(32'hd)+:(16)]) & 32'hffffffff) << 32'h10;
+                l_m1 = amr | 32'hffff;
+                l_v2 = ((id[(32'hd)+:(16)]) & 32'hffffffff);
+                l_m2 = amr | 64'hffff0000;
+            end
+            else begin
+                l_v1 = (((id[(32'h0)+:(11)]) & 32'hffffffff) << 32'h15) | (((d01[(32'hc)+:(4)]) & 32'hffffffff) << 32'h10) | ((d01[(32'h8)+:(4)]) & 32'hffffffff);
+                l_v1 = (l_v1 & ~(1 << (32'h14)) | ((rtr) << (32'h14)));
+                l_m1 = amr | 32'hfff0;
+                if (n == 32'h0) begin
+                    l_m1 = l_m1 | 32'hf000f;
+                end
+                l_v2 = ((id[(32'h0)+:(11)]) & 32'hffffffff) << 32'h5;
+                l_v2 = (l_v2 & ~(1 << (32'h4)) | ((rtr) << (32'h4)));
+                l_m2 = amr | 64'hffff000f;
+            end
+            accept = (((l_v1 ^ acr) & ~l_m1) == 32'h0) | (((l_v2 ^ acr) & ~l_m2) == 32'h0);
+        end
+    end
+    
+endmodule // canstar_sja1000$filter$m_own
+
+
+module canstar_sja1000$filter$m_rx(acr,amr,single,ide,rtr,id,n,d01,accept);
+    
+    // Module arguments
+    input wire  [31:0] acr;
+    input wire  [31:0] amr;
+    input wire  single;
+    input wire  ide;
+    input wire  rtr;
+    input wire  [28:0] id;
+    input wire  [3:0] n;
+    input wire  [15:0] d01;
+    output reg  accept;
+    
+    // Local signals
+    reg  [31:0] l_v1;
+    reg  [31:0] l_v2;
+    reg  [31:0] l_m1;
+    reg  [31:0] l_m2;
+    
+    // Update code
+    always @(*) begin
+        if (single) begin
+            if (ide) begin
+                l_v1 = ((id) & 32'hffffffff) << 32'h3;
+                l_v1 = (l_v1 & ~(1 << (32'h2)) | ((rtr) << (32'h2)));
+                l_m1 = amr | 32'h3;
+            end
+            else begin
+                l_v1 = (((id[(32'h0)+:(11)]) & 32'hffffffff) << 32'h15) | ((d01) & 32'hffffffff);
+                l_v1 = (l_v1 & ~(1 << (32'h14)) | ((rtr) << (32'h14)));
+                l_m1 = amr | 32'hf0000;
+                if (n[(32'h1)+:(3)] == 32'h0) begin
+                    l_m1 = l_m1 | 32'hff;
+                end
+                if (n == 32'h0) begin
+                    l_m1 = l_m1 | 32'hff00;
+                end
+            end
+            l_v2 = 32'h0;
+            l_m2 = 32'h0;
+            accept = ((l_v1 ^ acr) & ~l_m1) == 32'h0;
+        end
+        else begin
+            if (ide) begin
+                l_v1 = ((id[(32'hd)+:(16)]) & 32'hffffffff) << 32'h10;
+                l_m1 = amr | 32'hffff;
+                l_v2 = ((id[(32'hd)+:(16)]) & 32'hffffffff);
+                l_m2 = amr | 64'hffff0000;
+            end
+            else begin
+                l_v1 = (((id[(32'h0)+:(11)]) & 32'hffffffff) << 32'h15) | (((d01[(32'hc)+:(4)]) & 32'hffffffff) << 32'h10) | ((d01[(32'h8)+:(4)]) & 32'hffffffff);
+                l_v1 = (l_v1 & ~(1 << (32'h14)) | ((rtr) << (32'h14)));
+                l_m1 = amr | 32'hfff0;
+                if (n == 32'h0) begin
+                    l_m1 = l_m1 | 32'hf000f;
+                end
+                l_v2 = ((id[(32'h0)+:(11)]) & 32'hffffffff) << 32'h5;
+                l_v2 = (l_v2 & ~(1 << (32'h4)) | ((rtr) << (32'h4)));
+                l_m2 = amr | 64'hffff000f;
+            end
+            accept = (((l_v1 ^ acr) & ~l_m1) == 32'h0) | (((l_v2 ^ acr) & ~l_m2) == 32'h0);
+        end
+    end
+    
+endmodule // canstar_sja1000$filter$m_rx
 
 
 module canstar_sja1000$irq(clock,rst,wr_ier,wdata,rd_ir,rbs,ti,ei,doi,wui,epi,ali,bei,ier,ir,int_n);
@@ -9077,12 +9247,10 @@ module canstar_sja1000$status(clock,rst,opm,state,tec,rec,runs,cfg_err,ewl,wr_rx
     output reg  [7:0] rec_in;
     
     // Constant declarations
-    localparam  f_reset = 5'b0;
-    localparam  f_waitidle = 5'b1;
     localparam  f_idle = 5'b10;
-    localparam  f_busoff = 5'b11;
-    localparam  f_sof = 5'b100;
-    localparam  f_eof = 5'b10001;
+    localparam  m_wait = 32'hb;
+    localparam  m_busy = 32'h1fffff0;
+    localparam  m_frame = 32'h3fff0;
     localparam  sr_rbs = 3'b0;
     localparam  sr_dos = 3'b1;
     localparam  sr_tbs = 3'b10;
@@ -9220,9 +9388,9 @@ module canstar_sja1000$status(clock,rst,opm,state,tec,rec,runs,cfg_err,ewl,wr_rx
             bs_q$d = 1'b0;
             pas_q$d = 1'b0;
         end
-        l_wait = (field == f_reset) | (field == f_waitidle) | (field == f_busoff);
-        l_busy = field >= f_sof;
-        txact = role & (field >= f_sof) & (field <= f_eof);
+        l_wait = m_wait[field];
+        l_busy = m_busy[field];
+        txact = role & m_frame[field];
         idle = field == f_idle;
         l_sr = 32'h0;
         l_sr = (l_sr & ~(1 << (sr_rbs)) | ((rbs) << (sr_rbs)));
@@ -9358,6 +9526,10 @@ module canstar_sja1000$timing(clock,rst,we0,we1,wdata,btr0,btr1,brp,prop,ph1,ph2
     // Constant declarations
     localparam  v0 = 8'h0;
     localparam  v1 = 8'h14;
+    localparam  v_prop = 4'h0;
+    localparam  v_ph1 = 3'b11;
+    localparam  v_ph2 = 3'b1;
+    localparam  v_sjw = 2'b0;
     
     // Stub signals
     reg  [7:0] r0$d;
@@ -9386,13 +9558,13 @@ module canstar_sja1000$timing(clock,rst,we0,we1,wdata,btr0,btr1,brp,prop,ph1,ph2
     reg  o_tri$clock;
     
     // Local signals
-    reg  [7:0] l_n0;
-    reg  [7:0] l_n1;
-    reg  [5:0] l_t1;
-    reg  [5:0] l_prop;
-    reg  [5:0] l_ph1;
-    reg  [5:0] l_ph2;
-    reg  [5:0] l_sjw;
+    reg  [3:0] l_k;
+    reg  [3:0] l_wprop;
+    reg  [2:0] l_wph1;
+    reg  [2:0] l_wph2;
+    reg  [1:0] l_ssjw;
+    reg  [2:0] l_sph1;
+    reg  [1:0] l_msjw;
     
     // Sub module instances
     canstar_sja1000$timing$r0 r0(
@@ -9454,46 +9626,120 @@ module canstar_sja1000$timing(clock,rst,we0,we1,wdata,btr0,btr1,brp,prop,ph1,ph2
         o_ph2$d = o_ph2$q;
         o_sjw$d = o_sjw$q;
         o_tri$d = o_tri$q;
-        l_n0 = r0$q;
-        l_n1 = r1$q;
+        l_k = wdata[(32'h0)+:(4)];
+        l_wph1 = 32'h7;
+        l_wprop = 32'h0;
+        case (l_k)
+            0:
+                begin
+                    l_wph1 = 32'h0;
+                end
+            1:
+                begin
+                    l_wph1 = 32'h0;
+                end
+            2:
+                begin
+                    l_wph1 = 32'h1;
+                end
+            3:
+                begin
+                    l_wph1 = 32'h2;
+                end
+            4:
+                begin
+                    l_wph1 = 32'h3;
+                end
+            5:
+                begin
+                    l_wph1 = 32'h4;
+                end
+            6:
+                begin
+                    l_wph1 = 32'h5;
+                end
+            7:
+                begin
+                    l_wph1 = 32'h6;
+                end
+            9:
+                begin
+                    l_wprop = 32'h1;
+                end
+            10:
+                begin
+                    l_wprop = 32'h2;
+                end
+            11:
+                begin
+                    l_wprop = 32'h3;
+                end
+            12:
+                begin
+                    l_wprop = 32'h4;
+                end
+            13:
+                begin
+                    l_wprop = 32'h5;
+                end
+            14:
+                begin
+                    l_wprop = 32'h6;
+                end
+            15:
+                begin
+                    l_wprop = 32'h7;
+                end
+            default:
+                begin
+                end
+        endcase
+        l_wph2 = wdata[(32'h4)+:(3)];
+        if (l_k == 32'h0) begin
+            l_wph2 = 32'h0;
+        end
+        l_ssjw = wdata[(32'h6)+:(2)];
+        l_sph1 = o_ph1$q;
+        if (we1) begin
+            l_ssjw = r0$q[(32'h6)+:(2)];
+            l_sph1 = l_wph1;
+        end
+        l_msjw = l_ssjw;
+        if (l_sph1 == 32'h2) begin
+            l_msjw = (l_ssjw & ~(1 << (32'h0)) | ((l_ssjw[32'h0] & ~l_ssjw[32'h1]) << (32'h0)));
+        end
+        if (l_sph1 == 32'h1) begin
+            l_msjw = 32'h0;
+            if (l_ssjw != 32'h0) begin
+                l_msjw = 32'h1;
+            end
+        end
+        if (l_sph1 == 32'h0) begin
+            l_msjw = 32'h0;
+        end
         if (we0) begin
-            l_n0 = wdata;
+            r0$d = wdata;
+            o_brp$d = wdata[(32'h0)+:(6)];
+            o_sjw$d = l_msjw;
         end
         if (we1) begin
-            l_n1 = wdata;
+            r1$d = wdata;
+            o_prop$d = l_wprop;
+            o_ph1$d = l_wph1;
+            o_ph2$d = l_wph2;
+            o_sjw$d = l_msjw;
+            o_tri$d = wdata[32'h7];
         end
         if (rst) begin
-            l_n0 = v0;
-            l_n1 = v1;
+            r0$d = v0;
+            r1$d = v1;
+            o_brp$d = v0[(32'h0)+:(6)];
+            o_prop$d = v_prop;
+            o_ph1$d = v_ph1;
+            o_ph2$d = v_ph2;
+            o_sjw$d = v_sjw;
+            o_tri$d = v1[32'h7];
         end
-        r0$d = l_n0;
-        r1$d = l_n1;
-        o_brp$d = l_n0[(32'h0)+:(6)];
-        l_t1 = ((l_n1[(32'h0)+:(4)]) & 6'h3f) + 32'h1;
-        l_ph1 = l_t1 - 32'h1;
-        if (l_t1 > 32'h9) begin
-            l_ph1 = 32'h8;
-        end
-        l_prop = l_t1 - l_ph1;
-        l_ph2 = ((l_n1[(32'h4)+:(3)]) & 6'h3f) + 32'h1;
-        if (l_t1 == 32'h1) begin
-            l_prop = 32'h1;
-            l_ph1 = 32'h1;
-            l_ph2 = 32'h1;
-        end
-        l_sjw = ((l_n0[(32'h6)+:(2)]) & 6'h3f) + 32'h1;
-        if (l_sjw > l_ph1) begin
-            l_sjw = l_ph1;
-        end
-        l_prop = l_prop - 32'h1;
-        l_ph1 = l_ph1 - 32'h1;
-        l_ph2 = l_ph2 - 32'h1;
-        l_sjw = l_sjw - 32'h1;
-        o_prop$d = l_prop[(32'h0)+:(4)];
-        o_ph1$d = l_ph1[(32'h0)+:(3)];
-        o_ph2$d = l_ph2[(32'h0)+:(3)];
-        o_sjw$d = l_sjw[(32'h0)+:(2)];
-        o_tri$d = l_n1[32'h7];
         brp = (((o_brp$q) & 7'h7f) << 32'h1) | 32'h1;
         prop = o_prop$q;
         ph1 = o_ph1$q;

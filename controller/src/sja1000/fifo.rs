@@ -8,8 +8,10 @@
 //! delivers it (`offer_rx`, the `rx_*` inputs) or, for a self reception
 //! request, on the clock the own frame was sent (`offer_own`, the `own_*`
 //! inputs from the transmit buffer); while the writer runs, the candidate
-//! frame (`f_*`, for the acceptance filter) is the frame being written
-//! (both sources hold their frame). A frame that passes the filter is
+//! frame (`f_*`) is the frame being written (both sources hold their
+//! frame). The acceptance filter judges both sources side by side
+//! (`accept`, `accept_own`; `rx_n`, `own_n` are their data bytes carried),
+//! and the candidate's verdict is selected. A frame that passes the filter is
 //! written one byte per clock from RAM[(RBSA + used) mod 64] on; RMC counts
 //! it when the last byte is written. A frame that passes the filter but
 //! does not fit (or arrives while the writer is busy) is dropped whole and
@@ -55,8 +57,10 @@ pub struct RxFifo {
     pub own_id: Signal<In, Bits<29>>,
     pub own_dlc: Signal<In, Bits<4>>,
     pub own_data: Signal<In, Bits<64>>,
-    /// The acceptance filter passes the candidate frame (`f_*`).
+    /// The acceptance filter passes the received frame (`rx_*`), the own
+    /// frame (`own_*`).
     pub accept: Signal<In, Bit>,
+    pub accept_own: Signal<In, Bit>,
     pub rrb: Signal<In, Bit>,
     pub cdo: Signal<In, Bit>,
     pub rbsa_we: Signal<In, Bit>,
@@ -66,8 +70,13 @@ pub struct RxFifo {
     pub host_win: Signal<In, Bit>,
     pub host_idx: Signal<In, Bits<6>>,
 
-    /// The candidate frame, for the acceptance filter: IDE, RTR, identifier,
-    /// data bytes carried, data bytes 0 (bits 15..8) and 1.
+    /// The data bytes carried by the received frame and by the own frame
+    /// (for the acceptance filter).
+    pub rx_n: Signal<Out, Bits<4>>,
+    pub own_n: Signal<Out, Bits<4>>,
+    /// The candidate frame (the offered one, or the one being written):
+    /// IDE, RTR, identifier, data bytes carried, data bytes 0 (bits 15..8)
+    /// and 1.
     pub f_ide: Signal<Out, Bit>,
     pub f_rtr: Signal<Out, Bit>,
     pub f_id: Signal<Out, Bits<29>>,
@@ -110,7 +119,13 @@ pub struct RxFifo {
     l_db: Signal<Local, Bits<8>>,
     l_wbyte: Signal<Local, Bits<8>>,
     l_wdone: Signal<Local, Bit>,
-    l_fits: Signal<Local, Bit>,
+    l_fsff: Signal<Local, Bits<16>>,
+    l_feff: Signal<Local, Bits<16>>,
+    l_rn: Signal<Local, Bits<4>>,
+    l_on: Signal<Local, Bits<4>>,
+    l_rfits: Signal<Local, Bit>,
+    l_ofits: Signal<Local, Bit>,
+    l_sfits: Signal<Local, Bit>,
     l_le: Signal<Local, Bits<11>>,
     l_th: Signal<Local, Bits<11>>,
     l_fi: Signal<Local, Bits<8>>,
@@ -137,6 +152,9 @@ impl Default for RxFifo {
             own_dlc: Default::default(),
             own_data: Default::default(),
             accept: Default::default(),
+            accept_own: Default::default(),
+            rx_n: Default::default(),
+            own_n: Default::default(),
             rrb: Default::default(),
             cdo: Default::default(),
             rbsa_we: Default::default(),
@@ -184,7 +202,13 @@ impl Default for RxFifo {
             l_db: Default::default(),
             l_wbyte: Default::default(),
             l_wdone: Default::default(),
-            l_fits: Default::default(),
+            l_fsff: Default::default(),
+            l_feff: Default::default(),
+            l_rn: Default::default(),
+            l_on: Default::default(),
+            l_rfits: Default::default(),
+            l_ofits: Default::default(),
+            l_sfits: Default::default(),
             l_le: Default::default(),
             l_th: Default::default(),
             l_fi: Default::default(),
@@ -222,7 +246,7 @@ impl Logic for RxFifo {
         }
         // data bytes carried
         self.f_n.next = self.l_dlc.val();
-        if self.l_dlc.val() >= 8 {
+        if self.l_dlc.val().get_bit(3) {
             self.f_n.next = 8.into();
         }
         if self.f_rtr.val() {
@@ -329,63 +353,57 @@ impl Logic for RxFifo {
         if self.used.q.val().get_bit(6) {
             self.l_th.next = 0.into();
         }
-        self.l_fits.next = false;
-        match self.f_n.val().index() {
-            0 => {
-                self.l_fits.next = self.l_th.val().get_bit(10);
-                if self.f_ide.val() {
-                    self.l_fits.next = self.l_th.val().get_bit(8);
-                }
-            }
-            1 => {
-                self.l_fits.next = self.l_th.val().get_bit(9);
-                if self.f_ide.val() {
-                    self.l_fits.next = self.l_th.val().get_bit(7);
-                }
-            }
-            2 => {
-                self.l_fits.next = self.l_th.val().get_bit(8);
-                if self.f_ide.val() {
-                    self.l_fits.next = self.l_th.val().get_bit(6);
-                }
-            }
-            3 => {
-                self.l_fits.next = self.l_th.val().get_bit(7);
-                if self.f_ide.val() {
-                    self.l_fits.next = self.l_th.val().get_bit(5);
-                }
-            }
-            4 => {
-                self.l_fits.next = self.l_th.val().get_bit(6);
-                if self.f_ide.val() {
-                    self.l_fits.next = self.l_th.val().get_bit(4);
-                }
-            }
-            5 => {
-                self.l_fits.next = self.l_th.val().get_bit(5);
-                if self.f_ide.val() {
-                    self.l_fits.next = self.l_th.val().get_bit(3);
-                }
-            }
-            6 => {
-                self.l_fits.next = self.l_th.val().get_bit(4);
-                if self.f_ide.val() {
-                    self.l_fits.next = self.l_th.val().get_bit(2);
-                }
-            }
-            7 => {
-                self.l_fits.next = self.l_th.val().get_bit(3);
-                if self.f_ide.val() {
-                    self.l_fits.next = self.l_th.val().get_bit(1);
-                }
-            }
-            8 => {
-                self.l_fits.next = self.l_th.val().get_bit(2);
-                if self.f_ide.val() {
-                    self.l_fits.next = self.l_th.val().get_bit(0);
-                }
-            }
-            _ => {}
+        // Bit n of `l_fsff` (`l_feff`): a standard (extended) frame of n
+        // data bytes fits, used <= 61 - n (59 - n), bit 10 - n (8 - n) of
+        // `l_th`; bits 9..15 are 0 (n is at most 8).
+        self.l_fsff.next = 0.into();
+        self.l_feff.next = 0.into();
+        self.l_fsff.next = self.l_fsff.val().replace_bit(0, self.l_th.val().get_bit(10));
+        self.l_fsff.next = self.l_fsff.val().replace_bit(1, self.l_th.val().get_bit(9));
+        self.l_fsff.next = self.l_fsff.val().replace_bit(2, self.l_th.val().get_bit(8));
+        self.l_fsff.next = self.l_fsff.val().replace_bit(3, self.l_th.val().get_bit(7));
+        self.l_fsff.next = self.l_fsff.val().replace_bit(4, self.l_th.val().get_bit(6));
+        self.l_fsff.next = self.l_fsff.val().replace_bit(5, self.l_th.val().get_bit(5));
+        self.l_fsff.next = self.l_fsff.val().replace_bit(6, self.l_th.val().get_bit(4));
+        self.l_fsff.next = self.l_fsff.val().replace_bit(7, self.l_th.val().get_bit(3));
+        self.l_fsff.next = self.l_fsff.val().replace_bit(8, self.l_th.val().get_bit(2));
+        self.l_feff.next = self.l_feff.val().replace_bit(0, self.l_th.val().get_bit(8));
+        self.l_feff.next = self.l_feff.val().replace_bit(1, self.l_th.val().get_bit(7));
+        self.l_feff.next = self.l_feff.val().replace_bit(2, self.l_th.val().get_bit(6));
+        self.l_feff.next = self.l_feff.val().replace_bit(3, self.l_th.val().get_bit(5));
+        self.l_feff.next = self.l_feff.val().replace_bit(4, self.l_th.val().get_bit(4));
+        self.l_feff.next = self.l_feff.val().replace_bit(5, self.l_th.val().get_bit(3));
+        self.l_feff.next = self.l_feff.val().replace_bit(6, self.l_th.val().get_bit(2));
+        self.l_feff.next = self.l_feff.val().replace_bit(7, self.l_th.val().get_bit(1));
+        self.l_feff.next = self.l_feff.val().replace_bit(8, self.l_th.val().get_bit(0));
+        // The data bytes carried by the received and by the own frame and
+        // whether each fits: an offer selects the verdict (`l_sfits`), so
+        // that the fit test is not behind the candidate frame's select.
+        self.l_rn.next = self.rx_dlc.val();
+        if self.rx_dlc.val().get_bit(3) {
+            self.l_rn.next = 8.into();
+        }
+        if self.rx_rtr.val() {
+            self.l_rn.next = 0.into();
+        }
+        self.l_on.next = self.own_dlc.val();
+        if self.own_dlc.val().get_bit(3) {
+            self.l_on.next = 8.into();
+        }
+        if self.own_rtr.val() {
+            self.l_on.next = 0.into();
+        }
+        self.l_rfits.next = self.l_fsff.val().get_bit(self.l_rn.val().index());
+        if self.rx_ide.val() {
+            self.l_rfits.next = self.l_feff.val().get_bit(self.l_rn.val().index());
+        }
+        self.l_ofits.next = self.l_fsff.val().get_bit(self.l_on.val().index());
+        if self.own_ide.val() {
+            self.l_ofits.next = self.l_feff.val().get_bit(self.l_on.val().index());
+        }
+        self.l_sfits.next = self.l_rfits.val();
+        if self.offer_own.val() {
+            self.l_sfits.next = self.l_ofits.val();
         }
 
         // Length of the message at RBSA (for a release), from its FI byte.
@@ -457,15 +475,23 @@ impl Logic for RxFifo {
         // transmit buffer (locked) nor the filter's code, mask and mode
         // (reset mode only) change, and that is at least a frame's length
         // (no other offer and writer run can fill it).
+        // (The candidate is the own frame then.) `l_acc` is the verdict on
+        // the candidate frame, read on offers only: the own frame's taken
+        // from `own_acc`, else the frame being written's, or the received
+        // frame's.
         if !self.wr_busy.q.val() & !self.offer_rx.val() {
-            self.own_acc.d.next = self.accept.val();
+            self.own_acc.d.next = self.accept_own.val();
         }
         self.l_acc.next = self.accept.val();
-        if self.offer_own.val() & !self.wr_busy.q.val() {
+        if self.wr_busy.q.val() {
+            if self.wr_src.q.val() {
+                self.l_acc.next = self.accept_own.val();
+            }
+        } else if self.offer_own.val() {
             self.l_acc.next = self.own_acc.q.val();
         }
         if self.offer_rx.val() | self.offer_own.val() {
-            if self.l_acc.val() & self.l_fits.val() & !self.wr_busy.q.val() {
+            if self.l_acc.val() & self.l_sfits.val() & !self.wr_busy.q.val() {
                 self.wr_busy.d.next = true;
                 self.wr_src.d.next = self.offer_own.val();
                 self.wr_idx.d.next = 0.into();
@@ -480,7 +506,7 @@ impl Logic for RxFifo {
         // (the else branch above for the own frame, written without the
         // filter's combinational verdict, which it does not depend on)
         self.own_dropped.next = self.offer_own.val()
-            & !(self.own_acc.q.val() & self.l_fits.val() & !self.wr_busy.q.val());
+            & !(self.own_acc.q.val() & self.l_ofits.val() & !self.wr_busy.q.val());
         // Pointers.
         if self.rrb.val() {
             self.rbsa_r.d.next = self.rbsa_r.q.val() + bit_cast::<6, 4>(self.l_cur_len.val());
@@ -509,6 +535,8 @@ impl Logic for RxFifo {
             self.ram.write_enable.next = false;
         }
 
+        self.rx_n.next = self.l_rn.val();
+        self.own_n.next = self.l_on.val();
         self.rdata.next = self.ram.read_data.val();
         self.rmc.next = self.rmc_r.q.val();
         self.rbsa.next = self.rbsa_r.q.val();

@@ -11,7 +11,11 @@
 //! (filter 1) or 15..0 (filter 2). Data bytes that the frame does not carry
 //! (`n` bytes: remote frames and DLC < 2) match any code.
 //!
-//! The filter is combinational in the frame (`accept`); the registers are
+//! The filter is combinational in the frame ([`FilterMatch`]), for two
+//! frames side by side: `accept` for the frame on `ide`, `rtr`, `id`, `n`,
+//! `d01` (the received frame) and `accept_own` for the one on `own_*` (the
+//! transmit buffer's), so that the FIFO selects a verdict, not the frame
+//! in front of the filter. The registers are
 //! written on `we` at index `idx` (0..3 ACR0..3, 4..7 AMR0..3). The host
 //! reads them from a copy in block RAM that the top keeps (the same writes;
 //! AMR bytes since a hardware reset read 0xFF there).
@@ -39,6 +43,13 @@ pub struct AcceptanceFilter {
     pub n: Signal<In, Bits<4>>,
     pub d01: Signal<In, Bits<16>>,
     pub accept: Signal<Out, Bit>,
+    /// A second frame (the own frame), its verdict.
+    pub own_ide: Signal<In, Bit>,
+    pub own_rtr: Signal<In, Bit>,
+    pub own_id: Signal<In, Bits<29>>,
+    pub own_n: Signal<In, Bits<4>>,
+    pub own_d01: Signal<In, Bits<16>>,
+    pub accept_own: Signal<Out, Bit>,
 
     acr0: DFF<Bits<8>>,
     acr1: DFF<Bits<8>>,
@@ -49,13 +60,11 @@ pub struct AcceptanceFilter {
     amr2: DFF<Bits<8>>,
     amr3: DFF<Bits<8>>,
     amr_reset: Constant<Bits<8>>,
+    m_rx: FilterMatch,
+    m_own: FilterMatch,
 
     l_acr: Signal<Local, Bits<32>>,
     l_amr: Signal<Local, Bits<32>>,
-    l_v1: Signal<Local, Bits<32>>,
-    l_v2: Signal<Local, Bits<32>>,
-    l_m1: Signal<Local, Bits<32>>,
-    l_m2: Signal<Local, Bits<32>>,
 }
 
 impl Default for AcceptanceFilter {
@@ -73,6 +82,12 @@ impl Default for AcceptanceFilter {
             n: Default::default(),
             d01: Default::default(),
             accept: Default::default(),
+            own_ide: Default::default(),
+            own_rtr: Default::default(),
+            own_id: Default::default(),
+            own_n: Default::default(),
+            own_d01: Default::default(),
+            accept_own: Default::default(),
             acr0: Default::default(),
             acr1: Default::default(),
             acr2: Default::default(),
@@ -82,12 +97,10 @@ impl Default for AcceptanceFilter {
             amr2: Default::default(),
             amr3: Default::default(),
             amr_reset: Constant::new((regs::AMR.reset.unwrap() as u64).into()),
+            m_rx: Default::default(),
+            m_own: Default::default(),
             l_acr: Default::default(),
             l_amr: Default::default(),
-            l_v1: Default::default(),
-            l_v2: Default::default(),
-            l_m1: Default::default(),
-            l_m2: Default::default(),
         }
     }
 }
@@ -154,52 +167,97 @@ impl Logic for AcceptanceFilter {
             | (bit_cast::<32, 8>(self.amr1.q.val()) << 16)
             | (bit_cast::<32, 8>(self.amr2.q.val()) << 8)
             | bit_cast::<32, 8>(self.amr3.q.val());
+        self.m_rx.acr.next = self.l_acr.val();
+        self.m_rx.amr.next = self.l_amr.val();
+        self.m_rx.single.next = self.single.val();
+        self.m_rx.ide.next = self.ide.val();
+        self.m_rx.rtr.next = self.rtr.val();
+        self.m_rx.id.next = self.id.val();
+        self.m_rx.n.next = self.n.val();
+        self.m_rx.d01.next = self.d01.val();
+        self.accept.next = self.m_rx.accept.val();
+        self.m_own.acr.next = self.l_acr.val();
+        self.m_own.amr.next = self.l_amr.val();
+        self.m_own.single.next = self.single.val();
+        self.m_own.ide.next = self.own_ide.val();
+        self.m_own.rtr.next = self.own_rtr.val();
+        self.m_own.id.next = self.own_id.val();
+        self.m_own.n.next = self.own_n.val();
+        self.m_own.d01.next = self.own_d01.val();
+        self.accept_own.next = self.m_own.accept.val();
+    }
+}
+
+canstar_hdl::impl_clocked!(AcceptanceFilter);
+
+/// The single and dual filters of the data sheet on one frame (IDE, RTR,
+/// identifier, data bytes carried, data bytes 0 and 1) against the code
+/// `acr` and mask `amr` words (ACR0/AMR0 in bits 31..24), combinational.
+#[derive(LogicBlock, Default)]
+pub struct FilterMatch {
+    pub acr: Signal<In, Bits<32>>,
+    pub amr: Signal<In, Bits<32>>,
+    pub single: Signal<In, Bit>,
+    pub ide: Signal<In, Bit>,
+    pub rtr: Signal<In, Bit>,
+    pub id: Signal<In, Bits<29>>,
+    pub n: Signal<In, Bits<4>>,
+    pub d01: Signal<In, Bits<16>>,
+    pub accept: Signal<Out, Bit>,
+
+    l_v1: Signal<Local, Bits<32>>,
+    l_v2: Signal<Local, Bits<32>>,
+    l_m1: Signal<Local, Bits<32>>,
+    l_m2: Signal<Local, Bits<32>>,
+}
+
+impl Logic for FilterMatch {
+    #[hdl_gen]
+    fn update(&mut self) {
         if self.single.val() {
             if self.ide.val() {
                 self.l_v1.next = bit_cast::<32, 29>(self.id.val()) << 3;
                 self.l_v1.next = self.l_v1.val().replace_bit(2, self.rtr.val());
-                self.l_m1.next = self.l_amr.val() | 3;
+                self.l_m1.next = self.amr.val() | 3;
             } else {
                 self.l_v1.next =
                     (bit_cast::<32, 11>(self.id.val().get_bits::<11>(0)) << 21) | bit_cast::<32, 16>(self.d01.val());
                 self.l_v1.next = self.l_v1.val().replace_bit(20, self.rtr.val());
-                self.l_m1.next = self.l_amr.val() | 0x000F_0000;
-                if self.n.val() < 2 {
+                self.l_m1.next = self.amr.val() | 0x000F_0000;
+                if self.n.val().get_bits::<3>(1) == 0 {
                     self.l_m1.next = self.l_m1.val() | 0xFF;
                 }
-                if self.n.val() < 1 {
+                if self.n.val() == 0 {
                     self.l_m1.next = self.l_m1.val() | 0xFF00;
                 }
             }
             self.l_v2.next = 0.into();
             self.l_m2.next = 0.into();
-            self.accept.next = ((self.l_v1.val() ^ self.l_acr.val()) & !self.l_m1.val()) == 0;
+            self.accept.next = ((self.l_v1.val() ^ self.acr.val()) & !self.l_m1.val()) == 0;
         } else {
             if self.ide.val() {
                 self.l_v1.next = bit_cast::<32, 16>(self.id.val().get_bits::<16>(13)) << 16;
-                self.l_m1.next = self.l_amr.val() | 0xFFFF;
+                self.l_m1.next = self.amr.val() | 0xFFFF;
                 self.l_v2.next = bit_cast::<32, 16>(self.id.val().get_bits::<16>(13));
-                self.l_m2.next = self.l_amr.val() | 0xFFFF_0000_u64;
+                self.l_m2.next = self.amr.val() | 0xFFFF_0000_u64;
             } else {
                 self.l_v1.next = (bit_cast::<32, 11>(self.id.val().get_bits::<11>(0)) << 21)
                     | (bit_cast::<32, 4>(self.d01.val().get_bits::<4>(12)) << 16)
                     | bit_cast::<32, 4>(self.d01.val().get_bits::<4>(8));
                 self.l_v1.next = self.l_v1.val().replace_bit(20, self.rtr.val());
-                self.l_m1.next = self.l_amr.val() | 0xFFF0;
-                if self.n.val() < 1 {
+                self.l_m1.next = self.amr.val() | 0xFFF0;
+                if self.n.val() == 0 {
                     self.l_m1.next = self.l_m1.val() | 0x000F_000F;
                 }
                 self.l_v2.next = bit_cast::<32, 11>(self.id.val().get_bits::<11>(0)) << 5;
                 self.l_v2.next = self.l_v2.val().replace_bit(4, self.rtr.val());
-                self.l_m2.next = self.l_amr.val() | 0xFFFF_000F_u64;
+                self.l_m2.next = self.amr.val() | 0xFFFF_000F_u64;
             }
-            self.accept.next = (((self.l_v1.val() ^ self.l_acr.val()) & !self.l_m1.val()) == 0)
-                | (((self.l_v2.val() ^ self.l_acr.val()) & !self.l_m2.val()) == 0);
+            self.accept.next = (((self.l_v1.val() ^ self.acr.val()) & !self.l_m1.val()) == 0)
+                | (((self.l_v2.val() ^ self.acr.val()) & !self.l_m2.val()) == 0);
         }
     }
 }
-
-canstar_hdl::impl_clocked!(AcceptanceFilter);
 
 #[cfg(test)]
 mod tests {
@@ -228,8 +286,43 @@ mod tests {
         let d0 = *data.first().unwrap_or(&0) as u64;
         let d1 = *data.get(1).unwrap_or(&0) as u64;
         u.d01.next = ((d0 << 8) | d1).into();
+        u.own_ide.next = ide;
+        u.own_rtr.next = rtr;
+        u.own_id.next = (id as u64).into();
+        u.own_n.next = (data.len() as u64).into();
+        u.own_d01.next = ((d0 << 8) | d1).into();
         drive::settle(u);
+        assert_eq!(u.accept.val(), u.accept_own.val(), "the two frames' verdicts");
         u.accept.val()
+    }
+
+    /// The two verdicts agree for the same frame (random frames, codes and
+    /// masks, both filter modes), and differ for different frames.
+    #[test]
+    fn both_frames_have_the_same_filter() {
+        let mut x: u64 = 77;
+        let mut r = || {
+            x = x.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1_442_695_040_888_963_407);
+            x >> 33
+        };
+        let (mut hits, mut differ) = (0, 0);
+        for _ in 0..200 {
+            let single = r() & 1 == 1;
+            let acr = [r() as u8, r() as u8, r() as u8, r() as u8];
+            let m = r() as u8;
+            let amr = [m | r() as u8, m | r() as u8, r() as u8, r() as u8];
+            let mut u = filter(single, acr, amr);
+            for _ in 0..20 {
+                let n = (r() % 9) as usize;
+                let data: Vec<u8> = (0..n).map(|_| r() as u8).collect();
+                let (ide, rtr, id) = (r() & 1 == 1, r() % 5 == 0, (r() & 0x1FFF_FFFF) as u32);
+                hits += accepts(&mut u, ide, rtr, id, &data) as u32;
+                u.own_id.next = ((id ^ 0x1FFF_FFFF) as u64).into();
+                drive::settle(&mut u);
+                differ += (u.accept.val() != u.accept_own.val()) as u32;
+            }
+        }
+        assert!(hits > 50 && differ > 20, "{hits} accepted, {differ} differ");
     }
 
     #[test]

@@ -91,12 +91,13 @@ pub struct Status {
     l_wait: Signal<Local, Bit>,
     l_busy: Signal<Local, Bit>,
     l_sr: Signal<Local, Bits<8>>,
-    f_reset: Constant<Bits<5>>,
-    f_waitidle: Constant<Bits<5>>,
     f_idle: Constant<Bits<5>>,
-    f_busoff: Constant<Bits<5>>,
-    f_sof: Constant<Bits<5>>,
-    f_eof: Constant<Bits<5>>,
+    /// FIELD classes as one bit per code (`field_set`): waiting for bus
+    /// idle (Reset, WaitIdle, BusOff), busy (Start_Of_Frame and later),
+    /// the frame fields (Start_Of_Frame ..= End_Of_Frame).
+    m_wait: Constant<Bits<32>>,
+    m_busy: Constant<Bits<32>>,
+    m_frame: Constant<Bits<32>>,
     sr_rbs: Constant<Bits<3>>,
     sr_dos: Constant<Bits<3>>,
     sr_tbs: Constant<Bits<3>>,
@@ -109,6 +110,13 @@ pub struct Status {
 
 fn f5(f: Field) -> Constant<Bits<5>> {
     Constant::new(f.code().into())
+}
+
+/// The FIELD codes of `fields` as one bit per code: a class is then one
+/// bit select of the 5-bit code (a LUT), where comparisons with constants
+/// map to carry chains.
+fn field_set(fields: impl Iterator<Item = Field>) -> Constant<Bits<32>> {
+    Constant::new(fields.fold(0u64, |m, f| m | (1 << f.code())).into())
 }
 
 fn p3(mask: u8) -> Constant<Bits<3>> {
@@ -164,12 +172,12 @@ impl Default for Status {
             l_wait: Default::default(),
             l_busy: Default::default(),
             l_sr: Default::default(),
-            f_reset: f5(Field::Reset),
-            f_waitidle: f5(Field::WaitIdle),
             f_idle: f5(Field::Idle),
-            f_busoff: f5(Field::BusOff),
-            f_sof: f5(Field::Sof),
-            f_eof: f5(Field::Eof),
+            m_wait: field_set([Field::Reset, Field::WaitIdle, Field::BusOff].into_iter()),
+            m_busy: field_set(Field::ALL.into_iter().filter(|f| f.code() >= Field::Sof.code())),
+            m_frame: field_set(
+                Field::ALL.into_iter().filter(|f| (Field::Sof.code()..=Field::Eof.code()).contains(&f.code())),
+            ),
             sr_rbs: p3(regs::SR_RBS),
             sr_dos: p3(regs::SR_DOS),
             sr_tbs: p3(regs::SR_TBS),
@@ -261,12 +269,9 @@ impl Logic for Status {
         }
 
         // The core's activity and SR.
-        self.l_wait.next = (self.field.val() == self.f_reset.val())
-            | (self.field.val() == self.f_waitidle.val())
-            | (self.field.val() == self.f_busoff.val());
-        self.l_busy.next = self.field.val() >= self.f_sof.val();
-        self.txact.next =
-            self.role.val() & (self.field.val() >= self.f_sof.val()) & (self.field.val() <= self.f_eof.val());
+        self.l_wait.next = self.m_wait.val().get_bit(self.field.val().index());
+        self.l_busy.next = self.m_busy.val().get_bit(self.field.val().index());
+        self.txact.next = self.role.val() & self.m_frame.val().get_bit(self.field.val().index());
         self.idle.next = self.field.val() == self.f_idle.val();
         self.l_sr.next = 0.into();
         self.l_sr.next = self.l_sr.val().replace_bit(self.sr_rbs.val().index(), self.rbs.val());

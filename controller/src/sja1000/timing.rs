@@ -21,10 +21,13 @@
 //! State: `r0`, `r1` (BTR0, BTR1: written by `we0`/`we1`, loaded with the
 //! generation-time power-up values `v0`/`v1` by `rst`); `o_brp`, `o_prop`,
 //! `o_ph1`, `o_ph2`, `o_sjw`, `o_tri` (the core's fields, mapped from the
-//! values `r0` and `r1` take on the clock edge, so that on every clock they
-//! are the mapping of `r0`/`r1` without the mapping's adders and
-//! comparators between these registers and the core; BTR0 = BTR1 = 0, the
-//! flip-flops' power-up value, maps to all-zero fields and BRP 0).
+//! byte written to BTR0/BTR1 and loaded with it, and loaded with the
+//! mapping of `v0`/`v1` by `rst`, so that on every clock they are the
+//! mapping of `r0`/`r1` without the mapping between these registers and
+//! the core; BTR0 = BTR1 = 0, the flip-flops' power-up value, maps to
+//! all-zero fields and BRP 0). The mapping of the written byte is a table
+//! of TSEG1 and a few gates, not adders and comparators, which Yosys maps
+//! to carry chains behind the host's write decode.
 
 use canstar_hdl::timing::BtlConfig;
 use rust_hdl::prelude::*;
@@ -56,19 +59,25 @@ pub struct BusTiming {
     o_tri: DFF<Bit>,
     v0: Constant<Bits<8>>,
     v1: Constant<Bits<8>>,
+    /// The core's fields for `v0`/`v1` (loaded with them by `rst`).
+    v_prop: Constant<Bits<4>>,
+    v_ph1: Constant<Bits<3>>,
+    v_ph2: Constant<Bits<3>>,
+    v_sjw: Constant<Bits<2>>,
 
-    l_n0: Signal<Local, Bits<8>>,
-    l_n1: Signal<Local, Bits<8>>,
-    l_t1: Signal<Local, Bits<6>>,
-    l_prop: Signal<Local, Bits<6>>,
-    l_ph1: Signal<Local, Bits<6>>,
-    l_ph2: Signal<Local, Bits<6>>,
-    l_sjw: Signal<Local, Bits<6>>,
+    l_k: Signal<Local, Bits<4>>,
+    l_wprop: Signal<Local, Bits<4>>,
+    l_wph1: Signal<Local, Bits<3>>,
+    l_wph2: Signal<Local, Bits<3>>,
+    l_ssjw: Signal<Local, Bits<2>>,
+    l_sph1: Signal<Local, Bits<3>>,
+    l_msjw: Signal<Local, Bits<2>>,
 }
 
 impl BusTiming {
     /// BTR0/BTR1 take `btr0`/`btr1` at a hardware reset.
     pub fn new(btr0: u8, btr1: u8) -> Self {
+        let f = mapped(btr0, btr1).fields();
         Self {
             clock: Default::default(),
             rst: Default::default(),
@@ -93,13 +102,17 @@ impl BusTiming {
             o_tri: Default::default(),
             v0: Constant::new((btr0 as u64).into()),
             v1: Constant::new((btr1 as u64).into()),
-            l_n0: Default::default(),
-            l_n1: Default::default(),
-            l_t1: Default::default(),
-            l_prop: Default::default(),
-            l_ph1: Default::default(),
-            l_ph2: Default::default(),
-            l_sjw: Default::default(),
+            v_prop: Constant::new((f.1 as u64).into()),
+            v_ph1: Constant::new((f.2 as u64).into()),
+            v_ph2: Constant::new((f.3 as u64).into()),
+            v_sjw: Constant::new((f.4 as u64).into()),
+            l_k: Default::default(),
+            l_wprop: Default::default(),
+            l_wph1: Default::default(),
+            l_wph2: Default::default(),
+            l_ssjw: Default::default(),
+            l_sph1: Default::default(),
+            l_msjw: Default::default(),
         }
     }
 }
@@ -114,59 +127,123 @@ impl Logic for BusTiming {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(self, clock, r0, r1, o_brp, o_prop, o_ph1, o_ph2, o_sjw, o_tri);
-        // the values BTR0/BTR1 take on this clock edge
-        self.l_n0.next = self.r0.q.val();
-        self.l_n1.next = self.r1.q.val();
+        // BTR0: SJW in bits 7..6, BRP in bits 5..0; BTR1: SAM in bit 7,
+        // TSEG2 in bits 6..4, TSEG1 in bits 3..0. The core's fields are
+        // mapped from the byte written (`we0`, `we1`, never both) and from the
+        // power-up values (`rst`, constants): BTR0/BTR1 change only then.
+        //
+        // With k = TSEG1 (t1 = k + 1), exact: PROP + PH1 = t1 with PH1 =
+        // min(t1 - 1, 8) (the largest PH1, so that the SJW limit bites
+        // least), PH2 = t2; as fields (value - 1) PH1 = min(k, 8) - 1 and
+        // PROP = max(k - 8, 0), written as a table of k (no adders or
+        // comparators, which Yosys maps to carry chains). TSEG1 = 0: a sample
+        // point 2 TQ after the bit start needs PROP + PH1 = 1, which the core
+        // cannot express; 1 + 1 + 1 + 1 = 4 TQ (all fields 0) makes it refuse
+        // the setting (cfg_err), as it refuses every bit under 8 TQ.
+        self.l_k.next = self.wdata.val().get_bits::<4>(0);
+        self.l_wph1.next = 7.into();
+        self.l_wprop.next = 0.into();
+        match self.l_k.val().index() {
+            0 => {
+                self.l_wph1.next = 0.into();
+            }
+            1 => {
+                self.l_wph1.next = 0.into();
+            }
+            2 => {
+                self.l_wph1.next = 1.into();
+            }
+            3 => {
+                self.l_wph1.next = 2.into();
+            }
+            4 => {
+                self.l_wph1.next = 3.into();
+            }
+            5 => {
+                self.l_wph1.next = 4.into();
+            }
+            6 => {
+                self.l_wph1.next = 5.into();
+            }
+            7 => {
+                self.l_wph1.next = 6.into();
+            }
+            9 => {
+                self.l_wprop.next = 1.into();
+            }
+            10 => {
+                self.l_wprop.next = 2.into();
+            }
+            11 => {
+                self.l_wprop.next = 3.into();
+            }
+            12 => {
+                self.l_wprop.next = 4.into();
+            }
+            13 => {
+                self.l_wprop.next = 5.into();
+            }
+            14 => {
+                self.l_wprop.next = 6.into();
+            }
+            15 => {
+                self.l_wprop.next = 7.into();
+            }
+            _ => {}
+        }
+        self.l_wph2.next = self.wdata.val().get_bits::<3>(4);
+        if self.l_k.val() == 0 {
+            self.l_wph2.next = 0.into();
+        }
+        // SJW <= PH1 (C22; SJW > PH2 is legal): as fields, min(SJW, PH1),
+        // of the SJW written with the PH1 held, or of the SJW held with the
+        // PH1 written; only PH1 fields 0..2 reduce it.
+        self.l_ssjw.next = self.wdata.val().get_bits::<2>(6);
+        self.l_sph1.next = self.o_ph1.q.val();
+        if self.we1.val() {
+            self.l_ssjw.next = self.r0.q.val().get_bits::<2>(6);
+            self.l_sph1.next = self.l_wph1.val();
+        }
+        self.l_msjw.next = self.l_ssjw.val();
+        if self.l_sph1.val() == 2 {
+            self.l_msjw.next = self
+                .l_ssjw
+                .val()
+                .replace_bit(0, self.l_ssjw.val().get_bit(0) & !self.l_ssjw.val().get_bit(1));
+        }
+        if self.l_sph1.val() == 1 {
+            self.l_msjw.next = 0.into();
+            if self.l_ssjw.val() != 0 {
+                self.l_msjw.next = 1.into();
+            }
+        }
+        if self.l_sph1.val() == 0 {
+            self.l_msjw.next = 0.into();
+        }
+
         if self.we0.val() {
-            self.l_n0.next = self.wdata.val();
+            self.r0.d.next = self.wdata.val();
+            self.o_brp.d.next = self.wdata.val().get_bits::<6>(0);
+            self.o_sjw.d.next = self.l_msjw.val();
         }
         if self.we1.val() {
-            self.l_n1.next = self.wdata.val();
+            self.r1.d.next = self.wdata.val();
+            self.o_prop.d.next = self.l_wprop.val();
+            self.o_ph1.d.next = self.l_wph1.val();
+            self.o_ph2.d.next = self.l_wph2.val();
+            self.o_sjw.d.next = self.l_msjw.val();
+            self.o_tri.d.next = self.wdata.val().get_bit(7);
         }
         if self.rst.val() {
-            self.l_n0.next = self.v0.val();
-            self.l_n1.next = self.v1.val();
+            self.r0.d.next = self.v0.val();
+            self.r1.d.next = self.v1.val();
+            self.o_brp.d.next = self.v0.val().get_bits::<6>(0);
+            self.o_prop.d.next = self.v_prop.val();
+            self.o_ph1.d.next = self.v_ph1.val();
+            self.o_ph2.d.next = self.v_ph2.val();
+            self.o_sjw.d.next = self.v_sjw.val();
+            self.o_tri.d.next = self.v1.val().get_bit(7);
         }
-        self.r0.d.next = self.l_n0.val();
-        self.r1.d.next = self.l_n1.val();
-
-        // BTR0: SJW in bits 7..6, BRP in bits 5..0; BTR1: SAM in bit 7,
-        // TSEG2 in bits 6..4, TSEG1 in bits 3..0 (mapped from the next
-        // values, registered).
-        self.o_brp.d.next = self.l_n0.val().get_bits::<6>(0);
-        self.l_t1.next = bit_cast::<6, 4>(self.l_n1.val().get_bits::<4>(0)) + 1;
-        // exact: PROP + PH1 = t1 with PH1 = min(t1 - 1, 8) (the largest PH1,
-        // so that the SJW limit bites least), PH2 = t2
-        self.l_ph1.next = self.l_t1.val() - 1;
-        if self.l_t1.val() > 9 {
-            self.l_ph1.next = 8.into();
-        }
-        self.l_prop.next = self.l_t1.val() - self.l_ph1.val();
-        self.l_ph2.next = bit_cast::<6, 3>(self.l_n1.val().get_bits::<3>(4)) + 1;
-        if self.l_t1.val() == 1 {
-            // TSEG1 = 0: a sample point 2 TQ after the bit start needs
-            // PROP + PH1 = 1, which the core cannot express; 1 + 1 + 1 + 1 =
-            // 4 TQ makes it refuse the setting (cfg_err), as it refuses every
-            // bit under 8 TQ.
-            self.l_prop.next = 1.into();
-            self.l_ph1.next = 1.into();
-            self.l_ph2.next = 1.into();
-        }
-        // SJW <= PH1 (C22; SJW > PH2 is legal): only when t1 <= SJW is the
-        // setting's SJW reduced, to t1 - 1.
-        self.l_sjw.next = bit_cast::<6, 2>(self.l_n0.val().get_bits::<2>(6)) + 1;
-        if self.l_sjw.val() > self.l_ph1.val() {
-            self.l_sjw.next = self.l_ph1.val();
-        }
-        self.l_prop.next = self.l_prop.val() - 1;
-        self.l_ph1.next = self.l_ph1.val() - 1;
-        self.l_ph2.next = self.l_ph2.val() - 1;
-        self.l_sjw.next = self.l_sjw.val() - 1;
-        self.o_prop.d.next = self.l_prop.val().get_bits::<4>(0);
-        self.o_ph1.d.next = self.l_ph1.val().get_bits::<3>(0);
-        self.o_ph2.d.next = self.l_ph2.val().get_bits::<3>(0);
-        self.o_sjw.d.next = self.l_sjw.val().get_bits::<2>(0);
-        self.o_tri.d.next = self.l_n1.val().get_bit(7);
         self.brp.next = (bit_cast::<7, 6>(self.o_brp.q.val()) << 1) | 1;
         self.prop.next = self.o_prop.q.val();
         self.ph1.next = self.o_ph1.q.val();
@@ -292,6 +369,45 @@ mod tests {
         assert!(core_timing(0x00, 0x70).unwrap_err().contains("TSEG1 = 0"));
         assert!(core_timing(0x00, 0x12).unwrap_err().contains("6 TQ per bit"));
         assert!(core_timing(0xC0, 0x72).unwrap_err().contains("SJW = 4 TQ"));
+    }
+
+    /// Host writes keep the fields the mapping of BTR0/BTR1 (they are
+    /// loaded from the byte written, not from the registers).
+    #[test]
+    fn written_values_map_like_the_rust_mapping() {
+        let mut u = BusTiming::new(0x00, 0x00);
+        drive::init(&mut u);
+        let mut x: u32 = 12345;
+        let (mut b0, mut b1) = (0u8, 0u8);
+        for i in 0..3000 {
+            x = x.wrapping_mul(1_103_515_245).wrapping_add(12_345);
+            let v = (x >> 16) as u8;
+            let w1 = (x >> 8) & 1 == 1;
+            if i % 500 == 7 {
+                u.rst.next = true;
+                (b0, b1) = (0, 0);
+            } else if w1 {
+                u.we1.next = true;
+                b1 = v;
+            } else {
+                u.we0.next = true;
+                b0 = v;
+            }
+            u.wdata.next = (v as u64).into();
+            drive::cycle(&mut u);
+            (u.rst.next, u.we0.next, u.we1.next) = (false, false, false);
+            let f = |x: usize| x as u32;
+            let t = BtlConfig::from_fields(
+                f(u.brp.val().index()),
+                f(u.prop.val().index()),
+                f(u.ph1.val().index()),
+                f(u.ph2.val().index()),
+                f(u.sjw.val().index()),
+                u.triple.val(),
+            );
+            assert_eq!(t, mapped(b0, b1), "BTR {b0:#04x}/{b1:#04x} after write {i}");
+            assert_eq!((u.btr0.val().index(), u.btr1.val().index()), (b0 as usize, b1 as usize));
+        }
     }
 
     #[test]

@@ -554,11 +554,16 @@ impl Logic for Sja1000 {
         self.filter.idx.next = self.l_a.val().get_bits::<3>(0);
         self.filter.wdata.next = self.l_d.val();
         self.filter.single.next = self.mode.afm.val();
-        self.filter.ide.next = self.fifo.f_ide.val();
-        self.filter.rtr.next = self.fifo.f_rtr.val();
-        self.filter.id.next = self.fifo.f_id.val();
-        self.filter.n.next = self.fifo.f_n.val();
-        self.filter.d01.next = self.fifo.f_d01.val();
+        self.filter.ide.next = self.core.rx_ide.val();
+        self.filter.rtr.next = self.core.rx_rtr.val();
+        self.filter.id.next = self.core.rx_id.val();
+        self.filter.n.next = self.fifo.rx_n.val();
+        self.filter.d01.next = self.core.rx_data.val().get_bits::<16>(48);
+        self.filter.own_ide.next = self.txbuf.ide.val();
+        self.filter.own_rtr.next = self.txbuf.rtr.val();
+        self.filter.own_id.next = self.txbuf.id.val();
+        self.filter.own_n.next = self.fifo.own_n.val();
+        self.filter.own_d01.next = self.txbuf.data.val().get_bits::<16>(48);
 
         self.fifo.clock.next = self.clock.val();
         self.fifo.rst.next = self.rst.val();
@@ -576,6 +581,7 @@ impl Logic for Sja1000 {
         self.fifo.own_dlc.next = self.txbuf.dlc.val();
         self.fifo.own_data.next = self.txbuf.data.val();
         self.fifo.accept.next = self.filter.accept.val();
+        self.fifo.accept_own.next = self.filter.accept_own.val();
         self.fifo.rrb.next = self.l_rrb.val();
         self.fifo.cdo.next = self.l_cdo.val();
         self.fifo.rbsa_we.next = self.l_we_rbsa.val();
