@@ -347,6 +347,21 @@
 //! hub-flip --run-seed 12864914667304991574`). Evidence in hub.md §5.15. Tests:
 //! `short_dominant_runs_on_a_sublink_are_glitches`, `hub/tests/first_flagger.rs`.
 //!
+//! **§5.16 a vanished transmitter; short flags (session 19).** (1) The §5.14
+//! common-glitch episode charge (`pge`) is not made when the sample that started the
+//! episode was a dominant stuff bit (`stuff_dom` one clock before `err_start`, `sdp_r`):
+//! six recessive bits, which the monitor and every node saw alike, as after a transmitter
+//! behind the peer is switched off in a dominant bit (its cut bit reached this hub as a
+//! common glitch, and the stuff error one bit later was charged to both sublinks: `canstar
+//! soak --events --chunk 191`); the §5.10 stuff-bit rule spares the blames of the same
+//! sample. (2) The first-flagger rule's dominant contender is judged by the window
+//! (`domw`, as the unjustified-dominant rules): a transmitter's error flag that ended a
+//! clock before this hub's sample point was not charged here while the peer, which sees it
+//! a crossing later, charged its sublinks, and the hubs isolated each other (`--class
+//! flip-blinker-tx-up-r10 --run-seed 639380751956439827`). Evidence in hub.md §5.16. Tests:
+//! `hub/tests/judge_sublinks.rs` `episode_at_a_dominant_stuff_bit_is_not_charged_for_a_common_glitch`,
+//! `first_flagger_judges_the_contender_by_the_window`.
+//!
 //! **§5.2 delimiter rule (added).** In the error phase, once BT was recessive at a
 //! sample (the end of every flag), the following delimiter bits are recessive-only
 //! positions (`delim`, computed by the hub), except the last one, where a node may
@@ -556,6 +571,9 @@ pub struct JudgeUnit {
     glf_r: DFF<Bit>,
     glo_r: DFF<Bit>,
     pgl_r: DFF<Bit>,
+    /// `stuff_dom` one clock ago: at `err_start`, the sample that started the episode was a
+    /// dominant stuff bit (§5.16).
+    sdp_r: DFF<Bit>,
     ch_r: DFF<Bit>,
     ffc: Signal<Local, Bit>,
     pge: Signal<Local, Bit>,
@@ -686,6 +704,7 @@ impl JudgeUnit {
             glf_r: Default::default(),
             glo_r: Default::default(),
             pgl_r: Default::default(),
+            sdp_r: Default::default(),
             ch_r: Default::default(),
             ffc: Default::default(),
             pge: Default::default(),
@@ -717,7 +736,7 @@ impl JudgeUnit {
 impl Logic for JudgeUnit {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, dis_r, bic_r, bdec_r, life_r, dbc_r, nack_r, cont_r, rep_r, rep_seen, rep_first_dom, ok_r, acked, bad, ack_missing, ack_c, ack_rx, seen_dom, seen_dom_crc, dom_bs, gc_r, gdec_r, an_r, pgc_r, pdec_r, ffd_r, glf_r, glo_r, pgl_r, ch_r, bl_r, bl_dm_r, gpend);
+        dff_setup!(self, clock, dis_r, bic_r, bdec_r, life_r, dbc_r, nack_r, cont_r, rep_r, rep_seen, rep_first_dom, ok_r, acked, bad, ack_missing, ack_c, ack_rx, seen_dom, seen_dom_crc, dom_bs, gc_r, gdec_r, an_r, pgc_r, pdec_r, ffd_r, glf_r, glo_r, pgl_r, sdp_r, ch_r, bl_r, bl_dm_r, gpend);
         self.pulse.clock.next = self.clock.val();
         self.pulse.reset.next = self.reset.val();
         self.pulse.c.next = self.c.val();
@@ -759,13 +778,16 @@ impl Logic for JudgeUnit {
         self.ffc.next = self.ff.val() & self.ff_on.val() & self.enabled.val() & self.ffd_r.q.val();
         self.charge.next = self.sample.val() & self.unj.val() & self.enabled.val() & !self.suppress.val() & !self.stuff_dom.val();
         // §5.14 an episode right after a common glitch of the peer's contribution: charged
-        // to the sublink, unless it was charged at that sample
+        // to the sublink, unless it was charged at that sample, or (§5.16) that sample was
+        // a dominant stuff bit (six recessive bits: every node saw the transmitter vanish)
+        self.sdp_r.d.next = self.stuff_dom.val();
         self.pge.next = self.err_start.val()
             & self.rep_on.val()
             & self.enabled.val()
             & (self.an_r.q.val() != 0)
             & self.pgl_r.q.val()
-            & !self.ch_r.q.val();
+            & !self.ch_r.q.val()
+            & !self.sdp_r.q.val();
         // the charges one clock after a sample: one +8 when both come
         self.late.next = self.ffc.val() | self.pge.val();
         self.blame.next = (self.sample.val() & self.unj.val() & self.enabled.val()) | self.late.val();
@@ -795,10 +817,11 @@ impl Logic for JudgeUnit {
                 self.cont_r.d.next = false;
             }
             // §5.12 a dominant contender at this sample (a transmitter's error flag if the
-            // monitor alone starts an episode here), unless another input glitched in this
-            // frame (the flag may be the reaction to that glitch); its own glitch does not
-            // excuse it
-            self.ffd_r.d.next = self.dom.val() & self.cont_r.q.val() & !self.suppress.val() & !self.gl_others.val();
+            // monitor alone starts an episode here), judged by the window (§5.16: a flag
+            // that ends just before this hub's sample is still the flag), unless another
+            // input glitched in this frame (the flag may be the reaction to that glitch);
+            // its own glitch does not excuse it
+            self.ffd_r.d.next = self.domw.val() & self.cont_r.q.val() & !self.suppress.val() & !self.gl_others.val();
             if self.sof.val() {
                 self.glf_r.d.next = false;
                 self.glo_r.d.next = false;

@@ -114,6 +114,24 @@ fn first_flagger_charges_the_dominant_contender() {
     assert!(j.dis.val());
 }
 
+/// hub.md §5.16: the dominant contender of the first-flagger rule is judged by the window
+/// (dominant at any clock from the window lag to the sample, like the unjustified-dominant
+/// rules): a transmitter's error flag that ends a clock before this hub's sample point (its
+/// oscillator fast, the other hub sampling it a crossing later) is still its flag; a level
+/// that ends before the window lag is not.
+#[test]
+fn first_flagger_judges_the_contender_by_the_window() {
+    for (ends_at, charged) in [(SAMPLE_AT - 1, true), (SAMPLE_AT, true), (6, false)] {
+        let mut j = unit(JudgeParams { first_flagger: true, ..params() });
+        sample(&mut j, Bit { c: false, bt: false, sof: true, ..Default::default() });
+        sample(&mut j, Bit { c: false, bt: false, tx: true, ..Default::default() });
+        apply(&mut j, Bit { c: false, bt: false, tx: true, ..Default::default() });
+        bit_clocks(&mut j, &|j, k| j.c.next = k >= ends_at);
+        assert_eq!(first_flagger_clock(&mut j), charged, "dominant up to clock {ends_at}");
+        assert_eq!(j.bic.val().index(), if charged { 8 } else { 0 });
+    }
+}
+
 /// §5.1 with §5.7: a sublink that is recessive while BT is dominant has lost arbitration
 /// (it becomes a receiver, and its next dominant bit is blamed) only when no replica is
 /// dominant; recessive while a replica is dominant is a replica disagreement, not a loss.
@@ -310,6 +328,22 @@ fn episode_after_a_common_glitch_is_charged_to_the_sublink() {
     pulse_bit(&mut j, 3, 4, false);
     assert!(!episode(&mut j));
     assert_eq!(j.bic.val().index(), 0);
+}
+
+/// hub.md §5.16: an episode that starts at a dominant stuff bit (`stuff_dom` at the sample
+/// that started it: six recessive bits, which every node and the monitor saw alike, as when
+/// a transmitter behind the peer is switched off in a dominant bit) is not charged by the
+/// common-glitch rule; the same episode one clock later without the stuff bit is.
+#[test]
+fn episode_at_a_dominant_stuff_bit_is_not_charged_for_a_common_glitch() {
+    for (stuff_dom, charged) in [(true, false), (false, true)] {
+        let mut j = sublink_after_glitch(true);
+        j.stuff_dom.next = stuff_dom;
+        drive::cycle(&mut j);
+        j.stuff_dom.next = false;
+        assert_eq!(episode(&mut j), charged, "stuff_dom {stuff_dom}");
+        assert_eq!(j.bic.val().index(), if charged { 8 } else { 0 });
+    }
 }
 
 /// §5.8 with §5.7: while another replica has glitches on its counter (and this one has

@@ -2627,6 +2627,9 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
     reg  pgl_r$d;
     wire  pgl_r$q;
     reg  pgl_r$clock;
+    reg  sdp_r$d;
+    wire  sdp_r$q;
+    reg  sdp_r$clock;
     reg  ch_r$d;
     wire  ch_r$q;
     reg  ch_r$clock;
@@ -2801,6 +2804,11 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         .q(pgl_r$q),
         .clock(pgl_r$clock)
     );
+    canstar_cancentrate_core$core$pj$0$sdp_r sdp_r(
+        .d(sdp_r$d),
+        .q(sdp_r$q),
+        .clock(sdp_r$clock)
+    );
     canstar_cancentrate_core$core$pj$0$ch_r ch_r(
         .d(ch_r$d),
         .q(ch_r$q),
@@ -2852,6 +2860,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         glf_r$clock = clock;
         glo_r$clock = clock;
         pgl_r$clock = clock;
+        sdp_r$clock = clock;
         ch_r$clock = clock;
         bl_r$clock = clock;
         bl_dm_r$clock = clock;
@@ -2884,6 +2893,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         glf_r$d = glf_r$q;
         glo_r$d = glo_r$q;
         pgl_r$d = pgl_r$q;
+        sdp_r$d = sdp_r$q;
         ch_r$d = ch_r$q;
         bl_r$d = bl_r$q;
         bl_dm_r$d = bl_dm_r$q;
@@ -2913,7 +2923,8 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q) | (im_2 & ~err_phase & seen_dom_crc$q & ~dom_bs$q);
         ffc = ff & ff_on & enabled & ffd_r$q;
         charge = sample & unj & enabled & ~suppress & ~stuff_dom;
-        pge = err_start & rep_on & enabled & (an_r$q != 32'h0) & pgl_r$q & ~ch_r$q;
+        sdp_r$d = stuff_dom;
+        pge = err_start & rep_on & enabled & (an_r$q != 32'h0) & pgl_r$q & ~ch_r$q & ~sdp_r$q;
         late = ffc | pge;
         blame = (sample & unj & enabled) | late;
         charged = charge | late;
@@ -2929,7 +2940,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
             else if (tx_region & c & ~bt & ~rep_dom) begin
                 cont_r$d = 1'b0;
             end
-            ffd_r$d = dom & cont_r$q & ~suppress & ~gl_others;
+            ffd_r$d = domw & cont_r$q & ~suppress & ~gl_others;
             if (sof) begin
                 glf_r$d = 1'b0;
                 glo_r$d = 1'b0;
@@ -3886,6 +3897,25 @@ module canstar_cancentrate_core$core$pj$0$rep_seen(d,q,clock);
 endmodule // canstar_cancentrate_core$core$pj$0$rep_seen
 
 
+module canstar_cancentrate_core$core$pj$0$sdp_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$0$sdp_r
+
+
 module canstar_cancentrate_core$core$pj$0$seen_dom(d,q,clock);
     
     // Module arguments
@@ -4085,6 +4115,9 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
     reg  pgl_r$d;
     wire  pgl_r$q;
     reg  pgl_r$clock;
+    reg  sdp_r$d;
+    wire  sdp_r$q;
+    reg  sdp_r$clock;
     reg  ch_r$d;
     wire  ch_r$q;
     reg  ch_r$clock;
@@ -4259,6 +4292,11 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         .q(pgl_r$q),
         .clock(pgl_r$clock)
     );
+    canstar_cancentrate_core$core$pj$1$sdp_r sdp_r(
+        .d(sdp_r$d),
+        .q(sdp_r$q),
+        .clock(sdp_r$clock)
+    );
     canstar_cancentrate_core$core$pj$1$ch_r ch_r(
         .d(ch_r$d),
         .q(ch_r$q),
@@ -4310,6 +4348,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         glf_r$clock = clock;
         glo_r$clock = clock;
         pgl_r$clock = clock;
+        sdp_r$clock = clock;
         ch_r$clock = clock;
         bl_r$clock = clock;
         bl_dm_r$clock = clock;
@@ -4342,6 +4381,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         glf_r$d = glf_r$q;
         glo_r$d = glo_r$q;
         pgl_r$d = pgl_r$q;
+        sdp_r$d = sdp_r$q;
         ch_r$d = ch_r$q;
         bl_r$d = bl_r$q;
         bl_dm_r$d = bl_dm_r$q;
@@ -4371,7 +4411,8 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q) | (im_2 & ~err_phase & seen_dom_crc$q & ~dom_bs$q);
         ffc = ff & ff_on & enabled & ffd_r$q;
         charge = sample & unj & enabled & ~suppress & ~stuff_dom;
-        pge = err_start & rep_on & enabled & (an_r$q != 32'h0) & pgl_r$q & ~ch_r$q;
+        sdp_r$d = stuff_dom;
+        pge = err_start & rep_on & enabled & (an_r$q != 32'h0) & pgl_r$q & ~ch_r$q & ~sdp_r$q;
         late = ffc | pge;
         blame = (sample & unj & enabled) | late;
         charged = charge | late;
@@ -4387,7 +4428,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
             else if (tx_region & c & ~bt & ~rep_dom) begin
                 cont_r$d = 1'b0;
             end
-            ffd_r$d = dom & cont_r$q & ~suppress & ~gl_others;
+            ffd_r$d = domw & cont_r$q & ~suppress & ~gl_others;
             if (sof) begin
                 glf_r$d = 1'b0;
                 glo_r$d = 1'b0;
@@ -5344,6 +5385,25 @@ module canstar_cancentrate_core$core$pj$1$rep_seen(d,q,clock);
 endmodule // canstar_cancentrate_core$core$pj$1$rep_seen
 
 
+module canstar_cancentrate_core$core$pj$1$sdp_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$1$sdp_r
+
+
 module canstar_cancentrate_core$core$pj$1$seen_dom(d,q,clock);
     
     // Module arguments
@@ -5543,6 +5603,9 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
     reg  pgl_r$d;
     wire  pgl_r$q;
     reg  pgl_r$clock;
+    reg  sdp_r$d;
+    wire  sdp_r$q;
+    reg  sdp_r$clock;
     reg  ch_r$d;
     wire  ch_r$q;
     reg  ch_r$clock;
@@ -5717,6 +5780,11 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         .q(pgl_r$q),
         .clock(pgl_r$clock)
     );
+    canstar_cancentrate_core$core$pj$2$sdp_r sdp_r(
+        .d(sdp_r$d),
+        .q(sdp_r$q),
+        .clock(sdp_r$clock)
+    );
     canstar_cancentrate_core$core$pj$2$ch_r ch_r(
         .d(ch_r$d),
         .q(ch_r$q),
@@ -5768,6 +5836,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         glf_r$clock = clock;
         glo_r$clock = clock;
         pgl_r$clock = clock;
+        sdp_r$clock = clock;
         ch_r$clock = clock;
         bl_r$clock = clock;
         bl_dm_r$clock = clock;
@@ -5800,6 +5869,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         glf_r$d = glf_r$q;
         glo_r$d = glo_r$q;
         pgl_r$d = pgl_r$q;
+        sdp_r$d = sdp_r$q;
         ch_r$d = ch_r$q;
         bl_r$d = bl_r$q;
         bl_dm_r$d = bl_dm_r$q;
@@ -5829,7 +5899,8 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q) | (im_2 & ~err_phase & seen_dom_crc$q & ~dom_bs$q);
         ffc = ff & ff_on & enabled & ffd_r$q;
         charge = sample & unj & enabled & ~suppress & ~stuff_dom;
-        pge = err_start & rep_on & enabled & (an_r$q != 32'h0) & pgl_r$q & ~ch_r$q;
+        sdp_r$d = stuff_dom;
+        pge = err_start & rep_on & enabled & (an_r$q != 32'h0) & pgl_r$q & ~ch_r$q & ~sdp_r$q;
         late = ffc | pge;
         blame = (sample & unj & enabled) | late;
         charged = charge | late;
@@ -5845,7 +5916,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
             else if (tx_region & c & ~bt & ~rep_dom) begin
                 cont_r$d = 1'b0;
             end
-            ffd_r$d = dom & cont_r$q & ~suppress & ~gl_others;
+            ffd_r$d = domw & cont_r$q & ~suppress & ~gl_others;
             if (sof) begin
                 glf_r$d = 1'b0;
                 glo_r$d = 1'b0;
@@ -6800,6 +6871,25 @@ module canstar_cancentrate_core$core$pj$2$rep_seen(d,q,clock);
     end
           
 endmodule // canstar_cancentrate_core$core$pj$2$rep_seen
+
+
+module canstar_cancentrate_core$core$pj$2$sdp_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$2$sdp_r
 
 
 module canstar_cancentrate_core$core$pj$2$seen_dom(d,q,clock);

@@ -3349,6 +3349,9 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  pgl_r$d;
     wire  pgl_r$q;
     reg  pgl_r$clock;
+    reg  sdp_r$d;
+    wire  sdp_r$q;
+    reg  sdp_r$clock;
     reg  ch_r$d;
     wire  ch_r$q;
     reg  ch_r$clock;
@@ -3523,6 +3526,11 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .q(pgl_r$q),
         .clock(pgl_r$clock)
     );
+    canstar_hub_core$core$pj$0$sdp_r sdp_r(
+        .d(sdp_r$d),
+        .q(sdp_r$q),
+        .clock(sdp_r$clock)
+    );
     canstar_hub_core$core$pj$0$ch_r ch_r(
         .d(ch_r$d),
         .q(ch_r$q),
@@ -3574,6 +3582,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         glf_r$clock = clock;
         glo_r$clock = clock;
         pgl_r$clock = clock;
+        sdp_r$clock = clock;
         ch_r$clock = clock;
         bl_r$clock = clock;
         bl_dm_r$clock = clock;
@@ -3606,6 +3615,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         glf_r$d = glf_r$q;
         glo_r$d = glo_r$q;
         pgl_r$d = pgl_r$q;
+        sdp_r$d = sdp_r$q;
         ch_r$d = ch_r$q;
         bl_r$d = bl_r$q;
         bl_dm_r$d = bl_dm_r$q;
@@ -3635,7 +3645,8 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q) | (im_2 & ~err_phase & seen_dom_crc$q & ~dom_bs$q);
         ffc = ff & ff_on & enabled & ffd_r$q;
         charge = sample & unj & enabled & ~suppress & ~stuff_dom;
-        pge = err_start & rep_on & enabled & (an_r$q != 32'h0) & pgl_r$q & ~ch_r$q;
+        sdp_r$d = stuff_dom;
+        pge = err_start & rep_on & enabled & (an_r$q != 32'h0) & pgl_r$q & ~ch_r$q & ~sdp_r$q;
         late = ffc | pge;
         blame = (sample & unj & enabled) | late;
         charged = charge | late;
@@ -3651,7 +3662,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             else if (tx_region & c & ~bt & ~rep_dom) begin
                 cont_r$d = 1'b0;
             end
-            ffd_r$d = dom & cont_r$q & ~suppress & ~gl_others;
+            ffd_r$d = domw & cont_r$q & ~suppress & ~gl_others;
             if (sof) begin
                 glf_r$d = 1'b0;
                 glo_r$d = 1'b0;
@@ -4608,6 +4619,25 @@ module canstar_hub_core$core$pj$0$rep_seen(d,q,clock);
 endmodule // canstar_hub_core$core$pj$0$rep_seen
 
 
+module canstar_hub_core$core$pj$0$sdp_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$0$sdp_r
+
+
 module canstar_hub_core$core$pj$0$seen_dom(d,q,clock);
     
     // Module arguments
@@ -4807,6 +4837,9 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  pgl_r$d;
     wire  pgl_r$q;
     reg  pgl_r$clock;
+    reg  sdp_r$d;
+    wire  sdp_r$q;
+    reg  sdp_r$clock;
     reg  ch_r$d;
     wire  ch_r$q;
     reg  ch_r$clock;
@@ -4981,6 +5014,11 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .q(pgl_r$q),
         .clock(pgl_r$clock)
     );
+    canstar_hub_core$core$pj$1$sdp_r sdp_r(
+        .d(sdp_r$d),
+        .q(sdp_r$q),
+        .clock(sdp_r$clock)
+    );
     canstar_hub_core$core$pj$1$ch_r ch_r(
         .d(ch_r$d),
         .q(ch_r$q),
@@ -5032,6 +5070,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         glf_r$clock = clock;
         glo_r$clock = clock;
         pgl_r$clock = clock;
+        sdp_r$clock = clock;
         ch_r$clock = clock;
         bl_r$clock = clock;
         bl_dm_r$clock = clock;
@@ -5064,6 +5103,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         glf_r$d = glf_r$q;
         glo_r$d = glo_r$q;
         pgl_r$d = pgl_r$q;
+        sdp_r$d = sdp_r$q;
         ch_r$d = ch_r$q;
         bl_r$d = bl_r$q;
         bl_dm_r$d = bl_dm_r$q;
@@ -5093,7 +5133,8 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q) | (im_2 & ~err_phase & seen_dom_crc$q & ~dom_bs$q);
         ffc = ff & ff_on & enabled & ffd_r$q;
         charge = sample & unj & enabled & ~suppress & ~stuff_dom;
-        pge = err_start & rep_on & enabled & (an_r$q != 32'h0) & pgl_r$q & ~ch_r$q;
+        sdp_r$d = stuff_dom;
+        pge = err_start & rep_on & enabled & (an_r$q != 32'h0) & pgl_r$q & ~ch_r$q & ~sdp_r$q;
         late = ffc | pge;
         blame = (sample & unj & enabled) | late;
         charged = charge | late;
@@ -5109,7 +5150,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             else if (tx_region & c & ~bt & ~rep_dom) begin
                 cont_r$d = 1'b0;
             end
-            ffd_r$d = dom & cont_r$q & ~suppress & ~gl_others;
+            ffd_r$d = domw & cont_r$q & ~suppress & ~gl_others;
             if (sof) begin
                 glf_r$d = 1'b0;
                 glo_r$d = 1'b0;
@@ -6066,6 +6107,25 @@ module canstar_hub_core$core$pj$1$rep_seen(d,q,clock);
 endmodule // canstar_hub_core$core$pj$1$rep_seen
 
 
+module canstar_hub_core$core$pj$1$sdp_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$1$sdp_r
+
+
 module canstar_hub_core$core$pj$1$seen_dom(d,q,clock);
     
     // Module arguments
@@ -6265,6 +6325,9 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  pgl_r$d;
     wire  pgl_r$q;
     reg  pgl_r$clock;
+    reg  sdp_r$d;
+    wire  sdp_r$q;
+    reg  sdp_r$clock;
     reg  ch_r$d;
     wire  ch_r$q;
     reg  ch_r$clock;
@@ -6439,6 +6502,11 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .q(pgl_r$q),
         .clock(pgl_r$clock)
     );
+    canstar_hub_core$core$pj$2$sdp_r sdp_r(
+        .d(sdp_r$d),
+        .q(sdp_r$q),
+        .clock(sdp_r$clock)
+    );
     canstar_hub_core$core$pj$2$ch_r ch_r(
         .d(ch_r$d),
         .q(ch_r$q),
@@ -6490,6 +6558,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         glf_r$clock = clock;
         glo_r$clock = clock;
         pgl_r$clock = clock;
+        sdp_r$clock = clock;
         ch_r$clock = clock;
         bl_r$clock = clock;
         bl_dm_r$clock = clock;
@@ -6522,6 +6591,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         glf_r$d = glf_r$q;
         glo_r$d = glo_r$q;
         pgl_r$d = pgl_r$q;
+        sdp_r$d = sdp_r$q;
         ch_r$d = ch_r$q;
         bl_r$d = bl_r$q;
         bl_dm_r$d = bl_dm_r$q;
@@ -6551,7 +6621,8 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q) | (im_2 & ~err_phase & seen_dom_crc$q & ~dom_bs$q);
         ffc = ff & ff_on & enabled & ffd_r$q;
         charge = sample & unj & enabled & ~suppress & ~stuff_dom;
-        pge = err_start & rep_on & enabled & (an_r$q != 32'h0) & pgl_r$q & ~ch_r$q;
+        sdp_r$d = stuff_dom;
+        pge = err_start & rep_on & enabled & (an_r$q != 32'h0) & pgl_r$q & ~ch_r$q & ~sdp_r$q;
         late = ffc | pge;
         blame = (sample & unj & enabled) | late;
         charged = charge | late;
@@ -6567,7 +6638,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             else if (tx_region & c & ~bt & ~rep_dom) begin
                 cont_r$d = 1'b0;
             end
-            ffd_r$d = dom & cont_r$q & ~suppress & ~gl_others;
+            ffd_r$d = domw & cont_r$q & ~suppress & ~gl_others;
             if (sof) begin
                 glf_r$d = 1'b0;
                 glo_r$d = 1'b0;
@@ -7524,6 +7595,25 @@ module canstar_hub_core$core$pj$2$rep_seen(d,q,clock);
 endmodule // canstar_hub_core$core$pj$2$rep_seen
 
 
+module canstar_hub_core$core$pj$2$sdp_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$2$sdp_r
+
+
 module canstar_hub_core$core$pj$2$seen_dom(d,q,clock);
     
     // Module arguments
@@ -7780,6 +7870,9 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  pgl_r$d;
     wire  pgl_r$q;
     reg  pgl_r$clock;
+    reg  sdp_r$d;
+    wire  sdp_r$q;
+    reg  sdp_r$clock;
     reg  ch_r$d;
     wire  ch_r$q;
     reg  ch_r$clock;
@@ -7954,6 +8047,11 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .q(pgl_r$q),
         .clock(pgl_r$clock)
     );
+    canstar_hub_core$core$sj$0$sdp_r sdp_r(
+        .d(sdp_r$d),
+        .q(sdp_r$q),
+        .clock(sdp_r$clock)
+    );
     canstar_hub_core$core$sj$0$ch_r ch_r(
         .d(ch_r$d),
         .q(ch_r$q),
@@ -8005,6 +8103,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         glf_r$clock = clock;
         glo_r$clock = clock;
         pgl_r$clock = clock;
+        sdp_r$clock = clock;
         ch_r$clock = clock;
         bl_r$clock = clock;
         bl_dm_r$clock = clock;
@@ -8037,6 +8136,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         glf_r$d = glf_r$q;
         glo_r$d = glo_r$q;
         pgl_r$d = pgl_r$q;
+        sdp_r$d = sdp_r$q;
         ch_r$d = ch_r$q;
         bl_r$d = bl_r$q;
         bl_dm_r$d = bl_dm_r$q;
@@ -8066,7 +8166,8 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q) | (im_2 & ~err_phase & seen_dom_crc$q & ~dom_bs$q);
         ffc = ff & ff_on & enabled & ffd_r$q;
         charge = sample & unj & enabled & ~suppress & ~stuff_dom;
-        pge = err_start & rep_on & enabled & (an_r$q != 32'h0) & pgl_r$q & ~ch_r$q;
+        sdp_r$d = stuff_dom;
+        pge = err_start & rep_on & enabled & (an_r$q != 32'h0) & pgl_r$q & ~ch_r$q & ~sdp_r$q;
         late = ffc | pge;
         blame = (sample & unj & enabled) | late;
         charged = charge | late;
@@ -8082,7 +8183,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             else if (tx_region & c & ~bt & ~rep_dom) begin
                 cont_r$d = 1'b0;
             end
-            ffd_r$d = dom & cont_r$q & ~suppress & ~gl_others;
+            ffd_r$d = domw & cont_r$q & ~suppress & ~gl_others;
             if (sof) begin
                 glf_r$d = 1'b0;
                 glo_r$d = 1'b0;
@@ -9039,6 +9140,25 @@ module canstar_hub_core$core$sj$0$rep_seen(d,q,clock);
 endmodule // canstar_hub_core$core$sj$0$rep_seen
 
 
+module canstar_hub_core$core$sj$0$sdp_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$sj$0$sdp_r
+
+
 module canstar_hub_core$core$sj$0$seen_dom(d,q,clock);
     
     // Module arguments
@@ -9238,6 +9358,9 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  pgl_r$d;
     wire  pgl_r$q;
     reg  pgl_r$clock;
+    reg  sdp_r$d;
+    wire  sdp_r$q;
+    reg  sdp_r$clock;
     reg  ch_r$d;
     wire  ch_r$q;
     reg  ch_r$clock;
@@ -9412,6 +9535,11 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .q(pgl_r$q),
         .clock(pgl_r$clock)
     );
+    canstar_hub_core$core$sj$1$sdp_r sdp_r(
+        .d(sdp_r$d),
+        .q(sdp_r$q),
+        .clock(sdp_r$clock)
+    );
     canstar_hub_core$core$sj$1$ch_r ch_r(
         .d(ch_r$d),
         .q(ch_r$q),
@@ -9463,6 +9591,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         glf_r$clock = clock;
         glo_r$clock = clock;
         pgl_r$clock = clock;
+        sdp_r$clock = clock;
         ch_r$clock = clock;
         bl_r$clock = clock;
         bl_dm_r$clock = clock;
@@ -9495,6 +9624,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         glf_r$d = glf_r$q;
         glo_r$d = glo_r$q;
         pgl_r$d = pgl_r$q;
+        sdp_r$d = sdp_r$q;
         ch_r$d = ch_r$q;
         bl_r$d = bl_r$q;
         bl_dm_r$d = bl_dm_r$q;
@@ -9524,7 +9654,8 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q) | (im_2 & ~err_phase & seen_dom_crc$q & ~dom_bs$q);
         ffc = ff & ff_on & enabled & ffd_r$q;
         charge = sample & unj & enabled & ~suppress & ~stuff_dom;
-        pge = err_start & rep_on & enabled & (an_r$q != 32'h0) & pgl_r$q & ~ch_r$q;
+        sdp_r$d = stuff_dom;
+        pge = err_start & rep_on & enabled & (an_r$q != 32'h0) & pgl_r$q & ~ch_r$q & ~sdp_r$q;
         late = ffc | pge;
         blame = (sample & unj & enabled) | late;
         charged = charge | late;
@@ -9540,7 +9671,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             else if (tx_region & c & ~bt & ~rep_dom) begin
                 cont_r$d = 1'b0;
             end
-            ffd_r$d = dom & cont_r$q & ~suppress & ~gl_others;
+            ffd_r$d = domw & cont_r$q & ~suppress & ~gl_others;
             if (sof) begin
                 glf_r$d = 1'b0;
                 glo_r$d = 1'b0;
@@ -10495,6 +10626,25 @@ module canstar_hub_core$core$sj$1$rep_seen(d,q,clock);
     end
           
 endmodule // canstar_hub_core$core$sj$1$rep_seen
+
+
+module canstar_hub_core$core$sj$1$sdp_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$sj$1$sdp_r
 
 
 module canstar_hub_core$core$sj$1$seen_dom(d,q,clock);
