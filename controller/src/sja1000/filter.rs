@@ -300,11 +300,9 @@ mod tests {
     /// masks, both filter modes), and differ for different frames.
     #[test]
     fn both_frames_have_the_same_filter() {
-        let mut x: u64 = 77;
-        let mut r = || {
-            x = x.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1_442_695_040_888_963_407);
-            x >> 33
-        };
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(77);
+        let mut r = || rng.gen::<u32>() as u64;
         let (mut hits, mut differ) = (0, 0);
         for _ in 0..200 {
             let single = r() & 1 == 1;

@@ -377,10 +377,11 @@ mod tests {
     fn written_values_map_like_the_rust_mapping() {
         let mut u = BusTiming::new(0x00, 0x00);
         drive::init(&mut u);
-        let mut x: u32 = 12345;
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(12345);
         let (mut b0, mut b1) = (0u8, 0u8);
         for i in 0..3000 {
-            x = x.wrapping_mul(1_103_515_245).wrapping_add(12_345);
+            let x: u32 = rng.gen();
             let v = (x >> 16) as u8;
             let w1 = (x >> 8) & 1 == 1;
             if i % 500 == 7 {
