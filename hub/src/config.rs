@@ -82,6 +82,10 @@ pub struct HubConfig {
     /// Good frames per count taken off a port's / a sublink's `bic` (§5.3 decay), 1..=7.
     pub bic_decay: u64,
     pub sub_bic_decay: u64,
+    /// Blames that one charged dominant bit in an error or overload delimiter counts on a
+    /// port / a sublink (hub.md §5.17), 1..=3.
+    pub delim_blames: u64,
+    pub sub_delim_blames: u64,
     /// Dominant-run threshold for sublinks, 1..=31.
     pub sub_dbc_threshold: u64,
     /// Replica disagreement limit, 1..=7.
@@ -141,6 +145,8 @@ impl Default for HubConfig {
             sub_bic_threshold: 9,
             bic_decay: 2,
             sub_bic_decay: 2,
+            delim_blames: 3,
+            sub_delim_blames: 2,
             sub_dbc_threshold: 28,
             replica_limit: 3,
             glitch_max: None,
@@ -205,6 +211,7 @@ impl HubConfig {
             window_lag: self.window_lag,
             crc_window_end: self.crc_window_end(),
             first_flagger: self.first_flagger,
+            delim_blames: self.delim_blames,
         }
     }
     /// Longest glitch in clocks: [`HubConfig::glitch_max`], or one bit minus SJW minus
@@ -246,6 +253,7 @@ impl HubConfig {
             window_lag: self.sub_window_lag,
             crc_window_end: self.crc_window_end(),
             first_flagger: self.sub_first_flagger,
+            delim_blames: self.sub_delim_blames,
         }
     }
     /// Check the ranges; returns a description of the first problem, starting
@@ -276,6 +284,8 @@ impl HubConfig {
             ("sub_bic_threshold", self.sub_bic_threshold, 31),
             ("bic_decay", self.bic_decay, 7),
             ("sub_bic_decay", self.sub_bic_decay, 7),
+            ("delim_blames", self.delim_blames, 3),
+            ("sub_delim_blames", self.sub_delim_blames, 3),
             ("dbc_threshold", self.dbc_threshold, 31),
             ("sub_dbc_threshold", self.sub_dbc_threshold, 31),
             ("nack_threshold", self.nack_threshold, 7),

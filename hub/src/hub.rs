@@ -102,6 +102,11 @@ pub struct HubCore {
     /// some port glitched in this frame; sublinks with a glitch of their own (not common)
     /// in this frame: at least one, at least two (§5.15)
     gl_port: Signal<Local, Bit>,
+    /// Enabled ports dominant: at least one, at least two; an enabled sublink dominant
+    /// (the §5.17 follower test's `others_dom`).
+    pd_one: Signal<Local, Bit>,
+    pd_two: Signal<Local, Bit>,
+    sd_one: Signal<Local, Bit>,
     glo_one: Signal<Local, Bit>,
     glo_two: Signal<Local, Bit>,
     sub_bl_r: DFF<Bit>,
@@ -194,6 +199,9 @@ impl HubCore {
             gl_one: Default::default(),
             gl_two: Default::default(),
             gl_port: Default::default(),
+            pd_one: Default::default(),
+            pd_two: Default::default(),
+            sd_one: Default::default(),
             glo_one: Default::default(),
             glo_two: Default::default(),
             sub_bl_r: Default::default(),
@@ -368,6 +376,7 @@ impl Logic for HubCore {
         self.rep_dom.next = false;
         self.rep_rec_w.next = false;
         self.rep_gl.next = false;
+        self.sd_one.next = false;
         for j in 0..self._m {
             self.coupler.reh_rx[j].next = self.reh_rx[j].val();
             self.hub_tx[j].next = self.coupler.hub_tx[j].val();
@@ -383,6 +392,16 @@ impl Logic for HubCore {
                 self.rep_dom.next = self.rep_dom.val() | !self.coupler.s[j].val();
                 self.rep_rec_w.next = self.rep_rec_w.val() | !self.sj[j].window_dom.val();
                 self.rep_gl.next = self.rep_gl.val() | (self.sj[j].gc.val() != 0);
+                self.sd_one.next = self.sd_one.val() | !self.coupler.s[j].val();
+            }
+        }
+        // §5.17 the dominant inputs that can lead a unit (enabled ones)
+        self.pd_one.next = false;
+        self.pd_two.next = false;
+        for i in 0..self._n {
+            if !self.coupler.u[i].val() & !self.pj[i].dis.val() {
+                self.pd_two.next = self.pd_two.val() | self.pd_one.val();
+                self.pd_one.next = true;
             }
         }
         // port judges
@@ -426,6 +445,7 @@ impl Logic for HubCore {
             self.pj[i].rep_blamed.next = false;
             self.pj[i].common.next = false;
             self.pj[i].ff.next = self.ff_r.q.val();
+            self.pj[i].others_dom.next = self.pd_two.val() | (self.pd_one.val() & (self.coupler.u[i].val() | self.pj[i].dis.val())) | self.sd_one.val();
             self.pj[i].gl_others.next = self.gl_two.val() | (self.gl_one.val() & !self.pj[i].glf.val());
             self.pj[i].bit_start.next = self.mon_bit_start.val();
             self.pj[i].bs_cnt.next = self.bs_r.q.val();
@@ -499,6 +519,7 @@ impl Logic for HubCore {
             self.sj[j].ff.next = self.ff_r.q.val();
             // (a common glitch, the peer's contribution on every replica, does not excuse
             // the replicas from each other, §5.15)
+            self.sj[j].others_dom.next = self.pd_one.val();
             self.sj[j].gl_others.next = self.gl_port.val() | self.glo_two.val() | (self.glo_one.val() & !self.sj[j].glf_own.val());
             self.sj[j].rep_blamed.next = self.sub_bl_r.q.val();
             self.sj[j].common.next = self.sub_all_an.val() & self.sub_two.val();

@@ -362,6 +362,22 @@
 //! `hub/tests/judge_sublinks.rs` `episode_at_a_dominant_stuff_bit_is_not_charged_for_a_common_glitch`,
 //! `first_flagger_judges_the_contender_by_the_window`.
 //!
+//! **§5.17 delimiter blames weigh more; followers (session 20).** A charged blame at a
+//! delimiter bit (`delim`) adds `8 * delim_blames` to `bic` (ports 3, sublinks 2 by
+//! default; `d_step`, saturating at 255), unless the unit's dominant level rose while
+//! another enabled unit that can lead it (ports: any other port or sublink; sublinks: any
+//! port; `others_dom` from the hub) had been dominant since the last sample point (`fol`,
+//! from `od_r`, `dprev`, `fol_r`): that is a node's flag in reaction to a pulse it saw
+//! before this hub's sample, and counts one blame as before. In a delimiter every healthy
+//! node sends recessive, and each dominant bit there costs the transmitter +8 (a new
+//! error flag): a faulty hub forcing dominant every ~2 bits brought a healthy transmitter
+//! to 96 in the 9 episodes its sublinks needed (`--class sweep-hub-r2d-e2 --run-seed
+//! 15219089611999315342`; now 5 and worst 56). Without the follower test, ports weighted
+//! 2 or 3 were cut off with the sublinks by their nodes' reactions to a faulty hub
+//! (`--class sweep-hub-r2d-e10 --run-seed 7512714283061735749`). Evidence in hub.md §5.17.
+//! Tests: `hub/tests/judge_rules.rs` `delimiter_blame_counts_delim_blames`,
+//! `delimiter_follower_counts_one_blame`; `recan/tests/campaign_runs.rs`.
+//!
 //! **§5.2 delimiter rule (added).** In the error phase, once BT was recessive at a
 //! sample (the end of every flag), the following delimiter bits are recessive-only
 //! positions (`delim`, computed by the hub), except the last one, where a node may
@@ -445,6 +461,9 @@ pub struct JudgeParams {
     /// First-flagger rule (§5.12): charge a dominant contender at an error episode that
     /// the frame monitor alone started.
     pub first_flagger: bool,
+    /// Blames that one charged dominant bit in an error or overload delimiter counts
+    /// (`bic += 8 * delim_blames`, §5.17), 1..=3.
+    pub delim_blames: u64,
 }
 
 #[derive(LogicBlock)]
@@ -494,6 +513,9 @@ pub struct JudgeUnit {
     /// started by the frame monitor's own error detection in the transmission region,
     /// with no blame, transmitter bit error or glitch in the frame (first-flagger rule).
     pub ff: Signal<In, Bit>,
+    /// Another enabled unit that can lead this one was dominant at this clock (ports: any
+    /// other port or sublink; sublinks: any port), for the §5.17 follower test.
+    pub others_dom: Signal<In, Bit>,
     /// Another enabled unit of the hub has glitched since the last SOF (from the units'
     /// `glf` outputs): this unit's error flag may be the reaction to that glitch.
     pub gl_others: Signal<In, Bit>,
@@ -526,6 +548,10 @@ pub struct JudgeUnit {
     pub window_dom: Signal<Out, Bit>,
     pulse: PulseCheck,
     bic_limit: Constant<Bits<8>>,
+    /// `bic` step of a charged delimiter bit (8 x `delim_blames`) and the level above
+    /// which that step saturates (255 minus the step).
+    d_step: Constant<Bits<8>>,
+    d_sat: Constant<Bits<8>>,
     b_decay: Constant<Bits<3>>,
     life_limit: Constant<Bits<7>>,
     dbc_thr: Constant<Bits<5>>,
@@ -575,6 +601,14 @@ pub struct JudgeUnit {
     /// dominant stuff bit (§5.16).
     sdp_r: DFF<Bit>,
     ch_r: DFF<Bit>,
+    /// §5.17: `others_dom` seen since the last sample point, this unit's level one clock
+    /// ago, and whether its dominant level is a follower.
+    od_r: DFF<Bit>,
+    dprev: DFF<Bit>,
+    fol_r: DFF<Bit>,
+    fol: Signal<Local, Bit>,
+    c_step: Signal<Local, Bits<8>>,
+    c_sat: Signal<Local, Bits<8>>,
     ffc: Signal<Local, Bit>,
     pge: Signal<Local, Bit>,
     late: Signal<Local, Bit>,
@@ -596,6 +630,7 @@ impl JudgeUnit {
     fn build(p: JudgeParams, port: bool) -> Self {
         assert!((1..=255).contains(&p.bic_limit), "bic limit out of range");
         assert!((1..=7).contains(&p.bic_decay), "bic decay out of range");
+        assert!((1..=3).contains(&p.delim_blames), "delimiter blames out of range");
         assert!((1..=127).contains(&p.life_limit), "lifetime limit out of range");
         assert!((1..=31).contains(&p.dbc_threshold), "DBC threshold out of range");
         assert!((1..=7).contains(&p.nack_threshold), "NACK threshold out of range");
@@ -638,6 +673,7 @@ impl JudgeUnit {
             common: Default::default(),
             rep_rec_w: Default::default(),
             ff: Default::default(),
+            others_dom: Default::default(),
             gl_others: Default::default(),
             dis: Default::default(),
             blame: Default::default(),
@@ -659,6 +695,8 @@ impl JudgeUnit {
             window_dom: Default::default(),
             pulse: PulseCheck::new(p.glitch_min, p.glitch_min_dominant, p.glitch_max),
             bic_limit: Constant::new(p.bic_limit.into()),
+            d_step: Constant::new((8 * p.delim_blames).into()),
+            d_sat: Constant::new((255 - 8 * p.delim_blames).into()),
             b_decay: Constant::new(p.bic_decay.into()),
             life_limit: Constant::new(p.life_limit.into()),
             dbc_thr: Constant::new(p.dbc_threshold.into()),
@@ -706,6 +744,12 @@ impl JudgeUnit {
             pgl_r: Default::default(),
             sdp_r: Default::default(),
             ch_r: Default::default(),
+            od_r: Default::default(),
+            dprev: Default::default(),
+            fol_r: Default::default(),
+            fol: Default::default(),
+            c_step: Default::default(),
+            c_sat: Default::default(),
             ffc: Default::default(),
             pge: Default::default(),
             late: Default::default(),
@@ -736,7 +780,7 @@ impl JudgeUnit {
 impl Logic for JudgeUnit {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, dis_r, bic_r, bdec_r, life_r, dbc_r, nack_r, cont_r, rep_r, rep_seen, rep_first_dom, ok_r, acked, bad, ack_missing, ack_c, ack_rx, seen_dom, seen_dom_crc, dom_bs, gc_r, gdec_r, an_r, pgc_r, pdec_r, ffd_r, glf_r, glo_r, pgl_r, sdp_r, ch_r, bl_r, bl_dm_r, gpend);
+        dff_setup!(self, clock, dis_r, bic_r, bdec_r, life_r, dbc_r, nack_r, cont_r, rep_r, rep_seen, rep_first_dom, ok_r, acked, bad, ack_missing, ack_c, ack_rx, seen_dom, seen_dom_crc, dom_bs, gc_r, gdec_r, an_r, pgc_r, pdec_r, ffd_r, glf_r, glo_r, pgl_r, sdp_r, ch_r, od_r, dprev, fol_r, bl_r, bl_dm_r, gpend);
         self.pulse.clock.next = self.clock.val();
         self.pulse.reset.next = self.reset.val();
         self.pulse.c.next = self.c.val();
@@ -752,6 +796,31 @@ impl Logic for JudgeUnit {
             self.seen_dom.d.next = false;
         } else if self.dom.val() & (self.bs_cnt.val() >= self.win_lag.val()) {
             self.seen_dom.d.next = true;
+        }
+        // §5.17 follower: a dominant level that rose while another unit that can lead it
+        // had been dominant since the last sample point (a node's reaction to the peer's
+        // pulse that it saw before this hub's sample; the tails of error flags end before
+        // the sample at which BT is recessive, so they never make a follower in a delimiter)
+        if self.sample.val() {
+            self.od_r.d.next = false;
+        } else if self.others_dom.val() {
+            self.od_r.d.next = true;
+        }
+        self.dprev.d.next = self.dom.val();
+        if self.dom.val() & !self.dprev.q.val() {
+            self.fol.next = self.od_r.q.val();
+        } else {
+            self.fol.next = self.fol_r.q.val();
+        }
+        self.fol_r.d.next = self.fol.val();
+        // the step of a charge at the sample: `delim_blames` blames for a dominant bit in an
+        // error or overload delimiter that no other unit led, one blame otherwise (one adder)
+        if self.delim.val() & !self.fol.val() {
+            self.c_step.next = self.d_step.val();
+            self.c_sat.next = self.d_sat.val();
+        } else {
+            self.c_step.next = 8.into();
+            self.c_sat.next = 247.into();
         }
         // early-ACK rule: in the CRC delimiter only a dominant level from `win_lag` up to
         // `crc_end` clocks after the bit start counts (registered: seen at the sample);
@@ -844,10 +913,10 @@ impl Logic for JudgeUnit {
                 }
             }
             if self.charge.val() {
-                if self.bic_r.q.val() > 247 {
+                if self.bic_r.q.val() > self.c_sat.val() {
                     self.bic_r.d.next = 255.into();
                 } else {
-                    self.bic_r.d.next = self.bic_r.q.val() + 8;
+                    self.bic_r.d.next = self.bic_r.q.val() + self.c_step.val();
                 }
             }
             // §5.8 glitch decay
@@ -1055,6 +1124,9 @@ impl Logic for JudgeUnit {
             self.glo_r.d.next = false;
             self.pgl_r.d.next = false;
             self.ch_r.d.next = false;
+            self.od_r.d.next = false;
+            self.dprev.d.next = false;
+            self.fol_r.d.next = false;
         }
         self.dis.next = self.dis_r.q.val();
         self.bic.next = self.bic_r.q.val();

@@ -32,7 +32,9 @@ fn delimiter_with(pulse: bool, reaction: bool) -> Vec<u64> {
 
 #[test]
 fn reaction_right_after_a_blame_in_the_delimiter_is_not_blamed() {
-    assert_eq!(delimiter_with(false, true), [0, 8, 0], "a dominant delimiter bit is blamed");
-    assert_eq!(delimiter_with(true, false), [8, 0, 0], "port 0 blamed by the window rule");
-    assert_eq!(delimiter_with(true, true), [8, 0, 0], "port 1's reaction in the next bit: not blamed");
+    // a charged delimiter bit counts `delim_blames` blames (§5.17; no other port leads here)
+    let d = 8 * HubConfig::default().delim_blames;
+    assert_eq!(delimiter_with(false, true), [0, d, 0], "a dominant delimiter bit is blamed");
+    assert_eq!(delimiter_with(true, false), [d, 0, 0], "port 0 blamed by the window rule");
+    assert_eq!(delimiter_with(true, true), [d, 0, 0], "port 1's reaction in the next bit: not blamed");
 }

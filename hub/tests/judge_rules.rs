@@ -283,6 +283,65 @@ fn dominant_in_a_delimiter_is_blamed() {
     assert!(!sample(&mut j, Bit { c: false, bt: false, err: true, ..Default::default() }));
 }
 
+/// hub.md §5.17: a charged dominant bit in a delimiter counts `delim_blames` blames
+/// (`bic += 8 * delim_blames`); a blame anywhere else counts one; `bic` saturates at 255.
+#[test]
+fn delimiter_blame_counts_delim_blames() {
+    let delim = Bit { c: false, bt: false, err: true, ..Default::default() };
+    let eof = Bit { c: false, bt: false, eof: true, ..Default::default() };
+    for n in 1..=3u64 {
+        let mut j = unit(JudgeParams { delim_blames: n, bic_limit: 255, ..params() });
+        j.delim.next = true;
+        assert!(sample(&mut j, delim));
+        assert_eq!(j.bic.val().index() as u64, 8 * n, "delim_blames {n}");
+        j.delim.next = false;
+        assert!(sample(&mut j, eof));
+        assert_eq!(j.bic.val().index() as u64, 8 * n + 8, "a blame outside a delimiter, delim_blames {n}");
+    }
+    let mut j = unit(JudgeParams { delim_blames: 3, bic_limit: 255, ..params() });
+    j.delim.next = true;
+    let mut last = 0;
+    for k in 1..=11 {
+        sample(&mut j, delim);
+        let b = j.bic.val().index();
+        assert_eq!(b, (24 * k).min(255), "charge {k}");
+        assert!(b >= last);
+        last = b;
+    }
+}
+
+/// hub.md §5.17 follower: a delimiter blame counts `delim_blames` only for a unit whose
+/// dominant level led; one that rose after another unit (`others_dom`) had been dominant
+/// since the last sample point counts one blame. `others_dom` before the last sample point
+/// (the tails of the error flags) makes no follower, nor does a level that comes later.
+#[test]
+fn delimiter_follower_counts_one_blame() {
+    type Span = std::ops::Range<u64>;
+    // (others dominant in the previous bit, in the delimiter bit, the unit dominant from, bic)
+    let cases: [(Span, Span, u64, usize); 6] = [
+        (0..0, 0..0, 4, 24),
+        (0..0, 1..4, 4, 8),
+        (0..0, 4..9, 4, 24),
+        (0..0, 6..10, 4, 24),
+        (2..11, 0..0, 4, 24),
+        (13..16, 0..0, 2, 8),
+    ];
+    for (prev, cur, from, bic) in cases {
+        let mut j = unit(JudgeParams { delim_blames: 3, ..params() });
+        apply(&mut j, Bit { c: true, bt: true, err: true, ..Default::default() });
+        let (blamed, _) = bit_clocks(&mut j, &|j, k| j.others_dom.next = prev.contains(&k));
+        assert!(!blamed);
+        j.delim.next = true;
+        let (blamed, _) = bit_clocks(&mut j, &|j, k| {
+            j.others_dom.next = cur.contains(&k);
+            j.c.next = k < from;
+            j.bt.next = k < from;
+        });
+        assert!(blamed, "others {prev:?} / {cur:?}, dominant from {from}");
+        assert_eq!(j.bic.val().index(), bic, "others {prev:?} / {cur:?}, dominant from {from}");
+    }
+}
+
 /// Intermission bit 1 is not blamed (a node's reaction to a dominant last EOF bit that only
 /// it saw). In bit 2 (`im_2`) an overload flag starts at a bit start (hub.md §5.2, §5.14):
 /// a dominant level is blamed only if BT was recessive at the hub's bit start and the level

@@ -823,6 +823,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
     reg  pj$0$common;
     reg  pj$0$rep_rec_w;
     reg  pj$0$ff;
+    reg  pj$0$others_dom;
     reg  pj$0$gl_others;
     wire  pj$0$dis;
     wire  pj$0$blame;
@@ -871,6 +872,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
     reg  pj$1$common;
     reg  pj$1$rep_rec_w;
     reg  pj$1$ff;
+    reg  pj$1$others_dom;
     reg  pj$1$gl_others;
     wire  pj$1$dis;
     wire  pj$1$blame;
@@ -919,6 +921,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
     reg  pj$2$common;
     reg  pj$2$rep_rec_w;
     reg  pj$2$ff;
+    reg  pj$2$others_dom;
     reg  pj$2$gl_others;
     wire  pj$2$dis;
     wire  pj$2$blame;
@@ -958,6 +961,9 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
     reg  gl_one;
     reg  gl_two;
     reg  gl_port;
+    reg  pd_one;
+    reg  pd_two;
+    reg  sd_one;
     reg  glo_one;
     reg  glo_two;
     reg  any_sub_blame;
@@ -1087,6 +1093,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         .common(pj$0$common),
         .rep_rec_w(pj$0$rep_rec_w),
         .ff(pj$0$ff),
+        .others_dom(pj$0$others_dom),
         .gl_others(pj$0$gl_others),
         .dis(pj$0$dis),
         .blame(pj$0$blame),
@@ -1137,6 +1144,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         .common(pj$1$common),
         .rep_rec_w(pj$1$rep_rec_w),
         .ff(pj$1$ff),
+        .others_dom(pj$1$others_dom),
         .gl_others(pj$1$gl_others),
         .dis(pj$1$dis),
         .blame(pj$1$blame),
@@ -1187,6 +1195,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         .common(pj$2$common),
         .rep_rec_w(pj$2$rep_rec_w),
         .ff(pj$2$ff),
+        .others_dom(pj$2$others_dom),
         .gl_others(pj$2$gl_others),
         .dis(pj$2$dis),
         .blame(pj$2$blame),
@@ -1324,6 +1333,21 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         rep_dom = 1'b0;
         rep_rec_w = 1'b0;
         rep_gl = 1'b0;
+        sd_one = 1'b0;
+        pd_one = 1'b0;
+        pd_two = 1'b0;
+        if (~coupler$u$0 & ~pj$0$dis) begin
+            pd_two = pd_two | pd_one;
+            pd_one = 1'b1;
+        end
+        if (~coupler$u$1 & ~pj$1$dis) begin
+            pd_two = pd_two | pd_one;
+            pd_one = 1'b1;
+        end
+        if (~coupler$u$2 & ~pj$2$dis) begin
+            pd_two = pd_two | pd_one;
+            pd_one = 1'b1;
+        end
         any_blame = 1'b0;
         any_sub_blame = 1'b0;
         any_tx_error = 1'b0;
@@ -1364,6 +1388,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         pj$0$rep_blamed = 1'b0;
         pj$0$common = 1'b0;
         pj$0$ff = ff_r$q;
+        pj$0$others_dom = pd_two | (pd_one & (coupler$u$0 | pj$0$dis)) | sd_one;
         pj$0$gl_others = gl_two | (gl_one & ~pj$0$glf);
         pj$0$bit_start = mon_bit_start;
         pj$0$bs_cnt = bs_r$q;
@@ -1409,6 +1434,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         pj$1$rep_blamed = 1'b0;
         pj$1$common = 1'b0;
         pj$1$ff = ff_r$q;
+        pj$1$others_dom = pd_two | (pd_one & (coupler$u$1 | pj$1$dis)) | sd_one;
         pj$1$gl_others = gl_two | (gl_one & ~pj$1$glf);
         pj$1$bit_start = mon_bit_start;
         pj$1$bs_cnt = bs_r$q;
@@ -1454,6 +1480,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         pj$2$rep_blamed = 1'b0;
         pj$2$common = 1'b0;
         pj$2$ff = ff_r$q;
+        pj$2$others_dom = pd_two | (pd_one & (coupler$u$2 | pj$2$dis)) | sd_one;
         pj$2$gl_others = gl_two | (gl_one & ~pj$2$glf);
         pj$2$bit_start = mon_bit_start;
         pj$2$bs_cnt = bs_r$q;
@@ -2466,7 +2493,7 @@ module canstar_cancentrate_core$core$injector$state(d,q,clock);
 endmodule // canstar_cancentrate_core$core$injector$state
 
 
-module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
+module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
     
     // Module arguments
     input wire  clock;
@@ -2498,6 +2525,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
     input wire  common;
     input wire  rep_rec_w;
     input wire  ff;
+    input wire  others_dom;
     input wire  gl_others;
     output reg  dis;
     output reg  blame;
@@ -2520,6 +2548,8 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
     
     // Constant declarations
     localparam  bic_limit = 8'h30;
+    localparam  d_step = 8'h18;
+    localparam  d_sat = 8'he7;
     localparam  b_decay = 3'b10;
     localparam  life_limit = 7'b100000;
     localparam  dbc_thr = 5'b1101;
@@ -2633,6 +2663,15 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
     reg  ch_r$d;
     wire  ch_r$q;
     reg  ch_r$clock;
+    reg  od_r$d;
+    wire  od_r$q;
+    reg  od_r$clock;
+    reg  dprev$d;
+    wire  dprev$q;
+    reg  dprev$clock;
+    reg  fol_r$d;
+    wire  fol_r$q;
+    reg  fol_r$clock;
     reg  bl_r$d;
     wire  bl_r$q;
     reg  bl_r$clock;
@@ -2644,6 +2683,9 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
     reg  gpend$clock;
     
     // Local signals
+    reg  fol;
+    reg  [7:0] c_step;
+    reg  [7:0] c_sat;
     reg  ffc;
     reg  pge;
     reg  late;
@@ -2814,6 +2856,21 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         .q(ch_r$q),
         .clock(ch_r$clock)
     );
+    canstar_cancentrate_core$core$pj$0$od_r od_r(
+        .d(od_r$d),
+        .q(od_r$q),
+        .clock(od_r$clock)
+    );
+    canstar_cancentrate_core$core$pj$0$dprev dprev(
+        .d(dprev$d),
+        .q(dprev$q),
+        .clock(dprev$clock)
+    );
+    canstar_cancentrate_core$core$pj$0$fol_r fol_r(
+        .d(fol_r$d),
+        .q(fol_r$q),
+        .clock(fol_r$clock)
+    );
     canstar_cancentrate_core$core$pj$0$bl_r bl_r(
         .d(bl_r$d),
         .q(bl_r$q),
@@ -2862,6 +2919,9 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         pgl_r$clock = clock;
         sdp_r$clock = clock;
         ch_r$clock = clock;
+        od_r$clock = clock;
+        dprev$clock = clock;
+        fol_r$clock = clock;
         bl_r$clock = clock;
         bl_dm_r$clock = clock;
         gpend$clock = clock;
@@ -2895,6 +2955,9 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         pgl_r$d = pgl_r$q;
         sdp_r$d = sdp_r$q;
         ch_r$d = ch_r$q;
+        od_r$d = od_r$q;
+        dprev$d = dprev$q;
+        fol_r$d = fol_r$q;
         bl_r$d = bl_r$q;
         bl_dm_r$d = bl_dm_r$q;
         gpend$d = gpend$q;
@@ -2912,6 +2975,28 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         end
         else if (dom & (bs_cnt >= win_lag)) begin
             seen_dom$d = 1'b1;
+        end
+        if (sample) begin
+            od_r$d = 1'b0;
+        end
+        else if (others_dom) begin
+            od_r$d = 1'b1;
+        end
+        dprev$d = dom;
+        if (dom & ~dprev$q) begin
+            fol = od_r$q;
+        end
+        else begin
+            fol = fol_r$q;
+        end
+        fol_r$d = fol;
+        if (delim & ~fol) begin
+            c_step = d_step;
+            c_sat = d_sat;
+        end
+        else begin
+            c_step = 32'h8;
+            c_sat = 32'hf7;
         end
         if (bit_start) begin
             seen_dom_crc$d = 1'b0;
@@ -2963,11 +3048,11 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
                 end
             end
             if (charge) begin
-                if (bic_r$q > 32'hf7) begin
+                if (bic_r$q > c_sat) begin
                     bic_r$d = 32'hff;
                 end
                 else begin
-                    bic_r$d = bic_r$q + 32'h8;
+                    bic_r$d = bic_r$q + c_step;
                 end
             end
             if (frame_ok & enabled & (gc_r$q != 32'h0)) begin
@@ -3144,6 +3229,9 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
             glo_r$d = 1'b0;
             pgl_r$d = 1'b0;
             ch_r$d = 1'b0;
+            od_r$d = 1'b0;
+            dprev$d = 1'b0;
+            fol_r$d = 1'b0;
         end
         dis = dis_r$q;
         bic = bic_r$q;
@@ -3448,6 +3536,25 @@ module canstar_cancentrate_core$core$pj$0$dom_bs(d,q,clock);
 endmodule // canstar_cancentrate_core$core$pj$0$dom_bs
 
 
+module canstar_cancentrate_core$core$pj$0$dprev(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$0$dprev
+
+
 module canstar_cancentrate_core$core$pj$0$ffd_r(d,q,clock);
     
     // Module arguments
@@ -3465,6 +3572,25 @@ module canstar_cancentrate_core$core$pj$0$ffd_r(d,q,clock);
     end
           
 endmodule // canstar_cancentrate_core$core$pj$0$ffd_r
+
+
+module canstar_cancentrate_core$core$pj$0$fol_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$0$fol_r
 
 
 module canstar_cancentrate_core$core$pj$0$gc_r(d,q,clock);
@@ -3598,6 +3724,25 @@ module canstar_cancentrate_core$core$pj$0$nack_r(d,q,clock);
     end
           
 endmodule // canstar_cancentrate_core$core$pj$0$nack_r
+
+
+module canstar_cancentrate_core$core$pj$0$od_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$0$od_r
 
 
 module canstar_cancentrate_core$core$pj$0$ok_r(d,q,clock);
@@ -3954,7 +4099,7 @@ module canstar_cancentrate_core$core$pj$0$seen_dom_crc(d,q,clock);
 endmodule // canstar_cancentrate_core$core$pj$0$seen_dom_crc
 
 
-module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
+module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
     
     // Module arguments
     input wire  clock;
@@ -3986,6 +4131,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
     input wire  common;
     input wire  rep_rec_w;
     input wire  ff;
+    input wire  others_dom;
     input wire  gl_others;
     output reg  dis;
     output reg  blame;
@@ -4008,6 +4154,8 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
     
     // Constant declarations
     localparam  bic_limit = 8'h30;
+    localparam  d_step = 8'h18;
+    localparam  d_sat = 8'he7;
     localparam  b_decay = 3'b10;
     localparam  life_limit = 7'b100000;
     localparam  dbc_thr = 5'b1101;
@@ -4121,6 +4269,15 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
     reg  ch_r$d;
     wire  ch_r$q;
     reg  ch_r$clock;
+    reg  od_r$d;
+    wire  od_r$q;
+    reg  od_r$clock;
+    reg  dprev$d;
+    wire  dprev$q;
+    reg  dprev$clock;
+    reg  fol_r$d;
+    wire  fol_r$q;
+    reg  fol_r$clock;
     reg  bl_r$d;
     wire  bl_r$q;
     reg  bl_r$clock;
@@ -4132,6 +4289,9 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
     reg  gpend$clock;
     
     // Local signals
+    reg  fol;
+    reg  [7:0] c_step;
+    reg  [7:0] c_sat;
     reg  ffc;
     reg  pge;
     reg  late;
@@ -4302,6 +4462,21 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         .q(ch_r$q),
         .clock(ch_r$clock)
     );
+    canstar_cancentrate_core$core$pj$1$od_r od_r(
+        .d(od_r$d),
+        .q(od_r$q),
+        .clock(od_r$clock)
+    );
+    canstar_cancentrate_core$core$pj$1$dprev dprev(
+        .d(dprev$d),
+        .q(dprev$q),
+        .clock(dprev$clock)
+    );
+    canstar_cancentrate_core$core$pj$1$fol_r fol_r(
+        .d(fol_r$d),
+        .q(fol_r$q),
+        .clock(fol_r$clock)
+    );
     canstar_cancentrate_core$core$pj$1$bl_r bl_r(
         .d(bl_r$d),
         .q(bl_r$q),
@@ -4350,6 +4525,9 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         pgl_r$clock = clock;
         sdp_r$clock = clock;
         ch_r$clock = clock;
+        od_r$clock = clock;
+        dprev$clock = clock;
+        fol_r$clock = clock;
         bl_r$clock = clock;
         bl_dm_r$clock = clock;
         gpend$clock = clock;
@@ -4383,6 +4561,9 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         pgl_r$d = pgl_r$q;
         sdp_r$d = sdp_r$q;
         ch_r$d = ch_r$q;
+        od_r$d = od_r$q;
+        dprev$d = dprev$q;
+        fol_r$d = fol_r$q;
         bl_r$d = bl_r$q;
         bl_dm_r$d = bl_dm_r$q;
         gpend$d = gpend$q;
@@ -4400,6 +4581,28 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         end
         else if (dom & (bs_cnt >= win_lag)) begin
             seen_dom$d = 1'b1;
+        end
+        if (sample) begin
+            od_r$d = 1'b0;
+        end
+        else if (others_dom) begin
+            od_r$d = 1'b1;
+        end
+        dprev$d = dom;
+        if (dom & ~dprev$q) begin
+            fol = od_r$q;
+        end
+        else begin
+            fol = fol_r$q;
+        end
+        fol_r$d = fol;
+        if (delim & ~fol) begin
+            c_step = d_step;
+            c_sat = d_sat;
+        end
+        else begin
+            c_step = 32'h8;
+            c_sat = 32'hf7;
         end
         if (bit_start) begin
             seen_dom_crc$d = 1'b0;
@@ -4451,11 +4654,11 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
                 end
             end
             if (charge) begin
-                if (bic_r$q > 32'hf7) begin
+                if (bic_r$q > c_sat) begin
                     bic_r$d = 32'hff;
                 end
                 else begin
-                    bic_r$d = bic_r$q + 32'h8;
+                    bic_r$d = bic_r$q + c_step;
                 end
             end
             if (frame_ok & enabled & (gc_r$q != 32'h0)) begin
@@ -4632,6 +4835,9 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
             glo_r$d = 1'b0;
             pgl_r$d = 1'b0;
             ch_r$d = 1'b0;
+            od_r$d = 1'b0;
+            dprev$d = 1'b0;
+            fol_r$d = 1'b0;
         end
         dis = dis_r$q;
         bic = bic_r$q;
@@ -4936,6 +5142,25 @@ module canstar_cancentrate_core$core$pj$1$dom_bs(d,q,clock);
 endmodule // canstar_cancentrate_core$core$pj$1$dom_bs
 
 
+module canstar_cancentrate_core$core$pj$1$dprev(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$1$dprev
+
+
 module canstar_cancentrate_core$core$pj$1$ffd_r(d,q,clock);
     
     // Module arguments
@@ -4953,6 +5178,25 @@ module canstar_cancentrate_core$core$pj$1$ffd_r(d,q,clock);
     end
           
 endmodule // canstar_cancentrate_core$core$pj$1$ffd_r
+
+
+module canstar_cancentrate_core$core$pj$1$fol_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$1$fol_r
 
 
 module canstar_cancentrate_core$core$pj$1$gc_r(d,q,clock);
@@ -5086,6 +5330,25 @@ module canstar_cancentrate_core$core$pj$1$nack_r(d,q,clock);
     end
           
 endmodule // canstar_cancentrate_core$core$pj$1$nack_r
+
+
+module canstar_cancentrate_core$core$pj$1$od_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$1$od_r
 
 
 module canstar_cancentrate_core$core$pj$1$ok_r(d,q,clock);
@@ -5442,7 +5705,7 @@ module canstar_cancentrate_core$core$pj$1$seen_dom_crc(d,q,clock);
 endmodule // canstar_cancentrate_core$core$pj$1$seen_dom_crc
 
 
-module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
+module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
     
     // Module arguments
     input wire  clock;
@@ -5474,6 +5737,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
     input wire  common;
     input wire  rep_rec_w;
     input wire  ff;
+    input wire  others_dom;
     input wire  gl_others;
     output reg  dis;
     output reg  blame;
@@ -5496,6 +5760,8 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
     
     // Constant declarations
     localparam  bic_limit = 8'h30;
+    localparam  d_step = 8'h18;
+    localparam  d_sat = 8'he7;
     localparam  b_decay = 3'b10;
     localparam  life_limit = 7'b100000;
     localparam  dbc_thr = 5'b1101;
@@ -5609,6 +5875,15 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
     reg  ch_r$d;
     wire  ch_r$q;
     reg  ch_r$clock;
+    reg  od_r$d;
+    wire  od_r$q;
+    reg  od_r$clock;
+    reg  dprev$d;
+    wire  dprev$q;
+    reg  dprev$clock;
+    reg  fol_r$d;
+    wire  fol_r$q;
+    reg  fol_r$clock;
     reg  bl_r$d;
     wire  bl_r$q;
     reg  bl_r$clock;
@@ -5620,6 +5895,9 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
     reg  gpend$clock;
     
     // Local signals
+    reg  fol;
+    reg  [7:0] c_step;
+    reg  [7:0] c_sat;
     reg  ffc;
     reg  pge;
     reg  late;
@@ -5790,6 +6068,21 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         .q(ch_r$q),
         .clock(ch_r$clock)
     );
+    canstar_cancentrate_core$core$pj$2$od_r od_r(
+        .d(od_r$d),
+        .q(od_r$q),
+        .clock(od_r$clock)
+    );
+    canstar_cancentrate_core$core$pj$2$dprev dprev(
+        .d(dprev$d),
+        .q(dprev$q),
+        .clock(dprev$clock)
+    );
+    canstar_cancentrate_core$core$pj$2$fol_r fol_r(
+        .d(fol_r$d),
+        .q(fol_r$q),
+        .clock(fol_r$clock)
+    );
     canstar_cancentrate_core$core$pj$2$bl_r bl_r(
         .d(bl_r$d),
         .q(bl_r$q),
@@ -5838,6 +6131,9 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         pgl_r$clock = clock;
         sdp_r$clock = clock;
         ch_r$clock = clock;
+        od_r$clock = clock;
+        dprev$clock = clock;
+        fol_r$clock = clock;
         bl_r$clock = clock;
         bl_dm_r$clock = clock;
         gpend$clock = clock;
@@ -5871,6 +6167,9 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         pgl_r$d = pgl_r$q;
         sdp_r$d = sdp_r$q;
         ch_r$d = ch_r$q;
+        od_r$d = od_r$q;
+        dprev$d = dprev$q;
+        fol_r$d = fol_r$q;
         bl_r$d = bl_r$q;
         bl_dm_r$d = bl_dm_r$q;
         gpend$d = gpend$q;
@@ -5888,6 +6187,28 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         end
         else if (dom & (bs_cnt >= win_lag)) begin
             seen_dom$d = 1'b1;
+        end
+        if (sample) begin
+            od_r$d = 1'b0;
+        end
+        else if (others_dom) begin
+            od_r$d = 1'b1;
+        end
+        dprev$d = dom;
+        if (dom & ~dprev$q) begin
+            fol = od_r$q;
+        end
+        else begin
+            fol = fol_r$q;
+        end
+        fol_r$d = fol;
+        if (delim & ~fol) begin
+            c_step = d_step;
+            c_sat = d_sat;
+        end
+        else begin
+            c_step = 32'h8;
+            c_sat = 32'hf7;
         end
         if (bit_start) begin
             seen_dom_crc$d = 1'b0;
@@ -5939,11 +6260,11 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
                 end
             end
             if (charge) begin
-                if (bic_r$q > 32'hf7) begin
+                if (bic_r$q > c_sat) begin
                     bic_r$d = 32'hff;
                 end
                 else begin
-                    bic_r$d = bic_r$q + 32'h8;
+                    bic_r$d = bic_r$q + c_step;
                 end
             end
             if (frame_ok & enabled & (gc_r$q != 32'h0)) begin
@@ -6120,6 +6441,9 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
             glo_r$d = 1'b0;
             pgl_r$d = 1'b0;
             ch_r$d = 1'b0;
+            od_r$d = 1'b0;
+            dprev$d = 1'b0;
+            fol_r$d = 1'b0;
         end
         dis = dis_r$q;
         bic = bic_r$q;
@@ -6424,6 +6748,25 @@ module canstar_cancentrate_core$core$pj$2$dom_bs(d,q,clock);
 endmodule // canstar_cancentrate_core$core$pj$2$dom_bs
 
 
+module canstar_cancentrate_core$core$pj$2$dprev(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$2$dprev
+
+
 module canstar_cancentrate_core$core$pj$2$ffd_r(d,q,clock);
     
     // Module arguments
@@ -6441,6 +6784,25 @@ module canstar_cancentrate_core$core$pj$2$ffd_r(d,q,clock);
     end
           
 endmodule // canstar_cancentrate_core$core$pj$2$ffd_r
+
+
+module canstar_cancentrate_core$core$pj$2$fol_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$2$fol_r
 
 
 module canstar_cancentrate_core$core$pj$2$gc_r(d,q,clock);
@@ -6574,6 +6936,25 @@ module canstar_cancentrate_core$core$pj$2$nack_r(d,q,clock);
     end
           
 endmodule // canstar_cancentrate_core$core$pj$2$nack_r
+
+
+module canstar_cancentrate_core$core$pj$2$od_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$2$od_r
 
 
 module canstar_cancentrate_core$core$pj$2$ok_r(d,q,clock);

@@ -895,6 +895,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     reg  pj$0$common;
     reg  pj$0$rep_rec_w;
     reg  pj$0$ff;
+    reg  pj$0$others_dom;
     reg  pj$0$gl_others;
     wire  pj$0$dis;
     wire  pj$0$blame;
@@ -943,6 +944,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     reg  pj$1$common;
     reg  pj$1$rep_rec_w;
     reg  pj$1$ff;
+    reg  pj$1$others_dom;
     reg  pj$1$gl_others;
     wire  pj$1$dis;
     wire  pj$1$blame;
@@ -991,6 +993,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     reg  pj$2$common;
     reg  pj$2$rep_rec_w;
     reg  pj$2$ff;
+    reg  pj$2$others_dom;
     reg  pj$2$gl_others;
     wire  pj$2$dis;
     wire  pj$2$blame;
@@ -1039,6 +1042,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     reg  sj$0$common;
     reg  sj$0$rep_rec_w;
     reg  sj$0$ff;
+    reg  sj$0$others_dom;
     reg  sj$0$gl_others;
     wire  sj$0$dis;
     wire  sj$0$blame;
@@ -1087,6 +1091,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     reg  sj$1$common;
     reg  sj$1$rep_rec_w;
     reg  sj$1$ff;
+    reg  sj$1$others_dom;
     reg  sj$1$gl_others;
     wire  sj$1$dis;
     wire  sj$1$blame;
@@ -1126,6 +1131,9 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     reg  gl_one;
     reg  gl_two;
     reg  gl_port;
+    reg  pd_one;
+    reg  pd_two;
+    reg  sd_one;
     reg  glo_one;
     reg  glo_two;
     reg  any_sub_blame;
@@ -1265,6 +1273,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .common(pj$0$common),
         .rep_rec_w(pj$0$rep_rec_w),
         .ff(pj$0$ff),
+        .others_dom(pj$0$others_dom),
         .gl_others(pj$0$gl_others),
         .dis(pj$0$dis),
         .blame(pj$0$blame),
@@ -1315,6 +1324,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .common(pj$1$common),
         .rep_rec_w(pj$1$rep_rec_w),
         .ff(pj$1$ff),
+        .others_dom(pj$1$others_dom),
         .gl_others(pj$1$gl_others),
         .dis(pj$1$dis),
         .blame(pj$1$blame),
@@ -1365,6 +1375,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .common(pj$2$common),
         .rep_rec_w(pj$2$rep_rec_w),
         .ff(pj$2$ff),
+        .others_dom(pj$2$others_dom),
         .gl_others(pj$2$gl_others),
         .dis(pj$2$dis),
         .blame(pj$2$blame),
@@ -1415,6 +1426,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .common(sj$0$common),
         .rep_rec_w(sj$0$rep_rec_w),
         .ff(sj$0$ff),
+        .others_dom(sj$0$others_dom),
         .gl_others(sj$0$gl_others),
         .dis(sj$0$dis),
         .blame(sj$0$blame),
@@ -1465,6 +1477,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .common(sj$1$common),
         .rep_rec_w(sj$1$rep_rec_w),
         .ff(sj$1$ff),
+        .others_dom(sj$1$others_dom),
         .gl_others(sj$1$gl_others),
         .dis(sj$1$dis),
         .blame(sj$1$blame),
@@ -1630,6 +1643,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         rep_dom = 1'b0;
         rep_rec_w = 1'b0;
         rep_gl = 1'b0;
+        sd_one = 1'b0;
         coupler$reh_rx$0 = reh_rx$0;
         hub_tx$0 = coupler$hub_tx$0;
         coupler$hdis$0 = sj$0$dis;
@@ -1645,6 +1659,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
             rep_dom = rep_dom | ~coupler$s$0;
             rep_rec_w = rep_rec_w | ~sj$0$window_dom;
             rep_gl = rep_gl | (sj$0$gc != 32'h0);
+            sd_one = sd_one | ~coupler$s$0;
         end
         coupler$reh_rx$1 = reh_rx$1;
         hub_tx$1 = coupler$hub_tx$1;
@@ -1661,6 +1676,21 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
             rep_dom = rep_dom | ~coupler$s$1;
             rep_rec_w = rep_rec_w | ~sj$1$window_dom;
             rep_gl = rep_gl | (sj$1$gc != 32'h0);
+            sd_one = sd_one | ~coupler$s$1;
+        end
+        pd_one = 1'b0;
+        pd_two = 1'b0;
+        if (~coupler$u$0 & ~pj$0$dis) begin
+            pd_two = pd_two | pd_one;
+            pd_one = 1'b1;
+        end
+        if (~coupler$u$1 & ~pj$1$dis) begin
+            pd_two = pd_two | pd_one;
+            pd_one = 1'b1;
+        end
+        if (~coupler$u$2 & ~pj$2$dis) begin
+            pd_two = pd_two | pd_one;
+            pd_one = 1'b1;
         end
         any_blame = 1'b0;
         any_sub_blame = 1'b0;
@@ -1702,6 +1732,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         pj$0$rep_blamed = 1'b0;
         pj$0$common = 1'b0;
         pj$0$ff = ff_r$q;
+        pj$0$others_dom = pd_two | (pd_one & (coupler$u$0 | pj$0$dis)) | sd_one;
         pj$0$gl_others = gl_two | (gl_one & ~pj$0$glf);
         pj$0$bit_start = mon_bit_start;
         pj$0$bs_cnt = bs_r$q;
@@ -1747,6 +1778,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         pj$1$rep_blamed = 1'b0;
         pj$1$common = 1'b0;
         pj$1$ff = ff_r$q;
+        pj$1$others_dom = pd_two | (pd_one & (coupler$u$1 | pj$1$dis)) | sd_one;
         pj$1$gl_others = gl_two | (gl_one & ~pj$1$glf);
         pj$1$bit_start = mon_bit_start;
         pj$1$bs_cnt = bs_r$q;
@@ -1792,6 +1824,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         pj$2$rep_blamed = 1'b0;
         pj$2$common = 1'b0;
         pj$2$ff = ff_r$q;
+        pj$2$others_dom = pd_two | (pd_one & (coupler$u$2 | pj$2$dis)) | sd_one;
         pj$2$gl_others = gl_two | (gl_one & ~pj$2$glf);
         pj$2$bit_start = mon_bit_start;
         pj$2$bs_cnt = bs_r$q;
@@ -1871,11 +1904,13 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         sub_bl_r$d = any_sub_blame;
         sj$0$err_start = err_start_r$q;
         sj$0$ff = ff_r$q;
+        sj$0$others_dom = pd_one;
         sj$0$gl_others = gl_port | glo_two | (glo_one & ~sj$0$glf_own);
         sj$0$rep_blamed = sub_bl_r$q;
         sj$0$common = sub_all_an & sub_two;
         sj$1$err_start = err_start_r$q;
         sj$1$ff = ff_r$q;
+        sj$1$others_dom = pd_one;
         sj$1$gl_others = gl_port | glo_two | (glo_one & ~sj$1$glf_own);
         sj$1$rep_blamed = sub_bl_r$q;
         sj$1$common = sub_all_an & sub_two;
@@ -3188,7 +3223,7 @@ module canstar_hub_core$core$injector$state(d,q,clock);
 endmodule // canstar_hub_core$core$injector$state
 
 
-module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
+module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
     
     // Module arguments
     input wire  clock;
@@ -3220,6 +3255,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     input wire  common;
     input wire  rep_rec_w;
     input wire  ff;
+    input wire  others_dom;
     input wire  gl_others;
     output reg  dis;
     output reg  blame;
@@ -3242,6 +3278,8 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     
     // Constant declarations
     localparam  bic_limit = 8'h30;
+    localparam  d_step = 8'h18;
+    localparam  d_sat = 8'he7;
     localparam  b_decay = 3'b10;
     localparam  life_limit = 7'b100000;
     localparam  dbc_thr = 5'b1101;
@@ -3355,6 +3393,15 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  ch_r$d;
     wire  ch_r$q;
     reg  ch_r$clock;
+    reg  od_r$d;
+    wire  od_r$q;
+    reg  od_r$clock;
+    reg  dprev$d;
+    wire  dprev$q;
+    reg  dprev$clock;
+    reg  fol_r$d;
+    wire  fol_r$q;
+    reg  fol_r$clock;
     reg  bl_r$d;
     wire  bl_r$q;
     reg  bl_r$clock;
@@ -3366,6 +3413,9 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  gpend$clock;
     
     // Local signals
+    reg  fol;
+    reg  [7:0] c_step;
+    reg  [7:0] c_sat;
     reg  ffc;
     reg  pge;
     reg  late;
@@ -3536,6 +3586,21 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .q(ch_r$q),
         .clock(ch_r$clock)
     );
+    canstar_hub_core$core$pj$0$od_r od_r(
+        .d(od_r$d),
+        .q(od_r$q),
+        .clock(od_r$clock)
+    );
+    canstar_hub_core$core$pj$0$dprev dprev(
+        .d(dprev$d),
+        .q(dprev$q),
+        .clock(dprev$clock)
+    );
+    canstar_hub_core$core$pj$0$fol_r fol_r(
+        .d(fol_r$d),
+        .q(fol_r$q),
+        .clock(fol_r$clock)
+    );
     canstar_hub_core$core$pj$0$bl_r bl_r(
         .d(bl_r$d),
         .q(bl_r$q),
@@ -3584,6 +3649,9 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         pgl_r$clock = clock;
         sdp_r$clock = clock;
         ch_r$clock = clock;
+        od_r$clock = clock;
+        dprev$clock = clock;
+        fol_r$clock = clock;
         bl_r$clock = clock;
         bl_dm_r$clock = clock;
         gpend$clock = clock;
@@ -3617,6 +3685,9 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         pgl_r$d = pgl_r$q;
         sdp_r$d = sdp_r$q;
         ch_r$d = ch_r$q;
+        od_r$d = od_r$q;
+        dprev$d = dprev$q;
+        fol_r$d = fol_r$q;
         bl_r$d = bl_r$q;
         bl_dm_r$d = bl_dm_r$q;
         gpend$d = gpend$q;
@@ -3634,6 +3705,28 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         end
         else if (dom & (bs_cnt >= win_lag)) begin
             seen_dom$d = 1'b1;
+        end
+        if (sample) begin
+            od_r$d = 1'b0;
+        end
+        else if (others_dom) begin
+            od_r$d = 1'b1;
+        end
+        dprev$d = dom;
+        if (dom & ~dprev$q) begin
+            fol = od_r$q;
+        end
+        else begin
+            fol = fol_r$q;
+        end
+        fol_r$d = fol;
+        if (delim & ~fol) begin
+            c_step = d_step;
+            c_sat = d_sat;
+        end
+        else begin
+            c_step = 32'h8;
+            c_sat = 32'hf7;
         end
         if (bit_start) begin
             seen_dom_crc$d = 1'b0;
@@ -3685,11 +3778,11 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                 end
             end
             if (charge) begin
-                if (bic_r$q > 32'hf7) begin
+                if (bic_r$q > c_sat) begin
                     bic_r$d = 32'hff;
                 end
                 else begin
-                    bic_r$d = bic_r$q + 32'h8;
+                    bic_r$d = bic_r$q + c_step;
                 end
             end
             if (frame_ok & enabled & (gc_r$q != 32'h0)) begin
@@ -3866,6 +3959,9 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             glo_r$d = 1'b0;
             pgl_r$d = 1'b0;
             ch_r$d = 1'b0;
+            od_r$d = 1'b0;
+            dprev$d = 1'b0;
+            fol_r$d = 1'b0;
         end
         dis = dis_r$q;
         bic = bic_r$q;
@@ -4170,6 +4266,25 @@ module canstar_hub_core$core$pj$0$dom_bs(d,q,clock);
 endmodule // canstar_hub_core$core$pj$0$dom_bs
 
 
+module canstar_hub_core$core$pj$0$dprev(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$0$dprev
+
+
 module canstar_hub_core$core$pj$0$ffd_r(d,q,clock);
     
     // Module arguments
@@ -4187,6 +4302,25 @@ module canstar_hub_core$core$pj$0$ffd_r(d,q,clock);
     end
           
 endmodule // canstar_hub_core$core$pj$0$ffd_r
+
+
+module canstar_hub_core$core$pj$0$fol_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$0$fol_r
 
 
 module canstar_hub_core$core$pj$0$gc_r(d,q,clock);
@@ -4320,6 +4454,25 @@ module canstar_hub_core$core$pj$0$nack_r(d,q,clock);
     end
           
 endmodule // canstar_hub_core$core$pj$0$nack_r
+
+
+module canstar_hub_core$core$pj$0$od_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$0$od_r
 
 
 module canstar_hub_core$core$pj$0$ok_r(d,q,clock);
@@ -4676,7 +4829,7 @@ module canstar_hub_core$core$pj$0$seen_dom_crc(d,q,clock);
 endmodule // canstar_hub_core$core$pj$0$seen_dom_crc
 
 
-module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
+module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
     
     // Module arguments
     input wire  clock;
@@ -4708,6 +4861,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     input wire  common;
     input wire  rep_rec_w;
     input wire  ff;
+    input wire  others_dom;
     input wire  gl_others;
     output reg  dis;
     output reg  blame;
@@ -4730,6 +4884,8 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     
     // Constant declarations
     localparam  bic_limit = 8'h30;
+    localparam  d_step = 8'h18;
+    localparam  d_sat = 8'he7;
     localparam  b_decay = 3'b10;
     localparam  life_limit = 7'b100000;
     localparam  dbc_thr = 5'b1101;
@@ -4843,6 +4999,15 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  ch_r$d;
     wire  ch_r$q;
     reg  ch_r$clock;
+    reg  od_r$d;
+    wire  od_r$q;
+    reg  od_r$clock;
+    reg  dprev$d;
+    wire  dprev$q;
+    reg  dprev$clock;
+    reg  fol_r$d;
+    wire  fol_r$q;
+    reg  fol_r$clock;
     reg  bl_r$d;
     wire  bl_r$q;
     reg  bl_r$clock;
@@ -4854,6 +5019,9 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  gpend$clock;
     
     // Local signals
+    reg  fol;
+    reg  [7:0] c_step;
+    reg  [7:0] c_sat;
     reg  ffc;
     reg  pge;
     reg  late;
@@ -5024,6 +5192,21 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .q(ch_r$q),
         .clock(ch_r$clock)
     );
+    canstar_hub_core$core$pj$1$od_r od_r(
+        .d(od_r$d),
+        .q(od_r$q),
+        .clock(od_r$clock)
+    );
+    canstar_hub_core$core$pj$1$dprev dprev(
+        .d(dprev$d),
+        .q(dprev$q),
+        .clock(dprev$clock)
+    );
+    canstar_hub_core$core$pj$1$fol_r fol_r(
+        .d(fol_r$d),
+        .q(fol_r$q),
+        .clock(fol_r$clock)
+    );
     canstar_hub_core$core$pj$1$bl_r bl_r(
         .d(bl_r$d),
         .q(bl_r$q),
@@ -5072,6 +5255,9 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         pgl_r$clock = clock;
         sdp_r$clock = clock;
         ch_r$clock = clock;
+        od_r$clock = clock;
+        dprev$clock = clock;
+        fol_r$clock = clock;
         bl_r$clock = clock;
         bl_dm_r$clock = clock;
         gpend$clock = clock;
@@ -5105,6 +5291,9 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         pgl_r$d = pgl_r$q;
         sdp_r$d = sdp_r$q;
         ch_r$d = ch_r$q;
+        od_r$d = od_r$q;
+        dprev$d = dprev$q;
+        fol_r$d = fol_r$q;
         bl_r$d = bl_r$q;
         bl_dm_r$d = bl_dm_r$q;
         gpend$d = gpend$q;
@@ -5122,6 +5311,28 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         end
         else if (dom & (bs_cnt >= win_lag)) begin
             seen_dom$d = 1'b1;
+        end
+        if (sample) begin
+            od_r$d = 1'b0;
+        end
+        else if (others_dom) begin
+            od_r$d = 1'b1;
+        end
+        dprev$d = dom;
+        if (dom & ~dprev$q) begin
+            fol = od_r$q;
+        end
+        else begin
+            fol = fol_r$q;
+        end
+        fol_r$d = fol;
+        if (delim & ~fol) begin
+            c_step = d_step;
+            c_sat = d_sat;
+        end
+        else begin
+            c_step = 32'h8;
+            c_sat = 32'hf7;
         end
         if (bit_start) begin
             seen_dom_crc$d = 1'b0;
@@ -5173,11 +5384,11 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                 end
             end
             if (charge) begin
-                if (bic_r$q > 32'hf7) begin
+                if (bic_r$q > c_sat) begin
                     bic_r$d = 32'hff;
                 end
                 else begin
-                    bic_r$d = bic_r$q + 32'h8;
+                    bic_r$d = bic_r$q + c_step;
                 end
             end
             if (frame_ok & enabled & (gc_r$q != 32'h0)) begin
@@ -5354,6 +5565,9 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             glo_r$d = 1'b0;
             pgl_r$d = 1'b0;
             ch_r$d = 1'b0;
+            od_r$d = 1'b0;
+            dprev$d = 1'b0;
+            fol_r$d = 1'b0;
         end
         dis = dis_r$q;
         bic = bic_r$q;
@@ -5658,6 +5872,25 @@ module canstar_hub_core$core$pj$1$dom_bs(d,q,clock);
 endmodule // canstar_hub_core$core$pj$1$dom_bs
 
 
+module canstar_hub_core$core$pj$1$dprev(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$1$dprev
+
+
 module canstar_hub_core$core$pj$1$ffd_r(d,q,clock);
     
     // Module arguments
@@ -5675,6 +5908,25 @@ module canstar_hub_core$core$pj$1$ffd_r(d,q,clock);
     end
           
 endmodule // canstar_hub_core$core$pj$1$ffd_r
+
+
+module canstar_hub_core$core$pj$1$fol_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$1$fol_r
 
 
 module canstar_hub_core$core$pj$1$gc_r(d,q,clock);
@@ -5808,6 +6060,25 @@ module canstar_hub_core$core$pj$1$nack_r(d,q,clock);
     end
           
 endmodule // canstar_hub_core$core$pj$1$nack_r
+
+
+module canstar_hub_core$core$pj$1$od_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$1$od_r
 
 
 module canstar_hub_core$core$pj$1$ok_r(d,q,clock);
@@ -6164,7 +6435,7 @@ module canstar_hub_core$core$pj$1$seen_dom_crc(d,q,clock);
 endmodule // canstar_hub_core$core$pj$1$seen_dom_crc
 
 
-module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
+module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
     
     // Module arguments
     input wire  clock;
@@ -6196,6 +6467,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     input wire  common;
     input wire  rep_rec_w;
     input wire  ff;
+    input wire  others_dom;
     input wire  gl_others;
     output reg  dis;
     output reg  blame;
@@ -6218,6 +6490,8 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     
     // Constant declarations
     localparam  bic_limit = 8'h30;
+    localparam  d_step = 8'h18;
+    localparam  d_sat = 8'he7;
     localparam  b_decay = 3'b10;
     localparam  life_limit = 7'b100000;
     localparam  dbc_thr = 5'b1101;
@@ -6331,6 +6605,15 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  ch_r$d;
     wire  ch_r$q;
     reg  ch_r$clock;
+    reg  od_r$d;
+    wire  od_r$q;
+    reg  od_r$clock;
+    reg  dprev$d;
+    wire  dprev$q;
+    reg  dprev$clock;
+    reg  fol_r$d;
+    wire  fol_r$q;
+    reg  fol_r$clock;
     reg  bl_r$d;
     wire  bl_r$q;
     reg  bl_r$clock;
@@ -6342,6 +6625,9 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  gpend$clock;
     
     // Local signals
+    reg  fol;
+    reg  [7:0] c_step;
+    reg  [7:0] c_sat;
     reg  ffc;
     reg  pge;
     reg  late;
@@ -6512,6 +6798,21 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .q(ch_r$q),
         .clock(ch_r$clock)
     );
+    canstar_hub_core$core$pj$2$od_r od_r(
+        .d(od_r$d),
+        .q(od_r$q),
+        .clock(od_r$clock)
+    );
+    canstar_hub_core$core$pj$2$dprev dprev(
+        .d(dprev$d),
+        .q(dprev$q),
+        .clock(dprev$clock)
+    );
+    canstar_hub_core$core$pj$2$fol_r fol_r(
+        .d(fol_r$d),
+        .q(fol_r$q),
+        .clock(fol_r$clock)
+    );
     canstar_hub_core$core$pj$2$bl_r bl_r(
         .d(bl_r$d),
         .q(bl_r$q),
@@ -6560,6 +6861,9 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         pgl_r$clock = clock;
         sdp_r$clock = clock;
         ch_r$clock = clock;
+        od_r$clock = clock;
+        dprev$clock = clock;
+        fol_r$clock = clock;
         bl_r$clock = clock;
         bl_dm_r$clock = clock;
         gpend$clock = clock;
@@ -6593,6 +6897,9 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         pgl_r$d = pgl_r$q;
         sdp_r$d = sdp_r$q;
         ch_r$d = ch_r$q;
+        od_r$d = od_r$q;
+        dprev$d = dprev$q;
+        fol_r$d = fol_r$q;
         bl_r$d = bl_r$q;
         bl_dm_r$d = bl_dm_r$q;
         gpend$d = gpend$q;
@@ -6610,6 +6917,28 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         end
         else if (dom & (bs_cnt >= win_lag)) begin
             seen_dom$d = 1'b1;
+        end
+        if (sample) begin
+            od_r$d = 1'b0;
+        end
+        else if (others_dom) begin
+            od_r$d = 1'b1;
+        end
+        dprev$d = dom;
+        if (dom & ~dprev$q) begin
+            fol = od_r$q;
+        end
+        else begin
+            fol = fol_r$q;
+        end
+        fol_r$d = fol;
+        if (delim & ~fol) begin
+            c_step = d_step;
+            c_sat = d_sat;
+        end
+        else begin
+            c_step = 32'h8;
+            c_sat = 32'hf7;
         end
         if (bit_start) begin
             seen_dom_crc$d = 1'b0;
@@ -6661,11 +6990,11 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                 end
             end
             if (charge) begin
-                if (bic_r$q > 32'hf7) begin
+                if (bic_r$q > c_sat) begin
                     bic_r$d = 32'hff;
                 end
                 else begin
-                    bic_r$d = bic_r$q + 32'h8;
+                    bic_r$d = bic_r$q + c_step;
                 end
             end
             if (frame_ok & enabled & (gc_r$q != 32'h0)) begin
@@ -6842,6 +7171,9 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             glo_r$d = 1'b0;
             pgl_r$d = 1'b0;
             ch_r$d = 1'b0;
+            od_r$d = 1'b0;
+            dprev$d = 1'b0;
+            fol_r$d = 1'b0;
         end
         dis = dis_r$q;
         bic = bic_r$q;
@@ -7146,6 +7478,25 @@ module canstar_hub_core$core$pj$2$dom_bs(d,q,clock);
 endmodule // canstar_hub_core$core$pj$2$dom_bs
 
 
+module canstar_hub_core$core$pj$2$dprev(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$2$dprev
+
+
 module canstar_hub_core$core$pj$2$ffd_r(d,q,clock);
     
     // Module arguments
@@ -7163,6 +7514,25 @@ module canstar_hub_core$core$pj$2$ffd_r(d,q,clock);
     end
           
 endmodule // canstar_hub_core$core$pj$2$ffd_r
+
+
+module canstar_hub_core$core$pj$2$fol_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$2$fol_r
 
 
 module canstar_hub_core$core$pj$2$gc_r(d,q,clock);
@@ -7296,6 +7666,25 @@ module canstar_hub_core$core$pj$2$nack_r(d,q,clock);
     end
           
 endmodule // canstar_hub_core$core$pj$2$nack_r
+
+
+module canstar_hub_core$core$pj$2$od_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$2$od_r
 
 
 module canstar_hub_core$core$pj$2$ok_r(d,q,clock);
@@ -7709,7 +8098,7 @@ module canstar_hub_core$core$sd_run(d,q,clock);
 endmodule // canstar_hub_core$core$sd_run
 
 
-module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
+module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
     
     // Module arguments
     input wire  clock;
@@ -7741,6 +8130,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     input wire  common;
     input wire  rep_rec_w;
     input wire  ff;
+    input wire  others_dom;
     input wire  gl_others;
     output reg  dis;
     output reg  blame;
@@ -7763,6 +8153,8 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     
     // Constant declarations
     localparam  bic_limit = 8'h48;
+    localparam  d_step = 8'h10;
+    localparam  d_sat = 8'hef;
     localparam  b_decay = 3'b10;
     localparam  life_limit = 7'b1000000;
     localparam  dbc_thr = 5'b11100;
@@ -7876,6 +8268,15 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  ch_r$d;
     wire  ch_r$q;
     reg  ch_r$clock;
+    reg  od_r$d;
+    wire  od_r$q;
+    reg  od_r$clock;
+    reg  dprev$d;
+    wire  dprev$q;
+    reg  dprev$clock;
+    reg  fol_r$d;
+    wire  fol_r$q;
+    reg  fol_r$clock;
     reg  bl_r$d;
     wire  bl_r$q;
     reg  bl_r$clock;
@@ -7887,6 +8288,9 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  gpend$clock;
     
     // Local signals
+    reg  fol;
+    reg  [7:0] c_step;
+    reg  [7:0] c_sat;
     reg  ffc;
     reg  pge;
     reg  late;
@@ -8057,6 +8461,21 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .q(ch_r$q),
         .clock(ch_r$clock)
     );
+    canstar_hub_core$core$sj$0$od_r od_r(
+        .d(od_r$d),
+        .q(od_r$q),
+        .clock(od_r$clock)
+    );
+    canstar_hub_core$core$sj$0$dprev dprev(
+        .d(dprev$d),
+        .q(dprev$q),
+        .clock(dprev$clock)
+    );
+    canstar_hub_core$core$sj$0$fol_r fol_r(
+        .d(fol_r$d),
+        .q(fol_r$q),
+        .clock(fol_r$clock)
+    );
     canstar_hub_core$core$sj$0$bl_r bl_r(
         .d(bl_r$d),
         .q(bl_r$q),
@@ -8105,6 +8524,9 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         pgl_r$clock = clock;
         sdp_r$clock = clock;
         ch_r$clock = clock;
+        od_r$clock = clock;
+        dprev$clock = clock;
+        fol_r$clock = clock;
         bl_r$clock = clock;
         bl_dm_r$clock = clock;
         gpend$clock = clock;
@@ -8138,6 +8560,9 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         pgl_r$d = pgl_r$q;
         sdp_r$d = sdp_r$q;
         ch_r$d = ch_r$q;
+        od_r$d = od_r$q;
+        dprev$d = dprev$q;
+        fol_r$d = fol_r$q;
         bl_r$d = bl_r$q;
         bl_dm_r$d = bl_dm_r$q;
         gpend$d = gpend$q;
@@ -8155,6 +8580,28 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         end
         else if (dom & (bs_cnt >= win_lag)) begin
             seen_dom$d = 1'b1;
+        end
+        if (sample) begin
+            od_r$d = 1'b0;
+        end
+        else if (others_dom) begin
+            od_r$d = 1'b1;
+        end
+        dprev$d = dom;
+        if (dom & ~dprev$q) begin
+            fol = od_r$q;
+        end
+        else begin
+            fol = fol_r$q;
+        end
+        fol_r$d = fol;
+        if (delim & ~fol) begin
+            c_step = d_step;
+            c_sat = d_sat;
+        end
+        else begin
+            c_step = 32'h8;
+            c_sat = 32'hf7;
         end
         if (bit_start) begin
             seen_dom_crc$d = 1'b0;
@@ -8206,11 +8653,11 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                 end
             end
             if (charge) begin
-                if (bic_r$q > 32'hf7) begin
+                if (bic_r$q > c_sat) begin
                     bic_r$d = 32'hff;
                 end
                 else begin
-                    bic_r$d = bic_r$q + 32'h8;
+                    bic_r$d = bic_r$q + c_step;
                 end
             end
             if (frame_ok & enabled & (gc_r$q != 32'h0)) begin
@@ -8387,6 +8834,9 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             glo_r$d = 1'b0;
             pgl_r$d = 1'b0;
             ch_r$d = 1'b0;
+            od_r$d = 1'b0;
+            dprev$d = 1'b0;
+            fol_r$d = 1'b0;
         end
         dis = dis_r$q;
         bic = bic_r$q;
@@ -8691,6 +9141,25 @@ module canstar_hub_core$core$sj$0$dom_bs(d,q,clock);
 endmodule // canstar_hub_core$core$sj$0$dom_bs
 
 
+module canstar_hub_core$core$sj$0$dprev(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$sj$0$dprev
+
+
 module canstar_hub_core$core$sj$0$ffd_r(d,q,clock);
     
     // Module arguments
@@ -8708,6 +9177,25 @@ module canstar_hub_core$core$sj$0$ffd_r(d,q,clock);
     end
           
 endmodule // canstar_hub_core$core$sj$0$ffd_r
+
+
+module canstar_hub_core$core$sj$0$fol_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$sj$0$fol_r
 
 
 module canstar_hub_core$core$sj$0$gc_r(d,q,clock);
@@ -8841,6 +9329,25 @@ module canstar_hub_core$core$sj$0$nack_r(d,q,clock);
     end
           
 endmodule // canstar_hub_core$core$sj$0$nack_r
+
+
+module canstar_hub_core$core$sj$0$od_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$sj$0$od_r
 
 
 module canstar_hub_core$core$sj$0$ok_r(d,q,clock);
@@ -9197,7 +9704,7 @@ module canstar_hub_core$core$sj$0$seen_dom_crc(d,q,clock);
 endmodule // canstar_hub_core$core$sj$0$seen_dom_crc
 
 
-module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
+module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
     
     // Module arguments
     input wire  clock;
@@ -9229,6 +9736,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     input wire  common;
     input wire  rep_rec_w;
     input wire  ff;
+    input wire  others_dom;
     input wire  gl_others;
     output reg  dis;
     output reg  blame;
@@ -9251,6 +9759,8 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     
     // Constant declarations
     localparam  bic_limit = 8'h48;
+    localparam  d_step = 8'h10;
+    localparam  d_sat = 8'hef;
     localparam  b_decay = 3'b10;
     localparam  life_limit = 7'b1000000;
     localparam  dbc_thr = 5'b11100;
@@ -9364,6 +9874,15 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  ch_r$d;
     wire  ch_r$q;
     reg  ch_r$clock;
+    reg  od_r$d;
+    wire  od_r$q;
+    reg  od_r$clock;
+    reg  dprev$d;
+    wire  dprev$q;
+    reg  dprev$clock;
+    reg  fol_r$d;
+    wire  fol_r$q;
+    reg  fol_r$clock;
     reg  bl_r$d;
     wire  bl_r$q;
     reg  bl_r$clock;
@@ -9375,6 +9894,9 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  gpend$clock;
     
     // Local signals
+    reg  fol;
+    reg  [7:0] c_step;
+    reg  [7:0] c_sat;
     reg  ffc;
     reg  pge;
     reg  late;
@@ -9545,6 +10067,21 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .q(ch_r$q),
         .clock(ch_r$clock)
     );
+    canstar_hub_core$core$sj$1$od_r od_r(
+        .d(od_r$d),
+        .q(od_r$q),
+        .clock(od_r$clock)
+    );
+    canstar_hub_core$core$sj$1$dprev dprev(
+        .d(dprev$d),
+        .q(dprev$q),
+        .clock(dprev$clock)
+    );
+    canstar_hub_core$core$sj$1$fol_r fol_r(
+        .d(fol_r$d),
+        .q(fol_r$q),
+        .clock(fol_r$clock)
+    );
     canstar_hub_core$core$sj$1$bl_r bl_r(
         .d(bl_r$d),
         .q(bl_r$q),
@@ -9593,6 +10130,9 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         pgl_r$clock = clock;
         sdp_r$clock = clock;
         ch_r$clock = clock;
+        od_r$clock = clock;
+        dprev$clock = clock;
+        fol_r$clock = clock;
         bl_r$clock = clock;
         bl_dm_r$clock = clock;
         gpend$clock = clock;
@@ -9626,6 +10166,9 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         pgl_r$d = pgl_r$q;
         sdp_r$d = sdp_r$q;
         ch_r$d = ch_r$q;
+        od_r$d = od_r$q;
+        dprev$d = dprev$q;
+        fol_r$d = fol_r$q;
         bl_r$d = bl_r$q;
         bl_dm_r$d = bl_dm_r$q;
         gpend$d = gpend$q;
@@ -9643,6 +10186,28 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         end
         else if (dom & (bs_cnt >= win_lag)) begin
             seen_dom$d = 1'b1;
+        end
+        if (sample) begin
+            od_r$d = 1'b0;
+        end
+        else if (others_dom) begin
+            od_r$d = 1'b1;
+        end
+        dprev$d = dom;
+        if (dom & ~dprev$q) begin
+            fol = od_r$q;
+        end
+        else begin
+            fol = fol_r$q;
+        end
+        fol_r$d = fol;
+        if (delim & ~fol) begin
+            c_step = d_step;
+            c_sat = d_sat;
+        end
+        else begin
+            c_step = 32'h8;
+            c_sat = 32'hf7;
         end
         if (bit_start) begin
             seen_dom_crc$d = 1'b0;
@@ -9694,11 +10259,11 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                 end
             end
             if (charge) begin
-                if (bic_r$q > 32'hf7) begin
+                if (bic_r$q > c_sat) begin
                     bic_r$d = 32'hff;
                 end
                 else begin
-                    bic_r$d = bic_r$q + 32'h8;
+                    bic_r$d = bic_r$q + c_step;
                 end
             end
             if (frame_ok & enabled & (gc_r$q != 32'h0)) begin
@@ -9875,6 +10440,9 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             glo_r$d = 1'b0;
             pgl_r$d = 1'b0;
             ch_r$d = 1'b0;
+            od_r$d = 1'b0;
+            dprev$d = 1'b0;
+            fol_r$d = 1'b0;
         end
         dis = dis_r$q;
         bic = bic_r$q;
@@ -10179,6 +10747,25 @@ module canstar_hub_core$core$sj$1$dom_bs(d,q,clock);
 endmodule // canstar_hub_core$core$sj$1$dom_bs
 
 
+module canstar_hub_core$core$sj$1$dprev(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$sj$1$dprev
+
+
 module canstar_hub_core$core$sj$1$ffd_r(d,q,clock);
     
     // Module arguments
@@ -10196,6 +10783,25 @@ module canstar_hub_core$core$sj$1$ffd_r(d,q,clock);
     end
           
 endmodule // canstar_hub_core$core$sj$1$ffd_r
+
+
+module canstar_hub_core$core$sj$1$fol_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$sj$1$fol_r
 
 
 module canstar_hub_core$core$sj$1$gc_r(d,q,clock);
@@ -10329,6 +10935,25 @@ module canstar_hub_core$core$sj$1$nack_r(d,q,clock);
     end
           
 endmodule // canstar_hub_core$core$sj$1$nack_r
+
+
+module canstar_hub_core$core$sj$1$od_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$sj$1$od_r
 
 
 module canstar_hub_core$core$sj$1$ok_r(d,q,clock);

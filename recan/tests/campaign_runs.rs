@@ -1,0 +1,38 @@
+//! Single campaign runs, by their printed seeds, that show a hub rule at work in the
+//! two-hub system (hub.md §5.17): the same runs `canstar campaign --class C --run-seed S`
+//! reproduces.
+
+use canstar_recan::campaign::report::RunOutcome;
+use canstar_recan::campaign::{self, system, RunPlan, Settings};
+
+fn run(class: &str, seed: u64) -> RunOutcome {
+    let classes = campaign::select(class).unwrap();
+    assert_eq!(classes.len(), 1);
+    let s = Settings { seed: 1, reps: 1, ..Settings::default() };
+    system::run_plan(&RunPlan { class: classes[0].clone(), rep: 0, seed }, &s)
+}
+
+/// hub.md §5.17: hub 1's output forced dominant about every 1.9 bits. Its dominant bits in
+/// the error delimiters count two blames on hub 0's sublinks, which cut hub 1 off before
+/// the transmitter behind hub 0 reaches the warning limit (with one blame per delimiter
+/// bit it reached 96 and every node lost a controller).
+#[test]
+fn delimiter_blames_cut_off_a_hub_forcing_dominant_in_time() {
+    let o = run("sweep-hub-r2d-e2", 15219089611999315342);
+    assert!(o.pass, "{:?}", o.failures);
+    assert!(o.worst_healthy < 80, "worst healthy TEC/REC {}", o.worst_healthy);
+    assert_eq!(o.isolations.iter().filter(|i| i.starts_with("hub 0 sublink")).count(), 2, "{:?}", o.isolations);
+}
+
+/// hub.md §5.17 follower: hub 1's output forced dominant about every 9 bits; the nodes on
+/// hub 0 react to its pulses with flags that hub 0 sees in the same delimiter bit as the
+/// pulse on its sublinks. Those ports followed the sublinks and count one blame each, so
+/// hub 0 cuts off hub 1 and keeps every port (with three blames per port they reached
+/// the limit first and hub 0 isolated a healthy port).
+#[test]
+fn ports_that_follow_the_sublinks_in_a_delimiter_are_spared() {
+    let o = run("sweep-hub-r2d-e10", 7512714283061735749);
+    assert!(o.pass, "{:?}", o.failures);
+    assert!(!o.isolations.iter().any(|i| i.starts_with("hub 0 port")), "{:?}", o.isolations);
+    assert_eq!(o.isolations.iter().filter(|i| i.starts_with("hub 0 sublink")).count(), 2, "{:?}", o.isolations);
+}
