@@ -148,7 +148,7 @@ impl Default for HubConfig {
             delim_blames: 3,
             sub_delim_blames: 2,
             sub_dbc_threshold: 28,
-            replica_limit: 3,
+            replica_limit: 2,
             glitch_max: None,
             sub_glitch_min: 3,
             sub_dominant_glitch_min: 1,

@@ -440,6 +440,8 @@ impl Logic for HubCore {
             self.pj[i].err_start.next = false;
             self.pj[i].rep_rec.next = false;
             self.pj[i].rep_dom.next = false;
+            self.pj[i].rep_mask.next = false;
+            self.pj[i].rep_other.next = false;
             self.pj[i].rep_rec_w.next = false;
             self.pj[i].rep_glitched.next = false;
             self.pj[i].rep_blamed.next = false;
@@ -474,6 +476,9 @@ impl Logic for HubCore {
             self.sj[j].frame_ok.next = self.mon_frame_ok.val();
             self.sj[j].rep_rec.next = self.rep_rec.val();
             self.sj[j].rep_dom.next = self.rep_dom.val();
+            // (§5.18: a port or the hub's own flag decides BT, the replicas do not)
+            self.sj[j].rep_mask.next = self.pd_one.val() | !self.efgen.efg.val();
+            self.sj[j].rep_other.next = self.sub_two.val();
             self.sj[j].rep_rec_w.next = self.rep_rec_w.val();
             self.sj[j].rep_glitched.next = self.rep_gl.val();
             self.sj[j].bit_start.next = self.mon_bit_start.val();

@@ -172,7 +172,7 @@
 //! error episode (`err_start`), every unit whose first disagreement was dominant is
 //! charged. If instead the frame completes correctly (`frame_ok`), the dominant value
 //! was right and every unit whose first disagreement was recessive is charged. A unit
-//! charged `replica_limit` times (default 3) is isolated. Stuck-dominant and inverted
+//! charged `replica_limit` times (default 2, hub.md §5.18) is isolated. Stuck-dominant and inverted
 //! sublinks are charged at errors, stuck-recessive sublinks at the good frames their
 //! replica carries. All incoming sublinks are replicas from the same peer hub.
 //! Dominant run and unjustified dominant apply to sublinks as to ports, with their own
@@ -378,6 +378,16 @@
 //! Tests: `hub/tests/judge_rules.rs` `delimiter_blame_counts_delim_blames`,
 //! `delimiter_follower_counts_one_blame`; `recan/tests/campaign_runs.rs`.
 //!
+//! **§5.18 replica disagreements that decide BT (session 21).** A replica disagreement is
+//! recorded only while no enabled port and not the hub's error flag is dominant
+//! (`rep_mask`: otherwise BT is dominant whatever the replicas carry and the consequence
+//! tells nothing), outside a frame (Bus_Idle, SOF, Intermission, error phase) only as the
+//! dominant minority (a dominant level there is a SOF that a node with a frame pending
+//! takes as its own, and that frame completes whichever replica was wrong), and a record
+//! is charged only while another replica is enabled (`rep_other`). With these records the
+//! default `replica_limit` is 2. Evidence in hub.md §5.18. Test: `hub/tests/judge_sublinks.rs`
+//! `replica_disagreements_count_where_the_replicas_decide_bt`.
+//!
 //! **§5.2 delimiter rule (added).** In the error phase, once BT was recessive at a
 //! sample (the end of every flag), the following delimiter bits are recessive-only
 //! positions (`delim`, computed by the hub), except the last one, where a node may
@@ -487,6 +497,12 @@ pub struct JudgeUnit {
     pub err_start: Signal<In, Bit>,
     pub rep_rec: Signal<In, Bit>,
     pub rep_dom: Signal<In, Bit>,
+    /// An enabled port or the hub's error flag is dominant: BT is dominant whatever the
+    /// replicas carry, so a replica disagreement now says nothing about which replica is
+    /// wrong (§5.18; 0 for ports).
+    pub rep_mask: Signal<In, Bit>,
+    /// At least two replica sublinks are enabled (§5.18; 0 for ports).
+    pub rep_other: Signal<In, Bit>,
     /// Strobe: the hub's estimate of a bit start.
     pub bit_start: Signal<In, Bit>,
     /// Clocks since the last `bit_start` (saturating).
@@ -663,6 +679,8 @@ impl JudgeUnit {
             err_start: Default::default(),
             rep_rec: Default::default(),
             rep_dom: Default::default(),
+            rep_mask: Default::default(),
+            rep_other: Default::default(),
             bit_start: Default::default(),
             bs_cnt: Default::default(),
             delim: Default::default(),
@@ -956,11 +974,19 @@ impl Logic for JudgeUnit {
                     self.nack_r.d.next = 0.into();
                 }
             }
-            // §5.7 replica rule: remember the role at the first disagreement
+            // §5.7 replica rule: remember the role at the first disagreement that decided
+            // BT (§5.18: not while a port or the hub's flag is dominant; outside a frame, from
+            // the first identifier bit to End_Of_Frame bit 6, only as the dominant minority:
+            // a dominant level in Bus_Idle or Intermission is a SOF that a node with a frame
+            // pending takes as its own, so a frame that then completes proves no replica wrong)
             if self.rep_on.val()
                 & self.enabled.val()
                 & !self.rep_seen.q.val()
-                & ((self.dom.val() & self.rep_rec.val()) | (self.c.val() & self.rep_dom.val()))
+                & !self.rep_mask.val()
+                & ((self.dom.val() & self.rep_rec.val())
+                    | (self.c.val()
+                        & self.rep_dom.val()
+                        & (self.tx_region.val() | self.crc_delim.val() | self.ack_slot.val() | self.ack_delim.val() | self.eof_1_6.val())))
             {
                 self.rep_seen.d.next = true;
                 self.rep_first_dom.d.next = self.dom.val();
@@ -1026,7 +1052,11 @@ impl Logic for JudgeUnit {
         }
         // §5.7 replica rule: evaluation (not charged while another replica, and not this
         // one, has glitches on its counter: the glitching replica is the suspect)
-        self.rep_ok.next = (self.rep_r.q.val() != 7) & !(self.rep_glitched.val() & (self.gc_r.q.val() == 0));
+        // (§5.18: nor once no other replica is enabled: a disagreement recorded before the
+        // other replica was isolated is stale)
+        self.rep_ok.next = (self.rep_r.q.val() != 7)
+            & !(self.rep_glitched.val() & (self.gc_r.q.val() == 0))
+            & self.rep_other.val();
         // (at an error episode started by the blame of another sublink, not this one, the
         // blamed one is the culprit: the others are not charged)
         // (nor at an episode the monitor alone detected, `ff`: the first-flagger rule

@@ -16,7 +16,7 @@ fn dominant_minority_episode(j: &mut JudgeUnit) -> bool {
 
 #[test]
 fn replica_rule_charges_by_consequence() {
-    let mut j = JudgeUnit::sublink(params());
+    let mut j = sublink_unit(params());
     drive::init(&mut j);
     // dominant-minority then an error episode: charged
     for _ in 0..3 {
@@ -26,10 +26,10 @@ fn replica_rule_charges_by_consequence() {
     drive::cycle(&mut j);
     assert!(j.dis.val());
     // recessive-minority then a good frame: charged; dominant-minority then a good frame: not
-    let mut j = JudgeUnit::sublink(params());
+    let mut j = sublink_unit(params());
     drive::init(&mut j);
     j.rep_dom.next = true;
-    sample(&mut j, Bit { c: true, bt: false, ..Default::default() });
+    sample(&mut j, Bit { c: true, bt: false, tx: true, ..Default::default() });
     j.rep_dom.next = false;
     sample(&mut j, Bit { c: true, bt: true, frame_ok: true, ..Default::default() });
     assert_eq!(j.rep_cnt.val().index(), 1);
@@ -138,7 +138,7 @@ fn first_flagger_judges_the_contender_by_the_window() {
 #[test]
 fn recessive_replica_minority_stays_a_contender() {
     for (rep_dom, blamed) in [(false, true), (true, false)] {
-        let mut j = JudgeUnit::sublink(params());
+        let mut j = sublink_unit(params());
         drive::init(&mut j);
         sample(&mut j, Bit { c: false, bt: false, sof: true, ..Default::default() });
         j.rep_dom.next = rep_dom;
@@ -164,7 +164,7 @@ fn recessive_replica_minority_stays_a_contender() {
 #[test]
 fn window_blame_is_not_a_dominant_minority() {
     for (replica_carried_it, charged) in [(true, 0), (false, 1)] {
-        let mut j = reset(JudgeUnit::sublink(params()));
+        let mut j = reset(sublink_unit(params()));
         // an EOF bit, dominant from clock 8 to 10, every replica recessive at the sample
         // point; the hub starts its episode one clock after the sample (registered)
         let mut blame = false;
@@ -194,7 +194,7 @@ fn window_blame_is_not_a_dominant_minority() {
 #[test]
 fn common_glitches_isolate_the_peer_hub() {
     let p = JudgeParams { peer_glitch_limit: 4, peer_glitch_decay: 2, ..params() };
-    let mut j = reset(JudgeUnit::sublink(p));
+    let mut j = reset(sublink_unit(p));
     j.common.next = true;
     pulse_bit(&mut j, 3, 4, false);
     pulse_bit(&mut j, 3, 4, false);
@@ -245,20 +245,20 @@ fn recessive_sliver_bit(j: &mut JudgeUnit, from: u64, len: u64) -> usize {
 fn short_dominant_runs_on_a_sublink_are_glitches() {
     let p = canstar_hub::config::HubConfig::default().sublink_params();
     assert_eq!((p.glitch_min, p.glitch_min_dominant), (3, 1));
-    let mut j = reset(JudgeUnit::sublink(p));
+    let mut j = reset(sublink_unit(p));
     // a dominant bit first: the dominant runs around the slivers are long
     sample(&mut j, Bit { c: false, bt: false, err: true, ..Default::default() });
     assert_eq!(recessive_sliver_bit(&mut j, 5, 2), 0, "2-clock recessive sliver: legal");
     assert_eq!(recessive_sliver_bit(&mut j, 5, 1), 0, "1-clock recessive sliver: legal");
     assert_eq!(recessive_sliver_bit(&mut j, 5, 3), 1, "3-clock recessive run: a glitch");
-    let mut j = reset(JudgeUnit::sublink(p));
+    let mut j = reset(sublink_unit(p));
     for len in [1, 2] {
         assert_eq!(pulse_bit(&mut j, 3, len, false).1, 1, "{len}-clock dominant pulse: a glitch");
         sample(&mut j, Bit { c: true, bt: true, ..Default::default() });
     }
     assert_eq!(j.gc.val().index(), 2);
     assert!(j.glf_own.val(), "glitches of its own excuse the other sublinks (§5.15)");
-    let mut j = reset(JudgeUnit::sublink(p));
+    let mut j = reset(sublink_unit(p));
     j.common.next = true;
     pulse_bit(&mut j, 3, 2, false);
     sample(&mut j, Bit { c: true, bt: true, ..Default::default() });
@@ -279,7 +279,7 @@ fn episode(j: &mut JudgeUnit) -> bool {
 /// A sublink unit after a glitch at clocks 3..6 of an EOF bit; `common`: every replica
 /// glitched with it (the peer's contribution).
 fn sublink_after_glitch(common: bool) -> JudgeUnit {
-    let mut j = reset(JudgeUnit::sublink(params()));
+    let mut j = reset(sublink_unit(params()));
     j.common.next = common;
     pulse_bit(&mut j, 3, 4, false);
     j.common.next = false;
@@ -350,7 +350,7 @@ fn episode_at_a_dominant_stuff_bit_is_not_charged_for_a_common_glitch() {
 /// none), the replica rule does not charge this one.
 #[test]
 fn replica_rule_spares_the_unit_whose_replica_glitches() {
-    let mut j = JudgeUnit::sublink(params());
+    let mut j = sublink_unit(params());
     drive::init(&mut j);
     j.rep_glitched.next = true;
     for _ in 0..3 {
@@ -367,7 +367,7 @@ fn replica_rule_spares_the_unit_whose_replica_glitches() {
 /// A fresh sublink unit is the dominant minority of a replica disagreement, then the hub
 /// starts an episode (`err_start`) with `rep_blamed` and `ff` as given; returns `rep_cnt`.
 fn dominant_minority_then_episode(rep_blamed: bool, ff: bool) -> usize {
-    let mut j = JudgeUnit::sublink(params());
+    let mut j = sublink_unit(params());
     drive::init(&mut j);
     j.rep_rec.next = true;
     sample(&mut j, Bit { c: false, bt: false, err: true, ..Default::default() });
@@ -388,4 +388,50 @@ fn replica_rule_leaves_monitor_episodes_to_the_first_flagger() {
     for (ff, charged) in [(false, 1), (true, 0)] {
         assert_eq!(dominant_minority_then_episode(false, ff), charged, "ff {ff}");
     }
+}
+
+/// A fresh sublink unit (a replica beside it unless `alone`) sees one disagreement at a
+/// sample of `b` (`minority_dom`: it is the dominant minority, else the recessive one),
+/// with `rep_mask` as given; then, at a later clock, `alone` takes effect and the hub starts
+/// an episode (`episode`) or the frame completes; returns `rep_cnt`.
+fn disagreement_then(b: Bit, minority_dom: bool, mask: bool, alone: bool, episode_follows: bool) -> usize {
+    let mut j = reset(sublink_unit(params()));
+    j.rep_mask.next = mask;
+    j.rep_rec.next = minority_dom;
+    j.rep_dom.next = !minority_dom;
+    sample(&mut j, Bit { c: !minority_dom, ..b });
+    j.rep_mask.next = false;
+    j.rep_rec.next = false;
+    j.rep_dom.next = false;
+    j.rep_other.next = !alone;
+    if episode_follows {
+        episode(&mut j);
+    } else {
+        sample(&mut j, Bit { c: true, bt: true, frame_ok: true, ..Default::default() });
+    }
+    j.rep_cnt.val().index()
+}
+
+/// hub.md §5.18: a replica disagreement records a role only where the replicas decided BT
+/// and the consequence can tell which one was wrong: not while a port or the hub's error
+/// flag is dominant (`rep_mask`); outside a frame (Bus_Idle, SOF, Intermission, error
+/// phase) only as the dominant minority, since a dominant level there is a SOF that a node
+/// with a frame pending takes as its own and the frame then completes whichever replica was
+/// wrong; and no record is charged once no other replica is enabled (`rep_other`).
+#[test]
+fn replica_disagreements_count_where_the_replicas_decide_bt() {
+    let in_frame = Bit { bt: false, tx: true, ..Default::default() };
+    let at_sof = Bit { bt: false, sof: true, ..Default::default() };
+    let idle = Bit { bt: false, ..Default::default() };
+    // recessive minority, then the frame completes: charged only inside a frame, unmasked
+    assert_eq!(disagreement_then(in_frame, false, false, false, false), 1, "in a frame");
+    assert_eq!(disagreement_then(in_frame, false, true, false, false), 0, "masked by a port");
+    assert_eq!(disagreement_then(at_sof, false, false, false, false), 0, "at SOF");
+    assert_eq!(disagreement_then(idle, false, false, false, false), 0, "in Bus_Idle");
+    assert_eq!(disagreement_then(in_frame, false, false, true, false), 0, "the other replica isolated since");
+    // dominant minority, then an episode: charged in a frame and at SOF, not when masked
+    assert_eq!(disagreement_then(in_frame, true, false, false, true), 1, "in a frame");
+    assert_eq!(disagreement_then(at_sof, true, false, false, true), 1, "at SOF");
+    assert_eq!(disagreement_then(at_sof, true, true, false, true), 0, "masked by a port");
+    assert_eq!(disagreement_then(in_frame, true, false, true, true), 0, "the other replica isolated since");
 }

@@ -73,6 +73,8 @@ fn judge_stim(j: &mut JudgeUnit, rng: &mut rand_chacha::ChaCha8Rng, c: usize) {
         j.rep_rec.next = rng.gen_ratio(1, 10);
         j.rep_rec_w.next = rng.gen_ratio(1, 10);
         j.rep_dom.next = rng.gen_ratio(1, 10);
+        j.rep_mask.next = rng.gen_ratio(1, 4);
+        j.rep_other.next = !rng.gen_ratio(1, 8);
         j.delim.next = rng.gen_ratio(1, 20);
         j.suppress.next = rng.gen_ratio(1, 8);
         j.stuff_dom.next = rng.gen_ratio(1, 10);

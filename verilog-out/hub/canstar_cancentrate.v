@@ -813,6 +813,8 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
     reg  pj$0$err_start;
     reg  pj$0$rep_rec;
     reg  pj$0$rep_dom;
+    reg  pj$0$rep_mask;
+    reg  pj$0$rep_other;
     reg  pj$0$bit_start;
     reg  [4:0] pj$0$bs_cnt;
     reg  pj$0$delim;
@@ -862,6 +864,8 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
     reg  pj$1$err_start;
     reg  pj$1$rep_rec;
     reg  pj$1$rep_dom;
+    reg  pj$1$rep_mask;
+    reg  pj$1$rep_other;
     reg  pj$1$bit_start;
     reg  [4:0] pj$1$bs_cnt;
     reg  pj$1$delim;
@@ -911,6 +915,8 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
     reg  pj$2$err_start;
     reg  pj$2$rep_rec;
     reg  pj$2$rep_dom;
+    reg  pj$2$rep_mask;
+    reg  pj$2$rep_other;
     reg  pj$2$bit_start;
     reg  [4:0] pj$2$bs_cnt;
     reg  pj$2$delim;
@@ -1083,6 +1089,8 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         .err_start(pj$0$err_start),
         .rep_rec(pj$0$rep_rec),
         .rep_dom(pj$0$rep_dom),
+        .rep_mask(pj$0$rep_mask),
+        .rep_other(pj$0$rep_other),
         .bit_start(pj$0$bit_start),
         .bs_cnt(pj$0$bs_cnt),
         .delim(pj$0$delim),
@@ -1134,6 +1142,8 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         .err_start(pj$1$err_start),
         .rep_rec(pj$1$rep_rec),
         .rep_dom(pj$1$rep_dom),
+        .rep_mask(pj$1$rep_mask),
+        .rep_other(pj$1$rep_other),
         .bit_start(pj$1$bit_start),
         .bs_cnt(pj$1$bs_cnt),
         .delim(pj$1$delim),
@@ -1185,6 +1195,8 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         .err_start(pj$2$err_start),
         .rep_rec(pj$2$rep_rec),
         .rep_dom(pj$2$rep_dom),
+        .rep_mask(pj$2$rep_mask),
+        .rep_other(pj$2$rep_other),
         .bit_start(pj$2$bit_start),
         .bs_cnt(pj$2$bs_cnt),
         .delim(pj$2$delim),
@@ -1383,6 +1395,8 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         pj$0$err_start = 1'b0;
         pj$0$rep_rec = 1'b0;
         pj$0$rep_dom = 1'b0;
+        pj$0$rep_mask = 1'b0;
+        pj$0$rep_other = 1'b0;
         pj$0$rep_rec_w = 1'b0;
         pj$0$rep_glitched = 1'b0;
         pj$0$rep_blamed = 1'b0;
@@ -1429,6 +1443,8 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         pj$1$err_start = 1'b0;
         pj$1$rep_rec = 1'b0;
         pj$1$rep_dom = 1'b0;
+        pj$1$rep_mask = 1'b0;
+        pj$1$rep_other = 1'b0;
         pj$1$rep_rec_w = 1'b0;
         pj$1$rep_glitched = 1'b0;
         pj$1$rep_blamed = 1'b0;
@@ -1475,6 +1491,8 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         pj$2$err_start = 1'b0;
         pj$2$rep_rec = 1'b0;
         pj$2$rep_dom = 1'b0;
+        pj$2$rep_mask = 1'b0;
+        pj$2$rep_other = 1'b0;
         pj$2$rep_rec_w = 1'b0;
         pj$2$rep_glitched = 1'b0;
         pj$2$rep_blamed = 1'b0;
@@ -2493,7 +2511,7 @@ module canstar_cancentrate_core$core$injector$state(d,q,clock);
 endmodule // canstar_cancentrate_core$core$injector$state
 
 
-module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
+module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,rep_mask,rep_other,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
     
     // Module arguments
     input wire  clock;
@@ -2515,6 +2533,8 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
     input wire  err_start;
     input wire  rep_rec;
     input wire  rep_dom;
+    input wire  rep_mask;
+    input wire  rep_other;
     input wire  bit_start;
     input wire  [4:0] bs_cnt;
     input wire  delim;
@@ -2554,7 +2574,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
     localparam  life_limit = 7'b100000;
     localparam  dbc_thr = 5'b1101;
     localparam  nack_thr = 3'b111;
-    localparam  rep_limit = 3'b11;
+    localparam  rep_limit = 3'b10;
     localparam  glitch_limit = 3'b11;
     localparam  glitch_decay = 5'b10000;
     localparam  pg_limit = 4'hc;
@@ -3090,7 +3110,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
                     nack_r$d = 32'h0;
                 end
             end
-            if (rep_on & enabled & ~rep_seen$q & ((dom & rep_rec) | (c & rep_dom))) begin
+            if (rep_on & enabled & ~rep_seen$q & ~rep_mask & ((dom & rep_rec) | (c & rep_dom & (tx_region | crc_delim | ack_slot | ack_delim | eof_1_6)))) begin
                 rep_seen$d = 1'b1;
                 rep_first_dom$d = dom;
             end
@@ -3148,7 +3168,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         if (dbc_r$q >= dbc_thr) begin
             bad$d = 1'b1;
         end
-        rep_ok = (rep_r$q != 32'h7) & ~(rep_glitched & (gc_r$q == 32'h0));
+        rep_ok = (rep_r$q != 32'h7) & ~(rep_glitched & (gc_r$q == 32'h0)) & rep_other;
         bl_r$d = blame;
         bl_dm_r$d = blame & rep_rec_w;
         if (err_start) begin
@@ -4099,7 +4119,7 @@ module canstar_cancentrate_core$core$pj$0$seen_dom_crc(d,q,clock);
 endmodule // canstar_cancentrate_core$core$pj$0$seen_dom_crc
 
 
-module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
+module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,rep_mask,rep_other,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
     
     // Module arguments
     input wire  clock;
@@ -4121,6 +4141,8 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
     input wire  err_start;
     input wire  rep_rec;
     input wire  rep_dom;
+    input wire  rep_mask;
+    input wire  rep_other;
     input wire  bit_start;
     input wire  [4:0] bs_cnt;
     input wire  delim;
@@ -4160,7 +4182,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
     localparam  life_limit = 7'b100000;
     localparam  dbc_thr = 5'b1101;
     localparam  nack_thr = 3'b111;
-    localparam  rep_limit = 3'b11;
+    localparam  rep_limit = 3'b10;
     localparam  glitch_limit = 3'b11;
     localparam  glitch_decay = 5'b10000;
     localparam  pg_limit = 4'hc;
@@ -4696,7 +4718,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
                     nack_r$d = 32'h0;
                 end
             end
-            if (rep_on & enabled & ~rep_seen$q & ((dom & rep_rec) | (c & rep_dom))) begin
+            if (rep_on & enabled & ~rep_seen$q & ~rep_mask & ((dom & rep_rec) | (c & rep_dom & (tx_region | crc_delim | ack_slot | ack_delim | eof_1_6)))) begin
                 rep_seen$d = 1'b1;
                 rep_first_dom$d = dom;
             end
@@ -4754,7 +4776,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         if (dbc_r$q >= dbc_thr) begin
             bad$d = 1'b1;
         end
-        rep_ok = (rep_r$q != 32'h7) & ~(rep_glitched & (gc_r$q == 32'h0));
+        rep_ok = (rep_r$q != 32'h7) & ~(rep_glitched & (gc_r$q == 32'h0)) & rep_other;
         bl_r$d = blame;
         bl_dm_r$d = blame & rep_rec_w;
         if (err_start) begin
@@ -5705,7 +5727,7 @@ module canstar_cancentrate_core$core$pj$1$seen_dom_crc(d,q,clock);
 endmodule // canstar_cancentrate_core$core$pj$1$seen_dom_crc
 
 
-module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
+module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,rep_mask,rep_other,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
     
     // Module arguments
     input wire  clock;
@@ -5727,6 +5749,8 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
     input wire  err_start;
     input wire  rep_rec;
     input wire  rep_dom;
+    input wire  rep_mask;
+    input wire  rep_other;
     input wire  bit_start;
     input wire  [4:0] bs_cnt;
     input wire  delim;
@@ -5766,7 +5790,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
     localparam  life_limit = 7'b100000;
     localparam  dbc_thr = 5'b1101;
     localparam  nack_thr = 3'b111;
-    localparam  rep_limit = 3'b11;
+    localparam  rep_limit = 3'b10;
     localparam  glitch_limit = 3'b11;
     localparam  glitch_decay = 5'b10000;
     localparam  pg_limit = 4'hc;
@@ -6302,7 +6326,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
                     nack_r$d = 32'h0;
                 end
             end
-            if (rep_on & enabled & ~rep_seen$q & ((dom & rep_rec) | (c & rep_dom))) begin
+            if (rep_on & enabled & ~rep_seen$q & ~rep_mask & ((dom & rep_rec) | (c & rep_dom & (tx_region | crc_delim | ack_slot | ack_delim | eof_1_6)))) begin
                 rep_seen$d = 1'b1;
                 rep_first_dom$d = dom;
             end
@@ -6360,7 +6384,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         if (dbc_r$q >= dbc_thr) begin
             bad$d = 1'b1;
         end
-        rep_ok = (rep_r$q != 32'h7) & ~(rep_glitched & (gc_r$q == 32'h0));
+        rep_ok = (rep_r$q != 32'h7) & ~(rep_glitched & (gc_r$q == 32'h0)) & rep_other;
         bl_r$d = blame;
         bl_dm_r$d = blame & rep_rec_w;
         if (err_start) begin

@@ -885,6 +885,8 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     reg  pj$0$err_start;
     reg  pj$0$rep_rec;
     reg  pj$0$rep_dom;
+    reg  pj$0$rep_mask;
+    reg  pj$0$rep_other;
     reg  pj$0$bit_start;
     reg  [4:0] pj$0$bs_cnt;
     reg  pj$0$delim;
@@ -934,6 +936,8 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     reg  pj$1$err_start;
     reg  pj$1$rep_rec;
     reg  pj$1$rep_dom;
+    reg  pj$1$rep_mask;
+    reg  pj$1$rep_other;
     reg  pj$1$bit_start;
     reg  [4:0] pj$1$bs_cnt;
     reg  pj$1$delim;
@@ -983,6 +987,8 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     reg  pj$2$err_start;
     reg  pj$2$rep_rec;
     reg  pj$2$rep_dom;
+    reg  pj$2$rep_mask;
+    reg  pj$2$rep_other;
     reg  pj$2$bit_start;
     reg  [4:0] pj$2$bs_cnt;
     reg  pj$2$delim;
@@ -1032,6 +1038,8 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     reg  sj$0$err_start;
     reg  sj$0$rep_rec;
     reg  sj$0$rep_dom;
+    reg  sj$0$rep_mask;
+    reg  sj$0$rep_other;
     reg  sj$0$bit_start;
     reg  [4:0] sj$0$bs_cnt;
     reg  sj$0$delim;
@@ -1081,6 +1089,8 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     reg  sj$1$err_start;
     reg  sj$1$rep_rec;
     reg  sj$1$rep_dom;
+    reg  sj$1$rep_mask;
+    reg  sj$1$rep_other;
     reg  sj$1$bit_start;
     reg  [4:0] sj$1$bs_cnt;
     reg  sj$1$delim;
@@ -1263,6 +1273,8 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .err_start(pj$0$err_start),
         .rep_rec(pj$0$rep_rec),
         .rep_dom(pj$0$rep_dom),
+        .rep_mask(pj$0$rep_mask),
+        .rep_other(pj$0$rep_other),
         .bit_start(pj$0$bit_start),
         .bs_cnt(pj$0$bs_cnt),
         .delim(pj$0$delim),
@@ -1314,6 +1326,8 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .err_start(pj$1$err_start),
         .rep_rec(pj$1$rep_rec),
         .rep_dom(pj$1$rep_dom),
+        .rep_mask(pj$1$rep_mask),
+        .rep_other(pj$1$rep_other),
         .bit_start(pj$1$bit_start),
         .bs_cnt(pj$1$bs_cnt),
         .delim(pj$1$delim),
@@ -1365,6 +1379,8 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .err_start(pj$2$err_start),
         .rep_rec(pj$2$rep_rec),
         .rep_dom(pj$2$rep_dom),
+        .rep_mask(pj$2$rep_mask),
+        .rep_other(pj$2$rep_other),
         .bit_start(pj$2$bit_start),
         .bs_cnt(pj$2$bs_cnt),
         .delim(pj$2$delim),
@@ -1416,6 +1432,8 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .err_start(sj$0$err_start),
         .rep_rec(sj$0$rep_rec),
         .rep_dom(sj$0$rep_dom),
+        .rep_mask(sj$0$rep_mask),
+        .rep_other(sj$0$rep_other),
         .bit_start(sj$0$bit_start),
         .bs_cnt(sj$0$bs_cnt),
         .delim(sj$0$delim),
@@ -1467,6 +1485,8 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .err_start(sj$1$err_start),
         .rep_rec(sj$1$rep_rec),
         .rep_dom(sj$1$rep_dom),
+        .rep_mask(sj$1$rep_mask),
+        .rep_other(sj$1$rep_other),
         .bit_start(sj$1$bit_start),
         .bs_cnt(sj$1$bs_cnt),
         .delim(sj$1$delim),
@@ -1727,6 +1747,8 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         pj$0$err_start = 1'b0;
         pj$0$rep_rec = 1'b0;
         pj$0$rep_dom = 1'b0;
+        pj$0$rep_mask = 1'b0;
+        pj$0$rep_other = 1'b0;
         pj$0$rep_rec_w = 1'b0;
         pj$0$rep_glitched = 1'b0;
         pj$0$rep_blamed = 1'b0;
@@ -1773,6 +1795,8 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         pj$1$err_start = 1'b0;
         pj$1$rep_rec = 1'b0;
         pj$1$rep_dom = 1'b0;
+        pj$1$rep_mask = 1'b0;
+        pj$1$rep_other = 1'b0;
         pj$1$rep_rec_w = 1'b0;
         pj$1$rep_glitched = 1'b0;
         pj$1$rep_blamed = 1'b0;
@@ -1819,6 +1843,8 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         pj$2$err_start = 1'b0;
         pj$2$rep_rec = 1'b0;
         pj$2$rep_dom = 1'b0;
+        pj$2$rep_mask = 1'b0;
+        pj$2$rep_other = 1'b0;
         pj$2$rep_rec_w = 1'b0;
         pj$2$rep_glitched = 1'b0;
         pj$2$rep_blamed = 1'b0;
@@ -1851,6 +1877,8 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         sj$0$frame_ok = mon_frame_ok;
         sj$0$rep_rec = rep_rec;
         sj$0$rep_dom = rep_dom;
+        sj$0$rep_mask = pd_one | ~efgen$efg;
+        sj$0$rep_other = sub_two;
         sj$0$rep_rec_w = rep_rec_w;
         sj$0$rep_glitched = rep_gl;
         sj$0$bit_start = mon_bit_start;
@@ -1879,6 +1907,8 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         sj$1$frame_ok = mon_frame_ok;
         sj$1$rep_rec = rep_rec;
         sj$1$rep_dom = rep_dom;
+        sj$1$rep_mask = pd_one | ~efgen$efg;
+        sj$1$rep_other = sub_two;
         sj$1$rep_rec_w = rep_rec_w;
         sj$1$rep_glitched = rep_gl;
         sj$1$bit_start = mon_bit_start;
@@ -3223,7 +3253,7 @@ module canstar_hub_core$core$injector$state(d,q,clock);
 endmodule // canstar_hub_core$core$injector$state
 
 
-module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
+module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,rep_mask,rep_other,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
     
     // Module arguments
     input wire  clock;
@@ -3245,6 +3275,8 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     input wire  err_start;
     input wire  rep_rec;
     input wire  rep_dom;
+    input wire  rep_mask;
+    input wire  rep_other;
     input wire  bit_start;
     input wire  [4:0] bs_cnt;
     input wire  delim;
@@ -3284,7 +3316,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     localparam  life_limit = 7'b100000;
     localparam  dbc_thr = 5'b1101;
     localparam  nack_thr = 3'b111;
-    localparam  rep_limit = 3'b11;
+    localparam  rep_limit = 3'b10;
     localparam  glitch_limit = 3'b11;
     localparam  glitch_decay = 5'b10000;
     localparam  pg_limit = 4'hc;
@@ -3820,7 +3852,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                     nack_r$d = 32'h0;
                 end
             end
-            if (rep_on & enabled & ~rep_seen$q & ((dom & rep_rec) | (c & rep_dom))) begin
+            if (rep_on & enabled & ~rep_seen$q & ~rep_mask & ((dom & rep_rec) | (c & rep_dom & (tx_region | crc_delim | ack_slot | ack_delim | eof_1_6)))) begin
                 rep_seen$d = 1'b1;
                 rep_first_dom$d = dom;
             end
@@ -3878,7 +3910,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         if (dbc_r$q >= dbc_thr) begin
             bad$d = 1'b1;
         end
-        rep_ok = (rep_r$q != 32'h7) & ~(rep_glitched & (gc_r$q == 32'h0));
+        rep_ok = (rep_r$q != 32'h7) & ~(rep_glitched & (gc_r$q == 32'h0)) & rep_other;
         bl_r$d = blame;
         bl_dm_r$d = blame & rep_rec_w;
         if (err_start) begin
@@ -4829,7 +4861,7 @@ module canstar_hub_core$core$pj$0$seen_dom_crc(d,q,clock);
 endmodule // canstar_hub_core$core$pj$0$seen_dom_crc
 
 
-module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
+module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,rep_mask,rep_other,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
     
     // Module arguments
     input wire  clock;
@@ -4851,6 +4883,8 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     input wire  err_start;
     input wire  rep_rec;
     input wire  rep_dom;
+    input wire  rep_mask;
+    input wire  rep_other;
     input wire  bit_start;
     input wire  [4:0] bs_cnt;
     input wire  delim;
@@ -4890,7 +4924,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     localparam  life_limit = 7'b100000;
     localparam  dbc_thr = 5'b1101;
     localparam  nack_thr = 3'b111;
-    localparam  rep_limit = 3'b11;
+    localparam  rep_limit = 3'b10;
     localparam  glitch_limit = 3'b11;
     localparam  glitch_decay = 5'b10000;
     localparam  pg_limit = 4'hc;
@@ -5426,7 +5460,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                     nack_r$d = 32'h0;
                 end
             end
-            if (rep_on & enabled & ~rep_seen$q & ((dom & rep_rec) | (c & rep_dom))) begin
+            if (rep_on & enabled & ~rep_seen$q & ~rep_mask & ((dom & rep_rec) | (c & rep_dom & (tx_region | crc_delim | ack_slot | ack_delim | eof_1_6)))) begin
                 rep_seen$d = 1'b1;
                 rep_first_dom$d = dom;
             end
@@ -5484,7 +5518,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         if (dbc_r$q >= dbc_thr) begin
             bad$d = 1'b1;
         end
-        rep_ok = (rep_r$q != 32'h7) & ~(rep_glitched & (gc_r$q == 32'h0));
+        rep_ok = (rep_r$q != 32'h7) & ~(rep_glitched & (gc_r$q == 32'h0)) & rep_other;
         bl_r$d = blame;
         bl_dm_r$d = blame & rep_rec_w;
         if (err_start) begin
@@ -6435,7 +6469,7 @@ module canstar_hub_core$core$pj$1$seen_dom_crc(d,q,clock);
 endmodule // canstar_hub_core$core$pj$1$seen_dom_crc
 
 
-module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
+module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,rep_mask,rep_other,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
     
     // Module arguments
     input wire  clock;
@@ -6457,6 +6491,8 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     input wire  err_start;
     input wire  rep_rec;
     input wire  rep_dom;
+    input wire  rep_mask;
+    input wire  rep_other;
     input wire  bit_start;
     input wire  [4:0] bs_cnt;
     input wire  delim;
@@ -6496,7 +6532,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     localparam  life_limit = 7'b100000;
     localparam  dbc_thr = 5'b1101;
     localparam  nack_thr = 3'b111;
-    localparam  rep_limit = 3'b11;
+    localparam  rep_limit = 3'b10;
     localparam  glitch_limit = 3'b11;
     localparam  glitch_decay = 5'b10000;
     localparam  pg_limit = 4'hc;
@@ -7032,7 +7068,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                     nack_r$d = 32'h0;
                 end
             end
-            if (rep_on & enabled & ~rep_seen$q & ((dom & rep_rec) | (c & rep_dom))) begin
+            if (rep_on & enabled & ~rep_seen$q & ~rep_mask & ((dom & rep_rec) | (c & rep_dom & (tx_region | crc_delim | ack_slot | ack_delim | eof_1_6)))) begin
                 rep_seen$d = 1'b1;
                 rep_first_dom$d = dom;
             end
@@ -7090,7 +7126,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         if (dbc_r$q >= dbc_thr) begin
             bad$d = 1'b1;
         end
-        rep_ok = (rep_r$q != 32'h7) & ~(rep_glitched & (gc_r$q == 32'h0));
+        rep_ok = (rep_r$q != 32'h7) & ~(rep_glitched & (gc_r$q == 32'h0)) & rep_other;
         bl_r$d = blame;
         bl_dm_r$d = blame & rep_rec_w;
         if (err_start) begin
@@ -8098,7 +8134,7 @@ module canstar_hub_core$core$sd_run(d,q,clock);
 endmodule // canstar_hub_core$core$sd_run
 
 
-module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
+module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,rep_mask,rep_other,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
     
     // Module arguments
     input wire  clock;
@@ -8120,6 +8156,8 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     input wire  err_start;
     input wire  rep_rec;
     input wire  rep_dom;
+    input wire  rep_mask;
+    input wire  rep_other;
     input wire  bit_start;
     input wire  [4:0] bs_cnt;
     input wire  delim;
@@ -8159,7 +8197,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     localparam  life_limit = 7'b1000000;
     localparam  dbc_thr = 5'b11100;
     localparam  nack_thr = 3'b111;
-    localparam  rep_limit = 3'b11;
+    localparam  rep_limit = 3'b10;
     localparam  glitch_limit = 3'b110;
     localparam  glitch_decay = 5'b10000;
     localparam  pg_limit = 4'hc;
@@ -8695,7 +8733,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                     nack_r$d = 32'h0;
                 end
             end
-            if (rep_on & enabled & ~rep_seen$q & ((dom & rep_rec) | (c & rep_dom))) begin
+            if (rep_on & enabled & ~rep_seen$q & ~rep_mask & ((dom & rep_rec) | (c & rep_dom & (tx_region | crc_delim | ack_slot | ack_delim | eof_1_6)))) begin
                 rep_seen$d = 1'b1;
                 rep_first_dom$d = dom;
             end
@@ -8753,7 +8791,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         if (dbc_r$q >= dbc_thr) begin
             bad$d = 1'b1;
         end
-        rep_ok = (rep_r$q != 32'h7) & ~(rep_glitched & (gc_r$q == 32'h0));
+        rep_ok = (rep_r$q != 32'h7) & ~(rep_glitched & (gc_r$q == 32'h0)) & rep_other;
         bl_r$d = blame;
         bl_dm_r$d = blame & rep_rec_w;
         if (err_start) begin
@@ -9704,7 +9742,7 @@ module canstar_hub_core$core$sj$0$seen_dom_crc(d,q,clock);
 endmodule // canstar_hub_core$core$sj$0$seen_dom_crc
 
 
-module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
+module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,rep_mask,rep_other,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
     
     // Module arguments
     input wire  clock;
@@ -9726,6 +9764,8 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     input wire  err_start;
     input wire  rep_rec;
     input wire  rep_dom;
+    input wire  rep_mask;
+    input wire  rep_other;
     input wire  bit_start;
     input wire  [4:0] bs_cnt;
     input wire  delim;
@@ -9765,7 +9805,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     localparam  life_limit = 7'b1000000;
     localparam  dbc_thr = 5'b11100;
     localparam  nack_thr = 3'b111;
-    localparam  rep_limit = 3'b11;
+    localparam  rep_limit = 3'b10;
     localparam  glitch_limit = 3'b110;
     localparam  glitch_decay = 5'b10000;
     localparam  pg_limit = 4'hc;
@@ -10301,7 +10341,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                     nack_r$d = 32'h0;
                 end
             end
-            if (rep_on & enabled & ~rep_seen$q & ((dom & rep_rec) | (c & rep_dom))) begin
+            if (rep_on & enabled & ~rep_seen$q & ~rep_mask & ((dom & rep_rec) | (c & rep_dom & (tx_region | crc_delim | ack_slot | ack_delim | eof_1_6)))) begin
                 rep_seen$d = 1'b1;
                 rep_first_dom$d = dom;
             end
@@ -10359,7 +10399,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         if (dbc_r$q >= dbc_thr) begin
             bad$d = 1'b1;
         end
-        rep_ok = (rep_r$q != 32'h7) & ~(rep_glitched & (gc_r$q == 32'h0));
+        rep_ok = (rep_r$q != 32'h7) & ~(rep_glitched & (gc_r$q == 32'h0)) & rep_other;
         bl_r$d = blame;
         bl_dm_r$d = blame & rep_rec_w;
         if (err_start) begin

@@ -70,6 +70,13 @@ pub fn clock_at(j: &mut JudgeUnit, k: u64) {
     j.bit_start.next = false;
 }
 
+/// A sublink unit with a replica beside it (`rep_other`, hub.md §5.18), not initialised.
+pub fn sublink_unit(p: JudgeParams) -> JudgeUnit {
+    let mut j = JudgeUnit::sublink(p);
+    j.rep_other.next = true;
+    j
+}
+
 pub fn unit(p: JudgeParams) -> JudgeUnit {
     reset(JudgeUnit::port(p))
 }
