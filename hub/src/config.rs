@@ -90,6 +90,11 @@ pub struct HubConfig {
     pub sub_dbc_threshold: u64,
     /// Replica disagreement limit, 1..=7.
     pub replica_limit: u64,
+    /// Replica rule (hub.md §5.18): clocks that two replica sublinks must have differed
+    /// before a sample for the disagreement to count, 1..=7 (default 4: replicas whose
+    /// propagation delays differ by up to 3 hub clocks, about 200 ns or 40 m of cable at the
+    /// reference 14.74 MHz, never disagree at a peer edge).
+    pub replica_skew: u64,
     /// Glitch rule (hub.md §5.8): a run of equal level of at most this many clocks on an
     /// input is a glitch (None: one bit minus SJW minus 3 clocks, 11 with the reference
     /// timing), 1..=30.
@@ -149,6 +154,7 @@ impl Default for HubConfig {
             sub_delim_blames: 2,
             sub_dbc_threshold: 28,
             replica_limit: 2,
+            replica_skew: 4,
             glitch_max: None,
             sub_glitch_min: 3,
             sub_dominant_glitch_min: 1,
@@ -200,6 +206,7 @@ impl HubConfig {
             dbc_threshold: self.dbc_threshold,
             nack_threshold: self.nack_threshold,
             replica_limit: self.replica_limit,
+            replica_skew: self.replica_skew,
             reintegration: self.reintegration,
             glitch_min: 1,
             glitch_min_dominant: 1,
@@ -242,6 +249,7 @@ impl HubConfig {
             dbc_threshold: self.sub_dbc_threshold,
             nack_threshold: self.nack_threshold,
             replica_limit: self.replica_limit,
+            replica_skew: self.replica_skew,
             reintegration: self.reintegration,
             glitch_min: self.sub_glitch_min,
             glitch_min_dominant: self.sub_dominant_glitch_min,
@@ -290,6 +298,7 @@ impl HubConfig {
             ("sub_dbc_threshold", self.sub_dbc_threshold, 31),
             ("nack_threshold", self.nack_threshold, 7),
             ("replica_limit", self.replica_limit, 7),
+            ("replica_skew", self.replica_skew, 7),
             ("life_threshold", self.life_threshold, 127),
             ("sub_life_threshold", self.sub_life_threshold, 127),
             ("glitch_limit", self.glitch_limit, 7),

@@ -384,7 +384,9 @@
 //! tells nothing), outside a frame (Bus_Idle, SOF, Intermission, error phase) only as the
 //! dominant minority (a dominant level there is a SOF that a node with a frame pending
 //! takes as its own, and that frame completes whichever replica was wrong), and a record
-//! is charged only while another replica is enabled (`rep_other`). With these records the
+//! is charged only while another replica is enabled (`rep_other`); the replicas must have
+//! differed for `replica_skew` clocks before the sample (`rd_run`: replicas of unequal
+//! length see the peer's edges that many clocks apart). With these records the
 //! default `replica_limit` is 2. Evidence in hub.md §5.18. Test: `hub/tests/judge_sublinks.rs`
 //! `replica_disagreements_count_where_the_replicas_decide_bt`.
 //!
@@ -474,6 +476,10 @@ pub struct JudgeParams {
     /// Blames that one charged dominant bit in an error or overload delimiter counts
     /// (`bic += 8 * delim_blames`, §5.17), 1..=3.
     pub delim_blames: u64,
+    /// Clocks that two replicas must have differed before a sample for the disagreement to
+    /// count (hub.md §5.18: a peer edge reaches replicas of unequal length that many clocks
+    /// apart), 1..=7.
+    pub replica_skew: u64,
 }
 
 #[derive(LogicBlock)]
@@ -583,6 +589,7 @@ pub struct JudgeUnit {
     ack_rule: Constant<Bit>,
     nack_on: Constant<Bit>,
     rep_on: Constant<Bit>,
+    rep_skew: Constant<Bits<3>>,
     reint_on: Constant<Bit>,
     reint_w: Constant<Bits<8>>,
     dis_r: DFF<Bit>,
@@ -595,6 +602,8 @@ pub struct JudgeUnit {
     rep_r: DFF<Bits<3>>,
     rep_seen: DFF<Bit>,
     rep_first_dom: DFF<Bit>,
+    /// Clocks this unit has disagreed with another enabled replica, up to 7 (§5.18).
+    rd_run: DFF<Bits<3>>,
     ok_r: DFF<Bits<8>>,
     acked: DFF<Bit>,
     bad: DFF<Bit>,
@@ -647,6 +656,7 @@ impl JudgeUnit {
         assert!((1..=255).contains(&p.bic_limit), "bic limit out of range");
         assert!((1..=7).contains(&p.bic_decay), "bic decay out of range");
         assert!((1..=3).contains(&p.delim_blames), "delimiter blames out of range");
+        assert!((1..=7).contains(&p.replica_skew), "replica skew out of range");
         assert!((1..=127).contains(&p.life_limit), "lifetime limit out of range");
         assert!((1..=31).contains(&p.dbc_threshold), "DBC threshold out of range");
         assert!((1..=7).contains(&p.nack_threshold), "NACK threshold out of range");
@@ -730,6 +740,7 @@ impl JudgeUnit {
             ack_rule: Constant::new(port),
             nack_on: Constant::new(port),
             rep_on: Constant::new(!port),
+            rep_skew: Constant::new(p.replica_skew.into()),
             reint_on: Constant::new(p.reintegration.is_some()),
             reint_w: Constant::new(p.reintegration.unwrap_or(1).into()),
             dis_r: Default::default(),
@@ -742,6 +753,7 @@ impl JudgeUnit {
             rep_r: Default::default(),
             rep_seen: Default::default(),
             rep_first_dom: Default::default(),
+            rd_run: Default::default(),
             ok_r: Default::default(),
             acked: Default::default(),
             bad: Default::default(),
@@ -798,7 +810,7 @@ impl JudgeUnit {
 impl Logic for JudgeUnit {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, dis_r, bic_r, bdec_r, life_r, dbc_r, nack_r, cont_r, rep_r, rep_seen, rep_first_dom, ok_r, acked, bad, ack_missing, ack_c, ack_rx, seen_dom, seen_dom_crc, dom_bs, gc_r, gdec_r, an_r, pgc_r, pdec_r, ffd_r, glf_r, glo_r, pgl_r, sdp_r, ch_r, od_r, dprev, fol_r, bl_r, bl_dm_r, gpend);
+        dff_setup!(self, clock, dis_r, bic_r, bdec_r, life_r, dbc_r, nack_r, cont_r, rep_r, rep_seen, rep_first_dom, rd_run, ok_r, acked, bad, ack_missing, ack_c, ack_rx, seen_dom, seen_dom_crc, dom_bs, gc_r, gdec_r, an_r, pgc_r, pdec_r, ffd_r, glf_r, glo_r, pgl_r, sdp_r, ch_r, od_r, dprev, fol_r, bl_r, bl_dm_r, gpend);
         self.pulse.clock.next = self.clock.val();
         self.pulse.reset.next = self.reset.val();
         self.pulse.c.next = self.c.val();
@@ -983,6 +995,7 @@ impl Logic for JudgeUnit {
                 & self.enabled.val()
                 & !self.rep_seen.q.val()
                 & !self.rep_mask.val()
+                & (self.rd_run.q.val() >= self.rep_skew.val())
                 & ((self.dom.val() & self.rep_rec.val())
                     | (self.c.val()
                         & self.rep_dom.val()
@@ -1049,6 +1062,15 @@ impl Logic for JudgeUnit {
         }
         if self.dbc_r.q.val() >= self.dbc_thr.val() {
             self.bad.d.next = true;
+        }
+        // §5.18: how long this unit has disagreed with another enabled replica (an edge of
+        // the peer reaches replicas of unequal length some clocks apart)
+        if (self.dom.val() & self.rep_rec.val()) | (self.c.val() & self.rep_dom.val()) {
+            if self.rd_run.q.val() != 7 {
+                self.rd_run.d.next = self.rd_run.q.val() + 1;
+            }
+        } else {
+            self.rd_run.d.next = 0.into();
         }
         // §5.7 replica rule: evaluation (not charged while another replica, and not this
         // one, has glitches on its counter: the glitching replica is the suspect)

@@ -435,3 +435,29 @@ fn replica_disagreements_count_where_the_replicas_decide_bt() {
     assert_eq!(disagreement_then(at_sof, true, true, false, true), 0, "masked by a port");
     assert_eq!(disagreement_then(in_frame, true, false, true, true), 0, "the other replica isolated since");
 }
+
+/// hub.md §5.18: a disagreement counts only when the replicas have differed for
+/// `replica_skew` clocks (4) before the sample; a peer edge reaches replicas of unequal
+/// length a few clocks apart. Dominant minority from clock `from` of the bit (sample at
+/// clock 12), then an error episode; returns `rep_cnt`.
+fn late_disagreement(from: u64) -> usize {
+    let mut j = reset(sublink_unit(params()));
+    apply(&mut j, Bit { c: false, bt: false, tx: true, ..Default::default() });
+    for k in 0..SAMPLE_AT {
+        j.rep_rec.next = k >= from;
+        clock_at(&mut j, k);
+    }
+    j.sample.next = true;
+    j.bs_cnt.next = SAMPLE_AT.into();
+    drive::cycle(&mut j);
+    j.sample.next = false;
+    j.rep_rec.next = false;
+    episode(&mut j);
+    j.rep_cnt.val().index()
+}
+
+#[test]
+fn replica_disagreement_must_outlast_the_skew() {
+    assert_eq!(late_disagreement(SAMPLE_AT - 2), 0, "2 clocks: an edge seen through replicas of unequal length");
+    assert_eq!(late_disagreement(SAMPLE_AT - 4), 1, "4 clocks: a disagreement");
+}

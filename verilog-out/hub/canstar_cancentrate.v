@@ -2585,6 +2585,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
     localparam  ack_rule = 1'b1;
     localparam  nack_on = 1'b1;
     localparam  rep_on = 1'b0;
+    localparam  rep_skew = 3'b100;
     localparam  reint_on = 1'b0;
     localparam  reint_w = 8'h1;
     
@@ -2623,6 +2624,9 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
     reg  rep_first_dom$d;
     wire  rep_first_dom$q;
     reg  rep_first_dom$clock;
+    reg  [2:0] rd_run$d;
+    wire  [2:0] rd_run$q;
+    reg  rd_run$clock;
     reg  [7:0] ok_r$d;
     wire  [7:0] ok_r$q;
     reg  ok_r$clock;
@@ -2776,6 +2780,11 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         .q(rep_first_dom$q),
         .clock(rep_first_dom$clock)
     );
+    canstar_cancentrate_core$core$pj$0$rd_run rd_run(
+        .d(rd_run$d),
+        .q(rd_run$q),
+        .clock(rd_run$clock)
+    );
     canstar_cancentrate_core$core$pj$0$ok_r ok_r(
         .d(ok_r$d),
         .q(ok_r$q),
@@ -2919,6 +2928,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         rep_r$clock = clock;
         rep_seen$clock = clock;
         rep_first_dom$clock = clock;
+        rd_run$clock = clock;
         ok_r$clock = clock;
         acked$clock = clock;
         bad$clock = clock;
@@ -2955,6 +2965,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         rep_r$d = rep_r$q;
         rep_seen$d = rep_seen$q;
         rep_first_dom$d = rep_first_dom$q;
+        rd_run$d = rd_run$q;
         ok_r$d = ok_r$q;
         acked$d = acked$q;
         bad$d = bad$q;
@@ -3110,7 +3121,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
                     nack_r$d = 32'h0;
                 end
             end
-            if (rep_on & enabled & ~rep_seen$q & ~rep_mask & ((dom & rep_rec) | (c & rep_dom & (tx_region | crc_delim | ack_slot | ack_delim | eof_1_6)))) begin
+            if (rep_on & enabled & ~rep_seen$q & ~rep_mask & (rd_run$q >= rep_skew) & ((dom & rep_rec) | (c & rep_dom & (tx_region | crc_delim | ack_slot | ack_delim | eof_1_6)))) begin
                 rep_seen$d = 1'b1;
                 rep_first_dom$d = dom;
             end
@@ -3167,6 +3178,14 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         end
         if (dbc_r$q >= dbc_thr) begin
             bad$d = 1'b1;
+        end
+        if ((dom & rep_rec) | (c & rep_dom)) begin
+            if (rd_run$q != 32'h7) begin
+                rd_run$d = rd_run$q + 32'h1;
+            end
+        end
+        else begin
+            rd_run$d = 32'h0;
         end
         rep_ok = (rep_r$q != 32'h7) & ~(rep_glitched & (gc_r$q == 32'h0)) & rep_other;
         bl_r$d = blame;
@@ -4005,6 +4024,25 @@ module canstar_cancentrate_core$core$pj$0$pulse$run(d,q,clock);
 endmodule // canstar_cancentrate_core$core$pj$0$pulse$run
 
 
+module canstar_cancentrate_core$core$pj$0$rd_run(d,q,clock);
+    
+    // Module arguments
+    input wire  [2:0] d;
+    output reg  [2:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 3'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$0$rd_run
+
+
 module canstar_cancentrate_core$core$pj$0$rep_first_dom(d,q,clock);
     
     // Module arguments
@@ -4193,6 +4231,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
     localparam  ack_rule = 1'b1;
     localparam  nack_on = 1'b1;
     localparam  rep_on = 1'b0;
+    localparam  rep_skew = 3'b100;
     localparam  reint_on = 1'b0;
     localparam  reint_w = 8'h1;
     
@@ -4231,6 +4270,9 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
     reg  rep_first_dom$d;
     wire  rep_first_dom$q;
     reg  rep_first_dom$clock;
+    reg  [2:0] rd_run$d;
+    wire  [2:0] rd_run$q;
+    reg  rd_run$clock;
     reg  [7:0] ok_r$d;
     wire  [7:0] ok_r$q;
     reg  ok_r$clock;
@@ -4384,6 +4426,11 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         .q(rep_first_dom$q),
         .clock(rep_first_dom$clock)
     );
+    canstar_cancentrate_core$core$pj$1$rd_run rd_run(
+        .d(rd_run$d),
+        .q(rd_run$q),
+        .clock(rd_run$clock)
+    );
     canstar_cancentrate_core$core$pj$1$ok_r ok_r(
         .d(ok_r$d),
         .q(ok_r$q),
@@ -4527,6 +4574,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         rep_r$clock = clock;
         rep_seen$clock = clock;
         rep_first_dom$clock = clock;
+        rd_run$clock = clock;
         ok_r$clock = clock;
         acked$clock = clock;
         bad$clock = clock;
@@ -4563,6 +4611,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         rep_r$d = rep_r$q;
         rep_seen$d = rep_seen$q;
         rep_first_dom$d = rep_first_dom$q;
+        rd_run$d = rd_run$q;
         ok_r$d = ok_r$q;
         acked$d = acked$q;
         bad$d = bad$q;
@@ -4718,7 +4767,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
                     nack_r$d = 32'h0;
                 end
             end
-            if (rep_on & enabled & ~rep_seen$q & ~rep_mask & ((dom & rep_rec) | (c & rep_dom & (tx_region | crc_delim | ack_slot | ack_delim | eof_1_6)))) begin
+            if (rep_on & enabled & ~rep_seen$q & ~rep_mask & (rd_run$q >= rep_skew) & ((dom & rep_rec) | (c & rep_dom & (tx_region | crc_delim | ack_slot | ack_delim | eof_1_6)))) begin
                 rep_seen$d = 1'b1;
                 rep_first_dom$d = dom;
             end
@@ -4775,6 +4824,14 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         end
         if (dbc_r$q >= dbc_thr) begin
             bad$d = 1'b1;
+        end
+        if ((dom & rep_rec) | (c & rep_dom)) begin
+            if (rd_run$q != 32'h7) begin
+                rd_run$d = rd_run$q + 32'h1;
+            end
+        end
+        else begin
+            rd_run$d = 32'h0;
         end
         rep_ok = (rep_r$q != 32'h7) & ~(rep_glitched & (gc_r$q == 32'h0)) & rep_other;
         bl_r$d = blame;
@@ -5613,6 +5670,25 @@ module canstar_cancentrate_core$core$pj$1$pulse$run(d,q,clock);
 endmodule // canstar_cancentrate_core$core$pj$1$pulse$run
 
 
+module canstar_cancentrate_core$core$pj$1$rd_run(d,q,clock);
+    
+    // Module arguments
+    input wire  [2:0] d;
+    output reg  [2:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 3'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$1$rd_run
+
+
 module canstar_cancentrate_core$core$pj$1$rep_first_dom(d,q,clock);
     
     // Module arguments
@@ -5801,6 +5877,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
     localparam  ack_rule = 1'b1;
     localparam  nack_on = 1'b1;
     localparam  rep_on = 1'b0;
+    localparam  rep_skew = 3'b100;
     localparam  reint_on = 1'b0;
     localparam  reint_w = 8'h1;
     
@@ -5839,6 +5916,9 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
     reg  rep_first_dom$d;
     wire  rep_first_dom$q;
     reg  rep_first_dom$clock;
+    reg  [2:0] rd_run$d;
+    wire  [2:0] rd_run$q;
+    reg  rd_run$clock;
     reg  [7:0] ok_r$d;
     wire  [7:0] ok_r$q;
     reg  ok_r$clock;
@@ -5992,6 +6072,11 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         .q(rep_first_dom$q),
         .clock(rep_first_dom$clock)
     );
+    canstar_cancentrate_core$core$pj$2$rd_run rd_run(
+        .d(rd_run$d),
+        .q(rd_run$q),
+        .clock(rd_run$clock)
+    );
     canstar_cancentrate_core$core$pj$2$ok_r ok_r(
         .d(ok_r$d),
         .q(ok_r$q),
@@ -6135,6 +6220,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         rep_r$clock = clock;
         rep_seen$clock = clock;
         rep_first_dom$clock = clock;
+        rd_run$clock = clock;
         ok_r$clock = clock;
         acked$clock = clock;
         bad$clock = clock;
@@ -6171,6 +6257,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         rep_r$d = rep_r$q;
         rep_seen$d = rep_seen$q;
         rep_first_dom$d = rep_first_dom$q;
+        rd_run$d = rd_run$q;
         ok_r$d = ok_r$q;
         acked$d = acked$q;
         bad$d = bad$q;
@@ -6326,7 +6413,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
                     nack_r$d = 32'h0;
                 end
             end
-            if (rep_on & enabled & ~rep_seen$q & ~rep_mask & ((dom & rep_rec) | (c & rep_dom & (tx_region | crc_delim | ack_slot | ack_delim | eof_1_6)))) begin
+            if (rep_on & enabled & ~rep_seen$q & ~rep_mask & (rd_run$q >= rep_skew) & ((dom & rep_rec) | (c & rep_dom & (tx_region | crc_delim | ack_slot | ack_delim | eof_1_6)))) begin
                 rep_seen$d = 1'b1;
                 rep_first_dom$d = dom;
             end
@@ -6383,6 +6470,14 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         end
         if (dbc_r$q >= dbc_thr) begin
             bad$d = 1'b1;
+        end
+        if ((dom & rep_rec) | (c & rep_dom)) begin
+            if (rd_run$q != 32'h7) begin
+                rd_run$d = rd_run$q + 32'h1;
+            end
+        end
+        else begin
+            rd_run$d = 32'h0;
         end
         rep_ok = (rep_r$q != 32'h7) & ~(rep_glitched & (gc_r$q == 32'h0)) & rep_other;
         bl_r$d = blame;
@@ -7219,6 +7314,25 @@ module canstar_cancentrate_core$core$pj$2$pulse$run(d,q,clock);
     end
           
 endmodule // canstar_cancentrate_core$core$pj$2$pulse$run
+
+
+module canstar_cancentrate_core$core$pj$2$rd_run(d,q,clock);
+    
+    // Module arguments
+    input wire  [2:0] d;
+    output reg  [2:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 3'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$2$rd_run
 
 
 module canstar_cancentrate_core$core$pj$2$rep_first_dom(d,q,clock);

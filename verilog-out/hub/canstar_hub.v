@@ -3327,6 +3327,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     localparam  ack_rule = 1'b1;
     localparam  nack_on = 1'b1;
     localparam  rep_on = 1'b0;
+    localparam  rep_skew = 3'b100;
     localparam  reint_on = 1'b0;
     localparam  reint_w = 8'h1;
     
@@ -3365,6 +3366,9 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  rep_first_dom$d;
     wire  rep_first_dom$q;
     reg  rep_first_dom$clock;
+    reg  [2:0] rd_run$d;
+    wire  [2:0] rd_run$q;
+    reg  rd_run$clock;
     reg  [7:0] ok_r$d;
     wire  [7:0] ok_r$q;
     reg  ok_r$clock;
@@ -3518,6 +3522,11 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .q(rep_first_dom$q),
         .clock(rep_first_dom$clock)
     );
+    canstar_hub_core$core$pj$0$rd_run rd_run(
+        .d(rd_run$d),
+        .q(rd_run$q),
+        .clock(rd_run$clock)
+    );
     canstar_hub_core$core$pj$0$ok_r ok_r(
         .d(ok_r$d),
         .q(ok_r$q),
@@ -3661,6 +3670,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         rep_r$clock = clock;
         rep_seen$clock = clock;
         rep_first_dom$clock = clock;
+        rd_run$clock = clock;
         ok_r$clock = clock;
         acked$clock = clock;
         bad$clock = clock;
@@ -3697,6 +3707,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         rep_r$d = rep_r$q;
         rep_seen$d = rep_seen$q;
         rep_first_dom$d = rep_first_dom$q;
+        rd_run$d = rd_run$q;
         ok_r$d = ok_r$q;
         acked$d = acked$q;
         bad$d = bad$q;
@@ -3852,7 +3863,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                     nack_r$d = 32'h0;
                 end
             end
-            if (rep_on & enabled & ~rep_seen$q & ~rep_mask & ((dom & rep_rec) | (c & rep_dom & (tx_region | crc_delim | ack_slot | ack_delim | eof_1_6)))) begin
+            if (rep_on & enabled & ~rep_seen$q & ~rep_mask & (rd_run$q >= rep_skew) & ((dom & rep_rec) | (c & rep_dom & (tx_region | crc_delim | ack_slot | ack_delim | eof_1_6)))) begin
                 rep_seen$d = 1'b1;
                 rep_first_dom$d = dom;
             end
@@ -3909,6 +3920,14 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         end
         if (dbc_r$q >= dbc_thr) begin
             bad$d = 1'b1;
+        end
+        if ((dom & rep_rec) | (c & rep_dom)) begin
+            if (rd_run$q != 32'h7) begin
+                rd_run$d = rd_run$q + 32'h1;
+            end
+        end
+        else begin
+            rd_run$d = 32'h0;
         end
         rep_ok = (rep_r$q != 32'h7) & ~(rep_glitched & (gc_r$q == 32'h0)) & rep_other;
         bl_r$d = blame;
@@ -4747,6 +4766,25 @@ module canstar_hub_core$core$pj$0$pulse$run(d,q,clock);
 endmodule // canstar_hub_core$core$pj$0$pulse$run
 
 
+module canstar_hub_core$core$pj$0$rd_run(d,q,clock);
+    
+    // Module arguments
+    input wire  [2:0] d;
+    output reg  [2:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 3'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$0$rd_run
+
+
 module canstar_hub_core$core$pj$0$rep_first_dom(d,q,clock);
     
     // Module arguments
@@ -4935,6 +4973,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     localparam  ack_rule = 1'b1;
     localparam  nack_on = 1'b1;
     localparam  rep_on = 1'b0;
+    localparam  rep_skew = 3'b100;
     localparam  reint_on = 1'b0;
     localparam  reint_w = 8'h1;
     
@@ -4973,6 +5012,9 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  rep_first_dom$d;
     wire  rep_first_dom$q;
     reg  rep_first_dom$clock;
+    reg  [2:0] rd_run$d;
+    wire  [2:0] rd_run$q;
+    reg  rd_run$clock;
     reg  [7:0] ok_r$d;
     wire  [7:0] ok_r$q;
     reg  ok_r$clock;
@@ -5126,6 +5168,11 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .q(rep_first_dom$q),
         .clock(rep_first_dom$clock)
     );
+    canstar_hub_core$core$pj$1$rd_run rd_run(
+        .d(rd_run$d),
+        .q(rd_run$q),
+        .clock(rd_run$clock)
+    );
     canstar_hub_core$core$pj$1$ok_r ok_r(
         .d(ok_r$d),
         .q(ok_r$q),
@@ -5269,6 +5316,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         rep_r$clock = clock;
         rep_seen$clock = clock;
         rep_first_dom$clock = clock;
+        rd_run$clock = clock;
         ok_r$clock = clock;
         acked$clock = clock;
         bad$clock = clock;
@@ -5305,6 +5353,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         rep_r$d = rep_r$q;
         rep_seen$d = rep_seen$q;
         rep_first_dom$d = rep_first_dom$q;
+        rd_run$d = rd_run$q;
         ok_r$d = ok_r$q;
         acked$d = acked$q;
         bad$d = bad$q;
@@ -5460,7 +5509,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                     nack_r$d = 32'h0;
                 end
             end
-            if (rep_on & enabled & ~rep_seen$q & ~rep_mask & ((dom & rep_rec) | (c & rep_dom & (tx_region | crc_delim | ack_slot | ack_delim | eof_1_6)))) begin
+            if (rep_on & enabled & ~rep_seen$q & ~rep_mask & (rd_run$q >= rep_skew) & ((dom & rep_rec) | (c & rep_dom & (tx_region | crc_delim | ack_slot | ack_delim | eof_1_6)))) begin
                 rep_seen$d = 1'b1;
                 rep_first_dom$d = dom;
             end
@@ -5517,6 +5566,14 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         end
         if (dbc_r$q >= dbc_thr) begin
             bad$d = 1'b1;
+        end
+        if ((dom & rep_rec) | (c & rep_dom)) begin
+            if (rd_run$q != 32'h7) begin
+                rd_run$d = rd_run$q + 32'h1;
+            end
+        end
+        else begin
+            rd_run$d = 32'h0;
         end
         rep_ok = (rep_r$q != 32'h7) & ~(rep_glitched & (gc_r$q == 32'h0)) & rep_other;
         bl_r$d = blame;
@@ -6355,6 +6412,25 @@ module canstar_hub_core$core$pj$1$pulse$run(d,q,clock);
 endmodule // canstar_hub_core$core$pj$1$pulse$run
 
 
+module canstar_hub_core$core$pj$1$rd_run(d,q,clock);
+    
+    // Module arguments
+    input wire  [2:0] d;
+    output reg  [2:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 3'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$1$rd_run
+
+
 module canstar_hub_core$core$pj$1$rep_first_dom(d,q,clock);
     
     // Module arguments
@@ -6543,6 +6619,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     localparam  ack_rule = 1'b1;
     localparam  nack_on = 1'b1;
     localparam  rep_on = 1'b0;
+    localparam  rep_skew = 3'b100;
     localparam  reint_on = 1'b0;
     localparam  reint_w = 8'h1;
     
@@ -6581,6 +6658,9 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  rep_first_dom$d;
     wire  rep_first_dom$q;
     reg  rep_first_dom$clock;
+    reg  [2:0] rd_run$d;
+    wire  [2:0] rd_run$q;
+    reg  rd_run$clock;
     reg  [7:0] ok_r$d;
     wire  [7:0] ok_r$q;
     reg  ok_r$clock;
@@ -6734,6 +6814,11 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .q(rep_first_dom$q),
         .clock(rep_first_dom$clock)
     );
+    canstar_hub_core$core$pj$2$rd_run rd_run(
+        .d(rd_run$d),
+        .q(rd_run$q),
+        .clock(rd_run$clock)
+    );
     canstar_hub_core$core$pj$2$ok_r ok_r(
         .d(ok_r$d),
         .q(ok_r$q),
@@ -6877,6 +6962,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         rep_r$clock = clock;
         rep_seen$clock = clock;
         rep_first_dom$clock = clock;
+        rd_run$clock = clock;
         ok_r$clock = clock;
         acked$clock = clock;
         bad$clock = clock;
@@ -6913,6 +6999,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         rep_r$d = rep_r$q;
         rep_seen$d = rep_seen$q;
         rep_first_dom$d = rep_first_dom$q;
+        rd_run$d = rd_run$q;
         ok_r$d = ok_r$q;
         acked$d = acked$q;
         bad$d = bad$q;
@@ -7068,7 +7155,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                     nack_r$d = 32'h0;
                 end
             end
-            if (rep_on & enabled & ~rep_seen$q & ~rep_mask & ((dom & rep_rec) | (c & rep_dom & (tx_region | crc_delim | ack_slot | ack_delim | eof_1_6)))) begin
+            if (rep_on & enabled & ~rep_seen$q & ~rep_mask & (rd_run$q >= rep_skew) & ((dom & rep_rec) | (c & rep_dom & (tx_region | crc_delim | ack_slot | ack_delim | eof_1_6)))) begin
                 rep_seen$d = 1'b1;
                 rep_first_dom$d = dom;
             end
@@ -7125,6 +7212,14 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         end
         if (dbc_r$q >= dbc_thr) begin
             bad$d = 1'b1;
+        end
+        if ((dom & rep_rec) | (c & rep_dom)) begin
+            if (rd_run$q != 32'h7) begin
+                rd_run$d = rd_run$q + 32'h1;
+            end
+        end
+        else begin
+            rd_run$d = 32'h0;
         end
         rep_ok = (rep_r$q != 32'h7) & ~(rep_glitched & (gc_r$q == 32'h0)) & rep_other;
         bl_r$d = blame;
@@ -7963,6 +8058,25 @@ module canstar_hub_core$core$pj$2$pulse$run(d,q,clock);
 endmodule // canstar_hub_core$core$pj$2$pulse$run
 
 
+module canstar_hub_core$core$pj$2$rd_run(d,q,clock);
+    
+    // Module arguments
+    input wire  [2:0] d;
+    output reg  [2:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 3'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$2$rd_run
+
+
 module canstar_hub_core$core$pj$2$rep_first_dom(d,q,clock);
     
     // Module arguments
@@ -8208,6 +8322,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     localparam  ack_rule = 1'b0;
     localparam  nack_on = 1'b0;
     localparam  rep_on = 1'b1;
+    localparam  rep_skew = 3'b100;
     localparam  reint_on = 1'b0;
     localparam  reint_w = 8'h1;
     
@@ -8246,6 +8361,9 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  rep_first_dom$d;
     wire  rep_first_dom$q;
     reg  rep_first_dom$clock;
+    reg  [2:0] rd_run$d;
+    wire  [2:0] rd_run$q;
+    reg  rd_run$clock;
     reg  [7:0] ok_r$d;
     wire  [7:0] ok_r$q;
     reg  ok_r$clock;
@@ -8399,6 +8517,11 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .q(rep_first_dom$q),
         .clock(rep_first_dom$clock)
     );
+    canstar_hub_core$core$sj$0$rd_run rd_run(
+        .d(rd_run$d),
+        .q(rd_run$q),
+        .clock(rd_run$clock)
+    );
     canstar_hub_core$core$sj$0$ok_r ok_r(
         .d(ok_r$d),
         .q(ok_r$q),
@@ -8542,6 +8665,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         rep_r$clock = clock;
         rep_seen$clock = clock;
         rep_first_dom$clock = clock;
+        rd_run$clock = clock;
         ok_r$clock = clock;
         acked$clock = clock;
         bad$clock = clock;
@@ -8578,6 +8702,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         rep_r$d = rep_r$q;
         rep_seen$d = rep_seen$q;
         rep_first_dom$d = rep_first_dom$q;
+        rd_run$d = rd_run$q;
         ok_r$d = ok_r$q;
         acked$d = acked$q;
         bad$d = bad$q;
@@ -8733,7 +8858,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                     nack_r$d = 32'h0;
                 end
             end
-            if (rep_on & enabled & ~rep_seen$q & ~rep_mask & ((dom & rep_rec) | (c & rep_dom & (tx_region | crc_delim | ack_slot | ack_delim | eof_1_6)))) begin
+            if (rep_on & enabled & ~rep_seen$q & ~rep_mask & (rd_run$q >= rep_skew) & ((dom & rep_rec) | (c & rep_dom & (tx_region | crc_delim | ack_slot | ack_delim | eof_1_6)))) begin
                 rep_seen$d = 1'b1;
                 rep_first_dom$d = dom;
             end
@@ -8790,6 +8915,14 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         end
         if (dbc_r$q >= dbc_thr) begin
             bad$d = 1'b1;
+        end
+        if ((dom & rep_rec) | (c & rep_dom)) begin
+            if (rd_run$q != 32'h7) begin
+                rd_run$d = rd_run$q + 32'h1;
+            end
+        end
+        else begin
+            rd_run$d = 32'h0;
         end
         rep_ok = (rep_r$q != 32'h7) & ~(rep_glitched & (gc_r$q == 32'h0)) & rep_other;
         bl_r$d = blame;
@@ -9628,6 +9761,25 @@ module canstar_hub_core$core$sj$0$pulse$run(d,q,clock);
 endmodule // canstar_hub_core$core$sj$0$pulse$run
 
 
+module canstar_hub_core$core$sj$0$rd_run(d,q,clock);
+    
+    // Module arguments
+    input wire  [2:0] d;
+    output reg  [2:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 3'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$sj$0$rd_run
+
+
 module canstar_hub_core$core$sj$0$rep_first_dom(d,q,clock);
     
     // Module arguments
@@ -9816,6 +9968,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     localparam  ack_rule = 1'b0;
     localparam  nack_on = 1'b0;
     localparam  rep_on = 1'b1;
+    localparam  rep_skew = 3'b100;
     localparam  reint_on = 1'b0;
     localparam  reint_w = 8'h1;
     
@@ -9854,6 +10007,9 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  rep_first_dom$d;
     wire  rep_first_dom$q;
     reg  rep_first_dom$clock;
+    reg  [2:0] rd_run$d;
+    wire  [2:0] rd_run$q;
+    reg  rd_run$clock;
     reg  [7:0] ok_r$d;
     wire  [7:0] ok_r$q;
     reg  ok_r$clock;
@@ -10007,6 +10163,11 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .q(rep_first_dom$q),
         .clock(rep_first_dom$clock)
     );
+    canstar_hub_core$core$sj$1$rd_run rd_run(
+        .d(rd_run$d),
+        .q(rd_run$q),
+        .clock(rd_run$clock)
+    );
     canstar_hub_core$core$sj$1$ok_r ok_r(
         .d(ok_r$d),
         .q(ok_r$q),
@@ -10150,6 +10311,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         rep_r$clock = clock;
         rep_seen$clock = clock;
         rep_first_dom$clock = clock;
+        rd_run$clock = clock;
         ok_r$clock = clock;
         acked$clock = clock;
         bad$clock = clock;
@@ -10186,6 +10348,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         rep_r$d = rep_r$q;
         rep_seen$d = rep_seen$q;
         rep_first_dom$d = rep_first_dom$q;
+        rd_run$d = rd_run$q;
         ok_r$d = ok_r$q;
         acked$d = acked$q;
         bad$d = bad$q;
@@ -10341,7 +10504,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                     nack_r$d = 32'h0;
                 end
             end
-            if (rep_on & enabled & ~rep_seen$q & ~rep_mask & ((dom & rep_rec) | (c & rep_dom & (tx_region | crc_delim | ack_slot | ack_delim | eof_1_6)))) begin
+            if (rep_on & enabled & ~rep_seen$q & ~rep_mask & (rd_run$q >= rep_skew) & ((dom & rep_rec) | (c & rep_dom & (tx_region | crc_delim | ack_slot | ack_delim | eof_1_6)))) begin
                 rep_seen$d = 1'b1;
                 rep_first_dom$d = dom;
             end
@@ -10398,6 +10561,14 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         end
         if (dbc_r$q >= dbc_thr) begin
             bad$d = 1'b1;
+        end
+        if ((dom & rep_rec) | (c & rep_dom)) begin
+            if (rd_run$q != 32'h7) begin
+                rd_run$d = rd_run$q + 32'h1;
+            end
+        end
+        else begin
+            rd_run$d = 32'h0;
         end
         rep_ok = (rep_r$q != 32'h7) & ~(rep_glitched & (gc_r$q == 32'h0)) & rep_other;
         bl_r$d = blame;
@@ -11234,6 +11405,25 @@ module canstar_hub_core$core$sj$1$pulse$run(d,q,clock);
     end
           
 endmodule // canstar_hub_core$core$sj$1$pulse$run
+
+
+module canstar_hub_core$core$sj$1$rd_run(d,q,clock);
+    
+    // Module arguments
+    input wire  [2:0] d;
+    output reg  [2:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 3'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$sj$1$rd_run
 
 
 module canstar_hub_core$core$sj$1$rep_first_dom(d,q,clock);
