@@ -387,8 +387,9 @@
 //! is charged only while another replica is enabled (`rep_other`); the replicas must have
 //! differed for `replica_skew` clocks before the sample (`rd_run`: replicas of unequal
 //! length see the peer's edges that many clocks apart). With these records the
-//! default `replica_limit` is 2. Evidence in hub.md §5.18. Test: `hub/tests/judge_sublinks.rs`
-//! `replica_disagreements_count_where_the_replicas_decide_bt`.
+//! default `replica_limit` is 2. Evidence in hub.md §5.18. Tests: `hub/tests/judge_sublinks.rs`
+//! `replica_disagreements_count_where_the_replicas_decide_bt`,
+//! `replica_disagreement_must_outlast_the_skew`.
 //!
 //! **§5.2 delimiter rule (added).** In the error phase, once BT was recessive at a
 //! sample (the end of every flag), the following delimiter bits are recessive-only

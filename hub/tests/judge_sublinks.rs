@@ -443,14 +443,7 @@ fn replica_disagreements_count_where_the_replicas_decide_bt() {
 fn late_disagreement(from: u64) -> usize {
     let mut j = reset(sublink_unit(params()));
     apply(&mut j, Bit { c: false, bt: false, tx: true, ..Default::default() });
-    for k in 0..SAMPLE_AT {
-        j.rep_rec.next = k >= from;
-        clock_at(&mut j, k);
-    }
-    j.sample.next = true;
-    j.bs_cnt.next = SAMPLE_AT.into();
-    drive::cycle(&mut j);
-    j.sample.next = false;
+    bit_clocks(&mut j, &|j, k| j.rep_rec.next = k >= from);
     j.rep_rec.next = false;
     episode(&mut j);
     j.rep_cnt.val().index()
