@@ -1,7 +1,8 @@
 //! End-to-end tests of `canstar soak`: bad input fails cleanly and writes nothing;
 //! shards written as JSON merge into the unsharded summary; `--network` soaks a
 //! network file (the hub clocked at 29.48 MHz on the chunk where the reference hub
-//! blamed a fast receiver's early ACK before the early-ACK rule, README "No false blame").
+//! blamed a fast receiver's early ACK before the early-ACK rule, README "No false blame"),
+//! and the network with interlinks of unequal length keeps both sublinks (hub.md §5.18).
 mod common;
 use common::{canstar, entries, example};
 
@@ -157,6 +158,20 @@ fn soak_of_a_network_file_uses_that_network() {
         json.contains("recancentrate-hub-29mhz"),
         "the report should carry the soaked network"
     );
+}
+
+/// The replica skew filter (hub.md §5.18) at system level: with interlink 0 at 10 ns and
+/// interlink 1 at 150 ns the peer's edges reach the two replicas about two hub clocks
+/// apart. Without the filter hub 1 cut off its healthy sublink 1 in this fault-free
+/// chunk (`replica 2/2`, the §5.18 rules before `replica_skew`); now it is clean.
+#[test]
+fn unequal_interlink_soak_chunk_keeps_both_sublinks() {
+    let d = tempfile::tempdir().unwrap();
+    let net = example("recancentrate-unequal-interlinks.toml");
+    let (ok, out, err) = canstar(&["soak", "--network", &net, "--events", "--chunk", "1"], d.path());
+    assert!(ok, "{out}{err}");
+    assert!(out.contains("hubs [6250.0, 6250.0] ppm"), "the chunk's oscillators changed: {out}");
+    assert!(out.contains("blames 0  isolations 0"), "{out}");
 }
 
 /// The early-ACK rule at system level: chunk 2 of the default soak (hub 0 slow, the

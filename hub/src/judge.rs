@@ -642,6 +642,10 @@ pub struct JudgeUnit {
     domw: Signal<Local, Bit>,
     unj: Signal<Local, Bit>,
     enabled: Signal<Local, Bit>,
+    /// §5.18: this unit is the dominant / the recessive minority against another enabled
+    /// replica (at every clock; the replica rule and the skew run both use them).
+    rep_dmin: Signal<Local, Bit>,
+    rep_rmin: Signal<Local, Bit>,
     charge: Signal<Local, Bit>,
     g: Signal<Local, Bit>,
     rep_ok: Signal<Local, Bit>,
@@ -784,6 +788,8 @@ impl JudgeUnit {
             ffc: Default::default(),
             pge: Default::default(),
             late: Default::default(),
+            rep_dmin: Default::default(),
+            rep_rmin: Default::default(),
             dom: Default::default(),
             domw: Default::default(),
             unj: Default::default(),
@@ -820,6 +826,8 @@ impl Logic for JudgeUnit {
         self.anomaly.next = self.pulse.glitch.val() | (self.an_r.q.val() != 0);
         self.dom.next = !self.c.val();
         self.enabled.next = !self.dis_r.q.val();
+        self.rep_dmin.next = self.dom.val() & self.rep_rec.val();
+        self.rep_rmin.next = self.c.val() & self.rep_dom.val();
         // window rule: dominant at any clock from `win_lag` clocks after the bit start up
         // to the sample point counts as a dominant bit for the unjustified-dominant rules
         self.domw.next = self.dom.val() | self.seen_dom.q.val();
@@ -997,9 +1005,8 @@ impl Logic for JudgeUnit {
                 & !self.rep_seen.q.val()
                 & !self.rep_mask.val()
                 & (self.rd_run.q.val() >= self.rep_skew.val())
-                & ((self.dom.val() & self.rep_rec.val())
-                    | (self.c.val()
-                        & self.rep_dom.val()
+                & (self.rep_dmin.val()
+                    | (self.rep_rmin.val()
                         & (self.tx_region.val() | self.crc_delim.val() | self.ack_slot.val() | self.ack_delim.val() | self.eof_1_6.val())))
             {
                 self.rep_seen.d.next = true;
@@ -1066,7 +1073,7 @@ impl Logic for JudgeUnit {
         }
         // §5.18: how long this unit has disagreed with another enabled replica (an edge of
         // the peer reaches replicas of unequal length some clocks apart)
-        if (self.dom.val() & self.rep_rec.val()) | (self.c.val() & self.rep_dom.val()) {
+        if self.rep_dmin.val() | self.rep_rmin.val() {
             if self.rd_run.q.val() != 7 {
                 self.rd_run.d.next = self.rd_run.q.val() + 1;
             }

@@ -2717,6 +2717,8 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
     reg  domw;
     reg  unj;
     reg  enabled;
+    reg  rep_dmin;
+    reg  rep_rmin;
     reg  charge;
     reg  g;
     reg  rep_ok;
@@ -3000,6 +3002,8 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         anomaly = pulse$glitch | (an_r$q != 32'h0);
         dom = ~c;
         enabled = ~dis_r$q;
+        rep_dmin = dom & rep_rec;
+        rep_rmin = c & rep_dom;
         domw = dom | seen_dom$q;
         if (bit_start) begin
             seen_dom$d = 1'b0;
@@ -3121,7 +3125,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
                     nack_r$d = 32'h0;
                 end
             end
-            if (rep_on & enabled & ~rep_seen$q & ~rep_mask & (rd_run$q >= rep_skew) & ((dom & rep_rec) | (c & rep_dom & (tx_region | crc_delim | ack_slot | ack_delim | eof_1_6)))) begin
+            if (rep_on & enabled & ~rep_seen$q & ~rep_mask & (rd_run$q >= rep_skew) & (rep_dmin | (rep_rmin & (tx_region | crc_delim | ack_slot | ack_delim | eof_1_6)))) begin
                 rep_seen$d = 1'b1;
                 rep_first_dom$d = dom;
             end
@@ -3179,7 +3183,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         if (dbc_r$q >= dbc_thr) begin
             bad$d = 1'b1;
         end
-        if ((dom & rep_rec) | (c & rep_dom)) begin
+        if (rep_dmin | rep_rmin) begin
             if (rd_run$q != 32'h7) begin
                 rd_run$d = rd_run$q + 32'h1;
             end
@@ -4363,6 +4367,8 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
     reg  domw;
     reg  unj;
     reg  enabled;
+    reg  rep_dmin;
+    reg  rep_rmin;
     reg  charge;
     reg  g;
     reg  rep_ok;
@@ -4646,6 +4652,8 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         anomaly = pulse$glitch | (an_r$q != 32'h0);
         dom = ~c;
         enabled = ~dis_r$q;
+        rep_dmin = dom & rep_rec;
+        rep_rmin = c & rep_dom;
         domw = dom | seen_dom$q;
         if (bit_start) begin
             seen_dom$d = 1'b0;
@@ -4767,7 +4775,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
                     nack_r$d = 32'h0;
                 end
             end
-            if (rep_on & enabled & ~rep_seen$q & ~rep_mask & (rd_run$q >= rep_skew) & ((dom & rep_rec) | (c & rep_dom & (tx_region | crc_delim | ack_slot | ack_delim | eof_1_6)))) begin
+            if (rep_on & enabled & ~rep_seen$q & ~rep_mask & (rd_run$q >= rep_skew) & (rep_dmin | (rep_rmin & (tx_region | crc_delim | ack_slot | ack_delim | eof_1_6)))) begin
                 rep_seen$d = 1'b1;
                 rep_first_dom$d = dom;
             end
@@ -4825,7 +4833,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         if (dbc_r$q >= dbc_thr) begin
             bad$d = 1'b1;
         end
-        if ((dom & rep_rec) | (c & rep_dom)) begin
+        if (rep_dmin | rep_rmin) begin
             if (rd_run$q != 32'h7) begin
                 rd_run$d = rd_run$q + 32'h1;
             end
@@ -6009,6 +6017,8 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
     reg  domw;
     reg  unj;
     reg  enabled;
+    reg  rep_dmin;
+    reg  rep_rmin;
     reg  charge;
     reg  g;
     reg  rep_ok;
@@ -6292,6 +6302,8 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         anomaly = pulse$glitch | (an_r$q != 32'h0);
         dom = ~c;
         enabled = ~dis_r$q;
+        rep_dmin = dom & rep_rec;
+        rep_rmin = c & rep_dom;
         domw = dom | seen_dom$q;
         if (bit_start) begin
             seen_dom$d = 1'b0;
@@ -6413,7 +6425,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
                     nack_r$d = 32'h0;
                 end
             end
-            if (rep_on & enabled & ~rep_seen$q & ~rep_mask & (rd_run$q >= rep_skew) & ((dom & rep_rec) | (c & rep_dom & (tx_region | crc_delim | ack_slot | ack_delim | eof_1_6)))) begin
+            if (rep_on & enabled & ~rep_seen$q & ~rep_mask & (rd_run$q >= rep_skew) & (rep_dmin | (rep_rmin & (tx_region | crc_delim | ack_slot | ack_delim | eof_1_6)))) begin
                 rep_seen$d = 1'b1;
                 rep_first_dom$d = dom;
             end
@@ -6471,7 +6483,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         if (dbc_r$q >= dbc_thr) begin
             bad$d = 1'b1;
         end
-        if ((dom & rep_rec) | (c & rep_dom)) begin
+        if (rep_dmin | rep_rmin) begin
             if (rd_run$q != 32'h7) begin
                 rd_run$d = rd_run$q + 32'h1;
             end

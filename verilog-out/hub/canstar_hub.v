@@ -3459,6 +3459,8 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  domw;
     reg  unj;
     reg  enabled;
+    reg  rep_dmin;
+    reg  rep_rmin;
     reg  charge;
     reg  g;
     reg  rep_ok;
@@ -3742,6 +3744,8 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         anomaly = pulse$glitch | (an_r$q != 32'h0);
         dom = ~c;
         enabled = ~dis_r$q;
+        rep_dmin = dom & rep_rec;
+        rep_rmin = c & rep_dom;
         domw = dom | seen_dom$q;
         if (bit_start) begin
             seen_dom$d = 1'b0;
@@ -3863,7 +3867,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                     nack_r$d = 32'h0;
                 end
             end
-            if (rep_on & enabled & ~rep_seen$q & ~rep_mask & (rd_run$q >= rep_skew) & ((dom & rep_rec) | (c & rep_dom & (tx_region | crc_delim | ack_slot | ack_delim | eof_1_6)))) begin
+            if (rep_on & enabled & ~rep_seen$q & ~rep_mask & (rd_run$q >= rep_skew) & (rep_dmin | (rep_rmin & (tx_region | crc_delim | ack_slot | ack_delim | eof_1_6)))) begin
                 rep_seen$d = 1'b1;
                 rep_first_dom$d = dom;
             end
@@ -3921,7 +3925,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         if (dbc_r$q >= dbc_thr) begin
             bad$d = 1'b1;
         end
-        if ((dom & rep_rec) | (c & rep_dom)) begin
+        if (rep_dmin | rep_rmin) begin
             if (rd_run$q != 32'h7) begin
                 rd_run$d = rd_run$q + 32'h1;
             end
@@ -5105,6 +5109,8 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  domw;
     reg  unj;
     reg  enabled;
+    reg  rep_dmin;
+    reg  rep_rmin;
     reg  charge;
     reg  g;
     reg  rep_ok;
@@ -5388,6 +5394,8 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         anomaly = pulse$glitch | (an_r$q != 32'h0);
         dom = ~c;
         enabled = ~dis_r$q;
+        rep_dmin = dom & rep_rec;
+        rep_rmin = c & rep_dom;
         domw = dom | seen_dom$q;
         if (bit_start) begin
             seen_dom$d = 1'b0;
@@ -5509,7 +5517,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                     nack_r$d = 32'h0;
                 end
             end
-            if (rep_on & enabled & ~rep_seen$q & ~rep_mask & (rd_run$q >= rep_skew) & ((dom & rep_rec) | (c & rep_dom & (tx_region | crc_delim | ack_slot | ack_delim | eof_1_6)))) begin
+            if (rep_on & enabled & ~rep_seen$q & ~rep_mask & (rd_run$q >= rep_skew) & (rep_dmin | (rep_rmin & (tx_region | crc_delim | ack_slot | ack_delim | eof_1_6)))) begin
                 rep_seen$d = 1'b1;
                 rep_first_dom$d = dom;
             end
@@ -5567,7 +5575,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         if (dbc_r$q >= dbc_thr) begin
             bad$d = 1'b1;
         end
-        if ((dom & rep_rec) | (c & rep_dom)) begin
+        if (rep_dmin | rep_rmin) begin
             if (rd_run$q != 32'h7) begin
                 rd_run$d = rd_run$q + 32'h1;
             end
@@ -6751,6 +6759,8 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  domw;
     reg  unj;
     reg  enabled;
+    reg  rep_dmin;
+    reg  rep_rmin;
     reg  charge;
     reg  g;
     reg  rep_ok;
@@ -7034,6 +7044,8 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         anomaly = pulse$glitch | (an_r$q != 32'h0);
         dom = ~c;
         enabled = ~dis_r$q;
+        rep_dmin = dom & rep_rec;
+        rep_rmin = c & rep_dom;
         domw = dom | seen_dom$q;
         if (bit_start) begin
             seen_dom$d = 1'b0;
@@ -7155,7 +7167,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                     nack_r$d = 32'h0;
                 end
             end
-            if (rep_on & enabled & ~rep_seen$q & ~rep_mask & (rd_run$q >= rep_skew) & ((dom & rep_rec) | (c & rep_dom & (tx_region | crc_delim | ack_slot | ack_delim | eof_1_6)))) begin
+            if (rep_on & enabled & ~rep_seen$q & ~rep_mask & (rd_run$q >= rep_skew) & (rep_dmin | (rep_rmin & (tx_region | crc_delim | ack_slot | ack_delim | eof_1_6)))) begin
                 rep_seen$d = 1'b1;
                 rep_first_dom$d = dom;
             end
@@ -7213,7 +7225,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         if (dbc_r$q >= dbc_thr) begin
             bad$d = 1'b1;
         end
-        if ((dom & rep_rec) | (c & rep_dom)) begin
+        if (rep_dmin | rep_rmin) begin
             if (rd_run$q != 32'h7) begin
                 rd_run$d = rd_run$q + 32'h1;
             end
@@ -8454,6 +8466,8 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  domw;
     reg  unj;
     reg  enabled;
+    reg  rep_dmin;
+    reg  rep_rmin;
     reg  charge;
     reg  g;
     reg  rep_ok;
@@ -8737,6 +8751,8 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         anomaly = pulse$glitch | (an_r$q != 32'h0);
         dom = ~c;
         enabled = ~dis_r$q;
+        rep_dmin = dom & rep_rec;
+        rep_rmin = c & rep_dom;
         domw = dom | seen_dom$q;
         if (bit_start) begin
             seen_dom$d = 1'b0;
@@ -8858,7 +8874,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                     nack_r$d = 32'h0;
                 end
             end
-            if (rep_on & enabled & ~rep_seen$q & ~rep_mask & (rd_run$q >= rep_skew) & ((dom & rep_rec) | (c & rep_dom & (tx_region | crc_delim | ack_slot | ack_delim | eof_1_6)))) begin
+            if (rep_on & enabled & ~rep_seen$q & ~rep_mask & (rd_run$q >= rep_skew) & (rep_dmin | (rep_rmin & (tx_region | crc_delim | ack_slot | ack_delim | eof_1_6)))) begin
                 rep_seen$d = 1'b1;
                 rep_first_dom$d = dom;
             end
@@ -8916,7 +8932,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         if (dbc_r$q >= dbc_thr) begin
             bad$d = 1'b1;
         end
-        if ((dom & rep_rec) | (c & rep_dom)) begin
+        if (rep_dmin | rep_rmin) begin
             if (rd_run$q != 32'h7) begin
                 rd_run$d = rd_run$q + 32'h1;
             end
@@ -10100,6 +10116,8 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  domw;
     reg  unj;
     reg  enabled;
+    reg  rep_dmin;
+    reg  rep_rmin;
     reg  charge;
     reg  g;
     reg  rep_ok;
@@ -10383,6 +10401,8 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         anomaly = pulse$glitch | (an_r$q != 32'h0);
         dom = ~c;
         enabled = ~dis_r$q;
+        rep_dmin = dom & rep_rec;
+        rep_rmin = c & rep_dom;
         domw = dom | seen_dom$q;
         if (bit_start) begin
             seen_dom$d = 1'b0;
@@ -10504,7 +10524,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                     nack_r$d = 32'h0;
                 end
             end
-            if (rep_on & enabled & ~rep_seen$q & ~rep_mask & (rd_run$q >= rep_skew) & ((dom & rep_rec) | (c & rep_dom & (tx_region | crc_delim | ack_slot | ack_delim | eof_1_6)))) begin
+            if (rep_on & enabled & ~rep_seen$q & ~rep_mask & (rd_run$q >= rep_skew) & (rep_dmin | (rep_rmin & (tx_region | crc_delim | ack_slot | ack_delim | eof_1_6)))) begin
                 rep_seen$d = 1'b1;
                 rep_first_dom$d = dom;
             end
@@ -10562,7 +10582,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         if (dbc_r$q >= dbc_thr) begin
             bad$d = 1'b1;
         end
-        if ((dom & rep_rec) | (c & rep_dom)) begin
+        if (rep_dmin | rep_rmin) begin
             if (rd_run$q != 32'h7) begin
                 rd_run$d = rd_run$q + 32'h1;
             end
