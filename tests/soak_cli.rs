@@ -6,6 +6,13 @@
 mod common;
 use common::{canstar, entries, example};
 
+/// Replay one soak chunk (`canstar soak ARGS`) in a fresh folder; (exit ok, stdout, stderr).
+fn soak_chunk(args: &[&str]) -> (bool, String, String) {
+    let d = tempfile::tempdir().unwrap();
+    let args: Vec<&str> = ["soak"].iter().chain(args).copied().collect();
+    canstar(&args, d.path())
+}
+
 #[test]
 fn soak_bad_input_fails_cleanly_and_writes_nothing() {
     let d = tempfile::tempdir().unwrap();
@@ -166,9 +173,8 @@ fn soak_of_a_network_file_uses_that_network() {
 /// chunk (`replica 2/2`, the §5.18 rules before `replica_skew`); now it is clean.
 #[test]
 fn unequal_interlink_soak_chunk_keeps_both_sublinks() {
-    let d = tempfile::tempdir().unwrap();
     let net = example("recancentrate-unequal-interlinks.toml");
-    let (ok, out, err) = canstar(&["soak", "--network", &net, "--events", "--chunk", "1"], d.path());
+    let (ok, out, err) = soak_chunk(&["--network", &net, "--events", "--chunk", "1"]);
     assert!(ok, "{out}{err}");
     assert!(out.contains("hubs [6250.0, 6250.0] ppm"), "the chunk's oscillators changed: {out}");
     assert!(out.contains("blames 0  isolations 0"), "{out}");
@@ -179,8 +185,7 @@ fn unequal_interlink_soak_chunk_keeps_both_sublinks() {
 /// before the rule (README "No false blame"); now it is clean.
 #[test]
 fn reference_soak_chunk_with_an_early_ack_is_clean() {
-    let d = tempfile::tempdir().unwrap();
-    let (ok, out, err) = canstar(&["soak", "--chunk", "2"], d.path());
+    let (ok, out, err) = soak_chunk(&["--chunk", "2"]);
     assert!(ok, "{out}{err}");
     assert!(out.contains("hubs [6250.0, -6250.0] ppm"), "the chunk's oscillators changed: {out}");
     assert!(out.contains("blames 0  isolations 0  worst TEC 0 REC 0  controller errors 0"), "{out}");
@@ -194,8 +199,7 @@ fn reference_soak_chunk_with_an_early_ack_is_clean() {
 /// both sublinks (2 blames at CRC bit 12). Now clean.
 #[test]
 fn event_soak_chunk_with_a_transmitter_switched_off_is_clean() {
-    let d = tempfile::tempdir().unwrap();
-    let (ok, out, err) = canstar(&["soak", "--events", "--chunk", "25"], d.path());
+    let (ok, out, err) = soak_chunk(&["--events", "--chunk", "25"]);
     assert!(ok, "{out}{err}");
     assert!(out.contains("node 1 off at bit 35100"), "the chunk's events changed: {out}");
     assert!(out.contains("blames 0  isolations 0"), "{out}");
@@ -221,4 +225,48 @@ fn soak_chunk_vcd_covers_only_its_window() {
     let (ok, _, err) = canstar(&["soak", "--frames", "200", "--vcd", "x.vcd"], d.path());
     assert!(!ok && err.contains("--chunk"), "{err}");
     assert_eq!(entries(d.path()), vec!["w.vcd"]);
+}
+
+/// The propagation budget (docs/recancentrate.md §1.1) against the simulated system: a
+/// network over budget has controller errors in fault-free traffic and is warned about;
+/// one with a margin of a few tens of ns is clean on the same chunk and warned about as
+/// tight; the reference network (211 ns) is not warned about. The chunks are ones that
+/// showed errors over budget (chunk 1 with both interlinks at 120 ns, chunk 3 with every
+/// node link at 65 ns).
+#[test]
+fn budget_predicts_the_first_errors() {
+    let d = tempfile::tempdir().unwrap();
+    let reference = std::fs::read_to_string(example("recancentrate.toml")).unwrap();
+    let variant = |name: &str, interlink_ns: u64, link_ns: u64| {
+        let text = reference
+            .replace("up_ps = 10000 ", &format!("up_ps = {link_ns}000 "))
+            .replace("down_ps = 10000 ", &format!("down_ps = {link_ns}000 "))
+            .replace("h0_to_h1_ps = 10000", &format!("h0_to_h1_ps = {interlink_ns}000"))
+            .replace("h1_to_h0_ps = 10000", &format!("h1_to_h0_ps = {interlink_ns}000"));
+        let path = d.path().join(name);
+        std::fs::write(&path, text).unwrap();
+        path.display().to_string()
+    };
+    for (name, interlink_ns, link_ns, chunk, margin, warning) in [
+        ("il100.toml", 100, 10, "1", "margin 31.", Some("leaves only 31.")),
+        ("il120.toml", 120, 10, "1", "margin -8.", Some("longer than the sample point")),
+        ("nl50.toml", 10, 50, "3", "margin 51.", Some("leaves only 51.")),
+        ("nl65.toml", 10, 65, "3", "margin -8.", Some("longer than the sample point")),
+        ("ref.toml", 10, 10, "1", "margin 211.", None),
+    ] {
+        let net = variant(name, interlink_ns, link_ns);
+        let (ok, out, err) = soak_chunk(&["--network", &net, "--chunk", chunk]);
+        assert!(out.contains(margin), "{name}: {out}");
+        match warning {
+            Some(w) => assert!(err.contains(&format!("warning: {net}: the loop through the hubs")) && err.contains(w), "{name}: {err}"),
+            None => assert!(!err.contains("warning"), "{name}: {err}"),
+        }
+        let over = margin.contains('-');
+        assert_eq!(ok, !over, "{name}: {out}{err}");
+        if over {
+            assert!(!out.contains("controller errors 0 "), "{name}: {out}");
+        } else {
+            assert!(out.contains("blames 0  isolations 0  worst TEC 0 REC 0  controller errors 0 "), "{name}: {out}");
+        }
+    }
 }

@@ -4,7 +4,8 @@
 //! published single-fault scenarios.
 //!
 //! - [`spec`]: [`NetworkSpec`] (TOML network file; `NetworkSpec::default()` is
-//!   the reference system); [`network`]: the builder [`network::Network::build`].
+//!   the reference system); [`network`]: the builder [`network::Network::build`];
+//!   [`budget`]: the propagation budget ([`NetworkSpec::propagation_budget`]).
 //! - [`ctrl`]: [`ctrl::Ctrl`], one controller (RTL `CanCore`) with its native host
 //!   interface, as a kernel component.
 //! - [`driver`]: the media-management driver of one node (tx, rx and qua
@@ -45,6 +46,7 @@
 //!   published scenarios use it.
 
 pub mod app;
+pub mod budget;
 pub mod campaign;
 pub mod ctrl;
 pub mod driver;

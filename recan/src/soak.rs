@@ -65,6 +65,15 @@ impl SoakSettings {
     pub fn chunk_seed(&self, i: u64) -> u64 {
         crate::campaign::run_seed(self.seed, if self.events { "soak-events" } else { "soak" }, i as u32)
     }
+    /// The network soaked, before each chunk's oscillators, first transmitters and
+    /// start time are set.
+    pub fn network_spec(&self) -> NetworkSpec {
+        match (&self.network, self.fast) {
+            (Some(n), _) => n.clone(),
+            (None, true) => NetworkSpec::fast(),
+            (None, false) => NetworkSpec::default(),
+        }
+    }
     /// The chunk indices of `shard` (all without one).
     pub fn plan(&self, shard: Option<Shard>) -> Vec<u64> {
         (0..self.chunks()).filter(|&i| shard.is_none_or(|s| s.contains(i as usize))).collect()
@@ -123,11 +132,7 @@ impl ChunkOutcome {
 pub fn chunk_spec(s: &SoakSettings, index: u64) -> (RunSpec, Vec<NodeEvent>) {
     let seed = s.chunk_seed(index);
     let mut rng = ChaCha8Rng::seed_from_u64(seed ^ 0x50a4);
-    let mut net = match (&s.network, s.fast) {
-        (Some(n), _) => n.clone(),
-        (None, true) => NetworkSpec::fast(),
-        (None, false) => NetworkSpec::default(),
-    };
+    let mut net = s.network_spec();
     let ppm = s.ppm.unwrap_or_else(|| {
         net.nodes.iter().flat_map(|n| [&n.a.timing, &n.b.timing]).map(tolerance_ppm).fold(tolerance_ppm(&net.hub.timing), f64::min)
     });
@@ -327,6 +332,10 @@ impl SoakReport {
             minp.map_or("none below 32".into(), |v| v.to_string()),
             mins.map_or("none below 32".into(), |v| v.to_string())
         );
+        if let Some(st) = &self.settings {
+            let net = st.network_spec();
+            s += &(net.propagation_budget().describe(&net) + "\n");
+        }
         for (name, get) in [("port", 0usize), ("sublink", 1)] {
             let mut h = vec![0u64; 64];
             for c in &self.chunks {

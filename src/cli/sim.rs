@@ -109,6 +109,11 @@ fn network(a: &Args, text: &str, until_ps: Option<u64>) -> Result<()> {
     }
     let mut set = OutputSet::new();
     reserve(&mut set, &[&a.vcd, &a.trace])?;
+    let budget = net.propagation_budget();
+    outln!("{}", budget.describe(&net));
+    if let Some(w) = budget.warning() {
+        errln!("warning: {}: {w}", path.display());
+    }
     let mut spec = RunSpec::new(net.clone(), a.seed.unwrap_or(1), 0);
     spec.max_time_ps = Some(until_ps.unwrap_or(2_000_000_000));
     spec.vcd = tmp(&set, &a.vcd);

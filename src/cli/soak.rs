@@ -102,6 +102,9 @@ pub fn run(a: Args) -> Result<()> {
         None => None,
     };
     let settings = SoakSettings { frames: a.frames, chunk_frames: a.chunk_frames, seed: a.seed, ppm: a.ppm, events: a.events, fast: a.fast, network };
+    if let Some(w) = settings.network_spec().propagation_budget().warning() {
+        errln!("warning: {}: {w}", a.network.as_ref().map_or("the reference network".into(), |p| p.display().to_string()));
+    }
     if let Some(i) = a.chunk {
         let (spec, evs) = soak::chunk_spec(&settings, i);
         for e in &evs {
