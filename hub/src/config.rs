@@ -126,6 +126,9 @@ pub struct HubConfig {
     /// a bit error the hub did not see).
     pub first_flagger: bool,
     pub sub_first_flagger: bool,
+    /// Last-EOF-bit rule (hub.md §5.19, ports only): a port dominant in the last EOF bit,
+    /// outside an error phase, is blamed (a transmitter takes that bit for a form error).
+    pub eof_last_rule: bool,
     /// Reintegration window W in frames (None = isolation latched until reset).
     pub reintegration: Option<u64>,
     /// Fault-injection hook (None = no hooks).
@@ -167,6 +170,7 @@ impl Default for HubConfig {
             sub_window_lag: 8,
             first_flagger: true,
             sub_first_flagger: true,
+            eof_last_rule: true,
             reintegration: None,
             fault_injection: None,
             debug: true,
@@ -218,6 +222,7 @@ impl HubConfig {
             window_lag: self.window_lag,
             crc_window_end: self.crc_window_end(),
             first_flagger: self.first_flagger,
+            eof_last: self.eof_last_rule,
             delim_blames: self.delim_blames,
         }
     }
@@ -261,6 +266,7 @@ impl HubConfig {
             window_lag: self.sub_window_lag,
             crc_window_end: self.crc_window_end(),
             first_flagger: self.sub_first_flagger,
+            eof_last: false,
             delim_blames: self.sub_delim_blames,
         }
     }

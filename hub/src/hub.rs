@@ -433,6 +433,7 @@ impl Logic for HubCore {
             self.pj[i].ack_slot.next = self.decode.ack_slot.val();
             self.pj[i].ack_delim.next = self.decode.ack_delim.val();
             self.pj[i].eof_1_6.next = self.decode.eof_1_6.val();
+            self.pj[i].eof_last.next = self.decode.eof_last.val();
             self.pj[i].im_2.next = self.decode.im_2.val();
             self.pj[i].err_phase.next = self.err_phase.val();
             self.pj[i].crc_ok.next = self.mon_crc_ok.val();
@@ -470,6 +471,7 @@ impl Logic for HubCore {
             self.sj[j].ack_slot.next = self.decode.ack_slot.val();
             self.sj[j].ack_delim.next = self.decode.ack_delim.val();
             self.sj[j].eof_1_6.next = self.decode.eof_1_6.val();
+            self.sj[j].eof_last.next = self.decode.eof_last.val();
             self.sj[j].im_2.next = self.decode.im_2.val();
             self.sj[j].err_phase.next = self.err_phase.val();
             self.sj[j].crc_ok.next = self.mon_crc_ok.val();

@@ -66,7 +66,11 @@
 //! falls in the CRC delimiter, the ACK delimiter (**(changed)**: not when BT was
 //! recessive in the ACK slot: then the transmitter legitimately starts its ACK-error
 //! flag in the ACK delimiter, e.g. after a CRC error or when no receiver is alive), EOF
-//! bits 1-6 or intermission bit 2 (a
+//! bits 1-6, **(changed, §5.19, ports only)** the last EOF bit (a transmitter takes a
+//! dominant last EOF bit for a form error, TEC + 8 and a retransmission, while the
+//! monitor, as a receiver, sees an overload condition: a faulty receiver flagging there
+//! raised a healthy transmitter's TEC unjudged; `eof_last_rule`, test
+//! `last_eof_bit_is_blamed_with_the_rule`) or intermission bit 2 (a
 //! dominant bit there after a dominant last EOF / delimiter bit is inside the monitor's
 //! overload phase, hence error phase, hence not blamed; **(changed)** intermission bit 1
 //! is not blamed: a node that saw *its* last EOF bit dominant legally starts an
@@ -474,6 +478,8 @@ pub struct JudgeParams {
     /// First-flagger rule (§5.12): charge a dominant contender at an error episode that
     /// the frame monitor alone started.
     pub first_flagger: bool,
+    /// Last-EOF-bit rule (§5.19): a dominant bit in the last EOF bit is unjustified.
+    pub eof_last: bool,
     /// Blames that one charged dominant bit in an error or overload delimiter counts
     /// (`bic += 8 * delim_blames`, §5.17), 1..=3.
     pub delim_blames: u64,
@@ -497,6 +503,8 @@ pub struct JudgeUnit {
     pub ack_slot: Signal<In, Bit>,
     pub ack_delim: Signal<In, Bit>,
     pub eof_1_6: Signal<In, Bit>,
+    /// The sampled bit is the last EOF bit (§5.19).
+    pub eof_last: Signal<In, Bit>,
     pub im_2: Signal<In, Bit>,
     pub err_phase: Signal<In, Bit>,
     pub crc_ok: Signal<In, Bit>,
@@ -588,6 +596,7 @@ pub struct JudgeUnit {
     crc_end: Constant<Bits<5>>,
     ff_on: Constant<Bit>,
     ack_rule: Constant<Bit>,
+    eol_on: Constant<Bit>,
     nack_on: Constant<Bit>,
     rep_on: Constant<Bit>,
     rep_skew: Constant<Bits<3>>,
@@ -687,6 +696,7 @@ impl JudgeUnit {
             ack_slot: Default::default(),
             ack_delim: Default::default(),
             eof_1_6: Default::default(),
+            eof_last: Default::default(),
             im_2: Default::default(),
             err_phase: Default::default(),
             crc_ok: Default::default(),
@@ -743,6 +753,7 @@ impl JudgeUnit {
             crc_end: Constant::new(p.crc_window_end.max(p.window_lag).into()),
             ff_on: Constant::new(p.first_flagger),
             ack_rule: Constant::new(port),
+            eol_on: Constant::new(p.eof_last),
             nack_on: Constant::new(port),
             rep_on: Constant::new(!port),
             rep_skew: Constant::new(p.replica_skew.into()),
@@ -877,6 +888,7 @@ impl Logic for JudgeUnit {
                 & ((self.tx_region.val() & !self.cont_r.q.val())
                     | (self.ack_delim.val() & !self.ack_missing.q.val())
                     | self.eof_1_6.val()
+                    | (self.eof_last.val() & self.eol_on.val())
                     | (self.ack_slot.val() & self.cont_r.q.val() & self.ack_rule.val())))
                 | self.delim.val()))
             | (self.crc_delim.val() & !self.err_phase.val() & self.seen_dom_crc.q.val())

@@ -1,4 +1,4 @@
-//! Judge-unit rules of one port in isolation (hub.md §5.1-§5.10, §5.14): roles,
+//! Judge-unit rules of one port in isolation (hub.md §5.1-§5.10, §5.14, §5.19): roles,
 //! recessive-only positions, blame counters, windows, glitches, dominant runs, NACK.
 mod judge_common;
 use canstar_hdl::drive;
@@ -54,6 +54,31 @@ fn recessive_only_positions() {
     let mut j = unit(params());
     sample(&mut j, Bit { c: true, bt: true, ack_slot: true, ..Default::default() });
     assert!(!sample(&mut j, Bit { c: false, bt: false, ack_delim: true, ..Default::default() }));
+}
+
+/// §5.19: with the rule on, a dominant last EOF bit outside an error phase is blamed, for
+/// a receiver and a transmitter alike; off (the sublink units), it is not; inside an error
+/// or overload phase it is not either.
+#[test]
+fn last_eof_bit_is_blamed_with_the_rule() {
+    for on in [false, true] {
+        for contender in [false, true] {
+            let mut j = unit(JudgeParams { eof_last: on, ..params() });
+            sample(&mut j, Bit { c: false, bt: false, sof: true, ..Default::default() });
+            // recessive against a dominant BT in the transmission region: a receiver
+            sample(&mut j, Bit { c: !contender, bt: false, tx: true, ..Default::default() });
+            assert_eq!(j.contender.val(), contender);
+            let blamed = sample(&mut j, Bit { c: false, bt: false, eof_last: true, ..Default::default() });
+            assert_eq!(blamed, on, "rule {on}, contender {contender}");
+            assert_eq!(j.bic.val().index(), if on { 8 } else { 0 });
+        }
+        let mut j = unit(JudgeParams { eof_last: on, ..params() });
+        assert!(!sample(&mut j, Bit { c: false, bt: false, eof_last: true, err: true, ..Default::default() }));
+        assert_eq!(j.bic.val().index(), 0);
+    }
+    // ports have it, sublinks do not
+    let cfg = canstar_hub::config::HubConfig::default();
+    assert!(cfg.port_params().eof_last && !cfg.sublink_params().eof_last);
 }
 
 #[test]

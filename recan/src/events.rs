@@ -18,6 +18,18 @@ use crate::spec::{AppKind, NetworkSpec};
 use rand::Rng;
 use serde::{Deserialize, Serialize};
 
+/// Delay of an overload event's disturbance after the start of the sender's last EOF bit,
+/// in eighths of a bit. A receiver's bit starts lag the sender's by its propagation: about
+/// 160 ns behind the same hub and 300 ns behind the other on the reference network, plus
+/// its synchroniser. Started with the sender's bit (delay 0, before session 23), the
+/// disturbance reached a receiver behind the other hub before the sample point of its
+/// *second-to-last* EOF bit (2 TQ before its end), and that receiver sent an error flag in
+/// the last EOF bit instead of an overload flag after it: a transient downlink error, not
+/// the overload this event stands for (hub.md §5.19). 3/8 of a bit (407 ns) is later than
+/// that sample point and earlier than the last bit's sample point by about 300 ns on either
+/// side, for every receiver of the reference network.
+pub const OVERLOAD_DELAY_EIGHTHS: u64 = 3;
+
 /// One legal event (times in bit times of the network from the start of the run).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case", deny_unknown_fields)]
@@ -46,11 +58,15 @@ impl NodeEvent {
         }
     }
 
-    /// The overload event as the one-bit downlink disturbance that causes it.
+    /// The overload event as the one-bit downlink disturbance that causes it: dominant
+    /// for one bit from 3/8 of a bit after the sender's last EOF bit starts
+    /// ([`OVERLOAD_DELAY_EIGHTHS`]), so that it covers the victim's sample point of its last EOF bit and
+    /// not that of the bit before, wherever the victim hangs.
     pub fn as_fault(&self, bit_ps: u64) -> Option<FaultSpec> {
         match *self {
             NodeEvent::Overload { node, ctrl, sender, after_frames } => {
-                let start = FaultStart::Field { field: StartField::Eof, bit: 6, of_node: Some(sender), after_frames, delay_ns: 0.0 };
+                let delay_ns = (bit_ps * OVERLOAD_DELAY_EIGHTHS / 8) as f64 / 1000.0;
+                let start = FaultStart::Field { field: StartField::Eof, bit: 6, of_node: Some(sender), after_frames, delay_ns };
                 let c = if ctrl == 0 { CtrlRef::A } else { CtrlRef::B };
                 let mut f = FaultSpec::new(FaultTarget::Link { node, ctrl: c, dir: Dir::Down }, FaultKind::Sad, start);
                 f.duration_ps = Some(bit_ps);

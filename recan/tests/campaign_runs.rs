@@ -36,3 +36,24 @@ fn ports_that_follow_the_sublinks_in_a_delimiter_are_spared() {
     assert!(!o.isolations.iter().any(|i| i.starts_with("hub 0 port")), "{:?}", o.isolations);
     assert_eq!(o.isolations.iter().filter(|i| i.starts_with("hub 0 sublink")).count(), 2, "{:?}", o.isolations);
 }
+
+/// hub.md §5.19: node 1's controller B loses a dominant bit about every 9 bits on its
+/// downlink and flags in what is the last EOF bit for everyone else. The receivers take
+/// that bit for an overload condition, the transmitter for a form error (TEC + 8 and a
+/// retransmission). With the last-EOF-bit rule hub 1 charges the port for it and isolates
+/// it before the transmitter reaches the warning limit; without it node 0's controller B
+/// was quarantined at TEC 96 while hub 1's blame counter lagged.
+#[test]
+fn a_receiver_flagging_in_the_last_eof_bit_is_charged() {
+    let class = "sweep-down-d2r-e10";
+    let seed = 8225355605758347553;
+    let o = run(class, seed);
+    assert!(o.pass, "{:?}", o.failures);
+    assert!(o.worst_healthy < 96, "worst healthy TEC/REC {}", o.worst_healthy);
+    assert!(o.isolations.iter().any(|i| i.starts_with("hub 1 port 1")), "{:?}", o.isolations);
+    let classes = campaign::select(class).unwrap();
+    let hub = canstar_hub::config::HubConfig { eof_last_rule: false, ..canstar_recan::NetworkSpec::default().hub };
+    let s = Settings { seed: 1, reps: 1, hub: Some(hub), ..Settings::default() };
+    let off = system::run_plan(&RunPlan { class: classes[0].clone(), rep: 0, seed }, &s);
+    assert!(!off.pass && off.worst_healthy >= 96, "without the rule: {:?}", off.failures);
+}

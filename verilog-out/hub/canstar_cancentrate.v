@@ -806,6 +806,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
     reg  pj$0$ack_slot;
     reg  pj$0$ack_delim;
     reg  pj$0$eof_1_6;
+    reg  pj$0$eof_last;
     reg  pj$0$im_2;
     reg  pj$0$err_phase;
     reg  pj$0$crc_ok;
@@ -857,6 +858,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
     reg  pj$1$ack_slot;
     reg  pj$1$ack_delim;
     reg  pj$1$eof_1_6;
+    reg  pj$1$eof_last;
     reg  pj$1$im_2;
     reg  pj$1$err_phase;
     reg  pj$1$crc_ok;
@@ -908,6 +910,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
     reg  pj$2$ack_slot;
     reg  pj$2$ack_delim;
     reg  pj$2$eof_1_6;
+    reg  pj$2$eof_last;
     reg  pj$2$im_2;
     reg  pj$2$err_phase;
     reg  pj$2$crc_ok;
@@ -1082,6 +1085,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         .ack_slot(pj$0$ack_slot),
         .ack_delim(pj$0$ack_delim),
         .eof_1_6(pj$0$eof_1_6),
+        .eof_last(pj$0$eof_last),
         .im_2(pj$0$im_2),
         .err_phase(pj$0$err_phase),
         .crc_ok(pj$0$crc_ok),
@@ -1135,6 +1139,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         .ack_slot(pj$1$ack_slot),
         .ack_delim(pj$1$ack_delim),
         .eof_1_6(pj$1$eof_1_6),
+        .eof_last(pj$1$eof_last),
         .im_2(pj$1$im_2),
         .err_phase(pj$1$err_phase),
         .crc_ok(pj$1$crc_ok),
@@ -1188,6 +1193,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         .ack_slot(pj$2$ack_slot),
         .ack_delim(pj$2$ack_delim),
         .eof_1_6(pj$2$eof_1_6),
+        .eof_last(pj$2$eof_last),
         .im_2(pj$2$im_2),
         .err_phase(pj$2$err_phase),
         .crc_ok(pj$2$crc_ok),
@@ -1388,6 +1394,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         pj$0$ack_slot = decode$ack_slot;
         pj$0$ack_delim = decode$ack_delim;
         pj$0$eof_1_6 = decode$eof_1_6;
+        pj$0$eof_last = decode$eof_last;
         pj$0$im_2 = decode$im_2;
         pj$0$err_phase = err_phase;
         pj$0$crc_ok = mon_crc_ok;
@@ -1436,6 +1443,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         pj$1$ack_slot = decode$ack_slot;
         pj$1$ack_delim = decode$ack_delim;
         pj$1$eof_1_6 = decode$eof_1_6;
+        pj$1$eof_last = decode$eof_last;
         pj$1$im_2 = decode$im_2;
         pj$1$err_phase = err_phase;
         pj$1$crc_ok = mon_crc_ok;
@@ -1484,6 +1492,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         pj$2$ack_slot = decode$ack_slot;
         pj$2$ack_delim = decode$ack_delim;
         pj$2$eof_1_6 = decode$eof_1_6;
+        pj$2$eof_last = decode$eof_last;
         pj$2$im_2 = decode$im_2;
         pj$2$err_phase = err_phase;
         pj$2$crc_ok = mon_crc_ok;
@@ -2511,7 +2520,7 @@ module canstar_cancentrate_core$core$injector$state(d,q,clock);
 endmodule // canstar_cancentrate_core$core$injector$state
 
 
-module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,rep_mask,rep_other,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
+module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,eof_last,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,rep_mask,rep_other,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
     
     // Module arguments
     input wire  clock;
@@ -2526,6 +2535,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
     input wire  ack_slot;
     input wire  ack_delim;
     input wire  eof_1_6;
+    input wire  eof_last;
     input wire  im_2;
     input wire  err_phase;
     input wire  crc_ok;
@@ -2583,6 +2593,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
     localparam  crc_end = 5'b1000;
     localparam  ff_on = 1'b1;
     localparam  ack_rule = 1'b1;
+    localparam  eol_on = 1'b1;
     localparam  nack_on = 1'b1;
     localparam  rep_on = 1'b0;
     localparam  rep_skew = 3'b100;
@@ -3040,7 +3051,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         else if (dom & (bs_cnt >= win_lag) & (bs_cnt <= crc_end)) begin
             seen_dom_crc$d = 1'b1;
         end
-        unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q) | (im_2 & ~err_phase & seen_dom_crc$q & ~dom_bs$q);
+        unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | (eof_last & eol_on) | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q) | (im_2 & ~err_phase & seen_dom_crc$q & ~dom_bs$q);
         ffc = ff & ff_on & enabled & ffd_r$q;
         charge = sample & unj & enabled & ~suppress & ~stuff_dom;
         sdp_r$d = stuff_dom;
@@ -4161,7 +4172,7 @@ module canstar_cancentrate_core$core$pj$0$seen_dom_crc(d,q,clock);
 endmodule // canstar_cancentrate_core$core$pj$0$seen_dom_crc
 
 
-module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,rep_mask,rep_other,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
+module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,eof_last,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,rep_mask,rep_other,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
     
     // Module arguments
     input wire  clock;
@@ -4176,6 +4187,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
     input wire  ack_slot;
     input wire  ack_delim;
     input wire  eof_1_6;
+    input wire  eof_last;
     input wire  im_2;
     input wire  err_phase;
     input wire  crc_ok;
@@ -4233,6 +4245,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
     localparam  crc_end = 5'b1000;
     localparam  ff_on = 1'b1;
     localparam  ack_rule = 1'b1;
+    localparam  eol_on = 1'b1;
     localparam  nack_on = 1'b1;
     localparam  rep_on = 1'b0;
     localparam  rep_skew = 3'b100;
@@ -4690,7 +4703,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         else if (dom & (bs_cnt >= win_lag) & (bs_cnt <= crc_end)) begin
             seen_dom_crc$d = 1'b1;
         end
-        unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q) | (im_2 & ~err_phase & seen_dom_crc$q & ~dom_bs$q);
+        unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | (eof_last & eol_on) | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q) | (im_2 & ~err_phase & seen_dom_crc$q & ~dom_bs$q);
         ffc = ff & ff_on & enabled & ffd_r$q;
         charge = sample & unj & enabled & ~suppress & ~stuff_dom;
         sdp_r$d = stuff_dom;
@@ -5811,7 +5824,7 @@ module canstar_cancentrate_core$core$pj$1$seen_dom_crc(d,q,clock);
 endmodule // canstar_cancentrate_core$core$pj$1$seen_dom_crc
 
 
-module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,rep_mask,rep_other,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
+module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,eof_last,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,rep_mask,rep_other,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
     
     // Module arguments
     input wire  clock;
@@ -5826,6 +5839,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
     input wire  ack_slot;
     input wire  ack_delim;
     input wire  eof_1_6;
+    input wire  eof_last;
     input wire  im_2;
     input wire  err_phase;
     input wire  crc_ok;
@@ -5883,6 +5897,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
     localparam  crc_end = 5'b1000;
     localparam  ff_on = 1'b1;
     localparam  ack_rule = 1'b1;
+    localparam  eol_on = 1'b1;
     localparam  nack_on = 1'b1;
     localparam  rep_on = 1'b0;
     localparam  rep_skew = 3'b100;
@@ -6340,7 +6355,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         else if (dom & (bs_cnt >= win_lag) & (bs_cnt <= crc_end)) begin
             seen_dom_crc$d = 1'b1;
         end
-        unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q) | (im_2 & ~err_phase & seen_dom_crc$q & ~dom_bs$q);
+        unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | (eof_last & eol_on) | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q) | (im_2 & ~err_phase & seen_dom_crc$q & ~dom_bs$q);
         ffc = ff & ff_on & enabled & ffd_r$q;
         charge = sample & unj & enabled & ~suppress & ~stuff_dom;
         sdp_r$d = stuff_dom;

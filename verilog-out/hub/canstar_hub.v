@@ -878,6 +878,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     reg  pj$0$ack_slot;
     reg  pj$0$ack_delim;
     reg  pj$0$eof_1_6;
+    reg  pj$0$eof_last;
     reg  pj$0$im_2;
     reg  pj$0$err_phase;
     reg  pj$0$crc_ok;
@@ -929,6 +930,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     reg  pj$1$ack_slot;
     reg  pj$1$ack_delim;
     reg  pj$1$eof_1_6;
+    reg  pj$1$eof_last;
     reg  pj$1$im_2;
     reg  pj$1$err_phase;
     reg  pj$1$crc_ok;
@@ -980,6 +982,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     reg  pj$2$ack_slot;
     reg  pj$2$ack_delim;
     reg  pj$2$eof_1_6;
+    reg  pj$2$eof_last;
     reg  pj$2$im_2;
     reg  pj$2$err_phase;
     reg  pj$2$crc_ok;
@@ -1031,6 +1034,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     reg  sj$0$ack_slot;
     reg  sj$0$ack_delim;
     reg  sj$0$eof_1_6;
+    reg  sj$0$eof_last;
     reg  sj$0$im_2;
     reg  sj$0$err_phase;
     reg  sj$0$crc_ok;
@@ -1082,6 +1086,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     reg  sj$1$ack_slot;
     reg  sj$1$ack_delim;
     reg  sj$1$eof_1_6;
+    reg  sj$1$eof_last;
     reg  sj$1$im_2;
     reg  sj$1$err_phase;
     reg  sj$1$crc_ok;
@@ -1266,6 +1271,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .ack_slot(pj$0$ack_slot),
         .ack_delim(pj$0$ack_delim),
         .eof_1_6(pj$0$eof_1_6),
+        .eof_last(pj$0$eof_last),
         .im_2(pj$0$im_2),
         .err_phase(pj$0$err_phase),
         .crc_ok(pj$0$crc_ok),
@@ -1319,6 +1325,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .ack_slot(pj$1$ack_slot),
         .ack_delim(pj$1$ack_delim),
         .eof_1_6(pj$1$eof_1_6),
+        .eof_last(pj$1$eof_last),
         .im_2(pj$1$im_2),
         .err_phase(pj$1$err_phase),
         .crc_ok(pj$1$crc_ok),
@@ -1372,6 +1379,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .ack_slot(pj$2$ack_slot),
         .ack_delim(pj$2$ack_delim),
         .eof_1_6(pj$2$eof_1_6),
+        .eof_last(pj$2$eof_last),
         .im_2(pj$2$im_2),
         .err_phase(pj$2$err_phase),
         .crc_ok(pj$2$crc_ok),
@@ -1425,6 +1433,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .ack_slot(sj$0$ack_slot),
         .ack_delim(sj$0$ack_delim),
         .eof_1_6(sj$0$eof_1_6),
+        .eof_last(sj$0$eof_last),
         .im_2(sj$0$im_2),
         .err_phase(sj$0$err_phase),
         .crc_ok(sj$0$crc_ok),
@@ -1478,6 +1487,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .ack_slot(sj$1$ack_slot),
         .ack_delim(sj$1$ack_delim),
         .eof_1_6(sj$1$eof_1_6),
+        .eof_last(sj$1$eof_last),
         .im_2(sj$1$im_2),
         .err_phase(sj$1$err_phase),
         .crc_ok(sj$1$crc_ok),
@@ -1740,6 +1750,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         pj$0$ack_slot = decode$ack_slot;
         pj$0$ack_delim = decode$ack_delim;
         pj$0$eof_1_6 = decode$eof_1_6;
+        pj$0$eof_last = decode$eof_last;
         pj$0$im_2 = decode$im_2;
         pj$0$err_phase = err_phase;
         pj$0$crc_ok = mon_crc_ok;
@@ -1788,6 +1799,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         pj$1$ack_slot = decode$ack_slot;
         pj$1$ack_delim = decode$ack_delim;
         pj$1$eof_1_6 = decode$eof_1_6;
+        pj$1$eof_last = decode$eof_last;
         pj$1$im_2 = decode$im_2;
         pj$1$err_phase = err_phase;
         pj$1$crc_ok = mon_crc_ok;
@@ -1836,6 +1848,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         pj$2$ack_slot = decode$ack_slot;
         pj$2$ack_delim = decode$ack_delim;
         pj$2$eof_1_6 = decode$eof_1_6;
+        pj$2$eof_last = decode$eof_last;
         pj$2$im_2 = decode$im_2;
         pj$2$err_phase = err_phase;
         pj$2$crc_ok = mon_crc_ok;
@@ -1871,6 +1884,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         sj$0$ack_slot = decode$ack_slot;
         sj$0$ack_delim = decode$ack_delim;
         sj$0$eof_1_6 = decode$eof_1_6;
+        sj$0$eof_last = decode$eof_last;
         sj$0$im_2 = decode$im_2;
         sj$0$err_phase = err_phase;
         sj$0$crc_ok = mon_crc_ok;
@@ -1901,6 +1915,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         sj$1$ack_slot = decode$ack_slot;
         sj$1$ack_delim = decode$ack_delim;
         sj$1$eof_1_6 = decode$eof_1_6;
+        sj$1$eof_last = decode$eof_last;
         sj$1$im_2 = decode$im_2;
         sj$1$err_phase = err_phase;
         sj$1$crc_ok = mon_crc_ok;
@@ -3253,7 +3268,7 @@ module canstar_hub_core$core$injector$state(d,q,clock);
 endmodule // canstar_hub_core$core$injector$state
 
 
-module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,rep_mask,rep_other,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
+module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,eof_last,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,rep_mask,rep_other,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
     
     // Module arguments
     input wire  clock;
@@ -3268,6 +3283,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     input wire  ack_slot;
     input wire  ack_delim;
     input wire  eof_1_6;
+    input wire  eof_last;
     input wire  im_2;
     input wire  err_phase;
     input wire  crc_ok;
@@ -3325,6 +3341,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     localparam  crc_end = 5'b1000;
     localparam  ff_on = 1'b1;
     localparam  ack_rule = 1'b1;
+    localparam  eol_on = 1'b1;
     localparam  nack_on = 1'b1;
     localparam  rep_on = 1'b0;
     localparam  rep_skew = 3'b100;
@@ -3782,7 +3799,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         else if (dom & (bs_cnt >= win_lag) & (bs_cnt <= crc_end)) begin
             seen_dom_crc$d = 1'b1;
         end
-        unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q) | (im_2 & ~err_phase & seen_dom_crc$q & ~dom_bs$q);
+        unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | (eof_last & eol_on) | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q) | (im_2 & ~err_phase & seen_dom_crc$q & ~dom_bs$q);
         ffc = ff & ff_on & enabled & ffd_r$q;
         charge = sample & unj & enabled & ~suppress & ~stuff_dom;
         sdp_r$d = stuff_dom;
@@ -4903,7 +4920,7 @@ module canstar_hub_core$core$pj$0$seen_dom_crc(d,q,clock);
 endmodule // canstar_hub_core$core$pj$0$seen_dom_crc
 
 
-module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,rep_mask,rep_other,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
+module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,eof_last,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,rep_mask,rep_other,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
     
     // Module arguments
     input wire  clock;
@@ -4918,6 +4935,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     input wire  ack_slot;
     input wire  ack_delim;
     input wire  eof_1_6;
+    input wire  eof_last;
     input wire  im_2;
     input wire  err_phase;
     input wire  crc_ok;
@@ -4975,6 +4993,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     localparam  crc_end = 5'b1000;
     localparam  ff_on = 1'b1;
     localparam  ack_rule = 1'b1;
+    localparam  eol_on = 1'b1;
     localparam  nack_on = 1'b1;
     localparam  rep_on = 1'b0;
     localparam  rep_skew = 3'b100;
@@ -5432,7 +5451,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         else if (dom & (bs_cnt >= win_lag) & (bs_cnt <= crc_end)) begin
             seen_dom_crc$d = 1'b1;
         end
-        unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q) | (im_2 & ~err_phase & seen_dom_crc$q & ~dom_bs$q);
+        unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | (eof_last & eol_on) | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q) | (im_2 & ~err_phase & seen_dom_crc$q & ~dom_bs$q);
         ffc = ff & ff_on & enabled & ffd_r$q;
         charge = sample & unj & enabled & ~suppress & ~stuff_dom;
         sdp_r$d = stuff_dom;
@@ -6553,7 +6572,7 @@ module canstar_hub_core$core$pj$1$seen_dom_crc(d,q,clock);
 endmodule // canstar_hub_core$core$pj$1$seen_dom_crc
 
 
-module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,rep_mask,rep_other,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
+module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,eof_last,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,rep_mask,rep_other,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
     
     // Module arguments
     input wire  clock;
@@ -6568,6 +6587,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     input wire  ack_slot;
     input wire  ack_delim;
     input wire  eof_1_6;
+    input wire  eof_last;
     input wire  im_2;
     input wire  err_phase;
     input wire  crc_ok;
@@ -6625,6 +6645,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     localparam  crc_end = 5'b1000;
     localparam  ff_on = 1'b1;
     localparam  ack_rule = 1'b1;
+    localparam  eol_on = 1'b1;
     localparam  nack_on = 1'b1;
     localparam  rep_on = 1'b0;
     localparam  rep_skew = 3'b100;
@@ -7082,7 +7103,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         else if (dom & (bs_cnt >= win_lag) & (bs_cnt <= crc_end)) begin
             seen_dom_crc$d = 1'b1;
         end
-        unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q) | (im_2 & ~err_phase & seen_dom_crc$q & ~dom_bs$q);
+        unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | (eof_last & eol_on) | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q) | (im_2 & ~err_phase & seen_dom_crc$q & ~dom_bs$q);
         ffc = ff & ff_on & enabled & ffd_r$q;
         charge = sample & unj & enabled & ~suppress & ~stuff_dom;
         sdp_r$d = stuff_dom;
@@ -8260,7 +8281,7 @@ module canstar_hub_core$core$sd_run(d,q,clock);
 endmodule // canstar_hub_core$core$sd_run
 
 
-module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,rep_mask,rep_other,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
+module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,eof_last,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,rep_mask,rep_other,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
     
     // Module arguments
     input wire  clock;
@@ -8275,6 +8296,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     input wire  ack_slot;
     input wire  ack_delim;
     input wire  eof_1_6;
+    input wire  eof_last;
     input wire  im_2;
     input wire  err_phase;
     input wire  crc_ok;
@@ -8332,6 +8354,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     localparam  crc_end = 5'b1000;
     localparam  ff_on = 1'b1;
     localparam  ack_rule = 1'b0;
+    localparam  eol_on = 1'b0;
     localparam  nack_on = 1'b0;
     localparam  rep_on = 1'b1;
     localparam  rep_skew = 3'b100;
@@ -8789,7 +8812,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         else if (dom & (bs_cnt >= win_lag) & (bs_cnt <= crc_end)) begin
             seen_dom_crc$d = 1'b1;
         end
-        unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q) | (im_2 & ~err_phase & seen_dom_crc$q & ~dom_bs$q);
+        unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | (eof_last & eol_on) | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q) | (im_2 & ~err_phase & seen_dom_crc$q & ~dom_bs$q);
         ffc = ff & ff_on & enabled & ffd_r$q;
         charge = sample & unj & enabled & ~suppress & ~stuff_dom;
         sdp_r$d = stuff_dom;
@@ -9910,7 +9933,7 @@ module canstar_hub_core$core$sj$0$seen_dom_crc(d,q,clock);
 endmodule // canstar_hub_core$core$sj$0$seen_dom_crc
 
 
-module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,rep_mask,rep_other,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
+module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,eof_last,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,rep_mask,rep_other,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
     
     // Module arguments
     input wire  clock;
@@ -9925,6 +9948,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     input wire  ack_slot;
     input wire  ack_delim;
     input wire  eof_1_6;
+    input wire  eof_last;
     input wire  im_2;
     input wire  err_phase;
     input wire  crc_ok;
@@ -9982,6 +10006,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     localparam  crc_end = 5'b1000;
     localparam  ff_on = 1'b1;
     localparam  ack_rule = 1'b0;
+    localparam  eol_on = 1'b0;
     localparam  nack_on = 1'b0;
     localparam  rep_on = 1'b1;
     localparam  rep_skew = 3'b100;
@@ -10439,7 +10464,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         else if (dom & (bs_cnt >= win_lag) & (bs_cnt <= crc_end)) begin
             seen_dom_crc$d = 1'b1;
         end
-        unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q) | (im_2 & ~err_phase & seen_dom_crc$q & ~dom_bs$q);
+        unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | (eof_last & eol_on) | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q) | (im_2 & ~err_phase & seen_dom_crc$q & ~dom_bs$q);
         ffc = ff & ff_on & enabled & ffd_r$q;
         charge = sample & unj & enabled & ~suppress & ~stuff_dom;
         sdp_r$d = stuff_dom;

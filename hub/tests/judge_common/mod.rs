@@ -5,7 +5,7 @@ use canstar_hdl::drive;
 use canstar_hub::judge::{JudgeParams, JudgeUnit};
 
 pub fn params() -> JudgeParams {
-    JudgeParams { bic_limit: 64, bic_decay: 1, life_limit: 32, dbc_threshold: 13, nack_threshold: 7, replica_limit: 3, reintegration: None, glitch_min: 1, glitch_min_dominant: 1, glitch_max: 11, glitch_limit: 3, glitch_decay: 16, peer_glitch_limit: 12, peer_glitch_decay: 4, window_lag: 7, crc_window_end: 8, first_flagger: false, delim_blames: 1, replica_skew: 4 }
+    JudgeParams { bic_limit: 64, bic_decay: 1, life_limit: 32, dbc_threshold: 13, nack_threshold: 7, replica_limit: 3, reintegration: None, glitch_min: 1, glitch_min_dominant: 1, glitch_max: 11, glitch_limit: 3, glitch_decay: 16, peer_glitch_limit: 12, peer_glitch_decay: 4, window_lag: 7, crc_window_end: 8, first_flagger: false, eof_last: false, delim_blames: 1, replica_skew: 4 }
 }
 
 #[derive(Default, Clone, Copy)]
@@ -18,6 +18,8 @@ pub struct Bit {
     pub ack_slot: bool,
     pub ack_delim: bool,
     pub eof: bool,
+    /// The last EOF bit (§5.19).
+    pub eof_last: bool,
     pub im: bool,
     pub err: bool,
     pub crc_ok: bool,
@@ -34,6 +36,7 @@ pub fn apply(j: &mut JudgeUnit, b: Bit) {
     j.ack_slot.next = b.ack_slot;
     j.ack_delim.next = b.ack_delim;
     j.eof_1_6.next = b.eof;
+    j.eof_last.next = b.eof_last;
     j.im_2.next = b.im;
     j.err_phase.next = b.err;
     j.crc_ok.next = b.crc_ok;
