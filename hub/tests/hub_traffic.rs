@@ -108,8 +108,27 @@ fn late_joiner_is_not_blamed<T: Dut>() {
     }
 }
 
-/// A dominant last EOF bit starts overload frames: not blamed.
+/// A node that saw its last EOF bit dominant (a disturbance on its downlink) sends an
+/// overload flag from intermission bit 1, and everybody follows with overload frames: not
+/// blamed (hub.md §5.2).
 fn overload_from_dominant_last_eof_bit_is_not_blamed<T: Dut>() {
+    let mut n = nodes(3);
+    for k in 0..3 {
+        n[0].queue.push_back(Frame::std(0x100 + k, &[k as u8]));
+    }
+    n[2].cfg.overload_flag_once = true;
+    let mut net = Net::<T>::new(&cancentrate(), n);
+    net.run_until_idle(2000);
+    assert!(net.stim.log.iter().any(|l| l.ev.overload), "no overload frame happened");
+    assert!(net.stim.log.iter().any(|l| l.field == Field::Overload && !l.bt));
+    assert_eq!(net.errors(), 0);
+    assert_no_blame(&net);
+}
+
+/// A port that drives the last EOF bit dominant itself is blamed once (hub.md §5.19: the
+/// transmitter takes that bit for a form error); the overload frames that follow are not
+/// blamed, and nobody else is.
+fn port_dominant_in_the_last_eof_bit_is_blamed_once<T: Dut>() {
     let mut n = nodes(3);
     for k in 0..3 {
         n[0].queue.push_back(Frame::std(0x100 + k, &[k as u8]));
@@ -118,9 +137,9 @@ fn overload_from_dominant_last_eof_bit_is_not_blamed<T: Dut>() {
     let mut net = Net::<T>::new(&cancentrate(), n);
     net.run_until_idle(2000);
     assert!(net.stim.log.iter().any(|l| l.ev.overload), "no overload frame happened");
-    assert!(net.stim.log.iter().any(|l| l.field == Field::Overload && !l.bt));
-    assert_eq!(net.errors(), 0);
-    assert_no_blame(&net);
+    assert_eq!(net.blames(), 1, "{}", net.trace(0));
+    assert_eq!(net.max_bic, vec![0, 0, 8]);
+    assert!(net.isolated().iter().all(|&x| !x));
 }
 
 /// A CRC error: receivers do not acknowledge, the transmitter flags an ACK error
@@ -398,4 +417,4 @@ macro_rules! both {
     };
 }
 
-both!(random_bit_flip_uplink_isolated_and_harmless, single_frame_completes, fault_free_arbitration_never_blames, late_joiner_is_not_blamed, overload_from_dominant_last_eof_bit_is_not_blamed, error_frames_are_not_blamed, stuck_dominant_uplink_isolated_within_dbc_plus_two_bits, node_with_dead_downlink_is_isolated, bit_flip_uplink_blamed_per_episode_and_isolated, blame_decays_one_per_bic_decay_good_frames, never_acknowledging_receiver_reported_silent_not_isolated, reintegration_after_transient_fault, no_reintegration_while_still_faulty);
+both!(random_bit_flip_uplink_isolated_and_harmless, single_frame_completes, fault_free_arbitration_never_blames, late_joiner_is_not_blamed, overload_from_dominant_last_eof_bit_is_not_blamed, port_dominant_in_the_last_eof_bit_is_blamed_once, error_frames_are_not_blamed, stuck_dominant_uplink_isolated_within_dbc_plus_two_bits, node_with_dead_downlink_is_isolated, bit_flip_uplink_blamed_per_episode_and_isolated, blame_decays_one_per_bic_decay_good_frames, never_acknowledging_receiver_reported_silent_not_isolated, reintegration_after_transient_fault, no_reintegration_while_still_faulty);

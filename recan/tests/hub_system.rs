@@ -308,8 +308,10 @@ fn transmitter_with_flipping_downlink_isolated_by_first_flagger() {
 
 /// A1: a dominant last EOF bit at one receiver (a short inversion of its downlink)
 /// makes it send an overload flag; everyone follows with overload frames; the hub
-/// blames nobody. Also with the dominant bit on an uplink (the hub and every node see
-/// it): overload frames, no blame.
+/// blames nobody. With the dominant bit on an uplink (the hub and every node see it) the
+/// transmitter takes it for a form error and sends the frame again, and the hub charges
+/// that port once per dominant last EOF bit (hub.md §5.19), nobody else, and isolates
+/// nothing.
 #[test]
 fn overload_frames_one_hub() {
     use canstar_controller::fsm::Field as F;
@@ -357,7 +359,14 @@ fn overload_frames_one_hub() {
         }
         eprintln!("uplink {on_uplink}: stats {:?}", st.rtl().stats);
         assert!(st.rtl().stats.overload_bits >= 3 * 7, "overload frames happened");
-        assert_never_blamed(st.rtl(), if on_uplink { "overload via uplink" } else { "overload via downlink" });
+        if on_uplink {
+            let s = &st.rtl().stats;
+            assert_eq!(s.blames, 3, "overload via uplink: {s:?}");
+            assert!(s.max_bic[2] > 0 && s.max_bic[..2].iter().chain(&s.max_sub_bic).all(|&b| b == 0), "{s:?}");
+            assert!(s.isolated_at.iter().all(|x| x.is_none()), "{s:?}");
+        } else {
+            assert_never_blamed(st.rtl(), "overload via downlink");
+        }
     }
 }
 

@@ -2772,6 +2772,7 @@ module canstar_sja1000$core$fsm(clock,reset,sample,busmon,listen_only,self_test,
     reg  dec$inter_fld;
     reg  dec$hs_pfld;
     reg  dec$inter_pfld;
+    reg  dec$fpos3;
     wire  dec$stuffed;
     wire  dec$area;
     wire  dec$stuff;
@@ -2812,7 +2813,7 @@ module canstar_sja1000$core$fsm(clock,reset,sample,busmon,listen_only,self_test,
     reg  seq$f_nsa;
     reg  seq$f_nhs;
     reg  seq$f_ni;
-    reg  [7:0] seq$f_npos;
+    reg  [1:0] seq$f_npc;
     reg  seq$f_ndom;
     reg  seq$f_usetx;
     reg  seq$f_lost;
@@ -2825,7 +2826,7 @@ module canstar_sja1000$core$fsm(clock,reset,sample,busmon,listen_only,self_test,
     reg  seq$g_nsa;
     reg  seq$g_nhs;
     reg  seq$g_ni;
-    reg  [7:0] seq$g_npos;
+    reg  [1:0] seq$g_npc;
     reg  seq$g_ndom;
     reg  seq$g_err;
     reg  seq$g_ovl;
@@ -2836,6 +2837,7 @@ module canstar_sja1000$core$fsm(clock,reset,sample,busmon,listen_only,self_test,
     wire  seq$tx_role;
     wire  seq$dom;
     wire  seq$in_busoff;
+    wire  seq$pos3;
     wire  seq$at_end;
     wire  seq$pstuff;
     wire  seq$pstuffed;
@@ -2892,6 +2894,7 @@ module canstar_sja1000$core$fsm(clock,reset,sample,busmon,listen_only,self_test,
     wire  frame$own;
     wire  [4:0] frame$nf;
     wire  [7:0] frame$npos;
+    wire  [1:0] frame$npc;
     wire  frame$narea;
     wire  frame$nsa;
     wire  frame$nhs;
@@ -2934,6 +2937,7 @@ module canstar_sja1000$core$fsm(clock,reset,sample,busmon,listen_only,self_test,
     wire  flags$own;
     wire  [4:0] flags$nf;
     wire  [7:0] flags$npos;
+    wire  [1:0] flags$npc;
     wire  flags$narea;
     wire  flags$nsa;
     wire  flags$nhs;
@@ -3089,6 +3093,7 @@ module canstar_sja1000$core$fsm(clock,reset,sample,busmon,listen_only,self_test,
         .inter_fld(dec$inter_fld),
         .hs_pfld(dec$hs_pfld),
         .inter_pfld(dec$inter_pfld),
+        .fpos3(dec$fpos3),
         .stuffed(dec$stuffed),
         .area(dec$area),
         .stuff(dec$stuff),
@@ -3131,7 +3136,7 @@ module canstar_sja1000$core$fsm(clock,reset,sample,busmon,listen_only,self_test,
         .f_nsa(seq$f_nsa),
         .f_nhs(seq$f_nhs),
         .f_ni(seq$f_ni),
-        .f_npos(seq$f_npos),
+        .f_npc(seq$f_npc),
         .f_ndom(seq$f_ndom),
         .f_usetx(seq$f_usetx),
         .f_lost(seq$f_lost),
@@ -3144,7 +3149,7 @@ module canstar_sja1000$core$fsm(clock,reset,sample,busmon,listen_only,self_test,
         .g_nsa(seq$g_nsa),
         .g_nhs(seq$g_nhs),
         .g_ni(seq$g_ni),
-        .g_npos(seq$g_npos),
+        .g_npc(seq$g_npc),
         .g_ndom(seq$g_ndom),
         .g_err(seq$g_err),
         .g_ovl(seq$g_ovl),
@@ -3155,6 +3160,7 @@ module canstar_sja1000$core$fsm(clock,reset,sample,busmon,listen_only,self_test,
         .tx_role(seq$tx_role),
         .dom(seq$dom),
         .in_busoff(seq$in_busoff),
+        .pos3(seq$pos3),
         .at_end(seq$at_end),
         .pstuff(seq$pstuff),
         .pstuffed(seq$pstuffed),
@@ -3213,6 +3219,7 @@ module canstar_sja1000$core$fsm(clock,reset,sample,busmon,listen_only,self_test,
         .own(frame$own),
         .nf(frame$nf),
         .npos(frame$npos),
+        .npc(frame$npc),
         .narea(frame$narea),
         .nsa(frame$nsa),
         .nhs(frame$nhs),
@@ -3257,6 +3264,7 @@ module canstar_sja1000$core$fsm(clock,reset,sample,busmon,listen_only,self_test,
         .own(flags$own),
         .nf(flags$nf),
         .npos(flags$npos),
+        .npc(flags$npc),
         .narea(flags$narea),
         .nsa(flags$nsa),
         .nhs(flags$nhs),
@@ -3411,6 +3419,7 @@ module canstar_sja1000$core$fsm(clock,reset,sample,busmon,listen_only,self_test,
         dec$inter_fld = seq$inter_fld;
         dec$hs_pfld = seq$hs_pfld;
         dec$inter_pfld = seq$inter_pfld;
+        dec$fpos3 = seq$pos3;
         frame$clock = clock;
         frame$reset = reset;
         frame$sample = sample;
@@ -3485,7 +3494,7 @@ module canstar_sja1000$core$fsm(clock,reset,sample,busmon,listen_only,self_test,
         seq$f_nsa = frame$nsa;
         seq$f_nhs = frame$nhs;
         seq$f_ni = frame$ninter;
-        seq$f_npos = frame$npos;
+        seq$f_npc = frame$npc;
         seq$f_ndom = frame$ndom;
         seq$f_usetx = frame$usetx;
         seq$f_lost = frame$lost;
@@ -3498,7 +3507,7 @@ module canstar_sja1000$core$fsm(clock,reset,sample,busmon,listen_only,self_test,
         seq$g_nsa = flags$nsa;
         seq$g_nhs = flags$nhs;
         seq$g_ni = flags$ninter;
-        seq$g_npos = flags$npos;
+        seq$g_npc = flags$npc;
         seq$g_ndom = flags$ndom;
         seq$g_err = flags$err;
         seq$g_ovl = flags$ovl;
@@ -3929,7 +3938,7 @@ module canstar_sja1000$core$fsm$crcb$state(d,q,clock);
 endmodule // canstar_sja1000$core$fsm$crcb$state
 
 
-module canstar_sja1000$core$fsm$dec(fld,fpos,pfld,ppos,ext,tx_role,dom,listen_only,next_is_stuff,stuff_level,in_area,stuffable,hs_fld,inter_fld,hs_pfld,inter_pfld,stuffed,area,stuff,code,pos,hs_en,arb,arb_stuff,arb_pos,drive,arb_bit,sent_bit,arb_stuff_bit,sent_stuff);
+module canstar_sja1000$core$fsm$dec(fld,fpos,pfld,ppos,ext,tx_role,dom,listen_only,next_is_stuff,stuff_level,in_area,stuffable,hs_fld,inter_fld,hs_pfld,inter_pfld,fpos3,stuffed,area,stuff,code,pos,hs_en,arb,arb_stuff,arb_pos,drive,arb_bit,sent_bit,arb_stuff_bit,sent_stuff);
     
     // Module arguments
     input wire  [4:0] fld;
@@ -3948,6 +3957,7 @@ module canstar_sja1000$core$fsm$dec(fld,fpos,pfld,ppos,ext,tx_role,dom,listen_on
     input wire  inter_fld;
     input wire  hs_pfld;
     input wire  inter_pfld;
+    input wire  fpos3;
     output reg  stuffed;
     output reg  area;
     output reg  stuff;
@@ -4055,9 +4065,9 @@ module canstar_sja1000$core$fsm$dec(fld,fpos,pfld,ppos,ext,tx_role,dom,listen_on
         stuffed = in_area | stuff;
         area = in_area;
         code = l_dfld;
-        hs_en = hs_fld | (inter_fld & (fpos == 32'h3));
+        hs_en = hs_fld | (inter_fld & fpos3);
         if (stuff) begin
-            hs_en = hs_pfld | (inter_pfld & (fpos == 32'h3));
+            hs_en = hs_pfld | (inter_pfld & fpos3);
         end
     end
     
@@ -4178,7 +4188,7 @@ module canstar_sja1000$core$fsm$dstf$lvl(d,q,clock);
 endmodule // canstar_sja1000$core$fsm$dstf$lvl
 
 
-module canstar_sja1000$core$fsm$flags(clock,reset,sample,rxbit,sent,fld,fpos,at_end,area,stuffable,hs_fld,inter_fld,tx_role,flag_start,exc1_set,own,nf,npos,narea,nsa,nhs,ninter,ndom,err,err_bit,err_form,tinc,rinc1,rinc8,ovl,daf,exc1_met);
+module canstar_sja1000$core$fsm$flags(clock,reset,sample,rxbit,sent,fld,fpos,at_end,area,stuffable,hs_fld,inter_fld,tx_role,flag_start,exc1_set,own,nf,npos,npc,narea,nsa,nhs,ninter,ndom,err,err_bit,err_form,tinc,rinc1,rinc8,ovl,daf,exc1_met);
     
     // Module arguments
     input wire  clock;
@@ -4199,6 +4209,7 @@ module canstar_sja1000$core$fsm$flags(clock,reset,sample,rxbit,sent,fld,fpos,at_
     output reg  own;
     output reg  [4:0] nf;
     output reg  [7:0] npos;
+    output reg  [1:0] npc;
     output reg  narea;
     output reg  nsa;
     output reg  nhs;
@@ -4333,6 +4344,7 @@ module canstar_sja1000$core$fsm$flags(clock,reset,sample,rxbit,sent,fld,fpos,at_
         nhs = hs_fld;
         ninter = inter_fld;
         npos = fpos;
+        npc = 32'h0;
         ndom = 1'b0;
         err = 1'b0;
         err_bit = 1'b0;
@@ -4352,6 +4364,7 @@ module canstar_sja1000$core$fsm$flags(clock,reset,sample,rxbit,sent,fld,fpos,at_
         if (l_flag) begin
             if (~fdone$q) begin
                 npos = l_posinc;
+                npc = 32'h1;
                 if (fld == Field$PasFlag) begin
                     if (at_end) begin
                         l_eqcnt = 32'h1;
@@ -4394,6 +4407,7 @@ module canstar_sja1000$core$fsm$flags(clock,reset,sample,rxbit,sent,fld,fpos,at_
             end
             else if (rxbit) begin
                 npos = 32'h2;
+                npc = 32'h3;
                 if (fld == Field$OvlFlag) begin
                     nf = Field$OvlDel;
                     narea = 1'b0;
@@ -4411,6 +4425,7 @@ module canstar_sja1000$core$fsm$flags(clock,reset,sample,rxbit,sent,fld,fpos,at_
             end
             else begin
                 npos = l_posinc;
+                npc = 32'h1;
                 daf = 1'b1;
                 l_dafany = 1'b1;
                 l_dafc = dafc$q + 32'h1;
@@ -4425,6 +4440,7 @@ module canstar_sja1000$core$fsm$flags(clock,reset,sample,rxbit,sent,fld,fpos,at_
         end
         if (l_delim) begin
             npos = l_posinc;
+            npc = 32'h1;
             if (at_end) begin
                 nf = Field$Inter;
                 narea = 1'b0;
@@ -4432,6 +4448,7 @@ module canstar_sja1000$core$fsm$flags(clock,reset,sample,rxbit,sent,fld,fpos,at_
                 nhs = 1'b0;
                 ninter = 1'b1;
                 npos = 32'h1;
+                npc = 32'h2;
                 ovl = ~rxbit;
             end
             else if (~rxbit) begin
@@ -4579,7 +4596,7 @@ module canstar_sja1000$core$fsm$flags$fdone(d,q,clock);
 endmodule // canstar_sja1000$core$fsm$flags$fdone
 
 
-module canstar_sja1000$core$fsm$frame(clock,reset,sample,rxbit,sent,sent_stuff,rec_iso,fld,fpos,at_end,area,stuffable,hs_fld,inter_fld,tx_role,dom,listen_only,self_test,active,stuffed,stuff,arb,arb_stuff,pipe,stuff_error,crc_rem,ext,rtr,dlc_lo_zero,data_bits,tx_ide,sofinit,err_now,own,nf,npos,narea,nsa,nhs,ninter,ndom,usetx,lnf,lost,err,err_bit,err_stuff,err_crc,err_form,err_ack,tinc,rinc1,rok,ovl,exc1,exc2,tx_ok,rx_ok,sof,adv);
+module canstar_sja1000$core$fsm$frame(clock,reset,sample,rxbit,sent,sent_stuff,rec_iso,fld,fpos,at_end,area,stuffable,hs_fld,inter_fld,tx_role,dom,listen_only,self_test,active,stuffed,stuff,arb,arb_stuff,pipe,stuff_error,crc_rem,ext,rtr,dlc_lo_zero,data_bits,tx_ide,sofinit,err_now,own,nf,npos,npc,narea,nsa,nhs,ninter,ndom,usetx,lnf,lost,err,err_bit,err_stuff,err_crc,err_form,err_ack,tinc,rinc1,rok,ovl,exc1,exc2,tx_ok,rx_ok,sof,adv);
     
     // Module arguments
     input wire  clock;
@@ -4618,6 +4635,7 @@ module canstar_sja1000$core$fsm$frame(clock,reset,sample,rxbit,sent,sent_stuff,r
     output reg  own;
     output reg  [4:0] nf;
     output reg  [7:0] npos;
+    output reg  [1:0] npc;
     output reg  narea;
     output reg  nsa;
     output reg  nhs;
@@ -4733,6 +4751,7 @@ module canstar_sja1000$core$fsm$frame(clock,reset,sample,rxbit,sent,sent_stuff,r
         nhs = hs_fld;
         ninter = inter_fld;
         npos = fpos;
+        npc = 32'h0;
         ndom = 1'b0;
         usetx = 1'b0;
         l_role = tx_role;
@@ -4792,6 +4811,7 @@ module canstar_sja1000$core$fsm$frame(clock,reset,sample,rxbit,sent,sent_stuff,r
                         adv = 1'b1;
                         usetx = 1'b1;
                         npos = l_posinc;
+                        npc = 32'h1;
                         case (fld)
                             Field$Sof:
                                 begin
@@ -4801,11 +4821,13 @@ module canstar_sja1000$core$fsm$frame(clock,reset,sample,rxbit,sent,sent_stuff,r
                                     nhs = 1'b0;
                                     ninter = 1'b0;
                                     npos = 32'h1;
+                                    npc = 32'h2;
                                 end
                             Field$Ident:
                                 begin
                                     if (at_end) begin
                                         npos = 32'h1;
+                                        npc = 32'h2;
                                         if (l_role & tx_ide) begin
                                             nf = Field$Srr;
                                             narea = 1'b1;
@@ -4830,10 +4852,12 @@ module canstar_sja1000$core$fsm$frame(clock,reset,sample,rxbit,sent,sent_stuff,r
                                     nhs = 1'b0;
                                     ninter = 1'b0;
                                     npos = 32'h1;
+                                    npc = 32'h2;
                                 end
                             Field$Rtr:
                                 begin
                                     npos = 32'h1;
+                                    npc = 32'h2;
                                     if (ext) begin
                                         nf = Field$Resv;
                                         narea = 1'b1;
@@ -4852,6 +4876,7 @@ module canstar_sja1000$core$fsm$frame(clock,reset,sample,rxbit,sent,sent_stuff,r
                             Field$Ide:
                                 begin
                                     npos = 32'h1;
+                                    npc = 32'h2;
                                     if (rxbit) begin
                                         nf = Field$ExIdent;
                                         narea = 1'b1;
@@ -4876,6 +4901,7 @@ module canstar_sja1000$core$fsm$frame(clock,reset,sample,rxbit,sent,sent_stuff,r
                                         nhs = 1'b0;
                                         ninter = 1'b0;
                                         npos = 32'h1;
+                                        npc = 32'h2;
                                     end
                                 end
                             Field$Resv:
@@ -4887,12 +4913,14 @@ module canstar_sja1000$core$fsm$frame(clock,reset,sample,rxbit,sent,sent_stuff,r
                                         nhs = 1'b0;
                                         ninter = 1'b0;
                                         npos = 32'h1;
+                                        npc = 32'h2;
                                     end
                                 end
                             Field$Dlc:
                                 begin
                                     if (at_end) begin
                                         npos = 32'h1;
+                                        npc = 32'h2;
                                         if (rtr | (dlc_lo_zero & ~rxbit)) begin
                                             nf = Field$Crc;
                                             narea = 1'b1;
@@ -4918,6 +4946,7 @@ module canstar_sja1000$core$fsm$frame(clock,reset,sample,rxbit,sent,sent_stuff,r
                                         nhs = 1'b0;
                                         ninter = 1'b0;
                                         npos = 32'h1;
+                                        npc = 32'h2;
                                     end
                                 end
                             Field$Crc:
@@ -4929,6 +4958,7 @@ module canstar_sja1000$core$fsm$frame(clock,reset,sample,rxbit,sent,sent_stuff,r
                                         nhs = 1'b0;
                                         ninter = 1'b0;
                                         npos = 32'h1;
+                                        npc = 32'h2;
                                         usetx = 1'b0;
                                         l_crcset = crc_rem;
                                     end
@@ -4954,6 +4984,7 @@ module canstar_sja1000$core$fsm$frame(clock,reset,sample,rxbit,sent,sent_stuff,r
                                 nhs = 1'b0;
                                 ninter = 1'b0;
                                 npos = 32'h1;
+                                npc = 32'h2;
                                 ndom = ~tx_role & ~crcerr$q & ~listen_only;
                             end
                         end
@@ -4965,6 +4996,7 @@ module canstar_sja1000$core$fsm$frame(clock,reset,sample,rxbit,sent,sent_stuff,r
                             nhs = 1'b0;
                             ninter = 1'b0;
                             npos = 32'h1;
+                            npc = 32'h2;
                             if (rxbit) begin
                                 if (tx_role) begin
                                     if (~self_test) begin
@@ -4997,10 +5029,12 @@ module canstar_sja1000$core$fsm$frame(clock,reset,sample,rxbit,sent,sent_stuff,r
                             nhs = 1'b0;
                             ninter = 1'b0;
                             npos = 32'h1;
+                            npc = 32'h2;
                         end
                     Field$Eof:
                         begin
                             npos = l_posinc;
+                            npc = 32'h1;
                             if (at_end) begin
                                 nf = Field$Inter;
                                 narea = 1'b0;
@@ -5008,6 +5042,7 @@ module canstar_sja1000$core$fsm$frame(clock,reset,sample,rxbit,sent,sent_stuff,r
                                 nhs = 1'b0;
                                 ninter = 1'b1;
                                 npos = 32'h1;
+                                npc = 32'h2;
                                 if (tx_role) begin
                                     if (~rxbit) begin
                                         l_form = 1'b1;
@@ -5919,7 +5954,7 @@ module canstar_sja1000$core$fsm$rxf$rxrtr_r(d,q,clock);
 endmodule // canstar_sja1000$core$fsm$rxf$rxrtr_r
 
 
-module canstar_sja1000$core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_recovery,cnt_load,tec_in,stuff,pipe,ext,data_bits,req,active,armed,last_run,busoff,in_frame,level,level_sof,f_own,f_nf,f_na,f_nsa,f_nhs,f_ni,f_npos,f_ndom,f_usetx,f_lost,f_err,f_ovl,f_sof,g_own,g_nf,g_na,g_nsa,g_nhs,g_ni,g_npos,g_ndom,g_err,g_ovl,fld,fpos,pfld,ppos,tx_role,dom,in_busoff,at_end,pstuff,pstuffed,area,stuffable,hs_fld,inter_fld,hs_pfld,inter_pfld,err,flag_start,sofinit,txsof,ev_aef,ev_pef,ev_olf,ev_ovl,ev_integrated,ev_run,ev_recovered);
+module canstar_sja1000$core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_recovery,cnt_load,tec_in,stuff,pipe,ext,data_bits,req,active,armed,last_run,busoff,in_frame,level,level_sof,f_own,f_nf,f_na,f_nsa,f_nhs,f_ni,f_npc,f_ndom,f_usetx,f_lost,f_err,f_ovl,f_sof,g_own,g_nf,g_na,g_nsa,g_nhs,g_ni,g_npc,g_ndom,g_err,g_ovl,fld,fpos,pfld,ppos,tx_role,dom,in_busoff,pos3,at_end,pstuff,pstuffed,area,stuffable,hs_fld,inter_fld,hs_pfld,inter_pfld,err,flag_start,sofinit,txsof,ev_aef,ev_pef,ev_olf,ev_ovl,ev_integrated,ev_run,ev_recovered);
     
     // Module arguments
     input wire  clock;
@@ -5948,7 +5983,7 @@ module canstar_sja1000$core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_re
     input wire  f_nsa;
     input wire  f_nhs;
     input wire  f_ni;
-    input wire  [7:0] f_npos;
+    input wire  [1:0] f_npc;
     input wire  f_ndom;
     input wire  f_usetx;
     input wire  f_lost;
@@ -5961,7 +5996,7 @@ module canstar_sja1000$core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_re
     input wire  g_nsa;
     input wire  g_nhs;
     input wire  g_ni;
-    input wire  [7:0] g_npos;
+    input wire  [1:0] g_npc;
     input wire  g_ndom;
     input wire  g_err;
     input wire  g_ovl;
@@ -5972,6 +6007,7 @@ module canstar_sja1000$core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_re
     output reg  tx_role;
     output reg  dom;
     output reg  in_busoff;
+    output reg  pos3;
     output reg  at_end;
     output reg  pstuff;
     output reg  pstuffed;
@@ -6060,6 +6096,9 @@ module canstar_sja1000$core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_re
     reg  rend$d;
     wire  rend$q;
     reg  rend$clock;
+    reg  rp3$d;
+    wire  rp3$q;
+    reg  rp3$clock;
     reg  rstp$d;
     wire  rstp$q;
     reg  rstp$clock;
@@ -6071,7 +6110,9 @@ module canstar_sja1000$core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_re
     reg  l_stuff;
     reg  l_cantx;
     reg  [4:0] l_nf;
+    reg  [1:0] l_npc;
     reg  [7:0] l_npos;
+    reg  l_pos2;
     reg  l_ndom;
     reg  l_usetx;
     reg  l_role;
@@ -6150,6 +6191,11 @@ module canstar_sja1000$core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_re
         .q(rend$q),
         .clock(rend$clock)
     );
+    canstar_sja1000$core$fsm$seq$rp3 rp3(
+        .d(rp3$d),
+        .q(rp3$q),
+        .clock(rp3$clock)
+    );
     canstar_sja1000$core$fsm$seq$rstp rstp(
         .d(rstp$d),
         .q(rstp$q),
@@ -6172,6 +6218,7 @@ module canstar_sja1000$core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_re
         rpinter$clock = clock;
         rend$clock = clock;
         rstp$clock = clock;
+        rp3$clock = clock;
         rfld$d = rfld$q;
         rpos$d = rpos$q;
         rpfld$d = rpfld$q;
@@ -6186,6 +6233,7 @@ module canstar_sja1000$core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_re
         rpinter$d = rpinter$q;
         rend$d = rend$q;
         rstp$d = rstp$q;
+        rp3$d = rp3$q;
         l_posinc = rpos$q + 32'h1;
         if (rpos$q == 32'hff) begin
             l_posinc = rpos$q;
@@ -6272,7 +6320,7 @@ module canstar_sja1000$core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_re
         l_nsa = rsa$q;
         l_nhs = ~rnhs$q;
         l_ni = rinter$q;
-        l_npos = rpos$q;
+        l_npc = 32'h0;
         l_ndom = 1'b0;
         l_usetx = 1'b0;
         l_role = rtx$q;
@@ -6292,7 +6340,7 @@ module canstar_sja1000$core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_re
                 l_nsa = f_nsa;
                 l_nhs = f_nhs;
                 l_ni = f_ni;
-                l_npos = f_npos;
+                l_npc = f_npc;
                 l_ndom = f_ndom;
                 l_usetx = f_usetx;
                 l_role = rtx$q & ~f_lost;
@@ -6306,7 +6354,7 @@ module canstar_sja1000$core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_re
                 l_nsa = g_nsa;
                 l_nhs = g_nhs;
                 l_ni = g_ni;
-                l_npos = g_npos;
+                l_npc = g_npc;
                 l_ndom = g_ndom;
                 err = g_err;
                 l_ovl = g_ovl;
@@ -6320,19 +6368,19 @@ module canstar_sja1000$core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_re
                             l_nsa = 1'b0;
                             l_nhs = 1'b1;
                             l_ni = 1'b0;
-                            l_npos = 32'h1;
+                            l_npc = 32'h2;
                         end
                     Field$WaitIdle:
                         begin
                             if (~rxbit) begin
-                                l_npos = 32'h1;
+                                l_npc = 32'h2;
                             end
                             else if (l_end) begin
                                 ev_integrated = 1'b1;
                                 l_start = 1'b1;
                             end
                             else begin
-                                l_npos = l_posinc;
+                                l_npc = 32'h1;
                             end
                         end
                     Field$Idle:
@@ -6349,23 +6397,23 @@ module canstar_sja1000$core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_re
                     Field$BusOff:
                         begin
                             if ((host_recovery & ~armed) | ~rxbit) begin
-                                l_npos = 32'h1;
+                                l_npc = 32'h2;
                             end
                             else if (l_end) begin
                                 ev_run = 1'b1;
-                                l_npos = 32'h1;
+                                l_npc = 32'h2;
                                 if (last_run) begin
                                     ev_recovered = 1'b1;
                                     l_start = 1'b1;
                                 end
                             end
                             else begin
-                                l_npos = l_posinc;
+                                l_npc = 32'h1;
                             end
                         end
                     Field$Inter:
                         begin
-                            l_npos = l_posinc;
+                            l_npc = 32'h1;
                             if (l_end) begin
                                 if (~rxbit) begin
                                     sofinit = 1'b1;
@@ -6384,7 +6432,7 @@ module canstar_sja1000$core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_re
                                     l_nsa = 1'b0;
                                     l_nhs = 1'b1;
                                     l_ni = 1'b0;
-                                    l_npos = 32'h1;
+                                    l_npc = 32'h2;
                                 end
                                 else begin
                                     l_start = 1'b1;
@@ -6396,7 +6444,7 @@ module canstar_sja1000$core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_re
                         end
                     Field$Suspend:
                         begin
-                            l_npos = l_posinc;
+                            l_npc = 32'h1;
                             if (~rxbit) begin
                                 sofinit = 1'b1;
                                 l_sofs = 1'b1;
@@ -6417,7 +6465,7 @@ module canstar_sja1000$core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_re
                 l_nsa = 1'b1;
                 l_nhs = 1'b0;
                 l_ni = 1'b0;
-                l_npos = 32'h1;
+                l_npc = 32'h2;
                 l_usetx = 1'b1;
             end
             if (l_start) begin
@@ -6427,7 +6475,7 @@ module canstar_sja1000$core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_re
                     l_nsa = 1'b1;
                     l_nhs = 1'b1;
                     l_ni = 1'b0;
-                    l_npos = 32'h1;
+                    l_npc = 32'h2;
                     l_role = 1'b1;
                     txsof = 1'b1;
                     l_usetx = 1'b1;
@@ -6438,9 +6486,9 @@ module canstar_sja1000$core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_re
                     l_nsa = 1'b0;
                     l_nhs = 1'b1;
                     l_ni = 1'b0;
-                    l_npos = 32'h1;
+                    l_npc = 32'h2;
                     if (rfld$q == Field$Idle) begin
-                        l_npos = l_posinc;
+                        l_npc = 32'h1;
                     end
                 end
             end
@@ -6456,7 +6504,7 @@ module canstar_sja1000$core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_re
         ev_pef = 1'b0;
         ev_olf = 1'b0;
         if (err) begin
-            l_npos = 32'h1;
+            l_npc = 32'h2;
             if (active) begin
                 l_nf = Field$ActFlag;
                 l_na = 1'b0;
@@ -6482,7 +6530,7 @@ module canstar_sja1000$core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_re
             l_nsa = 1'b0;
             l_nhs = 1'b0;
             l_ni = 1'b0;
-            l_npos = 32'h1;
+            l_npc = 32'h2;
             l_ndom = 1'b1;
             ev_olf = 1'b1;
         end
@@ -6495,11 +6543,22 @@ module canstar_sja1000$core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_re
             l_nsa = 1'b0;
             l_nhs = 1'b1;
             l_ni = 1'b0;
-            l_npos = 32'h1;
+            l_npc = 32'h2;
             l_ndom = 1'b0;
         end
         flag_start = err | l_ovl;
         ev_ovl = l_ovl & ~err;
+        l_pos2 = rpos$q == 32'h2;
+        l_npos = rpos$q;
+        if (l_npc[32'h1]) begin
+            l_npos = 32'h1;
+            if (l_npc[32'h0]) begin
+                l_npos = 32'h2;
+            end
+        end
+        else if (l_npc[32'h0]) begin
+            l_npos = l_posinc;
+        end
         if (sample) begin
             if (~l_stuff) begin
                 rpfld$d = rfld$q;
@@ -6513,6 +6572,10 @@ module canstar_sja1000$core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_re
             rnhs$d = ~l_nhs;
             rinter$d = l_ni;
             rpos$d = l_npos;
+            rp3$d = ~l_npc[32'h1] & rp3$q;
+            if (~l_npc[32'h1] & l_npc[32'h0]) begin
+                rp3$d = l_pos2;
+            end
             rtx$d = l_role;
             rdom$d = l_ndom;
         end
@@ -6527,6 +6590,7 @@ module canstar_sja1000$core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_re
             rnhs$d = 1'b0;
             rinter$d = 1'b0;
             rpos$d = 32'h1;
+            rp3$d = 1'b0;
             rtx$d = 1'b0;
             rdom$d = 1'b0;
         end
@@ -6542,6 +6606,7 @@ module canstar_sja1000$core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_re
                 rnhs$d = 1'b0;
                 rinter$d = 1'b0;
                 rpos$d = 32'h1;
+                rp3$d = 1'b0;
                 rtx$d = 1'b0;
                 rdom$d = 1'b0;
             end
@@ -6552,6 +6617,7 @@ module canstar_sja1000$core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_re
                 rnhs$d = 1'b0;
                 rinter$d = 1'b0;
                 rpos$d = 32'h1;
+                rp3$d = 1'b0;
                 rdom$d = 1'b0;
             end
         end
@@ -6562,6 +6628,7 @@ module canstar_sja1000$core$fsm$seq(clock,reset,sample,rxbit,listen_only,host_re
         tx_role = rtx$q;
         dom = rdom$q;
         in_busoff = rfld$q == Field$BusOff;
+        pos3 = rp3$q;
         area = rarea$q;
         at_end = l_end;
         pstuff = l_stuff;
@@ -6734,6 +6801,25 @@ module canstar_sja1000$core$fsm$seq$rnphs(d,q,clock);
     end
           
 endmodule // canstar_sja1000$core$fsm$seq$rnphs
+
+
+module canstar_sja1000$core$fsm$seq$rp3(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_sja1000$core$fsm$seq$rp3
 
 
 module canstar_sja1000$core$fsm$seq$rpfld(d,q,clock);

@@ -55,6 +55,8 @@ pub struct BitDecode {
     pub inter_fld: Signal<In, Bit>,
     pub hs_pfld: Signal<In, Bit>,
     pub inter_pfld: Signal<In, Bit>,
+    /// POSITION (`fpos`) is 3, a register of the sequencer (issue #16).
+    pub fpos3: Signal<In, Bit>,
 
     pub stuffed: Signal<Out, Bit>,
     /// The field is one of the stuffed area (Start_Of_Frame .. CRC_Sequence).
@@ -151,11 +153,11 @@ impl Logic for BitDecode {
         self.area.next = self.in_area.val();
         self.code.next = self.l_dfld.val().into();
         // `hs_en` of the displayed field: the decodes of `fld` and of `pfld`
-        // (registers of the sequencer, with Intermission bit 3 from `fpos`)
+        // (registers of the sequencer, with Intermission bit 3 from `fpos3`, the sequencer's POSITION-is-3 register)
         // selected by `stuff` (the bit timing reads it on every clock).
-        self.hs_en.next = self.hs_fld.val() | (self.inter_fld.val() & (self.fpos.val() == 3));
+        self.hs_en.next = self.hs_fld.val() | (self.inter_fld.val() & self.fpos3.val());
         if self.stuff.val() {
-            self.hs_en.next = self.hs_pfld.val() | (self.inter_pfld.val() & (self.fpos.val() == 3));
+            self.hs_en.next = self.hs_pfld.val() | (self.inter_pfld.val() & self.fpos3.val());
         }
     }
 }
@@ -180,6 +182,7 @@ mod tests {
         u.inter_fld.next = fld == Field::Inter;
         u.hs_pfld.next = pfld.hard_sync();
         u.inter_pfld.next = pfld == Field::Inter;
+        u.fpos3.next = u.fpos.next.index() == 3;
         drive::settle(&mut u);
         u
     }

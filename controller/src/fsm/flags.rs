@@ -67,6 +67,9 @@ pub struct FlagFields {
     pub own: Signal<Out, Bit>,
     pub nf: Signal<Out, Field>,
     pub npos: Signal<Out, Bits<8>>,
+    /// `npos` as a choice ([`super::seq::POS_KEEP`] ..), set along with it;
+    /// the sequencer takes this one (issue #16), `npos` is kept for the tests.
+    pub npc: Signal<Out, Bits<2>>,
     /// The classes of `nf` (as `area` .. `inter_fld`), set along with it
     /// (issue #16: no decode of `nf` after its multiplexers).
     pub narea: Signal<Out, Bit>,
@@ -125,6 +128,7 @@ impl Logic for FlagFields {
         self.nhs.next = self.hs_fld.val();
         self.ninter.next = self.inter_fld.val();
         self.npos.next = self.fpos.val();
+        self.npc.next = 0.into();
         self.ndom.next = false;
         self.err.next = false;
         self.err_bit.next = false;
@@ -145,6 +149,7 @@ impl Logic for FlagFields {
         if self.l_flag.val() {
             if !self.fdone.q.val() {
                 self.npos.next = self.l_posinc.val();
+                self.npc.next = 1.into();
                 if self.fld.val() == Field::PasFlag {
                     // 6 consecutive equal bits, counted from the flag's first bit
                     if self.at_end.val() {
@@ -186,6 +191,7 @@ impl Logic for FlagFields {
             } else if self.rxbit.val() {
                 // delimiter bit 2 (bit 1 was the last flag or dominant bit)
                 self.npos.next = 2.into();
+                self.npc.next = 3.into();
                 if self.fld.val() == Field::OvlFlag {
                     self.nf.next = Field::OvlDel;
                     self.narea.next = false;
@@ -201,6 +207,7 @@ impl Logic for FlagFields {
                 }
             } else {
                 self.npos.next = self.l_posinc.val();
+                self.npc.next = 1.into();
                 self.daf.next = true;
                 self.l_dafany.next = true;
                 self.l_dafc.next = self.dafc.q.val() + 1;
@@ -215,6 +222,7 @@ impl Logic for FlagFields {
         }
         if self.l_delim.val() {
             self.npos.next = self.l_posinc.val();
+            self.npc.next = 1.into();
             if self.at_end.val() {
                 self.nf.next = Field::Inter;
                 self.narea.next = false;
@@ -222,6 +230,7 @@ impl Logic for FlagFields {
                 self.nhs.next = false;
                 self.ninter.next = true;
                 self.npos.next = 1.into();
+                self.npc.next = 2.into();
                 self.ovl.next = !self.rxbit.val();
             } else if !self.rxbit.val() {
                 self.err.next = true;
@@ -295,6 +304,12 @@ mod tests {
         u.rxbit.next = level;
         u.sent.next = sent;
         drive::settle(u);
+        // issue #16: the POSITION choice the sequencer takes gives `npos`
+        assert_eq!(
+            super::super::seq::pos_of_choice(u.npc.val().index() as u64, fpos),
+            u.npos.val().index() as u64,
+            "{fld:?} {fpos}"
+        );
         let o = Out {
             nf: u.own.val().then(|| u.nf.val()),
             npos: u.npos.val().index() as u64,

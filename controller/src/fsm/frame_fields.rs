@@ -105,6 +105,9 @@ pub struct FrameFields {
     pub own: Signal<Out, Bit>,
     pub nf: Signal<Out, Field>,
     pub npos: Signal<Out, Bits<8>>,
+    /// `npos` as a choice ([`super::seq::POS_KEEP`] ..), set along with it;
+    /// the sequencer takes this one (issue #16), `npos` is kept for the tests.
+    pub npc: Signal<Out, Bits<2>>,
     /// The classes of `nf` (as `area` .. `inter_fld`), set along with it
     /// (issue #16: no decode of `nf` after its multiplexers).
     pub narea: Signal<Out, Bit>,
@@ -193,6 +196,7 @@ impl Logic for FrameFields {
         self.nhs.next = self.hs_fld.val();
         self.ninter.next = self.inter_fld.val();
         self.npos.next = self.fpos.val();
+        self.npc.next = 0.into();
         self.ndom.next = false;
         self.usetx.next = false;
         self.l_role.next = self.tx_role.val();
@@ -248,6 +252,7 @@ impl Logic for FrameFields {
                         self.adv.next = true;
                         self.usetx.next = true;
                         self.npos.next = self.l_posinc.val();
+                        self.npc.next = 1.into();
                         match self.fld.val() {
                             Field::Sof => {
                                 self.nf.next = Field::Ident;
@@ -256,10 +261,12 @@ impl Logic for FrameFields {
                                 self.nhs.next = false;
                                 self.ninter.next = false;
                                 self.npos.next = 1.into();
+                                self.npc.next = 2.into();
                             }
                             Field::Ident => {
                                 if self.at_end.val() {
                                     self.npos.next = 1.into();
+                                    self.npc.next = 2.into();
                                     if self.l_role.val() & self.tx_ide.val() {
                                         self.nf.next = Field::Srr;
                                         self.narea.next = true;
@@ -282,9 +289,11 @@ impl Logic for FrameFields {
                                 self.nhs.next = false;
                                 self.ninter.next = false;
                                 self.npos.next = 1.into();
+                                self.npc.next = 2.into();
                             }
                             Field::Rtr => {
                                 self.npos.next = 1.into();
+                                self.npc.next = 2.into();
                                 if self.ext.val() {
                                     self.nf.next = Field::Resv;
                                     self.narea.next = true;
@@ -302,6 +311,7 @@ impl Logic for FrameFields {
                             Field::Ide => {
                                 // the IDE bit just taken: recessive = extended
                                 self.npos.next = 1.into();
+                                self.npc.next = 2.into();
                                 if self.rxbit.val() {
                                     self.nf.next = Field::ExIdent;
                                     self.narea.next = true;
@@ -324,6 +334,7 @@ impl Logic for FrameFields {
                                     self.nhs.next = false;
                                     self.ninter.next = false;
                                     self.npos.next = 1.into();
+                                    self.npc.next = 2.into();
                                 }
                             }
                             Field::Resv => {
@@ -335,6 +346,7 @@ impl Logic for FrameFields {
                                     self.nhs.next = false;
                                     self.ninter.next = false;
                                     self.npos.next = 1.into();
+                                    self.npc.next = 2.into();
                                 }
                             }
                             Field::Dlc => {
@@ -342,6 +354,7 @@ impl Logic for FrameFields {
                                     // no data: a remote frame, or DLC 0 (the
                                     // last DLC bit is this one)
                                     self.npos.next = 1.into();
+                                    self.npc.next = 2.into();
                                     if self.rtr.val() | (self.dlc_lo_zero.val() & !self.rxbit.val()) {
                                         self.nf.next = Field::Crc;
                                         self.narea.next = true;
@@ -365,6 +378,7 @@ impl Logic for FrameFields {
                                     self.nhs.next = false;
                                     self.ninter.next = false;
                                     self.npos.next = 1.into();
+                                    self.npc.next = 2.into();
                                 }
                             }
                             Field::Crc => {
@@ -375,6 +389,7 @@ impl Logic for FrameFields {
                                     self.nhs.next = false;
                                     self.ninter.next = false;
                                     self.npos.next = 1.into();
+                                    self.npc.next = 2.into();
                                     self.usetx.next = false;
                                     self.l_crcset.next = self.crc_rem.val();
                                 }
@@ -395,6 +410,7 @@ impl Logic for FrameFields {
                             self.nhs.next = false;
                             self.ninter.next = false;
                             self.npos.next = 1.into();
+                            self.npc.next = 2.into();
                             self.ndom.next = !self.tx_role.val() & !self.crcerr.q.val() & !self.listen_only.val();
                         }
                     }
@@ -405,6 +421,7 @@ impl Logic for FrameFields {
                         self.nhs.next = false;
                         self.ninter.next = false;
                         self.npos.next = 1.into();
+                        self.npc.next = 2.into();
                         if self.rxbit.val() {
                             if self.tx_role.val() {
                                 if !self.self_test.val() {
@@ -436,9 +453,11 @@ impl Logic for FrameFields {
                         self.nhs.next = false;
                         self.ninter.next = false;
                         self.npos.next = 1.into();
+                        self.npc.next = 2.into();
                     }
                     Field::Eof => {
                         self.npos.next = self.l_posinc.val();
+                        self.npc.next = 1.into();
                         if self.at_end.val() {
                             self.nf.next = Field::Inter;
                             self.narea.next = false;
@@ -446,6 +465,7 @@ impl Logic for FrameFields {
                             self.nhs.next = false;
                             self.ninter.next = true;
                             self.npos.next = 1.into();
+                            self.npc.next = 2.into();
                             if self.tx_role.val() {
                                 if !self.rxbit.val() {
                                     self.l_form.next = true;

@@ -335,6 +335,7 @@ impl Logic for CanFsm {
         self.dec.inter_fld.next = self.seq.inter_fld.val();
         self.dec.hs_pfld.next = self.seq.hs_pfld.val();
         self.dec.inter_pfld.next = self.seq.inter_pfld.val();
+        self.dec.fpos3.next = self.seq.pos3.val();
 
         self.frame.clock.next = self.clock.val();
         self.frame.reset.next = self.reset.val();
@@ -413,7 +414,7 @@ impl Logic for CanFsm {
         self.seq.f_nsa.next = self.frame.nsa.val();
         self.seq.f_nhs.next = self.frame.nhs.val();
         self.seq.f_ni.next = self.frame.ninter.val();
-        self.seq.f_npos.next = self.frame.npos.val();
+        self.seq.f_npc.next = self.frame.npc.val();
         self.seq.f_ndom.next = self.frame.ndom.val();
         self.seq.f_usetx.next = self.frame.usetx.val();
         self.seq.f_lost.next = self.frame.lost.val();
@@ -426,7 +427,7 @@ impl Logic for CanFsm {
         self.seq.g_nsa.next = self.flags.nsa.val();
         self.seq.g_nhs.next = self.flags.nhs.val();
         self.seq.g_ni.next = self.flags.ninter.val();
-        self.seq.g_npos.next = self.flags.npos.val();
+        self.seq.g_npc.next = self.flags.npc.val();
         self.seq.g_ndom.next = self.flags.ndom.val();
         self.seq.g_err.next = self.flags.err.val();
         self.seq.g_ovl.next = self.flags.ovl.val();
@@ -538,3 +539,88 @@ impl Logic for CanFsm {
 }
 
 canstar_hdl::impl_clocked!(CanFsm);
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use canstar_hdl::drive;
+
+    /// Issue #16: the sequencer's POSITION-is-3 register (`pos3`, which
+    /// `hs_en` reads instead of a comparator) equals `fpos == 3` on every
+    /// clock, and the POSITION choice of the frame and the flag fields
+    /// (`npc`, which the sequencer takes) gives their `npos` on every
+    /// `sample` clock. A node on a bus of its own `drive` and random dominant
+    /// glitches, with random requests, resets, counter loads (some to
+    /// Bus_Off), aborts and mode bits; `sample` every 2..4 clocks with `pipe`
+    /// high (as in [`crate::core::CanCore`]) and on random clocks, also
+    /// consecutive ones, with `pipe` low.
+    #[test]
+    fn position_choice_and_pos3_register_equal_what_they_replace() {
+        for pipe in [true, false] {
+            let mut u = CanFsm::new();
+            drive::init(&mut u);
+            let mut s: u64 = 0x9e37_79b9_7f4a_7c15 ^ pipe as u64;
+            let mut rnd = move || {
+                s ^= s << 13;
+                s ^= s >> 7;
+                s ^= s << 17;
+                s
+            };
+            u.pipe.next = pipe;
+            u.reset.next = true;
+            drive::cycle(&mut u);
+            u.reset.next = false;
+            let (mut gap, mut seen3, mut own_f, mut own_g) = (0u64, 0u64, 0u64, 0u64);
+            for clk in 0..300_000u64 {
+                let r = rnd();
+                u.reset.next = r % 40_000 == 0;
+                u.cnt_load.next = r % 25_000 == 1;
+                u.tec_in.next = ((r >> 8) % 300).into();
+                u.rec_in.next = ((r >> 20) % 140).into();
+                if clk % 5_000 == 0 {
+                    u.tx_req.next = r & 3 != 0;
+                    u.tx_ide.next = r & 4 != 0;
+                    u.tx_rtr.next = r & 8 != 0;
+                    u.tx_id.next = ((r >> 16) & 0x1fff_ffff).into();
+                    u.tx_dlc.next = ((r >> 48) & 15).into();
+                    u.tx_data.next = rnd().into();
+                    u.self_test.next = r & 16 != 0;
+                    u.single_shot.next = r & 32 != 0;
+                    u.listen_only.next = r % 13 == 0;
+                    u.host_recovery.next = r & 64 != 0;
+                }
+                u.tx_abort.next = r % 3_000 == 2;
+                u.recover.next = r % 2_000 == 3;
+                let smp = if pipe {
+                    gap += 1;
+                    gap >= 2 + (r >> 40) % 3
+                } else {
+                    (r >> 40) % 3 != 0
+                };
+                if smp {
+                    gap = 0;
+                }
+                u.sample.next = smp;
+                // the bus: the own level, with rare dominant glitches
+                u.busmon.next = u.drive.val() && (r >> 32) % 200 != 0;
+                drive::settle(&mut u);
+                let fpos = u.seq.fpos.val().index() as u64;
+                assert_eq!(u.seq.pos3.val(), fpos == 3, "clock {clk}");
+                seen3 += (fpos == 3) as u64;
+                if u.sample.val() {
+                    let choice = |npc: Bits<2>| seq::pos_of_choice(npc.index() as u64, fpos);
+                    if u.frame.own.val() {
+                        own_f += 1;
+                        assert_eq!(choice(u.frame.npc.val()), u.frame.npos.val().index() as u64, "clock {clk}");
+                    }
+                    if u.flags.own.val() {
+                        own_g += 1;
+                        assert_eq!(choice(u.flags.npc.val()), u.flags.npos.val().index() as u64, "clock {clk}");
+                    }
+                }
+                drive::cycle(&mut u);
+            }
+            assert!(seen3 > 1_000 && own_f > 1_000 && own_g > 1_000, "{seen3} {own_f} {own_g}");
+        }
+    }
+}

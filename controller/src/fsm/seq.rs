@@ -37,6 +37,23 @@
 use super::field::Field;
 use rust_hdl::prelude::*;
 
+/// The choices of the next POSITION (`npc` of the frame and flag fields,
+/// `f_npc`/`g_npc` here): keep it, increment it (saturating at 255), 1, 2.
+pub const POS_KEEP: u64 = 0;
+pub const POS_INC: u64 = 1;
+pub const POS_ONE: u64 = 2;
+pub const POS_TWO: u64 = 3;
+
+/// The POSITION a choice gives from `fpos` (for the unit tests).
+pub fn pos_of_choice(npc: u64, fpos: u64) -> u64 {
+    match npc {
+        POS_KEEP => fpos,
+        POS_INC => (fpos + 1).min(255),
+        POS_ONE => 1,
+        _ => 2,
+    }
+}
+
 #[derive(LogicBlock, Default)]
 pub struct Sequencer {
     pub clock: Signal<In, Clock>,
@@ -81,7 +98,11 @@ pub struct Sequencer {
     pub f_nsa: Signal<In, Bit>,
     pub f_nhs: Signal<In, Bit>,
     pub f_ni: Signal<In, Bit>,
-    pub f_npos: Signal<In, Bits<8>>,
+    /// The next POSITION as a choice (issue #16): 0 keep, 1 the increment
+    /// (saturating at 255), 2 one, 3 two (see [`POS_KEEP`] ..), so that
+    /// each bit of POSITION is one LUT on the choice, its own bit and the
+    /// increment's, instead of an 8-bit multiplexer behind the decisions.
+    pub f_npc: Signal<In, Bits<2>>,
     pub f_ndom: Signal<In, Bit>,
     pub f_usetx: Signal<In, Bit>,
     pub f_lost: Signal<In, Bit>,
@@ -95,7 +116,7 @@ pub struct Sequencer {
     pub g_nsa: Signal<In, Bit>,
     pub g_nhs: Signal<In, Bit>,
     pub g_ni: Signal<In, Bit>,
-    pub g_npos: Signal<In, Bits<8>>,
+    pub g_npc: Signal<In, Bits<2>>,
     pub g_ndom: Signal<In, Bit>,
     pub g_err: Signal<In, Bit>,
     pub g_ovl: Signal<In, Bit>,
@@ -107,6 +128,12 @@ pub struct Sequencer {
     pub tx_role: Signal<Out, Bit>,
     pub dom: Signal<Out, Bit>,
     pub in_busoff: Signal<Out, Bit>,
+    /// POSITION is 3 (`fpos` = 3), kept in a register of its own (issue #16)
+    /// that takes, along every branch that sets POSITION, whether the value
+    /// set is 3 (from the choice `l_npc`: an increment from 2, or POSITION
+    /// kept at 3), so that the hard-sync enable of Intermission bit 3 does
+    /// not wait for a comparator on POSITION.
+    pub pos3: Signal<Out, Bit>,
     /// POSITION is the one at which the field's decision depends on it
     /// (issue #16): Wait_For_Bus_Idle, Bus_Off, Identifier 11;
     /// Ex_Identifier 18; Reserved_Bits 1 of an extended frame; DLC 4; Data
@@ -164,6 +191,7 @@ pub struct Sequencer {
     rpinter: DFF<Bit>,
     // `at_end` and `stuff` one clock late (see `pipe`).
     rend: DFF<Bit>,
+    rp3: DFF<Bit>,
     rstp: DFF<Bit>,
 
     l_posinc: Signal<Local, Bits<8>>,
@@ -172,7 +200,11 @@ pub struct Sequencer {
     l_stuff: Signal<Local, Bit>,
     l_cantx: Signal<Local, Bit>,
     l_nf: Signal<Local, Field>,
+    /// The next POSITION's choice (see `f_npc`), set along with `l_nf`.
+    l_npc: Signal<Local, Bits<2>>,
     l_npos: Signal<Local, Bits<8>>,
+    /// POSITION is 2 (its increment is 3).
+    l_pos2: Signal<Local, Bit>,
     l_ndom: Signal<Local, Bit>,
     l_usetx: Signal<Local, Bit>,
     l_role: Signal<Local, Bit>,
@@ -192,7 +224,7 @@ impl Logic for Sequencer {
     #[hdl_gen]
     fn update(&mut self) {
         dff_setup!(
-            self, clock, rfld, rpos, rpfld, rppos, rtx, rdom, rarea, rsa, rnhs, rinter, rnphs, rpinter, rend, rstp
+            self, clock, rfld, rpos, rpfld, rppos, rtx, rdom, rarea, rsa, rnhs, rinter, rnphs, rpinter, rend, rstp, rp3
         );
         self.l_posinc.next = self.rpos.q.val() + 1;
         if self.rpos.q.val() == 255 {
@@ -263,7 +295,7 @@ impl Logic for Sequencer {
         self.l_nsa.next = self.rsa.q.val();
         self.l_nhs.next = !self.rnhs.q.val();
         self.l_ni.next = self.rinter.q.val();
-        self.l_npos.next = self.rpos.q.val();
+        self.l_npc.next = 0.into();
         self.l_ndom.next = false;
         self.l_usetx.next = false;
         self.l_role.next = self.rtx.q.val();
@@ -286,7 +318,7 @@ impl Logic for Sequencer {
                 self.l_nsa.next = self.f_nsa.val();
                 self.l_nhs.next = self.f_nhs.val();
                 self.l_ni.next = self.f_ni.val();
-                self.l_npos.next = self.f_npos.val();
+                self.l_npc.next = self.f_npc.val();
                 self.l_ndom.next = self.f_ndom.val();
                 self.l_usetx.next = self.f_usetx.val();
                 self.l_role.next = self.rtx.q.val() & !self.f_lost.val();
@@ -299,7 +331,7 @@ impl Logic for Sequencer {
                 self.l_nsa.next = self.g_nsa.val();
                 self.l_nhs.next = self.g_nhs.val();
                 self.l_ni.next = self.g_ni.val();
-                self.l_npos.next = self.g_npos.val();
+                self.l_npc.next = self.g_npc.val();
                 self.l_ndom.next = self.g_ndom.val();
                 self.err.next = self.g_err.val();
                 self.l_ovl.next = self.g_ovl.val();
@@ -311,16 +343,16 @@ impl Logic for Sequencer {
                         self.l_nsa.next = false;
                         self.l_nhs.next = true;
                         self.l_ni.next = false;
-                        self.l_npos.next = 1.into();
+                        self.l_npc.next = 2.into();
                     }
                     Field::WaitIdle => {
                         if !self.rxbit.val() {
-                            self.l_npos.next = 1.into();
+                            self.l_npc.next = 2.into();
                         } else if self.l_end.val() {
                             self.ev_integrated.next = true;
                             self.l_start.next = true;
                         } else {
-                            self.l_npos.next = self.l_posinc.val();
+                            self.l_npc.next = 1.into();
                         }
                     }
                     Field::Idle => {
@@ -335,20 +367,20 @@ impl Logic for Sequencer {
                     Field::BusOff => {
                         if (self.host_recovery.val() & !self.armed.val()) | !self.rxbit.val() {
                             // waiting for the host, or a dominant bit restarts the run
-                            self.l_npos.next = 1.into();
+                            self.l_npc.next = 2.into();
                         } else if self.l_end.val() {
                             self.ev_run.next = true;
-                            self.l_npos.next = 1.into();
+                            self.l_npc.next = 2.into();
                             if self.last_run.val() {
                                 self.ev_recovered.next = true;
                                 self.l_start.next = true;
                             }
                         } else {
-                            self.l_npos.next = self.l_posinc.val();
+                            self.l_npc.next = 1.into();
                         }
                     }
                     Field::Inter => {
-                        self.l_npos.next = self.l_posinc.val();
+                        self.l_npc.next = 1.into();
                         if self.l_end.val() {
                             if !self.rxbit.val() {
                                 // a dominant third intermission bit is a SOF
@@ -366,7 +398,7 @@ impl Logic for Sequencer {
                                 self.l_nsa.next = false;
                                 self.l_nhs.next = true;
                                 self.l_ni.next = false;
-                                self.l_npos.next = 1.into();
+                                self.l_npc.next = 2.into();
                             } else {
                                 self.l_start.next = true;
                             }
@@ -375,7 +407,7 @@ impl Logic for Sequencer {
                         }
                     }
                     Field::Suspend => {
-                        self.l_npos.next = self.l_posinc.val();
+                        self.l_npc.next = 1.into();
                         if !self.rxbit.val() {
                             self.sofinit.next = true;
                             self.l_sofs.next = true;
@@ -397,7 +429,7 @@ impl Logic for Sequencer {
                 self.l_nsa.next = true;
                 self.l_nhs.next = false;
                 self.l_ni.next = false;
-                self.l_npos.next = 1.into();
+                self.l_npc.next = 2.into();
                 self.l_usetx.next = true;
             }
             // The bus is free: start a frame if one is pending.
@@ -408,7 +440,7 @@ impl Logic for Sequencer {
                     self.l_nsa.next = true;
                     self.l_nhs.next = true;
                     self.l_ni.next = false;
-                    self.l_npos.next = 1.into();
+                    self.l_npc.next = 2.into();
                     self.l_role.next = true;
                     self.txsof.next = true;
                     self.l_usetx.next = true;
@@ -418,9 +450,9 @@ impl Logic for Sequencer {
                     self.l_nsa.next = false;
                     self.l_nhs.next = true;
                     self.l_ni.next = false;
-                    self.l_npos.next = 1.into();
+                    self.l_npc.next = 2.into();
                     if self.rfld.q.val() == Field::Idle {
-                        self.l_npos.next = self.l_posinc.val();
+                        self.l_npc.next = 1.into();
                     }
                 }
             }
@@ -441,7 +473,7 @@ impl Logic for Sequencer {
         self.ev_pef.next = false;
         self.ev_olf.next = false;
         if self.err.val() {
-            self.l_npos.next = 1.into();
+            self.l_npc.next = 2.into();
             if self.active.val() {
                 self.l_nf.next = Field::ActFlag;
                 self.l_na.next = false;
@@ -465,7 +497,7 @@ impl Logic for Sequencer {
             self.l_nsa.next = false;
             self.l_nhs.next = false;
             self.l_ni.next = false;
-            self.l_npos.next = 1.into();
+            self.l_npc.next = 2.into();
             self.l_ndom.next = true;
             self.ev_olf.next = true;
         }
@@ -479,11 +511,23 @@ impl Logic for Sequencer {
             self.l_nsa.next = false;
             self.l_nhs.next = true;
             self.l_ni.next = false;
-            self.l_npos.next = 1.into();
+            self.l_npc.next = 2.into();
             self.l_ndom.next = false;
         }
         self.flag_start.next = self.err.val() | self.l_ovl.val();
         self.ev_ovl.next = self.l_ovl.val() & !self.err.val();
+
+        self.l_pos2.next = self.rpos.q.val() == 2;
+        // The next POSITION from its choice (`POS_*`).
+        self.l_npos.next = self.rpos.q.val();
+        if self.l_npc.val().get_bit(1) {
+            self.l_npos.next = 1.into();
+            if self.l_npc.val().get_bit(0) {
+                self.l_npos.next = 2.into();
+            }
+        } else if self.l_npc.val().get_bit(0) {
+            self.l_npos.next = self.l_posinc.val();
+        }
 
         if self.sample.val() {
             if !self.l_stuff.val() {
@@ -498,6 +542,11 @@ impl Logic for Sequencer {
             self.rnhs.d.next = !self.l_nhs.val();
             self.rinter.d.next = self.l_ni.val();
             self.rpos.d.next = self.l_npos.val();
+            // keep (0): stays 3 if it is; increment (1): 3 from 2; 1 or 2: not 3
+            self.rp3.d.next = !self.l_npc.val().get_bit(1) & self.rp3.q.val();
+            if !self.l_npc.val().get_bit(1) & self.l_npc.val().get_bit(0) {
+                self.rp3.d.next = self.l_pos2.val();
+            }
             self.rtx.d.next = self.l_role.val();
             self.rdom.d.next = self.l_ndom.val();
         }
@@ -515,6 +564,7 @@ impl Logic for Sequencer {
             self.rnhs.d.next = false;
             self.rinter.d.next = false;
             self.rpos.d.next = 1.into();
+            self.rp3.d.next = false;
             self.rtx.d.next = false;
             self.rdom.d.next = false;
         }
@@ -531,6 +581,7 @@ impl Logic for Sequencer {
                 self.rnhs.d.next = false;
                 self.rinter.d.next = false;
                 self.rpos.d.next = 1.into();
+                self.rp3.d.next = false;
                 self.rtx.d.next = false;
                 self.rdom.d.next = false;
             } else if self.rfld.q.val() == Field::BusOff {
@@ -540,6 +591,7 @@ impl Logic for Sequencer {
                 self.rnhs.d.next = false;
                 self.rinter.d.next = false;
                 self.rpos.d.next = 1.into();
+                self.rp3.d.next = false;
                 self.rdom.d.next = false;
             }
         }
@@ -551,6 +603,7 @@ impl Logic for Sequencer {
         self.tx_role.next = self.rtx.q.val();
         self.dom.next = self.rdom.q.val();
         self.in_busoff.next = self.rfld.q.val() == Field::BusOff;
+        self.pos3.next = self.rp3.q.val();
         self.area.next = self.rarea.q.val();
         self.at_end.next = self.l_end.val();
         self.pstuff.next = self.l_stuff.val();

@@ -12,6 +12,9 @@ pub struct NodeCfg {
     pub early_sof: bool,
     /// Drives its uplink dominant at the last EOF bit of the next frame it sees.
     pub dominant_eof7_once: bool,
+    /// Sends an overload flag from the first intermission bit of the next frame it sees,
+    /// as a node that saw its own last EOF bit dominant (a disturbance on its downlink).
+    pub overload_flag_once: bool,
 }
 
 /// A simple CAN node: transmits queued frames, arbitrates, acknowledges, sends error
@@ -67,6 +70,11 @@ impl Node {
             Ph::AckSlot => !(t.crc_ok && !self.cfg.no_ack),
             Ph::Eof(6) if self.cfg.dominant_eof7_once => {
                 self.cfg.dominant_eof7_once = false;
+                false
+            }
+            Ph::Im(0) if self.cfg.overload_flag_once => {
+                self.cfg.overload_flag_once = false;
+                self.flag_left = 6;
                 false
             }
             _ => true,
