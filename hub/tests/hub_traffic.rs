@@ -108,17 +108,23 @@ fn late_joiner_is_not_blamed<T: Dut>() {
     }
 }
 
-/// A node that saw its last EOF bit dominant (a disturbance on its downlink) sends an
-/// overload flag from intermission bit 1, and everybody follows with overload frames: not
-/// blamed (hub.md §5.2).
-fn overload_from_dominant_last_eof_bit_is_not_blamed<T: Dut>() {
+/// Node 0 sends three frames on a CANcentrate hub; node 2 behaves as `cfg` sets.
+fn three_frames_with<T: Dut>(cfg: impl FnOnce(&mut NodeCfg)) -> Net<T> {
     let mut n = nodes(3);
     for k in 0..3 {
         n[0].queue.push_back(Frame::std(0x100 + k, &[k as u8]));
     }
-    n[2].cfg.overload_flag_once = true;
+    cfg(&mut n[2].cfg);
     let mut net = Net::<T>::new(&cancentrate(), n);
     net.run_until_idle(2000);
+    net
+}
+
+/// A node that saw its last EOF bit dominant (a disturbance on its downlink) sends an
+/// overload flag from intermission bit 1, and everybody follows with overload frames: not
+/// blamed (hub.md §5.2).
+fn overload_from_dominant_last_eof_bit_is_not_blamed<T: Dut>() {
+    let net = three_frames_with::<T>(|c| c.overload_flag_once = true);
     assert!(net.stim.log.iter().any(|l| l.ev.overload), "no overload frame happened");
     assert!(net.stim.log.iter().any(|l| l.field == Field::Overload && !l.bt));
     assert_eq!(net.errors(), 0);
@@ -129,13 +135,7 @@ fn overload_from_dominant_last_eof_bit_is_not_blamed<T: Dut>() {
 /// transmitter takes that bit for a form error); the overload frames that follow are not
 /// blamed, and nobody else is.
 fn port_dominant_in_the_last_eof_bit_is_blamed_once<T: Dut>() {
-    let mut n = nodes(3);
-    for k in 0..3 {
-        n[0].queue.push_back(Frame::std(0x100 + k, &[k as u8]));
-    }
-    n[2].cfg.dominant_eof7_once = true;
-    let mut net = Net::<T>::new(&cancentrate(), n);
-    net.run_until_idle(2000);
+    let net = three_frames_with::<T>(|c| c.dominant_eof7_once = true);
     assert!(net.stim.log.iter().any(|l| l.ev.overload), "no overload frame happened");
     assert_eq!(net.blames(), 1, "{}", net.trace(0));
     assert_eq!(net.max_bic, vec![0, 0, 8]);
