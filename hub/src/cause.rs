@@ -14,6 +14,8 @@ pub struct JudgeCounts {
     pub gc: u64,
     pub pgc: u64,
     pub rep_cnt: u64,
+    /// The unit was charged while the hub's peer guard (§5.20) was on (ports only).
+    pub guard: bool,
 }
 
 /// Every isolation rule the counts meet, e.g. `"bic 80/80"` or
@@ -33,6 +35,9 @@ pub fn isolation_cause(p: &JudgeParams, sublink: bool, c: &JudgeCounts) -> Strin
     if sublink {
         rule("peer-hub glitches", c.pgc, p.peer_glitch_limit);
         rule("replica", c.rep_cnt, p.replica_limit);
+    }
+    if c.guard && !sublink {
+        v.push("peer guard".into());
     }
     if v.is_empty() {
         "no counter at its limit".into()
@@ -68,6 +73,10 @@ mod tests {
             isolation_cause(&sp, true, &peer),
             format!("peer-hub glitches {0}/{0}, replica {1}/{1}", sp.peer_glitch_limit, sp.replica_limit)
         );
+        // the peer guard isolates a charged port whatever its counters (§5.20)
+        let guard = JudgeCounts { bic: 16, guard: true, ..none };
+        assert_eq!(isolation_cause(&pp, false, &guard), "peer guard");
+        assert_eq!(isolation_cause(&sp, true, &guard), "no counter at its limit");
         let g = JudgeCounts { gc: sp.glitch_limit, ..none };
         assert_eq!(isolation_cause(&sp, true, &g), format!("glitches {0}/{0}", sp.glitch_limit));
     }

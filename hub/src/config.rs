@@ -129,6 +129,12 @@ pub struct HubConfig {
     /// Last-EOF-bit rule (hub.md §5.19, ports only): a port dominant in the last EOF bit,
     /// outside an error phase, is blamed (a transmitter takes that bit for a form error).
     pub eof_last_rule: bool,
+    /// Peer guard (hub.md §5.20): the hub estimates the peer's sublink counters from its
+    /// own ports' charges (the peer charges its sublinks for the same episodes); while the
+    /// estimate is at least `8 * peer_guard`, a port charged again is isolated at once, so
+    /// that the peer's sublinks never overtake a second faulty port. 0 = off, else 1..=31
+    /// (default 7: two episodes before the peer's sublink limit of 9).
+    pub peer_guard: u64,
     /// Reintegration window W in frames (None = isolation latched until reset).
     pub reintegration: Option<u64>,
     /// Fault-injection hook (None = no hooks).
@@ -171,6 +177,7 @@ impl Default for HubConfig {
             first_flagger: true,
             sub_first_flagger: true,
             eof_last_rule: true,
+            peer_guard: 7,
             reintegration: None,
             fault_injection: None,
             debug: true,
@@ -319,6 +326,9 @@ impl HubConfig {
             if v == 0 || v > hi {
                 return Err(format!("{n} must be in 1..={hi}"));
             }
+        }
+        if self.peer_guard > 31 {
+            return Err("peer_guard must be in 0..=31 (0 = off)".into());
         }
         if self.window_lag > 31 || self.sub_window_lag > 31 {
             return Err("window_lag and sub_window_lag must be in 0..=31".into());

@@ -138,6 +138,17 @@ pub struct HubCore {
     rep_dom: Signal<Local, Bit>,
     rep_rec_w: Signal<Local, Bit>,
     rep_gl: Signal<Local, Bit>,
+    /// §5.20 peer guard: the estimate of the peer's sublink counters (`bic` units), its
+    /// decay count, the largest charge of a port in this clock, and the guard itself.
+    pest_r: DFF<Bits<8>>,
+    pdc_r: DFF<Bits<3>>,
+    pinc: Signal<Local, Bits<8>>,
+    guard: Signal<Local, Bit>,
+    pch_one: Signal<Local, Bit>,
+    pch_two: Signal<Local, Bit>,
+    guard_on: Constant<Bit>,
+    guard_lim: Constant<Bits<8>>,
+    guard_decay: Constant<Bits<3>>,
     _n: usize,
     _m: usize,
     _dn: usize,
@@ -233,6 +244,15 @@ impl HubCore {
             rep_dom: Default::default(),
             rep_rec_w: Default::default(),
             rep_gl: Default::default(),
+            pest_r: Default::default(),
+            pdc_r: Default::default(),
+            pinc: Default::default(),
+            guard: Default::default(),
+            pch_one: Default::default(),
+            pch_two: Default::default(),
+            guard_on: Constant::new(m > 0 && cfg.peer_guard > 0),
+            guard_lim: Constant::new((8 * cfg.peer_guard).into()),
+            guard_decay: Constant::new(cfg.sub_bic_decay.into()),
             _n: n,
             _m: m,
             _dn: dn,
@@ -248,6 +268,10 @@ impl HubCore {
     /// (combinational, meaningful after the inputs have settled).
     pub fn blame_any(&self) -> bool {
         self.any_blame.val()
+    }
+    /// Simulation probe: the hub's estimate of the peer's sublink counters (§5.20).
+    pub fn peer_estimate(&self) -> u64 {
+        self.pest_r.q.val().index() as u64
     }
     /// Simulation probe: the port judge unit of port `i`.
     pub fn port_judge(&self, i: usize) -> &JudgeUnit {
@@ -404,6 +428,45 @@ impl Logic for HubCore {
                 self.pd_one.next = true;
             }
         }
+        // §5.20 peer guard: the peer charges its sublinks for the episodes that this hub
+        // charges to its ports, and takes one off every `sub_bic_decay` good frames; this
+        // hub follows that count with the largest charge of a port in each clock; the guard
+        // acts only on a port charged alone (two ports charged at once: no culprit)
+        self.pinc.next = 0.into();
+        self.pch_one.next = false;
+        self.pch_two.next = false;
+        for i in 0..self._n {
+            if self.pj[i].step.val() > self.pinc.val() {
+                self.pinc.next = self.pj[i].step.val();
+            }
+            if self.pj[i].step.val() != 0 {
+                self.pch_two.next = self.pch_two.val() | self.pch_one.val();
+                self.pch_one.next = true;
+            }
+        }
+        self.guard.next = self.guard_on.val() & (self.pest_r.q.val() >= self.guard_lim.val()) & !self.pch_two.val();
+        self.pest_r.clock.next = self.clock.val();
+        self.pdc_r.clock.next = self.clock.val();
+        self.pest_r.d.next = self.pest_r.q.val();
+        self.pdc_r.d.next = self.pdc_r.q.val();
+        if self.pinc.val() != 0 {
+            if self.pest_r.q.val() > 231 {
+                self.pest_r.d.next = 255.into();
+            } else {
+                self.pest_r.d.next = self.pest_r.q.val() + self.pinc.val();
+            }
+        } else if self.mon_sample.val() & self.mon_frame_ok.val() & (self.pest_r.q.val() != 0) {
+            if (self.pdc_r.q.val() + 1) >= self.guard_decay.val() {
+                self.pdc_r.d.next = 0.into();
+                self.pest_r.d.next = self.pest_r.q.val() - 1;
+            } else {
+                self.pdc_r.d.next = self.pdc_r.q.val() + 1;
+            }
+        }
+        if self.reset.val() {
+            self.pest_r.d.next = 0.into();
+            self.pdc_r.d.next = 0.into();
+        }
         // port judges
         self.any_blame.next = false;
         self.any_sub_blame.next = false;
@@ -450,6 +513,7 @@ impl Logic for HubCore {
             self.pj[i].ff.next = self.ff_r.q.val();
             self.pj[i].others_dom.next = self.pd_two.val() | (self.pd_one.val() & (self.coupler.u[i].val() | self.pj[i].dis.val())) | self.sd_one.val();
             self.pj[i].gl_others.next = self.gl_two.val() | (self.gl_one.val() & !self.pj[i].glf.val());
+            self.pj[i].guard.next = self.guard.val();
             self.pj[i].bit_start.next = self.mon_bit_start.val();
             self.pj[i].bs_cnt.next = self.bs_r.q.val();
             self.pj[i].delim.next = self.delim_z.val();
@@ -530,6 +594,7 @@ impl Logic for HubCore {
             self.sj[j].gl_others.next = self.gl_port.val() | self.glo_two.val() | (self.glo_one.val() & !self.sj[j].glf_own.val());
             self.sj[j].rep_blamed.next = self.sub_bl_r.q.val();
             self.sj[j].common.next = self.sub_all_an.val() & self.sub_two.val();
+            self.sj[j].guard.next = false;
         }
         self.efgen.clock.next = self.clock.val();
         self.efgen.reset.next = self.reset.val();

@@ -550,11 +550,16 @@ pub struct JudgeUnit {
     /// Another enabled unit of the hub has glitched since the last SOF (from the units'
     /// `glf` outputs): this unit's error flag may be the reaction to that glitch.
     pub gl_others: Signal<In, Bit>,
+    /// §5.20 peer guard (ports; 0 for sublinks): the hub's estimate of the peer's sublink
+    /// counters is at its limit, so a charge of a port already charged before isolates it.
+    pub guard: Signal<In, Bit>,
     pub dis: Signal<Out, Bit>,
     pub blame: Signal<Out, Bit>,
     /// `blame` that is charged (not suppressed by another unit's glitch; with the first
     /// flagger and the common-glitch episode of §5.14, one clock after the sample).
     pub charged: Signal<Out, Bit>,
+    /// What this clock's charge adds to `bic` (0 without a charge; §5.20 peer estimate).
+    pub step: Signal<Out, Bits<8>>,
     pub tx_error: Signal<Out, Bit>,
     /// Strobe: a glitch on this unit's input.
     pub glitch: Signal<Out, Bit>,
@@ -718,9 +723,11 @@ impl JudgeUnit {
             ff: Default::default(),
             others_dom: Default::default(),
             gl_others: Default::default(),
+            guard: Default::default(),
             dis: Default::default(),
             blame: Default::default(),
             charged: Default::default(),
+            step: Default::default(),
             tx_error: Default::default(),
             glitch: Default::default(),
             anomaly: Default::default(),
@@ -912,6 +919,13 @@ impl Logic for JudgeUnit {
         self.late.next = self.ffc.val() | self.pge.val();
         self.blame.next = (self.sample.val() & self.unj.val() & self.enabled.val()) | self.late.val();
         self.charged.next = self.charge.val() | self.late.val();
+        if self.late.val() {
+            self.step.next = 8.into();
+        } else if self.charge.val() {
+            self.step.next = self.c_step.val();
+        } else {
+            self.step.next = 0.into();
+        }
         self.ch_r.d.next = self.charge.val();
         // (port units only: `nack_on` is the port-unit constant)
         self.tx_error.next = self.sample.val()
@@ -1130,7 +1144,8 @@ impl Logic for JudgeUnit {
                 | (self.dbc_r.q.val() >= self.dbc_thr.val())
                 | (self.gc_r.q.val() >= self.glitch_limit.val())
                 | (self.rep_on.val() & (self.pgc_r.q.val() >= self.pg_limit.val()))
-                | (self.rep_on.val() & (self.rep_r.q.val() >= self.rep_limit.val())))
+                | (self.rep_on.val() & (self.rep_r.q.val() >= self.rep_limit.val()))
+                | (self.guard.val() & self.charged.val() & (self.bic_r.q.val() != 0)))
         {
             self.dis_r.d.next = true;
         }

@@ -61,6 +61,7 @@ fn judge_stim(j: &mut JudgeUnit, rng: &mut rand_chacha::ChaCha8Rng, c: usize) {
         j.ack_slot.next = f == 9;
         j.ack_delim.next = f == 10;
         j.eof_1_6.next = (64..70).contains(&phase);
+        j.eof_last.next = phase == 70;
         j.im_2.next = phase == 72;
         j.frame_ok.next = phase == 70;
         j.crc_ok.next = rng.gen_bool(0.9);
@@ -81,6 +82,7 @@ fn judge_stim(j: &mut JudgeUnit, rng: &mut rand_chacha::ChaCha8Rng, c: usize) {
         j.rep_glitched.next = rng.gen_ratio(1, 4);
         j.rep_blamed.next = rng.gen_ratio(1, 6);
         j.common.next = rng.gen_ratio(1, 5);
+        j.guard.next = rng.gen_ratio(1, 10);
     }
     // bit-start estimate and its counter; an occasional mid-bit level change (a glitch)
     j.bit_start.next = k == 0;
@@ -93,7 +95,7 @@ fn judge_stim(j: &mut JudgeUnit, rng: &mut rand_chacha::ChaCha8Rng, c: usize) {
 #[test]
 #[ignore = "needs iverilog, verilator and yosys: run scripts/test-all.sh"]
 fn port_judge_flow() {
-    let mut j = JudgeUnit::port(JudgeParams { reintegration: Some(3), first_flagger: true, ..params() });
+    let mut j = JudgeUnit::port(JudgeParams { reintegration: Some(3), first_flagger: true, eof_last: true, ..params() });
     flow::full_check(&mut j, "port_judge", 100_000, 21, judge_stim).expect("port judge flow");
 }
 

@@ -41,6 +41,7 @@ struct Map {
     pj_charged: Vec<usize>,
     sj_charged: Vec<usize>,
     pj_glitch: Vec<usize>,
+    pj_guard: Vec<usize>,
     sj_glitch: Vec<usize>,
     pj_bic: Vec<usize>,
     pj_dbc: Vec<usize>,
@@ -90,7 +91,9 @@ pub fn core_reader_signals(n: usize, k: usize) -> Vec<String> {
         v.extend((0..n).map(|i| format!("pj${i}.{what}")));
         v.extend((0..k).map(|j| format!("sj${j}.{what}")));
     }
-    // (the peer-hub and replica counters exist in sublink units only)
+    // (the peer guard input exists in port units only; the peer-hub and replica counters
+    // in sublink units only)
+    v.extend((0..n).map(|i| format!("pj${i}.guard")));
     for what in ["pgc", "rep_cnt"] {
         v.extend((0..k).map(|j| format!("sj${j}.{what}")));
     }
@@ -131,6 +134,7 @@ impl Map {
             sj_charged: each(k, &|j| atom(&format!("core.sj${j}.charged")))?,
             pj_glitch: each(n, &|i| atom(&format!("core.pj${i}.glitch")))?,
             sj_glitch: each(k, &|j| atom(&format!("core.sj${j}.glitch")))?,
+            pj_guard: each(n, &|i| atom(&format!("core.pj${i}.guard")))?,
             pj_bic: each(n, &|i| atom(&format!("core.pj${i}.bic")))?,
             pj_dbc: each(n, &|i| atom(&format!("core.pj${i}.dbc")))?,
             sj_bic: each(k, &|j| atom(&format!("core.sj${j}.bic")))?,
@@ -354,6 +358,8 @@ readers! {
     sub_charged(j) -> bool: |h| h.core().sublink_judge(j).charged.val(), |m, p| m.atom(p.sj_charged[j]) != 0;
     /// Port judge `i` sees a glitch (a pulse shorter than a bit) in this clock.
     port_glitch(i) -> bool: |h| h.core().port_judge(i).glitch.val(), |m, p| m.atom(p.pj_glitch[i]) != 0;
+    /// Port judge `i`'s peer guard input (§5.20): a charge now isolates the port.
+    port_guard(i) -> bool: |h| h.core().port_judge(i).guard.val(), |m, p| m.atom(p.pj_guard[i]) != 0;
     /// Sublink judge `j` sees a glitch in this clock.
     sub_glitch(j) -> bool: |h| h.core().sublink_judge(j).glitch.val(), |m, p| m.atom(p.sj_glitch[j]) != 0;
     port_bic(i) -> u64: |h| h.core().port_judge(i).bic.val().index() as u64, |m, p| m.atom(p.pj_bic[i]) as u64;

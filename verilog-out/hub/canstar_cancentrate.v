@@ -729,6 +729,9 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
     localparam  down_code$0 = 2'b0;
     localparam  down_code$1 = 2'b0;
     localparam  down_code$2 = 2'b0;
+    localparam  guard_on = 1'b0;
+    localparam  guard_lim = 8'h38;
+    localparam  guard_decay = 3'b10;
     
     // Stub signals
     reg  coupler$clock;
@@ -828,9 +831,11 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
     reg  pj$0$ff;
     reg  pj$0$others_dom;
     reg  pj$0$gl_others;
+    reg  pj$0$guard;
     wire  pj$0$dis;
     wire  pj$0$blame;
     wire  pj$0$charged;
+    wire  [7:0] pj$0$step;
     wire  pj$0$tx_error;
     wire  pj$0$glitch;
     wire  pj$0$anomaly;
@@ -880,9 +885,11 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
     reg  pj$1$ff;
     reg  pj$1$others_dom;
     reg  pj$1$gl_others;
+    reg  pj$1$guard;
     wire  pj$1$dis;
     wire  pj$1$blame;
     wire  pj$1$charged;
+    wire  [7:0] pj$1$step;
     wire  pj$1$tx_error;
     wire  pj$1$glitch;
     wire  pj$1$anomaly;
@@ -932,9 +939,11 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
     reg  pj$2$ff;
     reg  pj$2$others_dom;
     reg  pj$2$gl_others;
+    reg  pj$2$guard;
     wire  pj$2$dis;
     wire  pj$2$blame;
     wire  pj$2$charged;
+    wire  [7:0] pj$2$step;
     wire  pj$2$tx_error;
     wire  pj$2$glitch;
     wire  pj$2$anomaly;
@@ -965,6 +974,12 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
     reg  bt_prev$d;
     wire  bt_prev$q;
     reg  bt_prev$clock;
+    reg  [7:0] pest_r$d;
+    wire  [7:0] pest_r$q;
+    reg  pest_r$clock;
+    reg  [2:0] pdc_r$d;
+    wire  [2:0] pdc_r$q;
+    reg  pdc_r$clock;
     
     // Local signals
     reg  gl_one;
@@ -991,6 +1006,10 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
     reg  rep_dom;
     reg  rep_rec_w;
     reg  rep_gl;
+    reg  [7:0] pinc;
+    reg  guard;
+    reg  pch_one;
+    reg  pch_two;
     
     // Sub module instances
     canstar_cancentrate_core$core$coupler coupler(
@@ -1107,9 +1126,11 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         .ff(pj$0$ff),
         .others_dom(pj$0$others_dom),
         .gl_others(pj$0$gl_others),
+        .guard(pj$0$guard),
         .dis(pj$0$dis),
         .blame(pj$0$blame),
         .charged(pj$0$charged),
+        .step(pj$0$step),
         .tx_error(pj$0$tx_error),
         .glitch(pj$0$glitch),
         .anomaly(pj$0$anomaly),
@@ -1161,9 +1182,11 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         .ff(pj$1$ff),
         .others_dom(pj$1$others_dom),
         .gl_others(pj$1$gl_others),
+        .guard(pj$1$guard),
         .dis(pj$1$dis),
         .blame(pj$1$blame),
         .charged(pj$1$charged),
+        .step(pj$1$step),
         .tx_error(pj$1$tx_error),
         .glitch(pj$1$glitch),
         .anomaly(pj$1$anomaly),
@@ -1215,9 +1238,11 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         .ff(pj$2$ff),
         .others_dom(pj$2$others_dom),
         .gl_others(pj$2$gl_others),
+        .guard(pj$2$guard),
         .dis(pj$2$dis),
         .blame(pj$2$blame),
         .charged(pj$2$charged),
+        .step(pj$2$step),
         .tx_error(pj$2$tx_error),
         .glitch(pj$2$glitch),
         .anomaly(pj$2$anomaly),
@@ -1258,6 +1283,16 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         .d(bt_prev$d),
         .q(bt_prev$q),
         .clock(bt_prev$clock)
+    );
+    canstar_cancentrate_core$core$pest_r pest_r(
+        .d(pest_r$d),
+        .q(pest_r$q),
+        .clock(pest_r$clock)
+    );
+    canstar_cancentrate_core$core$pdc_r pdc_r(
+        .d(pdc_r$d),
+        .q(pdc_r$q),
+        .clock(pdc_r$clock)
     );
     
     // Update code
@@ -1366,6 +1401,56 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
             pd_two = pd_two | pd_one;
             pd_one = 1'b1;
         end
+        pinc = 32'h0;
+        pch_one = 1'b0;
+        pch_two = 1'b0;
+        if (pj$0$step > pinc) begin
+            pinc = pj$0$step;
+        end
+        if (pj$0$step != 32'h0) begin
+            pch_two = pch_two | pch_one;
+            pch_one = 1'b1;
+        end
+        if (pj$1$step > pinc) begin
+            pinc = pj$1$step;
+        end
+        if (pj$1$step != 32'h0) begin
+            pch_two = pch_two | pch_one;
+            pch_one = 1'b1;
+        end
+        if (pj$2$step > pinc) begin
+            pinc = pj$2$step;
+        end
+        if (pj$2$step != 32'h0) begin
+            pch_two = pch_two | pch_one;
+            pch_one = 1'b1;
+        end
+        guard = guard_on & (pest_r$q >= guard_lim) & ~pch_two;
+        pest_r$clock = clock;
+        pdc_r$clock = clock;
+        pest_r$d = pest_r$q;
+        pdc_r$d = pdc_r$q;
+        if (pinc != 32'h0) begin
+            if (pest_r$q > 32'he7) begin
+                pest_r$d = 32'hff;
+            end
+            else begin
+                pest_r$d = pest_r$q + pinc;
+            end
+        end
+        else if (mon_sample & mon_frame_ok & (pest_r$q != 32'h0)) begin
+            if ((pdc_r$q + 32'h1) >= guard_decay) begin
+                pdc_r$d = 32'h0;
+                pest_r$d = pest_r$q - 32'h1;
+            end
+            else begin
+                pdc_r$d = pdc_r$q + 32'h1;
+            end
+        end
+        if (reset) begin
+            pest_r$d = 32'h0;
+            pdc_r$d = 32'h0;
+        end
         any_blame = 1'b0;
         any_sub_blame = 1'b0;
         any_tx_error = 1'b0;
@@ -1411,6 +1496,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         pj$0$ff = ff_r$q;
         pj$0$others_dom = pd_two | (pd_one & (coupler$u$0 | pj$0$dis)) | sd_one;
         pj$0$gl_others = gl_two | (gl_one & ~pj$0$glf);
+        pj$0$guard = guard;
         pj$0$bit_start = mon_bit_start;
         pj$0$bs_cnt = bs_r$q;
         pj$0$delim = delim_z;
@@ -1460,6 +1546,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         pj$1$ff = ff_r$q;
         pj$1$others_dom = pd_two | (pd_one & (coupler$u$1 | pj$1$dis)) | sd_one;
         pj$1$gl_others = gl_two | (gl_one & ~pj$1$glf);
+        pj$1$guard = guard;
         pj$1$bit_start = mon_bit_start;
         pj$1$bs_cnt = bs_r$q;
         pj$1$delim = delim_z;
@@ -1509,6 +1596,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         pj$2$ff = ff_r$q;
         pj$2$others_dom = pd_two | (pd_one & (coupler$u$2 | pj$2$dis)) | sd_one;
         pj$2$gl_others = gl_two | (gl_one & ~pj$2$glf);
+        pj$2$guard = guard;
         pj$2$bit_start = mon_bit_start;
         pj$2$bs_cnt = bs_r$q;
         pj$2$delim = delim_z;
@@ -2520,7 +2608,45 @@ module canstar_cancentrate_core$core$injector$state(d,q,clock);
 endmodule // canstar_cancentrate_core$core$injector$state
 
 
-module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,eof_last,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,rep_mask,rep_other,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
+module canstar_cancentrate_core$core$pdc_r(d,q,clock);
+    
+    // Module arguments
+    input wire  [2:0] d;
+    output reg  [2:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 3'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pdc_r
+
+
+module canstar_cancentrate_core$core$pest_r(d,q,clock);
+    
+    // Module arguments
+    input wire  [7:0] d;
+    output reg  [7:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 8'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pest_r
+
+
+module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,eof_last,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,rep_mask,rep_other,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,guard,dis,blame,charged,step,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
     
     // Module arguments
     input wire  clock;
@@ -2557,9 +2683,11 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
     input wire  ff;
     input wire  others_dom;
     input wire  gl_others;
+    input wire  guard;
     output reg  dis;
     output reg  blame;
     output reg  charged;
+    output reg  [7:0] step;
     output reg  tx_error;
     output reg  glitch;
     output reg  anomaly;
@@ -3059,6 +3187,15 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         late = ffc | pge;
         blame = (sample & unj & enabled) | late;
         charged = charge | late;
+        if (late) begin
+            step = 32'h8;
+        end
+        else if (charge) begin
+            step = c_step;
+        end
+        else begin
+            step = 32'h0;
+        end
         ch_r$d = charge;
         tx_error = sample & nack_on & enabled & cont_r$q & tx_region & ~arb & c & ~bt & ~err_phase;
         if (sample) begin
@@ -3217,7 +3354,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
                 rep_r$d = rep_r$q + 32'h1;
             end
         end
-        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (rep_on & (pgc_r$q >= pg_limit)) | (rep_on & (rep_r$q >= rep_limit)))) begin
+        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (rep_on & (pgc_r$q >= pg_limit)) | (rep_on & (rep_r$q >= rep_limit)) | (guard & charged & (bic_r$q != 32'h0)))) begin
             dis_r$d = 1'b1;
         end
         if (enabled) begin
@@ -4172,7 +4309,7 @@ module canstar_cancentrate_core$core$pj$0$seen_dom_crc(d,q,clock);
 endmodule // canstar_cancentrate_core$core$pj$0$seen_dom_crc
 
 
-module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,eof_last,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,rep_mask,rep_other,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
+module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,eof_last,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,rep_mask,rep_other,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,guard,dis,blame,charged,step,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
     
     // Module arguments
     input wire  clock;
@@ -4209,9 +4346,11 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
     input wire  ff;
     input wire  others_dom;
     input wire  gl_others;
+    input wire  guard;
     output reg  dis;
     output reg  blame;
     output reg  charged;
+    output reg  [7:0] step;
     output reg  tx_error;
     output reg  glitch;
     output reg  anomaly;
@@ -4711,6 +4850,15 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         late = ffc | pge;
         blame = (sample & unj & enabled) | late;
         charged = charge | late;
+        if (late) begin
+            step = 32'h8;
+        end
+        else if (charge) begin
+            step = c_step;
+        end
+        else begin
+            step = 32'h0;
+        end
         ch_r$d = charge;
         tx_error = sample & nack_on & enabled & cont_r$q & tx_region & ~arb & c & ~bt & ~err_phase;
         if (sample) begin
@@ -4869,7 +5017,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
                 rep_r$d = rep_r$q + 32'h1;
             end
         end
-        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (rep_on & (pgc_r$q >= pg_limit)) | (rep_on & (rep_r$q >= rep_limit)))) begin
+        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (rep_on & (pgc_r$q >= pg_limit)) | (rep_on & (rep_r$q >= rep_limit)) | (guard & charged & (bic_r$q != 32'h0)))) begin
             dis_r$d = 1'b1;
         end
         if (enabled) begin
@@ -5824,7 +5972,7 @@ module canstar_cancentrate_core$core$pj$1$seen_dom_crc(d,q,clock);
 endmodule // canstar_cancentrate_core$core$pj$1$seen_dom_crc
 
 
-module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,eof_last,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,rep_mask,rep_other,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
+module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,eof_last,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,rep_mask,rep_other,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,guard,dis,blame,charged,step,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
     
     // Module arguments
     input wire  clock;
@@ -5861,9 +6009,11 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
     input wire  ff;
     input wire  others_dom;
     input wire  gl_others;
+    input wire  guard;
     output reg  dis;
     output reg  blame;
     output reg  charged;
+    output reg  [7:0] step;
     output reg  tx_error;
     output reg  glitch;
     output reg  anomaly;
@@ -6363,6 +6513,15 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         late = ffc | pge;
         blame = (sample & unj & enabled) | late;
         charged = charge | late;
+        if (late) begin
+            step = 32'h8;
+        end
+        else if (charge) begin
+            step = c_step;
+        end
+        else begin
+            step = 32'h0;
+        end
         ch_r$d = charge;
         tx_error = sample & nack_on & enabled & cont_r$q & tx_region & ~arb & c & ~bt & ~err_phase;
         if (sample) begin
@@ -6521,7 +6680,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
                 rep_r$d = rep_r$q + 32'h1;
             end
         end
-        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (rep_on & (pgc_r$q >= pg_limit)) | (rep_on & (rep_r$q >= rep_limit)))) begin
+        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (rep_on & (pgc_r$q >= pg_limit)) | (rep_on & (rep_r$q >= rep_limit)) | (guard & charged & (bic_r$q != 32'h0)))) begin
             dis_r$d = 1'b1;
         end
         if (enabled) begin

@@ -791,6 +791,9 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     localparam  down_code$2 = 2'b0;
     localparam  hub_code$0 = 2'b0;
     localparam  hub_code$1 = 2'b0;
+    localparam  guard_on = 1'b1;
+    localparam  guard_lim = 8'h38;
+    localparam  guard_decay = 3'b10;
     
     // Stub signals
     reg  coupler$clock;
@@ -900,9 +903,11 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     reg  pj$0$ff;
     reg  pj$0$others_dom;
     reg  pj$0$gl_others;
+    reg  pj$0$guard;
     wire  pj$0$dis;
     wire  pj$0$blame;
     wire  pj$0$charged;
+    wire  [7:0] pj$0$step;
     wire  pj$0$tx_error;
     wire  pj$0$glitch;
     wire  pj$0$anomaly;
@@ -952,9 +957,11 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     reg  pj$1$ff;
     reg  pj$1$others_dom;
     reg  pj$1$gl_others;
+    reg  pj$1$guard;
     wire  pj$1$dis;
     wire  pj$1$blame;
     wire  pj$1$charged;
+    wire  [7:0] pj$1$step;
     wire  pj$1$tx_error;
     wire  pj$1$glitch;
     wire  pj$1$anomaly;
@@ -1004,9 +1011,11 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     reg  pj$2$ff;
     reg  pj$2$others_dom;
     reg  pj$2$gl_others;
+    reg  pj$2$guard;
     wire  pj$2$dis;
     wire  pj$2$blame;
     wire  pj$2$charged;
+    wire  [7:0] pj$2$step;
     wire  pj$2$tx_error;
     wire  pj$2$glitch;
     wire  pj$2$anomaly;
@@ -1056,9 +1065,11 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     reg  sj$0$ff;
     reg  sj$0$others_dom;
     reg  sj$0$gl_others;
+    reg  sj$0$guard;
     wire  sj$0$dis;
     wire  sj$0$blame;
     wire  sj$0$charged;
+    wire  [7:0] sj$0$step;
     wire  sj$0$tx_error;
     wire  sj$0$glitch;
     wire  sj$0$anomaly;
@@ -1108,9 +1119,11 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     reg  sj$1$ff;
     reg  sj$1$others_dom;
     reg  sj$1$gl_others;
+    reg  sj$1$guard;
     wire  sj$1$dis;
     wire  sj$1$blame;
     wire  sj$1$charged;
+    wire  [7:0] sj$1$step;
     wire  sj$1$tx_error;
     wire  sj$1$glitch;
     wire  sj$1$anomaly;
@@ -1141,6 +1154,12 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     reg  bt_prev$d;
     wire  bt_prev$q;
     reg  bt_prev$clock;
+    reg  [7:0] pest_r$d;
+    wire  [7:0] pest_r$q;
+    reg  pest_r$clock;
+    reg  [2:0] pdc_r$d;
+    wire  [2:0] pdc_r$q;
+    reg  pdc_r$clock;
     
     // Local signals
     reg  gl_one;
@@ -1167,6 +1186,10 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     reg  rep_dom;
     reg  rep_rec_w;
     reg  rep_gl;
+    reg  [7:0] pinc;
+    reg  guard;
+    reg  pch_one;
+    reg  pch_two;
     
     // Sub module instances
     canstar_hub_core$core$coupler coupler(
@@ -1293,9 +1316,11 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .ff(pj$0$ff),
         .others_dom(pj$0$others_dom),
         .gl_others(pj$0$gl_others),
+        .guard(pj$0$guard),
         .dis(pj$0$dis),
         .blame(pj$0$blame),
         .charged(pj$0$charged),
+        .step(pj$0$step),
         .tx_error(pj$0$tx_error),
         .glitch(pj$0$glitch),
         .anomaly(pj$0$anomaly),
@@ -1347,9 +1372,11 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .ff(pj$1$ff),
         .others_dom(pj$1$others_dom),
         .gl_others(pj$1$gl_others),
+        .guard(pj$1$guard),
         .dis(pj$1$dis),
         .blame(pj$1$blame),
         .charged(pj$1$charged),
+        .step(pj$1$step),
         .tx_error(pj$1$tx_error),
         .glitch(pj$1$glitch),
         .anomaly(pj$1$anomaly),
@@ -1401,9 +1428,11 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .ff(pj$2$ff),
         .others_dom(pj$2$others_dom),
         .gl_others(pj$2$gl_others),
+        .guard(pj$2$guard),
         .dis(pj$2$dis),
         .blame(pj$2$blame),
         .charged(pj$2$charged),
+        .step(pj$2$step),
         .tx_error(pj$2$tx_error),
         .glitch(pj$2$glitch),
         .anomaly(pj$2$anomaly),
@@ -1455,9 +1484,11 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .ff(sj$0$ff),
         .others_dom(sj$0$others_dom),
         .gl_others(sj$0$gl_others),
+        .guard(sj$0$guard),
         .dis(sj$0$dis),
         .blame(sj$0$blame),
         .charged(sj$0$charged),
+        .step(sj$0$step),
         .tx_error(sj$0$tx_error),
         .glitch(sj$0$glitch),
         .anomaly(sj$0$anomaly),
@@ -1509,9 +1540,11 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .ff(sj$1$ff),
         .others_dom(sj$1$others_dom),
         .gl_others(sj$1$gl_others),
+        .guard(sj$1$guard),
         .dis(sj$1$dis),
         .blame(sj$1$blame),
         .charged(sj$1$charged),
+        .step(sj$1$step),
         .tx_error(sj$1$tx_error),
         .glitch(sj$1$glitch),
         .anomaly(sj$1$anomaly),
@@ -1552,6 +1585,16 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .d(bt_prev$d),
         .q(bt_prev$q),
         .clock(bt_prev$clock)
+    );
+    canstar_hub_core$core$pest_r pest_r(
+        .d(pest_r$d),
+        .q(pest_r$q),
+        .clock(pest_r$clock)
+    );
+    canstar_hub_core$core$pdc_r pdc_r(
+        .d(pdc_r$d),
+        .q(pdc_r$q),
+        .clock(pdc_r$clock)
     );
     
     // Update code
@@ -1722,6 +1765,56 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
             pd_two = pd_two | pd_one;
             pd_one = 1'b1;
         end
+        pinc = 32'h0;
+        pch_one = 1'b0;
+        pch_two = 1'b0;
+        if (pj$0$step > pinc) begin
+            pinc = pj$0$step;
+        end
+        if (pj$0$step != 32'h0) begin
+            pch_two = pch_two | pch_one;
+            pch_one = 1'b1;
+        end
+        if (pj$1$step > pinc) begin
+            pinc = pj$1$step;
+        end
+        if (pj$1$step != 32'h0) begin
+            pch_two = pch_two | pch_one;
+            pch_one = 1'b1;
+        end
+        if (pj$2$step > pinc) begin
+            pinc = pj$2$step;
+        end
+        if (pj$2$step != 32'h0) begin
+            pch_two = pch_two | pch_one;
+            pch_one = 1'b1;
+        end
+        guard = guard_on & (pest_r$q >= guard_lim) & ~pch_two;
+        pest_r$clock = clock;
+        pdc_r$clock = clock;
+        pest_r$d = pest_r$q;
+        pdc_r$d = pdc_r$q;
+        if (pinc != 32'h0) begin
+            if (pest_r$q > 32'he7) begin
+                pest_r$d = 32'hff;
+            end
+            else begin
+                pest_r$d = pest_r$q + pinc;
+            end
+        end
+        else if (mon_sample & mon_frame_ok & (pest_r$q != 32'h0)) begin
+            if ((pdc_r$q + 32'h1) >= guard_decay) begin
+                pdc_r$d = 32'h0;
+                pest_r$d = pest_r$q - 32'h1;
+            end
+            else begin
+                pdc_r$d = pdc_r$q + 32'h1;
+            end
+        end
+        if (reset) begin
+            pest_r$d = 32'h0;
+            pdc_r$d = 32'h0;
+        end
         any_blame = 1'b0;
         any_sub_blame = 1'b0;
         any_tx_error = 1'b0;
@@ -1767,6 +1860,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         pj$0$ff = ff_r$q;
         pj$0$others_dom = pd_two | (pd_one & (coupler$u$0 | pj$0$dis)) | sd_one;
         pj$0$gl_others = gl_two | (gl_one & ~pj$0$glf);
+        pj$0$guard = guard;
         pj$0$bit_start = mon_bit_start;
         pj$0$bs_cnt = bs_r$q;
         pj$0$delim = delim_z;
@@ -1816,6 +1910,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         pj$1$ff = ff_r$q;
         pj$1$others_dom = pd_two | (pd_one & (coupler$u$1 | pj$1$dis)) | sd_one;
         pj$1$gl_others = gl_two | (gl_one & ~pj$1$glf);
+        pj$1$guard = guard;
         pj$1$bit_start = mon_bit_start;
         pj$1$bs_cnt = bs_r$q;
         pj$1$delim = delim_z;
@@ -1865,6 +1960,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         pj$2$ff = ff_r$q;
         pj$2$others_dom = pd_two | (pd_one & (coupler$u$2 | pj$2$dis)) | sd_one;
         pj$2$gl_others = gl_two | (gl_one & ~pj$2$glf);
+        pj$2$guard = guard;
         pj$2$bit_start = mon_bit_start;
         pj$2$bs_cnt = bs_r$q;
         pj$2$delim = delim_z;
@@ -1953,12 +2049,14 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         sj$0$gl_others = gl_port | glo_two | (glo_one & ~sj$0$glf_own);
         sj$0$rep_blamed = sub_bl_r$q;
         sj$0$common = sub_all_an & sub_two;
+        sj$0$guard = 1'b0;
         sj$1$err_start = err_start_r$q;
         sj$1$ff = ff_r$q;
         sj$1$others_dom = pd_one;
         sj$1$gl_others = gl_port | glo_two | (glo_one & ~sj$1$glf_own);
         sj$1$rep_blamed = sub_bl_r$q;
         sj$1$common = sub_all_an & sub_two;
+        sj$1$guard = 1'b0;
         efgen$clock = clock;
         efgen$reset = reset;
         efgen$trigger = trigger;
@@ -3268,7 +3366,45 @@ module canstar_hub_core$core$injector$state(d,q,clock);
 endmodule // canstar_hub_core$core$injector$state
 
 
-module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,eof_last,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,rep_mask,rep_other,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
+module canstar_hub_core$core$pdc_r(d,q,clock);
+    
+    // Module arguments
+    input wire  [2:0] d;
+    output reg  [2:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 3'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pdc_r
+
+
+module canstar_hub_core$core$pest_r(d,q,clock);
+    
+    // Module arguments
+    input wire  [7:0] d;
+    output reg  [7:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 8'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pest_r
+
+
+module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,eof_last,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,rep_mask,rep_other,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,guard,dis,blame,charged,step,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
     
     // Module arguments
     input wire  clock;
@@ -3305,9 +3441,11 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     input wire  ff;
     input wire  others_dom;
     input wire  gl_others;
+    input wire  guard;
     output reg  dis;
     output reg  blame;
     output reg  charged;
+    output reg  [7:0] step;
     output reg  tx_error;
     output reg  glitch;
     output reg  anomaly;
@@ -3807,6 +3945,15 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         late = ffc | pge;
         blame = (sample & unj & enabled) | late;
         charged = charge | late;
+        if (late) begin
+            step = 32'h8;
+        end
+        else if (charge) begin
+            step = c_step;
+        end
+        else begin
+            step = 32'h0;
+        end
         ch_r$d = charge;
         tx_error = sample & nack_on & enabled & cont_r$q & tx_region & ~arb & c & ~bt & ~err_phase;
         if (sample) begin
@@ -3965,7 +4112,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                 rep_r$d = rep_r$q + 32'h1;
             end
         end
-        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (rep_on & (pgc_r$q >= pg_limit)) | (rep_on & (rep_r$q >= rep_limit)))) begin
+        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (rep_on & (pgc_r$q >= pg_limit)) | (rep_on & (rep_r$q >= rep_limit)) | (guard & charged & (bic_r$q != 32'h0)))) begin
             dis_r$d = 1'b1;
         end
         if (enabled) begin
@@ -4920,7 +5067,7 @@ module canstar_hub_core$core$pj$0$seen_dom_crc(d,q,clock);
 endmodule // canstar_hub_core$core$pj$0$seen_dom_crc
 
 
-module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,eof_last,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,rep_mask,rep_other,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
+module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,eof_last,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,rep_mask,rep_other,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,guard,dis,blame,charged,step,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
     
     // Module arguments
     input wire  clock;
@@ -4957,9 +5104,11 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     input wire  ff;
     input wire  others_dom;
     input wire  gl_others;
+    input wire  guard;
     output reg  dis;
     output reg  blame;
     output reg  charged;
+    output reg  [7:0] step;
     output reg  tx_error;
     output reg  glitch;
     output reg  anomaly;
@@ -5459,6 +5608,15 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         late = ffc | pge;
         blame = (sample & unj & enabled) | late;
         charged = charge | late;
+        if (late) begin
+            step = 32'h8;
+        end
+        else if (charge) begin
+            step = c_step;
+        end
+        else begin
+            step = 32'h0;
+        end
         ch_r$d = charge;
         tx_error = sample & nack_on & enabled & cont_r$q & tx_region & ~arb & c & ~bt & ~err_phase;
         if (sample) begin
@@ -5617,7 +5775,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                 rep_r$d = rep_r$q + 32'h1;
             end
         end
-        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (rep_on & (pgc_r$q >= pg_limit)) | (rep_on & (rep_r$q >= rep_limit)))) begin
+        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (rep_on & (pgc_r$q >= pg_limit)) | (rep_on & (rep_r$q >= rep_limit)) | (guard & charged & (bic_r$q != 32'h0)))) begin
             dis_r$d = 1'b1;
         end
         if (enabled) begin
@@ -6572,7 +6730,7 @@ module canstar_hub_core$core$pj$1$seen_dom_crc(d,q,clock);
 endmodule // canstar_hub_core$core$pj$1$seen_dom_crc
 
 
-module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,eof_last,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,rep_mask,rep_other,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
+module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,eof_last,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,rep_mask,rep_other,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,guard,dis,blame,charged,step,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
     
     // Module arguments
     input wire  clock;
@@ -6609,9 +6767,11 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     input wire  ff;
     input wire  others_dom;
     input wire  gl_others;
+    input wire  guard;
     output reg  dis;
     output reg  blame;
     output reg  charged;
+    output reg  [7:0] step;
     output reg  tx_error;
     output reg  glitch;
     output reg  anomaly;
@@ -7111,6 +7271,15 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         late = ffc | pge;
         blame = (sample & unj & enabled) | late;
         charged = charge | late;
+        if (late) begin
+            step = 32'h8;
+        end
+        else if (charge) begin
+            step = c_step;
+        end
+        else begin
+            step = 32'h0;
+        end
         ch_r$d = charge;
         tx_error = sample & nack_on & enabled & cont_r$q & tx_region & ~arb & c & ~bt & ~err_phase;
         if (sample) begin
@@ -7269,7 +7438,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                 rep_r$d = rep_r$q + 32'h1;
             end
         end
-        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (rep_on & (pgc_r$q >= pg_limit)) | (rep_on & (rep_r$q >= rep_limit)))) begin
+        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (rep_on & (pgc_r$q >= pg_limit)) | (rep_on & (rep_r$q >= rep_limit)) | (guard & charged & (bic_r$q != 32'h0)))) begin
             dis_r$d = 1'b1;
         end
         if (enabled) begin
@@ -8281,7 +8450,7 @@ module canstar_hub_core$core$sd_run(d,q,clock);
 endmodule // canstar_hub_core$core$sd_run
 
 
-module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,eof_last,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,rep_mask,rep_other,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
+module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,eof_last,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,rep_mask,rep_other,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,guard,dis,blame,charged,step,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
     
     // Module arguments
     input wire  clock;
@@ -8318,9 +8487,11 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     input wire  ff;
     input wire  others_dom;
     input wire  gl_others;
+    input wire  guard;
     output reg  dis;
     output reg  blame;
     output reg  charged;
+    output reg  [7:0] step;
     output reg  tx_error;
     output reg  glitch;
     output reg  anomaly;
@@ -8820,6 +8991,15 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         late = ffc | pge;
         blame = (sample & unj & enabled) | late;
         charged = charge | late;
+        if (late) begin
+            step = 32'h8;
+        end
+        else if (charge) begin
+            step = c_step;
+        end
+        else begin
+            step = 32'h0;
+        end
         ch_r$d = charge;
         tx_error = sample & nack_on & enabled & cont_r$q & tx_region & ~arb & c & ~bt & ~err_phase;
         if (sample) begin
@@ -8978,7 +9158,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                 rep_r$d = rep_r$q + 32'h1;
             end
         end
-        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (rep_on & (pgc_r$q >= pg_limit)) | (rep_on & (rep_r$q >= rep_limit)))) begin
+        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (rep_on & (pgc_r$q >= pg_limit)) | (rep_on & (rep_r$q >= rep_limit)) | (guard & charged & (bic_r$q != 32'h0)))) begin
             dis_r$d = 1'b1;
         end
         if (enabled) begin
@@ -9933,7 +10113,7 @@ module canstar_hub_core$core$sj$0$seen_dom_crc(d,q,clock);
 endmodule // canstar_hub_core$core$sj$0$seen_dom_crc
 
 
-module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,eof_last,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,rep_mask,rep_other,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,dis,blame,charged,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
+module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,eof_last,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,rep_mask,rep_other,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,guard,dis,blame,charged,step,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
     
     // Module arguments
     input wire  clock;
@@ -9970,9 +10150,11 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     input wire  ff;
     input wire  others_dom;
     input wire  gl_others;
+    input wire  guard;
     output reg  dis;
     output reg  blame;
     output reg  charged;
+    output reg  [7:0] step;
     output reg  tx_error;
     output reg  glitch;
     output reg  anomaly;
@@ -10472,6 +10654,15 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         late = ffc | pge;
         blame = (sample & unj & enabled) | late;
         charged = charge | late;
+        if (late) begin
+            step = 32'h8;
+        end
+        else if (charge) begin
+            step = c_step;
+        end
+        else begin
+            step = 32'h0;
+        end
         ch_r$d = charge;
         tx_error = sample & nack_on & enabled & cont_r$q & tx_region & ~arb & c & ~bt & ~err_phase;
         if (sample) begin
@@ -10630,7 +10821,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                 rep_r$d = rep_r$q + 32'h1;
             end
         end
-        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (rep_on & (pgc_r$q >= pg_limit)) | (rep_on & (rep_r$q >= rep_limit)))) begin
+        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (rep_on & (pgc_r$q >= pg_limit)) | (rep_on & (rep_r$q >= rep_limit)) | (guard & charged & (bic_r$q != 32'h0)))) begin
             dis_r$d = 1'b1;
         end
         if (enabled) begin
