@@ -14,7 +14,7 @@ pub struct JudgeCounts {
     pub gc: u64,
     pub pgc: u64,
     pub rep_cnt: u64,
-    /// The unit was charged while the hub's peer guard (§5.20) was on (ports only).
+    /// The unit was charged while the hub's peer guard (hub.md §5.20) was on (ports only).
     pub guard: bool,
 }
 
@@ -73,7 +73,7 @@ mod tests {
             isolation_cause(&sp, true, &peer),
             format!("peer-hub glitches {0}/{0}, replica {1}/{1}", sp.peer_glitch_limit, sp.replica_limit)
         );
-        // the peer guard isolates a charged port whatever its counters (§5.20)
+        // the peer guard isolates a charged port whatever its counters (hub.md §5.20)
         let guard = JudgeCounts { bic: 16, guard: true, ..none };
         assert_eq!(isolation_cause(&pp, false, &guard), "peer guard");
         assert_eq!(isolation_cause(&sp, true, &guard), "no counter at its limit");

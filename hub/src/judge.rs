@@ -436,6 +436,15 @@
 //! `recan/tests/hub_system.rs`
 //! (`slow_bit_flipping_uplink_isolated_by_lifetime_counter`: the glitch counter alone
 //! isolates a flip every 1201 bits).
+//!
+//! **§5.20 peer guard (added).** A port unit also isolates when its `guard` input is on
+//! and it is charged while its `bic` is not 0. The hub ([`crate::hub::HubCore`]) raises
+//! `guard` while its estimate of the peer's sublink counters (every port charge added, the
+//! sublinks' decay) is at `8 x peer_guard` and this port is the only one charged in the
+//! clock. Without it, two faulty ports in a row behind a healthy peer let the peer's
+//! sublinks, charged for both, overtake the second port. `step` reports each charge's size
+//! for that estimate. Test: `hub/tests/hub_traffic.rs`
+//! `peer_guard_isolates_a_second_faulty_port_at_its_second_charge`.
 
 use crate::pulse::PulseCheck;
 use rust_hdl::prelude::*;

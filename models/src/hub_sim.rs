@@ -358,7 +358,7 @@ readers! {
     sub_charged(j) -> bool: |h| h.core().sublink_judge(j).charged.val(), |m, p| m.atom(p.sj_charged[j]) != 0;
     /// Port judge `i` sees a glitch (a pulse shorter than a bit) in this clock.
     port_glitch(i) -> bool: |h| h.core().port_judge(i).glitch.val(), |m, p| m.atom(p.pj_glitch[i]) != 0;
-    /// Port judge `i`'s peer guard input (§5.20): a charge now isolates the port.
+    /// Port judge `i`'s peer guard input (hub.md §5.20): a charge now isolates the port.
     port_guard(i) -> bool: |h| h.core().port_judge(i).guard.val(), |m, p| m.atom(p.pj_guard[i]) != 0;
     /// Sublink judge `j` sees a glitch in this clock.
     sub_glitch(j) -> bool: |h| h.core().sublink_judge(j).glitch.val(), |m, p| m.atom(p.sj_glitch[j]) != 0;
