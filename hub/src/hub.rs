@@ -142,7 +142,11 @@ pub struct HubCore {
     /// decay count, the largest charge of a port in this clock, and the guard itself.
     pest_r: DFF<Bits<8>>,
     pdc_r: DFF<Bits<3>>,
-    pinc: Signal<Local, Bits<8>>,
+    /// a good frame ended at the last clock's sample (the decay, in step with the units'
+    /// registered charge steps)
+    fok_r: DFF<Bit>,
+    pinc: Signal<Local, Bits<2>>,
+    pstep: Signal<Local, Bits<8>>,
     guard: Signal<Local, Bit>,
     pch_one: Signal<Local, Bit>,
     pch_two: Signal<Local, Bit>,
@@ -246,7 +250,9 @@ impl HubCore {
             rep_gl: Default::default(),
             pest_r: Default::default(),
             pdc_r: Default::default(),
+            fok_r: Default::default(),
             pinc: Default::default(),
+            pstep: Default::default(),
             guard: Default::default(),
             pch_one: Default::default(),
             pch_two: Default::default(),
@@ -431,7 +437,8 @@ impl Logic for HubCore {
         // §5.20 peer guard: the peer charges its sublinks for the episodes that this hub
         // charges to its ports, and takes one off every `sub_bic_decay` good frames; this
         // hub follows that count with the largest charge of a port in each clock; the guard
-        // acts only on a port charged alone (two ports charged at once: no culprit)
+        // acts only on a port charged alone (two ports charged at once: no culprit). All
+        // one clock late: the units' `step` is registered, and so is the good frame.
         self.pinc.next = 0.into();
         self.pch_one.next = false;
         self.pch_two.next = false;
@@ -449,13 +456,23 @@ impl Logic for HubCore {
         self.pdc_r.clock.next = self.clock.val();
         self.pest_r.d.next = self.pest_r.q.val();
         self.pdc_r.d.next = self.pdc_r.q.val();
+        self.fok_r.clock.next = self.clock.val();
+        self.fok_r.d.next = self.mon_sample.val() & self.mon_frame_ok.val();
+        // (8 per blame, at most 3 blames: saturating below 232)
+        if self.pinc.val() == 3 {
+            self.pstep.next = 24.into();
+        } else if self.pinc.val() == 2 {
+            self.pstep.next = 16.into();
+        } else {
+            self.pstep.next = 8.into();
+        }
         if self.pinc.val() != 0 {
             if self.pest_r.q.val() > 231 {
                 self.pest_r.d.next = 255.into();
             } else {
-                self.pest_r.d.next = self.pest_r.q.val() + self.pinc.val();
+                self.pest_r.d.next = self.pest_r.q.val() + self.pstep.val();
             }
-        } else if self.mon_sample.val() & self.mon_frame_ok.val() & (self.pest_r.q.val() != 0) {
+        } else if self.fok_r.q.val() & (self.pest_r.q.val() != 0) {
             if (self.pdc_r.q.val() + 1) >= self.guard_decay.val() {
                 self.pdc_r.d.next = 0.into();
                 self.pest_r.d.next = self.pest_r.q.val() - 1;
@@ -466,6 +483,7 @@ impl Logic for HubCore {
         if self.reset.val() {
             self.pest_r.d.next = 0.into();
             self.pdc_r.d.next = 0.into();
+            self.fok_r.d.next = false;
         }
         // port judges
         self.any_blame.next = false;

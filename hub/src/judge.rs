@@ -438,10 +438,12 @@
 //! isolates a flip every 1201 bits).
 //!
 //! **§5.20 peer guard (added).** A port unit also isolates when its `guard` input is on
-//! and it is charged while its `bic` is not 0. The hub ([`crate::hub::HubCore`]) raises
-//! `guard` while its estimate of the peer's sublink counters (every port charge added, the
-//! sublinks' decay) is at `8 x peer_guard` and this port is the only one charged in the
-//! clock. Without it, two faulty ports in a row behind a healthy peer let the peer's
+//! and it was charged in the last clock while its `bic` was not 0 before. The hub
+//! ([`crate::hub::HubCore`]) raises `guard` while its estimate of the peer's sublink
+//! counters (every port charge added, the sublinks' decay) is at `8 x peer_guard` and
+//! this port was the only one charged in the last clock. The decision comes from
+//! registers one clock after the charge (`step_r`, `bnz_r`): taken in the clock of the
+//! charge, it cost the hub 19 MHz of fmax. Without it, two faulty ports in a row behind a healthy peer let the peer's
 //! sublinks, charged for both, overtake the second port. `step` reports each charge's size
 //! for that estimate. Test: `hub/tests/hub_traffic.rs`
 //! `peer_guard_isolates_a_second_faulty_port_at_its_second_charge`.
@@ -560,15 +562,18 @@ pub struct JudgeUnit {
     /// `glf` outputs): this unit's error flag may be the reaction to that glitch.
     pub gl_others: Signal<In, Bit>,
     /// §5.20 peer guard (ports; 0 for sublinks): the hub's estimate of the peer's sublink
-    /// counters is at its limit, so a charge of a port already charged before isolates it.
+    /// counters is at its limit and this port alone was charged in the last clock, so
+    /// that charge isolates it if `bic` was not 0 before it (all from registers: one clock
+    /// after the charge).
     pub guard: Signal<In, Bit>,
     pub dis: Signal<Out, Bit>,
     pub blame: Signal<Out, Bit>,
     /// `blame` that is charged (not suppressed by another unit's glitch; with the first
     /// flagger and the common-glitch episode of §5.14, one clock after the sample).
     pub charged: Signal<Out, Bit>,
-    /// What this clock's charge adds to `bic` (0 without a charge; §5.20 peer estimate).
-    pub step: Signal<Out, Bits<8>>,
+    /// Blames the last clock's charge added to `bic` (0 without a charge, else 1 or
+    /// `delim_blames`; registered, for the hub's §5.20 peer estimate).
+    pub step: Signal<Out, Bits<2>>,
     pub tx_error: Signal<Out, Bit>,
     /// Strobe: a glitch on this unit's input.
     pub glitch: Signal<Out, Bit>,
@@ -597,6 +602,7 @@ pub struct JudgeUnit {
     /// which that step saturates (255 minus the step).
     d_step: Constant<Bits<8>>,
     d_sat: Constant<Bits<8>>,
+    d_bl: Constant<Bits<2>>,
     b_decay: Constant<Bits<3>>,
     life_limit: Constant<Bits<7>>,
     dbc_thr: Constant<Bits<5>>,
@@ -655,9 +661,15 @@ pub struct JudgeUnit {
     od_r: DFF<Bit>,
     dprev: DFF<Bit>,
     fol_r: DFF<Bit>,
+    /// §5.20: the last clock's charge step (the `step` output) and whether `bic` was not 0
+    /// in the last clock.
+    step_r: DFF<Bits<2>>,
+    bnz_r: DFF<Bit>,
     fol: Signal<Local, Bit>,
     c_step: Signal<Local, Bits<8>>,
     c_sat: Signal<Local, Bits<8>>,
+    /// `c_step` in blames (1 or `delim_blames`)
+    c_bl: Signal<Local, Bits<2>>,
     ffc: Signal<Local, Bit>,
     pge: Signal<Local, Bit>,
     late: Signal<Local, Bit>,
@@ -756,6 +768,7 @@ impl JudgeUnit {
             bic_limit: Constant::new(p.bic_limit.into()),
             d_step: Constant::new((8 * p.delim_blames).into()),
             d_sat: Constant::new((255 - 8 * p.delim_blames).into()),
+            d_bl: Constant::new(p.delim_blames.into()),
             b_decay: Constant::new(p.bic_decay.into()),
             life_limit: Constant::new(p.life_limit.into()),
             dbc_thr: Constant::new(p.dbc_threshold.into()),
@@ -809,9 +822,12 @@ impl JudgeUnit {
             od_r: Default::default(),
             dprev: Default::default(),
             fol_r: Default::default(),
+            step_r: Default::default(),
+            bnz_r: Default::default(),
             fol: Default::default(),
             c_step: Default::default(),
             c_sat: Default::default(),
+            c_bl: Default::default(),
             ffc: Default::default(),
             pge: Default::default(),
             late: Default::default(),
@@ -844,7 +860,7 @@ impl JudgeUnit {
 impl Logic for JudgeUnit {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, dis_r, bic_r, bdec_r, life_r, dbc_r, nack_r, cont_r, rep_r, rep_seen, rep_first_dom, rd_run, ok_r, acked, bad, ack_missing, ack_c, ack_rx, seen_dom, seen_dom_crc, dom_bs, gc_r, gdec_r, an_r, pgc_r, pdec_r, ffd_r, glf_r, glo_r, pgl_r, sdp_r, ch_r, od_r, dprev, fol_r, bl_r, bl_dm_r, gpend);
+        dff_setup!(self, clock, dis_r, bic_r, bdec_r, life_r, dbc_r, nack_r, cont_r, rep_r, rep_seen, rep_first_dom, rd_run, ok_r, acked, bad, ack_missing, ack_c, ack_rx, seen_dom, seen_dom_crc, dom_bs, gc_r, gdec_r, an_r, pgc_r, pdec_r, ffd_r, glf_r, glo_r, pgl_r, sdp_r, ch_r, od_r, dprev, fol_r, step_r, bnz_r, bl_r, bl_dm_r, gpend);
         self.pulse.clock.next = self.clock.val();
         self.pulse.reset.next = self.reset.val();
         self.pulse.c.next = self.c.val();
@@ -884,9 +900,11 @@ impl Logic for JudgeUnit {
         if self.delim.val() & !self.fol.val() {
             self.c_step.next = self.d_step.val();
             self.c_sat.next = self.d_sat.val();
+            self.c_bl.next = self.d_bl.val();
         } else {
             self.c_step.next = 8.into();
             self.c_sat.next = 247.into();
+            self.c_bl.next = 1.into();
         }
         // early-ACK rule: in the CRC delimiter only a dominant level from `win_lag` up to
         // `crc_end` clocks after the bit start counts (registered: seen at the sample);
@@ -929,12 +947,14 @@ impl Logic for JudgeUnit {
         self.blame.next = (self.sample.val() & self.unj.val() & self.enabled.val()) | self.late.val();
         self.charged.next = self.charge.val() | self.late.val();
         if self.late.val() {
-            self.step.next = 8.into();
+            self.step_r.d.next = 1.into();
         } else if self.charge.val() {
-            self.step.next = self.c_step.val();
+            self.step_r.d.next = self.c_bl.val();
         } else {
-            self.step.next = 0.into();
+            self.step_r.d.next = 0.into();
         }
+        self.step.next = self.step_r.q.val();
+        self.bnz_r.d.next = self.bic_r.q.val() != 0;
         self.ch_r.d.next = self.charge.val();
         // (port units only: `nack_on` is the port-unit constant)
         self.tx_error.next = self.sample.val()
@@ -1154,7 +1174,7 @@ impl Logic for JudgeUnit {
                 | (self.gc_r.q.val() >= self.glitch_limit.val())
                 | (self.rep_on.val() & (self.pgc_r.q.val() >= self.pg_limit.val()))
                 | (self.rep_on.val() & (self.rep_r.q.val() >= self.rep_limit.val()))
-                | (self.guard.val() & self.charged.val() & (self.bic_r.q.val() != 0)))
+                | (self.guard.val() & (self.step_r.q.val() != 0) & self.bnz_r.q.val()))
         {
             self.dis_r.d.next = true;
         }
@@ -1223,6 +1243,8 @@ impl Logic for JudgeUnit {
             self.od_r.d.next = false;
             self.dprev.d.next = false;
             self.fol_r.d.next = false;
+            self.step_r.d.next = 0.into();
+            self.bnz_r.d.next = false;
         }
         self.dis.next = self.dis_r.q.val();
         self.bic.next = self.bic_r.q.val();

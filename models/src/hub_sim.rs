@@ -42,6 +42,7 @@ struct Map {
     sj_charged: Vec<usize>,
     pj_glitch: Vec<usize>,
     pj_guard: Vec<usize>,
+    pj_step: Vec<usize>,
     sj_glitch: Vec<usize>,
     pj_bic: Vec<usize>,
     pj_dbc: Vec<usize>,
@@ -93,7 +94,7 @@ pub fn core_reader_signals(n: usize, k: usize) -> Vec<String> {
     }
     // (the peer guard input exists in port units only; the peer-hub and replica counters
     // in sublink units only)
-    v.extend((0..n).map(|i| format!("pj${i}.guard")));
+    v.extend((0..n).flat_map(|i| [format!("pj${i}.guard"), format!("pj${i}.step")]));
     for what in ["pgc", "rep_cnt"] {
         v.extend((0..k).map(|j| format!("sj${j}.{what}")));
     }
@@ -135,6 +136,7 @@ impl Map {
             pj_glitch: each(n, &|i| atom(&format!("core.pj${i}.glitch")))?,
             sj_glitch: each(k, &|j| atom(&format!("core.sj${j}.glitch")))?,
             pj_guard: each(n, &|i| atom(&format!("core.pj${i}.guard")))?,
+            pj_step: each(n, &|i| atom(&format!("core.pj${i}.step")))?,
             pj_bic: each(n, &|i| atom(&format!("core.pj${i}.bic")))?,
             pj_dbc: each(n, &|i| atom(&format!("core.pj${i}.dbc")))?,
             sj_bic: each(k, &|j| atom(&format!("core.sj${j}.bic")))?,
@@ -358,8 +360,11 @@ readers! {
     sub_charged(j) -> bool: |h| h.core().sublink_judge(j).charged.val(), |m, p| m.atom(p.sj_charged[j]) != 0;
     /// Port judge `i` sees a glitch (a pulse shorter than a bit) in this clock.
     port_glitch(i) -> bool: |h| h.core().port_judge(i).glitch.val(), |m, p| m.atom(p.pj_glitch[i]) != 0;
-    /// Port judge `i`'s peer guard input (hub.md §5.20): a charge now isolates the port.
+    /// Port judge `i`'s peer guard input (hub.md §5.20): the last clock's charge isolates
+    /// the port.
     port_guard(i) -> bool: |h| h.core().port_judge(i).guard.val(), |m, p| m.atom(p.pj_guard[i]) != 0;
+    /// What port judge `i` charged in the last clock (hub.md §5.20).
+    port_step(i) -> u64: |h| h.core().port_judge(i).step.val().index() as u64, |m, p| m.atom(p.pj_step[i]) as u64;
     /// Sublink judge `j` sees a glitch in this clock.
     sub_glitch(j) -> bool: |h| h.core().sublink_judge(j).glitch.val(), |m, p| m.atom(p.sj_glitch[j]) != 0;
     port_bic(i) -> u64: |h| h.core().port_judge(i).bic.val().index() as u64, |m, p| m.atom(p.pj_bic[i]) as u64;

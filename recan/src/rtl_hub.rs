@@ -318,7 +318,7 @@ impl Component for RtlHub {
                 } else {
                     let c = &mut st.last_counts[i];
                     (c.bic, c.life, c.dbc, c.gc) = (hub.port_bic(i), hub.port_life(i), hub.port_dbc(i), hub.port_gc(i));
-                    c.guard = hub.port_guard(i) && hub.port_charged(i);
+                    c.guard = hub.port_guard(i) && hub.port_step(i) != 0;
                 }
             }
             if st.silent_at[i].is_none() && hub.silent(i) {

@@ -835,7 +835,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
     wire  pj$0$dis;
     wire  pj$0$blame;
     wire  pj$0$charged;
-    wire  [7:0] pj$0$step;
+    wire  [1:0] pj$0$step;
     wire  pj$0$tx_error;
     wire  pj$0$glitch;
     wire  pj$0$anomaly;
@@ -889,7 +889,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
     wire  pj$1$dis;
     wire  pj$1$blame;
     wire  pj$1$charged;
-    wire  [7:0] pj$1$step;
+    wire  [1:0] pj$1$step;
     wire  pj$1$tx_error;
     wire  pj$1$glitch;
     wire  pj$1$anomaly;
@@ -943,7 +943,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
     wire  pj$2$dis;
     wire  pj$2$blame;
     wire  pj$2$charged;
-    wire  [7:0] pj$2$step;
+    wire  [1:0] pj$2$step;
     wire  pj$2$tx_error;
     wire  pj$2$glitch;
     wire  pj$2$anomaly;
@@ -980,6 +980,9 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
     reg  [2:0] pdc_r$d;
     wire  [2:0] pdc_r$q;
     reg  pdc_r$clock;
+    reg  fok_r$d;
+    wire  fok_r$q;
+    reg  fok_r$clock;
     
     // Local signals
     reg  gl_one;
@@ -1006,7 +1009,8 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
     reg  rep_dom;
     reg  rep_rec_w;
     reg  rep_gl;
-    reg  [7:0] pinc;
+    reg  [1:0] pinc;
+    reg  [7:0] pstep;
     reg  guard;
     reg  pch_one;
     reg  pch_two;
@@ -1294,6 +1298,11 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         .q(pdc_r$q),
         .clock(pdc_r$clock)
     );
+    canstar_cancentrate_core$core$fok_r fok_r(
+        .d(fok_r$d),
+        .q(fok_r$q),
+        .clock(fok_r$clock)
+    );
     
     // Update code
     always @(*) begin
@@ -1430,15 +1439,26 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         pdc_r$clock = clock;
         pest_r$d = pest_r$q;
         pdc_r$d = pdc_r$q;
+        fok_r$clock = clock;
+        fok_r$d = mon_sample & mon_frame_ok;
+        if (pinc == 32'h3) begin
+            pstep = 32'h18;
+        end
+        else if (pinc == 32'h2) begin
+            pstep = 32'h10;
+        end
+        else begin
+            pstep = 32'h8;
+        end
         if (pinc != 32'h0) begin
             if (pest_r$q > 32'he7) begin
                 pest_r$d = 32'hff;
             end
             else begin
-                pest_r$d = pest_r$q + pinc;
+                pest_r$d = pest_r$q + pstep;
             end
         end
-        else if (mon_sample & mon_frame_ok & (pest_r$q != 32'h0)) begin
+        else if (fok_r$q & (pest_r$q != 32'h0)) begin
             if ((pdc_r$q + 32'h1) >= guard_decay) begin
                 pdc_r$d = 32'h0;
                 pest_r$d = pest_r$q - 32'h1;
@@ -1450,6 +1470,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         if (reset) begin
             pest_r$d = 32'h0;
             pdc_r$d = 32'h0;
+            fok_r$d = 1'b0;
         end
         any_blame = 1'b0;
         any_sub_blame = 1'b0;
@@ -2438,6 +2459,25 @@ module canstar_cancentrate_core$core$ff_r(d,q,clock);
 endmodule // canstar_cancentrate_core$core$ff_r
 
 
+module canstar_cancentrate_core$core$fok_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$fok_r
+
+
 module canstar_cancentrate_core$core$injector(clock,reset,button,sample,field,eof_last,active,armed);
     
     // Module arguments
@@ -2687,7 +2727,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
     output reg  dis;
     output reg  blame;
     output reg  charged;
-    output reg  [7:0] step;
+    output reg  [1:0] step;
     output reg  tx_error;
     output reg  glitch;
     output reg  anomaly;
@@ -2708,6 +2748,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
     localparam  bic_limit = 8'h30;
     localparam  d_step = 8'h18;
     localparam  d_sat = 8'he7;
+    localparam  d_bl = 2'b11;
     localparam  b_decay = 3'b10;
     localparam  life_limit = 7'b100000;
     localparam  dbc_thr = 5'b1101;
@@ -2835,6 +2876,12 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
     reg  fol_r$d;
     wire  fol_r$q;
     reg  fol_r$clock;
+    reg  [1:0] step_r$d;
+    wire  [1:0] step_r$q;
+    reg  step_r$clock;
+    reg  bnz_r$d;
+    wire  bnz_r$q;
+    reg  bnz_r$clock;
     reg  bl_r$d;
     wire  bl_r$q;
     reg  bl_r$clock;
@@ -2849,6 +2896,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
     reg  fol;
     reg  [7:0] c_step;
     reg  [7:0] c_sat;
+    reg  [1:0] c_bl;
     reg  ffc;
     reg  pge;
     reg  late;
@@ -3041,6 +3089,16 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         .q(fol_r$q),
         .clock(fol_r$clock)
     );
+    canstar_cancentrate_core$core$pj$0$step_r step_r(
+        .d(step_r$d),
+        .q(step_r$q),
+        .clock(step_r$clock)
+    );
+    canstar_cancentrate_core$core$pj$0$bnz_r bnz_r(
+        .d(bnz_r$d),
+        .q(bnz_r$q),
+        .clock(bnz_r$clock)
+    );
     canstar_cancentrate_core$core$pj$0$bl_r bl_r(
         .d(bl_r$d),
         .q(bl_r$q),
@@ -3093,6 +3151,8 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         od_r$clock = clock;
         dprev$clock = clock;
         fol_r$clock = clock;
+        step_r$clock = clock;
+        bnz_r$clock = clock;
         bl_r$clock = clock;
         bl_dm_r$clock = clock;
         gpend$clock = clock;
@@ -3130,6 +3190,8 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         od_r$d = od_r$q;
         dprev$d = dprev$q;
         fol_r$d = fol_r$q;
+        step_r$d = step_r$q;
+        bnz_r$d = bnz_r$q;
         bl_r$d = bl_r$q;
         bl_dm_r$d = bl_dm_r$q;
         gpend$d = gpend$q;
@@ -3167,10 +3229,12 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         if (delim & ~fol) begin
             c_step = d_step;
             c_sat = d_sat;
+            c_bl = d_bl;
         end
         else begin
             c_step = 32'h8;
             c_sat = 32'hf7;
+            c_bl = 32'h1;
         end
         if (bit_start) begin
             seen_dom_crc$d = 1'b0;
@@ -3188,14 +3252,16 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         blame = (sample & unj & enabled) | late;
         charged = charge | late;
         if (late) begin
-            step = 32'h8;
+            step_r$d = 32'h1;
         end
         else if (charge) begin
-            step = c_step;
+            step_r$d = c_bl;
         end
         else begin
-            step = 32'h0;
+            step_r$d = 32'h0;
         end
+        step = step_r$q;
+        bnz_r$d = bic_r$q != 32'h0;
         ch_r$d = charge;
         tx_error = sample & nack_on & enabled & cont_r$q & tx_region & ~arb & c & ~bt & ~err_phase;
         if (sample) begin
@@ -3354,7 +3420,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
                 rep_r$d = rep_r$q + 32'h1;
             end
         end
-        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (rep_on & (pgc_r$q >= pg_limit)) | (rep_on & (rep_r$q >= rep_limit)) | (guard & charged & (bic_r$q != 32'h0)))) begin
+        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (rep_on & (pgc_r$q >= pg_limit)) | (rep_on & (rep_r$q >= rep_limit)) | (guard & (step_r$q != 32'h0) & bnz_r$q))) begin
             dis_r$d = 1'b1;
         end
         if (enabled) begin
@@ -3423,6 +3489,8 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
             od_r$d = 1'b0;
             dprev$d = 1'b0;
             fol_r$d = 1'b0;
+            step_r$d = 32'h0;
+            bnz_r$d = 1'b0;
         end
         dis = dis_r$q;
         bic = bic_r$q;
@@ -3630,6 +3698,25 @@ module canstar_cancentrate_core$core$pj$0$bl_r(d,q,clock);
     end
           
 endmodule // canstar_cancentrate_core$core$pj$0$bl_r
+
+
+module canstar_cancentrate_core$core$pj$0$bnz_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$0$bnz_r
 
 
 module canstar_cancentrate_core$core$pj$0$ch_r(d,q,clock);
@@ -4309,6 +4396,25 @@ module canstar_cancentrate_core$core$pj$0$seen_dom_crc(d,q,clock);
 endmodule // canstar_cancentrate_core$core$pj$0$seen_dom_crc
 
 
+module canstar_cancentrate_core$core$pj$0$step_r(d,q,clock);
+    
+    // Module arguments
+    input wire  [1:0] d;
+    output reg  [1:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 2'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$0$step_r
+
+
 module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,eof_last,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,rep_mask,rep_other,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,guard,dis,blame,charged,step,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
     
     // Module arguments
@@ -4350,7 +4456,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
     output reg  dis;
     output reg  blame;
     output reg  charged;
-    output reg  [7:0] step;
+    output reg  [1:0] step;
     output reg  tx_error;
     output reg  glitch;
     output reg  anomaly;
@@ -4371,6 +4477,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
     localparam  bic_limit = 8'h30;
     localparam  d_step = 8'h18;
     localparam  d_sat = 8'he7;
+    localparam  d_bl = 2'b11;
     localparam  b_decay = 3'b10;
     localparam  life_limit = 7'b100000;
     localparam  dbc_thr = 5'b1101;
@@ -4498,6 +4605,12 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
     reg  fol_r$d;
     wire  fol_r$q;
     reg  fol_r$clock;
+    reg  [1:0] step_r$d;
+    wire  [1:0] step_r$q;
+    reg  step_r$clock;
+    reg  bnz_r$d;
+    wire  bnz_r$q;
+    reg  bnz_r$clock;
     reg  bl_r$d;
     wire  bl_r$q;
     reg  bl_r$clock;
@@ -4512,6 +4625,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
     reg  fol;
     reg  [7:0] c_step;
     reg  [7:0] c_sat;
+    reg  [1:0] c_bl;
     reg  ffc;
     reg  pge;
     reg  late;
@@ -4704,6 +4818,16 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         .q(fol_r$q),
         .clock(fol_r$clock)
     );
+    canstar_cancentrate_core$core$pj$1$step_r step_r(
+        .d(step_r$d),
+        .q(step_r$q),
+        .clock(step_r$clock)
+    );
+    canstar_cancentrate_core$core$pj$1$bnz_r bnz_r(
+        .d(bnz_r$d),
+        .q(bnz_r$q),
+        .clock(bnz_r$clock)
+    );
     canstar_cancentrate_core$core$pj$1$bl_r bl_r(
         .d(bl_r$d),
         .q(bl_r$q),
@@ -4756,6 +4880,8 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         od_r$clock = clock;
         dprev$clock = clock;
         fol_r$clock = clock;
+        step_r$clock = clock;
+        bnz_r$clock = clock;
         bl_r$clock = clock;
         bl_dm_r$clock = clock;
         gpend$clock = clock;
@@ -4793,6 +4919,8 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         od_r$d = od_r$q;
         dprev$d = dprev$q;
         fol_r$d = fol_r$q;
+        step_r$d = step_r$q;
+        bnz_r$d = bnz_r$q;
         bl_r$d = bl_r$q;
         bl_dm_r$d = bl_dm_r$q;
         gpend$d = gpend$q;
@@ -4830,10 +4958,12 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         if (delim & ~fol) begin
             c_step = d_step;
             c_sat = d_sat;
+            c_bl = d_bl;
         end
         else begin
             c_step = 32'h8;
             c_sat = 32'hf7;
+            c_bl = 32'h1;
         end
         if (bit_start) begin
             seen_dom_crc$d = 1'b0;
@@ -4851,14 +4981,16 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         blame = (sample & unj & enabled) | late;
         charged = charge | late;
         if (late) begin
-            step = 32'h8;
+            step_r$d = 32'h1;
         end
         else if (charge) begin
-            step = c_step;
+            step_r$d = c_bl;
         end
         else begin
-            step = 32'h0;
+            step_r$d = 32'h0;
         end
+        step = step_r$q;
+        bnz_r$d = bic_r$q != 32'h0;
         ch_r$d = charge;
         tx_error = sample & nack_on & enabled & cont_r$q & tx_region & ~arb & c & ~bt & ~err_phase;
         if (sample) begin
@@ -5017,7 +5149,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
                 rep_r$d = rep_r$q + 32'h1;
             end
         end
-        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (rep_on & (pgc_r$q >= pg_limit)) | (rep_on & (rep_r$q >= rep_limit)) | (guard & charged & (bic_r$q != 32'h0)))) begin
+        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (rep_on & (pgc_r$q >= pg_limit)) | (rep_on & (rep_r$q >= rep_limit)) | (guard & (step_r$q != 32'h0) & bnz_r$q))) begin
             dis_r$d = 1'b1;
         end
         if (enabled) begin
@@ -5086,6 +5218,8 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
             od_r$d = 1'b0;
             dprev$d = 1'b0;
             fol_r$d = 1'b0;
+            step_r$d = 32'h0;
+            bnz_r$d = 1'b0;
         end
         dis = dis_r$q;
         bic = bic_r$q;
@@ -5293,6 +5427,25 @@ module canstar_cancentrate_core$core$pj$1$bl_r(d,q,clock);
     end
           
 endmodule // canstar_cancentrate_core$core$pj$1$bl_r
+
+
+module canstar_cancentrate_core$core$pj$1$bnz_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$1$bnz_r
 
 
 module canstar_cancentrate_core$core$pj$1$ch_r(d,q,clock);
@@ -5972,6 +6125,25 @@ module canstar_cancentrate_core$core$pj$1$seen_dom_crc(d,q,clock);
 endmodule // canstar_cancentrate_core$core$pj$1$seen_dom_crc
 
 
+module canstar_cancentrate_core$core$pj$1$step_r(d,q,clock);
+    
+    // Module arguments
+    input wire  [1:0] d;
+    output reg  [1:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 2'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$1$step_r
+
+
 module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,eof_last,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,rep_mask,rep_other,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,guard,dis,blame,charged,step,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
     
     // Module arguments
@@ -6013,7 +6185,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
     output reg  dis;
     output reg  blame;
     output reg  charged;
-    output reg  [7:0] step;
+    output reg  [1:0] step;
     output reg  tx_error;
     output reg  glitch;
     output reg  anomaly;
@@ -6034,6 +6206,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
     localparam  bic_limit = 8'h30;
     localparam  d_step = 8'h18;
     localparam  d_sat = 8'he7;
+    localparam  d_bl = 2'b11;
     localparam  b_decay = 3'b10;
     localparam  life_limit = 7'b100000;
     localparam  dbc_thr = 5'b1101;
@@ -6161,6 +6334,12 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
     reg  fol_r$d;
     wire  fol_r$q;
     reg  fol_r$clock;
+    reg  [1:0] step_r$d;
+    wire  [1:0] step_r$q;
+    reg  step_r$clock;
+    reg  bnz_r$d;
+    wire  bnz_r$q;
+    reg  bnz_r$clock;
     reg  bl_r$d;
     wire  bl_r$q;
     reg  bl_r$clock;
@@ -6175,6 +6354,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
     reg  fol;
     reg  [7:0] c_step;
     reg  [7:0] c_sat;
+    reg  [1:0] c_bl;
     reg  ffc;
     reg  pge;
     reg  late;
@@ -6367,6 +6547,16 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         .q(fol_r$q),
         .clock(fol_r$clock)
     );
+    canstar_cancentrate_core$core$pj$2$step_r step_r(
+        .d(step_r$d),
+        .q(step_r$q),
+        .clock(step_r$clock)
+    );
+    canstar_cancentrate_core$core$pj$2$bnz_r bnz_r(
+        .d(bnz_r$d),
+        .q(bnz_r$q),
+        .clock(bnz_r$clock)
+    );
     canstar_cancentrate_core$core$pj$2$bl_r bl_r(
         .d(bl_r$d),
         .q(bl_r$q),
@@ -6419,6 +6609,8 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         od_r$clock = clock;
         dprev$clock = clock;
         fol_r$clock = clock;
+        step_r$clock = clock;
+        bnz_r$clock = clock;
         bl_r$clock = clock;
         bl_dm_r$clock = clock;
         gpend$clock = clock;
@@ -6456,6 +6648,8 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         od_r$d = od_r$q;
         dprev$d = dprev$q;
         fol_r$d = fol_r$q;
+        step_r$d = step_r$q;
+        bnz_r$d = bnz_r$q;
         bl_r$d = bl_r$q;
         bl_dm_r$d = bl_dm_r$q;
         gpend$d = gpend$q;
@@ -6493,10 +6687,12 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         if (delim & ~fol) begin
             c_step = d_step;
             c_sat = d_sat;
+            c_bl = d_bl;
         end
         else begin
             c_step = 32'h8;
             c_sat = 32'hf7;
+            c_bl = 32'h1;
         end
         if (bit_start) begin
             seen_dom_crc$d = 1'b0;
@@ -6514,14 +6710,16 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         blame = (sample & unj & enabled) | late;
         charged = charge | late;
         if (late) begin
-            step = 32'h8;
+            step_r$d = 32'h1;
         end
         else if (charge) begin
-            step = c_step;
+            step_r$d = c_bl;
         end
         else begin
-            step = 32'h0;
+            step_r$d = 32'h0;
         end
+        step = step_r$q;
+        bnz_r$d = bic_r$q != 32'h0;
         ch_r$d = charge;
         tx_error = sample & nack_on & enabled & cont_r$q & tx_region & ~arb & c & ~bt & ~err_phase;
         if (sample) begin
@@ -6680,7 +6878,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
                 rep_r$d = rep_r$q + 32'h1;
             end
         end
-        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (rep_on & (pgc_r$q >= pg_limit)) | (rep_on & (rep_r$q >= rep_limit)) | (guard & charged & (bic_r$q != 32'h0)))) begin
+        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (rep_on & (pgc_r$q >= pg_limit)) | (rep_on & (rep_r$q >= rep_limit)) | (guard & (step_r$q != 32'h0) & bnz_r$q))) begin
             dis_r$d = 1'b1;
         end
         if (enabled) begin
@@ -6749,6 +6947,8 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
             od_r$d = 1'b0;
             dprev$d = 1'b0;
             fol_r$d = 1'b0;
+            step_r$d = 32'h0;
+            bnz_r$d = 1'b0;
         end
         dis = dis_r$q;
         bic = bic_r$q;
@@ -6956,6 +7156,25 @@ module canstar_cancentrate_core$core$pj$2$bl_r(d,q,clock);
     end
           
 endmodule // canstar_cancentrate_core$core$pj$2$bl_r
+
+
+module canstar_cancentrate_core$core$pj$2$bnz_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$2$bnz_r
 
 
 module canstar_cancentrate_core$core$pj$2$ch_r(d,q,clock);
@@ -7633,6 +7852,25 @@ module canstar_cancentrate_core$core$pj$2$seen_dom_crc(d,q,clock);
     end
           
 endmodule // canstar_cancentrate_core$core$pj$2$seen_dom_crc
+
+
+module canstar_cancentrate_core$core$pj$2$step_r(d,q,clock);
+    
+    // Module arguments
+    input wire  [1:0] d;
+    output reg  [1:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 2'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$2$step_r
 
 
 module canstar_cancentrate_core$core$rst_s1(d,q,clock);

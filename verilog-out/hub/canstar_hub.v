@@ -907,7 +907,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     wire  pj$0$dis;
     wire  pj$0$blame;
     wire  pj$0$charged;
-    wire  [7:0] pj$0$step;
+    wire  [1:0] pj$0$step;
     wire  pj$0$tx_error;
     wire  pj$0$glitch;
     wire  pj$0$anomaly;
@@ -961,7 +961,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     wire  pj$1$dis;
     wire  pj$1$blame;
     wire  pj$1$charged;
-    wire  [7:0] pj$1$step;
+    wire  [1:0] pj$1$step;
     wire  pj$1$tx_error;
     wire  pj$1$glitch;
     wire  pj$1$anomaly;
@@ -1015,7 +1015,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     wire  pj$2$dis;
     wire  pj$2$blame;
     wire  pj$2$charged;
-    wire  [7:0] pj$2$step;
+    wire  [1:0] pj$2$step;
     wire  pj$2$tx_error;
     wire  pj$2$glitch;
     wire  pj$2$anomaly;
@@ -1069,7 +1069,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     wire  sj$0$dis;
     wire  sj$0$blame;
     wire  sj$0$charged;
-    wire  [7:0] sj$0$step;
+    wire  [1:0] sj$0$step;
     wire  sj$0$tx_error;
     wire  sj$0$glitch;
     wire  sj$0$anomaly;
@@ -1123,7 +1123,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     wire  sj$1$dis;
     wire  sj$1$blame;
     wire  sj$1$charged;
-    wire  [7:0] sj$1$step;
+    wire  [1:0] sj$1$step;
     wire  sj$1$tx_error;
     wire  sj$1$glitch;
     wire  sj$1$anomaly;
@@ -1160,6 +1160,9 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     reg  [2:0] pdc_r$d;
     wire  [2:0] pdc_r$q;
     reg  pdc_r$clock;
+    reg  fok_r$d;
+    wire  fok_r$q;
+    reg  fok_r$clock;
     
     // Local signals
     reg  gl_one;
@@ -1186,7 +1189,8 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     reg  rep_dom;
     reg  rep_rec_w;
     reg  rep_gl;
-    reg  [7:0] pinc;
+    reg  [1:0] pinc;
+    reg  [7:0] pstep;
     reg  guard;
     reg  pch_one;
     reg  pch_two;
@@ -1596,6 +1600,11 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .q(pdc_r$q),
         .clock(pdc_r$clock)
     );
+    canstar_hub_core$core$fok_r fok_r(
+        .d(fok_r$d),
+        .q(fok_r$q),
+        .clock(fok_r$clock)
+    );
     
     // Update code
     always @(*) begin
@@ -1794,15 +1803,26 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         pdc_r$clock = clock;
         pest_r$d = pest_r$q;
         pdc_r$d = pdc_r$q;
+        fok_r$clock = clock;
+        fok_r$d = mon_sample & mon_frame_ok;
+        if (pinc == 32'h3) begin
+            pstep = 32'h18;
+        end
+        else if (pinc == 32'h2) begin
+            pstep = 32'h10;
+        end
+        else begin
+            pstep = 32'h8;
+        end
         if (pinc != 32'h0) begin
             if (pest_r$q > 32'he7) begin
                 pest_r$d = 32'hff;
             end
             else begin
-                pest_r$d = pest_r$q + pinc;
+                pest_r$d = pest_r$q + pstep;
             end
         end
-        else if (mon_sample & mon_frame_ok & (pest_r$q != 32'h0)) begin
+        else if (fok_r$q & (pest_r$q != 32'h0)) begin
             if ((pdc_r$q + 32'h1) >= guard_decay) begin
                 pdc_r$d = 32'h0;
                 pest_r$d = pest_r$q - 32'h1;
@@ -1814,6 +1834,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         if (reset) begin
             pest_r$d = 32'h0;
             pdc_r$d = 32'h0;
+            fok_r$d = 1'b0;
         end
         any_blame = 1'b0;
         any_sub_blame = 1'b0;
@@ -3196,6 +3217,25 @@ module canstar_hub_core$core$ff_r(d,q,clock);
 endmodule // canstar_hub_core$core$ff_r
 
 
+module canstar_hub_core$core$fok_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$fok_r
+
+
 module canstar_hub_core$core$injector(clock,reset,button,sample,field,eof_last,active,armed);
     
     // Module arguments
@@ -3445,7 +3485,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     output reg  dis;
     output reg  blame;
     output reg  charged;
-    output reg  [7:0] step;
+    output reg  [1:0] step;
     output reg  tx_error;
     output reg  glitch;
     output reg  anomaly;
@@ -3466,6 +3506,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     localparam  bic_limit = 8'h30;
     localparam  d_step = 8'h18;
     localparam  d_sat = 8'he7;
+    localparam  d_bl = 2'b11;
     localparam  b_decay = 3'b10;
     localparam  life_limit = 7'b100000;
     localparam  dbc_thr = 5'b1101;
@@ -3593,6 +3634,12 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  fol_r$d;
     wire  fol_r$q;
     reg  fol_r$clock;
+    reg  [1:0] step_r$d;
+    wire  [1:0] step_r$q;
+    reg  step_r$clock;
+    reg  bnz_r$d;
+    wire  bnz_r$q;
+    reg  bnz_r$clock;
     reg  bl_r$d;
     wire  bl_r$q;
     reg  bl_r$clock;
@@ -3607,6 +3654,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  fol;
     reg  [7:0] c_step;
     reg  [7:0] c_sat;
+    reg  [1:0] c_bl;
     reg  ffc;
     reg  pge;
     reg  late;
@@ -3799,6 +3847,16 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .q(fol_r$q),
         .clock(fol_r$clock)
     );
+    canstar_hub_core$core$pj$0$step_r step_r(
+        .d(step_r$d),
+        .q(step_r$q),
+        .clock(step_r$clock)
+    );
+    canstar_hub_core$core$pj$0$bnz_r bnz_r(
+        .d(bnz_r$d),
+        .q(bnz_r$q),
+        .clock(bnz_r$clock)
+    );
     canstar_hub_core$core$pj$0$bl_r bl_r(
         .d(bl_r$d),
         .q(bl_r$q),
@@ -3851,6 +3909,8 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         od_r$clock = clock;
         dprev$clock = clock;
         fol_r$clock = clock;
+        step_r$clock = clock;
+        bnz_r$clock = clock;
         bl_r$clock = clock;
         bl_dm_r$clock = clock;
         gpend$clock = clock;
@@ -3888,6 +3948,8 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         od_r$d = od_r$q;
         dprev$d = dprev$q;
         fol_r$d = fol_r$q;
+        step_r$d = step_r$q;
+        bnz_r$d = bnz_r$q;
         bl_r$d = bl_r$q;
         bl_dm_r$d = bl_dm_r$q;
         gpend$d = gpend$q;
@@ -3925,10 +3987,12 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         if (delim & ~fol) begin
             c_step = d_step;
             c_sat = d_sat;
+            c_bl = d_bl;
         end
         else begin
             c_step = 32'h8;
             c_sat = 32'hf7;
+            c_bl = 32'h1;
         end
         if (bit_start) begin
             seen_dom_crc$d = 1'b0;
@@ -3946,14 +4010,16 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         blame = (sample & unj & enabled) | late;
         charged = charge | late;
         if (late) begin
-            step = 32'h8;
+            step_r$d = 32'h1;
         end
         else if (charge) begin
-            step = c_step;
+            step_r$d = c_bl;
         end
         else begin
-            step = 32'h0;
+            step_r$d = 32'h0;
         end
+        step = step_r$q;
+        bnz_r$d = bic_r$q != 32'h0;
         ch_r$d = charge;
         tx_error = sample & nack_on & enabled & cont_r$q & tx_region & ~arb & c & ~bt & ~err_phase;
         if (sample) begin
@@ -4112,7 +4178,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                 rep_r$d = rep_r$q + 32'h1;
             end
         end
-        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (rep_on & (pgc_r$q >= pg_limit)) | (rep_on & (rep_r$q >= rep_limit)) | (guard & charged & (bic_r$q != 32'h0)))) begin
+        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (rep_on & (pgc_r$q >= pg_limit)) | (rep_on & (rep_r$q >= rep_limit)) | (guard & (step_r$q != 32'h0) & bnz_r$q))) begin
             dis_r$d = 1'b1;
         end
         if (enabled) begin
@@ -4181,6 +4247,8 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             od_r$d = 1'b0;
             dprev$d = 1'b0;
             fol_r$d = 1'b0;
+            step_r$d = 32'h0;
+            bnz_r$d = 1'b0;
         end
         dis = dis_r$q;
         bic = bic_r$q;
@@ -4388,6 +4456,25 @@ module canstar_hub_core$core$pj$0$bl_r(d,q,clock);
     end
           
 endmodule // canstar_hub_core$core$pj$0$bl_r
+
+
+module canstar_hub_core$core$pj$0$bnz_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$0$bnz_r
 
 
 module canstar_hub_core$core$pj$0$ch_r(d,q,clock);
@@ -5067,6 +5154,25 @@ module canstar_hub_core$core$pj$0$seen_dom_crc(d,q,clock);
 endmodule // canstar_hub_core$core$pj$0$seen_dom_crc
 
 
+module canstar_hub_core$core$pj$0$step_r(d,q,clock);
+    
+    // Module arguments
+    input wire  [1:0] d;
+    output reg  [1:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 2'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$0$step_r
+
+
 module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,eof_last,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,rep_mask,rep_other,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,guard,dis,blame,charged,step,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
     
     // Module arguments
@@ -5108,7 +5214,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     output reg  dis;
     output reg  blame;
     output reg  charged;
-    output reg  [7:0] step;
+    output reg  [1:0] step;
     output reg  tx_error;
     output reg  glitch;
     output reg  anomaly;
@@ -5129,6 +5235,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     localparam  bic_limit = 8'h30;
     localparam  d_step = 8'h18;
     localparam  d_sat = 8'he7;
+    localparam  d_bl = 2'b11;
     localparam  b_decay = 3'b10;
     localparam  life_limit = 7'b100000;
     localparam  dbc_thr = 5'b1101;
@@ -5256,6 +5363,12 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  fol_r$d;
     wire  fol_r$q;
     reg  fol_r$clock;
+    reg  [1:0] step_r$d;
+    wire  [1:0] step_r$q;
+    reg  step_r$clock;
+    reg  bnz_r$d;
+    wire  bnz_r$q;
+    reg  bnz_r$clock;
     reg  bl_r$d;
     wire  bl_r$q;
     reg  bl_r$clock;
@@ -5270,6 +5383,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  fol;
     reg  [7:0] c_step;
     reg  [7:0] c_sat;
+    reg  [1:0] c_bl;
     reg  ffc;
     reg  pge;
     reg  late;
@@ -5462,6 +5576,16 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .q(fol_r$q),
         .clock(fol_r$clock)
     );
+    canstar_hub_core$core$pj$1$step_r step_r(
+        .d(step_r$d),
+        .q(step_r$q),
+        .clock(step_r$clock)
+    );
+    canstar_hub_core$core$pj$1$bnz_r bnz_r(
+        .d(bnz_r$d),
+        .q(bnz_r$q),
+        .clock(bnz_r$clock)
+    );
     canstar_hub_core$core$pj$1$bl_r bl_r(
         .d(bl_r$d),
         .q(bl_r$q),
@@ -5514,6 +5638,8 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         od_r$clock = clock;
         dprev$clock = clock;
         fol_r$clock = clock;
+        step_r$clock = clock;
+        bnz_r$clock = clock;
         bl_r$clock = clock;
         bl_dm_r$clock = clock;
         gpend$clock = clock;
@@ -5551,6 +5677,8 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         od_r$d = od_r$q;
         dprev$d = dprev$q;
         fol_r$d = fol_r$q;
+        step_r$d = step_r$q;
+        bnz_r$d = bnz_r$q;
         bl_r$d = bl_r$q;
         bl_dm_r$d = bl_dm_r$q;
         gpend$d = gpend$q;
@@ -5588,10 +5716,12 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         if (delim & ~fol) begin
             c_step = d_step;
             c_sat = d_sat;
+            c_bl = d_bl;
         end
         else begin
             c_step = 32'h8;
             c_sat = 32'hf7;
+            c_bl = 32'h1;
         end
         if (bit_start) begin
             seen_dom_crc$d = 1'b0;
@@ -5609,14 +5739,16 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         blame = (sample & unj & enabled) | late;
         charged = charge | late;
         if (late) begin
-            step = 32'h8;
+            step_r$d = 32'h1;
         end
         else if (charge) begin
-            step = c_step;
+            step_r$d = c_bl;
         end
         else begin
-            step = 32'h0;
+            step_r$d = 32'h0;
         end
+        step = step_r$q;
+        bnz_r$d = bic_r$q != 32'h0;
         ch_r$d = charge;
         tx_error = sample & nack_on & enabled & cont_r$q & tx_region & ~arb & c & ~bt & ~err_phase;
         if (sample) begin
@@ -5775,7 +5907,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                 rep_r$d = rep_r$q + 32'h1;
             end
         end
-        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (rep_on & (pgc_r$q >= pg_limit)) | (rep_on & (rep_r$q >= rep_limit)) | (guard & charged & (bic_r$q != 32'h0)))) begin
+        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (rep_on & (pgc_r$q >= pg_limit)) | (rep_on & (rep_r$q >= rep_limit)) | (guard & (step_r$q != 32'h0) & bnz_r$q))) begin
             dis_r$d = 1'b1;
         end
         if (enabled) begin
@@ -5844,6 +5976,8 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             od_r$d = 1'b0;
             dprev$d = 1'b0;
             fol_r$d = 1'b0;
+            step_r$d = 32'h0;
+            bnz_r$d = 1'b0;
         end
         dis = dis_r$q;
         bic = bic_r$q;
@@ -6051,6 +6185,25 @@ module canstar_hub_core$core$pj$1$bl_r(d,q,clock);
     end
           
 endmodule // canstar_hub_core$core$pj$1$bl_r
+
+
+module canstar_hub_core$core$pj$1$bnz_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$1$bnz_r
 
 
 module canstar_hub_core$core$pj$1$ch_r(d,q,clock);
@@ -6730,6 +6883,25 @@ module canstar_hub_core$core$pj$1$seen_dom_crc(d,q,clock);
 endmodule // canstar_hub_core$core$pj$1$seen_dom_crc
 
 
+module canstar_hub_core$core$pj$1$step_r(d,q,clock);
+    
+    // Module arguments
+    input wire  [1:0] d;
+    output reg  [1:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 2'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$1$step_r
+
+
 module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,eof_last,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,rep_mask,rep_other,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,guard,dis,blame,charged,step,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
     
     // Module arguments
@@ -6771,7 +6943,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     output reg  dis;
     output reg  blame;
     output reg  charged;
-    output reg  [7:0] step;
+    output reg  [1:0] step;
     output reg  tx_error;
     output reg  glitch;
     output reg  anomaly;
@@ -6792,6 +6964,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     localparam  bic_limit = 8'h30;
     localparam  d_step = 8'h18;
     localparam  d_sat = 8'he7;
+    localparam  d_bl = 2'b11;
     localparam  b_decay = 3'b10;
     localparam  life_limit = 7'b100000;
     localparam  dbc_thr = 5'b1101;
@@ -6919,6 +7092,12 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  fol_r$d;
     wire  fol_r$q;
     reg  fol_r$clock;
+    reg  [1:0] step_r$d;
+    wire  [1:0] step_r$q;
+    reg  step_r$clock;
+    reg  bnz_r$d;
+    wire  bnz_r$q;
+    reg  bnz_r$clock;
     reg  bl_r$d;
     wire  bl_r$q;
     reg  bl_r$clock;
@@ -6933,6 +7112,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  fol;
     reg  [7:0] c_step;
     reg  [7:0] c_sat;
+    reg  [1:0] c_bl;
     reg  ffc;
     reg  pge;
     reg  late;
@@ -7125,6 +7305,16 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .q(fol_r$q),
         .clock(fol_r$clock)
     );
+    canstar_hub_core$core$pj$2$step_r step_r(
+        .d(step_r$d),
+        .q(step_r$q),
+        .clock(step_r$clock)
+    );
+    canstar_hub_core$core$pj$2$bnz_r bnz_r(
+        .d(bnz_r$d),
+        .q(bnz_r$q),
+        .clock(bnz_r$clock)
+    );
     canstar_hub_core$core$pj$2$bl_r bl_r(
         .d(bl_r$d),
         .q(bl_r$q),
@@ -7177,6 +7367,8 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         od_r$clock = clock;
         dprev$clock = clock;
         fol_r$clock = clock;
+        step_r$clock = clock;
+        bnz_r$clock = clock;
         bl_r$clock = clock;
         bl_dm_r$clock = clock;
         gpend$clock = clock;
@@ -7214,6 +7406,8 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         od_r$d = od_r$q;
         dprev$d = dprev$q;
         fol_r$d = fol_r$q;
+        step_r$d = step_r$q;
+        bnz_r$d = bnz_r$q;
         bl_r$d = bl_r$q;
         bl_dm_r$d = bl_dm_r$q;
         gpend$d = gpend$q;
@@ -7251,10 +7445,12 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         if (delim & ~fol) begin
             c_step = d_step;
             c_sat = d_sat;
+            c_bl = d_bl;
         end
         else begin
             c_step = 32'h8;
             c_sat = 32'hf7;
+            c_bl = 32'h1;
         end
         if (bit_start) begin
             seen_dom_crc$d = 1'b0;
@@ -7272,14 +7468,16 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         blame = (sample & unj & enabled) | late;
         charged = charge | late;
         if (late) begin
-            step = 32'h8;
+            step_r$d = 32'h1;
         end
         else if (charge) begin
-            step = c_step;
+            step_r$d = c_bl;
         end
         else begin
-            step = 32'h0;
+            step_r$d = 32'h0;
         end
+        step = step_r$q;
+        bnz_r$d = bic_r$q != 32'h0;
         ch_r$d = charge;
         tx_error = sample & nack_on & enabled & cont_r$q & tx_region & ~arb & c & ~bt & ~err_phase;
         if (sample) begin
@@ -7438,7 +7636,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                 rep_r$d = rep_r$q + 32'h1;
             end
         end
-        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (rep_on & (pgc_r$q >= pg_limit)) | (rep_on & (rep_r$q >= rep_limit)) | (guard & charged & (bic_r$q != 32'h0)))) begin
+        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (rep_on & (pgc_r$q >= pg_limit)) | (rep_on & (rep_r$q >= rep_limit)) | (guard & (step_r$q != 32'h0) & bnz_r$q))) begin
             dis_r$d = 1'b1;
         end
         if (enabled) begin
@@ -7507,6 +7705,8 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             od_r$d = 1'b0;
             dprev$d = 1'b0;
             fol_r$d = 1'b0;
+            step_r$d = 32'h0;
+            bnz_r$d = 1'b0;
         end
         dis = dis_r$q;
         bic = bic_r$q;
@@ -7714,6 +7914,25 @@ module canstar_hub_core$core$pj$2$bl_r(d,q,clock);
     end
           
 endmodule // canstar_hub_core$core$pj$2$bl_r
+
+
+module canstar_hub_core$core$pj$2$bnz_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$2$bnz_r
 
 
 module canstar_hub_core$core$pj$2$ch_r(d,q,clock);
@@ -8393,6 +8612,25 @@ module canstar_hub_core$core$pj$2$seen_dom_crc(d,q,clock);
 endmodule // canstar_hub_core$core$pj$2$seen_dom_crc
 
 
+module canstar_hub_core$core$pj$2$step_r(d,q,clock);
+    
+    // Module arguments
+    input wire  [1:0] d;
+    output reg  [1:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 2'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$2$step_r
+
+
 module canstar_hub_core$core$rst_s1(d,q,clock);
     
     // Module arguments
@@ -8491,7 +8729,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     output reg  dis;
     output reg  blame;
     output reg  charged;
-    output reg  [7:0] step;
+    output reg  [1:0] step;
     output reg  tx_error;
     output reg  glitch;
     output reg  anomaly;
@@ -8512,6 +8750,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     localparam  bic_limit = 8'h48;
     localparam  d_step = 8'h10;
     localparam  d_sat = 8'hef;
+    localparam  d_bl = 2'b10;
     localparam  b_decay = 3'b10;
     localparam  life_limit = 7'b1000000;
     localparam  dbc_thr = 5'b11100;
@@ -8639,6 +8878,12 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  fol_r$d;
     wire  fol_r$q;
     reg  fol_r$clock;
+    reg  [1:0] step_r$d;
+    wire  [1:0] step_r$q;
+    reg  step_r$clock;
+    reg  bnz_r$d;
+    wire  bnz_r$q;
+    reg  bnz_r$clock;
     reg  bl_r$d;
     wire  bl_r$q;
     reg  bl_r$clock;
@@ -8653,6 +8898,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  fol;
     reg  [7:0] c_step;
     reg  [7:0] c_sat;
+    reg  [1:0] c_bl;
     reg  ffc;
     reg  pge;
     reg  late;
@@ -8845,6 +9091,16 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .q(fol_r$q),
         .clock(fol_r$clock)
     );
+    canstar_hub_core$core$sj$0$step_r step_r(
+        .d(step_r$d),
+        .q(step_r$q),
+        .clock(step_r$clock)
+    );
+    canstar_hub_core$core$sj$0$bnz_r bnz_r(
+        .d(bnz_r$d),
+        .q(bnz_r$q),
+        .clock(bnz_r$clock)
+    );
     canstar_hub_core$core$sj$0$bl_r bl_r(
         .d(bl_r$d),
         .q(bl_r$q),
@@ -8897,6 +9153,8 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         od_r$clock = clock;
         dprev$clock = clock;
         fol_r$clock = clock;
+        step_r$clock = clock;
+        bnz_r$clock = clock;
         bl_r$clock = clock;
         bl_dm_r$clock = clock;
         gpend$clock = clock;
@@ -8934,6 +9192,8 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         od_r$d = od_r$q;
         dprev$d = dprev$q;
         fol_r$d = fol_r$q;
+        step_r$d = step_r$q;
+        bnz_r$d = bnz_r$q;
         bl_r$d = bl_r$q;
         bl_dm_r$d = bl_dm_r$q;
         gpend$d = gpend$q;
@@ -8971,10 +9231,12 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         if (delim & ~fol) begin
             c_step = d_step;
             c_sat = d_sat;
+            c_bl = d_bl;
         end
         else begin
             c_step = 32'h8;
             c_sat = 32'hf7;
+            c_bl = 32'h1;
         end
         if (bit_start) begin
             seen_dom_crc$d = 1'b0;
@@ -8992,14 +9254,16 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         blame = (sample & unj & enabled) | late;
         charged = charge | late;
         if (late) begin
-            step = 32'h8;
+            step_r$d = 32'h1;
         end
         else if (charge) begin
-            step = c_step;
+            step_r$d = c_bl;
         end
         else begin
-            step = 32'h0;
+            step_r$d = 32'h0;
         end
+        step = step_r$q;
+        bnz_r$d = bic_r$q != 32'h0;
         ch_r$d = charge;
         tx_error = sample & nack_on & enabled & cont_r$q & tx_region & ~arb & c & ~bt & ~err_phase;
         if (sample) begin
@@ -9158,7 +9422,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                 rep_r$d = rep_r$q + 32'h1;
             end
         end
-        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (rep_on & (pgc_r$q >= pg_limit)) | (rep_on & (rep_r$q >= rep_limit)) | (guard & charged & (bic_r$q != 32'h0)))) begin
+        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (rep_on & (pgc_r$q >= pg_limit)) | (rep_on & (rep_r$q >= rep_limit)) | (guard & (step_r$q != 32'h0) & bnz_r$q))) begin
             dis_r$d = 1'b1;
         end
         if (enabled) begin
@@ -9227,6 +9491,8 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             od_r$d = 1'b0;
             dprev$d = 1'b0;
             fol_r$d = 1'b0;
+            step_r$d = 32'h0;
+            bnz_r$d = 1'b0;
         end
         dis = dis_r$q;
         bic = bic_r$q;
@@ -9434,6 +9700,25 @@ module canstar_hub_core$core$sj$0$bl_r(d,q,clock);
     end
           
 endmodule // canstar_hub_core$core$sj$0$bl_r
+
+
+module canstar_hub_core$core$sj$0$bnz_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$sj$0$bnz_r
 
 
 module canstar_hub_core$core$sj$0$ch_r(d,q,clock);
@@ -10113,6 +10398,25 @@ module canstar_hub_core$core$sj$0$seen_dom_crc(d,q,clock);
 endmodule // canstar_hub_core$core$sj$0$seen_dom_crc
 
 
+module canstar_hub_core$core$sj$0$step_r(d,q,clock);
+    
+    // Module arguments
+    input wire  [1:0] d;
+    output reg  [1:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 2'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$sj$0$step_r
+
+
 module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,eof_last,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,rep_mask,rep_other,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,guard,dis,blame,charged,step,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
     
     // Module arguments
@@ -10154,7 +10458,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     output reg  dis;
     output reg  blame;
     output reg  charged;
-    output reg  [7:0] step;
+    output reg  [1:0] step;
     output reg  tx_error;
     output reg  glitch;
     output reg  anomaly;
@@ -10175,6 +10479,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     localparam  bic_limit = 8'h48;
     localparam  d_step = 8'h10;
     localparam  d_sat = 8'hef;
+    localparam  d_bl = 2'b10;
     localparam  b_decay = 3'b10;
     localparam  life_limit = 7'b1000000;
     localparam  dbc_thr = 5'b11100;
@@ -10302,6 +10607,12 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  fol_r$d;
     wire  fol_r$q;
     reg  fol_r$clock;
+    reg  [1:0] step_r$d;
+    wire  [1:0] step_r$q;
+    reg  step_r$clock;
+    reg  bnz_r$d;
+    wire  bnz_r$q;
+    reg  bnz_r$clock;
     reg  bl_r$d;
     wire  bl_r$q;
     reg  bl_r$clock;
@@ -10316,6 +10627,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  fol;
     reg  [7:0] c_step;
     reg  [7:0] c_sat;
+    reg  [1:0] c_bl;
     reg  ffc;
     reg  pge;
     reg  late;
@@ -10508,6 +10820,16 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .q(fol_r$q),
         .clock(fol_r$clock)
     );
+    canstar_hub_core$core$sj$1$step_r step_r(
+        .d(step_r$d),
+        .q(step_r$q),
+        .clock(step_r$clock)
+    );
+    canstar_hub_core$core$sj$1$bnz_r bnz_r(
+        .d(bnz_r$d),
+        .q(bnz_r$q),
+        .clock(bnz_r$clock)
+    );
     canstar_hub_core$core$sj$1$bl_r bl_r(
         .d(bl_r$d),
         .q(bl_r$q),
@@ -10560,6 +10882,8 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         od_r$clock = clock;
         dprev$clock = clock;
         fol_r$clock = clock;
+        step_r$clock = clock;
+        bnz_r$clock = clock;
         bl_r$clock = clock;
         bl_dm_r$clock = clock;
         gpend$clock = clock;
@@ -10597,6 +10921,8 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         od_r$d = od_r$q;
         dprev$d = dprev$q;
         fol_r$d = fol_r$q;
+        step_r$d = step_r$q;
+        bnz_r$d = bnz_r$q;
         bl_r$d = bl_r$q;
         bl_dm_r$d = bl_dm_r$q;
         gpend$d = gpend$q;
@@ -10634,10 +10960,12 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         if (delim & ~fol) begin
             c_step = d_step;
             c_sat = d_sat;
+            c_bl = d_bl;
         end
         else begin
             c_step = 32'h8;
             c_sat = 32'hf7;
+            c_bl = 32'h1;
         end
         if (bit_start) begin
             seen_dom_crc$d = 1'b0;
@@ -10655,14 +10983,16 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         blame = (sample & unj & enabled) | late;
         charged = charge | late;
         if (late) begin
-            step = 32'h8;
+            step_r$d = 32'h1;
         end
         else if (charge) begin
-            step = c_step;
+            step_r$d = c_bl;
         end
         else begin
-            step = 32'h0;
+            step_r$d = 32'h0;
         end
+        step = step_r$q;
+        bnz_r$d = bic_r$q != 32'h0;
         ch_r$d = charge;
         tx_error = sample & nack_on & enabled & cont_r$q & tx_region & ~arb & c & ~bt & ~err_phase;
         if (sample) begin
@@ -10821,7 +11151,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                 rep_r$d = rep_r$q + 32'h1;
             end
         end
-        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (rep_on & (pgc_r$q >= pg_limit)) | (rep_on & (rep_r$q >= rep_limit)) | (guard & charged & (bic_r$q != 32'h0)))) begin
+        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (rep_on & (pgc_r$q >= pg_limit)) | (rep_on & (rep_r$q >= rep_limit)) | (guard & (step_r$q != 32'h0) & bnz_r$q))) begin
             dis_r$d = 1'b1;
         end
         if (enabled) begin
@@ -10890,6 +11220,8 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             od_r$d = 1'b0;
             dprev$d = 1'b0;
             fol_r$d = 1'b0;
+            step_r$d = 32'h0;
+            bnz_r$d = 1'b0;
         end
         dis = dis_r$q;
         bic = bic_r$q;
@@ -11097,6 +11429,25 @@ module canstar_hub_core$core$sj$1$bl_r(d,q,clock);
     end
           
 endmodule // canstar_hub_core$core$sj$1$bl_r
+
+
+module canstar_hub_core$core$sj$1$bnz_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$sj$1$bnz_r
 
 
 module canstar_hub_core$core$sj$1$ch_r(d,q,clock);
@@ -11774,6 +12125,25 @@ module canstar_hub_core$core$sj$1$seen_dom_crc(d,q,clock);
     end
           
 endmodule // canstar_hub_core$core$sj$1$seen_dom_crc
+
+
+module canstar_hub_core$core$sj$1$step_r(d,q,clock);
+    
+    // Module arguments
+    input wire  [1:0] d;
+    output reg  [1:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 2'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$sj$1$step_r
 
 
 module canstar_hub_core$core$sub_bl_r(d,q,clock);
