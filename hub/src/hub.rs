@@ -138,8 +138,9 @@ pub struct HubCore {
     rep_dom: Signal<Local, Bit>,
     rep_rec_w: Signal<Local, Bit>,
     rep_gl: Signal<Local, Bit>,
-    /// §5.20 peer guard: the estimate of the peer's sublink counters (`bic` units), its
-    /// decay count, the largest charge of a port in this clock, and the guard itself.
+    /// §5.20 peer guard: the estimate of the peer's sublink counters (`bic` units) and its
+    /// decay count; `pinc`, `pstep`, `pch_*` and `guard` below come from the units'
+    /// registered `step`, i.e. the last clock's charges.
     pest_r: DFF<Bits<8>>,
     pdc_r: DFF<Bits<3>>,
     /// a good frame ended at the last clock's sample (the decay, in step with the units'
@@ -274,10 +275,6 @@ impl HubCore {
     /// (combinational, meaningful after the inputs have settled).
     pub fn blame_any(&self) -> bool {
         self.any_blame.val()
-    }
-    /// Simulation probe: the hub's estimate of the peer's sublink counters (§5.20).
-    pub fn peer_estimate(&self) -> u64 {
-        self.pest_r.q.val().index() as u64
     }
     /// Simulation probe: the port judge unit of port `i`.
     pub fn port_judge(&self, i: usize) -> &JudgeUnit {

@@ -443,9 +443,9 @@
 //! counters (every port charge added, the sublinks' decay) is at `8 x peer_guard` and
 //! this port was the only one charged in the last clock. The decision comes from
 //! registers one clock after the charge (`step_r`, `bnz_r`): taken in the clock of the
-//! charge, it cost the hub 19 MHz of fmax. Without it, two faulty ports in a row behind a healthy peer let the peer's
-//! sublinks, charged for both, overtake the second port. `step` reports each charge's size
-//! for that estimate. Test: `hub/tests/hub_traffic.rs`
+//! charge, it cost the hub 19 MHz of fmax. Without the guard, two faulty ports in a row
+//! behind a healthy peer let the peer's sublinks, charged for both, overtake the second
+//! port. `step` reports each charge's size for that estimate. Test: `hub/tests/hub_traffic.rs`
 //! `peer_guard_isolates_a_second_faulty_port_at_its_second_charge`.
 
 use crate::pulse::PulseCheck;
