@@ -135,6 +135,11 @@ pub struct HubConfig {
     /// that the peer's sublinks never overtake a second faulty port. 0 = off, else 1..=31
     /// (default 7: two episodes before the peer's sublink limit of 9).
     pub peer_guard: u64,
+    /// Replica overload rule (hub.md §5.21, sublinks): a sublink that was the dominant
+    /// minority of its replicas for `replica_skew` clocks in Intermission bit 1 or 2, up to
+    /// the sample (an overload condition it alone raised), gets a replica-rule charge at
+    /// that sample.
+    pub replica_overload: bool,
     /// Reintegration window W in frames (None = isolation latched until reset).
     pub reintegration: Option<u64>,
     /// Fault-injection hook (None = no hooks).
@@ -178,6 +183,7 @@ impl Default for HubConfig {
             sub_first_flagger: true,
             eof_last_rule: true,
             peer_guard: 7,
+            replica_overload: true,
             reintegration: None,
             fault_injection: None,
             debug: true,
@@ -231,6 +237,7 @@ impl HubConfig {
             first_flagger: self.first_flagger,
             eof_last: self.eof_last_rule,
             delim_blames: self.delim_blames,
+            replica_overload: false,
         }
     }
     /// Longest glitch in clocks: [`HubConfig::glitch_max`], or one bit minus SJW minus
@@ -275,6 +282,7 @@ impl HubConfig {
             first_flagger: self.sub_first_flagger,
             eof_last: false,
             delim_blames: self.sub_delim_blames,
+            replica_overload: self.replica_overload,
         }
     }
     /// Check the ranges; returns a description of the first problem, starting

@@ -15,6 +15,7 @@
 //! | `eof_1_6` | field `Eof`, position 0..5 |
 //! | `eof_last` | field `Eof`, position 6 (the last EOF bit) |
 //! | `im_2` | field `Intermission`, position 1 (the second intermission bit) |
+//! | `im_12` | field `Intermission`, position 0 or 1 (a dominant level there is an overload condition) |
 //! | `err_phase` | fields `ErrorFlag`, `ErrorDelim`, `Overload` (the monitor's error or overload phase: from the bit after an error / overload condition until the end of the delimiter) |
 //!
 //! All outputs are combinational; they are meaningful at `sample` strobes.
@@ -74,6 +75,7 @@ pub struct FrameDecode {
     pub eof_1_6: Signal<Out, Bit>,
     pub eof_last: Signal<Out, Bit>,
     pub im_2: Signal<Out, Bit>,
+    pub im_12: Signal<Out, Bit>,
     pub err_phase: Signal<Out, Bit>,
 }
 
@@ -89,6 +91,7 @@ impl Logic for FrameDecode {
         self.eof_1_6.next = (self.field.val() == 11) & (self.pos.val() < 6);
         self.eof_last.next = (self.field.val() == 11) & (self.pos.val() == 6);
         self.im_2.next = (self.field.val() == 12) & (self.pos.val() == 1);
+        self.im_12.next = (self.field.val() == 12) & (self.pos.val() < 2);
         self.err_phase.next = self.field.val() >= 13;
     }
 }

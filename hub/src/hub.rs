@@ -56,6 +56,7 @@ use crate::efg::ErrorFlagGen;
 use crate::frame_state::{Field, FrameDecode};
 use crate::inject::Injector;
 use crate::judge::JudgeUnit;
+use crate::peer::PeerEstimate;
 use crate::sigs;
 use rust_hdl::prelude::*;
 
@@ -138,22 +139,13 @@ pub struct HubCore {
     rep_dom: Signal<Local, Bit>,
     rep_rec_w: Signal<Local, Bit>,
     rep_gl: Signal<Local, Bit>,
-    /// §5.20 peer guard: the estimate of the peer's sublink counters (`bic` units) and its
-    /// decay count; `pinc`, `pstep`, `pch_*` and `guard` below come from the units'
-    /// registered `step`, i.e. the last clock's charges.
-    pest_r: DFF<Bits<8>>,
-    pdc_r: DFF<Bits<3>>,
-    /// a good frame ended at the last clock's sample (the decay, in step with the units'
-    /// registered charge steps)
-    fok_r: DFF<Bit>,
+    /// §5.20 peer guard: the estimate of the peer's sublink counters; `pinc`, `pch_*` and
+    /// `guard` below come from the units' registered `step`, i.e. the last clock's charges.
+    peer: PeerEstimate,
     pinc: Signal<Local, Bits<2>>,
-    pstep: Signal<Local, Bits<8>>,
     guard: Signal<Local, Bit>,
     pch_one: Signal<Local, Bit>,
     pch_two: Signal<Local, Bit>,
-    guard_on: Constant<Bit>,
-    guard_lim: Constant<Bits<8>>,
-    guard_decay: Constant<Bits<3>>,
     _n: usize,
     _m: usize,
     _dn: usize,
@@ -249,17 +241,11 @@ impl HubCore {
             rep_dom: Default::default(),
             rep_rec_w: Default::default(),
             rep_gl: Default::default(),
-            pest_r: Default::default(),
-            pdc_r: Default::default(),
-            fok_r: Default::default(),
+            peer: PeerEstimate::new(m > 0 && cfg.peer_guard > 0, 8 * cfg.peer_guard, cfg.sub_bic_decay),
             pinc: Default::default(),
-            pstep: Default::default(),
             guard: Default::default(),
             pch_one: Default::default(),
             pch_two: Default::default(),
-            guard_on: Constant::new(m > 0 && cfg.peer_guard > 0),
-            guard_lim: Constant::new((8 * cfg.peer_guard).into()),
-            guard_decay: Constant::new(cfg.sub_bic_decay.into()),
             _n: n,
             _m: m,
             _dn: dn,
@@ -448,40 +434,11 @@ impl Logic for HubCore {
                 self.pch_one.next = true;
             }
         }
-        self.guard.next = self.guard_on.val() & (self.pest_r.q.val() >= self.guard_lim.val()) & !self.pch_two.val();
-        self.pest_r.clock.next = self.clock.val();
-        self.pdc_r.clock.next = self.clock.val();
-        self.pest_r.d.next = self.pest_r.q.val();
-        self.pdc_r.d.next = self.pdc_r.q.val();
-        self.fok_r.clock.next = self.clock.val();
-        self.fok_r.d.next = self.mon_sample.val() & self.mon_frame_ok.val();
-        // (8 per blame, at most 3 blames: saturating below 232)
-        if self.pinc.val() == 3 {
-            self.pstep.next = 24.into();
-        } else if self.pinc.val() == 2 {
-            self.pstep.next = 16.into();
-        } else {
-            self.pstep.next = 8.into();
-        }
-        if self.pinc.val() != 0 {
-            if self.pest_r.q.val() > 231 {
-                self.pest_r.d.next = 255.into();
-            } else {
-                self.pest_r.d.next = self.pest_r.q.val() + self.pstep.val();
-            }
-        } else if self.fok_r.q.val() & (self.pest_r.q.val() != 0) {
-            if (self.pdc_r.q.val() + 1) >= self.guard_decay.val() {
-                self.pdc_r.d.next = 0.into();
-                self.pest_r.d.next = self.pest_r.q.val() - 1;
-            } else {
-                self.pdc_r.d.next = self.pdc_r.q.val() + 1;
-            }
-        }
-        if self.reset.val() {
-            self.pest_r.d.next = 0.into();
-            self.pdc_r.d.next = 0.into();
-            self.fok_r.d.next = false;
-        }
+        self.peer.clock.next = self.clock.val();
+        self.peer.reset.next = self.reset.val();
+        self.peer.inc.next = self.pinc.val();
+        self.peer.frame_ok.next = self.mon_sample.val() & self.mon_frame_ok.val();
+        self.guard.next = self.peer.high.val() & !self.pch_two.val();
         // port judges
         self.any_blame.next = false;
         self.any_sub_blame.next = false;
@@ -513,6 +470,7 @@ impl Logic for HubCore {
             self.pj[i].eof_1_6.next = self.decode.eof_1_6.val();
             self.pj[i].eof_last.next = self.decode.eof_last.val();
             self.pj[i].im_2.next = self.decode.im_2.val();
+            self.pj[i].im_12.next = self.decode.im_12.val();
             self.pj[i].err_phase.next = self.err_phase.val();
             self.pj[i].crc_ok.next = self.mon_crc_ok.val();
             self.pj[i].frame_ok.next = self.mon_frame_ok.val();
@@ -552,6 +510,7 @@ impl Logic for HubCore {
             self.sj[j].eof_1_6.next = self.decode.eof_1_6.val();
             self.sj[j].eof_last.next = self.decode.eof_last.val();
             self.sj[j].im_2.next = self.decode.im_2.val();
+            self.sj[j].im_12.next = self.decode.im_12.val();
             self.sj[j].err_phase.next = self.err_phase.val();
             self.sj[j].crc_ok.next = self.mon_crc_ok.val();
             self.sj[j].frame_ok.next = self.mon_frame_ok.val();

@@ -447,6 +447,17 @@
 //! behind a healthy peer let the peer's sublinks, charged for both, overtake the second
 //! port. `step` reports each charge's size for that estimate. Test: `hub/tests/hub_traffic.rs`
 //! `peer_guard_isolates_a_second_faulty_port_at_its_second_charge`.
+//!
+//! **§5.21 replica overload rule (added, sublinks).** A sublink that is the dominant
+//! minority of its replicas for `replica_skew` clocks in Intermission bit 1 or 2, unmasked
+//! (`rep_mask`), from the bit start up to the sample (`rov_w`: the nodes sample earlier than
+//! the hub), raised an overload condition by itself; it gets a replica-rule charge at that
+//! sample (`rov`), with no record left for a later episode. The §5.18 record waited for an
+//! error episode that never came on this side: the nodes answer with overload flags, the
+//! peer's nodes take them, one crossing later, for a SOF, and the error episode starts on
+//! the peer's side only, where it charges both of the peer's sublinks, every time. Tests:
+//! `hub/tests/judge_sublinks.rs` `replica_overload_rule_charges_the_dominant_minority_at_once`,
+//! `replica_overload_rule_counts_a_pulse_that_ends_before_the_sample`.
 
 use crate::pulse::PulseCheck;
 use rust_hdl::prelude::*;
@@ -498,6 +509,10 @@ pub struct JudgeParams {
     /// count (hub.md §5.18: a peer edge reaches replicas of unequal length that many clocks
     /// apart), 1..=7.
     pub replica_skew: u64,
+    /// Replica overload rule (hub.md §5.21, sublinks): the dominant minority of a replica
+    /// disagreement at a sample in Intermission bit 1 or 2 (an overload condition that the
+    /// replica alone raised) is charged at once.
+    pub replica_overload: bool,
 }
 
 #[derive(LogicBlock)]
@@ -517,6 +532,9 @@ pub struct JudgeUnit {
     /// The sampled bit is the last EOF bit (§5.19).
     pub eof_last: Signal<In, Bit>,
     pub im_2: Signal<In, Bit>,
+    /// The sampled bit is Intermission bit 1 or 2 (a dominant level is an overload
+    /// condition; §5.21).
+    pub im_12: Signal<In, Bit>,
     pub err_phase: Signal<In, Bit>,
     pub crc_ok: Signal<In, Bit>,
     pub frame_ok: Signal<In, Bit>,
@@ -620,6 +638,7 @@ pub struct JudgeUnit {
     nack_on: Constant<Bit>,
     rep_on: Constant<Bit>,
     rep_skew: Constant<Bits<3>>,
+    rov_on: Constant<Bit>,
     reint_on: Constant<Bit>,
     reint_w: Constant<Bits<8>>,
     dis_r: DFF<Bit>,
@@ -634,6 +653,7 @@ pub struct JudgeUnit {
     rep_first_dom: DFF<Bit>,
     /// Clocks this unit has disagreed with another enabled replica, up to 7 (§5.18).
     rd_run: DFF<Bits<3>>,
+    rov_w: DFF<Bit>,
     ok_r: DFF<Bits<8>>,
     acked: DFF<Bit>,
     bad: DFF<Bit>,
@@ -684,6 +704,8 @@ pub struct JudgeUnit {
     charge: Signal<Local, Bit>,
     g: Signal<Local, Bit>,
     rep_ok: Signal<Local, Bit>,
+    rov: Signal<Local, Bit>,
+    rov_now: Signal<Local, Bit>,
     bl_r: DFF<Bit>,
     bl_dm_r: DFF<Bit>,
     gpend: DFF<Bit>,
@@ -724,6 +746,7 @@ impl JudgeUnit {
             eof_1_6: Default::default(),
             eof_last: Default::default(),
             im_2: Default::default(),
+            im_12: Default::default(),
             err_phase: Default::default(),
             crc_ok: Default::default(),
             frame_ok: Default::default(),
@@ -786,6 +809,7 @@ impl JudgeUnit {
             nack_on: Constant::new(port),
             rep_on: Constant::new(!port),
             rep_skew: Constant::new(p.replica_skew.into()),
+            rov_on: Constant::new(!port & p.replica_overload),
             reint_on: Constant::new(p.reintegration.is_some()),
             reint_w: Constant::new(p.reintegration.unwrap_or(1).into()),
             dis_r: Default::default(),
@@ -799,6 +823,7 @@ impl JudgeUnit {
             rep_seen: Default::default(),
             rep_first_dom: Default::default(),
             rd_run: Default::default(),
+            rov_w: Default::default(),
             ok_r: Default::default(),
             acked: Default::default(),
             bad: Default::default(),
@@ -840,6 +865,8 @@ impl JudgeUnit {
             charge: Default::default(),
             g: Default::default(),
             rep_ok: Default::default(),
+            rov: Default::default(),
+            rov_now: Default::default(),
             bl_r: Default::default(),
             bl_dm_r: Default::default(),
             gpend: Default::default(),
@@ -860,7 +887,7 @@ impl JudgeUnit {
 impl Logic for JudgeUnit {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, dis_r, bic_r, bdec_r, life_r, dbc_r, nack_r, cont_r, rep_r, rep_seen, rep_first_dom, rd_run, ok_r, acked, bad, ack_missing, ack_c, ack_rx, seen_dom, seen_dom_crc, dom_bs, gc_r, gdec_r, an_r, pgc_r, pdec_r, ffd_r, glf_r, glo_r, pgl_r, sdp_r, ch_r, od_r, dprev, fol_r, step_r, bnz_r, bl_r, bl_dm_r, gpend);
+        dff_setup!(self, clock, dis_r, bic_r, bdec_r, life_r, dbc_r, nack_r, cont_r, rep_r, rep_seen, rep_first_dom, rd_run, rov_w, ok_r, acked, bad, ack_missing, ack_c, ack_rx, seen_dom, seen_dom_crc, dom_bs, gc_r, gdec_r, an_r, pgc_r, pdec_r, ffd_r, glf_r, glo_r, pgl_r, sdp_r, ch_r, od_r, dprev, fol_r, step_r, bnz_r, bl_r, bl_dm_r, gpend);
         self.pulse.clock.next = self.clock.val();
         self.pulse.reset.next = self.reset.val();
         self.pulse.c.next = self.c.val();
@@ -871,6 +898,20 @@ impl Logic for JudgeUnit {
         self.enabled.next = !self.dis_r.q.val();
         self.rep_dmin.next = self.dom.val() & self.rep_rec.val();
         self.rep_rmin.next = self.c.val() & self.rep_dom.val();
+        // §5.21 replica overload rule: the dominant minority in Intermission bit 1 or 2
+        // raised an overload condition by itself (the nodes sample before this hub does, so
+        // a pulse that ends just before the sample counts: at any clock of the bit from its
+        // start, for `replica_skew` clocks, unmasked); this hub's nodes answer with overload
+        // flags, which the peer, one crossing later, may take for a SOF, and the error
+        // episode then starts on the peer's side only. Charged at the sample (and not
+        // recorded for a later episode)
+        self.rov_now.next = self.enabled.val() & !self.rep_mask.val() & (self.rd_run.q.val() >= self.rep_skew.val()) & self.rep_dmin.val();
+        if self.bit_start.val() {
+            self.rov_w.d.next = false;
+        } else if self.rov_now.val() {
+            self.rov_w.d.next = true;
+        }
+        self.rov.next = self.sample.val() & self.rov_on.val() & self.im_12.val() & self.enabled.val() & (self.rov_w.q.val() | self.rov_now.val());
         // window rule: dominant at any clock from `win_lag` clocks after the bit start up
         // to the sample point counts as a dominant bit for the unjustified-dominant rules
         self.domw.next = self.dom.val() | self.seen_dom.q.val();
@@ -1058,6 +1099,7 @@ impl Logic for JudgeUnit {
             if self.rep_on.val()
                 & self.enabled.val()
                 & !self.rep_seen.q.val()
+                & !self.rov.val()
                 & !self.rep_mask.val()
                 & (self.rd_run.q.val() >= self.rep_skew.val())
                 & (self.rep_dmin.val()
@@ -1165,6 +1207,8 @@ impl Logic for JudgeUnit {
             if self.rep_seen.q.val() & !self.rep_first_dom.q.val() & self.rep_ok.val() {
                 self.rep_r.d.next = self.rep_r.q.val() + 1;
             }
+        } else if self.rov.val() & self.rep_ok.val() {
+            self.rep_r.d.next = self.rep_r.q.val() + 1;
         }
         // isolation
         if self.enabled.val()
@@ -1218,6 +1262,7 @@ impl Logic for JudgeUnit {
             self.rep_r.d.next = 0.into();
             self.rep_seen.d.next = false;
             self.rep_first_dom.d.next = false;
+            self.rov_w.d.next = false;
             self.bl_r.d.next = false;
             self.bl_dm_r.d.next = false;
             self.gpend.d.next = false;

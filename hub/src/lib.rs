@@ -9,6 +9,7 @@
 //!   unit) and per incoming sublink (sublink judge unit). Its module docs list the
 //!   rules and each change to the baseline of hub.md §5.
 //! - [`inject`]: the fault-injection controller (H8).
+//! - [`peer`]: the peer guard's estimate of the peer hub's sublink counters (hub.md §5.20).
 //! - [`frame_state`]: the frame state C: field codes, the decoder for the judges and
 //!   the adapter from the CAN controller's debug bundle.
 //! - [`hub`]: [`hub::HubCore`] (everything but the frame monitor, frame state on `mon_*`
@@ -108,6 +109,7 @@ pub mod frame_state;
 pub mod hub;
 pub mod inject;
 pub mod judge;
+pub mod peer;
 pub mod pulse;
 pub mod top;
 

@@ -454,3 +454,64 @@ fn replica_disagreement_must_outlast_the_skew() {
     assert_eq!(late_disagreement(SAMPLE_AT - 2), 0, "2 clocks: an edge seen through replicas of unequal length");
     assert_eq!(late_disagreement(SAMPLE_AT - 4), 1, "4 clocks: a disagreement");
 }
+
+/// hub.md §5.21: a fresh sublink unit (replica overload rule `on`) is the dominant minority
+/// at a sample (`im12`: Intermission bit 1 or 2; `mask`: a port dominant; `other`: a replica
+/// beside it); then the overload (`episode`: an error episode follows, else a good frame);
+/// returns `rep_cnt`.
+fn overload_minority(on: bool, im12: bool, mask: bool, other: bool, episode_follows: bool) -> usize {
+    let mut j = reset(sublink_unit(JudgeParams { replica_overload: on, ..params() }));
+    j.rep_mask.next = mask;
+    j.rep_rec.next = true;
+    j.rep_other.next = other;
+    sample(&mut j, Bit { c: false, bt: false, im12, ..Default::default() });
+    j.rep_mask.next = false;
+    j.rep_rec.next = false;
+    // the nodes' overload flags (BT dominant, the sublink recessive again)
+    sample(&mut j, Bit { c: true, bt: false, err: true, ..Default::default() });
+    if episode_follows {
+        episode(&mut j);
+    } else {
+        sample(&mut j, Bit { c: true, bt: true, frame_ok: true, ..Default::default() });
+    }
+    j.rep_cnt.val().index()
+}
+
+/// The dominant minority that raised an overload condition by itself is charged at that
+/// sample, whatever follows (the error episode may start on the peer's side only), and only
+/// once when an episode does follow; not masked by a port, not without a replica beside it,
+/// not outside Intermission bits 1-2, not with the rule off.
+#[test]
+fn replica_overload_rule_charges_the_dominant_minority_at_once() {
+    assert_eq!(overload_minority(true, true, false, true, false), 1, "overload, then a good frame");
+    assert_eq!(overload_minority(false, true, false, true, false), 0, "rule off: recorded, not charged at a good frame");
+    assert_eq!(overload_minority(true, true, false, true, true), 1, "overload, then an episode: charged once");
+    assert_eq!(overload_minority(false, true, false, true, true), 1, "rule off: charged at the episode");
+    assert_eq!(overload_minority(true, false, false, true, false), 0, "not Intermission bit 1 or 2");
+    assert_eq!(overload_minority(true, true, true, true, false), 0, "masked by a port");
+    assert_eq!(overload_minority(true, true, false, false, false), 0, "no replica beside it");
+}
+
+/// The nodes sample before the hub: a dominant-minority pulse of Intermission bit 1 that
+/// ends before the hub's sample (clocks `from..to` of the bit, sample at 12) still raised
+/// their overload condition. Returns `rep_cnt` after a good frame.
+fn overload_pulse(on: bool, from: u64, to: u64) -> usize {
+    let mut j = reset(sublink_unit(JudgeParams { replica_overload: on, ..params() }));
+    apply(&mut j, Bit { c: true, bt: true, im12: true, ..Default::default() });
+    bit_clocks(&mut j, &|j, k| {
+        let pulse = (from..to).contains(&k);
+        j.c.next = !pulse;
+        j.bt.next = !pulse;
+        j.rep_rec.next = pulse;
+    });
+    apply(&mut j, Bit::default());
+    sample(&mut j, Bit { c: true, bt: true, frame_ok: true, ..Default::default() });
+    j.rep_cnt.val().index()
+}
+
+#[test]
+fn replica_overload_rule_counts_a_pulse_that_ends_before_the_sample() {
+    assert_eq!(overload_pulse(true, 1, 11), 1, "10 clocks, ended 1 clock before the sample");
+    assert_eq!(overload_pulse(false, 1, 11), 0, "rule off");
+    assert_eq!(overload_pulse(true, 1, 4), 0, "3 clocks: shorter than replica_skew");
+}

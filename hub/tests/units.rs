@@ -27,6 +27,7 @@ fn frame_decode_matches_its_table() {
             assert_eq!(d.eof_1_6.val(), field == Field::Eof && pos < 6);
             assert_eq!(d.eof_last.val(), field == Field::Eof && pos == 6);
             assert_eq!(d.im_2.val(), field == Field::Intermission && pos == 1);
+            assert_eq!(d.im_12.val(), field == Field::Intermission && pos < 2);
             assert_eq!(d.err_phase.val(), matches!(field, Field::ErrorFlag | Field::ErrorDelim | Field::Overload));
         }
     }
@@ -63,6 +64,7 @@ fn judge_stim(j: &mut JudgeUnit, rng: &mut rand_chacha::ChaCha8Rng, c: usize) {
         j.eof_1_6.next = (64..70).contains(&phase);
         j.eof_last.next = phase == 70;
         j.im_2.next = phase == 72;
+        j.im_12.next = phase == 71 || phase == 72;
         j.frame_ok.next = phase == 70;
         j.crc_ok.next = rng.gen_bool(0.9);
         j.err_phase.next = err;
@@ -71,7 +73,8 @@ fn judge_stim(j: &mut JudgeUnit, rng: &mut rand_chacha::ChaCha8Rng, c: usize) {
         if rng.gen_ratio(1, 300) {
             j.c.next = false; // occasionally long dominant runs
         }
-        j.rep_rec.next = rng.gen_ratio(1, 10);
+        // (more often in Intermission bits 1-2, for the overload rule of hub.md §5.21)
+        j.rep_rec.next = rng.gen_ratio(1, if matches!(phase, 71 | 72) { 3 } else { 10 });
         j.rep_rec_w.next = rng.gen_ratio(1, 10);
         j.rep_dom.next = rng.gen_ratio(1, 10);
         j.rep_mask.next = rng.gen_ratio(1, 4);
@@ -102,7 +105,7 @@ fn port_judge_flow() {
 #[test]
 #[ignore = "needs iverilog, verilator and yosys: run scripts/test-all.sh"]
 fn sublink_judge_flow() {
-    let mut j = JudgeUnit::sublink(JudgeParams { bic_limit: 128, dbc_threshold: 28, first_flagger: true, ..params() });
+    let mut j = JudgeUnit::sublink(JudgeParams { bic_limit: 128, dbc_threshold: 28, first_flagger: true, replica_overload: true, ..params() });
     flow::full_check(&mut j, "sublink_judge", 100_000, 22, judge_stim).expect("sublink judge flow");
 }
 

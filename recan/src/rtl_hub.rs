@@ -47,6 +47,9 @@ pub struct HubStats {
     /// Largest `dbc` seen per port / per sublink.
     pub max_dbc: Vec<u64>,
     pub max_sub_dbc: Vec<u64>,
+    /// Largest replica-rule count (`rep_cnt`, hub.md §5.7) seen per sublink: charges of
+    /// the replica rule (it never decays).
+    pub max_sub_rep: Vec<u64>,
     /// Time (ps) of the first clock with the port / sublink isolated.
     pub isolated_at: Vec<Option<u64>>,
     pub sub_isolated_at: Vec<Option<u64>>,
@@ -121,6 +124,7 @@ impl RtlHub {
                 max_sub_bic: vec![0; cfg.sublinks],
                 max_dbc: vec![0; cfg.ports],
                 max_sub_dbc: vec![0; cfg.sublinks],
+                max_sub_rep: vec![0; cfg.sublinks],
                 isolated_at: vec![None; cfg.ports],
                 sub_isolated_at: vec![None; cfg.sublinks],
                 isolated_by: vec![None; cfg.ports],
@@ -328,6 +332,7 @@ impl Component for RtlHub {
         for k in 0..self.m {
             st.max_sub_bic[k] = st.max_sub_bic[k].max(hub.sub_bic(k));
             st.max_sub_dbc[k] = st.max_sub_dbc[k].max(hub.sub_dbc(k));
+            st.max_sub_rep[k] = st.max_sub_rep[k].max(hub.sub_rep_cnt(k));
             if st.sub_isolated_at[k].is_none() {
                 if hub.sub_isolated(k) {
                     st.sub_isolated_at[k] = Some(now);

@@ -157,6 +157,10 @@ pub struct RunResult {
     /// Final blame counter (BIC, counter units) of every port, per hub
     /// (empty without the hub's debug outputs).
     pub final_bic: Vec<Vec<u32>>,
+    /// Replica-rule charges (hub.md §5.7) of both hubs' sublinks, summed (the largest
+    /// `rep_cnt` of each sublink during the run).
+    #[serde(default)]
+    pub replica_charges: u64,
     /// Largest blame counter of every port during the run, per hub (sampled
     /// every quarter bit; empty without the hub's debug outputs).
     #[serde(default)]

@@ -94,6 +94,9 @@ pub struct ChunkOutcome {
     /// glitch, or a dominant stuff bit: judge.rs §5.8 and the stuff-bit rule).
     #[serde(default)]
     pub uncharged: u64,
+    /// Replica-rule charges of sublinks (hub.md §5.7), both hubs.
+    #[serde(default)]
+    pub replica_charges: u64,
     /// Ports and sublinks isolated ("hub h port i", "hub h sublink j").
     pub isolations: Vec<String>,
     /// Error events of controllers.
@@ -124,7 +127,7 @@ pub struct ChunkOutcome {
 impl ChunkOutcome {
     /// Zero blames, zero isolations and no problem.
     pub fn clean(&self) -> bool {
-        self.blames == 0 && self.isolations.is_empty() && self.problems.is_empty()
+        self.blames == 0 && self.replica_charges == 0 && self.isolations.is_empty() && self.problems.is_empty()
     }
 }
 
@@ -227,6 +230,7 @@ pub fn run_chunk_vcd(s: &SoakSettings, index: u64, vcd: Option<(&std::path::Path
         frames: r.delivered,
         blames: r.blames.iter().filter(|b| b.5).count() as u64,
         uncharged: r.blames.iter().filter(|b| !b.5).count() as u64,
+        replica_charges: r.replica_charges,
         isolations: r
             .isolated
             .iter()
@@ -305,6 +309,9 @@ impl SoakReport {
     pub fn uncharged(&self) -> u64 {
         self.chunks.iter().map(|c| c.uncharged).sum()
     }
+    pub fn replica_charges(&self) -> u64 {
+        self.chunks.iter().map(|c| c.replica_charges).sum()
+    }
     pub fn isolations(&self) -> usize {
         self.chunks.iter().map(|c| c.isolations.len()).sum()
     }
@@ -320,12 +327,13 @@ impl SoakReport {
         let minp = self.chunks.iter().filter_map(|c| c.min_port_pulse).min();
         let mins = self.chunks.iter().filter_map(|c| c.min_sublink_pulse).min();
         let mut s = format!(
-            "frames {}  chunks {}  blames {}  isolations {}  worst TEC {worst_tec} REC {worst_rec}  controller errors {errors}  events {events}  uncharged blames {}\n",
+            "frames {}  chunks {}  blames {}  isolations {}  worst TEC {worst_tec} REC {worst_rec}  controller errors {errors}  events {events}  uncharged blames {}  replica charges {}\n",
             self.frames(),
             self.chunks.len(),
             self.blames(),
             self.isolations(),
-            self.uncharged()
+            self.uncharged(),
+            self.replica_charges()
         );
         s += &format!(
             "shortest pulse on a port input: {}, on a sublink input: {} (hub clocks)\n",
@@ -373,11 +381,12 @@ impl SoakReport {
         }
         for c in self.chunks.iter().filter(|c| !c.clean()) {
             s += &format!(
-                "chunk {} seed {}: blames {} isolations [{}] {}{}\n",
+                "chunk {} seed {}: blames {} isolations [{}]{} {}{}\n",
                 c.index,
                 c.seed,
                 c.blames,
                 c.isolations.join(", "),
+                if c.replica_charges > 0 { format!(" replica charges {}", c.replica_charges) } else { String::new() },
                 c.problems.join("; "),
                 c.blame_sites.iter().find(|b| !uncharged_site(b)).map_or(String::new(), |b| format!(" first blame: {b}"))
             );
@@ -450,13 +459,24 @@ mod tests {
         let r = SoakReport { settings: None, chunks: vec![c] };
         let s = r.summary();
         assert!(s.starts_with("frames 100  chunks 1  blames 0  isolations 0"), "{s}");
-        assert!(s.lines().next().unwrap().ends_with("uncharged blames 2"), "{s}");
+        assert!(s.lines().next().unwrap().ends_with("uncharged blames 2  replica charges 0"), "{s}");
         assert!(
             s.contains("clean chunks with uncharged blames (the hub started its error flag, nobody was charged): 4 (hub 0 port 1: Data bit 1 at bit time 45095 (not charged))"),
             "{s}"
         );
         assert!(!s.contains("chunks not clean"), "{s}");
         assert!(r.ok());
+    }
+
+    #[test]
+    fn replica_charges_make_a_chunk_unclean() {
+        let c = ChunkOutcome { index: 5, seed: 9, frames: 100, replica_charges: 1, ..Default::default() };
+        assert!(!c.clean());
+        let r = SoakReport { settings: None, chunks: vec![c] };
+        let s = r.summary();
+        assert!(s.lines().next().unwrap().ends_with("replica charges 1"), "{s}");
+        assert!(s.contains("chunk 5 seed 9: blames 0 isolations [] replica charges 1"), "{s}");
+        assert!(!r.ok());
     }
 
     #[test]

@@ -565,6 +565,11 @@ fn two_hubs_sublink_stuck_recessive() {
     let (mut d, _, t_f) = dual_with_fault(31, 800, |d, t| d.net.hubs[0].sub_out[0].schedule_fault(&mut d.sim, t, FaultMode::StuckRecessive));
     let at = d.rtl(1).stats.sub_isolated_at[0].expect("isolated");
     eprintln!("stuck recessive sublink: isolated after {:.0} bits", (at - t_f) as f64 / BIT as f64);
+    // the replica rule's charges (`max_sub_rep`, reported by `canstar soak`): the faulty
+    // replica reached the limit, the healthy one and hub 0's sublinks were never charged
+    assert!(d.rtl(1).stats.max_sub_rep[0] >= hub_cfg(3, 2).replica_limit, "{:?}", d.rtl(1).stats.max_sub_rep);
+    assert_eq!(d.rtl(1).stats.max_sub_rep[1], 0);
+    assert_eq!(d.rtl(0).stats.max_sub_rep, vec![0, 0]);
     assert_no_isolation_except(&d, [vec![false; 3], vec![false; 3]], [vec![false, false], vec![true, false]]);
     assert_traffic_goes_on(&mut d);
 }

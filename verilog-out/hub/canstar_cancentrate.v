@@ -729,9 +729,6 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
     localparam  down_code$0 = 2'b0;
     localparam  down_code$1 = 2'b0;
     localparam  down_code$2 = 2'b0;
-    localparam  guard_on = 1'b0;
-    localparam  guard_lim = 8'h38;
-    localparam  guard_decay = 3'b10;
     
     // Stub signals
     reg  coupler$clock;
@@ -788,6 +785,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
     wire  decode$eof_1_6;
     wire  decode$eof_last;
     wire  decode$im_2;
+    wire  decode$im_12;
     wire  decode$err_phase;
     reg  injector$clock;
     reg  injector$reset;
@@ -811,6 +809,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
     reg  pj$0$eof_1_6;
     reg  pj$0$eof_last;
     reg  pj$0$im_2;
+    reg  pj$0$im_12;
     reg  pj$0$err_phase;
     reg  pj$0$crc_ok;
     reg  pj$0$frame_ok;
@@ -865,6 +864,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
     reg  pj$1$eof_1_6;
     reg  pj$1$eof_last;
     reg  pj$1$im_2;
+    reg  pj$1$im_12;
     reg  pj$1$err_phase;
     reg  pj$1$crc_ok;
     reg  pj$1$frame_ok;
@@ -919,6 +919,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
     reg  pj$2$eof_1_6;
     reg  pj$2$eof_last;
     reg  pj$2$im_2;
+    reg  pj$2$im_12;
     reg  pj$2$err_phase;
     reg  pj$2$crc_ok;
     reg  pj$2$frame_ok;
@@ -974,15 +975,12 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
     reg  bt_prev$d;
     wire  bt_prev$q;
     reg  bt_prev$clock;
-    reg  [7:0] pest_r$d;
-    wire  [7:0] pest_r$q;
-    reg  pest_r$clock;
-    reg  [2:0] pdc_r$d;
-    wire  [2:0] pdc_r$q;
-    reg  pdc_r$clock;
-    reg  fok_r$d;
-    wire  fok_r$q;
-    reg  fok_r$clock;
+    reg  peer$clock;
+    reg  peer$reset;
+    reg  [1:0] peer$inc;
+    reg  peer$frame_ok;
+    wire  peer$high;
+    wire  [7:0] peer$est;
     
     // Local signals
     reg  gl_one;
@@ -1010,7 +1008,6 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
     reg  rep_rec_w;
     reg  rep_gl;
     reg  [1:0] pinc;
-    reg  [7:0] pstep;
     reg  guard;
     reg  pch_one;
     reg  pch_two;
@@ -1083,6 +1080,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         .eof_1_6(decode$eof_1_6),
         .eof_last(decode$eof_last),
         .im_2(decode$im_2),
+        .im_12(decode$im_12),
         .err_phase(decode$err_phase)
     );
     canstar_cancentrate_core$core$injector injector(
@@ -1110,6 +1108,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         .eof_1_6(pj$0$eof_1_6),
         .eof_last(pj$0$eof_last),
         .im_2(pj$0$im_2),
+        .im_12(pj$0$im_12),
         .err_phase(pj$0$err_phase),
         .crc_ok(pj$0$crc_ok),
         .frame_ok(pj$0$frame_ok),
@@ -1166,6 +1165,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         .eof_1_6(pj$1$eof_1_6),
         .eof_last(pj$1$eof_last),
         .im_2(pj$1$im_2),
+        .im_12(pj$1$im_12),
         .err_phase(pj$1$err_phase),
         .crc_ok(pj$1$crc_ok),
         .frame_ok(pj$1$frame_ok),
@@ -1222,6 +1222,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         .eof_1_6(pj$2$eof_1_6),
         .eof_last(pj$2$eof_last),
         .im_2(pj$2$im_2),
+        .im_12(pj$2$im_12),
         .err_phase(pj$2$err_phase),
         .crc_ok(pj$2$crc_ok),
         .frame_ok(pj$2$frame_ok),
@@ -1288,20 +1289,13 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         .q(bt_prev$q),
         .clock(bt_prev$clock)
     );
-    canstar_cancentrate_core$core$pest_r pest_r(
-        .d(pest_r$d),
-        .q(pest_r$q),
-        .clock(pest_r$clock)
-    );
-    canstar_cancentrate_core$core$pdc_r pdc_r(
-        .d(pdc_r$d),
-        .q(pdc_r$q),
-        .clock(pdc_r$clock)
-    );
-    canstar_cancentrate_core$core$fok_r fok_r(
-        .d(fok_r$d),
-        .q(fok_r$q),
-        .clock(fok_r$clock)
+    canstar_cancentrate_core$core$peer peer(
+        .clock(peer$clock),
+        .reset(peer$reset),
+        .inc(peer$inc),
+        .frame_ok(peer$frame_ok),
+        .high(peer$high),
+        .est(peer$est)
     );
     
     // Update code
@@ -1434,44 +1428,11 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
             pch_two = pch_two | pch_one;
             pch_one = 1'b1;
         end
-        guard = guard_on & (pest_r$q >= guard_lim) & ~pch_two;
-        pest_r$clock = clock;
-        pdc_r$clock = clock;
-        pest_r$d = pest_r$q;
-        pdc_r$d = pdc_r$q;
-        fok_r$clock = clock;
-        fok_r$d = mon_sample & mon_frame_ok;
-        if (pinc == 32'h3) begin
-            pstep = 32'h18;
-        end
-        else if (pinc == 32'h2) begin
-            pstep = 32'h10;
-        end
-        else begin
-            pstep = 32'h8;
-        end
-        if (pinc != 32'h0) begin
-            if (pest_r$q > 32'he7) begin
-                pest_r$d = 32'hff;
-            end
-            else begin
-                pest_r$d = pest_r$q + pstep;
-            end
-        end
-        else if (fok_r$q & (pest_r$q != 32'h0)) begin
-            if ((pdc_r$q + 32'h1) >= guard_decay) begin
-                pdc_r$d = 32'h0;
-                pest_r$d = pest_r$q - 32'h1;
-            end
-            else begin
-                pdc_r$d = pdc_r$q + 32'h1;
-            end
-        end
-        if (reset) begin
-            pest_r$d = 32'h0;
-            pdc_r$d = 32'h0;
-            fok_r$d = 1'b0;
-        end
+        peer$clock = clock;
+        peer$reset = reset;
+        peer$inc = pinc;
+        peer$frame_ok = mon_sample & mon_frame_ok;
+        guard = peer$high & ~pch_two;
         any_blame = 1'b0;
         any_sub_blame = 1'b0;
         any_tx_error = 1'b0;
@@ -1502,6 +1463,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         pj$0$eof_1_6 = decode$eof_1_6;
         pj$0$eof_last = decode$eof_last;
         pj$0$im_2 = decode$im_2;
+        pj$0$im_12 = decode$im_12;
         pj$0$err_phase = err_phase;
         pj$0$crc_ok = mon_crc_ok;
         pj$0$frame_ok = mon_frame_ok;
@@ -1552,6 +1514,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         pj$1$eof_1_6 = decode$eof_1_6;
         pj$1$eof_last = decode$eof_last;
         pj$1$im_2 = decode$im_2;
+        pj$1$im_12 = decode$im_12;
         pj$1$err_phase = err_phase;
         pj$1$crc_ok = mon_crc_ok;
         pj$1$frame_ok = mon_frame_ok;
@@ -1602,6 +1565,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         pj$2$eof_1_6 = decode$eof_1_6;
         pj$2$eof_last = decode$eof_last;
         pj$2$im_2 = decode$im_2;
+        pj$2$im_12 = decode$im_12;
         pj$2$err_phase = err_phase;
         pj$2$crc_ok = mon_crc_ok;
         pj$2$frame_ok = mon_frame_ok;
@@ -2233,7 +2197,7 @@ module canstar_cancentrate_core$core$coupler$up_sync$2$s2_n(d,q,clock);
 endmodule // canstar_cancentrate_core$core$coupler$up_sync$2$s2_n
 
 
-module canstar_cancentrate_core$core$decode(clock,field,pos,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,eof_last,im_2,err_phase);
+module canstar_cancentrate_core$core$decode(clock,field,pos,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,eof_last,im_2,im_12,err_phase);
     
     // Module arguments
     input wire  clock;
@@ -2248,6 +2212,7 @@ module canstar_cancentrate_core$core$decode(clock,field,pos,sof,tx_region,arb,cr
     output reg  eof_1_6;
     output reg  eof_last;
     output reg  im_2;
+    output reg  im_12;
     output reg  err_phase;
     
     // Update code
@@ -2261,6 +2226,7 @@ module canstar_cancentrate_core$core$decode(clock,field,pos,sof,tx_region,arb,cr
         eof_1_6 = (field == 32'hb) & (pos < 32'h6);
         eof_last = (field == 32'hb) & (pos == 32'h6);
         im_2 = (field == 32'hc) & (pos == 32'h1);
+        im_12 = (field == 32'hc) & (pos < 32'h2);
         err_phase = field >= 32'hd;
     end
     
@@ -2459,25 +2425,6 @@ module canstar_cancentrate_core$core$ff_r(d,q,clock);
 endmodule // canstar_cancentrate_core$core$ff_r
 
 
-module canstar_cancentrate_core$core$fok_r(d,q,clock);
-    
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_cancentrate_core$core$fok_r
-
-
 module canstar_cancentrate_core$core$injector(clock,reset,button,sample,field,eof_last,active,armed);
     
     // Module arguments
@@ -2648,7 +2595,119 @@ module canstar_cancentrate_core$core$injector$state(d,q,clock);
 endmodule // canstar_cancentrate_core$core$injector$state
 
 
-module canstar_cancentrate_core$core$pdc_r(d,q,clock);
+module canstar_cancentrate_core$core$peer(clock,reset,inc,frame_ok,high,est);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  reset;
+    input wire  [1:0] inc;
+    input wire  frame_ok;
+    output reg  high;
+    output reg  [7:0] est;
+    
+    // Constant declarations
+    localparam  on = 1'b0;
+    localparam  lim = 8'h38;
+    localparam  decay = 3'b10;
+    
+    // Stub signals
+    reg  [7:0] pest_r$d;
+    wire  [7:0] pest_r$q;
+    reg  pest_r$clock;
+    reg  [2:0] pdc_r$d;
+    wire  [2:0] pdc_r$q;
+    reg  pdc_r$clock;
+    reg  fok_r$d;
+    wire  fok_r$q;
+    reg  fok_r$clock;
+    
+    // Local signals
+    reg  [7:0] pstep;
+    
+    // Sub module instances
+    canstar_cancentrate_core$core$peer$pest_r pest_r(
+        .d(pest_r$d),
+        .q(pest_r$q),
+        .clock(pest_r$clock)
+    );
+    canstar_cancentrate_core$core$peer$pdc_r pdc_r(
+        .d(pdc_r$d),
+        .q(pdc_r$q),
+        .clock(pdc_r$clock)
+    );
+    canstar_cancentrate_core$core$peer$fok_r fok_r(
+        .d(fok_r$d),
+        .q(fok_r$q),
+        .clock(fok_r$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        pest_r$clock = clock;
+        pdc_r$clock = clock;
+        fok_r$clock = clock;
+        pest_r$d = pest_r$q;
+        pdc_r$d = pdc_r$q;
+        fok_r$d = fok_r$q;
+        fok_r$d = frame_ok;
+        if (inc == 32'h3) begin
+            pstep = 32'h18;
+        end
+        else if (inc == 32'h2) begin
+            pstep = 32'h10;
+        end
+        else begin
+            pstep = 32'h8;
+        end
+        if (inc != 32'h0) begin
+            if (pest_r$q > 32'he7) begin
+                pest_r$d = 32'hff;
+            end
+            else begin
+                pest_r$d = pest_r$q + pstep;
+            end
+        end
+        else if (fok_r$q & (pest_r$q != 32'h0)) begin
+            if ((pdc_r$q + 32'h1) >= decay) begin
+                pdc_r$d = 32'h0;
+                pest_r$d = pest_r$q - 32'h1;
+            end
+            else begin
+                pdc_r$d = pdc_r$q + 32'h1;
+            end
+        end
+        if (reset) begin
+            pest_r$d = 32'h0;
+            pdc_r$d = 32'h0;
+            fok_r$d = 1'b0;
+        end
+        high = on & (pest_r$q >= lim);
+        est = pest_r$q;
+    end
+    
+endmodule // canstar_cancentrate_core$core$peer
+
+
+module canstar_cancentrate_core$core$peer$fok_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$peer$fok_r
+
+
+module canstar_cancentrate_core$core$peer$pdc_r(d,q,clock);
     
     // Module arguments
     input wire  [2:0] d;
@@ -2664,10 +2723,10 @@ module canstar_cancentrate_core$core$pdc_r(d,q,clock);
        q <= d;
     end
           
-endmodule // canstar_cancentrate_core$core$pdc_r
+endmodule // canstar_cancentrate_core$core$peer$pdc_r
 
 
-module canstar_cancentrate_core$core$pest_r(d,q,clock);
+module canstar_cancentrate_core$core$peer$pest_r(d,q,clock);
     
     // Module arguments
     input wire  [7:0] d;
@@ -2683,10 +2742,10 @@ module canstar_cancentrate_core$core$pest_r(d,q,clock);
        q <= d;
     end
           
-endmodule // canstar_cancentrate_core$core$pest_r
+endmodule // canstar_cancentrate_core$core$peer$pest_r
 
 
-module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,eof_last,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,rep_mask,rep_other,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,guard,dis,blame,charged,step,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
+module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,eof_last,im_2,im_12,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,rep_mask,rep_other,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,guard,dis,blame,charged,step,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
     
     // Module arguments
     input wire  clock;
@@ -2703,6 +2762,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
     input wire  eof_1_6;
     input wire  eof_last;
     input wire  im_2;
+    input wire  im_12;
     input wire  err_phase;
     input wire  crc_ok;
     input wire  frame_ok;
@@ -2766,6 +2826,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
     localparam  nack_on = 1'b1;
     localparam  rep_on = 1'b0;
     localparam  rep_skew = 3'b100;
+    localparam  rov_on = 1'b0;
     localparam  reint_on = 1'b0;
     localparam  reint_w = 8'h1;
     
@@ -2807,6 +2868,9 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
     reg  [2:0] rd_run$d;
     wire  [2:0] rd_run$q;
     reg  rd_run$clock;
+    reg  rov_w$d;
+    wire  rov_w$q;
+    reg  rov_w$clock;
     reg  [7:0] ok_r$d;
     wire  [7:0] ok_r$q;
     reg  ok_r$clock;
@@ -2909,6 +2973,8 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
     reg  charge;
     reg  g;
     reg  rep_ok;
+    reg  rov;
+    reg  rov_now;
     reg  gcount;
     reg  pcount;
     
@@ -2973,6 +3039,11 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         .d(rd_run$d),
         .q(rd_run$q),
         .clock(rd_run$clock)
+    );
+    canstar_cancentrate_core$core$pj$0$rov_w rov_w(
+        .d(rov_w$d),
+        .q(rov_w$q),
+        .clock(rov_w$clock)
     );
     canstar_cancentrate_core$core$pj$0$ok_r ok_r(
         .d(ok_r$d),
@@ -3128,6 +3199,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         rep_seen$clock = clock;
         rep_first_dom$clock = clock;
         rd_run$clock = clock;
+        rov_w$clock = clock;
         ok_r$clock = clock;
         acked$clock = clock;
         bad$clock = clock;
@@ -3167,6 +3239,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         rep_seen$d = rep_seen$q;
         rep_first_dom$d = rep_first_dom$q;
         rd_run$d = rd_run$q;
+        rov_w$d = rov_w$q;
         ok_r$d = ok_r$q;
         acked$d = acked$q;
         bad$d = bad$q;
@@ -3205,6 +3278,14 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         enabled = ~dis_r$q;
         rep_dmin = dom & rep_rec;
         rep_rmin = c & rep_dom;
+        rov_now = enabled & ~rep_mask & (rd_run$q >= rep_skew) & rep_dmin;
+        if (bit_start) begin
+            rov_w$d = 1'b0;
+        end
+        else if (rov_now) begin
+            rov_w$d = 1'b1;
+        end
+        rov = sample & rov_on & im_12 & enabled & (rov_w$q | rov_now);
         domw = dom | seen_dom$q;
         if (bit_start) begin
             seen_dom$d = 1'b0;
@@ -3339,7 +3420,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
                     nack_r$d = 32'h0;
                 end
             end
-            if (rep_on & enabled & ~rep_seen$q & ~rep_mask & (rd_run$q >= rep_skew) & (rep_dmin | (rep_rmin & (tx_region | crc_delim | ack_slot | ack_delim | eof_1_6)))) begin
+            if (rep_on & enabled & ~rep_seen$q & ~rov & ~rep_mask & (rd_run$q >= rep_skew) & (rep_dmin | (rep_rmin & (tx_region | crc_delim | ack_slot | ack_delim | eof_1_6)))) begin
                 rep_seen$d = 1'b1;
                 rep_first_dom$d = dom;
             end
@@ -3420,6 +3501,9 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
                 rep_r$d = rep_r$q + 32'h1;
             end
         end
+        else if (rov & rep_ok) begin
+            rep_r$d = rep_r$q + 32'h1;
+        end
         if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (rep_on & (pgc_r$q >= pg_limit)) | (rep_on & (rep_r$q >= rep_limit)) | (guard & (step_r$q != 32'h0) & bnz_r$q))) begin
             dis_r$d = 1'b1;
         end
@@ -3464,6 +3548,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
             rep_r$d = 32'h0;
             rep_seen$d = 1'b0;
             rep_first_dom$d = 1'b0;
+            rov_w$d = 1'b0;
             bl_r$d = 1'b0;
             bl_dm_r$d = 1'b0;
             gpend$d = 1'b0;
@@ -4339,6 +4424,25 @@ module canstar_cancentrate_core$core$pj$0$rep_seen(d,q,clock);
 endmodule // canstar_cancentrate_core$core$pj$0$rep_seen
 
 
+module canstar_cancentrate_core$core$pj$0$rov_w(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$0$rov_w
+
+
 module canstar_cancentrate_core$core$pj$0$sdp_r(d,q,clock);
     
     // Module arguments
@@ -4415,7 +4519,7 @@ module canstar_cancentrate_core$core$pj$0$step_r(d,q,clock);
 endmodule // canstar_cancentrate_core$core$pj$0$step_r
 
 
-module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,eof_last,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,rep_mask,rep_other,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,guard,dis,blame,charged,step,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
+module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,eof_last,im_2,im_12,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,rep_mask,rep_other,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,guard,dis,blame,charged,step,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
     
     // Module arguments
     input wire  clock;
@@ -4432,6 +4536,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
     input wire  eof_1_6;
     input wire  eof_last;
     input wire  im_2;
+    input wire  im_12;
     input wire  err_phase;
     input wire  crc_ok;
     input wire  frame_ok;
@@ -4495,6 +4600,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
     localparam  nack_on = 1'b1;
     localparam  rep_on = 1'b0;
     localparam  rep_skew = 3'b100;
+    localparam  rov_on = 1'b0;
     localparam  reint_on = 1'b0;
     localparam  reint_w = 8'h1;
     
@@ -4536,6 +4642,9 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
     reg  [2:0] rd_run$d;
     wire  [2:0] rd_run$q;
     reg  rd_run$clock;
+    reg  rov_w$d;
+    wire  rov_w$q;
+    reg  rov_w$clock;
     reg  [7:0] ok_r$d;
     wire  [7:0] ok_r$q;
     reg  ok_r$clock;
@@ -4638,6 +4747,8 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
     reg  charge;
     reg  g;
     reg  rep_ok;
+    reg  rov;
+    reg  rov_now;
     reg  gcount;
     reg  pcount;
     
@@ -4702,6 +4813,11 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         .d(rd_run$d),
         .q(rd_run$q),
         .clock(rd_run$clock)
+    );
+    canstar_cancentrate_core$core$pj$1$rov_w rov_w(
+        .d(rov_w$d),
+        .q(rov_w$q),
+        .clock(rov_w$clock)
     );
     canstar_cancentrate_core$core$pj$1$ok_r ok_r(
         .d(ok_r$d),
@@ -4857,6 +4973,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         rep_seen$clock = clock;
         rep_first_dom$clock = clock;
         rd_run$clock = clock;
+        rov_w$clock = clock;
         ok_r$clock = clock;
         acked$clock = clock;
         bad$clock = clock;
@@ -4896,6 +5013,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         rep_seen$d = rep_seen$q;
         rep_first_dom$d = rep_first_dom$q;
         rd_run$d = rd_run$q;
+        rov_w$d = rov_w$q;
         ok_r$d = ok_r$q;
         acked$d = acked$q;
         bad$d = bad$q;
@@ -4934,6 +5052,14 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         enabled = ~dis_r$q;
         rep_dmin = dom & rep_rec;
         rep_rmin = c & rep_dom;
+        rov_now = enabled & ~rep_mask & (rd_run$q >= rep_skew) & rep_dmin;
+        if (bit_start) begin
+            rov_w$d = 1'b0;
+        end
+        else if (rov_now) begin
+            rov_w$d = 1'b1;
+        end
+        rov = sample & rov_on & im_12 & enabled & (rov_w$q | rov_now);
         domw = dom | seen_dom$q;
         if (bit_start) begin
             seen_dom$d = 1'b0;
@@ -5068,7 +5194,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
                     nack_r$d = 32'h0;
                 end
             end
-            if (rep_on & enabled & ~rep_seen$q & ~rep_mask & (rd_run$q >= rep_skew) & (rep_dmin | (rep_rmin & (tx_region | crc_delim | ack_slot | ack_delim | eof_1_6)))) begin
+            if (rep_on & enabled & ~rep_seen$q & ~rov & ~rep_mask & (rd_run$q >= rep_skew) & (rep_dmin | (rep_rmin & (tx_region | crc_delim | ack_slot | ack_delim | eof_1_6)))) begin
                 rep_seen$d = 1'b1;
                 rep_first_dom$d = dom;
             end
@@ -5149,6 +5275,9 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
                 rep_r$d = rep_r$q + 32'h1;
             end
         end
+        else if (rov & rep_ok) begin
+            rep_r$d = rep_r$q + 32'h1;
+        end
         if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (rep_on & (pgc_r$q >= pg_limit)) | (rep_on & (rep_r$q >= rep_limit)) | (guard & (step_r$q != 32'h0) & bnz_r$q))) begin
             dis_r$d = 1'b1;
         end
@@ -5193,6 +5322,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
             rep_r$d = 32'h0;
             rep_seen$d = 1'b0;
             rep_first_dom$d = 1'b0;
+            rov_w$d = 1'b0;
             bl_r$d = 1'b0;
             bl_dm_r$d = 1'b0;
             gpend$d = 1'b0;
@@ -6068,6 +6198,25 @@ module canstar_cancentrate_core$core$pj$1$rep_seen(d,q,clock);
 endmodule // canstar_cancentrate_core$core$pj$1$rep_seen
 
 
+module canstar_cancentrate_core$core$pj$1$rov_w(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$1$rov_w
+
+
 module canstar_cancentrate_core$core$pj$1$sdp_r(d,q,clock);
     
     // Module arguments
@@ -6144,7 +6293,7 @@ module canstar_cancentrate_core$core$pj$1$step_r(d,q,clock);
 endmodule // canstar_cancentrate_core$core$pj$1$step_r
 
 
-module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,eof_last,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,rep_mask,rep_other,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,guard,dis,blame,charged,step,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
+module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,eof_last,im_2,im_12,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,rep_mask,rep_other,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,guard,dis,blame,charged,step,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
     
     // Module arguments
     input wire  clock;
@@ -6161,6 +6310,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
     input wire  eof_1_6;
     input wire  eof_last;
     input wire  im_2;
+    input wire  im_12;
     input wire  err_phase;
     input wire  crc_ok;
     input wire  frame_ok;
@@ -6224,6 +6374,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
     localparam  nack_on = 1'b1;
     localparam  rep_on = 1'b0;
     localparam  rep_skew = 3'b100;
+    localparam  rov_on = 1'b0;
     localparam  reint_on = 1'b0;
     localparam  reint_w = 8'h1;
     
@@ -6265,6 +6416,9 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
     reg  [2:0] rd_run$d;
     wire  [2:0] rd_run$q;
     reg  rd_run$clock;
+    reg  rov_w$d;
+    wire  rov_w$q;
+    reg  rov_w$clock;
     reg  [7:0] ok_r$d;
     wire  [7:0] ok_r$q;
     reg  ok_r$clock;
@@ -6367,6 +6521,8 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
     reg  charge;
     reg  g;
     reg  rep_ok;
+    reg  rov;
+    reg  rov_now;
     reg  gcount;
     reg  pcount;
     
@@ -6431,6 +6587,11 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         .d(rd_run$d),
         .q(rd_run$q),
         .clock(rd_run$clock)
+    );
+    canstar_cancentrate_core$core$pj$2$rov_w rov_w(
+        .d(rov_w$d),
+        .q(rov_w$q),
+        .clock(rov_w$clock)
     );
     canstar_cancentrate_core$core$pj$2$ok_r ok_r(
         .d(ok_r$d),
@@ -6586,6 +6747,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         rep_seen$clock = clock;
         rep_first_dom$clock = clock;
         rd_run$clock = clock;
+        rov_w$clock = clock;
         ok_r$clock = clock;
         acked$clock = clock;
         bad$clock = clock;
@@ -6625,6 +6787,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         rep_seen$d = rep_seen$q;
         rep_first_dom$d = rep_first_dom$q;
         rd_run$d = rd_run$q;
+        rov_w$d = rov_w$q;
         ok_r$d = ok_r$q;
         acked$d = acked$q;
         bad$d = bad$q;
@@ -6663,6 +6826,14 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         enabled = ~dis_r$q;
         rep_dmin = dom & rep_rec;
         rep_rmin = c & rep_dom;
+        rov_now = enabled & ~rep_mask & (rd_run$q >= rep_skew) & rep_dmin;
+        if (bit_start) begin
+            rov_w$d = 1'b0;
+        end
+        else if (rov_now) begin
+            rov_w$d = 1'b1;
+        end
+        rov = sample & rov_on & im_12 & enabled & (rov_w$q | rov_now);
         domw = dom | seen_dom$q;
         if (bit_start) begin
             seen_dom$d = 1'b0;
@@ -6797,7 +6968,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
                     nack_r$d = 32'h0;
                 end
             end
-            if (rep_on & enabled & ~rep_seen$q & ~rep_mask & (rd_run$q >= rep_skew) & (rep_dmin | (rep_rmin & (tx_region | crc_delim | ack_slot | ack_delim | eof_1_6)))) begin
+            if (rep_on & enabled & ~rep_seen$q & ~rov & ~rep_mask & (rd_run$q >= rep_skew) & (rep_dmin | (rep_rmin & (tx_region | crc_delim | ack_slot | ack_delim | eof_1_6)))) begin
                 rep_seen$d = 1'b1;
                 rep_first_dom$d = dom;
             end
@@ -6878,6 +7049,9 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
                 rep_r$d = rep_r$q + 32'h1;
             end
         end
+        else if (rov & rep_ok) begin
+            rep_r$d = rep_r$q + 32'h1;
+        end
         if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (rep_on & (pgc_r$q >= pg_limit)) | (rep_on & (rep_r$q >= rep_limit)) | (guard & (step_r$q != 32'h0) & bnz_r$q))) begin
             dis_r$d = 1'b1;
         end
@@ -6922,6 +7096,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
             rep_r$d = 32'h0;
             rep_seen$d = 1'b0;
             rep_first_dom$d = 1'b0;
+            rov_w$d = 1'b0;
             bl_r$d = 1'b0;
             bl_dm_r$d = 1'b0;
             gpend$d = 1'b0;
@@ -7795,6 +7970,25 @@ module canstar_cancentrate_core$core$pj$2$rep_seen(d,q,clock);
     end
           
 endmodule // canstar_cancentrate_core$core$pj$2$rep_seen
+
+
+module canstar_cancentrate_core$core$pj$2$rov_w(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$2$rov_w
 
 
 module canstar_cancentrate_core$core$pj$2$sdp_r(d,q,clock);

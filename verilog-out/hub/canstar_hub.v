@@ -791,9 +791,6 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     localparam  down_code$2 = 2'b0;
     localparam  hub_code$0 = 2'b0;
     localparam  hub_code$1 = 2'b0;
-    localparam  guard_on = 1'b1;
-    localparam  guard_lim = 8'h38;
-    localparam  guard_decay = 3'b10;
     
     // Stub signals
     reg  coupler$clock;
@@ -860,6 +857,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     wire  decode$eof_1_6;
     wire  decode$eof_last;
     wire  decode$im_2;
+    wire  decode$im_12;
     wire  decode$err_phase;
     reg  injector$clock;
     reg  injector$reset;
@@ -883,6 +881,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     reg  pj$0$eof_1_6;
     reg  pj$0$eof_last;
     reg  pj$0$im_2;
+    reg  pj$0$im_12;
     reg  pj$0$err_phase;
     reg  pj$0$crc_ok;
     reg  pj$0$frame_ok;
@@ -937,6 +936,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     reg  pj$1$eof_1_6;
     reg  pj$1$eof_last;
     reg  pj$1$im_2;
+    reg  pj$1$im_12;
     reg  pj$1$err_phase;
     reg  pj$1$crc_ok;
     reg  pj$1$frame_ok;
@@ -991,6 +991,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     reg  pj$2$eof_1_6;
     reg  pj$2$eof_last;
     reg  pj$2$im_2;
+    reg  pj$2$im_12;
     reg  pj$2$err_phase;
     reg  pj$2$crc_ok;
     reg  pj$2$frame_ok;
@@ -1045,6 +1046,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     reg  sj$0$eof_1_6;
     reg  sj$0$eof_last;
     reg  sj$0$im_2;
+    reg  sj$0$im_12;
     reg  sj$0$err_phase;
     reg  sj$0$crc_ok;
     reg  sj$0$frame_ok;
@@ -1099,6 +1101,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     reg  sj$1$eof_1_6;
     reg  sj$1$eof_last;
     reg  sj$1$im_2;
+    reg  sj$1$im_12;
     reg  sj$1$err_phase;
     reg  sj$1$crc_ok;
     reg  sj$1$frame_ok;
@@ -1154,15 +1157,12 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     reg  bt_prev$d;
     wire  bt_prev$q;
     reg  bt_prev$clock;
-    reg  [7:0] pest_r$d;
-    wire  [7:0] pest_r$q;
-    reg  pest_r$clock;
-    reg  [2:0] pdc_r$d;
-    wire  [2:0] pdc_r$q;
-    reg  pdc_r$clock;
-    reg  fok_r$d;
-    wire  fok_r$q;
-    reg  fok_r$clock;
+    reg  peer$clock;
+    reg  peer$reset;
+    reg  [1:0] peer$inc;
+    reg  peer$frame_ok;
+    wire  peer$high;
+    wire  [7:0] peer$est;
     
     // Local signals
     reg  gl_one;
@@ -1190,7 +1190,6 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     reg  rep_rec_w;
     reg  rep_gl;
     reg  [1:0] pinc;
-    reg  [7:0] pstep;
     reg  guard;
     reg  pch_one;
     reg  pch_two;
@@ -1273,6 +1272,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .eof_1_6(decode$eof_1_6),
         .eof_last(decode$eof_last),
         .im_2(decode$im_2),
+        .im_12(decode$im_12),
         .err_phase(decode$err_phase)
     );
     canstar_hub_core$core$injector injector(
@@ -1300,6 +1300,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .eof_1_6(pj$0$eof_1_6),
         .eof_last(pj$0$eof_last),
         .im_2(pj$0$im_2),
+        .im_12(pj$0$im_12),
         .err_phase(pj$0$err_phase),
         .crc_ok(pj$0$crc_ok),
         .frame_ok(pj$0$frame_ok),
@@ -1356,6 +1357,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .eof_1_6(pj$1$eof_1_6),
         .eof_last(pj$1$eof_last),
         .im_2(pj$1$im_2),
+        .im_12(pj$1$im_12),
         .err_phase(pj$1$err_phase),
         .crc_ok(pj$1$crc_ok),
         .frame_ok(pj$1$frame_ok),
@@ -1412,6 +1414,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .eof_1_6(pj$2$eof_1_6),
         .eof_last(pj$2$eof_last),
         .im_2(pj$2$im_2),
+        .im_12(pj$2$im_12),
         .err_phase(pj$2$err_phase),
         .crc_ok(pj$2$crc_ok),
         .frame_ok(pj$2$frame_ok),
@@ -1468,6 +1471,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .eof_1_6(sj$0$eof_1_6),
         .eof_last(sj$0$eof_last),
         .im_2(sj$0$im_2),
+        .im_12(sj$0$im_12),
         .err_phase(sj$0$err_phase),
         .crc_ok(sj$0$crc_ok),
         .frame_ok(sj$0$frame_ok),
@@ -1524,6 +1528,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .eof_1_6(sj$1$eof_1_6),
         .eof_last(sj$1$eof_last),
         .im_2(sj$1$im_2),
+        .im_12(sj$1$im_12),
         .err_phase(sj$1$err_phase),
         .crc_ok(sj$1$crc_ok),
         .frame_ok(sj$1$frame_ok),
@@ -1590,20 +1595,13 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .q(bt_prev$q),
         .clock(bt_prev$clock)
     );
-    canstar_hub_core$core$pest_r pest_r(
-        .d(pest_r$d),
-        .q(pest_r$q),
-        .clock(pest_r$clock)
-    );
-    canstar_hub_core$core$pdc_r pdc_r(
-        .d(pdc_r$d),
-        .q(pdc_r$q),
-        .clock(pdc_r$clock)
-    );
-    canstar_hub_core$core$fok_r fok_r(
-        .d(fok_r$d),
-        .q(fok_r$q),
-        .clock(fok_r$clock)
+    canstar_hub_core$core$peer peer(
+        .clock(peer$clock),
+        .reset(peer$reset),
+        .inc(peer$inc),
+        .frame_ok(peer$frame_ok),
+        .high(peer$high),
+        .est(peer$est)
     );
     
     // Update code
@@ -1798,44 +1796,11 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
             pch_two = pch_two | pch_one;
             pch_one = 1'b1;
         end
-        guard = guard_on & (pest_r$q >= guard_lim) & ~pch_two;
-        pest_r$clock = clock;
-        pdc_r$clock = clock;
-        pest_r$d = pest_r$q;
-        pdc_r$d = pdc_r$q;
-        fok_r$clock = clock;
-        fok_r$d = mon_sample & mon_frame_ok;
-        if (pinc == 32'h3) begin
-            pstep = 32'h18;
-        end
-        else if (pinc == 32'h2) begin
-            pstep = 32'h10;
-        end
-        else begin
-            pstep = 32'h8;
-        end
-        if (pinc != 32'h0) begin
-            if (pest_r$q > 32'he7) begin
-                pest_r$d = 32'hff;
-            end
-            else begin
-                pest_r$d = pest_r$q + pstep;
-            end
-        end
-        else if (fok_r$q & (pest_r$q != 32'h0)) begin
-            if ((pdc_r$q + 32'h1) >= guard_decay) begin
-                pdc_r$d = 32'h0;
-                pest_r$d = pest_r$q - 32'h1;
-            end
-            else begin
-                pdc_r$d = pdc_r$q + 32'h1;
-            end
-        end
-        if (reset) begin
-            pest_r$d = 32'h0;
-            pdc_r$d = 32'h0;
-            fok_r$d = 1'b0;
-        end
+        peer$clock = clock;
+        peer$reset = reset;
+        peer$inc = pinc;
+        peer$frame_ok = mon_sample & mon_frame_ok;
+        guard = peer$high & ~pch_two;
         any_blame = 1'b0;
         any_sub_blame = 1'b0;
         any_tx_error = 1'b0;
@@ -1866,6 +1831,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         pj$0$eof_1_6 = decode$eof_1_6;
         pj$0$eof_last = decode$eof_last;
         pj$0$im_2 = decode$im_2;
+        pj$0$im_12 = decode$im_12;
         pj$0$err_phase = err_phase;
         pj$0$crc_ok = mon_crc_ok;
         pj$0$frame_ok = mon_frame_ok;
@@ -1916,6 +1882,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         pj$1$eof_1_6 = decode$eof_1_6;
         pj$1$eof_last = decode$eof_last;
         pj$1$im_2 = decode$im_2;
+        pj$1$im_12 = decode$im_12;
         pj$1$err_phase = err_phase;
         pj$1$crc_ok = mon_crc_ok;
         pj$1$frame_ok = mon_frame_ok;
@@ -1966,6 +1933,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         pj$2$eof_1_6 = decode$eof_1_6;
         pj$2$eof_last = decode$eof_last;
         pj$2$im_2 = decode$im_2;
+        pj$2$im_12 = decode$im_12;
         pj$2$err_phase = err_phase;
         pj$2$crc_ok = mon_crc_ok;
         pj$2$frame_ok = mon_frame_ok;
@@ -2003,6 +1971,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         sj$0$eof_1_6 = decode$eof_1_6;
         sj$0$eof_last = decode$eof_last;
         sj$0$im_2 = decode$im_2;
+        sj$0$im_12 = decode$im_12;
         sj$0$err_phase = err_phase;
         sj$0$crc_ok = mon_crc_ok;
         sj$0$frame_ok = mon_frame_ok;
@@ -2034,6 +2003,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         sj$1$eof_1_6 = decode$eof_1_6;
         sj$1$eof_last = decode$eof_last;
         sj$1$im_2 = decode$im_2;
+        sj$1$im_12 = decode$im_12;
         sj$1$err_phase = err_phase;
         sj$1$crc_ok = mon_crc_ok;
         sj$1$frame_ok = mon_frame_ok;
@@ -2991,7 +2961,7 @@ module canstar_hub_core$core$coupler$up_sync$2$s2_n(d,q,clock);
 endmodule // canstar_hub_core$core$coupler$up_sync$2$s2_n
 
 
-module canstar_hub_core$core$decode(clock,field,pos,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,eof_last,im_2,err_phase);
+module canstar_hub_core$core$decode(clock,field,pos,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,eof_last,im_2,im_12,err_phase);
     
     // Module arguments
     input wire  clock;
@@ -3006,6 +2976,7 @@ module canstar_hub_core$core$decode(clock,field,pos,sof,tx_region,arb,crc_delim,
     output reg  eof_1_6;
     output reg  eof_last;
     output reg  im_2;
+    output reg  im_12;
     output reg  err_phase;
     
     // Update code
@@ -3019,6 +2990,7 @@ module canstar_hub_core$core$decode(clock,field,pos,sof,tx_region,arb,crc_delim,
         eof_1_6 = (field == 32'hb) & (pos < 32'h6);
         eof_last = (field == 32'hb) & (pos == 32'h6);
         im_2 = (field == 32'hc) & (pos == 32'h1);
+        im_12 = (field == 32'hc) & (pos < 32'h2);
         err_phase = field >= 32'hd;
     end
     
@@ -3217,25 +3189,6 @@ module canstar_hub_core$core$ff_r(d,q,clock);
 endmodule // canstar_hub_core$core$ff_r
 
 
-module canstar_hub_core$core$fok_r(d,q,clock);
-    
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_hub_core$core$fok_r
-
-
 module canstar_hub_core$core$injector(clock,reset,button,sample,field,eof_last,active,armed);
     
     // Module arguments
@@ -3406,7 +3359,119 @@ module canstar_hub_core$core$injector$state(d,q,clock);
 endmodule // canstar_hub_core$core$injector$state
 
 
-module canstar_hub_core$core$pdc_r(d,q,clock);
+module canstar_hub_core$core$peer(clock,reset,inc,frame_ok,high,est);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  reset;
+    input wire  [1:0] inc;
+    input wire  frame_ok;
+    output reg  high;
+    output reg  [7:0] est;
+    
+    // Constant declarations
+    localparam  on = 1'b1;
+    localparam  lim = 8'h38;
+    localparam  decay = 3'b10;
+    
+    // Stub signals
+    reg  [7:0] pest_r$d;
+    wire  [7:0] pest_r$q;
+    reg  pest_r$clock;
+    reg  [2:0] pdc_r$d;
+    wire  [2:0] pdc_r$q;
+    reg  pdc_r$clock;
+    reg  fok_r$d;
+    wire  fok_r$q;
+    reg  fok_r$clock;
+    
+    // Local signals
+    reg  [7:0] pstep;
+    
+    // Sub module instances
+    canstar_hub_core$core$peer$pest_r pest_r(
+        .d(pest_r$d),
+        .q(pest_r$q),
+        .clock(pest_r$clock)
+    );
+    canstar_hub_core$core$peer$pdc_r pdc_r(
+        .d(pdc_r$d),
+        .q(pdc_r$q),
+        .clock(pdc_r$clock)
+    );
+    canstar_hub_core$core$peer$fok_r fok_r(
+        .d(fok_r$d),
+        .q(fok_r$q),
+        .clock(fok_r$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        pest_r$clock = clock;
+        pdc_r$clock = clock;
+        fok_r$clock = clock;
+        pest_r$d = pest_r$q;
+        pdc_r$d = pdc_r$q;
+        fok_r$d = fok_r$q;
+        fok_r$d = frame_ok;
+        if (inc == 32'h3) begin
+            pstep = 32'h18;
+        end
+        else if (inc == 32'h2) begin
+            pstep = 32'h10;
+        end
+        else begin
+            pstep = 32'h8;
+        end
+        if (inc != 32'h0) begin
+            if (pest_r$q > 32'he7) begin
+                pest_r$d = 32'hff;
+            end
+            else begin
+                pest_r$d = pest_r$q + pstep;
+            end
+        end
+        else if (fok_r$q & (pest_r$q != 32'h0)) begin
+            if ((pdc_r$q + 32'h1) >= decay) begin
+                pdc_r$d = 32'h0;
+                pest_r$d = pest_r$q - 32'h1;
+            end
+            else begin
+                pdc_r$d = pdc_r$q + 32'h1;
+            end
+        end
+        if (reset) begin
+            pest_r$d = 32'h0;
+            pdc_r$d = 32'h0;
+            fok_r$d = 1'b0;
+        end
+        high = on & (pest_r$q >= lim);
+        est = pest_r$q;
+    end
+    
+endmodule // canstar_hub_core$core$peer
+
+
+module canstar_hub_core$core$peer$fok_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$peer$fok_r
+
+
+module canstar_hub_core$core$peer$pdc_r(d,q,clock);
     
     // Module arguments
     input wire  [2:0] d;
@@ -3422,10 +3487,10 @@ module canstar_hub_core$core$pdc_r(d,q,clock);
        q <= d;
     end
           
-endmodule // canstar_hub_core$core$pdc_r
+endmodule // canstar_hub_core$core$peer$pdc_r
 
 
-module canstar_hub_core$core$pest_r(d,q,clock);
+module canstar_hub_core$core$peer$pest_r(d,q,clock);
     
     // Module arguments
     input wire  [7:0] d;
@@ -3441,10 +3506,10 @@ module canstar_hub_core$core$pest_r(d,q,clock);
        q <= d;
     end
           
-endmodule // canstar_hub_core$core$pest_r
+endmodule // canstar_hub_core$core$peer$pest_r
 
 
-module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,eof_last,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,rep_mask,rep_other,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,guard,dis,blame,charged,step,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
+module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,eof_last,im_2,im_12,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,rep_mask,rep_other,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,guard,dis,blame,charged,step,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
     
     // Module arguments
     input wire  clock;
@@ -3461,6 +3526,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     input wire  eof_1_6;
     input wire  eof_last;
     input wire  im_2;
+    input wire  im_12;
     input wire  err_phase;
     input wire  crc_ok;
     input wire  frame_ok;
@@ -3524,6 +3590,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     localparam  nack_on = 1'b1;
     localparam  rep_on = 1'b0;
     localparam  rep_skew = 3'b100;
+    localparam  rov_on = 1'b0;
     localparam  reint_on = 1'b0;
     localparam  reint_w = 8'h1;
     
@@ -3565,6 +3632,9 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  [2:0] rd_run$d;
     wire  [2:0] rd_run$q;
     reg  rd_run$clock;
+    reg  rov_w$d;
+    wire  rov_w$q;
+    reg  rov_w$clock;
     reg  [7:0] ok_r$d;
     wire  [7:0] ok_r$q;
     reg  ok_r$clock;
@@ -3667,6 +3737,8 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  charge;
     reg  g;
     reg  rep_ok;
+    reg  rov;
+    reg  rov_now;
     reg  gcount;
     reg  pcount;
     
@@ -3731,6 +3803,11 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .d(rd_run$d),
         .q(rd_run$q),
         .clock(rd_run$clock)
+    );
+    canstar_hub_core$core$pj$0$rov_w rov_w(
+        .d(rov_w$d),
+        .q(rov_w$q),
+        .clock(rov_w$clock)
     );
     canstar_hub_core$core$pj$0$ok_r ok_r(
         .d(ok_r$d),
@@ -3886,6 +3963,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         rep_seen$clock = clock;
         rep_first_dom$clock = clock;
         rd_run$clock = clock;
+        rov_w$clock = clock;
         ok_r$clock = clock;
         acked$clock = clock;
         bad$clock = clock;
@@ -3925,6 +4003,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         rep_seen$d = rep_seen$q;
         rep_first_dom$d = rep_first_dom$q;
         rd_run$d = rd_run$q;
+        rov_w$d = rov_w$q;
         ok_r$d = ok_r$q;
         acked$d = acked$q;
         bad$d = bad$q;
@@ -3963,6 +4042,14 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         enabled = ~dis_r$q;
         rep_dmin = dom & rep_rec;
         rep_rmin = c & rep_dom;
+        rov_now = enabled & ~rep_mask & (rd_run$q >= rep_skew) & rep_dmin;
+        if (bit_start) begin
+            rov_w$d = 1'b0;
+        end
+        else if (rov_now) begin
+            rov_w$d = 1'b1;
+        end
+        rov = sample & rov_on & im_12 & enabled & (rov_w$q | rov_now);
         domw = dom | seen_dom$q;
         if (bit_start) begin
             seen_dom$d = 1'b0;
@@ -4097,7 +4184,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                     nack_r$d = 32'h0;
                 end
             end
-            if (rep_on & enabled & ~rep_seen$q & ~rep_mask & (rd_run$q >= rep_skew) & (rep_dmin | (rep_rmin & (tx_region | crc_delim | ack_slot | ack_delim | eof_1_6)))) begin
+            if (rep_on & enabled & ~rep_seen$q & ~rov & ~rep_mask & (rd_run$q >= rep_skew) & (rep_dmin | (rep_rmin & (tx_region | crc_delim | ack_slot | ack_delim | eof_1_6)))) begin
                 rep_seen$d = 1'b1;
                 rep_first_dom$d = dom;
             end
@@ -4178,6 +4265,9 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                 rep_r$d = rep_r$q + 32'h1;
             end
         end
+        else if (rov & rep_ok) begin
+            rep_r$d = rep_r$q + 32'h1;
+        end
         if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (rep_on & (pgc_r$q >= pg_limit)) | (rep_on & (rep_r$q >= rep_limit)) | (guard & (step_r$q != 32'h0) & bnz_r$q))) begin
             dis_r$d = 1'b1;
         end
@@ -4222,6 +4312,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             rep_r$d = 32'h0;
             rep_seen$d = 1'b0;
             rep_first_dom$d = 1'b0;
+            rov_w$d = 1'b0;
             bl_r$d = 1'b0;
             bl_dm_r$d = 1'b0;
             gpend$d = 1'b0;
@@ -5097,6 +5188,25 @@ module canstar_hub_core$core$pj$0$rep_seen(d,q,clock);
 endmodule // canstar_hub_core$core$pj$0$rep_seen
 
 
+module canstar_hub_core$core$pj$0$rov_w(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$0$rov_w
+
+
 module canstar_hub_core$core$pj$0$sdp_r(d,q,clock);
     
     // Module arguments
@@ -5173,7 +5283,7 @@ module canstar_hub_core$core$pj$0$step_r(d,q,clock);
 endmodule // canstar_hub_core$core$pj$0$step_r
 
 
-module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,eof_last,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,rep_mask,rep_other,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,guard,dis,blame,charged,step,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
+module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,eof_last,im_2,im_12,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,rep_mask,rep_other,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,guard,dis,blame,charged,step,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
     
     // Module arguments
     input wire  clock;
@@ -5190,6 +5300,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     input wire  eof_1_6;
     input wire  eof_last;
     input wire  im_2;
+    input wire  im_12;
     input wire  err_phase;
     input wire  crc_ok;
     input wire  frame_ok;
@@ -5253,6 +5364,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     localparam  nack_on = 1'b1;
     localparam  rep_on = 1'b0;
     localparam  rep_skew = 3'b100;
+    localparam  rov_on = 1'b0;
     localparam  reint_on = 1'b0;
     localparam  reint_w = 8'h1;
     
@@ -5294,6 +5406,9 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  [2:0] rd_run$d;
     wire  [2:0] rd_run$q;
     reg  rd_run$clock;
+    reg  rov_w$d;
+    wire  rov_w$q;
+    reg  rov_w$clock;
     reg  [7:0] ok_r$d;
     wire  [7:0] ok_r$q;
     reg  ok_r$clock;
@@ -5396,6 +5511,8 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  charge;
     reg  g;
     reg  rep_ok;
+    reg  rov;
+    reg  rov_now;
     reg  gcount;
     reg  pcount;
     
@@ -5460,6 +5577,11 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .d(rd_run$d),
         .q(rd_run$q),
         .clock(rd_run$clock)
+    );
+    canstar_hub_core$core$pj$1$rov_w rov_w(
+        .d(rov_w$d),
+        .q(rov_w$q),
+        .clock(rov_w$clock)
     );
     canstar_hub_core$core$pj$1$ok_r ok_r(
         .d(ok_r$d),
@@ -5615,6 +5737,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         rep_seen$clock = clock;
         rep_first_dom$clock = clock;
         rd_run$clock = clock;
+        rov_w$clock = clock;
         ok_r$clock = clock;
         acked$clock = clock;
         bad$clock = clock;
@@ -5654,6 +5777,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         rep_seen$d = rep_seen$q;
         rep_first_dom$d = rep_first_dom$q;
         rd_run$d = rd_run$q;
+        rov_w$d = rov_w$q;
         ok_r$d = ok_r$q;
         acked$d = acked$q;
         bad$d = bad$q;
@@ -5692,6 +5816,14 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         enabled = ~dis_r$q;
         rep_dmin = dom & rep_rec;
         rep_rmin = c & rep_dom;
+        rov_now = enabled & ~rep_mask & (rd_run$q >= rep_skew) & rep_dmin;
+        if (bit_start) begin
+            rov_w$d = 1'b0;
+        end
+        else if (rov_now) begin
+            rov_w$d = 1'b1;
+        end
+        rov = sample & rov_on & im_12 & enabled & (rov_w$q | rov_now);
         domw = dom | seen_dom$q;
         if (bit_start) begin
             seen_dom$d = 1'b0;
@@ -5826,7 +5958,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                     nack_r$d = 32'h0;
                 end
             end
-            if (rep_on & enabled & ~rep_seen$q & ~rep_mask & (rd_run$q >= rep_skew) & (rep_dmin | (rep_rmin & (tx_region | crc_delim | ack_slot | ack_delim | eof_1_6)))) begin
+            if (rep_on & enabled & ~rep_seen$q & ~rov & ~rep_mask & (rd_run$q >= rep_skew) & (rep_dmin | (rep_rmin & (tx_region | crc_delim | ack_slot | ack_delim | eof_1_6)))) begin
                 rep_seen$d = 1'b1;
                 rep_first_dom$d = dom;
             end
@@ -5907,6 +6039,9 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                 rep_r$d = rep_r$q + 32'h1;
             end
         end
+        else if (rov & rep_ok) begin
+            rep_r$d = rep_r$q + 32'h1;
+        end
         if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (rep_on & (pgc_r$q >= pg_limit)) | (rep_on & (rep_r$q >= rep_limit)) | (guard & (step_r$q != 32'h0) & bnz_r$q))) begin
             dis_r$d = 1'b1;
         end
@@ -5951,6 +6086,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             rep_r$d = 32'h0;
             rep_seen$d = 1'b0;
             rep_first_dom$d = 1'b0;
+            rov_w$d = 1'b0;
             bl_r$d = 1'b0;
             bl_dm_r$d = 1'b0;
             gpend$d = 1'b0;
@@ -6826,6 +6962,25 @@ module canstar_hub_core$core$pj$1$rep_seen(d,q,clock);
 endmodule // canstar_hub_core$core$pj$1$rep_seen
 
 
+module canstar_hub_core$core$pj$1$rov_w(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$1$rov_w
+
+
 module canstar_hub_core$core$pj$1$sdp_r(d,q,clock);
     
     // Module arguments
@@ -6902,7 +7057,7 @@ module canstar_hub_core$core$pj$1$step_r(d,q,clock);
 endmodule // canstar_hub_core$core$pj$1$step_r
 
 
-module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,eof_last,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,rep_mask,rep_other,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,guard,dis,blame,charged,step,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
+module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,eof_last,im_2,im_12,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,rep_mask,rep_other,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,guard,dis,blame,charged,step,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
     
     // Module arguments
     input wire  clock;
@@ -6919,6 +7074,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     input wire  eof_1_6;
     input wire  eof_last;
     input wire  im_2;
+    input wire  im_12;
     input wire  err_phase;
     input wire  crc_ok;
     input wire  frame_ok;
@@ -6982,6 +7138,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     localparam  nack_on = 1'b1;
     localparam  rep_on = 1'b0;
     localparam  rep_skew = 3'b100;
+    localparam  rov_on = 1'b0;
     localparam  reint_on = 1'b0;
     localparam  reint_w = 8'h1;
     
@@ -7023,6 +7180,9 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  [2:0] rd_run$d;
     wire  [2:0] rd_run$q;
     reg  rd_run$clock;
+    reg  rov_w$d;
+    wire  rov_w$q;
+    reg  rov_w$clock;
     reg  [7:0] ok_r$d;
     wire  [7:0] ok_r$q;
     reg  ok_r$clock;
@@ -7125,6 +7285,8 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  charge;
     reg  g;
     reg  rep_ok;
+    reg  rov;
+    reg  rov_now;
     reg  gcount;
     reg  pcount;
     
@@ -7189,6 +7351,11 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .d(rd_run$d),
         .q(rd_run$q),
         .clock(rd_run$clock)
+    );
+    canstar_hub_core$core$pj$2$rov_w rov_w(
+        .d(rov_w$d),
+        .q(rov_w$q),
+        .clock(rov_w$clock)
     );
     canstar_hub_core$core$pj$2$ok_r ok_r(
         .d(ok_r$d),
@@ -7344,6 +7511,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         rep_seen$clock = clock;
         rep_first_dom$clock = clock;
         rd_run$clock = clock;
+        rov_w$clock = clock;
         ok_r$clock = clock;
         acked$clock = clock;
         bad$clock = clock;
@@ -7383,6 +7551,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         rep_seen$d = rep_seen$q;
         rep_first_dom$d = rep_first_dom$q;
         rd_run$d = rd_run$q;
+        rov_w$d = rov_w$q;
         ok_r$d = ok_r$q;
         acked$d = acked$q;
         bad$d = bad$q;
@@ -7421,6 +7590,14 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         enabled = ~dis_r$q;
         rep_dmin = dom & rep_rec;
         rep_rmin = c & rep_dom;
+        rov_now = enabled & ~rep_mask & (rd_run$q >= rep_skew) & rep_dmin;
+        if (bit_start) begin
+            rov_w$d = 1'b0;
+        end
+        else if (rov_now) begin
+            rov_w$d = 1'b1;
+        end
+        rov = sample & rov_on & im_12 & enabled & (rov_w$q | rov_now);
         domw = dom | seen_dom$q;
         if (bit_start) begin
             seen_dom$d = 1'b0;
@@ -7555,7 +7732,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                     nack_r$d = 32'h0;
                 end
             end
-            if (rep_on & enabled & ~rep_seen$q & ~rep_mask & (rd_run$q >= rep_skew) & (rep_dmin | (rep_rmin & (tx_region | crc_delim | ack_slot | ack_delim | eof_1_6)))) begin
+            if (rep_on & enabled & ~rep_seen$q & ~rov & ~rep_mask & (rd_run$q >= rep_skew) & (rep_dmin | (rep_rmin & (tx_region | crc_delim | ack_slot | ack_delim | eof_1_6)))) begin
                 rep_seen$d = 1'b1;
                 rep_first_dom$d = dom;
             end
@@ -7636,6 +7813,9 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                 rep_r$d = rep_r$q + 32'h1;
             end
         end
+        else if (rov & rep_ok) begin
+            rep_r$d = rep_r$q + 32'h1;
+        end
         if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (rep_on & (pgc_r$q >= pg_limit)) | (rep_on & (rep_r$q >= rep_limit)) | (guard & (step_r$q != 32'h0) & bnz_r$q))) begin
             dis_r$d = 1'b1;
         end
@@ -7680,6 +7860,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             rep_r$d = 32'h0;
             rep_seen$d = 1'b0;
             rep_first_dom$d = 1'b0;
+            rov_w$d = 1'b0;
             bl_r$d = 1'b0;
             bl_dm_r$d = 1'b0;
             gpend$d = 1'b0;
@@ -8555,6 +8736,25 @@ module canstar_hub_core$core$pj$2$rep_seen(d,q,clock);
 endmodule // canstar_hub_core$core$pj$2$rep_seen
 
 
+module canstar_hub_core$core$pj$2$rov_w(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$2$rov_w
+
+
 module canstar_hub_core$core$pj$2$sdp_r(d,q,clock);
     
     // Module arguments
@@ -8688,7 +8888,7 @@ module canstar_hub_core$core$sd_run(d,q,clock);
 endmodule // canstar_hub_core$core$sd_run
 
 
-module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,eof_last,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,rep_mask,rep_other,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,guard,dis,blame,charged,step,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
+module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,eof_last,im_2,im_12,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,rep_mask,rep_other,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,guard,dis,blame,charged,step,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
     
     // Module arguments
     input wire  clock;
@@ -8705,6 +8905,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     input wire  eof_1_6;
     input wire  eof_last;
     input wire  im_2;
+    input wire  im_12;
     input wire  err_phase;
     input wire  crc_ok;
     input wire  frame_ok;
@@ -8768,6 +8969,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     localparam  nack_on = 1'b0;
     localparam  rep_on = 1'b1;
     localparam  rep_skew = 3'b100;
+    localparam  rov_on = 1'b1;
     localparam  reint_on = 1'b0;
     localparam  reint_w = 8'h1;
     
@@ -8809,6 +9011,9 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  [2:0] rd_run$d;
     wire  [2:0] rd_run$q;
     reg  rd_run$clock;
+    reg  rov_w$d;
+    wire  rov_w$q;
+    reg  rov_w$clock;
     reg  [7:0] ok_r$d;
     wire  [7:0] ok_r$q;
     reg  ok_r$clock;
@@ -8911,6 +9116,8 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  charge;
     reg  g;
     reg  rep_ok;
+    reg  rov;
+    reg  rov_now;
     reg  gcount;
     reg  pcount;
     
@@ -8975,6 +9182,11 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .d(rd_run$d),
         .q(rd_run$q),
         .clock(rd_run$clock)
+    );
+    canstar_hub_core$core$sj$0$rov_w rov_w(
+        .d(rov_w$d),
+        .q(rov_w$q),
+        .clock(rov_w$clock)
     );
     canstar_hub_core$core$sj$0$ok_r ok_r(
         .d(ok_r$d),
@@ -9130,6 +9342,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         rep_seen$clock = clock;
         rep_first_dom$clock = clock;
         rd_run$clock = clock;
+        rov_w$clock = clock;
         ok_r$clock = clock;
         acked$clock = clock;
         bad$clock = clock;
@@ -9169,6 +9382,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         rep_seen$d = rep_seen$q;
         rep_first_dom$d = rep_first_dom$q;
         rd_run$d = rd_run$q;
+        rov_w$d = rov_w$q;
         ok_r$d = ok_r$q;
         acked$d = acked$q;
         bad$d = bad$q;
@@ -9207,6 +9421,14 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         enabled = ~dis_r$q;
         rep_dmin = dom & rep_rec;
         rep_rmin = c & rep_dom;
+        rov_now = enabled & ~rep_mask & (rd_run$q >= rep_skew) & rep_dmin;
+        if (bit_start) begin
+            rov_w$d = 1'b0;
+        end
+        else if (rov_now) begin
+            rov_w$d = 1'b1;
+        end
+        rov = sample & rov_on & im_12 & enabled & (rov_w$q | rov_now);
         domw = dom | seen_dom$q;
         if (bit_start) begin
             seen_dom$d = 1'b0;
@@ -9341,7 +9563,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                     nack_r$d = 32'h0;
                 end
             end
-            if (rep_on & enabled & ~rep_seen$q & ~rep_mask & (rd_run$q >= rep_skew) & (rep_dmin | (rep_rmin & (tx_region | crc_delim | ack_slot | ack_delim | eof_1_6)))) begin
+            if (rep_on & enabled & ~rep_seen$q & ~rov & ~rep_mask & (rd_run$q >= rep_skew) & (rep_dmin | (rep_rmin & (tx_region | crc_delim | ack_slot | ack_delim | eof_1_6)))) begin
                 rep_seen$d = 1'b1;
                 rep_first_dom$d = dom;
             end
@@ -9422,6 +9644,9 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                 rep_r$d = rep_r$q + 32'h1;
             end
         end
+        else if (rov & rep_ok) begin
+            rep_r$d = rep_r$q + 32'h1;
+        end
         if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (rep_on & (pgc_r$q >= pg_limit)) | (rep_on & (rep_r$q >= rep_limit)) | (guard & (step_r$q != 32'h0) & bnz_r$q))) begin
             dis_r$d = 1'b1;
         end
@@ -9466,6 +9691,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             rep_r$d = 32'h0;
             rep_seen$d = 1'b0;
             rep_first_dom$d = 1'b0;
+            rov_w$d = 1'b0;
             bl_r$d = 1'b0;
             bl_dm_r$d = 1'b0;
             gpend$d = 1'b0;
@@ -10341,6 +10567,25 @@ module canstar_hub_core$core$sj$0$rep_seen(d,q,clock);
 endmodule // canstar_hub_core$core$sj$0$rep_seen
 
 
+module canstar_hub_core$core$sj$0$rov_w(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$sj$0$rov_w
+
+
 module canstar_hub_core$core$sj$0$sdp_r(d,q,clock);
     
     // Module arguments
@@ -10417,7 +10662,7 @@ module canstar_hub_core$core$sj$0$step_r(d,q,clock);
 endmodule // canstar_hub_core$core$sj$0$step_r
 
 
-module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,eof_last,im_2,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,rep_mask,rep_other,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,guard,dis,blame,charged,step,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
+module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,eof_last,im_2,im_12,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,rep_mask,rep_other,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,guard,dis,blame,charged,step,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
     
     // Module arguments
     input wire  clock;
@@ -10434,6 +10679,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     input wire  eof_1_6;
     input wire  eof_last;
     input wire  im_2;
+    input wire  im_12;
     input wire  err_phase;
     input wire  crc_ok;
     input wire  frame_ok;
@@ -10497,6 +10743,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     localparam  nack_on = 1'b0;
     localparam  rep_on = 1'b1;
     localparam  rep_skew = 3'b100;
+    localparam  rov_on = 1'b1;
     localparam  reint_on = 1'b0;
     localparam  reint_w = 8'h1;
     
@@ -10538,6 +10785,9 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  [2:0] rd_run$d;
     wire  [2:0] rd_run$q;
     reg  rd_run$clock;
+    reg  rov_w$d;
+    wire  rov_w$q;
+    reg  rov_w$clock;
     reg  [7:0] ok_r$d;
     wire  [7:0] ok_r$q;
     reg  ok_r$clock;
@@ -10640,6 +10890,8 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  charge;
     reg  g;
     reg  rep_ok;
+    reg  rov;
+    reg  rov_now;
     reg  gcount;
     reg  pcount;
     
@@ -10704,6 +10956,11 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .d(rd_run$d),
         .q(rd_run$q),
         .clock(rd_run$clock)
+    );
+    canstar_hub_core$core$sj$1$rov_w rov_w(
+        .d(rov_w$d),
+        .q(rov_w$q),
+        .clock(rov_w$clock)
     );
     canstar_hub_core$core$sj$1$ok_r ok_r(
         .d(ok_r$d),
@@ -10859,6 +11116,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         rep_seen$clock = clock;
         rep_first_dom$clock = clock;
         rd_run$clock = clock;
+        rov_w$clock = clock;
         ok_r$clock = clock;
         acked$clock = clock;
         bad$clock = clock;
@@ -10898,6 +11156,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         rep_seen$d = rep_seen$q;
         rep_first_dom$d = rep_first_dom$q;
         rd_run$d = rd_run$q;
+        rov_w$d = rov_w$q;
         ok_r$d = ok_r$q;
         acked$d = acked$q;
         bad$d = bad$q;
@@ -10936,6 +11195,14 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         enabled = ~dis_r$q;
         rep_dmin = dom & rep_rec;
         rep_rmin = c & rep_dom;
+        rov_now = enabled & ~rep_mask & (rd_run$q >= rep_skew) & rep_dmin;
+        if (bit_start) begin
+            rov_w$d = 1'b0;
+        end
+        else if (rov_now) begin
+            rov_w$d = 1'b1;
+        end
+        rov = sample & rov_on & im_12 & enabled & (rov_w$q | rov_now);
         domw = dom | seen_dom$q;
         if (bit_start) begin
             seen_dom$d = 1'b0;
@@ -11070,7 +11337,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                     nack_r$d = 32'h0;
                 end
             end
-            if (rep_on & enabled & ~rep_seen$q & ~rep_mask & (rd_run$q >= rep_skew) & (rep_dmin | (rep_rmin & (tx_region | crc_delim | ack_slot | ack_delim | eof_1_6)))) begin
+            if (rep_on & enabled & ~rep_seen$q & ~rov & ~rep_mask & (rd_run$q >= rep_skew) & (rep_dmin | (rep_rmin & (tx_region | crc_delim | ack_slot | ack_delim | eof_1_6)))) begin
                 rep_seen$d = 1'b1;
                 rep_first_dom$d = dom;
             end
@@ -11151,6 +11418,9 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                 rep_r$d = rep_r$q + 32'h1;
             end
         end
+        else if (rov & rep_ok) begin
+            rep_r$d = rep_r$q + 32'h1;
+        end
         if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (rep_on & (pgc_r$q >= pg_limit)) | (rep_on & (rep_r$q >= rep_limit)) | (guard & (step_r$q != 32'h0) & bnz_r$q))) begin
             dis_r$d = 1'b1;
         end
@@ -11195,6 +11465,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             rep_r$d = 32'h0;
             rep_seen$d = 1'b0;
             rep_first_dom$d = 1'b0;
+            rov_w$d = 1'b0;
             bl_r$d = 1'b0;
             bl_dm_r$d = 1'b0;
             gpend$d = 1'b0;
@@ -12068,6 +12339,25 @@ module canstar_hub_core$core$sj$1$rep_seen(d,q,clock);
     end
           
 endmodule // canstar_hub_core$core$sj$1$rep_seen
+
+
+module canstar_hub_core$core$sj$1$rov_w(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$sj$1$rov_w
 
 
 module canstar_hub_core$core$sj$1$sdp_r(d,q,clock);

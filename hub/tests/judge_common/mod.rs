@@ -5,7 +5,7 @@ use canstar_hdl::drive;
 use canstar_hub::judge::{JudgeParams, JudgeUnit};
 
 pub fn params() -> JudgeParams {
-    JudgeParams { bic_limit: 64, bic_decay: 1, life_limit: 32, dbc_threshold: 13, nack_threshold: 7, replica_limit: 3, reintegration: None, glitch_min: 1, glitch_min_dominant: 1, glitch_max: 11, glitch_limit: 3, glitch_decay: 16, peer_glitch_limit: 12, peer_glitch_decay: 4, window_lag: 7, crc_window_end: 8, first_flagger: false, eof_last: false, delim_blames: 1, replica_skew: 4 }
+    JudgeParams { bic_limit: 64, bic_decay: 1, life_limit: 32, dbc_threshold: 13, nack_threshold: 7, replica_limit: 3, reintegration: None, glitch_min: 1, glitch_min_dominant: 1, glitch_max: 11, glitch_limit: 3, glitch_decay: 16, peer_glitch_limit: 12, peer_glitch_decay: 4, window_lag: 7, crc_window_end: 8, first_flagger: false, eof_last: false, delim_blames: 1, replica_skew: 4, replica_overload: false }
 }
 
 #[derive(Default, Clone, Copy)]
@@ -21,6 +21,8 @@ pub struct Bit {
     /// The last EOF bit (§5.19).
     pub eof_last: bool,
     pub im: bool,
+    /// Intermission bit 1 or 2 (`im_12`, §5.21).
+    pub im12: bool,
     pub err: bool,
     pub crc_ok: bool,
     pub frame_ok: bool,
@@ -38,6 +40,7 @@ pub fn apply(j: &mut JudgeUnit, b: Bit) {
     j.eof_1_6.next = b.eof;
     j.eof_last.next = b.eof_last;
     j.im_2.next = b.im;
+    j.im_12.next = b.im12;
     j.err_phase.next = b.err;
     j.crc_ok.next = b.crc_ok;
     j.frame_ok.next = b.frame_ok;

@@ -47,6 +47,7 @@ impl RunState<'_> {
             res.glitches.extend(sim.get(hh).stats.glitch_log.iter().map(|&(t, u)| (h, t, u)));
         }
         res.blames.sort_by_key(|b| b.1);
+        res.replica_charges = net.hubs.iter().map(|&h| sim.get(h).stats.max_sub_rep.iter().sum::<u64>()).sum();
         res.glitches.sort_by_key(|g| g.1);
         res.short_runs = net.hubs.iter().map(|&h| sim.get(h).stats.short_runs.clone()).collect();
         res.edge_phase = net.hubs.iter().map(|&h| sim.get(h).stats.edge_phase.clone()).collect();
