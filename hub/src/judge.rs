@@ -510,8 +510,9 @@ pub struct JudgeParams {
     /// apart), 1..=7.
     pub replica_skew: u64,
     /// Replica overload rule (hub.md §5.21, sublinks): the dominant minority of a replica
-    /// disagreement at a sample in Intermission bit 1 or 2 (an overload condition that the
-    /// replica alone raised) is charged at once.
+    /// disagreement that lasted `replica_skew` clocks in Intermission bit 1 or 2, up to the
+    /// sample (an overload condition that the replica alone raised), is charged at that
+    /// sample.
     pub replica_overload: bool,
 }
 

@@ -404,10 +404,15 @@ fn disagreement_then(b: Bit, minority_dom: bool, mask: bool, alone: bool, episod
     j.rep_rec.next = false;
     j.rep_dom.next = false;
     j.rep_other.next = !alone;
+    episode_or_good_frame(&mut j, episode_follows)
+}
+
+/// An error episode (`err_start`) if `episode_follows`, else a good frame; returns `rep_cnt`.
+fn episode_or_good_frame(j: &mut JudgeUnit, episode_follows: bool) -> usize {
     if episode_follows {
-        episode(&mut j);
+        episode(j);
     } else {
-        sample(&mut j, Bit { c: true, bt: true, frame_ok: true, ..Default::default() });
+        sample(j, Bit { c: true, bt: true, frame_ok: true, ..Default::default() });
     }
     j.rep_cnt.val().index()
 }
@@ -469,12 +474,7 @@ fn overload_minority(on: bool, im12: bool, mask: bool, other: bool, episode_foll
     j.rep_rec.next = false;
     // the nodes' overload flags (BT dominant, the sublink recessive again)
     sample(&mut j, Bit { c: true, bt: false, err: true, ..Default::default() });
-    if episode_follows {
-        episode(&mut j);
-    } else {
-        sample(&mut j, Bit { c: true, bt: true, frame_ok: true, ..Default::default() });
-    }
-    j.rep_cnt.val().index()
+    episode_or_good_frame(&mut j, episode_follows)
 }
 
 /// The dominant minority that raised an overload condition by itself is charged at that
