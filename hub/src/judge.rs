@@ -707,6 +707,7 @@ pub struct JudgeUnit {
     rep_ok: Signal<Local, Bit>,
     rov: Signal<Local, Bit>,
     rov_now: Signal<Local, Bit>,
+    rd_ok: Signal<Local, Bit>,
     bl_r: DFF<Bit>,
     bl_dm_r: DFF<Bit>,
     gpend: DFF<Bit>,
@@ -868,6 +869,7 @@ impl JudgeUnit {
             rep_ok: Default::default(),
             rov: Default::default(),
             rov_now: Default::default(),
+            rd_ok: Default::default(),
             bl_r: Default::default(),
             bl_dm_r: Default::default(),
             gpend: Default::default(),
@@ -899,6 +901,9 @@ impl Logic for JudgeUnit {
         self.enabled.next = !self.dis_r.q.val();
         self.rep_dmin.next = self.dom.val() & self.rep_rec.val();
         self.rep_rmin.next = self.c.val() & self.rep_dom.val();
+        // a disagreement that counts (§5.18): this unit enabled, unmasked (no port and not
+        // the hub's flag dominant), and the replicas have differed for `replica_skew` clocks
+        self.rd_ok.next = self.enabled.val() & !self.rep_mask.val() & (self.rd_run.q.val() >= self.rep_skew.val());
         // §5.21 replica overload rule: the dominant minority in Intermission bit 1 or 2
         // raised an overload condition by itself (the nodes sample before this hub does, so
         // a pulse that ends just before the sample counts: at any clock of the bit from its
@@ -906,7 +911,7 @@ impl Logic for JudgeUnit {
         // flags, which the peer, one crossing later, may take for a SOF, and the error
         // episode then starts on the peer's side only. Charged at the sample (and not
         // recorded for a later episode)
-        self.rov_now.next = self.enabled.val() & !self.rep_mask.val() & (self.rd_run.q.val() >= self.rep_skew.val()) & self.rep_dmin.val();
+        self.rov_now.next = self.rd_ok.val() & self.rep_dmin.val();
         if self.bit_start.val() {
             self.rov_w.d.next = false;
         } else if self.rov_now.val() {
@@ -1098,11 +1103,9 @@ impl Logic for JudgeUnit {
             // a dominant level in Bus_Idle or Intermission is a SOF that a node with a frame
             // pending takes as its own, so a frame that then completes proves no replica wrong)
             if self.rep_on.val()
-                & self.enabled.val()
                 & !self.rep_seen.q.val()
                 & !self.rov.val()
-                & !self.rep_mask.val()
-                & (self.rd_run.q.val() >= self.rep_skew.val())
+                & self.rd_ok.val()
                 & (self.rep_dmin.val()
                     | (self.rep_rmin.val()
                         & (self.tx_region.val() | self.crc_delim.val() | self.ack_slot.val() | self.ack_delim.val() | self.eof_1_6.val())))

@@ -332,7 +332,8 @@ impl Component for RtlHub {
         for k in 0..self.m {
             st.max_sub_bic[k] = st.max_sub_bic[k].max(hub.sub_bic(k));
             st.max_sub_dbc[k] = st.max_sub_dbc[k].max(hub.sub_dbc(k));
-            st.max_sub_rep[k] = st.max_sub_rep[k].max(hub.sub_rep_cnt(k));
+            let rep = hub.sub_rep_cnt(k);
+            st.max_sub_rep[k] = st.max_sub_rep[k].max(rep);
             if st.sub_isolated_at[k].is_none() {
                 if hub.sub_isolated(k) {
                     st.sub_isolated_at[k] = Some(now);
@@ -340,7 +341,7 @@ impl Component for RtlHub {
                 } else {
                     let c = &mut st.last_counts[self.n + k];
                     (c.bic, c.life, c.dbc, c.gc) = (hub.sub_bic(k), hub.sub_life(k), hub.sub_dbc(k), hub.sub_gc(k));
-                    (c.pgc, c.rep_cnt) = (hub.sub_pgc(k), hub.sub_rep_cnt(k));
+                    (c.pgc, c.rep_cnt) = (hub.sub_pgc(k), rep);
                 }
             }
         }

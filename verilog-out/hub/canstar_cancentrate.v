@@ -2975,6 +2975,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
     reg  rep_ok;
     reg  rov;
     reg  rov_now;
+    reg  rd_ok;
     reg  gcount;
     reg  pcount;
     
@@ -3278,7 +3279,8 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         enabled = ~dis_r$q;
         rep_dmin = dom & rep_rec;
         rep_rmin = c & rep_dom;
-        rov_now = enabled & ~rep_mask & (rd_run$q >= rep_skew) & rep_dmin;
+        rd_ok = enabled & ~rep_mask & (rd_run$q >= rep_skew);
+        rov_now = rd_ok & rep_dmin;
         if (bit_start) begin
             rov_w$d = 1'b0;
         end
@@ -3420,7 +3422,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
                     nack_r$d = 32'h0;
                 end
             end
-            if (rep_on & enabled & ~rep_seen$q & ~rov & ~rep_mask & (rd_run$q >= rep_skew) & (rep_dmin | (rep_rmin & (tx_region | crc_delim | ack_slot | ack_delim | eof_1_6)))) begin
+            if (rep_on & ~rep_seen$q & ~rov & rd_ok & (rep_dmin | (rep_rmin & (tx_region | crc_delim | ack_slot | ack_delim | eof_1_6)))) begin
                 rep_seen$d = 1'b1;
                 rep_first_dom$d = dom;
             end
@@ -4749,6 +4751,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
     reg  rep_ok;
     reg  rov;
     reg  rov_now;
+    reg  rd_ok;
     reg  gcount;
     reg  pcount;
     
@@ -5052,7 +5055,8 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         enabled = ~dis_r$q;
         rep_dmin = dom & rep_rec;
         rep_rmin = c & rep_dom;
-        rov_now = enabled & ~rep_mask & (rd_run$q >= rep_skew) & rep_dmin;
+        rd_ok = enabled & ~rep_mask & (rd_run$q >= rep_skew);
+        rov_now = rd_ok & rep_dmin;
         if (bit_start) begin
             rov_w$d = 1'b0;
         end
@@ -5194,7 +5198,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
                     nack_r$d = 32'h0;
                 end
             end
-            if (rep_on & enabled & ~rep_seen$q & ~rov & ~rep_mask & (rd_run$q >= rep_skew) & (rep_dmin | (rep_rmin & (tx_region | crc_delim | ack_slot | ack_delim | eof_1_6)))) begin
+            if (rep_on & ~rep_seen$q & ~rov & rd_ok & (rep_dmin | (rep_rmin & (tx_region | crc_delim | ack_slot | ack_delim | eof_1_6)))) begin
                 rep_seen$d = 1'b1;
                 rep_first_dom$d = dom;
             end
@@ -6523,6 +6527,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
     reg  rep_ok;
     reg  rov;
     reg  rov_now;
+    reg  rd_ok;
     reg  gcount;
     reg  pcount;
     
@@ -6826,7 +6831,8 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         enabled = ~dis_r$q;
         rep_dmin = dom & rep_rec;
         rep_rmin = c & rep_dom;
-        rov_now = enabled & ~rep_mask & (rd_run$q >= rep_skew) & rep_dmin;
+        rd_ok = enabled & ~rep_mask & (rd_run$q >= rep_skew);
+        rov_now = rd_ok & rep_dmin;
         if (bit_start) begin
             rov_w$d = 1'b0;
         end
@@ -6968,7 +6974,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
                     nack_r$d = 32'h0;
                 end
             end
-            if (rep_on & enabled & ~rep_seen$q & ~rov & ~rep_mask & (rd_run$q >= rep_skew) & (rep_dmin | (rep_rmin & (tx_region | crc_delim | ack_slot | ack_delim | eof_1_6)))) begin
+            if (rep_on & ~rep_seen$q & ~rov & rd_ok & (rep_dmin | (rep_rmin & (tx_region | crc_delim | ack_slot | ack_delim | eof_1_6)))) begin
                 rep_seen$d = 1'b1;
                 rep_first_dom$d = dom;
             end

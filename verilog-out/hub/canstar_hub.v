@@ -3739,6 +3739,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  rep_ok;
     reg  rov;
     reg  rov_now;
+    reg  rd_ok;
     reg  gcount;
     reg  pcount;
     
@@ -4042,7 +4043,8 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         enabled = ~dis_r$q;
         rep_dmin = dom & rep_rec;
         rep_rmin = c & rep_dom;
-        rov_now = enabled & ~rep_mask & (rd_run$q >= rep_skew) & rep_dmin;
+        rd_ok = enabled & ~rep_mask & (rd_run$q >= rep_skew);
+        rov_now = rd_ok & rep_dmin;
         if (bit_start) begin
             rov_w$d = 1'b0;
         end
@@ -4184,7 +4186,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                     nack_r$d = 32'h0;
                 end
             end
-            if (rep_on & enabled & ~rep_seen$q & ~rov & ~rep_mask & (rd_run$q >= rep_skew) & (rep_dmin | (rep_rmin & (tx_region | crc_delim | ack_slot | ack_delim | eof_1_6)))) begin
+            if (rep_on & ~rep_seen$q & ~rov & rd_ok & (rep_dmin | (rep_rmin & (tx_region | crc_delim | ack_slot | ack_delim | eof_1_6)))) begin
                 rep_seen$d = 1'b1;
                 rep_first_dom$d = dom;
             end
@@ -5513,6 +5515,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  rep_ok;
     reg  rov;
     reg  rov_now;
+    reg  rd_ok;
     reg  gcount;
     reg  pcount;
     
@@ -5816,7 +5819,8 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         enabled = ~dis_r$q;
         rep_dmin = dom & rep_rec;
         rep_rmin = c & rep_dom;
-        rov_now = enabled & ~rep_mask & (rd_run$q >= rep_skew) & rep_dmin;
+        rd_ok = enabled & ~rep_mask & (rd_run$q >= rep_skew);
+        rov_now = rd_ok & rep_dmin;
         if (bit_start) begin
             rov_w$d = 1'b0;
         end
@@ -5958,7 +5962,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                     nack_r$d = 32'h0;
                 end
             end
-            if (rep_on & enabled & ~rep_seen$q & ~rov & ~rep_mask & (rd_run$q >= rep_skew) & (rep_dmin | (rep_rmin & (tx_region | crc_delim | ack_slot | ack_delim | eof_1_6)))) begin
+            if (rep_on & ~rep_seen$q & ~rov & rd_ok & (rep_dmin | (rep_rmin & (tx_region | crc_delim | ack_slot | ack_delim | eof_1_6)))) begin
                 rep_seen$d = 1'b1;
                 rep_first_dom$d = dom;
             end
@@ -7287,6 +7291,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  rep_ok;
     reg  rov;
     reg  rov_now;
+    reg  rd_ok;
     reg  gcount;
     reg  pcount;
     
@@ -7590,7 +7595,8 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         enabled = ~dis_r$q;
         rep_dmin = dom & rep_rec;
         rep_rmin = c & rep_dom;
-        rov_now = enabled & ~rep_mask & (rd_run$q >= rep_skew) & rep_dmin;
+        rd_ok = enabled & ~rep_mask & (rd_run$q >= rep_skew);
+        rov_now = rd_ok & rep_dmin;
         if (bit_start) begin
             rov_w$d = 1'b0;
         end
@@ -7732,7 +7738,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                     nack_r$d = 32'h0;
                 end
             end
-            if (rep_on & enabled & ~rep_seen$q & ~rov & ~rep_mask & (rd_run$q >= rep_skew) & (rep_dmin | (rep_rmin & (tx_region | crc_delim | ack_slot | ack_delim | eof_1_6)))) begin
+            if (rep_on & ~rep_seen$q & ~rov & rd_ok & (rep_dmin | (rep_rmin & (tx_region | crc_delim | ack_slot | ack_delim | eof_1_6)))) begin
                 rep_seen$d = 1'b1;
                 rep_first_dom$d = dom;
             end
@@ -9118,6 +9124,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  rep_ok;
     reg  rov;
     reg  rov_now;
+    reg  rd_ok;
     reg  gcount;
     reg  pcount;
     
@@ -9421,7 +9428,8 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         enabled = ~dis_r$q;
         rep_dmin = dom & rep_rec;
         rep_rmin = c & rep_dom;
-        rov_now = enabled & ~rep_mask & (rd_run$q >= rep_skew) & rep_dmin;
+        rd_ok = enabled & ~rep_mask & (rd_run$q >= rep_skew);
+        rov_now = rd_ok & rep_dmin;
         if (bit_start) begin
             rov_w$d = 1'b0;
         end
@@ -9563,7 +9571,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                     nack_r$d = 32'h0;
                 end
             end
-            if (rep_on & enabled & ~rep_seen$q & ~rov & ~rep_mask & (rd_run$q >= rep_skew) & (rep_dmin | (rep_rmin & (tx_region | crc_delim | ack_slot | ack_delim | eof_1_6)))) begin
+            if (rep_on & ~rep_seen$q & ~rov & rd_ok & (rep_dmin | (rep_rmin & (tx_region | crc_delim | ack_slot | ack_delim | eof_1_6)))) begin
                 rep_seen$d = 1'b1;
                 rep_first_dom$d = dom;
             end
@@ -10892,6 +10900,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  rep_ok;
     reg  rov;
     reg  rov_now;
+    reg  rd_ok;
     reg  gcount;
     reg  pcount;
     
@@ -11195,7 +11204,8 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         enabled = ~dis_r$q;
         rep_dmin = dom & rep_rec;
         rep_rmin = c & rep_dom;
-        rov_now = enabled & ~rep_mask & (rd_run$q >= rep_skew) & rep_dmin;
+        rd_ok = enabled & ~rep_mask & (rd_run$q >= rep_skew);
+        rov_now = rd_ok & rep_dmin;
         if (bit_start) begin
             rov_w$d = 1'b0;
         end
@@ -11337,7 +11347,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                     nack_r$d = 32'h0;
                 end
             end
-            if (rep_on & enabled & ~rep_seen$q & ~rov & ~rep_mask & (rd_run$q >= rep_skew) & (rep_dmin | (rep_rmin & (tx_region | crc_delim | ack_slot | ack_delim | eof_1_6)))) begin
+            if (rep_on & ~rep_seen$q & ~rov & rd_ok & (rep_dmin | (rep_rmin & (tx_region | crc_delim | ack_slot | ack_delim | eof_1_6)))) begin
                 rep_seen$d = 1'b1;
                 rep_first_dom$d = dom;
             end
