@@ -140,6 +140,12 @@ pub struct HubConfig {
     /// the sample (an overload condition it alone raised), gets a replica-rule charge at
     /// that sample.
     pub replica_overload: bool,
+    /// Bus-run rule (hub.md §5.22, ports): in an error phase, a port's recessive sample
+    /// under a bus that was dominant at every clock since the last sample does not clear
+    /// its dominant run (`dbc_threshold`), so that a port that restarts its error flag after
+    /// one recessive bit under the other nodes' flags (a node whose downlink loses dominant
+    /// bits) is still one run.
+    pub dominant_run_bridge: bool,
     /// Reintegration window W in frames (None = isolation latched until reset).
     pub reintegration: Option<u64>,
     /// Fault-injection hook (None = no hooks).
@@ -184,6 +190,7 @@ impl Default for HubConfig {
             eof_last_rule: true,
             peer_guard: 7,
             replica_overload: true,
+            dominant_run_bridge: true,
             reintegration: None,
             fault_injection: None,
             debug: true,
@@ -238,6 +245,7 @@ impl HubConfig {
             eof_last: self.eof_last_rule,
             delim_blames: self.delim_blames,
             replica_overload: false,
+            dbc_bridge: self.dominant_run_bridge,
         }
     }
     /// Longest glitch in clocks: [`HubConfig::glitch_max`], or one bit minus SJW minus
@@ -283,6 +291,7 @@ impl HubConfig {
             eof_last: false,
             delim_blames: self.sub_delim_blames,
             replica_overload: self.replica_overload,
+            dbc_bridge: false,
         }
     }
     /// Check the ranges; returns a description of the first problem, starting

@@ -149,7 +149,10 @@
 //!
 //! **§5.4 dominant run.** `dbc` counts consecutive dominant samples in any state
 //! (saturating at 31) and clears on a recessive sample; isolation when `dbc >=
-//! dbc_threshold` (ports 13 by default, sublinks 28).
+//! dbc_threshold` (ports 13 by default, sublinks 28). §5.22 (ports, `dbc_bridge`): a
+//! recessive sample of the port while the coupled bus (`bt`) is dominant holds `dbc`
+//! instead of clearing it, so `dbc` counts the port's dominant samples since the bus was
+//! last recessive.
 //!
 //! **§5.5 NACK (ports only).** In a frame whose CRC the monitor found correct, a
 //! non-contender that was recessive in the ACK slot increments `nack` (saturating at
@@ -329,7 +332,8 @@
 //! --run-seed 10562745809187427993`). A peer's glitching port makes at most three such
 //! episodes before the peer isolates it. `pgl_r` remembers whether the last glitch was
 //! common. (2) Intermission bit 2 is blamed only for a level seen within the early-ACK
-//! window (`seen_dom_crc`) while BT was recessive at the bit start (`dom_bs`): BT that went
+//! window (`seen_dom_crc`) while BT was recessive at the bit start (`dom_bs`; since §5.22
+//! BT of the clock before the bit start, `bt_p`): BT that went
 //! dominant late in bit 1, after this hub's sample, made nodes that sample later flag
 //! rightly in bit 2 (`--class sweep-down-r2d-e2 --run-seed 10596384751197753893`: a
 //! healthy port and the sublinks were isolated). (3) In the hub, the bit after a sample
@@ -458,6 +462,25 @@
 //! the peer's side only, where it charges both of the peer's sublinks, every time. Tests:
 //! `hub/tests/judge_sublinks.rs` `replica_overload_rule_charges_the_dominant_minority_at_once`,
 //! `replica_overload_rule_counts_a_pulse_that_ends_before_the_sample`.
+//!
+//! **§5.22 bus-run rule (added, ports).** A port's recessive sample in an error phase,
+//! under a bus that was dominant at every clock since the last sample (`btr_r` clear),
+//! holds `dbc` instead of clearing it. A node whose downlink loses dominant bits sees a
+//! recessive bit inside the others' error flags, takes the next dominant bit for a form
+//! error and restarts its flag: its port is recessive for a bit between flags while the
+//! bus never is, and each flag alone stays below the port threshold, while the peer's
+//! sublinks see one dominant run and reach their threshold (28) first. A healthy node
+//! drives dominant again only after it has seen the bus recessive. The first version held
+//! at any recessive port sample under a dominant bus; a pulse on a sublink at the hub's
+//! sample over a transmitter's recessive bit then joined two runs of that transmitter,
+//! and healthy ports were isolated. Test: `hub/tests/judge_rules.rs`
+//! `bus_run_rule_holds_the_run_while_the_bus_stays_dominant`. Also in §5.22, all units: the
+//! Intermission-bit-2 rule of §5.14 reads BT of the clock *before* the bit start (`bt_p`). A
+//! flag that a node starts at its bit 2 start (its bits are synchronised to the bus) can
+//! reach its hub in the very bit-start clock and the peer a few clocks after the peer's bit
+//! start; the first hub took it for a level that continued from bit 1 and did not blame the
+//! port, the peer blamed its sublinks at every such flag, and the hubs split. Test:
+//! `intermission_bit_2_blames_only_a_flag_that_starts_in_it`.
 
 use crate::pulse::PulseCheck;
 use rust_hdl::prelude::*;
@@ -514,6 +537,10 @@ pub struct JudgeParams {
     /// sample (an overload condition that the replica alone raised), is charged at that
     /// sample.
     pub replica_overload: bool,
+    /// Bus-run rule (hub.md §5.22, ports): a recessive sample of the port in an error
+    /// phase, under a bus that was dominant at every clock since the last sample, holds
+    /// `dbc` instead of clearing it.
+    pub dbc_bridge: bool,
 }
 
 #[derive(LogicBlock)]
@@ -640,6 +667,7 @@ pub struct JudgeUnit {
     rep_on: Constant<Bit>,
     rep_skew: Constant<Bits<3>>,
     rov_on: Constant<Bit>,
+    dbc_hold: Constant<Bit>,
     reint_on: Constant<Bit>,
     reint_w: Constant<Bits<8>>,
     dis_r: DFF<Bit>,
@@ -655,6 +683,7 @@ pub struct JudgeUnit {
     /// Clocks this unit has disagreed with another enabled replica, up to 7 (§5.18).
     rd_run: DFF<Bits<3>>,
     rov_w: DFF<Bit>,
+    btr_r: DFF<Bit>,
     ok_r: DFF<Bits<8>>,
     acked: DFF<Bit>,
     bad: DFF<Bit>,
@@ -664,6 +693,7 @@ pub struct JudgeUnit {
     seen_dom: DFF<Bit>,
     seen_dom_crc: DFF<Bit>,
     dom_bs: DFF<Bit>,
+    bt_p: DFF<Bit>,
     gc_r: DFF<Bits<3>>,
     gdec_r: DFF<Bits<5>>,
     an_r: DFF<Bits<2>>,
@@ -812,6 +842,7 @@ impl JudgeUnit {
             rep_on: Constant::new(!port),
             rep_skew: Constant::new(p.replica_skew.into()),
             rov_on: Constant::new(!port & p.replica_overload),
+            dbc_hold: Constant::new(port & p.dbc_bridge),
             reint_on: Constant::new(p.reintegration.is_some()),
             reint_w: Constant::new(p.reintegration.unwrap_or(1).into()),
             dis_r: Default::default(),
@@ -826,6 +857,7 @@ impl JudgeUnit {
             rep_first_dom: Default::default(),
             rd_run: Default::default(),
             rov_w: Default::default(),
+            btr_r: Default::default(),
             ok_r: Default::default(),
             acked: Default::default(),
             bad: Default::default(),
@@ -835,6 +867,7 @@ impl JudgeUnit {
             seen_dom: Default::default(),
             seen_dom_crc: Default::default(),
             dom_bs: Default::default(),
+            bt_p: Default::default(),
             gc_r: Default::default(),
             gdec_r: Default::default(),
             an_r: Default::default(),
@@ -890,7 +923,7 @@ impl JudgeUnit {
 impl Logic for JudgeUnit {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, dis_r, bic_r, bdec_r, life_r, dbc_r, nack_r, cont_r, rep_r, rep_seen, rep_first_dom, rd_run, rov_w, ok_r, acked, bad, ack_missing, ack_c, ack_rx, seen_dom, seen_dom_crc, dom_bs, gc_r, gdec_r, an_r, pgc_r, pdec_r, ffd_r, glf_r, glo_r, pgl_r, sdp_r, ch_r, od_r, dprev, fol_r, step_r, bnz_r, bl_r, bl_dm_r, gpend);
+        dff_setup!(self, clock, dis_r, bic_r, bdec_r, life_r, dbc_r, nack_r, cont_r, rep_r, rep_seen, rep_first_dom, rd_run, rov_w, btr_r, ok_r, acked, bad, ack_missing, ack_c, ack_rx, seen_dom, seen_dom_crc, dom_bs, bt_p, gc_r, gdec_r, an_r, pgc_r, pdec_r, ffd_r, glf_r, glo_r, pgl_r, sdp_r, ch_r, od_r, dprev, fol_r, step_r, bnz_r, bl_r, bl_dm_r, gpend);
         self.pulse.clock.next = self.clock.val();
         self.pulse.reset.next = self.reset.val();
         self.pulse.c.next = self.c.val();
@@ -918,6 +951,12 @@ impl Logic for JudgeUnit {
             self.rov_w.d.next = true;
         }
         self.rov.next = self.sample.val() & self.rov_on.val() & self.im_12.val() & self.enabled.val() & (self.rov_w.q.val() | self.rov_now.val());
+        // §5.22: the bus was recessive at some clock since the last sample
+        if self.sample.val() {
+            self.btr_r.d.next = false;
+        } else if self.bt.val() {
+            self.btr_r.d.next = true;
+        }
         // window rule: dominant at any clock from `win_lag` clocks after the bit start up
         // to the sample point counts as a dominant bit for the unjustified-dominant rules
         self.domw.next = self.dom.val() | self.seen_dom.q.val();
@@ -958,9 +997,12 @@ impl Logic for JudgeUnit {
         // the same in intermission bit 2, and only when BT was recessive at the bit start
         // (§5.14: BT went dominant late in intermission bit 1, after this hub's sample, so
         // nodes that sample later saw a dominant bit 1 and rightly send overload flags)
+        self.bt_p.d.next = self.bt.val();
         if self.bit_start.val() {
             self.seen_dom_crc.d.next = false;
-            self.dom_bs.d.next = !self.bt.val();
+            // (§5.22: BT of the clock before the bit start; a level that rises in the
+            // bit-start clock starts in this bit)
+            self.dom_bs.d.next = !self.bt_p.q.val();
         } else if self.dom.val() & (self.bs_cnt.val() >= self.win_lag.val()) & (self.bs_cnt.val() <= self.crc_end.val()) {
             self.seen_dom_crc.d.next = true;
         }
@@ -1036,12 +1078,13 @@ impl Logic for JudgeUnit {
                 self.glf_r.d.next = false;
                 self.glo_r.d.next = false;
             }
-            // §5.4 dominant run
+            // §5.4 dominant run (§5.22: a port recessive in an error phase while the bus
+            // stays dominant for the whole bit holds it)
             if self.dom.val() {
                 if self.dbc_r.q.val() != 31 {
                     self.dbc_r.d.next = self.dbc_r.q.val() + 1;
                 }
-            } else {
+            } else if !(self.dbc_hold.val() & self.err_phase.val() & !self.bt.val() & !self.btr_r.q.val()) {
                 self.dbc_r.d.next = 0.into();
             }
             // §5.3 decay, §5.2 blame

@@ -1,5 +1,6 @@
 //! Judge-unit rules of one port in isolation (hub.md §5.1-§5.10, §5.14, §5.19): roles,
-//! recessive-only positions, blame counters, windows, glitches, dominant runs, NACK.
+//! recessive-only positions, blame counters, windows, glitches, dominant runs (and the
+//! bus-run rule, §5.22), NACK.
 mod judge_common;
 use canstar_hdl::drive;
 use canstar_hub::judge::{JudgeParams, JudgeUnit};
@@ -380,7 +381,8 @@ fn intermission_bit_2_blames_only_a_flag_that_starts_in_it() {
     let im2 = Bit { im: true, ..Default::default() };
     let mut j = unit(params());
     assert!(!sample(&mut j, Bit { c: false, bt: false, ..Default::default() }), "im bit 1: no rule");
-    for (from, blamed) in [(1, true), (7, true), (8, true), (9, false), (12, false)] {
+    // (§5.22: a level that rises in the bit-start clock itself starts in bit 2)
+    for (from, blamed) in [(0, true), (1, true), (7, true), (8, true), (9, false), (12, false)] {
         let mut j = unit(params());
         sample(&mut j, im1);
         assert_eq!(bit_dominant_from(&mut j, im2, from), blamed, "dominant from clock {from}");
@@ -389,6 +391,11 @@ fn intermission_bit_2_blames_only_a_flag_that_starts_in_it() {
     // BT went dominant at clock 14 of bit 1, after the sample: not blamed in bit 2
     let mut j = unit(params());
     assert!(!bit_dominant_from(&mut j, Bit::default(), 14));
+    assert!(!bit_dominant_from(&mut j, im2, 0));
+    assert_eq!(j.bic.val().index(), 0);
+    // ... nor at clock 15, the last clock before the bit start
+    let mut j = unit(params());
+    assert!(!bit_dominant_from(&mut j, Bit::default(), 15));
     assert!(!bit_dominant_from(&mut j, im2, 0));
     assert_eq!(j.bic.val().index(), 0);
 }
@@ -413,6 +420,59 @@ fn dominant_run_threshold() {
         sample(&mut j, Bit { c: true, bt: true, err: true, ..Default::default() });
     }
     assert!(!j.dis.val());
+}
+
+/// §5.22: with the bus-run rule a recessive sample of the port in an error phase, under a
+/// bus dominant for the whole bit, holds the run (a node restarting its error flag under
+/// the others' flags); a recessive bus, a bus recessive at any clock of the bit, or a
+/// sample outside an error phase clears it; without the rule the port's own recessive
+/// sample clears it.
+#[test]
+fn bus_run_rule_holds_the_run_while_the_bus_stays_dominant() {
+    let dom = Bit { c: false, bt: false, err: true, ..Default::default() };
+    let gap = Bit { c: true, bt: false, err: true, ..Default::default() };
+    let idle = Bit { c: true, bt: true, err: true, ..Default::default() };
+    for bridge in [false, true] {
+        let mut j = unit(JudgeParams { dbc_bridge: bridge, ..params() });
+        // 6 dominant, 1 recessive under a dominant bus, 6 dominant: 12 of the port's own
+        for _ in 0..6 {
+            sample(&mut j, dom);
+        }
+        sample(&mut j, gap);
+        assert_eq!(j.dbc.val().index(), if bridge { 6 } else { 0 }, "bridge {bridge}: held, not cleared");
+        for _ in 0..6 {
+            sample(&mut j, dom);
+        }
+        assert!(!j.dis.val(), "bridge {bridge}: 12 dominant samples are below 13");
+        sample(&mut j, gap);
+        sample(&mut j, dom);
+        assert_eq!(j.dis.val(), bridge, "bridge {bridge}: the 13th dominant sample of one bus run");
+        // a recessive bus clears the run in either case
+        let mut j = unit(JudgeParams { dbc_bridge: bridge, ..params() });
+        for _ in 0..3 {
+            for _ in 0..12 {
+                sample(&mut j, dom);
+            }
+            sample(&mut j, gap);
+            sample(&mut j, idle);
+            assert_eq!(j.dbc.val().index(), 0);
+        }
+        assert!(!j.dis.val());
+        // neither a gap outside an error phase nor one under a bus that was recessive for
+        // three clocks of the bit (a pulse on another input at this hub's sample) holds it
+        let mut j = unit(JudgeParams { dbc_bridge: bridge, ..params() });
+        for _ in 0..6 {
+            sample(&mut j, dom);
+        }
+        sample(&mut j, Bit { err: false, ..gap });
+        assert_eq!(j.dbc.val().index(), 0, "bridge {bridge}: outside an error phase");
+        for _ in 0..6 {
+            sample(&mut j, dom);
+        }
+        apply(&mut j, gap);
+        bit_clocks(&mut j, &|j, k| j.bt.next = k < 3);
+        assert_eq!(j.dbc.val().index(), 0, "bridge {bridge}: the bus recessive in the bit");
+    }
 }
 
 #[test]

@@ -98,7 +98,7 @@ fn judge_stim(j: &mut JudgeUnit, rng: &mut rand_chacha::ChaCha8Rng, c: usize) {
 #[test]
 #[ignore = "needs iverilog, verilator and yosys: run scripts/test-all.sh"]
 fn port_judge_flow() {
-    let mut j = JudgeUnit::port(JudgeParams { reintegration: Some(3), first_flagger: true, eof_last: true, ..params() });
+    let mut j = JudgeUnit::port(JudgeParams { reintegration: Some(3), first_flagger: true, eof_last: true, dbc_bridge: true, ..params() });
     flow::full_check(&mut j, "port_judge", 100_000, 21, judge_stim).expect("port judge flow");
 }
 

@@ -2827,6 +2827,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
     localparam  rep_on = 1'b0;
     localparam  rep_skew = 3'b100;
     localparam  rov_on = 1'b0;
+    localparam  dbc_hold = 1'b1;
     localparam  reint_on = 1'b0;
     localparam  reint_w = 8'h1;
     
@@ -2871,6 +2872,9 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
     reg  rov_w$d;
     wire  rov_w$q;
     reg  rov_w$clock;
+    reg  btr_r$d;
+    wire  btr_r$q;
+    reg  btr_r$clock;
     reg  [7:0] ok_r$d;
     wire  [7:0] ok_r$q;
     reg  ok_r$clock;
@@ -2898,6 +2902,9 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
     reg  dom_bs$d;
     wire  dom_bs$q;
     reg  dom_bs$clock;
+    reg  bt_p$d;
+    wire  bt_p$q;
+    reg  bt_p$clock;
     reg  [2:0] gc_r$d;
     wire  [2:0] gc_r$q;
     reg  gc_r$clock;
@@ -3046,6 +3053,11 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         .q(rov_w$q),
         .clock(rov_w$clock)
     );
+    canstar_cancentrate_core$core$pj$0$btr_r btr_r(
+        .d(btr_r$d),
+        .q(btr_r$q),
+        .clock(btr_r$clock)
+    );
     canstar_cancentrate_core$core$pj$0$ok_r ok_r(
         .d(ok_r$d),
         .q(ok_r$q),
@@ -3090,6 +3102,11 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         .d(dom_bs$d),
         .q(dom_bs$q),
         .clock(dom_bs$clock)
+    );
+    canstar_cancentrate_core$core$pj$0$bt_p bt_p(
+        .d(bt_p$d),
+        .q(bt_p$q),
+        .clock(bt_p$clock)
     );
     canstar_cancentrate_core$core$pj$0$gc_r gc_r(
         .d(gc_r$d),
@@ -3201,6 +3218,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         rep_first_dom$clock = clock;
         rd_run$clock = clock;
         rov_w$clock = clock;
+        btr_r$clock = clock;
         ok_r$clock = clock;
         acked$clock = clock;
         bad$clock = clock;
@@ -3210,6 +3228,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         seen_dom$clock = clock;
         seen_dom_crc$clock = clock;
         dom_bs$clock = clock;
+        bt_p$clock = clock;
         gc_r$clock = clock;
         gdec_r$clock = clock;
         an_r$clock = clock;
@@ -3241,6 +3260,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         rep_first_dom$d = rep_first_dom$q;
         rd_run$d = rd_run$q;
         rov_w$d = rov_w$q;
+        btr_r$d = btr_r$q;
         ok_r$d = ok_r$q;
         acked$d = acked$q;
         bad$d = bad$q;
@@ -3250,6 +3270,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         seen_dom$d = seen_dom$q;
         seen_dom_crc$d = seen_dom_crc$q;
         dom_bs$d = dom_bs$q;
+        bt_p$d = bt_p$q;
         gc_r$d = gc_r$q;
         gdec_r$d = gdec_r$q;
         an_r$d = an_r$q;
@@ -3288,6 +3309,12 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
             rov_w$d = 1'b1;
         end
         rov = sample & rov_on & im_12 & enabled & (rov_w$q | rov_now);
+        if (sample) begin
+            btr_r$d = 1'b0;
+        end
+        else if (bt) begin
+            btr_r$d = 1'b1;
+        end
         domw = dom | seen_dom$q;
         if (bit_start) begin
             seen_dom$d = 1'b0;
@@ -3319,9 +3346,10 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
             c_sat = 32'hf7;
             c_bl = 32'h1;
         end
+        bt_p$d = bt;
         if (bit_start) begin
             seen_dom_crc$d = 1'b0;
-            dom_bs$d = ~bt;
+            dom_bs$d = ~bt_p$q;
         end
         else if (dom & (bs_cnt >= win_lag) & (bs_cnt <= crc_end)) begin
             seen_dom_crc$d = 1'b1;
@@ -3367,7 +3395,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
                     dbc_r$d = dbc_r$q + 32'h1;
                 end
             end
-            else begin
+            else if (~(dbc_hold & err_phase & ~bt & ~btr_r$q)) begin
                 dbc_r$d = 32'h0;
             end
             if (frame_ok & enabled & (bic_r$q != 32'h0)) begin
@@ -3804,6 +3832,44 @@ module canstar_cancentrate_core$core$pj$0$bnz_r(d,q,clock);
     end
           
 endmodule // canstar_cancentrate_core$core$pj$0$bnz_r
+
+
+module canstar_cancentrate_core$core$pj$0$bt_p(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$0$bt_p
+
+
+module canstar_cancentrate_core$core$pj$0$btr_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$0$btr_r
 
 
 module canstar_cancentrate_core$core$pj$0$ch_r(d,q,clock);
@@ -4603,6 +4669,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
     localparam  rep_on = 1'b0;
     localparam  rep_skew = 3'b100;
     localparam  rov_on = 1'b0;
+    localparam  dbc_hold = 1'b1;
     localparam  reint_on = 1'b0;
     localparam  reint_w = 8'h1;
     
@@ -4647,6 +4714,9 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
     reg  rov_w$d;
     wire  rov_w$q;
     reg  rov_w$clock;
+    reg  btr_r$d;
+    wire  btr_r$q;
+    reg  btr_r$clock;
     reg  [7:0] ok_r$d;
     wire  [7:0] ok_r$q;
     reg  ok_r$clock;
@@ -4674,6 +4744,9 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
     reg  dom_bs$d;
     wire  dom_bs$q;
     reg  dom_bs$clock;
+    reg  bt_p$d;
+    wire  bt_p$q;
+    reg  bt_p$clock;
     reg  [2:0] gc_r$d;
     wire  [2:0] gc_r$q;
     reg  gc_r$clock;
@@ -4822,6 +4895,11 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         .q(rov_w$q),
         .clock(rov_w$clock)
     );
+    canstar_cancentrate_core$core$pj$1$btr_r btr_r(
+        .d(btr_r$d),
+        .q(btr_r$q),
+        .clock(btr_r$clock)
+    );
     canstar_cancentrate_core$core$pj$1$ok_r ok_r(
         .d(ok_r$d),
         .q(ok_r$q),
@@ -4866,6 +4944,11 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         .d(dom_bs$d),
         .q(dom_bs$q),
         .clock(dom_bs$clock)
+    );
+    canstar_cancentrate_core$core$pj$1$bt_p bt_p(
+        .d(bt_p$d),
+        .q(bt_p$q),
+        .clock(bt_p$clock)
     );
     canstar_cancentrate_core$core$pj$1$gc_r gc_r(
         .d(gc_r$d),
@@ -4977,6 +5060,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         rep_first_dom$clock = clock;
         rd_run$clock = clock;
         rov_w$clock = clock;
+        btr_r$clock = clock;
         ok_r$clock = clock;
         acked$clock = clock;
         bad$clock = clock;
@@ -4986,6 +5070,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         seen_dom$clock = clock;
         seen_dom_crc$clock = clock;
         dom_bs$clock = clock;
+        bt_p$clock = clock;
         gc_r$clock = clock;
         gdec_r$clock = clock;
         an_r$clock = clock;
@@ -5017,6 +5102,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         rep_first_dom$d = rep_first_dom$q;
         rd_run$d = rd_run$q;
         rov_w$d = rov_w$q;
+        btr_r$d = btr_r$q;
         ok_r$d = ok_r$q;
         acked$d = acked$q;
         bad$d = bad$q;
@@ -5026,6 +5112,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         seen_dom$d = seen_dom$q;
         seen_dom_crc$d = seen_dom_crc$q;
         dom_bs$d = dom_bs$q;
+        bt_p$d = bt_p$q;
         gc_r$d = gc_r$q;
         gdec_r$d = gdec_r$q;
         an_r$d = an_r$q;
@@ -5064,6 +5151,12 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
             rov_w$d = 1'b1;
         end
         rov = sample & rov_on & im_12 & enabled & (rov_w$q | rov_now);
+        if (sample) begin
+            btr_r$d = 1'b0;
+        end
+        else if (bt) begin
+            btr_r$d = 1'b1;
+        end
         domw = dom | seen_dom$q;
         if (bit_start) begin
             seen_dom$d = 1'b0;
@@ -5095,9 +5188,10 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
             c_sat = 32'hf7;
             c_bl = 32'h1;
         end
+        bt_p$d = bt;
         if (bit_start) begin
             seen_dom_crc$d = 1'b0;
-            dom_bs$d = ~bt;
+            dom_bs$d = ~bt_p$q;
         end
         else if (dom & (bs_cnt >= win_lag) & (bs_cnt <= crc_end)) begin
             seen_dom_crc$d = 1'b1;
@@ -5143,7 +5237,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
                     dbc_r$d = dbc_r$q + 32'h1;
                 end
             end
-            else begin
+            else if (~(dbc_hold & err_phase & ~bt & ~btr_r$q)) begin
                 dbc_r$d = 32'h0;
             end
             if (frame_ok & enabled & (bic_r$q != 32'h0)) begin
@@ -5580,6 +5674,44 @@ module canstar_cancentrate_core$core$pj$1$bnz_r(d,q,clock);
     end
           
 endmodule // canstar_cancentrate_core$core$pj$1$bnz_r
+
+
+module canstar_cancentrate_core$core$pj$1$bt_p(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$1$bt_p
+
+
+module canstar_cancentrate_core$core$pj$1$btr_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$1$btr_r
 
 
 module canstar_cancentrate_core$core$pj$1$ch_r(d,q,clock);
@@ -6379,6 +6511,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
     localparam  rep_on = 1'b0;
     localparam  rep_skew = 3'b100;
     localparam  rov_on = 1'b0;
+    localparam  dbc_hold = 1'b1;
     localparam  reint_on = 1'b0;
     localparam  reint_w = 8'h1;
     
@@ -6423,6 +6556,9 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
     reg  rov_w$d;
     wire  rov_w$q;
     reg  rov_w$clock;
+    reg  btr_r$d;
+    wire  btr_r$q;
+    reg  btr_r$clock;
     reg  [7:0] ok_r$d;
     wire  [7:0] ok_r$q;
     reg  ok_r$clock;
@@ -6450,6 +6586,9 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
     reg  dom_bs$d;
     wire  dom_bs$q;
     reg  dom_bs$clock;
+    reg  bt_p$d;
+    wire  bt_p$q;
+    reg  bt_p$clock;
     reg  [2:0] gc_r$d;
     wire  [2:0] gc_r$q;
     reg  gc_r$clock;
@@ -6598,6 +6737,11 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         .q(rov_w$q),
         .clock(rov_w$clock)
     );
+    canstar_cancentrate_core$core$pj$2$btr_r btr_r(
+        .d(btr_r$d),
+        .q(btr_r$q),
+        .clock(btr_r$clock)
+    );
     canstar_cancentrate_core$core$pj$2$ok_r ok_r(
         .d(ok_r$d),
         .q(ok_r$q),
@@ -6642,6 +6786,11 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         .d(dom_bs$d),
         .q(dom_bs$q),
         .clock(dom_bs$clock)
+    );
+    canstar_cancentrate_core$core$pj$2$bt_p bt_p(
+        .d(bt_p$d),
+        .q(bt_p$q),
+        .clock(bt_p$clock)
     );
     canstar_cancentrate_core$core$pj$2$gc_r gc_r(
         .d(gc_r$d),
@@ -6753,6 +6902,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         rep_first_dom$clock = clock;
         rd_run$clock = clock;
         rov_w$clock = clock;
+        btr_r$clock = clock;
         ok_r$clock = clock;
         acked$clock = clock;
         bad$clock = clock;
@@ -6762,6 +6912,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         seen_dom$clock = clock;
         seen_dom_crc$clock = clock;
         dom_bs$clock = clock;
+        bt_p$clock = clock;
         gc_r$clock = clock;
         gdec_r$clock = clock;
         an_r$clock = clock;
@@ -6793,6 +6944,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         rep_first_dom$d = rep_first_dom$q;
         rd_run$d = rd_run$q;
         rov_w$d = rov_w$q;
+        btr_r$d = btr_r$q;
         ok_r$d = ok_r$q;
         acked$d = acked$q;
         bad$d = bad$q;
@@ -6802,6 +6954,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         seen_dom$d = seen_dom$q;
         seen_dom_crc$d = seen_dom_crc$q;
         dom_bs$d = dom_bs$q;
+        bt_p$d = bt_p$q;
         gc_r$d = gc_r$q;
         gdec_r$d = gdec_r$q;
         an_r$d = an_r$q;
@@ -6840,6 +6993,12 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
             rov_w$d = 1'b1;
         end
         rov = sample & rov_on & im_12 & enabled & (rov_w$q | rov_now);
+        if (sample) begin
+            btr_r$d = 1'b0;
+        end
+        else if (bt) begin
+            btr_r$d = 1'b1;
+        end
         domw = dom | seen_dom$q;
         if (bit_start) begin
             seen_dom$d = 1'b0;
@@ -6871,9 +7030,10 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
             c_sat = 32'hf7;
             c_bl = 32'h1;
         end
+        bt_p$d = bt;
         if (bit_start) begin
             seen_dom_crc$d = 1'b0;
-            dom_bs$d = ~bt;
+            dom_bs$d = ~bt_p$q;
         end
         else if (dom & (bs_cnt >= win_lag) & (bs_cnt <= crc_end)) begin
             seen_dom_crc$d = 1'b1;
@@ -6919,7 +7079,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
                     dbc_r$d = dbc_r$q + 32'h1;
                 end
             end
-            else begin
+            else if (~(dbc_hold & err_phase & ~bt & ~btr_r$q)) begin
                 dbc_r$d = 32'h0;
             end
             if (frame_ok & enabled & (bic_r$q != 32'h0)) begin
@@ -7356,6 +7516,44 @@ module canstar_cancentrate_core$core$pj$2$bnz_r(d,q,clock);
     end
           
 endmodule // canstar_cancentrate_core$core$pj$2$bnz_r
+
+
+module canstar_cancentrate_core$core$pj$2$bt_p(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$2$bt_p
+
+
+module canstar_cancentrate_core$core$pj$2$btr_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$2$btr_r
 
 
 module canstar_cancentrate_core$core$pj$2$ch_r(d,q,clock);

@@ -3591,6 +3591,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     localparam  rep_on = 1'b0;
     localparam  rep_skew = 3'b100;
     localparam  rov_on = 1'b0;
+    localparam  dbc_hold = 1'b1;
     localparam  reint_on = 1'b0;
     localparam  reint_w = 8'h1;
     
@@ -3635,6 +3636,9 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  rov_w$d;
     wire  rov_w$q;
     reg  rov_w$clock;
+    reg  btr_r$d;
+    wire  btr_r$q;
+    reg  btr_r$clock;
     reg  [7:0] ok_r$d;
     wire  [7:0] ok_r$q;
     reg  ok_r$clock;
@@ -3662,6 +3666,9 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  dom_bs$d;
     wire  dom_bs$q;
     reg  dom_bs$clock;
+    reg  bt_p$d;
+    wire  bt_p$q;
+    reg  bt_p$clock;
     reg  [2:0] gc_r$d;
     wire  [2:0] gc_r$q;
     reg  gc_r$clock;
@@ -3810,6 +3817,11 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .q(rov_w$q),
         .clock(rov_w$clock)
     );
+    canstar_hub_core$core$pj$0$btr_r btr_r(
+        .d(btr_r$d),
+        .q(btr_r$q),
+        .clock(btr_r$clock)
+    );
     canstar_hub_core$core$pj$0$ok_r ok_r(
         .d(ok_r$d),
         .q(ok_r$q),
@@ -3854,6 +3866,11 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .d(dom_bs$d),
         .q(dom_bs$q),
         .clock(dom_bs$clock)
+    );
+    canstar_hub_core$core$pj$0$bt_p bt_p(
+        .d(bt_p$d),
+        .q(bt_p$q),
+        .clock(bt_p$clock)
     );
     canstar_hub_core$core$pj$0$gc_r gc_r(
         .d(gc_r$d),
@@ -3965,6 +3982,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         rep_first_dom$clock = clock;
         rd_run$clock = clock;
         rov_w$clock = clock;
+        btr_r$clock = clock;
         ok_r$clock = clock;
         acked$clock = clock;
         bad$clock = clock;
@@ -3974,6 +3992,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         seen_dom$clock = clock;
         seen_dom_crc$clock = clock;
         dom_bs$clock = clock;
+        bt_p$clock = clock;
         gc_r$clock = clock;
         gdec_r$clock = clock;
         an_r$clock = clock;
@@ -4005,6 +4024,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         rep_first_dom$d = rep_first_dom$q;
         rd_run$d = rd_run$q;
         rov_w$d = rov_w$q;
+        btr_r$d = btr_r$q;
         ok_r$d = ok_r$q;
         acked$d = acked$q;
         bad$d = bad$q;
@@ -4014,6 +4034,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         seen_dom$d = seen_dom$q;
         seen_dom_crc$d = seen_dom_crc$q;
         dom_bs$d = dom_bs$q;
+        bt_p$d = bt_p$q;
         gc_r$d = gc_r$q;
         gdec_r$d = gdec_r$q;
         an_r$d = an_r$q;
@@ -4052,6 +4073,12 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             rov_w$d = 1'b1;
         end
         rov = sample & rov_on & im_12 & enabled & (rov_w$q | rov_now);
+        if (sample) begin
+            btr_r$d = 1'b0;
+        end
+        else if (bt) begin
+            btr_r$d = 1'b1;
+        end
         domw = dom | seen_dom$q;
         if (bit_start) begin
             seen_dom$d = 1'b0;
@@ -4083,9 +4110,10 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             c_sat = 32'hf7;
             c_bl = 32'h1;
         end
+        bt_p$d = bt;
         if (bit_start) begin
             seen_dom_crc$d = 1'b0;
-            dom_bs$d = ~bt;
+            dom_bs$d = ~bt_p$q;
         end
         else if (dom & (bs_cnt >= win_lag) & (bs_cnt <= crc_end)) begin
             seen_dom_crc$d = 1'b1;
@@ -4131,7 +4159,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                     dbc_r$d = dbc_r$q + 32'h1;
                 end
             end
-            else begin
+            else if (~(dbc_hold & err_phase & ~bt & ~btr_r$q)) begin
                 dbc_r$d = 32'h0;
             end
             if (frame_ok & enabled & (bic_r$q != 32'h0)) begin
@@ -4568,6 +4596,44 @@ module canstar_hub_core$core$pj$0$bnz_r(d,q,clock);
     end
           
 endmodule // canstar_hub_core$core$pj$0$bnz_r
+
+
+module canstar_hub_core$core$pj$0$bt_p(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$0$bt_p
+
+
+module canstar_hub_core$core$pj$0$btr_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$0$btr_r
 
 
 module canstar_hub_core$core$pj$0$ch_r(d,q,clock);
@@ -5367,6 +5433,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     localparam  rep_on = 1'b0;
     localparam  rep_skew = 3'b100;
     localparam  rov_on = 1'b0;
+    localparam  dbc_hold = 1'b1;
     localparam  reint_on = 1'b0;
     localparam  reint_w = 8'h1;
     
@@ -5411,6 +5478,9 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  rov_w$d;
     wire  rov_w$q;
     reg  rov_w$clock;
+    reg  btr_r$d;
+    wire  btr_r$q;
+    reg  btr_r$clock;
     reg  [7:0] ok_r$d;
     wire  [7:0] ok_r$q;
     reg  ok_r$clock;
@@ -5438,6 +5508,9 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  dom_bs$d;
     wire  dom_bs$q;
     reg  dom_bs$clock;
+    reg  bt_p$d;
+    wire  bt_p$q;
+    reg  bt_p$clock;
     reg  [2:0] gc_r$d;
     wire  [2:0] gc_r$q;
     reg  gc_r$clock;
@@ -5586,6 +5659,11 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .q(rov_w$q),
         .clock(rov_w$clock)
     );
+    canstar_hub_core$core$pj$1$btr_r btr_r(
+        .d(btr_r$d),
+        .q(btr_r$q),
+        .clock(btr_r$clock)
+    );
     canstar_hub_core$core$pj$1$ok_r ok_r(
         .d(ok_r$d),
         .q(ok_r$q),
@@ -5630,6 +5708,11 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .d(dom_bs$d),
         .q(dom_bs$q),
         .clock(dom_bs$clock)
+    );
+    canstar_hub_core$core$pj$1$bt_p bt_p(
+        .d(bt_p$d),
+        .q(bt_p$q),
+        .clock(bt_p$clock)
     );
     canstar_hub_core$core$pj$1$gc_r gc_r(
         .d(gc_r$d),
@@ -5741,6 +5824,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         rep_first_dom$clock = clock;
         rd_run$clock = clock;
         rov_w$clock = clock;
+        btr_r$clock = clock;
         ok_r$clock = clock;
         acked$clock = clock;
         bad$clock = clock;
@@ -5750,6 +5834,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         seen_dom$clock = clock;
         seen_dom_crc$clock = clock;
         dom_bs$clock = clock;
+        bt_p$clock = clock;
         gc_r$clock = clock;
         gdec_r$clock = clock;
         an_r$clock = clock;
@@ -5781,6 +5866,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         rep_first_dom$d = rep_first_dom$q;
         rd_run$d = rd_run$q;
         rov_w$d = rov_w$q;
+        btr_r$d = btr_r$q;
         ok_r$d = ok_r$q;
         acked$d = acked$q;
         bad$d = bad$q;
@@ -5790,6 +5876,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         seen_dom$d = seen_dom$q;
         seen_dom_crc$d = seen_dom_crc$q;
         dom_bs$d = dom_bs$q;
+        bt_p$d = bt_p$q;
         gc_r$d = gc_r$q;
         gdec_r$d = gdec_r$q;
         an_r$d = an_r$q;
@@ -5828,6 +5915,12 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             rov_w$d = 1'b1;
         end
         rov = sample & rov_on & im_12 & enabled & (rov_w$q | rov_now);
+        if (sample) begin
+            btr_r$d = 1'b0;
+        end
+        else if (bt) begin
+            btr_r$d = 1'b1;
+        end
         domw = dom | seen_dom$q;
         if (bit_start) begin
             seen_dom$d = 1'b0;
@@ -5859,9 +5952,10 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             c_sat = 32'hf7;
             c_bl = 32'h1;
         end
+        bt_p$d = bt;
         if (bit_start) begin
             seen_dom_crc$d = 1'b0;
-            dom_bs$d = ~bt;
+            dom_bs$d = ~bt_p$q;
         end
         else if (dom & (bs_cnt >= win_lag) & (bs_cnt <= crc_end)) begin
             seen_dom_crc$d = 1'b1;
@@ -5907,7 +6001,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                     dbc_r$d = dbc_r$q + 32'h1;
                 end
             end
-            else begin
+            else if (~(dbc_hold & err_phase & ~bt & ~btr_r$q)) begin
                 dbc_r$d = 32'h0;
             end
             if (frame_ok & enabled & (bic_r$q != 32'h0)) begin
@@ -6344,6 +6438,44 @@ module canstar_hub_core$core$pj$1$bnz_r(d,q,clock);
     end
           
 endmodule // canstar_hub_core$core$pj$1$bnz_r
+
+
+module canstar_hub_core$core$pj$1$bt_p(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$1$bt_p
+
+
+module canstar_hub_core$core$pj$1$btr_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$1$btr_r
 
 
 module canstar_hub_core$core$pj$1$ch_r(d,q,clock);
@@ -7143,6 +7275,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     localparam  rep_on = 1'b0;
     localparam  rep_skew = 3'b100;
     localparam  rov_on = 1'b0;
+    localparam  dbc_hold = 1'b1;
     localparam  reint_on = 1'b0;
     localparam  reint_w = 8'h1;
     
@@ -7187,6 +7320,9 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  rov_w$d;
     wire  rov_w$q;
     reg  rov_w$clock;
+    reg  btr_r$d;
+    wire  btr_r$q;
+    reg  btr_r$clock;
     reg  [7:0] ok_r$d;
     wire  [7:0] ok_r$q;
     reg  ok_r$clock;
@@ -7214,6 +7350,9 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  dom_bs$d;
     wire  dom_bs$q;
     reg  dom_bs$clock;
+    reg  bt_p$d;
+    wire  bt_p$q;
+    reg  bt_p$clock;
     reg  [2:0] gc_r$d;
     wire  [2:0] gc_r$q;
     reg  gc_r$clock;
@@ -7362,6 +7501,11 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .q(rov_w$q),
         .clock(rov_w$clock)
     );
+    canstar_hub_core$core$pj$2$btr_r btr_r(
+        .d(btr_r$d),
+        .q(btr_r$q),
+        .clock(btr_r$clock)
+    );
     canstar_hub_core$core$pj$2$ok_r ok_r(
         .d(ok_r$d),
         .q(ok_r$q),
@@ -7406,6 +7550,11 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .d(dom_bs$d),
         .q(dom_bs$q),
         .clock(dom_bs$clock)
+    );
+    canstar_hub_core$core$pj$2$bt_p bt_p(
+        .d(bt_p$d),
+        .q(bt_p$q),
+        .clock(bt_p$clock)
     );
     canstar_hub_core$core$pj$2$gc_r gc_r(
         .d(gc_r$d),
@@ -7517,6 +7666,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         rep_first_dom$clock = clock;
         rd_run$clock = clock;
         rov_w$clock = clock;
+        btr_r$clock = clock;
         ok_r$clock = clock;
         acked$clock = clock;
         bad$clock = clock;
@@ -7526,6 +7676,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         seen_dom$clock = clock;
         seen_dom_crc$clock = clock;
         dom_bs$clock = clock;
+        bt_p$clock = clock;
         gc_r$clock = clock;
         gdec_r$clock = clock;
         an_r$clock = clock;
@@ -7557,6 +7708,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         rep_first_dom$d = rep_first_dom$q;
         rd_run$d = rd_run$q;
         rov_w$d = rov_w$q;
+        btr_r$d = btr_r$q;
         ok_r$d = ok_r$q;
         acked$d = acked$q;
         bad$d = bad$q;
@@ -7566,6 +7718,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         seen_dom$d = seen_dom$q;
         seen_dom_crc$d = seen_dom_crc$q;
         dom_bs$d = dom_bs$q;
+        bt_p$d = bt_p$q;
         gc_r$d = gc_r$q;
         gdec_r$d = gdec_r$q;
         an_r$d = an_r$q;
@@ -7604,6 +7757,12 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             rov_w$d = 1'b1;
         end
         rov = sample & rov_on & im_12 & enabled & (rov_w$q | rov_now);
+        if (sample) begin
+            btr_r$d = 1'b0;
+        end
+        else if (bt) begin
+            btr_r$d = 1'b1;
+        end
         domw = dom | seen_dom$q;
         if (bit_start) begin
             seen_dom$d = 1'b0;
@@ -7635,9 +7794,10 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             c_sat = 32'hf7;
             c_bl = 32'h1;
         end
+        bt_p$d = bt;
         if (bit_start) begin
             seen_dom_crc$d = 1'b0;
-            dom_bs$d = ~bt;
+            dom_bs$d = ~bt_p$q;
         end
         else if (dom & (bs_cnt >= win_lag) & (bs_cnt <= crc_end)) begin
             seen_dom_crc$d = 1'b1;
@@ -7683,7 +7843,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                     dbc_r$d = dbc_r$q + 32'h1;
                 end
             end
-            else begin
+            else if (~(dbc_hold & err_phase & ~bt & ~btr_r$q)) begin
                 dbc_r$d = 32'h0;
             end
             if (frame_ok & enabled & (bic_r$q != 32'h0)) begin
@@ -8120,6 +8280,44 @@ module canstar_hub_core$core$pj$2$bnz_r(d,q,clock);
     end
           
 endmodule // canstar_hub_core$core$pj$2$bnz_r
+
+
+module canstar_hub_core$core$pj$2$bt_p(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$2$bt_p
+
+
+module canstar_hub_core$core$pj$2$btr_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$2$btr_r
 
 
 module canstar_hub_core$core$pj$2$ch_r(d,q,clock);
@@ -8976,6 +9174,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     localparam  rep_on = 1'b1;
     localparam  rep_skew = 3'b100;
     localparam  rov_on = 1'b1;
+    localparam  dbc_hold = 1'b0;
     localparam  reint_on = 1'b0;
     localparam  reint_w = 8'h1;
     
@@ -9020,6 +9219,9 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  rov_w$d;
     wire  rov_w$q;
     reg  rov_w$clock;
+    reg  btr_r$d;
+    wire  btr_r$q;
+    reg  btr_r$clock;
     reg  [7:0] ok_r$d;
     wire  [7:0] ok_r$q;
     reg  ok_r$clock;
@@ -9047,6 +9249,9 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  dom_bs$d;
     wire  dom_bs$q;
     reg  dom_bs$clock;
+    reg  bt_p$d;
+    wire  bt_p$q;
+    reg  bt_p$clock;
     reg  [2:0] gc_r$d;
     wire  [2:0] gc_r$q;
     reg  gc_r$clock;
@@ -9195,6 +9400,11 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .q(rov_w$q),
         .clock(rov_w$clock)
     );
+    canstar_hub_core$core$sj$0$btr_r btr_r(
+        .d(btr_r$d),
+        .q(btr_r$q),
+        .clock(btr_r$clock)
+    );
     canstar_hub_core$core$sj$0$ok_r ok_r(
         .d(ok_r$d),
         .q(ok_r$q),
@@ -9239,6 +9449,11 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .d(dom_bs$d),
         .q(dom_bs$q),
         .clock(dom_bs$clock)
+    );
+    canstar_hub_core$core$sj$0$bt_p bt_p(
+        .d(bt_p$d),
+        .q(bt_p$q),
+        .clock(bt_p$clock)
     );
     canstar_hub_core$core$sj$0$gc_r gc_r(
         .d(gc_r$d),
@@ -9350,6 +9565,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         rep_first_dom$clock = clock;
         rd_run$clock = clock;
         rov_w$clock = clock;
+        btr_r$clock = clock;
         ok_r$clock = clock;
         acked$clock = clock;
         bad$clock = clock;
@@ -9359,6 +9575,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         seen_dom$clock = clock;
         seen_dom_crc$clock = clock;
         dom_bs$clock = clock;
+        bt_p$clock = clock;
         gc_r$clock = clock;
         gdec_r$clock = clock;
         an_r$clock = clock;
@@ -9390,6 +9607,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         rep_first_dom$d = rep_first_dom$q;
         rd_run$d = rd_run$q;
         rov_w$d = rov_w$q;
+        btr_r$d = btr_r$q;
         ok_r$d = ok_r$q;
         acked$d = acked$q;
         bad$d = bad$q;
@@ -9399,6 +9617,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         seen_dom$d = seen_dom$q;
         seen_dom_crc$d = seen_dom_crc$q;
         dom_bs$d = dom_bs$q;
+        bt_p$d = bt_p$q;
         gc_r$d = gc_r$q;
         gdec_r$d = gdec_r$q;
         an_r$d = an_r$q;
@@ -9437,6 +9656,12 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             rov_w$d = 1'b1;
         end
         rov = sample & rov_on & im_12 & enabled & (rov_w$q | rov_now);
+        if (sample) begin
+            btr_r$d = 1'b0;
+        end
+        else if (bt) begin
+            btr_r$d = 1'b1;
+        end
         domw = dom | seen_dom$q;
         if (bit_start) begin
             seen_dom$d = 1'b0;
@@ -9468,9 +9693,10 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             c_sat = 32'hf7;
             c_bl = 32'h1;
         end
+        bt_p$d = bt;
         if (bit_start) begin
             seen_dom_crc$d = 1'b0;
-            dom_bs$d = ~bt;
+            dom_bs$d = ~bt_p$q;
         end
         else if (dom & (bs_cnt >= win_lag) & (bs_cnt <= crc_end)) begin
             seen_dom_crc$d = 1'b1;
@@ -9516,7 +9742,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                     dbc_r$d = dbc_r$q + 32'h1;
                 end
             end
-            else begin
+            else if (~(dbc_hold & err_phase & ~bt & ~btr_r$q)) begin
                 dbc_r$d = 32'h0;
             end
             if (frame_ok & enabled & (bic_r$q != 32'h0)) begin
@@ -9953,6 +10179,44 @@ module canstar_hub_core$core$sj$0$bnz_r(d,q,clock);
     end
           
 endmodule // canstar_hub_core$core$sj$0$bnz_r
+
+
+module canstar_hub_core$core$sj$0$bt_p(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$sj$0$bt_p
+
+
+module canstar_hub_core$core$sj$0$btr_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$sj$0$btr_r
 
 
 module canstar_hub_core$core$sj$0$ch_r(d,q,clock);
@@ -10752,6 +11016,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     localparam  rep_on = 1'b1;
     localparam  rep_skew = 3'b100;
     localparam  rov_on = 1'b1;
+    localparam  dbc_hold = 1'b0;
     localparam  reint_on = 1'b0;
     localparam  reint_w = 8'h1;
     
@@ -10796,6 +11061,9 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  rov_w$d;
     wire  rov_w$q;
     reg  rov_w$clock;
+    reg  btr_r$d;
+    wire  btr_r$q;
+    reg  btr_r$clock;
     reg  [7:0] ok_r$d;
     wire  [7:0] ok_r$q;
     reg  ok_r$clock;
@@ -10823,6 +11091,9 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  dom_bs$d;
     wire  dom_bs$q;
     reg  dom_bs$clock;
+    reg  bt_p$d;
+    wire  bt_p$q;
+    reg  bt_p$clock;
     reg  [2:0] gc_r$d;
     wire  [2:0] gc_r$q;
     reg  gc_r$clock;
@@ -10971,6 +11242,11 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .q(rov_w$q),
         .clock(rov_w$clock)
     );
+    canstar_hub_core$core$sj$1$btr_r btr_r(
+        .d(btr_r$d),
+        .q(btr_r$q),
+        .clock(btr_r$clock)
+    );
     canstar_hub_core$core$sj$1$ok_r ok_r(
         .d(ok_r$d),
         .q(ok_r$q),
@@ -11015,6 +11291,11 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .d(dom_bs$d),
         .q(dom_bs$q),
         .clock(dom_bs$clock)
+    );
+    canstar_hub_core$core$sj$1$bt_p bt_p(
+        .d(bt_p$d),
+        .q(bt_p$q),
+        .clock(bt_p$clock)
     );
     canstar_hub_core$core$sj$1$gc_r gc_r(
         .d(gc_r$d),
@@ -11126,6 +11407,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         rep_first_dom$clock = clock;
         rd_run$clock = clock;
         rov_w$clock = clock;
+        btr_r$clock = clock;
         ok_r$clock = clock;
         acked$clock = clock;
         bad$clock = clock;
@@ -11135,6 +11417,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         seen_dom$clock = clock;
         seen_dom_crc$clock = clock;
         dom_bs$clock = clock;
+        bt_p$clock = clock;
         gc_r$clock = clock;
         gdec_r$clock = clock;
         an_r$clock = clock;
@@ -11166,6 +11449,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         rep_first_dom$d = rep_first_dom$q;
         rd_run$d = rd_run$q;
         rov_w$d = rov_w$q;
+        btr_r$d = btr_r$q;
         ok_r$d = ok_r$q;
         acked$d = acked$q;
         bad$d = bad$q;
@@ -11175,6 +11459,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         seen_dom$d = seen_dom$q;
         seen_dom_crc$d = seen_dom_crc$q;
         dom_bs$d = dom_bs$q;
+        bt_p$d = bt_p$q;
         gc_r$d = gc_r$q;
         gdec_r$d = gdec_r$q;
         an_r$d = an_r$q;
@@ -11213,6 +11498,12 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             rov_w$d = 1'b1;
         end
         rov = sample & rov_on & im_12 & enabled & (rov_w$q | rov_now);
+        if (sample) begin
+            btr_r$d = 1'b0;
+        end
+        else if (bt) begin
+            btr_r$d = 1'b1;
+        end
         domw = dom | seen_dom$q;
         if (bit_start) begin
             seen_dom$d = 1'b0;
@@ -11244,9 +11535,10 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             c_sat = 32'hf7;
             c_bl = 32'h1;
         end
+        bt_p$d = bt;
         if (bit_start) begin
             seen_dom_crc$d = 1'b0;
-            dom_bs$d = ~bt;
+            dom_bs$d = ~bt_p$q;
         end
         else if (dom & (bs_cnt >= win_lag) & (bs_cnt <= crc_end)) begin
             seen_dom_crc$d = 1'b1;
@@ -11292,7 +11584,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                     dbc_r$d = dbc_r$q + 32'h1;
                 end
             end
-            else begin
+            else if (~(dbc_hold & err_phase & ~bt & ~btr_r$q)) begin
                 dbc_r$d = 32'h0;
             end
             if (frame_ok & enabled & (bic_r$q != 32'h0)) begin
@@ -11729,6 +12021,44 @@ module canstar_hub_core$core$sj$1$bnz_r(d,q,clock);
     end
           
 endmodule // canstar_hub_core$core$sj$1$bnz_r
+
+
+module canstar_hub_core$core$sj$1$bt_p(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$sj$1$bt_p
+
+
+module canstar_hub_core$core$sj$1$btr_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$sj$1$btr_r
 
 
 module canstar_hub_core$core$sj$1$ch_r(d,q,clock);
