@@ -146,6 +146,16 @@ pub struct HubConfig {
     /// one recessive bit under the other nodes' flags (a node whose downlink loses dominant
     /// bits) is still one run.
     pub dominant_run_bridge: bool,
+    /// Intermission-bit-2 lag (hub.md §5.23, sublinks): a sublink's level in Intermission
+    /// bit 2 counts as a flag that started in that bit only when BT was still recessive at
+    /// this many clocks after the bit-start clock (the peer saw it rise in bit 1 and it
+    /// arrives an interlink crossing later), 0..=7; 0 = the clock before the bit start, as
+    /// for ports.
+    pub sub_intermission_lag: u64,
+    /// Stuff-bit pulse rule (hub.md §5.23, ports): a port blamed at a dominant stuff bit,
+    /// where §5.10 does not charge it (a healthy node's error flag can start there), is
+    /// charged when it is recessive again at the next sample (a pulse, not a flag).
+    pub stuff_pulse_rule: bool,
     /// Reintegration window W in frames (None = isolation latched until reset).
     pub reintegration: Option<u64>,
     /// Fault-injection hook (None = no hooks).
@@ -191,6 +201,8 @@ impl Default for HubConfig {
             peer_guard: 7,
             replica_overload: true,
             dominant_run_bridge: true,
+            sub_intermission_lag: 2,
+            stuff_pulse_rule: true,
             reintegration: None,
             fault_injection: None,
             debug: true,
@@ -246,6 +258,8 @@ impl HubConfig {
             delim_blames: self.delim_blames,
             replica_overload: false,
             dbc_bridge: self.dominant_run_bridge,
+            im2_lag: 0,
+            stuff_pulse: self.stuff_pulse_rule,
         }
     }
     /// Longest glitch in clocks: [`HubConfig::glitch_max`], or one bit minus SJW minus
@@ -292,6 +306,8 @@ impl HubConfig {
             delim_blames: self.sub_delim_blames,
             replica_overload: self.replica_overload,
             dbc_bridge: false,
+            im2_lag: self.sub_intermission_lag,
+            stuff_pulse: false,
         }
     }
     /// Check the ranges; returns a description of the first problem, starting
@@ -346,6 +362,9 @@ impl HubConfig {
         }
         if self.peer_guard > 31 {
             return Err("peer_guard must be in 0..=31 (0 = off)".into());
+        }
+        if self.sub_intermission_lag > 7 {
+            return Err("sub_intermission_lag must be in 0..=7".into());
         }
         if self.window_lag > 31 || self.sub_window_lag > 31 {
             return Err("window_lag and sub_window_lag must be in 0..=31".into());

@@ -480,6 +480,22 @@
 //! start; the first hub took it for a level that continued from bit 1 and did not blame the
 //! port, the peer blamed its sublinks at every such flag, and the hubs split. Test:
 //! `intermission_bit_2_blames_only_a_flag_that_starts_in_it`.
+//!
+//! **§5.23 a sublink's lag in Intermission bit 2; a pulse at a dominant stuff bit
+//! (session 27).** (1) Sublinks (`im2_lag`, config `sub_intermission_lag`, 2): the §5.22
+//! test reads BT at the `im2_lag`-th clock after the bit-start clock. A faulty node's
+//! overload flag that its own hub saw rise three clocks before its bit 2 (excused there)
+//! reached the peer through the interlink in the peer's bit-start clock; the peer blamed its
+//! sublinks for every such flag and cut the hub off in the bit in which the hub isolated
+//! the port. Ports keep the clock before the bit start. Test:
+//! `intermission_bit_2_lag_excuses_a_level_that_rose_in_the_first_clocks`. (2) Ports
+//! (`stuff_pulse`, config `stuff_pulse_rule`): a port blamed but not charged at a dominant
+//! stuff bit (§5.10, where a healthy node's error flag may start) that is recessive again
+//! at the next sample sent a pulse, not a flag (a flag stays dominant for six bits), and is
+//! charged +8 one clock after that sample (`spb_r`, `spc_r`, through `late`). An uplink
+//! flipping in step with the frame period hit the same dominant stuff bit in 7 of 13
+//! episodes; the hub's flag, started by the blame, destroyed each frame and nobody was
+//! charged. Test: `stuff_bit_pulse_is_charged_at_the_next_sample`.
 
 use crate::pulse::PulseCheck;
 use rust_hdl::prelude::*;
@@ -540,6 +556,15 @@ pub struct JudgeParams {
     /// phase, under a bus that was dominant at every clock since the last sample, holds
     /// `dbc` instead of clearing it.
     pub dbc_bridge: bool,
+    /// Intermission-bit-2 lag (hub.md §5.23, sublinks): the §5.14 test "BT recessive at the
+    /// bit start" reads BT at the `im2_lag`-th clock after the bit-start clock instead of
+    /// the clock before it (a level that rose in those clocks came from bit 1 at the peer),
+    /// 0..=15; 0 = the clock before the bit start.
+    pub im2_lag: u64,
+    /// Stuff-bit pulse rule (hub.md §5.23, ports): a port blamed but not charged at a
+    /// dominant stuff bit (§5.10) that is recessive again at the next sample sent a pulse,
+    /// not an error flag, and is charged +8 one clock after that sample.
+    pub stuff_pulse: bool,
 }
 
 #[derive(LogicBlock)]
@@ -667,6 +692,9 @@ pub struct JudgeUnit {
     rep_skew: Constant<Bits<3>>,
     rov_on: Constant<Bit>,
     dbc_hold: Constant<Bit>,
+    im2_on: Constant<Bit>,
+    im2_at: Constant<Bits<5>>,
+    spu_on: Constant<Bit>,
     reint_on: Constant<Bit>,
     reint_w: Constant<Bits<8>>,
     dis_r: DFF<Bit>,
@@ -705,6 +733,10 @@ pub struct JudgeUnit {
     /// `stuff_dom` one clock ago: at `err_start`, the sample that started the episode was a
     /// dominant stuff bit (§5.16).
     sdp_r: DFF<Bit>,
+    /// §5.23: blamed and not charged at the last sample, a dominant stuff bit; the charge
+    /// of a pulse found at this sample (registered: charged one clock later).
+    spb_r: DFF<Bit>,
+    spc_r: DFF<Bit>,
     ch_r: DFF<Bit>,
     /// §5.17: `others_dom` seen since the last sample point, this unit's level one clock
     /// ago, and whether its dominant level is a follower.
@@ -842,6 +874,9 @@ impl JudgeUnit {
             rep_skew: Constant::new(p.replica_skew.into()),
             rov_on: Constant::new(!port & p.replica_overload),
             dbc_hold: Constant::new(port & p.dbc_bridge),
+            im2_on: Constant::new(p.im2_lag != 0),
+            im2_at: Constant::new(p.im2_lag.saturating_sub(1).into()),
+            spu_on: Constant::new(port & p.stuff_pulse),
             reint_on: Constant::new(p.reintegration.is_some()),
             reint_w: Constant::new(p.reintegration.unwrap_or(1).into()),
             dis_r: Default::default(),
@@ -877,6 +912,8 @@ impl JudgeUnit {
             glo_r: Default::default(),
             pgl_r: Default::default(),
             sdp_r: Default::default(),
+            spb_r: Default::default(),
+            spc_r: Default::default(),
             ch_r: Default::default(),
             od_r: Default::default(),
             dprev: Default::default(),
@@ -922,7 +959,7 @@ impl JudgeUnit {
 impl Logic for JudgeUnit {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, dis_r, bic_r, bdec_r, life_r, dbc_r, nack_r, cont_r, rep_r, rep_seen, rep_first_dom, rd_run, rov_w, btr_r, ok_r, acked, bad, ack_missing, ack_c, ack_rx, seen_dom, seen_dom_crc, dom_bs, bt_p, gc_r, gdec_r, an_r, pgc_r, pdec_r, ffd_r, glf_r, glo_r, pgl_r, sdp_r, ch_r, od_r, dprev, fol_r, step_r, bnz_r, bl_r, bl_dm_r, gpend);
+        dff_setup!(self, clock, dis_r, bic_r, bdec_r, life_r, dbc_r, nack_r, cont_r, rep_r, rep_seen, rep_first_dom, rd_run, rov_w, btr_r, ok_r, acked, bad, ack_missing, ack_c, ack_rx, seen_dom, seen_dom_crc, dom_bs, bt_p, gc_r, gdec_r, an_r, pgc_r, pdec_r, ffd_r, glf_r, glo_r, pgl_r, sdp_r, spb_r, spc_r, ch_r, od_r, dprev, fol_r, step_r, bnz_r, bl_r, bl_dm_r, gpend);
         self.pulse.clock.next = self.clock.val();
         self.pulse.reset.next = self.reset.val();
         self.pulse.c.next = self.c.val();
@@ -1002,8 +1039,17 @@ impl Logic for JudgeUnit {
             // (§5.22: BT of the clock before the bit start; a level that rises in the
             // bit-start clock starts in this bit)
             self.dom_bs.d.next = !self.bt_p.q.val();
-        } else if self.dom.val() & (self.bs_cnt.val() >= self.win_lag.val()) & (self.bs_cnt.val() <= self.crc_end.val()) {
-            self.seen_dom_crc.d.next = true;
+        } else {
+            if self.dom.val() & (self.bs_cnt.val() >= self.win_lag.val()) & (self.bs_cnt.val() <= self.crc_end.val()) {
+                self.seen_dom_crc.d.next = true;
+            }
+            // §5.23 (sublinks): BT at the `im2_lag`-th clock after the bit-start clock
+            // (`bs_cnt` counts from 0 in the clock after it); a level the peer saw rise in
+            // bit 1 reaches this hub an interlink crossing later, against bit starts that
+            // differ by up to a resynchronisation
+            if self.im2_on.val() & (self.bs_cnt.val() == self.im2_at.val()) {
+                self.dom_bs.d.next = !self.bt.val();
+            }
         }
         self.unj.next = (self.domw.val()
             & ((!self.err_phase.val()
@@ -1030,8 +1076,15 @@ impl Logic for JudgeUnit {
             & self.pgl_r.q.val()
             & !self.ch_r.q.val()
             & !self.sdp_r.q.val();
-        // the charges one clock after a sample: one +8 when both come
-        self.late.next = self.ffc.val() | self.pge.val();
+        // §5.23 stuff-bit pulse (ports): blamed, not charged, at a dominant stuff bit (the
+        // §5.10 excuse is for error flags, which stay dominant) and recessive at the next
+        // sample: charged one clock after that sample
+        if self.sample.val() {
+            self.spb_r.d.next = self.spu_on.val() & self.unj.val() & self.enabled.val() & !self.suppress.val() & self.stuff_dom.val();
+        }
+        self.spc_r.d.next = self.sample.val() & self.spb_r.q.val() & self.c.val() & self.enabled.val();
+        // the charges one clock after a sample: one +8 when two come
+        self.late.next = self.ffc.val() | self.pge.val() | self.spc_r.q.val();
         self.blame.next = (self.sample.val() & self.unj.val() & self.enabled.val()) | self.late.val();
         self.charged.next = self.charge.val() | self.late.val();
         if self.late.val() {

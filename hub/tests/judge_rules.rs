@@ -297,6 +297,40 @@ fn dominant_stuff_bit_is_blamed_but_not_charged() {
     assert_eq!(j.bic.val().index(), 8, "charged at an ordinary bit");
 }
 
+/// §5.23 stuff-bit pulse rule: a port blamed (not charged) at a dominant stuff bit and
+/// recessive at the next sample is charged one blame then; a port still dominant there
+/// (an error flag) is not; without the rule nothing is charged; an ordinary charged blame
+/// is not charged again.
+#[test]
+fn stuff_bit_pulse_is_charged_at_the_next_sample() {
+    let receiver = |j: &mut JudgeUnit| {
+        sample(j, Bit { c: false, bt: false, sof: true, ..Default::default() });
+        sample(j, Bit { c: true, bt: false, tx: true, ..Default::default() });
+    };
+    let dominant = Bit { c: false, bt: false, tx: true, ..Default::default() };
+    // the next bit under the hub's error flag
+    let flag_bit = |c| Bit { c, bt: false, err: true, ..Default::default() };
+    for (rule, next_recessive, charged) in [(true, true, true), (true, false, false), (false, true, false)] {
+        let mut j = unit(JudgeParams { stuff_pulse: rule, ..params() });
+        receiver(&mut j);
+        j.stuff_dom.next = true;
+        assert!(sample(&mut j, dominant), "blamed at the stuff bit");
+        j.stuff_dom.next = false;
+        assert_eq!(j.bic.val().index(), 0, "not charged at the stuff bit");
+        sample(&mut j, flag_bit(next_recessive));
+        let what = format!("rule {rule}, recessive at the next sample {next_recessive}");
+        assert_eq!(j.bic.val().index(), 8 * charged as usize, "{what}");
+        assert_eq!(j.life.val().index(), charged as usize, "{what}");
+        assert!(!sample(&mut j, flag_bit(true)), "{what}: charged once");
+        assert_eq!(j.bic.val().index(), 8 * charged as usize, "{what}");
+    }
+    let mut j = unit(JudgeParams { stuff_pulse: true, ..params() });
+    receiver(&mut j);
+    assert!(sample(&mut j, dominant));
+    sample(&mut j, flag_bit(true));
+    assert_eq!(j.bic.val().index(), 8, "an ordinary bit: charged at its own sample only");
+}
+
 /// Error and overload delimiter bits 2..7 (`delim`, after BT went recessive) are
 /// recessive-only positions, in the error phase too.
 #[test]
@@ -398,6 +432,31 @@ fn intermission_bit_2_blames_only_a_flag_that_starts_in_it() {
     assert!(!bit_dominant_from(&mut j, Bit::default(), 15));
     assert!(!bit_dominant_from(&mut j, im2, 0));
     assert_eq!(j.bic.val().index(), 0);
+}
+
+/// §5.23: with `im2_lag` (sublinks) the Intermission-bit-2 test reads BT at that clock
+/// after the bit start (here clock 1 = `bs_cnt` 1 of the test's bit; the hub's `bs_cnt`
+/// starts in the clock after the bit-start clock): a level that rose before it is taken
+/// for one that started in bit 1 at the peer; a level that was there at the bit start but
+/// gone at that clock, and rose again later, started in bit 2.
+#[test]
+fn intermission_bit_2_lag_excuses_a_level_that_rose_in_the_first_clocks() {
+    let im1 = Bit { c: true, bt: true, ..Default::default() };
+    let im2 = Bit { im: true, ..Default::default() };
+    let lagged = || unit(JudgeParams { im2_lag: 2, ..params() });
+    for (from, blamed) in [(0, false), (1, false), (2, true), (8, true), (9, false)] {
+        let mut j = lagged();
+        sample(&mut j, im1);
+        assert_eq!(bit_dominant_from(&mut j, im2, from), blamed, "lag 2: dominant from clock {from}");
+        assert_eq!(j.bic.val().index(), 8 * blamed as usize);
+    }
+    // dominant late in bit 1, recessive at clocks 0..3 of bit 2, dominant again from 4:
+    // excused without the lag (BT dominant before the bit start), blamed with it
+    for (lag, blamed) in [(0, false), (2, true)] {
+        let mut j = unit(JudgeParams { im2_lag: lag, ..params() });
+        assert!(!bit_dominant_from(&mut j, Bit::default(), 14));
+        assert_eq!(bit_dominant_from(&mut j, im2, 4), blamed, "lag {lag}: a new level from clock 4");
+    }
 }
 
 #[test]

@@ -93,19 +93,23 @@ fn judge_stim(j: &mut JudgeUnit, rng: &mut rand_chacha::ChaCha8Rng, c: usize) {
     if k != 0 && rng.gen_ratio(1, 60) {
         j.c.next = !j.c.val();
     }
+    // and BT changing in the first clocks of a bit (the §5.23 Intermission-bit-2 lag)
+    if (1..4).contains(&k) && rng.gen_ratio(1, 40) {
+        j.bt.next = !j.bt.val();
+    }
 }
 
 #[test]
 #[ignore = "needs iverilog, verilator and yosys: run scripts/test-all.sh"]
 fn port_judge_flow() {
-    let mut j = JudgeUnit::port(JudgeParams { reintegration: Some(3), first_flagger: true, eof_last: true, dbc_bridge: true, ..params() });
+    let mut j = JudgeUnit::port(JudgeParams { reintegration: Some(3), first_flagger: true, eof_last: true, dbc_bridge: true, stuff_pulse: true, ..params() });
     flow::full_check(&mut j, "port_judge", 100_000, 21, judge_stim).expect("port judge flow");
 }
 
 #[test]
 #[ignore = "needs iverilog, verilator and yosys: run scripts/test-all.sh"]
 fn sublink_judge_flow() {
-    let mut j = JudgeUnit::sublink(JudgeParams { bic_limit: 128, dbc_threshold: 28, first_flagger: true, replica_overload: true, ..params() });
+    let mut j = JudgeUnit::sublink(JudgeParams { bic_limit: 128, dbc_threshold: 28, first_flagger: true, replica_overload: true, im2_lag: 2, ..params() });
     flow::full_check(&mut j, "sublink_judge", 100_000, 22, judge_stim).expect("sublink judge flow");
 }
 

@@ -2828,6 +2828,9 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
     localparam  rep_skew = 3'b100;
     localparam  rov_on = 1'b0;
     localparam  dbc_hold = 1'b1;
+    localparam  im2_on = 1'b0;
+    localparam  im2_at = 5'b0;
+    localparam  spu_on = 1'b1;
     localparam  reint_on = 1'b0;
     localparam  reint_w = 8'h1;
     
@@ -2935,6 +2938,12 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
     reg  sdp_r$d;
     wire  sdp_r$q;
     reg  sdp_r$clock;
+    reg  spb_r$d;
+    wire  spb_r$q;
+    reg  spb_r$clock;
+    reg  spc_r$d;
+    wire  spc_r$q;
+    reg  spc_r$clock;
     reg  ch_r$d;
     wire  ch_r$q;
     reg  ch_r$clock;
@@ -3158,6 +3167,16 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         .q(sdp_r$q),
         .clock(sdp_r$clock)
     );
+    canstar_cancentrate_core$core$pj$0$spb_r spb_r(
+        .d(spb_r$d),
+        .q(spb_r$q),
+        .clock(spb_r$clock)
+    );
+    canstar_cancentrate_core$core$pj$0$spc_r spc_r(
+        .d(spc_r$d),
+        .q(spc_r$q),
+        .clock(spc_r$clock)
+    );
     canstar_cancentrate_core$core$pj$0$ch_r ch_r(
         .d(ch_r$d),
         .q(ch_r$q),
@@ -3239,6 +3258,8 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         glo_r$clock = clock;
         pgl_r$clock = clock;
         sdp_r$clock = clock;
+        spb_r$clock = clock;
+        spc_r$clock = clock;
         ch_r$clock = clock;
         od_r$clock = clock;
         dprev$clock = clock;
@@ -3281,6 +3302,8 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         glo_r$d = glo_r$q;
         pgl_r$d = pgl_r$q;
         sdp_r$d = sdp_r$q;
+        spb_r$d = spb_r$q;
+        spc_r$d = spc_r$q;
         ch_r$d = ch_r$q;
         od_r$d = od_r$q;
         dprev$d = dprev$q;
@@ -3351,15 +3374,24 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
             seen_dom_crc$d = 1'b0;
             dom_bs$d = ~bt_p$q;
         end
-        else if (dom & (bs_cnt >= win_lag) & (bs_cnt <= crc_end)) begin
-            seen_dom_crc$d = 1'b1;
+        else begin
+            if (dom & (bs_cnt >= win_lag) & (bs_cnt <= crc_end)) begin
+                seen_dom_crc$d = 1'b1;
+            end
+            if (im2_on & (bs_cnt == im2_at)) begin
+                dom_bs$d = ~bt;
+            end
         end
         unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | (eof_last & eol_on) | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q) | (im_2 & ~err_phase & seen_dom_crc$q & ~dom_bs$q);
         ffc = ff & ff_on & enabled & ffd_r$q;
         charge = sample & unj & enabled & ~suppress & ~stuff_dom;
         sdp_r$d = stuff_dom;
         pge = err_start & rep_on & enabled & (an_r$q != 32'h0) & pgl_r$q & ~ch_r$q & ~sdp_r$q;
-        late = ffc | pge;
+        if (sample) begin
+            spb_r$d = spu_on & unj & enabled & ~suppress & stuff_dom;
+        end
+        spc_r$d = sample & spb_r$q & c & enabled;
+        late = ffc | pge | spc_r$q;
         blame = (sample & unj & enabled) | late;
         charged = charge | late;
         if (late) begin
@@ -4568,6 +4600,44 @@ module canstar_cancentrate_core$core$pj$0$seen_dom_crc(d,q,clock);
 endmodule // canstar_cancentrate_core$core$pj$0$seen_dom_crc
 
 
+module canstar_cancentrate_core$core$pj$0$spb_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$0$spb_r
+
+
+module canstar_cancentrate_core$core$pj$0$spc_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$0$spc_r
+
+
 module canstar_cancentrate_core$core$pj$0$step_r(d,q,clock);
     
     // Module arguments
@@ -4670,6 +4740,9 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
     localparam  rep_skew = 3'b100;
     localparam  rov_on = 1'b0;
     localparam  dbc_hold = 1'b1;
+    localparam  im2_on = 1'b0;
+    localparam  im2_at = 5'b0;
+    localparam  spu_on = 1'b1;
     localparam  reint_on = 1'b0;
     localparam  reint_w = 8'h1;
     
@@ -4777,6 +4850,12 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
     reg  sdp_r$d;
     wire  sdp_r$q;
     reg  sdp_r$clock;
+    reg  spb_r$d;
+    wire  spb_r$q;
+    reg  spb_r$clock;
+    reg  spc_r$d;
+    wire  spc_r$q;
+    reg  spc_r$clock;
     reg  ch_r$d;
     wire  ch_r$q;
     reg  ch_r$clock;
@@ -5000,6 +5079,16 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         .q(sdp_r$q),
         .clock(sdp_r$clock)
     );
+    canstar_cancentrate_core$core$pj$1$spb_r spb_r(
+        .d(spb_r$d),
+        .q(spb_r$q),
+        .clock(spb_r$clock)
+    );
+    canstar_cancentrate_core$core$pj$1$spc_r spc_r(
+        .d(spc_r$d),
+        .q(spc_r$q),
+        .clock(spc_r$clock)
+    );
     canstar_cancentrate_core$core$pj$1$ch_r ch_r(
         .d(ch_r$d),
         .q(ch_r$q),
@@ -5081,6 +5170,8 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         glo_r$clock = clock;
         pgl_r$clock = clock;
         sdp_r$clock = clock;
+        spb_r$clock = clock;
+        spc_r$clock = clock;
         ch_r$clock = clock;
         od_r$clock = clock;
         dprev$clock = clock;
@@ -5123,6 +5214,8 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         glo_r$d = glo_r$q;
         pgl_r$d = pgl_r$q;
         sdp_r$d = sdp_r$q;
+        spb_r$d = spb_r$q;
+        spc_r$d = spc_r$q;
         ch_r$d = ch_r$q;
         od_r$d = od_r$q;
         dprev$d = dprev$q;
@@ -5193,15 +5286,24 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
             seen_dom_crc$d = 1'b0;
             dom_bs$d = ~bt_p$q;
         end
-        else if (dom & (bs_cnt >= win_lag) & (bs_cnt <= crc_end)) begin
-            seen_dom_crc$d = 1'b1;
+        else begin
+            if (dom & (bs_cnt >= win_lag) & (bs_cnt <= crc_end)) begin
+                seen_dom_crc$d = 1'b1;
+            end
+            if (im2_on & (bs_cnt == im2_at)) begin
+                dom_bs$d = ~bt;
+            end
         end
         unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | (eof_last & eol_on) | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q) | (im_2 & ~err_phase & seen_dom_crc$q & ~dom_bs$q);
         ffc = ff & ff_on & enabled & ffd_r$q;
         charge = sample & unj & enabled & ~suppress & ~stuff_dom;
         sdp_r$d = stuff_dom;
         pge = err_start & rep_on & enabled & (an_r$q != 32'h0) & pgl_r$q & ~ch_r$q & ~sdp_r$q;
-        late = ffc | pge;
+        if (sample) begin
+            spb_r$d = spu_on & unj & enabled & ~suppress & stuff_dom;
+        end
+        spc_r$d = sample & spb_r$q & c & enabled;
+        late = ffc | pge | spc_r$q;
         blame = (sample & unj & enabled) | late;
         charged = charge | late;
         if (late) begin
@@ -6410,6 +6512,44 @@ module canstar_cancentrate_core$core$pj$1$seen_dom_crc(d,q,clock);
 endmodule // canstar_cancentrate_core$core$pj$1$seen_dom_crc
 
 
+module canstar_cancentrate_core$core$pj$1$spb_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$1$spb_r
+
+
+module canstar_cancentrate_core$core$pj$1$spc_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$1$spc_r
+
+
 module canstar_cancentrate_core$core$pj$1$step_r(d,q,clock);
     
     // Module arguments
@@ -6512,6 +6652,9 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
     localparam  rep_skew = 3'b100;
     localparam  rov_on = 1'b0;
     localparam  dbc_hold = 1'b1;
+    localparam  im2_on = 1'b0;
+    localparam  im2_at = 5'b0;
+    localparam  spu_on = 1'b1;
     localparam  reint_on = 1'b0;
     localparam  reint_w = 8'h1;
     
@@ -6619,6 +6762,12 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
     reg  sdp_r$d;
     wire  sdp_r$q;
     reg  sdp_r$clock;
+    reg  spb_r$d;
+    wire  spb_r$q;
+    reg  spb_r$clock;
+    reg  spc_r$d;
+    wire  spc_r$q;
+    reg  spc_r$clock;
     reg  ch_r$d;
     wire  ch_r$q;
     reg  ch_r$clock;
@@ -6842,6 +6991,16 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         .q(sdp_r$q),
         .clock(sdp_r$clock)
     );
+    canstar_cancentrate_core$core$pj$2$spb_r spb_r(
+        .d(spb_r$d),
+        .q(spb_r$q),
+        .clock(spb_r$clock)
+    );
+    canstar_cancentrate_core$core$pj$2$spc_r spc_r(
+        .d(spc_r$d),
+        .q(spc_r$q),
+        .clock(spc_r$clock)
+    );
     canstar_cancentrate_core$core$pj$2$ch_r ch_r(
         .d(ch_r$d),
         .q(ch_r$q),
@@ -6923,6 +7082,8 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         glo_r$clock = clock;
         pgl_r$clock = clock;
         sdp_r$clock = clock;
+        spb_r$clock = clock;
+        spc_r$clock = clock;
         ch_r$clock = clock;
         od_r$clock = clock;
         dprev$clock = clock;
@@ -6965,6 +7126,8 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         glo_r$d = glo_r$q;
         pgl_r$d = pgl_r$q;
         sdp_r$d = sdp_r$q;
+        spb_r$d = spb_r$q;
+        spc_r$d = spc_r$q;
         ch_r$d = ch_r$q;
         od_r$d = od_r$q;
         dprev$d = dprev$q;
@@ -7035,15 +7198,24 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
             seen_dom_crc$d = 1'b0;
             dom_bs$d = ~bt_p$q;
         end
-        else if (dom & (bs_cnt >= win_lag) & (bs_cnt <= crc_end)) begin
-            seen_dom_crc$d = 1'b1;
+        else begin
+            if (dom & (bs_cnt >= win_lag) & (bs_cnt <= crc_end)) begin
+                seen_dom_crc$d = 1'b1;
+            end
+            if (im2_on & (bs_cnt == im2_at)) begin
+                dom_bs$d = ~bt;
+            end
         end
         unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | (eof_last & eol_on) | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q) | (im_2 & ~err_phase & seen_dom_crc$q & ~dom_bs$q);
         ffc = ff & ff_on & enabled & ffd_r$q;
         charge = sample & unj & enabled & ~suppress & ~stuff_dom;
         sdp_r$d = stuff_dom;
         pge = err_start & rep_on & enabled & (an_r$q != 32'h0) & pgl_r$q & ~ch_r$q & ~sdp_r$q;
-        late = ffc | pge;
+        if (sample) begin
+            spb_r$d = spu_on & unj & enabled & ~suppress & stuff_dom;
+        end
+        spc_r$d = sample & spb_r$q & c & enabled;
+        late = ffc | pge | spc_r$q;
         blame = (sample & unj & enabled) | late;
         charged = charge | late;
         if (late) begin
@@ -8250,6 +8422,44 @@ module canstar_cancentrate_core$core$pj$2$seen_dom_crc(d,q,clock);
     end
           
 endmodule // canstar_cancentrate_core$core$pj$2$seen_dom_crc
+
+
+module canstar_cancentrate_core$core$pj$2$spb_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$2$spb_r
+
+
+module canstar_cancentrate_core$core$pj$2$spc_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$2$spc_r
 
 
 module canstar_cancentrate_core$core$pj$2$step_r(d,q,clock);

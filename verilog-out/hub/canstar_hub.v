@@ -3592,6 +3592,9 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     localparam  rep_skew = 3'b100;
     localparam  rov_on = 1'b0;
     localparam  dbc_hold = 1'b1;
+    localparam  im2_on = 1'b0;
+    localparam  im2_at = 5'b0;
+    localparam  spu_on = 1'b1;
     localparam  reint_on = 1'b0;
     localparam  reint_w = 8'h1;
     
@@ -3699,6 +3702,12 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  sdp_r$d;
     wire  sdp_r$q;
     reg  sdp_r$clock;
+    reg  spb_r$d;
+    wire  spb_r$q;
+    reg  spb_r$clock;
+    reg  spc_r$d;
+    wire  spc_r$q;
+    reg  spc_r$clock;
     reg  ch_r$d;
     wire  ch_r$q;
     reg  ch_r$clock;
@@ -3922,6 +3931,16 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .q(sdp_r$q),
         .clock(sdp_r$clock)
     );
+    canstar_hub_core$core$pj$0$spb_r spb_r(
+        .d(spb_r$d),
+        .q(spb_r$q),
+        .clock(spb_r$clock)
+    );
+    canstar_hub_core$core$pj$0$spc_r spc_r(
+        .d(spc_r$d),
+        .q(spc_r$q),
+        .clock(spc_r$clock)
+    );
     canstar_hub_core$core$pj$0$ch_r ch_r(
         .d(ch_r$d),
         .q(ch_r$q),
@@ -4003,6 +4022,8 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         glo_r$clock = clock;
         pgl_r$clock = clock;
         sdp_r$clock = clock;
+        spb_r$clock = clock;
+        spc_r$clock = clock;
         ch_r$clock = clock;
         od_r$clock = clock;
         dprev$clock = clock;
@@ -4045,6 +4066,8 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         glo_r$d = glo_r$q;
         pgl_r$d = pgl_r$q;
         sdp_r$d = sdp_r$q;
+        spb_r$d = spb_r$q;
+        spc_r$d = spc_r$q;
         ch_r$d = ch_r$q;
         od_r$d = od_r$q;
         dprev$d = dprev$q;
@@ -4115,15 +4138,24 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             seen_dom_crc$d = 1'b0;
             dom_bs$d = ~bt_p$q;
         end
-        else if (dom & (bs_cnt >= win_lag) & (bs_cnt <= crc_end)) begin
-            seen_dom_crc$d = 1'b1;
+        else begin
+            if (dom & (bs_cnt >= win_lag) & (bs_cnt <= crc_end)) begin
+                seen_dom_crc$d = 1'b1;
+            end
+            if (im2_on & (bs_cnt == im2_at)) begin
+                dom_bs$d = ~bt;
+            end
         end
         unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | (eof_last & eol_on) | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q) | (im_2 & ~err_phase & seen_dom_crc$q & ~dom_bs$q);
         ffc = ff & ff_on & enabled & ffd_r$q;
         charge = sample & unj & enabled & ~suppress & ~stuff_dom;
         sdp_r$d = stuff_dom;
         pge = err_start & rep_on & enabled & (an_r$q != 32'h0) & pgl_r$q & ~ch_r$q & ~sdp_r$q;
-        late = ffc | pge;
+        if (sample) begin
+            spb_r$d = spu_on & unj & enabled & ~suppress & stuff_dom;
+        end
+        spc_r$d = sample & spb_r$q & c & enabled;
+        late = ffc | pge | spc_r$q;
         blame = (sample & unj & enabled) | late;
         charged = charge | late;
         if (late) begin
@@ -5332,6 +5364,44 @@ module canstar_hub_core$core$pj$0$seen_dom_crc(d,q,clock);
 endmodule // canstar_hub_core$core$pj$0$seen_dom_crc
 
 
+module canstar_hub_core$core$pj$0$spb_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$0$spb_r
+
+
+module canstar_hub_core$core$pj$0$spc_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$0$spc_r
+
+
 module canstar_hub_core$core$pj$0$step_r(d,q,clock);
     
     // Module arguments
@@ -5434,6 +5504,9 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     localparam  rep_skew = 3'b100;
     localparam  rov_on = 1'b0;
     localparam  dbc_hold = 1'b1;
+    localparam  im2_on = 1'b0;
+    localparam  im2_at = 5'b0;
+    localparam  spu_on = 1'b1;
     localparam  reint_on = 1'b0;
     localparam  reint_w = 8'h1;
     
@@ -5541,6 +5614,12 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  sdp_r$d;
     wire  sdp_r$q;
     reg  sdp_r$clock;
+    reg  spb_r$d;
+    wire  spb_r$q;
+    reg  spb_r$clock;
+    reg  spc_r$d;
+    wire  spc_r$q;
+    reg  spc_r$clock;
     reg  ch_r$d;
     wire  ch_r$q;
     reg  ch_r$clock;
@@ -5764,6 +5843,16 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .q(sdp_r$q),
         .clock(sdp_r$clock)
     );
+    canstar_hub_core$core$pj$1$spb_r spb_r(
+        .d(spb_r$d),
+        .q(spb_r$q),
+        .clock(spb_r$clock)
+    );
+    canstar_hub_core$core$pj$1$spc_r spc_r(
+        .d(spc_r$d),
+        .q(spc_r$q),
+        .clock(spc_r$clock)
+    );
     canstar_hub_core$core$pj$1$ch_r ch_r(
         .d(ch_r$d),
         .q(ch_r$q),
@@ -5845,6 +5934,8 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         glo_r$clock = clock;
         pgl_r$clock = clock;
         sdp_r$clock = clock;
+        spb_r$clock = clock;
+        spc_r$clock = clock;
         ch_r$clock = clock;
         od_r$clock = clock;
         dprev$clock = clock;
@@ -5887,6 +5978,8 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         glo_r$d = glo_r$q;
         pgl_r$d = pgl_r$q;
         sdp_r$d = sdp_r$q;
+        spb_r$d = spb_r$q;
+        spc_r$d = spc_r$q;
         ch_r$d = ch_r$q;
         od_r$d = od_r$q;
         dprev$d = dprev$q;
@@ -5957,15 +6050,24 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             seen_dom_crc$d = 1'b0;
             dom_bs$d = ~bt_p$q;
         end
-        else if (dom & (bs_cnt >= win_lag) & (bs_cnt <= crc_end)) begin
-            seen_dom_crc$d = 1'b1;
+        else begin
+            if (dom & (bs_cnt >= win_lag) & (bs_cnt <= crc_end)) begin
+                seen_dom_crc$d = 1'b1;
+            end
+            if (im2_on & (bs_cnt == im2_at)) begin
+                dom_bs$d = ~bt;
+            end
         end
         unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | (eof_last & eol_on) | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q) | (im_2 & ~err_phase & seen_dom_crc$q & ~dom_bs$q);
         ffc = ff & ff_on & enabled & ffd_r$q;
         charge = sample & unj & enabled & ~suppress & ~stuff_dom;
         sdp_r$d = stuff_dom;
         pge = err_start & rep_on & enabled & (an_r$q != 32'h0) & pgl_r$q & ~ch_r$q & ~sdp_r$q;
-        late = ffc | pge;
+        if (sample) begin
+            spb_r$d = spu_on & unj & enabled & ~suppress & stuff_dom;
+        end
+        spc_r$d = sample & spb_r$q & c & enabled;
+        late = ffc | pge | spc_r$q;
         blame = (sample & unj & enabled) | late;
         charged = charge | late;
         if (late) begin
@@ -7174,6 +7276,44 @@ module canstar_hub_core$core$pj$1$seen_dom_crc(d,q,clock);
 endmodule // canstar_hub_core$core$pj$1$seen_dom_crc
 
 
+module canstar_hub_core$core$pj$1$spb_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$1$spb_r
+
+
+module canstar_hub_core$core$pj$1$spc_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$1$spc_r
+
+
 module canstar_hub_core$core$pj$1$step_r(d,q,clock);
     
     // Module arguments
@@ -7276,6 +7416,9 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     localparam  rep_skew = 3'b100;
     localparam  rov_on = 1'b0;
     localparam  dbc_hold = 1'b1;
+    localparam  im2_on = 1'b0;
+    localparam  im2_at = 5'b0;
+    localparam  spu_on = 1'b1;
     localparam  reint_on = 1'b0;
     localparam  reint_w = 8'h1;
     
@@ -7383,6 +7526,12 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  sdp_r$d;
     wire  sdp_r$q;
     reg  sdp_r$clock;
+    reg  spb_r$d;
+    wire  spb_r$q;
+    reg  spb_r$clock;
+    reg  spc_r$d;
+    wire  spc_r$q;
+    reg  spc_r$clock;
     reg  ch_r$d;
     wire  ch_r$q;
     reg  ch_r$clock;
@@ -7606,6 +7755,16 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .q(sdp_r$q),
         .clock(sdp_r$clock)
     );
+    canstar_hub_core$core$pj$2$spb_r spb_r(
+        .d(spb_r$d),
+        .q(spb_r$q),
+        .clock(spb_r$clock)
+    );
+    canstar_hub_core$core$pj$2$spc_r spc_r(
+        .d(spc_r$d),
+        .q(spc_r$q),
+        .clock(spc_r$clock)
+    );
     canstar_hub_core$core$pj$2$ch_r ch_r(
         .d(ch_r$d),
         .q(ch_r$q),
@@ -7687,6 +7846,8 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         glo_r$clock = clock;
         pgl_r$clock = clock;
         sdp_r$clock = clock;
+        spb_r$clock = clock;
+        spc_r$clock = clock;
         ch_r$clock = clock;
         od_r$clock = clock;
         dprev$clock = clock;
@@ -7729,6 +7890,8 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         glo_r$d = glo_r$q;
         pgl_r$d = pgl_r$q;
         sdp_r$d = sdp_r$q;
+        spb_r$d = spb_r$q;
+        spc_r$d = spc_r$q;
         ch_r$d = ch_r$q;
         od_r$d = od_r$q;
         dprev$d = dprev$q;
@@ -7799,15 +7962,24 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             seen_dom_crc$d = 1'b0;
             dom_bs$d = ~bt_p$q;
         end
-        else if (dom & (bs_cnt >= win_lag) & (bs_cnt <= crc_end)) begin
-            seen_dom_crc$d = 1'b1;
+        else begin
+            if (dom & (bs_cnt >= win_lag) & (bs_cnt <= crc_end)) begin
+                seen_dom_crc$d = 1'b1;
+            end
+            if (im2_on & (bs_cnt == im2_at)) begin
+                dom_bs$d = ~bt;
+            end
         end
         unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | (eof_last & eol_on) | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q) | (im_2 & ~err_phase & seen_dom_crc$q & ~dom_bs$q);
         ffc = ff & ff_on & enabled & ffd_r$q;
         charge = sample & unj & enabled & ~suppress & ~stuff_dom;
         sdp_r$d = stuff_dom;
         pge = err_start & rep_on & enabled & (an_r$q != 32'h0) & pgl_r$q & ~ch_r$q & ~sdp_r$q;
-        late = ffc | pge;
+        if (sample) begin
+            spb_r$d = spu_on & unj & enabled & ~suppress & stuff_dom;
+        end
+        spc_r$d = sample & spb_r$q & c & enabled;
+        late = ffc | pge | spc_r$q;
         blame = (sample & unj & enabled) | late;
         charged = charge | late;
         if (late) begin
@@ -9016,6 +9188,44 @@ module canstar_hub_core$core$pj$2$seen_dom_crc(d,q,clock);
 endmodule // canstar_hub_core$core$pj$2$seen_dom_crc
 
 
+module canstar_hub_core$core$pj$2$spb_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$2$spb_r
+
+
+module canstar_hub_core$core$pj$2$spc_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$2$spc_r
+
+
 module canstar_hub_core$core$pj$2$step_r(d,q,clock);
     
     // Module arguments
@@ -9175,6 +9385,9 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     localparam  rep_skew = 3'b100;
     localparam  rov_on = 1'b1;
     localparam  dbc_hold = 1'b0;
+    localparam  im2_on = 1'b1;
+    localparam  im2_at = 5'b1;
+    localparam  spu_on = 1'b0;
     localparam  reint_on = 1'b0;
     localparam  reint_w = 8'h1;
     
@@ -9282,6 +9495,12 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  sdp_r$d;
     wire  sdp_r$q;
     reg  sdp_r$clock;
+    reg  spb_r$d;
+    wire  spb_r$q;
+    reg  spb_r$clock;
+    reg  spc_r$d;
+    wire  spc_r$q;
+    reg  spc_r$clock;
     reg  ch_r$d;
     wire  ch_r$q;
     reg  ch_r$clock;
@@ -9505,6 +9724,16 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .q(sdp_r$q),
         .clock(sdp_r$clock)
     );
+    canstar_hub_core$core$sj$0$spb_r spb_r(
+        .d(spb_r$d),
+        .q(spb_r$q),
+        .clock(spb_r$clock)
+    );
+    canstar_hub_core$core$sj$0$spc_r spc_r(
+        .d(spc_r$d),
+        .q(spc_r$q),
+        .clock(spc_r$clock)
+    );
     canstar_hub_core$core$sj$0$ch_r ch_r(
         .d(ch_r$d),
         .q(ch_r$q),
@@ -9586,6 +9815,8 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         glo_r$clock = clock;
         pgl_r$clock = clock;
         sdp_r$clock = clock;
+        spb_r$clock = clock;
+        spc_r$clock = clock;
         ch_r$clock = clock;
         od_r$clock = clock;
         dprev$clock = clock;
@@ -9628,6 +9859,8 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         glo_r$d = glo_r$q;
         pgl_r$d = pgl_r$q;
         sdp_r$d = sdp_r$q;
+        spb_r$d = spb_r$q;
+        spc_r$d = spc_r$q;
         ch_r$d = ch_r$q;
         od_r$d = od_r$q;
         dprev$d = dprev$q;
@@ -9698,15 +9931,24 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             seen_dom_crc$d = 1'b0;
             dom_bs$d = ~bt_p$q;
         end
-        else if (dom & (bs_cnt >= win_lag) & (bs_cnt <= crc_end)) begin
-            seen_dom_crc$d = 1'b1;
+        else begin
+            if (dom & (bs_cnt >= win_lag) & (bs_cnt <= crc_end)) begin
+                seen_dom_crc$d = 1'b1;
+            end
+            if (im2_on & (bs_cnt == im2_at)) begin
+                dom_bs$d = ~bt;
+            end
         end
         unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | (eof_last & eol_on) | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q) | (im_2 & ~err_phase & seen_dom_crc$q & ~dom_bs$q);
         ffc = ff & ff_on & enabled & ffd_r$q;
         charge = sample & unj & enabled & ~suppress & ~stuff_dom;
         sdp_r$d = stuff_dom;
         pge = err_start & rep_on & enabled & (an_r$q != 32'h0) & pgl_r$q & ~ch_r$q & ~sdp_r$q;
-        late = ffc | pge;
+        if (sample) begin
+            spb_r$d = spu_on & unj & enabled & ~suppress & stuff_dom;
+        end
+        spc_r$d = sample & spb_r$q & c & enabled;
+        late = ffc | pge | spc_r$q;
         blame = (sample & unj & enabled) | late;
         charged = charge | late;
         if (late) begin
@@ -10915,6 +11157,44 @@ module canstar_hub_core$core$sj$0$seen_dom_crc(d,q,clock);
 endmodule // canstar_hub_core$core$sj$0$seen_dom_crc
 
 
+module canstar_hub_core$core$sj$0$spb_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$sj$0$spb_r
+
+
+module canstar_hub_core$core$sj$0$spc_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$sj$0$spc_r
+
+
 module canstar_hub_core$core$sj$0$step_r(d,q,clock);
     
     // Module arguments
@@ -11017,6 +11297,9 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     localparam  rep_skew = 3'b100;
     localparam  rov_on = 1'b1;
     localparam  dbc_hold = 1'b0;
+    localparam  im2_on = 1'b1;
+    localparam  im2_at = 5'b1;
+    localparam  spu_on = 1'b0;
     localparam  reint_on = 1'b0;
     localparam  reint_w = 8'h1;
     
@@ -11124,6 +11407,12 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  sdp_r$d;
     wire  sdp_r$q;
     reg  sdp_r$clock;
+    reg  spb_r$d;
+    wire  spb_r$q;
+    reg  spb_r$clock;
+    reg  spc_r$d;
+    wire  spc_r$q;
+    reg  spc_r$clock;
     reg  ch_r$d;
     wire  ch_r$q;
     reg  ch_r$clock;
@@ -11347,6 +11636,16 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .q(sdp_r$q),
         .clock(sdp_r$clock)
     );
+    canstar_hub_core$core$sj$1$spb_r spb_r(
+        .d(spb_r$d),
+        .q(spb_r$q),
+        .clock(spb_r$clock)
+    );
+    canstar_hub_core$core$sj$1$spc_r spc_r(
+        .d(spc_r$d),
+        .q(spc_r$q),
+        .clock(spc_r$clock)
+    );
     canstar_hub_core$core$sj$1$ch_r ch_r(
         .d(ch_r$d),
         .q(ch_r$q),
@@ -11428,6 +11727,8 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         glo_r$clock = clock;
         pgl_r$clock = clock;
         sdp_r$clock = clock;
+        spb_r$clock = clock;
+        spc_r$clock = clock;
         ch_r$clock = clock;
         od_r$clock = clock;
         dprev$clock = clock;
@@ -11470,6 +11771,8 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         glo_r$d = glo_r$q;
         pgl_r$d = pgl_r$q;
         sdp_r$d = sdp_r$q;
+        spb_r$d = spb_r$q;
+        spc_r$d = spc_r$q;
         ch_r$d = ch_r$q;
         od_r$d = od_r$q;
         dprev$d = dprev$q;
@@ -11540,15 +11843,24 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             seen_dom_crc$d = 1'b0;
             dom_bs$d = ~bt_p$q;
         end
-        else if (dom & (bs_cnt >= win_lag) & (bs_cnt <= crc_end)) begin
-            seen_dom_crc$d = 1'b1;
+        else begin
+            if (dom & (bs_cnt >= win_lag) & (bs_cnt <= crc_end)) begin
+                seen_dom_crc$d = 1'b1;
+            end
+            if (im2_on & (bs_cnt == im2_at)) begin
+                dom_bs$d = ~bt;
+            end
         end
         unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | (eof_last & eol_on) | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q) | (im_2 & ~err_phase & seen_dom_crc$q & ~dom_bs$q);
         ffc = ff & ff_on & enabled & ffd_r$q;
         charge = sample & unj & enabled & ~suppress & ~stuff_dom;
         sdp_r$d = stuff_dom;
         pge = err_start & rep_on & enabled & (an_r$q != 32'h0) & pgl_r$q & ~ch_r$q & ~sdp_r$q;
-        late = ffc | pge;
+        if (sample) begin
+            spb_r$d = spu_on & unj & enabled & ~suppress & stuff_dom;
+        end
+        spc_r$d = sample & spb_r$q & c & enabled;
+        late = ffc | pge | spc_r$q;
         blame = (sample & unj & enabled) | late;
         charged = charge | late;
         if (late) begin
@@ -12755,6 +13067,44 @@ module canstar_hub_core$core$sj$1$seen_dom_crc(d,q,clock);
     end
           
 endmodule // canstar_hub_core$core$sj$1$seen_dom_crc
+
+
+module canstar_hub_core$core$sj$1$spb_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$sj$1$spb_r
+
+
+module canstar_hub_core$core$sj$1$spc_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$sj$1$spc_r
 
 
 module canstar_hub_core$core$sj$1$step_r(d,q,clock);
