@@ -559,7 +559,7 @@ pub struct JudgeParams {
     /// Intermission-bit-2 lag (hub.md §5.23, sublinks): the §5.14 test "BT recessive at the
     /// bit start" reads BT at the `im2_lag`-th clock after the bit-start clock instead of
     /// the clock before it (a level that rose in those clocks came from bit 1 at the peer),
-    /// 0..=15; 0 = the clock before the bit start.
+    /// 0..=7 (the config's range); 0 = the clock before the bit start.
     pub im2_lag: u64,
     /// Stuff-bit pulse rule (hub.md §5.23, ports): a port blamed but not charged at a
     /// dominant stuff bit (§5.10) that is recessive again at the next sample sent a pulse,
