@@ -131,9 +131,10 @@ pub struct HubConfig {
     pub eof_last_rule: bool,
     /// Peer guard (hub.md §5.20): the hub estimates the peer's sublink counters from its
     /// own ports' charges (the peer charges its sublinks for the same episodes); while the
-    /// estimate is at least `8 * peer_guard`, a port charged again is isolated at once, so
+    /// estimate is at least `8 * peer_guard`, a port charged alone is isolated at once, so
     /// that the peer's sublinks never overtake a second faulty port. 0 = off, else 1..=31
-    /// (default 7: two episodes before the peer's sublink limit of 9).
+    /// (default 6, hub.md §5.24: two delimiter episodes before the peer's sublink limit
+    /// of 9).
     pub peer_guard: u64,
     /// Replica overload rule (hub.md §5.21, sublinks): a sublink that was the dominant
     /// minority of its replicas for `replica_skew` clocks in Intermission bit 1 or 2, up to
@@ -198,7 +199,7 @@ impl Default for HubConfig {
             first_flagger: true,
             sub_first_flagger: true,
             eof_last_rule: true,
-            peer_guard: 7,
+            peer_guard: 6,
             replica_overload: true,
             dominant_run_bridge: true,
             sub_intermission_lag: 2,

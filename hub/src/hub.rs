@@ -420,8 +420,10 @@ impl Logic for HubCore {
         // §5.20 peer guard: the peer charges its sublinks for the episodes that this hub
         // charges to its ports, and takes one off every `sub_bic_decay` good frames; this
         // hub follows that count with the largest charge of a port in each clock; the guard
-        // acts only on a port charged alone (two ports charged at once: no culprit). All
-        // one clock late: the units' `step` is registered, and so is the good frame.
+        // acts only on a port charged alone (two ports charged at once: no culprit; §5.24:
+        // nor a port charged with a sublink: the episode came at least partly from the
+        // peer's side, where the peer charges its own ports). All one clock late: the units'
+        // `step` is registered, and so is the good frame.
         self.pinc.next = 0.into();
         self.pch_one.next = false;
         self.pch_two.next = false;
@@ -432,6 +434,11 @@ impl Logic for HubCore {
             if self.pj[i].step.val() != 0 {
                 self.pch_two.next = self.pch_two.val() | self.pch_one.val();
                 self.pch_one.next = true;
+            }
+        }
+        for j in 0..self._m {
+            if self.sj[j].step.val() != 0 {
+                self.pch_two.next = true;
             }
         }
         self.peer.clock.next = self.clock.val();

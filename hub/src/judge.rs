@@ -441,15 +441,16 @@
 //! isolates a flip every 1201 bits).
 //!
 //! **§5.20 peer guard (added).** A port unit also isolates when its `guard` input is on
-//! and it was charged in the last clock while its `bic` was not 0 before. The hub
+//! and it was charged in the last clock (until §5.24 only if its `bic` was not 0 before
+//! that charge). The hub
 //! ([`crate::hub::HubCore`]) raises `guard` while its estimate of the peer's sublink
 //! counters (every port charge added, the sublinks' decay) is at `8 x peer_guard` and
 //! this port was the only one charged in the last clock. The decision comes from
-//! registers one clock after the charge (`step_r`, `bnz_r`): taken in the clock of the
+//! registers one clock after the charge (`step_r`): taken in the clock of the
 //! charge, it cost the hub 19 MHz of fmax. Without the guard, two faulty ports in a row
 //! behind a healthy peer let the peer's sublinks, charged for both, overtake the second
 //! port. `step` reports each charge's size for that estimate. Test: `hub/tests/hub_traffic.rs`
-//! `peer_guard_isolates_a_second_faulty_port_at_its_second_charge`.
+//! `peer_guard_isolates_a_second_faulty_port_early`.
 //!
 //! **§5.21 replica overload rule (added, sublinks).** A sublink that is the dominant
 //! minority of its replicas for `replica_skew` clocks in Intermission bit 1 or 2, unmasked
@@ -496,6 +497,23 @@
 //! flipping in step with the frame period hit the same dominant stuff bit in 7 of 13
 //! episodes; the hub's flag, started by the blame, destroyed each frame and nobody was
 //! charged. Test: `stuff_bit_pulse_is_charged_at_the_next_sample`.
+//!
+//! **§5.24 a suppressed blame is no dominant minority (session 28, sublinks).** The §5.7
+//! exemption (3) charges a sublink blamed while the other replicas had no dominant level
+//! in the window (`bl_dm_r`) whatever its record, and did so for a blame that another
+//! unit's glitch had suppressed. On a flipping interlink the flipped replica glitches, and
+//! the peer's dominant level that it turned recessive left the healthy replica
+//! alone dominant: two such episodes cut off the healthy replica (`replica 2/2`) in the
+//! same bit as the peer cut off its own flipped one. A suppressed blame now records no
+//! dominant minority, like a suppressed blame charges no `bic`. Test:
+//! `hub/tests/judge_sublinks.rs` `suppressed_blame_is_not_a_dominant_minority`.
+//!
+//! **§5.24 the peer guard at the first charge, at 6 (session 28, ports).** The guard now
+//! isolates a port charged alone while the estimate is at its limit even at its first
+//! charge (`bnz_r`, "`bic` not 0 before", is gone), and `peer_guard` is 6 (was 7). With two
+//! faulty ports in a row the first is isolated at 48 with the peer's sublinks at about 48
+//! too; the second's second charge fell in an error delimiter, where the peer charges 16,
+//! and the peer reached 72 in the episode in which the guard acted.
 
 use crate::pulse::PulseCheck;
 use rust_hdl::prelude::*;
@@ -633,7 +651,7 @@ pub struct JudgeUnit {
     pub gl_others: Signal<In, Bit>,
     /// §5.20 peer guard (ports; 0 for sublinks): the hub's estimate of the peer's sublink
     /// counters is at its limit and this port alone was charged in the last clock, so
-    /// that charge isolates it if `bic` was not 0 before it (all from registers: one clock
+    /// that charge isolates it (§5.24: also a first charge; all from registers: one clock
     /// after the charge).
     pub guard: Signal<In, Bit>,
     pub dis: Signal<Out, Bit>,
@@ -743,10 +761,8 @@ pub struct JudgeUnit {
     od_r: DFF<Bit>,
     dprev: DFF<Bit>,
     fol_r: DFF<Bit>,
-    /// §5.20: the last clock's charge step (the `step` output) and whether `bic` was not 0
-    /// in the last clock.
+    /// §5.20: the last clock's charge step (the `step` output).
     step_r: DFF<Bits<2>>,
-    bnz_r: DFF<Bit>,
     fol: Signal<Local, Bit>,
     c_step: Signal<Local, Bits<8>>,
     c_sat: Signal<Local, Bits<8>>,
@@ -763,6 +779,10 @@ pub struct JudgeUnit {
     /// replica (at every clock; the replica rule and the skew run both use them).
     rep_dmin: Signal<Local, Bit>,
     rep_rmin: Signal<Local, Bit>,
+    /// An unjustified level that this unit may be charged for (enabled, not suppressed by
+    /// a glitch): `charge` at a sample that is not a dominant stuff bit, the §5.23
+    /// stuff-bit pulse record at one that is.
+    unj_c: Signal<Local, Bit>,
     charge: Signal<Local, Bit>,
     g: Signal<Local, Bit>,
     rep_ok: Signal<Local, Bit>,
@@ -919,7 +939,6 @@ impl JudgeUnit {
             dprev: Default::default(),
             fol_r: Default::default(),
             step_r: Default::default(),
-            bnz_r: Default::default(),
             fol: Default::default(),
             c_step: Default::default(),
             c_sat: Default::default(),
@@ -933,6 +952,7 @@ impl JudgeUnit {
             domw: Default::default(),
             unj: Default::default(),
             enabled: Default::default(),
+            unj_c: Default::default(),
             charge: Default::default(),
             g: Default::default(),
             rep_ok: Default::default(),
@@ -959,7 +979,7 @@ impl JudgeUnit {
 impl Logic for JudgeUnit {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, dis_r, bic_r, bdec_r, life_r, dbc_r, nack_r, cont_r, rep_r, rep_seen, rep_first_dom, rd_run, rov_w, btr_r, ok_r, acked, bad, ack_missing, ack_c, ack_rx, seen_dom, seen_dom_crc, dom_bs, bt_p, gc_r, gdec_r, an_r, pgc_r, pdec_r, ffd_r, glf_r, glo_r, pgl_r, sdp_r, spb_r, spc_r, ch_r, od_r, dprev, fol_r, step_r, bnz_r, bl_r, bl_dm_r, gpend);
+        dff_setup!(self, clock, dis_r, bic_r, bdec_r, life_r, dbc_r, nack_r, cont_r, rep_r, rep_seen, rep_first_dom, rd_run, rov_w, btr_r, ok_r, acked, bad, ack_missing, ack_c, ack_rx, seen_dom, seen_dom_crc, dom_bs, bt_p, gc_r, gdec_r, an_r, pgc_r, pdec_r, ffd_r, glf_r, glo_r, pgl_r, sdp_r, spb_r, spc_r, ch_r, od_r, dprev, fol_r, step_r, bl_r, bl_dm_r, gpend);
         self.pulse.clock.next = self.clock.val();
         self.pulse.reset.next = self.reset.val();
         self.pulse.c.next = self.c.val();
@@ -1064,7 +1084,8 @@ impl Logic for JudgeUnit {
         // §5.12 first flagger: charged one clock after the sample (with `ff`), reported
         // on `blame`/`charged` like a blame (the hub's error flag is already started)
         self.ffc.next = self.ff.val() & self.ff_on.val() & self.enabled.val() & self.ffd_r.q.val();
-        self.charge.next = self.sample.val() & self.unj.val() & self.enabled.val() & !self.suppress.val() & !self.stuff_dom.val();
+        self.unj_c.next = self.unj.val() & self.enabled.val() & !self.suppress.val();
+        self.charge.next = self.sample.val() & self.unj_c.val() & !self.stuff_dom.val();
         // §5.14 an episode right after a common glitch of the peer's contribution: charged
         // to the sublink, unless it was charged at that sample, or (§5.16) that sample was
         // a dominant stuff bit (six recessive bits: every node saw the transmitter vanish)
@@ -1080,7 +1101,7 @@ impl Logic for JudgeUnit {
         // §5.10 excuse is for error flags, which stay dominant) and recessive at the next
         // sample: charged one clock after that sample
         if self.sample.val() {
-            self.spb_r.d.next = self.spu_on.val() & self.unj.val() & self.enabled.val() & !self.suppress.val() & self.stuff_dom.val();
+            self.spb_r.d.next = self.spu_on.val() & self.unj_c.val() & self.stuff_dom.val();
         }
         self.spc_r.d.next = self.sample.val() & self.spb_r.q.val() & self.c.val() & self.enabled.val();
         // the charges one clock after a sample: one +8 when two come
@@ -1095,7 +1116,6 @@ impl Logic for JudgeUnit {
             self.step_r.d.next = 0.into();
         }
         self.step.next = self.step_r.q.val();
-        self.bnz_r.d.next = self.bic_r.q.val() != 0;
         self.ch_r.d.next = self.charge.val();
         // (port units only: `nack_on` is the port-unit constant)
         self.tx_error.next = self.sample.val()
@@ -1290,9 +1310,10 @@ impl Logic for JudgeUnit {
         // (and a unit blamed while a replica had no dominant level in its window, the
         // dominant minority that started the episode, is charged whatever its first
         // disagreement was; units blamed by the window rule for a pulse that every
-        // replica carried are not a minority)
+        // replica carried are not a minority; §5.24: nor is a blame that another unit's
+        // glitch suppressed)
         self.bl_r.d.next = self.blame.val();
-        self.bl_dm_r.d.next = self.blame.val() & self.rep_rec_w.val();
+        self.bl_dm_r.d.next = self.blame.val() & self.rep_rec_w.val() & !self.suppress.val();
         if self.err_start.val() {
             self.rep_seen.d.next = false;
             if ((self.rep_seen.q.val() & self.rep_first_dom.q.val() & self.rep_ok.val() & !(self.rep_blamed.val() & !self.bl_r.q.val()) & !self.ff.val())
@@ -1317,7 +1338,7 @@ impl Logic for JudgeUnit {
                 | (self.gc_r.q.val() >= self.glitch_limit.val())
                 | (self.rep_on.val() & (self.pgc_r.q.val() >= self.pg_limit.val()))
                 | (self.rep_on.val() & (self.rep_r.q.val() >= self.rep_limit.val()))
-                | (self.guard.val() & (self.step_r.q.val() != 0) & self.bnz_r.q.val()))
+                | (self.guard.val() & (self.step_r.q.val() != 0)))
         {
             self.dis_r.d.next = true;
         }
@@ -1388,7 +1409,6 @@ impl Logic for JudgeUnit {
             self.dprev.d.next = false;
             self.fol_r.d.next = false;
             self.step_r.d.next = 0.into();
-            self.bnz_r.d.next = false;
         }
         self.dis.next = self.dis_r.q.val();
         self.bic.next = self.bic_r.q.val();

@@ -260,20 +260,28 @@ fn bit_flip_uplink_blamed_per_episode_and_isolated<T: Dut>() {
 
 /// §5.20 peer guard. Port 1 flips a data bit of every frame and is isolated after six
 /// episodes (bic 48, no good frame between); the hub's estimate of the peer's sublink
-/// counters is then 48 too. Port 2 then flips the same bit: its first charge brings the
-/// estimate to 56 (the guard, 7 x 8), and its second isolates it at bic 16, two episodes
-/// before the peer's sublinks (limit 72) would have cut this hub off. With the guard off,
-/// port 2 needs six episodes of its own.
-fn peer_guard_isolates_a_second_faulty_port_at_its_second_charge<T: Dut>() {
-    for (guard, isolated_at) in [(7, 16), (0, 48)] {
+/// counters is then 48 too. Port 2 then flips the same bit. With the guard at 6 (the
+/// default, §5.24) the estimate is already at the guard and port 2's first charge
+/// isolates it (bic 8). At 7 its first charge brings the estimate to 56 (7 x 8) and its
+/// second isolates it (bic 16), two episodes before the peer's sublinks (limit 72) would
+/// have cut this hub off. With the guard off, port 2 needs six episodes of its own. When
+/// the sublinks are dominant in the same bit as port 2 (charged in the same clock: the
+/// episode came partly from the peer's side), the guard does not act (§5.24) and port 2
+/// needs six episodes too.
+fn peer_guard_isolates_a_second_faulty_port_early<T: Dut>() {
+    for (guard, with_sublinks, isolated_at) in [(6, false, 8), (7, false, 16), (0, false, 48), (6, true, 48)] {
         let cfg = HubConfig { peer_guard: guard, ..HubConfig::default() };
         let mut n = nodes(3);
         for k in 0..40 {
             n[0].queue.push_back(Frame::std(0x300 + k, &[0xff, 0xff, 0xff, 0xff]));
         }
         let mut net = Net::<T>::new(&cfg, n);
-        net.stim.sublink = Box::new(|_, _, _, _| true);
         let second = Rc::new(Cell::new(false));
+        let on = second.clone();
+        net.stim.sublink = Box::new(move |_, _, _, t| {
+            let (f, pos) = t.classify(true);
+            !(with_sublinks && on.get() && f == Field::Data && pos == 9)
+        });
         for i in [1, 2] {
             let on = second.clone();
             let mut last_flip = usize::MAX;
@@ -300,10 +308,10 @@ fn peer_guard_isolates_a_second_faulty_port_at_its_second_charge<T: Dut>() {
                 break;
             }
         }
-        assert_eq!(net.isolated(), vec![false, true, true], "guard {guard}: port 2 bic history {history:?}");
+        assert_eq!(net.isolated(), vec![false, true, true], "guard {guard} {with_sublinks}: port 2 bic history {history:?}");
         assert_eq!(net.bic()[1], 48, "guard {guard}: port 1 by its own count");
-        assert_eq!(history, (1..=isolated_at / 8).map(|k| 8 * k).collect::<Vec<_>>(), "guard {guard}");
-        if guard > 0 {
+        assert_eq!(history, (1..=isolated_at / 8).map(|k| 8 * k).collect::<Vec<_>>(), "guard {guard}, sublinks {with_sublinks}");
+        if guard > 0 && !with_sublinks {
             assert!(net.stim.nodes.iter().all(|n| n.tec < 96), "healthy TEC stays below 96");
         }
     }
@@ -470,4 +478,4 @@ macro_rules! both {
     };
 }
 
-both!(peer_guard_isolates_a_second_faulty_port_at_its_second_charge, random_bit_flip_uplink_isolated_and_harmless, single_frame_completes, fault_free_arbitration_never_blames, late_joiner_is_not_blamed, overload_from_dominant_last_eof_bit_is_not_blamed, port_dominant_in_the_last_eof_bit_is_blamed_once, error_frames_are_not_blamed, stuck_dominant_uplink_isolated_within_dbc_plus_two_bits, node_with_dead_downlink_is_isolated, bit_flip_uplink_blamed_per_episode_and_isolated, blame_decays_one_per_bic_decay_good_frames, never_acknowledging_receiver_reported_silent_not_isolated, reintegration_after_transient_fault, no_reintegration_while_still_faulty);
+both!(peer_guard_isolates_a_second_faulty_port_early, random_bit_flip_uplink_isolated_and_harmless, single_frame_completes, fault_free_arbitration_never_blames, late_joiner_is_not_blamed, overload_from_dominant_last_eof_bit_is_not_blamed, port_dominant_in_the_last_eof_bit_is_blamed_once, error_frames_are_not_blamed, stuck_dominant_uplink_isolated_within_dbc_plus_two_bits, node_with_dead_downlink_is_isolated, bit_flip_uplink_blamed_per_episode_and_isolated, blame_decays_one_per_bic_decay_good_frames, never_acknowledging_receiver_reported_silent_not_isolated, reintegration_after_transient_fault, no_reintegration_while_still_faulty);

@@ -2607,7 +2607,7 @@ module canstar_cancentrate_core$core$peer(clock,reset,inc,frame_ok,high,est);
     
     // Constant declarations
     localparam  on = 1'b0;
-    localparam  lim = 8'h38;
+    localparam  lim = 8'h30;
     localparam  decay = 3'b10;
     
     // Stub signals
@@ -2959,9 +2959,6 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
     reg  [1:0] step_r$d;
     wire  [1:0] step_r$q;
     reg  step_r$clock;
-    reg  bnz_r$d;
-    wire  bnz_r$q;
-    reg  bnz_r$clock;
     reg  bl_r$d;
     wire  bl_r$q;
     reg  bl_r$clock;
@@ -2986,6 +2983,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
     reg  enabled;
     reg  rep_dmin;
     reg  rep_rmin;
+    reg  unj_c;
     reg  charge;
     reg  g;
     reg  rep_ok;
@@ -3202,11 +3200,6 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         .q(step_r$q),
         .clock(step_r$clock)
     );
-    canstar_cancentrate_core$core$pj$0$bnz_r bnz_r(
-        .d(bnz_r$d),
-        .q(bnz_r$q),
-        .clock(bnz_r$clock)
-    );
     canstar_cancentrate_core$core$pj$0$bl_r bl_r(
         .d(bl_r$d),
         .q(bl_r$q),
@@ -3265,7 +3258,6 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         dprev$clock = clock;
         fol_r$clock = clock;
         step_r$clock = clock;
-        bnz_r$clock = clock;
         bl_r$clock = clock;
         bl_dm_r$clock = clock;
         gpend$clock = clock;
@@ -3309,7 +3301,6 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         dprev$d = dprev$q;
         fol_r$d = fol_r$q;
         step_r$d = step_r$q;
-        bnz_r$d = bnz_r$q;
         bl_r$d = bl_r$q;
         bl_dm_r$d = bl_dm_r$q;
         gpend$d = gpend$q;
@@ -3384,11 +3375,12 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         end
         unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | (eof_last & eol_on) | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q) | (im_2 & ~err_phase & seen_dom_crc$q & ~dom_bs$q);
         ffc = ff & ff_on & enabled & ffd_r$q;
-        charge = sample & unj & enabled & ~suppress & ~stuff_dom;
+        unj_c = unj & enabled & ~suppress;
+        charge = sample & unj_c & ~stuff_dom;
         sdp_r$d = stuff_dom;
         pge = err_start & rep_on & enabled & (an_r$q != 32'h0) & pgl_r$q & ~ch_r$q & ~sdp_r$q;
         if (sample) begin
-            spb_r$d = spu_on & unj & enabled & ~suppress & stuff_dom;
+            spb_r$d = spu_on & unj_c & stuff_dom;
         end
         spc_r$d = sample & spb_r$q & c & enabled;
         late = ffc | pge | spc_r$q;
@@ -3404,7 +3396,6 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
             step_r$d = 32'h0;
         end
         step = step_r$q;
-        bnz_r$d = bic_r$q != 32'h0;
         ch_r$d = charge;
         tx_error = sample & nack_on & enabled & cont_r$q & tx_region & ~arb & c & ~bt & ~err_phase;
         if (sample) begin
@@ -3550,7 +3541,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         end
         rep_ok = (rep_r$q != 32'h7) & ~(rep_glitched & (gc_r$q == 32'h0)) & rep_other;
         bl_r$d = blame;
-        bl_dm_r$d = blame & rep_rec_w;
+        bl_dm_r$d = blame & rep_rec_w & ~suppress;
         if (err_start) begin
             rep_seen$d = 1'b0;
             if (((rep_seen$q & rep_first_dom$q & rep_ok & ~(rep_blamed & ~bl_r$q) & ~ff) | bl_dm_r$q) & (rep_r$q != 32'h7)) begin
@@ -3566,7 +3557,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         else if (rov & rep_ok) begin
             rep_r$d = rep_r$q + 32'h1;
         end
-        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (rep_on & (pgc_r$q >= pg_limit)) | (rep_on & (rep_r$q >= rep_limit)) | (guard & (step_r$q != 32'h0) & bnz_r$q))) begin
+        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (rep_on & (pgc_r$q >= pg_limit)) | (rep_on & (rep_r$q >= rep_limit)) | (guard & (step_r$q != 32'h0)))) begin
             dis_r$d = 1'b1;
         end
         if (enabled) begin
@@ -3637,7 +3628,6 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
             dprev$d = 1'b0;
             fol_r$d = 1'b0;
             step_r$d = 32'h0;
-            bnz_r$d = 1'b0;
         end
         dis = dis_r$q;
         bic = bic_r$q;
@@ -3845,25 +3835,6 @@ module canstar_cancentrate_core$core$pj$0$bl_r(d,q,clock);
     end
           
 endmodule // canstar_cancentrate_core$core$pj$0$bl_r
-
-
-module canstar_cancentrate_core$core$pj$0$bnz_r(d,q,clock);
-    
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_cancentrate_core$core$pj$0$bnz_r
 
 
 module canstar_cancentrate_core$core$pj$0$bt_p(d,q,clock);
@@ -4871,9 +4842,6 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
     reg  [1:0] step_r$d;
     wire  [1:0] step_r$q;
     reg  step_r$clock;
-    reg  bnz_r$d;
-    wire  bnz_r$q;
-    reg  bnz_r$clock;
     reg  bl_r$d;
     wire  bl_r$q;
     reg  bl_r$clock;
@@ -4898,6 +4866,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
     reg  enabled;
     reg  rep_dmin;
     reg  rep_rmin;
+    reg  unj_c;
     reg  charge;
     reg  g;
     reg  rep_ok;
@@ -5114,11 +5083,6 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         .q(step_r$q),
         .clock(step_r$clock)
     );
-    canstar_cancentrate_core$core$pj$1$bnz_r bnz_r(
-        .d(bnz_r$d),
-        .q(bnz_r$q),
-        .clock(bnz_r$clock)
-    );
     canstar_cancentrate_core$core$pj$1$bl_r bl_r(
         .d(bl_r$d),
         .q(bl_r$q),
@@ -5177,7 +5141,6 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         dprev$clock = clock;
         fol_r$clock = clock;
         step_r$clock = clock;
-        bnz_r$clock = clock;
         bl_r$clock = clock;
         bl_dm_r$clock = clock;
         gpend$clock = clock;
@@ -5221,7 +5184,6 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         dprev$d = dprev$q;
         fol_r$d = fol_r$q;
         step_r$d = step_r$q;
-        bnz_r$d = bnz_r$q;
         bl_r$d = bl_r$q;
         bl_dm_r$d = bl_dm_r$q;
         gpend$d = gpend$q;
@@ -5296,11 +5258,12 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         end
         unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | (eof_last & eol_on) | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q) | (im_2 & ~err_phase & seen_dom_crc$q & ~dom_bs$q);
         ffc = ff & ff_on & enabled & ffd_r$q;
-        charge = sample & unj & enabled & ~suppress & ~stuff_dom;
+        unj_c = unj & enabled & ~suppress;
+        charge = sample & unj_c & ~stuff_dom;
         sdp_r$d = stuff_dom;
         pge = err_start & rep_on & enabled & (an_r$q != 32'h0) & pgl_r$q & ~ch_r$q & ~sdp_r$q;
         if (sample) begin
-            spb_r$d = spu_on & unj & enabled & ~suppress & stuff_dom;
+            spb_r$d = spu_on & unj_c & stuff_dom;
         end
         spc_r$d = sample & spb_r$q & c & enabled;
         late = ffc | pge | spc_r$q;
@@ -5316,7 +5279,6 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
             step_r$d = 32'h0;
         end
         step = step_r$q;
-        bnz_r$d = bic_r$q != 32'h0;
         ch_r$d = charge;
         tx_error = sample & nack_on & enabled & cont_r$q & tx_region & ~arb & c & ~bt & ~err_phase;
         if (sample) begin
@@ -5462,7 +5424,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         end
         rep_ok = (rep_r$q != 32'h7) & ~(rep_glitched & (gc_r$q == 32'h0)) & rep_other;
         bl_r$d = blame;
-        bl_dm_r$d = blame & rep_rec_w;
+        bl_dm_r$d = blame & rep_rec_w & ~suppress;
         if (err_start) begin
             rep_seen$d = 1'b0;
             if (((rep_seen$q & rep_first_dom$q & rep_ok & ~(rep_blamed & ~bl_r$q) & ~ff) | bl_dm_r$q) & (rep_r$q != 32'h7)) begin
@@ -5478,7 +5440,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         else if (rov & rep_ok) begin
             rep_r$d = rep_r$q + 32'h1;
         end
-        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (rep_on & (pgc_r$q >= pg_limit)) | (rep_on & (rep_r$q >= rep_limit)) | (guard & (step_r$q != 32'h0) & bnz_r$q))) begin
+        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (rep_on & (pgc_r$q >= pg_limit)) | (rep_on & (rep_r$q >= rep_limit)) | (guard & (step_r$q != 32'h0)))) begin
             dis_r$d = 1'b1;
         end
         if (enabled) begin
@@ -5549,7 +5511,6 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
             dprev$d = 1'b0;
             fol_r$d = 1'b0;
             step_r$d = 32'h0;
-            bnz_r$d = 1'b0;
         end
         dis = dis_r$q;
         bic = bic_r$q;
@@ -5757,25 +5718,6 @@ module canstar_cancentrate_core$core$pj$1$bl_r(d,q,clock);
     end
           
 endmodule // canstar_cancentrate_core$core$pj$1$bl_r
-
-
-module canstar_cancentrate_core$core$pj$1$bnz_r(d,q,clock);
-    
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_cancentrate_core$core$pj$1$bnz_r
 
 
 module canstar_cancentrate_core$core$pj$1$bt_p(d,q,clock);
@@ -6783,9 +6725,6 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
     reg  [1:0] step_r$d;
     wire  [1:0] step_r$q;
     reg  step_r$clock;
-    reg  bnz_r$d;
-    wire  bnz_r$q;
-    reg  bnz_r$clock;
     reg  bl_r$d;
     wire  bl_r$q;
     reg  bl_r$clock;
@@ -6810,6 +6749,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
     reg  enabled;
     reg  rep_dmin;
     reg  rep_rmin;
+    reg  unj_c;
     reg  charge;
     reg  g;
     reg  rep_ok;
@@ -7026,11 +6966,6 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         .q(step_r$q),
         .clock(step_r$clock)
     );
-    canstar_cancentrate_core$core$pj$2$bnz_r bnz_r(
-        .d(bnz_r$d),
-        .q(bnz_r$q),
-        .clock(bnz_r$clock)
-    );
     canstar_cancentrate_core$core$pj$2$bl_r bl_r(
         .d(bl_r$d),
         .q(bl_r$q),
@@ -7089,7 +7024,6 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         dprev$clock = clock;
         fol_r$clock = clock;
         step_r$clock = clock;
-        bnz_r$clock = clock;
         bl_r$clock = clock;
         bl_dm_r$clock = clock;
         gpend$clock = clock;
@@ -7133,7 +7067,6 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         dprev$d = dprev$q;
         fol_r$d = fol_r$q;
         step_r$d = step_r$q;
-        bnz_r$d = bnz_r$q;
         bl_r$d = bl_r$q;
         bl_dm_r$d = bl_dm_r$q;
         gpend$d = gpend$q;
@@ -7208,11 +7141,12 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         end
         unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | (eof_last & eol_on) | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q) | (im_2 & ~err_phase & seen_dom_crc$q & ~dom_bs$q);
         ffc = ff & ff_on & enabled & ffd_r$q;
-        charge = sample & unj & enabled & ~suppress & ~stuff_dom;
+        unj_c = unj & enabled & ~suppress;
+        charge = sample & unj_c & ~stuff_dom;
         sdp_r$d = stuff_dom;
         pge = err_start & rep_on & enabled & (an_r$q != 32'h0) & pgl_r$q & ~ch_r$q & ~sdp_r$q;
         if (sample) begin
-            spb_r$d = spu_on & unj & enabled & ~suppress & stuff_dom;
+            spb_r$d = spu_on & unj_c & stuff_dom;
         end
         spc_r$d = sample & spb_r$q & c & enabled;
         late = ffc | pge | spc_r$q;
@@ -7228,7 +7162,6 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
             step_r$d = 32'h0;
         end
         step = step_r$q;
-        bnz_r$d = bic_r$q != 32'h0;
         ch_r$d = charge;
         tx_error = sample & nack_on & enabled & cont_r$q & tx_region & ~arb & c & ~bt & ~err_phase;
         if (sample) begin
@@ -7374,7 +7307,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         end
         rep_ok = (rep_r$q != 32'h7) & ~(rep_glitched & (gc_r$q == 32'h0)) & rep_other;
         bl_r$d = blame;
-        bl_dm_r$d = blame & rep_rec_w;
+        bl_dm_r$d = blame & rep_rec_w & ~suppress;
         if (err_start) begin
             rep_seen$d = 1'b0;
             if (((rep_seen$q & rep_first_dom$q & rep_ok & ~(rep_blamed & ~bl_r$q) & ~ff) | bl_dm_r$q) & (rep_r$q != 32'h7)) begin
@@ -7390,7 +7323,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         else if (rov & rep_ok) begin
             rep_r$d = rep_r$q + 32'h1;
         end
-        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (rep_on & (pgc_r$q >= pg_limit)) | (rep_on & (rep_r$q >= rep_limit)) | (guard & (step_r$q != 32'h0) & bnz_r$q))) begin
+        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (rep_on & (pgc_r$q >= pg_limit)) | (rep_on & (rep_r$q >= rep_limit)) | (guard & (step_r$q != 32'h0)))) begin
             dis_r$d = 1'b1;
         end
         if (enabled) begin
@@ -7461,7 +7394,6 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
             dprev$d = 1'b0;
             fol_r$d = 1'b0;
             step_r$d = 32'h0;
-            bnz_r$d = 1'b0;
         end
         dis = dis_r$q;
         bic = bic_r$q;
@@ -7669,25 +7601,6 @@ module canstar_cancentrate_core$core$pj$2$bl_r(d,q,clock);
     end
           
 endmodule // canstar_cancentrate_core$core$pj$2$bl_r
-
-
-module canstar_cancentrate_core$core$pj$2$bnz_r(d,q,clock);
-    
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_cancentrate_core$core$pj$2$bnz_r
 
 
 module canstar_cancentrate_core$core$pj$2$bt_p(d,q,clock);

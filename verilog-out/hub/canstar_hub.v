@@ -1796,6 +1796,12 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
             pch_two = pch_two | pch_one;
             pch_one = 1'b1;
         end
+        if (sj$0$step != 32'h0) begin
+            pch_two = 1'b1;
+        end
+        if (sj$1$step != 32'h0) begin
+            pch_two = 1'b1;
+        end
         peer$clock = clock;
         peer$reset = reset;
         peer$inc = pinc;
@@ -3371,7 +3377,7 @@ module canstar_hub_core$core$peer(clock,reset,inc,frame_ok,high,est);
     
     // Constant declarations
     localparam  on = 1'b1;
-    localparam  lim = 8'h38;
+    localparam  lim = 8'h30;
     localparam  decay = 3'b10;
     
     // Stub signals
@@ -3723,9 +3729,6 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  [1:0] step_r$d;
     wire  [1:0] step_r$q;
     reg  step_r$clock;
-    reg  bnz_r$d;
-    wire  bnz_r$q;
-    reg  bnz_r$clock;
     reg  bl_r$d;
     wire  bl_r$q;
     reg  bl_r$clock;
@@ -3750,6 +3753,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  enabled;
     reg  rep_dmin;
     reg  rep_rmin;
+    reg  unj_c;
     reg  charge;
     reg  g;
     reg  rep_ok;
@@ -3966,11 +3970,6 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .q(step_r$q),
         .clock(step_r$clock)
     );
-    canstar_hub_core$core$pj$0$bnz_r bnz_r(
-        .d(bnz_r$d),
-        .q(bnz_r$q),
-        .clock(bnz_r$clock)
-    );
     canstar_hub_core$core$pj$0$bl_r bl_r(
         .d(bl_r$d),
         .q(bl_r$q),
@@ -4029,7 +4028,6 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         dprev$clock = clock;
         fol_r$clock = clock;
         step_r$clock = clock;
-        bnz_r$clock = clock;
         bl_r$clock = clock;
         bl_dm_r$clock = clock;
         gpend$clock = clock;
@@ -4073,7 +4071,6 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         dprev$d = dprev$q;
         fol_r$d = fol_r$q;
         step_r$d = step_r$q;
-        bnz_r$d = bnz_r$q;
         bl_r$d = bl_r$q;
         bl_dm_r$d = bl_dm_r$q;
         gpend$d = gpend$q;
@@ -4148,11 +4145,12 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         end
         unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | (eof_last & eol_on) | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q) | (im_2 & ~err_phase & seen_dom_crc$q & ~dom_bs$q);
         ffc = ff & ff_on & enabled & ffd_r$q;
-        charge = sample & unj & enabled & ~suppress & ~stuff_dom;
+        unj_c = unj & enabled & ~suppress;
+        charge = sample & unj_c & ~stuff_dom;
         sdp_r$d = stuff_dom;
         pge = err_start & rep_on & enabled & (an_r$q != 32'h0) & pgl_r$q & ~ch_r$q & ~sdp_r$q;
         if (sample) begin
-            spb_r$d = spu_on & unj & enabled & ~suppress & stuff_dom;
+            spb_r$d = spu_on & unj_c & stuff_dom;
         end
         spc_r$d = sample & spb_r$q & c & enabled;
         late = ffc | pge | spc_r$q;
@@ -4168,7 +4166,6 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             step_r$d = 32'h0;
         end
         step = step_r$q;
-        bnz_r$d = bic_r$q != 32'h0;
         ch_r$d = charge;
         tx_error = sample & nack_on & enabled & cont_r$q & tx_region & ~arb & c & ~bt & ~err_phase;
         if (sample) begin
@@ -4314,7 +4311,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         end
         rep_ok = (rep_r$q != 32'h7) & ~(rep_glitched & (gc_r$q == 32'h0)) & rep_other;
         bl_r$d = blame;
-        bl_dm_r$d = blame & rep_rec_w;
+        bl_dm_r$d = blame & rep_rec_w & ~suppress;
         if (err_start) begin
             rep_seen$d = 1'b0;
             if (((rep_seen$q & rep_first_dom$q & rep_ok & ~(rep_blamed & ~bl_r$q) & ~ff) | bl_dm_r$q) & (rep_r$q != 32'h7)) begin
@@ -4330,7 +4327,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         else if (rov & rep_ok) begin
             rep_r$d = rep_r$q + 32'h1;
         end
-        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (rep_on & (pgc_r$q >= pg_limit)) | (rep_on & (rep_r$q >= rep_limit)) | (guard & (step_r$q != 32'h0) & bnz_r$q))) begin
+        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (rep_on & (pgc_r$q >= pg_limit)) | (rep_on & (rep_r$q >= rep_limit)) | (guard & (step_r$q != 32'h0)))) begin
             dis_r$d = 1'b1;
         end
         if (enabled) begin
@@ -4401,7 +4398,6 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             dprev$d = 1'b0;
             fol_r$d = 1'b0;
             step_r$d = 32'h0;
-            bnz_r$d = 1'b0;
         end
         dis = dis_r$q;
         bic = bic_r$q;
@@ -4609,25 +4605,6 @@ module canstar_hub_core$core$pj$0$bl_r(d,q,clock);
     end
           
 endmodule // canstar_hub_core$core$pj$0$bl_r
-
-
-module canstar_hub_core$core$pj$0$bnz_r(d,q,clock);
-    
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_hub_core$core$pj$0$bnz_r
 
 
 module canstar_hub_core$core$pj$0$bt_p(d,q,clock);
@@ -5635,9 +5612,6 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  [1:0] step_r$d;
     wire  [1:0] step_r$q;
     reg  step_r$clock;
-    reg  bnz_r$d;
-    wire  bnz_r$q;
-    reg  bnz_r$clock;
     reg  bl_r$d;
     wire  bl_r$q;
     reg  bl_r$clock;
@@ -5662,6 +5636,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  enabled;
     reg  rep_dmin;
     reg  rep_rmin;
+    reg  unj_c;
     reg  charge;
     reg  g;
     reg  rep_ok;
@@ -5878,11 +5853,6 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .q(step_r$q),
         .clock(step_r$clock)
     );
-    canstar_hub_core$core$pj$1$bnz_r bnz_r(
-        .d(bnz_r$d),
-        .q(bnz_r$q),
-        .clock(bnz_r$clock)
-    );
     canstar_hub_core$core$pj$1$bl_r bl_r(
         .d(bl_r$d),
         .q(bl_r$q),
@@ -5941,7 +5911,6 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         dprev$clock = clock;
         fol_r$clock = clock;
         step_r$clock = clock;
-        bnz_r$clock = clock;
         bl_r$clock = clock;
         bl_dm_r$clock = clock;
         gpend$clock = clock;
@@ -5985,7 +5954,6 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         dprev$d = dprev$q;
         fol_r$d = fol_r$q;
         step_r$d = step_r$q;
-        bnz_r$d = bnz_r$q;
         bl_r$d = bl_r$q;
         bl_dm_r$d = bl_dm_r$q;
         gpend$d = gpend$q;
@@ -6060,11 +6028,12 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         end
         unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | (eof_last & eol_on) | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q) | (im_2 & ~err_phase & seen_dom_crc$q & ~dom_bs$q);
         ffc = ff & ff_on & enabled & ffd_r$q;
-        charge = sample & unj & enabled & ~suppress & ~stuff_dom;
+        unj_c = unj & enabled & ~suppress;
+        charge = sample & unj_c & ~stuff_dom;
         sdp_r$d = stuff_dom;
         pge = err_start & rep_on & enabled & (an_r$q != 32'h0) & pgl_r$q & ~ch_r$q & ~sdp_r$q;
         if (sample) begin
-            spb_r$d = spu_on & unj & enabled & ~suppress & stuff_dom;
+            spb_r$d = spu_on & unj_c & stuff_dom;
         end
         spc_r$d = sample & spb_r$q & c & enabled;
         late = ffc | pge | spc_r$q;
@@ -6080,7 +6049,6 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             step_r$d = 32'h0;
         end
         step = step_r$q;
-        bnz_r$d = bic_r$q != 32'h0;
         ch_r$d = charge;
         tx_error = sample & nack_on & enabled & cont_r$q & tx_region & ~arb & c & ~bt & ~err_phase;
         if (sample) begin
@@ -6226,7 +6194,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         end
         rep_ok = (rep_r$q != 32'h7) & ~(rep_glitched & (gc_r$q == 32'h0)) & rep_other;
         bl_r$d = blame;
-        bl_dm_r$d = blame & rep_rec_w;
+        bl_dm_r$d = blame & rep_rec_w & ~suppress;
         if (err_start) begin
             rep_seen$d = 1'b0;
             if (((rep_seen$q & rep_first_dom$q & rep_ok & ~(rep_blamed & ~bl_r$q) & ~ff) | bl_dm_r$q) & (rep_r$q != 32'h7)) begin
@@ -6242,7 +6210,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         else if (rov & rep_ok) begin
             rep_r$d = rep_r$q + 32'h1;
         end
-        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (rep_on & (pgc_r$q >= pg_limit)) | (rep_on & (rep_r$q >= rep_limit)) | (guard & (step_r$q != 32'h0) & bnz_r$q))) begin
+        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (rep_on & (pgc_r$q >= pg_limit)) | (rep_on & (rep_r$q >= rep_limit)) | (guard & (step_r$q != 32'h0)))) begin
             dis_r$d = 1'b1;
         end
         if (enabled) begin
@@ -6313,7 +6281,6 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             dprev$d = 1'b0;
             fol_r$d = 1'b0;
             step_r$d = 32'h0;
-            bnz_r$d = 1'b0;
         end
         dis = dis_r$q;
         bic = bic_r$q;
@@ -6521,25 +6488,6 @@ module canstar_hub_core$core$pj$1$bl_r(d,q,clock);
     end
           
 endmodule // canstar_hub_core$core$pj$1$bl_r
-
-
-module canstar_hub_core$core$pj$1$bnz_r(d,q,clock);
-    
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_hub_core$core$pj$1$bnz_r
 
 
 module canstar_hub_core$core$pj$1$bt_p(d,q,clock);
@@ -7547,9 +7495,6 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  [1:0] step_r$d;
     wire  [1:0] step_r$q;
     reg  step_r$clock;
-    reg  bnz_r$d;
-    wire  bnz_r$q;
-    reg  bnz_r$clock;
     reg  bl_r$d;
     wire  bl_r$q;
     reg  bl_r$clock;
@@ -7574,6 +7519,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  enabled;
     reg  rep_dmin;
     reg  rep_rmin;
+    reg  unj_c;
     reg  charge;
     reg  g;
     reg  rep_ok;
@@ -7790,11 +7736,6 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .q(step_r$q),
         .clock(step_r$clock)
     );
-    canstar_hub_core$core$pj$2$bnz_r bnz_r(
-        .d(bnz_r$d),
-        .q(bnz_r$q),
-        .clock(bnz_r$clock)
-    );
     canstar_hub_core$core$pj$2$bl_r bl_r(
         .d(bl_r$d),
         .q(bl_r$q),
@@ -7853,7 +7794,6 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         dprev$clock = clock;
         fol_r$clock = clock;
         step_r$clock = clock;
-        bnz_r$clock = clock;
         bl_r$clock = clock;
         bl_dm_r$clock = clock;
         gpend$clock = clock;
@@ -7897,7 +7837,6 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         dprev$d = dprev$q;
         fol_r$d = fol_r$q;
         step_r$d = step_r$q;
-        bnz_r$d = bnz_r$q;
         bl_r$d = bl_r$q;
         bl_dm_r$d = bl_dm_r$q;
         gpend$d = gpend$q;
@@ -7972,11 +7911,12 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         end
         unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | (eof_last & eol_on) | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q) | (im_2 & ~err_phase & seen_dom_crc$q & ~dom_bs$q);
         ffc = ff & ff_on & enabled & ffd_r$q;
-        charge = sample & unj & enabled & ~suppress & ~stuff_dom;
+        unj_c = unj & enabled & ~suppress;
+        charge = sample & unj_c & ~stuff_dom;
         sdp_r$d = stuff_dom;
         pge = err_start & rep_on & enabled & (an_r$q != 32'h0) & pgl_r$q & ~ch_r$q & ~sdp_r$q;
         if (sample) begin
-            spb_r$d = spu_on & unj & enabled & ~suppress & stuff_dom;
+            spb_r$d = spu_on & unj_c & stuff_dom;
         end
         spc_r$d = sample & spb_r$q & c & enabled;
         late = ffc | pge | spc_r$q;
@@ -7992,7 +7932,6 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             step_r$d = 32'h0;
         end
         step = step_r$q;
-        bnz_r$d = bic_r$q != 32'h0;
         ch_r$d = charge;
         tx_error = sample & nack_on & enabled & cont_r$q & tx_region & ~arb & c & ~bt & ~err_phase;
         if (sample) begin
@@ -8138,7 +8077,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         end
         rep_ok = (rep_r$q != 32'h7) & ~(rep_glitched & (gc_r$q == 32'h0)) & rep_other;
         bl_r$d = blame;
-        bl_dm_r$d = blame & rep_rec_w;
+        bl_dm_r$d = blame & rep_rec_w & ~suppress;
         if (err_start) begin
             rep_seen$d = 1'b0;
             if (((rep_seen$q & rep_first_dom$q & rep_ok & ~(rep_blamed & ~bl_r$q) & ~ff) | bl_dm_r$q) & (rep_r$q != 32'h7)) begin
@@ -8154,7 +8093,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         else if (rov & rep_ok) begin
             rep_r$d = rep_r$q + 32'h1;
         end
-        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (rep_on & (pgc_r$q >= pg_limit)) | (rep_on & (rep_r$q >= rep_limit)) | (guard & (step_r$q != 32'h0) & bnz_r$q))) begin
+        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (rep_on & (pgc_r$q >= pg_limit)) | (rep_on & (rep_r$q >= rep_limit)) | (guard & (step_r$q != 32'h0)))) begin
             dis_r$d = 1'b1;
         end
         if (enabled) begin
@@ -8225,7 +8164,6 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             dprev$d = 1'b0;
             fol_r$d = 1'b0;
             step_r$d = 32'h0;
-            bnz_r$d = 1'b0;
         end
         dis = dis_r$q;
         bic = bic_r$q;
@@ -8433,25 +8371,6 @@ module canstar_hub_core$core$pj$2$bl_r(d,q,clock);
     end
           
 endmodule // canstar_hub_core$core$pj$2$bl_r
-
-
-module canstar_hub_core$core$pj$2$bnz_r(d,q,clock);
-    
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_hub_core$core$pj$2$bnz_r
 
 
 module canstar_hub_core$core$pj$2$bt_p(d,q,clock);
@@ -9516,9 +9435,6 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  [1:0] step_r$d;
     wire  [1:0] step_r$q;
     reg  step_r$clock;
-    reg  bnz_r$d;
-    wire  bnz_r$q;
-    reg  bnz_r$clock;
     reg  bl_r$d;
     wire  bl_r$q;
     reg  bl_r$clock;
@@ -9543,6 +9459,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  enabled;
     reg  rep_dmin;
     reg  rep_rmin;
+    reg  unj_c;
     reg  charge;
     reg  g;
     reg  rep_ok;
@@ -9759,11 +9676,6 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .q(step_r$q),
         .clock(step_r$clock)
     );
-    canstar_hub_core$core$sj$0$bnz_r bnz_r(
-        .d(bnz_r$d),
-        .q(bnz_r$q),
-        .clock(bnz_r$clock)
-    );
     canstar_hub_core$core$sj$0$bl_r bl_r(
         .d(bl_r$d),
         .q(bl_r$q),
@@ -9822,7 +9734,6 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         dprev$clock = clock;
         fol_r$clock = clock;
         step_r$clock = clock;
-        bnz_r$clock = clock;
         bl_r$clock = clock;
         bl_dm_r$clock = clock;
         gpend$clock = clock;
@@ -9866,7 +9777,6 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         dprev$d = dprev$q;
         fol_r$d = fol_r$q;
         step_r$d = step_r$q;
-        bnz_r$d = bnz_r$q;
         bl_r$d = bl_r$q;
         bl_dm_r$d = bl_dm_r$q;
         gpend$d = gpend$q;
@@ -9941,11 +9851,12 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         end
         unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | (eof_last & eol_on) | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q) | (im_2 & ~err_phase & seen_dom_crc$q & ~dom_bs$q);
         ffc = ff & ff_on & enabled & ffd_r$q;
-        charge = sample & unj & enabled & ~suppress & ~stuff_dom;
+        unj_c = unj & enabled & ~suppress;
+        charge = sample & unj_c & ~stuff_dom;
         sdp_r$d = stuff_dom;
         pge = err_start & rep_on & enabled & (an_r$q != 32'h0) & pgl_r$q & ~ch_r$q & ~sdp_r$q;
         if (sample) begin
-            spb_r$d = spu_on & unj & enabled & ~suppress & stuff_dom;
+            spb_r$d = spu_on & unj_c & stuff_dom;
         end
         spc_r$d = sample & spb_r$q & c & enabled;
         late = ffc | pge | spc_r$q;
@@ -9961,7 +9872,6 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             step_r$d = 32'h0;
         end
         step = step_r$q;
-        bnz_r$d = bic_r$q != 32'h0;
         ch_r$d = charge;
         tx_error = sample & nack_on & enabled & cont_r$q & tx_region & ~arb & c & ~bt & ~err_phase;
         if (sample) begin
@@ -10107,7 +10017,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         end
         rep_ok = (rep_r$q != 32'h7) & ~(rep_glitched & (gc_r$q == 32'h0)) & rep_other;
         bl_r$d = blame;
-        bl_dm_r$d = blame & rep_rec_w;
+        bl_dm_r$d = blame & rep_rec_w & ~suppress;
         if (err_start) begin
             rep_seen$d = 1'b0;
             if (((rep_seen$q & rep_first_dom$q & rep_ok & ~(rep_blamed & ~bl_r$q) & ~ff) | bl_dm_r$q) & (rep_r$q != 32'h7)) begin
@@ -10123,7 +10033,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         else if (rov & rep_ok) begin
             rep_r$d = rep_r$q + 32'h1;
         end
-        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (rep_on & (pgc_r$q >= pg_limit)) | (rep_on & (rep_r$q >= rep_limit)) | (guard & (step_r$q != 32'h0) & bnz_r$q))) begin
+        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (rep_on & (pgc_r$q >= pg_limit)) | (rep_on & (rep_r$q >= rep_limit)) | (guard & (step_r$q != 32'h0)))) begin
             dis_r$d = 1'b1;
         end
         if (enabled) begin
@@ -10194,7 +10104,6 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             dprev$d = 1'b0;
             fol_r$d = 1'b0;
             step_r$d = 32'h0;
-            bnz_r$d = 1'b0;
         end
         dis = dis_r$q;
         bic = bic_r$q;
@@ -10402,25 +10311,6 @@ module canstar_hub_core$core$sj$0$bl_r(d,q,clock);
     end
           
 endmodule // canstar_hub_core$core$sj$0$bl_r
-
-
-module canstar_hub_core$core$sj$0$bnz_r(d,q,clock);
-    
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_hub_core$core$sj$0$bnz_r
 
 
 module canstar_hub_core$core$sj$0$bt_p(d,q,clock);
@@ -11428,9 +11318,6 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  [1:0] step_r$d;
     wire  [1:0] step_r$q;
     reg  step_r$clock;
-    reg  bnz_r$d;
-    wire  bnz_r$q;
-    reg  bnz_r$clock;
     reg  bl_r$d;
     wire  bl_r$q;
     reg  bl_r$clock;
@@ -11455,6 +11342,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  enabled;
     reg  rep_dmin;
     reg  rep_rmin;
+    reg  unj_c;
     reg  charge;
     reg  g;
     reg  rep_ok;
@@ -11671,11 +11559,6 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .q(step_r$q),
         .clock(step_r$clock)
     );
-    canstar_hub_core$core$sj$1$bnz_r bnz_r(
-        .d(bnz_r$d),
-        .q(bnz_r$q),
-        .clock(bnz_r$clock)
-    );
     canstar_hub_core$core$sj$1$bl_r bl_r(
         .d(bl_r$d),
         .q(bl_r$q),
@@ -11734,7 +11617,6 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         dprev$clock = clock;
         fol_r$clock = clock;
         step_r$clock = clock;
-        bnz_r$clock = clock;
         bl_r$clock = clock;
         bl_dm_r$clock = clock;
         gpend$clock = clock;
@@ -11778,7 +11660,6 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         dprev$d = dprev$q;
         fol_r$d = fol_r$q;
         step_r$d = step_r$q;
-        bnz_r$d = bnz_r$q;
         bl_r$d = bl_r$q;
         bl_dm_r$d = bl_dm_r$q;
         gpend$d = gpend$q;
@@ -11853,11 +11734,12 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         end
         unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | (eof_last & eol_on) | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q) | (im_2 & ~err_phase & seen_dom_crc$q & ~dom_bs$q);
         ffc = ff & ff_on & enabled & ffd_r$q;
-        charge = sample & unj & enabled & ~suppress & ~stuff_dom;
+        unj_c = unj & enabled & ~suppress;
+        charge = sample & unj_c & ~stuff_dom;
         sdp_r$d = stuff_dom;
         pge = err_start & rep_on & enabled & (an_r$q != 32'h0) & pgl_r$q & ~ch_r$q & ~sdp_r$q;
         if (sample) begin
-            spb_r$d = spu_on & unj & enabled & ~suppress & stuff_dom;
+            spb_r$d = spu_on & unj_c & stuff_dom;
         end
         spc_r$d = sample & spb_r$q & c & enabled;
         late = ffc | pge | spc_r$q;
@@ -11873,7 +11755,6 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             step_r$d = 32'h0;
         end
         step = step_r$q;
-        bnz_r$d = bic_r$q != 32'h0;
         ch_r$d = charge;
         tx_error = sample & nack_on & enabled & cont_r$q & tx_region & ~arb & c & ~bt & ~err_phase;
         if (sample) begin
@@ -12019,7 +11900,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         end
         rep_ok = (rep_r$q != 32'h7) & ~(rep_glitched & (gc_r$q == 32'h0)) & rep_other;
         bl_r$d = blame;
-        bl_dm_r$d = blame & rep_rec_w;
+        bl_dm_r$d = blame & rep_rec_w & ~suppress;
         if (err_start) begin
             rep_seen$d = 1'b0;
             if (((rep_seen$q & rep_first_dom$q & rep_ok & ~(rep_blamed & ~bl_r$q) & ~ff) | bl_dm_r$q) & (rep_r$q != 32'h7)) begin
@@ -12035,7 +11916,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         else if (rov & rep_ok) begin
             rep_r$d = rep_r$q + 32'h1;
         end
-        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (rep_on & (pgc_r$q >= pg_limit)) | (rep_on & (rep_r$q >= rep_limit)) | (guard & (step_r$q != 32'h0) & bnz_r$q))) begin
+        if (enabled & ((bic_r$q >= bic_limit) | (life_r$q >= life_limit) | (dbc_r$q >= dbc_thr) | (gc_r$q >= glitch_limit) | (rep_on & (pgc_r$q >= pg_limit)) | (rep_on & (rep_r$q >= rep_limit)) | (guard & (step_r$q != 32'h0)))) begin
             dis_r$d = 1'b1;
         end
         if (enabled) begin
@@ -12106,7 +11987,6 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             dprev$d = 1'b0;
             fol_r$d = 1'b0;
             step_r$d = 32'h0;
-            bnz_r$d = 1'b0;
         end
         dis = dis_r$q;
         bic = bic_r$q;
@@ -12314,25 +12194,6 @@ module canstar_hub_core$core$sj$1$bl_r(d,q,clock);
     end
           
 endmodule // canstar_hub_core$core$sj$1$bl_r
-
-
-module canstar_hub_core$core$sj$1$bnz_r(d,q,clock);
-    
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_hub_core$core$sj$1$bnz_r
 
 
 module canstar_hub_core$core$sj$1$bt_p(d,q,clock);
