@@ -40,6 +40,8 @@ fn campaign_bad_input_fails_cleanly_and_writes_nothing() {
     // --plot without --class is a usage error
     let (ok, _, _) = canstar(&["campaign", "--plot", "p.svg"], d.path());
     assert!(!ok);
+    let (ok, _, _) = canstar(&["campaign", "--trace", "t.log"], d.path());
+    assert!(!ok);
     assert_eq!(entries(d.path()), before);
 }
 
@@ -98,11 +100,17 @@ fn campaign_shards_merge_into_the_unsharded_table() {
 #[test]
 fn campaign_one_run_writes_vcd_and_plot() {
     let d = tempfile::tempdir().unwrap();
-    let (_, out, err) = canstar(&["campaign", "--class", "pub18", "--run-seed", "3", "--vcd", "r.vcd", "--plot", "r.svg"], d.path());
+    let (_, out, err) = canstar(&["campaign", "--class", "pub18", "--run-seed", "3", "--vcd", "r.vcd", "--plot", "r.svg", "--trace", "r.trace"], d.path());
     assert!(out.contains("pub18 seed 3:"), "{out}{err}");
     let svg = std::fs::read_to_string(d.path().join("r.svg")).unwrap();
     assert!(svg.starts_with("<?xml") && svg.trim_end().ends_with("</svg>"));
     assert_eq!(svg.matches("<polyline class=\"tec\"").count(), 6);
     let vcd = std::fs::read_to_string(d.path().join("r.vcd")).unwrap();
     assert!(vcd.contains("$enddefinitions") && vcd.contains("$var"));
+    // the drivers' routine log: every node's first request, and tx routines
+    let tr = std::fs::read_to_string(d.path().join("r.trace")).unwrap();
+    for k in 0..2 {
+        assert!(tr.contains(&format!("node {k}: tx request")), "{tr}");
+    }
+    assert!(tr.contains("tx routine"), "{tr}");
 }

@@ -157,6 +157,10 @@ pub struct HubConfig {
     /// where §5.10 does not charge it (a healthy node's error flag can start there), is
     /// charged when it is recessive again at the next sample (a pulse, not a flag).
     pub stuff_pulse_rule: bool,
+    /// Sublink-follower excuse (hub.md §5.25, ports): a port's dominant level in an error or
+    /// overload delimiter that rose while a sublink had been dominant since the last sample
+    /// point is the node's reaction to the peer's pulse: blamed, not charged.
+    pub sublink_follower_excuse: bool,
     /// Reintegration window W in frames (None = isolation latched until reset).
     pub reintegration: Option<u64>,
     /// Fault-injection hook (None = no hooks).
@@ -204,6 +208,7 @@ impl Default for HubConfig {
             dominant_run_bridge: true,
             sub_intermission_lag: 2,
             stuff_pulse_rule: true,
+            sublink_follower_excuse: true,
             reintegration: None,
             fault_injection: None,
             debug: true,
@@ -261,6 +266,7 @@ impl HubConfig {
             dbc_bridge: self.dominant_run_bridge,
             im2_lag: 0,
             stuff_pulse: self.stuff_pulse_rule,
+            sub_follower: self.sublink_follower_excuse,
         }
     }
     /// Longest glitch in clocks: [`HubConfig::glitch_max`], or one bit minus SJW minus
@@ -309,6 +315,7 @@ impl HubConfig {
             dbc_bridge: false,
             im2_lag: self.sub_intermission_lag,
             stuff_pulse: false,
+            sub_follower: false,
         }
     }
     /// Check the ranges; returns a description of the first problem, starting

@@ -492,6 +492,7 @@ impl Logic for HubCore {
             self.pj[i].common.next = false;
             self.pj[i].ff.next = self.ff_r.q.val();
             self.pj[i].others_dom.next = self.pd_two.val() | (self.pd_one.val() & (self.coupler.u[i].val() | self.pj[i].dis.val())) | self.sd_one.val();
+            self.pj[i].sub_dom.next = self.sd_one.val();
             self.pj[i].gl_others.next = self.gl_two.val() | (self.gl_one.val() & !self.pj[i].glf.val());
             self.pj[i].guard.next = self.guard.val();
             self.pj[i].bit_start.next = self.mon_bit_start.val();
@@ -572,6 +573,7 @@ impl Logic for HubCore {
             // (a common glitch, the peer's contribution on every replica, does not excuse
             // the replicas from each other, §5.15)
             self.sj[j].others_dom.next = self.pd_one.val();
+            self.sj[j].sub_dom.next = false;
             self.sj[j].gl_others.next = self.gl_port.val() | self.glo_two.val() | (self.glo_one.val() & !self.sj[j].glf_own.val());
             self.sj[j].rep_blamed.next = self.sub_bl_r.q.val();
             self.sj[j].common.next = self.sub_all_an.val() & self.sub_two.val();

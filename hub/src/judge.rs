@@ -514,6 +514,17 @@
 //! faulty ports in a row the first is isolated at 48 with the peer's sublinks at about 48
 //! too; the second's second charge fell in an error delimiter, where the peer charges 16,
 //! and the peer reached 72 in the episode in which the guard acted.
+//!
+//! **§5.25 a sublink follower is not charged (session 29, ports).** A port whose dominant
+//! level in an error or overload delimiter rose while a sublink had been dominant since
+//! the last sample point (`sub_dom` from the hub, `osd_r`, `sfol`; config
+//! `sublink_follower_excuse`) is blamed but not charged: it is this hub's node reacting to
+//! a pulse that came from the peer's side, where the peer judges it. The §5.17 follower
+//! rule counted it one blame: a faulty hub whose flips fell in error delimiter bit 3
+//! episode after episode charged a healthy port of the healthy hub 8 per episode, and it
+//! reached 48 in the clock its sublinks reached their limit. Tests:
+//! `hub/tests/judge_rules.rs` `sublink_follower_is_blamed_not_charged`,
+//! `recan/tests/campaign_runs.rs` `a_port_that_follows_a_sublink_in_a_delimiter_is_not_charged`.
 
 use crate::pulse::PulseCheck;
 use rust_hdl::prelude::*;
@@ -583,6 +594,10 @@ pub struct JudgeParams {
     /// dominant stuff bit (§5.10) that is recessive again at the next sample sent a pulse,
     /// not an error flag, and is charged +8 one clock after that sample.
     pub stuff_pulse: bool,
+    /// Sublink-follower excuse (hub.md §5.25, ports): a port whose dominant level in an
+    /// error or overload delimiter rose while a sublink had been dominant since the last
+    /// sample point is blamed but not charged.
+    pub sub_follower: bool,
 }
 
 #[derive(LogicBlock)]
@@ -646,6 +661,9 @@ pub struct JudgeUnit {
     /// Another enabled unit that can lead this one was dominant at this clock (ports: any
     /// other port or sublink; sublinks: any port), for the §5.17 follower test.
     pub others_dom: Signal<In, Bit>,
+    /// A sublink of the hub was dominant at this clock (ports only; false for sublinks),
+    /// for the §5.25 sublink-follower excuse.
+    pub sub_dom: Signal<In, Bit>,
     /// Another enabled unit of the hub has glitched since the last SOF (from the units'
     /// `glf` outputs): this unit's error flag may be the reaction to that glitch.
     pub gl_others: Signal<In, Bit>,
@@ -713,6 +731,7 @@ pub struct JudgeUnit {
     im2_on: Constant<Bit>,
     im2_at: Constant<Bits<5>>,
     spu_on: Constant<Bit>,
+    sfx_on: Constant<Bit>,
     reint_on: Constant<Bit>,
     reint_w: Constant<Bits<8>>,
     dis_r: DFF<Bit>,
@@ -761,9 +780,14 @@ pub struct JudgeUnit {
     od_r: DFF<Bit>,
     dprev: DFF<Bit>,
     fol_r: DFF<Bit>,
+    /// §5.25: `sub_dom` seen since the last sample point, and whether this unit's
+    /// dominant level rose after it (a sublink follower).
+    osd_r: DFF<Bit>,
+    sfol_r: DFF<Bit>,
     /// §5.20: the last clock's charge step (the `step` output).
     step_r: DFF<Bits<2>>,
     fol: Signal<Local, Bit>,
+    sfol: Signal<Local, Bit>,
     c_step: Signal<Local, Bits<8>>,
     c_sat: Signal<Local, Bits<8>>,
     /// `c_step` in blames (1 or `delim_blames`)
@@ -849,6 +873,7 @@ impl JudgeUnit {
             rep_rec_w: Default::default(),
             ff: Default::default(),
             others_dom: Default::default(),
+            sub_dom: Default::default(),
             gl_others: Default::default(),
             guard: Default::default(),
             dis: Default::default(),
@@ -897,6 +922,7 @@ impl JudgeUnit {
             im2_on: Constant::new(p.im2_lag != 0),
             im2_at: Constant::new(p.im2_lag.saturating_sub(1).into()),
             spu_on: Constant::new(port & p.stuff_pulse),
+            sfx_on: Constant::new(port & p.sub_follower),
             reint_on: Constant::new(p.reintegration.is_some()),
             reint_w: Constant::new(p.reintegration.unwrap_or(1).into()),
             dis_r: Default::default(),
@@ -938,8 +964,11 @@ impl JudgeUnit {
             od_r: Default::default(),
             dprev: Default::default(),
             fol_r: Default::default(),
+            osd_r: Default::default(),
+            sfol_r: Default::default(),
             step_r: Default::default(),
             fol: Default::default(),
+            sfol: Default::default(),
             c_step: Default::default(),
             c_sat: Default::default(),
             c_bl: Default::default(),
@@ -979,7 +1008,7 @@ impl JudgeUnit {
 impl Logic for JudgeUnit {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, dis_r, bic_r, bdec_r, life_r, dbc_r, nack_r, cont_r, rep_r, rep_seen, rep_first_dom, rd_run, rov_w, btr_r, ok_r, acked, bad, ack_missing, ack_c, ack_rx, seen_dom, seen_dom_crc, dom_bs, bt_p, gc_r, gdec_r, an_r, pgc_r, pdec_r, ffd_r, glf_r, glo_r, pgl_r, sdp_r, spb_r, spc_r, ch_r, od_r, dprev, fol_r, step_r, bl_r, bl_dm_r, gpend);
+        dff_setup!(self, clock, dis_r, bic_r, bdec_r, life_r, dbc_r, nack_r, cont_r, rep_r, rep_seen, rep_first_dom, rd_run, rov_w, btr_r, ok_r, acked, bad, ack_missing, ack_c, ack_rx, seen_dom, seen_dom_crc, dom_bs, bt_p, gc_r, gdec_r, an_r, pgc_r, pdec_r, ffd_r, glf_r, glo_r, pgl_r, sdp_r, spb_r, spc_r, ch_r, od_r, dprev, fol_r, osd_r, sfol_r, step_r, bl_r, bl_dm_r, gpend);
         self.pulse.clock.next = self.clock.val();
         self.pulse.reset.next = self.reset.val();
         self.pulse.c.next = self.c.val();
@@ -1037,6 +1066,18 @@ impl Logic for JudgeUnit {
             self.fol.next = self.fol_r.q.val();
         }
         self.fol_r.d.next = self.fol.val();
+        // §5.25 sublink follower (ports): the same test against the sublinks alone
+        if self.sample.val() {
+            self.osd_r.d.next = false;
+        } else if self.sub_dom.val() {
+            self.osd_r.d.next = true;
+        }
+        if self.dom.val() & !self.dprev.q.val() {
+            self.sfol.next = self.osd_r.q.val();
+        } else {
+            self.sfol.next = self.sfol_r.q.val();
+        }
+        self.sfol_r.d.next = self.sfol.val();
         // the step of a charge at the sample: `delim_blames` blames for a dominant bit in an
         // error or overload delimiter that no other unit led, one blame otherwise (one adder)
         if self.delim.val() & !self.fol.val() {
@@ -1084,7 +1125,7 @@ impl Logic for JudgeUnit {
         // §5.12 first flagger: charged one clock after the sample (with `ff`), reported
         // on `blame`/`charged` like a blame (the hub's error flag is already started)
         self.ffc.next = self.ff.val() & self.ff_on.val() & self.enabled.val() & self.ffd_r.q.val();
-        self.unj_c.next = self.unj.val() & self.enabled.val() & !self.suppress.val();
+        self.unj_c.next = self.unj.val() & self.enabled.val() & !self.suppress.val() & !(self.delim.val() & self.sfol.val() & self.sfx_on.val());
         self.charge.next = self.sample.val() & self.unj_c.val() & !self.stuff_dom.val();
         // §5.14 an episode right after a common glitch of the peer's contribution: charged
         // to the sublink, unless it was charged at that sample, or (§5.16) that sample was
@@ -1408,6 +1449,8 @@ impl Logic for JudgeUnit {
             self.od_r.d.next = false;
             self.dprev.d.next = false;
             self.fol_r.d.next = false;
+            self.osd_r.d.next = false;
+            self.sfol_r.d.next = false;
             self.step_r.d.next = 0.into();
         }
         self.dis.next = self.dis_r.q.val();

@@ -402,6 +402,37 @@ fn delimiter_follower_counts_one_blame() {
     }
 }
 
+/// §5.25: a port whose delimiter flag rose while a sublink had been dominant since the last
+/// sample (the node reacting to the peer's pulse) is blamed, not charged, with
+/// `sub_follower`; a port led by another port only, or that rose with the sublink, is
+/// charged as before, and without the rule a sublink follower counts one blame.
+#[test]
+fn sublink_follower_is_blamed_not_charged() {
+    type Span = std::ops::Range<u64>;
+    // (rule, sublinks dominant in the delimiter bit, other ports dominant, dominant from, bic)
+    let cases: [(bool, Span, Span, u64, usize); 5] = [
+        (true, 1..4, 0..0, 4, 0),
+        (true, 0..0, 1..4, 4, 8),
+        (true, 4..9, 0..0, 4, 24),
+        (false, 1..4, 0..0, 4, 8),
+        (true, 0..0, 0..0, 4, 24),
+    ];
+    for (rule, sub, port, from, bic) in cases {
+        let mut j = unit(JudgeParams { delim_blames: 3, sub_follower: rule, ..params() });
+        apply(&mut j, Bit { c: true, bt: true, err: true, ..Default::default() });
+        j.delim.next = true;
+        let (blamed, _) = bit_clocks(&mut j, &|j, k| {
+            j.sub_dom.next = sub.contains(&k);
+            j.others_dom.next = sub.contains(&k) || port.contains(&k);
+            j.c.next = k < from;
+            j.bt.next = k < from;
+        });
+        let what = format!("rule {rule}, sublinks {sub:?}, ports {port:?}");
+        assert!(blamed, "{what}");
+        assert_eq!(j.bic.val().index(), bic, "{what}");
+    }
+}
+
 /// Intermission bit 1 is not blamed (a node's reaction to a dominant last EOF bit that only
 /// it saw). In bit 2 (`im_2`) an overload flag starts at a bit start (hub.md §5.2, §5.14):
 /// a dominant level is blamed only if BT was recessive at the hub's bit start and the level

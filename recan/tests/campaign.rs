@@ -322,7 +322,7 @@ fn merge_of_real_shards_equals_unsharded() {
 #[test]
 fn plot_of_a_real_run_marks_isolation_and_quarantine() {
     let c = campaign::class("pub20").unwrap();
-    let d = system::run_detailed(&c, 0, 77, &Settings::default(), None);
+    let d = system::run_detailed(&c, 0, 77, &Settings::default(), None, false);
     let s = plot::svg(&d.plot);
     check_xml(&s).unwrap();
     assert!(s.contains(r#"class="marker isolation""#), "isolation marked");

@@ -37,6 +37,20 @@ fn ports_that_follow_the_sublinks_in_a_delimiter_are_spared() {
     assert_eq!(o.isolations.iter().filter(|i| i.starts_with("hub 0 sublink")).count(), 2, "{:?}", o.isolations);
 }
 
+/// hub.md §5.25 sublink follower: hub 1's output flips about every 10 bits, phase-locked
+/// with the error frames it causes, so its pulse reaches hub 0's sublinks in error delimiter
+/// bit 3 episode after episode. Node 2's controller A on hub 0 flags in reaction, after the
+/// sublinks; counted one blame per episode (§5.17), its healthy port reached 48 in the
+/// clock the sublinks reached their limit and hub 0 isolated it. As a sublink follower it is
+/// blamed, not charged.
+#[test]
+fn a_port_that_follows_a_sublink_in_a_delimiter_is_not_charged() {
+    let o = run("sweep-hub-flip-e10", 17470629488025242632);
+    assert!(o.pass, "{:?}", o.failures);
+    assert!(!o.isolations.iter().any(|i| i.starts_with("hub 0 port")), "{:?}", o.isolations);
+    assert_eq!(o.isolations.iter().filter(|i| i.starts_with("hub 0 sublink")).count(), 2, "{:?}", o.isolations);
+}
+
 /// hub.md §5.19: node 1's controller B loses a dominant bit about every 9 bits on its
 /// downlink and flags in what is the last EOF bit for everyone else. The receivers take
 /// that bit for an overload condition, the transmitter for a form error (TEC + 8 and a

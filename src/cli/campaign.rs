@@ -48,6 +48,10 @@ pub struct Args {
     /// With --class: write an SVG of every controller's TEC/REC with isolations and quarantines.
     #[arg(long, requires = "class")]
     plot: Option<PathBuf>,
+    /// With --class: write the node drivers' routine log (tx, rx and qua routines,
+    /// omissions, retransmissions) of the run.
+    #[arg(long, requires = "class")]
+    trace: Option<PathBuf>,
     /// With --class: print every hub blame and every controller error of the run.
     #[arg(long, requires = "class")]
     events: bool,
@@ -89,13 +93,13 @@ pub fn run(a: Args) -> Result<()> {
         return Ok(());
     }
     if a.class.is_none() {
-        for (flag, p) in [("--vcd", &a.vcd), ("--plot", &a.plot)] {
+        for (flag, p) in [("--vcd", &a.vcd), ("--plot", &a.plot), ("--trace", &a.trace)] {
             anyhow::ensure!(p.is_none(), "{flag} writes the details of one run: it needs --class");
         }
     }
     // Every output is reserved before any work.
     let mut set = OutputSet::new();
-    for p in [&a.json, &a.junit, &a.vcd, &a.plot, &a.plot_sweep].into_iter().flatten() {
+    for p in [&a.json, &a.junit, &a.vcd, &a.plot, &a.plot_sweep, &a.trace].into_iter().flatten() {
         set.file(p)?;
     }
     if !a.merge.is_empty() {
@@ -128,12 +132,15 @@ pub fn run(a: Args) -> Result<()> {
         let rep = a.rep.unwrap_or(0);
         let seed = a.run_seed.unwrap_or_else(|| campaign::run_seed(a.seed, &class.name, rep));
         let vcd_tmp = a.vcd.as_deref().and_then(|p| set.temp_of(p)).map(|p| p.to_path_buf());
-        let d = system::run_detailed(&class, rep, seed, &settings, vcd_tmp);
+        let d = system::run_detailed(&class, rep, seed, &settings, vcd_tmp, a.trace.is_some());
         if let Some(e) = &d.result.vcd_error {
             anyhow::bail!("{e}");
         }
         if let Some(p) = &a.plot {
             set.write(p, campaign::plot::svg(&d.plot))?;
+        }
+        if let Some(p) = &a.trace {
+            set.write(p, d.result.trace.join("\n") + "\n")?;
         }
         // The outputs of a finished run are kept even when it fails its checks.
         set.commit()?;
@@ -176,6 +183,9 @@ pub fn run(a: Args) -> Result<()> {
         }
         if let Some(p) = &a.plot {
             outln!("wrote plot {}", p.display());
+        }
+        if let Some(p) = &a.trace {
+            outln!("wrote driver trace {}", p.display());
         }
         anyhow::ensure!(o.pass, "run failed (rerun: canstar campaign --class {} --run-seed {})", o.class, o.seed);
         return Ok(());

@@ -829,6 +829,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
     reg  pj$0$rep_rec_w;
     reg  pj$0$ff;
     reg  pj$0$others_dom;
+    reg  pj$0$sub_dom;
     reg  pj$0$gl_others;
     reg  pj$0$guard;
     wire  pj$0$dis;
@@ -884,6 +885,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
     reg  pj$1$rep_rec_w;
     reg  pj$1$ff;
     reg  pj$1$others_dom;
+    reg  pj$1$sub_dom;
     reg  pj$1$gl_others;
     reg  pj$1$guard;
     wire  pj$1$dis;
@@ -939,6 +941,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
     reg  pj$2$rep_rec_w;
     reg  pj$2$ff;
     reg  pj$2$others_dom;
+    reg  pj$2$sub_dom;
     reg  pj$2$gl_others;
     reg  pj$2$guard;
     wire  pj$2$dis;
@@ -1128,6 +1131,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         .rep_rec_w(pj$0$rep_rec_w),
         .ff(pj$0$ff),
         .others_dom(pj$0$others_dom),
+        .sub_dom(pj$0$sub_dom),
         .gl_others(pj$0$gl_others),
         .guard(pj$0$guard),
         .dis(pj$0$dis),
@@ -1185,6 +1189,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         .rep_rec_w(pj$1$rep_rec_w),
         .ff(pj$1$ff),
         .others_dom(pj$1$others_dom),
+        .sub_dom(pj$1$sub_dom),
         .gl_others(pj$1$gl_others),
         .guard(pj$1$guard),
         .dis(pj$1$dis),
@@ -1242,6 +1247,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         .rep_rec_w(pj$2$rep_rec_w),
         .ff(pj$2$ff),
         .others_dom(pj$2$others_dom),
+        .sub_dom(pj$2$sub_dom),
         .gl_others(pj$2$gl_others),
         .guard(pj$2$guard),
         .dis(pj$2$dis),
@@ -1478,6 +1484,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         pj$0$common = 1'b0;
         pj$0$ff = ff_r$q;
         pj$0$others_dom = pd_two | (pd_one & (coupler$u$0 | pj$0$dis)) | sd_one;
+        pj$0$sub_dom = sd_one;
         pj$0$gl_others = gl_two | (gl_one & ~pj$0$glf);
         pj$0$guard = guard;
         pj$0$bit_start = mon_bit_start;
@@ -1529,6 +1536,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         pj$1$common = 1'b0;
         pj$1$ff = ff_r$q;
         pj$1$others_dom = pd_two | (pd_one & (coupler$u$1 | pj$1$dis)) | sd_one;
+        pj$1$sub_dom = sd_one;
         pj$1$gl_others = gl_two | (gl_one & ~pj$1$glf);
         pj$1$guard = guard;
         pj$1$bit_start = mon_bit_start;
@@ -1580,6 +1588,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         pj$2$common = 1'b0;
         pj$2$ff = ff_r$q;
         pj$2$others_dom = pd_two | (pd_one & (coupler$u$2 | pj$2$dis)) | sd_one;
+        pj$2$sub_dom = sd_one;
         pj$2$gl_others = gl_two | (gl_one & ~pj$2$glf);
         pj$2$guard = guard;
         pj$2$bit_start = mon_bit_start;
@@ -2745,7 +2754,7 @@ module canstar_cancentrate_core$core$peer$pest_r(d,q,clock);
 endmodule // canstar_cancentrate_core$core$peer$pest_r
 
 
-module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,eof_last,im_2,im_12,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,rep_mask,rep_other,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,guard,dis,blame,charged,step,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
+module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,eof_last,im_2,im_12,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,rep_mask,rep_other,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,sub_dom,gl_others,guard,dis,blame,charged,step,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
     
     // Module arguments
     input wire  clock;
@@ -2782,6 +2791,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
     input wire  rep_rec_w;
     input wire  ff;
     input wire  others_dom;
+    input wire  sub_dom;
     input wire  gl_others;
     input wire  guard;
     output reg  dis;
@@ -2831,6 +2841,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
     localparam  im2_on = 1'b0;
     localparam  im2_at = 5'b0;
     localparam  spu_on = 1'b1;
+    localparam  sfx_on = 1'b1;
     localparam  reint_on = 1'b0;
     localparam  reint_w = 8'h1;
     
@@ -2956,6 +2967,12 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
     reg  fol_r$d;
     wire  fol_r$q;
     reg  fol_r$clock;
+    reg  osd_r$d;
+    wire  osd_r$q;
+    reg  osd_r$clock;
+    reg  sfol_r$d;
+    wire  sfol_r$q;
+    reg  sfol_r$clock;
     reg  [1:0] step_r$d;
     wire  [1:0] step_r$q;
     reg  step_r$clock;
@@ -2971,6 +2988,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
     
     // Local signals
     reg  fol;
+    reg  sfol;
     reg  [7:0] c_step;
     reg  [7:0] c_sat;
     reg  [1:0] c_bl;
@@ -3195,6 +3213,16 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         .q(fol_r$q),
         .clock(fol_r$clock)
     );
+    canstar_cancentrate_core$core$pj$0$osd_r osd_r(
+        .d(osd_r$d),
+        .q(osd_r$q),
+        .clock(osd_r$clock)
+    );
+    canstar_cancentrate_core$core$pj$0$sfol_r sfol_r(
+        .d(sfol_r$d),
+        .q(sfol_r$q),
+        .clock(sfol_r$clock)
+    );
     canstar_cancentrate_core$core$pj$0$step_r step_r(
         .d(step_r$d),
         .q(step_r$q),
@@ -3257,6 +3285,8 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         od_r$clock = clock;
         dprev$clock = clock;
         fol_r$clock = clock;
+        osd_r$clock = clock;
+        sfol_r$clock = clock;
         step_r$clock = clock;
         bl_r$clock = clock;
         bl_dm_r$clock = clock;
@@ -3300,6 +3330,8 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         od_r$d = od_r$q;
         dprev$d = dprev$q;
         fol_r$d = fol_r$q;
+        osd_r$d = osd_r$q;
+        sfol_r$d = sfol_r$q;
         step_r$d = step_r$q;
         bl_r$d = bl_r$q;
         bl_dm_r$d = bl_dm_r$q;
@@ -3350,6 +3382,19 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
             fol = fol_r$q;
         end
         fol_r$d = fol;
+        if (sample) begin
+            osd_r$d = 1'b0;
+        end
+        else if (sub_dom) begin
+            osd_r$d = 1'b1;
+        end
+        if (dom & ~dprev$q) begin
+            sfol = osd_r$q;
+        end
+        else begin
+            sfol = sfol_r$q;
+        end
+        sfol_r$d = sfol;
         if (delim & ~fol) begin
             c_step = d_step;
             c_sat = d_sat;
@@ -3375,7 +3420,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         end
         unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | (eof_last & eol_on) | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q) | (im_2 & ~err_phase & seen_dom_crc$q & ~dom_bs$q);
         ffc = ff & ff_on & enabled & ffd_r$q;
-        unj_c = unj & enabled & ~suppress;
+        unj_c = unj & enabled & ~suppress & ~(delim & sfol & sfx_on);
         charge = sample & unj_c & ~stuff_dom;
         sdp_r$d = stuff_dom;
         pge = err_start & rep_on & enabled & (an_r$q != 32'h0) & pgl_r$q & ~ch_r$q & ~sdp_r$q;
@@ -3627,6 +3672,8 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
             od_r$d = 1'b0;
             dprev$d = 1'b0;
             fol_r$d = 1'b0;
+            osd_r$d = 1'b0;
+            sfol_r$d = 1'b0;
             step_r$d = 32'h0;
         end
         dis = dis_r$q;
@@ -4198,6 +4245,25 @@ module canstar_cancentrate_core$core$pj$0$ok_r(d,q,clock);
 endmodule // canstar_cancentrate_core$core$pj$0$ok_r
 
 
+module canstar_cancentrate_core$core$pj$0$osd_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$0$osd_r
+
+
 module canstar_cancentrate_core$core$pj$0$pdec_r(d,q,clock);
     
     // Module arguments
@@ -4571,6 +4637,25 @@ module canstar_cancentrate_core$core$pj$0$seen_dom_crc(d,q,clock);
 endmodule // canstar_cancentrate_core$core$pj$0$seen_dom_crc
 
 
+module canstar_cancentrate_core$core$pj$0$sfol_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$0$sfol_r
+
+
 module canstar_cancentrate_core$core$pj$0$spb_r(d,q,clock);
     
     // Module arguments
@@ -4628,7 +4713,7 @@ module canstar_cancentrate_core$core$pj$0$step_r(d,q,clock);
 endmodule // canstar_cancentrate_core$core$pj$0$step_r
 
 
-module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,eof_last,im_2,im_12,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,rep_mask,rep_other,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,guard,dis,blame,charged,step,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
+module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,eof_last,im_2,im_12,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,rep_mask,rep_other,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,sub_dom,gl_others,guard,dis,blame,charged,step,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
     
     // Module arguments
     input wire  clock;
@@ -4665,6 +4750,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
     input wire  rep_rec_w;
     input wire  ff;
     input wire  others_dom;
+    input wire  sub_dom;
     input wire  gl_others;
     input wire  guard;
     output reg  dis;
@@ -4714,6 +4800,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
     localparam  im2_on = 1'b0;
     localparam  im2_at = 5'b0;
     localparam  spu_on = 1'b1;
+    localparam  sfx_on = 1'b1;
     localparam  reint_on = 1'b0;
     localparam  reint_w = 8'h1;
     
@@ -4839,6 +4926,12 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
     reg  fol_r$d;
     wire  fol_r$q;
     reg  fol_r$clock;
+    reg  osd_r$d;
+    wire  osd_r$q;
+    reg  osd_r$clock;
+    reg  sfol_r$d;
+    wire  sfol_r$q;
+    reg  sfol_r$clock;
     reg  [1:0] step_r$d;
     wire  [1:0] step_r$q;
     reg  step_r$clock;
@@ -4854,6 +4947,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
     
     // Local signals
     reg  fol;
+    reg  sfol;
     reg  [7:0] c_step;
     reg  [7:0] c_sat;
     reg  [1:0] c_bl;
@@ -5078,6 +5172,16 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         .q(fol_r$q),
         .clock(fol_r$clock)
     );
+    canstar_cancentrate_core$core$pj$1$osd_r osd_r(
+        .d(osd_r$d),
+        .q(osd_r$q),
+        .clock(osd_r$clock)
+    );
+    canstar_cancentrate_core$core$pj$1$sfol_r sfol_r(
+        .d(sfol_r$d),
+        .q(sfol_r$q),
+        .clock(sfol_r$clock)
+    );
     canstar_cancentrate_core$core$pj$1$step_r step_r(
         .d(step_r$d),
         .q(step_r$q),
@@ -5140,6 +5244,8 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         od_r$clock = clock;
         dprev$clock = clock;
         fol_r$clock = clock;
+        osd_r$clock = clock;
+        sfol_r$clock = clock;
         step_r$clock = clock;
         bl_r$clock = clock;
         bl_dm_r$clock = clock;
@@ -5183,6 +5289,8 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         od_r$d = od_r$q;
         dprev$d = dprev$q;
         fol_r$d = fol_r$q;
+        osd_r$d = osd_r$q;
+        sfol_r$d = sfol_r$q;
         step_r$d = step_r$q;
         bl_r$d = bl_r$q;
         bl_dm_r$d = bl_dm_r$q;
@@ -5233,6 +5341,19 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
             fol = fol_r$q;
         end
         fol_r$d = fol;
+        if (sample) begin
+            osd_r$d = 1'b0;
+        end
+        else if (sub_dom) begin
+            osd_r$d = 1'b1;
+        end
+        if (dom & ~dprev$q) begin
+            sfol = osd_r$q;
+        end
+        else begin
+            sfol = sfol_r$q;
+        end
+        sfol_r$d = sfol;
         if (delim & ~fol) begin
             c_step = d_step;
             c_sat = d_sat;
@@ -5258,7 +5379,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         end
         unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | (eof_last & eol_on) | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q) | (im_2 & ~err_phase & seen_dom_crc$q & ~dom_bs$q);
         ffc = ff & ff_on & enabled & ffd_r$q;
-        unj_c = unj & enabled & ~suppress;
+        unj_c = unj & enabled & ~suppress & ~(delim & sfol & sfx_on);
         charge = sample & unj_c & ~stuff_dom;
         sdp_r$d = stuff_dom;
         pge = err_start & rep_on & enabled & (an_r$q != 32'h0) & pgl_r$q & ~ch_r$q & ~sdp_r$q;
@@ -5510,6 +5631,8 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
             od_r$d = 1'b0;
             dprev$d = 1'b0;
             fol_r$d = 1'b0;
+            osd_r$d = 1'b0;
+            sfol_r$d = 1'b0;
             step_r$d = 32'h0;
         end
         dis = dis_r$q;
@@ -6081,6 +6204,25 @@ module canstar_cancentrate_core$core$pj$1$ok_r(d,q,clock);
 endmodule // canstar_cancentrate_core$core$pj$1$ok_r
 
 
+module canstar_cancentrate_core$core$pj$1$osd_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$1$osd_r
+
+
 module canstar_cancentrate_core$core$pj$1$pdec_r(d,q,clock);
     
     // Module arguments
@@ -6454,6 +6596,25 @@ module canstar_cancentrate_core$core$pj$1$seen_dom_crc(d,q,clock);
 endmodule // canstar_cancentrate_core$core$pj$1$seen_dom_crc
 
 
+module canstar_cancentrate_core$core$pj$1$sfol_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$1$sfol_r
+
+
 module canstar_cancentrate_core$core$pj$1$spb_r(d,q,clock);
     
     // Module arguments
@@ -6511,7 +6672,7 @@ module canstar_cancentrate_core$core$pj$1$step_r(d,q,clock);
 endmodule // canstar_cancentrate_core$core$pj$1$step_r
 
 
-module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,eof_last,im_2,im_12,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,rep_mask,rep_other,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,guard,dis,blame,charged,step,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
+module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,eof_last,im_2,im_12,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,rep_mask,rep_other,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,sub_dom,gl_others,guard,dis,blame,charged,step,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
     
     // Module arguments
     input wire  clock;
@@ -6548,6 +6709,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
     input wire  rep_rec_w;
     input wire  ff;
     input wire  others_dom;
+    input wire  sub_dom;
     input wire  gl_others;
     input wire  guard;
     output reg  dis;
@@ -6597,6 +6759,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
     localparam  im2_on = 1'b0;
     localparam  im2_at = 5'b0;
     localparam  spu_on = 1'b1;
+    localparam  sfx_on = 1'b1;
     localparam  reint_on = 1'b0;
     localparam  reint_w = 8'h1;
     
@@ -6722,6 +6885,12 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
     reg  fol_r$d;
     wire  fol_r$q;
     reg  fol_r$clock;
+    reg  osd_r$d;
+    wire  osd_r$q;
+    reg  osd_r$clock;
+    reg  sfol_r$d;
+    wire  sfol_r$q;
+    reg  sfol_r$clock;
     reg  [1:0] step_r$d;
     wire  [1:0] step_r$q;
     reg  step_r$clock;
@@ -6737,6 +6906,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
     
     // Local signals
     reg  fol;
+    reg  sfol;
     reg  [7:0] c_step;
     reg  [7:0] c_sat;
     reg  [1:0] c_bl;
@@ -6961,6 +7131,16 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         .q(fol_r$q),
         .clock(fol_r$clock)
     );
+    canstar_cancentrate_core$core$pj$2$osd_r osd_r(
+        .d(osd_r$d),
+        .q(osd_r$q),
+        .clock(osd_r$clock)
+    );
+    canstar_cancentrate_core$core$pj$2$sfol_r sfol_r(
+        .d(sfol_r$d),
+        .q(sfol_r$q),
+        .clock(sfol_r$clock)
+    );
     canstar_cancentrate_core$core$pj$2$step_r step_r(
         .d(step_r$d),
         .q(step_r$q),
@@ -7023,6 +7203,8 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         od_r$clock = clock;
         dprev$clock = clock;
         fol_r$clock = clock;
+        osd_r$clock = clock;
+        sfol_r$clock = clock;
         step_r$clock = clock;
         bl_r$clock = clock;
         bl_dm_r$clock = clock;
@@ -7066,6 +7248,8 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         od_r$d = od_r$q;
         dprev$d = dprev$q;
         fol_r$d = fol_r$q;
+        osd_r$d = osd_r$q;
+        sfol_r$d = sfol_r$q;
         step_r$d = step_r$q;
         bl_r$d = bl_r$q;
         bl_dm_r$d = bl_dm_r$q;
@@ -7116,6 +7300,19 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
             fol = fol_r$q;
         end
         fol_r$d = fol;
+        if (sample) begin
+            osd_r$d = 1'b0;
+        end
+        else if (sub_dom) begin
+            osd_r$d = 1'b1;
+        end
+        if (dom & ~dprev$q) begin
+            sfol = osd_r$q;
+        end
+        else begin
+            sfol = sfol_r$q;
+        end
+        sfol_r$d = sfol;
         if (delim & ~fol) begin
             c_step = d_step;
             c_sat = d_sat;
@@ -7141,7 +7338,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         end
         unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | (eof_last & eol_on) | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q) | (im_2 & ~err_phase & seen_dom_crc$q & ~dom_bs$q);
         ffc = ff & ff_on & enabled & ffd_r$q;
-        unj_c = unj & enabled & ~suppress;
+        unj_c = unj & enabled & ~suppress & ~(delim & sfol & sfx_on);
         charge = sample & unj_c & ~stuff_dom;
         sdp_r$d = stuff_dom;
         pge = err_start & rep_on & enabled & (an_r$q != 32'h0) & pgl_r$q & ~ch_r$q & ~sdp_r$q;
@@ -7393,6 +7590,8 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
             od_r$d = 1'b0;
             dprev$d = 1'b0;
             fol_r$d = 1'b0;
+            osd_r$d = 1'b0;
+            sfol_r$d = 1'b0;
             step_r$d = 32'h0;
         end
         dis = dis_r$q;
@@ -7964,6 +8163,25 @@ module canstar_cancentrate_core$core$pj$2$ok_r(d,q,clock);
 endmodule // canstar_cancentrate_core$core$pj$2$ok_r
 
 
+module canstar_cancentrate_core$core$pj$2$osd_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$2$osd_r
+
+
 module canstar_cancentrate_core$core$pj$2$pdec_r(d,q,clock);
     
     // Module arguments
@@ -8335,6 +8553,25 @@ module canstar_cancentrate_core$core$pj$2$seen_dom_crc(d,q,clock);
     end
           
 endmodule // canstar_cancentrate_core$core$pj$2$seen_dom_crc
+
+
+module canstar_cancentrate_core$core$pj$2$sfol_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$2$sfol_r
 
 
 module canstar_cancentrate_core$core$pj$2$spb_r(d,q,clock);

@@ -901,6 +901,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     reg  pj$0$rep_rec_w;
     reg  pj$0$ff;
     reg  pj$0$others_dom;
+    reg  pj$0$sub_dom;
     reg  pj$0$gl_others;
     reg  pj$0$guard;
     wire  pj$0$dis;
@@ -956,6 +957,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     reg  pj$1$rep_rec_w;
     reg  pj$1$ff;
     reg  pj$1$others_dom;
+    reg  pj$1$sub_dom;
     reg  pj$1$gl_others;
     reg  pj$1$guard;
     wire  pj$1$dis;
@@ -1011,6 +1013,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     reg  pj$2$rep_rec_w;
     reg  pj$2$ff;
     reg  pj$2$others_dom;
+    reg  pj$2$sub_dom;
     reg  pj$2$gl_others;
     reg  pj$2$guard;
     wire  pj$2$dis;
@@ -1066,6 +1069,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     reg  sj$0$rep_rec_w;
     reg  sj$0$ff;
     reg  sj$0$others_dom;
+    reg  sj$0$sub_dom;
     reg  sj$0$gl_others;
     reg  sj$0$guard;
     wire  sj$0$dis;
@@ -1121,6 +1125,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
     reg  sj$1$rep_rec_w;
     reg  sj$1$ff;
     reg  sj$1$others_dom;
+    reg  sj$1$sub_dom;
     reg  sj$1$gl_others;
     reg  sj$1$guard;
     wire  sj$1$dis;
@@ -1320,6 +1325,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .rep_rec_w(pj$0$rep_rec_w),
         .ff(pj$0$ff),
         .others_dom(pj$0$others_dom),
+        .sub_dom(pj$0$sub_dom),
         .gl_others(pj$0$gl_others),
         .guard(pj$0$guard),
         .dis(pj$0$dis),
@@ -1377,6 +1383,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .rep_rec_w(pj$1$rep_rec_w),
         .ff(pj$1$ff),
         .others_dom(pj$1$others_dom),
+        .sub_dom(pj$1$sub_dom),
         .gl_others(pj$1$gl_others),
         .guard(pj$1$guard),
         .dis(pj$1$dis),
@@ -1434,6 +1441,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .rep_rec_w(pj$2$rep_rec_w),
         .ff(pj$2$ff),
         .others_dom(pj$2$others_dom),
+        .sub_dom(pj$2$sub_dom),
         .gl_others(pj$2$gl_others),
         .guard(pj$2$guard),
         .dis(pj$2$dis),
@@ -1491,6 +1499,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .rep_rec_w(sj$0$rep_rec_w),
         .ff(sj$0$ff),
         .others_dom(sj$0$others_dom),
+        .sub_dom(sj$0$sub_dom),
         .gl_others(sj$0$gl_others),
         .guard(sj$0$guard),
         .dis(sj$0$dis),
@@ -1548,6 +1557,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         .rep_rec_w(sj$1$rep_rec_w),
         .ff(sj$1$ff),
         .others_dom(sj$1$others_dom),
+        .sub_dom(sj$1$sub_dom),
         .gl_others(sj$1$gl_others),
         .guard(sj$1$guard),
         .dis(sj$1$dis),
@@ -1852,6 +1862,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         pj$0$common = 1'b0;
         pj$0$ff = ff_r$q;
         pj$0$others_dom = pd_two | (pd_one & (coupler$u$0 | pj$0$dis)) | sd_one;
+        pj$0$sub_dom = sd_one;
         pj$0$gl_others = gl_two | (gl_one & ~pj$0$glf);
         pj$0$guard = guard;
         pj$0$bit_start = mon_bit_start;
@@ -1903,6 +1914,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         pj$1$common = 1'b0;
         pj$1$ff = ff_r$q;
         pj$1$others_dom = pd_two | (pd_one & (coupler$u$1 | pj$1$dis)) | sd_one;
+        pj$1$sub_dom = sd_one;
         pj$1$gl_others = gl_two | (gl_one & ~pj$1$glf);
         pj$1$guard = guard;
         pj$1$bit_start = mon_bit_start;
@@ -1954,6 +1966,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         pj$2$common = 1'b0;
         pj$2$ff = ff_r$q;
         pj$2$others_dom = pd_two | (pd_one & (coupler$u$2 | pj$2$dis)) | sd_one;
+        pj$2$sub_dom = sd_one;
         pj$2$gl_others = gl_two | (gl_one & ~pj$2$glf);
         pj$2$guard = guard;
         pj$2$bit_start = mon_bit_start;
@@ -2043,6 +2056,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         sj$0$err_start = err_start_r$q;
         sj$0$ff = ff_r$q;
         sj$0$others_dom = pd_one;
+        sj$0$sub_dom = 1'b0;
         sj$0$gl_others = gl_port | glo_two | (glo_one & ~sj$0$glf_own);
         sj$0$rep_blamed = sub_bl_r$q;
         sj$0$common = sub_all_an & sub_two;
@@ -2050,6 +2064,7 @@ module canstar_hub_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,reh_rx$0,re
         sj$1$err_start = err_start_r$q;
         sj$1$ff = ff_r$q;
         sj$1$others_dom = pd_one;
+        sj$1$sub_dom = 1'b0;
         sj$1$gl_others = gl_port | glo_two | (glo_one & ~sj$1$glf_own);
         sj$1$rep_blamed = sub_bl_r$q;
         sj$1$common = sub_all_an & sub_two;
@@ -3515,7 +3530,7 @@ module canstar_hub_core$core$peer$pest_r(d,q,clock);
 endmodule // canstar_hub_core$core$peer$pest_r
 
 
-module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,eof_last,im_2,im_12,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,rep_mask,rep_other,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,guard,dis,blame,charged,step,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
+module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,eof_last,im_2,im_12,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,rep_mask,rep_other,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,sub_dom,gl_others,guard,dis,blame,charged,step,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
     
     // Module arguments
     input wire  clock;
@@ -3552,6 +3567,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     input wire  rep_rec_w;
     input wire  ff;
     input wire  others_dom;
+    input wire  sub_dom;
     input wire  gl_others;
     input wire  guard;
     output reg  dis;
@@ -3601,6 +3617,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     localparam  im2_on = 1'b0;
     localparam  im2_at = 5'b0;
     localparam  spu_on = 1'b1;
+    localparam  sfx_on = 1'b1;
     localparam  reint_on = 1'b0;
     localparam  reint_w = 8'h1;
     
@@ -3726,6 +3743,12 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  fol_r$d;
     wire  fol_r$q;
     reg  fol_r$clock;
+    reg  osd_r$d;
+    wire  osd_r$q;
+    reg  osd_r$clock;
+    reg  sfol_r$d;
+    wire  sfol_r$q;
+    reg  sfol_r$clock;
     reg  [1:0] step_r$d;
     wire  [1:0] step_r$q;
     reg  step_r$clock;
@@ -3741,6 +3764,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     
     // Local signals
     reg  fol;
+    reg  sfol;
     reg  [7:0] c_step;
     reg  [7:0] c_sat;
     reg  [1:0] c_bl;
@@ -3965,6 +3989,16 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .q(fol_r$q),
         .clock(fol_r$clock)
     );
+    canstar_hub_core$core$pj$0$osd_r osd_r(
+        .d(osd_r$d),
+        .q(osd_r$q),
+        .clock(osd_r$clock)
+    );
+    canstar_hub_core$core$pj$0$sfol_r sfol_r(
+        .d(sfol_r$d),
+        .q(sfol_r$q),
+        .clock(sfol_r$clock)
+    );
     canstar_hub_core$core$pj$0$step_r step_r(
         .d(step_r$d),
         .q(step_r$q),
@@ -4027,6 +4061,8 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         od_r$clock = clock;
         dprev$clock = clock;
         fol_r$clock = clock;
+        osd_r$clock = clock;
+        sfol_r$clock = clock;
         step_r$clock = clock;
         bl_r$clock = clock;
         bl_dm_r$clock = clock;
@@ -4070,6 +4106,8 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         od_r$d = od_r$q;
         dprev$d = dprev$q;
         fol_r$d = fol_r$q;
+        osd_r$d = osd_r$q;
+        sfol_r$d = sfol_r$q;
         step_r$d = step_r$q;
         bl_r$d = bl_r$q;
         bl_dm_r$d = bl_dm_r$q;
@@ -4120,6 +4158,19 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             fol = fol_r$q;
         end
         fol_r$d = fol;
+        if (sample) begin
+            osd_r$d = 1'b0;
+        end
+        else if (sub_dom) begin
+            osd_r$d = 1'b1;
+        end
+        if (dom & ~dprev$q) begin
+            sfol = osd_r$q;
+        end
+        else begin
+            sfol = sfol_r$q;
+        end
+        sfol_r$d = sfol;
         if (delim & ~fol) begin
             c_step = d_step;
             c_sat = d_sat;
@@ -4145,7 +4196,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         end
         unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | (eof_last & eol_on) | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q) | (im_2 & ~err_phase & seen_dom_crc$q & ~dom_bs$q);
         ffc = ff & ff_on & enabled & ffd_r$q;
-        unj_c = unj & enabled & ~suppress;
+        unj_c = unj & enabled & ~suppress & ~(delim & sfol & sfx_on);
         charge = sample & unj_c & ~stuff_dom;
         sdp_r$d = stuff_dom;
         pge = err_start & rep_on & enabled & (an_r$q != 32'h0) & pgl_r$q & ~ch_r$q & ~sdp_r$q;
@@ -4397,6 +4448,8 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             od_r$d = 1'b0;
             dprev$d = 1'b0;
             fol_r$d = 1'b0;
+            osd_r$d = 1'b0;
+            sfol_r$d = 1'b0;
             step_r$d = 32'h0;
         end
         dis = dis_r$q;
@@ -4968,6 +5021,25 @@ module canstar_hub_core$core$pj$0$ok_r(d,q,clock);
 endmodule // canstar_hub_core$core$pj$0$ok_r
 
 
+module canstar_hub_core$core$pj$0$osd_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$0$osd_r
+
+
 module canstar_hub_core$core$pj$0$pdec_r(d,q,clock);
     
     // Module arguments
@@ -5341,6 +5413,25 @@ module canstar_hub_core$core$pj$0$seen_dom_crc(d,q,clock);
 endmodule // canstar_hub_core$core$pj$0$seen_dom_crc
 
 
+module canstar_hub_core$core$pj$0$sfol_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$0$sfol_r
+
+
 module canstar_hub_core$core$pj$0$spb_r(d,q,clock);
     
     // Module arguments
@@ -5398,7 +5489,7 @@ module canstar_hub_core$core$pj$0$step_r(d,q,clock);
 endmodule // canstar_hub_core$core$pj$0$step_r
 
 
-module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,eof_last,im_2,im_12,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,rep_mask,rep_other,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,guard,dis,blame,charged,step,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
+module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,eof_last,im_2,im_12,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,rep_mask,rep_other,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,sub_dom,gl_others,guard,dis,blame,charged,step,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
     
     // Module arguments
     input wire  clock;
@@ -5435,6 +5526,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     input wire  rep_rec_w;
     input wire  ff;
     input wire  others_dom;
+    input wire  sub_dom;
     input wire  gl_others;
     input wire  guard;
     output reg  dis;
@@ -5484,6 +5576,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     localparam  im2_on = 1'b0;
     localparam  im2_at = 5'b0;
     localparam  spu_on = 1'b1;
+    localparam  sfx_on = 1'b1;
     localparam  reint_on = 1'b0;
     localparam  reint_w = 8'h1;
     
@@ -5609,6 +5702,12 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  fol_r$d;
     wire  fol_r$q;
     reg  fol_r$clock;
+    reg  osd_r$d;
+    wire  osd_r$q;
+    reg  osd_r$clock;
+    reg  sfol_r$d;
+    wire  sfol_r$q;
+    reg  sfol_r$clock;
     reg  [1:0] step_r$d;
     wire  [1:0] step_r$q;
     reg  step_r$clock;
@@ -5624,6 +5723,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     
     // Local signals
     reg  fol;
+    reg  sfol;
     reg  [7:0] c_step;
     reg  [7:0] c_sat;
     reg  [1:0] c_bl;
@@ -5848,6 +5948,16 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .q(fol_r$q),
         .clock(fol_r$clock)
     );
+    canstar_hub_core$core$pj$1$osd_r osd_r(
+        .d(osd_r$d),
+        .q(osd_r$q),
+        .clock(osd_r$clock)
+    );
+    canstar_hub_core$core$pj$1$sfol_r sfol_r(
+        .d(sfol_r$d),
+        .q(sfol_r$q),
+        .clock(sfol_r$clock)
+    );
     canstar_hub_core$core$pj$1$step_r step_r(
         .d(step_r$d),
         .q(step_r$q),
@@ -5910,6 +6020,8 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         od_r$clock = clock;
         dprev$clock = clock;
         fol_r$clock = clock;
+        osd_r$clock = clock;
+        sfol_r$clock = clock;
         step_r$clock = clock;
         bl_r$clock = clock;
         bl_dm_r$clock = clock;
@@ -5953,6 +6065,8 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         od_r$d = od_r$q;
         dprev$d = dprev$q;
         fol_r$d = fol_r$q;
+        osd_r$d = osd_r$q;
+        sfol_r$d = sfol_r$q;
         step_r$d = step_r$q;
         bl_r$d = bl_r$q;
         bl_dm_r$d = bl_dm_r$q;
@@ -6003,6 +6117,19 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             fol = fol_r$q;
         end
         fol_r$d = fol;
+        if (sample) begin
+            osd_r$d = 1'b0;
+        end
+        else if (sub_dom) begin
+            osd_r$d = 1'b1;
+        end
+        if (dom & ~dprev$q) begin
+            sfol = osd_r$q;
+        end
+        else begin
+            sfol = sfol_r$q;
+        end
+        sfol_r$d = sfol;
         if (delim & ~fol) begin
             c_step = d_step;
             c_sat = d_sat;
@@ -6028,7 +6155,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         end
         unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | (eof_last & eol_on) | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q) | (im_2 & ~err_phase & seen_dom_crc$q & ~dom_bs$q);
         ffc = ff & ff_on & enabled & ffd_r$q;
-        unj_c = unj & enabled & ~suppress;
+        unj_c = unj & enabled & ~suppress & ~(delim & sfol & sfx_on);
         charge = sample & unj_c & ~stuff_dom;
         sdp_r$d = stuff_dom;
         pge = err_start & rep_on & enabled & (an_r$q != 32'h0) & pgl_r$q & ~ch_r$q & ~sdp_r$q;
@@ -6280,6 +6407,8 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             od_r$d = 1'b0;
             dprev$d = 1'b0;
             fol_r$d = 1'b0;
+            osd_r$d = 1'b0;
+            sfol_r$d = 1'b0;
             step_r$d = 32'h0;
         end
         dis = dis_r$q;
@@ -6851,6 +6980,25 @@ module canstar_hub_core$core$pj$1$ok_r(d,q,clock);
 endmodule // canstar_hub_core$core$pj$1$ok_r
 
 
+module canstar_hub_core$core$pj$1$osd_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$1$osd_r
+
+
 module canstar_hub_core$core$pj$1$pdec_r(d,q,clock);
     
     // Module arguments
@@ -7224,6 +7372,25 @@ module canstar_hub_core$core$pj$1$seen_dom_crc(d,q,clock);
 endmodule // canstar_hub_core$core$pj$1$seen_dom_crc
 
 
+module canstar_hub_core$core$pj$1$sfol_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$1$sfol_r
+
+
 module canstar_hub_core$core$pj$1$spb_r(d,q,clock);
     
     // Module arguments
@@ -7281,7 +7448,7 @@ module canstar_hub_core$core$pj$1$step_r(d,q,clock);
 endmodule // canstar_hub_core$core$pj$1$step_r
 
 
-module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,eof_last,im_2,im_12,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,rep_mask,rep_other,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,guard,dis,blame,charged,step,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
+module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,eof_last,im_2,im_12,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,rep_mask,rep_other,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,sub_dom,gl_others,guard,dis,blame,charged,step,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
     
     // Module arguments
     input wire  clock;
@@ -7318,6 +7485,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     input wire  rep_rec_w;
     input wire  ff;
     input wire  others_dom;
+    input wire  sub_dom;
     input wire  gl_others;
     input wire  guard;
     output reg  dis;
@@ -7367,6 +7535,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     localparam  im2_on = 1'b0;
     localparam  im2_at = 5'b0;
     localparam  spu_on = 1'b1;
+    localparam  sfx_on = 1'b1;
     localparam  reint_on = 1'b0;
     localparam  reint_w = 8'h1;
     
@@ -7492,6 +7661,12 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  fol_r$d;
     wire  fol_r$q;
     reg  fol_r$clock;
+    reg  osd_r$d;
+    wire  osd_r$q;
+    reg  osd_r$clock;
+    reg  sfol_r$d;
+    wire  sfol_r$q;
+    reg  sfol_r$clock;
     reg  [1:0] step_r$d;
     wire  [1:0] step_r$q;
     reg  step_r$clock;
@@ -7507,6 +7682,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     
     // Local signals
     reg  fol;
+    reg  sfol;
     reg  [7:0] c_step;
     reg  [7:0] c_sat;
     reg  [1:0] c_bl;
@@ -7731,6 +7907,16 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .q(fol_r$q),
         .clock(fol_r$clock)
     );
+    canstar_hub_core$core$pj$2$osd_r osd_r(
+        .d(osd_r$d),
+        .q(osd_r$q),
+        .clock(osd_r$clock)
+    );
+    canstar_hub_core$core$pj$2$sfol_r sfol_r(
+        .d(sfol_r$d),
+        .q(sfol_r$q),
+        .clock(sfol_r$clock)
+    );
     canstar_hub_core$core$pj$2$step_r step_r(
         .d(step_r$d),
         .q(step_r$q),
@@ -7793,6 +7979,8 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         od_r$clock = clock;
         dprev$clock = clock;
         fol_r$clock = clock;
+        osd_r$clock = clock;
+        sfol_r$clock = clock;
         step_r$clock = clock;
         bl_r$clock = clock;
         bl_dm_r$clock = clock;
@@ -7836,6 +8024,8 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         od_r$d = od_r$q;
         dprev$d = dprev$q;
         fol_r$d = fol_r$q;
+        osd_r$d = osd_r$q;
+        sfol_r$d = sfol_r$q;
         step_r$d = step_r$q;
         bl_r$d = bl_r$q;
         bl_dm_r$d = bl_dm_r$q;
@@ -7886,6 +8076,19 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             fol = fol_r$q;
         end
         fol_r$d = fol;
+        if (sample) begin
+            osd_r$d = 1'b0;
+        end
+        else if (sub_dom) begin
+            osd_r$d = 1'b1;
+        end
+        if (dom & ~dprev$q) begin
+            sfol = osd_r$q;
+        end
+        else begin
+            sfol = sfol_r$q;
+        end
+        sfol_r$d = sfol;
         if (delim & ~fol) begin
             c_step = d_step;
             c_sat = d_sat;
@@ -7911,7 +8114,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         end
         unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | (eof_last & eol_on) | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q) | (im_2 & ~err_phase & seen_dom_crc$q & ~dom_bs$q);
         ffc = ff & ff_on & enabled & ffd_r$q;
-        unj_c = unj & enabled & ~suppress;
+        unj_c = unj & enabled & ~suppress & ~(delim & sfol & sfx_on);
         charge = sample & unj_c & ~stuff_dom;
         sdp_r$d = stuff_dom;
         pge = err_start & rep_on & enabled & (an_r$q != 32'h0) & pgl_r$q & ~ch_r$q & ~sdp_r$q;
@@ -8163,6 +8366,8 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             od_r$d = 1'b0;
             dprev$d = 1'b0;
             fol_r$d = 1'b0;
+            osd_r$d = 1'b0;
+            sfol_r$d = 1'b0;
             step_r$d = 32'h0;
         end
         dis = dis_r$q;
@@ -8734,6 +8939,25 @@ module canstar_hub_core$core$pj$2$ok_r(d,q,clock);
 endmodule // canstar_hub_core$core$pj$2$ok_r
 
 
+module canstar_hub_core$core$pj$2$osd_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$2$osd_r
+
+
 module canstar_hub_core$core$pj$2$pdec_r(d,q,clock);
     
     // Module arguments
@@ -9107,6 +9331,25 @@ module canstar_hub_core$core$pj$2$seen_dom_crc(d,q,clock);
 endmodule // canstar_hub_core$core$pj$2$seen_dom_crc
 
 
+module canstar_hub_core$core$pj$2$sfol_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$2$sfol_r
+
+
 module canstar_hub_core$core$pj$2$spb_r(d,q,clock);
     
     // Module arguments
@@ -9221,7 +9464,7 @@ module canstar_hub_core$core$sd_run(d,q,clock);
 endmodule // canstar_hub_core$core$sd_run
 
 
-module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,eof_last,im_2,im_12,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,rep_mask,rep_other,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,guard,dis,blame,charged,step,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
+module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,eof_last,im_2,im_12,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,rep_mask,rep_other,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,sub_dom,gl_others,guard,dis,blame,charged,step,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
     
     // Module arguments
     input wire  clock;
@@ -9258,6 +9501,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     input wire  rep_rec_w;
     input wire  ff;
     input wire  others_dom;
+    input wire  sub_dom;
     input wire  gl_others;
     input wire  guard;
     output reg  dis;
@@ -9307,6 +9551,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     localparam  im2_on = 1'b1;
     localparam  im2_at = 5'b1;
     localparam  spu_on = 1'b0;
+    localparam  sfx_on = 1'b0;
     localparam  reint_on = 1'b0;
     localparam  reint_w = 8'h1;
     
@@ -9432,6 +9677,12 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  fol_r$d;
     wire  fol_r$q;
     reg  fol_r$clock;
+    reg  osd_r$d;
+    wire  osd_r$q;
+    reg  osd_r$clock;
+    reg  sfol_r$d;
+    wire  sfol_r$q;
+    reg  sfol_r$clock;
     reg  [1:0] step_r$d;
     wire  [1:0] step_r$q;
     reg  step_r$clock;
@@ -9447,6 +9698,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     
     // Local signals
     reg  fol;
+    reg  sfol;
     reg  [7:0] c_step;
     reg  [7:0] c_sat;
     reg  [1:0] c_bl;
@@ -9671,6 +9923,16 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .q(fol_r$q),
         .clock(fol_r$clock)
     );
+    canstar_hub_core$core$sj$0$osd_r osd_r(
+        .d(osd_r$d),
+        .q(osd_r$q),
+        .clock(osd_r$clock)
+    );
+    canstar_hub_core$core$sj$0$sfol_r sfol_r(
+        .d(sfol_r$d),
+        .q(sfol_r$q),
+        .clock(sfol_r$clock)
+    );
     canstar_hub_core$core$sj$0$step_r step_r(
         .d(step_r$d),
         .q(step_r$q),
@@ -9733,6 +9995,8 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         od_r$clock = clock;
         dprev$clock = clock;
         fol_r$clock = clock;
+        osd_r$clock = clock;
+        sfol_r$clock = clock;
         step_r$clock = clock;
         bl_r$clock = clock;
         bl_dm_r$clock = clock;
@@ -9776,6 +10040,8 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         od_r$d = od_r$q;
         dprev$d = dprev$q;
         fol_r$d = fol_r$q;
+        osd_r$d = osd_r$q;
+        sfol_r$d = sfol_r$q;
         step_r$d = step_r$q;
         bl_r$d = bl_r$q;
         bl_dm_r$d = bl_dm_r$q;
@@ -9826,6 +10092,19 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             fol = fol_r$q;
         end
         fol_r$d = fol;
+        if (sample) begin
+            osd_r$d = 1'b0;
+        end
+        else if (sub_dom) begin
+            osd_r$d = 1'b1;
+        end
+        if (dom & ~dprev$q) begin
+            sfol = osd_r$q;
+        end
+        else begin
+            sfol = sfol_r$q;
+        end
+        sfol_r$d = sfol;
         if (delim & ~fol) begin
             c_step = d_step;
             c_sat = d_sat;
@@ -9851,7 +10130,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         end
         unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | (eof_last & eol_on) | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q) | (im_2 & ~err_phase & seen_dom_crc$q & ~dom_bs$q);
         ffc = ff & ff_on & enabled & ffd_r$q;
-        unj_c = unj & enabled & ~suppress;
+        unj_c = unj & enabled & ~suppress & ~(delim & sfol & sfx_on);
         charge = sample & unj_c & ~stuff_dom;
         sdp_r$d = stuff_dom;
         pge = err_start & rep_on & enabled & (an_r$q != 32'h0) & pgl_r$q & ~ch_r$q & ~sdp_r$q;
@@ -10103,6 +10382,8 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             od_r$d = 1'b0;
             dprev$d = 1'b0;
             fol_r$d = 1'b0;
+            osd_r$d = 1'b0;
+            sfol_r$d = 1'b0;
             step_r$d = 32'h0;
         end
         dis = dis_r$q;
@@ -10674,6 +10955,25 @@ module canstar_hub_core$core$sj$0$ok_r(d,q,clock);
 endmodule // canstar_hub_core$core$sj$0$ok_r
 
 
+module canstar_hub_core$core$sj$0$osd_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$sj$0$osd_r
+
+
 module canstar_hub_core$core$sj$0$pdec_r(d,q,clock);
     
     // Module arguments
@@ -11047,6 +11347,25 @@ module canstar_hub_core$core$sj$0$seen_dom_crc(d,q,clock);
 endmodule // canstar_hub_core$core$sj$0$seen_dom_crc
 
 
+module canstar_hub_core$core$sj$0$sfol_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$sj$0$sfol_r
+
+
 module canstar_hub_core$core$sj$0$spb_r(d,q,clock);
     
     // Module arguments
@@ -11104,7 +11423,7 @@ module canstar_hub_core$core$sj$0$step_r(d,q,clock);
 endmodule // canstar_hub_core$core$sj$0$step_r
 
 
-module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,eof_last,im_2,im_12,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,rep_mask,rep_other,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,gl_others,guard,dis,blame,charged,step,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
+module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_delim,ack_slot,ack_delim,eof_1_6,eof_last,im_2,im_12,err_phase,crc_ok,frame_ok,err_start,rep_rec,rep_dom,rep_mask,rep_other,bit_start,bs_cnt,delim,suppress,stuff_dom,rep_glitched,rep_blamed,common,rep_rec_w,ff,others_dom,sub_dom,gl_others,guard,dis,blame,charged,step,tx_error,glitch,anomaly,glf,glf_own,bic,life,dbc,nack,rep_cnt,gc,pgc,silent,contender,window_dom);
     
     // Module arguments
     input wire  clock;
@@ -11141,6 +11460,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     input wire  rep_rec_w;
     input wire  ff;
     input wire  others_dom;
+    input wire  sub_dom;
     input wire  gl_others;
     input wire  guard;
     output reg  dis;
@@ -11190,6 +11510,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     localparam  im2_on = 1'b1;
     localparam  im2_at = 5'b1;
     localparam  spu_on = 1'b0;
+    localparam  sfx_on = 1'b0;
     localparam  reint_on = 1'b0;
     localparam  reint_w = 8'h1;
     
@@ -11315,6 +11636,12 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  fol_r$d;
     wire  fol_r$q;
     reg  fol_r$clock;
+    reg  osd_r$d;
+    wire  osd_r$q;
+    reg  osd_r$clock;
+    reg  sfol_r$d;
+    wire  sfol_r$q;
+    reg  sfol_r$clock;
     reg  [1:0] step_r$d;
     wire  [1:0] step_r$q;
     reg  step_r$clock;
@@ -11330,6 +11657,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     
     // Local signals
     reg  fol;
+    reg  sfol;
     reg  [7:0] c_step;
     reg  [7:0] c_sat;
     reg  [1:0] c_bl;
@@ -11554,6 +11882,16 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .q(fol_r$q),
         .clock(fol_r$clock)
     );
+    canstar_hub_core$core$sj$1$osd_r osd_r(
+        .d(osd_r$d),
+        .q(osd_r$q),
+        .clock(osd_r$clock)
+    );
+    canstar_hub_core$core$sj$1$sfol_r sfol_r(
+        .d(sfol_r$d),
+        .q(sfol_r$q),
+        .clock(sfol_r$clock)
+    );
     canstar_hub_core$core$sj$1$step_r step_r(
         .d(step_r$d),
         .q(step_r$q),
@@ -11616,6 +11954,8 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         od_r$clock = clock;
         dprev$clock = clock;
         fol_r$clock = clock;
+        osd_r$clock = clock;
+        sfol_r$clock = clock;
         step_r$clock = clock;
         bl_r$clock = clock;
         bl_dm_r$clock = clock;
@@ -11659,6 +11999,8 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         od_r$d = od_r$q;
         dprev$d = dprev$q;
         fol_r$d = fol_r$q;
+        osd_r$d = osd_r$q;
+        sfol_r$d = sfol_r$q;
         step_r$d = step_r$q;
         bl_r$d = bl_r$q;
         bl_dm_r$d = bl_dm_r$q;
@@ -11709,6 +12051,19 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             fol = fol_r$q;
         end
         fol_r$d = fol;
+        if (sample) begin
+            osd_r$d = 1'b0;
+        end
+        else if (sub_dom) begin
+            osd_r$d = 1'b1;
+        end
+        if (dom & ~dprev$q) begin
+            sfol = osd_r$q;
+        end
+        else begin
+            sfol = sfol_r$q;
+        end
+        sfol_r$d = sfol;
         if (delim & ~fol) begin
             c_step = d_step;
             c_sat = d_sat;
@@ -11734,7 +12089,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         end
         unj = (domw & ((~err_phase & ((tx_region & ~cont_r$q) | (ack_delim & ~ack_missing$q) | eof_1_6 | (eof_last & eol_on) | (ack_slot & cont_r$q & ack_rule))) | delim)) | (crc_delim & ~err_phase & seen_dom_crc$q) | (im_2 & ~err_phase & seen_dom_crc$q & ~dom_bs$q);
         ffc = ff & ff_on & enabled & ffd_r$q;
-        unj_c = unj & enabled & ~suppress;
+        unj_c = unj & enabled & ~suppress & ~(delim & sfol & sfx_on);
         charge = sample & unj_c & ~stuff_dom;
         sdp_r$d = stuff_dom;
         pge = err_start & rep_on & enabled & (an_r$q != 32'h0) & pgl_r$q & ~ch_r$q & ~sdp_r$q;
@@ -11986,6 +12341,8 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             od_r$d = 1'b0;
             dprev$d = 1'b0;
             fol_r$d = 1'b0;
+            osd_r$d = 1'b0;
+            sfol_r$d = 1'b0;
             step_r$d = 32'h0;
         end
         dis = dis_r$q;
@@ -12557,6 +12914,25 @@ module canstar_hub_core$core$sj$1$ok_r(d,q,clock);
 endmodule // canstar_hub_core$core$sj$1$ok_r
 
 
+module canstar_hub_core$core$sj$1$osd_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$sj$1$osd_r
+
+
 module canstar_hub_core$core$sj$1$pdec_r(d,q,clock);
     
     // Module arguments
@@ -12928,6 +13304,25 @@ module canstar_hub_core$core$sj$1$seen_dom_crc(d,q,clock);
     end
           
 endmodule // canstar_hub_core$core$sj$1$seen_dom_crc
+
+
+module canstar_hub_core$core$sj$1$sfol_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$sj$1$sfol_r
 
 
 module canstar_hub_core$core$sj$1$spb_r(d,q,clock);

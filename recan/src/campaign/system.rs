@@ -519,14 +519,15 @@ fn min_pulse(r: &RunResult, np: usize, ports_except: Option<&[(usize, usize)]>) 
 
 /// Run one plan (the runner of [`super::execute`]).
 pub fn run_plan(p: &RunPlan, settings: &Settings) -> RunOutcome {
-    run_detailed(&p.class, p.rep, p.seed, settings, None).outcome
+    run_detailed(&p.class, p.rep, p.seed, settings, None, false).outcome
 }
 
 /// Run `class` with seed `seed` (repetition `rep`, for the record), optionally writing
 /// a VCD; returns the outcome, the raw result and the plot data.
-pub fn run_detailed(class: &Class, rep: u32, seed: u64, settings: &Settings, vcd: Option<PathBuf>) -> Detailed {
+pub fn run_detailed(class: &Class, rep: u32, seed: u64, settings: &Settings, vcd: Option<PathBuf>, trace: bool) -> Detailed {
     let mut b = build(class, seed, settings);
     b.spec.vcd = vcd;
+    b.spec.trace = trace;
     let mut pre_fail = None;
     if b.simultaneous {
         if let Err(e) = resolve_simultaneous(&mut b.spec) {
