@@ -140,12 +140,14 @@ pub struct HubCore {
     rep_rec_w: Signal<Local, Bit>,
     rep_gl: Signal<Local, Bit>,
     /// §5.20 peer guard: the estimate of the peer's sublink counters; `pinc`, `pch_*` and
-    /// `guard` below come from the units' registered `step`, i.e. the last clock's charges.
+    /// `guard` below come from the units' registered `step`, i.e. the last clock's charges:
+    /// `pch_port` a port was charged, `pch_shared` the charge was not a port's alone (two
+    /// ports, or a port and a sublink, §5.24).
     peer: PeerEstimate,
     pinc: Signal<Local, Bits<2>>,
     guard: Signal<Local, Bit>,
-    pch_one: Signal<Local, Bit>,
-    pch_two: Signal<Local, Bit>,
+    pch_port: Signal<Local, Bit>,
+    pch_shared: Signal<Local, Bit>,
     _n: usize,
     _m: usize,
     _dn: usize,
@@ -244,8 +246,8 @@ impl HubCore {
             peer: PeerEstimate::new(m > 0 && cfg.peer_guard > 0, 8 * cfg.peer_guard, cfg.sub_bic_decay),
             pinc: Default::default(),
             guard: Default::default(),
-            pch_one: Default::default(),
-            pch_two: Default::default(),
+            pch_port: Default::default(),
+            pch_shared: Default::default(),
             _n: n,
             _m: m,
             _dn: dn,
@@ -425,27 +427,27 @@ impl Logic for HubCore {
         // peer's side, where the peer charges its own ports). All one clock late: the units'
         // `step` is registered, and so is the good frame.
         self.pinc.next = 0.into();
-        self.pch_one.next = false;
-        self.pch_two.next = false;
+        self.pch_port.next = false;
+        self.pch_shared.next = false;
         for i in 0..self._n {
             if self.pj[i].step.val() > self.pinc.val() {
                 self.pinc.next = self.pj[i].step.val();
             }
             if self.pj[i].step.val() != 0 {
-                self.pch_two.next = self.pch_two.val() | self.pch_one.val();
-                self.pch_one.next = true;
+                self.pch_shared.next = self.pch_shared.val() | self.pch_port.val();
+                self.pch_port.next = true;
             }
         }
         for j in 0..self._m {
             if self.sj[j].step.val() != 0 {
-                self.pch_two.next = true;
+                self.pch_shared.next = true;
             }
         }
         self.peer.clock.next = self.clock.val();
         self.peer.reset.next = self.reset.val();
         self.peer.inc.next = self.pinc.val();
         self.peer.frame_ok.next = self.mon_sample.val() & self.mon_frame_ok.val();
-        self.guard.next = self.peer.high.val() & !self.pch_two.val();
+        self.guard.next = self.peer.high.val() & !self.pch_shared.val();
         // port judges
         self.any_blame.next = false;
         self.any_sub_blame.next = false;

@@ -1012,8 +1012,8 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
     reg  rep_gl;
     reg  [1:0] pinc;
     reg  guard;
-    reg  pch_one;
-    reg  pch_two;
+    reg  pch_port;
+    reg  pch_shared;
     
     // Sub module instances
     canstar_cancentrate_core$core$coupler coupler(
@@ -1411,34 +1411,34 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
             pd_one = 1'b1;
         end
         pinc = 32'h0;
-        pch_one = 1'b0;
-        pch_two = 1'b0;
+        pch_port = 1'b0;
+        pch_shared = 1'b0;
         if (pj$0$step > pinc) begin
             pinc = pj$0$step;
         end
         if (pj$0$step != 32'h0) begin
-            pch_two = pch_two | pch_one;
-            pch_one = 1'b1;
+            pch_shared = pch_shared | pch_port;
+            pch_port = 1'b1;
         end
         if (pj$1$step > pinc) begin
             pinc = pj$1$step;
         end
         if (pj$1$step != 32'h0) begin
-            pch_two = pch_two | pch_one;
-            pch_one = 1'b1;
+            pch_shared = pch_shared | pch_port;
+            pch_port = 1'b1;
         end
         if (pj$2$step > pinc) begin
             pinc = pj$2$step;
         end
         if (pj$2$step != 32'h0) begin
-            pch_two = pch_two | pch_one;
-            pch_one = 1'b1;
+            pch_shared = pch_shared | pch_port;
+            pch_port = 1'b1;
         end
         peer$clock = clock;
         peer$reset = reset;
         peer$inc = pinc;
         peer$frame_ok = mon_sample & mon_frame_ok;
-        guard = peer$high & ~pch_two;
+        guard = peer$high & ~pch_shared;
         any_blame = 1'b0;
         any_sub_blame = 1'b0;
         any_tx_error = 1'b0;
