@@ -1054,29 +1054,28 @@ impl Logic for JudgeUnit {
         // had been dominant since the last sample point (a node's reaction to the peer's
         // pulse that it saw before this hub's sample; the tails of error flags end before
         // the sample at which BT is recessive, so they never make a follower in a delimiter)
+        // (§5.25 sublink follower, ports: the same test against the sublinks alone,
+        // `osd_r`, `sfol`)
         if self.sample.val() {
             self.od_r.d.next = false;
-        } else if self.others_dom.val() {
-            self.od_r.d.next = true;
+            self.osd_r.d.next = false;
+        } else {
+            if self.others_dom.val() {
+                self.od_r.d.next = true;
+            }
+            if self.sub_dom.val() {
+                self.osd_r.d.next = true;
+            }
         }
         self.dprev.d.next = self.dom.val();
         if self.dom.val() & !self.dprev.q.val() {
             self.fol.next = self.od_r.q.val();
-        } else {
-            self.fol.next = self.fol_r.q.val();
-        }
-        self.fol_r.d.next = self.fol.val();
-        // §5.25 sublink follower (ports): the same test against the sublinks alone
-        if self.sample.val() {
-            self.osd_r.d.next = false;
-        } else if self.sub_dom.val() {
-            self.osd_r.d.next = true;
-        }
-        if self.dom.val() & !self.dprev.q.val() {
             self.sfol.next = self.osd_r.q.val();
         } else {
+            self.fol.next = self.fol_r.q.val();
             self.sfol.next = self.sfol_r.q.val();
         }
+        self.fol_r.d.next = self.fol.val();
         self.sfol_r.d.next = self.sfol.val();
         // the step of a charge at the sample: `delim_blames` blames for a dominant bit in an
         // error or overload delimiter that no other unit led, one blame otherwise (one adder)

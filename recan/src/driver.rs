@@ -317,10 +317,8 @@ impl Driver {
                     return Some(w);
                 }
                 // omission discrepancy
-                if self.log.is_some() {
-                    let n = [(ctrls[0].tec(), ctrls[0].rec()), (ctrls[1].tec(), ctrls[1].rec())];
-                    self.note(now, || format!("tx routine {}: omission discrepancy, TEC/REC A {:?} B {:?}", abc(c), n[0], n[1]));
-                }
+                let (a, b) = (&ctrls[0], &ctrls[1]);
+                self.note(now, || format!("tx routine {}: omission discrepancy, TEC/REC A {:?} B {:?}", abc(c), (a.tec(), a.rec()), (b.tec(), b.rec())));
                 if self.msg_tx_omi >= self.spec.max_inconsists {
                     self.success(now, out);
                     self.note(now, || format!("tx routine {}: omission, MsgTxOmi at max, success", abc(c)));

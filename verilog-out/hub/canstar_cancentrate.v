@@ -3370,30 +3370,26 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         end
         if (sample) begin
             od_r$d = 1'b0;
+            osd_r$d = 1'b0;
         end
-        else if (others_dom) begin
-            od_r$d = 1'b1;
+        else begin
+            if (others_dom) begin
+                od_r$d = 1'b1;
+            end
+            if (sub_dom) begin
+                osd_r$d = 1'b1;
+            end
         end
         dprev$d = dom;
         if (dom & ~dprev$q) begin
             fol = od_r$q;
-        end
-        else begin
-            fol = fol_r$q;
-        end
-        fol_r$d = fol;
-        if (sample) begin
-            osd_r$d = 1'b0;
-        end
-        else if (sub_dom) begin
-            osd_r$d = 1'b1;
-        end
-        if (dom & ~dprev$q) begin
             sfol = osd_r$q;
         end
         else begin
+            fol = fol_r$q;
             sfol = sfol_r$q;
         end
+        fol_r$d = fol;
         sfol_r$d = sfol;
         if (delim & ~fol) begin
             c_step = d_step;
@@ -5329,30 +5325,26 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         end
         if (sample) begin
             od_r$d = 1'b0;
+            osd_r$d = 1'b0;
         end
-        else if (others_dom) begin
-            od_r$d = 1'b1;
+        else begin
+            if (others_dom) begin
+                od_r$d = 1'b1;
+            end
+            if (sub_dom) begin
+                osd_r$d = 1'b1;
+            end
         end
         dprev$d = dom;
         if (dom & ~dprev$q) begin
             fol = od_r$q;
-        end
-        else begin
-            fol = fol_r$q;
-        end
-        fol_r$d = fol;
-        if (sample) begin
-            osd_r$d = 1'b0;
-        end
-        else if (sub_dom) begin
-            osd_r$d = 1'b1;
-        end
-        if (dom & ~dprev$q) begin
             sfol = osd_r$q;
         end
         else begin
+            fol = fol_r$q;
             sfol = sfol_r$q;
         end
+        fol_r$d = fol;
         sfol_r$d = sfol;
         if (delim & ~fol) begin
             c_step = d_step;
@@ -7288,30 +7280,26 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         end
         if (sample) begin
             od_r$d = 1'b0;
+            osd_r$d = 1'b0;
         end
-        else if (others_dom) begin
-            od_r$d = 1'b1;
+        else begin
+            if (others_dom) begin
+                od_r$d = 1'b1;
+            end
+            if (sub_dom) begin
+                osd_r$d = 1'b1;
+            end
         end
         dprev$d = dom;
         if (dom & ~dprev$q) begin
             fol = od_r$q;
-        end
-        else begin
-            fol = fol_r$q;
-        end
-        fol_r$d = fol;
-        if (sample) begin
-            osd_r$d = 1'b0;
-        end
-        else if (sub_dom) begin
-            osd_r$d = 1'b1;
-        end
-        if (dom & ~dprev$q) begin
             sfol = osd_r$q;
         end
         else begin
+            fol = fol_r$q;
             sfol = sfol_r$q;
         end
+        fol_r$d = fol;
         sfol_r$d = sfol;
         if (delim & ~fol) begin
             c_step = d_step;
