@@ -161,6 +161,11 @@ pub struct HubConfig {
     /// overload delimiter that rose while a sublink had been dominant since the last sample
     /// point is the node's reaction to the peer's pulse: blamed, not charged.
     pub sublink_follower_excuse: bool,
+    /// Early-SOF excuse (hub.md §5.26): no first-flagger charge in a dominant run that began
+    /// at a SOF whose edge came through a sublink alone at least this many clocks before
+    /// the SOF's bit start (in Intermission bit 2 after this hub's sample point: nodes that
+    /// sample later answer it with overload flags), 0..=3; 0 = off.
+    pub early_sof_clocks: u64,
     /// Reintegration window W in frames (None = isolation latched until reset).
     pub reintegration: Option<u64>,
     /// Fault-injection hook (None = no hooks).
@@ -209,6 +214,7 @@ impl Default for HubConfig {
             sub_intermission_lag: 2,
             stuff_pulse_rule: true,
             sublink_follower_excuse: true,
+            early_sof_clocks: 3,
             reintegration: None,
             fault_injection: None,
             debug: true,
@@ -373,6 +379,9 @@ impl HubConfig {
         }
         if self.sub_intermission_lag > 7 {
             return Err("sub_intermission_lag must be in 0..=7".into());
+        }
+        if self.early_sof_clocks > 3 {
+            return Err("early_sof_clocks must be in 0..=3 (0 = off)".into());
         }
         if self.window_lag > 31 || self.sub_window_lag > 31 {
             return Err("window_lag and sub_window_lag must be in 0..=31".into());

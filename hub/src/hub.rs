@@ -57,6 +57,7 @@ use crate::frame_state::{Field, FrameDecode};
 use crate::inject::Injector;
 use crate::judge::JudgeUnit;
 use crate::peer::PeerEstimate;
+use crate::run_start::RunStart;
 use crate::sigs;
 use rust_hdl::prelude::*;
 
@@ -97,7 +98,9 @@ pub struct HubCore {
     efgen: ErrorFlagGen,
     err_start_r: DFF<Bit>,
     ff_r: DFF<Bit>,
-    sd_run: DFF<Bit>,
+    /// How BT's dominant run began (the dominant stuff bit of §5.10, the early SOF from
+    /// the peer's side of §5.26): the first-flagger rule is off in such a run.
+    run_start: RunStart,
     gl_one: Signal<Local, Bit>,
     gl_two: Signal<Local, Bit>,
     /// some port glitched in this frame; sublinks with a glitch of their own (not common)
@@ -129,7 +132,6 @@ pub struct HubCore {
     bs_r: DFF<Bits<5>>,
     delim_r: DFF<Bit>,
     delim_z: Signal<Local, Bit>,
-    bt_prev: DFF<Bit>,
     stuff_dom: Signal<Local, Bit>,
     any_an: Signal<Local, Bit>,
     any_blame: Signal<Local, Bit>,
@@ -205,7 +207,7 @@ impl HubCore {
             efgen: Default::default(),
             err_start_r: Default::default(),
             ff_r: Default::default(),
-            sd_run: Default::default(),
+            run_start: RunStart::new(cfg.early_sof_clocks),
             gl_one: Default::default(),
             gl_two: Default::default(),
             gl_port: Default::default(),
@@ -233,7 +235,6 @@ impl HubCore {
             bs_r: Default::default(),
             delim_r: Default::default(),
             delim_z: Default::default(),
-            bt_prev: Default::default(),
             stuff_dom: Default::default(),
             any_an: Default::default(),
             any_blame: Default::default(),
@@ -313,30 +314,17 @@ impl Logic for HubCore {
             self.delim_r.d.next = false;
         }
         // a stuff bit after five recessive bits: its level must be dominant (judge.rs,
-        // stuff-bit rule: a dominant level there is blamed but not charged)
-        self.bt_prev.clock.next = self.clock.val();
-        self.bt_prev.d.next = self.bt_prev.q.val();
-        if self.mon_sample.val() {
-            self.bt_prev.d.next = self.coupler.bt.val();
-        }
-        if self.reset.val() {
-            self.bt_prev.d.next = true;
-        }
-        self.stuff_dom.next = self.mon_stuff.val() & self.bt_prev.q.val();
-        // BT's dominant run began at such a stuff bit (first-flagger rule: the flags of
-        // nodes that saw one more recessive bit than the monitor start there)
-        self.sd_run.clock.next = self.clock.val();
-        self.sd_run.d.next = self.sd_run.q.val();
-        if self.mon_sample.val() {
-            if self.coupler.bt.val() {
-                self.sd_run.d.next = false;
-            } else if self.stuff_dom.val() {
-                self.sd_run.d.next = true;
-            }
-        }
-        if self.reset.val() {
-            self.sd_run.d.next = false;
-        }
+        // stuff-bit rule: a dominant level there is blamed but not charged); whether BT's
+        // dominant run began at one, or at an early SOF from the peer's side (§5.26: a
+        // sublink and no port dominant), for the first-flagger rule
+        self.run_start.clock.next = self.clock.val();
+        self.run_start.reset.next = self.reset.val();
+        self.run_start.sample.next = self.mon_sample.val();
+        self.run_start.bit_start.next = self.mon_bit_start.val();
+        self.run_start.stuff.next = self.mon_stuff.val();
+        self.run_start.sof.next = self.decode.sof.val();
+        self.run_start.bt.next = self.coupler.bt.val();
+        self.stuff_dom.next = self.run_start.stuff_dom.val();
         // some unit glitched recently: the other units' blames are not charged
         self.any_an.next = false;
         // units that glitched in this frame: at least one, at least two (first-flagger rule)
@@ -419,6 +407,8 @@ impl Logic for HubCore {
                 self.pd_one.next = true;
             }
         }
+        // (§5.26) a sublink and no port dominant
+        self.run_start.sub_lead.next = self.sd_one.val() & !self.pd_one.val();
         // §5.20 peer guard: the peer charges its sublinks for the episodes that this hub
         // charges to its ports, and takes one off every `sub_bic_decay` good frames; this
         // hub follows that count with the largest charge of a port in each clock; the guard
@@ -553,14 +543,14 @@ impl Logic for HubCore {
         }
         // first-flagger rule (judge.rs §5.12): the monitor alone started the episode, in
         // the transmission region, and BT's dominant run did not begin at a dominant stuff
-        // bit (each unit excuses itself if another input glitched)
+        // bit or at an early SOF (§5.26) (each unit excuses itself if another input glitched)
         self.ff_r.clock.next = self.clock.val();
         self.ff_r.d.next = self.trigger.val()
             & !self.efgen.busy.val()
             & self.mon_error.val()
             & !self.any_blame.val()
             & !self.any_tx_error.val()
-            & !self.sd_run.q.val()
+            & !self.run_start.excused.val()
             & !self.stuff_dom.val()
             & self.decode.tx_region.val();
         if self.reset.val() {

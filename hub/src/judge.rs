@@ -525,6 +525,15 @@
 //! reached 48 in the clock its sublinks reached their limit. Tests:
 //! `hub/tests/judge_rules.rs` `sublink_follower_is_blamed_not_charged`,
 //! `recan/tests/campaign_runs.rs` `a_port_that_follows_a_sublink_in_a_delimiter_is_not_charged`.
+//!
+//! **§5.26 an early SOF from the peer's side makes no first flagger (session 30, hub).**
+//! The hub withholds `ff` in a dominant run that began at a SOF whose edge came through a
+//! sublink while no port was dominant for at least `early_sof_clocks` (3) clocks before
+//! the SOF's bit start ([`crate::run_start::RunStart`], beside the §5.10 dominant stuff
+//! bit): nodes that sample later than this hub took Intermission bit 2 for an overload
+//! condition, and their overload flags are reactions. Tests: `hub/tests/run_start.rs`,
+//! `hub/tests/first_flagger.rs`, `recan/tests/campaign_runs.rs`
+//! `overload_flags_after_an_early_sof_from_the_peer_are_not_charged`.
 
 use crate::pulse::PulseCheck;
 use rust_hdl::prelude::*;

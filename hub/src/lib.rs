@@ -111,6 +111,7 @@ pub mod inject;
 pub mod judge;
 pub mod peer;
 pub mod pulse;
+pub mod run_start;
 pub mod top;
 
 use rust_hdl::prelude::{Direction, Signal, Synth};

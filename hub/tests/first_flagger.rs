@@ -2,7 +2,9 @@
 //! transmitter sits behind the peer hub, so the sublinks are the dominant contenders when
 //! its error flag starts an episode that the frame monitor alone detects. A glitch that
 //! every replica shows (the peer's contribution) does not excuse the replicas from each
-//! other; a glitch of one replica alone excuses the other one.
+//! other; a glitch of one replica alone excuses the other one. A SOF whose edge came through
+//! the sublinks alone well before its bit start makes no first flagger of the overload flags
+//! that answer it (§5.26).
 mod common;
 use canstar_hub::config::HubConfig;
 use canstar_hub::frame_state::Field;
@@ -15,12 +17,9 @@ fn bit(h: &mut HubCore, field: Field, pos: usize, error: bool, sub: &dyn Fn(usiz
     monitor_bit(h, field, pos, error, &|_, _| true, sub);
 }
 
-/// A frame from behind the peer: SOF and identifier bits on both sublinks, a 2-clock
-/// dominant pulse at the start of identifier bit 2 on the sublinks in `glitching`, then the
-/// transmitter's error flag (six dominant bits, the monitor's stuff error at the sixth).
-/// Returns the ports' and the sublinks' `bic`.
-fn flag_after_glitch(glitching: &[usize]) -> (Vec<u64>, Vec<u64>) {
-    let mut h = HubCore::new(&HubConfig::default());
+/// A hub (3 ports, 2 sublinks) after reset and 12 idle bits.
+fn idle_hub(cfg: &HubConfig) -> HubCore {
+    let mut h = HubCore::new(cfg);
     for i in 0..3 {
         h.set_rx(i, true);
     }
@@ -28,10 +27,19 @@ fn flag_after_glitch(glitching: &[usize]) -> (Vec<u64>, Vec<u64>) {
         h.set_reh_rx(j, true);
     }
     reset_hub(&mut h);
-    let (rec, dom) = (|_: usize, _: usize| true, |_: usize, _: usize| false);
     for _ in 0..12 {
-        bit(&mut h, Field::Idle, 0, false, &rec);
+        bit(&mut h, Field::Idle, 0, false, &|_, _| true);
     }
+    h
+}
+
+/// A frame from behind the peer: SOF and identifier bits on both sublinks, a 2-clock
+/// dominant pulse at the start of identifier bit 2 on the sublinks in `glitching`, then the
+/// transmitter's error flag (six dominant bits, the monitor's stuff error at the sixth).
+/// Returns the ports' and the sublinks' `bic`.
+fn flag_after_glitch(glitching: &[usize]) -> (Vec<u64>, Vec<u64>) {
+    let mut h = idle_hub(&HubConfig::default());
+    let (rec, dom) = (|_: usize, _: usize| true, |_: usize, _: usize| false);
     bit(&mut h, Field::Sof, 0, false, &dom);
     bit(&mut h, Field::Id, 0, false, &rec);
     bit(&mut h, Field::Id, 1, false, &dom);
@@ -51,4 +59,41 @@ fn a_common_glitch_does_not_excuse_the_replicas() {
     assert_eq!(flag_after_glitch(&[]), (vec![0; 3], vec![8, 8]), "no glitch: both contenders charged");
     assert_eq!(flag_after_glitch(&[0, 1]), (vec![0; 3], vec![8, 8]), "common glitch (the peer's): both still charged");
     assert_eq!(flag_after_glitch(&[0]), (vec![0; 3], vec![8, 0]), "sublink 0 alone glitched: it excuses sublink 1, not itself");
+}
+
+/// hub.md §5.26: a pulse reaches this hub at clock `edge` of Intermission bit 2 (through
+/// both sublinks, or with `port_led` through port 2), at or after this hub's sample (clock
+/// 12), and the monitor takes the next bit for a SOF. Port 0's node samples later and
+/// answers with an overload flag (six dominant bits from the SOF's bit start), and so does
+/// a node behind the peer (the sublinks stay dominant); the monitor finds the stuff error
+/// at the sixth dominant bit. Returns the ports' and the sublinks' `bic`.
+fn overload_flags_after_early_sof(edge: usize, port_led: bool, early_sof_clocks: u64) -> (Vec<u64>, Vec<u64>) {
+    let mut h = idle_hub(&HubConfig { early_sof_clocks, ..HubConfig::default() });
+    let (rec, dom) = (|_: usize, _: usize| true, |_: usize, _: usize| false);
+    monitor_bit(&mut h, Field::Intermission, 0, false, &|_, _| true, &rec);
+    let pulse = |k: usize| k < edge;
+    if port_led {
+        monitor_bit(&mut h, Field::Intermission, 1, false, &|i, k| i != 2 || pulse(k), &rec);
+    } else {
+        monitor_bit(&mut h, Field::Intermission, 1, false, &|_, _| true, &|_, k| pulse(k));
+    }
+    // port 0's overload flag; port 2 stays dominant when it led
+    let flag = |i: usize, _: usize| i == 1 || (i == 2 && !port_led);
+    monitor_bit(&mut h, Field::Sof, 0, false, &flag, &dom);
+    for p in 0..5 {
+        monitor_bit(&mut h, Field::Id, p, p == 4, &flag, &dom);
+    }
+    monitor_bit(&mut h, Field::ErrorFlag, 0, false, &flag, &dom);
+    (h.bic.iter().map(|s| s.val().index() as u64).collect(), h.sub_bic.iter().map(|s| s.val().index() as u64).collect())
+}
+
+#[test]
+fn overload_flags_after_an_early_sof_from_the_peer_are_not_first_flags() {
+    let f = overload_flags_after_early_sof;
+    let (charged, nobody) = ((vec![8, 0, 0], vec![8, 8]), (vec![0; 3], vec![0, 0]));
+    assert_eq!(f(12, false, 3), nobody, "BT dominant 3 clocks before the bit start, from the sublinks: nobody charged");
+    assert_eq!(f(12, false, 0), charged, "rule off: the dominant contenders are charged");
+    assert_eq!(f(13, false, 3), charged, "2 clocks early (as a SOF from the peer's bit start can be): charged");
+    assert_eq!(f(13, false, 2), nobody, "the same with early_sof_clocks 2");
+    assert_eq!(f(12, true, 3), (vec![8, 0, 8], vec![8, 8]), "a port led the edge (this hub's node): charged");
 }

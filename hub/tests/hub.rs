@@ -213,6 +213,7 @@ fn config_defaults_serde_and_validation() {
     assert_eq!((d.timing.ntq(), d.timing.sp(), d.timing.ph2, d.bit_clocks()), (8, 6, 2, 16));
     assert_eq!((d.bic_threshold, d.nack_threshold, d.dbc_threshold), (6, 7, 13));
     assert!(d.first_flagger && d.sub_first_flagger);
+    assert_eq!(d.early_sof_clocks, 3);
     assert_eq!((d.sub_bic_threshold, d.sub_dbc_threshold, d.replica_limit), (9, 28, 2));
     assert_eq!((d.peer_glitch_limit, d.peer_glitch_decay), (12, 4));
     assert_eq!(d.reintegration, None);
@@ -238,6 +239,7 @@ fn config_defaults_serde_and_validation() {
         HubConfig { sub_dominant_glitch_min: 0, ..Default::default() },
         HubConfig { sub_dominant_glitch_min: 12, ..Default::default() },
         HubConfig { reintegration: Some(0), ..Default::default() },
+        HubConfig { early_sof_clocks: 4, ..Default::default() },
         HubConfig {
             fault_injection: Some(FaultInjection { point: FaultPoint::Sublink(2), kind: InjectionKind::BitFlip, start_field: 6 }),
             ..Default::default()

@@ -51,6 +51,34 @@ fn a_port_that_follows_a_sublink_in_a_delimiter_is_not_charged() {
     assert_eq!(o.isolations.iter().filter(|i| i.starts_with("hub 0 sublink")).count(), 2, "{:?}", o.isolations);
 }
 
+/// hub.md §5.26: the Receiver's controller B, on hub 1's port 2, has its uplink forced
+/// dominant about every 10.75 bits. Some pulses start as hub 1 enters the intermission after
+/// an overload delimiter, while hub 0's monitor is a bit ahead: hub 1 takes the pulse for an
+/// overload condition, hub 0 for a SOF whose edge came through its sublinks in intermission
+/// bit 2, and charged its healthy port 0 and both sublinks as first flaggers for the
+/// overload flags that answered it. Its sublinks reached their limit with the faulty port
+/// and the hubs isolated each other. Without those charges hub 1 isolates the port alone.
+/// A SOF from the peer's node, which reaches this hub a clock or two before its own bit
+/// start, must keep its first flaggers: with `early_sof_clocks` 1 a faulty downlink's flags
+/// behind hub 1 go uncharged and the hubs isolate each other.
+#[test]
+fn overload_flags_after_an_early_sof_from_the_peer_are_not_charged() {
+    let o = run("sweep-up-r2d-e10", 11664831222488605187);
+    assert!(o.pass, "{:?}", o.failures);
+    assert!(o.isolations.len() == 1 && o.isolations[0].starts_with("hub 1 port 2@"), "{:?}", o.isolations);
+    let with = |class: &str, seed: u64, early_sof_clocks: u64| {
+        let classes = campaign::select(class).unwrap();
+        let hub = canstar_hub::config::HubConfig { early_sof_clocks, ..canstar_recan::NetworkSpec::default().hub };
+        let s = Settings { seed: 1, reps: 1, hub: Some(hub), ..Settings::default() };
+        system::run_plan(&RunPlan { class: classes[0].clone(), rep: 0, seed }, &s)
+    };
+    let off = with("sweep-up-r2d-e10", 11664831222488605187, 0);
+    assert!(!off.pass && off.failures.iter().any(|f| f.contains("hubs isolated each other")), "without the rule: {:?}", off.failures);
+    assert!(run("sweep-down-d2r-e10", 14880712450563600277).pass);
+    let early = with("sweep-down-d2r-e10", 14880712450563600277, 1);
+    assert!(!early.pass, "early_sof_clocks 1: {:?}", early.isolations);
+}
+
 /// hub.md §5.19: node 1's controller B loses a dominant bit about every 9 bits on its
 /// downlink and flags in what is the last EOF bit for everyone else. The receivers take
 /// that bit for an overload condition, the transmitter for a form error (TEC + 8 and a

@@ -767,9 +767,16 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
     reg  ff_r$d;
     wire  ff_r$q;
     reg  ff_r$clock;
-    reg  sd_run$d;
-    wire  sd_run$q;
-    reg  sd_run$clock;
+    reg  run_start$clock;
+    reg  run_start$reset;
+    reg  run_start$sample;
+    reg  run_start$bit_start;
+    reg  run_start$stuff;
+    reg  run_start$sof;
+    reg  run_start$bt;
+    reg  run_start$sub_lead;
+    wire  run_start$stuff_dom;
+    wire  run_start$excused;
     reg  sub_bl_r$d;
     wire  sub_bl_r$q;
     reg  sub_bl_r$clock;
@@ -975,9 +982,6 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
     reg  delim_r$d;
     wire  delim_r$q;
     reg  delim_r$clock;
-    reg  bt_prev$d;
-    wire  bt_prev$q;
-    reg  bt_prev$clock;
     reg  peer$clock;
     reg  peer$reset;
     reg  [1:0] peer$inc;
@@ -1060,10 +1064,17 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         .q(ff_r$q),
         .clock(ff_r$clock)
     );
-    canstar_cancentrate_core$core$sd_run sd_run(
-        .d(sd_run$d),
-        .q(sd_run$q),
-        .clock(sd_run$clock)
+    canstar_cancentrate_core$core$run_start run_start(
+        .clock(run_start$clock),
+        .reset(run_start$reset),
+        .sample(run_start$sample),
+        .bit_start(run_start$bit_start),
+        .stuff(run_start$stuff),
+        .sof(run_start$sof),
+        .bt(run_start$bt),
+        .sub_lead(run_start$sub_lead),
+        .stuff_dom(run_start$stuff_dom),
+        .excused(run_start$excused)
     );
     canstar_cancentrate_core$core$sub_bl_r sub_bl_r(
         .d(sub_bl_r$d),
@@ -1290,11 +1301,6 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         .q(delim_r$q),
         .clock(delim_r$clock)
     );
-    canstar_cancentrate_core$core$bt_prev bt_prev(
-        .d(bt_prev$d),
-        .q(bt_prev$q),
-        .clock(bt_prev$clock)
-    );
     canstar_cancentrate_core$core$peer peer(
         .clock(peer$clock),
         .reset(peer$reset),
@@ -1334,28 +1340,14 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
         if (reset) begin
             delim_r$d = 1'b0;
         end
-        bt_prev$clock = clock;
-        bt_prev$d = bt_prev$q;
-        if (mon_sample) begin
-            bt_prev$d = coupler$bt;
-        end
-        if (reset) begin
-            bt_prev$d = 1'b1;
-        end
-        stuff_dom = mon_stuff & bt_prev$q;
-        sd_run$clock = clock;
-        sd_run$d = sd_run$q;
-        if (mon_sample) begin
-            if (coupler$bt) begin
-                sd_run$d = 1'b0;
-            end
-            else if (stuff_dom) begin
-                sd_run$d = 1'b1;
-            end
-        end
-        if (reset) begin
-            sd_run$d = 1'b0;
-        end
+        run_start$clock = clock;
+        run_start$reset = reset;
+        run_start$sample = mon_sample;
+        run_start$bit_start = mon_bit_start;
+        run_start$stuff = mon_stuff;
+        run_start$sof = decode$sof;
+        run_start$bt = coupler$bt;
+        stuff_dom = run_start$stuff_dom;
         any_an = 1'b0;
         gl_one = 1'b0;
         gl_two = 1'b0;
@@ -1410,6 +1402,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
             pd_two = pd_two | pd_one;
             pd_one = 1'b1;
         end
+        run_start$sub_lead = sd_one & ~pd_one;
         pinc = 32'h0;
         pch_port = 1'b0;
         pch_shared = 1'b0;
@@ -1605,7 +1598,7 @@ module canstar_cancentrate_core$core(clock,rst_n,inject_fault,rx$0,rx$1,rx$2,mon
             delim_r$d = 1'b0;
         end
         ff_r$clock = clock;
-        ff_r$d = trigger & ~efgen$busy & mon_error & ~any_blame & ~any_tx_error & ~sd_run$q & ~stuff_dom & decode$tx_region;
+        ff_r$d = trigger & ~efgen$busy & mon_error & ~any_blame & ~any_tx_error & ~run_start$excused & ~stuff_dom & decode$tx_region;
         if (reset) begin
             ff_r$d = 1'b0;
         end
@@ -1647,25 +1640,6 @@ module canstar_cancentrate_core$core$bs_r(d,q,clock);
     end
           
 endmodule // canstar_cancentrate_core$core$bs_r
-
-
-module canstar_cancentrate_core$core$bt_prev(d,q,clock);
-    
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_cancentrate_core$core$bt_prev
 
 
 module canstar_cancentrate_core$core$coupler(clock,reset,rx$0,rx$1,rx$2,dis$0,dis$1,dis$2,efg,up_fault$0,up_fault$1,up_fault$2,down_fault$0,down_fault$1,down_fault$2,tx$0,tx$1,tx$2,u$0,u$1,u$2,andc,bt);
@@ -8657,7 +8631,121 @@ module canstar_cancentrate_core$core$rst_s2(d,q,clock);
 endmodule // canstar_cancentrate_core$core$rst_s2
 
 
-module canstar_cancentrate_core$core$sd_run(d,q,clock);
+module canstar_cancentrate_core$core$run_start(clock,reset,sample,bit_start,stuff,sof,bt,sub_lead,stuff_dom,excused);
+    
+    // Module arguments
+    input wire  clock;
+    input wire  reset;
+    input wire  sample;
+    input wire  bit_start;
+    input wire  stuff;
+    input wire  sof;
+    input wire  bt;
+    input wire  sub_lead;
+    output reg  stuff_dom;
+    output reg  excused;
+    
+    // Constant declarations
+    localparam  on = 1'b1;
+    localparam  min = 2'b11;
+    
+    // Stub signals
+    reg  bt_prev$d;
+    wire  bt_prev$q;
+    reg  bt_prev$clock;
+    reg  sd_run$d;
+    wire  sd_run$q;
+    reg  sd_run$clock;
+    reg  [1:0] sl_cnt$d;
+    wire  [1:0] sl_cnt$q;
+    reg  sl_cnt$clock;
+    reg  sl_bs$d;
+    wire  sl_bs$q;
+    reg  sl_bs$clock;
+    reg  es_run$d;
+    wire  es_run$q;
+    reg  es_run$clock;
+    
+    // Sub module instances
+    canstar_cancentrate_core$core$run_start$bt_prev bt_prev(
+        .d(bt_prev$d),
+        .q(bt_prev$q),
+        .clock(bt_prev$clock)
+    );
+    canstar_cancentrate_core$core$run_start$sd_run sd_run(
+        .d(sd_run$d),
+        .q(sd_run$q),
+        .clock(sd_run$clock)
+    );
+    canstar_cancentrate_core$core$run_start$sl_cnt sl_cnt(
+        .d(sl_cnt$d),
+        .q(sl_cnt$q),
+        .clock(sl_cnt$clock)
+    );
+    canstar_cancentrate_core$core$run_start$sl_bs sl_bs(
+        .d(sl_bs$d),
+        .q(sl_bs$q),
+        .clock(sl_bs$clock)
+    );
+    canstar_cancentrate_core$core$run_start$es_run es_run(
+        .d(es_run$d),
+        .q(es_run$q),
+        .clock(es_run$clock)
+    );
+    
+    // Update code
+    always @(*) begin
+        bt_prev$clock = clock;
+        sd_run$clock = clock;
+        sl_cnt$clock = clock;
+        sl_bs$clock = clock;
+        es_run$clock = clock;
+        bt_prev$d = bt_prev$q;
+        sd_run$d = sd_run$q;
+        sl_cnt$d = sl_cnt$q;
+        sl_bs$d = sl_bs$q;
+        es_run$d = es_run$q;
+        if (sample) begin
+            bt_prev$d = bt;
+        end
+        stuff_dom = stuff & bt_prev$q;
+        if (sub_lead) begin
+            if (sl_cnt$q != 32'h3) begin
+                sl_cnt$d = sl_cnt$q + 32'h1;
+            end
+        end
+        else begin
+            sl_cnt$d = 32'h0;
+        end
+        if (bit_start) begin
+            sl_bs$d = on & (sl_cnt$q >= min);
+        end
+        if (sample) begin
+            if (bt) begin
+                sd_run$d = 1'b0;
+                es_run$d = 1'b0;
+            end
+            else begin
+                if (stuff_dom) begin
+                    sd_run$d = 1'b1;
+                end
+                if (sof & sl_bs$q) begin
+                    es_run$d = 1'b1;
+                end
+            end
+        end
+        if (reset) begin
+            bt_prev$d = 1'b1;
+            sd_run$d = 1'b0;
+            es_run$d = 1'b0;
+        end
+        excused = sd_run$q | es_run$q;
+    end
+    
+endmodule // canstar_cancentrate_core$core$run_start
+
+
+module canstar_cancentrate_core$core$run_start$bt_prev(d,q,clock);
     
     // Module arguments
     input wire  d;
@@ -8673,7 +8761,83 @@ module canstar_cancentrate_core$core$sd_run(d,q,clock);
        q <= d;
     end
           
-endmodule // canstar_cancentrate_core$core$sd_run
+endmodule // canstar_cancentrate_core$core$run_start$bt_prev
+
+
+module canstar_cancentrate_core$core$run_start$es_run(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$run_start$es_run
+
+
+module canstar_cancentrate_core$core$run_start$sd_run(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$run_start$sd_run
+
+
+module canstar_cancentrate_core$core$run_start$sl_bs(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$run_start$sl_bs
+
+
+module canstar_cancentrate_core$core$run_start$sl_cnt(d,q,clock);
+    
+    // Module arguments
+    input wire  [1:0] d;
+    output reg  [1:0] q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 2'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$run_start$sl_cnt
 
 
 module canstar_cancentrate_core$core$sub_bl_r(d,q,clock);
