@@ -166,6 +166,11 @@ pub struct HubConfig {
     /// the SOF's bit start (in Intermission bit 2 after this hub's sample point: nodes that
     /// sample later answer it with overload flags), 0..=3; 0 = off.
     pub early_sof_clocks: u64,
+    /// First-flagger replica charge (hub.md §5.27, sublinks): at an error episode that the
+    /// frame monitor alone started, a sublink charged as a dominant contender while another
+    /// replica was recessive in its window (the dominant minority the monitor reacted to)
+    /// also gets a replica-rule charge.
+    pub ff_replica_charge: bool,
     /// Reintegration window W in frames (None = isolation latched until reset).
     pub reintegration: Option<u64>,
     /// Fault-injection hook (None = no hooks).
@@ -215,6 +220,7 @@ impl Default for HubConfig {
             stuff_pulse_rule: true,
             sublink_follower_excuse: true,
             early_sof_clocks: 3,
+            ff_replica_charge: true,
             reintegration: None,
             fault_injection: None,
             debug: true,
@@ -273,6 +279,7 @@ impl HubConfig {
             im2_lag: 0,
             stuff_pulse: self.stuff_pulse_rule,
             sub_follower: self.sublink_follower_excuse,
+            ff_replica: false,
         }
     }
     /// Longest glitch in clocks: [`HubConfig::glitch_max`], or one bit minus SJW minus
@@ -322,6 +329,7 @@ impl HubConfig {
             im2_lag: self.sub_intermission_lag,
             stuff_pulse: false,
             sub_follower: false,
+            ff_replica: self.ff_replica_charge,
         }
     }
     /// Check the ranges; returns a description of the first problem, starting

@@ -534,6 +534,20 @@
 //! condition, and their overload flags are reactions. Tests: `hub/tests/run_start.rs`,
 //! `hub/tests/first_flagger.rs`, `recan/tests/campaign_runs.rs`
 //! `overload_flags_after_an_early_sof_from_the_peer_are_not_charged`.
+//!
+//! **§5.27 the only dominant contender against its replica gets a replica charge (session
+//! 31, sublinks).** At an episode that the monitor alone started (`ff`), the replica rule
+//! left the dominant minority to the first-flagger rule (§5.13), and §5.7 exemption (3)
+//! (`bl_dm_r`) reads a blame registered before the episode started, which the first-flagger
+//! charge, one clock after the sample, never is. A sublink whose pulses made this hub's
+//! monitor alone find errors was therefore charged `bic` only, at the rate at which the
+//! peer charged both of its sublinks for this hub's flags, and the peer won the race. Now a
+//! first-flagger charge (`ffc`) while another replica was recessive in its window at that
+//! sample (`ffm_r`, from the hub's `rep_rec_w`) also counts on `rep` (config
+//! `ff_replica_charge`). `ffd_r` already excludes a unit whose frame had another input's
+//! glitch. Tests: `hub/tests/first_flagger.rs`
+//! `the_only_dominant_contender_against_its_replica_gets_a_replica_charge`,
+//! `recan/tests/campaign_runs.rs` `a_first_flagger_against_its_recessive_replica_gets_a_replica_charge`.
 
 use crate::pulse::PulseCheck;
 use rust_hdl::prelude::*;
@@ -607,6 +621,9 @@ pub struct JudgeParams {
     /// error or overload delimiter rose while a sublink had been dominant since the last
     /// sample point is blamed but not charged.
     pub sub_follower: bool,
+    /// First-flagger replica charge (hub.md §5.27, sublinks): a first-flagger charge while
+    /// another replica was recessive in its window also counts on `rep`.
+    pub ff_replica: bool,
 }
 
 #[derive(LogicBlock)]
@@ -741,6 +758,7 @@ pub struct JudgeUnit {
     im2_at: Constant<Bits<5>>,
     spu_on: Constant<Bit>,
     sfx_on: Constant<Bit>,
+    ffr_on: Constant<Bit>,
     reint_on: Constant<Bit>,
     reint_w: Constant<Bits<8>>,
     dis_r: DFF<Bit>,
@@ -793,6 +811,8 @@ pub struct JudgeUnit {
     /// dominant level rose after it (a sublink follower).
     osd_r: DFF<Bit>,
     sfol_r: DFF<Bit>,
+    /// §5.27: a replica was recessive in its window at the last sample.
+    ffm_r: DFF<Bit>,
     /// §5.20: the last clock's charge step (the `step` output).
     step_r: DFF<Bits<2>>,
     fol: Signal<Local, Bit>,
@@ -932,6 +952,7 @@ impl JudgeUnit {
             im2_at: Constant::new(p.im2_lag.saturating_sub(1).into()),
             spu_on: Constant::new(port & p.stuff_pulse),
             sfx_on: Constant::new(port & p.sub_follower),
+            ffr_on: Constant::new(!port & p.ff_replica),
             reint_on: Constant::new(p.reintegration.is_some()),
             reint_w: Constant::new(p.reintegration.unwrap_or(1).into()),
             dis_r: Default::default(),
@@ -975,6 +996,7 @@ impl JudgeUnit {
             fol_r: Default::default(),
             osd_r: Default::default(),
             sfol_r: Default::default(),
+            ffm_r: Default::default(),
             step_r: Default::default(),
             fol: Default::default(),
             sfol: Default::default(),
@@ -1017,7 +1039,7 @@ impl JudgeUnit {
 impl Logic for JudgeUnit {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, dis_r, bic_r, bdec_r, life_r, dbc_r, nack_r, cont_r, rep_r, rep_seen, rep_first_dom, rd_run, rov_w, btr_r, ok_r, acked, bad, ack_missing, ack_c, ack_rx, seen_dom, seen_dom_crc, dom_bs, bt_p, gc_r, gdec_r, an_r, pgc_r, pdec_r, ffd_r, glf_r, glo_r, pgl_r, sdp_r, spb_r, spc_r, ch_r, od_r, dprev, fol_r, osd_r, sfol_r, step_r, bl_r, bl_dm_r, gpend);
+        dff_setup!(self, clock, dis_r, bic_r, bdec_r, life_r, dbc_r, nack_r, cont_r, rep_r, rep_seen, rep_first_dom, rd_run, rov_w, btr_r, ok_r, acked, bad, ack_missing, ack_c, ack_rx, seen_dom, seen_dom_crc, dom_bs, bt_p, gc_r, gdec_r, an_r, pgc_r, pdec_r, ffd_r, glf_r, glo_r, pgl_r, sdp_r, spb_r, spc_r, ch_r, od_r, dprev, fol_r, osd_r, sfol_r, ffm_r, step_r, bl_r, bl_dm_r, gpend);
         self.pulse.clock.next = self.clock.val();
         self.pulse.reset.next = self.reset.val();
         self.pulse.c.next = self.c.val();
@@ -1195,6 +1217,7 @@ impl Logic for JudgeUnit {
             // input glitched in this frame (the flag may be the reaction to that glitch);
             // its own glitch does not excuse it
             self.ffd_r.d.next = self.domw.val() & self.cont_r.q.val() & !self.suppress.val() & !self.gl_others.val();
+            self.ffm_r.d.next = self.rep_rec_w.val();
             if self.sof.val() {
                 self.glf_r.d.next = false;
                 self.glo_r.d.next = false;
@@ -1366,7 +1389,8 @@ impl Logic for JudgeUnit {
         if self.err_start.val() {
             self.rep_seen.d.next = false;
             if ((self.rep_seen.q.val() & self.rep_first_dom.q.val() & self.rep_ok.val() & !(self.rep_blamed.val() & !self.bl_r.q.val()) & !self.ff.val())
-                | self.bl_dm_r.q.val())
+                | self.bl_dm_r.q.val()
+                | (self.ffr_on.val() & self.ffc.val() & self.ffm_r.q.val()))
                 & (self.rep_r.q.val() != 7)
             {
                 self.rep_r.d.next = self.rep_r.q.val() + 1;
@@ -1450,6 +1474,7 @@ impl Logic for JudgeUnit {
             self.pgc_r.d.next = 0.into();
             self.pdec_r.d.next = 0.into();
             self.ffd_r.d.next = false;
+            self.ffm_r.d.next = false;
             self.glf_r.d.next = false;
             self.glo_r.d.next = false;
             self.pgl_r.d.next = false;

@@ -41,10 +41,10 @@ pub struct RunStart {
     /// side (registered: valid from the clock after the sample that started the run).
     pub excused: Signal<Out, Bit>,
     bt_prev: DFF<Bit>,
-    sd_run: DFF<Bit>,
     sl_cnt: DFF<Bits<2>>,
     sl_bs: DFF<Bit>,
-    es_run: DFF<Bit>,
+    /// BT's dominant run since the last recessive sample began at one of the two starts.
+    run: DFF<Bit>,
     on: Constant<Bit>,
     min: Constant<Bits<2>>,
 }
@@ -66,10 +66,9 @@ impl RunStart {
             stuff_dom: Default::default(),
             excused: Default::default(),
             bt_prev: Default::default(),
-            sd_run: Default::default(),
             sl_cnt: Default::default(),
             sl_bs: Default::default(),
-            es_run: Default::default(),
+            run: Default::default(),
             on: Constant::new(min > 0),
             min: Constant::new(min.into()),
         }
@@ -79,7 +78,7 @@ impl RunStart {
 impl Logic for RunStart {
     #[hdl_gen]
     fn update(&mut self) {
-        dff_setup!(self, clock, bt_prev, sd_run, sl_cnt, sl_bs, es_run);
+        dff_setup!(self, clock, bt_prev, sl_cnt, sl_bs, run);
         // BT at the last sample
         if self.sample.val() {
             self.bt_prev.d.next = self.bt.val();
@@ -99,23 +98,16 @@ impl Logic for RunStart {
         }
         if self.sample.val() {
             if self.bt.val() {
-                self.sd_run.d.next = false;
-                self.es_run.d.next = false;
-            } else {
-                if self.stuff_dom.val() {
-                    self.sd_run.d.next = true;
-                }
-                if self.sof.val() & self.sl_bs.q.val() {
-                    self.es_run.d.next = true;
-                }
+                self.run.d.next = false;
+            } else if self.stuff_dom.val() | (self.sof.val() & self.sl_bs.q.val()) {
+                self.run.d.next = true;
             }
         }
         if self.reset.val() {
             self.bt_prev.d.next = true;
-            self.sd_run.d.next = false;
-            self.es_run.d.next = false;
+            self.run.d.next = false;
         }
-        self.excused.next = self.sd_run.q.val() | self.es_run.q.val();
+        self.excused.next = self.run.q.val();
     }
 }
 

@@ -4,7 +4,8 @@
 //! every replica shows (the peer's contribution) does not excuse the replicas from each
 //! other; a glitch of one replica alone excuses the other one. A SOF whose edge came through
 //! the sublinks alone well before its bit start makes no first flagger of the overload flags
-//! that answer it (§5.26).
+//! that answer it (§5.26). A sublink charged as the only dominant contender while its
+//! replica was recessive also gets a replica charge (§5.27).
 mod common;
 use canstar_hub::config::HubConfig;
 use canstar_hub::frame_state::Field;
@@ -96,4 +97,28 @@ fn overload_flags_after_an_early_sof_from_the_peer_are_not_first_flags() {
     assert_eq!(f(13, false, 3), charged, "2 clocks early (as a SOF from the peer's bit start can be): charged");
     assert_eq!(f(13, false, 2), nobody, "the same with early_sof_clocks 2");
     assert_eq!(f(12, true, 3), (vec![8, 0, 8], vec![8, 8]), "a port led the edge (this hub's node): charged");
+}
+
+/// hub.md §5.27: a frame from behind the peer; in identifier bit 6 (recessive) sublink 0
+/// alone is dominant (`pulse`: for the whole bit; otherwise both sublinks carry the
+/// transmitter's dominant bit), and the monitor alone detects an error at that sample.
+/// Returns the sublinks' `bic` and replica counts.
+fn monitor_error_under(pulse: bool, ff_replica_charge: bool) -> (Vec<u64>, Vec<u64>) {
+    let mut h = idle_hub(&HubConfig { ff_replica_charge, ..HubConfig::default() });
+    let (rec, dom) = (|_: usize, _: usize| true, |_: usize, _: usize| false);
+    bit(&mut h, Field::Sof, 0, false, &dom);
+    for p in 0..6 {
+        bit(&mut h, Field::Id, p, false, if p % 2 == 0 { &rec } else { &dom });
+    }
+    bit(&mut h, Field::Id, 6, true, if pulse { &|j, _| j != 0 } else { &dom });
+    bit(&mut h, Field::ErrorFlag, 0, false, &dom);
+    (h.sub_bic.iter().map(|s| s.val().index() as u64).collect(), h.sub_rep.iter().map(|s| s.val().index() as u64).collect())
+}
+
+#[test]
+fn the_only_dominant_contender_against_its_replica_gets_a_replica_charge() {
+    let f = monitor_error_under;
+    assert_eq!(f(true, true), (vec![8, 0], vec![1, 0]), "sublink 0 alone dominant: first flagger and replica charge");
+    assert_eq!(f(true, false), (vec![8, 0], vec![0, 0]), "rule off: first-flagger charge only");
+    assert_eq!(f(false, true), (vec![8, 8], vec![0, 0]), "both replicas dominant: no minority, no replica charge");
 }

@@ -2,14 +2,27 @@
 //! two-hub system (hub.md §5.17): the same runs `canstar campaign --class C --run-seed S`
 //! reproduces.
 
+use canstar_hub::config::HubConfig;
 use canstar_recan::campaign::report::RunOutcome;
 use canstar_recan::campaign::{self, system, RunPlan, Settings};
 
-fn run(class: &str, seed: u64) -> RunOutcome {
+/// The run of `class` with `seed`, its hubs configured by `hub` (None: the default).
+fn run_with(class: &str, seed: u64, hub: Option<HubConfig>) -> RunOutcome {
     let classes = campaign::select(class).unwrap();
     assert_eq!(classes.len(), 1);
-    let s = Settings { seed: 1, reps: 1, ..Settings::default() };
+    let s = Settings { seed: 1, reps: 1, hub, ..Settings::default() };
     system::run_plan(&RunPlan { class: classes[0].clone(), rep: 0, seed }, &s)
+}
+
+fn run(class: &str, seed: u64) -> RunOutcome {
+    run_with(class, seed, None)
+}
+
+/// The default hub configuration with `f` applied.
+fn hub(f: impl FnOnce(&mut HubConfig)) -> Option<HubConfig> {
+    let mut h = canstar_recan::NetworkSpec::default().hub;
+    f(&mut h);
+    Some(h)
 }
 
 /// hub.md §5.17: hub 1's output forced dominant about every 1.9 bits. Its dominant bits in
@@ -66,17 +79,32 @@ fn overload_flags_after_an_early_sof_from_the_peer_are_not_charged() {
     let o = run("sweep-up-r2d-e10", 11664831222488605187);
     assert!(o.pass, "{:?}", o.failures);
     assert!(o.isolations.len() == 1 && o.isolations[0].starts_with("hub 1 port 2@"), "{:?}", o.isolations);
-    let with = |class: &str, seed: u64, early_sof_clocks: u64| {
-        let classes = campaign::select(class).unwrap();
-        let hub = canstar_hub::config::HubConfig { early_sof_clocks, ..canstar_recan::NetworkSpec::default().hub };
-        let s = Settings { seed: 1, reps: 1, hub: Some(hub), ..Settings::default() };
-        system::run_plan(&RunPlan { class: classes[0].clone(), rep: 0, seed }, &s)
-    };
-    let off = with("sweep-up-r2d-e10", 11664831222488605187, 0);
+    let off = run_with("sweep-up-r2d-e10", 11664831222488605187, hub(|h| h.early_sof_clocks = 0));
     assert!(!off.pass && off.failures.iter().any(|f| f.contains("hubs isolated each other")), "without the rule: {:?}", off.failures);
     assert!(run("sweep-down-d2r-e10", 14880712450563600277).pass);
-    let early = with("sweep-down-d2r-e10", 14880712450563600277, 1);
+    let early = run_with("sweep-down-d2r-e10", 14880712450563600277, hub(|h| h.early_sof_clocks = 1));
     assert!(!early.pass, "early_sof_clocks 1: {:?}", early.isolations);
+}
+
+/// hub.md §5.27: a one-bit dominant pulse about every 102 bits on the sublink into hub 1.
+/// Where it falls on a recessive bit that the transmitter behind hub 0 follows with
+/// dominant bits, only hub 1's monitor finds an error, and the first-flagger rule charges
+/// the dominant contenders; a replica charge followed only from a blame registered before
+/// the episode started, so the faulty replica went on without one, and hub 0, which charges
+/// both of its sublinks for every flag of hub 1, reached its limit first (bit 1503). With
+/// the replica charge for the only dominant contender, hub 1 cuts the faulty replica off
+/// at its second such episode. The same charge passes a pulse every 2 bits.
+#[test]
+fn a_first_flagger_against_its_recessive_replica_gets_a_replica_charge() {
+    let o = run("sweep-sublink-r2d-e100", 7601751665248820364);
+    assert!(o.pass, "{:?}", o.failures);
+    assert_eq!(o.isolations, vec!["hub 1 sublink 0@883 (replica 2/2)".to_string()]);
+    let off = run_with("sweep-sublink-r2d-e100", 7601751665248820364, hub(|h| h.ff_replica_charge = false));
+    assert!(!off.pass && off.failures.iter().any(|f| f.contains("hubs isolated each other")), "without the rule: {:?}", off.failures);
+    let o = run("sweep-sublink-r2d-e2", 14166616403326049450);
+    assert!(o.pass, "{:?}", o.failures);
+    assert!(o.isolations.len() == 1 && o.isolations[0].starts_with("hub 0 sublink 0@"), "{:?}", o.isolations);
+    assert!(!run_with("sweep-sublink-r2d-e2", 14166616403326049450, hub(|h| h.ff_replica_charge = false)).pass);
 }
 
 /// hub.md §5.19: node 1's controller B loses a dominant bit about every 9 bits on its
@@ -93,9 +121,6 @@ fn a_receiver_flagging_in_the_last_eof_bit_is_charged() {
     assert!(o.pass, "{:?}", o.failures);
     assert!(o.worst_healthy < 96, "worst healthy TEC/REC {}", o.worst_healthy);
     assert!(o.isolations.iter().any(|i| i.starts_with("hub 1 port 1")), "{:?}", o.isolations);
-    let classes = campaign::select(class).unwrap();
-    let hub = canstar_hub::config::HubConfig { eof_last_rule: false, ..canstar_recan::NetworkSpec::default().hub };
-    let s = Settings { seed: 1, reps: 1, hub: Some(hub), ..Settings::default() };
-    let off = system::run_plan(&RunPlan { class: classes[0].clone(), rep: 0, seed }, &s);
+    let off = run_with(class, seed, hub(|h| h.eof_last_rule = false));
     assert!(!off.pass && off.worst_healthy >= 96, "without the rule: {:?}", off.failures);
 }

@@ -2816,6 +2816,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
     localparam  im2_at = 5'b0;
     localparam  spu_on = 1'b1;
     localparam  sfx_on = 1'b1;
+    localparam  ffr_on = 1'b0;
     localparam  reint_on = 1'b0;
     localparam  reint_w = 8'h1;
     
@@ -2947,6 +2948,9 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
     reg  sfol_r$d;
     wire  sfol_r$q;
     reg  sfol_r$clock;
+    reg  ffm_r$d;
+    wire  ffm_r$q;
+    reg  ffm_r$clock;
     reg  [1:0] step_r$d;
     wire  [1:0] step_r$q;
     reg  step_r$clock;
@@ -3197,6 +3201,11 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         .q(sfol_r$q),
         .clock(sfol_r$clock)
     );
+    canstar_cancentrate_core$core$pj$0$ffm_r ffm_r(
+        .d(ffm_r$d),
+        .q(ffm_r$q),
+        .clock(ffm_r$clock)
+    );
     canstar_cancentrate_core$core$pj$0$step_r step_r(
         .d(step_r$d),
         .q(step_r$q),
@@ -3261,6 +3270,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         fol_r$clock = clock;
         osd_r$clock = clock;
         sfol_r$clock = clock;
+        ffm_r$clock = clock;
         step_r$clock = clock;
         bl_r$clock = clock;
         bl_dm_r$clock = clock;
@@ -3306,6 +3316,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         fol_r$d = fol_r$q;
         osd_r$d = osd_r$q;
         sfol_r$d = sfol_r$q;
+        ffm_r$d = ffm_r$q;
         step_r$d = step_r$q;
         bl_r$d = bl_r$q;
         bl_dm_r$d = bl_dm_r$q;
@@ -3424,6 +3435,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
                 cont_r$d = 1'b0;
             end
             ffd_r$d = domw & cont_r$q & ~suppress & ~gl_others;
+            ffm_r$d = rep_rec_w;
             if (sof) begin
                 glf_r$d = 1'b0;
                 glo_r$d = 1'b0;
@@ -3559,7 +3571,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
         bl_dm_r$d = blame & rep_rec_w & ~suppress;
         if (err_start) begin
             rep_seen$d = 1'b0;
-            if (((rep_seen$q & rep_first_dom$q & rep_ok & ~(rep_blamed & ~bl_r$q) & ~ff) | bl_dm_r$q) & (rep_r$q != 32'h7)) begin
+            if (((rep_seen$q & rep_first_dom$q & rep_ok & ~(rep_blamed & ~bl_r$q) & ~ff) | bl_dm_r$q | (ffr_on & ffc & ffm_r$q)) & (rep_r$q != 32'h7)) begin
                 rep_r$d = rep_r$q + 32'h1;
             end
         end
@@ -3635,6 +3647,7 @@ module canstar_cancentrate_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,
             pgc_r$d = 32'h0;
             pdec_r$d = 32'h0;
             ffd_r$d = 1'b0;
+            ffm_r$d = 1'b0;
             glf_r$d = 1'b0;
             glo_r$d = 1'b0;
             pgl_r$d = 1'b0;
@@ -4023,6 +4036,25 @@ module canstar_cancentrate_core$core$pj$0$ffd_r(d,q,clock);
     end
           
 endmodule // canstar_cancentrate_core$core$pj$0$ffd_r
+
+
+module canstar_cancentrate_core$core$pj$0$ffm_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$0$ffm_r
 
 
 module canstar_cancentrate_core$core$pj$0$fol_r(d,q,clock);
@@ -4771,6 +4803,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
     localparam  im2_at = 5'b0;
     localparam  spu_on = 1'b1;
     localparam  sfx_on = 1'b1;
+    localparam  ffr_on = 1'b0;
     localparam  reint_on = 1'b0;
     localparam  reint_w = 8'h1;
     
@@ -4902,6 +4935,9 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
     reg  sfol_r$d;
     wire  sfol_r$q;
     reg  sfol_r$clock;
+    reg  ffm_r$d;
+    wire  ffm_r$q;
+    reg  ffm_r$clock;
     reg  [1:0] step_r$d;
     wire  [1:0] step_r$q;
     reg  step_r$clock;
@@ -5152,6 +5188,11 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         .q(sfol_r$q),
         .clock(sfol_r$clock)
     );
+    canstar_cancentrate_core$core$pj$1$ffm_r ffm_r(
+        .d(ffm_r$d),
+        .q(ffm_r$q),
+        .clock(ffm_r$clock)
+    );
     canstar_cancentrate_core$core$pj$1$step_r step_r(
         .d(step_r$d),
         .q(step_r$q),
@@ -5216,6 +5257,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         fol_r$clock = clock;
         osd_r$clock = clock;
         sfol_r$clock = clock;
+        ffm_r$clock = clock;
         step_r$clock = clock;
         bl_r$clock = clock;
         bl_dm_r$clock = clock;
@@ -5261,6 +5303,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         fol_r$d = fol_r$q;
         osd_r$d = osd_r$q;
         sfol_r$d = sfol_r$q;
+        ffm_r$d = ffm_r$q;
         step_r$d = step_r$q;
         bl_r$d = bl_r$q;
         bl_dm_r$d = bl_dm_r$q;
@@ -5379,6 +5422,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
                 cont_r$d = 1'b0;
             end
             ffd_r$d = domw & cont_r$q & ~suppress & ~gl_others;
+            ffm_r$d = rep_rec_w;
             if (sof) begin
                 glf_r$d = 1'b0;
                 glo_r$d = 1'b0;
@@ -5514,7 +5558,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
         bl_dm_r$d = blame & rep_rec_w & ~suppress;
         if (err_start) begin
             rep_seen$d = 1'b0;
-            if (((rep_seen$q & rep_first_dom$q & rep_ok & ~(rep_blamed & ~bl_r$q) & ~ff) | bl_dm_r$q) & (rep_r$q != 32'h7)) begin
+            if (((rep_seen$q & rep_first_dom$q & rep_ok & ~(rep_blamed & ~bl_r$q) & ~ff) | bl_dm_r$q | (ffr_on & ffc & ffm_r$q)) & (rep_r$q != 32'h7)) begin
                 rep_r$d = rep_r$q + 32'h1;
             end
         end
@@ -5590,6 +5634,7 @@ module canstar_cancentrate_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,
             pgc_r$d = 32'h0;
             pdec_r$d = 32'h0;
             ffd_r$d = 1'b0;
+            ffm_r$d = 1'b0;
             glf_r$d = 1'b0;
             glo_r$d = 1'b0;
             pgl_r$d = 1'b0;
@@ -5978,6 +6023,25 @@ module canstar_cancentrate_core$core$pj$1$ffd_r(d,q,clock);
     end
           
 endmodule // canstar_cancentrate_core$core$pj$1$ffd_r
+
+
+module canstar_cancentrate_core$core$pj$1$ffm_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$1$ffm_r
 
 
 module canstar_cancentrate_core$core$pj$1$fol_r(d,q,clock);
@@ -6726,6 +6790,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
     localparam  im2_at = 5'b0;
     localparam  spu_on = 1'b1;
     localparam  sfx_on = 1'b1;
+    localparam  ffr_on = 1'b0;
     localparam  reint_on = 1'b0;
     localparam  reint_w = 8'h1;
     
@@ -6857,6 +6922,9 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
     reg  sfol_r$d;
     wire  sfol_r$q;
     reg  sfol_r$clock;
+    reg  ffm_r$d;
+    wire  ffm_r$q;
+    reg  ffm_r$clock;
     reg  [1:0] step_r$d;
     wire  [1:0] step_r$q;
     reg  step_r$clock;
@@ -7107,6 +7175,11 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         .q(sfol_r$q),
         .clock(sfol_r$clock)
     );
+    canstar_cancentrate_core$core$pj$2$ffm_r ffm_r(
+        .d(ffm_r$d),
+        .q(ffm_r$q),
+        .clock(ffm_r$clock)
+    );
     canstar_cancentrate_core$core$pj$2$step_r step_r(
         .d(step_r$d),
         .q(step_r$q),
@@ -7171,6 +7244,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         fol_r$clock = clock;
         osd_r$clock = clock;
         sfol_r$clock = clock;
+        ffm_r$clock = clock;
         step_r$clock = clock;
         bl_r$clock = clock;
         bl_dm_r$clock = clock;
@@ -7216,6 +7290,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         fol_r$d = fol_r$q;
         osd_r$d = osd_r$q;
         sfol_r$d = sfol_r$q;
+        ffm_r$d = ffm_r$q;
         step_r$d = step_r$q;
         bl_r$d = bl_r$q;
         bl_dm_r$d = bl_dm_r$q;
@@ -7334,6 +7409,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
                 cont_r$d = 1'b0;
             end
             ffd_r$d = domw & cont_r$q & ~suppress & ~gl_others;
+            ffm_r$d = rep_rec_w;
             if (sof) begin
                 glf_r$d = 1'b0;
                 glo_r$d = 1'b0;
@@ -7469,7 +7545,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
         bl_dm_r$d = blame & rep_rec_w & ~suppress;
         if (err_start) begin
             rep_seen$d = 1'b0;
-            if (((rep_seen$q & rep_first_dom$q & rep_ok & ~(rep_blamed & ~bl_r$q) & ~ff) | bl_dm_r$q) & (rep_r$q != 32'h7)) begin
+            if (((rep_seen$q & rep_first_dom$q & rep_ok & ~(rep_blamed & ~bl_r$q) & ~ff) | bl_dm_r$q | (ffr_on & ffc & ffm_r$q)) & (rep_r$q != 32'h7)) begin
                 rep_r$d = rep_r$q + 32'h1;
             end
         end
@@ -7545,6 +7621,7 @@ module canstar_cancentrate_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,
             pgc_r$d = 32'h0;
             pdec_r$d = 32'h0;
             ffd_r$d = 1'b0;
+            ffm_r$d = 1'b0;
             glf_r$d = 1'b0;
             glo_r$d = 1'b0;
             pgl_r$d = 1'b0;
@@ -7933,6 +8010,25 @@ module canstar_cancentrate_core$core$pj$2$ffd_r(d,q,clock);
     end
           
 endmodule // canstar_cancentrate_core$core$pj$2$ffd_r
+
+
+module canstar_cancentrate_core$core$pj$2$ffm_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_cancentrate_core$core$pj$2$ffm_r
 
 
 module canstar_cancentrate_core$core$pj$2$fol_r(d,q,clock);
@@ -8653,29 +8749,21 @@ module canstar_cancentrate_core$core$run_start(clock,reset,sample,bit_start,stuf
     reg  bt_prev$d;
     wire  bt_prev$q;
     reg  bt_prev$clock;
-    reg  sd_run$d;
-    wire  sd_run$q;
-    reg  sd_run$clock;
     reg  [1:0] sl_cnt$d;
     wire  [1:0] sl_cnt$q;
     reg  sl_cnt$clock;
     reg  sl_bs$d;
     wire  sl_bs$q;
     reg  sl_bs$clock;
-    reg  es_run$d;
-    wire  es_run$q;
-    reg  es_run$clock;
+    reg  run$d;
+    wire  run$q;
+    reg  run$clock;
     
     // Sub module instances
     canstar_cancentrate_core$core$run_start$bt_prev bt_prev(
         .d(bt_prev$d),
         .q(bt_prev$q),
         .clock(bt_prev$clock)
-    );
-    canstar_cancentrate_core$core$run_start$sd_run sd_run(
-        .d(sd_run$d),
-        .q(sd_run$q),
-        .clock(sd_run$clock)
     );
     canstar_cancentrate_core$core$run_start$sl_cnt sl_cnt(
         .d(sl_cnt$d),
@@ -8687,24 +8775,22 @@ module canstar_cancentrate_core$core$run_start(clock,reset,sample,bit_start,stuf
         .q(sl_bs$q),
         .clock(sl_bs$clock)
     );
-    canstar_cancentrate_core$core$run_start$es_run es_run(
-        .d(es_run$d),
-        .q(es_run$q),
-        .clock(es_run$clock)
+    canstar_cancentrate_core$core$run_start$run run(
+        .d(run$d),
+        .q(run$q),
+        .clock(run$clock)
     );
     
     // Update code
     always @(*) begin
         bt_prev$clock = clock;
-        sd_run$clock = clock;
         sl_cnt$clock = clock;
         sl_bs$clock = clock;
-        es_run$clock = clock;
+        run$clock = clock;
         bt_prev$d = bt_prev$q;
-        sd_run$d = sd_run$q;
         sl_cnt$d = sl_cnt$q;
         sl_bs$d = sl_bs$q;
-        es_run$d = es_run$q;
+        run$d = run$q;
         if (sample) begin
             bt_prev$d = bt;
         end
@@ -8722,24 +8808,17 @@ module canstar_cancentrate_core$core$run_start(clock,reset,sample,bit_start,stuf
         end
         if (sample) begin
             if (bt) begin
-                sd_run$d = 1'b0;
-                es_run$d = 1'b0;
+                run$d = 1'b0;
             end
-            else begin
-                if (stuff_dom) begin
-                    sd_run$d = 1'b1;
-                end
-                if (sof & sl_bs$q) begin
-                    es_run$d = 1'b1;
-                end
+            else if (stuff_dom | (sof & sl_bs$q)) begin
+                run$d = 1'b1;
             end
         end
         if (reset) begin
             bt_prev$d = 1'b1;
-            sd_run$d = 1'b0;
-            es_run$d = 1'b0;
+            run$d = 1'b0;
         end
-        excused = sd_run$q | es_run$q;
+        excused = run$q;
     end
     
 endmodule // canstar_cancentrate_core$core$run_start
@@ -8764,7 +8843,7 @@ module canstar_cancentrate_core$core$run_start$bt_prev(d,q,clock);
 endmodule // canstar_cancentrate_core$core$run_start$bt_prev
 
 
-module canstar_cancentrate_core$core$run_start$es_run(d,q,clock);
+module canstar_cancentrate_core$core$run_start$run(d,q,clock);
     
     // Module arguments
     input wire  d;
@@ -8780,26 +8859,7 @@ module canstar_cancentrate_core$core$run_start$es_run(d,q,clock);
        q <= d;
     end
           
-endmodule // canstar_cancentrate_core$core$run_start$es_run
-
-
-module canstar_cancentrate_core$core$run_start$sd_run(d,q,clock);
-    
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_cancentrate_core$core$run_start$sd_run
+endmodule // canstar_cancentrate_core$core$run_start$run
 
 
 module canstar_cancentrate_core$core$run_start$sl_bs(d,q,clock);

@@ -3592,6 +3592,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     localparam  im2_at = 5'b0;
     localparam  spu_on = 1'b1;
     localparam  sfx_on = 1'b1;
+    localparam  ffr_on = 1'b0;
     localparam  reint_on = 1'b0;
     localparam  reint_w = 8'h1;
     
@@ -3723,6 +3724,9 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  sfol_r$d;
     wire  sfol_r$q;
     reg  sfol_r$clock;
+    reg  ffm_r$d;
+    wire  ffm_r$q;
+    reg  ffm_r$clock;
     reg  [1:0] step_r$d;
     wire  [1:0] step_r$q;
     reg  step_r$clock;
@@ -3973,6 +3977,11 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .q(sfol_r$q),
         .clock(sfol_r$clock)
     );
+    canstar_hub_core$core$pj$0$ffm_r ffm_r(
+        .d(ffm_r$d),
+        .q(ffm_r$q),
+        .clock(ffm_r$clock)
+    );
     canstar_hub_core$core$pj$0$step_r step_r(
         .d(step_r$d),
         .q(step_r$q),
@@ -4037,6 +4046,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         fol_r$clock = clock;
         osd_r$clock = clock;
         sfol_r$clock = clock;
+        ffm_r$clock = clock;
         step_r$clock = clock;
         bl_r$clock = clock;
         bl_dm_r$clock = clock;
@@ -4082,6 +4092,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         fol_r$d = fol_r$q;
         osd_r$d = osd_r$q;
         sfol_r$d = sfol_r$q;
+        ffm_r$d = ffm_r$q;
         step_r$d = step_r$q;
         bl_r$d = bl_r$q;
         bl_dm_r$d = bl_dm_r$q;
@@ -4200,6 +4211,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                 cont_r$d = 1'b0;
             end
             ffd_r$d = domw & cont_r$q & ~suppress & ~gl_others;
+            ffm_r$d = rep_rec_w;
             if (sof) begin
                 glf_r$d = 1'b0;
                 glo_r$d = 1'b0;
@@ -4335,7 +4347,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         bl_dm_r$d = blame & rep_rec_w & ~suppress;
         if (err_start) begin
             rep_seen$d = 1'b0;
-            if (((rep_seen$q & rep_first_dom$q & rep_ok & ~(rep_blamed & ~bl_r$q) & ~ff) | bl_dm_r$q) & (rep_r$q != 32'h7)) begin
+            if (((rep_seen$q & rep_first_dom$q & rep_ok & ~(rep_blamed & ~bl_r$q) & ~ff) | bl_dm_r$q | (ffr_on & ffc & ffm_r$q)) & (rep_r$q != 32'h7)) begin
                 rep_r$d = rep_r$q + 32'h1;
             end
         end
@@ -4411,6 +4423,7 @@ module canstar_hub_core$core$pj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             pgc_r$d = 32'h0;
             pdec_r$d = 32'h0;
             ffd_r$d = 1'b0;
+            ffm_r$d = 1'b0;
             glf_r$d = 1'b0;
             glo_r$d = 1'b0;
             pgl_r$d = 1'b0;
@@ -4799,6 +4812,25 @@ module canstar_hub_core$core$pj$0$ffd_r(d,q,clock);
     end
           
 endmodule // canstar_hub_core$core$pj$0$ffd_r
+
+
+module canstar_hub_core$core$pj$0$ffm_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$0$ffm_r
 
 
 module canstar_hub_core$core$pj$0$fol_r(d,q,clock);
@@ -5547,6 +5579,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     localparam  im2_at = 5'b0;
     localparam  spu_on = 1'b1;
     localparam  sfx_on = 1'b1;
+    localparam  ffr_on = 1'b0;
     localparam  reint_on = 1'b0;
     localparam  reint_w = 8'h1;
     
@@ -5678,6 +5711,9 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  sfol_r$d;
     wire  sfol_r$q;
     reg  sfol_r$clock;
+    reg  ffm_r$d;
+    wire  ffm_r$q;
+    reg  ffm_r$clock;
     reg  [1:0] step_r$d;
     wire  [1:0] step_r$q;
     reg  step_r$clock;
@@ -5928,6 +5964,11 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .q(sfol_r$q),
         .clock(sfol_r$clock)
     );
+    canstar_hub_core$core$pj$1$ffm_r ffm_r(
+        .d(ffm_r$d),
+        .q(ffm_r$q),
+        .clock(ffm_r$clock)
+    );
     canstar_hub_core$core$pj$1$step_r step_r(
         .d(step_r$d),
         .q(step_r$q),
@@ -5992,6 +6033,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         fol_r$clock = clock;
         osd_r$clock = clock;
         sfol_r$clock = clock;
+        ffm_r$clock = clock;
         step_r$clock = clock;
         bl_r$clock = clock;
         bl_dm_r$clock = clock;
@@ -6037,6 +6079,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         fol_r$d = fol_r$q;
         osd_r$d = osd_r$q;
         sfol_r$d = sfol_r$q;
+        ffm_r$d = ffm_r$q;
         step_r$d = step_r$q;
         bl_r$d = bl_r$q;
         bl_dm_r$d = bl_dm_r$q;
@@ -6155,6 +6198,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                 cont_r$d = 1'b0;
             end
             ffd_r$d = domw & cont_r$q & ~suppress & ~gl_others;
+            ffm_r$d = rep_rec_w;
             if (sof) begin
                 glf_r$d = 1'b0;
                 glo_r$d = 1'b0;
@@ -6290,7 +6334,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         bl_dm_r$d = blame & rep_rec_w & ~suppress;
         if (err_start) begin
             rep_seen$d = 1'b0;
-            if (((rep_seen$q & rep_first_dom$q & rep_ok & ~(rep_blamed & ~bl_r$q) & ~ff) | bl_dm_r$q) & (rep_r$q != 32'h7)) begin
+            if (((rep_seen$q & rep_first_dom$q & rep_ok & ~(rep_blamed & ~bl_r$q) & ~ff) | bl_dm_r$q | (ffr_on & ffc & ffm_r$q)) & (rep_r$q != 32'h7)) begin
                 rep_r$d = rep_r$q + 32'h1;
             end
         end
@@ -6366,6 +6410,7 @@ module canstar_hub_core$core$pj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             pgc_r$d = 32'h0;
             pdec_r$d = 32'h0;
             ffd_r$d = 1'b0;
+            ffm_r$d = 1'b0;
             glf_r$d = 1'b0;
             glo_r$d = 1'b0;
             pgl_r$d = 1'b0;
@@ -6754,6 +6799,25 @@ module canstar_hub_core$core$pj$1$ffd_r(d,q,clock);
     end
           
 endmodule // canstar_hub_core$core$pj$1$ffd_r
+
+
+module canstar_hub_core$core$pj$1$ffm_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$1$ffm_r
 
 
 module canstar_hub_core$core$pj$1$fol_r(d,q,clock);
@@ -7502,6 +7566,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     localparam  im2_at = 5'b0;
     localparam  spu_on = 1'b1;
     localparam  sfx_on = 1'b1;
+    localparam  ffr_on = 1'b0;
     localparam  reint_on = 1'b0;
     localparam  reint_w = 8'h1;
     
@@ -7633,6 +7698,9 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  sfol_r$d;
     wire  sfol_r$q;
     reg  sfol_r$clock;
+    reg  ffm_r$d;
+    wire  ffm_r$q;
+    reg  ffm_r$clock;
     reg  [1:0] step_r$d;
     wire  [1:0] step_r$q;
     reg  step_r$clock;
@@ -7883,6 +7951,11 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .q(sfol_r$q),
         .clock(sfol_r$clock)
     );
+    canstar_hub_core$core$pj$2$ffm_r ffm_r(
+        .d(ffm_r$d),
+        .q(ffm_r$q),
+        .clock(ffm_r$clock)
+    );
     canstar_hub_core$core$pj$2$step_r step_r(
         .d(step_r$d),
         .q(step_r$q),
@@ -7947,6 +8020,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         fol_r$clock = clock;
         osd_r$clock = clock;
         sfol_r$clock = clock;
+        ffm_r$clock = clock;
         step_r$clock = clock;
         bl_r$clock = clock;
         bl_dm_r$clock = clock;
@@ -7992,6 +8066,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         fol_r$d = fol_r$q;
         osd_r$d = osd_r$q;
         sfol_r$d = sfol_r$q;
+        ffm_r$d = ffm_r$q;
         step_r$d = step_r$q;
         bl_r$d = bl_r$q;
         bl_dm_r$d = bl_dm_r$q;
@@ -8110,6 +8185,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                 cont_r$d = 1'b0;
             end
             ffd_r$d = domw & cont_r$q & ~suppress & ~gl_others;
+            ffm_r$d = rep_rec_w;
             if (sof) begin
                 glf_r$d = 1'b0;
                 glo_r$d = 1'b0;
@@ -8245,7 +8321,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         bl_dm_r$d = blame & rep_rec_w & ~suppress;
         if (err_start) begin
             rep_seen$d = 1'b0;
-            if (((rep_seen$q & rep_first_dom$q & rep_ok & ~(rep_blamed & ~bl_r$q) & ~ff) | bl_dm_r$q) & (rep_r$q != 32'h7)) begin
+            if (((rep_seen$q & rep_first_dom$q & rep_ok & ~(rep_blamed & ~bl_r$q) & ~ff) | bl_dm_r$q | (ffr_on & ffc & ffm_r$q)) & (rep_r$q != 32'h7)) begin
                 rep_r$d = rep_r$q + 32'h1;
             end
         end
@@ -8321,6 +8397,7 @@ module canstar_hub_core$core$pj$2(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             pgc_r$d = 32'h0;
             pdec_r$d = 32'h0;
             ffd_r$d = 1'b0;
+            ffm_r$d = 1'b0;
             glf_r$d = 1'b0;
             glo_r$d = 1'b0;
             pgl_r$d = 1'b0;
@@ -8709,6 +8786,25 @@ module canstar_hub_core$core$pj$2$ffd_r(d,q,clock);
     end
           
 endmodule // canstar_hub_core$core$pj$2$ffd_r
+
+
+module canstar_hub_core$core$pj$2$ffm_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$pj$2$ffm_r
 
 
 module canstar_hub_core$core$pj$2$fol_r(d,q,clock);
@@ -9429,29 +9525,21 @@ module canstar_hub_core$core$run_start(clock,reset,sample,bit_start,stuff,sof,bt
     reg  bt_prev$d;
     wire  bt_prev$q;
     reg  bt_prev$clock;
-    reg  sd_run$d;
-    wire  sd_run$q;
-    reg  sd_run$clock;
     reg  [1:0] sl_cnt$d;
     wire  [1:0] sl_cnt$q;
     reg  sl_cnt$clock;
     reg  sl_bs$d;
     wire  sl_bs$q;
     reg  sl_bs$clock;
-    reg  es_run$d;
-    wire  es_run$q;
-    reg  es_run$clock;
+    reg  run$d;
+    wire  run$q;
+    reg  run$clock;
     
     // Sub module instances
     canstar_hub_core$core$run_start$bt_prev bt_prev(
         .d(bt_prev$d),
         .q(bt_prev$q),
         .clock(bt_prev$clock)
-    );
-    canstar_hub_core$core$run_start$sd_run sd_run(
-        .d(sd_run$d),
-        .q(sd_run$q),
-        .clock(sd_run$clock)
     );
     canstar_hub_core$core$run_start$sl_cnt sl_cnt(
         .d(sl_cnt$d),
@@ -9463,24 +9551,22 @@ module canstar_hub_core$core$run_start(clock,reset,sample,bit_start,stuff,sof,bt
         .q(sl_bs$q),
         .clock(sl_bs$clock)
     );
-    canstar_hub_core$core$run_start$es_run es_run(
-        .d(es_run$d),
-        .q(es_run$q),
-        .clock(es_run$clock)
+    canstar_hub_core$core$run_start$run run(
+        .d(run$d),
+        .q(run$q),
+        .clock(run$clock)
     );
     
     // Update code
     always @(*) begin
         bt_prev$clock = clock;
-        sd_run$clock = clock;
         sl_cnt$clock = clock;
         sl_bs$clock = clock;
-        es_run$clock = clock;
+        run$clock = clock;
         bt_prev$d = bt_prev$q;
-        sd_run$d = sd_run$q;
         sl_cnt$d = sl_cnt$q;
         sl_bs$d = sl_bs$q;
-        es_run$d = es_run$q;
+        run$d = run$q;
         if (sample) begin
             bt_prev$d = bt;
         end
@@ -9498,24 +9584,17 @@ module canstar_hub_core$core$run_start(clock,reset,sample,bit_start,stuff,sof,bt
         end
         if (sample) begin
             if (bt) begin
-                sd_run$d = 1'b0;
-                es_run$d = 1'b0;
+                run$d = 1'b0;
             end
-            else begin
-                if (stuff_dom) begin
-                    sd_run$d = 1'b1;
-                end
-                if (sof & sl_bs$q) begin
-                    es_run$d = 1'b1;
-                end
+            else if (stuff_dom | (sof & sl_bs$q)) begin
+                run$d = 1'b1;
             end
         end
         if (reset) begin
             bt_prev$d = 1'b1;
-            sd_run$d = 1'b0;
-            es_run$d = 1'b0;
+            run$d = 1'b0;
         end
-        excused = sd_run$q | es_run$q;
+        excused = run$q;
     end
     
 endmodule // canstar_hub_core$core$run_start
@@ -9540,7 +9619,7 @@ module canstar_hub_core$core$run_start$bt_prev(d,q,clock);
 endmodule // canstar_hub_core$core$run_start$bt_prev
 
 
-module canstar_hub_core$core$run_start$es_run(d,q,clock);
+module canstar_hub_core$core$run_start$run(d,q,clock);
     
     // Module arguments
     input wire  d;
@@ -9556,26 +9635,7 @@ module canstar_hub_core$core$run_start$es_run(d,q,clock);
        q <= d;
     end
           
-endmodule // canstar_hub_core$core$run_start$es_run
-
-
-module canstar_hub_core$core$run_start$sd_run(d,q,clock);
-    
-    // Module arguments
-    input wire  d;
-    output reg  q;
-    input wire  clock;
-    
-    // Update code (custom)
-    initial begin
-       q = 1'h0;
-    end
-    
-    always @(posedge clock) begin
-       q <= d;
-    end
-          
-endmodule // canstar_hub_core$core$run_start$sd_run
+endmodule // canstar_hub_core$core$run_start$run
 
 
 module canstar_hub_core$core$run_start$sl_bs(d,q,clock);
@@ -9704,6 +9764,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     localparam  im2_at = 5'b1;
     localparam  spu_on = 1'b0;
     localparam  sfx_on = 1'b0;
+    localparam  ffr_on = 1'b1;
     localparam  reint_on = 1'b0;
     localparam  reint_w = 8'h1;
     
@@ -9835,6 +9896,9 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  sfol_r$d;
     wire  sfol_r$q;
     reg  sfol_r$clock;
+    reg  ffm_r$d;
+    wire  ffm_r$q;
+    reg  ffm_r$clock;
     reg  [1:0] step_r$d;
     wire  [1:0] step_r$q;
     reg  step_r$clock;
@@ -10085,6 +10149,11 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .q(sfol_r$q),
         .clock(sfol_r$clock)
     );
+    canstar_hub_core$core$sj$0$ffm_r ffm_r(
+        .d(ffm_r$d),
+        .q(ffm_r$q),
+        .clock(ffm_r$clock)
+    );
     canstar_hub_core$core$sj$0$step_r step_r(
         .d(step_r$d),
         .q(step_r$q),
@@ -10149,6 +10218,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         fol_r$clock = clock;
         osd_r$clock = clock;
         sfol_r$clock = clock;
+        ffm_r$clock = clock;
         step_r$clock = clock;
         bl_r$clock = clock;
         bl_dm_r$clock = clock;
@@ -10194,6 +10264,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         fol_r$d = fol_r$q;
         osd_r$d = osd_r$q;
         sfol_r$d = sfol_r$q;
+        ffm_r$d = ffm_r$q;
         step_r$d = step_r$q;
         bl_r$d = bl_r$q;
         bl_dm_r$d = bl_dm_r$q;
@@ -10312,6 +10383,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                 cont_r$d = 1'b0;
             end
             ffd_r$d = domw & cont_r$q & ~suppress & ~gl_others;
+            ffm_r$d = rep_rec_w;
             if (sof) begin
                 glf_r$d = 1'b0;
                 glo_r$d = 1'b0;
@@ -10447,7 +10519,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         bl_dm_r$d = blame & rep_rec_w & ~suppress;
         if (err_start) begin
             rep_seen$d = 1'b0;
-            if (((rep_seen$q & rep_first_dom$q & rep_ok & ~(rep_blamed & ~bl_r$q) & ~ff) | bl_dm_r$q) & (rep_r$q != 32'h7)) begin
+            if (((rep_seen$q & rep_first_dom$q & rep_ok & ~(rep_blamed & ~bl_r$q) & ~ff) | bl_dm_r$q | (ffr_on & ffc & ffm_r$q)) & (rep_r$q != 32'h7)) begin
                 rep_r$d = rep_r$q + 32'h1;
             end
         end
@@ -10523,6 +10595,7 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             pgc_r$d = 32'h0;
             pdec_r$d = 32'h0;
             ffd_r$d = 1'b0;
+            ffm_r$d = 1'b0;
             glf_r$d = 1'b0;
             glo_r$d = 1'b0;
             pgl_r$d = 1'b0;
@@ -10911,6 +10984,25 @@ module canstar_hub_core$core$sj$0$ffd_r(d,q,clock);
     end
           
 endmodule // canstar_hub_core$core$sj$0$ffd_r
+
+
+module canstar_hub_core$core$sj$0$ffm_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$sj$0$ffm_r
 
 
 module canstar_hub_core$core$sj$0$fol_r(d,q,clock);
@@ -11659,6 +11751,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     localparam  im2_at = 5'b1;
     localparam  spu_on = 1'b0;
     localparam  sfx_on = 1'b0;
+    localparam  ffr_on = 1'b1;
     localparam  reint_on = 1'b0;
     localparam  reint_w = 8'h1;
     
@@ -11790,6 +11883,9 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     reg  sfol_r$d;
     wire  sfol_r$q;
     reg  sfol_r$clock;
+    reg  ffm_r$d;
+    wire  ffm_r$q;
+    reg  ffm_r$clock;
     reg  [1:0] step_r$d;
     wire  [1:0] step_r$q;
     reg  step_r$clock;
@@ -12040,6 +12136,11 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         .q(sfol_r$q),
         .clock(sfol_r$clock)
     );
+    canstar_hub_core$core$sj$1$ffm_r ffm_r(
+        .d(ffm_r$d),
+        .q(ffm_r$q),
+        .clock(ffm_r$clock)
+    );
     canstar_hub_core$core$sj$1$step_r step_r(
         .d(step_r$d),
         .q(step_r$q),
@@ -12104,6 +12205,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         fol_r$clock = clock;
         osd_r$clock = clock;
         sfol_r$clock = clock;
+        ffm_r$clock = clock;
         step_r$clock = clock;
         bl_r$clock = clock;
         bl_dm_r$clock = clock;
@@ -12149,6 +12251,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         fol_r$d = fol_r$q;
         osd_r$d = osd_r$q;
         sfol_r$d = sfol_r$q;
+        ffm_r$d = ffm_r$q;
         step_r$d = step_r$q;
         bl_r$d = bl_r$q;
         bl_dm_r$d = bl_dm_r$q;
@@ -12267,6 +12370,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
                 cont_r$d = 1'b0;
             end
             ffd_r$d = domw & cont_r$q & ~suppress & ~gl_others;
+            ffm_r$d = rep_rec_w;
             if (sof) begin
                 glf_r$d = 1'b0;
                 glo_r$d = 1'b0;
@@ -12402,7 +12506,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
         bl_dm_r$d = blame & rep_rec_w & ~suppress;
         if (err_start) begin
             rep_seen$d = 1'b0;
-            if (((rep_seen$q & rep_first_dom$q & rep_ok & ~(rep_blamed & ~bl_r$q) & ~ff) | bl_dm_r$q) & (rep_r$q != 32'h7)) begin
+            if (((rep_seen$q & rep_first_dom$q & rep_ok & ~(rep_blamed & ~bl_r$q) & ~ff) | bl_dm_r$q | (ffr_on & ffc & ffm_r$q)) & (rep_r$q != 32'h7)) begin
                 rep_r$d = rep_r$q + 32'h1;
             end
         end
@@ -12478,6 +12582,7 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
             pgc_r$d = 32'h0;
             pdec_r$d = 32'h0;
             ffd_r$d = 1'b0;
+            ffm_r$d = 1'b0;
             glf_r$d = 1'b0;
             glo_r$d = 1'b0;
             pgl_r$d = 1'b0;
@@ -12866,6 +12971,25 @@ module canstar_hub_core$core$sj$1$ffd_r(d,q,clock);
     end
           
 endmodule // canstar_hub_core$core$sj$1$ffd_r
+
+
+module canstar_hub_core$core$sj$1$ffm_r(d,q,clock);
+    
+    // Module arguments
+    input wire  d;
+    output reg  q;
+    input wire  clock;
+    
+    // Update code (custom)
+    initial begin
+       q = 1'h0;
+    end
+    
+    always @(posedge clock) begin
+       q <= d;
+    end
+          
+endmodule // canstar_hub_core$core$sj$1$ffm_r
 
 
 module canstar_hub_core$core$sj$1$fol_r(d,q,clock);

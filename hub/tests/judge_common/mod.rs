@@ -5,7 +5,7 @@ use canstar_hdl::drive;
 use canstar_hub::judge::{JudgeParams, JudgeUnit};
 
 pub fn params() -> JudgeParams {
-    JudgeParams { bic_limit: 64, bic_decay: 1, life_limit: 32, dbc_threshold: 13, nack_threshold: 7, replica_limit: 3, reintegration: None, glitch_min: 1, glitch_min_dominant: 1, glitch_max: 11, glitch_limit: 3, glitch_decay: 16, peer_glitch_limit: 12, peer_glitch_decay: 4, window_lag: 7, crc_window_end: 8, first_flagger: false, eof_last: false, delim_blames: 1, replica_skew: 4, replica_overload: false, dbc_bridge: false, im2_lag: 0, stuff_pulse: false, sub_follower: false }
+    JudgeParams { bic_limit: 64, bic_decay: 1, life_limit: 32, dbc_threshold: 13, nack_threshold: 7, replica_limit: 3, reintegration: None, glitch_min: 1, glitch_min_dominant: 1, glitch_max: 11, glitch_limit: 3, glitch_decay: 16, peer_glitch_limit: 12, peer_glitch_decay: 4, window_lag: 7, crc_window_end: 8, first_flagger: false, eof_last: false, delim_blames: 1, replica_skew: 4, replica_overload: false, dbc_bridge: false, im2_lag: 0, stuff_pulse: false, sub_follower: false, ff_replica: false }
 }
 
 #[derive(Default, Clone, Copy)]
