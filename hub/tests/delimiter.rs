@@ -27,7 +27,7 @@ fn delimiter_with(pulse: bool, reaction: bool) -> Vec<u64> {
     delimiter_bit(&mut h, 1, &|i, k| pulse && i == 0 && k >= 13);
     delimiter_bit(&mut h, 2, &|i, k| pulse && i == 0 && k <= 8);
     delimiter_bit(&mut h, 3, &|i, _| reaction && i == 1);
-    h.bic.iter().map(|s| s.val().index() as u64).collect()
+    h.bic()
 }
 
 #[test]

@@ -52,7 +52,7 @@ fn flag_after_glitch(glitching: &[usize]) -> (Vec<u64>, Vec<u64>) {
         bit(&mut h, Field::Id, p, p == 12, &dom);
     }
     bit(&mut h, Field::ErrorFlag, 0, false, &dom);
-    (h.bic.iter().map(|s| s.val().index() as u64).collect(), h.sub_bic.iter().map(|s| s.val().index() as u64).collect())
+    (h.bic(), h.sub_bic())
 }
 
 #[test]
@@ -85,7 +85,7 @@ fn overload_flags_after_early_sof(edge: usize, port_led: bool, early_sof_clocks:
         monitor_bit(&mut h, Field::Id, p, p == 4, &flag, &dom);
     }
     monitor_bit(&mut h, Field::ErrorFlag, 0, false, &flag, &dom);
-    (h.bic.iter().map(|s| s.val().index() as u64).collect(), h.sub_bic.iter().map(|s| s.val().index() as u64).collect())
+    (h.bic(), h.sub_bic())
 }
 
 #[test]
@@ -112,7 +112,7 @@ fn monitor_error_under(pulse: bool, ff_replica_charge: bool) -> (Vec<u64>, Vec<u
     }
     bit(&mut h, Field::Id, 6, true, if pulse { &|j, _| j != 0 } else { &dom });
     bit(&mut h, Field::ErrorFlag, 0, false, &dom);
-    (h.sub_bic.iter().map(|s| s.val().index() as u64).collect(), h.sub_rep.iter().map(|s| s.val().index() as u64).collect())
+    (h.sub_bic(), h.sub_rep())
 }
 
 #[test]
