@@ -86,7 +86,7 @@ pub struct HubConfig {
     /// port / a sublink (hub.md §5.17), 1..=3.
     pub delim_blames: u64,
     pub sub_delim_blames: u64,
-    /// Dominant-run threshold for sublinks, 1..=31.
+    /// Dominant-run threshold for sublinks, 1..=31 (default 29 since hub.md §5.28).
     pub sub_dbc_threshold: u64,
     /// Replica disagreement limit, 1..=7.
     pub replica_limit: u64,
@@ -105,7 +105,8 @@ pub struct HubConfig {
     pub sub_glitch_min: u64,
     /// Shortest dominant run that counts as a glitch on a sublink (hub.md §5.15), 1..=30.
     pub sub_dominant_glitch_min: u64,
-    /// Glitches that isolate a port / a sublink (decaying counter), 1..=7.
+    /// Glitches that isolate a port / a sublink (decaying counter), 1..=7 (sublinks: 5 since
+    /// hub.md §5.28).
     pub glitch_limit: u64,
     pub sub_glitch_limit: u64,
     /// Frames completed without error that take one glitch off the counter, 1..=31.
@@ -197,14 +198,14 @@ impl Default for HubConfig {
             sub_bic_decay: 2,
             delim_blames: 3,
             sub_delim_blames: 2,
-            sub_dbc_threshold: 28,
+            sub_dbc_threshold: 29,
             replica_limit: 2,
             replica_skew: 4,
             glitch_max: None,
             sub_glitch_min: 3,
             sub_dominant_glitch_min: 1,
             glitch_limit: 3,
-            sub_glitch_limit: 6,
+            sub_glitch_limit: 5,
             glitch_decay: 16,
             peer_glitch_limit: 12,
             peer_glitch_decay: 4,

@@ -149,7 +149,7 @@
 //!
 //! **§5.4 dominant run.** `dbc` counts consecutive dominant samples in any state
 //! (saturating at 31) and clears on a recessive sample; isolation when `dbc >=
-//! dbc_threshold` (ports 13 by default, sublinks 28). §5.22 (ports, `dbc_bridge`): a
+//! dbc_threshold` (ports 13 by default, sublinks 29; 28 before hub.md §5.28). §5.22 (ports, `dbc_bridge`): a
 //! recessive sample of the port in an error phase, under a coupled bus (`bt`) that was
 //! dominant at every clock since the last sample, holds `dbc` instead of clearing it.
 //!
@@ -199,7 +199,8 @@
 //! link causes in the nodes (which the baseline blamed on the healthy nodes whose flags
 //! came first, or on nobody). Each glitch increments `gc` (3 bits, saturating) at the
 //! next sample point; `gc` loses one count per `glitch_decay` (16) frames completed
-//! without error; the unit isolates at `gc >= glitch_limit` (ports 3, sublinks 6).
+//! without error; the unit isolates at `gc >= glitch_limit` (ports 3, sublinks 5 since
+//! hub.md §5.28, 6 before).
 //! **Common glitches are not counted (changed):** a glitch that every enabled replica
 //! sublink (at least two) shows within two bits (`common`) is in the peer hub's
 //! contribution, a glitch of one of the peer's ports, which the peer counts itself.
@@ -548,6 +549,15 @@
 //! glitch. Tests: `hub/tests/first_flagger.rs`
 //! `the_only_dominant_contender_against_its_replica_gets_a_replica_charge`,
 //! `recan/tests/campaign_runs.rs` `a_first_flagger_against_its_recessive_replica_gets_a_replica_charge`.
+//!
+//! **§5.28 sublink limits: 5 glitches, a dominant run of 29 (session 32, parameters
+//! only).** A sublink pulsed every 2 bits gave the peer, which charges both of its
+//! sublinks for every flag of this hub, time to reach its limit while this hub counted
+//! the fifth of six glitches; and a port that keeps restarting its flag could reach the
+//! port threshold 13 a fraction of a bit after the peer's sublinks, which see no gap
+//! between its flags, reached 28. Tests: `recan/tests/campaign_runs.rs`
+//! `a_sublink_glitching_every_two_bits_is_cut_off_at_its_fifth_glitch`,
+//! `the_peer_leaves_a_flagging_port_time_to_reach_its_dominant_run_limit`.
 
 use crate::pulse::PulseCheck;
 use rust_hdl::prelude::*;

@@ -215,7 +215,8 @@ fn config_defaults_serde_and_validation() {
     assert!(d.first_flagger && d.sub_first_flagger);
     assert_eq!(d.early_sof_clocks, 3);
     assert!(d.ff_replica_charge);
-    assert_eq!((d.sub_bic_threshold, d.sub_dbc_threshold, d.replica_limit), (9, 28, 2));
+    assert_eq!((d.sub_bic_threshold, d.sub_dbc_threshold, d.replica_limit), (9, 29, 2));
+    assert_eq!((d.glitch_limit, d.sub_glitch_limit), (3, 5));
     assert_eq!((d.peer_glitch_limit, d.peer_glitch_decay), (12, 4));
     assert_eq!(d.reintegration, None);
     assert!(d.validate().is_ok());

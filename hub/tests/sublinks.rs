@@ -73,7 +73,8 @@ fn stuck_dominant_sublink_isolated_alone<T: Dut>() {
         }
     }
     let at = at.expect("stuck-dominant sublink not isolated");
-    assert!(at - start <= 28 + 2, "isolated {} bits after the start (dominant run threshold 28)", at - start);
+    let th = recancentrate().sub_dbc_threshold as usize;
+    assert!(at - start <= th + 2, "isolated {} bits after the start (dominant run threshold {th})", at - start);
     net.run_until_idle(60_000);
     assert_eq!(net.sub_isolated(), vec![false, true]);
     assert_eq!(net.isolated(), vec![false; 3]);
@@ -97,8 +98,9 @@ fn dominant_run_isolates_single_sublink<T: Dut>() {
     }
     let at = at.expect("not isolated");
     // the run may have started up to 5 bits before the fault (dominant frame bits)
-    assert!((22..=30).contains(&(at - 100)), "isolated after {} bits", at - 100);
-    assert!(net.hub.sub_dbc()[0] as usize >= 28, "isolated by the dominant-run rule");
+    let th = cfg.sub_dbc_threshold as usize;
+    assert!((th - 6..=th + 2).contains(&(at - 100)), "isolated after {} bits", at - 100);
+    assert!(net.hub.sub_dbc()[0] as usize >= th, "isolated by the dominant-run rule");
     // at most one first-flagger charge (hub.md §5.12): the stuck sublink was the dominant
     // contender when the monitor found the stuff error that its dominant run caused
     assert!(net.hub.sub_bic()[0] as usize <= 8, "sub bic {}", net.hub.sub_bic()[0]);

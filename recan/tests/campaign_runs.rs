@@ -25,6 +25,18 @@ fn hub(f: impl FnOnce(&mut HubConfig)) -> Option<HubConfig> {
     Some(h)
 }
 
+/// The default hub passes `run` (class, seed) with exactly `isolations`, and the hub with
+/// `before` applied (the configuration before a change) fails it; returns that failing run.
+fn passes_only_by_default(run: (&str, u64), isolations: &[&str], before: impl FnOnce(&mut HubConfig)) -> RunOutcome {
+    let (class, seed) = run;
+    let o = run_with(class, seed, None);
+    assert!(o.pass, "{class} {seed}: {:?}", o.failures);
+    assert_eq!(o.isolations, isolations, "{class} {seed}");
+    let b = run_with(class, seed, hub(before));
+    assert!(!b.pass, "{class} {seed} passes before the change too: {:?}", b.isolations);
+    b
+}
+
 /// hub.md §5.17: hub 1's output forced dominant about every 1.9 bits. Its dominant bits in
 /// the error delimiters count two blames on hub 0's sublinks, which cut hub 1 off before
 /// the transmitter behind hub 0 reaches the warning limit (with one blame per delimiter
@@ -105,6 +117,36 @@ fn a_first_flagger_against_its_recessive_replica_gets_a_replica_charge() {
     assert!(o.pass, "{:?}", o.failures);
     assert!(o.isolations.len() == 1 && o.isolations[0].starts_with("hub 0 sublink 0@"), "{:?}", o.isolations);
     assert!(!run_with("sweep-sublink-r2d-e2", 14166616403326049450, hub(|h| h.ff_replica_charge = false)).pass);
+}
+
+/// hub.md §5.28: the sublink from hub 0 into hub 1 forced dominant for about 14.5 hub clocks
+/// every 2 bits. Hub 1 counts most pulses as glitches and blames nobody for the nodes' flags
+/// that follow them, while hub 0 charges both of its sublinks for every flag of hub 1: with
+/// the glitch limit 6 hub 1 cut the replica off by the replica rule one bit before hub 0
+/// cut off hub 1. With the limit 5 the fifth glitch isolates it ten bits earlier.
+#[test]
+fn a_sublink_glitching_every_two_bits_is_cut_off_at_its_fifth_glitch() {
+    let six = passes_only_by_default(
+        ("sweep-sublink-r2d-e2", 16316939522952671778),
+        &["hub 1 sublink 1@220 (glitches 5/5)"],
+        |h| h.sub_glitch_limit = 6,
+    );
+    assert!(six.failures.iter().any(|f| f.contains("hubs isolated each other")), "limit 6: {:?}", six.failures);
+}
+
+/// hub.md §5.28: node 1's controller A has its downlink flipping about every 10.6 bits and
+/// keeps restarting its error flag. Its hub (hub 0) sees a recessive sliver that the peer's
+/// sample missed, so the peer's sublinks carry a dominant run a few tenths of a bit longer
+/// than the port's: with the sublink threshold 28 both reached their limit in the same bit
+/// and the hubs split; with 29 the port is cut off first and the peer keeps its sublinks.
+#[test]
+fn the_peer_leaves_a_flagging_port_time_to_reach_its_dominant_run_limit() {
+    let t28 = passes_only_by_default(
+        ("sweep-down-flip-e10", 18092177680530550086),
+        &["hub 0 port 1@604 (dominant run 13/13)"],
+        |h| h.sub_dbc_threshold = 28,
+    );
+    assert_eq!(t28.isolations.iter().filter(|i| i.starts_with("hub 1 sublink")).count(), 2, "threshold 28: {:?}", t28.isolations);
 }
 
 /// hub.md §5.19: node 1's controller B loses a dominant bit about every 9 bits on its

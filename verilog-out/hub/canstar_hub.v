@@ -9743,10 +9743,10 @@ module canstar_hub_core$core$sj$0(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     localparam  d_bl = 2'b10;
     localparam  b_decay = 3'b10;
     localparam  life_limit = 7'b1000000;
-    localparam  dbc_thr = 5'b11100;
+    localparam  dbc_thr = 5'b11101;
     localparam  nack_thr = 3'b111;
     localparam  rep_limit = 3'b10;
-    localparam  glitch_limit = 3'b110;
+    localparam  glitch_limit = 3'b101;
     localparam  glitch_decay = 5'b10000;
     localparam  pg_limit = 4'hc;
     localparam  pg_decay = 3'b100;
@@ -11730,10 +11730,10 @@ module canstar_hub_core$core$sj$1(clock,reset,sample,c,bt,sof,tx_region,arb,crc_
     localparam  d_bl = 2'b10;
     localparam  b_decay = 3'b10;
     localparam  life_limit = 7'b1000000;
-    localparam  dbc_thr = 5'b11100;
+    localparam  dbc_thr = 5'b11101;
     localparam  nack_thr = 3'b111;
     localparam  rep_limit = 3'b10;
-    localparam  glitch_limit = 3'b110;
+    localparam  glitch_limit = 3'b101;
     localparam  glitch_decay = 5'b10000;
     localparam  pg_limit = 4'hc;
     localparam  pg_decay = 3'b100;
