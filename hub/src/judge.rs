@@ -149,9 +149,10 @@
 //!
 //! **§5.4 dominant run.** `dbc` counts consecutive dominant samples in any state
 //! (saturating at 31) and clears on a recessive sample; isolation when `dbc >=
-//! dbc_threshold` (ports 13 by default, sublinks 29; 28 before hub.md §5.28). §5.22 (ports, `dbc_bridge`): a
-//! recessive sample of the port in an error phase, under a coupled bus (`bt`) that was
-//! dominant at every clock since the last sample, holds `dbc` instead of clearing it.
+//! dbc_threshold` (ports 13 by default, sublinks 29; 28 before hub.md §5.28). §5.22
+//! (ports, `dbc_bridge`): a recessive sample of the port in an error phase, under a
+//! coupled bus (`bt`) that was dominant at every clock since the last sample, holds `dbc`
+//! instead of clearing it.
 //!
 //! **§5.5 NACK (ports only).** In a frame whose CRC the monitor found correct, a
 //! non-contender that was recessive in the ACK slot increments `nack` (saturating at

@@ -37,6 +37,11 @@ fn passes_only_by_default(run: (&str, u64), isolations: &[&str], before: impl Fn
     b
 }
 
+/// The run failed because the two hubs isolated each other (the star split).
+fn partitioned(o: &RunOutcome) -> bool {
+    !o.pass && o.failures.iter().any(|f| f.contains("hubs isolated each other"))
+}
+
 /// hub.md §5.17: hub 1's output forced dominant about every 1.9 bits. Its dominant bits in
 /// the error delimiters count two blames on hub 0's sublinks, which cut hub 1 off before
 /// the transmitter behind hub 0 reaches the warning limit (with one blame per delimiter
@@ -92,7 +97,7 @@ fn overload_flags_after_an_early_sof_from_the_peer_are_not_charged() {
     assert!(o.pass, "{:?}", o.failures);
     assert!(o.isolations.len() == 1 && o.isolations[0].starts_with("hub 1 port 2@"), "{:?}", o.isolations);
     let off = run_with("sweep-up-r2d-e10", 11664831222488605187, hub(|h| h.early_sof_clocks = 0));
-    assert!(!off.pass && off.failures.iter().any(|f| f.contains("hubs isolated each other")), "without the rule: {:?}", off.failures);
+    assert!(partitioned(&off), "without the rule: {:?}", off.failures);
     assert!(run("sweep-down-d2r-e10", 14880712450563600277).pass);
     let early = run_with("sweep-down-d2r-e10", 14880712450563600277, hub(|h| h.early_sof_clocks = 1));
     assert!(!early.pass, "early_sof_clocks 1: {:?}", early.isolations);
@@ -108,15 +113,17 @@ fn overload_flags_after_an_early_sof_from_the_peer_are_not_charged() {
 /// at its second such episode. The same charge passes a pulse every 2 bits.
 #[test]
 fn a_first_flagger_against_its_recessive_replica_gets_a_replica_charge() {
-    let o = run("sweep-sublink-r2d-e100", 7601751665248820364);
-    assert!(o.pass, "{:?}", o.failures);
-    assert_eq!(o.isolations, vec!["hub 1 sublink 0@883 (replica 2/2)".to_string()]);
-    let off = run_with("sweep-sublink-r2d-e100", 7601751665248820364, hub(|h| h.ff_replica_charge = false));
-    assert!(!off.pass && off.failures.iter().any(|f| f.contains("hubs isolated each other")), "without the rule: {:?}", off.failures);
-    let o = run("sweep-sublink-r2d-e2", 14166616403326049450);
-    assert!(o.pass, "{:?}", o.failures);
-    assert!(o.isolations.len() == 1 && o.isolations[0].starts_with("hub 0 sublink 0@"), "{:?}", o.isolations);
-    assert!(!run_with("sweep-sublink-r2d-e2", 14166616403326049450, hub(|h| h.ff_replica_charge = false)).pass);
+    let off = passes_only_by_default(
+        ("sweep-sublink-r2d-e100", 7601751665248820364),
+        &["hub 1 sublink 0@883 (replica 2/2)"],
+        |h| h.ff_replica_charge = false,
+    );
+    assert!(partitioned(&off), "without the rule: {:?}", off.failures);
+    passes_only_by_default(
+        ("sweep-sublink-r2d-e2", 14166616403326049450),
+        &["hub 0 sublink 0@644 (replica 2/2)"],
+        |h| h.ff_replica_charge = false,
+    );
 }
 
 /// hub.md §5.28: the sublink from hub 0 into hub 1 forced dominant for about 14.5 hub clocks
@@ -131,7 +138,7 @@ fn a_sublink_glitching_every_two_bits_is_cut_off_at_its_fifth_glitch() {
         &["hub 1 sublink 1@220 (glitches 5/5)"],
         |h| h.sub_glitch_limit = 6,
     );
-    assert!(six.failures.iter().any(|f| f.contains("hubs isolated each other")), "limit 6: {:?}", six.failures);
+    assert!(partitioned(&six), "limit 6: {:?}", six.failures);
 }
 
 /// hub.md §5.28: node 1's controller A has its downlink flipping about every 10.6 bits and
