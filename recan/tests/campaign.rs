@@ -140,6 +140,39 @@ fn merge_and_json_bookkeeping() {
     assert!(part.runs.len() < part.expected_runs());
 }
 
+#[test]
+fn merge_joins_campaigns_over_different_classes() {
+    // three campaigns over disjoint parts of one class selection, one of them sharded,
+    // join into the campaign over the whole selection (catalogue order, plan order)
+    let s = settings(13, 2);
+    let report = |filter: &str, shard: Option<Shard>| {
+        let classes = campaign::select(filter).unwrap();
+        let r = CampaignReport::new(s.clone(), &classes, shard, campaign::execute(&campaign::plan(&classes, &s, shard), 2, fake, |_| {}));
+        CampaignReport::from_json(&r.to_json(), filter).unwrap()
+    };
+    let full = report("pub0*,eof-*,hub-*", None);
+    let pubs = report("pub0*", None);
+    let eof = report("eof-*", None);
+    let hub1 = report("hub-*", Some(Shard { index: 1, count: 2 }));
+    let hub2 = report("hub-*", Some(Shard { index: 2, count: 2 }));
+    let m = CampaignReport::merge(&[hub2.clone(), eof.clone(), hub1.clone(), pubs.clone()]).unwrap();
+    assert_eq!(m, full);
+    assert_eq!(m.table(), full.table());
+    // a join with a shard missing is partial and says so
+    let part = CampaignReport::merge(&[eof.clone(), hub1.clone(), pubs.clone()]).unwrap();
+    assert_eq!(part.classes, full.classes);
+    assert!(part.runs.len() < part.expected_runs());
+    assert_eq!(part.shards, vec![Shard { index: 1, count: 2 }]);
+    // overlapping class lists join only when no run is in both
+    let overlap = report("eof-*,hub-*", None);
+    let e = CampaignReport::merge(&[eof.clone(), overlap]).unwrap_err().to_string();
+    assert!(e.contains("appears twice"), "{e}");
+    // other settings are another campaign
+    let mut other = eof.clone();
+    other.settings.reps = 3;
+    assert!(CampaignReport::merge(&[pubs, other]).is_err());
+}
+
 /// Minimal XML well-formedness check: balanced tags, quoted attributes, known entities.
 fn check_xml(s: &str) -> Result<usize, String> {
     let b = s.as_bytes();

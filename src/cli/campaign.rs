@@ -55,7 +55,8 @@ pub struct Args {
     /// With --class: print every hub blame and every controller error of the run.
     #[arg(long, requires = "class")]
     events: bool,
-    /// Combine JSON reports (shards of one campaign) and print the table.
+    /// Combine JSON reports of one configuration (shards of one campaign, or campaigns
+    /// over different classes) and print the table.
     #[arg(long, num_args = 1.., conflicts_with_all = ["class", "shard", "classes"])]
     merge: Vec<PathBuf>,
     /// List the scenario classes.

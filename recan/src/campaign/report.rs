@@ -237,35 +237,44 @@ impl CampaignReport {
         Ok(r)
     }
 
-    /// Combine shard reports of one campaign (same settings and class list; no run
-    /// twice). The result lists every run once, in plan order.
+    /// Combine reports of one campaign configuration (equal settings): shards of one
+    /// campaign, campaigns over different classes, or both. A run's seed depends only on
+    /// the settings' seed, its class and its repetition, so the result is the report of
+    /// one campaign over the union of the class lists (catalogue order). No run may
+    /// appear twice.
     pub fn merge(parts: &[CampaignReport]) -> Result<CampaignReport, CampaignError> {
         let first = parts.first().ok_or_else(|| CampaignError::BadReport("nothing to merge".into()))?;
+        let catalogue = classes::catalogue();
         let mut runs = vec![];
         let mut shards = vec![];
         for (i, p) in parts.iter().enumerate() {
-            if p.settings != first.settings || p.classes != first.classes {
+            if p.settings != first.settings {
                 return Err(CampaignError::BadReport(format!(
-                    "report {} is from a different campaign (settings or classes differ from report 1)",
+                    "report {} is from a different campaign (its settings differ from report 1's)",
                     i + 1
                 )));
+            }
+            if let Some(c) = p.classes.iter().find(|c| !catalogue.iter().any(|k| &k.name == *c)) {
+                return Err(CampaignError::BadReport(format!("report {}: unknown class `{c}`", i + 1)));
             }
             shards.extend(p.shards.iter().copied());
             runs.extend(p.runs.iter().cloned());
         }
-        sort_runs(&first.classes, &mut runs);
+        let classes: Vec<String> =
+            catalogue.into_iter().map(|k| k.name).filter(|k| parts.iter().any(|p| p.classes.contains(k))).collect();
+        sort_runs(&classes, &mut runs);
         for w in runs.windows(2) {
             if w[0].class == w[1].class && w[0].rep == w[1].rep {
-                return Err(CampaignError::BadReport(format!("run {} rep {} appears twice (overlapping shards)", w[0].class, w[0].rep)));
+                return Err(CampaignError::BadReport(format!("run {} rep {} appears twice (overlapping reports)", w[0].class, w[0].rep)));
             }
         }
         shards.sort_by_key(|s| (s.count, s.index));
         shards.dedup();
-        let complete = runs.len() == first.classes.len() * first.settings.reps as usize;
+        let complete = runs.len() == classes.len() * first.settings.reps as usize;
         Ok(CampaignReport {
             format: FORMAT,
             settings: first.settings.clone(),
-            classes: first.classes.clone(),
+            classes,
             shards: if complete { vec![] } else { shards },
             runs,
         })
