@@ -107,6 +107,14 @@ fn network_clocks_that_round_to_a_zero_period_are_rejected() {
     fails_cleanly(&["sim", "ctrl.toml", "--ms", "0.01"], d.path(), "ctrl.toml: nodes[0].a.clock_hz: 10000000000000");
 }
 
+#[test]
+fn a_driver_copy_limit_beyond_a_counter_is_rejected() {
+    let d = scratch();
+    let text = std::fs::read_to_string(example("recancentrate.toml")).unwrap();
+    write(d.path(), "net.toml", &text.replace("copy_tec = 8 ", "copy_tec = 256 "));
+    fails_cleanly(&["sim", "net.toml", "--ms", "0.01"], d.path(), "net.toml: driver.copy_tec: 256");
+}
+
 // ---- defect 2: board names used as folder names
 
 #[test]

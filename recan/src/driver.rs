@@ -55,6 +55,11 @@ pub enum Notice {
     Rerequest,
     /// No active controller is left.
     NoController,
+    /// The pending frame, after `max_inconsists` omission discrepancies, was requested on
+    /// the non-tx controller too (`DriverSpec::copy_tec`).
+    Copy,
+    /// A copy was given up unsent (its controller failed or the timer expired).
+    CopyGivenUp,
 }
 
 /// State of one node's driver.
@@ -87,6 +92,13 @@ pub struct Driver {
     latency_ps: u64,
     /// When each controller's TEC or REC was first seen at the warning limit.
     warn_since: [Option<(u64, QuaReason)>; 2],
+    /// The controller sending a copy of the pending frame (`DriverSpec::copy_tec`); the
+    /// frame is reported sent when the copy is.
+    copy_on: Option<usize>,
+    /// The last frame copied: a controller receiving it is receiving this node's frame.
+    copied: Option<Frame>,
+    /// A copy was given up unsent: no copy until the non-tx controller reports a reception.
+    copy_blocked: bool,
     /// Routine log (only with tracing).
     pub log: Option<Vec<String>>,
 }
@@ -114,6 +126,9 @@ impl Driver {
             inbox: Vec::new(),
             latency_ps: (spec.irq_latency_ns * 1000.0).round() as u64,
             warn_since: [None, None],
+            copy_on: None,
+            copied: None,
+            copy_blocked: false,
             log: trace.then(Vec::new),
         }
     }
@@ -172,6 +187,16 @@ impl Driver {
                 continue;
             }
             match e {
+                CtrlEvent::TxDone(_) if self.tx != Some(c) => {
+                    // only a copy is ever requested on the non-tx controller (a new tx
+                    // controller is chosen before the pending frame is requested on it)
+                    self.note(t, || format!("copy sent by {}", abc(c)));
+                    if self.copy_on == Some(c) {
+                        self.copy_on = None;
+                        self.success(now, &mut out);
+                        self.note(now, || "copy sent: success".into());
+                    }
+                }
                 CtrlEvent::TxDone(_) => {
                     self.tx_flag[c] = Some(t);
                     if Some(c) == self.tx {
@@ -180,6 +205,9 @@ impl Driver {
                     self.queue.push_back(Routine::Tx { ctrl: c, t });
                 }
                 CtrlEvent::Rx(f) => {
+                    if self.tx != Some(c) {
+                        self.copy_blocked = false;
+                    }
                     self.rx_flag[c] = Some((t, f.clone()));
                     self.queue.push_back(Routine::Rx { ctrl: c, t, frame: f });
                 }
@@ -203,14 +231,26 @@ impl Driver {
                 }
             }
         }
-        // 3. transmission timer
+        // 3. a copy whose controller fails or runs out of time is given up
+        if let Some(o) = self.copy_on {
+            let late = self.timer.is_some_and(|t| now >= t);
+            if late || !self.active[o] || ctrls[o].tec() >= self.spec.copy_tec {
+                ctrls[o].withdraw();
+                self.copy_on = None;
+                self.copy_blocked = true;
+                self.note(now, || format!("copy on {} given up, success", abc(o)));
+                out.push(Notice::CopyGivenUp);
+                self.success(now, &mut out);
+            }
+        }
+        // 4. transmission timer
         if let (Some(t), Some(tx)) = (self.timer, self.tx) {
             if now >= t {
                 self.timer = None;
                 self.queue.push_back(Routine::Qua { ctrl: tx, reason: QuaReason::Timer });
             }
         }
-        // 4. routines
+        // 5. routines
         loop {
             if let Some(w) = self.wait.take() {
                 match self.resume(w, now, ctrls, &mut out) {
@@ -256,8 +296,12 @@ impl Driver {
                 let deadline = now + self.k_ps;
                 self.resume(Wait { routine: r, deadline }, now, ctrls, out)
             }
-            Routine::Rx { ctrl, .. } => {
+            Routine::Rx { ctrl, frame, .. } => {
                 if !self.active[*ctrl] {
+                    return None;
+                }
+                if self.copied.as_ref() == Some(frame) {
+                    self.note(now, || format!("rx routine {}: this node's copy", abc(*ctrl)));
                     return None;
                 }
                 if self.frame_managed {
@@ -282,6 +326,8 @@ impl Driver {
                     let o = 1 - c;
                     if self.active[o] {
                         self.tx = Some(o);
+                        // a copy on the new tx controller is its transmission now
+                        self.copy_on = None;
                         if let Some(f) = self.pending.clone() {
                             if !self.tx_reported {
                                 ctrls[o].request(f);
@@ -320,8 +366,12 @@ impl Driver {
                 let (a, b) = (&ctrls[0], &ctrls[1]);
                 self.note(now, || format!("tx routine {}: omission discrepancy, TEC/REC A {:?} B {:?}", abc(c), (a.tec(), a.rec()), (b.tec(), b.rec())));
                 if self.msg_tx_omi >= self.spec.max_inconsists {
-                    self.success(now, out);
-                    self.note(now, || format!("tx routine {}: omission, MsgTxOmi at max, success", abc(c)));
+                    if self.copy_to_other_star(c, now, ctrls, out) {
+                        self.note(now, || format!("tx routine {}: omission, MsgTxOmi at max, copy requested", abc(c)));
+                    } else {
+                        self.success(now, out);
+                        self.note(now, || format!("tx routine {}: omission, MsgTxOmi at max, success", abc(c)));
+                    }
                 } else {
                     self.msg_tx_omi += 1;
                     if let Some(f) = self.pending.clone() {
@@ -366,6 +416,27 @@ impl Driver {
             }
             Routine::Qua { .. } => None,
         }
+    }
+
+    /// `DriverSpec::copy_tec`: the tx controller `c` has had transmit errors lately and the
+    /// other one has not; request the pending frame on the other one as well and report it
+    /// sent when the copy is (so the next frame cannot overtake the copy). The copy is given
+    /// up, and the frame reported sent, when the other controller's TEC reaches `copy_tec`,
+    /// it is quarantined, or the transmission timer expires; then no copy is made until the
+    /// other controller reports a reception. Returns whether a copy was requested.
+    fn copy_to_other_star(&mut self, c: usize, now: u64, ctrls: &mut [&mut Ctrl; 2], out: &mut Vec<Notice>) -> bool {
+        let (o, lim) = (1 - c, self.spec.copy_tec);
+        let Some(f) = self.pending.clone() else { return false };
+        if lim == 0 || self.copy_blocked || !self.active[o] || ctrls[c].tec() < lim || ctrls[o].tec() >= lim {
+            return false;
+        }
+        ctrls[o].request(f.clone());
+        self.note(now, || format!("copy of {:#x}[{:?}] requested on {}", f.id, f.data, abc(o)));
+        self.copy_on = Some(o);
+        self.copied = Some(f);
+        self.timer = Some(now + self.timeout_ps);
+        out.push(Notice::Copy);
+        true
     }
 
     fn success(&mut self, now: u64, out: &mut Vec<Notice>) {

@@ -128,6 +128,10 @@ pub struct RunResult {
     pub retransmissions: u32,
     /// Frames requested again on a new tx controller after a quarantine.
     pub rerequests: u32,
+    /// Frames copied to the non-tx controller after omission discrepancies (`DriverSpec::copy_tec`).
+    pub copies: u32,
+    /// Of those, copies given up unsent.
+    pub copies_given_up: u32,
     /// Frames a receiving node missed: "node <r> missed <sender> <from>..<to>".
     pub lost: Vec<String>,
     /// Duplicates delivered to applications (allowed).

@@ -221,6 +221,15 @@ pub struct DriverSpec {
     pub max_inconsists: u32,
     /// TEC or REC at which a controller is quarantined.
     pub warning_limit: u32,
+    /// Copy to the other star (beyond the published driver, hub.md §5.29): at the omission
+    /// discrepancy that ends the retransmissions (`MsgTxOmi` at `max_inconsists`), when the
+    /// tx controller's TEC is at least this and the non-tx controller's TEC below it (the tx
+    /// controller has had transmit errors lately, the other has not), the frame is also
+    /// requested on the non-tx controller and reported sent when that copy is. A split star
+    /// (the controllers on different stars, the tx controller's one faulty) then still
+    /// delivers the frame to the nodes on the other star. The copy is given up when the
+    /// non-tx controller's TEC reaches this. 0: never (as published).
+    pub copy_tec: u32,
     /// Host reaction time from a reported success to the application's next
     /// request, in bit times. It must exceed the 3-bit intermission so that two
     /// nodes sending at maximal rate alternate (otherwise the higher identifier
@@ -244,6 +253,7 @@ impl Default for DriverSpec {
             timer_clock_hz: 29_480_000,
             max_inconsists: 3,
             warning_limit: 96,
+            copy_tec: 8,
             app_delay_bits: 4.0,
             start_bits: 20,
             irq_latency_ns: 10_000.0,
@@ -407,6 +417,9 @@ impl NetworkSpec {
         }
         if d.warning_limit == 0 || d.warning_limit > 255 {
             return Err(format!("driver.warning_limit: {} (must be in 1..=255)", d.warning_limit));
+        }
+        if d.copy_tec > 255 {
+            return Err(format!("driver.copy_tec: {} (must be in 0..=255)", d.copy_tec));
         }
         check_clock("driver.timer_clock_hz", d.timer_clock_hz)?;
         if d.tx_timeout_ticks == 0 || d.tx_timeout_ps() > MAX_TIMEOUT_PS {

@@ -18,6 +18,15 @@ fn run(class: &str, seed: u64) -> RunOutcome {
     run_with(class, seed, None)
 }
 
+/// The run of `class` with `seed` with the reference node driver changed by `f`.
+fn run_driver(class: &str, seed: u64, f: impl FnOnce(&mut canstar_recan::spec::DriverSpec)) -> RunOutcome {
+    let c = campaign::class(class).unwrap();
+    let s = Settings { seed: 1, reps: 1, ..Settings::default() };
+    let mut b = system::build(&c, seed, &s);
+    f(&mut b.spec.network.driver);
+    system::run_built(&c, 0, seed, b).outcome
+}
+
 /// The default hub configuration with `f` applied.
 fn hub(f: impl FnOnce(&mut HubConfig)) -> Option<HubConfig> {
     let mut h = canstar_recan::NetworkSpec::default().hub;
@@ -173,4 +182,29 @@ fn a_receiver_flagging_in_the_last_eof_bit_is_charged() {
     assert!(o.isolations.iter().any(|i| i.starts_with("hub 1 port 1")), "{:?}", o.isolations);
     let off = run_with(class, seed, hub(|h| h.eof_last_rule = false));
     assert!(!off.pass && off.worst_healthy >= 96, "without the rule: {:?}", off.failures);
+}
+
+/// hub.md §5.29 (node driver, beyond the published one). Hub 0 faulty; hub 1 cuts it off
+/// and the star splits. In `sweep-hub-g6-e2` rep 147 node 0's controller A, on the faulty
+/// star, sends frame 0xa0 counter 2 four times without its controller B seeing it, and the
+/// published driver then reports it sent: the Receiver, left with its controller B on the
+/// healthy star, never gets it. With the copy to the other star node 0's controller B sends
+/// it too. In `sweep-hub-r2d-e100` rep 412 a node's tx controller is on the healthy star and its copies
+/// go to the faulty one, where one is given up: the frame is reported sent only when the
+/// copy is (or is given up), so no later frame overtakes a copy.
+#[test]
+fn a_frame_sent_only_on_a_faulty_star_is_copied_to_the_other_one() {
+    for (class, seed, missed) in [
+        ("sweep-hub-g6-e2", 6744485375589422982, "missed 0xa0 counter 2..=2"),
+        ("sweep-hub-r2d-e100", 13758353382029262144, "missed 0xa0 counter 22..=22"),
+    ] {
+        let with = run(class, seed);
+        assert!(with.pass, "{class} {seed}: {:?}", with.failures);
+        assert!(with.notes.iter().any(|n| n.contains("copied to the other star")), "{class} {seed}: {:?}", with.notes);
+        let published = run_driver(class, seed, |d| d.copy_tec = 0);
+        assert!(published.failures.iter().any(|f| f.contains(missed)), "{class} {seed} as published: {:?}", published.failures);
+        assert!(!published.notes.iter().any(|n| n.contains("copied")), "{:?}", published.notes);
+    }
+    let given_up = run("sweep-hub-r2d-e100", 13758353382029262144);
+    assert!(given_up.notes.iter().any(|n| n.contains("1 given up unsent")), "{:?}", given_up.notes);
 }

@@ -528,6 +528,12 @@ pub fn run_detailed(class: &Class, rep: u32, seed: u64, settings: &Settings, vcd
     let mut b = build(class, seed, settings);
     b.spec.vcd = vcd;
     b.spec.trace = trace;
+    run_built(class, rep, seed, b)
+}
+
+/// Run a built campaign run (`build`, possibly changed: another node driver, say) and
+/// judge it as the campaign does.
+pub fn run_built(class: &Class, rep: u32, seed: u64, mut b: Built) -> Detailed {
     let mut pre_fail = None;
     if b.simultaneous {
         if let Err(e) = resolve_simultaneous(&mut b.spec) {
@@ -550,6 +556,12 @@ pub fn run_detailed(class: &Class, rep: u32, seed: u64, settings: &Settings, vcd
     };
     if let Some(e) = pre_fail {
         failures.insert(0, e);
+    }
+    if r.copies > 0 {
+        notes.push(format!(
+            "{} frame(s) copied to the other star by a node driver (copy_tec), {} given up unsent",
+            r.copies, r.copies_given_up
+        ));
     }
     let bit = r.bit_time_ps.max(1);
     let (tec, rec) = worst_sampled(&r, &unhealthy);

@@ -309,6 +309,8 @@ impl<'a> RunState<'a> {
                     res.max_retransmissions = res.max_retransmissions.max(self.drivers[k].retx_this_frame);
                 }
                 Notice::Rerequest => res.rerequests += 1,
+                Notice::Copy => res.copies += 1,
+                Notice::CopyGivenUp => res.copies_given_up += 1,
                 Notice::NoController => res.failures.push(format!("node {k} has no active controller left")),
             }
         }
