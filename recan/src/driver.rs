@@ -326,8 +326,11 @@ impl Driver {
                     let o = 1 - c;
                     if self.active[o] {
                         self.tx = Some(o);
-                        // a copy on the new tx controller is its transmission now
-                        self.copy_on = None;
+                        // a copy on the new tx controller is its transmission now, timed
+                        // like any other
+                        if self.copy_on.take() == Some(o) {
+                            self.timer = Some(now + self.timeout_ps);
+                        }
                         if let Some(f) = self.pending.clone() {
                             if !self.tx_reported {
                                 ctrls[o].request(f);
