@@ -147,6 +147,11 @@ impl Ctrl {
     pub fn take_events(&mut self) -> Vec<(u64, CtrlEvent)> {
         std::mem::take(&mut self.events)
     }
+    /// Report `e` at `t` as if the controller had (driver unit tests).
+    #[cfg(test)]
+    pub(crate) fn report(&mut self, t: u64, e: CtrlEvent) {
+        self.events.push((t, e));
+    }
     pub fn has_events(&self) -> bool {
         !self.events.is_empty()
     }

@@ -95,8 +95,11 @@ pub struct Driver {
     /// The controller sending a copy of the pending frame (`DriverSpec::copy_tec`); the
     /// frame is reported sent when the copy is.
     copy_on: Option<usize>,
-    /// The last frame copied: a controller receiving it is receiving this node's frame.
-    copied: Option<Frame>,
+    /// The last frame copied and the controller that sends the copy: the other controller
+    /// receiving that frame is receiving this node's copy (once; forgotten when the
+    /// application requests the same frame again, so a copy that never reached the other
+    /// star cannot hide a later reception of the node's own frame).
+    copied: Option<(Frame, usize)>,
     /// A copy was given up unsent: no copy until the non-tx controller reports a reception.
     copy_blocked: bool,
     /// Routine log (only with tracing).
@@ -151,6 +154,9 @@ impl Driver {
             return false;
         }
         let Some(tx) = self.tx else { return false };
+        if self.copied.as_ref().is_some_and(|(g, _)| *g == f) {
+            self.copied = None;
+        }
         ctrls[tx].request(f.clone());
         self.note(now, || format!("tx request {:#x}[{:?}] on {}", f.id, f.data, "AB".as_bytes()[tx] as char));
         self.pending = Some(f);
@@ -300,7 +306,8 @@ impl Driver {
                 if !self.active[*ctrl] {
                     return None;
                 }
-                if self.copied.as_ref() == Some(frame) {
+                if self.copied.as_ref().is_some_and(|(g, s)| g == frame && s != ctrl) {
+                    self.copied = None;
                     self.note(now, || format!("rx routine {}: this node's copy", abc(*ctrl)));
                     return None;
                 }
@@ -436,7 +443,7 @@ impl Driver {
         ctrls[o].request(f.clone());
         self.note(now, || format!("copy of {:#x}[{:?}] requested on {}", f.id, f.data, abc(o)));
         self.copy_on = Some(o);
-        self.copied = Some(f);
+        self.copied = Some((f, o));
         self.timer = Some(now + self.timeout_ps);
         out.push(Notice::Copy);
         true
@@ -461,5 +468,95 @@ fn abc(c: usize) -> char {
         'A'
     } else {
         'B'
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::spec::CtrlSpec;
+    use canstar_sim::ClockSpec;
+
+    const BIT: u64 = 1_085_000;
+    /// Later than any report at `t` is seen, and than a routine's K after it.
+    const AFTER: u64 = 10_000_000 + 5 * BIT;
+
+    fn ctrls() -> [Ctrl; 2] {
+        let s = CtrlSpec::default();
+        ["A", "B"].map(|n| Ctrl::new(n, &s, ClockSpec::new(33_920)))
+    }
+
+    /// Step `d` once its reports at `t` are seen and again once its routines' K has
+    /// passed, returning what it noticed.
+    fn step_after(d: &mut Driver, t: u64, c: &mut [Ctrl; 2]) -> Vec<Notice> {
+        let [a, b] = c;
+        let mut n = d.step(t + AFTER, &mut [a, b]);
+        n.extend(d.step(t + AFTER + 20 * BIT, &mut [a, b]));
+        n
+    }
+
+    fn delivered(n: &[Notice]) -> Vec<Frame> {
+        n.iter().filter_map(|n| if let Notice::Deliver(f) = n { Some(f.clone()) } else { None }).collect()
+    }
+
+    /// The driver as a copy by B that never reached A leaves it (`copy_to_other_star`,
+    /// then success when B reported the copy sent): tx controller A, `copied` = (f, B).
+    fn after_unreceived_copy(f: &Frame) -> (Driver, [Ctrl; 2]) {
+        let mut d = Driver::new(0, &DriverSpec::default(), BIT, 0, false);
+        d.copied = Some((f.clone(), 1));
+        (d, ctrls())
+    }
+
+    #[test]
+    fn the_nodes_own_frame_equal_to_an_earlier_copy_is_not_taken_for_the_copy() {
+        let f = Frame::std(0x10, &[1]);
+        let (mut d, mut c) = after_unreceived_copy(&f);
+        // eight frames later the application sends the same frame; A sends it and B,
+        // on the other star, receives it
+        let [a, b] = &mut c;
+        assert!(d.tx_request(f.clone(), 0, &mut [a, b]));
+        let t = 500 * BIT;
+        c[0].report(t, CtrlEvent::TxDone(f.clone()));
+        c[1].report(t, CtrlEvent::Rx(f.clone()));
+        let n = step_after(&mut d, t, &mut c);
+        assert!(n.iter().any(|n| matches!(n, Notice::TxSuccess(_))), "{n:?}");
+        assert!(delivered(&n).is_empty(), "{n:?}");
+        assert!(!d.frame_managed, "B's reception of the node's own frame must clear FrameManaged");
+        // so a frame of another node that only A receives is delivered, not swallowed
+        let g = Frame::std(0x20, &[2]);
+        let t = 700 * BIT;
+        c[0].report(t, CtrlEvent::Rx(g.clone()));
+        let n = step_after(&mut d, t, &mut c);
+        assert_eq!(delivered(&n), vec![g]);
+    }
+
+    #[test]
+    fn the_copy_received_by_the_tx_controller_is_ignored_once() {
+        let f = Frame::std(0x10, &[1]);
+        let (mut d, mut c) = after_unreceived_copy(&f);
+        // A receives B's copy: not delivered, FrameManaged untouched
+        c[0].report(100 * BIT, CtrlEvent::Rx(f.clone()));
+        let n = step_after(&mut d, 100 * BIT, &mut c);
+        assert!(delivered(&n).is_empty() && !d.frame_managed, "{n:?}");
+        assert_eq!(d.copied, None);
+        // a frame equal to it later (another node's, by its identifier) is delivered
+        let t = 300 * BIT;
+        c[0].report(t, CtrlEvent::Rx(f.clone()));
+        c[1].report(t, CtrlEvent::Rx(f.clone()));
+        let n = step_after(&mut d, t, &mut c);
+        assert_eq!(delivered(&n), vec![f]);
+    }
+
+    #[test]
+    fn requesting_the_copied_frame_again_forgets_the_copy() {
+        let f = Frame::std(0x10, &[1]);
+        let (mut d, mut c) = after_unreceived_copy(&f);
+        let [a, b] = &mut c;
+        assert!(d.tx_request(Frame::std(0x10, &[2]), 0, &mut [a, b]));
+        assert!(d.copied.is_some(), "another frame leaves the copy");
+        d.pending = None;
+        let [a, b] = &mut c;
+        assert!(d.tx_request(f, 0, &mut [a, b]));
+        assert_eq!(d.copied, None);
     }
 }
