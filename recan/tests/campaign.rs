@@ -170,7 +170,14 @@ fn merge_joins_campaigns_over_different_classes() {
     // other settings are another campaign
     let mut other = eof.clone();
     other.settings.reps = 3;
-    assert!(CampaignReport::merge(&[pubs, other]).is_err());
+    assert!(CampaignReport::merge(&[pubs.clone(), other]).is_err());
+    // a class the catalogue does not have is refused by both, named
+    let mut unknown = eof.clone();
+    unknown.classes.push("no-such-class".into());
+    let e = CampaignReport::merge(&[pubs, unknown.clone()]).unwrap_err().to_string();
+    assert!(e.contains("report 2: unknown class `no-such-class`"), "{e}");
+    let e = CampaignReport::from_json(&unknown.to_json(), "x.json").unwrap_err().to_string();
+    assert!(e.contains("x.json: unknown class `no-such-class`"), "{e}");
 }
 
 /// Minimal XML well-formedness check: balanced tags, quoted attributes, known entities.

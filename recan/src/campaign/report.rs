@@ -220,11 +220,8 @@ impl CampaignReport {
         if r.format != FORMAT {
             return Err(CampaignError::BadReport(format!("{what}: report format {} (expected {FORMAT})", r.format)));
         }
-        let known = classes::catalogue();
-        for c in &r.classes {
-            if !known.iter().any(|k| &k.name == c) {
-                return Err(CampaignError::BadReport(format!("{what}: unknown class `{c}`")));
-            }
+        if let Some(c) = unknown_class(&r.classes) {
+            return Err(CampaignError::BadReport(format!("{what}: unknown class `{c}`")));
         }
         for run in &r.runs {
             if !r.classes.contains(&run.class) {
@@ -244,7 +241,6 @@ impl CampaignReport {
     /// appear twice.
     pub fn merge(parts: &[CampaignReport]) -> Result<CampaignReport, CampaignError> {
         let first = parts.first().ok_or_else(|| CampaignError::BadReport("nothing to merge".into()))?;
-        let catalogue = classes::catalogue();
         let mut runs = vec![];
         let mut shards = vec![];
         for (i, p) in parts.iter().enumerate() {
@@ -254,14 +250,14 @@ impl CampaignReport {
                     i + 1
                 )));
             }
-            if let Some(c) = p.classes.iter().find(|c| !catalogue.iter().any(|k| &k.name == *c)) {
+            if let Some(c) = unknown_class(&p.classes) {
                 return Err(CampaignError::BadReport(format!("report {}: unknown class `{c}`", i + 1)));
             }
             shards.extend(p.shards.iter().copied());
             runs.extend(p.runs.iter().cloned());
         }
         let classes: Vec<String> =
-            catalogue.into_iter().map(|k| k.name).filter(|k| parts.iter().any(|p| p.classes.contains(k))).collect();
+            classes::catalogue().into_iter().map(|k| k.name).filter(|k| parts.iter().any(|p| p.classes.contains(k))).collect();
         sort_runs(&classes, &mut runs);
         for w in runs.windows(2) {
             if w[0].class == w[1].class && w[0].rep == w[1].rep {
@@ -284,6 +280,12 @@ impl CampaignReport {
     pub fn expected_runs(&self) -> usize {
         self.classes.len() * self.settings.reps as usize
     }
+}
+
+/// The first of `names` that is not a class of the catalogue.
+fn unknown_class(names: &[String]) -> Option<&String> {
+    let known = classes::catalogue();
+    names.iter().find(|c| !known.iter().any(|k| &k.name == *c))
 }
 
 fn sort_runs(classes: &[String], runs: &mut [RunOutcome]) {
