@@ -115,6 +115,16 @@ fn a_driver_copy_limit_beyond_a_counter_is_rejected() {
     fails_cleanly(&["sim", "net.toml", "--ms", "0.01"], d.path(), "net.toml: driver.copy_tec: 256");
 }
 
+#[test]
+fn a_driver_resend_switch_that_is_not_a_boolean_is_rejected() {
+    let d = scratch();
+    let text = std::fs::read_to_string(example("recancentrate.toml")).unwrap();
+    assert!(text.contains("resend_unconfirmed = true "));
+    write(d.path(), "net.toml", &text.replace("resend_unconfirmed = true ", "resend_unconfirmed = 1 "));
+    let r = fails_cleanly(&["sim", "net.toml", "--ms", "0.01"], d.path(), "expected a boolean");
+    assert!(r.err.contains("net.toml: ") && r.err.contains("resend_unconfirmed = 1"), "{}", r.err);
+}
+
 // ---- defect 2: board names used as folder names
 
 #[test]

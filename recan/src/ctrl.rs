@@ -24,8 +24,9 @@ pub enum CtrlEvent {
     TxDone(Frame),
     /// A frame was received.
     Rx(Frame),
-    /// An error was detected (while transmitting or not).
-    Error { tx: bool },
+    /// An error was detected (while transmitting or not) in `field` (what the SJA1000's
+    /// error code capture register reports).
+    Error { tx: bool, field: Field },
 }
 
 /// A controller with its host interface. See the module documentation.
@@ -195,7 +196,7 @@ impl Ctrl {
         if c.error() {
             self.errors += 1;
             self.error_log.push((now, c.err_tx(), c.field() as u8));
-            self.events.push((now, CtrlEvent::Error { tx: c.err_tx() }));
+            self.events.push((now, CtrlEvent::Error { tx: c.err_tx(), field: Field::from_code(c.err_field() as u64).unwrap_or(Field::Reset) }));
         }
         if c.rx_valid() {
             let f = c.rx_frame();

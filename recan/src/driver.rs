@@ -15,6 +15,7 @@
 use std::collections::VecDeque;
 
 use canstar_controller::frame::Frame;
+use canstar_controller::fsm::Field;
 
 use crate::ctrl::{Ctrl, CtrlEvent};
 use crate::spec::DriverSpec;
@@ -60,6 +61,9 @@ pub enum Notice {
     Copy,
     /// A copy was given up unsent (its controller failed or the timer expired).
     CopyGivenUp,
+    /// The tx controller was quarantined after its last frame was reported sent on the
+    /// omission rule alone: that frame is sent again on the new tx controller first.
+    Resend,
 }
 
 /// State of one node's driver.
@@ -102,6 +106,20 @@ pub struct Driver {
     copied: Option<(Frame, usize)>,
     /// A copy was given up unsent: no copy until the non-tx controller reports a reception.
     copy_blocked: bool,
+    /// The last frame reported sent on the omission rule alone (`MsgTxOmi` at
+    /// `maxInconsists`): the other controller never saw it. None once a later frame is
+    /// reported sent, or once it has been sent again.
+    unconfirmed: Option<Frame>,
+    /// The application's frame waiting while the unconfirmed frame is sent again on a new
+    /// tx controller (requested when that one is reported sent).
+    deferred: Option<Frame>,
+    /// The pending frame is the unconfirmed frame sent again: its success is not the
+    /// application's.
+    resending: bool,
+    /// The tx controller reported a transmit error after the CRC (delimiter, ACK, EOF)
+    /// since its frame was requested: receivers may have accepted that frame, so the
+    /// unconfirmed frame before it is not sent again.
+    late_tx_error: bool,
     /// Routine log (only with tracing).
     pub log: Option<Vec<String>>,
 }
@@ -132,6 +150,10 @@ impl Driver {
             copy_on: None,
             copied: None,
             copy_blocked: false,
+            unconfirmed: None,
+            deferred: None,
+            resending: false,
+            late_tx_error: false,
             log: trace.then(Vec::new),
         }
     }
@@ -162,6 +184,7 @@ impl Driver {
         self.pending = Some(f);
         self.pending_since = Some(now);
         self.tx_reported = false;
+        self.late_tx_error = false;
         self.retx_this_frame = 0;
         self.timer = Some(now + self.timeout_ps);
         true
@@ -217,7 +240,13 @@ impl Driver {
                     self.rx_flag[c] = Some((t, f.clone()));
                     self.queue.push_back(Routine::Rx { ctrl: c, t, frame: f });
                 }
-                CtrlEvent::Error { .. } => {}
+                CtrlEvent::Error { tx: true, field } if self.tx == Some(c) && after_crc(field) => {
+                    self.late_tx_error = true;
+                    self.note(t, || format!("tx error on {} in {field:?}: the frame may have been taken", abc(c)));
+                }
+                CtrlEvent::Error { tx, field } => {
+                    self.note(t, || format!("error on {} (tx {tx}) in {field:?}", abc(c)));
+                }
             }
         }
         // 2. error warning limit (seen after the interrupt latency; after the
@@ -270,6 +299,17 @@ impl Driver {
             let Some(r) = self.queue.pop_front() else { break };
             if let Some(w) = self.start(r, now, ctrls, &mut out) {
                 self.wait = Some(w);
+            }
+        }
+        // 6. the application's frame after a frame sent again
+        if self.pending.is_none() {
+            if let (Some(f), Some(tx)) = (self.deferred.take(), self.tx) {
+                ctrls[tx].request(f.clone());
+                self.note(now, || format!("deferred {:#x}[{:?}] requested on {}", f.id, f.data, abc(tx)));
+                self.pending = Some(f);
+                self.tx_reported = false;
+                self.late_tx_error = false;
+                self.timer = Some(now + self.timeout_ps);
             }
         }
         out
@@ -338,7 +378,27 @@ impl Driver {
                         if self.copy_on.take() == Some(o) {
                             self.timer = Some(now + self.timeout_ps);
                         }
-                        if let Some(f) = self.pending.clone() {
+                        // send again (hub.md §5.30): a frame is pending that the old tx
+                        // controller did not report sent, and its last frame was reported on
+                        // the omission rule alone; the quarantine says the old controller's
+                        // star was the faulty one, so that frame goes first
+                        let again = self.spec.resend_unconfirmed
+                            && self.pending.is_some()
+                            && !self.tx_reported
+                            && !self.resending
+                            && !self.late_tx_error;
+                        let unconfirmed = self.unconfirmed.take().filter(|_| again);
+                        if let Some(u) = unconfirmed {
+                            self.deferred = self.pending.take();
+                            ctrls[o].request(u.clone());
+                            self.note(now, || format!("unconfirmed {:#x}[{:?}] sent again on {}", u.id, u.data, abc(o)));
+                            self.pending = Some(u);
+                            self.resending = true;
+                            self.late_tx_error = false;
+                            self.tx_reported = false;
+                            self.timer = Some(now + self.timeout_ps);
+                            out.push(Notice::Resend);
+                        } else if let Some(f) = self.pending.clone() {
                             if !self.tx_reported {
                                 ctrls[o].request(f);
                                 self.timer = Some(now + self.timeout_ps);
@@ -379,7 +439,9 @@ impl Driver {
                     if self.copy_to_other_star(c, now, ctrls, out) {
                         self.note(now, || format!("tx routine {}: omission, MsgTxOmi at max, copy requested", abc(c)));
                     } else {
+                        let f = self.pending.clone();
                         self.success(now, out);
+                        self.unconfirmed = f;
                         self.note(now, || format!("tx routine {}: omission, MsgTxOmi at max, success", abc(c)));
                     }
                 } else {
@@ -456,11 +518,22 @@ impl Driver {
             0
         };
         self.timer = None;
+        self.unconfirmed = None;
+        if std::mem::take(&mut self.resending) {
+            self.pending = None;
+            return;
+        }
         self.pending_since = None;
         if self.pending.take().is_some() {
             out.push(Notice::TxSuccess(now));
         }
     }
+}
+
+/// A transmitter's error in these fields comes after receivers may have taken the frame
+/// as valid (they accept it at the last but one EOF bit; an error flag may not reach them).
+fn after_crc(f: Field) -> bool {
+    matches!(f, Field::CrcDel | Field::AckSlot | Field::AckDel | Field::Eof)
 }
 
 fn abc(c: usize) -> char {
@@ -472,91 +545,4 @@ fn abc(c: usize) -> char {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::spec::CtrlSpec;
-    use canstar_sim::ClockSpec;
-
-    const BIT: u64 = 1_085_000;
-    /// Later than any report at `t` is seen, and than a routine's K after it.
-    const AFTER: u64 = 10_000_000 + 5 * BIT;
-
-    fn ctrls() -> [Ctrl; 2] {
-        let s = CtrlSpec::default();
-        ["A", "B"].map(|n| Ctrl::new(n, &s, ClockSpec::new(33_920)))
-    }
-
-    /// Step `d` once its reports at `t` are seen and again once its routines' K has
-    /// passed, returning what it noticed.
-    fn step_after(d: &mut Driver, t: u64, c: &mut [Ctrl; 2]) -> Vec<Notice> {
-        let [a, b] = c;
-        let mut n = d.step(t + AFTER, &mut [a, b]);
-        n.extend(d.step(t + AFTER + 20 * BIT, &mut [a, b]));
-        n
-    }
-
-    fn delivered(n: &[Notice]) -> Vec<Frame> {
-        n.iter().filter_map(|n| if let Notice::Deliver(f) = n { Some(f.clone()) } else { None }).collect()
-    }
-
-    /// The driver as a copy by B that never reached A leaves it (`copy_to_other_star`,
-    /// then success when B reported the copy sent): tx controller A, `copied` = (f, B).
-    fn after_unreceived_copy(f: &Frame) -> (Driver, [Ctrl; 2]) {
-        let mut d = Driver::new(0, &DriverSpec::default(), BIT, 0, false);
-        d.copied = Some((f.clone(), 1));
-        (d, ctrls())
-    }
-
-    #[test]
-    fn the_nodes_own_frame_equal_to_an_earlier_copy_is_not_taken_for_the_copy() {
-        let f = Frame::std(0x10, &[1]);
-        let (mut d, mut c) = after_unreceived_copy(&f);
-        // eight frames later the application sends the same frame; A sends it and B,
-        // on the other star, receives it
-        let [a, b] = &mut c;
-        assert!(d.tx_request(f.clone(), 0, &mut [a, b]));
-        let t = 500 * BIT;
-        c[0].report(t, CtrlEvent::TxDone(f.clone()));
-        c[1].report(t, CtrlEvent::Rx(f.clone()));
-        let n = step_after(&mut d, t, &mut c);
-        assert!(n.iter().any(|n| matches!(n, Notice::TxSuccess(_))), "{n:?}");
-        assert!(delivered(&n).is_empty(), "{n:?}");
-        assert!(!d.frame_managed, "B's reception of the node's own frame must clear FrameManaged");
-        // so a frame of another node that only A receives is delivered, not swallowed
-        let g = Frame::std(0x20, &[2]);
-        let t = 700 * BIT;
-        c[0].report(t, CtrlEvent::Rx(g.clone()));
-        let n = step_after(&mut d, t, &mut c);
-        assert_eq!(delivered(&n), vec![g]);
-    }
-
-    #[test]
-    fn the_copy_received_by_the_tx_controller_is_ignored_once() {
-        let f = Frame::std(0x10, &[1]);
-        let (mut d, mut c) = after_unreceived_copy(&f);
-        // A receives B's copy: not delivered, FrameManaged untouched
-        c[0].report(100 * BIT, CtrlEvent::Rx(f.clone()));
-        let n = step_after(&mut d, 100 * BIT, &mut c);
-        assert!(delivered(&n).is_empty() && !d.frame_managed, "{n:?}");
-        assert_eq!(d.copied, None);
-        // a frame equal to it later (another node's, by its identifier) is delivered
-        let t = 300 * BIT;
-        c[0].report(t, CtrlEvent::Rx(f.clone()));
-        c[1].report(t, CtrlEvent::Rx(f.clone()));
-        let n = step_after(&mut d, t, &mut c);
-        assert_eq!(delivered(&n), vec![f]);
-    }
-
-    #[test]
-    fn requesting_the_copied_frame_again_forgets_the_copy() {
-        let f = Frame::std(0x10, &[1]);
-        let (mut d, mut c) = after_unreceived_copy(&f);
-        let [a, b] = &mut c;
-        assert!(d.tx_request(Frame::std(0x10, &[2]), 0, &mut [a, b]));
-        assert!(d.copied.is_some(), "another frame leaves the copy");
-        d.pending = None;
-        let [a, b] = &mut c;
-        assert!(d.tx_request(f, 0, &mut [a, b]));
-        assert_eq!(d.copied, None);
-    }
-}
+mod tests;

@@ -132,6 +132,8 @@ pub struct RunResult {
     pub copies: u32,
     /// Of those, copies given up unsent.
     pub copies_given_up: u32,
+    /// Frames sent again on a new tx controller (`Notice::Resend`).
+    pub resends: u32,
     /// Frames a receiving node missed: "node <r> missed <sender> <from>..<to>".
     pub lost: Vec<String>,
     /// Duplicates delivered to applications (allowed).

@@ -230,6 +230,12 @@ pub struct DriverSpec {
     /// delivers the frame to the nodes on the other star. The copy is given up when the
     /// non-tx controller's TEC reaches this. 0: never (as published).
     pub copy_tec: u32,
+    /// Send again (beyond the published driver, hub.md §5.30): when the tx controller is
+    /// quarantined and its last frame was reported sent on the omission rule alone (the
+    /// other controller never saw it), that frame is sent on the new tx controller before
+    /// the pending one. The nodes on the new tx controller's star then get the frame the
+    /// old star alone carried; the others get it twice. false: as published.
+    pub resend_unconfirmed: bool,
     /// Host reaction time from a reported success to the application's next
     /// request, in bit times. It must exceed the 3-bit intermission so that two
     /// nodes sending at maximal rate alternate (otherwise the higher identifier
@@ -254,6 +260,7 @@ impl Default for DriverSpec {
             max_inconsists: 3,
             warning_limit: 96,
             copy_tec: 8,
+            resend_unconfirmed: true,
             app_delay_bits: 4.0,
             start_bits: 20,
             irq_latency_ns: 10_000.0,

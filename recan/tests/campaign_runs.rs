@@ -208,3 +208,26 @@ fn a_frame_sent_only_on_a_faulty_star_is_copied_to_the_other_one() {
     let given_up = run("sweep-hub-r2d-e100", 13758353382029262144);
     assert!(given_up.notes.iter().any(|n| n.contains("1 given up unsent")), "{:?}", given_up.notes);
 }
+
+/// hub.md §5.30 (node driver, beyond the published one). Hub 0 faulty, cut off by hub 1;
+/// node 0's controller A, on the faulty star with TEC 0, sends a frame its controller B
+/// never sees, and it is reported sent on the omission rule; the Receiver, left on the
+/// healthy star, does not get it. When A is quarantined, B sends that frame again before
+/// the pending one, unless A reported a transmit error after the CRC of the pending frame.
+#[test]
+fn the_last_frame_sent_on_the_omission_rule_goes_again_after_a_tx_quarantine() {
+    for (seed, missed) in [(16881387309546140847, "missed 0xa0 counter 3..=3"), (9687134118981308336, "missed 0xa0 counter 4..=4")] {
+        let class = "sweep-hub-g6-e2";
+        let with = run(class, seed);
+        assert!(with.pass, "{seed}: {:?}", with.failures);
+        assert!(with.notes.iter().any(|n| n.contains("1 unconfirmed frame(s) sent again")), "{seed}: {:?}", with.notes);
+        let published = run_driver(class, seed, |d| d.resend_unconfirmed = false);
+        assert!(published.failures.iter().any(|f| f.contains(missed)), "{seed} as published: {:?}", published.failures);
+    }
+    // node 0's tx controller B sends counter 15, the Receiver takes it, and B reports a
+    // transmit error in its EOF and is quarantined without reporting it sent: counter 14
+    // sent again would reach the Receiver after 15, so it is not
+    let late = run("sweep-hub-flip-e100", 7184850286248018629);
+    assert!(late.pass, "{:?}", late.failures);
+    assert!(!late.notes.iter().any(|n| n.contains("sent again")), "{:?}", late.notes);
+}

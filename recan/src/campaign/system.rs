@@ -563,6 +563,12 @@ pub fn run_built(class: &Class, rep: u32, seed: u64, mut b: Built) -> Detailed {
             r.copies, r.copies_given_up
         ));
     }
+    if r.resends > 0 {
+        notes.push(format!(
+            "{} unconfirmed frame(s) sent again on a new tx controller by a node driver",
+            r.resends
+        ));
+    }
     let bit = r.bit_time_ps.max(1);
     let (tec, rec) = worst_sampled(&r, &unhealthy);
     let outcome = RunOutcome {

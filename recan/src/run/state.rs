@@ -311,6 +311,7 @@ impl<'a> RunState<'a> {
                 Notice::Rerequest => res.rerequests += 1,
                 Notice::Copy => res.copies += 1,
                 Notice::CopyGivenUp => res.copies_given_up += 1,
+                Notice::Resend => res.resends += 1,
                 Notice::NoController => res.failures.push(format!("node {k} has no active controller left")),
             }
         }
